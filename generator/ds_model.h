@@ -1,0 +1,64 @@
+// The diffusion-surface (DS) model (paper §3.1): triangle meshes whose vertices carry a front and
+// a back colour and a blur value, plus per-surface side visibility.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <glm/vec3.hpp>
+
+namespace cutaway {
+
+/// OpenMesh traits of a DS mesh: double-precision points (metres, object frame, axis +Y) and
+/// the DS attributes on every vertex.
+struct DsMeshTraits : public OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+  VertexAttributes(OpenMesh::Attributes::Normal);
+  FaceAttributes(OpenMesh::Attributes::Normal);
+  VertexTraits {
+    OpenMesh::Vec3d front{0, 0, 0};  ///< linear RGB shown on the front side (normal side)
+    OpenMesh::Vec3d back{0, 0, 0};   ///< linear RGB shown on the back side
+    double blur = 0;                 ///< metres; the sheets sit at +-blur along the normal
+    /// (t_profile, t_section): normalised arc-length parameters of the sweep that made the
+    /// vertex (0 for imported meshes); gradients and grain regions use them.
+    OpenMesh::Vec2d param{0, 0};
+  };
+};
+
+using DsMesh = OpenMesh::TriMesh_ArrayKernelT<DsMeshTraits>;
+
+/// What a surface is for. The skin is the object's closed outer boundary.
+enum class SurfaceRole { Skin, Structure, Grain };
+
+/// One diffusion surface: a triangle mesh with DS attributes. Face winding gives the normal;
+/// the normal points to the front side.
+struct DsSurface {
+  std::string name;
+  SurfaceRole role = SurfaceRole::Structure;
+  DsMesh mesh;
+  bool visible_front = true;  ///< false: the front side is hollow (empty space in cuts)
+  bool visible_back = true;   ///< false: the back side is hollow
+  /// N-fold `within` surfaces: the fold the surface belongs to (-1 otherwise).
+  int fold = -1;
+};
+
+/// A whole DS model: all surfaces (skin first), in metres, object frame.
+struct DsModel {
+  std::string name;
+  std::vector<DsSurface> surfaces;
+  glm::dvec3 bbox_min{0.0}, bbox_max{0.0};  ///< axis-aligned bounds of all surfaces, metres
+
+  /// Total triangle count over all surfaces (the paper's "DS faces").
+  size_t face_count() const;
+  /// Total vertex count over all surfaces.
+  size_t vertex_count() const;
+  /// The skin (surfaces[0]).
+  const DsSurface& skin() const { return surfaces.front(); }
+};
+
+/// Recomputes `model.bbox_min/max` from the surfaces' vertices.
+void update_bounds(DsModel& model);
+
+}  // namespace cutaway

@@ -1,0 +1,64 @@
+// Two error channels (design/style.md): InputError for bad user input (exit code 2, the message
+// names file, line, column, field and rule) and CUTAWAY_CHECK for broken internal invariants.
+#pragma once
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace cutaway {
+
+/// A position in an input file. `line` and `column` are 1-based; 0 means unknown.
+struct FileLoc {
+  std::string file;
+  int line = 0;
+  int column = 0;
+};
+
+/// Bad user input. what() is "FILE:LINE:COL: FIELD: RULE", e.g.
+/// "templates/tomato.yaml:14:11: surfaces[1].profile: a 'within' profile must be closed".
+class InputError : public std::runtime_error {
+ public:
+  /// @param loc   where in the input the problem is (file, 1-based line and column)
+  /// @param field the field path, e.g. "surfaces[1].profile"; "(file)" for the whole file
+  /// @param rule  the rule that was broken, in words a user understands
+  InputError(FileLoc loc, std::string field, std::string rule);
+
+  const FileLoc& loc() const { return loc_; }
+  const std::string& field() const { return field_; }
+  const std::string& rule() const { return rule_; }
+
+ private:
+  FileLoc loc_;
+  std::string field_;
+  std::string rule_;
+};
+
+/// A broken internal invariant: a bug in cutaway, not in the input (exit code 1).
+class InternalError : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
+};
+
+[[noreturn]] void check_failed(const char* file, int line, const char* condition,
+                               const std::string& detail);
+
+}  // namespace cutaway
+
+/// CHECK-style assertion that stays on in Release builds (pbrt-v4 util/check.h).
+#define CUTAWAY_CHECK(cond)                                          \
+  do {                                                               \
+    if (!(cond)) ::cutaway::check_failed(__FILE__, __LINE__, #cond, ""); \
+  } while (false)
+
+/// Like CUTAWAY_CHECK, printing both values of a failed comparison.
+#define CUTAWAY_CHECK_OP(a, op, b)                                           \
+  do {                                                                       \
+    const auto& check_a_ = (a);                                              \
+    const auto& check_b_ = (b);                                              \
+    if (!(check_a_ op check_b_)) {                                           \
+      std::ostringstream check_s_;                                           \
+      check_s_ << #a " = " << check_a_ << ", " #b " = " << check_b_;         \
+      ::cutaway::check_failed(__FILE__, __LINE__, #a " " #op " " #b, check_s_.str()); \
+    }                                                                        \
+  } while (false)

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Installs what cutaway needs on Debian 12: the Debian packages for building and running it,
+# and (with --test) the test tools: the Khronos glTF validator from npm, installed locally
+# into node_modules/. A fast no-op when everything is already present.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev libstb-dev libpcg-cpp-dev
+  libglm-dev libeigen3-dev libopenmesh-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
+  libembree-dev libtbb-dev libtinygltf-dev nlohmann-json3-dev
+  libosmesa6-dev libegl-dev libgl-dev libgles-dev
+  povray
+)
+test_packages=(libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev nodejs npm)
+
+want=("${packages[@]}")
+with_tests=0
+if [[ "${1:-}" == "--test" ]]; then with_tests=1; want+=("${test_packages[@]}"); fi
+
+missing=()
+for p in "${want[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+# node and npm may come from outside Debian's packages; accept any working install.
+if command -v node >/dev/null && command -v npm >/dev/null; then
+  filtered=()
+  for p in "${missing[@]}"; do [[ "$p" == nodejs || "$p" == npm ]] || filtered+=("$p"); done
+  missing=("${filtered[@]}")
+fi
+
+if ((${#missing[@]})); then
+  echo "install-deps: installing ${missing[*]}" >&2
+  sudo=""; [[ $(id -u) -eq 0 ]] || sudo="sudo"
+  $sudo apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+if ((with_tests)) && [[ ! -x node_modules/.bin/gltf-validator && ! -f node_modules/gltf-validator/package.json ]]; then
+  echo "install-deps: installing the Khronos glTF validator (npm gltf-validator) into node_modules/" >&2
+  npm install --no-audit --no-fund --silent
+fi
