@@ -1,0 +1,65 @@
+// Preview image of a DS model: every surface see-through, so the inner structure shows (paper
+// Fig. 9), rendered offscreen with OpenGL (render/gl_context.h) and written as PNG.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "ds_model.h"
+
+namespace cutaway {
+
+/// An 8-bit RGBA image: `rgba` holds width * height * 4 bytes, rows top first, pixels left to
+/// right, R G B A each; colour is sRGB-encoded, alpha is linear (255 = opaque).
+struct Image {
+  int width = 0, height = 0;   ///< pixels
+  std::vector<uint8_t> rgba;   ///< width * height * 4 bytes, sRGB8 + alpha, row 0 = top
+};
+
+/// How render_model_preview() draws. Units are in the names; colours say sRGB or linear.
+struct PreviewOptions {
+  int width = 800, height = 800;  ///< image size, pixels; 1..16384 (and what GL allows)
+  int samples = 4;                ///< MSAA samples per pixel, >= 1; clamped to what GL offers
+  double azimuth_deg = 35;        ///< camera orbit about +Y; 0 looks from +Z toward -Z
+  double elevation_deg = 25;      ///< camera height above the XZ plane; -89..89
+  double fov_deg = 30;            ///< full field of view of the image's shorter side; 1..170
+  double skin_alpha = 0.35;       ///< opacity of the skin (surfaces[0]), 0..1
+  double inner_alpha = 0.7;       ///< opacity of every other surface, 0..1
+  glm::dvec3 background_srgb{1, 1, 1};  ///< opaque background, sRGB 0..1
+};
+
+/// Renders `model` with every surface see-through, after the paper's Fig. 9 (Takayama et al.
+/// 2010, "Volumetric modeling with diffusion surfaces").
+///
+/// Each surface shows its per-vertex `front` colour (linear RGB) where it is seen from the side
+/// its normal points to (CCW winding = front) and its `back` colour where seen from behind; a
+/// side marked hollow (`visible_front`/`visible_back` false) shows the other side's colour.
+/// Lighting is in linear RGB: ambient + Lambert from a key light near the eye, two-sided, plus a
+/// rim term; smooth normals come from the mesh (area-weighted face normals), not from stored
+/// normals. All triangles of all surfaces are sorted back to front by view-space centroid depth
+/// (ties by index) and alpha-blended without a depth test, into a multisampled framebuffer.
+/// The camera orbits the centre of `model.bbox_min/max` (metres, +Y up) at the distance where the
+/// sphere about that centre through the farthest vertex fills the field of view with a small
+/// margin; the background is opaque. The result is deterministic:
+/// the same model and options give the same bytes on the same OpenGL implementation.
+///
+/// Creates its own offscreen OpenGL context (create_offscreen_context()) for the call.
+/// @param model   at least one triangle; bbox_min/max as set by update_bounds(), with a
+///                positive, finite diagonal
+/// @param options see PreviewOptions for ranges
+/// @returns an opaque image of options.width x options.height pixels
+/// @throws std::invalid_argument when the model or options break the preconditions
+/// @throws std::runtime_error when no OpenGL context can be created or rendering fails
+Image render_model_preview(const DsModel& model, const PreviewOptions& options);
+
+/// Encodes `image` as PNG (8-bit RGBA, stb_image_write) and writes it atomically
+/// (write_file_atomically(): a failed write leaves no partial file).
+/// @param image width, height > 0 and rgba.size() == width * height * 4
+/// @throws std::invalid_argument when the image's size does not match its bytes
+/// @throws std::runtime_error when encoding or writing fails
+void write_png(const std::filesystem::path& path, const Image& image);
+
+}  // namespace cutaway
