@@ -40,8 +40,6 @@ struct DsSurface {
   DsMesh mesh;
   bool visible_front = true;  ///< false: the front side is hollow (empty space in cuts)
   bool visible_back = true;   ///< false: the back side is hollow
-  /// N-fold `within` surfaces: the fold the surface belongs to (-1 otherwise).
-  int fold = -1;
 };
 
 /// A whole DS model: all surfaces (skin first), in metres, object frame.

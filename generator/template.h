@@ -112,6 +112,7 @@ struct Template {
   int folds = 1;                      ///< N of an N-fold template; 1 otherwise
   std::vector<double> fold_angles;    ///< radians, increasing, one per fold (nfold)
   double edge_m = 0.0;                ///< target edge length of the surface meshes, metres
+  FileLoc edge_loc;                   ///< where `resolution.edge` is (the file start if absent)
   double variation_amount = 1.0;
   int variation_folds_min = 1, variation_folds_max = 1;
   std::vector<SurfaceSpec> surfaces;

@@ -1,0 +1,157 @@
+// The `cutaway` command line: parses arguments and calls the libraries; nothing else lives
+// here (design/style.md). Exit codes: 0 success, 2 bad input, 1 internal failure.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include "error.h"
+#include "gltf_export.h"
+#include "model_builder.h"
+#include "model_preview.h"
+#include "template_parser.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// A bad command-line argument: reported like InputError, exit code 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+void require_extension(const std::string& option, const std::string& path, const char* ext) {
+  if (std::filesystem::path(path).extension() != ext) {
+    throw UsageError(option + ": '" + path + "' must end in " + ext);
+  }
+}
+
+struct ModelArgs {
+  std::string template_path;
+  std::string output;
+  std::string png;
+  int width = 800;
+};
+
+int run_model(const ModelArgs& a, bool stats) {
+  const auto t0 = Clock::now();
+  const cutaway::Template tmpl = cutaway::load_template(a.template_path);
+  const double t_parse = seconds_since(t0);
+  const auto t1 = Clock::now();
+  const cutaway::DsModel model = cutaway::build_model(tmpl);
+  const double t_sweep = seconds_since(t1);
+  spdlog::info("{}: {} surfaces, {} vertices, {} faces", tmpl.name, model.surfaces.size(),
+               model.vertex_count(), model.face_count());
+
+  const std::string glb = a.output.empty() && a.png.empty() ? tmpl.name + ".glb" : a.output;
+  double t_render = 0, t_export = 0;
+  cutaway::Image image;
+  if (!a.png.empty()) {
+    const auto t2 = Clock::now();
+    cutaway::PreviewOptions opt;
+    opt.width = opt.height = a.width;
+    image = cutaway::render_model_preview(model, opt);
+    t_render = seconds_since(t2);
+  }
+  if (!glb.empty()) {
+    const auto t3 = Clock::now();
+    cutaway::write_model_glb(glb, model, cutaway::GltfModelOptions{});
+    t_export = seconds_since(t3);
+    spdlog::info("wrote {}", glb);
+  }
+  if (!a.png.empty()) {
+    cutaway::write_png(a.png, image);
+    spdlog::info("wrote {}", a.png);
+  }
+  if (stats) {
+    std::fprintf(stderr,
+                 "{\"template\": \"%s\", \"surfaces\": %zu, \"vertices\": %zu, \"faces\": %zu, "
+                 "\"seconds\": {\"parse\": %.4f, \"sweep\": %.4f, \"render\": %.4f, "
+                 "\"export\": %.4f}}\n",
+                 tmpl.name.c_str(), model.surfaces.size(), model.vertex_count(),
+                 model.face_count(), t_parse, t_sweep, t_render, t_export);
+  }
+  return 0;
+}
+
+int run_check(const std::vector<std::string>& files) {
+  int failed = 0;
+  for (const auto& f : files) {
+    try {
+      const cutaway::Template tmpl = cutaway::load_template(f);
+      const cutaway::DsModel model = cutaway::build_model(tmpl);
+      std::printf("%s: ok (template '%s', %zu surfaces, %zu DS faces)\n", f.c_str(),
+                  tmpl.name.c_str(), model.surfaces.size(), model.face_count());
+    } catch (const cutaway::InputError& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      ++failed;
+    }
+  }
+  return failed ? 2 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"cutaway: cut objects with a consistent interior, from diffusion surfaces "
+               "(Takayama et al. 2010)"};
+  app.require_subcommand(1);
+  app.fallthrough();  // common options may follow the subcommand
+  bool stats = false, quiet = false, verbose = false;
+  app.add_flag("--stats", stats, "print JSON timings and counts on stderr");
+  app.add_flag("-q,--quiet", quiet, "print errors only");
+  app.add_flag("-v,--verbose", verbose, "print progress and details");
+
+  ModelArgs model_args;
+  CLI::App* model = app.add_subcommand("model", "build the DS model of a template (glb, PNG)");
+  model->add_option("TEMPLATE", model_args.template_path, "template file (.yaml)")->required();
+  model->add_option("-o,--output", model_args.output,
+                    "glTF binary to write (.glb); default NAME.glb when no --png is given");
+  model->add_option("--png", model_args.png, "PNG picture of the see-through model");
+  model->add_option("--size", model_args.width, "PNG width and height in pixels")
+      ->check(CLI::Range(16, 8192));
+
+  std::vector<std::string> check_files;
+  CLI::App* check = app.add_subcommand("check", "validate templates without writing anything");
+  check->add_option("FILE", check_files, "template files")->required();
+
+  auto logger = spdlog::stderr_color_st("cutaway");
+  spdlog::set_default_logger(logger);
+  spdlog::set_pattern("%v");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  spdlog::set_level(quiet ? spdlog::level::err
+                          : (verbose ? spdlog::level::debug : spdlog::level::info));
+  try {
+    if (*model) {
+      if (!model_args.output.empty()) require_extension("-o", model_args.output, ".glb");
+      if (!model_args.png.empty()) require_extension("--png", model_args.png, ".png");
+      return run_model(model_args, stats);
+    }
+    if (*check) return run_check(check_files);
+  } catch (const cutaway::InputError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "cutaway: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "cutaway: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

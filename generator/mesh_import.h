@@ -1,0 +1,35 @@
+// `mesh` surfaces (spec/template-format.md, Surfaces): triangle meshes read from PLY with
+// OpenMesh, with optional per-vertex DS attributes.
+#pragma once
+
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include "ds_model.h"
+#include "error.h"
+#include "template.h"
+
+namespace cutaway {
+
+/// Axis-aligned bounds of a mesh file's vertices, metres.
+struct MeshBounds {
+  glm::dvec3 min{0.0}, max{0.0};
+};
+
+/// Reads the PLY at `file` and returns its bounds in metres.
+/// @param metres_per_unit  the template's unit scale
+/// @param loc, field        where the template names the file (for errors)
+/// @throws InputError when the file is missing, not a readable PLY, or has no triangles
+MeshBounds read_mesh_bounds(const std::string& file, double metres_per_unit, const FileLoc& loc,
+                            const std::string& field);
+
+/// Builds the DS surface of a `mesh` surface: vertices scaled to metres; per-vertex colours
+/// from the PLY properties front_red/green/blue and back_red/green/blue (uchar sRGB 0..255 or
+/// float sRGB 0..1) and `blur` (template units) where present, else the surface's front, back
+/// and blur (gradients are evaluated at parameter 0: imported meshes have no sweep parameters).
+/// Polygons are triangulated. A skin must be closed.
+/// @throws InputError when the file is unreadable, non-manifold, or (skin) not closed
+DsSurface import_mesh_surface(const SurfaceSpec& spec, const Template& tmpl);
+
+}  // namespace cutaway

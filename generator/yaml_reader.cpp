@@ -1,0 +1,266 @@
+#include "yaml_reader.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace cutaway {
+
+namespace {
+
+constexpr int kMaxDepth = 64;
+constexpr size_t kMaxBytes = 16u << 20;
+
+FileLoc loc_of(const YAML::Mark& mark, const std::string& file) {
+  if (mark.is_null()) return FileLoc{file, 1, 1};
+  return FileLoc{file, mark.line + 1, mark.column + 1};
+}
+
+/// Position (1-based line, column) of byte `offset` in `text`.
+FileLoc loc_of_offset(std::string_view text, size_t offset, const std::string& file) {
+  int line = 1, col = 1;
+  for (size_t i = 0; i < offset && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      col = 1;
+    } else if ((static_cast<unsigned char>(text[i]) & 0xC0) != 0x80) {
+      ++col;
+    }
+  }
+  return FileLoc{file, line, col};
+}
+
+/// Offset of the first byte that is not valid UTF-8 (or a NUL), or npos.
+size_t find_invalid_utf8(std::string_view s) {
+  size_t i = 0;
+  while (i < s.size()) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if (c == 0) return i;
+    int extra;
+    uint32_t cp;
+    if (c < 0x80) {
+      ++i;
+      continue;
+    } else if ((c & 0xE0) == 0xC0) {
+      extra = 1;
+      cp = c & 0x1F;
+    } else if ((c & 0xF0) == 0xE0) {
+      extra = 2;
+      cp = c & 0x0F;
+    } else if ((c & 0xF8) == 0xF0) {
+      extra = 3;
+      cp = c & 0x07;
+    } else {
+      return i;
+    }
+    if (i + extra >= s.size()) return i;
+    for (int k = 1; k <= extra; ++k) {
+      const auto d = static_cast<unsigned char>(s[i + k]);
+      if ((d & 0xC0) != 0x80) return i;
+      cp = (cp << 6) | (d & 0x3F);
+    }
+    const uint32_t min_cp[] = {0, 0x80, 0x800, 0x10000};
+    if (cp < min_cp[extra] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return i;
+    i += extra + 1;
+  }
+  return std::string_view::npos;
+}
+
+/// Offset where flow/block nesting first exceeds kMaxDepth, or npos. Counts '[' and '{' outside
+/// quotes and comments, and indentation steps of block collections conservatively (by the
+/// number of leading spaces / 1): a guard against stack exhaustion in the recursive parser.
+size_t find_excessive_nesting(std::string_view s) {
+  int depth = 0;
+  char quote = 0;
+  bool comment = false;
+  for (size_t i = 0; i < s.size(); ++i) {
+    const char c = s[i];
+    if (c == '\n') {
+      comment = false;
+      if (quote == '\'' || quote == '"') continue;
+      size_t indent = 0;
+      while (i + 1 + indent < s.size() && (s[i + 1 + indent] == ' ' || s[i + 1 + indent] == '-'))
+        ++indent;
+      if (indent > 4 * kMaxDepth) return i + 1;
+      continue;
+    }
+    if (comment) continue;
+    if (quote) {
+      if (c == '\\' && quote == '"') ++i;
+      else if (c == quote) quote = 0;
+      continue;
+    }
+    if (c == '#' && (i == 0 || s[i - 1] == ' ' || s[i - 1] == '\t')) comment = true;
+    else if (c == '"' || c == '\'') quote = c;
+    else if (c == '[' || c == '{') {
+      if (++depth > kMaxDepth) return i;
+    } else if (c == ']' || c == '}') {
+      if (depth > 0) --depth;
+    }
+  }
+  return std::string_view::npos;
+}
+
+std::string describe(const YAML::Node& n) {
+  switch (n.Type()) {
+    case YAML::NodeType::Null: return "nothing";
+    case YAML::NodeType::Scalar: return "'" + n.Scalar() + "'";
+    case YAML::NodeType::Sequence: return "a list";
+    case YAML::NodeType::Map: return "a mapping";
+    default: return "nothing";
+  }
+}
+
+}  // namespace
+
+YamlField::YamlField(YAML::Node node, std::string path, std::string file)
+    : node_(std::move(node)), path_(std::move(path)), file_(std::move(file)) {}
+
+FileLoc YamlField::loc() const { return loc_of(node_.Mark(), file_); }
+
+void YamlField::fail(const std::string& rule) const { throw InputError(loc(), path_, rule); }
+
+void YamlField::expect_map() const {
+  if (!node_.IsMap()) fail("must be a mapping (key: value), not " + describe(node_));
+}
+
+void YamlField::expect_sequence() const {
+  if (!node_.IsSequence()) fail("must be a list, not " + describe(node_));
+}
+
+std::optional<YamlField> YamlField::get(const std::string& key) const {
+  expect_map();
+  for (const auto& kv : node_) {
+    if (kv.first.IsScalar() && kv.first.Scalar() == key) {
+      const std::string child = path_ == "(root)" ? key : path_ + "." + key;
+      YAML::Node value = kv.second;
+      // A key with no value ("key:") has no mark of its own; use the key's.
+      if (value.IsNull() && value.Mark().is_null()) {
+        return YamlField(YAML::Node(), child, file_);
+      }
+      return YamlField(value, child, file_);
+    }
+  }
+  return std::nullopt;
+}
+
+YamlField YamlField::require(const std::string& key) const {
+  auto f = get(key);
+  if (!f) fail("missing required field '" + key + "'");
+  return *f;
+}
+
+void YamlField::allow_only(std::initializer_list<std::string_view> allowed) const {
+  expect_map();
+  std::set<std::string> seen;
+  for (const auto& kv : node_) {
+    const std::string prefix = path_ == "(root)" ? "" : path_ + ".";
+    if (!kv.first.IsScalar()) {
+      throw InputError(loc_of(kv.first.Mark(), file_), path_, "keys must be plain names");
+    }
+    const std::string& key = kv.first.Scalar();
+    bool ok = false;
+    for (auto a : allowed) ok = ok || a == key;
+    if (!ok) {
+      std::string list;
+      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      throw InputError(loc_of(kv.first.Mark(), file_), prefix + key,
+                       "unknown field '" + key + "' (expected one of: " + list + ")");
+    }
+    if (!seen.insert(key).second) {
+      throw InputError(loc_of(kv.first.Mark(), file_), prefix + key,
+                       "field '" + key + "' is given twice");
+    }
+  }
+}
+
+size_t YamlField::size() const {
+  expect_sequence();
+  return node_.size();
+}
+
+YamlField YamlField::operator[](size_t i) const {
+  expect_sequence();
+  return YamlField(node_[i], path_ + "[" + std::to_string(i) + "]", file_);
+}
+
+std::string YamlField::string() const {
+  if (!node_.IsScalar()) fail("must be a text value, not " + describe(node_));
+  return node_.Scalar();
+}
+
+double YamlField::number() const {
+  if (!node_.IsScalar()) fail("must be a number, not " + describe(node_));
+  double v;
+  if (!YAML::convert<double>::decode(node_, v)) fail("must be a number, not " + describe(node_));
+  if (!std::isfinite(v)) fail("must be a finite number, not " + describe(node_));
+  return v;
+}
+
+int64_t YamlField::integer() const {
+  const double v = number();
+  if (v != std::floor(v) || std::fabs(v) > 9.0e15) fail("must be a whole number, not " + describe(node_));
+  return static_cast<int64_t>(v);
+}
+
+bool YamlField::boolean() const {
+  bool v;
+  if (!node_.IsScalar() || !YAML::convert<bool>::decode(node_, v)) {
+    fail("must be true or false, not " + describe(node_));
+  }
+  return v;
+}
+
+double YamlField::number_in(double lo, double hi) const {
+  const double v = number();
+  if (v < lo || v > hi) {
+    std::ostringstream s;
+    s << "must be between " << lo << " and " << hi << ", not " << v;
+    fail(s.str());
+  }
+  return v;
+}
+
+YamlField parse_yaml(std::string_view text, const std::string& file) {
+  if (text.size() > kMaxBytes) {
+    throw InputError(FileLoc{file, 1, 1}, "(file)", "the file is larger than 16 MiB");
+  }
+  if (const size_t bad = find_invalid_utf8(text); bad != std::string_view::npos) {
+    throw InputError(loc_of_offset(text, bad, file), "(file)",
+                     "the file is not UTF-8 text (a YAML or JSON file was expected)");
+  }
+  if (const size_t deep = find_excessive_nesting(text); deep != std::string_view::npos) {
+    throw InputError(loc_of_offset(text, deep, file), "(file)",
+                     "nesting is deeper than " + std::to_string(kMaxDepth) + " levels");
+  }
+  YAML::Node root;
+  try {
+    root = YAML::Load(std::string(text));
+  } catch (const YAML::Exception& e) {
+    throw InputError(loc_of(e.mark, file), "(file)", "YAML syntax error: " + e.msg);
+  }
+  if (!root.IsDefined() || root.IsNull()) {
+    throw InputError(FileLoc{file, 1, 1}, "(root)", "the file is empty");
+  }
+  YamlField f(root, "(root)", file);
+  if (!root.IsMap()) f.fail("the top level must be a mapping (key: value), not " + describe(root));
+  return f;
+}
+
+std::string read_input_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw InputError(FileLoc{path, 1, 1}, "(file)", "is a directory, not a file");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(FileLoc{path, 1, 1}, "(file)", "cannot open the file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+YamlField load_yaml_file(const std::string& path) { return parse_yaml(read_input_file(path), path); }
+
+}  // namespace cutaway

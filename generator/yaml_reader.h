@@ -1,0 +1,79 @@
+// A thin reading layer over yaml-cpp for cutaway's declarative files (templates and scenes):
+// every access knows its field path and source position, so every rule broken by the input
+// becomes an InputError "FILE:LINE:COL: field.path: rule" (spec/template-format.md, Errors).
+#pragma once
+
+#include <cstdint>
+#include <initializer_list>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <yaml-cpp/yaml.h>
+
+#include "error.h"
+
+namespace cutaway {
+
+/// One node of a parsed YAML document together with its field path and file name.
+class YamlField {
+ public:
+  YamlField(YAML::Node node, std::string path, std::string file);
+
+  const std::string& path() const { return path_; }
+  const std::string& file() const { return file_; }
+  /// 1-based line and column of the node's first character.
+  FileLoc loc() const;
+  /// Throws InputError at this node: "FILE:LINE:COL: PATH: RULE".
+  [[noreturn]] void fail(const std::string& rule) const;
+
+  bool is_map() const { return node_.IsMap(); }
+  bool is_sequence() const { return node_.IsSequence(); }
+  bool is_scalar() const { return node_.IsScalar(); }
+  bool is_null() const { return node_.IsNull(); }
+
+  /// Map access. Requires a map (else fails with "must be a mapping").
+  /// `require` fails with "missing required field 'KEY'" when absent.
+  YamlField require(const std::string& key) const;
+  std::optional<YamlField> get(const std::string& key) const;
+  /// Fails at the first key not in `allowed` ("unknown field 'KEY' (expected one of ...)"),
+  /// and at a key given twice. Requires a map.
+  void allow_only(std::initializer_list<std::string_view> allowed) const;
+
+  /// Sequence access. Requires a sequence (else fails with "must be a list").
+  size_t size() const;
+  YamlField operator[](size_t i) const;
+
+  /// Scalars. Each fails with a rule naming the expected type.
+  std::string string() const;
+  double number() const;     ///< finite (NaN and infinities are refused)
+  int64_t integer() const;   ///< a whole number
+  bool boolean() const;
+  /// A number within [lo, hi] ("must be between LO and HI").
+  double number_in(double lo, double hi) const;
+
+  const YAML::Node& node() const { return node_; }
+
+ private:
+  void expect_map() const;
+  void expect_sequence() const;
+  YAML::Node node_;
+  std::string path_;
+  std::string file_;
+};
+
+/// Parses YAML text (YAML 1.2 / JSON, UTF-8). Refuses empty input, invalid UTF-8, NUL bytes,
+/// nesting deeper than 64 levels and YAML syntax errors with an InputError at the position.
+/// @param text      the file's bytes
+/// @param file      the name used in messages
+/// @return the root field (path "(root)")
+YamlField parse_yaml(std::string_view text, const std::string& file);
+
+/// The bytes of the input file at `path`.
+/// @throws InputError "PATH:1:1: (file): cannot open the file" when it cannot be read
+std::string read_input_file(const std::string& path);
+
+/// Reads `path` and parses it with parse_yaml.
+YamlField load_yaml_file(const std::string& path);
+
+}  // namespace cutaway
