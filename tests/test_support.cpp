@@ -1,0 +1,99 @@
+#include "test_support.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace cutaway::test {
+
+namespace {
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+int system_exit_code(int status) { return WIFEXITED(status) ? WEXITSTATUS(status) : 128; }
+
+}  // namespace
+
+RunResult run_cutaway(const std::vector<std::string>& args) {
+  static int counter = 0;
+  const auto dir = std::filesystem::path(CUTAWAY_TEST_TMP) / "runs";
+  std::filesystem::create_directories(dir);
+  const std::string tag = std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  const auto out = dir / (tag + ".out"), err = dir / (tag + ".err");
+  std::string cmd = "cd " + shell_quote(CUTAWAY_SOURCE_DIR) + " && " + shell_quote(CUTAWAY_BINARY);
+  for (const auto& a : args) cmd += " " + shell_quote(a);
+  cmd += " </dev/null >" + shell_quote(out.string()) + " 2>" + shell_quote(err.string());
+  RunResult r;
+  r.exit_code = system_exit_code(std::system(cmd.c_str()));
+  r.out = slurp(out);
+  r.err = slurp(err);
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
+  return r;
+}
+
+std::filesystem::path fresh_dir(const std::string& name) {
+  const auto dir = std::filesystem::path(CUTAWAY_TEST_TMP) / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::filesystem::path source_path(const std::string& relative) {
+  return std::filesystem::path(CUTAWAY_SOURCE_DIR) / relative;
+}
+
+std::vector<std::string> files_in(const std::filesystem::path& dir) {
+  std::vector<std::string> out;
+  if (!std::filesystem::exists(dir)) return out;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) {
+    if (e.is_regular_file()) out.push_back(std::filesystem::relative(e.path(), dir).string());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+GltfReport validate_gltf(const std::filesystem::path& file) {
+  const auto log = std::filesystem::path(CUTAWAY_TEST_TMP) /
+                   ("validator-" + std::to_string(::getpid()) + ".log");
+  std::filesystem::create_directories(log.parent_path());
+  const std::string cmd = "cd " + shell_quote(CUTAWAY_SOURCE_DIR) +
+                          " && node tests/tools/validate_gltf.mjs " +
+                          shell_quote(std::filesystem::absolute(file).string()) + " >" +
+                          shell_quote(log.string()) + " 2>&1";
+  const int code = system_exit_code(std::system(cmd.c_str()));
+  GltfReport r;
+  r.output = slurp(log);
+  std::filesystem::remove(log);
+  const auto pos = r.output.find("\"errors\":");
+  if (pos != std::string::npos && (code == 0 || code == 1)) {
+    r.errors = std::atoi(r.output.c_str() + pos + 9);
+  }
+  return r;
+}
+
+std::vector<std::filesystem::path> shipped_templates() {
+  std::vector<std::filesystem::path> out;
+  for (const auto& e : std::filesystem::directory_iterator(source_path("templates"))) {
+    if (e.path().extension() == ".yaml") out.push_back(e.path());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace cutaway::test
