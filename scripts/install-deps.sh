@@ -10,7 +10,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev libstb-dev libpcg-cpp-dev
   libglm-dev libeigen3-dev libopenmesh-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libembree-dev libtbb-dev libtinygltf-dev nlohmann-json3-dev
-  libosmesa6-dev libegl-dev libgl-dev libgles-dev
+  libosmesa6-dev libegl-dev libgl-dev libgles-dev python3 python3-glad
   povray
 )
 test_packages=(libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev nodejs npm)
@@ -41,5 +41,5 @@ fi
 
 if ((with_tests)) && [[ ! -x node_modules/.bin/gltf-validator && ! -f node_modules/gltf-validator/package.json ]]; then
   echo "install-deps: installing the Khronos glTF validator (npm gltf-validator) into node_modules/" >&2
-  npm install --no-audit --no-fund --silent
+  npm ci --no-audit --no-fund --silent
 fi
