@@ -163,7 +163,10 @@ DsSurface sweep_around(const SurfaceSpec& spec, const Template& t) {
     rho0 = glm::length(started.front());
     perimeter = curve_length(started, true) / rho0;
   }
-  const int m = segments_for(max_r * perimeter, edge, 8);
+  int m = segments_for(max_r * perimeter, edge, 8);
+  // An N-fold object maps onto itself under a turn by 2 pi / N only if every fold gets the same
+  // samples: a multiple of N, so that sample k m / N lies where sample 0 turned by k folds lies.
+  if (t.symmetry == Symmetry::NFold && t.folds > 1) m = (m + t.folds - 1) / t.folds * t.folds;
   check_vertex_budget(static_cast<size_t>(n) + 1, static_cast<size_t>(m), spec, t);
   if (spec.section.circle) {
     for (int j = 0; j < m; ++j) {

@@ -15,8 +15,9 @@ inline constexpr size_t kMaxSweepVertices = 2'000'000;
 /// Point (t, s) = (r(t) rho(s)/rho0 cos phi(s), y(t), -r(t) rho(s)/rho0 sin phi(s)).
 /// A grid of (#profile samples) x (#section samples) vertices; a profile end on the axis
 /// becomes a pole (triangle fan). Normals point away from the axis (front side).
-/// Sample counts follow tmpl.edge_m (metres). Vertex params: (t_profile, t_section), both
-/// normalised arc length (section from angle 0, counter-clockwise seen from +Y).
+/// Sample counts follow tmpl.edge_m (metres); in an N-fold template the section count is a
+/// multiple of N, so identical folds get identical samples. Vertex params: (t_profile,
+/// t_section), both normalised arc length (section from angle 0, counter-clockwise seen from +Y).
 /// @pre spec.kind == Around and the spec passed check_template_curves
 /// @throws InputError at resolution.edge when the surface would exceed kMaxSweepVertices
 DsSurface sweep_around(const SurfaceSpec& spec, const Template& tmpl);
