@@ -2,6 +2,8 @@
 
 #include <limits>
 
+#include <glm/geometric.hpp>
+
 namespace cutaway {
 
 size_t DsModel::face_count() const {
@@ -30,6 +32,27 @@ void update_bounds(DsModel& model) {
   }
   model.bbox_min = lo;
   model.bbox_max = hi;
+}
+
+std::vector<glm::dvec3> vertex_normals(const DsMesh& mesh) {
+  std::vector<glm::dvec3> n(mesh.n_vertices(), glm::dvec3(0.0));
+  for (auto fh : mesh.faces()) {
+    std::array<glm::dvec3, 3> p;
+    std::array<int, 3> v;
+    int k = 0;
+    for (auto vh : mesh.fv_range(fh)) {
+      const auto& q = mesh.point(vh);
+      p[k] = {q[0], q[1], q[2]};
+      v[k++] = vh.idx();
+    }
+    const glm::dvec3 fn = glm::cross(p[1] - p[0], p[2] - p[0]);  // length = 2 * area
+    for (int c : v) n[c] += fn;
+  }
+  for (auto& x : n) {
+    const double len = glm::length(x);
+    x = len > 0 ? x / len : glm::dvec3(0.0);
+  }
+  return n;
 }
 
 }  // namespace cutaway

@@ -59,4 +59,8 @@ struct DsModel {
 /// Recomputes `model.bbox_min/max` from the surfaces' vertices.
 void update_bounds(DsModel& model);
 
+/// Unit vertex normals of `mesh` (#V): the area-weighted sum of the incident faces' normals
+/// (counter-clockwise winding = front side); zero where that sum vanishes.
+std::vector<glm::dvec3> vertex_normals(const DsMesh& mesh);
+
 }  // namespace cutaway

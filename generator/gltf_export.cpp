@@ -67,29 +67,6 @@ int add_material(tinygltf::Model& m, const std::string& name, double alpha) {
   return static_cast<int>(m.materials.size()) - 1;
 }
 
-/// Area-weighted vertex normals of a DS mesh (unit length; zero where undefined).
-std::vector<float> vertex_normals(const DsMesh& mesh) {
-  std::vector<double> n(mesh.n_vertices() * 3, 0.0);
-  for (auto fh : mesh.faces()) {
-    std::array<DsMesh::Point, 3> p;
-    std::array<int, 3> v;
-    int k = 0;
-    for (auto vh : mesh.fv_range(fh)) {
-      p[k] = mesh.point(vh);
-      v[k++] = vh.idx();
-    }
-    const auto fn = OpenMesh::cross(p[1] - p[0], p[2] - p[0]);  // length = 2 * area
-    for (int c : v)
-      for (int d = 0; d < 3; ++d) n[c * 3 + d] += fn[d];
-  }
-  std::vector<float> out(n.size());
-  for (size_t i = 0; i < n.size(); i += 3) {
-    const double len = std::sqrt(n[i] * n[i] + n[i + 1] * n[i + 1] + n[i + 2] * n[i + 2]);
-    for (int d = 0; d < 3; ++d) out[i + d] = len > 0 ? static_cast<float>(n[i + d] / len) : 0.f;
-  }
-  return out;
-}
-
 }  // namespace
 
 std::string model_to_glb(const DsModel& model, const GltfModelOptions& options) {
@@ -113,9 +90,13 @@ std::string model_to_glb(const DsModel& model, const GltfModelOptions& options) 
         back.push_back(static_cast<float>(d.back[k]));
       }
     }
-    std::vector<float> normals = vertex_normals(mesh);
-    std::vector<float> flipped(normals.size());
-    for (size_t i = 0; i < normals.size(); ++i) flipped[i] = -normals[i];
+    std::vector<float> normals, flipped;
+    for (const glm::dvec3& n : vertex_normals(mesh)) {
+      for (int k = 0; k < 3; ++k) {
+        normals.push_back(static_cast<float>(n[k]));
+        flipped.push_back(static_cast<float>(-n[k]));
+      }
+    }
     std::vector<uint32_t> idx, rev;
     for (auto fh : mesh.faces()) {
       std::array<uint32_t, 3> v;

@@ -1,0 +1,24 @@
+// The discretised sphere of directions of the PMVC colour diffusion, shared by every backend
+// (design/algorithms.md §2): the texel centres of a cube map and their exact solid angles.
+#pragma once
+
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace cutaway {
+
+/// 6 * n * n directions, face-major (+X, -X, +Y, -Y, +Z, -Z), then rows, then columns.
+struct CubeDirections {
+  int n = 0;                          ///< texels per cube face edge
+  std::vector<glm::vec3> direction;   ///< unit direction through each texel centre
+  std::vector<double> solid_angle;    ///< exact solid angle of each texel, steradians
+};
+
+/// The directions and solid angles of an n x n per face cube map. The solid angle of the texel
+/// [x0, x1] x [y0, y1] on a face at distance 1 is A(x0,y0) - A(x0,y1) - A(x1,y0) + A(x1,y1)
+/// with A(x, y) = atan2(x y, sqrt(x^2 + y^2 + 1)); they sum to 4 pi.
+/// @pre n >= 1
+CubeDirections make_cube_directions(int n);
+
+}  // namespace cutaway

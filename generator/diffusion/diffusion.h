@@ -1,0 +1,43 @@
+// Colour diffusion with positive mean value coordinates (PMVC; paper §3.2, Lipman et al. 2007;
+// design/algorithms.md §2): the colour at a point inside the object is the average of the
+// colours of the DS sheets it sees first in every direction, weighted by solid angle / distance.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "ds_model.h"
+
+namespace cutaway {
+
+/// Settings shared by every diffusion backend.
+struct DiffusionOptions {
+  int cube_size = 32;  ///< texels per cube-map face edge (6 n^2 directions per point)
+  int threads = 0;     ///< worker threads; 0 = all cores. Results do not depend on it.
+};
+
+/// colour(x) = sum_w c(w) dOmega(w) / r(w)  /  sum_w dOmega(w) / r(w) over the cube-map texel
+/// directions w that hit a sheet; r(w) is the Euclidean distance to the first hit and c(w) the
+/// colour the hit sheet shows there (make_diffusion_sheets).
+class DiffusionBackend {
+ public:
+  virtual ~DiffusionBackend() = default;
+  /// Linear RGB colours (#P) at `points` (#P, metres, object frame). A point that sees no
+  /// sheet in any direction (outside the object) gets black. Each point is summed in a fixed
+  /// order: the result does not depend on the thread count.
+  virtual std::vector<glm::dvec3> diffuse(std::span<const glm::dvec3> points) const = 0;
+  /// "cpu" or "gl".
+  virtual std::string name() const = 0;
+};
+
+/// The CPU backend: Embree 3 ray casting, packets of 16 directions of one point, TBB over
+/// points. Builds the BVH of all sheets once.
+/// @throws std::runtime_error when Embree cannot be initialised
+std::unique_ptr<DiffusionBackend> make_cpu_diffusion(const DsModel& model,
+                                                     const DiffusionOptions& options);
+
+}  // namespace cutaway

@@ -1,0 +1,58 @@
+#include "diffusion_sheets.h"
+
+#include <algorithm>
+
+#include <glm/geometric.hpp>
+
+namespace cutaway {
+
+namespace {
+
+glm::vec3 to_vec3(const OpenMesh::Vec3d& v) { return {v[0], v[1], v[2]}; }
+
+/// Copies the mesh into a sheet, each vertex moved by `sign * max(blur, min) * normal`
+/// (sign 0: not moved).
+DiffusionSheet sheet_of(const DsMesh& mesh, const std::vector<glm::dvec3>& normals, int sign) {
+  DiffusionSheet s;
+  for (auto vh : mesh.vertices()) {
+    const auto& d = mesh.data(vh);
+    const auto& p = mesh.point(vh);
+    const double offset = sign * std::max(d.blur, kMinSheetOffset_m);
+    const glm::dvec3 q = glm::dvec3(p[0], p[1], p[2]) + normals[vh.idx()] * offset;
+    s.position.push_back(glm::vec3(q));
+    s.colour_front.push_back(to_vec3(sign < 0 ? d.back : d.front));
+    s.colour_back.push_back(to_vec3(sign == 0 ? d.back : (sign < 0 ? d.back : d.front)));
+  }
+  for (auto fh : mesh.faces()) {
+    glm::uvec3 t;
+    int k = 0;
+    for (auto vh : mesh.fv_range(fh)) t[k++] = static_cast<unsigned>(vh.idx());
+    s.triangle.push_back(t);
+    const glm::vec3 n = glm::cross(s.position[t[1]] - s.position[t[0]],
+                                   s.position[t[2]] - s.position[t[0]]);
+    const float len = glm::length(n);
+    s.face_normal.push_back(len > 0 ? n / len : glm::vec3(0));
+  }
+  s.two_faced = sign == 0;
+  return s;
+}
+
+}  // namespace
+
+std::vector<DiffusionSheet> make_diffusion_sheets(const DsModel& model) {
+  std::vector<DiffusionSheet> sheets;
+  for (const DsSurface& surface : model.surfaces) {
+    bool blurred = false;
+    for (auto vh : surface.mesh.vertices()) blurred = blurred || surface.mesh.data(vh).blur > 0;
+    const std::vector<glm::dvec3> normals = vertex_normals(surface.mesh);
+    if (blurred) {
+      sheets.push_back(sheet_of(surface.mesh, normals, +1));
+      sheets.push_back(sheet_of(surface.mesh, normals, -1));
+    } else {
+      sheets.push_back(sheet_of(surface.mesh, normals, 0));
+    }
+  }
+  return sheets;
+}
+
+}  // namespace cutaway

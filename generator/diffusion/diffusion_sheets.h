@@ -1,0 +1,36 @@
+// The sheets that colour diffusion sees (paper §3.1, Fig. 2; design/algorithms.md §2, Blur):
+// each blurred DS becomes two sheets moved apart along the normals by the blur, each showing
+// one side's colour on both faces; an unblurred DS stays one sheet whose colour depends on the
+// face a ray meets.
+#pragma once
+
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "ds_model.h"
+
+namespace cutaway {
+
+/// One triangle mesh as the diffusion sees it. Positions in metres (object frame).
+struct DiffusionSheet {
+  std::vector<glm::vec3> position;     ///< #V
+  std::vector<glm::uvec3> triangle;    ///< #F, counter-clockwise seen from the front side
+  std::vector<glm::vec3> face_normal;  ///< #F unit normals (front side)
+  /// Per vertex, linear RGB. `two_faced`: colour_front where a ray meets the front face,
+  /// colour_back where it meets the back face. Otherwise colour_front on both faces.
+  std::vector<glm::vec3> colour_front, colour_back;
+  bool two_faced = false;
+};
+
+/// Smallest offset of a blurred surface's sheets (metres): where the blur falls to 0 the two
+/// sheets stay this far apart, so the nearer one is always the one on the ray's side.
+inline constexpr double kMinSheetOffset_m = 1e-6;
+
+/// The sheets of every surface of `model`. A surface whose blur is 0 at every vertex gives one
+/// two-faced sheet; any other gives a front sheet at +max(blur, kMinSheetOffset_m) along the
+/// vertex normal (area-weighted) showing the front colour, and a back sheet at the same
+/// distance behind showing the back colour.
+std::vector<DiffusionSheet> make_diffusion_sheets(const DsModel& model);
+
+}  // namespace cutaway

@@ -1,0 +1,135 @@
+// The CPU PMVC backend (design/algorithms.md §2, Backends: cpu).
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <embree3/rtcore.h>
+#include <glm/geometric.hpp>
+#include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/task_arena.h>
+
+#include "cube_directions.h"
+#include "diffusion.h"
+#include "diffusion_sheets.h"
+
+namespace cutaway {
+
+namespace {
+
+class CpuDiffusion final : public DiffusionBackend {
+ public:
+  CpuDiffusion(const DsModel& model, const DiffusionOptions& options)
+      : options_(options),
+        directions_(make_cube_directions(options.cube_size)),
+        sheets_(make_diffusion_sheets(model)) {
+    const std::string config = "threads=" + std::to_string(std::max(options.threads, 0));
+    device_ = rtcNewDevice(config.c_str());
+    if (!device_) throw std::runtime_error("cannot initialise Embree (rtcNewDevice failed)");
+    scene_ = rtcNewScene(device_);
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+    for (size_t i = 0; i < sheets_.size(); ++i) {
+      const DiffusionSheet& s = sheets_[i];
+      RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+      auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
+          g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), s.position.size()));
+      for (size_t v = 0; v < s.position.size(); ++v)
+        for (int k = 0; k < 3; ++k) vb[3 * v + k] = s.position[v][k];
+      auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+          g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), s.triangle.size()));
+      for (size_t t = 0; t < s.triangle.size(); ++t)
+        for (int k = 0; k < 3; ++k) ib[3 * t + k] = s.triangle[t][k];
+      rtcCommitGeometry(g);
+      rtcAttachGeometryByID(scene_, g, static_cast<unsigned>(i));
+      rtcReleaseGeometry(g);
+    }
+    rtcCommitScene(scene_);
+  }
+
+  ~CpuDiffusion() override {
+    rtcReleaseScene(scene_);
+    rtcReleaseDevice(device_);
+  }
+
+  std::string name() const override { return "cpu"; }
+
+  std::vector<glm::dvec3> diffuse(std::span<const glm::dvec3> points) const override {
+    std::vector<glm::dvec3> out(points.size(), glm::dvec3(0.0));
+    auto body = [&](const oneapi::tbb::blocked_range<size_t>& range) {
+      for (size_t i = range.begin(); i != range.end(); ++i) out[i] = diffuse_point(points[i]);
+    };
+    if (options_.threads > 0) {
+      oneapi::tbb::task_arena arena(options_.threads);
+      arena.execute([&] {
+        oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<size_t>(0, points.size(), 4), body);
+      });
+    } else {
+      oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<size_t>(0, points.size(), 4), body);
+    }
+    return out;
+  }
+
+ private:
+  /// One point: all cube-map directions in packets of 16, summed in direction order.
+  glm::dvec3 diffuse_point(const glm::dvec3& x) const {
+    const size_t count = directions_.direction.size();
+    glm::dvec3 sum_colour(0.0);
+    double sum_weight = 0;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(64) RTCRayHit16 rh;
+    alignas(64) int valid[16];
+    for (size_t base = 0; base < count; base += 16) {
+      const int lanes = static_cast<int>(std::min<size_t>(16, count - base));
+      for (int l = 0; l < 16; ++l) {
+        valid[l] = l < lanes ? -1 : 0;
+        const glm::vec3 d = directions_.direction[base + std::min(l, lanes - 1)];
+        rh.ray.org_x[l] = static_cast<float>(x.x);
+        rh.ray.org_y[l] = static_cast<float>(x.y);
+        rh.ray.org_z[l] = static_cast<float>(x.z);
+        rh.ray.dir_x[l] = d.x;
+        rh.ray.dir_y[l] = d.y;
+        rh.ray.dir_z[l] = d.z;
+        rh.ray.tnear[l] = 0.0f;
+        rh.ray.tfar[l] = std::numeric_limits<float>::infinity();
+        rh.ray.mask[l] = 0xFFFFFFFFu;
+        rh.ray.time[l] = 0.0f;
+        rh.ray.flags[l] = 0;
+        rh.hit.geomID[l] = RTC_INVALID_GEOMETRY_ID;
+      }
+      rtcIntersect16(valid, scene_, &context, &rh);
+      for (int l = 0; l < lanes; ++l) {
+        if (rh.hit.geomID[l] == RTC_INVALID_GEOMETRY_ID) continue;
+        const DiffusionSheet& s = sheets_[rh.hit.geomID[l]];
+        const unsigned prim = rh.hit.primID[l];
+        const glm::uvec3 t = s.triangle[prim];
+        const float u = rh.hit.u[l], v = rh.hit.v[l], w0 = 1.0f - u - v;
+        const glm::vec3 d = directions_.direction[base + l];
+        const bool front_face = glm::dot(d, s.face_normal[prim]) < 0;
+        const auto& c = (!s.two_faced || front_face) ? s.colour_front : s.colour_back;
+        const glm::vec3 colour = w0 * c[t[0]] + u * c[t[1]] + v * c[t[2]];
+        const double r = std::max(static_cast<double>(rh.ray.tfar[l]), 1e-9);
+        const double weight = directions_.solid_angle[base + l] / r;
+        sum_colour += glm::dvec3(colour) * weight;
+        sum_weight += weight;
+      }
+    }
+    return sum_weight > 0 ? sum_colour / sum_weight : glm::dvec3(0.0);
+  }
+
+  DiffusionOptions options_;
+  CubeDirections directions_;
+  std::vector<DiffusionSheet> sheets_;
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<DiffusionBackend> make_cpu_diffusion(const DsModel& model,
+                                                     const DiffusionOptions& options) {
+  return std::make_unique<CpuDiffusion>(model, options);
+}
+
+}  // namespace cutaway
