@@ -1,6 +1,8 @@
 #include "mesh_import.h"
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
@@ -16,6 +18,31 @@ namespace {
 /// The mesh type OpenMesh reads PLY into (custom properties are attached by name).
 using PlyMesh = OpenMesh::TriMesh_ArrayKernelT<OpenMesh::DefaultTraitsDouble>;
 
+/// OpenMesh 9's ASCII PLY reader reads a custom 8-bit property (char, uchar, int8, uint8) as one
+/// character instead of a number, which corrupts that value and everything after it (binary
+/// files are read correctly). In an ASCII file such a property's text is also a valid `int`, so
+/// its declaration is widened to `int` before OpenMesh reads it; colours stored as integers are
+/// 0..255 either way. Other bytes are unchanged.
+std::string widen_ascii_byte_properties(std::string ply) {
+  const size_t header_end = ply.find("end_header");
+  if (header_end == std::string::npos) return ply;
+  std::istringstream header(ply.substr(0, header_end));
+  std::string out, line;
+  bool ascii = false;
+  while (std::getline(header, line)) {
+    std::istringstream words(line);
+    std::vector<std::string> w;
+    for (std::string x; words >> x;) w.push_back(x);
+    if (w.size() >= 2 && w[0] == "format") ascii = w[1] == "ascii";
+    if (w.size() == 3 && w[0] == "property" &&
+        (w[1] == "char" || w[1] == "uchar" || w[1] == "int8" || w[1] == "uint8")) {
+      line = "property int " + w[2] + (line.ends_with('\r') ? "\r" : "");
+    }
+    out += line + '\n';
+  }
+  return ascii ? out + ply.substr(header_end) : ply;
+}
+
 PlyMesh read_ply(const std::string& file, const FileLoc& loc, const std::string& field) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) {
@@ -24,9 +51,13 @@ PlyMesh read_ply(const std::string& file, const FileLoc& loc, const std::string&
   if (std::filesystem::path(file).extension() != ".ply") {
     throw InputError(loc, field, "a mesh surface's file must be a PLY file (.ply)");
   }
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::istringstream ply(widen_ascii_byte_properties(text.str()));
   PlyMesh mesh;
   OpenMesh::IO::Options opt = OpenMesh::IO::Options::Custom;
-  if (!OpenMesh::IO::read_mesh(mesh, file, opt) || mesh.n_faces() == 0) {
+  if (!in || !OpenMesh::IO::read_mesh(mesh, ply, "ply", opt) || mesh.n_faces() == 0) {
     throw InputError(loc, field, "cannot read '" + file + "' as a triangle mesh (PLY)");
   }
   return mesh;
@@ -42,25 +73,30 @@ bool read_property(const PlyMesh& mesh, const char* name, std::vector<double>& o
   return true;
 }
 
-/// Property `name` as doubles (empty if absent); `is_byte` tells whether it was uchar.
-std::vector<double> vertex_property(const PlyMesh& mesh, const char* name, bool& is_byte) {
+/// Property `name` as doubles (empty if absent); `is_integer` tells whether it had an integer
+/// type (colours 0..255) rather than a floating-point one (colours 0..1).
+std::vector<double> vertex_property(const PlyMesh& mesh, const char* name, bool& is_integer) {
   std::vector<double> v;
-  is_byte = read_property<unsigned char>(mesh, name, v);
-  if (!is_byte && !read_property<float>(mesh, name, v)) read_property<double>(mesh, name, v);
+  is_integer = read_property<unsigned char>(mesh, name, v) ||
+               read_property<signed char>(mesh, name, v) || read_property<short>(mesh, name, v) ||
+               read_property<unsigned short>(mesh, name, v) || read_property<int>(mesh, name, v) ||
+               read_property<unsigned int>(mesh, name, v);
+  if (!is_integer && !read_property<float>(mesh, name, v)) read_property<double>(mesh, name, v);
   return v;
 }
 
 /// Per-vertex colour (linear) from the three named properties, or empty when absent.
 std::vector<glm::dvec3> vertex_colours(const PlyMesh& mesh, const char* r, const char* g,
                                        const char* b) {
-  bool byte_r, byte_g, byte_b;
-  const auto vr = vertex_property(mesh, r, byte_r), vg = vertex_property(mesh, g, byte_g),
-             vb = vertex_property(mesh, b, byte_b);
+  bool int_r, int_g, int_b;
+  const auto vr = vertex_property(mesh, r, int_r), vg = vertex_property(mesh, g, int_g),
+             vb = vertex_property(mesh, b, int_b);
   if (vr.empty() || vg.empty() || vb.empty()) return {};
+  // Each component by its own type: integers are 0..255, floating point 0..1.
+  const glm::dvec3 scale(int_r ? 1 / 255.0 : 1.0, int_g ? 1 / 255.0 : 1.0, int_b ? 1 / 255.0 : 1.0);
   std::vector<glm::dvec3> out(vr.size());
   for (size_t i = 0; i < vr.size(); ++i) {
-    glm::dvec3 c(vr[i], vg[i], vb[i]);
-    if (byte_r) c /= 255.0;
+    const glm::dvec3 c = glm::dvec3(vr[i], vg[i], vb[i]) * scale;
     out[i] = srgb_to_linear(glm::clamp(c, 0.0, 1.0));
   }
   return out;
@@ -88,8 +124,8 @@ DsSurface import_mesh_surface(const SurfaceSpec& spec, const Template& tmpl) {
   PlyMesh ply = read_ply(spec.mesh_file, spec.mesh_loc, field);
   const auto front = vertex_colours(ply, "front_red", "front_green", "front_blue");
   const auto back = vertex_colours(ply, "back_red", "back_green", "back_blue");
-  bool blur_byte;
-  const auto blur = vertex_property(ply, "blur", blur_byte);
+  bool blur_integer;
+  const auto blur = vertex_property(ply, "blur", blur_integer);
 
   DsSurface s;
   s.name = spec.name;

@@ -25,8 +25,9 @@ MeshBounds read_mesh_bounds(const std::string& file, double metres_per_unit, con
                             const std::string& field);
 
 /// Builds the DS surface of a `mesh` surface: vertices scaled to metres; per-vertex colours
-/// from the PLY properties front_red/green/blue and back_red/green/blue (uchar sRGB 0..255 or
-/// float sRGB 0..1) and `blur` (template units) where present, else the surface's front, back
+/// from the PLY properties front_red/green/blue and back_red/green/blue (uchar or other integer
+/// sRGB 0..255, or float/double sRGB 0..1, each component by its own type; ASCII or binary) and
+/// `blur` (template units) where present, else the surface's front, back
 /// and blur (gradients are evaluated at parameter 0: imported meshes have no sweep parameters).
 /// Polygons are triangulated. A skin must be closed.
 /// @throws InputError when the file is unreadable, non-manifold, or (skin) not closed
