@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -17,9 +16,9 @@
 #include <glm/mat4x4.hpp>
 
 #include "atomic_file.h"
-#include "colour.h"
 #include "gl_context.h"
 #include "gl_program.h"
+#include "offscreen_target.h"
 
 namespace cutaway {
 namespace {
@@ -140,35 +139,6 @@ void sort_back_to_front(const glm::dmat4& view_from_object,
   indices = std::move(sorted);
 }
 
-/// A framebuffer with one RGBA16F colour renderbuffer of `samples` samples (1: not multisampled).
-/// Returns false when the driver does not accept it. The objects die with the context.
-bool make_colour_framebuffer(int width, int height, int samples, GLuint& framebuffer) {
-  GLuint renderbuffer = 0;
-  glGenRenderbuffers(1, &renderbuffer);
-  glBindRenderbuffer(GL_RENDERBUFFER, renderbuffer);
-  if (samples > 1)
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA16F, width, height);
-  else
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA16F, width, height);
-  glGenFramebuffers(1, &framebuffer);
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer);
-  const bool ok = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE &&
-                  glGetError() == GL_NO_ERROR;
-  if (!ok) {
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glDeleteFramebuffers(1, &framebuffer);
-    glDeleteRenderbuffers(1, &renderbuffer);
-    framebuffer = 0;
-  }
-  return ok;
-}
-
-uint8_t to_srgb8(float linear) {
-  const double c = linear_to_srgb(static_cast<double>(linear));  // clamps to 0..1
-  return static_cast<uint8_t>(std::lround(c * 255.0));
-}
-
 }  // namespace
 
 Image render_model_preview(const DsModel& model, const PreviewOptions& options) {
@@ -206,28 +176,12 @@ Image render_model_preview(const DsModel& model, const PreviewOptions& options) 
   sort_back_to_front(view_from_object, geometry.positions, geometry.indices);
 
   const std::unique_ptr<GlContext> context = create_offscreen_context();
-  // GL objects below are not deleted one by one: they belong to `context`, which frees them.
+  // The vertex array and buffers below are not deleted one by one: they belong to `context`,
+  // which frees them.
   const GlProgram program("preview.vert", "preview.frag");
 
-  GLint max_side = 0, max_samples = 0;
-  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_side);
-  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
-  if (options.width > max_side || options.height > max_side)
-    throw std::invalid_argument("render_model_preview: image size " +
-                                std::to_string(options.width) + "x" +
-                                std::to_string(options.height) + " exceeds the GL limit " +
-                                std::to_string(max_side) + " of " + context->description());
-
-  GLuint resolved = 0;
-  if (!make_colour_framebuffer(options.width, options.height, 1, resolved))
-    throw std::runtime_error("render_model_preview: cannot create an RGBA16F framebuffer on " +
-                             context->description());
-  GLuint target = resolved;
-  const int samples = std::min(options.samples, std::max(max_samples, 1));
-  GLuint multisampled = 0;
-  if (samples > 1 &&
-      make_colour_framebuffer(options.width, options.height, samples, multisampled))
-    target = multisampled;
+  const OffscreenTarget target(*context, options.width, options.height, options.samples,
+                              "render_model_preview");
 
   GLuint vertex_array = 0, buffers[2] = {0, 0};
   glGenVertexArrays(1, &vertex_array);
@@ -259,12 +213,7 @@ Image render_model_preview(const DsModel& model, const PreviewOptions& options) 
   glUniformMatrix4fv(program.uniform("clip_from_view"), 1, GL_FALSE,
                      glm::value_ptr(clip_from_view_f));
 
-  glBindFramebuffer(GL_FRAMEBUFFER, target);
-  glViewport(0, 0, options.width, options.height);
-  const glm::dvec3 background = srgb_to_linear(options.background_srgb);
-  glClearColor(static_cast<float>(background.r), static_cast<float>(background.g),
-               static_cast<float>(background.b), 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT);
+  target.clear(options.background_srgb);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   glEnable(GL_BLEND);
@@ -273,36 +222,7 @@ Image render_model_preview(const DsModel& model, const PreviewOptions& options) 
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(geometry.indices.size()), GL_UNSIGNED_INT,
                  nullptr);
 
-  if (target != resolved) {
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, target);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolved);
-    glBlitFramebuffer(0, 0, options.width, options.height, 0, 0, options.width, options.height,
-                      GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  }
-  const auto pixel_count = static_cast<size_t>(options.width) * options.height;
-  std::vector<float> linear(4 * pixel_count);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, resolved);
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadPixels(0, 0, options.width, options.height, GL_RGBA, GL_FLOAT, linear.data());
-  if (const GLenum error = glGetError(); error != GL_NO_ERROR) {
-    char code[16];
-    std::snprintf(code, sizeof code, "0x%04x", error);
-    throw std::runtime_error(std::string("render_model_preview: OpenGL error ") + code + " on " +
-                             context->description());
-  }
-
-  // GL rows are bottom first; Image rows are top first. Linear -> sRGB8 on the CPU.
-  Image image{options.width, options.height, std::vector<uint8_t>(4 * pixel_count)};
-  const auto row_floats = static_cast<size_t>(4 * options.width);
-  for (int y = 0; y < options.height; ++y) {
-    const float* src = linear.data() + static_cast<size_t>(options.height - 1 - y) * row_floats;
-    uint8_t* dst = image.rgba.data() + static_cast<size_t>(y) * row_floats;
-    for (int x = 0; x < options.width; ++x) {
-      for (int c = 0; c < 3; ++c) dst[4 * x + c] = to_srgb8(src[4 * x + c]);
-      dst[4 * x + 3] = 255;  // opaque background
-    }
-  }
-  return image;
+  return target.resolve_and_read();
 }
 
 void write_png(const std::filesystem::path& path, const Image& image) {
