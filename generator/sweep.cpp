@@ -24,8 +24,9 @@ struct SweepGrid {
 void check_vertex_budget(size_t rows, size_t cols, const SurfaceSpec& spec, const Template& t) {
   if (rows * cols > kMaxSweepVertices) {
     throw InputError(t.edge_loc, "resolution.edge",
-                     "the edge length is too small: surface '" + spec.name + "' would get " +
-                         std::to_string(rows * cols) + " vertices (at most " +
+                     "the edge length is too small: surface '" + spec.name +
+                         "' would get at least " + std::to_string(rows * cols) +
+                         " vertices (at most " +
                          std::to_string(kMaxSweepVertices) + ")");
   }
 }
@@ -149,6 +150,8 @@ DsSurface sweep_around(const SurfaceSpec& spec, const Template& t) {
   const double edge = t.edge_m;
   const Polyline2 prof_fit = fit_curve(spec.profile, false, spec.smooth);
   const int n = segments_for(curve_length(prof_fit, false), edge, 2);
+  // Every ring has at least 8 vertices: refuse before sampling the profile finely.
+  check_vertex_budget(static_cast<size_t>(n) + 1, 8, spec, t);
   const Polyline2 prof = resample_uniform(prof_fit, false, n + 1);
   double max_r = 0;
   for (const auto& p : prof) max_r = std::max(max_r, p.x);
@@ -255,6 +258,8 @@ DsSurface sweep_within(const SurfaceSpec& spec, const Template& t) {
 
   // Heights spaced by the mean normalised arc length of both rails.
   const int n = segments_for(0.5 * (len_a + len_b), edge, 2);
+  // Every ring has at least 8 vertices: refuse before placing the heights.
+  check_vertex_budget(static_cast<size_t>(n + 1) * t.folds, 8, spec, t);
   std::vector<double> heights(n + 1);
   heights[0] = y_lo;
   heights[n] = y_hi;
