@@ -1,0 +1,318 @@
+// Type I and Type II sweeps (generator/sweep.h, design/algorithms.md §1) on tiny hand-made
+// templates whose answers are known exactly: polyline profiles (smooth: false) with straight
+// rails, square and diamond sections.
+#include "sweep.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+#include "colour.h"
+#include "template_checks.h"
+#include "template_parser.h"
+
+namespace cutaway {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+Template parse(const std::string& text) { return parse_template(text, "sweep_test.yaml", "."); }
+
+const SurfaceSpec& surface(const Template& t, const std::string& name) {
+  for (const auto& s : t.surfaces)
+    if (s.name == name) return s;
+  throw std::runtime_error("no surface " + name);
+}
+
+glm::dvec3 point(const DsMesh& m, DsMesh::VertexHandle v) {
+  const auto& p = m.point(v);
+  return {p[0], p[1], p[2]};
+}
+
+int boundary_halfedges(const DsMesh& m) {
+  int n = 0;
+  for (auto h : m.halfedges()) n += m.is_boundary(h);
+  return n;
+}
+
+/// A cylinder of radius 10 mm and height 20 mm with flat caps: profile length 40 mm, so the
+/// normalised profile parameter t maps to r and y exactly.
+std::string cylinder(const std::string& symmetry, const std::string& edge,
+                     const std::string& section = "circle", const std::string& extra = "") {
+  return "format: cutaway-template/1\nname: cyl\nunits: mm\nsymmetry: " + symmetry +
+         "\nresolution: {edge: " + edge +
+         "}\nsurfaces:\n"
+         "  - name: skin\n    kind: around\n    role: skin\n    smooth: false\n"
+         "    profile: [[0, 0], [10, 0], [10, 20], [0, 20]]\n    section: " +
+         section + "\n" + extra;
+}
+
+/// (r, y) in metres of the cylinder profile at normalised arc length t.
+glm::dvec2 cylinder_profile(double t) {
+  const double s = 40 * t;
+  if (s <= 10) return {s * 1e-3, 0};
+  if (s <= 30) return {10e-3, (s - 10) * 1e-3};
+  return {(40 - s) * 1e-3, 20e-3};
+}
+
+TEST(SweepAround, VertexCountsFollowTheEdgeLength) {
+  for (double edge : {0.9, 1.7, 3.3}) {
+    const std::string e = std::to_string(edge);
+    const Template t = parse(cylinder("{type: cylindrical}", e));
+    const DsSurface s = sweep_around(t.surfaces[0], t);
+    const int n = static_cast<int>(std::ceil(40 / edge));
+    const int m = std::max(8, static_cast<int>(std::ceil(10 * 2 * kPi / edge)));
+    EXPECT_EQ(s.mesh.n_vertices(), static_cast<size_t>((n - 1) * m + 2)) << "edge " << edge;
+    EXPECT_EQ(s.mesh.n_faces(), static_cast<size_t>(2 * m * (n - 1))) << "edge " << edge;
+    // N-fold: the section count is rounded up to a multiple of N.
+    const Template t5 = parse(cylinder("{type: nfold, folds: 5}", e));
+    const DsSurface s5 = sweep_around(t5.surfaces[0], t5);
+    const int m5 = (m + 4) / 5 * 5;
+    EXPECT_EQ(s5.mesh.n_vertices(), static_cast<size_t>((n - 1) * m5 + 2)) << "edge " << edge;
+  }
+  // A coarse edge still gives at least 8 section samples and 2 profile segments.
+  const Template coarse = parse(cylinder("{type: cylindrical}", "1000"));
+  EXPECT_EQ(sweep_around(coarse.surfaces[0], coarse).mesh.n_vertices(), 1u * 8 + 2);
+}
+
+TEST(SweepAround, PolesMakeWatertightFans) {
+  const Template t = parse(cylinder("{type: cylindrical}", "1.7"));
+  const DsSurface s = sweep_around(t.surfaces[0], t);
+  const DsMesh& m = s.mesh;
+  EXPECT_EQ(boundary_halfedges(m), 0);
+  for (auto v : m.vertices()) ASSERT_TRUE(m.is_manifold(v));
+  EXPECT_EQ(static_cast<long>(m.n_vertices()) - static_cast<long>(m.n_edges()) +
+                static_cast<long>(m.n_faces()),
+            2);  // a sphere
+  const int ring = static_cast<int>(std::ceil(10 * 2 * kPi / 1.7));
+  int poles = 0;
+  for (auto v : m.vertices()) {
+    const glm::dvec3 p = point(m, v);
+    if (std::hypot(p.x, p.z) == 0) {
+      ++poles;
+      EXPECT_EQ(static_cast<int>(m.valence(v)), ring);
+      // Outward: the fan's normals point down at the bottom pole, up at the top one.
+      for (auto f : m.vf_range(v)) {
+        const auto n = m.calc_face_normal(f);
+        EXPECT_GT(n[1] * (p.y > 0.01 ? 1 : -1), 0.99);
+      }
+    }
+  }
+  EXPECT_EQ(poles, 2);
+}
+
+TEST(SweepAround, OpenProfilesLeaveRingsOpenAndNormalsPointAwayFromTheAxis) {
+  const std::string extra =
+      "  - name: shell\n    kind: around\n    smooth: false\n"
+      "    profile: [[4, 2], [8, 10], [4, 18]]\n"
+      "  - name: cup\n    kind: around\n    smooth: false\n"
+      "    profile: [[0, 3], [5, 5], [6, 9]]\n";
+  const Template t = parse(cylinder("{type: cylindrical}", "0.8", "circle", extra));
+  const DsSurface shell = sweep_around(surface(t, "shell"), t);
+  const DsSurface cup = sweep_around(surface(t, "cup"), t);
+  auto ring_size = [](const DsSurface& s) {
+    int n = 0;
+    for (auto v : s.mesh.vertices()) n += s.mesh.data(v).param[0] == 1.0;
+    return n;
+  };
+  EXPECT_GE(ring_size(shell), 8);
+  EXPECT_EQ(boundary_halfedges(shell.mesh), 2 * ring_size(shell));  // two open rings
+  EXPECT_EQ(boundary_halfedges(cup.mesh), ring_size(cup));          // one pole, one open ring
+  for (auto v : cup.mesh.vertices()) EXPECT_TRUE(cup.mesh.is_manifold(v));
+  for (const DsSurface* s : {&shell, &cup}) {
+    for (auto f : s->mesh.faces()) {
+      const auto n = s->mesh.calc_face_normal(f);
+      const auto c = s->mesh.calc_face_centroid(f);
+      EXPECT_GT(n[0] * c[0] + n[2] * c[2], 0) << s->name << " face " << f.idx();
+    }
+  }
+}
+
+TEST(SweepAround, SectionRadiusAtAngleZeroEqualsTheProfileRadius) {
+  // A rhombus-like polar loop: radius 2 at angle 0 (the loop's scale does not matter).
+  const Template t = parse(
+      cylinder("{type: cylindrical}", "0.7", "{polar: [[0, 2], [90, 3], [180, 2], [270, 3]]}"));
+  const DsSurface s = sweep_around(t.surfaces[0], t);
+  int rows = 0;
+  for (auto v : s.mesh.vertices()) {
+    const auto& d = s.mesh.data(v);
+    if (d.param[1] != 0) continue;
+    ++rows;
+    const glm::dvec3 p = point(s.mesh, v);
+    const glm::dvec2 rp = cylinder_profile(d.param[0]);
+    EXPECT_NEAR(p.x, rp.x, 1e-12) << "t = " << d.param[0];
+    EXPECT_NEAR(p.y, rp.y, 1e-12) << "t = " << d.param[0];
+    EXPECT_NEAR(p.z, 0, 1e-12);
+  }
+  EXPECT_EQ(rows, static_cast<int>(std::ceil(40 / 0.7)) + 1);
+}
+
+TEST(SweepAround, APolarSquareKeepsItsShape) {
+  // Corners at 45, 135, ... degrees, radius sqrt(2): a square of half side 1; its radius at
+  // angle 0 is 1, so at the cylinder's side every ring is a square of half side 10 mm.
+  const std::string sq = "{polar: [[45, 1.4142135623730951], [135, 1.4142135623730951], "
+                         "[225, 1.4142135623730951], [315, 1.4142135623730951]]}";
+  const Template t = parse(cylinder("{type: nfold, folds: 4}", "1.3", sq));
+  const DsSurface s = sweep_around(t.surfaces[0], t);
+  int side = 0, corners = 0;
+  for (auto v : s.mesh.vertices()) {
+    const glm::dvec3 p = point(s.mesh, v);
+    const double r = cylinder_profile(s.mesh.data(v).param[0]).x;
+    ASSERT_NEAR(std::max(std::abs(p.x), std::abs(p.z)), r, 1e-12);
+    if (p.y > 0 && p.y < 20e-3) {
+      ++side;
+      corners += std::abs(std::abs(p.x) - 10e-3) < 1e-12 && std::abs(std::abs(p.z) - 10e-3) < 1e-12;
+    }
+  }
+  EXPECT_GT(side, 0);
+  EXPECT_EQ(corners % 4, 0);
+  EXPECT_GT(corners, 0);  // 4-fold: the section count is a multiple of 4, so corners are samples
+}
+
+TEST(SweepAround, GradientsFollowTheSweepParameters) {
+  const std::string extra =
+      "    front: {along: profile, stops: [[0, \"#000000\"], [1, \"#ffffff\"]]}\n"
+      "    back: {along: section, stops: [[0, [0, 0, 0]], [0.5, [1, 0, 0]], [1, [0, 0, 0]]]}\n"
+      "    blur: {along: profile, stops: [[0, 0], [0.5, 2], [1, 0]]}\n"
+      "    visible: {front: false}\n";
+  const Template t = parse(cylinder("{type: cylindrical}", "1.1", "circle", extra));
+  const DsSurface s = sweep_around(t.surfaces[0], t);
+  EXPECT_FALSE(s.visible_front);
+  EXPECT_TRUE(s.visible_back);
+  EXPECT_EQ(s.role, SurfaceRole::Skin);
+  EXPECT_EQ(s.name, "skin");
+  for (auto v : s.mesh.vertices()) {
+    const auto& d = s.mesh.data(v);
+    const double tp = d.param[0], ts = d.param[1];
+    const glm::dvec3 p = point(s.mesh, v);
+    // The parameters are normalised arc length: tp from the position along the profile ...
+    const glm::dvec2 rp = cylinder_profile(tp);
+    ASSERT_NEAR(std::hypot(p.x, p.z), rp.x, 1e-12);
+    ASSERT_NEAR(p.y, rp.y, 1e-12);
+    // ... and ts from the angle (counter-clockwise seen from +Y, from angle 0).
+    if (rp.x > 0) {
+      double a = horizontal_angle({p.x, p.z});
+      if (a < -1e-12) a += 2 * kPi;
+      ASSERT_NEAR(ts, a / (2 * kPi), 1e-12);
+    }
+    // Linear RGB, interpolated linearly: black to white is t itself.
+    for (int k = 0; k < 3; ++k) ASSERT_NEAR(d.front[k], tp, 1e-12);
+    ASSERT_NEAR(d.back[0], 1 - std::abs(2 * ts - 1), 1e-12);
+    ASSERT_EQ(d.back[1], 0.0);
+    ASSERT_NEAR(d.blur, 2e-3 * (1 - std::abs(2 * tp - 1)), 1e-15);
+  }
+}
+
+TEST(SweepAround, UnitsBecomeMetres) {
+  std::string text = cylinder("{type: cylindrical}", "0.25");
+  text.replace(text.find("units: mm"), 9, "units: cm");
+  const Template t = parse(text);
+  const DsSurface s = sweep_around(t.surfaces[0], t);
+  double r = 0, y = 0;
+  for (auto v : s.mesh.vertices()) {
+    const glm::dvec3 p = point(s.mesh, v);
+    r = std::max(r, std::hypot(p.x, p.z));
+    y = std::max(y, p.y);
+  }
+  EXPECT_NEAR(r, 0.10, 1e-12);
+  EXPECT_NEAR(y, 0.20, 1e-12);
+}
+
+TEST(SweepAround, TheVertexBudgetGuardRefusesATinyEdge) {
+  // 0.005 mm passes the parser's bound (height / 4096) but gives ~1e8 vertices.
+  Template t = parse(cylinder("{type: cylindrical}", "0.005"));
+  for (double edge : {t.edge_m, 1e-9}) {
+    t.edge_m = edge;
+    try {
+      sweep_around(t.surfaces[0], t);
+      FAIL() << "a tiny edge was accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field(), "resolution.edge");
+      EXPECT_NE(e.rule().find("too small"), std::string::npos) << e.what();
+    }
+  }
+}
+
+/// A 4-fold template with a hexagonal `within` profile whose rails are known:
+/// r_in(y) = 15 - y, 10, y - 5 and r_out(y) = 15 + y, 20, 35 - y (mm) on [0,5], [5,15], [15,20];
+/// and a diamond loop from u = 12 to u = 18 in fold 0.
+std::string hexagon_within(const std::string& edge, const std::string& extra = "") {
+  return "format: cutaway-template/1\nname: hex\nunits: mm\nsymmetry: {type: nfold, folds: 4}\n"
+         "resolution: {edge: " + edge + "}\nsurfaces:\n"
+         "  - name: skin\n    kind: around\n    role: skin\n    smooth: false\n"
+         "    profile: [[0, -2], [30, -2], [30, 22], [0, 22]]\n"
+         "  - name: cell\n    kind: within\n    smooth: false\n"
+         "    profile: [[15, 0], [20, 5], [20, 15], [15, 20], [10, 15], [10, 5]]\n"
+         "    section: [[12, 0], [15, -1.5], [18, 0], [15, 1.5]]\n" + extra;
+}
+
+double rail_in(double y_mm) { return y_mm <= 5 ? 15 - y_mm : (y_mm <= 15 ? 10 : y_mm - 5); }
+double rail_out(double y_mm) { return y_mm <= 5 ? 15 + y_mm : (y_mm <= 15 ? 20 : 35 - y_mm); }
+
+TEST(SweepWithin, ExtremePointsAlongTheFoldCentreTouchTheRails) {
+  const Template t = parse(hexagon_within("2"));
+  const SurfaceSpec& spec = surface(t, "cell");
+  const DsSurface s = sweep_within(spec, t);
+  ASSERT_EQ(s.mesh.n_vertices() % 4, 0u);
+  const size_t per_fold = s.mesh.n_vertices() / 4;
+  for (int fold = 0; fold < 4; ++fold) {
+    const double a = t.fold_angles[fold];
+    const glm::dvec2 centre(std::cos(a), -std::sin(a));  // [x, z] of the fold's centre line
+    std::map<double, std::pair<double, double>> extent;  // y -> (min u, max u)
+    for (size_t i = fold * per_fold; i < (fold + 1) * per_fold; ++i) {
+      const glm::dvec3 p = point(s.mesh, DsMesh::VertexHandle(static_cast<int>(i)));
+      const double u = glm::dot(glm::dvec2(p.x, p.z), centre);
+      auto [it, fresh] = extent.try_emplace(p.y, u, u);
+      it->second.first = std::min(it->second.first, u);
+      it->second.second = std::max(it->second.second, u);
+    }
+    EXPECT_GT(extent.size(), 5u);
+    for (const auto& [y, uu] : extent) {
+      EXPECT_NEAR(uu.first, rail_in(y * 1e3) * 1e-3, 1e-12) << "fold " << fold << " y " << y;
+      EXPECT_NEAR(uu.second, rail_out(y * 1e3) * 1e-3, 1e-12) << "fold " << fold << " y " << y;
+    }
+    EXPECT_NEAR(extent.begin()->first, 0.0, 1e-15);
+    EXPECT_NEAR(extent.rbegin()->first, 20e-3, 1e-15);
+  }
+  EXPECT_EQ(boundary_halfedges(s.mesh), 0);
+}
+
+TEST(SweepWithin, SectionParameterStartsAtTheOutermostPoint) {
+  const Template t = parse(hexagon_within(
+      "2", "    front: {along: section, stops: [[0, \"#ffffff\"], [1, \"#000000\"]]}\n"
+           "    visible: {back: false}\n"));
+  const DsSurface s = sweep_within(surface(t, "cell"), t);
+  EXPECT_TRUE(s.visible_front);
+  EXPECT_FALSE(s.visible_back);
+  EXPECT_EQ(s.role, SurfaceRole::Structure);
+  for (auto v : s.mesh.vertices()) {
+    const auto& d = s.mesh.data(v);
+    ASSERT_NEAR(d.front[0], 1 - d.param[1], 1e-12);
+    if (d.param[1] == 0) {
+      // t_section = 0 is the loop's outermost point: on the outer rail, on the fold centre.
+      const glm::dvec3 p = point(s.mesh, v);
+      const double r = std::hypot(p.x, p.z);
+      ASSERT_NEAR(r, rail_out(p.y * 1e3) * 1e-3, 1e-12);
+    }
+  }
+}
+
+TEST(SweepWithin, TheVertexBudgetGuardRefusesATinyEdge) {
+  Template t = parse(hexagon_within("0.006"));
+  for (double edge : {t.edge_m, 1e-9}) {
+    t.edge_m = edge;
+    try {
+      sweep_within(surface(t, "cell"), t);
+      FAIL() << "a tiny edge was accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field(), "resolution.edge");
+    }
+  }
+}
+
+}  // namespace
+}  // namespace cutaway
