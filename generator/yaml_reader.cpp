@@ -103,6 +103,47 @@ size_t find_excessive_nesting(std::string_view s) {
   return std::string_view::npos;
 }
 
+/// Where an empty list item ("-" with nothing after it) is written. yaml-cpp marks such a null
+/// at the next token, often on a later line: if only indentation precedes the mark on its line,
+/// step back to the last character of the previous line with content (comments skipped).
+FileLoc null_item_loc(const YAML::Mark& mark, const std::string* text, const std::string& file) {
+  const FileLoc fallback = loc_of(mark, file);
+  if (!text || mark.is_null() || mark.pos < 0 || static_cast<size_t>(mark.pos) > text->size()) {
+    return fallback;
+  }
+  const std::string_view s(*text);
+  size_t i = static_cast<size_t>(mark.pos);
+  while (i > 0 && (s[i - 1] == ' ' || s[i - 1] == '\t')) --i;
+  if (i > 0 && s[i - 1] != '\n' && s[i - 1] != '\r') return fallback;  // content before it
+  while (i > 0) {
+    // The line ending just before i: [begin, end).
+    size_t end = i - 1;
+    while (end > 0 && (s[end] == '\n' || s[end] == '\r')) --end;
+    size_t begin = end;
+    while (begin > 0 && s[begin - 1] != '\n') --begin;
+    // Cut a comment: '#' at the line start or after a blank, outside quotes.
+    size_t stop = end + 1;
+    char quote = 0;
+    for (size_t k = begin; k <= end && k < s.size(); ++k) {
+      if (quote) {
+        if (s[k] == quote) quote = 0;
+      } else if (s[k] == '"' || s[k] == '\'') {
+        quote = s[k];
+      } else if (s[k] == '#' && (k == begin || s[k - 1] == ' ' || s[k - 1] == '\t')) {
+        stop = k;
+        break;
+      }
+    }
+    while (stop > begin && (s[stop - 1] == ' ' || s[stop - 1] == '\t' || s[stop - 1] == '\r' ||
+                            s[stop - 1] == '\n')) {
+      --stop;
+    }
+    if (stop > begin) return loc_of_offset(s, stop - 1, file);
+    i = begin;
+  }
+  return fallback;
+}
+
 std::string describe(const YAML::Node& n) {
   switch (n.Type()) {
     case YAML::NodeType::Null: return "nothing";
@@ -118,7 +159,12 @@ std::string describe(const YAML::Node& n) {
 YamlField::YamlField(YAML::Node node, std::string path, std::string file)
     : node_(std::move(node)), path_(std::move(path)), file_(std::move(file)) {}
 
-FileLoc YamlField::loc() const { return loc_of(node_.Mark(), file_); }
+YamlField::YamlField(YAML::Node node, std::string path, std::string file,
+                     std::shared_ptr<const std::string> text)
+    : node_(std::move(node)), path_(std::move(path)), file_(std::move(file)),
+      text_(std::move(text)) {}
+
+FileLoc YamlField::loc() const { return loc_ ? *loc_ : loc_of(node_.Mark(), file_); }
 
 void YamlField::fail(const std::string& rule) const { throw InputError(loc(), path_, rule); }
 
@@ -135,12 +181,11 @@ std::optional<YamlField> YamlField::get(const std::string& key) const {
   for (const auto& kv : node_) {
     if (kv.first.IsScalar() && kv.first.Scalar() == key) {
       const std::string child = path_ == "(root)" ? key : path_ + "." + key;
-      YAML::Node value = kv.second;
-      // A key with no value ("key:") has no mark of its own; use the key's.
-      if (value.IsNull() && value.Mark().is_null()) {
-        return YamlField(YAML::Node(), child, file_);
-      }
-      return YamlField(value, child, file_);
+      YamlField f(kv.second, child, file_, text_);
+      // An empty value ("key:", "key: ~") is reported at its key: yaml-cpp marks an empty
+      // value at the next token (often the next line), or not at all.
+      if (kv.second.IsNull()) f.loc_ = loc_of(kv.first.Mark(), file_);
+      return f;
     }
   }
   return std::nullopt;
@@ -183,7 +228,9 @@ size_t YamlField::size() const {
 
 YamlField YamlField::operator[](size_t i) const {
   expect_sequence();
-  return YamlField(node_[i], path_ + "[" + std::to_string(i) + "]", file_);
+  YamlField f(node_[i], path_ + "[" + std::to_string(i) + "]", file_, text_);
+  if (f.node_.IsNull()) f.loc_ = null_item_loc(f.node_.Mark(), text_.get(), file_);
+  return f;
 }
 
 std::string YamlField::string() const {
@@ -244,7 +291,7 @@ YamlField parse_yaml(std::string_view text, const std::string& file) {
   if (!root.IsDefined() || root.IsNull()) {
     throw InputError(FileLoc{file, 1, 1}, "(root)", "the file is empty");
   }
-  YamlField f(root, "(root)", file);
+  YamlField f(root, "(root)", file, std::make_shared<const std::string>(text));
   if (!root.IsMap()) f.fail("the top level must be a mapping (key: value), not " + describe(root));
   return f;
 }

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <initializer_list>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -19,10 +20,15 @@ namespace cutaway {
 class YamlField {
  public:
   YamlField(YAML::Node node, std::string path, std::string file);
+  /// As above, with the document's text: lets loc() place null values (an empty "key:" or "-"),
+  /// which yaml-cpp marks at the next token, where they are written.
+  YamlField(YAML::Node node, std::string path, std::string file,
+            std::shared_ptr<const std::string> text);
 
   const std::string& path() const { return path_; }
   const std::string& file() const { return file_; }
-  /// 1-based line and column of the node's first character.
+  /// 1-based line and column of the node's first character. An empty value is placed at its
+  /// key ("key:") or at its "-" (a list item).
   FileLoc loc() const;
   /// Throws InputError at this node: "FILE:LINE:COL: PATH: RULE".
   [[noreturn]] void fail(const std::string& rule) const;
@@ -60,6 +66,8 @@ class YamlField {
   YAML::Node node_;
   std::string path_;
   std::string file_;
+  std::shared_ptr<const std::string> text_;  ///< the whole document (may be null)
+  std::optional<FileLoc> loc_;               ///< where an empty value is written, when known
 };
 
 /// Parses YAML text (YAML 1.2 / JSON, UTF-8). Refuses empty input, invalid UTF-8, NUL bytes,
