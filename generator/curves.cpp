@@ -9,8 +9,6 @@
 
 namespace cutaway {
 
-namespace {
-
 Polyline2 without_duplicates(const Polyline2& points, bool closed) {
   Polyline2 out;
   for (const auto& p : points) {
@@ -19,6 +17,8 @@ Polyline2 without_duplicates(const Polyline2& points, bool closed) {
   if (closed && out.size() > 1 && glm::distance(out.front(), out.back()) <= 1e-12) out.pop_back();
   return out;
 }
+
+namespace {
 
 /// One centripetal Catmull-Rom span from p1 to p2 evaluated at u in [0, 1].
 glm::dvec2 catmull_rom_span(const glm::dvec2& p0, const glm::dvec2& p1, const glm::dvec2& p2,
@@ -93,6 +93,7 @@ Polyline2 catmull_rom(const Polyline2& input, bool closed, int per_segment) {
 Polyline2 fit_curve(const Polyline2& points, bool closed, bool smooth) {
   if (smooth) return catmull_rom(points, closed);
   const Polyline2 p = without_duplicates(points, closed);
+  CUTAWAY_CHECK_OP(p.size(), >=, 2u);
   Polyline2 out;
   const size_t spans = closed ? p.size() : p.size() - 1;
   for (size_t s = 0; s < spans; ++s) {

@@ -13,6 +13,10 @@ namespace cutaway {
 /// A planar polyline; closed curves do not repeat their first point at the end.
 using Polyline2 = std::vector<glm::dvec2>;
 
+/// `points` without consecutive duplicates (closer than 1e-12), and for a closed curve without
+/// a last point equal to the first.
+Polyline2 without_duplicates(const Polyline2& points, bool closed);
+
 /// Samples the centripetal Catmull-Rom spline (alpha = 1/2; Barry-Goldman pyramidal form)
 /// through `points`, `per_segment` samples per span; the result passes through every point.
 /// Open curves use reflected end tangents. Consecutive duplicate points are removed first.
@@ -21,6 +25,7 @@ Polyline2 catmull_rom(const Polyline2& points, bool closed, int per_segment = 16
 
 /// The curve a template means: the Catmull-Rom spline when `smooth`, else the polyline itself
 /// (densified so that later resampling keeps its corners).
+/// Precondition: at least 2 distinct points (3 when closed).
 Polyline2 fit_curve(const Polyline2& points, bool closed, bool smooth);
 
 /// Total arc length (closing segment included when `closed`).

@@ -14,10 +14,10 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
+/// `a` wrapped into (-pi, pi]. std::remainder, not a loop: fold angles may be huge.
 double wrap_angle(double a) {
-  while (a > kPi) a -= 2 * kPi;
-  while (a <= -kPi) a += 2 * kPi;
-  return a;
+  a = std::remainder(a, 2 * kPi);
+  return a <= -kPi ? a + 2 * kPi : a;
 }
 
 std::string degrees(double rad) {
@@ -31,6 +31,17 @@ std::string degrees(double rad) {
   throw InputError(loc, field, rule);
 }
 
+/// Fewer than 3 distinct points (repeated points do not count) is no curve: the spline and the
+/// geometric predicates need them.
+void check_distinct(const Polyline2& points, bool closed, const FileLoc& loc,
+                    const std::string& field) {
+  const size_t n = without_duplicates(points, closed).size();
+  if (n < 3) {
+    fail_at(loc, field, "a curve needs at least 3 distinct points, not " + std::to_string(n) +
+                            (closed ? " (a closed curve's last point may repeat its first)" : ""));
+  }
+}
+
 void check_simple(const Polyline2& fitted, bool closed, const FileLoc& loc,
                   const std::string& field, bool smooth) {
   if (auto hit = find_self_intersection(fitted, closed)) {
@@ -42,6 +53,7 @@ void check_simple(const Polyline2& fitted, bool closed, const FileLoc& loc,
 
 void check_around(const SurfaceSpec& s) {
   const std::string field = s.path + ".profile";
+  check_distinct(s.profile, false, s.profile_loc, field);
   const Polyline2 prof = fit_curve(s.profile, false, s.smooth);
   check_simple(prof, false, s.profile_loc, field, s.smooth);
   for (size_t i = 1; i + 1 < prof.size(); ++i) {
@@ -60,6 +72,7 @@ void check_around(const SurfaceSpec& s) {
   }
   if (s.section.circle) return;
   const std::string sfield = s.path + ".section";
+  check_distinct(s.section.loops[0], true, s.section.loc, sfield);
   const Polyline2 loop = fit_curve(s.section.loops[0], true, s.smooth);
   check_simple(loop, true, s.section.loc, sfield, s.smooth);
   if (winding_number(loop, {0, 0}) == 0) {
@@ -83,6 +96,7 @@ void check_around(const SurfaceSpec& s) {
 
 void check_within(const SurfaceSpec& s, const Template& t) {
   const std::string field = s.path + ".profile";
+  check_distinct(s.profile, true, s.profile_loc, field);
   const Polyline2 prof = fit_curve(s.profile, true, s.smooth);
   check_simple(prof, true, s.profile_loc, field, s.smooth);
   for (const auto& p : prof) {
@@ -111,9 +125,10 @@ void check_within(const SurfaceSpec& s, const Template& t) {
   }
   const std::string sfield = s.path + ".section";
   for (size_t k = 0; k < s.section.loops.size(); ++k) {
-    const Polyline2 loop = fit_curve(s.section.loops[k], true, s.smooth);
     const std::string lf = s.section.loops.size() > 1 ? sfield + "[" + std::to_string(k) + "]"
                                                       : sfield;
+    check_distinct(s.section.loops[k], true, s.section.loc, lf);
+    const Polyline2 loop = fit_curve(s.section.loops[k], true, s.smooth);
     check_simple(loop, true, s.section.loc, lf, s.smooth);
     const auto [span_lo, span_hi] = fold_span(t, static_cast<int>(k));
     const double centre = t.fold_angles[k];
