@@ -5,6 +5,7 @@
 #include <numbers>
 #include <regex>
 #include <set>
+#include <sstream>
 
 #include <glm/geometric.hpp>
 
@@ -18,6 +19,18 @@ namespace cutaway {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
+/// The largest coordinate or length a template may use, metres: far beyond any object cutaway
+/// models, and small enough that differences and squares of lengths stay finite.
+constexpr double kMaxMetres = 1e6;
+/// The most edges the skin's height may span (resolution.edge >= height / this): keeps the
+/// surface meshes within memory (the default is 64).
+constexpr double kMaxEdgesPerHeight = 4096;
+
+/// `v` (in units of `scale` metres) when |v * scale| <= kMaxMetres; fails at `f` otherwise.
+double within_limit(const YamlField& f, double v, double scale) {
+  if (std::fabs(v * scale) > kMaxMetres) f.fail("must be at most 1000 km in size (|value| <= 1e6 m)");
+  return v;
+}
 
 /// A COLOR: "#rrggbb" or [r, g, b] in 0..1, both sRGB. Returns linear RGB.
 glm::dvec3 parse_colour(const YamlField& f) {
@@ -42,7 +55,7 @@ glm::dvec3 parse_colour(const YamlField& f) {
 
 /// A LENGTH: a number >= 0 in template units. Returns metres.
 double parse_length(const YamlField& f, double metres_per_unit) {
-  const double v = f.number();
+  const double v = within_limit(f, f.number(), metres_per_unit);
   if (v < 0) f.fail("must not be negative");
   return v * metres_per_unit;
 }
@@ -72,16 +85,17 @@ Gradient<T> parse_gradient(const YamlField& f, ParseValue parse_value) {
   return g;
 }
 
-glm::dvec2 parse_pair(const YamlField& f, const char* what) {
+/// A point [a, b]; each coordinate within kMaxMetres once multiplied by `scale`.
+glm::dvec2 parse_pair(const YamlField& f, const char* what, double scale) {
   if (!f.is_sequence() || f.size() != 2) f.fail(std::string("a point must be ") + what);
-  return {f[0].number(), f[1].number()};
+  return {within_limit(f[0], f[0].number(), scale), within_limit(f[1], f[1].number(), scale)};
 }
 
-/// A list of [a, b] points, scaled by `scale`.
+/// A list of [a, b] points, scaled by `scale` (1: checked against kMaxMetres as metres).
 std::vector<glm::dvec2> parse_points(const YamlField& f, double scale, const char* what) {
   if (!f.is_sequence()) f.fail(std::string("must be a list of points ") + what);
   std::vector<glm::dvec2> pts;
-  for (size_t i = 0; i < f.size(); ++i) pts.push_back(parse_pair(f[i], what) * scale);
+  for (size_t i = 0; i < f.size(); ++i) pts.push_back(parse_pair(f[i], what, scale) * scale);
   if (pts.size() < 3) f.fail("a curve needs at least 3 points, not " + std::to_string(pts.size()));
   return pts;
 }
@@ -94,6 +108,7 @@ std::vector<glm::dvec2> parse_loop(const YamlField& f, double m) {
     std::vector<glm::dvec2> pts = parse_points(polar, 1.0, "[deg, radius]");
     for (size_t i = 0; i < pts.size(); ++i) {
       if (pts[i].y <= 0) polar[i][1].fail("a polar radius must be positive");
+      within_limit(polar[i][1], pts[i].y, m);
       const double a = pts[i].x * kDeg, r = pts[i].y * m;
       pts[i] = {r * std::cos(a), -r * std::sin(a)};  // angle from +X towards -Z
     }
@@ -274,6 +289,10 @@ GrainSpec parse_grain(const YamlField& f, const Template& t) {
   return g;
 }
 
+const char* units_name(const Template& t) {
+  return t.metres_per_unit == 1.0 ? "m" : (t.metres_per_unit == 1e-2 ? "cm" : "mm");
+}
+
 /// Skin height (metres) for the default edge length: the y range of the skin's profile or mesh.
 double skin_height(const Template& t) {
   const SurfaceSpec& skin = t.surfaces[t.skin];
@@ -409,10 +428,16 @@ Template parse_template(std::string_view text, const std::string& file,
     }
   }
   check_template_curves(t);
+  const double h = skin_height(t);
+  if (!(h > 0)) root.require("surfaces").fail("the skin has no height");
   if (t.edge_m == 0) {
-    const double h = skin_height(t);
-    if (!(h > 0)) root.require("surfaces").fail("the skin has no height");
     t.edge_m = h / 64;
+  } else if (h / t.edge_m > kMaxEdgesPerHeight) {
+    std::ostringstream rule;
+    rule << "the edge length must be at least 1/" << kMaxEdgesPerHeight
+         << " of the skin's height (" << h / t.metres_per_unit << " " << units_name(t)
+         << "): the meshes would not fit in memory";
+    throw InputError(t.edge_loc, "resolution.edge", rule.str());
   }
   return t;
 }
