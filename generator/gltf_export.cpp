@@ -55,25 +55,41 @@ int add_index_accessor(tinygltf::Model& m, const std::vector<uint32_t>& idx) {
   return static_cast<int>(m.accessors.size()) - 1;
 }
 
-int add_material(tinygltf::Model& m, const std::string& name, double alpha) {
+int add_material(tinygltf::Model& m, const std::string& name, double alpha,
+                 bool double_sided = false) {
   tinygltf::Material mat;
   mat.name = name;
   mat.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, alpha};
   mat.pbrMetallicRoughness.metallicFactor = 0.0;
   mat.pbrMetallicRoughness.roughnessFactor = 0.8;
   mat.alphaMode = alpha < 1.0 ? "BLEND" : "OPAQUE";
-  mat.doubleSided = false;
+  mat.doubleSided = double_sided;
   m.materials.push_back(mat);
   return static_cast<int>(m.materials.size()) - 1;
+}
+
+/// An empty glTF 2.0 model with one (empty) buffer and scene 0 as the default.
+tinygltf::Model new_model() {
+  tinygltf::Model m;
+  m.asset.version = "2.0";
+  m.asset.generator = "cutaway";
+  m.buffers.emplace_back();
+  m.defaultScene = 0;
+  return m;
+}
+
+/// The model as .glb bytes.
+std::string to_glb(tinygltf::Model& m) {
+  std::ostringstream out;
+  tinygltf::TinyGLTF writer;
+  writer.WriteGltfSceneToStream(&m, out, false, true);
+  return out.str();
 }
 
 }  // namespace
 
 std::string model_to_glb(const DsModel& model, const GltfModelOptions& options) {
-  tinygltf::Model m;
-  m.asset.version = "2.0";
-  m.asset.generator = "cutaway";
-  m.buffers.emplace_back();
+  tinygltf::Model m = new_model();
   const int skin_mat = add_material(m, "skin", options.skin_alpha);
   const int inner_mat = add_material(m, "inner", options.inner_alpha);
   tinygltf::Scene scene;
@@ -127,11 +143,40 @@ std::string model_to_glb(const DsModel& model, const GltfModelOptions& options) 
     scene.nodes.push_back(static_cast<int>(m.nodes.size()) - 1);
   }
   m.scenes.push_back(scene);
-  m.defaultScene = 0;
-  std::ostringstream out;
-  tinygltf::TinyGLTF writer;
-  writer.WriteGltfSceneToStream(&m, out, false, true);
-  return out.str();
+  return to_glb(m);
+}
+
+std::string section_to_glb(const CrossSection& section) {
+  tinygltf::Model m = new_model();
+  std::vector<float> pos, normal, colour;
+  for (size_t i = 0; i < section.position.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      pos.push_back(static_cast<float>(section.position[i][k]));
+      normal.push_back(static_cast<float>(section.plane.normal[k]));
+      colour.push_back(static_cast<float>(section.colour[i][k]));
+    }
+  }
+  std::vector<uint32_t> idx;
+  for (const glm::uvec3& t : section.triangle) idx.insert(idx.end(), {t.x, t.y, t.z});
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.material = add_material(m, "cut face", 1.0, true);
+  prim.attributes["POSITION"] = add_vec3_accessor(m, pos, true);
+  prim.attributes["NORMAL"] = add_vec3_accessor(m, normal, false);
+  prim.attributes["COLOR_0"] = add_vec3_accessor(m, colour, false);
+  prim.indices = add_index_accessor(m, idx);
+  tinygltf::Mesh mesh;
+  mesh.name = "cross-section";
+  mesh.primitives.push_back(prim);
+  m.meshes.push_back(mesh);
+  tinygltf::Node node;
+  node.name = "cross-section";
+  node.mesh = 0;
+  m.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
+  m.scenes.push_back(scene);
+  return to_glb(m);
 }
 
 void write_model_glb(const std::filesystem::path& path, const DsModel& model,

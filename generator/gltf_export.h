@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <string>
 
+#include "cross_section.h"
 #include "ds_model.h"
 
 namespace cutaway {
@@ -26,5 +27,10 @@ std::string model_to_glb(const DsModel& model, const GltfModelOptions& options);
 /// @throws std::runtime_error when the file cannot be written
 void write_model_glb(const std::filesystem::path& path, const DsModel& model,
                      const GltfModelOptions& options);
+
+/// Encodes a cross-section as binary glTF: one mesh, one double-sided opaque primitive,
+/// positions in metres (object frame), the plane normal as NORMAL, COLOR_0 linear RGB.
+/// Deterministic.
+std::string section_to_glb(const CrossSection& section);
 
 }  // namespace cutaway

@@ -11,10 +11,16 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "atomic_file.h"
+#include "cross_section.h"
+#include "diffusion/diffusion.h"
 #include "error.h"
 #include "gltf_export.h"
 #include "model_builder.h"
 #include "model_preview.h"
+#include "plane_spec.h"
+#include "ply_export.h"
+#include "section_preview.h"
 #include "template_parser.h"
 
 namespace {
@@ -84,6 +90,71 @@ int run_model(const ModelArgs& a, bool stats) {
   return 0;
 }
 
+struct SectionArgs {
+  std::string template_path;
+  std::string plane;
+  std::string output;
+  std::string png;
+  int cube = 32;
+  int width = 800;
+};
+
+int run_section(const SectionArgs& a, int threads, bool stats) {
+  const auto t0 = Clock::now();
+  const cutaway::Template tmpl = cutaway::load_template(a.template_path);
+  cutaway::Plane plane;
+  try {
+    plane = cutaway::parse_plane_spec(a.plane, tmpl.metres_per_unit);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--plane: ") + e.what());
+  }
+  const cutaway::DsModel model = cutaway::build_model(tmpl);
+  const double t_model = seconds_since(t0);
+  const auto t1 = Clock::now();
+  const auto diffusion = cutaway::make_cpu_diffusion(model, {a.cube, threads});
+  const double t_bvh = seconds_since(t1);
+  const auto t2 = Clock::now();
+  cutaway::CrossSection section;
+  try {
+    section = cutaway::make_cross_section(model, plane, *diffusion, {tmpl.edge_m});
+  } catch (const std::domain_error& e) {
+    throw UsageError(std::string("--plane ") + a.plane + ": " + e.what());
+  }
+  const double t_section = seconds_since(t2);
+  spdlog::info("{}: cross-section with {} vertices ({} interior), {} triangles", tmpl.name,
+               section.position.size(), section.interior_vertices, section.triangle.size());
+  cutaway::Image image;
+  if (!a.png.empty()) {
+    cutaway::SectionPreviewOptions opt;
+    opt.width = a.width;
+    image = cutaway::render_section_preview(section, opt);
+  }
+  const std::string out = a.output.empty() && a.png.empty() ? tmpl.name + "-section.glb" : a.output;
+  if (!out.empty()) {
+    const bool ply = std::filesystem::path(out).extension() == ".ply";
+    cutaway::write_file_atomically(out, ply ? cutaway::section_to_ply(section)
+                                            : cutaway::section_to_glb(section));
+    spdlog::info("wrote {}", out);
+  }
+  if (!a.png.empty()) {
+    cutaway::write_png(a.png, image);
+    spdlog::info("wrote {}", a.png);
+  }
+  if (stats) {
+    std::fprintf(stderr,
+                 "{\"template\": \"%s\", \"backend\": \"%s\", \"ds_faces\": %zu, "
+                 "\"cut_segments\": %zu, \"vertices\": %zu, \"interior_vertices\": %zu, "
+                 "\"diffused_vertices\": %zu, \"rays\": %zu, \"seconds\": {\"model\": %.4f, "
+                 "\"bvh\": %.4f, \"section\": %.4f}}\n",
+                 tmpl.name.c_str(), diffusion->name().c_str(), model.face_count(),
+                 section.cut_segments, section.position.size(), section.interior_vertices,
+                 section.diffused_vertices,
+                 section.diffused_vertices * 6 * static_cast<size_t>(a.cube * a.cube), t_model,
+                 t_bvh, t_section);
+  }
+  return 0;
+}
+
 int run_check(const std::vector<std::string>& files) {
   int failed = 0;
   for (const auto& f : files) {
@@ -111,6 +182,12 @@ int main(int argc, char** argv) {
   app.add_flag("--stats", stats, "print JSON timings and counts on stderr");
   app.add_flag("-q,--quiet", quiet, "print errors only");
   app.add_flag("-v,--verbose", verbose, "print progress and details");
+  int threads = 0;
+  app.add_option("--threads", threads, "worker threads (0: all cores); results do not depend on it")
+      ->check(CLI::Range(0, 1024));
+  std::string backend = "auto";
+  app.add_option("--backend", backend, "colour diffusion backend (auto: cpu)")
+      ->check(CLI::IsMember({"auto", "cpu"}));
 
   ModelArgs model_args;
   CLI::App* model = app.add_subcommand("model", "build the DS model of a template (glb, PNG)");
@@ -120,6 +197,21 @@ int main(int argc, char** argv) {
   model->add_option("--png", model_args.png, "PNG picture of the see-through model");
   model->add_option("--size", model_args.width, "PNG width and height in pixels")
       ->check(CLI::Range(16, 8192));
+
+  SectionArgs section_args;
+  CLI::App* section = app.add_subcommand("section", "one cross-section with diffused colours");
+  section->add_option("TEMPLATE", section_args.template_path, "template file (.yaml)")->required();
+  section->add_option("--plane", section_args.plane,
+                      "cutting plane: AXIS=VALUE (e.g. y=20) or px,py,pz/nx,ny,nz, template units")
+      ->required();
+  section->add_option("-o,--output", section_args.output,
+                      "cut face to write: .glb (linear COLOR_0) or .ply (sRGB colours); "
+                      "default NAME-section.glb when no --png is given");
+  section->add_option("--png", section_args.png, "PNG of the cut face seen head-on (sRGB)");
+  section->add_option("--size", section_args.width, "PNG width in pixels")
+      ->check(CLI::Range(16, 8192));
+  section->add_option("--cube", section_args.cube, "cube-map texels per face edge for PMVC")
+      ->check(CLI::Range(2, 256));
 
   std::vector<std::string> check_files;
   CLI::App* check = app.add_subcommand("check", "validate templates without writing anything");
@@ -141,6 +233,14 @@ int main(int argc, char** argv) {
       if (!model_args.output.empty()) require_extension("-o", model_args.output, ".glb");
       if (!model_args.png.empty()) require_extension("--png", model_args.png, ".png");
       return run_model(model_args, stats);
+    }
+    if (*section) {
+      if (!section_args.output.empty() &&
+          std::filesystem::path(section_args.output).extension() != ".ply") {
+        require_extension("-o", section_args.output, ".glb");
+      }
+      if (!section_args.png.empty()) require_extension("--png", section_args.png, ".png");
+      return run_section(section_args, threads, stats);
     }
     if (*check) return run_check(check_files);
   } catch (const cutaway::InputError& e) {

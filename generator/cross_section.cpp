@@ -1,0 +1,247 @@
+#include "cross_section.h"
+
+#include <map>
+#include <queue>
+#include <stdexcept>
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_triangulation_plus_2.h>
+#include <CGAL/Delaunay_mesh_face_base_2.h>
+#include <CGAL/Delaunay_mesh_size_criteria_2.h>
+#include <CGAL/Delaunay_mesh_vertex_base_2.h>
+#include <CGAL/Delaunay_mesher_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <glm/geometric.hpp>
+
+namespace cutaway {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Delaunay_mesh_vertex_base_2<K>;
+using Fb = CGAL::Delaunay_mesh_face_base_2<K>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+using CdtBase = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predicates_tag>;
+using Cdt = CGAL::Constrained_triangulation_plus_2<CdtBase>;
+using Criteria = CGAL::Delaunay_mesh_size_criteria_2<Cdt>;
+using Mesher = CGAL::Delaunay_mesher_2<Cdt, Criteria>;
+using Vertex = Cdt::Vertex_handle;
+using Face = Cdt::Face_handle;
+using Point2 = K::Point_2;
+
+/// A cut segment in plane coordinates.
+struct Segment2 {
+  glm::dvec2 a, b, front;  // front: the front side's direction in the plane
+  int index;               // into the cut segment list
+};
+
+glm::dvec2 to2(const Point2& p) { return {p.x(), p.y()}; }
+
+/// Which side of segment s the point c lies on: +1 front, -1 back, 0 on its line.
+int side_of(const Segment2& s, const glm::dvec2& c) {
+  const double d = glm::dot(c - s.a, s.front);
+  return d > 0 ? 1 : (d < 0 ? -1 : 0);
+}
+
+}  // namespace
+
+void plane_frame(const Plane& plane, glm::dvec3& u, glm::dvec3& v) {
+  const glm::dvec3 n = plane.normal;
+  glm::dvec3 axis(1, 0, 0);
+  if (std::fabs(n.y) < std::fabs(n.x) && std::fabs(n.y) <= std::fabs(n.z)) axis = {0, 1, 0};
+  else if (std::fabs(n.z) < std::fabs(n.x) && std::fabs(n.z) < std::fabs(n.y)) axis = {0, 0, 1};
+  u = glm::normalize(axis - n * glm::dot(axis, n));
+  v = glm::cross(n, u);
+}
+
+CrossSection make_cross_section(const DsModel& model, const Plane& plane,
+                                const DiffusionBackend& diffusion,
+                                const CrossSectionOptions& options) {
+  CrossSection cs;
+  cs.plane = plane;
+  plane_frame(plane, cs.u_axis, cs.v_axis);
+  const std::vector<CutSegment> segments = cut_segments(model, plane);
+  cs.cut_segments = segments.size();
+  bool hits_skin = false;
+  for (const auto& s : segments) hits_skin = hits_skin || s.surface == 0;
+  if (!hits_skin) throw std::domain_error("the plane misses the object");
+
+  auto project = [&](const glm::dvec3& p) {
+    const glm::dvec3 d = p - plane.point;
+    return glm::dvec2(glm::dot(d, cs.u_axis), glm::dot(d, cs.v_axis));
+  };
+  std::vector<Segment2> seg2;
+  for (size_t i = 0; i < segments.size(); ++i) {
+    const CutSegment& s = segments[i];
+    seg2.push_back({project(s.a), project(s.b),
+                    {glm::dot(s.front_normal, cs.u_axis), glm::dot(s.front_normal, cs.v_axis)},
+                    static_cast<int>(i)});
+  }
+
+  // 1. Constrained Delaunay triangulation of the cut segments.
+  Cdt cdt;
+  std::map<std::pair<Vertex, Vertex>, int> segment_of;  // input constraint end points -> index
+  for (const Segment2& s : seg2) {
+    const Vertex va = cdt.insert(Point2(s.a.x, s.a.y));
+    const Vertex vb = cdt.insert(Point2(s.b.x, s.b.y));
+    if (va == vb) continue;
+    cdt.insert_constraint(va, vb);
+    segment_of.emplace(std::minmax(va, vb), s.index);
+  }
+  // The input segment that a constrained edge (a, b) lies on.
+  auto segment_on = [&](Vertex a, Vertex b) -> const Segment2* {
+    for (auto ctx = cdt.contexts_begin(a, b); ctx != cdt.contexts_end(a, b); ++ctx) {
+      // The constraint's vertex iterator is forward-only: walk it to find the last vertex.
+      const Vertex first = *ctx->vertices_begin();
+      Vertex last = first;
+      for (auto it = ctx->vertices_begin(); it != ctx->vertices_end(); ++it) last = *it;
+      auto found = segment_of.find(std::minmax(first, last));
+      if (found != segment_of.end()) return &seg2[found->second];
+    }
+    return nullptr;
+  };
+
+  // 2. The domain: flood regions across unconstrained edges and decide each region once.
+  std::map<Face, int> region;
+  std::vector<bool> region_in;
+  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) {
+    if (region.count(f)) continue;
+    const int id = static_cast<int>(region_in.size());
+    bool in = true;
+    std::queue<Face> queue;
+    queue.push(f);
+    region[f] = id;
+    while (!queue.empty()) {
+      const Face g = queue.front();
+      queue.pop();
+      if (cdt.is_infinite(g)) in = false;
+      for (int i = 0; i < 3; ++i) {
+        const Face nb = g->neighbor(i);
+        if (!g->is_constrained(i)) {
+          if (!region.count(nb)) {
+            region[nb] = id;
+            queue.push(nb);
+          }
+          continue;
+        }
+        if (cdt.is_infinite(g)) continue;
+        const Vertex a = g->vertex(Cdt::cw(i)), b = g->vertex(Cdt::ccw(i));
+        const Segment2* s = segment_on(a, b);
+        if (!s) continue;
+        const int side = side_of(*s, to2(g->vertex(i)->point()));
+        const DsSurface& surface = model.surfaces[segments[s->index].surface];
+        if (side > 0 && (surface.role == SurfaceRole::Skin || !surface.visible_front)) in = false;
+        if (side < 0 && !surface.visible_back) in = false;
+      }
+    }
+    region_in.push_back(in);
+  }
+  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) {
+    f->set_in_domain(region_in[region[f]]);
+  }
+
+  // 3. Conforming Delaunay refinement inside the domain (angle and size criteria).
+  Mesher mesher(cdt, Criteria(options.shape_bound, options.edge_m));
+  mesher.init(true);
+  mesher.refine_mesh();
+
+  // 4. Output vertices: one per interior vertex, one per side (wedge) of a cut vertex.
+  std::map<std::pair<Vertex, Face>, unsigned> corner_id;
+  std::vector<glm::dvec3> to_diffuse;
+  std::vector<unsigned> diffuse_target;
+  auto add_vertex = [&](const Point2& p, int surface) {
+    cs.position.push_back(plane.point + cs.u_axis * p.x() + cs.v_axis * p.y());
+    cs.colour.push_back(glm::dvec3(0.0));
+    cs.cut_surface.push_back(surface);
+    return static_cast<unsigned>(cs.position.size() - 1);
+  };
+  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
+    // The in-domain faces around v in counter-clockwise order, split at constrained edges.
+    std::vector<Face> faces;
+    auto fc = cdt.incident_faces(v), done = fc;
+    do {
+      faces.push_back(fc);
+    } while (++fc != done);
+    bool any_in = false;
+    for (const Face& f : faces) any_in = any_in || (!cdt.is_infinite(f) && f->is_in_domain());
+    if (!any_in) continue;
+    // Whether the edge between faces[k] and the next face counter-clockwise is constrained:
+    // in face (v, a, b) that edge is (v, b), opposite a = vertex(ccw(index of v)).
+    auto constrained_after = [&](size_t k) {
+      const Face f = faces[k];
+      return f->is_constrained(Cdt::ccw(f->index(v)));
+    };
+    size_t start = faces.size(), constrained = 0;
+    for (size_t k = 0; k < faces.size(); ++k) {
+      if (constrained_after(k)) {
+        if (start == faces.size()) start = (k + 1) % faces.size();
+        ++constrained;
+      }
+    }
+    // Off the cut segments, or at the open end of one (both sides meet there): diffused.
+    if (constrained < 2) {
+      const unsigned id = add_vertex(v->point(), -1);
+      ++cs.interior_vertices;
+      to_diffuse.push_back(cs.position[id]);
+      diffuse_target.push_back(id);
+      for (const Face& f : faces) corner_id[{v, f}] = id;
+      continue;
+    }
+    for (size_t n = 0; n < faces.size();) {
+      // One wedge: faces from `start` up to and including the next constrained edge.
+      std::vector<Face> wedge;
+      size_t k = (start + n) % faces.size();
+      while (true) {
+        wedge.push_back(faces[k]);
+        ++n;
+        if (constrained_after(k) || n >= faces.size()) break;
+        k = (k + 1) % faces.size();
+      }
+      bool wedge_in = false;
+      for (const Face& f : wedge) wedge_in = wedge_in || (!cdt.is_infinite(f) && f->is_in_domain());
+      if (!wedge_in) continue;
+      // The wedge's first face is bounded by the constrained edge (v, w) before it.
+      const Face first = wedge.front();
+      const int i = first->index(v);
+      const Vertex w = first->vertex(Cdt::ccw(i));
+      const Vertex c = first->vertex(Cdt::cw(i));
+      const Segment2* s = segment_on(v, w);
+      int surface = -1;
+      glm::dvec3 colour(0.0);
+      bool diffuse = true;
+      if (s) {
+        const CutSegment& cut = segments[s->index];
+        surface = cut.surface;
+        const glm::dvec2 p = to2(v->point());
+        const double len2 = glm::dot(s->b - s->a, s->b - s->a);
+        const double t = len2 > 0 ? std::clamp(glm::dot(p - s->a, s->b - s->a) / len2, 0.0, 1.0) : 0;
+        const double blur = cut.blur_a + (cut.blur_b - cut.blur_a) * t;
+        const bool front = side_of(*s, to2(c->point())) > 0;
+        colour = front ? cut.front_a + (cut.front_b - cut.front_a) * t
+                       : cut.back_a + (cut.back_b - cut.back_a) * t;
+        diffuse = blur > 0;
+      }
+      const unsigned id = add_vertex(v->point(), surface);
+      cs.colour[id] = colour;
+      if (diffuse) {
+        to_diffuse.push_back(cs.position[id]);
+        diffuse_target.push_back(id);
+      }
+      for (const Face& f : wedge) corner_id[{v, f}] = id;
+    }
+  }
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+    if (!f->is_in_domain()) continue;
+    glm::uvec3 t;
+    for (int k = 0; k < 3; ++k) t[k] = corner_id.at({f->vertex(k), f});
+    cs.triangle.push_back(t);
+  }
+
+  // 5. PMVC colours.
+  cs.diffused_vertices = to_diffuse.size();
+  const std::vector<glm::dvec3> colours = diffusion.diffuse(to_diffuse);
+  for (size_t i = 0; i < colours.size(); ++i) cs.colour[diffuse_target[i]] = colours[i];
+  return cs;
+}
+
+}  // namespace cutaway

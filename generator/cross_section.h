@@ -1,0 +1,58 @@
+// Cross-sections (paper §3.2, Fig. 3; design/algorithms.md §3): the cut face of a DS model on a
+// plane, triangulated by conforming constrained Delaunay refinement with the cut segments as
+// constraints, split along them, and coloured by PMVC diffusion.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "cut_segments.h"
+#include "diffusion/diffusion.h"
+#include "ds_model.h"
+
+namespace cutaway {
+
+/// How a cross-section is meshed.
+struct CrossSectionOptions {
+  double edge_m = 0.002;      ///< largest triangle edge, metres (the template's edge length)
+  double shape_bound = 0.125; ///< Delaunay_mesh_size_criteria_2 shape bound B = 1/(4 sin^2 a):
+                              ///< 0.125 is a minimum angle a of about 20.7 degrees
+};
+
+/// The triangulated, coloured cut face on one plane.
+struct CrossSection {
+  Plane plane;
+  glm::dvec3 u_axis{1, 0, 0}, v_axis{0, 1, 0};  ///< in-plane frame: cross(u, v) = normal
+  std::vector<glm::dvec3> position;   ///< #V, metres, object frame
+  std::vector<glm::uvec3> triangle;   ///< #F, counter-clockwise seen from the normal's side
+  std::vector<glm::dvec3> colour;     ///< #V, linear RGB
+  /// #V: the surface a vertex lies on (a cut vertex, one duplicate per side), or -1 for an
+  /// interior vertex.
+  std::vector<int> cut_surface;
+  size_t interior_vertices = 0;  ///< vertices off the cut segments
+  size_t diffused_vertices = 0;  ///< vertices coloured by PMVC (interior + blurred cut vertices)
+  size_t cut_segments = 0;       ///< input cut segments
+};
+
+/// The in-plane frame of a plane: u along the world axis least aligned with the normal,
+/// projected; v = cross(normal, u).
+void plane_frame(const Plane& plane, glm::dvec3& u, glm::dvec3& v);
+
+/// Cuts `model` with `plane` (cut_segments), triangulates the domain inside the skin's cut
+/// loops minus hollow sides (CGAL Constrained_Delaunay_triangulation_2 refined by
+/// Delaunay_mesher_2, conforming), splits every vertex on a cut segment into one duplicate per
+/// side (Fig. 3c) coloured with that side's DS colour where the blur is 0, and colours every
+/// other vertex with `diffusion` (PMVC).
+/// A region of the plane is in the domain when it is bounded (not connected to infinity), is
+/// not on the skin's front (outer) side, and is not on a hollow side (visible_front/back false)
+/// of any surface bounding it.
+/// @throws InputError-free: a plane that misses the object gives a std::domain_error, which the
+///         caller reports as bad input ("the plane misses the object").
+CrossSection make_cross_section(const DsModel& model, const Plane& plane,
+                                const DiffusionBackend& diffusion,
+                                const CrossSectionOptions& options);
+
+}  // namespace cutaway

@@ -1,0 +1,88 @@
+#include "cut_segments.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace cutaway {
+
+namespace {
+
+/// Vertices closer to the plane than this (metres) lie on it: sweeps put vertices on planes
+/// through the axis up to rounding, and a crossing a few ulps from a vertex would only add a
+/// degenerate sliver to the triangulation.
+constexpr double kOnPlane_m = 1e-9;
+
+glm::dvec3 to_glm(const OpenMesh::Vec3d& v) { return {v[0], v[1], v[2]}; }
+
+/// A point where the plane crosses a mesh edge, with the DS attributes there.
+struct Crossing {
+  glm::dvec3 p, front, back;
+  double blur;
+};
+
+}  // namespace
+
+std::vector<CutSegment> cut_segments(const DsModel& model, const Plane& plane) {
+  std::vector<CutSegment> out;
+  for (size_t si = 0; si < model.surfaces.size(); ++si) {
+    const DsMesh& mesh = model.surfaces[si].mesh;
+    std::vector<double> dist(mesh.n_vertices());
+    for (auto vh : mesh.vertices()) {
+      const double d = glm::dot(to_glm(mesh.point(vh)) - plane.point, plane.normal);
+      dist[vh.idx()] = std::fabs(d) <= kOnPlane_m ? 0.0 : d;
+    }
+    auto positive = [&](int v) { return dist[v] >= 0; };  // symbolic perturbation: 0 is +
+    auto crossing = [&](DsMesh::VertexHandle a, DsMesh::VertexHandle b) {
+      // Interpolate from the positive end; a positive end at distance 0 is the crossing itself.
+      if (!positive(a.idx())) std::swap(a, b);
+      const double da = dist[a.idx()], db = dist[b.idx()];
+      const double t = da == 0 ? 0.0 : da / (da - db);
+      const auto& A = mesh.data(a);
+      const auto& B = mesh.data(b);
+      Crossing c;
+      c.p = to_glm(mesh.point(a)) + (to_glm(mesh.point(b)) - to_glm(mesh.point(a))) * t;
+      c.front = to_glm(A.front) + (to_glm(B.front) - to_glm(A.front)) * t;
+      c.back = to_glm(A.back) + (to_glm(B.back) - to_glm(A.back)) * t;
+      c.blur = A.blur + (B.blur - A.blur) * t;
+      return c;
+    };
+    for (auto fh : mesh.faces()) {
+      std::array<DsMesh::VertexHandle, 3> v;
+      int k = 0;
+      for (auto vh : mesh.fv_range(fh)) v[k++] = vh;
+      const int npos = positive(v[0].idx()) + positive(v[1].idx()) + positive(v[2].idx());
+      if (npos == 0 || npos == 3) continue;
+      // The lone vertex (the one whose side differs), then the two edges from it in winding
+      // order; the segment runs so that the front side is consistently to one side.
+      int lone = 0;
+      for (int i = 0; i < 3; ++i) {
+        const bool pi = positive(v[i].idx());
+        if ((npos == 1 && pi) || (npos == 2 && !pi)) lone = i;
+      }
+      const auto l = v[lone], n1 = v[(lone + 1) % 3], n2 = v[(lone + 2) % 3];
+      const Crossing c1 = crossing(l, n1), c2 = crossing(l, n2);
+      if (glm::distance(c1.p, c2.p) <= 0) continue;
+      const glm::dvec3 p0 = to_glm(mesh.point(v[0])), p1 = to_glm(mesh.point(v[1])),
+                       p2 = to_glm(mesh.point(v[2]));
+      const glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
+      const double len = glm::length(n);
+      if (len == 0) continue;
+      CutSegment s;
+      s.surface = static_cast<int>(si);
+      s.a = c1.p;
+      s.b = c2.p;
+      s.front_normal = n / len;
+      s.front_a = c1.front;
+      s.front_b = c2.front;
+      s.back_a = c1.back;
+      s.back_b = c2.back;
+      s.blur_a = c1.blur;
+      s.blur_b = c2.blur;
+      out.push_back(s);
+    }
+  }
+  return out;
+}
+
+}  // namespace cutaway

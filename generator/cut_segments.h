@@ -1,0 +1,38 @@
+// Cut segments (paper §3.2, Fig. 3a; design/algorithms.md §3 step 1): the intersection of a
+// cutting plane with every DS triangle, each piece carrying its surface and the DS attributes
+// interpolated at its end points.
+#pragma once
+
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "ds_model.h"
+
+namespace cutaway {
+
+/// A cutting plane: the points x with dot(x - point, normal) = 0. Metres, object frame.
+struct Plane {
+  glm::dvec3 point{0.0};
+  glm::dvec3 normal{0, 0, 1};  ///< unit length
+};
+
+/// One piece of the intersection of the plane with one DS triangle.
+struct CutSegment {
+  int surface = -1;              ///< index into DsModel::surfaces
+  glm::dvec3 a{0.0}, b{0.0};     ///< end points on the plane, metres
+  glm::dvec3 front_normal{0.0};  ///< the triangle's unit normal (points to the front side)
+  glm::dvec3 front_a{0.0}, front_b{0.0}, back_a{0.0}, back_b{0.0};  ///< linear RGB
+  double blur_a = 0, blur_b = 0;  ///< metres
+};
+
+/// Intersects every triangle of every surface with `plane`. Robust to vertices and edges on
+/// the plane by symbolic perturbation: a vertex within 1e-9 m of the plane lies on it, and a
+/// vertex on the plane counts as lying on the positive side, so every crossing is computed once per mesh edge (or vertex) and shared by
+/// the triangles around it: the segments of a closed surface form closed loops. Segments of
+/// zero length are dropped.
+/// @param plane  plane.normal must be unit length
+/// @return segments in surface order, then face order (deterministic)
+std::vector<CutSegment> cut_segments(const DsModel& model, const Plane& plane);
+
+}  // namespace cutaway
