@@ -1,5 +1,8 @@
 #include "mesh_import.h"
 
+#include <algorithm>
+#include <array>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -18,29 +21,44 @@ namespace {
 /// The mesh type OpenMesh reads PLY into (custom properties are attached by name).
 using PlyMesh = OpenMesh::TriMesh_ArrayKernelT<OpenMesh::DefaultTraitsDouble>;
 
+/// A PLY file's bytes prepared for OpenMesh, and the vertex count its header declares.
+struct PlyText {
+  std::string bytes;
+  long vertex_count = -1;  ///< -1: not declared
+};
+
 /// OpenMesh 9's ASCII PLY reader reads a custom 8-bit property (char, uchar, int8, uint8) as one
 /// character instead of a number, which corrupts that value and everything after it (binary
 /// files are read correctly). In an ASCII file such a property's text is also a valid `int`, so
 /// its declaration is widened to `int` before OpenMesh reads it; colours stored as integers are
-/// 0..255 either way. Other bytes are unchanged.
-std::string widen_ascii_byte_properties(std::string ply) {
+/// 0..255 either way. Other bytes are unchanged. Also notes `element vertex N`: OpenMesh adds
+/// vertices of its own when it has to split faces that break the 2-manifold.
+PlyText prepare_ply(std::string ply) {
+  PlyText out;
   const size_t header_end = ply.find("end_header");
-  if (header_end == std::string::npos) return ply;
+  if (header_end == std::string::npos) {
+    out.bytes = std::move(ply);
+    return out;
+  }
   std::istringstream header(ply.substr(0, header_end));
-  std::string out, line;
+  std::string text, line;
   bool ascii = false;
   while (std::getline(header, line)) {
     std::istringstream words(line);
     std::vector<std::string> w;
     for (std::string x; words >> x;) w.push_back(x);
     if (w.size() >= 2 && w[0] == "format") ascii = w[1] == "ascii";
+    if (w.size() == 3 && w[0] == "element" && w[1] == "vertex") {
+      out.vertex_count = std::strtol(w[2].c_str(), nullptr, 10);
+    }
     if (w.size() == 3 && w[0] == "property" &&
         (w[1] == "char" || w[1] == "uchar" || w[1] == "int8" || w[1] == "uint8")) {
       line = "property int " + w[2] + (line.ends_with('\r') ? "\r" : "");
     }
-    out += line + '\n';
+    text += line + '\n';
   }
-  return ascii ? out + ply.substr(header_end) : ply;
+  out.bytes = ascii ? text + ply.substr(header_end) : std::move(ply);
+  return out;
 }
 
 PlyMesh read_ply(const std::string& file, const FileLoc& loc, const std::string& field) {
@@ -54,11 +72,18 @@ PlyMesh read_ply(const std::string& file, const FileLoc& loc, const std::string&
   std::ifstream in(file, std::ios::binary);
   std::stringstream text;
   text << in.rdbuf();
-  std::istringstream ply(widen_ascii_byte_properties(text.str()));
+  const PlyText prepared = prepare_ply(text.str());
+  std::istringstream ply(prepared.bytes);
   PlyMesh mesh;
   OpenMesh::IO::Options opt = OpenMesh::IO::Options::Custom;
   if (!in || !OpenMesh::IO::read_mesh(mesh, ply, "ply", opt) || mesh.n_faces() == 0) {
     throw InputError(loc, field, "cannot read '" + file + "' as a triangle mesh (PLY)");
+  }
+  if (prepared.vertex_count >= 0 &&
+      static_cast<long>(mesh.n_vertices()) != prepared.vertex_count) {
+    throw InputError(loc, field,
+                     "the mesh is not an oriented 2-manifold: some faces make a complex edge or "
+                     "vertex, or flip orientation");
   }
   return mesh;
 }
@@ -132,8 +157,22 @@ DsSurface import_mesh_surface(const SurfaceSpec& spec, const Template& tmpl) {
   s.role = spec.is_skin ? SurfaceRole::Skin : SurfaceRole::Structure;
   s.visible_front = spec.visible_front;
   s.visible_back = spec.visible_back;
-  std::vector<DsMesh::VertexHandle> vh;
+  // A closed mesh's front is its outside (spec: Front and back): wound inwards, it is turned.
+  bool closed = true;
+  for (auto h : ply.halfedges()) closed = closed && !ply.is_boundary(h);
+  double volume = 0;
+  for (auto f : ply.faces()) {
+    std::array<OpenMesh::Vec3d, 3> p;
+    int k = 0;
+    for (auto v : ply.fv_range(f)) p[k++] = ply.point(v);
+    volume += OpenMesh::dot(p[0], OpenMesh::cross(p[1], p[2]));
+  }
+  const bool turn = closed && volume < 0;
+
+  // Vertices no face uses have no normal and no meaning in a DS: they are left out.
+  std::vector<DsMesh::VertexHandle> vh(ply.n_vertices());
   for (auto v : ply.vertices()) {
+    if (ply.is_isolated(v)) continue;
     const auto p = ply.point(v) * tmpl.metres_per_unit;
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
       throw InputError(spec.mesh_loc, field, "the mesh has a vertex that is not a finite number");
@@ -146,11 +185,12 @@ DsSurface import_mesh_surface(const SurfaceSpec& spec, const Template& tmpl) {
     d.front = {f.x, f.y, f.z};
     d.back = {b.x, b.y, b.z};
     d.blur = blur.empty() ? spec.blur.at(0, 0) : std::max(0.0, blur[i] * tmpl.metres_per_unit);
-    vh.push_back(h);
+    vh[i] = h;
   }
   for (auto f : ply.faces()) {
     std::vector<DsMesh::VertexHandle> corners;
     for (auto v : ply.fv_range(f)) corners.push_back(vh[v.idx()]);
+    if (turn) std::reverse(corners.begin(), corners.end());
     if (!s.mesh.add_face(corners).is_valid()) {
       throw InputError(spec.mesh_loc, field,
                        "the mesh is not an oriented 2-manifold (face " + std::to_string(f.idx()) +

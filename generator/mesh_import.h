@@ -29,8 +29,11 @@ MeshBounds read_mesh_bounds(const std::string& file, double metres_per_unit, con
 /// sRGB 0..255, or float/double sRGB 0..1, each component by its own type; ASCII or binary) and
 /// `blur` (template units) where present, else the surface's front, back
 /// and blur (gradients are evaluated at parameter 0: imported meshes have no sweep parameters).
-/// Polygons are triangulated. A skin must be closed.
-/// @throws InputError when the file is unreadable, non-manifold, or (skin) not closed
+/// Polygons are triangulated. A closed mesh wound inwards is turned so that its normals point
+/// outwards (its front is its outside); an open mesh keeps the file's winding. Vertices no face
+/// uses are left out. A skin must be closed.
+/// @throws InputError when the file is unreadable, non-manifold (a complex edge or vertex, or a
+///         face flipping orientation), or (skin) not closed
 DsSurface import_mesh_surface(const SurfaceSpec& spec, const Template& tmpl);
 
 }  // namespace cutaway
