@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstring>
 #include <fstream>
 #include <optional>
@@ -26,6 +27,8 @@ struct PlySpec {
   std::string colours;
   bool blur = false;
   bool drop_last_face = false;  ///< an open mesh
+  bool reverse = false;         ///< every face wound the other way (inwards)
+  bool isolated = false;        ///< an extra vertex no face uses, written first
 };
 
 /// A closed octahedron of radius 10 (file units), outward winding; vertex i has front colour
@@ -52,7 +55,8 @@ void write_ply(const fs::path& file, const PlySpec& s) {
   const int nfaces = s.drop_last_face ? 7 : 8;
   std::string h = "ply\nformat ";
   h += s.binary ? "binary_little_endian 1.0\n" : "ascii 1.0\n";
-  h += "comment cutaway mesh_import_test\nelement vertex 6\n";
+  h += "comment cutaway mesh_import_test\nelement vertex " + std::to_string(s.isolated ? 7 : 6) +
+       "\n";
   h += "property float x\nproperty float y\nproperty float z\n";
   auto is_uchar = [&](int k) { return s.colours == "uchar" || (s.colours == "mixed" && k % 3 == 0); };
   if (!s.colours.empty()) {
@@ -63,8 +67,10 @@ void write_ply(const fs::path& file, const PlySpec& s) {
   h += "element face " + std::to_string(nfaces) + "\nproperty list uchar int vertex_indices\n";
   h += "end_header\n";
   std::string body;
-  for (int i = 0; i < 6; ++i) {
-    const glm::dvec3 f = front_srgb_255(i), b = back_srgb_255(i);
+  for (int j = s.isolated ? -1 : 0; j < 6; ++j) {
+    const int i = std::max(j, 0);
+    const glm::dvec3 f = j < 0 ? glm::dvec3(255) : front_srgb_255(i);
+    const glm::dvec3 b = j < 0 ? glm::dvec3(255) : back_srgb_255(i);
     const double c[6] = {f.x, f.y, f.z, b.x, b.y, b.z};
     if (s.binary) {
       for (double x : kVerts[i]) put(body, static_cast<float>(x));
@@ -90,12 +96,15 @@ void write_ply(const fs::path& file, const PlySpec& s) {
     }
   }
   for (int f = 0; f < nfaces; ++f) {
+    int c[3] = {kFaces[f][0], kFaces[f][1], kFaces[f][2]};
+    if (s.reverse) std::swap(c[1], c[2]);
+    for (int& v : c) v += s.isolated ? 1 : 0;
     if (s.binary) {
       put(body, static_cast<unsigned char>(3));
-      for (int v : kFaces[f]) put(body, static_cast<int32_t>(v));
+      for (int v : c) put(body, static_cast<int32_t>(v));
     } else {
-      body += "3 " + std::to_string(kFaces[f][0]) + " " + std::to_string(kFaces[f][1]) + " " +
-              std::to_string(kFaces[f][2]) + "\n";
+      body += "3 " + std::to_string(c[0]) + " " + std::to_string(c[1]) + " " +
+              std::to_string(c[2]) + "\n";
     }
   }
   std::ofstream(file, std::ios::binary) << h << body;
@@ -111,6 +120,16 @@ std::string mesh_template(const std::string& file, const std::string& units, boo
   if (as_skin) t += "    role: skin\n";
   t += "    front: \"#ff8000\"\n    back: \"#0040ff\"\n    blur: 0.2\n" + extra;
   return t;
+}
+
+/// big.ply: a closed octahedron of radius 100 (file units), the skin of mesh_template(.., false).
+void write_big_skin(const fs::path& dir) {
+  std::ofstream(dir / "big.ply") << "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\n"
+                                    "property float y\nproperty float z\nelement face 8\n"
+                                    "property list uchar int vertex_indices\nend_header\n"
+                                    "100 0 0\n-100 0 0\n0 100 0\n0 -100 0\n0 0 100\n0 0 -100\n"
+                                    "3 0 2 4\n3 4 2 1\n3 1 2 5\n3 5 2 0\n3 4 3 0\n3 1 3 4\n"
+                                    "3 5 3 1\n3 0 3 5\n";
 }
 
 /// Imports the template's surface named "part".
@@ -209,12 +228,7 @@ TEST(MeshImport, AnOpenMeshIsRefusedAsSkinButAcceptedInside) {
     EXPECT_EQ(e.field(), "surfaces[0].file");
   }
   // Inside a big closed skin, an open mesh is an ordinary (open) DS.
-  std::ofstream(dir / "big.ply") << "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\n"
-                                    "property float y\nproperty float z\nelement face 8\n"
-                                    "property list uchar int vertex_indices\nend_header\n"
-                                    "100 0 0\n-100 0 0\n0 100 0\n0 -100 0\n0 0 100\n0 0 -100\n"
-                                    "3 0 2 4\n3 4 2 1\n3 1 2 5\n3 5 2 0\n3 4 3 0\n3 1 3 4\n"
-                                    "3 5 3 1\n3 0 3 5\n";
+  write_big_skin(dir);
   const std::string text = mesh_template("open.ply", "mm", false);
   const DsSurface s = import_part(dir, text);
   EXPECT_EQ(s.mesh.n_faces(), 7u);
@@ -224,6 +238,85 @@ TEST(MeshImport, AnOpenMeshIsRefusedAsSkinButAcceptedInside) {
   const DsModel model = build_model(parse_template(text, (dir / "t.yaml").string(), dir.string()));
   ASSERT_EQ(model.surfaces.size(), 2u);
   EXPECT_EQ(model.surfaces[0].name, "outer");
+}
+
+double signed_volume(const DsMesh& m) {
+  double v = 0;
+  for (auto f : m.faces()) {
+    std::array<DsMesh::Point, 3> p;
+    int k = 0;
+    for (auto vh : m.fv_range(f)) p[k++] = m.point(vh);
+    v += OpenMesh::dot(p[0], OpenMesh::cross(p[1], p[2])) / 6;
+  }
+  return v;
+}
+
+TEST(MeshImport, AClosedMeshWoundInwardsIsTurnedOutwards) {
+  for (bool binary : {false, true}) {
+    const fs::path dir = test::fresh_dir("mesh_import_inwards");
+    write_ply(dir / "in.ply", {binary, "uchar", false, false, true});
+    const DsSurface s = import_part(dir, mesh_template("in.ply", "mm", true));
+    const double r = kRadius * 1e-3;
+    EXPECT_NEAR(signed_volume(s.mesh), 4.0 / 3.0 * r * r * r, 1e-15);  // octahedron, outward
+    expect_file_colours(s, 1e-12);  // front stays the outside's colour
+  }
+  // An open mesh keeps the file's winding, whichever way it turns.
+  const fs::path dir = test::fresh_dir("mesh_import_open_winding");
+  write_ply(dir / "open.ply", {false, "", false, true, true});
+  write_big_skin(dir);
+  const DsSurface open = import_part(dir, mesh_template("open.ply", "mm", false));
+  ASSERT_EQ(open.mesh.n_faces(), 7u);
+  std::vector<int> first;
+  for (auto v : open.mesh.fv_range(DsMesh::FaceHandle(0))) first.push_back(v.idx());
+  // File face 0 is (0, 4, 2) reversed: the same cyclic order.
+  const std::vector<int> want{0, 4, 2};
+  bool same = false;
+  for (int k = 0; k < 3; ++k) {
+    same = same || (first[0] == want[k] && first[1] == want[(k + 1) % 3] &&
+                    first[2] == want[(k + 2) % 3]);
+  }
+  EXPECT_TRUE(same) << first[0] << " " << first[1] << " " << first[2];
+}
+
+TEST(MeshImport, VerticesNoFaceUsesAreLeftOut) {
+  const fs::path dir = test::fresh_dir("mesh_import_isolated");
+  write_ply(dir / "iso.ply", {true, "float", true, false, false, true});
+  const DsSurface s = import_part(dir, mesh_template("iso.ply", "cm", true));
+  ASSERT_EQ(s.mesh.n_vertices(), 6u);
+  expect_file_colours(s, 1e-6);
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_NEAR(s.mesh.data(DsMesh::VertexHandle(i)).blur, 0.5e-2 * i, 1e-9);
+    EXPECT_FALSE(s.mesh.is_isolated(DsMesh::VertexHandle(i)));
+  }
+}
+
+TEST(MeshImport, NonManifoldMeshesAreRefused) {
+  const fs::path dir = test::fresh_dir("mesh_import_non_manifold");
+  write_big_skin(dir);
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\n"
+                             "property float y\nproperty float z\nelement face %F\n"
+                             "property list uchar int vertex_indices\nend_header\n"
+                             "10 0 0\n-10 0 0\n0 10 0\n0 -10 0\n0 0 10\n0 0 -10\n";
+  auto with_faces = [&](const std::string& faces, int n) {
+    std::string h = header;
+    h.replace(h.find("%F"), 2, std::to_string(n));
+    return h + faces;
+  };
+  // Three faces on the edge 0-2.
+  std::ofstream(dir / "fin.ply") << with_faces("3 0 2 4\n3 2 0 5\n3 0 2 1\n", 3);
+  // A closed octahedron with one face flipped.
+  std::ofstream(dir / "flip.ply") << with_faces(
+      "3 0 4 2\n3 4 2 1\n3 1 2 5\n3 5 2 0\n3 4 3 0\n3 1 3 4\n3 5 3 1\n3 0 3 5\n", 8);
+  for (const char* file : {"fin.ply", "flip.ply"}) {
+    for (bool skin : {true, false}) {
+      try {
+        import_part(dir, mesh_template(file, "mm", skin));
+        ADD_FAILURE() << file << " was accepted";
+      } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("2-manifold"), std::string::npos) << e.what();
+      }
+    }
+  }
 }
 
 TEST(MeshImport, AMissingOrForeignFileIsRefused) {
