@@ -107,7 +107,8 @@ std::string model_to_glb(const DsModel& model, const GltfModelOptions& options) 
       }
     }
     std::vector<float> normals, flipped;
-    for (const glm::dvec3& n : vertex_normals(mesh)) {
+    for (glm::dvec3 n : vertex_normals(mesh)) {
+      if (n == glm::dvec3(0.0)) n = {0, 1, 0};  // glTF normals must be unit length
       for (int k = 0; k < 3; ++k) {
         normals.push_back(static_cast<float>(n[k]));
         flipped.push_back(static_cast<float>(-n[k]));
