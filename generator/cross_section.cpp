@@ -147,8 +147,9 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
 
   // 4. Output vertices: one per interior vertex, one per side (wedge) of a cut vertex.
   std::map<std::pair<Vertex, Face>, unsigned> corner_id;
+  // One PMVC evaluation per location: the duplicates of a blurred cut vertex share it.
   std::vector<glm::dvec3> to_diffuse;
-  std::vector<unsigned> diffuse_target;
+  std::vector<std::vector<unsigned>> diffuse_targets;
   auto add_vertex = [&](const Point2& p, int surface) {
     cs.position.push_back(plane.point + cs.u_axis * p.x() + cs.v_axis * p.y());
     cs.colour.push_back(glm::dvec3(0.0));
@@ -183,10 +184,11 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
       const unsigned id = add_vertex(v->point(), -1);
       ++cs.interior_vertices;
       to_diffuse.push_back(cs.position[id]);
-      diffuse_target.push_back(id);
+      diffuse_targets.push_back({id});
       for (const Face& f : faces) corner_id[{v, f}] = id;
       continue;
     }
+    std::vector<unsigned> blurred;
     for (size_t n = 0; n < faces.size();) {
       // One wedge: faces from `start` up to and including the next constrained edge.
       std::vector<Face> wedge;
@@ -223,11 +225,12 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
       }
       const unsigned id = add_vertex(v->point(), surface);
       cs.colour[id] = colour;
-      if (diffuse) {
-        to_diffuse.push_back(cs.position[id]);
-        diffuse_target.push_back(id);
-      }
+      if (diffuse) blurred.push_back(id);
       for (const Face& f : wedge) corner_id[{v, f}] = id;
+    }
+    if (!blurred.empty()) {
+      to_diffuse.push_back(cs.position[blurred.front()]);
+      diffuse_targets.push_back(std::move(blurred));
     }
   }
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
@@ -238,9 +241,10 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
   }
 
   // 5. PMVC colours.
-  cs.diffused_vertices = to_diffuse.size();
+  cs.diffused_points = to_diffuse.size();
   const std::vector<glm::dvec3> colours = diffusion.diffuse(to_diffuse);
-  for (size_t i = 0; i < colours.size(); ++i) cs.colour[diffuse_target[i]] = colours[i];
+  for (size_t i = 0; i < colours.size(); ++i)
+    for (unsigned id : diffuse_targets[i]) cs.colour[id] = colours[i];
   return cs;
 }
 

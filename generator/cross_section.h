@@ -17,7 +17,9 @@ namespace cutaway {
 
 /// How a cross-section is meshed.
 struct CrossSectionOptions {
-  double edge_m = 0.002;      ///< largest triangle edge, metres (the template's edge length)
+  double edge_m = 0.006;      ///< largest triangle edge, metres (cutaway uses 3 x the
+                              ///< template's edge length: the cut segments are finer, and
+                              ///< refinement grades from them into the interior)
   double shape_bound = 0.125; ///< Delaunay_mesh_size_criteria_2 shape bound B = 1/(4 sin^2 a):
                               ///< 0.125 is a minimum angle a of about 20.7 degrees
 };
@@ -33,7 +35,8 @@ struct CrossSection {
   /// interior vertex.
   std::vector<int> cut_surface;
   size_t interior_vertices = 0;  ///< vertices off the cut segments
-  size_t diffused_vertices = 0;  ///< vertices coloured by PMVC (interior + blurred cut vertices)
+  size_t diffused_points = 0;  ///< PMVC evaluations: interior vertices and the locations of
+                               ///< blurred cut vertices (their duplicates share one)
   size_t cut_segments = 0;       ///< input cut segments
 };
 

@@ -18,7 +18,8 @@ struct RunResult {
 /// directory, and captures exit code, stdout and stderr.
 RunResult run_cutaway(const std::vector<std::string>& args);
 
-/// A fresh, empty directory under the build tree, named after `name`.
+/// A fresh, empty directory under the build tree, named after `name`, the running test and
+/// the process (parallel test processes never share one).
 std::filesystem::path fresh_dir(const std::string& name);
 
 /// Absolute path of a file in the source tree, e.g. source_path("templates/tomato.yaml").

@@ -116,7 +116,7 @@ int run_section(const SectionArgs& a, int threads, bool stats) {
   const auto t2 = Clock::now();
   cutaway::CrossSection section;
   try {
-    section = cutaway::make_cross_section(model, plane, *diffusion, {tmpl.edge_m});
+    section = cutaway::make_cross_section(model, plane, *diffusion, {3 * tmpl.edge_m});
   } catch (const std::domain_error& e) {
     throw UsageError(std::string("--plane ") + a.plane + ": " + e.what());
   }
@@ -144,12 +144,12 @@ int run_section(const SectionArgs& a, int threads, bool stats) {
     std::fprintf(stderr,
                  "{\"template\": \"%s\", \"backend\": \"%s\", \"ds_faces\": %zu, "
                  "\"cut_segments\": %zu, \"vertices\": %zu, \"interior_vertices\": %zu, "
-                 "\"diffused_vertices\": %zu, \"rays\": %zu, \"seconds\": {\"model\": %.4f, "
+                 "\"diffused_points\": %zu, \"rays\": %zu, \"seconds\": {\"model\": %.4f, "
                  "\"bvh\": %.4f, \"section\": %.4f}}\n",
                  tmpl.name.c_str(), diffusion->name().c_str(), model.face_count(),
                  section.cut_segments, section.position.size(), section.interior_vertices,
-                 section.diffused_vertices,
-                 section.diffused_vertices * 6 * static_cast<size_t>(a.cube * a.cube), t_model,
+                 section.diffused_points,
+                 section.diffused_points * 6 * static_cast<size_t>(a.cube * a.cube), t_model,
                  t_bvh, t_section);
   }
   return 0;
