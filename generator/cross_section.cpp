@@ -60,7 +60,8 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
   CrossSection cs;
   cs.plane = plane;
   plane_frame(plane, cs.u_axis, cs.v_axis);
-  const std::vector<CutSegment> segments = cut_segments(model, plane);
+  const std::vector<CutSegment> segments = merge_collinear_segments(
+      cut_segments(model, plane), options.merge_tolerance * options.edge_m, options.edge_m);
   cs.cut_segments = segments.size();
   bool hits_skin = false;
   for (const auto& s : segments) hits_skin = hits_skin || s.surface == 0;
@@ -87,6 +88,17 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
     if (va == vb) continue;
     cdt.insert_constraint(va, vb);
     segment_of.emplace(std::minmax(va, vb), s.index);
+  }
+  // Blur bands (paper §3.1, Fig. 2): a vertex on each sheet of a blurred segment, +-blur from
+  // its midpoint along its front direction, so that the transition across the band is sampled
+  // at regular distances rather than wherever refinement happens to put vertices.
+  for (const Segment2& s : seg2) {
+    const CutSegment& cut = segments[s.index];
+    const double blur = 0.5 * (cut.blur_a + cut.blur_b);
+    const double len = glm::length(s.front);
+    if (blur <= 0 || len == 0) continue;
+    const glm::dvec2 mid = 0.5 * (s.a + s.b), offset = s.front / len * blur;
+    for (const glm::dvec2& p : {mid + offset, mid - offset}) cdt.insert(Point2(p.x, p.y));
   }
   // The input segment that a constrained edge (a, b) lies on.
   auto segment_on = [&](Vertex a, Vertex b) -> const Segment2* {
@@ -141,7 +153,7 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
   }
 
   // 3. Conforming Delaunay refinement inside the domain (angle and size criteria).
-  Mesher mesher(cdt, Criteria(options.shape_bound, options.edge_m));
+  Mesher mesher(cdt, Criteria(options.shape_bound, options.interior_edge * options.edge_m));
   mesher.init(true);
   mesher.refine_mesh();
 

@@ -17,9 +17,11 @@ namespace cutaway {
 
 /// How a cross-section is meshed.
 struct CrossSectionOptions {
-  double edge_m = 0.006;      ///< largest triangle edge, metres (cutaway uses 3 x the
-                              ///< template's edge length: the cut segments are finer, and
-                              ///< refinement grades from them into the interior)
+  double edge_m = 0.002;       ///< the template's edge length, metres
+  double interior_edge = 3.0;  ///< largest triangle edge, in edge_m: the cut segments are
+                               ///< finer, and refinement grades from them into the interior
+  double merge_tolerance = 0.01;  ///< nearly collinear cut segments are merged up to edge_m
+                                  ///< long where they deviate less than this, in edge_m
   double shape_bound = 0.125; ///< Delaunay_mesh_size_criteria_2 shape bound B = 1/(4 sin^2 a):
                               ///< 0.125 is a minimum angle a of about 20.7 degrees
 };

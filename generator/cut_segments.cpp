@@ -1,6 +1,7 @@
 #include "cut_segments.h"
 
 #include <cmath>
+#include <map>
 
 #include <glm/geometric.hpp>
 
@@ -82,6 +83,57 @@ std::vector<CutSegment> cut_segments(const DsModel& model, const Plane& plane) {
       out.push_back(s);
     }
   }
+  return out;
+}
+
+std::vector<CutSegment> merge_collinear_segments(const std::vector<CutSegment>& segments,
+                                                 double tolerance_m, double max_length_m) {
+  using Key = std::array<double, 3>;
+  auto key = [](const glm::dvec3& p) { return Key{p.x, p.y, p.z}; };
+  std::vector<CutSegment> segs = segments;
+  std::vector<bool> alive(segs.size(), true);
+  std::map<Key, std::vector<size_t>> incident;  // end point -> segments ending there
+  std::vector<Key> order;                        // end points in order of first appearance
+  for (size_t i = 0; i < segs.size(); ++i) {
+    for (const glm::dvec3& p : {segs[i].a, segs[i].b}) {
+      auto& list = incident[key(p)];
+      if (list.empty()) order.push_back(key(p));
+      list.push_back(i);
+    }
+  }
+  for (const Key& k : order) {
+    auto& list = incident[k];
+    if (list.size() != 2 || list[0] == list[1]) continue;
+    const size_t i = list[0], j = list[1];
+    CutSegment& s = segs[i];
+    const CutSegment& t = segs[j];
+    if (!alive[i] || !alive[j] || s.surface != t.surface) continue;
+    const glm::dvec3 p(k[0], k[1], k[2]);
+    // Orient both away from p: s runs q -> p, t runs p -> r.
+    const bool s_ends_at_p = key(s.b) == k, t_starts_at_p = key(t.a) == k;
+    const glm::dvec3 q = s_ends_at_p ? s.a : s.b, r = t_starts_at_p ? t.b : t.a;
+    const double chord = glm::distance(q, r);
+    if (chord > max_length_m || chord == 0) continue;
+    const double off = glm::length(glm::cross(p - q, r - q)) / chord;
+    if (off > tolerance_m) continue;
+    CutSegment merged = s;
+    merged.a = q;
+    merged.front_a = s_ends_at_p ? s.front_a : s.front_b;
+    merged.back_a = s_ends_at_p ? s.back_a : s.back_b;
+    merged.blur_a = s_ends_at_p ? s.blur_a : s.blur_b;
+    merged.b = r;
+    merged.front_b = t_starts_at_p ? t.front_b : t.front_a;
+    merged.back_b = t_starts_at_p ? t.back_b : t.back_a;
+    merged.blur_b = t_starts_at_p ? t.blur_b : t.blur_a;
+    s = merged;
+    alive[j] = false;
+    list.clear();
+    for (size_t& x : incident[key(r)])
+      if (x == j) x = i;
+  }
+  std::vector<CutSegment> out;
+  for (size_t i = 0; i < segs.size(); ++i)
+    if (alive[i]) out.push_back(segs[i]);
   return out;
 }
 

@@ -35,4 +35,13 @@ struct CutSegment {
 /// @return segments in surface order, then face order (deterministic)
 std::vector<CutSegment> cut_segments(const DsModel& model, const Plane& plane);
 
+/// Merges pairs of cut segments of one surface that meet at an end point used by no other
+/// segment, where that point lies within `tolerance_m` of the chord of the merged segment and
+/// the chord is at most `max_length_m` long (a horizontal plane crosses both triangles of each
+/// quad of a sweep: two nearly collinear segments per quad). The merged segment keeps the
+/// outer end points' attributes and the first segment's normal. One pass, in segment order
+/// (deterministic); metres.
+std::vector<CutSegment> merge_collinear_segments(const std::vector<CutSegment>& segments,
+                                                 double tolerance_m, double max_length_m);
+
 }  // namespace cutaway

@@ -116,7 +116,7 @@ int run_section(const SectionArgs& a, int threads, bool stats) {
   const auto t2 = Clock::now();
   cutaway::CrossSection section;
   try {
-    section = cutaway::make_cross_section(model, plane, *diffusion, {3 * tmpl.edge_m});
+    section = cutaway::make_cross_section(model, plane, *diffusion, {tmpl.edge_m});
   } catch (const std::domain_error& e) {
     throw UsageError(std::string("--plane ") + a.plane + ": " + e.what());
   }
