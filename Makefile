@@ -23,7 +23,8 @@ build: deps $(BUILD)/build.ninja
 demo: build
 	@mkdir -p out
 	./$(BUILD)/cutaway model templates/tomato.yaml -o out/tomato.glb --png out/tomato.png
-	@echo "demo: wrote out/tomato.glb and out/tomato.png"
+	./$(BUILD)/cutaway section templates/tomato.yaml --plane y=26 -o out/tomato-section.glb --png out/tomato-section.png
+	@echo "demo: wrote out/tomato.glb, out/tomato.png, out/tomato-section.glb, out/tomato-section.png"
 
 test: deps-test $(BUILD)/build.ninja
 	cmake --build $(BUILD) -j $(JOBS)
