@@ -2,10 +2,15 @@
 
 // glad first: it defines the GL types and guards GL/gl.h, which osmesa.h would include.
 #include <glad/gl.h>
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
 #include <GL/osmesa.h>
 
 #include <array>
+#include <cstdlib>
+#include <cstring>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace cutaway {
@@ -59,14 +64,96 @@ class OsMesaContext final : public GlContext {
   std::string description() const override {
     return std::string("OSMesa: ") + gl_string(GL_RENDERER) + ", " + gl_string(GL_VERSION);
   }
+  bool hardware() const override { return false; }
 
  private:
   OSMesaContext context_ = nullptr;
   std::array<unsigned char, 4> dummy_{};  // the 1x1 RGBA default framebuffer
 };
 
+/// EGL on a GPU without a display (EGL_EXT_platform_device), surfaceless: the GL backend's way
+/// to a real GPU (design/architecture.md, Diffusion backends). Software EGL devices
+/// (EGL_MESA_device_software) are skipped: OSMesa serves those.
+class EglContext final : public GlContext {
+ public:
+  EglContext() {
+    auto query_devices =
+        reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+    auto query_device_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
+        eglGetProcAddress("eglQueryDeviceStringEXT"));
+    auto platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+        eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    if (!query_devices || !query_device_string || !platform_display)
+      throw std::runtime_error("EGL: no device enumeration (EGL_EXT_device_enumeration)");
+    std::array<EGLDeviceEXT, 16> devices{};
+    EGLint count = 0;
+    if (!query_devices(static_cast<EGLint>(devices.size()), devices.data(), &count) || count == 0)
+      throw std::runtime_error("EGL: no devices");
+    for (EGLint i = 0; i < count && context_ == EGL_NO_CONTEXT; ++i) {
+      const char* ext = query_device_string(devices[i], EGL_EXTENSIONS);
+      if (ext && std::strstr(ext, "EGL_MESA_device_software")) continue;
+      EGLDisplay display = platform_display(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
+      if (display == EGL_NO_DISPLAY || !eglInitialize(display, nullptr, nullptr)) continue;
+      if (try_context(display)) {
+        display_ = display;
+      } else {
+        eglTerminate(display);
+      }
+    }
+    if (context_ == EGL_NO_CONTEXT)
+      throw std::runtime_error("EGL: no GPU device gives an OpenGL 4.5 core context");
+    make_current();
+    if (gladLoadGL(reinterpret_cast<GLADloadfunc>(eglGetProcAddress)) == 0) {
+      eglDestroyContext(display_, context_);
+      eglTerminate(display_);
+      throw std::runtime_error("EGL: cannot load the OpenGL entry points (glad)");
+    }
+  }
+  ~EglContext() override {
+    eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(display_, context_);
+    eglTerminate(display_);
+  }
+  void make_current() override {
+    if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
+      throw std::runtime_error("EGL: cannot make the context current");
+  }
+  std::string description() const override {
+    return std::string("EGL: ") + gl_string(GL_RENDERER) + ", " + gl_string(GL_VERSION);
+  }
+  bool hardware() const override { return true; }
+
+ private:
+  bool try_context(EGLDisplay display) {
+    const char* ext = eglQueryString(display, EGL_EXTENSIONS);
+    if (!ext || !std::strstr(ext, "EGL_KHR_surfaceless_context")) return false;
+    if (!eglBindAPI(EGL_OPENGL_API)) return false;
+    const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    EGLConfig config;
+    EGLint n = 0;
+    if (!eglChooseConfig(display, config_attribs, &config, 1, &n) || n == 0) return false;
+    const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                      EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    context_ = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs);
+    return context_ != EGL_NO_CONTEXT;
+  }
+  EGLDisplay display_ = EGL_NO_DISPLAY;
+  EGLContext context_ = EGL_NO_CONTEXT;
+};
+
 }  // namespace
 
-std::unique_ptr<GlContext> create_offscreen_context() { return std::make_unique<OsMesaContext>(); }
+std::unique_ptr<GlContext> create_offscreen_context() {
+  const char* choice = std::getenv("CUTAWAY_GL");
+  if (!choice || std::string(choice) != "osmesa") {
+    try {
+      return std::make_unique<EglContext>();
+    } catch (const std::runtime_error&) {
+      // No GPU reachable through EGL: software rendering.
+    }
+  }
+  return std::make_unique<OsMesaContext>();
+}
 
 }  // namespace cutaway

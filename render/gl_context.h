@@ -1,6 +1,5 @@
-// Offscreen OpenGL contexts. One interface, one backend per way of reaching OpenGL: OSMesa
-// (llvmpipe, software) today; EGL on a GPU (EGL_EXT_platform_device) can be added behind the
-// same interface (design/architecture.md, Diffusion backends; design/style.md: renderer behind
+// Offscreen OpenGL contexts. One interface, one backend per way of reaching OpenGL: EGL on a
+// GPU (EGL_EXT_platform_device, no display) and OSMesa (llvmpipe, software) without one (design/architecture.md, Diffusion backends; design/style.md: renderer behind
 // an interface).
 #pragma once
 
@@ -27,9 +26,13 @@ class GlContext {
   /// Human-readable description for logs: backend, GL_RENDERER and GL_VERSION, e.g.
   /// "OSMesa: llvmpipe (LLVM 15.0.6, 256 bits), 4.5 (Core Profile) Mesa 22.3.6".
   virtual std::string description() const = 0;
+  /// True when the context runs on a GPU (EGL), false for software rendering (OSMesa).
+  virtual bool hardware() const = 0;
 };
 
-/// Creates an offscreen context with the best backend available. Today that is always OSMesa.
+/// Creates an offscreen context with the best backend available: EGL on a GPU device when one
+/// gives an OpenGL 4.5 core context, OSMesa otherwise. The environment variable
+/// CUTAWAY_GL=osmesa forces OSMesa.
 /// @returns a context that is current on the calling thread
 /// @throws std::runtime_error with the reason when no OpenGL 3.3+ core context can be created
 ///         or its entry points cannot be loaded
