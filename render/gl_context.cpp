@@ -144,16 +144,20 @@ class EglContext final : public GlContext {
 
 }  // namespace
 
-std::unique_ptr<GlContext> create_offscreen_context() {
+std::unique_ptr<GlContext> create_gpu_context() {
   const char* choice = std::getenv("CUTAWAY_GL");
-  if (!choice || std::string(choice) != "osmesa") {
-    try {
-      return std::make_unique<EglContext>();
-    } catch (const std::runtime_error&) {
-      // No GPU reachable through EGL: software rendering.
-    }
+  if (choice && std::string(choice) == "osmesa") {
+    throw std::runtime_error("EGL: not tried (CUTAWAY_GL=osmesa)");
   }
-  return std::make_unique<OsMesaContext>();
+  return std::make_unique<EglContext>();
+}
+
+std::unique_ptr<GlContext> create_offscreen_context() {
+  try {
+    return create_gpu_context();
+  } catch (const std::runtime_error&) {
+    return std::make_unique<OsMesaContext>();  // no GPU reachable through EGL: software
+  }
 }
 
 }  // namespace cutaway

@@ -38,4 +38,9 @@ class GlContext {
 ///         or its entry points cannot be loaded
 std::unique_ptr<GlContext> create_offscreen_context();
 
+/// Creates an offscreen context on a GPU through EGL only (what `--backend auto` asks for).
+/// @throws std::runtime_error when no GPU device gives an OpenGL 4.5 core context, or when
+///         CUTAWAY_GL=osmesa
+std::unique_ptr<GlContext> create_gpu_context();
+
 }  // namespace cutaway
