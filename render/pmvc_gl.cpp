@@ -1,0 +1,304 @@
+// The OpenGL PMVC backend (render/pmvc_gl.h; design/algorithms.md §2, Backends: gl).
+#include "pmvc_gl.h"
+
+#include <glad/gl.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "diffusion/cube_directions.h"
+#include "diffusion/diffusion_sheets.h"
+#include "gl_context.h"
+#include "gl_program.h"
+#include "shader_sources.h"
+
+namespace cutaway {
+namespace {
+
+/// Near plane, metres. With the reversed float depth buffer the precision does not depend on
+/// it, so it can be far below any sheet spacing (kMinSheetOffset_m).
+constexpr float kNear_m = 1e-7f;
+/// Upper bound on the colour + depth targets of one batch, bytes.
+constexpr size_t kMaxBatchBytes = size_t{64} << 20;
+/// One vertex as shaders/pmvc.vert reads it.
+struct SheetVertex {
+  glm::vec3 position;      // metres
+  glm::vec3 colour_front;  // linear RGB
+  glm::vec3 colour_back;   // linear RGB; = colour_front on a sheet that is not two-faced
+};
+
+void check_gl(const char* what) {
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+    throw std::runtime_error(std::string("gl diffusion: OpenGL error 0x") +
+                             [](GLenum e) {
+                               char buf[16];
+                               std::snprintf(buf, sizeof buf, "%04x", e);
+                               return std::string(buf);
+                             }(error) +
+                             " " + what);
+}
+
+/// Compiles and links the compute shader shaders/FILE.
+GLuint compute_program(std::string_view file) {
+  const std::string_view text = shader_source(file);
+  const GLchar* data = text.data();
+  const GLint length = static_cast<GLint>(text.size());
+  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+  glShaderSource(shader, 1, &data, &length);
+  glCompileShader(shader);
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  auto log_of = [](GLuint object, bool program) {
+    GLint size = 0;
+    program ? glGetProgramiv(object, GL_INFO_LOG_LENGTH, &size)
+            : glGetShaderiv(object, GL_INFO_LOG_LENGTH, &size);
+    std::string log(static_cast<size_t>(std::max(size, 0)), '\0');
+    if (size > 0)
+      program ? glGetProgramInfoLog(object, size, nullptr, log.data())
+              : glGetShaderInfoLog(object, size, nullptr, log.data());
+    while (!log.empty() && (log.back() == '\0' || log.back() == '\n')) log.pop_back();
+    return log;
+  };
+  if (!ok) {
+    const std::string log = log_of(shader, false);
+    glDeleteShader(shader);
+    throw std::runtime_error("shaders/" + std::string(file) + ": compile error:\n" + log);
+  }
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, shader);
+  glLinkProgram(program);
+  glDeleteShader(shader);
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    const std::string log = log_of(program, true);
+    glDeleteProgram(program);
+    throw std::runtime_error("shaders/" + std::string(file) + ": link error:\n" + log);
+  }
+  return program;
+}
+
+class GlDiffusion final : public DiffusionBackend {
+ public:
+  GlDiffusion(const DsModel& model, const DiffusionOptions& options) : n_(options.cube_size) {
+    if (n_ < 1)
+      throw std::invalid_argument("gl diffusion: cube_size must be >= 1, got " +
+                                  std::to_string(n_));
+    context_ = create_offscreen_context();
+    check_capabilities();
+    GLint max_size = 0, max_layers = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
+    if (n_ > max_size)
+      throw std::invalid_argument("gl diffusion: cube_size " + std::to_string(n_) +
+                                  " exceeds the texture size limit " + std::to_string(max_size));
+    const size_t bytes_per_point = size_t{6} * n_ * n_ * (16 + 4);
+    batch_ = static_cast<int>(std::clamp<size_t>(kMaxBatchBytes / bytes_per_point, 1,
+                                                 static_cast<size_t>(max_layers / 6)));
+
+    render_ = std::make_unique<GlProgram>("pmvc.vert", "pmvc.frag");
+    reduce_ = compute_program("pmvc_reduce.comp");
+    upload_sheets(model);
+    create_targets();
+    check_gl("while setting up");
+  }
+
+  ~GlDiffusion() override {
+    // The context owns every object; make it current so the program deletes in the right one.
+    try {
+      context_->make_current();
+      render_.reset();
+      glDeleteProgram(reduce_);
+    } catch (...) {
+    }
+  }
+
+  std::string name() const override { return "gl"; }
+
+  std::vector<glm::dvec3> diffuse(std::span<const glm::dvec3> points) const override {
+    std::vector<glm::dvec3> out(points.size(), glm::dvec3(0.0));
+    if (points.empty() || index_count_ == 0) return out;
+    const std::lock_guard lock(mutex_);
+    context_->make_current();
+    std::vector<glm::vec4> eyes;
+    std::vector<glm::dvec4> sums(static_cast<size_t>(batch_));
+    for (size_t base = 0; base < points.size(); base += eyes.size()) {
+      const size_t count = std::min<size_t>(batch_, points.size() - base);
+      eyes.assign(count, glm::vec4(0.0f));
+      for (size_t i = 0; i < count; ++i) eyes[i] = glm::vec4(glm::vec3(points[base + i]), 1.0f);
+      render(eyes);
+      reduce(static_cast<int>(count), sums);
+      for (size_t i = 0; i < count; ++i)
+        if (sums[i].w > 0) out[base + i] = glm::dvec3(sums[i]) / sums[i].w;
+    }
+    return out;
+  }
+
+ private:
+  /// Draws the batch: one instance per (point, face), into layer 6 point + face.
+  void render(const std::vector<glm::vec4>& eyes) const {
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+    glViewport(0, 0, n_, n_);
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);  // reversed depth: nearer is larger
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glFrontFace(GL_CW);  // the cube faces are mirrored: see shaders/pmvc.frag
+    const GLfloat zero[4] = {0, 0, 0, 0};
+    const GLfloat far_depth = 0;
+    glClearBufferfv(GL_COLOR, 0, zero);
+    glClearBufferfv(GL_DEPTH, 0, &far_depth);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, eye_buffer_);
+    glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
+                    static_cast<GLsizeiptr>(eyes.size() * sizeof(glm::vec4)), eyes.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, eye_buffer_);
+    glUseProgram(render_->id());
+    glUniform1f(near_location_, kNear_m);
+    glBindVertexArray(vertex_array_);
+    glDrawElementsInstanced(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr,
+                            static_cast<GLsizei>(6 * eyes.size()));
+    check_gl("while rendering the cube maps");
+  }
+
+  /// Sums the layers of `count` points into sums[0 .. count - 1].
+  void reduce(int count, std::vector<glm::dvec4>& sums) const {
+    glUseProgram(reduce_);
+    glUniform1i(n_location_, n_);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, colour_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, solid_angle_buffer_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, sum_buffer_);
+    glDispatchCompute(static_cast<GLuint>(count), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, sum_buffer_);
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
+                       static_cast<GLsizeiptr>(count * sizeof(glm::dvec4)), sums.data());
+    check_gl("while summing the cube maps");
+  }
+
+  void check_capabilities() const {
+    GLint major = 0, minor = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    std::string missing;
+    if (major < 4 || (major == 4 && minor < 3)) missing += " OpenGL 4.3 (compute shaders);";
+    if (!GLAD_GL_VERSION_4_5 && !GLAD_GL_ARB_clip_control) missing += " ARB_clip_control;";
+    if (!GLAD_GL_ARB_shader_viewport_layer_array)
+      missing += " ARB_shader_viewport_layer_array;";
+    if (!missing.empty()) {
+      missing.pop_back();
+      throw std::runtime_error("gl diffusion: the OpenGL context (" + context_->description() +
+                               ") lacks" + missing);
+    }
+  }
+
+  /// Uploads every sheet's vertices and triangles, once (one vertex and one index buffer).
+  void upload_sheets(const DsModel& model) {
+    std::vector<SheetVertex> vertices;
+    std::vector<uint32_t> indices;
+    for (const DiffusionSheet& s : make_diffusion_sheets(model)) {
+      const auto base = static_cast<uint32_t>(vertices.size());
+      for (size_t v = 0; v < s.position.size(); ++v)
+        vertices.push_back({s.position[v], s.colour_front[v],
+                            s.two_faced ? s.colour_back[v] : s.colour_front[v]});
+      for (const glm::uvec3& t : s.triangle)
+        for (int k = 0; k < 3; ++k) indices.push_back(base + t[k]);
+    }
+    index_count_ = static_cast<GLsizei>(indices.size());
+    glGenVertexArrays(1, &vertex_array_);
+    glBindVertexArray(vertex_array_);
+    GLuint buffers[2] = {0, 0};
+    glGenBuffers(2, buffers);
+    glBindBuffer(GL_ARRAY_BUFFER, buffers[0]);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(SheetVertex)),
+                 vertices.data(), GL_STATIC_DRAW);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffers[1]);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(uint32_t)),
+                 indices.data(), GL_STATIC_DRAW);
+    const auto attribute = [](GLuint location, size_t offset) {
+      glEnableVertexAttribArray(location);
+      glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, sizeof(SheetVertex),
+                            reinterpret_cast<const void*>(offset));
+    };
+    attribute(0, offsetof(SheetVertex, position));
+    attribute(1, offsetof(SheetVertex, colour_front));
+    attribute(2, offsetof(SheetVertex, colour_back));
+    glBindVertexArray(0);
+  }
+
+  void create_targets() {
+    const GLsizei layers = 6 * batch_;
+    glGenTextures(1, &colour_);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, colour_);
+    glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA32F, n_, n_, layers);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glGenTextures(1, &depth_);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, depth_);
+    glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_DEPTH_COMPONENT32F, n_, n_, layers);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+    glGenFramebuffers(1, &framebuffer_);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+    glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, colour_, 0);
+    glFramebufferTexture(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, depth_, 0);
+    const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+      throw std::runtime_error("gl diffusion: layered RGBA32F + DEPTH32F framebuffer of " +
+                               std::to_string(n_) + "^2 x " + std::to_string(layers) +
+                               " is incomplete (status " + std::to_string(status) + ")");
+
+    const CubeDirections directions = make_cube_directions(n_);
+    GLuint buffers[3] = {0, 0, 0};
+    glGenBuffers(3, buffers);
+    eye_buffer_ = buffers[0];
+    solid_angle_buffer_ = buffers[1];
+    sum_buffer_ = buffers[2];
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, eye_buffer_);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(batch_ * sizeof(glm::vec4)),
+                 nullptr, GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, solid_angle_buffer_);
+    glBufferData(GL_SHADER_STORAGE_BUFFER,
+                 static_cast<GLsizeiptr>(directions.solid_angle.size() * sizeof(double)),
+                 directions.solid_angle.data(), GL_STATIC_DRAW);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, sum_buffer_);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(batch_ * sizeof(glm::dvec4)),
+                 nullptr, GL_DYNAMIC_READ);
+    near_location_ = render_->uniform("near_m");
+    n_location_ = glGetUniformLocation(reduce_, "n");
+    if (n_location_ < 0) throw std::runtime_error("shaders/pmvc_reduce.comp: no uniform 'n'");
+  }
+
+  int n_ = 0;
+  int batch_ = 1;  // points per batch
+  std::unique_ptr<GlContext> context_;
+  std::unique_ptr<GlProgram> render_;
+  // GL objects below belong to context_ and are freed with it.
+  GLuint reduce_ = 0;
+  GLuint vertex_array_ = 0;
+  GLsizei index_count_ = 0;
+  GLuint colour_ = 0, depth_ = 0, framebuffer_ = 0;
+  GLuint eye_buffer_ = 0, solid_angle_buffer_ = 0, sum_buffer_ = 0;
+  GLint near_location_ = -1, n_location_ = -1;
+  mutable std::mutex mutex_;
+};
+
+}  // namespace
+
+std::unique_ptr<DiffusionBackend> make_gl_diffusion(const DsModel& model,
+                                                    const DiffusionOptions& options) {
+  return std::make_unique<GlDiffusion>(model, options);
+}
+
+}  // namespace cutaway

@@ -1,0 +1,39 @@
+#version 430 core
+#extension GL_ARB_shader_viewport_layer_array : require
+// PMVC cube maps (render/pmvc_gl.cpp): instance i draws all sheets for cube face i % 6 of batch
+// point i / 6 into layer i. Clip space: x = q.U, y = q.V, w = q.N for the offset q from the
+// point, so NDC (x, y) is the face coordinate (a, b) of cube_directions.cpp (direction
+// a U + b V + N); z = near, so depth = near / w: reversed, infinite far plane.
+
+layout(location = 0) in vec3 in_position;      // metres, object frame
+layout(location = 1) in vec3 in_colour_front;  // linear RGB
+layout(location = 2) in vec3 in_colour_back;   // linear RGB (= front on a one-colour sheet)
+
+layout(std430, binding = 0) readonly buffer Eyes {
+  vec4 eye[];  // xyz: the batch's points, metres
+};
+
+uniform float near_m;
+
+out vec3 v_offset;  // hit - point, metres
+out vec3 v_front;
+out vec3 v_back;
+
+// Rows U, V, N per face (+X, -X, +Y, -Y, +Z, -Z): face_point(f, a, b) = a U + b V + N.
+const vec3 kU[6] = vec3[6](vec3(0, 0, -1), vec3(0, 0, 1), vec3(1, 0, 0), vec3(1, 0, 0),
+                           vec3(1, 0, 0), vec3(-1, 0, 0));
+const vec3 kV[6] = vec3[6](vec3(0, 1, 0), vec3(0, 1, 0), vec3(0, 0, -1), vec3(0, 0, 1),
+                           vec3(0, 1, 0), vec3(0, 1, 0));
+const vec3 kN[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0),
+                           vec3(0, 0, 1), vec3(0, 0, -1));
+
+void main() {
+  const int point = gl_InstanceID / 6;
+  const int face = gl_InstanceID - 6 * point;
+  const vec3 q = in_position - eye[point].xyz;
+  v_offset = q;
+  v_front = in_colour_front;
+  v_back = in_colour_back;
+  gl_Position = vec4(dot(q, kU[face]), dot(q, kV[face]), near_m, dot(q, kN[face]));
+  gl_Layer = gl_InstanceID;
+}
