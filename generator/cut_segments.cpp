@@ -62,7 +62,10 @@ std::vector<CutSegment> cut_segments(const DsModel& model, const Plane& plane) {
         if ((npos == 1 && pi) || (npos == 2 && !pi)) lone = i;
       }
       const auto l = v[lone], n1 = v[(lone + 1) % 3], n2 = v[(lone + 2) % 3];
-      const Crossing c1 = crossing(l, n1), c2 = crossing(l, n2);
+      // A lone vertex on the negative side mirrors the picture: swap the ends so that the
+      // front side stays on the same hand of every segment.
+      Crossing c1 = crossing(l, n1), c2 = crossing(l, n2);
+      if (npos == 2) std::swap(c1, c2);
       if (glm::distance(c1.p, c2.p) <= 0) continue;
       const glm::dvec3 p0 = to_glm(mesh.point(v[0])), p1 = to_glm(mesh.point(v[1])),
                        p2 = to_glm(mesh.point(v[2]));
@@ -116,6 +119,15 @@ std::vector<CutSegment> merge_collinear_segments(const std::vector<CutSegment>& 
     if (chord > max_length_m || chord == 0) continue;
     const double off = glm::length(glm::cross(p - q, r - q)) / chord;
     if (off > tolerance_m) continue;
+    // A loop smaller than the tolerance must keep three segments: merging q-p-r where a
+    // segment r-q exists would leave a two-segment loop of no area.
+    bool closes_loop = false;
+    for (size_t x : incident[key(q)]) {
+      if (x == i || x == j || !alive[x]) continue;
+      const CutSegment& u = segs[x];
+      closes_loop = closes_loop || key(u.a) == key(r) || key(u.b) == key(r);
+    }
+    if (closes_loop) continue;
     CutSegment merged = s;
     merged.a = q;
     merged.front_a = s_ends_at_p ? s.front_a : s.front_b;
@@ -125,6 +137,12 @@ std::vector<CutSegment> merge_collinear_segments(const std::vector<CutSegment>& 
     merged.front_b = t_starts_at_p ? t.front_b : t.front_a;
     merged.back_b = t_starts_at_p ? t.back_b : t.back_a;
     merged.blur_b = t_starts_at_p ? t.blur_b : t.blur_a;
+    if (!s_ends_at_p) {  // the loop runs r -> p -> q: keep its direction
+      std::swap(merged.a, merged.b);
+      std::swap(merged.front_a, merged.front_b);
+      std::swap(merged.back_a, merged.back_b);
+      std::swap(merged.blur_a, merged.blur_b);
+    }
     s = merged;
     alive[j] = false;
     list.clear();
