@@ -1,0 +1,96 @@
+// Variants of the shipped templates (generator/variation.h): every variant builds (closed skin,
+// nothing crosses the skin, `within` loops inside their folds: build_model runs check_model),
+// variants differ from each other, and the same seed gives the same variant.
+#include "variation.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+
+#include "template_checks.h"
+#include "template_parser.h"
+#include "test_support.h"
+
+namespace cutaway {
+namespace {
+
+bool same_sections(const Template& a, const Template& b) {
+  if (a.folds != b.folds || a.surfaces.size() != b.surfaces.size()) return false;
+  for (size_t i = 0; i < a.surfaces.size(); ++i)
+    if (a.surfaces[i].section.loops != b.surfaces[i].section.loops) return false;
+  return true;
+}
+
+// 200 seeds per shipped template. For speed the meshes are built at twice the template's edge
+// length (the curves, and so the rules they must keep, are the same at any resolution).
+TEST(Variation, EveryVariantOfEveryShippedTemplateBuilds) {
+  for (const auto& path : test::shipped_templates()) {
+    Template t = load_template(path.string());
+    t.edge_m *= 2;
+    const auto t0 = std::chrono::steady_clock::now();
+    int distinct = 0, redraws = 0, halved = 0;
+    Template first;
+    for (uint64_t seed = 0; seed < 200; ++seed) {
+      const Variant v = make_variant(t, seed);
+      if (seed == 0) first = v.tmpl;
+      redraws += v.draws - 1;
+      halved += v.amount < t.variation_amount;
+      EXPECT_NO_THROW(check_template_curves(v.tmpl)) << t.name << " seed " << seed;
+      EXPECT_GE(v.model.surfaces.size(), t.surfaces.size());
+      distinct += seed > 0 && !same_sections(v.tmpl, first);
+      EXPECT_EQ(v.tmpl.grains.size(), t.grains.size());
+      for (size_t i = 0; i < t.surfaces.size(); ++i)
+        EXPECT_EQ(v.tmpl.surfaces[i].profile, t.surfaces[i].profile);
+    }
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("%s: 200 variants in %.2f s (%.1f/s), %d differ from seed 0's, %d redraws, "
+                "%d with a halved amount\n",
+                t.name.c_str(), s, 200 / s, distinct, redraws, halved);
+    // Cylindrical: drawn loops vary. N-fold: a fold-count range or unequal folds vary (the
+    // shipped cucumber has three equal folds and a fixed count: all its variants agree).
+    bool varies = false;
+    if (t.symmetry == Symmetry::Cylindrical) {
+      for (const auto& sf : t.surfaces) varies |= sf.kind == SurfaceKind::Around && !sf.section.circle;
+    } else if (t.symmetry == Symmetry::NFold) {
+      varies = t.variation_folds_max > t.variation_folds_min ||
+               !fold_pca(fold_features(t, {})).axes.empty();
+    }
+    if (varies) EXPECT_GE(distinct, 100) << t.name;
+  }
+}
+
+TEST(Variation, SameSeedSameVariant) {
+  for (const char* name : {"templates/onion.yaml", "templates/tomato.yaml"}) {
+    const Template t = load_template(test::source_path(name).string());
+    const Template a = vary(t, 17), b = vary(t, 17);
+    EXPECT_TRUE(same_sections(a, b));
+    bool other = false;  // the tomato's folds are equal: only its fold count (4..6) varies
+    for (uint64_t seed = 18; seed < 30 && !other; ++seed) other = !same_sections(a, vary(t, seed));
+    EXPECT_TRUE(other);
+  }
+}
+
+// The onion skin's radius changes by a visible but small fraction.
+TEST(Variation, OnionSkinVariesModestly) {
+  const Template t = load_template(test::source_path("templates/onion.yaml").string());
+  const PolarLoop p0 = polar_resample(t.surfaces[t.skin].section.loops[0], true, 128);
+  double change = 0;
+  for (uint64_t seed = 0; seed < 10; ++seed) {
+    const Template v = draw_variant(t, seed, 0, 1.0);
+    const PolarLoop p = polar_resample(v.surfaces[t.skin].section.loops[0], true, 128);
+    for (int i = 0; i < 128; ++i) change += std::abs(p.rho[i] - p0.rho[i]) / p0.rho[i] / 1280;
+  }
+  std::printf("onion skin: mean relative radius change %.4f\n", change);
+  EXPECT_GT(change, 0.002);
+  EXPECT_LT(change, 0.05);
+}
+
+TEST(Variation, AmountZeroKeepsTheTemplate) {
+  Template t = load_template(test::source_path("templates/onion.yaml").string());
+  t.variation_amount = 0;
+  EXPECT_TRUE(same_sections(vary(t, 5), t));
+}
+
+}  // namespace
+}  // namespace cutaway
