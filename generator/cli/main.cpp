@@ -13,7 +13,7 @@
 
 #include "atomic_file.h"
 #include "cross_section.h"
-#include "diffusion/diffusion.h"
+#include "diffusion_backends.h"
 #include "error.h"
 #include "gltf_export.h"
 #include "model_builder.h"
@@ -99,7 +99,7 @@ struct SectionArgs {
   int width = 800;
 };
 
-int run_section(const SectionArgs& a, int threads, bool stats) {
+int run_section(const SectionArgs& a, const std::string& backend, int threads, bool stats) {
   const auto t0 = Clock::now();
   const cutaway::Template tmpl = cutaway::load_template(a.template_path);
   cutaway::Plane plane;
@@ -111,8 +111,9 @@ int run_section(const SectionArgs& a, int threads, bool stats) {
   const cutaway::DsModel model = cutaway::build_model(tmpl);
   const double t_model = seconds_since(t0);
   const auto t1 = Clock::now();
-  const auto diffusion = cutaway::make_cpu_diffusion(model, {a.cube, threads});
-  const double t_bvh = seconds_since(t1);
+  const auto diffusion = cutaway::make_diffusion(model, {a.cube, threads},
+                                                 cutaway::parse_diffusion_choice(backend));
+  const double t_backend = seconds_since(t1);
   const auto t2 = Clock::now();
   cutaway::CrossSection section;
   try {
@@ -145,12 +146,12 @@ int run_section(const SectionArgs& a, int threads, bool stats) {
                  "{\"template\": \"%s\", \"backend\": \"%s\", \"ds_faces\": %zu, "
                  "\"cut_segments\": %zu, \"vertices\": %zu, \"interior_vertices\": %zu, "
                  "\"diffused_points\": %zu, \"rays\": %zu, \"seconds\": {\"model\": %.4f, "
-                 "\"bvh\": %.4f, \"section\": %.4f}}\n",
+                 "\"backend_setup\": %.4f, \"section\": %.4f}}\n",
                  tmpl.name.c_str(), diffusion->name().c_str(), model.face_count(),
                  section.cut_segments, section.position.size(), section.interior_vertices,
                  section.diffused_points,
                  section.diffused_points * 6 * static_cast<size_t>(a.cube * a.cube), t_model,
-                 t_bvh, t_section);
+                 t_backend, t_section);
   }
   return 0;
 }
@@ -186,8 +187,10 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "worker threads (0: all cores); results do not depend on it")
       ->check(CLI::Range(0, 1024));
   std::string backend = "auto";
-  app.add_option("--backend", backend, "colour diffusion backend (auto: cpu)")
-      ->check(CLI::IsMember({"auto", "cpu"}));
+  app.add_option("--backend", backend,
+                 "colour diffusion: cpu (Embree), gl (OpenGL cube maps), auto (gl on a GPU, "
+                 "else cpu)")
+      ->check(CLI::IsMember({"auto", "cpu", "gl"}));
 
   ModelArgs model_args;
   CLI::App* model = app.add_subcommand("model", "build the DS model of a template (glb, PNG)");
@@ -240,7 +243,7 @@ int main(int argc, char** argv) {
         require_extension("-o", section_args.output, ".glb");
       }
       if (!section_args.png.empty()) require_extension("--png", section_args.png, ".png");
-      return run_section(section_args, threads, stats);
+      return run_section(section_args, backend, threads, stats);
     }
     if (*check) return run_check(check_files);
   } catch (const cutaway::InputError& e) {

@@ -1,0 +1,33 @@
+#include "diffusion_backends.h"
+
+#include <stdexcept>
+
+#include "gl_context.h"
+#include "pmvc_gl.h"
+
+namespace cutaway {
+
+DiffusionChoice parse_diffusion_choice(const std::string& name) {
+  if (name == "auto") return DiffusionChoice::Auto;
+  if (name == "cpu") return DiffusionChoice::Cpu;
+  if (name == "gl") return DiffusionChoice::Gl;
+  throw std::invalid_argument("unknown diffusion backend '" + name + "' (auto, cpu or gl)");
+}
+
+std::unique_ptr<DiffusionBackend> make_diffusion(const DsModel& model,
+                                                 const DiffusionOptions& options,
+                                                 DiffusionChoice choice) {
+  if (choice == DiffusionChoice::Auto) {
+    bool gpu = false;
+    try {
+      gpu = create_gpu_context()->hardware();
+    } catch (const std::runtime_error&) {
+      gpu = false;
+    }
+    choice = gpu ? DiffusionChoice::Gl : DiffusionChoice::Cpu;
+  }
+  return choice == DiffusionChoice::Gl ? make_gl_diffusion(model, options)
+                                       : make_cpu_diffusion(model, options);
+}
+
+}  // namespace cutaway

@@ -1,0 +1,31 @@
+// Choosing a colour diffusion backend (design/architecture.md, Diffusion backends):
+// `--backend auto|cpu|gl`.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "diffusion/diffusion.h"
+
+namespace cutaway {
+
+/// Which diffusion backend to use.
+enum class DiffusionChoice {
+  Auto,  ///< gl where a GPU is reachable through EGL, cpu otherwise (llvmpipe is far slower
+         ///< than Embree: it is never chosen automatically)
+  Cpu,   ///< Embree ray casting (make_cpu_diffusion)
+  Gl,    ///< cube maps with OpenGL (make_gl_diffusion): on a GPU, or OSMesa without one
+};
+
+/// "auto", "cpu" or "gl" to a DiffusionChoice.
+/// @throws std::invalid_argument for any other text
+DiffusionChoice parse_diffusion_choice(const std::string& name);
+
+/// The backend for `choice`. Both give the same colours within the tolerance the tests state.
+/// @throws std::runtime_error when the chosen backend cannot start (see make_cpu_diffusion,
+///         make_gl_diffusion)
+std::unique_ptr<DiffusionBackend> make_diffusion(const DsModel& model,
+                                                 const DiffusionOptions& options,
+                                                 DiffusionChoice choice);
+
+}  // namespace cutaway
