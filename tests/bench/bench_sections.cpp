@@ -1,0 +1,285 @@
+// Cross-section benchmark: for every shipped template, a horizontal cut at mid-height and a
+// vertical cut through the axis, meshed and coloured as `cutaway section` does (cpu backend,
+// cube 32, size bound 3 x the template edge), next to the paper's Table 1 and to Embree's raw
+// closest-hit throughput on the same sheets for the same rays (no colour work; also without
+// RTC_SCENE_FLAG_ROBUST and with medium build quality, to show the headroom).
+//
+// Run:   make bench                       (builds and runs the `benchmarks` target)
+//   or:  cmake --build build --target bench_sections && ./build/bench_sections
+// Options: --threads N (0: all cores, default), --cube N (default 32), --repeat N (best of N
+//          timings per cut, default 3), --gl (also time the GL backend; slow on llvmpipe).
+// One line per case; the last line compares the tomato's cut with the target of 0.6 s.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <embree3/rtcore.h>
+#include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/task_arena.h>
+
+#include "cross_section.h"
+#include "diffusion/cube_directions.h"
+#include "diffusion/diffusion.h"
+#include "diffusion/diffusion_sheets.h"
+#include "model_builder.h"
+#include "pmvc_gl.h"
+#include "template_parser.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+namespace fs = std::filesystem;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// Forwards to a backend and remembers the points and the time of the last diffuse() call.
+class TimedBackend final : public cutaway::DiffusionBackend {
+ public:
+  explicit TimedBackend(const cutaway::DiffusionBackend& inner) : inner_(inner) {}
+  std::vector<glm::dvec3> diffuse(std::span<const glm::dvec3> points) const override {
+    const auto t0 = Clock::now();
+    std::vector<glm::dvec3> out = inner_.diffuse(points);
+    seconds = seconds_since(t0);
+    last_points.assign(points.begin(), points.end());
+    return out;
+  }
+  std::string name() const override { return inner_.name(); }
+  mutable double seconds = 0;
+  mutable std::vector<glm::dvec3> last_points;
+
+ private:
+  const cutaway::DiffusionBackend& inner_;
+};
+
+/// Embree's closest hit alone: the scene and ray packets of the cpu backend (same sheets, same
+/// scene flags and build quality, packets of 16 directions of one point, TBB over points with
+/// the same grain), summing only the hit distances.
+class RawEmbree {
+ public:
+  /// robust = false: default scene flags and medium build quality (headroom, not what the
+  /// backend uses).
+  RawEmbree(const cutaway::DsModel& model, int threads, bool robust = true) : threads_(threads) {
+    const std::string config = "threads=" + std::to_string(std::max(threads, 0));
+    device_ = rtcNewDevice(config.c_str());
+    scene_ = rtcNewScene(device_);
+    rtcSetSceneFlags(scene_, robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
+    rtcSetSceneBuildQuality(scene_, robust ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
+    const auto sheets = cutaway::make_diffusion_sheets(model);
+    for (size_t i = 0; i < sheets.size(); ++i) {
+      const auto& s = sheets[i];
+      RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+      auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
+          g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), s.position.size()));
+      for (size_t v = 0; v < s.position.size(); ++v)
+        for (int k = 0; k < 3; ++k) vb[3 * v + k] = s.position[v][k];
+      auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+          g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), s.triangle.size()));
+      for (size_t t = 0; t < s.triangle.size(); ++t)
+        for (int k = 0; k < 3; ++k) ib[3 * t + k] = s.triangle[t][k];
+      rtcCommitGeometry(g);
+      rtcAttachGeometryByID(scene_, g, static_cast<unsigned>(i));
+      rtcReleaseGeometry(g);
+    }
+    rtcCommitScene(scene_);
+  }
+  ~RawEmbree() {
+    rtcReleaseScene(scene_);
+    rtcReleaseDevice(device_);
+  }
+
+  /// Seconds to trace every direction of `dirs` from every point.
+  double trace(const std::vector<glm::dvec3>& points, const cutaway::CubeDirections& dirs) {
+    std::vector<double> sums(points.size(), 0.0);
+    auto body = [&](const oneapi::tbb::blocked_range<size_t>& range) {
+      for (size_t i = range.begin(); i != range.end(); ++i) sums[i] = trace_point(points[i], dirs);
+    };
+    const auto t0 = Clock::now();
+    if (threads_ > 0) {
+      oneapi::tbb::task_arena arena(threads_);
+      arena.execute([&] {
+        oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<size_t>(0, points.size(), 4), body);
+      });
+    } else {
+      oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<size_t>(0, points.size(), 4), body);
+    }
+    const double s = seconds_since(t0);
+    double total = 0;
+    for (double x : sums) total += x;
+    checksum_ += total;
+    return s;
+  }
+  double checksum() const { return checksum_; }
+
+ private:
+  double trace_point(const glm::dvec3& x, const cutaway::CubeDirections& dirs) const {
+    const size_t count = dirs.direction.size();
+    double sum = 0;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(64) RTCRayHit16 rh;
+    alignas(64) int valid[16];
+    for (size_t base = 0; base < count; base += 16) {
+      const int lanes = static_cast<int>(std::min<size_t>(16, count - base));
+      for (int l = 0; l < 16; ++l) {
+        valid[l] = l < lanes ? -1 : 0;
+        const glm::vec3 d = dirs.direction[base + std::min(l, lanes - 1)];
+        rh.ray.org_x[l] = static_cast<float>(x.x);
+        rh.ray.org_y[l] = static_cast<float>(x.y);
+        rh.ray.org_z[l] = static_cast<float>(x.z);
+        rh.ray.dir_x[l] = d.x;
+        rh.ray.dir_y[l] = d.y;
+        rh.ray.dir_z[l] = d.z;
+        rh.ray.tnear[l] = 0.0f;
+        rh.ray.tfar[l] = std::numeric_limits<float>::infinity();
+        rh.ray.mask[l] = 0xFFFFFFFFu;
+        rh.ray.time[l] = 0.0f;
+        rh.ray.flags[l] = 0;
+        rh.hit.geomID[l] = RTC_INVALID_GEOMETRY_ID;
+      }
+      rtcIntersect16(valid, scene_, &context, &rh);
+      for (int l = 0; l < lanes; ++l)
+        if (rh.hit.geomID[l] != RTC_INVALID_GEOMETRY_ID) sum += rh.ray.tfar[l];
+    }
+    return sum;
+  }
+
+  int threads_;
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  double checksum_ = 0;
+};
+
+/// The paper's Table 1 (../shared/reference/paper-table1.tsv from the repository root), by
+/// title: cut seconds, vertices, faces. Empty when the file is absent.
+std::map<std::string, std::vector<std::string>> read_table1() {
+  std::map<std::string, std::vector<std::string>> rows;
+  std::ifstream in(fs::path(CUTAWAY_SOURCE_DIR) / ".." / "shared" / "reference" /
+                   "paper-table1.tsv");
+  std::string line;
+  std::vector<std::string> header;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string c; std::getline(ss, c, '\t');) cells.push_back(c);
+    if (header.empty()) {
+      header = cells;
+      continue;
+    }
+    auto cell = [&](const char* name) -> std::string {
+      const auto it = std::find(header.begin(), header.end(), name);
+      const size_t k = static_cast<size_t>(it - header.begin());
+      return it != header.end() && k < cells.size() ? cells[k] : "-";
+    };
+    if (!cells.empty()) rows[cells[0]] = {cell("cut_s"), cell("vertices"), cell("faces")};
+  }
+  return rows;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int threads = 0, cube = 32, repeat = 3;
+  bool gl = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--threads" && i + 1 < argc) threads = std::atoi(argv[++i]);
+    else if (a == "--cube" && i + 1 < argc) cube = std::atoi(argv[++i]);
+    else if (a == "--repeat" && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--gl") gl = true;
+    else {
+      std::fprintf(stderr, "usage: bench_sections [--threads N] [--cube N] [--repeat N] [--gl]\n");
+      return 2;
+    }
+  }
+  const auto table1 = read_table1();
+  std::vector<fs::path> templates;
+  for (const auto& e : fs::directory_iterator(fs::path(CUTAWAY_SOURCE_DIR) / "templates"))
+    if (e.path().extension() == ".yaml") templates.push_back(e.path());
+  std::sort(templates.begin(), templates.end());
+  const unsigned cores = std::thread::hardware_concurrency();
+  std::printf("# bench_sections: cpu backend, cube %d, %d threads (%u cores), best of %d; "
+              "cut_s = triangulation + PMVC with the BVH built (bvh_s: once per model)\n",
+              cube, threads > 0 ? threads : static_cast<int>(cores), cores, repeat);
+  double tomato_cut = -1, checksum = 0;
+  const cutaway::CubeDirections dirs = cutaway::make_cube_directions(cube);
+  for (const fs::path& path : templates) {
+    const cutaway::Template tmpl = cutaway::load_template(path.string());
+    const cutaway::DsModel model = cutaway::build_model(tmpl);
+    const auto t_bvh = Clock::now();
+    // As `cutaway section` (generator/cli/main.cpp run_section): DiffusionOptions{cube,
+    // threads} and CrossSectionOptions{template edge} (size bound 3 x the edge).
+    const auto cpu = cutaway::make_cpu_diffusion(model, {cube, threads});
+    const double bvh_s = seconds_since(t_bvh);
+    RawEmbree raw(model, threads), raw_fast(model, threads, false);
+    std::unique_ptr<cutaway::DiffusionBackend> gl_backend;
+    if (gl) gl_backend = cutaway::make_gl_diffusion(model, {cube, threads});
+    const auto t1 = table1.find(tmpl.name);
+    const std::vector<std::string> paper =
+        t1 != table1.end() ? t1->second : std::vector<std::string>{"-", "-", "-"};
+    const double mid = 0.5 * (model.bbox_min.y + model.bbox_max.y);
+    const struct {
+      const char* name;
+      cutaway::Plane plane;
+    } cuts[] = {{"horizontal", {{0, mid, 0}, {0, 1, 0}}}, {"vertical", {{0, 0, 0}, {1, 0, 0}}}};
+    for (const auto& cut : cuts) {
+      double cut_s = 1e300, diffuse_s = 1e300, raw_s = 1e300, fast_s = 1e300;
+      cutaway::CrossSection cs;
+      std::vector<glm::dvec3> points;
+      for (int r = 0; r < repeat; ++r) {
+        TimedBackend timed(*cpu);
+        const auto t0 = Clock::now();
+        cs = cutaway::make_cross_section(model, cut.plane, timed,
+                                         cutaway::CrossSectionOptions{tmpl.edge_m});
+        cut_s = std::min(cut_s, seconds_since(t0));
+        diffuse_s = std::min(diffuse_s, timed.seconds);
+        points = timed.last_points;
+        raw_s = std::min(raw_s, raw.trace(points, dirs));
+        fast_s = std::min(fast_s, raw_fast.trace(points, dirs));
+      }
+      const double rays = static_cast<double>(points.size()) * dirs.direction.size();
+      std::printf("%-9s %-10s ds_vertices=%zu ds_faces=%zu paper_vertices=%s paper_faces=%s "
+                  "paper_cut_s=%s bvh_s=%.3f cut_s=%.3f triangulate_s=%.3f pmvc_s=%.3f "
+                  "section_vertices=%zu pmvc_points=%zu rays=%.3g pmvc_rays_per_s=%.3g "
+                  "embree_rays_per_s=%.3g pmvc/embree=%.2f embree_not_robust_rays_per_s=%.3g\n",
+                  tmpl.name.c_str(), cut.name, model.vertex_count(), model.face_count(),
+                  paper[1].c_str(), paper[2].c_str(), paper[0].c_str(), bvh_s, cut_s,
+                  cut_s - diffuse_s, diffuse_s, cs.position.size(), points.size(), rays,
+                  rays / diffuse_s, rays / raw_s, raw_s / diffuse_s, rays / fast_s);
+      if (gl_backend) {
+        const auto t0 = Clock::now();
+        gl_backend->diffuse(points);
+        const double s = seconds_since(t0);
+        std::printf("%-9s %-10s gl pmvc_points=%zu pmvc_s=%.3f gl_rays_per_s=%.3g\n",
+                    tmpl.name.c_str(), cut.name, points.size(), s, rays / s);
+      }
+      if (tmpl.name == "tomato") tomato_cut = std::max(tomato_cut, cut_s);
+      std::fflush(stdout);
+    }
+    checksum += raw.checksum() + raw_fast.checksum();
+  }
+  if (tomato_cut >= 0) {
+    std::printf("target: tomato cut <= 0.6 s on 2 cores: slowest tomato cut %.3f s on %d "
+                "threads: %s\n",
+                tomato_cut, threads > 0 ? threads : static_cast<int>(cores),
+                tomato_cut <= 0.6 ? "met" : "NOT met");
+    std::fflush(stdout);
+  }
+  std::fprintf(stderr, "(sum of Embree hit distances, keeps the raw loop honest: %.6g)\n",
+               checksum);
+  return 0;
+}
