@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "grains.h"
 #include "model_builder.h"
 #include "template_checks.h"
 
@@ -57,6 +58,7 @@ Variant make_variant(const Template& t, uint64_t seed, const VariationOptions& o
       try {
         check_template_curves(v);
         DsModel m = build_model(v);
+        scatter_grains(v, m, seed);
         return {std::move(v), std::move(m), static_cast<int>(draw), t.variation_amount * scale};
       } catch (const InputError&) {
         // A draw broke a rule (a loop left its fold, a surface crossed the skin): draw again.
@@ -65,7 +67,9 @@ Variant make_variant(const Template& t, uint64_t seed, const VariationOptions& o
     }
     if (t.symmetry == Symmetry::None || !(t.variation_amount > 0)) break;
   }
-  return {t, build_model(t), static_cast<int>(draw), 0.0};
+  DsModel m = build_model(t);
+  scatter_grains(t, m, seed);
+  return {t, std::move(m), static_cast<int>(draw), 0.0};
 }
 
 Template vary(const Template& t, uint64_t seed) { return make_variant(t, seed).tmpl; }

@@ -22,7 +22,7 @@ struct VariationOptions {
   FoldPcaOptions folds;
 };
 
-/// A variant and its DS model.
+/// A variant and its DS model (grains scattered).
 struct Variant {
   Template tmpl;
   DsModel model;
@@ -41,7 +41,8 @@ Template draw_variant(const Template& tmpl, uint64_t seed, uint64_t draw, double
 /// A variant that passes check_template_curves and build_model (closed skin, nothing crosses
 /// the skin, `within` loops inside their folds): draws with the template's amount until one
 /// passes (options.attempts draws), then with the amount halved (options.halvings times); if
-/// none passes, the template itself (amount 0). Same seed -> identical result.
+/// none passes, the template itself (amount 0). The model then gets its grains
+/// (scatter_grains with the same seed). Same seed -> identical result.
 /// @pre tmpl was returned by parse_template / load_template
 /// @throws InputError only when tmpl itself does not build
 Variant make_variant(const Template& tmpl, uint64_t seed, const VariationOptions& options = {});
