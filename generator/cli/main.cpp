@@ -22,6 +22,7 @@
 #include "ply_export.h"
 #include "section_preview.h"
 #include "template_parser.h"
+#include "variation.h"
 
 namespace {
 
@@ -47,6 +48,7 @@ struct ModelArgs {
   std::string output;
   std::string png;
   int width = 800;
+  int64_t seed = -1;  ///< >= 0: build the variant of this seed instead of the template
 };
 
 int run_model(const ModelArgs& a, bool stats) {
@@ -54,7 +56,9 @@ int run_model(const ModelArgs& a, bool stats) {
   const cutaway::Template tmpl = cutaway::load_template(a.template_path);
   const double t_parse = seconds_since(t0);
   const auto t1 = Clock::now();
-  const cutaway::DsModel model = cutaway::build_model(tmpl);
+  const cutaway::DsModel model =
+      a.seed >= 0 ? cutaway::make_variant(tmpl, static_cast<uint64_t>(a.seed)).model
+                  : cutaway::build_model(tmpl);
   const double t_sweep = seconds_since(t1);
   spdlog::info("{}: {} surfaces, {} vertices, {} faces", tmpl.name, model.surfaces.size(),
                model.vertex_count(), model.face_count());
@@ -172,6 +176,48 @@ int run_check(const std::vector<std::string>& files) {
   return failed ? 2 : 0;
 }
 
+/// FNV-1a, 64 bits: the content hash of a written file in manifests.
+uint64_t fnv1a64(const std::string& bytes) {
+  uint64_t h = 0xcbf29ce484222325ULL;
+  for (unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ULL;
+  return h;
+}
+
+struct VariantsArgs {
+  std::string template_path;
+  std::string output_dir;
+  int count = 1;
+  uint64_t seed = 0;
+};
+
+int run_variants(const VariantsArgs& a) {
+  const cutaway::Template tmpl = cutaway::load_template(a.template_path);
+  const std::filesystem::path dir(a.output_dir);
+  std::filesystem::create_directories(dir);
+  std::string manifest = "{\"template\": \"" + tmpl.name + "\", \"variants\": [\n";
+  for (int i = 0; i < a.count; ++i) {
+    const uint64_t seed = a.seed + static_cast<uint64_t>(i);
+    const auto t0 = Clock::now();
+    const cutaway::Variant v = cutaway::make_variant(tmpl, seed);
+    const std::string glb = cutaway::model_to_glb(v.model, cutaway::GltfModelOptions{});
+    const std::string file = tmpl.name + "-" + std::to_string(seed) + ".glb";
+    cutaway::write_file_atomically(dir / file, glb);
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "  {\"file\": \"%s\", \"seed\": %llu, \"template\": \"%s\", "
+                  "\"fnv1a64\": \"%016llx\", \"ds_faces\": %zu, \"folds\": %d, "
+                  "\"seconds\": %.4f}%s\n",
+                  file.c_str(), static_cast<unsigned long long>(seed), tmpl.name.c_str(),
+                  static_cast<unsigned long long>(fnv1a64(glb)), v.model.face_count(),
+                  v.tmpl.folds, seconds_since(t0), i + 1 < a.count ? "," : "");
+    manifest += line;
+    spdlog::info("wrote {}", (dir / file).string());
+  }
+  manifest += "]}\n";
+  cutaway::write_file_atomically(dir / "manifest.json", manifest);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -200,6 +246,8 @@ int main(int argc, char** argv) {
   model->add_option("--png", model_args.png, "PNG picture of the see-through model");
   model->add_option("--size", model_args.width, "PNG width and height in pixels")
       ->check(CLI::Range(16, 8192));
+  model->add_option("--seed", model_args.seed, "build the random variant of this seed")
+      ->check(CLI::NonNegativeNumber);
 
   SectionArgs section_args;
   CLI::App* section = app.add_subcommand("section", "one cross-section with diffused colours");
@@ -215,6 +263,14 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(16, 8192));
   section->add_option("--cube", section_args.cube, "cube-map texels per face edge for PMVC")
       ->check(CLI::Range(2, 256));
+
+  VariantsArgs variants_args;
+  CLI::App* variants = app.add_subcommand("variants", "random variants of a template (glb + manifest.json)");
+  variants->add_option("TEMPLATE", variants_args.template_path, "template file (.yaml)")->required();
+  variants->add_option("--count", variants_args.count, "number of variants")
+      ->check(CLI::Range(1, 100000));
+  variants->add_option("--seed", variants_args.seed, "seed of the first variant (then seed + 1, ...)");
+  variants->add_option("-o,--output", variants_args.output_dir, "output folder")->required();
 
   std::vector<std::string> check_files;
   CLI::App* check = app.add_subcommand("check", "validate templates without writing anything");
@@ -246,6 +302,7 @@ int main(int argc, char** argv) {
       return run_section(section_args, backend, threads, stats);
     }
     if (*check) return run_check(check_files);
+    if (*variants) return run_variants(variants_args);
   } catch (const cutaway::InputError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;
