@@ -99,7 +99,7 @@ struct SectionArgs {
   std::string plane;
   std::string output;
   std::string png;
-  int cube = 32;
+  int cube = 16;
   int width = 800;
 };
 

@@ -1,12 +1,12 @@
 // Cross-section benchmark: for every shipped template, a horizontal cut at mid-height and a
 // vertical cut through the axis, meshed and coloured as `cutaway section` does (cpu backend,
-// cube 32, size bound 3 x the template edge), next to the paper's Table 1 and to Embree's raw
+// cube 16, size bound 3 x the template edge), next to the paper's Table 1 and to Embree's raw
 // closest-hit throughput on the same sheets for the same rays (no colour work; also without
 // RTC_SCENE_FLAG_ROBUST and with medium build quality, to show the headroom).
 //
 // Run:   make bench                       (builds and runs the `benchmarks` target)
 //   or:  cmake --build build --target bench_sections && ./build/bench_sections
-// Options: --threads N (0: all cores, default), --cube N (default 32), --repeat N (best of N
+// Options: --threads N (0: all cores, default), --cube N (default: the CLI default, 16), --repeat N (best of N
 //          timings per cut, default 3), --gl (also time the GL backend; slow on llvmpipe).
 // One line per case; the last line compares the tomato's cut with the target of 0.6 s.
 #include <algorithm>
@@ -193,7 +193,7 @@ std::map<std::string, std::vector<std::string>> read_table1() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int threads = 0, cube = 32, repeat = 3;
+  int threads = 0, cube = cutaway::DiffusionOptions{}.cube_size, repeat = 3;
   bool gl = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
