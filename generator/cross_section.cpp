@@ -113,6 +113,8 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
     return nullptr;
   };
 
+  if (cdt.dimension() < 2) throw std::domain_error("the plane only touches the object");
+
   // 2. The domain: flood regions across unconstrained edges and decide each region once.
   std::map<Face, int> region;
   std::vector<bool> region_in;
@@ -251,6 +253,8 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
     for (int k = 0; k < 3; ++k) t[k] = corner_id.at({f->vertex(k), f});
     cs.triangle.push_back(t);
   }
+
+  if (cs.triangle.empty()) throw std::domain_error("the plane only touches the object");
 
   // 5. PMVC colours.
   cs.diffused_points = to_diffuse.size();

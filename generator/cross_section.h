@@ -54,8 +54,8 @@ void plane_frame(const Plane& plane, glm::dvec3& u, glm::dvec3& v);
 /// A region of the plane is in the domain when it is bounded (not connected to infinity), is
 /// not on the skin's front (outer) side, and is not on a hollow side (visible_front/back false)
 /// of any surface bounding it.
-/// @throws InputError-free: a plane that misses the object gives a std::domain_error, which the
-///         caller reports as bad input ("the plane misses the object").
+/// @throws std::domain_error when the plane misses the object or only touches it (no area):
+///         the caller reports it as bad input
 CrossSection make_cross_section(const DsModel& model, const Plane& plane,
                                 const DiffusionBackend& diffusion,
                                 const CrossSectionOptions& options);
