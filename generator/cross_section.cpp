@@ -1,5 +1,6 @@
 #include "cross_section.h"
 
+#include <chrono>
 #include <map>
 #include <queue>
 #include <stdexcept>
@@ -57,6 +58,7 @@ void plane_frame(const Plane& plane, glm::dvec3& u, glm::dvec3& v) {
 CrossSection make_cross_section(const DsModel& model, const Plane& plane,
                                 const DiffusionBackend& diffusion,
                                 const CrossSectionOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
   CrossSection cs;
   cs.plane = plane;
   plane_frame(plane, cs.u_axis, cs.v_axis);
@@ -258,7 +260,11 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
 
   // 5. PMVC colours.
   cs.diffused_points = to_diffuse.size();
+  const auto triangulated = std::chrono::steady_clock::now();
+  cs.seconds_triangulate = std::chrono::duration<double>(triangulated - start).count();
   const std::vector<glm::dvec3> colours = diffusion.diffuse(to_diffuse);
+  cs.seconds_diffuse =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - triangulated).count();
   for (size_t i = 0; i < colours.size(); ++i)
     for (unsigned id : diffuse_targets[i]) cs.colour[id] = colours[i];
   return cs;

@@ -40,6 +40,8 @@ struct CrossSection {
   size_t diffused_points = 0;  ///< PMVC evaluations: interior vertices and the locations of
                                ///< blurred cut vertices (their duplicates share one)
   size_t cut_segments = 0;       ///< input cut segments
+  double seconds_triangulate = 0;  ///< wall time: cut segments, triangulation, splitting
+  double seconds_diffuse = 0;      ///< wall time: PMVC colours
 };
 
 /// The in-plane frame of a plane: u along the world axis least aligned with the normal,

@@ -150,12 +150,13 @@ int run_section(const SectionArgs& a, const std::string& backend, int threads, b
                  "{\"template\": \"%s\", \"backend\": \"%s\", \"ds_faces\": %zu, "
                  "\"cut_segments\": %zu, \"vertices\": %zu, \"interior_vertices\": %zu, "
                  "\"diffused_points\": %zu, \"rays\": %zu, \"seconds\": {\"model\": %.4f, "
-                 "\"backend_setup\": %.4f, \"section\": %.4f}}\n",
+                 "\"backend_setup\": %.4f, \"section\": %.4f, \"triangulate\": %.4f, "
+                 "\"diffuse\": %.4f}}\n",
                  tmpl.name.c_str(), diffusion->name().c_str(), model.face_count(),
                  section.cut_segments, section.position.size(), section.interior_vertices,
                  section.diffused_points,
                  section.diffused_points * 6 * static_cast<size_t>(a.cube * a.cube), t_model,
-                 t_backend, t_section);
+                 t_backend, t_section, section.seconds_triangulate, section.seconds_diffuse);
   }
   return 0;
 }
