@@ -16,10 +16,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-double wrap_angle(double a) {
-  a = std::remainder(a, 2 * kPi);
-  return a <= -kPi ? a + 2 * kPi : a;
-}
 
 glm::dvec2 xz_at(double rho, double phi) { return {rho * std::cos(phi), -rho * std::sin(phi)}; }
 

@@ -14,11 +14,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-/// `a` wrapped into (-pi, pi]. std::remainder, not a loop: fold angles may be huge.
-double wrap_angle(double a) {
-  a = std::remainder(a, 2 * kPi);
-  return a <= -kPi ? a + 2 * kPi : a;
-}
 
 std::string degrees(double rad) {
   std::ostringstream s;
@@ -145,6 +140,11 @@ void check_within(const SurfaceSpec& s, const Template& t) {
 }
 
 }  // namespace
+
+double wrap_angle(double a) {
+  a = std::remainder(a, 2 * kPi);  // not a loop: fold angles may be huge
+  return a <= -kPi ? a + 2 * kPi : a;
+}
 
 double horizontal_angle(const glm::dvec2& xz) { return std::atan2(-xz.y, xz.x); }
 

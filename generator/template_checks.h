@@ -20,4 +20,7 @@ std::pair<double, double> fold_span(const Template& tmpl, int k);
 /// (-pi, pi] (spec: Frame and units).
 double horizontal_angle(const glm::dvec2& xz);
 
+/// `a` (radians) wrapped into (-pi, pi].
+double wrap_angle(double a);
+
 }  // namespace cutaway

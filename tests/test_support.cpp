@@ -49,6 +49,8 @@ RunResult run_cutaway(const std::vector<std::string>& args) {
   return r;
 }
 
+std::string read_file(const std::filesystem::path& path) { return slurp(path); }
+
 std::filesystem::path fresh_dir(const std::string& name) {
   // Unique per test and process: CTest runs the cases of one suite in parallel processes.
   std::string test = "no-test";

@@ -25,6 +25,9 @@ std::filesystem::path fresh_dir(const std::string& name);
 /// Absolute path of a file in the source tree, e.g. source_path("templates/tomato.yaml").
 std::filesystem::path source_path(const std::string& relative);
 
+/// The bytes of the file at `path` (empty when it cannot be read).
+std::string read_file(const std::filesystem::path& path);
+
 /// Every regular file below `dir` (recursively), relative paths, sorted.
 std::vector<std::string> files_in(const std::filesystem::path& dir);
 

@@ -19,13 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 uint32_t big_endian_u32(const std::string& s, size_t at) {
   uint32_t v = 0;
   for (size_t i = 0; i < 4; ++i) v = v << 8 | static_cast<unsigned char>(s.at(at + i));
@@ -47,8 +40,8 @@ TEST_P(ModelCommand, WritesAValidGlbAndAPngDeterministically) {
                            (dir / "x.png").string(), "--size", std::to_string(kSize)});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     ASSERT_EQ(test::files_in(dir), (std::vector<std::string>{"x.glb", "x.png"}));
-    runs[run][0] = slurp(dir / "x.glb");
-    runs[run][1] = slurp(dir / "x.png");
+    runs[run][0] = test::read_file(dir / "x.glb");
+    runs[run][1] = test::read_file(dir / "x.png");
     if (run == 0) {
       const test::GltfReport v = test::validate_gltf(dir / "x.glb");
       EXPECT_EQ(v.errors, 0) << v.output;

@@ -16,13 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 const std::string kSpheres = "templates/spheres.yaml";
 
 TEST(SectionCommand, WritesAValidGlb) {
@@ -33,7 +26,7 @@ TEST(SectionCommand, WritesAValidGlb) {
          (dir / "x.glb").string()});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     ASSERT_EQ(test::files_in(dir), std::vector<std::string>{"x.glb"});
-    EXPECT_EQ(slurp(dir / "x.glb").substr(0, 4), "glTF");
+    EXPECT_EQ(test::read_file(dir / "x.glb").substr(0, 4), "glTF");
     const test::GltfReport v = test::validate_gltf(dir / "x.glb");
     EXPECT_EQ(v.errors, 0) << tmpl << ": " << v.output;
   }
@@ -44,7 +37,7 @@ TEST(SectionCommand, WritesABinaryPlyWithColours) {
   const test::RunResult r = test::run_cutaway(
       {"section", kSpheres, "--plane", "y=10", "--cube", "8", "-o", (dir / "x.ply").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::string ply = slurp(dir / "x.ply");
+  const std::string ply = test::read_file(dir / "x.ply");
   const size_t end = ply.find("end_header\n");
   ASSERT_NE(end, std::string::npos);
   const std::string header = ply.substr(0, end);
@@ -65,7 +58,7 @@ TEST(SectionCommand, WritesAPngAndStats) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // --png alone writes only the PNG.
   ASSERT_EQ(test::files_in(dir), std::vector<std::string>{"x.png"});
-  const std::string png = slurp(dir / "x.png");
+  const std::string png = test::read_file(dir / "x.png");
   ASSERT_GT(png.size(), 24u);
   EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
   // Exactly one JSON line on stderr (with -q nothing else is printed; here logging may be).
@@ -142,7 +135,7 @@ TEST(SectionCommand, ByteIdenticalAcrossRunsAndThreadCounts) {
     args.insert(args.end(), extra[run].begin(), extra[run].end());
     const test::RunResult r = test::run_cutaway(args);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    glb[run] = slurp(dir / "x.glb");
+    glb[run] = test::read_file(dir / "x.glb");
   }
   ASSERT_FALSE(glb[0].empty());
   EXPECT_TRUE(glb[0] == glb[1]) << "the glb differs between two runs";

@@ -30,13 +30,6 @@ DsModel model_of(const std::string& relative) {
   return build_model(load_template(test::source_path(relative).string()));
 }
 
-std::string slurp(const std::string& relative) {
-  std::ifstream in(test::source_path(relative), std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 Plane plane_of(glm::dvec3 point, glm::dvec3 normal) { return {point, glm::normalize(normal)}; }
 
 glm::dvec2 in_plane(const CrossSection& cs, const glm::dvec3& p) {
@@ -272,7 +265,7 @@ std::vector<std::pair<double, double>> blue_profile(const CrossSection& cs, glm:
 //    and is centred on the surface. Unblurred, the change is a jump: cut vertices are split and
 //    take the exact DS colours of their sides.
 TEST(CrossSection, BlurredSurfaceBlendsOverTwiceItsBlur) {
-  const std::string text = slurp("tests/data/section_blur.yaml");
+  const std::string text = test::read_file(test::source_path("tests/data/section_blur.yaml"));
   const Template t = parse_template(text, "section_blur.yaml", ".");
   const DsModel model = build_model(t);
   const double blur = 0.003, a = 0.020;
