@@ -36,36 +36,12 @@ TEST(PmvcCpu, ConcentricSpheresMatchTheAnalyticIntegral) {
   const Template t = load_template(test::source_path("templates/spheres.yaml").string());
   const DsModel model = build_model(t);
   const auto backend = make_cpu_diffusion(model, DiffusionOptions{});
-  const double a = 0.020, b = 0.040, edge = t.edge_m;
-  std::vector<glm::dvec3> points;
-  std::vector<double> expected;
-  // Rays from the centre in several directions, off the axes and on them.
-  const glm::dvec3 dirs[] = {{1, 0, 0}, {0, 1, 0}, glm::normalize(glm::dvec3(1, 0.7, -0.4)),
-                             glm::normalize(glm::dvec3(-0.3, -0.8, 0.5))};
-  for (const auto& d : dirs) {
-    for (double r = a + edge; r <= b - edge + 1e-12; r += (b - a - 2 * edge) / 24) {
-      points.push_back(d * r);
-      expected.push_back(inner_share(a, b, r));
-    }
-  }
-  const auto start = std::chrono::steady_clock::now();
-  const std::vector<glm::dvec3> colours = backend->diffuse(points);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  double sum_err = 0, max_err = 0;
-  for (size_t i = 0; i < points.size(); ++i) {
-    // Inner sphere: green (0, 1, 0); outer sphere's inside: red (1, 0, 0); linear RGB.
-    const glm::dvec3 want(1 - expected[i], expected[i], 0);
-    const double err = glm::length(colours[i] - want) / std::sqrt(2.0);
-    sum_err += err;
-    max_err = std::max(max_err, err);
-  }
-  const double mean_err = sum_err / points.size();
-  RecordProperty("mean_error", std::to_string(mean_err));
-  std::printf("pmvc cpu: %zu points, mean error %.5f, max %.5f, %.0f rays/s\n", points.size(),
-              mean_err, max_err, points.size() * 6.0 * 32 * 32 / seconds);
-  EXPECT_LE(mean_err, 0.005);
-  EXPECT_LE(max_err, 0.03);
+  const test::TwoSphereErrors e = test::two_sphere_errors(*backend, t.edge_m);
+  RecordProperty("mean_error", std::to_string(e.mean));
+  std::printf("pmvc cpu: %zu points, mean error %.5f, max %.5f, %.3f s\n", e.points, e.mean,
+              e.max, e.seconds);
+  EXPECT_LE(e.mean, 0.005);
+  EXPECT_LE(e.max, 0.03);
 }
 
 TEST(PmvcCpu, OneColourEverywhereGivesThatColour) {
