@@ -54,19 +54,25 @@ GlProgram::GlProgram(std::string_view vertex_file, std::string_view fragment_fil
     glDeleteShader(vs);
     throw;
   }
+  link({vs, fs}, "shaders/" + std::string(vertex_file) + " + shaders/" + std::string(fragment_file));
+}
+
+GlProgram::GlProgram(std::string_view compute_file) {
+  link({compile(GL_COMPUTE_SHADER, compute_file)}, "shaders/" + std::string(compute_file));
+}
+
+void GlProgram::link(std::initializer_list<GLuint> shaders, const std::string& files) {
   id_ = glCreateProgram();
-  glAttachShader(id_, vs);
-  glAttachShader(id_, fs);
+  for (GLuint shader : shaders) glAttachShader(id_, shader);
   glLinkProgram(id_);
-  glDeleteShader(vs);  // flagged; freed with the program
-  glDeleteShader(fs);
+  for (GLuint shader : shaders) glDeleteShader(shader);  // flagged; freed with the program
   GLint ok = GL_FALSE;
   glGetProgramiv(id_, GL_LINK_STATUS, &ok);
   if (!ok) {
     const std::string log = program_log(id_);
     glDeleteProgram(id_);
-    throw std::runtime_error("shaders/" + std::string(vertex_file) + " + shaders/" +
-                             std::string(fragment_file) + ": link error:\n" + log);
+    id_ = 0;
+    throw std::runtime_error(files + ": link error:\n" + log);
   }
 }
 

@@ -4,6 +4,8 @@
 
 #include <glad/gl.h>
 
+#include <initializer_list>
+#include <string>
 #include <string_view>
 
 namespace cutaway {
@@ -18,6 +20,9 @@ class GlProgram {
   /// @throws std::runtime_error naming the file, with the driver's info log, on a compile or
   ///         link error, or when a file was not embedded
   GlProgram(std::string_view vertex_file, std::string_view fragment_file);
+  /// Compiles shaders/COMPUTE_FILE (e.g. "pmvc_reduce.comp") and links it alone.
+  /// @throws std::runtime_error as the two-stage constructor
+  explicit GlProgram(std::string_view compute_file);
   GlProgram(const GlProgram&) = delete;
   GlProgram& operator=(const GlProgram&) = delete;
   ~GlProgram();
@@ -30,6 +35,8 @@ class GlProgram {
   GLint uniform(const char* name) const;
 
  private:
+  /// Links the compiled shaders into id_ (deleting them); `files` names them for errors.
+  void link(std::initializer_list<GLuint> shaders, const std::string& files);
   GLuint id_ = 0;
 };
 

@@ -49,45 +49,6 @@ void check_gl(const char* what) {
                              " " + what);
 }
 
-/// Compiles and links the compute shader shaders/FILE.
-GLuint compute_program(std::string_view file) {
-  const std::string_view text = shader_source(file);
-  const GLchar* data = text.data();
-  const GLint length = static_cast<GLint>(text.size());
-  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-  glShaderSource(shader, 1, &data, &length);
-  glCompileShader(shader);
-  GLint ok = GL_FALSE;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  auto log_of = [](GLuint object, bool program) {
-    GLint size = 0;
-    program ? glGetProgramiv(object, GL_INFO_LOG_LENGTH, &size)
-            : glGetShaderiv(object, GL_INFO_LOG_LENGTH, &size);
-    std::string log(static_cast<size_t>(std::max(size, 0)), '\0');
-    if (size > 0)
-      program ? glGetProgramInfoLog(object, size, nullptr, log.data())
-              : glGetShaderInfoLog(object, size, nullptr, log.data());
-    while (!log.empty() && (log.back() == '\0' || log.back() == '\n')) log.pop_back();
-    return log;
-  };
-  if (!ok) {
-    const std::string log = log_of(shader, false);
-    glDeleteShader(shader);
-    throw std::runtime_error("shaders/" + std::string(file) + ": compile error:\n" + log);
-  }
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, shader);
-  glLinkProgram(program);
-  glDeleteShader(shader);
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    const std::string log = log_of(program, true);
-    glDeleteProgram(program);
-    throw std::runtime_error("shaders/" + std::string(file) + ": link error:\n" + log);
-  }
-  return program;
-}
-
 class GlDiffusion final : public DiffusionBackend {
  public:
   GlDiffusion(const DsModel& model, const DiffusionOptions& options) : n_(options.cube_size) {
@@ -107,7 +68,7 @@ class GlDiffusion final : public DiffusionBackend {
                                                  static_cast<size_t>(max_layers / 6)));
 
     render_ = std::make_unique<GlProgram>("pmvc.vert", "pmvc.frag");
-    reduce_ = compute_program("pmvc_reduce.comp");
+    reduce_ = std::make_unique<GlProgram>("pmvc_reduce.comp");
     upload_sheets(model);
     create_targets();
     check_gl("while setting up");
@@ -118,7 +79,7 @@ class GlDiffusion final : public DiffusionBackend {
     try {
       context_->make_current();
       render_.reset();
-      glDeleteProgram(reduce_);
+      reduce_.reset();
     } catch (...) {
     }
   }
@@ -174,7 +135,7 @@ class GlDiffusion final : public DiffusionBackend {
 
   /// Sums the layers of `count` points into sums[0 .. count - 1].
   void reduce(int count, std::vector<glm::dvec4>& sums) const {
-    glUseProgram(reduce_);
+    glUseProgram(reduce_->id());
     glUniform1i(n_location_, n_);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D_ARRAY, colour_);
@@ -276,7 +237,7 @@ class GlDiffusion final : public DiffusionBackend {
     glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(batch_ * sizeof(glm::dvec4)),
                  nullptr, GL_DYNAMIC_READ);
     near_location_ = render_->uniform("near_m");
-    n_location_ = glGetUniformLocation(reduce_, "n");
+    n_location_ = glGetUniformLocation(reduce_->id(), "n");
     if (n_location_ < 0) throw std::runtime_error("shaders/pmvc_reduce.comp: no uniform 'n'");
   }
 
@@ -285,7 +246,7 @@ class GlDiffusion final : public DiffusionBackend {
   std::unique_ptr<GlContext> context_;
   std::unique_ptr<GlProgram> render_;
   // GL objects below belong to context_ and are freed with it.
-  GLuint reduce_ = 0;
+  std::unique_ptr<GlProgram> reduce_;
   GLuint vertex_array_ = 0;
   GLsizei index_count_ = 0;
   GLuint colour_ = 0, depth_ = 0, framebuffer_ = 0;
