@@ -1,0 +1,66 @@
+// compose_grid (render/contact_sheet.h): sheet size, tile placement and centring, background,
+// refusals.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "contact_sheet.h"
+
+namespace cutaway {
+namespace {
+
+Image solid(int w, int h, uint8_t grey) {
+  Image im{w, h, std::vector<uint8_t>(static_cast<size_t>(w) * h * 4, grey)};
+  for (size_t i = 3; i < im.rgba.size(); i += 4) im.rgba[i] = 255;
+  return im;
+}
+
+uint8_t red_at(const Image& im, int x, int y) {
+  return im.rgba[(static_cast<size_t>(y) * im.width + x) * 4];
+}
+
+TEST(ComposeGrid, SizesCellsByTheLargestTileAndCentresSmallerOnes) {
+  GridOptions o;
+  o.margin = 2;
+  o.background_srgb = {1, 1, 1};
+  // 3 tiles in 2 columns: 2 rows of cells 4 x 6 pixels.
+  const Image sheet = compose_grid({solid(4, 6, 10), solid(2, 2, 20), solid(4, 4, 30)}, 2, o);
+  EXPECT_EQ(sheet.width, 2 * 4 + 3 * 2);
+  EXPECT_EQ(sheet.height, 2 * 6 + 3 * 2);
+  ASSERT_EQ(sheet.rgba.size(), static_cast<size_t>(sheet.width) * sheet.height * 4);
+  EXPECT_EQ(red_at(sheet, 0, 0), 255);   // margin
+  EXPECT_EQ(red_at(sheet, 2, 2), 10);    // tile 0 fills cell (0, 0)
+  EXPECT_EQ(red_at(sheet, 5, 7), 10);
+  // Tile 1 (2 x 2) centred in cell (1, 0), which starts at x = 8, y = 2: pixels 9..10, 4..5.
+  EXPECT_EQ(red_at(sheet, 8, 2), 255);
+  EXPECT_EQ(red_at(sheet, 9, 4), 20);
+  EXPECT_EQ(red_at(sheet, 10, 5), 20);
+  EXPECT_EQ(red_at(sheet, 11, 5), 255);
+  // Tile 2 (4 x 4) in cell (0, 1) at x = 2, y = 10, one row down: rows 11..14.
+  EXPECT_EQ(red_at(sheet, 2, 10), 255);
+  EXPECT_EQ(red_at(sheet, 2, 11), 30);
+  EXPECT_EQ(red_at(sheet, 5, 14), 30);
+  EXPECT_EQ(red_at(sheet, 9, 12), 255);  // the empty cell (1, 1) is background
+  for (size_t i = 3; i < sheet.rgba.size(); i += 4) ASSERT_EQ(sheet.rgba[i], 255);
+}
+
+TEST(ComposeGrid, FewerTilesThanColumnsMakeOneRow) {
+  const Image sheet = compose_grid({solid(3, 3, 0), solid(3, 3, 0)}, 5, GridOptions{1, {0, 0, 0}});
+  EXPECT_EQ(sheet.width, 2 * 3 + 3);
+  EXPECT_EQ(sheet.height, 3 + 2);
+}
+
+TEST(ComposeGrid, RefusesBadInput) {
+  EXPECT_THROW(compose_grid({}, 1), std::invalid_argument);
+  EXPECT_THROW(compose_grid({solid(2, 2, 0)}, 0), std::invalid_argument);
+  Image broken = solid(2, 2, 0);
+  broken.rgba.pop_back();
+  EXPECT_THROW(compose_grid({broken}, 1), std::invalid_argument);
+  EXPECT_THROW(compose_grid({solid(2, 2, 0)}, 1, GridOptions{-1, {1, 1, 1}}),
+               std::invalid_argument);
+  EXPECT_THROW(compose_grid({solid(9000, 10, 0), solid(9000, 10, 0)}, 2),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace cutaway
