@@ -1,17 +1,23 @@
 // The `cutaway` command line: parses arguments and calls the libraries; nothing else lives
 // here (design/style.md). Exit codes: 0 success, 2 bad input, 1 internal failure.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "atomic_file.h"
+#include "contact_sheet.h"
 #include "cross_section.h"
 #include "diffusion_backends.h"
 #include "error.h"
@@ -189,20 +195,100 @@ struct VariantsArgs {
   std::string output_dir;
   int count = 1;
   uint64_t seed = 0;
+  std::string shard;  ///< "K/M" when shard_given
+  bool shard_given = false;
+  int sheet = 64;     ///< contact sheet: at most this many tiles (0: no sheet)
 };
 
-int run_variants(const VariantsArgs& a) {
+/// The K-th of M shares of the variants 0..count-1: contiguous blocks, variant i in shard K
+/// when floor((K-1) count / M) <= i < floor(K count / M); shares differ by at most one.
+struct Shard {
+  int k = 1, m = 1;
+  int begin(int count) const { return static_cast<int>(int64_t{k - 1} * count / m); }
+  int end(int count) const { return static_cast<int>(int64_t{k} * count / m); }
+};
+
+/// Parses "K/M" (1 <= K <= M <= 100000).
+/// @throws UsageError on anything else
+Shard parse_shard(const std::string& text) {
+  const auto bad = [&] {
+    return UsageError("--shard: '" + text + "' must be K/M with whole numbers 1 <= K <= M");
+  };
+  const size_t slash = text.find('/');
+  if (slash == std::string::npos) throw bad();
+  const auto number = [&](const std::string& part) {
+    if (part.empty() || part.size() > 6 ||
+        part.find_first_not_of("0123456789") != std::string::npos)
+      throw bad();
+    return std::stoi(part);
+  };
+  Shard s{number(text.substr(0, slash)), number(text.substr(slash + 1))};
+  if (s.k < 1 || s.m < 1 || s.k > s.m || s.m > 100000) throw bad();
+  return s;
+}
+
+/// `variants: [=====>    ] 12/40` on stderr, redrawn in place; only when stderr is a terminal.
+class ProgressBar {
+ public:
+  ProgressBar(int total, bool enabled) : total_(total), on_(enabled && total > 0) {}
+  void show(int done) const {
+    if (!on_) return;
+    constexpr int kWidth = 30;
+    const int filled = static_cast<int>(int64_t{done} * kWidth / total_);
+    std::string bar(kWidth, ' ');
+    for (int i = 0; i < filled; ++i) bar[i] = '=';
+    if (filled < kWidth) bar[filled] = '>';
+    std::fprintf(stderr, "\rvariants: [%s] %d/%d", bar.c_str(), done, total_);
+    if (done == total_) std::fputc('\n', stderr);
+    std::fflush(stderr);
+  }
+
+ private:
+  int total_;
+  bool on_;
+};
+
+/// The horizontal cut of a variant for its contact-sheet tile: the plane y = mid-height of
+/// the skin's bounding box, coloured by PMVC with 8 x 8 texels per cube face (a quarter of
+/// the rays of `section`'s default 16: enough for a thumbnail).
+cutaway::CrossSection variant_section(const cutaway::Variant& v, const std::string& backend,
+                                      int threads) {
+  const cutaway::DsMesh& skin = v.model.skin().mesh;
+  double lo = std::numeric_limits<double>::max(), hi = -lo;
+  for (const auto vh : skin.vertices()) {
+    lo = std::min(lo, skin.point(vh)[1]);
+    hi = std::max(hi, skin.point(vh)[1]);
+  }
+  cutaway::Plane plane;
+  plane.point = {0, 0.5 * (lo + hi), 0};
+  plane.normal = {0, 1, 0};
+  const auto diffusion = cutaway::make_diffusion(v.model, {8, threads},
+                                                 cutaway::parse_diffusion_choice(backend));
+  return cutaway::make_cross_section(v.model, plane, *diffusion, {v.tmpl.edge_m});
+}
+
+int run_variants(const VariantsArgs& a, const std::string& backend, int threads, bool quiet) {
+  const Shard shard = a.shard_given ? parse_shard(a.shard) : Shard{};
   const cutaway::Template tmpl = cutaway::load_template(a.template_path);
   const std::filesystem::path dir(a.output_dir);
   std::filesystem::create_directories(dir);
-  std::string manifest = "{\"template\": \"" + tmpl.name + "\", \"variants\": [\n";
-  for (int i = 0; i < a.count; ++i) {
+  const int first = shard.begin(a.count), last = shard.end(a.count);
+  std::string manifest = "{\"template\": \"" + tmpl.name + "\", ";
+  if (a.shard_given)
+    manifest += "\"shard\": \"" + std::to_string(shard.k) + "/" + std::to_string(shard.m) + "\", ";
+  manifest += "\"variants\": [\n";
+  const ProgressBar progress(last - first, !quiet && isatty(fileno(stderr)));
+  progress.show(0);
+  std::vector<cutaway::CrossSection> sections;
+  std::vector<int> missing;  // sheet tiles whose plane gave no section
+  for (int i = first; i < last; ++i) {
     const uint64_t seed = a.seed + static_cast<uint64_t>(i);
     const auto t0 = Clock::now();
     const cutaway::Variant v = cutaway::make_variant(tmpl, seed);
     const std::string glb = cutaway::model_to_glb(v.model, cutaway::GltfModelOptions{});
     const std::string file = tmpl.name + "-" + std::to_string(seed) + ".glb";
     cutaway::write_file_atomically(dir / file, glb);
+    const double seconds = seconds_since(t0);
     char line[512];
     std::snprintf(line, sizeof line,
                   "  {\"file\": \"%s\", \"seed\": %llu, \"template\": \"%s\", "
@@ -210,12 +296,39 @@ int run_variants(const VariantsArgs& a) {
                   "\"seconds\": %.4f}%s\n",
                   file.c_str(), static_cast<unsigned long long>(seed), tmpl.name.c_str(),
                   static_cast<unsigned long long>(fnv1a64(glb)), v.model.face_count(),
-                  v.tmpl.folds, seconds_since(t0), i + 1 < a.count ? "," : "");
+                  v.tmpl.folds, seconds, i + 1 < last ? "," : "");
     manifest += line;
-    spdlog::info("wrote {}", (dir / file).string());
+    spdlog::debug("wrote {}", (dir / file).string());
+    progress.show(i - first + 1);
   }
   manifest += "]}\n";
   cutaway::write_file_atomically(dir / "manifest.json", manifest);
+  // The contact sheet comes last, so that the variants and the manifest are complete even if
+  // it fails; its variants are built again (same seed, same model) rather than all kept.
+  for (int i = first; i < std::min(last, first + a.sheet); ++i) {
+    const uint64_t seed = a.seed + static_cast<uint64_t>(i);
+    try {
+      sections.push_back(variant_section(cutaway::make_variant(tmpl, seed), backend, threads));
+    } catch (const std::domain_error& e) {
+      spdlog::warn("seed {}: no horizontal section at mid-height ({}); its tile stays empty",
+                   seed, e.what());
+      missing.push_back(i - first);
+    }
+  }
+  if (!sections.empty()) {
+    const cutaway::SectionTileOptions tile_options;
+    std::vector<cutaway::Image> tiles = cutaway::render_section_tiles(sections, tile_options);
+    for (int m : missing) {  // an empty tile of the same size where a section is missing
+      cutaway::Image blank = tiles.front();
+      std::fill(blank.rgba.begin(), blank.rgba.end(), uint8_t{255});
+      tiles.insert(tiles.begin() + m, std::move(blank));
+    }
+    const int columns =
+        static_cast<int>(std::ceil(std::sqrt(static_cast<double>(tiles.size()))));
+    cutaway::write_png(dir / "contact-sheet.png", cutaway::compose_grid(tiles, columns));
+  }
+  spdlog::info("wrote {} variant(s) of {}, manifest.json{} to {}", last - first, tmpl.name,
+               sections.empty() ? "" : ", contact-sheet.png", dir.string());
   return 0;
 }
 
@@ -266,12 +379,20 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(2, 256));
 
   VariantsArgs variants_args;
-  CLI::App* variants = app.add_subcommand("variants", "random variants of a template (glb + manifest.json)");
+  CLI::App* variants = app.add_subcommand(
+      "variants", "random variants of a template (glb + manifest.json + contact-sheet.png)");
   variants->add_option("TEMPLATE", variants_args.template_path, "template file (.yaml)")->required();
   variants->add_option("--count", variants_args.count, "number of variants")
       ->check(CLI::Range(1, 100000));
   variants->add_option("--seed", variants_args.seed, "seed of the first variant (then seed + 1, ...)");
   variants->add_option("-o,--output", variants_args.output_dir, "output folder")->required();
+  variants->add_option("--shard", variants_args.shard,
+                       "K/M: write only the K-th of M contiguous shares of the variants (seeds "
+                       "unchanged, so the shards together make one unsharded run)");
+  variants->add_option("--sheet", variants_args.sheet,
+                       "contact-sheet.png: the mid-height horizontal cuts of the first N "
+                       "variants (of the shard) at one scale; 0: none")
+      ->check(CLI::Range(0, 256));
 
   std::vector<std::string> check_files;
   CLI::App* check = app.add_subcommand("check", "validate templates without writing anything");
@@ -303,7 +424,10 @@ int main(int argc, char** argv) {
       return run_section(section_args, backend, threads, stats);
     }
     if (*check) return run_check(check_files);
-    if (*variants) return run_variants(variants_args);
+    if (*variants) {
+      variants_args.shard_given = variants->count("--shard") > 0;
+      return run_variants(variants_args, backend, threads, quiet);
+    }
   } catch (const cutaway::InputError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;
