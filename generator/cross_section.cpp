@@ -62,8 +62,14 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
   CrossSection cs;
   cs.plane = plane;
   plane_frame(plane, cs.u_axis, cs.v_axis);
-  const std::vector<CutSegment> segments = merge_collinear_segments(
-      cut_segments(model, plane), options.merge_tolerance * options.edge_m, options.edge_m);
+  // Merging is for the swept surfaces' doubled segments; grain loops are small and stay as cut.
+  std::vector<CutSegment> swept, grains;
+  for (const CutSegment& s : cut_segments(model, plane)) {
+    (model.surfaces[s.surface].role == SurfaceRole::Grain ? grains : swept).push_back(s);
+  }
+  std::vector<CutSegment> segments = merge_collinear_segments(
+      swept, options.merge_tolerance * options.edge_m, options.edge_m);
+  segments.insert(segments.end(), grains.begin(), grains.end());
   cs.cut_segments = segments.size();
   bool hits_skin = false;
   for (const auto& s : segments) hits_skin = hits_skin || s.surface == 0;
