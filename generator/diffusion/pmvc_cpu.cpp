@@ -11,6 +11,7 @@
 #include "cube_directions.h"
 #include "diffusion.h"
 #include "diffusion_sheets.h"
+#include "ray_packet.h"
 
 namespace cutaway {
 
@@ -81,23 +82,7 @@ class CpuDiffusion final : public DiffusionBackend {
     alignas(64) RTCRayHit16 rh;
     alignas(64) int valid[16];
     for (size_t base = 0; base < count; base += 16) {
-      const int lanes = static_cast<int>(std::min<size_t>(16, count - base));
-      for (int l = 0; l < 16; ++l) {
-        valid[l] = l < lanes ? -1 : 0;
-        const glm::vec3 d = directions_.direction[base + std::min(l, lanes - 1)];
-        rh.ray.org_x[l] = static_cast<float>(x.x);
-        rh.ray.org_y[l] = static_cast<float>(x.y);
-        rh.ray.org_z[l] = static_cast<float>(x.z);
-        rh.ray.dir_x[l] = d.x;
-        rh.ray.dir_y[l] = d.y;
-        rh.ray.dir_z[l] = d.z;
-        rh.ray.tnear[l] = 0.0f;
-        rh.ray.tfar[l] = std::numeric_limits<float>::infinity();
-        rh.ray.mask[l] = 0xFFFFFFFFu;
-        rh.ray.time[l] = 0.0f;
-        rh.ray.flags[l] = 0;
-        rh.hit.geomID[l] = RTC_INVALID_GEOMETRY_ID;
-      }
+      const int lanes = fill_ray_packet(directions_, base, x, rh, valid);
       rtcIntersect16(valid, scene_, &context, &rh);
       for (int l = 0; l < lanes; ++l) {
         if (rh.hit.geomID[l] == RTC_INVALID_GEOMETRY_ID) continue;
