@@ -19,7 +19,15 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-Template tomato() { return load_template(test::source_path("templates/tomato.yaml").string()); }
+/// The shipped tomato with equal folds: its chambers' per-fold loops replaced by fold 0's loop,
+/// repeated in every fold (its skin's lobes are already 5-fold symmetric).
+Template tomato() {
+  Template t = load_template(test::source_path("templates/tomato.yaml").string());
+  for (auto& s : t.surfaces) {
+    if (s.kind == SurfaceKind::Within) s.section.loops.resize(1);
+  }
+  return t;
+}
 
 glm::dvec2 polar_xz(double rho, double phi) { return {rho * std::cos(phi), -rho * std::sin(phi)}; }
 
