@@ -11,7 +11,7 @@
 #include "cube_directions.h"
 #include "diffusion.h"
 #include "diffusion_sheets.h"
-#include "ray_packet.h"
+#include "embree_sheets.h"
 
 namespace cutaway {
 
@@ -29,22 +29,7 @@ class CpuDiffusion final : public DiffusionBackend {
     scene_ = rtcNewScene(device_);
     rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-    for (size_t i = 0; i < sheets_.size(); ++i) {
-      const DiffusionSheet& s = sheets_[i];
-      RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-      auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
-          g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), s.position.size()));
-      for (size_t v = 0; v < s.position.size(); ++v)
-        for (int k = 0; k < 3; ++k) vb[3 * v + k] = s.position[v][k];
-      auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-          g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), s.triangle.size()));
-      for (size_t t = 0; t < s.triangle.size(); ++t)
-        for (int k = 0; k < 3; ++k) ib[3 * t + k] = s.triangle[t][k];
-      rtcCommitGeometry(g);
-      rtcAttachGeometryByID(scene_, g, static_cast<unsigned>(i));
-      rtcReleaseGeometry(g);
-    }
-    rtcCommitScene(scene_);
+    commit_sheet_scene(device_, scene_, sheets_);
   }
 
   ~CpuDiffusion() override {

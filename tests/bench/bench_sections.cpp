@@ -30,7 +30,7 @@
 
 #include "cross_section.h"
 #include "diffusion/cube_directions.h"
-#include "diffusion/ray_packet.h"
+#include "diffusion/embree_sheets.h"
 #include "diffusion/diffusion.h"
 #include "diffusion/diffusion_sheets.h"
 #include "model_builder.h"
@@ -78,23 +78,7 @@ class RawEmbree {
     scene_ = rtcNewScene(device_);
     rtcSetSceneFlags(scene_, robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
     rtcSetSceneBuildQuality(scene_, robust ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
-    const auto sheets = cutaway::make_diffusion_sheets(model);
-    for (size_t i = 0; i < sheets.size(); ++i) {
-      const auto& s = sheets[i];
-      RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-      auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
-          g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), s.position.size()));
-      for (size_t v = 0; v < s.position.size(); ++v)
-        for (int k = 0; k < 3; ++k) vb[3 * v + k] = s.position[v][k];
-      auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-          g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), s.triangle.size()));
-      for (size_t t = 0; t < s.triangle.size(); ++t)
-        for (int k = 0; k < 3; ++k) ib[3 * t + k] = s.triangle[t][k];
-      rtcCommitGeometry(g);
-      rtcAttachGeometryByID(scene_, g, static_cast<unsigned>(i));
-      rtcReleaseGeometry(g);
-    }
-    rtcCommitScene(scene_);
+    cutaway::commit_sheet_scene(device_, scene_, cutaway::make_diffusion_sheets(model));
   }
   ~RawEmbree() {
     rtcReleaseScene(scene_);
