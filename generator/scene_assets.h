@@ -1,0 +1,64 @@
+// What a scene becomes before export (design/architecture.md, Key types): triangle meshes with
+// per-vertex colours, instances of them with transforms, a camera and lights. glTF, POV-Ray and
+// the OpenGL preview all read this; none of them knows about templates or cuts.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/vec3.hpp>
+
+namespace cutaway {
+
+/// One triangle mesh in its own frame (metres). Triangles are counter-clockwise seen from
+/// outside (the normal side).
+struct AssetMesh {
+  std::string name;                   ///< unique in the scene, [A-Za-z0-9_]+
+  std::vector<glm::dvec3> position;   ///< #V, metres
+  std::vector<glm::dvec3> normal;     ///< #V, unit length (shading normals)
+  std::vector<glm::dvec3> colour;     ///< #V, linear RGB 0..1
+  std::vector<glm::uvec3> triangle;   ///< #F, indices into the vertex arrays
+};
+
+/// One placed copy of a mesh: scene point = translation + rotation * (mesh point).
+struct AssetInstance {
+  std::string name;          ///< unique in the scene
+  int mesh = -1;             ///< index into SceneAssets::meshes
+  glm::dquat rotation{1, 0, 0, 0};  ///< unit quaternion (w, x, y, z)
+  glm::dvec3 translation{0.0};      ///< metres
+};
+
+/// A pinhole camera in the scene frame (+Y up, metres).
+struct AssetCamera {
+  glm::dvec3 eye{0, 0.3, 0.3}, target{0.0}, up{0, 1, 0};
+  double fov_y_deg = 40;    ///< vertical field of view, degrees
+  double aspect = 4.0 / 3;  ///< width / height
+  double znear = 0.01, zfar = 10;  ///< metres
+};
+
+enum class LightType { Directional, Point };
+
+/// A light (the glTF KHR_lights_punctual model): directional lights shine along `direction`
+/// with `intensity` in lux; point lights sit at `position` with `intensity` in candela.
+struct AssetLight {
+  std::string name;
+  LightType type = LightType::Directional;
+  glm::dvec3 position{0.0};              ///< point: metres
+  glm::dvec3 direction{0, -1, 0};        ///< directional: unit, the way the light travels
+  glm::dvec3 colour{1, 1, 1};            ///< linear RGB
+  double intensity = 3;                  ///< lux (directional) or candela (point)
+};
+
+/// A whole scene ready for export: meshes (pieces, container), their instances, camera, lights.
+struct SceneAssets {
+  std::string name;
+  std::vector<AssetMesh> meshes;
+  std::vector<AssetInstance> instances;
+  AssetCamera camera;
+  std::vector<AssetLight> lights;
+  glm::dvec3 background{1, 1, 1};  ///< linear RGB
+  int width = 1280, height = 960;  ///< pixels of renders
+};
+
+}  // namespace cutaway
