@@ -1,0 +1,331 @@
+#include "pov_export.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat3x3.hpp>
+
+#include "atomic_file.h"
+
+namespace cutaway {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kPointFadeDistance_m = 0.01;  // POV-Ray fade_distance of point lights
+constexpr size_t kMaxIdentifier = 40;           // POV-Ray's identifier length limit
+
+// Appends `v` with 6 significant digits (the text of "%.6g"), independent of the C locale.
+void append_number(std::string& out, double v) {
+  if (v == 0) v = 0;  // -0 -> 0
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 6);
+  out.append(buf, r.ptr);
+}
+
+void append_vector(std::string& out, const glm::dvec3& v) {
+  out += '<';
+  append_number(out, v.x);
+  out += ", ";
+  append_number(out, v.y);
+  out += ", ";
+  append_number(out, v.z);
+  out += '>';
+}
+
+std::string vector_text(const glm::dvec3& v) {
+  std::string s;
+  append_vector(s, v);
+  return s;
+}
+
+std::string sanitised(std::string_view name) {
+  std::string s(name);
+  for (char& c : s) {
+    const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
+    if (!ok) c = '_';
+  }
+  return s;
+}
+
+std::string mesh_identifier(size_t k, const std::string& name) {
+  std::string id = "Mesh_" + std::to_string(k) + "_" + sanitised(name);
+  if (id.size() > kMaxIdentifier) id.resize(kMaxIdentifier);
+  return id;
+}
+
+bool finite(const glm::dvec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("POV-Ray export: " + what);
+}
+
+void check_mesh(const AssetMesh& m, size_t k) {
+  const std::string who = "mesh " + std::to_string(k) + " '" + sanitised(m.name) + "'";
+  const size_t n = m.position.size();
+  require(m.normal.empty() || m.normal.size() == n, who + ": normal count differs from positions");
+  require(m.colour.size() == n, who + ": colour count differs from positions");
+  for (const auto& p : m.position) require(finite(p), who + ": non-finite position");
+  for (const auto& c : m.colour) require(finite(c), who + ": non-finite colour");
+  for (const auto& t : m.triangle) {
+    require(t.x < n && t.y < n && t.z < n, who + ": triangle index out of range");
+  }
+}
+
+// Shading normals that POV-Ray accepts: a zero or non-finite normal becomes the area-weighted
+// normal of the vertex's triangles, or +Y when those have no area either.
+std::vector<glm::dvec3> usable_normals(const AssetMesh& m) {
+  std::vector<glm::dvec3> n(m.normal.size());
+  std::vector<glm::dvec3> face_sum;  // computed only when needed
+  for (size_t i = 0; i < n.size(); ++i) {
+    const glm::dvec3 v = m.normal[i];
+    const double len = finite(v) ? glm::length(v) : 0.0;
+    if (len > 1e-12 && std::isfinite(len)) {
+      n[i] = v / len;
+      continue;
+    }
+    if (face_sum.empty()) {
+      face_sum.assign(m.position.size(), glm::dvec3(0.0));
+      for (const auto& t : m.triangle) {
+        const glm::dvec3 a = glm::cross(m.position[t.y] - m.position[t.x],
+                                        m.position[t.z] - m.position[t.x]);
+        face_sum[t.x] += a;
+        face_sum[t.y] += a;
+        face_sum[t.z] += a;
+      }
+    }
+    const double fl = glm::length(face_sum[i]);
+    n[i] = fl > 1e-300 && std::isfinite(fl) ? face_sum[i] / fl : glm::dvec3(0, 1, 0);
+  }
+  return n;
+}
+
+struct Bounds {
+  glm::dvec3 centre{0.0};
+  double radius = 1;  // metres
+};
+
+// Bounding sphere (box centre, farthest vertex) of all placed vertices.
+Bounds scene_bounds(const SceneAssets& a) {
+  glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
+  std::vector<glm::dvec3> placed;
+  for (const auto& inst : a.instances) {
+    const auto& m = a.meshes[static_cast<size_t>(inst.mesh)];
+    const glm::dmat3 r = glm::mat3_cast(glm::normalize(inst.rotation));
+    for (const auto& p : m.position) {
+      placed.push_back(inst.translation + r * p);
+      lo = glm::min(lo, placed.back());
+      hi = glm::max(hi, placed.back());
+    }
+  }
+  Bounds b;
+  if (placed.empty()) return b;
+  b.centre = 0.5 * (lo + hi);
+  b.radius = 0;
+  for (const auto& p : placed) b.radius = std::max(b.radius, glm::length(p - b.centre));
+  return b;
+}
+
+void write_camera(std::string& out, const AssetCamera& c) {
+  require(finite(c.eye) && finite(c.target) && finite(c.up), "camera: non-finite vector");
+  require(c.fov_y_deg > 0 && c.fov_y_deg < 180, "camera: fov_y_deg outside (0, 180)");
+  require(c.aspect > 0 && std::isfinite(c.aspect), "camera: aspect must be positive");
+  const glm::dvec3 view = c.target - c.eye;
+  require(glm::length(view) > 0, "camera: eye equals target");
+  const glm::dvec3 forward = glm::normalize(view);
+  const glm::dvec3 side = glm::cross(forward, c.up);
+  require(glm::length(side) > 1e-12 * std::max(1.0, glm::length(c.up)),
+          "camera: up is parallel to the view direction");
+  const glm::dvec3 right = glm::normalize(side);
+  const glm::dvec3 up = glm::cross(right, forward);
+  const double tan_half = std::tan(c.fov_y_deg * kPi / 360.0);
+
+  out += "// Camera: eye ";
+  append_vector(out, c.eye);
+  out += ", target ";
+  append_vector(out, c.target);
+  out += ", up ";
+  append_vector(out, c.up);
+  out += ", vertical fov ";
+  append_number(out, c.fov_y_deg);
+  out += " deg, aspect ";
+  append_number(out, c.aspect);
+  out += ".\n// Explicit vectors instead of look_at: rays go along direction + u*right + v*up, so\n"
+         "// the image matches the OpenGL/glTF view (POV-Ray's handedness does not enter).\n";
+  out += "camera {\n  perspective\n  location ";
+  append_vector(out, c.eye);
+  out += "\n  direction ";
+  append_vector(out, forward * (0.5 / tan_half));
+  out += "\n  right ";
+  append_vector(out, right * c.aspect);
+  out += "\n  up ";
+  append_vector(out, up);
+  out += "\n}\n\n";
+}
+
+void write_lights(std::string& out, const SceneAssets& a) {
+  const Bounds b = scene_bounds(a);
+  for (size_t i = 0; i < a.lights.size(); ++i) {
+    const AssetLight& l = a.lights[i];
+    const std::string who = "light " + std::to_string(i) + " '" + sanitised(l.name) + "'";
+    require(finite(l.colour) && std::isfinite(l.intensity) && l.intensity >= 0,
+            who + ": colour and intensity must be finite, intensity >= 0");
+    out += "// Light " + std::to_string(i) + ": " + sanitised(l.name);
+    if (l.type == LightType::Directional) {
+      require(finite(l.direction) && glm::length(l.direction) > 0,
+              who + ": direction must be finite and non-zero");
+      const glm::dvec3 dir = glm::normalize(l.direction);
+      const double far_m = 10 * b.radius + 10;
+      out += ", directional, ";
+      append_number(out, l.intensity);
+      out += " lux\nlight_source {\n  ";
+      append_vector(out, b.centre - dir * far_m);
+      out += "\n  color rgb ";
+      append_vector(out, l.colour * (l.intensity / kPi));
+      out += "\n  parallel\n  point_at ";
+      append_vector(out, b.centre);
+      out += "\n}\n\n";
+    } else {
+      require(finite(l.position), who + ": non-finite position");
+      out += ", point, ";
+      append_number(out, l.intensity);
+      out += " cd\nlight_source {\n  ";
+      append_vector(out, l.position);
+      out += "\n  color rgb ";
+      append_vector(out, l.colour * (l.intensity /
+                                     (2 * kPi * kPointFadeDistance_m * kPointFadeDistance_m)));
+      out += "\n  fade_distance ";
+      append_number(out, kPointFadeDistance_m);
+      out += "\n  fade_power 2\n}\n\n";
+    }
+  }
+}
+
+void write_mesh(std::string& out, const AssetMesh& m, const std::string& id, size_t k) {
+  // Distinct colours by their written text, in order of first use.
+  std::map<std::string, size_t> colour_index;
+  std::vector<std::string> colours;
+  std::vector<size_t> vertex_texture(m.position.size());
+  for (size_t i = 0; i < m.colour.size(); ++i) {
+    std::string text = vector_text(m.colour[i]);
+    const auto [it, inserted] = colour_index.emplace(text, colours.size());
+    if (inserted) colours.push_back(std::move(text));
+    vertex_texture[i] = it->second;
+  }
+
+  out += "// Mesh " + std::to_string(k) + ": " + sanitised(m.name) + " (" +
+         std::to_string(m.position.size()) + " vertices, " + std::to_string(m.triangle.size()) +
+         " triangles, distinct colours: " + std::to_string(colours.size()) + ")\n";
+  out += "#declare " + id + " = mesh2 {\n  vertex_vectors {\n    " +
+         std::to_string(m.position.size());
+  for (const auto& p : m.position) {
+    out += ",\n    ";
+    append_vector(out, p);
+  }
+  out += "\n  }\n";
+  if (!m.normal.empty()) {
+    out += "  normal_vectors {\n    " + std::to_string(m.normal.size());
+    for (const auto& n : usable_normals(m)) {
+      out += ",\n    ";
+      append_vector(out, n);
+    }
+    out += "\n  }\n";
+  }
+  out += "  texture_list {\n    " + std::to_string(colours.size());
+  for (const auto& c : colours) {
+    out += ",\n    texture { pigment { rgb " + c + " } finish { Cutaway_Finish } }";
+  }
+  out += "\n  }\n  face_indices {\n    " + std::to_string(m.triangle.size());
+  for (const auto& t : m.triangle) {
+    out += ",\n    <" + std::to_string(t.x) + ", " + std::to_string(t.y) + ", " +
+           std::to_string(t.z) + ">, " + std::to_string(vertex_texture[t.x]) + ", " +
+           std::to_string(vertex_texture[t.y]) + ", " + std::to_string(vertex_texture[t.z]);
+  }
+  out += "\n  }\n}\n\n";
+}
+
+void check_instance(const AssetInstance& inst, size_t i, size_t mesh_count) {
+  const std::string who = "instance " + std::to_string(i) + " '" + sanitised(inst.name) + "'";
+  require(inst.mesh >= 0 && static_cast<size_t>(inst.mesh) < mesh_count,
+          who + ": mesh index out of range");
+  const glm::dquat q = inst.rotation;
+  const double qlen = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+  require(std::isfinite(qlen) && qlen > 0, who + ": rotation is not a finite non-zero quaternion");
+  require(finite(inst.translation), who + ": non-finite translation");
+}
+
+void write_instance(std::string& out, const AssetInstance& inst, const std::string& id,
+                    size_t i) {
+  const glm::dquat q = inst.rotation;
+  const double qlen = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+  // glm matrices are column-major: r[c] is the image of the c-th basis vector, which is the
+  // c-th row of POV-Ray's matrix (it maps row vectors: p' = p * M).
+  const glm::dmat3 r = glm::mat3_cast(q / qlen);
+  out += "// Instance " + std::to_string(i) + ": " + sanitised(inst.name) + "\nobject {\n  " + id +
+         "\n  matrix <";
+  for (int c = 0; c < 3; ++c) {
+    for (int row = 0; row < 3; ++row) {
+      const double v = r[c][row];
+      append_number(out, std::abs(v) < 1e-12 ? 0.0 : v);  // exact zeros, not 6e-17
+      out += ", ";
+    }
+  }
+  append_number(out, inst.translation.x);
+  out += ", ";
+  append_number(out, inst.translation.y);
+  out += ", ";
+  append_number(out, inst.translation.z);
+  out += ">\n}\n\n";
+}
+
+}  // namespace
+
+std::string scene_to_pov(const SceneAssets& assets) {
+  for (size_t k = 0; k < assets.meshes.size(); ++k) check_mesh(assets.meshes[k], k);
+  for (size_t i = 0; i < assets.instances.size(); ++i) {
+    check_instance(assets.instances[i], i, assets.meshes.size());
+  }
+  require(finite(assets.background), "non-finite background colour");
+
+  std::string out;
+  out += "// " + sanitised(assets.name) + ": a scene written by cutaway (POV-Ray 3.7).\n";
+  out += "// Units: metres, +Y up. Colours: linear RGB (assumed_gamma 1.0).\n";
+  out += "// Render: povray +I<this file> +FN +W" + std::to_string(assets.width) + " +H" +
+         std::to_string(assets.height) + " +A0.3 File_Gamma=sRGB\n\n";
+  out += "#version 3.7;\n\nglobal_settings { assumed_gamma 1.0 }\n\n";
+  out += "background { rgb ";
+  append_vector(out, assets.background);
+  out += " }\n\n";
+  write_camera(out, assets.camera);
+  write_lights(out, assets);
+  out += "#declare Cutaway_Finish = finish { ambient 0.06 diffuse 0.8 specular 0.25 "
+         "roughness 0.02 }\n\n";
+
+  std::vector<std::string> ids(assets.meshes.size());
+  for (size_t k = 0; k < assets.meshes.size(); ++k) {
+    if (assets.meshes[k].triangle.empty()) continue;  // POV-Ray refuses empty meshes
+    ids[k] = mesh_identifier(k, assets.meshes[k].name);
+    write_mesh(out, assets.meshes[k], ids[k], k);
+  }
+  for (size_t i = 0; i < assets.instances.size(); ++i) {
+    const auto& id = ids[static_cast<size_t>(assets.instances[i].mesh)];
+    if (!id.empty()) write_instance(out, assets.instances[i], id, i);
+  }
+  return out;
+}
+
+void write_scene_pov(const std::filesystem::path& path, const SceneAssets& assets) {
+  write_file_atomically(path, scene_to_pov(assets));
+}
+
+}  // namespace cutaway

@@ -1,0 +1,70 @@
+// POV-Ray 3.7 export of a whole scene (design/architecture.md, data flow: SceneAssets -> export;
+// design/algorithms.md §7: `assumed_gamma 1.0` with linear colours; POV-Ray 3.7 documentation,
+// "mesh2", "camera", "light_source").
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "scene_assets.h"
+
+namespace cutaway {
+
+/// Encodes `assets` as a self-contained POV-Ray 3.7 scene file (no #include).
+///
+/// What the text holds, in this order:
+/// - a comment header (generator, scene name, units: metres, colours: linear RGB);
+/// - `#version 3.7;` and `global_settings { assumed_gamma 1.0 }`: every colour is written as
+///   the linear RGB of the assets, and POV-Ray encodes the output image (sRGB PNG);
+/// - `background` (linear RGB);
+/// - the camera, written with explicit `location`, `direction`, `right` and `up` vectors in scene
+///   coordinates and no `look_at`: forward = normalize(target - eye), right = normalize(forward x
+///   up), true up = right x forward, direction = forward / (2 tan(fov_y / 2)), `right` = right *
+///   aspect, `up` = true up. POV-Ray sends the ray of image point (u, v) in [-1/2, 1/2]^2 (u to
+///   the right, v up) along direction + u right + v up, which is plain linear algebra, so its
+///   left-handed convention never enters and the image matches the OpenGL/glTF view of the same
+///   camera (not mirrored). The image is stretched when the render's width/height differs
+///   from `camera.aspect`; znear/zfar are not used.
+/// - one `light_source` per light, with this brightness mapping (a white surface with diffuse 1,
+///   lit head-on by E lux, shows E / pi, the Lambertian radiance under unit exposure; this is
+///   also what a physically based glTF viewer such as three.js shows):
+///   - directional: a `parallel` light at scene centre - direction * (10 r + 10 m), where r is
+///     the radius of the instances' bounding sphere, pointing at the centre, with colour
+///     `colour * intensity / pi`;
+///   - point: at `position`, with `fade_distance 0.01 fade_power 2` and colour
+///     `colour * intensity / (2 pi 0.01^2)`, so that at a distance d >> 1 cm the brightness is
+///     colour * intensity / (pi d^2), the inverse-square law of `intensity` candela (POV-Ray's
+///     attenuation is 2 / (1 + (d / fade_distance)^fade_power); it stays finite within 1 cm);
+///   all lights cast shadows;
+/// - `#declare Cutaway_Finish`: ambient 0.06, diffuse 0.8, specular 0.25, roughness 0.02 (a
+///   small, sharp highlight as on moist fruit);
+/// - each mesh with at least one triangle declared ONCE as `#declare Mesh_<k>_<name> = mesh2`:
+///   vertex_vectors (metres), normal_vectors (omitted when the mesh has no normals; a zero or
+///   non-finite normal is replaced by the area-weighted normal of its triangles), texture_list
+///   with one texture per distinct vertex colour (deduplicated by their written text, in order
+///   of first use), face_indices with three texture indices per face (POV-Ray interpolates the
+///   vertex colours across each triangle). Meshes without triangles are left out, with their
+///   instances.
+/// - one `object { Mesh_<k>_<name> matrix <...> }` per instance: the 3x3 rotation of the
+///   (normalised) quaternion and the translation in POV-Ray's row-vector `matrix` form.
+///
+/// Identifiers are `Mesh_<k>_` + the mesh name with every character outside [A-Za-z0-9_]
+/// replaced by '_', cut to 40 characters (POV-Ray's limit); names in comments are sanitised the
+/// same way. Numbers are written with std::to_chars (shortest of %g with 6 significant digits,
+/// independent of the C locale, -0 written as 0), so the same assets give byte-identical text.
+///
+/// @param assets meshes with normal.size() == position.size() or 0, colour.size() ==
+///               position.size(), triangle indices < position.size(); instances with mesh
+///               indices into `meshes`; all numbers finite; camera eye != target, up not
+///               parallel to the view direction, 0 < fov_y_deg < 180, aspect > 0; lights with a
+///               non-zero direction (directional) and intensity >= 0
+/// @throws std::invalid_argument naming the mesh, instance or light that breaks a precondition
+std::string scene_to_pov(const SceneAssets& assets);
+
+/// Writes scene_to_pov(assets) to `path` atomically (write_file_atomically(): a temporary file,
+/// then rename; a failed run leaves no partial file).
+/// @throws std::invalid_argument as scene_to_pov
+/// @throws std::runtime_error when the file cannot be written
+void write_scene_pov(const std::filesystem::path& path, const SceneAssets& assets);
+
+}  // namespace cutaway

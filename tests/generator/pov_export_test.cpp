@@ -1,0 +1,360 @@
+// POV-Ray export (generator/pov_export.h): the text's structure and determinism, and a render of
+// a small asymmetric scene with the system's povray (render/povray_runner.h) checked against a
+// pinhole projection of the same camera (not mirrored, not flipped) and an analytic Lambert
+// colour.
+#include "pov_export.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
+#include <stb/stb_image.h>
+
+#include "colour.h"
+#include "povray_runner.h"
+#include "test_support.h"
+
+namespace cutaway {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kPi = 3.14159265358979323846;
+const glm::dvec3 kRed{0.7, 0.04, 0.03};     // the cube, linear RGB
+const glm::dvec3 kBlue{0.03, 0.06, 0.6};    // the tetrahedron's front face, linear RGB
+const glm::dvec3 kPaleBlue{0.1, 0.2, 0.9};  // its back apex
+const glm::dvec3 kBackground{0.05, 0.25, 0.1};
+
+// Axis-aligned cube of edge `edge_m` about the origin: 24 vertices (flat faces), one colour.
+AssetMesh cube(const std::string& name, double edge_m, const glm::dvec3& colour) {
+  AssetMesh m;
+  m.name = name;
+  const double h = edge_m / 2;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int sign : {1, -1}) {
+      glm::dvec3 n(0.0);
+      n[axis] = sign;
+      // Two axes spanning the face, ordered so that (u x v) = n (counter-clockwise outside).
+      glm::dvec3 u(0.0), v(0.0);
+      u[(axis + 1) % 3] = 1;
+      v[(axis + 2) % 3] = 1;
+      if (sign < 0) std::swap(u, v);
+      const auto base = static_cast<unsigned>(m.position.size());
+      const int corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+      for (const auto& c : corners) {
+        m.position.push_back(h * (n + double(c[0]) * u + double(c[1]) * v));
+        m.normal.push_back(n);
+        m.colour.push_back(colour);
+      }
+      m.triangle.push_back({base, base + 1, base + 2});
+      m.triangle.push_back({base, base + 2, base + 3});
+    }
+  }
+  return m;
+}
+
+// Tetrahedron with a front face (normal +Z) in the plane z = 0.2, flat faces (12 vertices),
+// the apex behind it pale blue, every other vertex blue.
+AssetMesh tetrahedron() {
+  const glm::dvec3 p[4] = {{-0.3, -0.25, 0.2}, {0.3, -0.25, 0.2}, {0, 0.3, 0.2}, {0, 0, -0.3}};
+  const glm::dvec3 centroid = (p[0] + p[1] + p[2] + p[3]) / 4.0;
+  AssetMesh m;
+  m.name = "tetra";
+  for (const auto& f : {glm::uvec3{0, 1, 2}, glm::uvec3{0, 2, 3}, glm::uvec3{2, 1, 3},
+                        glm::uvec3{1, 0, 3}}) {
+    glm::uvec3 t = f;
+    glm::dvec3 n = glm::cross(p[t.y] - p[t.x], p[t.z] - p[t.x]);
+    if (glm::dot(n, p[t.x] - centroid) < 0) {
+      std::swap(t.y, t.z);
+      n = -n;
+    }
+    const auto base = static_cast<unsigned>(m.position.size());
+    for (unsigned k = 0; k < 3; ++k) {
+      m.position.push_back(p[t[k]]);
+      m.normal.push_back(glm::normalize(n));
+      m.colour.push_back(t[k] == 3 ? kPaleBlue : kBlue);
+    }
+    m.triangle.push_back({base, base + 1, base + 2});
+  }
+  return m;
+}
+
+// Seen from +Z: a red cube left and low, the same cube turned, up in the middle, a blue
+// tetrahedron right and low, its front face's tip turned to the left; a directional light from the upper right front and a point light
+// above and behind (it does not reach the faces that face the camera).
+SceneAssets test_scene() {
+  SceneAssets s;
+  s.name = "pov test";
+  s.meshes = {cube("cube", 0.5, kRed), tetrahedron()};
+  AssetInstance left{"left cube", 0, glm::dquat(1, 0, 0, 0), {-0.8, -0.3, 0}};
+  AssetInstance top{"top_cube", 0,
+                    glm::angleAxis(0.6, glm::normalize(glm::dvec3(1, 1, 0))), {0, 0.6, 0}};
+  AssetInstance right{"right_tetra", 1, glm::angleAxis(kPi / 2, glm::dvec3(0, 0, 1)),
+                      {0.8, -0.3, 0}};  // turned: its tip points left (-X)
+  s.instances = {left, top, right};
+  s.camera.eye = {0, 0, 3};
+  s.camera.target = {0, 0, 0};
+  s.camera.up = {0, 1, 0};
+  s.camera.fov_y_deg = 40;
+  s.camera.aspect = 4.0 / 3;
+  AssetLight sun;
+  sun.name = "sun";
+  sun.type = LightType::Directional;
+  sun.direction = glm::normalize(glm::dvec3(-0.5, -0.5, -1));
+  sun.intensity = kPi;  // POV-Ray brightness 1
+  AssetLight lamp;
+  lamp.name = "lamp";
+  lamp.type = LightType::Point;
+  lamp.position = {0, 2, -1};
+  lamp.intensity = 10;
+  s.lights = {sun, lamp};
+  s.background = kBackground;
+  s.width = 120;
+  s.height = 90;
+  return s;
+}
+
+size_t count(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// The block "KEYWORD { N, ... }" after `from`: N and the number of entries starting with
+// `entry` (e.g. '<' for vectors, "texture" for textures).
+struct Block {
+  int declared = -1;
+  size_t entries = 0;
+};
+Block block(const std::string& text, size_t from, const std::string& keyword,
+            const std::string& entry) {
+  Block b;
+  const size_t open = text.find(keyword + " {", from);
+  if (open == std::string::npos) return b;
+  const size_t close = text.find("\n  }", open);
+  const std::string body = text.substr(open + keyword.size() + 2, close - open - keyword.size() - 2);
+  b.declared = std::stoi(body);
+  b.entries = count(body, entry);
+  return b;
+}
+
+TEST(PovExport, DeterministicAndStructured) {
+  const SceneAssets s = test_scene();
+  const std::string a = scene_to_pov(s), b = scene_to_pov(s);
+  EXPECT_EQ(a, b);
+  EXPECT_NE(a.find("#version 3.7;"), std::string::npos);
+  EXPECT_NE(a.find("global_settings { assumed_gamma 1.0 }"), std::string::npos);
+  EXPECT_NE(a.find("background { rgb <0.05, 0.25, 0.1> }"), std::string::npos);
+  EXPECT_NE(a.find("metres"), std::string::npos);
+  EXPECT_EQ(count(a, "light_source {"), 2u);
+  EXPECT_EQ(count(a, "parallel"), 1u);
+
+  // Each mesh declared once, used once per instance.
+  EXPECT_EQ(count(a, "= mesh2 {"), 2u);
+  EXPECT_EQ(count(a, "#declare Mesh_0_cube = mesh2"), 1u);
+  EXPECT_EQ(count(a, "#declare Mesh_1_tetra = mesh2"), 1u);
+  EXPECT_EQ(count(a, "object {"), 3u);
+  EXPECT_EQ(count(a, "Mesh_0_cube\n"), 2u);
+  EXPECT_EQ(count(a, "Mesh_1_tetra\n"), 1u);
+
+  // Entry counts match the meshes; colours are deduplicated (cube: 1, tetrahedron: 2).
+  const size_t distinct[2] = {1, 2};
+  for (size_t k = 0; k < s.meshes.size(); ++k) {
+    const auto& m = s.meshes[k];
+    const size_t at = a.find("#declare Mesh_" + std::to_string(k));
+    ASSERT_NE(at, std::string::npos);
+    const Block v = block(a, at, "vertex_vectors", "<");
+    const Block n = block(a, at, "normal_vectors", "<");
+    const Block t = block(a, at, "texture_list", "texture {");
+    const Block f = block(a, at, "face_indices", "<");
+    EXPECT_EQ(v.declared, static_cast<int>(m.position.size()));
+    EXPECT_EQ(v.entries, m.position.size());
+    EXPECT_EQ(n.declared, static_cast<int>(m.normal.size()));
+    EXPECT_EQ(n.entries, m.normal.size());
+    EXPECT_EQ(t.declared, static_cast<int>(distinct[k]));
+    EXPECT_EQ(t.entries, distinct[k]);
+    EXPECT_EQ(f.declared, static_cast<int>(m.triangle.size()));
+    EXPECT_EQ(f.entries, m.triangle.size());
+  }
+  // Names are sanitised in comments.
+  EXPECT_NE(a.find("// Instance 0: left_cube"), std::string::npos);
+  EXPECT_NE(a.find("// pov_test:"), std::string::npos);
+
+  // The file is the same text, written atomically (no temporary left beside it).
+  const fs::path dir = test::fresh_dir("pov_export");
+  write_scene_pov(dir / "scene.pov", s);
+  EXPECT_EQ(test::read_file(dir / "scene.pov"), a);
+  EXPECT_EQ(test::files_in(dir), std::vector<std::string>{"scene.pov"});
+}
+
+TEST(PovExport, InstanceMatrixIsRowVectorForm) {
+  SceneAssets s = test_scene();
+  // 90 degrees about +Y maps x to -z and z to x; POV-Ray's rows are the images of x, y, z.
+  s.instances = {{"turned", 0, glm::angleAxis(kPi / 2, glm::dvec3(0, 1, 0)), {1, 2, -0.5}}};
+  const std::string text = scene_to_pov(s);
+  EXPECT_NE(text.find("matrix <0, 0, -1, 0, 1, 0, 1, 0, 0, 1, 2, -0.5>"), std::string::npos)
+      << text.substr(text.find("object {"));
+}
+
+TEST(PovExport, NumbersAndEdgeCases) {
+  SceneAssets s = test_scene();
+  s.meshes[0].position[4] = {-0.0, 1e-7, 123456789.0};  // not on the +X face
+  s.meshes[0].normal[1] = {0, 0, 0};  // on the +X face: becomes +X, its face normal
+  s.meshes.push_back(AssetMesh{"empty", {}, {}, {}, {}});
+  s.instances.push_back({"nothing", 2, glm::dquat(1, 0, 0, 0), {0, 0, 0}});
+  const std::string text = scene_to_pov(s);
+  EXPECT_NE(text.find("<0, 1e-07, 1.23457e+08>"), std::string::npos);
+  const size_t normals = text.find("normal_vectors");
+  ASSERT_NE(normals, std::string::npos);
+  const std::string cube_normals = text.substr(normals, text.find("}", normals) - normals);
+  EXPECT_EQ(cube_normals.find("<0, 0, 0>"), std::string::npos) << "a zero normal was written";
+  EXPECT_EQ(count(cube_normals, "<1, 0, 0>"), 4u) << cube_normals;
+  EXPECT_EQ(text.find("Mesh_2_empty"), std::string::npos) << "an empty mesh was declared";
+  EXPECT_EQ(text.find("nan"), std::string::npos);
+}
+
+TEST(PovExport, RefusesBrokenAssets) {
+  const SceneAssets good = test_scene();
+  SceneAssets s = good;
+  s.meshes[0].triangle[0].z = 24;
+  EXPECT_THROW(scene_to_pov(s), std::invalid_argument);
+  s = good;
+  s.meshes[1].colour.pop_back();
+  EXPECT_THROW(scene_to_pov(s), std::invalid_argument);
+  s = good;
+  s.instances[0].mesh = 2;
+  EXPECT_THROW(scene_to_pov(s), std::invalid_argument);
+  s = good;
+  s.camera.up = {0, 0, 1};  // parallel to the view direction
+  EXPECT_THROW(scene_to_pov(s), std::invalid_argument);
+  s = good;
+  s.meshes[0].position[3].x = std::nan("");
+  EXPECT_THROW(scene_to_pov(s), std::invalid_argument);
+  s = good;
+  s.lights[0].direction = {0, 0, 0};
+  EXPECT_THROW(scene_to_pov(s), std::invalid_argument);
+}
+
+// Pixel (column, row from the top) of scene point `p` under the OpenGL pinhole of `c`.
+glm::dvec2 project(const AssetCamera& c, const glm::dvec3& p, int width, int height) {
+  const glm::dvec3 f = glm::normalize(c.target - c.eye);
+  const glm::dvec3 r = glm::normalize(glm::cross(f, c.up));
+  const glm::dvec3 u = glm::cross(r, f);
+  const glm::dvec3 d = p - c.eye;
+  const double t = std::tan(c.fov_y_deg * kPi / 360);
+  const double x_ndc = glm::dot(d, r) / (glm::dot(d, f) * t * c.aspect);
+  const double y_ndc = glm::dot(d, u) / (glm::dot(d, f) * t);
+  return {(x_ndc + 1) / 2 * width, (1 - y_ndc) / 2 * height};
+}
+
+struct Png {
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgb;
+  // Linear RGB of the pixel containing image point `at`.
+  glm::dvec3 linear(const glm::dvec2& at) const {
+    const int x = static_cast<int>(at.x), y = static_cast<int>(at.y);
+    const unsigned char* p = &rgb[3 * (static_cast<size_t>(y) * width + x)];
+    return srgb_to_linear(glm::dvec3(p[0], p[1], p[2]) / 255.0);
+  }
+  glm::dvec3 srgb8(int x, int y) const {
+    const unsigned char* p = &rgb[3 * (static_cast<size_t>(y) * width + x)];
+    return {p[0], p[1], p[2]};
+  }
+};
+
+Png read_png(const fs::path& path) {
+  const std::string bytes = test::read_file(path);
+  Png png;
+  int channels = 0;
+  unsigned char* pixels =
+      stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()),
+                            static_cast<int>(bytes.size()), &png.width, &png.height, &channels, 3);
+  if (pixels == nullptr) return png;
+  png.rgb.assign(pixels, pixels + 3 * png.width * png.height);
+  stbi_image_free(pixels);
+  return png;
+}
+
+bool reddish(const glm::dvec3& c) { return c.r > 3 * c.g && c.r > 3 * c.b && c.r > 0.05; }
+bool bluish(const glm::dvec3& c) { return c.b > 3 * c.r && c.b > 2 * c.g && c.b > 0.05; }
+
+TEST(PovExport, RendersLikeTheOpenGlCamera) {
+  const SceneAssets s = test_scene();
+  const fs::path dir = test::fresh_dir("pov_export_render");
+  write_scene_pov(dir / "scene.pov", s);
+  PovrayOptions options;
+  options.threads = 2;
+  render_povray(dir / "scene.pov", dir / "scene.png", s.width, s.height, options);
+  const Png png = read_png(dir / "scene.png");
+  ASSERT_EQ(png.width, s.width);
+  ASSERT_EQ(png.height, s.height);
+
+  // Background where nothing is: the corners, sRGB of the linear background.
+  const glm::dvec3 bg = 255.0 * linear_to_srgb(kBackground);
+  const int corners[4][2] = {{0, 0}, {s.width - 1, 0}, {0, s.height - 1},
+                             {s.width - 1, s.height - 1}};
+  for (const auto& c : corners) {
+    EXPECT_LE(glm::length(png.srgb8(c[0], c[1]) - bg), 2.5) << "corner " << c[0] << "," << c[1];
+  }
+
+  // The left cube's front face (normal +Z) at its centre: ambient + Lambert from the sun
+  // (brightness 1, cos = n . -direction), no specular there, the lamp behind it.
+  const glm::dvec3 left_front = s.instances[0].translation + glm::dvec3(0, 0, 0.25);
+  const glm::dvec2 left_px = project(s.camera, left_front, s.width, s.height);
+  const double cos_sun = glm::dot(glm::dvec3(0, 0, 1), -s.lights[0].direction);
+  const glm::dvec3 expected = kRed * (0.06 + 0.8 * cos_sun);
+  const glm::dvec3 got = png.linear(left_px);
+  EXPECT_NEAR(got.r, expected.r, 0.03);
+  EXPECT_NEAR(got.g, expected.g, 0.01);
+  EXPECT_NEAR(got.b, expected.b, 0.01);
+  EXPECT_LT(left_px.x, s.width / 2.0);
+
+  // Red left, blue right, and not the other way round (the image is not mirrored).
+  const glm::dvec3 tetra_front = s.instances[2].translation + glm::dvec3(0.2 / 3, 0, 0.2);
+  const glm::dvec2 right_px = project(s.camera, tetra_front, s.width, s.height);
+  EXPECT_TRUE(reddish(png.linear(left_px)));
+  EXPECT_TRUE(bluish(png.linear(right_px)));
+  EXPECT_FALSE(reddish(png.linear({s.width - 1 - left_px.x, left_px.y})));
+  EXPECT_FALSE(bluish(png.linear({s.width - 1 - right_px.x, right_px.y})));
+  double red_x = 0, blue_x = 0;
+  int reds = 0, blues = 0;
+  for (int y = 0; y < png.height; ++y) {
+    for (int x = 0; x < png.width; ++x) {
+      const glm::dvec3 c = png.linear({x + 0.5, y + 0.5});
+      if (reddish(c) && y > png.height / 2) red_x += x, ++reds;
+      if (bluish(c)) blue_x += x, ++blues;
+    }
+  }
+  ASSERT_GT(reds, 20);
+  ASSERT_GT(blues, 20);
+  EXPECT_LT(red_x / reds, png.width / 2.0);
+  EXPECT_GT(blue_x / blues, png.width / 2.0);
+
+  // The tetrahedron's front face turned a quarter counter-clockwise (seen from +Z): its tip
+  // (0, 0.3) went to (-0.3, 0), so (0.2, 0.2) is on the face and (-0.2, 0.2) is not; the
+  // transposed (inverse) rotation would give the opposite.
+  const glm::dvec3 tetra_at = s.instances[2].translation + glm::dvec3(0, 0, 0.2);
+  EXPECT_TRUE(bluish(png.linear(project(s.camera, tetra_at + glm::dvec3(0.2, 0.2, 0), s.width,
+                                        s.height))));
+  EXPECT_FALSE(bluish(png.linear(project(s.camera, tetra_at + glm::dvec3(-0.2, 0.2, 0),
+                                         s.width, s.height))));
+
+  // The turned cube is up (not flipped vertically): its centre shows red, the point mirrored
+  // across the horizontal midline shows background.
+  const glm::dvec2 top_px = project(s.camera, s.instances[1].translation, s.width, s.height);
+  EXPECT_LT(top_px.y, s.height / 2.0);
+  EXPECT_TRUE(reddish(png.linear(top_px)));
+  const glm::dvec3 below = png.srgb8(static_cast<int>(top_px.x), s.height - 1 -
+                                                                     static_cast<int>(top_px.y));
+  EXPECT_LE(glm::length(below - bg), 2.5);
+}
+
+}  // namespace
+}  // namespace cutaway
