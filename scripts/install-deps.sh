@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs what cutaway needs on Debian 12: the Debian packages for building and running it,
-# and (with --test) the test tools: the Khronos glTF validator from npm, installed locally
-# into node_modules/. A fast no-op when everything is already present.
+# and (with --test) the test tools: Chromium (Debian's package) and, from npm into node_modules/
+# (package-lock.json, exact versions), the Khronos glTF validator, three.js (its GLTFLoader is
+# the real glTF client of tests/tools/load_gltf_three.mjs) and playwright-core (drives Chromium).
+# A fast no-op when everything is already present.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -13,7 +15,8 @@ packages=(
   libosmesa6-dev libegl-dev libgl-dev libgles-dev python3 python3-glad
   povray
 )
-test_packages=(libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev nodejs npm)
+test_packages=(libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev nodejs npm
+               chromium)
 
 want=("${packages[@]}")
 with_tests=0
@@ -39,7 +42,20 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-if ((with_tests)) && [[ ! -x node_modules/.bin/gltf-validator && ! -f node_modules/gltf-validator/package.json ]]; then
-  echo "install-deps: installing the Khronos glTF validator (npm gltf-validator) into node_modules/" >&2
+# True when every devDependency of package.json is in node_modules/ at its pinned version.
+npm_modules_current() {
+  node -e '
+    const fs = require("fs");
+    const want = JSON.parse(fs.readFileSync("package.json", "utf8")).devDependencies ?? {};
+    for (const [name, version] of Object.entries(want)) {
+      const file = `node_modules/${name}/package.json`;
+      if (!fs.existsSync(file) || JSON.parse(fs.readFileSync(file, "utf8")).version !== version) {
+        process.exit(1);
+      }
+    }' 2>/dev/null
+}
+
+if ((with_tests)) && ! npm_modules_current; then
+  echo "install-deps: installing gltf-validator, three, playwright-core into node_modules/" >&2
   npm ci --no-audit --no-fund --silent
 fi

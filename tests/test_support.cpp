@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -96,6 +97,56 @@ GltfReport validate_gltf(const std::filesystem::path& file) {
   if (pos != std::string::npos && (code == 0 || code == 1)) {
     r.errors = std::atoi(r.output.c_str() + pos + 9);
   }
+  return r;
+}
+
+ThreeLoadReport load_gltf_three(const std::filesystem::path& file) {
+  const auto log = std::filesystem::path(CUTAWAY_TEST_TMP) /
+                   ("three-" + std::to_string(::getpid()) + ".log");
+  std::filesystem::create_directories(log.parent_path());
+  const std::string cmd = "cd " + shell_quote(CUTAWAY_SOURCE_DIR) +
+                          " && node tests/tools/load_gltf_three.mjs " +
+                          shell_quote(std::filesystem::absolute(file).string()) + " >" +
+                          shell_quote(log.string()) + " 2>&1";
+  const int code = system_exit_code(std::system(cmd.c_str()));
+  ThreeLoadReport r;
+  r.output = slurp(log);
+  std::filesystem::remove(log);
+  // The report is the last line that parses as a JSON object.
+  std::istringstream lines(r.output);
+  nlohmann::json j;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line[0] != '{') continue;
+    auto parsed = nlohmann::json::parse(line, nullptr, false);
+    if (!parsed.is_discarded() && parsed.is_object()) j = std::move(parsed);
+  }
+  if (!j.is_object()) {
+    r.error = "no report from tests/tools/load_gltf_three.mjs (exit " + std::to_string(code) +
+              "): " + r.output;
+    return r;
+  }
+  try {
+    r.ok = j.value("ok", false) && code == 0;
+    r.meshes = j.value("meshes", 0);
+    r.nodes = j.value("nodes", 0);
+    r.cameras = j.value("cameras", 0);
+    r.lights = j.value("lights", 0);
+    r.triangles = j.value("triangles", 0L);
+    r.mesh_objects = j.value("mesh_objects", 0);
+    if (j.contains("camera_position") && j["camera_position"].is_array())
+      r.camera_position = j["camera_position"].get<std::array<double, 3>>();
+    if (j.contains("camera_direction") && j["camera_direction"].is_array())
+      r.camera_direction = j["camera_direction"].get<std::array<double, 3>>();
+    if (j.contains("light_directions"))
+      r.light_directions = j["light_directions"].get<std::vector<std::array<double, 3>>>();
+    if (j.contains("warnings")) r.warnings = j["warnings"].get<std::vector<std::string>>();
+    r.seconds = j.value("seconds", 0.0);
+    r.error = j.value("error", std::string());
+  } catch (const nlohmann::json::exception& e) {
+    r.ok = false;
+    r.error = std::string("malformed report: ") + e.what();
+  }
+  if (!r.ok && r.error.empty()) r.error = "exit code " + std::to_string(code);
   return r;
 }
 

@@ -1,6 +1,7 @@
 // Shared helpers of the tests: running the CLI, fresh temporary folders, glTF validation.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -40,6 +41,30 @@ struct GltfReport {
 /// Runs the Khronos glTF validator (node + npm gltf-validator from node_modules/, installed by
 /// `make test`) on `file`. The validator missing is a test failure, never a skip.
 GltfReport validate_gltf(const std::filesystem::path& file);
+
+/// What three.js's GLTFLoader (a real glTF client) made of one file in headless Chromium.
+struct ThreeLoadReport {
+  bool ok = false;             ///< the file loaded
+  int meshes = 0;              ///< glTF meshes built
+  int nodes = 0;               ///< glTF nodes built
+  int cameras = 0;             ///< camera objects in the loaded scene
+  int lights = 0;              ///< light objects in the loaded scene
+  long triangles = 0;          ///< triangles of every mesh object (instances counted)
+  int mesh_objects = 0;        ///< mesh objects in the scene (one per node and primitive)
+  std::array<double, 3> camera_position{};   ///< world space, metres (the last camera)
+  std::array<double, 3> camera_direction{};  ///< world space, unit: where it looks
+  std::vector<std::array<double, 3>> light_directions;  ///< of directional lights, unit
+  std::vector<std::string> warnings;  ///< console warnings and errors of the page
+  double seconds = 0;          ///< the whole run: server, Chromium launch, load
+  std::string error;           ///< why it failed
+  std::string output;          ///< everything the script printed
+};
+
+/// Loads `file` (.glb, or .gltf with its .bin) with three.js's GLTFLoader in headless Chromium
+/// (tests/tools/load_gltf_three.mjs: /usr/bin/chromium through npm playwright-core, three from
+/// node_modules/, served on 127.0.0.1 only). Chromium, node or the npm modules missing is a
+/// failed report (ok false, error set), never a skip. Takes about a second or two.
+ThreeLoadReport load_gltf_three(const std::filesystem::path& file);
 
 /// The template files shipped in templates/ (absolute paths, sorted).
 std::vector<std::filesystem::path> shipped_templates();

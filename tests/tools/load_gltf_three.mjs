@@ -1,0 +1,189 @@
+// Loads one glTF file (.glb, or .gltf with its .bin beside it) with three.js's GLTFLoader in
+// headless Chromium: a real glTF client, not a schema check.
+// Usage: node tests/tools/load_gltf_three.mjs FILE.glb|FILE.gltf
+// Prints one JSON line:
+//   {ok, meshes, nodes, cameras, lights, triangles, mesh_objects, camera_position,
+//    camera_direction, light_directions, warnings, seconds, error}
+// meshes / nodes: glTF meshes and nodes three.js built; cameras / lights: camera and light
+// objects in the loaded scene; triangles: triangles of all mesh objects (instances counted);
+// camera_direction and light_directions: world-space view / light directions (unit vectors, one
+// per directional light); warnings: console warnings and errors of the page.
+// Exit code 0 when the file loaded, 1 otherwise.
+//
+// Network: a node http server on 127.0.0.1 (ephemeral port) serves the page, node_modules/three
+// and the file's folder; Chromium (/usr/bin/chromium through playwright-core) runs with a fresh
+// profile, no proxy, every host name but 127.0.0.1 unresolvable, and every request that is not
+// to that server aborted.
+import fs from 'node:fs';
+import http from 'node:http';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const started = Date.now();
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
+const threeDir = path.join(root, 'node_modules', 'three');
+const TIMEOUT_MS = 60000;
+
+function report(fields) {
+  const out = {
+    ok: false, meshes: 0, nodes: 0, cameras: 0, lights: 0, triangles: 0, mesh_objects: 0,
+    camera_position: null, camera_direction: null, light_directions: [], warnings: [],
+    seconds: 0, error: '', ...fields,
+  };
+  out.seconds = (Date.now() - started) / 1000;
+  console.log(JSON.stringify(out));
+  return out.ok ? 0 : 1;
+}
+
+const PAGE = `<!doctype html>
+<html><head><meta charset="utf-8">
+<script type="importmap">
+{"imports": {"three": "/three/build/three.module.js", "three/addons/": "/three/examples/jsm/"}}
+</script></head><body>
+<script type="module">
+import * as THREE from 'three';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+window.loadGltf = async (url) => {
+  const gltf = await new GLTFLoader().loadAsync(url);
+  const meshes = await gltf.parser.getDependencies('mesh');
+  const nodes = await gltf.parser.getDependencies('node');
+  gltf.scene.updateMatrixWorld(true);
+  const r = { meshes: meshes.length, nodes: nodes.length, cameras: 0, lights: 0, triangles: 0,
+              mesh_objects: 0, camera_position: null, camera_direction: null,
+              light_directions: [] };
+  const v = (p) => [p.x, p.y, p.z];
+  gltf.scene.traverse((o) => {
+    if (o.isMesh) {
+      r.mesh_objects += 1;
+      const g = o.geometry;
+      r.triangles += (g.index ? g.index.count : g.attributes.position.count) / 3;
+    }
+    if (o.isCamera) {
+      r.cameras += 1;
+      r.camera_position = v(o.getWorldPosition(new THREE.Vector3()));
+      r.camera_direction = v(o.getWorldDirection(new THREE.Vector3()));
+    }
+    if (o.isLight) {
+      r.lights += 1;
+      if (o.isDirectionalLight) {
+        o.target.updateMatrixWorld(true);
+        const d = o.target.getWorldPosition(new THREE.Vector3())
+          .sub(o.getWorldPosition(new THREE.Vector3())).normalize();
+        r.light_directions.push(v(d));
+      }
+    }
+  });
+  return r;
+};
+window.pageReady = true;
+</script></body></html>`;
+
+const TYPES = {
+  '.js': 'text/javascript', '.mjs': 'text/javascript', '.html': 'text/html',
+  '.glb': 'model/gltf-binary', '.gltf': 'model/gltf+json', '.bin': 'application/octet-stream',
+  '.png': 'image/png', '.jpg': 'image/jpeg', '.json': 'application/json',
+};
+
+/// The file below `base` that `rel` (URL-decoded) names, or null when it leaves `base`.
+function inside(base, rel) {
+  const p = path.resolve(base, '.' + path.sep + rel);
+  return p === base || p.startsWith(base + path.sep) ? p : null;
+}
+
+function serve(fileDir) {
+  return http.createServer((req, res) => {
+    let target = null;
+    try {
+      const url = new URL(req.url, 'http://127.0.0.1');
+      const name = decodeURIComponent(url.pathname);
+      if (name === '/') {
+        res.writeHead(200, { 'content-type': 'text/html' });
+        res.end(PAGE);
+        return;
+      }
+      if (name.startsWith('/three/')) target = inside(threeDir, name.slice(7));
+      else if (name.startsWith('/file/')) target = inside(fileDir, name.slice(6));
+    } catch {
+      target = null;
+    }
+    if (!target || !fs.existsSync(target) || !fs.statSync(target).isFile()) {
+      res.writeHead(404);
+      res.end();
+      return;
+    }
+    res.writeHead(200, {
+      'content-type': TYPES[path.extname(target).toLowerCase()] ?? 'application/octet-stream',
+    });
+    fs.createReadStream(target).pipe(res);
+  });
+}
+
+async function main() {
+  const file = process.argv[2];
+  if (!file) {
+    return report({ error: 'usage: node tests/tools/load_gltf_three.mjs FILE.glb|FILE.gltf' });
+  }
+  const abs = path.resolve(file);
+  if (!fs.existsSync(abs)) return report({ error: `no such file: ${abs}` });
+  if (!fs.existsSync(path.join(threeDir, 'examples', 'jsm', 'loaders', 'GLTFLoader.js'))) {
+    return report({ error: `three.js missing in ${threeDir} (scripts/install-deps.sh --test)` });
+  }
+  const exe = '/usr/bin/chromium';
+  if (!fs.existsSync(exe)) {
+    return report({ error: `${exe} missing (Debian chromium; scripts/install-deps.sh --test)` });
+  }
+
+  const server = serve(path.dirname(abs));
+  await new Promise((resolve, reject) => {
+    server.once('error', reject);
+    server.listen(0, '127.0.0.1', resolve);
+  });
+  const origin = `http://127.0.0.1:${server.address().port}`;
+  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'cutaway-chromium-'));
+  let context = null;
+  const warnings = [];
+  const timer = setTimeout(() => {
+    fs.rmSync(profile, { recursive: true, force: true });
+    process.exit(report({ error: `timed out after ${TIMEOUT_MS / 1000} s`, warnings }));
+  }, TIMEOUT_MS);
+  try {
+    // A persistent context is how playwright takes an explicit (here fresh) --user-data-dir.
+    context = await chromium.launchPersistentContext(profile, {
+      executablePath: exe,
+      headless: true,
+      timeout: TIMEOUT_MS,
+      args: [
+        '--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+        '--disable-background-networking', '--disable-component-update', '--disable-sync',
+        '--no-proxy-server', '--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE 127.0.0.1',
+        '--disable-features=Translate,OptimizationHints,MediaRouter,DialMediaRouteProvider',
+        '--disable-domain-reliability', '--no-pings', '--metrics-recording-only',
+      ],
+      env: { ...process.env, GOOGLE_API_KEY: 'no', GOOGLE_DEFAULT_CLIENT_ID: 'no',
+             GOOGLE_DEFAULT_CLIENT_SECRET: 'no' },
+    });
+    await context.route('**/*', (route) =>
+      route.request().url().startsWith(origin + '/') ? route.continue() : route.abort());
+    const page = context.pages()[0] ?? (await context.newPage());
+    page.on('console', (m) => {
+      if (m.type() === 'warning' || m.type() === 'error') warnings.push(`${m.type()}: ${m.text()}`);
+    });
+    page.on('pageerror', (e) => warnings.push(`pageerror: ${e.message}`));
+    await page.goto(origin + '/', { timeout: TIMEOUT_MS });
+    await page.waitForFunction(() => window.pageReady === true, null, { timeout: TIMEOUT_MS });
+    const url = '/file/' + encodeURIComponent(path.basename(abs));
+    const result = await page.evaluate((u) => window.loadGltf(u), url);
+    return report({ ok: true, ...result, warnings });
+  } catch (e) {
+    return report({ error: String(e?.message ?? e).split('\n')[0], warnings });
+  } finally {
+    clearTimeout(timer);
+    if (context) await context.close().catch(() => {});
+    server.close();
+    fs.rmSync(profile, { recursive: true, force: true });
+  }
+}
+
+process.exitCode = await main();
