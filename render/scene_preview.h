@@ -1,0 +1,63 @@
+// Opaque OpenGL render of a whole scene (SceneAssets): every instance of every mesh, seen from
+// the scene's camera, lit by its lights, rendered offscreen (render/gl_context.h).
+#pragma once
+
+#include "model_preview.h"  // Image, write_png
+#include "scene_assets.h"
+
+namespace cutaway {
+
+/// How render_scene_preview() draws. Units are in the names.
+struct ScenePreviewOptions {
+  int width = 0;     ///< image width, pixels; 0 = SceneAssets::width, else 1..16384
+  int height = 0;    ///< image height, pixels; 0 = SceneAssets::height, else 1..16384
+  int samples = 8;   ///< MSAA samples per pixel, >= 1; clamped to what GL offers
+  double exposure = 1.0;  ///< scales the light of all lights and the ambient term (not the
+                          ///< background), > 0 and finite
+};
+
+/// Renders `assets` opaque from `assets.camera`: a pinhole camera at `eye` looking at `target`
+/// with `up` (image x to the right of the view direction, image y toward `up`), perspective
+/// with the vertical field of view `fov_y_deg`, the aspect of the image (width / height;
+/// `camera.aspect` is not used), clipped to `znear`..`zfar` (metres).
+///
+/// Every instance places its mesh by scene point = translation + rotation * mesh point (the
+/// quaternion is normalised); each mesh is uploaded once and drawn once per instance, in
+/// instance order, with a depth test. Triangles are drawn from both sides (no culling) and lit
+/// two-sided, so an open mesh or a flipped triangle still shades sensibly.
+///
+/// Shading, in linear RGB with the per-vertex linear `colour` as albedo a and the stored
+/// per-vertex `normal` (interpolated, renormalised, flipped toward the eye on back faces; a
+/// zero normal falls back to the triangle's own) as n:
+///   colour = a * exposure * (H(n) + sum_i c_i * s_i * 0.75 * max(n . l_i, 0))
+///            + exposure * sum_i c_i * s_i * 0.15 * (n . h_i)^48   (only where n . l_i > 0)
+/// where, per light i, c_i is its linear colour, l_i the unit direction toward it, h_i the
+/// Blinn-Phong half vector, and s_i = E_i / 3 lux the illuminance it gives relative to the
+/// AssetLight default: E_i is `intensity` in lux for a directional light and
+/// `intensity` / d^2 (candela over squared metres to the light) for a point light. So one
+/// default directional light (3 lux) falling head-on shows 0.75 * a plus the ambient.
+/// H(n) is a hemisphere ambient of 0.25 from the sky (+Y) down to 0.10 from the ground,
+/// blended by n.y, so faces turned away from every light are darker but never black. There are
+/// no shadows. The result is written to a 16-bit float framebuffer, multisampled edges are
+/// resolved in linear RGB, and each component is clamped to 0..1 and encoded to sRGB8
+/// (linear_to_srgb8). The background is `assets.background` (linear RGB) everywhere nothing
+/// is drawn. The image is opaque. The result is deterministic: the same assets and options give
+/// the same bytes on the same OpenGL implementation.
+///
+/// Creates its own offscreen OpenGL context (create_offscreen_context()) for the call.
+/// @param assets  every instance's `mesh` indexes `meshes`; an instanced mesh has as many
+///                normals and colours as positions, triangle indices below that count and
+///                finite positions (metres); rotations non-zero and finite; camera: eye, target,
+///                up finite, eye != target, up not parallel to the view direction,
+///                0 < fov_y_deg < 180, 0 < znear < zfar; at most 16 lights, each with finite
+///                fields, intensity >= 0, a non-zero direction (directional); background
+///                finite and >= 0. Meshes without instances are ignored; no instances at all
+///                gives the background alone.
+/// @param options see ScenePreviewOptions for ranges; the image size also comes from
+///                `assets.width/height` when the options leave it 0
+/// @returns an opaque image of width x height pixels, sRGB8, rows top first
+/// @throws std::invalid_argument when the assets or options break the preconditions
+/// @throws std::runtime_error when no OpenGL context can be created or rendering fails
+Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions& options = {});
+
+}  // namespace cutaway

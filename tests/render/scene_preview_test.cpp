@@ -1,0 +1,262 @@
+// render_scene_preview (render/scene_preview.h): image size, background, where instances
+// project (not mirrored, camera convention), lighting, quaternion placement, determinism,
+// refusals. Small images keep it fast on software OpenGL. A failing test leaves its image in
+// build/test-tmp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "colour.h"
+#include "scene_preview.h"
+#include "test_support.h"
+
+namespace cutaway {
+namespace {
+
+constexpr int kWidth = 160, kHeight = 120;
+
+/// An axis-aligned box about the origin with half-extents `half` (metres), one colour, flat
+/// faces (4 vertices each, outward normals, counter-clockwise seen from outside).
+AssetMesh box(const std::string& name, const glm::dvec3& half, const glm::dvec3& colour,
+              const glm::dvec3& offset = glm::dvec3(0.0)) {
+  AssetMesh m;
+  m.name = name;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const double sign : {1.0, -1.0}) {
+      glm::dvec3 n(0.0), u(0.0), v(0.0);
+      n[axis] = sign;
+      u[(axis + 1) % 3] = 1;  // u x v = +axis; swapped for the negative side
+      v[(axis + 2) % 3] = 1;
+      if (sign < 0) std::swap(u, v);
+      const auto base = static_cast<unsigned>(m.position.size());
+      for (const auto& [a, b] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+        m.position.push_back(offset + half * (n + double(a) * u + double(b) * v));
+        m.normal.push_back(n);
+        m.colour.push_back(colour);
+      }
+      m.triangle.push_back({base, base + 1, base + 2});
+      m.triangle.push_back({base, base + 2, base + 3});
+    }
+  }
+  return m;
+}
+
+AssetInstance instance(const std::string& name, int mesh, const glm::dvec3& translation,
+                       const glm::dquat& rotation = glm::dquat(1, 0, 0, 0)) {
+  AssetInstance i;
+  i.name = name;
+  i.mesh = mesh;
+  i.translation = translation;
+  i.rotation = rotation;
+  return i;
+}
+
+/// A red cube left of the origin, a green cube right of it, seen from the front and above;
+/// the light comes from behind and above, so the front faces (+Z) are turned away from it.
+SceneAssets two_cubes() {
+  SceneAssets a;
+  a.name = "two_cubes";
+  a.meshes.push_back(box("red_cube", glm::dvec3(0.15), {0.8, 0.05, 0.05}));
+  a.meshes.push_back(box("green_cube", glm::dvec3(0.15), {0.05, 0.6, 0.05}));
+  a.instances.push_back(instance("red", 0, {-0.3, 0, 0}));
+  a.instances.push_back(instance("green", 1, {0.3, 0, 0}));
+  a.camera.eye = {0, 0.6, 1.2};
+  a.camera.target = {0, 0, 0};
+  a.camera.up = {0, 1, 0};
+  a.camera.fov_y_deg = 40;
+  a.camera.znear = 0.05;
+  a.camera.zfar = 10;
+  AssetLight sun;
+  sun.name = "sun";
+  sun.direction = glm::normalize(glm::dvec3(0, -0.6, 0.8));  // travels down and toward +Z
+  sun.intensity = 3;
+  a.lights.push_back(sun);
+  a.background = {0.25, 0.5, 0.75};  // exact in half floats
+  a.width = kWidth;
+  a.height = kHeight;
+  return a;
+}
+
+/// The pixel (x right, y down from the top) that the scene point `p` projects to, with the
+/// camera convention of AssetCamera (glm::lookAt + glm::perspective, image aspect).
+glm::ivec2 project(const SceneAssets& a, const glm::dvec3& p) {
+  const AssetCamera& c = a.camera;
+  const glm::dmat4 clip_from_scene =
+      glm::perspective(glm::radians(c.fov_y_deg), double(a.width) / a.height, c.znear, c.zfar) *
+      glm::lookAt(c.eye, c.target, c.up);
+  const glm::dvec4 clip = clip_from_scene * glm::dvec4(p, 1.0);
+  const double x = (0.5 + 0.5 * clip.x / clip.w) * a.width;
+  const double y = (0.5 - 0.5 * clip.y / clip.w) * a.height;
+  return {static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y))};
+}
+
+glm::ivec3 pixel(const Image& im, const glm::ivec2& at) {
+  EXPECT_TRUE(at.x >= 0 && at.x < im.width && at.y >= 0 && at.y < im.height);
+  const size_t i = (static_cast<size_t>(at.y) * im.width + at.x) * 4;
+  return {im.rgba[i], im.rgba[i + 1], im.rgba[i + 2]};
+}
+
+glm::ivec3 srgb8(const glm::dvec3& linear) {
+  const glm::dvec3 s = linear_to_srgb(linear);
+  return {int(std::lround(255 * s.r)), int(std::lround(255 * s.g)), int(std::lround(255 * s.b))};
+}
+
+/// Writes `im` for inspection; returns where.
+std::string keep(const Image& im, const std::string& name) {
+  const auto path = test::fresh_dir("scene_preview") / (name + ".png");
+  write_png(path, im);
+  return path.string();
+}
+
+TEST(ScenePreview, DrawsTheCubesWhereTheCameraSeesThem) {
+  const SceneAssets a = two_cubes();
+  ScenePreviewOptions o;
+  o.samples = 4;
+  const Image im = render_scene_preview(a, o);
+  ASSERT_EQ(im.width, kWidth);
+  ASSERT_EQ(im.height, kHeight);
+  ASSERT_EQ(im.rgba.size(), static_cast<size_t>(kWidth) * kHeight * 4);
+  for (size_t i = 3; i < im.rgba.size(); i += 4) ASSERT_EQ(im.rgba[i], 255);
+
+  const glm::ivec3 background = srgb8(a.background);
+  for (const glm::ivec2 corner : {glm::ivec2(0, 0), glm::ivec2(kWidth - 1, 0),
+                                  glm::ivec2(0, kHeight - 1), glm::ivec2(kWidth - 1, kHeight - 1)})
+    EXPECT_EQ(pixel(im, corner), background) << corner.x << "," << corner.y;
+
+  // The centres of the front faces (+Z, toward the camera): red on the left, green on the right.
+  const glm::ivec2 red_at = project(a, {-0.3, 0, 0.15});
+  const glm::ivec2 green_at = project(a, {0.3, 0, 0.15});
+  ASSERT_LT(red_at.x, kWidth / 2);
+  ASSERT_GT(green_at.x, kWidth / 2);
+  const glm::ivec3 red = pixel(im, red_at), green = pixel(im, green_at);
+  EXPECT_GT(red.r, red.g + 40) << red.r << " " << red.g << " " << red.b;
+  EXPECT_GT(red.r, red.b + 40);
+  EXPECT_GT(green.g, green.r + 40) << green.r << " " << green.g << " " << green.b;
+  EXPECT_GT(green.g, green.b + 40);
+  // Between the cubes, and above them, is background.
+  EXPECT_EQ(pixel(im, project(a, {0, 0, 0.15})), background);
+  EXPECT_EQ(pixel(im, project(a, {-0.3, 0.4, 0})), background);
+  // Up is up: below the cubes is background too, and the red cube's top edge is where it
+  // projects (red just under it, background just over it).
+  EXPECT_EQ(pixel(im, project(a, {-0.3, -0.3, 0.15})), background);
+  const glm::ivec2 back_top = project(a, {-0.3, 0.15, -0.15});
+  EXPECT_EQ(pixel(im, back_top - glm::ivec2(0, 2)), background);
+  EXPECT_NE(pixel(im, back_top + glm::ivec2(0, 2)), background);
+  if (HasFailure()) ADD_FAILURE() << "image: " << keep(im, "two_cubes");
+}
+
+TEST(ScenePreview, ALitFaceIsBrighterThanOneTurnedAway) {
+  const SceneAssets a = two_cubes();
+  ScenePreviewOptions o;
+  o.samples = 4;
+  const Image im = render_scene_preview(a, o);
+  for (const double x : {-0.3, 0.3}) {
+    const glm::ivec3 top = pixel(im, project(a, {x, 0.15, 0}));     // faces the light (0.6)
+    const glm::ivec3 front = pixel(im, project(a, {x, 0, 0.15}));   // turned away (-0.8)
+    const int top_sum = top.r + top.g + top.b, front_sum = front.r + front.g + front.b;
+    EXPECT_GT(top_sum, front_sum + 60) << "x = " << x;
+    EXPECT_GT(front_sum, 30) << "the ambient term keeps shadowed faces from black";
+  }
+  // Exposure scales the light: twice the exposure, a brighter front face.
+  o.exposure = 2;
+  const Image bright = render_scene_preview(a, o);
+  EXPECT_GT(pixel(bright, project(a, {-0.3, 0, 0.15})).r, pixel(im, project(a, {-0.3, 0, 0.15})).r);
+  EXPECT_EQ(pixel(bright, {0, 0}), srgb8(a.background));  // the background is not scaled
+}
+
+TEST(ScenePreview, PlacesInstancesOfOneMeshByQuaternionThenTranslation) {
+  SceneAssets a = two_cubes();
+  a.meshes.clear();
+  a.instances.clear();
+  // A bar from x = 0 to x = 0.5 (in its own frame), drawn twice: as it is, and turned 90
+  // degrees about +Y, which takes +X to -Z (away from the camera).
+  a.meshes.push_back(box("bar", {0.25, 0.03, 0.03}, {0.8, 0.05, 0.05}, {0.25, 0, 0}));
+  a.instances.push_back(instance("plain", 0, {0, 0.2, 0}));
+  a.instances.push_back(instance("turned", 0, {0, -0.2, 0},
+                                 glm::angleAxis(glm::radians(90.0), glm::dvec3(0, 1, 0))));
+  ScenePreviewOptions o;
+  o.samples = 1;
+  const Image im = render_scene_preview(a, o);
+  const glm::ivec3 background = srgb8(a.background);
+  const auto on_bar = [&](const glm::dvec3& p) {
+    const glm::ivec3 c = pixel(im, project(a, p));
+    return c != background && c.r > c.g + 40;
+  };
+  EXPECT_TRUE(on_bar({0.4, 0.23, 0}));    // plain bar, its top, toward +X
+  EXPECT_FALSE(on_bar({-0.2, 0.23, 0}));  // nothing at -X
+  EXPECT_TRUE(on_bar({0, -0.17, -0.4}));  // turned bar, its top, toward -Z
+  EXPECT_FALSE(on_bar({0.4, -0.17, 0}));
+  EXPECT_FALSE(on_bar({0, -0.17, 0.3}));
+  if (HasFailure()) ADD_FAILURE() << "image: " << keep(im, "bars");
+}
+
+TEST(ScenePreview, SameInputGivesSameBytesAndOptionsOverrideTheSize) {
+  const SceneAssets a = two_cubes();
+  ScenePreviewOptions o;
+  o.width = 80;
+  o.height = 60;
+  const Image first = render_scene_preview(a, o);
+  const Image second = render_scene_preview(a, o);
+  EXPECT_EQ(first.width, 80);
+  EXPECT_EQ(first.height, 60);
+  EXPECT_TRUE(first.rgba == second.rgba);
+}
+
+TEST(ScenePreview, NoInstancesGiveTheBackgroundAlone) {
+  SceneAssets a = two_cubes();
+  a.instances.clear();
+  a.lights.clear();
+  const Image im = render_scene_preview(a, ScenePreviewOptions{32, 24, 1, 1.0});
+  const glm::ivec3 background = srgb8(a.background);
+  for (int y = 0; y < im.height; ++y)
+    for (int x = 0; x < im.width; ++x) ASSERT_EQ(pixel(im, {x, y}), background);
+}
+
+TEST(ScenePreview, RefusesBadInput) {
+  const ScenePreviewOptions small{16, 12, 1, 1.0};
+  const auto refused = [&](SceneAssets a, ScenePreviewOptions o) {
+    try {
+      render_scene_preview(a, o);
+    } catch (const std::invalid_argument&) {
+      return true;
+    }
+    return false;
+  };
+  SceneAssets a = two_cubes();
+  a.instances[1].mesh = 2;
+  EXPECT_TRUE(refused(a, small));
+  a = two_cubes();
+  a.meshes[0].normal.pop_back();
+  EXPECT_TRUE(refused(a, small));
+  a = two_cubes();
+  a.meshes[1].triangle[0].y = 99;
+  EXPECT_TRUE(refused(a, small));
+  a = two_cubes();
+  a.camera.target = a.camera.eye;
+  EXPECT_TRUE(refused(a, small));
+  a = two_cubes();
+  a.camera.up = a.camera.target - a.camera.eye;
+  EXPECT_TRUE(refused(a, small));
+  a = two_cubes();
+  a.camera.znear = 0;
+  EXPECT_TRUE(refused(a, small));
+  a = two_cubes();
+  a.lights.resize(17, a.lights[0]);
+  EXPECT_TRUE(refused(a, small));
+  a = two_cubes();
+  a.instances[0].rotation = glm::dquat(0, 0, 0, 0);
+  EXPECT_TRUE(refused(a, small));
+  EXPECT_TRUE(refused(two_cubes(), ScenePreviewOptions{16, 12, 0, 1.0}));
+  EXPECT_TRUE(refused(two_cubes(), ScenePreviewOptions{16, 20000, 1, 1.0}));
+  EXPECT_TRUE(refused(two_cubes(), ScenePreviewOptions{16, 12, 1, 0.0}));
+}
+
+}  // namespace
+}  // namespace cutaway
+
