@@ -26,9 +26,11 @@
 #include "model_preview.h"
 #include "plane_spec.h"
 #include "ply_export.h"
+#include "scene_parser.h"
 #include "section_preview.h"
 #include "template_parser.h"
 #include "variation.h"
+#include "yaml_reader.h"
 
 namespace {
 
@@ -171,6 +173,16 @@ int run_check(const std::vector<std::string>& files) {
   int failed = 0;
   for (const auto& f : files) {
     try {
+      // A scene says so in its `format` (cutaway-scene/...); anything else is a template.
+      const auto format = cutaway::load_yaml_file(f).get("format");
+      if (format && format->is_scalar() && format->string().rfind("cutaway-scene/", 0) == 0) {
+        const cutaway::Scene scene = cutaway::load_scene(f);
+        int objects = 0;
+        for (const auto& item : scene.items) objects += item.count;
+        std::printf("%s: ok (scene '%s', %zu items, %d objects)\n", f.c_str(),
+                    scene.name.c_str(), scene.items.size(), objects);
+        continue;
+      }
       const cutaway::Template tmpl = cutaway::load_template(f);
       const cutaway::DsModel model = cutaway::build_model(tmpl);
       std::printf("%s: ok (template '%s', %zu surfaces, %zu DS faces)\n", f.c_str(),
@@ -395,8 +407,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 256));
 
   std::vector<std::string> check_files;
-  CLI::App* check = app.add_subcommand("check", "validate templates without writing anything");
-  check->add_option("FILE", check_files, "template files")->required();
+  CLI::App* check =
+      app.add_subcommand("check", "validate templates and scenes without writing anything");
+  check->add_option("FILE", check_files, "template and scene files")->required();
 
   auto logger = spdlog::stderr_color_st("cutaway");
   spdlog::set_default_logger(logger);
