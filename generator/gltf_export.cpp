@@ -1,9 +1,20 @@
 #include "gltf_export.h"
 
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <sstream>
+#include <stdexcept>
 
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat3x3.hpp>
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
+#include <unistd.h>
 
 #include "atomic_file.h"
 
@@ -55,13 +66,24 @@ int add_index_accessor(tinygltf::Model& m, const std::vector<uint32_t>& idx) {
   return static_cast<int>(m.accessors.size()) - 1;
 }
 
+int add_u16_index_accessor(tinygltf::Model& m, const std::vector<uint16_t>& idx) {
+  tinygltf::Accessor a;
+  a.bufferView = add_view(m, idx.data(), idx.size() * sizeof(uint16_t),
+                          TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  a.type = TINYGLTF_TYPE_SCALAR;
+  a.count = idx.size();
+  m.accessors.push_back(a);
+  return static_cast<int>(m.accessors.size()) - 1;
+}
+
 int add_material(tinygltf::Model& m, const std::string& name, double alpha,
-                 bool double_sided = false) {
+                 bool double_sided = false, double roughness = 0.8) {
   tinygltf::Material mat;
   mat.name = name;
   mat.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, alpha};
   mat.pbrMetallicRoughness.metallicFactor = 0.0;
-  mat.pbrMetallicRoughness.roughnessFactor = 0.8;
+  mat.pbrMetallicRoughness.roughnessFactor = roughness;
   mat.alphaMode = alpha < 1.0 ? "BLEND" : "OPAQUE";
   mat.doubleSided = double_sided;
   m.materials.push_back(mat);
@@ -84,6 +106,213 @@ std::string to_glb(tinygltf::Model& m) {
   tinygltf::TinyGLTF writer;
   writer.WriteGltfSceneToStream(&m, out, false, true);
   return out.str();
+}
+
+// ---- scenes -------------------------------------------------------------------------------
+
+/// The unit quaternion turning a node so that its local -Z points along `forward` and its +Y
+/// lies in the plane of `forward` and `up` (towards `up`). When `up` is (nearly) parallel to
+/// `forward`, +Y of the scene is tried next, then -Z of the scene. Returned with w >= 0.
+glm::dquat look_rotation(glm::dvec3 forward, glm::dvec3 up) {
+  const glm::dvec3 f = glm::normalize(forward);
+  glm::dvec3 right(0.0);
+  for (const glm::dvec3& u : {up, glm::dvec3(0, 1, 0), glm::dvec3(0, 0, -1)}) {
+    const glm::dvec3 r = glm::cross(f, u);
+    if (glm::length(r) > 1e-9 * std::max(1.0, glm::length(u))) {
+      right = glm::normalize(r);
+      break;
+    }
+  }
+  const glm::dvec3 true_up = glm::cross(right, f);
+  const glm::dmat3 worldFromNode(right, true_up, -f);  // columns: the node's +X, +Y, +Z
+  glm::dquat q = glm::normalize(glm::quat_cast(worldFromNode));
+  if (q.w < 0) q = -q;
+  return q;
+}
+
+/// glTF's [x, y, z, w] order of a glm quaternion (+ 0.0 turns -0 into 0 in the JSON).
+std::vector<double> gltf_rotation(const glm::dquat& q) {
+  return {q.x + 0.0, q.y + 0.0, q.z + 0.0, q.w + 0.0};
+}
+
+std::vector<double> gltf_vec3(const glm::dvec3& v) { return {v.x + 0.0, v.y + 0.0, v.z + 0.0}; }
+
+[[noreturn]] void bad_assets(const std::string& what) {
+  throw std::invalid_argument("scene assets: " + what);
+}
+
+/// Adds mesh `mesh` (one primitive, material `material`) to `m`; returns the glTF mesh index.
+int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh, int material) {
+  const size_t n = mesh.position.size();
+  if (n == 0 || mesh.triangle.empty()) bad_assets("mesh '" + mesh.name + "' has no triangles");
+  if (mesh.normal.size() != n || mesh.colour.size() != n) {
+    bad_assets("mesh '" + mesh.name + "': position, normal and colour counts differ");
+  }
+  std::vector<float> pos, normal, colour;
+  pos.reserve(3 * n);
+  normal.reserve(3 * n);
+  colour.reserve(3 * n);
+  for (size_t i = 0; i < n; ++i) {
+    const glm::dvec3& p = mesh.position[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      bad_assets("mesh '" + mesh.name + "': a position is not finite");
+    }
+    const double len = glm::length(mesh.normal[i]);
+    const glm::dvec3 nrm =
+        len > 0 && std::isfinite(len) ? mesh.normal[i] / len : glm::dvec3(0, 1, 0);
+    const glm::dvec3 c = glm::clamp(mesh.colour[i], 0.0, 1.0);
+    for (int k = 0; k < 3; ++k) {
+      pos.push_back(static_cast<float>(p[k]));
+      normal.push_back(static_cast<float>(nrm[k]));
+      colour.push_back(static_cast<float>(c[k]));
+    }
+  }
+  for (const glm::uvec3& t : mesh.triangle) {
+    if (t.x >= n || t.y >= n || t.z >= n) {
+      bad_assets("mesh '" + mesh.name + "': a triangle index is out of range");
+    }
+  }
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.material = material;
+  prim.attributes["POSITION"] = add_vec3_accessor(m, pos, true);
+  prim.attributes["NORMAL"] = add_vec3_accessor(m, normal, false);
+  prim.attributes["COLOR_0"] = add_vec3_accessor(m, colour, false);
+  if (n <= 65535) {  // 65535 itself is the primitive restart value, never an index
+    std::vector<uint16_t> idx;
+    idx.reserve(3 * mesh.triangle.size());
+    for (const glm::uvec3& t : mesh.triangle) {
+      idx.insert(idx.end(), {static_cast<uint16_t>(t.x), static_cast<uint16_t>(t.y),
+                             static_cast<uint16_t>(t.z)});
+    }
+    prim.indices = add_u16_index_accessor(m, idx);
+  } else {
+    std::vector<uint32_t> idx;
+    idx.reserve(3 * mesh.triangle.size());
+    for (const glm::uvec3& t : mesh.triangle) idx.insert(idx.end(), {t.x, t.y, t.z});
+    prim.indices = add_index_accessor(m, idx);
+  }
+  tinygltf::Mesh gm;
+  gm.name = mesh.name;
+  gm.primitives.push_back(prim);
+  m.meshes.push_back(gm);
+  return static_cast<int>(m.meshes.size()) - 1;
+}
+
+/// The scene as a tinygltf model with all binary data in buffer 0 (no URI).
+tinygltf::Model scene_model(const SceneAssets& assets) {
+  tinygltf::Model m = new_model();
+  const int material = add_material(m, "vertex colour", 1.0, false, 0.6);
+  for (const AssetMesh& mesh : assets.meshes) add_asset_mesh(m, mesh, material);
+
+  tinygltf::Scene scene;
+  scene.name = assets.name;
+  auto add_node = [&](tinygltf::Node node) {
+    m.nodes.push_back(std::move(node));
+    scene.nodes.push_back(static_cast<int>(m.nodes.size()) - 1);
+  };
+  for (const AssetInstance& inst : assets.instances) {
+    if (inst.mesh < 0 || inst.mesh >= static_cast<int>(assets.meshes.size())) {
+      bad_assets("instance '" + inst.name + "': mesh index out of range");
+    }
+    const double qlen = glm::length(inst.rotation);
+    if (!(qlen > 0) || !std::isfinite(qlen)) {
+      bad_assets("instance '" + inst.name + "': zero rotation");
+    }
+    glm::dquat q = inst.rotation / qlen;
+    if (q.w < 0) q = -q;
+    tinygltf::Node node;
+    node.name = inst.name;
+    node.mesh = inst.mesh;
+    node.rotation = gltf_rotation(q);
+    node.translation = gltf_vec3(inst.translation);
+    add_node(node);
+  }
+
+  const AssetCamera& cam = assets.camera;
+  if (!(glm::length(cam.target - cam.eye) > 0)) bad_assets("camera eye and target coincide");
+  if (!(cam.fov_y_deg > 0 && cam.fov_y_deg < 180)) bad_assets("camera fov_y_deg not in (0, 180)");
+  if (!(cam.aspect > 0)) bad_assets("camera aspect not positive");
+  if (!(cam.znear > 0 && cam.zfar > cam.znear)) bad_assets("camera needs 0 < znear < zfar");
+  tinygltf::Camera camera;
+  camera.name = "camera";
+  camera.type = "perspective";
+  camera.perspective.yfov = glm::radians(cam.fov_y_deg);
+  camera.perspective.aspectRatio = cam.aspect;
+  camera.perspective.znear = cam.znear;
+  camera.perspective.zfar = cam.zfar;
+  m.cameras.push_back(camera);
+  tinygltf::Node camera_node;
+  camera_node.name = "camera";
+  camera_node.camera = 0;
+  camera_node.rotation = gltf_rotation(look_rotation(cam.target - cam.eye, cam.up));
+  camera_node.translation = gltf_vec3(cam.eye);
+  add_node(camera_node);
+
+  for (const AssetLight& light : assets.lights) {
+    tinygltf::Light gl;
+    gl.name = light.name;
+    gl.color = gltf_vec3(light.colour);
+    gl.intensity = light.intensity;
+    tinygltf::Node node;
+    node.name = light.name;
+    if (light.type == LightType::Directional) {
+      if (!(glm::length(light.direction) > 0)) {
+        bad_assets("light '" + light.name + "': zero direction");
+      }
+      gl.type = "directional";
+      node.rotation = gltf_rotation(look_rotation(light.direction, glm::dvec3(0, 1, 0)));
+    } else {
+      gl.type = "point";
+      node.translation = gltf_vec3(light.position);
+    }
+    m.lights.push_back(gl);
+    tinygltf::Value::Object ref;
+    ref["light"] = tinygltf::Value(static_cast<int>(m.lights.size()) - 1);
+    node.extensions["KHR_lights_punctual"] = tinygltf::Value(ref);
+    add_node(node);
+  }
+  if (!m.lights.empty()) m.extensionsUsed.push_back("KHR_lights_punctual");
+  m.scenes.push_back(scene);
+  return m;
+}
+
+/// `name` as a relative URI: every byte outside RFC 3986's unreserved set percent-encoded.
+std::string uri_encode(const std::string& name) {
+  std::string out;
+  for (unsigned char c : name) {
+    if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~') {
+      out += static_cast<char>(c);
+    } else {
+      char hex[4];
+      std::snprintf(hex, sizeof hex, "%%%02X", c);
+      out += hex;
+    }
+  }
+  return out;
+}
+
+/// Writes `bytes` to a fresh temporary file beside `target` (flushed) and returns its path.
+std::filesystem::path stage_file(const std::filesystem::path& target, std::string_view bytes) {
+  std::string tmp = target.string() + ".tmp-XXXXXX";
+  const int fd = mkstemp(tmp.data());
+  if (fd < 0) {
+    throw std::runtime_error("cannot write " + target.string() + ": " + std::strerror(errno));
+  }
+  ::close(fd);
+  try {
+    write_file_atomically(tmp, bytes);
+  } catch (...) {
+    ::unlink(tmp.c_str());
+    throw;
+  }
+  return tmp;
+}
+
+void rename_or_throw(const std::filesystem::path& from, const std::filesystem::path& to) {
+  if (std::rename(from.c_str(), to.c_str()) != 0) {
+    throw std::runtime_error("cannot write " + to.string() + ": " + std::strerror(errno));
+  }
 }
 
 }  // namespace
@@ -183,6 +412,63 @@ std::string section_to_glb(const CrossSection& section) {
 void write_model_glb(const std::filesystem::path& path, const DsModel& model,
                      const GltfModelOptions& options) {
   write_file_atomically(path, model_to_glb(model, options));
+}
+
+std::string scene_to_glb(const SceneAssets& assets) {
+  tinygltf::Model m = scene_model(assets);
+  return to_glb(m);
+}
+
+void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& assets) {
+  namespace fs = std::filesystem;
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext != ".glb" && ext != ".gltf") {
+    throw std::invalid_argument("scene export: unknown extension '" + path.extension().string() +
+                                "' of " + path.string() + " (expected .glb or .gltf)");
+  }
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) {
+    throw std::runtime_error("cannot write " + path.string() + ": no directory " + dir.string());
+  }
+  tinygltf::Model m = scene_model(assets);
+  if (ext == ".glb") {
+    write_file_atomically(path, to_glb(m));
+    return;
+  }
+  // .gltf: serialise without the buffer's bytes, then point buffer 0 at the .bin beside it.
+  fs::path bin_path = path;
+  bin_path.replace_extension(".bin");
+  std::vector<unsigned char> bin;
+  bin.swap(m.buffers[0].data);
+  std::ostringstream out;
+  tinygltf::TinyGLTF writer;
+  writer.WriteGltfSceneToStream(&m, out, false, false);
+  nlohmann::json doc = nlohmann::json::parse(out.str());
+  doc["buffers"][0] = {{"byteLength", bin.size()},
+                       {"uri", uri_encode(bin_path.filename().string())}};
+  const std::string json_text = doc.dump(2) + "\n";
+
+  const fs::path bin_tmp =
+      stage_file(bin_path, std::string_view(reinterpret_cast<const char*>(bin.data()), bin.size()));
+  fs::path json_tmp;
+  try {
+    json_tmp = stage_file(path, json_text);
+    rename_or_throw(bin_tmp, bin_path);
+  } catch (...) {
+    ::unlink(bin_tmp.c_str());
+    if (!json_tmp.empty()) ::unlink(json_tmp.c_str());
+    throw;
+  }
+  try {
+    rename_or_throw(json_tmp, path);
+  } catch (...) {
+    ::unlink(json_tmp.c_str());
+    ::unlink(bin_path.c_str());
+    throw;
+  }
 }
 
 }  // namespace cutaway

@@ -1,4 +1,5 @@
-// glTF 2.0 export of DS models (Khronos glTF 2.0 specification; COLOR_0 is linear RGB).
+// glTF 2.0 export of DS models, cross-sections and whole scenes (Khronos glTF 2.0
+// specification; COLOR_0 is linear RGB; lights through KHR_lights_punctual).
 #pragma once
 
 #include <filesystem>
@@ -6,6 +7,7 @@
 
 #include "cross_section.h"
 #include "ds_model.h"
+#include "scene_assets.h"
 
 namespace cutaway {
 
@@ -32,5 +34,40 @@ void write_model_glb(const std::filesystem::path& path, const DsModel& model,
 /// positions in metres (object frame), the plane normal as NORMAL, COLOR_0 linear RGB.
 /// Deterministic.
 std::string section_to_glb(const CrossSection& section);
+
+/// Encodes a scene as binary glTF (.glb), metres, +Y up:
+/// - one mesh per AssetMesh (same order and name), one opaque single-sided primitive:
+///   POSITION (float, with min/max), NORMAL (float, renormalised), COLOR_0 (float vec3, linear
+///   RGB clamped to 0..1), indices uint16 when the mesh has at most 65535 vertices, else uint32;
+/// - one material for all: vertex colour times a white base colour, metallic 0, roughness 0.6;
+/// - one node per AssetInstance (same order and name): rotation [x, y, z, w] (normalised,
+///   w >= 0) and translation;
+/// - a node "camera" at `camera.eye` rotated so that its -Z looks at `camera.target` with +Y
+///   towards `camera.up` (when `up` is parallel to the view: +Y of the scene, else -Z),
+///   holding a perspective camera (yfov in radians, aspectRatio, znear, zfar);
+/// - one node per AssetLight with a KHR_lights_punctual light (listed in extensionsUsed):
+///   directional lights (intensity in lux) rotated so that their -Z is `direction`; point
+///   lights (intensity in candela) translated to `position`, range infinite.
+/// Scene nodes in this order: instances, camera, lights. asset.generator is "cutaway".
+/// Deterministic: the same assets give the same bytes.
+/// @throws std::invalid_argument when the assets break their documented invariants: a mesh
+///   without triangles, with arrays of different lengths, an index out of range or a
+///   non-finite position; an instance whose mesh index is out of range or whose rotation is
+///   zero; eye == target, fov_y_deg outside (0, 180), aspect <= 0, not 0 < znear < zfar; a
+///   zero light direction.
+std::string scene_to_glb(const SceneAssets& assets);
+
+/// Writes the scene as glTF, the format chosen by the extension of `path` (case-insensitive):
+/// ".glb": binary glTF, one file (the bytes of scene_to_glb);
+/// ".gltf": JSON, 2-space indented, with its binary buffer in a file beside it with the same
+///   stem and extension ".bin" (referenced by a relative, percent-encoded URI); otherwise the
+///   same content as the .glb.
+/// Files are written to temporaries in the target directory and renamed into place (the .bin
+/// first); a failure leaves neither file (should the last rename fail, the new .bin, which
+/// may have replaced an older one, is removed). The directory must exist (it is not created).
+/// @throws std::invalid_argument for any other extension and for invalid assets (see
+///   scene_to_glb); std::runtime_error when the directory is missing or a file cannot be
+///   written.
+void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& assets);
 
 }  // namespace cutaway

@@ -1,0 +1,374 @@
+// glTF export of whole scenes (generator/gltf_export.h: scene_to_glb, write_scene_gltf): the
+// Khronos validator, determinism, structure read back with tinygltf, a real client (three.js's
+// GLTFLoader in headless Chromium), and the errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json.hpp>
+#include <tiny_gltf.h>
+
+#include "gltf_export.h"
+#include "test_support.h"
+
+namespace cutaway {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A unit cube around the origin scaled to `half` (24 vertices, flat normals, 12 triangles).
+AssetMesh cube(const std::string& name, double half, glm::dvec3 colour) {
+  AssetMesh m;
+  m.name = name;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (double sign : {-1.0, 1.0}) {
+      glm::dvec3 n(0.0);
+      n[axis] = sign;
+      const glm::dvec3 u = glm::dvec3(axis == 1 ? 1 : 0, axis == 2 ? 1 : 0, axis == 0 ? 1 : 0);
+      const glm::dvec3 v = glm::cross(n, u);
+      const auto base = static_cast<unsigned>(m.position.size());
+      for (const auto& [a, b] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+        m.position.push_back(half * (n + double(a) * u + double(b) * v));
+        m.normal.push_back(n);
+        m.colour.push_back(colour * (0.75 + 0.25 * sign));
+      }
+      m.triangle.push_back({base, base + 1, base + 2});  // u x v = n: counter-clockwise
+      m.triangle.push_back({base, base + 2, base + 3});
+    }
+  }
+  return m;
+}
+
+/// A flat disc in the XZ plane facing +Y (a plate), `segments` triangles.
+AssetMesh plate(const std::string& name, double radius, int segments) {
+  AssetMesh m;
+  m.name = name;
+  m.position.push_back({0, 0, 0});
+  m.normal.push_back({0, 1, 0});
+  m.colour.push_back({0.9, 0.9, 0.85});
+  for (int i = 0; i < segments; ++i) {
+    const double a = 2 * M_PI * i / segments;
+    m.position.push_back({radius * std::cos(a), 0, -radius * std::sin(a)});
+    m.normal.push_back({0, 1, 0});
+    m.colour.push_back({0.8, 0.8, 0.75});
+  }
+  for (int i = 0; i < segments; ++i) {
+    m.triangle.push_back({0u, 1u + unsigned(i), 1u + unsigned((i + 1) % segments)});
+  }
+  return m;
+}
+
+/// Two meshes, three instances, a camera, a directional and a point light.
+SceneAssets small_scene() {
+  SceneAssets s;
+  s.name = "test_salad";
+  s.meshes.push_back(cube("tomato_piece", 0.02, {0.8, 0.1, 0.05}));
+  s.meshes.push_back(plate("plate", 0.12, 32));
+  AssetInstance a{"piece_0", 0, glm::angleAxis(0.3, glm::normalize(glm::dvec3(1, 2, 3))),
+                  {0.03, 0.02, 0.0}};
+  AssetInstance b{"piece_1", 0, glm::angleAxis(-1.1, glm::dvec3(0, 1, 0)), {-0.04, 0.02, 0.01}};
+  AssetInstance c{"plate_0", 1, glm::dquat(1, 0, 0, 0), {0, 0, 0}};
+  s.instances = {a, b, c};
+  s.camera.eye = {0.25, 0.3, 0.35};
+  s.camera.target = {0, 0.02, 0};
+  s.camera.fov_y_deg = 35;
+  s.camera.aspect = 4.0 / 3;
+  s.camera.znear = 0.01;
+  s.camera.zfar = 5;
+  AssetLight sun;
+  sun.name = "sun";
+  sun.type = LightType::Directional;
+  sun.direction = glm::normalize(glm::dvec3(-0.3, -1, -0.2));
+  sun.intensity = 3;
+  AssetLight bulb;
+  bulb.name = "bulb";
+  bulb.type = LightType::Point;
+  bulb.position = {0.1, 0.4, 0.2};
+  bulb.colour = {1, 0.9, 0.8};
+  bulb.intensity = 15;
+  s.lights = {sun, bulb};
+  return s;
+}
+
+constexpr int kNodes = 3 + 1 + 2;  // instances, camera, lights
+
+long instanced_triangles(const SceneAssets& s) {
+  long n = 0;
+  for (const auto& inst : s.instances) n += static_cast<long>(s.meshes[inst.mesh].triangle.size());
+  return n;
+}
+
+glm::dvec3 unit_target_direction(const AssetCamera& c) { return glm::normalize(c.target - c.eye); }
+
+/// Where a node's local -Z points in the scene, from its glTF [x, y, z, w] rotation.
+glm::dvec3 minus_z(const std::vector<double>& r) {
+  EXPECT_EQ(r.size(), 4u);
+  const glm::dquat q(r[3], r[0], r[1], r[2]);
+  return q * glm::dvec3(0, 0, -1);
+}
+
+int validator_warnings(const test::GltfReport& report) {
+  const auto j = nlohmann::json::parse(report.output, nullptr, false);
+  return j.is_object() ? j.value("warnings", -1) : -1;
+}
+
+tinygltf::Model load(const fs::path& file) {
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model m;
+  std::string err, warn;
+  const bool ok = file.extension() == ".glb"
+                      ? loader.LoadBinaryFromFile(&m, &err, &warn, file.string())
+                      : loader.LoadASCIIFromFile(&m, &err, &warn, file.string());
+  EXPECT_TRUE(ok) << err << warn;
+  return m;
+}
+
+TEST(SceneGltf, GlbAndGltfWithBinPassTheKhronosValidator) {
+  const auto dir = test::fresh_dir("scene-gltf");
+  const SceneAssets s = small_scene();
+  write_scene_gltf(dir / "salad.glb", s);
+  write_scene_gltf(dir / "salad.gltf", s);
+  EXPECT_EQ(test::files_in(dir),
+            (std::vector<std::string>{"salad.bin", "salad.glb", "salad.gltf"}));
+  for (const char* name : {"salad.glb", "salad.gltf"}) {
+    const auto report = test::validate_gltf(dir / name);
+    EXPECT_EQ(report.errors, 0) << name << ": " << report.output;
+    EXPECT_EQ(validator_warnings(report), 0) << name << ": " << report.output;
+  }
+}
+
+TEST(SceneGltf, TheSameAssetsGiveTheSameBytes) {
+  const SceneAssets s = small_scene();
+  const std::string glb = scene_to_glb(s);
+  EXPECT_EQ(glb, scene_to_glb(small_scene()));
+  const auto one = test::fresh_dir("scene-gltf-1"), two = test::fresh_dir("scene-gltf-2");
+  for (const auto& dir : {one, two}) {
+    write_scene_gltf(dir / "s.glb", s);
+    write_scene_gltf(dir / "s.gltf", s);
+  }
+  EXPECT_EQ(test::read_file(one / "s.glb"), glb);
+  EXPECT_EQ(test::read_file(two / "s.glb"), glb);
+  for (const char* name : {"s.gltf", "s.bin"}) {
+    const std::string a = test::read_file(one / name);
+    EXPECT_FALSE(a.empty()) << name;
+    EXPECT_EQ(a, test::read_file(two / name)) << name;
+  }
+  // The .gltf's buffer holds the same bytes as the .glb's BIN chunk.
+  const tinygltf::Model from_glb = load(one / "s.glb"), from_gltf = load(one / "s.gltf");
+  ASSERT_EQ(from_glb.buffers.size(), 1u);
+  ASSERT_EQ(from_gltf.buffers.size(), 1u);
+  EXPECT_EQ(from_gltf.buffers[0].uri, "s.bin");
+  EXPECT_EQ(from_glb.buffers[0].data, from_gltf.buffers[0].data);
+}
+
+TEST(SceneGltf, StructureReadsBackWithTinygltf) {
+  const auto dir = test::fresh_dir("scene-gltf");
+  const SceneAssets s = small_scene();
+  write_scene_gltf(dir / "scene.glb", s);
+  const tinygltf::Model m = load(dir / "scene.glb");
+
+  EXPECT_EQ(m.asset.version, "2.0");
+  EXPECT_EQ(m.asset.generator, "cutaway");
+  ASSERT_EQ(m.meshes.size(), 2u);
+  EXPECT_EQ(m.meshes[0].name, "tomato_piece");
+  EXPECT_EQ(m.meshes[1].name, "plate");
+  ASSERT_EQ(m.materials.size(), 1u);
+  const auto& mat = m.materials[0];
+  EXPECT_EQ(mat.pbrMetallicRoughness.baseColorFactor, (std::vector<double>{1, 1, 1, 1}));
+  EXPECT_DOUBLE_EQ(mat.pbrMetallicRoughness.metallicFactor, 0.0);
+  EXPECT_DOUBLE_EQ(mat.pbrMetallicRoughness.roughnessFactor, 0.6);
+  EXPECT_FALSE(mat.doubleSided);
+  EXPECT_EQ(mat.alphaMode, "OPAQUE");
+  for (size_t i = 0; i < m.meshes.size(); ++i) {
+    ASSERT_EQ(m.meshes[i].primitives.size(), 1u);
+    const auto& prim = m.meshes[i].primitives[0];
+    EXPECT_EQ(prim.material, 0);
+    const auto& pos = m.accessors.at(prim.attributes.at("POSITION"));
+    EXPECT_EQ(pos.componentType, TINYGLTF_COMPONENT_TYPE_FLOAT);
+    EXPECT_EQ(pos.count, s.meshes[i].position.size());
+    const auto& col = m.accessors.at(prim.attributes.at("COLOR_0"));
+    EXPECT_EQ(col.type, TINYGLTF_TYPE_VEC3);
+    EXPECT_EQ(col.componentType, TINYGLTF_COMPONENT_TYPE_FLOAT);
+    EXPECT_EQ(m.accessors.at(prim.attributes.at("NORMAL")).count, s.meshes[i].normal.size());
+    const auto& idx = m.accessors.at(prim.indices);
+    EXPECT_EQ(idx.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);  // few vertices
+    EXPECT_EQ(idx.count, 3 * s.meshes[i].triangle.size());
+  }
+
+  ASSERT_EQ(m.scenes.size(), 1u);
+  EXPECT_EQ(m.scenes[0].name, "test_salad");
+  ASSERT_EQ(m.nodes.size(), static_cast<size_t>(kNodes));
+  EXPECT_EQ(m.scenes[0].nodes, (std::vector<int>{0, 1, 2, 3, 4, 5}));
+  for (size_t i = 0; i < s.instances.size(); ++i) {
+    const auto& node = m.nodes[i];
+    const auto& inst = s.instances[i];
+    EXPECT_EQ(node.name, inst.name);
+    EXPECT_EQ(node.mesh, inst.mesh);
+    ASSERT_EQ(node.rotation.size(), 4u);
+    EXPECT_NEAR(node.rotation[0], inst.rotation.x, 1e-12);
+    EXPECT_NEAR(node.rotation[1], inst.rotation.y, 1e-12);
+    EXPECT_NEAR(node.rotation[2], inst.rotation.z, 1e-12);
+    EXPECT_NEAR(node.rotation[3], inst.rotation.w, 1e-12);
+    EXPECT_EQ(node.translation,
+              (std::vector<double>{inst.translation.x, inst.translation.y, inst.translation.z}));
+  }
+
+  // The camera: a perspective camera at the eye whose -Z looks at the target, +Y up-ish.
+  ASSERT_EQ(m.cameras.size(), 1u);
+  EXPECT_EQ(m.cameras[0].type, "perspective");
+  EXPECT_NEAR(m.cameras[0].perspective.yfov, 35 * M_PI / 180, 1e-12);
+  EXPECT_NEAR(m.cameras[0].perspective.aspectRatio, 4.0 / 3, 1e-12);
+  EXPECT_DOUBLE_EQ(m.cameras[0].perspective.znear, 0.01);
+  EXPECT_DOUBLE_EQ(m.cameras[0].perspective.zfar, 5);
+  const auto& cam_node = m.nodes[3];
+  EXPECT_EQ(cam_node.camera, 0);
+  EXPECT_EQ(cam_node.translation, (std::vector<double>{0.25, 0.3, 0.35}));
+  const glm::dvec3 look = minus_z(cam_node.rotation);
+  const glm::dvec3 want = unit_target_direction(s.camera);
+  EXPECT_NEAR(glm::length(look - want), 0, 1e-12);
+  const glm::dquat cq(cam_node.rotation[3], cam_node.rotation[0], cam_node.rotation[1],
+                      cam_node.rotation[2]);
+  EXPECT_GT(glm::dot(cq * glm::dvec3(0, 1, 0), s.camera.up), 0.5);  // not upside down
+  EXPECT_NEAR(glm::dot(cq * glm::dvec3(1, 0, 0), s.camera.up), 0, 1e-12);  // no roll
+
+  // The lights: KHR_lights_punctual, used and referenced from their nodes.
+  EXPECT_EQ(m.extensionsUsed, (std::vector<std::string>{"KHR_lights_punctual"}));
+  EXPECT_TRUE(m.extensionsRequired.empty());
+  ASSERT_EQ(m.lights.size(), 2u);
+  EXPECT_EQ(m.lights[0].type, "directional");
+  EXPECT_EQ(m.lights[0].intensity, 3);
+  EXPECT_EQ(m.lights[1].type, "point");
+  EXPECT_EQ(m.lights[1].intensity, 15);
+  EXPECT_EQ(m.lights[1].color, (std::vector<double>{1, 0.9, 0.8}));
+  for (int l = 0; l < 2; ++l) {
+    const auto& node = m.nodes[4 + l];
+    ASSERT_TRUE(node.extensions.count("KHR_lights_punctual")) << l;
+    EXPECT_EQ(node.extensions.at("KHR_lights_punctual").Get("light").GetNumberAsInt(), l);
+  }
+  EXPECT_NEAR(glm::length(minus_z(m.nodes[4].rotation) - s.lights[0].direction), 0, 1e-12);
+  EXPECT_EQ(m.nodes[5].translation, (std::vector<double>{0.1, 0.4, 0.2}));
+}
+
+TEST(SceneGltf, LookRotationsHandleAViewAlongTheUpVector) {
+  SceneAssets s = small_scene();
+  s.camera.eye = {0, 1, 0};  // straight down, up = +Y: parallel
+  s.camera.target = {0, 0, 0};
+  s.lights[0].direction = {0, -1, 0};
+  tinygltf::Model m;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  const std::string glb = scene_to_glb(s);
+  ASSERT_TRUE(loader.LoadBinaryFromMemory(&m, &err, &warn,
+                                          reinterpret_cast<const unsigned char*>(glb.data()),
+                                          static_cast<unsigned>(glb.size())))
+      << err;
+  EXPECT_NEAR(glm::length(minus_z(m.nodes[3].rotation) - glm::dvec3(0, -1, 0)), 0, 1e-12);
+  EXPECT_NEAR(glm::length(minus_z(m.nodes[4].rotation) - glm::dvec3(0, -1, 0)), 0, 1e-12);
+}
+
+TEST(SceneGltf, LargeMeshesUse32BitIndices) {
+  SceneAssets s = small_scene();
+  s.meshes[1] = plate("plate", 0.12, 70000);  // 70001 vertices
+  const auto dir = test::fresh_dir("scene-gltf");
+  write_scene_gltf(dir / "big.glb", s);
+  const tinygltf::Model m = load(dir / "big.glb");
+  EXPECT_EQ(m.accessors.at(m.meshes[0].primitives[0].indices).componentType,
+            TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  EXPECT_EQ(m.accessors.at(m.meshes[1].primitives[0].indices).componentType,
+            TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+  const auto report = test::validate_gltf(dir / "big.glb");
+  EXPECT_EQ(report.errors, 0) << report.output;
+}
+
+// One Chromium launch per test, two tests: the .glb, and the .gltf with its .bin.
+void expect_three_loads(const fs::path& file, const SceneAssets& s) {
+  const test::ThreeLoadReport r = test::load_gltf_three(file);
+  ASSERT_TRUE(r.ok) << r.error << "\n" << r.output;
+  EXPECT_EQ(r.meshes, 2);
+  EXPECT_EQ(r.nodes, kNodes);
+  EXPECT_EQ(r.cameras, 1);
+  EXPECT_EQ(r.lights, 2);
+  EXPECT_EQ(r.mesh_objects, 3);
+  EXPECT_EQ(r.triangles, instanced_triangles(s));
+  EXPECT_NEAR(r.camera_position[0], s.camera.eye.x, 1e-6);
+  EXPECT_NEAR(r.camera_position[1], s.camera.eye.y, 1e-6);
+  EXPECT_NEAR(r.camera_position[2], s.camera.eye.z, 1e-6);
+  const glm::dvec3 want = unit_target_direction(s.camera);
+  const glm::dvec3 got(r.camera_direction[0], r.camera_direction[1], r.camera_direction[2]);
+  EXPECT_NEAR(glm::length(got - want), 0, 1e-5);
+  ASSERT_EQ(r.light_directions.size(), 1u);
+  const auto& d = r.light_directions[0];
+  EXPECT_NEAR(glm::length(glm::dvec3(d[0], d[1], d[2]) - s.lights[0].direction), 0, 1e-5);
+  EXPECT_TRUE(r.warnings.empty()) << r.output;
+  ::testing::Test::RecordProperty("chromium_seconds", std::to_string(r.seconds));
+}
+
+TEST(SceneGltf, ThreeJsLoadsTheGlb) {
+  const auto dir = test::fresh_dir("scene-gltf");
+  const SceneAssets s = small_scene();
+  write_scene_gltf(dir / "salad.glb", s);
+  expect_three_loads(dir / "salad.glb", s);
+}
+
+TEST(SceneGltf, ThreeJsLoadsTheGltfWithItsBin) {
+  const auto dir = test::fresh_dir("scene-gltf");
+  const SceneAssets s = small_scene();
+  write_scene_gltf(dir / "my salad.gltf", s);  // a space: the buffer URI is percent-encoded
+  EXPECT_EQ(test::files_in(dir), (std::vector<std::string>{"my salad.bin", "my salad.gltf"}));
+  expect_three_loads(dir / "my salad.gltf", s);
+}
+
+TEST(SceneGltf, AnUnknownExtensionThrowsAndWritesNothing) {
+  const auto dir = test::fresh_dir("scene-gltf");
+  const SceneAssets s = small_scene();
+  for (const char* name : {"scene.obj", "scene", "scene.glb.tmp", "scene.bin", "scene.pov"}) {
+    EXPECT_THROW(write_scene_gltf(dir / name, s), std::invalid_argument) << name;
+  }
+  EXPECT_NO_THROW(write_scene_gltf(dir / "UPPER.GLB", s));  // the extension's case is free
+  EXPECT_EQ(test::files_in(dir), (std::vector<std::string>{"UPPER.GLB"}));
+}
+
+TEST(SceneGltf, AMissingDirectoryThrowsAndLeavesNoFile) {
+  const auto dir = test::fresh_dir("scene-gltf");
+  const SceneAssets s = small_scene();
+  for (const char* name : {"scene.glb", "scene.gltf"}) {
+    EXPECT_THROW(write_scene_gltf(dir / "missing" / name, s), std::runtime_error) << name;
+  }
+  EXPECT_FALSE(fs::exists(dir / "missing"));
+  EXPECT_TRUE(test::files_in(dir).empty());
+}
+
+TEST(SceneGltf, AFailedGltfWriteLeavesNeitherFile) {
+  const auto dir = test::fresh_dir("scene-gltf");
+  fs::create_directory(dir / "scene.gltf");  // the JSON cannot be renamed over a directory
+  EXPECT_THROW(write_scene_gltf(dir / "scene.gltf", small_scene()), std::runtime_error);
+  EXPECT_TRUE(test::files_in(dir).empty());  // no .bin, no temporaries
+  EXPECT_TRUE(fs::is_directory(dir / "scene.gltf"));
+}
+
+TEST(SceneGltf, InvalidAssetsThrow) {
+  auto expect_invalid = [](const std::function<void(SceneAssets&)>& edit, const char* what) {
+    SceneAssets s = small_scene();
+    edit(s);
+    EXPECT_THROW(scene_to_glb(s), std::invalid_argument) << what;
+  };
+  expect_invalid([](SceneAssets& s) { s.instances[0].mesh = 2; }, "mesh index");
+  expect_invalid([](SceneAssets& s) { s.instances[0].rotation = glm::dquat(0, 0, 0, 0); },
+                 "zero rotation");
+  expect_invalid([](SceneAssets& s) { s.meshes[0].triangle[0].y = 24; }, "triangle index");
+  expect_invalid([](SceneAssets& s) { s.meshes[0].colour.pop_back(); }, "colour count");
+  expect_invalid([](SceneAssets& s) { s.meshes[1].triangle.clear(); }, "no triangles");
+  expect_invalid([](SceneAssets& s) { s.meshes[1].position[3].y = std::nan(""); }, "NaN");
+  expect_invalid([](SceneAssets& s) { s.camera.target = s.camera.eye; }, "eye == target");
+  expect_invalid([](SceneAssets& s) { s.camera.znear = 0; }, "znear");
+  expect_invalid([](SceneAssets& s) { s.camera.fov_y_deg = 180; }, "fov");
+  expect_invalid([](SceneAssets& s) { s.lights[0].direction = glm::dvec3(0.0); }, "direction");
+}
+
+}  // namespace
+}  // namespace cutaway
