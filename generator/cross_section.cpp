@@ -14,6 +14,8 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <glm/geometric.hpp>
 
+#include "split_lines.h"
+
 namespace cutaway {
 
 namespace {
@@ -57,15 +59,20 @@ void plane_frame(const Plane& plane, glm::dvec3& u, glm::dvec3& v) {
 
 CrossSection make_cross_section(const DsModel& model, const Plane& plane,
                                 const DiffusionBackend& diffusion,
-                                const CrossSectionOptions& options) {
+                                const CrossSectionOptions& options,
+                                const CapRestriction& restriction) {
   const auto start = std::chrono::steady_clock::now();
   CrossSection cs;
   cs.plane = plane;
   plane_frame(plane, cs.u_axis, cs.v_axis);
   // Merging is for the swept surfaces' doubled segments; grain loops are small and stay as cut.
-  std::vector<CutSegment> swept, grains;
+  std::vector<CutSegment> swept, grains;  // grains: kept as cut
   for (const CutSegment& s : cut_segments(model, plane)) {
-    (model.surfaces[s.surface].role == SurfaceRole::Grain ? grains : swept).push_back(s);
+    const DsSurface& surface = model.surfaces[s.surface];
+    const bool boundary =
+        surface.role == SurfaceRole::Skin || surface.visible_front != surface.visible_back;
+    const bool keep = surface.role == SurfaceRole::Grain || (boundary && !options.merge_boundary);
+    (keep ? grains : swept).push_back(s);
   }
   std::vector<CutSegment> segments = merge_collinear_segments(
       swept, options.merge_tolerance * options.edge_m, options.edge_m);
@@ -87,28 +94,50 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
                     static_cast<int>(i)});
   }
 
-  // 1. Constrained Delaunay triangulation of the cut segments.
-  Cdt cdt;
-  std::map<std::pair<Vertex, Vertex>, int> segment_of;  // input constraint end points -> index
+  // 1. Constrained Delaunay triangulation of the cut segments, and of the split lines of a
+  // restriction (cutting planes that bound cells, not the domain), arranged so that no two
+  // constraints cross.
+  std::vector<std::pair<glm::dvec2, glm::dvec2>> ends;
+  glm::dvec2 lo(0.0), hi(0.0);
   for (const Segment2& s : seg2) {
-    const Vertex va = cdt.insert(Point2(s.a.x, s.a.y));
-    const Vertex vb = cdt.insert(Point2(s.b.x, s.b.y));
+    ends.emplace_back(s.a, s.b);
+    lo = ends.size() == 1 ? glm::min(s.a, s.b) : glm::min(lo, glm::min(s.a, s.b));
+    hi = ends.size() == 1 ? glm::max(s.a, s.b) : glm::max(hi, glm::max(s.a, s.b));
+  }
+  const std::vector<Line2> lines =
+      split_lines(plane, cs.u_axis, cs.v_axis, restriction.split_planes);
+  const std::vector<Constraint2> constraints = arrange_split_lines(
+      ends, lines,
+      lo - glm::dvec2(2 * options.edge_m), hi + glm::dvec2(2 * options.edge_m),
+      1e-6 * options.edge_m);
+  Cdt cdt;
+  std::map<std::pair<Vertex, Vertex>, int> segment_of;  // constraint end points -> index
+  for (const Constraint2& c : constraints) {
+    const Vertex va = cdt.insert(Point2(c.a.x, c.a.y));
+    const Vertex vb = cdt.insert(Point2(c.b.x, c.b.y));
     if (va == vb) continue;
     cdt.insert_constraint(va, vb);
-    segment_of.emplace(std::minmax(va, vb), s.index);
+    if (c.segment >= 0) segment_of.emplace(std::minmax(va, vb), seg2[c.segment].index);
   }
   // Blur bands (paper §3.1, Fig. 2): a vertex on each sheet of a blurred segment, +-blur from
   // its midpoint along its front direction, so that the transition across the band is sampled
-  // at regular distances rather than wherever refinement happens to put vertices.
+  // at regular distances rather than wherever refinement happens to put vertices. Not near a
+  // split line: a point a hair's breadth off a constraint makes refinement split it endlessly.
+  auto near_split_line = [&](const glm::dvec2& p) {
+    for (const Line2& l : lines)
+      if (std::fabs(glm::dot(p, l.normal) - l.offset) < 0.25 * options.edge_m) return true;
+    return false;
+  };
   for (const Segment2& s : seg2) {
     const CutSegment& cut = segments[s.index];
     const double blur = 0.5 * (cut.blur_a + cut.blur_b);
     const double len = glm::length(s.front);
     if (blur <= 0 || len == 0) continue;
     const glm::dvec2 mid = 0.5 * (s.a + s.b), offset = s.front / len * blur;
-    for (const glm::dvec2& p : {mid + offset, mid - offset}) cdt.insert(Point2(p.x, p.y));
+    for (const glm::dvec2& p : {mid + offset, mid - offset})
+      if (!near_split_line(p)) cdt.insert(Point2(p.x, p.y));
   }
-  // The input segment that a constrained edge (a, b) lies on.
+  // The input segment that a constrained edge (a, b) lies on (null on a split line).
   auto segment_on = [&](Vertex a, Vertex b) -> const Segment2* {
     for (auto ctx = cdt.contexts_begin(a, b); ctx != cdt.contexts_end(a, b); ++ctx) {
       // The constraint's vertex iterator is forward-only: walk it to find the last vertex.
@@ -139,7 +168,11 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
       if (cdt.is_infinite(g)) in = false;
       for (int i = 0; i < 3; ++i) {
         const Face nb = g->neighbor(i);
-        if (!g->is_constrained(i)) {
+        // Split lines divide cells, not regions: flood across them.
+        const Segment2* s = g->is_constrained(i)
+                                ? segment_on(g->vertex(Cdt::cw(i)), g->vertex(Cdt::ccw(i)))
+                                : nullptr;
+        if (!s) {
           if (!region.count(nb)) {
             region[nb] = id;
             queue.push(nb);
@@ -147,9 +180,6 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
           continue;
         }
         if (cdt.is_infinite(g)) continue;
-        const Vertex a = g->vertex(Cdt::cw(i)), b = g->vertex(Cdt::ccw(i));
-        const Segment2* s = segment_on(a, b);
-        if (!s) continue;
         const int side = side_of(*s, to2(g->vertex(i)->point()));
         const DsSurface& surface = model.surfaces[segments[s->index].surface];
         if (side > 0 && (surface.role == SurfaceRole::Skin || !surface.visible_front)) in = false;
@@ -165,7 +195,24 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
   // 3. Conforming Delaunay refinement inside the domain (angle and size criteria).
   Mesher mesher(cdt, Criteria(options.shape_bound, options.interior_edge * options.edge_m));
   mesher.init(true);
-  mesher.refine_mesh();
+  // A budget of Steiner points: constraints that meet at tiny angles or pass a hair's breadth
+  // from a vertex (split lines crossing cut loops) can make refinement cascade without end.
+  const size_t budget = 20 * cdt.number_of_vertices() + 20000;
+  size_t inserted = 0;
+  while (!mesher.is_refinement_done() && inserted < budget) {
+    if (mesher.step_by_step_refine_mesh()) ++inserted;
+  }
+  cs.refinement_capped = !mesher.is_refinement_done();
+  if (restriction.keep) {
+    for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+      if (!f->is_in_domain()) continue;
+      const glm::dvec2 c =
+          (to2(f->vertex(0)->point()) + to2(f->vertex(1)->point()) + to2(f->vertex(2)->point())) /
+          3.0;
+      if (!restriction.keep(plane.point + cs.u_axis * c.x + cs.v_axis * c.y))
+        f->set_in_domain(false);
+    }
+  }
 
   // 4. Output vertices: one per interior vertex, one per side (wedge) of a cut vertex.
   std::map<std::pair<Vertex, Face>, unsigned> corner_id;
@@ -224,12 +271,16 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
       bool wedge_in = false;
       for (const Face& f : wedge) wedge_in = wedge_in || (!cdt.is_infinite(f) && f->is_in_domain());
       if (!wedge_in) continue;
-      // The wedge's first face is bounded by the constrained edge (v, w) before it.
-      const Face first = wedge.front();
-      const int i = first->index(v);
-      const Vertex w = first->vertex(Cdt::ccw(i));
-      const Vertex c = first->vertex(Cdt::cw(i));
-      const Segment2* s = segment_on(v, w);
+      // The wedge is bounded by the constrained edge (v, w) before its first face and the one
+      // after its last face; one of them lies on a cut segment unless both are split lines.
+      const Face first = wedge.front(), last = wedge.back();
+      const int i = first->index(v), j = last->index(v);
+      Vertex c = first->vertex(Cdt::cw(i));
+      const Segment2* s = segment_on(v, first->vertex(Cdt::ccw(i)));
+      if (!s) {
+        s = segment_on(v, last->vertex(Cdt::cw(j)));
+        c = last->vertex(Cdt::ccw(j));
+      }
       int surface = -1;
       glm::dvec3 colour(0.0);
       bool diffuse = true;

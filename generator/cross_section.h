@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -22,8 +23,22 @@ struct CrossSectionOptions {
                                ///< finer, and refinement grades from them into the interior
   double merge_tolerance = 0.01;  ///< nearly collinear cut segments are merged up to edge_m
                                   ///< long where they deviate less than this, in edge_m
+  /// Whether the skin's and the hollow walls' segments (the domain's boundary) are merged too.
+  /// Pieces turn it off, so that the caps' boundaries run through exactly the crossings where
+  /// the clipped skin ends.
+  bool merge_boundary = true;
   double shape_bound = 0.125; ///< Delaunay_mesh_size_criteria_2 shape bound B = 1/(4 sin^2 a):
                               ///< 0.125 is a minimum angle a of about 20.7 degrees
+};
+
+/// Restricts a cross-section to the faces of convex cells (design/algorithms.md §4): the lines
+/// where other cutting planes meet this one become extra constraints of the triangulation, so
+/// that every triangle lies on one side of each, and only the triangles whose centroid `keep`
+/// accepts are coloured and returned.
+struct CapRestriction {
+  std::vector<Plane> split_planes;  ///< planes whose lines on this plane are constraints;
+                                    ///< planes parallel to this one are ignored
+  std::function<bool(const glm::dvec3&)> keep;  ///< centroid (metres) -> keep; empty: all
 };
 
 /// The triangulated, coloured cut face on one plane.
@@ -40,6 +55,8 @@ struct CrossSection {
   size_t diffused_points = 0;  ///< PMVC evaluations: interior vertices and the locations of
                                ///< blurred cut vertices (their duplicates share one)
   size_t cut_segments = 0;       ///< input cut segments
+  bool refinement_capped = false;  ///< Delaunay refinement stopped at its budget of Steiner
+                                   ///< points (some triangles miss the angle bound)
   double seconds_triangulate = 0;  ///< wall time: cut segments, triangulation, splitting
   double seconds_diffuse = 0;      ///< wall time: PMVC colours
 };
@@ -56,10 +73,14 @@ void plane_frame(const Plane& plane, glm::dvec3& u, glm::dvec3& v);
 /// A region of the plane is in the domain when it is bounded (not connected to infinity), is
 /// not on the skin's front (outer) side, and is not on a hollow side (visible_front/back false)
 /// of any surface bounding it.
-/// @throws std::domain_error when the plane misses the object or only touches it (no area):
-///         the caller reports it as bad input
+/// With a `restriction`, its split planes' lines are constraints that do not bound the domain
+/// (vertices on them are split like cut vertices and diffused), and triangles whose centroid it
+/// does not keep are left out before diffusion.
+/// @throws std::domain_error when the plane misses the object or only touches it (no area), or
+///         the restriction keeps nothing: the caller reports it as bad input or skips the cap
 CrossSection make_cross_section(const DsModel& model, const Plane& plane,
                                 const DiffusionBackend& diffusion,
-                                const CrossSectionOptions& options);
+                                const CrossSectionOptions& options,
+                                const CapRestriction& restriction = {});
 
 }  // namespace cutaway

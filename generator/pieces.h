@@ -1,0 +1,73 @@
+// Cut pieces (design/algorithms.md §4): a piece is the object's volume inside one convex cell of
+// a cut. Its surface is the skin clipped to the cell, the walls of hollow regions clipped
+// likewise, and one cap per cell face: the cross-section of that plane (paper §3.2) restricted
+// to the cell, coloured by PMVC diffusion. The parts are stitched along their seams, so a piece
+// of an object without hollows is a closed, consistently oriented 2-manifold.
+#pragma once
+
+#include <vector>
+
+#include "cross_section.h"
+#include "cut_cells.h"
+#include "diffusion/diffusion.h"
+#include "ds_model.h"
+#include "shaded_mesh.h"
+
+namespace cutaway {
+
+/// What a part of a piece's surface is.
+enum class PartKind { Skin, Wall, Cap };
+
+/// One part of a piece's surface. Normals point out of the piece; colours are what that side
+/// shows (skin: its front colour; wall: the colour of its non-hollow side; cap: diffused).
+struct PiecePart {
+  PartKind kind = PartKind::Skin;
+  int surface = -1;  ///< skin, wall: index into DsModel::surfaces
+  int plane = -1;    ///< cap: index into CutCells::planes
+  ShadedMesh mesh;
+};
+
+/// One piece: the parts of its surface, in the order skin, walls, caps (by plane index).
+struct Piece {
+  int cell = -1;  ///< index into CutCells::cells
+  std::vector<PiecePart> parts;
+};
+
+/// How pieces are made.
+struct PieceOptions {
+  CrossSectionOptions section;  ///< meshing of the caps (its edge_m: the template's edge);
+                                ///< cut_pieces turns merge_boundary off
+  /// Seam vertices closer than this (in edge_m) are one: the same crossing computed by the
+  /// clip and by the cap's triangulation differ by rounding, or by the 1e-6 edge that a split
+  /// line may bend to pass through a cut vertex (arrange_split_lines).
+  double stitch_tolerance = 1e-5;
+};
+
+/// The pieces of one cut object and what making them cost.
+struct PieceSet {
+  CutCells cells;
+  std::vector<Piece> pieces;           ///< in cell order; cells the object misses give none
+  std::vector<CrossSection> sections;  ///< one per plane of `cells` (empty where it misses)
+  size_t diffused_points = 0;          ///< PMVC evaluations over all caps
+  size_t stitched_vertices = 0;        ///< seam vertices snapped or inserted
+  double seconds_sections = 0;         ///< cross-sections: triangulation and diffusion
+  double seconds_diffuse = 0;          ///< of which PMVC diffusion
+  double seconds_clip = 0;             ///< clipping and stitching
+};
+
+/// Cuts `model` into pieces along `cut` (make_cut_cells with the model's bounds). Every plane is
+/// cross-sectioned once, with the lines of all other planes as extra constraints (so the two
+/// caps on either side of a cut are mirror images with equal colours), keeping only triangles
+/// that some cell uses. Surfaces that are hollow on one side (visible_front or visible_back
+/// false, not the skin) are the walls of hollow regions: clipped and shown with the colour of
+/// their other side, facing the hollow. Grains and other structure surfaces only colour the
+/// caps. Deterministic.
+/// @param model  its skin (surfaces[0]) closed and outward
+/// @throws std::domain_error when the cut misses the object entirely (no piece)
+PieceSet cut_pieces(const DsModel& model, const CutSpec& cut, const DiffusionBackend& diffusion,
+                    const PieceOptions& options);
+
+/// All parts of `piece` in one mesh (vertices of different parts stay separate).
+ShadedMesh merge_parts(const Piece& piece);
+
+}  // namespace cutaway

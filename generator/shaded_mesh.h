@@ -1,0 +1,34 @@
+// A plain indexed triangle mesh with per-vertex shading data: what pieces are made of.
+#pragma once
+
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace cutaway {
+
+/// Plain data: all per-vertex arrays have the same length #V.
+struct ShadedMesh {
+  std::vector<glm::dvec3> position;  ///< #V, metres
+  std::vector<glm::dvec3> normal;    ///< #V, unit shading normals (outward)
+  std::vector<glm::dvec3> colour;    ///< #V, linear RGB
+  std::vector<glm::uvec3> triangle;  ///< #F, counter-clockwise seen from outside
+};
+
+/// Appends vertex i of `from` to `to`, returns its index in `to`.
+unsigned copy_vertex(const ShadedMesh& from, unsigned i, ShadedMesh& to);
+
+/// Appends the vertex (1 - t) * a + t * b of `mesh` (normal renormalised) and returns its index.
+unsigned add_interpolated_vertex(ShadedMesh& mesh, unsigned a, unsigned b, double t);
+
+/// Drops vertices that no triangle uses, keeping the others' order.
+void remove_unused_vertices(ShadedMesh& mesh);
+
+/// Reverses every triangle's winding and negates the normals.
+void flip(ShadedMesh& mesh);
+
+/// The signed volume enclosed by the triangles (divergence theorem: sum of det(a, b, c) / 6);
+/// positive for a closed surface wound counter-clockwise seen from outside. Cubic metres.
+double signed_volume(const ShadedMesh& mesh);
+
+}  // namespace cutaway
