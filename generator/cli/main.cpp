@@ -17,6 +17,7 @@
 #include <spdlog/spdlog.h>
 
 #include "atomic_file.h"
+#include "commands.h"
 #include "contact_sheet.h"
 #include "cross_section.h"
 #include "diffusion_backends.h"
@@ -40,16 +41,8 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-/// A bad command-line argument: reported like InputError, exit code 2.
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-void require_extension(const std::string& option, const std::string& path, const char* ext) {
-  if (std::filesystem::path(path).extension() != ext) {
-    throw UsageError(option + ": '" + path + "' must end in " + ext);
-  }
-}
+using cutaway::cli::require_extension;
+using cutaway::cli::UsageError;
 
 struct ModelArgs {
   std::string template_path;
@@ -406,6 +399,34 @@ int main(int argc, char** argv) {
                        "variants (of the shard) at one scale; 0: none")
       ->check(CLI::Range(0, 256));
 
+  cutaway::cli::PieceArgs piece_args;
+  CLI::App* piece = app.add_subcommand(
+      "piece", "cut one object into pieces with diffused cut faces (glb/gltf/pov, PNG)");
+  piece->add_option("TEMPLATE", piece_args.template_path, "template file (.yaml)")->required();
+  piece->add_option("--cut", piece_args.cut,
+                    "halves, slices:THICKNESS, wedges:COUNT, dice:SIZE, plane:SPEC or whole "
+                    "(template units)")
+      ->required();
+  piece->add_option("--seed", piece_args.seed, "cut the random variant of this seed")
+      ->check(CLI::NonNegativeNumber);
+  piece->add_option("-o,--output", piece_args.output, "pieces to write: .glb, .gltf or .pov");
+  piece->add_option("--png", piece_args.png, "PNG of the pieces pulled slightly apart");
+  piece->add_option("--cube", piece_args.cube, "cube-map texels per face edge for PMVC")
+      ->check(CLI::Range(2, 256));
+
+  cutaway::cli::SceneArgs scene_args;
+  CLI::App* scene = app.add_subcommand(
+      "scene", "the main job: a scene of cut objects as glTF or POV-Ray, and pictures of it");
+  scene->add_option("SCENE", scene_args.scene_path, "scene file (.yaml)")->required();
+  scene->add_option("--seed", scene_args.seed, "seed (default: the scene file's)")
+      ->check(CLI::NonNegativeNumber);
+  scene->add_option("-o,--output", scene_args.output, "scene to write: .glb, .gltf or .pov")
+      ->required();
+  scene->add_option("--png", scene_args.png, "OpenGL preview (PNG)");
+  scene->add_option("--render", scene_args.render, "POV-Ray render (PNG)");
+  scene->add_option("--cube", scene_args.cube, "cube-map texels per face edge for PMVC")
+      ->check(CLI::Range(2, 256));
+
   std::vector<std::string> check_files;
   CLI::App* check =
       app.add_subcommand("check", "validate templates and scenes without writing anything");
@@ -437,6 +458,12 @@ int main(int argc, char** argv) {
       return run_section(section_args, backend, threads, stats);
     }
     if (*check) return run_check(check_files);
+    const cutaway::cli::Common common{backend, threads, stats};
+    if (*piece) return cutaway::cli::run_piece(piece_args, common);
+    if (*scene) {
+      scene_args.quiet = quiet;
+      return cutaway::cli::run_scene(scene_args, common);
+    }
     if (*variants) {
       variants_args.shard_given = variants->count("--shard") > 0;
       return run_variants(variants_args, backend, threads, quiet);

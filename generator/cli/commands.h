@@ -1,0 +1,49 @@
+// The `cutaway` subcommands that live outside main.cpp, and what they share with it.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+namespace cutaway::cli {
+
+/// A bad command-line argument: reported like InputError, exit code 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Throws UsageError unless `path` ends in `ext` (e.g. ".glb").
+inline void require_extension(const std::string& option, const std::string& path,
+                              const char* ext) {
+  if (std::filesystem::path(path).extension() != ext) {
+    throw UsageError(option + ": '" + path + "' must end in " + ext);
+  }
+}
+
+/// Options common to all subcommands.
+struct Common {
+  std::string backend = "auto";  ///< auto | cpu | gl
+  int threads = 0;               ///< 0: all cores
+  bool stats = false;            ///< JSON timings and counts on stderr
+};
+
+/// `cutaway piece TEMPLATE --cut SPEC [--seed S] [-o pieces.glb|.gltf|.pov] [--png p.png]`.
+struct PieceArgs {
+  std::string template_path, cut, output, png;
+  int64_t seed = -1;  ///< >= 0: cut the variant of this seed instead of the template
+  int width = 1024, height = 768;
+  int cube = 16;
+};
+int run_piece(const PieceArgs& args, const Common& common);
+
+/// `cutaway scene SCENE [--seed S] -o OUT.glb|.gltf|.pov [--png preview.png] [--render out.png]`.
+struct SceneArgs {
+  std::string scene_path, output, png, render;
+  int64_t seed = -1;  ///< >= 0: overrides the scene's seed
+  int cube = 16;
+  bool quiet = false;
+};
+int run_scene(const SceneArgs& args, const Common& common);
+
+}  // namespace cutaway::cli

@@ -1,0 +1,203 @@
+// `cutaway piece` and `cutaway scene`: the cut pieces of one object, and whole scenes (the main
+// job). Argument checks and calls into the libraries only.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include <unistd.h>
+
+#include <spdlog/spdlog.h>
+
+#include "atomic_file.h"
+#include "commands.h"
+#include "diffusion_backends.h"
+#include "gltf_export.h"
+#include "model_builder.h"
+#include "model_preview.h"
+#include "pieces.h"
+#include "pov_export.h"
+#include "povray_runner.h"
+#include "scene_builder.h"
+#include "scene_parser.h"
+#include "scene_preview.h"
+#include "template_parser.h"
+#include "variation.h"
+
+namespace cutaway::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+enum class Format { Gltf, Pov };
+
+/// The format an output path asks for (.glb, .gltf or .pov).
+Format output_format(const std::string& option, const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".glb" || ext == ".gltf") return Format::Gltf;
+  if (ext == ".pov") return Format::Pov;
+  throw UsageError(option + ": '" + path + "' must end in .glb, .gltf or .pov");
+}
+
+void make_parent(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+}
+
+/// Writes `assets` as `path` (glTF or POV-Ray by extension), `png` (OpenGL preview) and
+/// `render` (POV-Ray), each when asked for. Returns the seconds spent on each.
+struct Written {
+  double export_s = 0, preview_s = 0, povray_s = 0;
+};
+Written write_outputs(const SceneAssets& assets, const std::string& path, const std::string& png,
+                      const std::string& render, int threads) {
+  Written w;
+  auto t0 = Clock::now();
+  if (!path.empty()) {
+    make_parent(path);
+    if (output_format("-o", path) == Format::Gltf) write_scene_gltf(path, assets);
+    else write_scene_pov(path, assets);
+    spdlog::info("wrote {}", path);
+  }
+  w.export_s = seconds_since(t0);
+  if (!png.empty()) {
+    t0 = Clock::now();
+    make_parent(png);
+    write_png(png, render_scene_preview(assets));
+    spdlog::info("wrote {}", png);
+    w.preview_s = seconds_since(t0);
+  }
+  if (!render.empty()) {
+    t0 = Clock::now();
+    make_parent(render);
+    // POV-Ray renders a .pov file: the one written, or a temporary one.
+    std::filesystem::path pov = path;
+    std::filesystem::path temp;
+    if (path.empty() || output_format("-o", path) != Format::Pov) {
+      temp = std::filesystem::temp_directory_path() /
+             ("cutaway-" + std::to_string(::getpid()) + "-" + assets.name + ".pov");
+      write_scene_pov(temp, assets);
+      pov = temp;
+    }
+    PovrayOptions options;
+    options.threads = threads;
+    try {
+      spdlog::info("rendering {} with POV-Ray at {} x {}", render, assets.width, assets.height);
+      render_povray(pov, render, assets.width, assets.height, options);
+    } catch (...) {
+      if (!temp.empty()) std::filesystem::remove(temp);
+      throw;
+    }
+    if (!temp.empty()) std::filesystem::remove(temp);
+    spdlog::info("wrote {}", render);
+    w.povray_s = seconds_since(t0);
+  }
+  return w;
+}
+
+}  // namespace
+
+int run_piece(const PieceArgs& a, const Common& common) {
+  if (a.output.empty() && a.png.empty()) throw UsageError("give -o and/or --png");
+  if (!a.output.empty()) output_format("-o", a.output);
+  if (!a.png.empty()) require_extension("--png", a.png, ".png");
+  const auto t0 = Clock::now();
+  const Template tmpl = load_template(a.template_path);
+  CutSpec cut;
+  try {
+    cut = parse_cut_spec(a.cut, tmpl.metres_per_unit);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--cut: ") + e.what());
+  }
+  const long long estimate = estimate_piece_count(cut, template_extents(tmpl));
+  if (estimate > kMaxPiecesPerCut)
+    throw UsageError("--cut " + a.cut + ": would make about " + std::to_string(estimate) +
+                     " pieces (at most " + std::to_string(kMaxPiecesPerCut) + ")");
+  const DsModel model =
+      a.seed >= 0 ? make_variant(tmpl, static_cast<uint64_t>(a.seed)).model : build_model(tmpl);
+  const double t_model = seconds_since(t0);
+  const auto diffusion =
+      make_diffusion(model, {a.cube, common.threads}, parse_diffusion_choice(common.backend));
+  PieceOptions options;
+  options.section.edge_m = tmpl.edge_m;
+  PieceSet set;
+  const auto t1 = Clock::now();
+  try {
+    set = cut_pieces(model, cut, *diffusion, options);
+  } catch (const std::domain_error& e) {
+    throw UsageError("--cut " + a.cut + ": " + e.what());
+  }
+  const double t_cut = seconds_since(t1);
+  size_t triangles = 0;
+  for (const Piece& p : set.pieces)
+    for (const PiecePart& part : p.parts) triangles += part.mesh.triangle.size();
+  spdlog::info("{}: {} pieces, {} triangles, {} cut planes", tmpl.name, set.pieces.size(),
+               triangles, set.cells.planes.size());
+  const SceneAssets assets = piece_assets(set, tmpl.name, 0.18, a.width, a.height);
+  const Written w = write_outputs(assets, a.output, a.png, "", common.threads);
+  if (common.stats) {
+    std::fprintf(stderr,
+                 "{\"template\": \"%s\", \"backend\": \"%s\", \"pieces\": %zu, \"planes\": %zu, "
+                 "\"triangles\": %zu, \"diffused_points\": %zu, \"seconds\": {\"model\": %.4f, "
+                 "\"cut\": %.4f, \"sections\": %.4f, \"diffuse\": %.4f, \"clip\": %.4f, "
+                 "\"export\": %.4f, \"png\": %.4f}}\n",
+                 tmpl.name.c_str(), diffusion->name().c_str(), set.pieces.size(),
+                 set.cells.planes.size(), triangles, set.diffused_points, t_model, t_cut,
+                 set.seconds_sections, set.seconds_diffuse, set.seconds_clip, w.export_s,
+                 w.preview_s);
+  }
+  return 0;
+}
+
+int run_scene(const SceneArgs& a, const Common& common) {
+  if (a.output.empty()) throw UsageError("-o is required (.glb, .gltf or .pov)");
+  output_format("-o", a.output);
+  if (!a.png.empty()) require_extension("--png", a.png, ".png");
+  if (!a.render.empty()) require_extension("--render", a.render, ".png");
+  const auto t0 = Clock::now();
+  const Scene scene = load_scene(a.scene_path);
+  const double t_parse = seconds_since(t0);
+  const uint64_t seed = a.seed >= 0 ? static_cast<uint64_t>(a.seed) : scene.seed;
+  const DiffusionChoice choice = parse_diffusion_choice(common.backend);
+  std::string backend_name;
+  SceneBuildOptions options;
+  options.diffusion = [&](const DsModel& model) {
+    auto backend = make_diffusion(model, {a.cube, common.threads}, choice);
+    backend_name = backend->name();
+    return backend;
+  };
+  options.progress = [&](int done, int total, const std::string& line) {
+    spdlog::info("[{}/{}] {}", done, total, line);
+  };
+  SceneStats st;
+  const auto t1 = Clock::now();
+  const SceneAssets assets = build_scene(scene, seed, options, &st);
+  const double t_build = seconds_since(t1);
+  if (st.placed < st.pieces)
+    spdlog::warn("{} of {} pieces did not fit in the container and were left out",
+                 st.pieces - st.placed, st.pieces);
+  spdlog::info("{}: {} objects, {} pieces placed, {} triangles (seed {})", scene.name,
+               st.objects, st.placed, st.triangles, seed);
+  const Written w = write_outputs(assets, a.output, a.png, a.render, common.threads);
+  if (common.stats) {
+    std::fprintf(
+        stderr,
+        "{\"scene\": \"%s\", \"seed\": %llu, \"backend\": \"%s\", \"objects\": %d, "
+        "\"pieces\": %d, \"placed\": %d, \"triangles\": %zu, \"diffused_points\": %zu, "
+        "\"seconds\": {\"parse\": %.4f, \"build\": %.4f, \"variants\": %.4f, "
+        "\"backend_setup\": %.4f, \"sections\": %.4f, \"diffuse\": %.4f, \"clip\": %.4f, "
+        "\"layout\": %.4f, \"export\": %.4f, \"png\": %.4f, \"povray\": %.4f}}\n",
+        scene.name.c_str(), static_cast<unsigned long long>(seed), backend_name.c_str(),
+        st.objects, st.pieces, st.placed, st.triangles, st.diffused_points, t_parse, t_build,
+        st.seconds_variants, st.seconds_backend, st.seconds_sections, st.seconds_diffuse,
+        st.seconds_clip, st.seconds_layout, w.export_s, w.preview_s, w.povray_s);
+  }
+  return 0;
+}
+
+}  // namespace cutaway::cli

@@ -1,0 +1,291 @@
+#include "scene_builder.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+#include "container_mesh.h"
+#include "random.h"
+#include "template_parser.h"
+#include "variation.h"
+
+namespace cutaway {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// The default view: from the front (+Z), 50 degrees above the horizon.
+const glm::dvec3 kDefaultToCamera(0, std::sin(glm::radians(50.0)), std::cos(glm::radians(50.0)));
+
+/// [A-Za-z0-9_] only.
+std::string sanitised(const std::string& name) {
+  std::string out = name;
+  for (char& c : out)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return out;
+}
+
+/// A seeded choice of `keep` of n indices, in increasing order (partial Fisher-Yates).
+std::vector<size_t> choose(size_t n, size_t keep, uint64_t seed) {
+  std::vector<size_t> all(n);
+  std::iota(all.begin(), all.end(), size_t{0});
+  Rng rng(seed);
+  for (size_t k = 0; k < keep && k + 1 < n; ++k) {
+    const size_t j = k + rng.below(static_cast<uint32_t>(n - k));
+    std::swap(all[k], all[j]);
+  }
+  all.resize(keep);
+  std::sort(all.begin(), all.end());
+  return all;
+}
+
+}  // namespace
+
+uint64_t object_seed(uint64_t scene_seed, int item, int object, int purpose) {
+  return derive_seed(scene_seed, {static_cast<uint64_t>(item), static_cast<uint64_t>(object),
+                                  static_cast<uint64_t>(purpose)});
+}
+
+AssetCamera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3& to_camera,
+                      double fov_deg, double aspect) {
+  AssetCamera cam;
+  const glm::dvec3 centre = 0.5 * (lo + hi);
+  const double radius = std::max(1e-3, 0.5 * glm::distance(lo, hi));
+  const double half_v = 0.5 * glm::radians(fov_deg);
+  const double half_h = std::atan(aspect * std::tan(half_v));
+  const double distance = 1.02 * radius / std::sin(std::min(half_v, half_h));
+  cam.target = centre;
+  cam.eye = centre + glm::normalize(to_camera) * distance;
+  cam.fov_y_deg = fov_deg;
+  cam.aspect = aspect;
+  cam.znear = std::max(1e-3, 0.05 * distance);
+  cam.zfar = distance + 4 * radius;
+  return cam;
+}
+
+AssetCamera scene_camera(const Scene& scene, const glm::dvec3& pile_min,
+                         const glm::dvec3& pile_max) {
+  const double aspect = static_cast<double>(scene.render.width) / scene.render.height;
+  if (!scene.camera) return frame_box(pile_min, pile_max, kDefaultToCamera, 40, aspect);
+  AssetCamera cam;
+  cam.eye = scene.camera->eye;
+  cam.target = scene.camera->target;
+  cam.fov_y_deg = scene.camera->fov_deg;
+  cam.aspect = aspect;
+  const double distance = glm::distance(cam.eye, cam.target);
+  const double extent = glm::distance(pile_min, pile_max);
+  cam.znear = std::max(1e-4, 0.02 * distance);
+  cam.zfar = distance + 4 * extent + 1;
+  return cam;
+}
+
+std::vector<AssetLight> studio_lights(const AssetCamera& camera) {
+  const glm::dvec3 f = glm::normalize(camera.target - camera.eye);
+  glm::dvec3 r = glm::cross(f, camera.up);
+  r = glm::length(r) > 1e-9 ? glm::normalize(r) : glm::dvec3(1, 0, 0);
+  const glm::dvec3 u = glm::normalize(glm::cross(r, f));
+  // Directions towards each light; the light travels the other way.
+  auto light = [&](const char* name, glm::dvec3 towards, double lux, glm::dvec3 colour) {
+    AssetLight l;
+    l.name = name;
+    l.type = LightType::Directional;
+    l.direction = -glm::normalize(towards);
+    l.intensity = lux;
+    l.colour = colour;
+    return l;
+  };
+  return {light("key", -0.5 * r + 1.0 * u - 0.6 * f, 3.0, {1.0, 0.97, 0.92}),
+          light("fill", 0.8 * r + 0.3 * u - 0.5 * f, 1.2, {0.92, 0.95, 1.0}),
+          light("rim", 0.2 * r + 0.8 * u + 0.9 * f, 1.0, {1.0, 1.0, 1.0})};
+}
+
+AssetMesh asset_mesh(const ShadedMesh& mesh, const std::string& name) {
+  AssetMesh out;
+  out.name = name;
+  out.position = mesh.position;
+  out.normal = mesh.normal;
+  out.colour = mesh.colour;
+  out.triangle = mesh.triangle;
+  return out;
+}
+
+SceneAssets piece_assets(const PieceSet& set, const std::string& name, double explode,
+                         int width, int height) {
+  SceneAssets assets;
+  assets.name = name;
+  assets.width = width;
+  assets.height = height;
+  assets.background = {1, 1, 1};
+  std::vector<ShadedMesh> meshes;
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-lo);
+  for (const Piece& piece : set.pieces) {
+    meshes.push_back(merge_parts(piece));
+    for (const glm::dvec3& p : meshes.back().position) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+  }
+  const glm::dvec3 centre = 0.5 * (lo + hi);
+  const double size = glm::distance(lo, hi);
+  glm::dvec3 elo(std::numeric_limits<double>::max()), ehi(-elo);
+  for (size_t k = 0; k < meshes.size(); ++k) {
+    glm::dvec3 c(0.0);
+    for (const glm::dvec3& p : meshes[k].position) c += p;
+    c /= static_cast<double>(meshes[k].position.size());
+    const glm::dvec3 d = c - centre;
+    const glm::dvec3 offset =
+        glm::length(d) > 1e-9 * size ? explode * size * glm::normalize(d) : glm::dvec3(0.0);
+    for (const glm::dvec3& p : meshes[k].position) {
+      elo = glm::min(elo, p + offset);
+      ehi = glm::max(ehi, p + offset);
+    }
+    const std::string piece_name = sanitised(name) + "_piece" + std::to_string(set.pieces[k].cell);
+    assets.instances.push_back({piece_name, static_cast<int>(k), {1, 0, 0, 0}, offset});
+    assets.meshes.push_back(asset_mesh(meshes[k], piece_name));
+  }
+  const double az = glm::radians(20.0), el = glm::radians(50.0);
+  assets.camera = frame_box(elo, ehi,
+                            {std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el)},
+                            30, static_cast<double>(width) / height);
+  assets.lights = studio_lights(assets.camera);
+  return assets;
+}
+
+glm::dvec3 largest_cap_normal(const Piece& piece) {
+  double best = 0;
+  glm::dvec3 normal(0.0);
+  for (const PiecePart& part : piece.parts) {
+    if (part.kind != PartKind::Cap || part.mesh.normal.empty()) continue;
+    double area = 0;
+    for (const glm::uvec3& t : part.mesh.triangle)
+      area += 0.5 * glm::length(glm::cross(part.mesh.position[t[1]] - part.mesh.position[t[0]],
+                                           part.mesh.position[t[2]] - part.mesh.position[t[0]]));
+    if (area > best) {
+      best = area;
+      normal = part.mesh.normal[0];
+    }
+  }
+  return normal;
+}
+
+SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptions& options,
+                        SceneStats* stats) {
+  if (!options.diffusion) throw std::invalid_argument("build_scene: no diffusion backend");
+  SceneStats local;
+  SceneStats& st = stats ? *stats : local;
+  st = SceneStats{};
+  int total = 0;
+  for (const SceneItem& item : scene.items) total += item.count;
+
+  std::vector<ShadedMesh> shapes;  // kept pieces, object frame
+  std::vector<glm::dvec3> caps;
+  std::vector<std::string> names;
+  for (size_t i = 0; i < scene.items.size(); ++i) {
+    const SceneItem& item = scene.items[i];
+    Template tmpl = load_template(item.template_path);
+    tmpl.variation_amount *= item.variation;
+    for (int j = 0; j < item.count; ++j) {
+      const int ii = static_cast<int>(i);
+      auto t0 = Clock::now();
+      const Variant variant = make_variant(tmpl, object_seed(seed, ii, j, 1));
+      st.seconds_variants += seconds_since(t0);
+      t0 = Clock::now();
+      const auto diffusion = options.diffusion(variant.model);
+      st.seconds_backend += seconds_since(t0);
+      PieceOptions piece_options;
+      piece_options.section.edge_m = variant.tmpl.edge_m;
+      PieceSet set;
+      try {
+        set = cut_pieces(variant.model, item.cut, *diffusion, piece_options);
+      } catch (const std::domain_error&) {  // every plane misses this variant: keep it whole
+        set = cut_pieces(variant.model, CutSpec{}, *diffusion, piece_options);
+      }
+      st.seconds_sections += set.seconds_sections;
+      st.seconds_diffuse += set.seconds_diffuse;
+      st.seconds_clip += set.seconds_clip;
+      st.diffused_points += set.diffused_points;
+      const size_t n = set.pieces.size();
+      const size_t keep = std::clamp<size_t>(
+          static_cast<size_t>(std::llround(item.keep * static_cast<double>(n))), 1, n);
+      for (size_t k : choose(n, keep, object_seed(seed, ii, j, 2))) {
+        const Piece& piece = set.pieces[k];
+        shapes.push_back(merge_parts(piece));
+        caps.push_back(largest_cap_normal(piece));
+        names.push_back("i" + std::to_string(i) + "_" + sanitised(tmpl.name) + "_" +
+                        std::to_string(j) + "_piece" + std::to_string(piece.cell));
+      }
+      ++st.objects;
+      if (options.progress)
+        options.progress(st.objects, total,
+                         tmpl.name + " " + std::to_string(j + 1) + "/" +
+                             std::to_string(item.count) + ": " + std::to_string(keep) +
+                             " of " + std::to_string(n) + " pieces");
+    }
+  }
+  st.pieces = static_cast<int>(shapes.size());
+
+  // Placement, in a seeded order so that the kinds mix.
+  const auto t0 = Clock::now();
+  std::vector<size_t> order(shapes.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  {
+    Rng rng(derive_seed(seed, {~0ull, 3}));
+    for (size_t k = order.size(); k > 1; --k)
+      std::swap(order[k - 1], order[rng.below(static_cast<uint32_t>(k))]);
+  }
+  std::vector<LayoutPiece> layout;
+  for (size_t k : order) layout.push_back({&shapes[k], caps[k]});
+  LayoutOptions layout_options = options.layout;
+  layout_options.to_camera =
+      scene.camera ? glm::normalize(scene.camera->eye - scene.camera->target) : kDefaultToCamera;
+  const std::vector<Placement> placements =
+      layout_pieces(layout, scene.container, layout_options, derive_seed(seed, {~0ull, 4}));
+  st.seconds_layout = seconds_since(t0);
+
+  SceneAssets assets;
+  assets.name = scene.name;
+  assets.width = scene.render.width;
+  assets.height = scene.render.height;
+  assets.background = {0.72, 0.72, 0.74};
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  if (auto container = container_mesh(scene.container)) {
+    for (const glm::dvec3& p : container->position) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    assets.instances.push_back({container->name, 0, {1, 0, 0, 0}, {0, 0, 0}});
+    assets.meshes.push_back(std::move(*container));
+  }
+  for (size_t k = 0; k < order.size(); ++k) {
+    const Placement& place = placements[k];
+    if (!place.placed) continue;
+    const size_t s = order[k];
+    for (const glm::dvec3& p : shapes[s].position) {
+      const glm::dvec3 q = place.translation + place.rotation * p;
+      lo = glm::min(lo, q);
+      hi = glm::max(hi, q);
+    }
+    AssetMesh mesh = asset_mesh(shapes[s], names[s]);
+    st.triangles += mesh.triangle.size();
+    assets.instances.push_back(
+        {names[s], static_cast<int>(assets.meshes.size()), place.rotation, place.translation});
+    assets.meshes.push_back(std::move(mesh));
+    ++st.placed;
+  }
+  if (assets.instances.empty()) lo = hi = glm::dvec3(0.0);
+  assets.camera = scene_camera(scene, lo, hi);
+  assets.lights = studio_lights(assets.camera);
+  return assets;
+}
+
+}  // namespace cutaway

@@ -1,0 +1,82 @@
+// The main job (design/architecture.md, data flow): from a parsed scene to SceneAssets ready for
+// glTF, POV-Ray or the OpenGL preview. For each item and object: a seeded variant of the
+// template (variation.h), cut into pieces (pieces.h), a seeded share of them kept; then all
+// pieces placed in the container (scene_layout.h), with a camera and lights.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "diffusion/diffusion.h"
+#include "pieces.h"
+#include "scene.h"
+#include "scene_assets.h"
+#include "scene_layout.h"
+
+namespace cutaway {
+
+/// Makes the diffusion backend for one object's DS model (the CLI's --backend choice).
+using DiffusionFactory = std::function<std::unique_ptr<DiffusionBackend>(const DsModel&)>;
+
+/// Options of build_scene.
+struct SceneBuildOptions {
+  DiffusionFactory diffusion;  ///< required
+  /// Called after each object with (objects done, objects in all, a line of text); may be empty.
+  std::function<void(int, int, const std::string&)> progress;
+  LayoutOptions layout;        ///< its to_camera is replaced by the scene camera's direction
+};
+
+/// Counts and timings of one build_scene call (wall seconds).
+struct SceneStats {
+  int objects = 0, pieces = 0, placed = 0;  ///< pieces: kept after `keep`; placed: of those
+  size_t triangles = 0, diffused_points = 0;
+  double seconds_variants = 0;  ///< make_variant (sweep, synthesis, grains, checks)
+  double seconds_backend = 0;   ///< building the diffusion backends (BVH or GL setup)
+  double seconds_sections = 0;  ///< cap cross-sections (triangulation + PMVC)
+  double seconds_diffuse = 0;   ///< of which PMVC
+  double seconds_clip = 0;      ///< clipping the skin and walls, stitching
+  double seconds_layout = 0;    ///< placement
+};
+
+/// The seed of item `item`, object `object`, for `purpose` (1: variant, 2: which pieces are
+/// kept): derive_seed(scene_seed, {item, object, purpose}), so adding an item does not change
+/// the others (spec/scene-format.md, Determinism).
+uint64_t object_seed(uint64_t scene_seed, int item, int object, int purpose);
+
+/// The scene's camera (its `camera` block, or one framing the container and the pile from the
+/// front, 50 degrees above the horizon), aspect from render width / height.
+AssetCamera scene_camera(const Scene& scene, const glm::dvec3& pile_min,
+                         const glm::dvec3& pile_max);
+
+/// A camera looking at the box lo..hi from direction `to_camera` (unit), so that the box's
+/// bounding sphere fills the vertical field of view `fov_deg` with a small margin.
+AssetCamera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3& to_camera,
+                      double fov_deg, double aspect);
+
+/// The studio lights of every scene: a key light from above left of the camera (3 lux), a
+/// fill from the right (1.2 lux) and a rim light from behind (1 lux); directional.
+std::vector<AssetLight> studio_lights(const AssetCamera& camera);
+
+/// A shaded mesh (e.g. merge_parts of a piece) as an exportable mesh named `name`.
+AssetMesh asset_mesh(const ShadedMesh& mesh, const std::string& name);
+
+/// The pieces of one object for `cutaway piece`: each pulled away from the object's centre by
+/// `explode` times the object's size (bounding-box diagonal) along the direction to its own
+/// centroid, framed from the front-right 50 degrees up, studio lights, white background.
+SceneAssets piece_assets(const PieceSet& set, const std::string& name, double explode,
+                         int width, int height);
+
+/// The outward normal of the piece's largest cap (by area), object frame; zero if it has none.
+glm::dvec3 largest_cap_normal(const Piece& piece);
+
+/// Builds the whole scene with `seed` (the file's seed unless the command line gives one).
+/// Deterministic: the same scene, templates and seed give the same assets, whatever the
+/// thread count of the diffusion backends.
+/// @throws InputError when a template cannot be read or built; std::domain_error never (a cut
+///         that misses an object leaves it whole)
+SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptions& options,
+                        SceneStats* stats = nullptr);
+
+}  // namespace cutaway
