@@ -1,5 +1,5 @@
 # cutaway: the two commands of the README, and what they need.
-#   make demo   installs dependencies, builds (Release), runs the main job on the default template
+#   make demo   installs dependencies, builds (Release), runs the main job on the default scene
 #   make test   installs dependencies and test tools, builds, runs every test
 BUILD ?= build
 JOBS  ?= $(shell nproc)
@@ -22,9 +22,8 @@ build: deps $(BUILD)/build.ninja
 
 demo: build
 	@mkdir -p out
-	./$(BUILD)/cutaway model templates/tomato.yaml -o out/tomato.glb --png out/tomato.png
-	./$(BUILD)/cutaway section templates/tomato.yaml --plane y=26 -o out/tomato-section.glb --png out/tomato-section.png
-	@echo "demo: wrote out/tomato.glb, out/tomato.png, out/tomato-section.glb, out/tomato-section.png"
+	./$(BUILD)/cutaway scene scenes/salad.yaml -o out/salad.glb -o out/salad.pov --png out/salad.png --render out/salad-povray.png
+	@echo "demo: wrote out/salad.glb, out/salad.pov, out/salad.png (OpenGL preview), out/salad-povray.png (POV-Ray)"
 
 test: deps-test $(BUILD)/build.ninja
 	cmake --build $(BUILD) -j $(JOBS)

@@ -59,9 +59,11 @@ Footprint footprint(const std::vector<glm::dvec3>& p, const std::vector<glm::uve
             plo = std::min(plo, y);
             phi = std::max(phi, y);
           }
-          lower = std::max(lower, plo);
-          upper = std::min(upper, phi);
-          if (lower > upper) lower = upper = 0.5 * (lower + upper);
+          // Disjoint ranges: the triangle misses the cell but for rounding; keep its range.
+          if (plo <= ymax && phi >= ymin) {
+            lower = std::max(lower, plo);
+            upper = std::min(upper, phi);
+          }
         }
         const size_t k = static_cast<size_t>(i - f.a0) * f.nb + (j - f.b0);
         f.bottom[k] = std::min(f.bottom[k], lower);

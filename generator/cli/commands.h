@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace cutaway::cli {
 
@@ -37,9 +38,11 @@ struct PieceArgs {
 };
 int run_piece(const PieceArgs& args, const Common& common);
 
-/// `cutaway scene SCENE [--seed S] -o OUT.glb|.gltf|.pov [--png preview.png] [--render out.png]`.
+/// `cutaway scene SCENE [--seed S] -o OUT.glb|.gltf|.pov [-o ...] [--png preview.png]
+/// [--render out.png]`: one build, any number of exports.
 struct SceneArgs {
-  std::string scene_path, output, png, render;
+  std::string scene_path, png, render;
+  std::vector<std::string> outputs;
   int64_t seed = -1;  ///< >= 0: overrides the scene's seed
   int cube = 16;
   bool quiet = false;

@@ -420,8 +420,10 @@ int main(int argc, char** argv) {
   scene->add_option("SCENE", scene_args.scene_path, "scene file (.yaml)")->required();
   scene->add_option("--seed", scene_args.seed, "seed (default: the scene file's)")
       ->check(CLI::NonNegativeNumber);
-  scene->add_option("-o,--output", scene_args.output, "scene to write: .glb, .gltf or .pov")
-      ->required();
+  scene->add_option("-o,--output", scene_args.outputs,
+                    "scene to write: .glb, .gltf or .pov; repeat for several formats")
+      ->required()
+      ->allow_extra_args(false);
   scene->add_option("--png", scene_args.png, "OpenGL preview (PNG)");
   scene->add_option("--render", scene_args.render, "POV-Ray render (PNG)");
   scene->add_option("--cube", scene_args.cube, "cube-map texels per face edge for PMVC")

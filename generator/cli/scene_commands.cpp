@@ -49,19 +49,24 @@ void make_parent(const std::string& path) {
   if (!parent.empty()) std::filesystem::create_directories(parent);
 }
 
-/// Writes `assets` as `path` (glTF or POV-Ray by extension), `png` (OpenGL preview) and
-/// `render` (POV-Ray), each when asked for. Returns the seconds spent on each.
+/// Writes `assets` as each of `paths` (glTF or POV-Ray by extension), `png` (OpenGL preview)
+/// and `render` (POV-Ray), each when asked for. Returns the seconds spent on each.
 struct Written {
   double export_s = 0, preview_s = 0, povray_s = 0;
 };
-Written write_outputs(const SceneAssets& assets, const std::string& path, const std::string& png,
-                      const std::string& render, int threads) {
+Written write_outputs(const SceneAssets& assets, const std::vector<std::string>& paths,
+                      const std::string& png, const std::string& render, int threads) {
   Written w;
   auto t0 = Clock::now();
-  if (!path.empty()) {
+  std::string pov_written;
+  for (const std::string& path : paths) {
     make_parent(path);
-    if (output_format("-o", path) == Format::Gltf) write_scene_gltf(path, assets);
-    else write_scene_pov(path, assets);
+    if (output_format("-o", path) == Format::Gltf) {
+      write_scene_gltf(path, assets);
+    } else {
+      write_scene_pov(path, assets);
+      pov_written = path;
+    }
     spdlog::info("wrote {}", path);
   }
   w.export_s = seconds_since(t0);
@@ -76,9 +81,9 @@ Written write_outputs(const SceneAssets& assets, const std::string& path, const 
     t0 = Clock::now();
     make_parent(render);
     // POV-Ray renders a .pov file: the one written, or a temporary one.
-    std::filesystem::path pov = path;
+    std::filesystem::path pov = pov_written;
     std::filesystem::path temp;
-    if (path.empty() || output_format("-o", path) != Format::Pov) {
+    if (pov_written.empty()) {
       temp = std::filesystem::temp_directory_path() /
              ("cutaway-" + std::to_string(::getpid()) + "-" + assets.name + ".pov");
       write_scene_pov(temp, assets);
@@ -139,7 +144,9 @@ int run_piece(const PieceArgs& a, const Common& common) {
   spdlog::info("{}: {} pieces, {} triangles, {} cut planes", tmpl.name, set.pieces.size(),
                triangles, set.cells.planes.size());
   const SceneAssets assets = piece_assets(set, tmpl.name, 0.18, a.width, a.height);
-  const Written w = write_outputs(assets, a.output, a.png, "", common.threads);
+  std::vector<std::string> outputs;
+  if (!a.output.empty()) outputs.push_back(a.output);
+  const Written w = write_outputs(assets, outputs, a.png, "", common.threads);
   if (common.stats) {
     std::fprintf(stderr,
                  "{\"template\": \"%s\", \"backend\": \"%s\", \"pieces\": %zu, \"planes\": %zu, "
@@ -155,8 +162,8 @@ int run_piece(const PieceArgs& a, const Common& common) {
 }
 
 int run_scene(const SceneArgs& a, const Common& common) {
-  if (a.output.empty()) throw UsageError("-o is required (.glb, .gltf or .pov)");
-  output_format("-o", a.output);
+  if (a.outputs.empty()) throw UsageError("-o is required (.glb, .gltf or .pov)");
+  for (const std::string& path : a.outputs) output_format("-o", path);
   if (!a.png.empty()) require_extension("--png", a.png, ".png");
   if (!a.render.empty()) require_extension("--render", a.render, ".png");
   const auto t0 = Clock::now();
@@ -183,7 +190,7 @@ int run_scene(const SceneArgs& a, const Common& common) {
                  st.pieces - st.placed, st.pieces);
   spdlog::info("{}: {} objects, {} pieces placed, {} triangles (seed {})", scene.name,
                st.objects, st.placed, st.triangles, seed);
-  const Written w = write_outputs(assets, a.output, a.png, a.render, common.threads);
+  const Written w = write_outputs(assets, a.outputs, a.png, a.render, common.threads);
   if (common.stats) {
     std::fprintf(
         stderr,
