@@ -102,6 +102,28 @@ struct GrainSpec {
   std::string path;
 };
 
+/// One frequency band of the Perlin colour modulation (design/algorithms.md §6; doc/npr.md).
+/// Its weight for an unmodulated colour c is amplitude * closeness(c), where closeness is 1 for
+/// an untinted band and otherwise falls smoothly from 1 at the tint to 0 at `reach` (distance
+/// in sRGB 0..1 components): (1 - (d / reach)^2)^2 for d < reach.
+struct PerlinBand {
+  double frequency_per_m = 1.0;  ///< noise lattice cells per metre (1 / the file's `period`)
+  double amplitude = 0.0;        ///< relative colour change per unit of noise at strength 1, 0..1
+  bool tinted = false;           ///< false: the band acts on every colour with weight 1
+  glm::dvec3 tint{0.0};          ///< linear RGB; the colour the band acts on most
+  double reach = 0.25;           ///< sRGB distance at which the weight reaches 0, > 0
+};
+
+/// Non-photorealistic rendering parameters of a template (spec: `npr`, doc/npr.md). A scene
+/// scales the modulation with its render.perlin strength.
+struct NprSettings {
+  /// The Perlin bands. When the template has no `npr.perlin`, two untinted bands derived from
+  /// the skin's height h: fine grain (period h / 16, amplitude 0.2) and broad mottling (period
+  /// h / 5, amplitude 0.3). An empty list turns the modulation off for the template.
+  std::vector<PerlinBand> perlin_bands;
+  bool perlin_from_file = false;  ///< whether the bands were written in the file
+};
+
 /// A whole parsed, validated template.
 struct Template {
   std::string name;
@@ -119,6 +141,7 @@ struct Template {
   std::vector<GrainSpec> grains;
   int skin = -1;                      ///< index of the surface with role skin (-1: none, only
                                       ///< for symmetry none)
+  NprSettings npr;                    ///< NPR parameters (spec: `npr`)
 };
 
 }  // namespace cutaway

@@ -289,6 +289,56 @@ GrainSpec parse_grain(const YamlField& f, const Template& t) {
   return g;
 }
 
+/// The most Perlin bands a template may have (each costs one noise evaluation per vertex).
+constexpr size_t kMaxPerlinBands = 8;
+
+/// `npr` (spec: npr, doc/npr.md): {perlin: {bands: [{period, amplitude, tint, reach}, ...]}}.
+NprSettings parse_npr(const YamlField& f, double metres_per_unit) {
+  f.allow_only({"perlin"});
+  NprSettings npr;
+  const auto perlin = f.get("perlin");
+  if (!perlin) return npr;
+  perlin->allow_only({"bands"});
+  const YamlField bands = perlin->require("bands");
+  if (bands.size() > kMaxPerlinBands) {
+    bands.fail("at most " + std::to_string(kMaxPerlinBands) + " bands, not " +
+               std::to_string(bands.size()));
+  }
+  npr.perlin_from_file = true;
+  for (size_t i = 0; i < bands.size(); ++i) {
+    const YamlField band = bands[i];
+    band.allow_only({"period", "amplitude", "tint", "reach"});
+    PerlinBand b;
+    const YamlField period = band.require("period");
+    const double period_m = parse_length(period, metres_per_unit);
+    if (!(period_m >= 1e-6)) period.fail("the period must be at least 1 micrometre");
+    b.frequency_per_m = 1.0 / period_m;
+    b.amplitude = band.require("amplitude").number_in(0.0, 1.0);
+    if (auto tint = band.get("tint")) {
+      b.tinted = true;
+      b.tint = parse_colour(*tint);
+    }
+    if (auto reach = band.get("reach")) {
+      if (!b.tinted) reach->fail("a reach needs a tint (an untinted band acts on every colour)");
+      b.reach = reach->number_in(0.0, 1.75);
+      if (b.reach <= 0) reach->fail("must be positive");
+    }
+    npr.perlin_bands.push_back(b);
+  }
+  return npr;
+}
+
+/// The bands a template without `npr.perlin` gets (template.h, NprSettings): untinted fine
+/// grain and broad mottling, their periods fractions of the skin's height (metres).
+std::vector<PerlinBand> default_perlin_bands(double height_m) {
+  PerlinBand fine, broad;
+  fine.frequency_per_m = 16.0 / height_m;
+  fine.amplitude = 0.2;
+  broad.frequency_per_m = 5.0 / height_m;
+  broad.amplitude = 0.3;
+  return {fine, broad};
+}
+
 const char* units_name(const Template& t) {
   return t.metres_per_unit == 1.0 ? "m" : (t.metres_per_unit == 1e-2 ? "cm" : "mm");
 }
@@ -315,7 +365,7 @@ Template parse_template(std::string_view text, const std::string& file,
                         const std::string& base_dir) {
   const YamlField root = parse_yaml(text, file);
   root.allow_only({"format", "name", "description", "units", "symmetry", "resolution",
-                   "variation", "surfaces", "grains"});
+                   "variation", "surfaces", "grains", "npr"});
   Template t;
   t.file = file;
 
@@ -417,6 +467,8 @@ Template parse_template(std::string_view text, const std::string& file,
     for (size_t i = 0; i < grains->size(); ++i) t.grains.push_back(parse_grain((*grains)[i], t));
   }
 
+  if (auto npr = root.get("npr")) t.npr = parse_npr(*npr, t.metres_per_unit);
+
   t.edge_loc = FileLoc{file, 1, 1};
   if (auto res = root.get("resolution")) {
     res->allow_only({"edge"});
@@ -439,6 +491,7 @@ Template parse_template(std::string_view text, const std::string& file,
          << "): the meshes would not fit in memory";
     throw InputError(t.edge_loc, "resolution.edge", rule.str());
   }
+  if (!t.npr.perlin_from_file) t.npr.perlin_bands = default_perlin_bands(h);
   return t;
 }
 

@@ -155,6 +155,14 @@ std::vector<BadCase> bad_cases() {
       fixture("duplicate_names", 15, 11, "surfaces[1].name", "'skin' is used twice"),
       fixture("grain_on_missing_surface", 17, 9, "grains[0].on", "no surface is named 'gel'"),
       fixture("missing_mesh_file", 10, 11, "surfaces[0].file", "does not exist"),
+      // NPR (doc/npr.md).
+      fixture("npr_unknown_field", 19, 37, "npr.perlin.bands[1].colour",
+              "unknown field 'colour'"),
+      fixture("npr_amplitude_out_of_range", 19, 20, "npr.perlin.bands[0].amplitude",
+              "must be between 0 and 1, not 1.5"),
+      fixture("npr_reach_without_tint", 18, 46, "npr.perlin.bands[0].reach", "needs a tint"),
+      fixture("npr_period_zero", 18, 18, "npr.perlin.bands[0].period", "at least 1 micrometre"),
+      fixture("npr_tint_not_colour", 18, 45, "npr.perlin.bands[0].tint", "not 'red'"),
       // Detected after sweeping (generator/model_checks.cpp): at the surface's mapping.
       fixture("nested_crosses_skin", 15, 5, "surfaces[1]", "touches or crosses the skin 'skin'"),
       fixture("nested_outside_skin", 15, 5, "surfaces[1]", "lies outside the skin 'skin'"),
