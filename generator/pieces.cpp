@@ -151,6 +151,8 @@ PieceSet cut_pieces(const DsModel& model, const CutSpec& cut, const DiffusionBac
   }
   set.seconds_clip = seconds_since(clip_start);
   if (set.pieces.empty()) throw std::domain_error("the cut misses the object");
+  if (cut.type == CutType::Plane && set.pieces.size() < 2)
+    throw std::domain_error("the plane misses the object");
   return set;
 }
 

@@ -63,7 +63,8 @@ struct PieceSet {
 /// their other side, facing the hollow. Grains and other structure surfaces only colour the
 /// caps. Deterministic.
 /// @param model  its skin (surfaces[0]) closed and outward
-/// @throws std::domain_error when the cut misses the object entirely (no piece)
+/// @throws std::domain_error when the cut misses the object entirely (no piece), or a `plane`
+///         cut leaves it whole
 PieceSet cut_pieces(const DsModel& model, const CutSpec& cut, const DiffusionBackend& diffusion,
                     const PieceOptions& options);
 

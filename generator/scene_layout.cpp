@@ -16,8 +16,9 @@ namespace {
 
 constexpr double kBlocked = std::numeric_limits<double>::infinity();
 
-/// A conservative footprint: per cell of a grid anchored at the origin, a lower bound of the
-/// piece's bottom and an upper bound of its top (metres), over cells [a0, a0 + na) x [b0, ...).
+/// A piece's footprint: per cell of a grid anchored at the origin, the lowest and highest
+/// points of the piece's surface over that cell (metres), over cells [a0, a0 + na) x [b0, ...).
+/// Exact (up to rounding) since every triangle is clipped to every cell it overlaps.
 struct Footprint {
   int a0 = 0, b0 = 0, na = 0, nb = 0;
   std::vector<double> bottom, top;  // na * nb; bottom = +inf where the piece is absent
@@ -37,37 +38,38 @@ Footprint footprint(const std::vector<glm::dvec3>& p, const std::vector<glm::uve
   f.nb = static_cast<int>(std::floor(hi.z / cs)) - f.b0 + 1;
   f.bottom.assign(static_cast<size_t>(f.na) * f.nb, kBlocked);
   f.top.assign(f.bottom.size(), -kBlocked);
+  std::vector<glm::dvec3> poly, next;
   for (const glm::uvec3& t : triangles) {
     const glm::dvec3 a = p[t[0]], b = p[t[1]], c = p[t[2]];
-    const double ymin = std::min({a.y, b.y, c.y}), ymax = std::max({a.y, b.y, c.y});
-    const glm::dvec3 n = glm::cross(b - a, c - a);
-    const bool sloped = std::fabs(n.y) > 1e-6 * glm::length(n);
     const int a_lo = static_cast<int>(std::floor(std::min({a.x, b.x, c.x}) / cs));
     const int a_hi = static_cast<int>(std::floor(std::max({a.x, b.x, c.x}) / cs));
     const int b_lo = static_cast<int>(std::floor(std::min({a.z, b.z, c.z}) / cs));
     const int b_hi = static_cast<int>(std::floor(std::max({a.z, b.z, c.z}) / cs));
     for (int i = a_lo; i <= a_hi; ++i) {
       for (int j = b_lo; j <= b_hi; ++j) {
-        double lower = ymin, upper = ymax;
-        if (sloped) {
-          // A linear function's extremes over the cell are at its corners: bounds over the part
-          // of the triangle in the cell too.
-          double plo = kBlocked, phi = -kBlocked;
-          for (int k = 0; k < 4; ++k) {
-            const double x = (i + (k & 1)) * cs, z = (j + (k >> 1)) * cs;
-            const double y = a.y - (n.x * (x - a.x) + n.z * (z - a.z)) / n.y;
-            plo = std::min(plo, y);
-            phi = std::max(phi, y);
+        // The part of the triangle over the cell (clipped by its four sides in x and z, y
+        // interpolated): its lowest and highest points are among the clipped vertices.
+        poly = {a, b, c};
+        const double bounds[4] = {i * cs, (i + 1) * cs, j * cs, (j + 1) * cs};
+        for (int side = 0; side < 4 && !poly.empty(); ++side) {
+          const int axis = side < 2 ? 0 : 2;
+          const double sign = side % 2 == 0 ? 1 : -1, limit = bounds[side];
+          next.clear();
+          for (size_t k = 0; k < poly.size(); ++k) {
+            const glm::dvec3& u = poly[k];
+            const glm::dvec3& v = poly[(k + 1) % poly.size()];
+            const double du = sign * (u[axis] - limit), dv = sign * (v[axis] - limit);
+            if (du >= 0) next.push_back(u);
+            if ((du >= 0) != (dv >= 0)) next.push_back(u + (v - u) * (du / (du - dv)));
           }
-          // Disjoint ranges: the triangle misses the cell but for rounding; keep its range.
-          if (plo <= ymax && phi >= ymin) {
-            lower = std::max(lower, plo);
-            upper = std::min(upper, phi);
-          }
+          std::swap(poly, next);
         }
+        if (poly.empty()) continue;
         const size_t k = static_cast<size_t>(i - f.a0) * f.nb + (j - f.b0);
-        f.bottom[k] = std::min(f.bottom[k], lower);
-        f.top[k] = std::max(f.top[k], upper);
+        for (const glm::dvec3& q : poly) {
+          f.bottom[k] = std::min(f.bottom[k], q.y);
+          f.top[k] = std::max(f.top[k], q.y);
+        }
       }
     }
   }
@@ -89,19 +91,9 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
   const double radius = rest_radius(container, options.none_radius_m);
   const int n = static_cast<int>(std::ceil(2 * radius / cs)) + 1;
   const double x0 = -0.5 * (n - 1) * cs;  // cell i covers [x0 + i cs, x0 + (i + 1) cs]
-  // The height field: the container's resting surface, raised by every piece placed.
-  std::vector<double> surface(static_cast<size_t>(n) * n, kBlocked);
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      double h = -kBlocked;
-      for (int k = 0; k < 4 && h < kBlocked; ++k) {
-        const auto r = rest_height(container, x0 + (i + (k & 1)) * cs, x0 + (j + (k >> 1)) * cs,
-                                   options.none_radius_m);
-        h = r ? std::max(h, *r) : kBlocked;
-      }
-      surface[static_cast<size_t>(i) * n + j] = h;
-    }
-  }
+  // The height field of the pile: the top of the pieces placed so far (the container is
+  // checked at the pieces' vertices, exactly: its resting surfaces are convex).
+  std::vector<double> surface(static_cast<size_t>(n) * n, -kBlocked);
 
   const glm::dvec3 up(0, 1, 0);
   const glm::dvec3 facing = glm::normalize(up + glm::normalize(options.to_camera));
@@ -138,15 +130,19 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
     // Candidate positions: random cells; the piece's local cell (a, b) lands on (i + a, j + b).
     auto rest = [&](int i, int j) {
       double y = -kBlocked;
+      const double tx = x0 + i * cs, tz = x0 + j * cs;
+      for (const glm::dvec3& v : q) {
+        const auto h = rest_height(container, v.x + tx, v.z + tz, options.none_radius_m);
+        if (!h) return kBlocked;
+        y = std::max(y, *h - v.y);
+      }
       for (int a = 0; a < f.na; ++a) {
         for (int b = 0; b < f.nb; ++b) {
           const size_t k = static_cast<size_t>(a) * f.nb + b;
           if (f.bottom[k] == kBlocked) continue;
           const int gi = i + f.a0 + a, gj = j + f.b0 + b;
           if (gi < 0 || gj < 0 || gi >= n || gj >= n) return kBlocked;
-          const double s = surface[static_cast<size_t>(gi) * n + gj];
-          if (s == kBlocked) return kBlocked;
-          y = std::max(y, s - f.bottom[k]);
+          y = std::max(y, surface[static_cast<size_t>(gi) * n + gj] - f.bottom[k]);
         }
       }
       return y;

@@ -24,7 +24,7 @@ struct LayoutPiece {
 
 /// Options of layout_pieces.
 struct LayoutOptions {
-  double cell_m = 0.0015;          ///< height-field cell edge, metres
+  double cell_m = 0.001;           ///< height-field cell edge, metres
   int candidates = 64;             ///< random positions tried per piece
   double clearance_m = 0.0002;     ///< gap left between a piece and what it rests on, metres
   double centre_weight = 0.25;     ///< score = rest height + centre_weight * distance to the axis
@@ -43,9 +43,10 @@ struct Placement {
 /// Places `pieces` in the given order. Each piece is turned so that its largest cap faces
 /// halfway between up and `to_camera` (a whole object stands upright), tilted by up to
 /// tilt_deg and spun about that direction at random; then of `candidates` random positions
-/// over the container (every footprint cell must be inside the resting area) the one with the
-/// lowest score is taken, at the lowest height where the piece's conservative footprint (per
-/// cell: a lower bound of its bottom and an upper bound of its top) clears the height field by
+/// over the container (every vertex must be over the resting area) the one with the lowest
+/// score is taken, at the lowest height where every vertex is above the container's resting
+/// surface (exact for its convex surfaces) and the piece's footprint (per cell: its lowest and
+/// highest surface points over the cell) clears the pile's height field, by
 /// clearance_m; the height field then rises to the piece's top. Deterministic in `seed`.
 /// @returns one placement per piece, in input order
 std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
