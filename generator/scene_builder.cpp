@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "colour_modulation.h"
 #include "container_mesh.h"
 #include "random.h"
 #include "template_parser.h"
@@ -60,15 +61,27 @@ AssetCamera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dve
                       double fov_deg, double aspect) {
   AssetCamera cam;
   const glm::dvec3 centre = 0.5 * (lo + hi);
+  const glm::dvec3 back = glm::normalize(to_camera);
+  glm::dvec3 right = glm::cross(-back, cam.up);
+  right = glm::length(right) > 1e-9 ? glm::normalize(right) : glm::dvec3(1, 0, 0);
+  const glm::dvec3 up = glm::cross(right, -back);
+  const double tan_v = std::tan(0.5 * glm::radians(fov_deg)), tan_h = aspect * tan_v;
+  // The distance from the centre at which every corner of the box is in view, with 4 % margin.
+  double distance = 1e-3;
+  for (int k = 0; k < 8; ++k) {
+    const glm::dvec3 c((k & 1 ? hi.x : lo.x) - centre.x, (k & 2 ? hi.y : lo.y) - centre.y,
+                       (k & 4 ? hi.z : lo.z) - centre.z);
+    const double towards = glm::dot(c, back);
+    distance = std::max({distance, towards + std::fabs(glm::dot(c, right)) / tan_h,
+                         towards + std::fabs(glm::dot(c, up)) / tan_v});
+  }
+  distance *= 1.04;
   const double radius = std::max(1e-3, 0.5 * glm::distance(lo, hi));
-  const double half_v = 0.5 * glm::radians(fov_deg);
-  const double half_h = std::atan(aspect * std::tan(half_v));
-  const double distance = 1.02 * radius / std::sin(std::min(half_v, half_h));
   cam.target = centre;
-  cam.eye = centre + glm::normalize(to_camera) * distance;
+  cam.eye = centre + back * distance;
   cam.fov_y_deg = fov_deg;
   cam.aspect = aspect;
-  cam.znear = std::max(1e-3, 0.05 * distance);
+  cam.znear = std::max(1e-3, 0.25 * (distance - radius));
   cam.zfar = distance + 4 * radius;
   return cam;
 }
@@ -220,6 +233,9 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
       for (size_t k : choose(n, keep, object_seed(seed, ii, j, 2))) {
         const Piece& piece = set.pieces[k];
         shapes.push_back(merge_parts(piece));
+        // Perlin colour modulation in the object frame: every piece of one object agrees.
+        modulate_colours(shapes.back(), variant.tmpl.npr, scene.render.perlin,
+                         object_seed(seed, ii, j, 3));
         caps.push_back(largest_cap_normal(piece));
         names.push_back("i" + std::to_string(i) + "_" + sanitised(tmpl.name) + "_" +
                         std::to_string(j) + "_piece" + std::to_string(piece.cell));

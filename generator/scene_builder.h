@@ -1,7 +1,9 @@
 // The main job (design/architecture.md, data flow): from a parsed scene to SceneAssets ready for
 // glTF, POV-Ray or the OpenGL preview. For each item and object: a seeded variant of the
 // template (variation.h), cut into pieces (pieces.h), a seeded share of them kept; then all
-// pieces placed in the container (scene_layout.h), with a camera and lights.
+// pieces placed in the container (scene_layout.h), with a camera and lights. Colours are
+// modulated by Perlin noise in each object's frame (colour_modulation.h) with the scene's
+// render.perlin strength.
 #pragma once
 
 #include <cstdint>
@@ -41,7 +43,7 @@ struct SceneStats {
 };
 
 /// The seed of item `item`, object `object`, for `purpose` (1: variant, 2: which pieces are
-/// kept): derive_seed(scene_seed, {item, object, purpose}), so adding an item does not change
+/// kept, 3: Perlin colour modulation): derive_seed(scene_seed, {item, object, purpose}), so adding an item does not change
 /// the others (spec/scene-format.md, Determinism).
 uint64_t object_seed(uint64_t scene_seed, int item, int object, int purpose);
 
@@ -50,8 +52,9 @@ uint64_t object_seed(uint64_t scene_seed, int item, int object, int purpose);
 AssetCamera scene_camera(const Scene& scene, const glm::dvec3& pile_min,
                          const glm::dvec3& pile_max);
 
-/// A camera looking at the box lo..hi from direction `to_camera` (unit), so that the box's
-/// bounding sphere fills the vertical field of view `fov_deg` with a small margin.
+/// A camera looking at the centre of the box lo..hi from direction `to_camera`, as close as
+/// lets all eight corners of the box into the view (vertical field of view `fov_deg`, `aspect`
+/// = width / height) with a 4 % margin.
 AssetCamera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3& to_camera,
                       double fov_deg, double aspect);
 
