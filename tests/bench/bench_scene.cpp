@@ -1,0 +1,92 @@
+// Scene benchmark (issue: the main job, <= 30 s for the default salad on a 2-core machine with
+// the cpu backend): every scene in scenes/ end to end as `cutaway scene` runs it (parse,
+// variants, cuts, layout, export .glb), best of N, with where the time goes.
+//
+// Run:   make bench
+//   or:  cmake --build build --target bench_scene && ./build/bench_scene [--repeat N] [--threads N]
+// One line per scene, then one line per stage of the default salad.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "gltf_export.h"
+#include "scene_builder.h"
+#include "scene_parser.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+namespace fs = std::filesystem;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int repeat = 1, threads = 0;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (!std::strcmp(argv[i], "--repeat")) repeat = std::max(1, std::atoi(argv[i + 1]));
+    if (!std::strcmp(argv[i], "--threads")) threads = std::atoi(argv[i + 1]);
+  }
+  std::vector<fs::path> scenes;
+  for (const auto& e : fs::directory_iterator(fs::path(CUTAWAY_SOURCE_DIR) / "scenes"))
+    if (e.path().extension() == ".yaml") scenes.push_back(e.path());
+  std::sort(scenes.begin(), scenes.end());
+  const double target_s = 30;
+  for (const fs::path& path : scenes) {
+    double best = 1e300;
+    cutaway::SceneStats best_stats;
+    double best_parse = 0, best_export = 0;
+    size_t bytes = 0;
+    for (int r = 0; r < repeat; ++r) {
+      const auto t0 = Clock::now();
+      const cutaway::Scene scene = cutaway::load_scene(path.string());
+      const double parse = seconds_since(t0);
+      cutaway::SceneBuildOptions options;
+      options.diffusion = [threads](const cutaway::DsModel& model) {
+        return cutaway::make_cpu_diffusion(model, {16, threads});
+      };
+      cutaway::SceneStats stats;
+      const cutaway::SceneAssets assets = cutaway::build_scene(scene, scene.seed, options, &stats);
+      const auto t1 = Clock::now();
+      const std::string glb = cutaway::scene_to_glb(assets);
+      const double exported = seconds_since(t1);
+      const double total = seconds_since(t0);
+      if (total < best) {
+        best = total;
+        best_stats = stats;
+        best_parse = parse;
+        best_export = exported;
+        bytes = glb.size();
+      }
+    }
+    std::printf("%-12s %2d objects %3d pieces %7zu triangles %6zu PMVC points => %.2f s "
+                "(glb %.1f MB)%s\n",
+                path.stem().c_str(), best_stats.objects, best_stats.placed, best_stats.triangles,
+                best_stats.diffused_points, best, bytes / 1e6,
+                path.stem() == "salad"
+                    ? (best <= target_s ? "  [target <= 30 s: met]" : "  [target <= 30 s: MISSED]")
+                    : "");
+    if (path.stem() == "salad") {
+      const auto line = [&](const char* stage, double s) {
+        std::printf("  salad %-28s %6.2f s  %5.1f %%\n", stage, s, 100 * s / best);
+      };
+      line("parse scene + templates", best_parse);
+      line("variants (sweep, synthesis)", best_stats.seconds_variants);
+      line("diffusion backends (BVH)", best_stats.seconds_backend);
+      line("cap sections: triangulation",
+           best_stats.seconds_sections - best_stats.seconds_diffuse);
+      line("cap sections: PMVC diffusion", best_stats.seconds_diffuse);
+      line("clip skin + stitch seams", best_stats.seconds_clip);
+      line("layout", best_stats.seconds_layout);
+      line("export .glb", best_export);
+    }
+  }
+  return 0;
+}
