@@ -4,7 +4,7 @@
 BUILD ?= build
 JOBS  ?= $(shell nproc)
 
-.PHONY: all deps deps-test build demo test fuzz bench clean
+.PHONY: all deps deps-test build demo test fuzz bench gallery clean
 
 all: build
 
@@ -28,6 +28,9 @@ demo: build
 test: deps-test $(BUILD)/build.ninja
 	cmake --build $(BUILD) -j $(JOBS)
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+gallery: build
+	bash scripts/make-gallery.sh
 
 bench: build
 	cmake --build $(BUILD) --target benchmarks -j $(JOBS)

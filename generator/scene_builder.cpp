@@ -156,8 +156,10 @@ SceneAssets piece_assets(const PieceSet& set, const std::string& name, double ex
     for (const glm::dvec3& p : meshes[k].position) c += p;
     c /= static_cast<double>(meshes[k].position.size());
     const glm::dvec3 d = c - centre;
-    const glm::dvec3 offset =
-        glm::length(d) > 1e-9 * size ? explode * size * glm::normalize(d) : glm::dvec3(0.0);
+    // Apart by a share of the piece's own offset (slices spread evenly) plus a fixed gap.
+    const glm::dvec3 offset = glm::length(d) > 1e-9 * size
+                                  ? explode * (2.0 * d + 0.25 * size * glm::normalize(d))
+                                  : glm::dvec3(0.0);
     for (const glm::dvec3& p : meshes[k].position) {
       elo = glm::min(elo, p + offset);
       ehi = glm::max(ehi, p + offset);

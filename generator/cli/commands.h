@@ -33,8 +33,9 @@ struct Common {
 struct PieceArgs {
   std::string template_path, cut, output, png;
   int64_t seed = -1;  ///< >= 0: cut the variant of this seed instead of the template
-  int width = 1024, height = 768;
+  int width = 800, height = 600;
   int cube = 16;
+  double perlin = 1.0;  ///< Perlin colour modulation strength (the template's npr bands)
 };
 int run_piece(const PieceArgs& args, const Common& common);
 

@@ -203,6 +203,7 @@ struct VariantsArgs {
   std::string shard;  ///< "K/M" when shard_given
   bool shard_given = false;
   int sheet = 64;     ///< contact sheet: at most this many tiles (0: no sheet)
+  int tile = 256;     ///< contact-sheet tile size, pixels
 };
 
 /// The K-th of M shares of the variants 0..count-1: contiguous blocks, variant i in shard K
@@ -321,7 +322,8 @@ int run_variants(const VariantsArgs& a, const std::string& backend, int threads,
     }
   }
   if (!sections.empty()) {
-    const cutaway::SectionTileOptions tile_options;
+    cutaway::SectionTileOptions tile_options;
+    tile_options.tile_px = a.tile;
     std::vector<cutaway::Image> tiles = cutaway::render_section_tiles(sections, tile_options);
     for (int m : missing) {  // an empty tile of the same size where a section is missing
       cutaway::Image blank = tiles.front();
@@ -398,6 +400,9 @@ int main(int argc, char** argv) {
                        "contact-sheet.png: the mid-height horizontal cuts of the first N "
                        "variants (of the shard) at one scale; 0: none")
       ->check(CLI::Range(0, 256));
+  variants->add_option("--tile", variants_args.tile,
+                       "contact-sheet tile size in pixels (the largest cut's extent)")
+      ->check(CLI::Range(16, 4096));
 
   cutaway::cli::PieceArgs piece_args;
   CLI::App* piece = app.add_subcommand(
@@ -413,6 +418,9 @@ int main(int argc, char** argv) {
   piece->add_option("--png", piece_args.png, "PNG of the pieces pulled slightly apart");
   piece->add_option("--cube", piece_args.cube, "cube-map texels per face edge for PMVC")
       ->check(CLI::Range(2, 256));
+  piece->add_option("--perlin", piece_args.perlin,
+                    "Perlin colour modulation strength (0: off; default 1)")
+      ->check(CLI::Range(0.0, 10.0));
 
   cutaway::cli::SceneArgs scene_args;
   CLI::App* scene = app.add_subcommand(

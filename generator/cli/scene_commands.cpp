@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "atomic_file.h"
+#include "colour_modulation.h"
 #include "commands.h"
 #include "diffusion_backends.h"
 #include "gltf_export.h"
@@ -138,12 +139,16 @@ int run_piece(const PieceArgs& a, const Common& common) {
     throw UsageError("--cut " + a.cut + ": " + e.what());
   }
   const double t_cut = seconds_since(t1);
+  // Perlin colour modulation in the object frame (the seed's, or 0 for the template).
+  for (Piece& p : set.pieces)
+    for (PiecePart& part : p.parts)
+      modulate_colours(part.mesh, tmpl.npr, a.perlin, a.seed >= 0 ? static_cast<uint64_t>(a.seed) : 0);
   size_t triangles = 0;
   for (const Piece& p : set.pieces)
     for (const PiecePart& part : p.parts) triangles += part.mesh.triangle.size();
   spdlog::info("{}: {} pieces, {} triangles, {} cut planes", tmpl.name, set.pieces.size(),
                triangles, set.cells.planes.size());
-  const SceneAssets assets = piece_assets(set, tmpl.name, 0.18, a.width, a.height);
+  const SceneAssets assets = piece_assets(set, tmpl.name, 0.3, a.width, a.height);
   std::vector<std::string> outputs;
   if (!a.output.empty()) outputs.push_back(a.output);
   const Written w = write_outputs(assets, outputs, a.png, "", common.threads);

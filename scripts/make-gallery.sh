@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Regenerates the README's pictures in doc/ with the cutaway binary (`make gallery`): models,
+# cuts, variants, pieces and the default salad (OpenGL preview and POV-Ray render). Seeded and
+# deterministic: the same program gives the same pictures.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cutaway=${CUTAWAY:-./build/cutaway}
+run() { echo "+ cutaway $*" >&2; "$cutaway" -q --backend cpu "$@"; }
+
+run model templates/tomato.yaml --png doc/tomato-model.png --size 400
+run section templates/tomato.yaml --plane y=26 --png doc/tomato-section.png --size 400
+run variants templates/tomato.yaml --count 41 --seed 1 --sheet 41 --tile 80 -o /tmp/cutaway-gallery-variants
+cp /tmp/cutaway-gallery-variants/contact-sheet.png doc/tomato-variants.png
+rm -rf /tmp/cutaway-gallery-variants
+run piece templates/tomato.yaml --cut wedges:6 --png doc/tomato-wedges.png
+run piece templates/onion.yaml --cut halves --png doc/onion-halves.png
+run piece templates/cucumber.yaml --cut slices:20 --png doc/cucumber-slices.png
+run scene scenes/salad.yaml -o /tmp/cutaway-gallery-salad.pov --png doc/salad.png \
+  --render doc/salad-povray.png
+rm -f /tmp/cutaway-gallery-salad.pov
+echo "gallery: wrote doc/*.png" >&2
