@@ -49,27 +49,6 @@ glm::dvec3 parse_point(const YamlField& f, double metres_per_unit) {
   return p;
 }
 
-/// A COLOR: "#rrggbb" or [r, g, b] in 0..1, both sRGB. Returns linear RGB.
-glm::dvec3 parse_colour(const YamlField& f) {
-  if (f.is_scalar()) {
-    const std::string s = f.string();
-    static const std::regex hex("#[0-9a-fA-F]{6}");
-    if (!std::regex_match(s, hex)) {
-      f.fail("a colour must be \"#rrggbb\" (hex digits) or [r, g, b] with components in 0..1, "
-             "not '" + s + "'");
-    }
-    glm::dvec3 c;
-    for (int k = 0; k < 3; ++k) c[k] = std::stoi(s.substr(1 + 2 * k, 2), nullptr, 16) / 255.0;
-    return srgb_to_linear(c);
-  }
-  if (!f.is_sequence() || f.size() != 3) {
-    f.fail("a colour must be \"#rrggbb\" or [r, g, b] with components in 0..1");
-  }
-  glm::dvec3 c;
-  for (int k = 0; k < 3; ++k) c[k] = f[k].number_in(0.0, 1.0);
-  return srgb_to_linear(c);
-}
-
 /// "#rrggbb" (a default colour) to linear RGB.
 glm::dvec3 hex_colour(const char* hex) {
   glm::dvec3 c;

@@ -3,8 +3,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <set>
 #include <sstream>
+
+#include "colour.h"
 
 namespace cutaway {
 
@@ -309,5 +312,25 @@ std::string read_input_file(const std::string& path) {
 }
 
 YamlField load_yaml_file(const std::string& path) { return parse_yaml(read_input_file(path), path); }
+
+glm::dvec3 parse_colour(const YamlField& f) {
+  if (f.is_scalar()) {
+    const std::string s = f.string();
+    static const std::regex hex("#[0-9a-fA-F]{6}");
+    if (!std::regex_match(s, hex)) {
+      f.fail("a colour must be \"#rrggbb\" (hex digits) or [r, g, b] with components in 0..1, "
+             "not '" + s + "'");
+    }
+    glm::dvec3 c;
+    for (int k = 0; k < 3; ++k) c[k] = std::stoi(s.substr(1 + 2 * k, 2), nullptr, 16) / 255.0;
+    return srgb_to_linear(c);
+  }
+  if (!f.is_sequence() || f.size() != 3) {
+    f.fail("a colour must be \"#rrggbb\" or [r, g, b] with components in 0..1");
+  }
+  glm::dvec3 c;
+  for (int k = 0; k < 3; ++k) c[k] = f[k].number_in(0.0, 1.0);
+  return srgb_to_linear(c);
+}
 
 }  // namespace cutaway

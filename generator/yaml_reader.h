@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 
+#include <glm/vec3.hpp>
 #include <yaml-cpp/yaml.h>
 
 #include "error.h"
@@ -69,6 +70,11 @@ class YamlField {
   std::shared_ptr<const std::string> text_;  ///< the whole document (may be null)
   std::optional<FileLoc> loc_;               ///< where an empty value is written, when known
 };
+
+/// A COLOR of the template and scene formats: "#rrggbb" or [r, g, b] with components in 0..1,
+/// both sRGB (spec/template-format.md). Returns linear RGB.
+/// @throws InputError at `f` naming the accepted forms
+glm::dvec3 parse_colour(const YamlField& f);
 
 /// Parses YAML text (YAML 1.2 / JSON, UTF-8). Refuses empty input, invalid UTF-8, NUL bytes,
 /// nesting deeper than 64 levels and YAML syntax errors with an InputError at the position.
