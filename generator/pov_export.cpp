@@ -288,9 +288,56 @@ void write_instance(std::string& out, const AssetInstance& inst, const std::stri
   out += ">\n}\n\n";
 }
 
+/// The strokes as sphere_sweep objects: widths in pixels of an image assets.height pixels high
+/// become radii at each point's depth along the camera's view direction, and every point moves
+/// toward the eye by its radius so that the tube stays in front of the surface it outlines.
+void write_strokes(std::string& out, const SceneAssets& a, const std::vector<Stroke>& strokes) {
+  const AssetCamera& c = a.camera;
+  const glm::dvec3 forward = glm::normalize(c.target - c.eye);
+  const double metres_per_pixel_per_depth =
+      2 * std::tan(c.fov_y_deg * M_PI / 360) / std::max(1, a.height);
+  out += "// Silhouette strokes (Northrup and Markosian 2000): one sphere_sweep each.\n";
+  out += "#declare Cutaway_Stroke_Finish = finish { emission 1 ambient 0 diffuse 0 specular 0 "
+         "}\n\n";
+  for (size_t s = 0; s < strokes.size(); ++s) {
+    const Stroke& stroke = strokes[s];
+    require(stroke.width_px.size() == stroke.points.size(),
+            "stroke " + std::to_string(s) + ": widths and points differ in number");
+    std::vector<glm::dvec3> centres;
+    std::vector<double> radii;
+    const size_t n = stroke.points.size();
+    for (size_t k = 0; k <= n; ++k) {
+      if (k == n && !stroke.closed) break;
+      const glm::dvec3& p = stroke.points[k % n];
+      require(finite(p) && std::isfinite(stroke.width_px[k % n]),
+              "stroke " + std::to_string(s) + ": non-finite point or width");
+      const double depth = glm::dot(p - c.eye, forward);
+      if (!(depth > 0)) continue;
+      const double r = std::max(1e-6, 0.5 * stroke.width_px[k % n] * depth *
+                                          metres_per_pixel_per_depth);
+      const glm::dvec3 q = p + r * glm::normalize(c.eye - p);
+      if (!centres.empty() && glm::length(q - centres.back()) < 1e-7) continue;
+      centres.push_back(q);
+      radii.push_back(r);
+    }
+    if (centres.size() < 2) continue;
+    out += "sphere_sweep { linear_spline " + std::to_string(centres.size()) + ",\n";
+    for (size_t k = 0; k < centres.size(); ++k) {
+      out += "  ";
+      append_vector(out, centres[k]);
+      out += ", ";
+      append_number(out, radii[k]);
+      out += k + 1 < centres.size() ? ",\n" : "\n";
+    }
+    out += "  pigment { rgb ";
+    append_vector(out, stroke.colour);
+    out += " } finish { Cutaway_Stroke_Finish } no_shadow }\n";
+  }
+}
+
 }  // namespace
 
-std::string scene_to_pov(const SceneAssets& assets) {
+std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* strokes) {
   for (size_t k = 0; k < assets.meshes.size(); ++k) check_mesh(assets.meshes[k], k);
   for (size_t i = 0; i < assets.instances.size(); ++i) {
     check_instance(assets.instances[i], i, assets.meshes.size());
@@ -321,11 +368,16 @@ std::string scene_to_pov(const SceneAssets& assets) {
     const auto& id = ids[static_cast<size_t>(assets.instances[i].mesh)];
     if (!id.empty()) write_instance(out, assets.instances[i], id, i);
   }
+  if (strokes != nullptr && !strokes->empty()) {
+    out += "\n";
+    write_strokes(out, assets, *strokes);
+  }
   return out;
 }
 
-void write_scene_pov(const std::filesystem::path& path, const SceneAssets& assets) {
-  write_file_atomically(path, scene_to_pov(assets));
+void write_scene_pov(const std::filesystem::path& path, const SceneAssets& assets,
+                     const std::vector<Stroke>* strokes) {
+  write_file_atomically(path, scene_to_pov(assets, strokes));
 }
 
 }  // namespace cutaway

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "scene_assets.h"
+#include "silhouettes.h"  // Stroke
 
 namespace cutaway {
 
@@ -58,13 +59,23 @@ namespace cutaway {
 ///               indices into `meshes`; all numbers finite; camera eye != target, up not
 ///               parallel to the view direction, 0 < fov_y_deg < 180, aspect > 0; lights with a
 ///               non-zero direction (directional) and intensity >= 0
+/// - with `strokes` (extract_strokes() for an image assets.width x assets.height), after the
+///   instances: `#declare Cutaway_Stroke_Finish` (emission 1, no diffuse or specular) and one
+///   `sphere_sweep { linear_spline N, <centre>, radius, ... }` per stroke with its colour and
+///   `no_shadow`. A point at depth d along the view direction with width w pixels gets the
+///   radius r = w / 2 * d * 2 tan(fov_y / 2) / assets.height (so it covers w pixels in a
+///   render of that height) and moves toward the eye by r; a closed stroke repeats its first
+///   point; points behind the eye or within 0.1 micrometre of the previous one are left out,
+///   and strokes left with fewer than 2 points are skipped.
+///
 /// @throws std::invalid_argument naming the mesh, instance or light that breaks a precondition
-std::string scene_to_pov(const SceneAssets& assets);
+std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* strokes = nullptr);
 
 /// Writes scene_to_pov(assets) to `path` atomically (write_file_atomically(): a temporary file,
 /// then rename; a failed run leaves no partial file).
 /// @throws std::invalid_argument as scene_to_pov
 /// @throws std::runtime_error when the file cannot be written
-void write_scene_pov(const std::filesystem::path& path, const SceneAssets& assets);
+void write_scene_pov(const std::filesystem::path& path, const SceneAssets& assets,
+                     const std::vector<Stroke>* strokes = nullptr);
 
 }  // namespace cutaway

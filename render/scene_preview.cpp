@@ -18,6 +18,7 @@
 #include "gl_context.h"
 #include "gl_program.h"
 #include "offscreen_target.h"
+#include "stroke_renderer.h"
 
 namespace cutaway {
 namespace {
@@ -253,6 +254,7 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
     glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(range.index_count), GL_UNSIGNED_INT,
                    reinterpret_cast<const void*>(range.first_index * sizeof(uint32_t)));
   }
+  if (options.strokes != nullptr) draw_strokes(*options.strokes, camera, size.x, size.y);
 
   return target.resolve_and_read();
 }

@@ -4,6 +4,7 @@
 
 #include "model_preview.h"  // Image, write_png
 #include "scene_assets.h"
+#include "silhouettes.h"  // Stroke
 
 namespace cutaway {
 
@@ -14,6 +15,9 @@ struct ScenePreviewOptions {
   int samples = 8;   ///< MSAA samples per pixel, >= 1; clamped to what GL offers
   double exposure = 1.0;  ///< scales the light of all lights and the ambient term (not the
                           ///< background), > 0 and finite
+  /// Silhouette strokes (extract_strokes() for this image size) drawn over the render with
+  /// draw_strokes() (render/stroke_renderer.h); null or empty: none.
+  const std::vector<Stroke>* strokes = nullptr;
 };
 
 /// Renders `assets` opaque from `assets.camera`: a pinhole camera at `eye` looking at `target`

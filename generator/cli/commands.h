@@ -36,6 +36,7 @@ struct PieceArgs {
   int width = 800, height = 600;
   int cube = 16;
   double perlin = 1.0;  ///< Perlin colour modulation strength (the template's npr bands)
+  double silhouettes = 1.0;  ///< silhouette stroke strength over the PNG and in .pov; 0: none
 };
 int run_piece(const PieceArgs& args, const Common& common);
 

@@ -421,6 +421,9 @@ int main(int argc, char** argv) {
   piece->add_option("--perlin", piece_args.perlin,
                     "Perlin colour modulation strength (0: off; default 1)")
       ->check(CLI::Range(0.0, 10.0));
+  piece->add_option("--silhouettes", piece_args.silhouettes,
+                    "silhouette stroke strength over the PNG and in .pov (0: off; default 1)")
+      ->check(CLI::Range(0.0, 10.0));
 
   cutaway::cli::SceneArgs scene_args;
   CLI::App* scene = app.add_subcommand(

@@ -22,6 +22,7 @@
 #include "scene_builder.h"
 #include "scene_parser.h"
 #include "scene_preview.h"
+#include "silhouettes.h"
 #include "template_parser.h"
 #include "variation.h"
 
@@ -52,20 +53,35 @@ void make_parent(const std::string& path) {
 
 /// Writes `assets` as each of `paths` (glTF or POV-Ray by extension), `png` (OpenGL preview)
 /// and `render` (POV-Ray), each when asked for. Returns the seconds spent on each.
+/// With `silhouettes` > 0, silhouette strokes of that strength (extract_strokes() at the
+/// assets' image size) are drawn over the PNG and written into the POV-Ray files.
 struct Written {
-  double export_s = 0, preview_s = 0, povray_s = 0;
+  double strokes_s = 0, export_s = 0, preview_s = 0, povray_s = 0;
+  size_t strokes = 0;
 };
 Written write_outputs(const SceneAssets& assets, const std::vector<std::string>& paths,
-                      const std::string& png, const std::string& render, int threads) {
+                      const std::string& png, const std::string& render, int threads,
+                      double silhouettes) {
   Written w;
   auto t0 = Clock::now();
+  std::vector<Stroke> strokes;
+  if (silhouettes > 0) {
+    StrokeOptions so;
+    so.strength = silhouettes;
+    strokes = extract_strokes(assets, so);
+    w.strokes = strokes.size();
+    w.strokes_s = seconds_since(t0);
+    spdlog::info("{} silhouette strokes ({:.2f} s)", strokes.size(), w.strokes_s);
+  }
+  const std::vector<Stroke>* stroke_ptr = strokes.empty() ? nullptr : &strokes;
+  t0 = Clock::now();
   std::string pov_written;
   for (const std::string& path : paths) {
     make_parent(path);
     if (output_format("-o", path) == Format::Gltf) {
       write_scene_gltf(path, assets);
     } else {
-      write_scene_pov(path, assets);
+      write_scene_pov(path, assets, stroke_ptr);
       pov_written = path;
     }
     spdlog::info("wrote {}", path);
@@ -74,7 +90,9 @@ Written write_outputs(const SceneAssets& assets, const std::vector<std::string>&
   if (!png.empty()) {
     t0 = Clock::now();
     make_parent(png);
-    write_png(png, render_scene_preview(assets));
+    ScenePreviewOptions preview;
+    preview.strokes = stroke_ptr;
+    write_png(png, render_scene_preview(assets, preview));
     spdlog::info("wrote {}", png);
     w.preview_s = seconds_since(t0);
   }
@@ -87,7 +105,7 @@ Written write_outputs(const SceneAssets& assets, const std::vector<std::string>&
     if (pov_written.empty()) {
       temp = std::filesystem::temp_directory_path() /
              ("cutaway-" + std::to_string(::getpid()) + "-" + assets.name + ".pov");
-      write_scene_pov(temp, assets);
+      write_scene_pov(temp, assets, stroke_ptr);
       pov = temp;
     }
     PovrayOptions options;
@@ -151,17 +169,18 @@ int run_piece(const PieceArgs& a, const Common& common) {
   const SceneAssets assets = piece_assets(set, tmpl.name, 0.3, a.width, a.height);
   std::vector<std::string> outputs;
   if (!a.output.empty()) outputs.push_back(a.output);
-  const Written w = write_outputs(assets, outputs, a.png, "", common.threads);
+  const Written w =
+      write_outputs(assets, outputs, a.png, "", common.threads, a.silhouettes);
   if (common.stats) {
     std::fprintf(stderr,
                  "{\"template\": \"%s\", \"backend\": \"%s\", \"pieces\": %zu, \"planes\": %zu, "
                  "\"triangles\": %zu, \"diffused_points\": %zu, \"seconds\": {\"model\": %.4f, "
                  "\"cut\": %.4f, \"sections\": %.4f, \"diffuse\": %.4f, \"clip\": %.4f, "
-                 "\"export\": %.4f, \"png\": %.4f}}\n",
+                 "\"strokes\": %.4f, \"export\": %.4f, \"png\": %.4f}}\n",
                  tmpl.name.c_str(), diffusion->name().c_str(), set.pieces.size(),
                  set.cells.planes.size(), triangles, set.diffused_points, t_model, t_cut,
-                 set.seconds_sections, set.seconds_diffuse, set.seconds_clip, w.export_s,
-                 w.preview_s);
+                 set.seconds_sections, set.seconds_diffuse, set.seconds_clip, w.strokes_s,
+                 w.export_s, w.preview_s);
   }
   return 0;
 }
@@ -195,7 +214,8 @@ int run_scene(const SceneArgs& a, const Common& common) {
                  st.pieces - st.placed, st.pieces);
   spdlog::info("{}: {} objects, {} pieces placed, {} triangles (seed {})", scene.name,
                st.objects, st.placed, st.triangles, seed);
-  const Written w = write_outputs(assets, a.outputs, a.png, a.render, common.threads);
+  const Written w = write_outputs(assets, a.outputs, a.png, a.render, common.threads,
+                                  scene.render.silhouettes);
   if (common.stats) {
     std::fprintf(
         stderr,
@@ -203,11 +223,12 @@ int run_scene(const SceneArgs& a, const Common& common) {
         "\"pieces\": %d, \"placed\": %d, \"triangles\": %zu, \"diffused_points\": %zu, "
         "\"seconds\": {\"parse\": %.4f, \"build\": %.4f, \"variants\": %.4f, "
         "\"backend_setup\": %.4f, \"sections\": %.4f, \"diffuse\": %.4f, \"clip\": %.4f, "
-        "\"layout\": %.4f, \"export\": %.4f, \"png\": %.4f, \"povray\": %.4f}}\n",
+        "\"layout\": %.4f, \"strokes\": %.4f, \"export\": %.4f, \"png\": %.4f, "
+        "\"povray\": %.4f}}\n",
         scene.name.c_str(), static_cast<unsigned long long>(seed), backend_name.c_str(),
         st.objects, st.pieces, st.placed, st.triangles, st.diffused_points, t_parse, t_build,
         st.seconds_variants, st.seconds_backend, st.seconds_sections, st.seconds_diffuse,
-        st.seconds_clip, st.seconds_layout, w.export_s, w.preview_s, w.povray_s);
+        st.seconds_clip, st.seconds_layout, w.strokes_s, w.export_s, w.preview_s, w.povray_s);
   }
   return 0;
 }
