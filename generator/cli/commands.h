@@ -51,4 +51,19 @@ struct SceneArgs {
 };
 int run_scene(const SceneArgs& args, const Common& common);
 
+/// `cutaway sheet TEMPLATE[:CUT][@VIEW]... -o sheet.png [--cut SPEC] [--tile PX] [--columns N]`:
+/// a contact sheet, one labelled tile per template, cut (by CUT or --cut: a `piece --cut` spec,
+/// or `across`, one horizontal plane through the middle) with its pieces laid out cut face up
+/// (VIEW up, the default) or standing with their cut faces toward the camera (VIEW upright)
+/// (generator/cli/sheet_command.cpp).
+struct SheetArgs {
+  std::vector<std::string> items;  ///< "PATH.yaml[:CUT][@VIEW]"
+  std::string output;              ///< .png
+  std::string cut = "halves";      ///< the cut of items without their own
+  int tile = 400;                  ///< tile width in pixels (height 3/4 of it plus the label)
+  int columns = 0;                 ///< 0: about sqrt(4/3 * tiles)
+  int cube = 16;
+};
+int run_sheet(const SheetArgs& args, const Common& common);
+
 }  // namespace cutaway::cli

@@ -425,6 +425,24 @@ int main(int argc, char** argv) {
                     "silhouette stroke strength over the PNG and in .pov (0: off; default 1)")
       ->check(CLI::Range(0.0, 10.0));
 
+  cutaway::cli::SheetArgs sheet_args;
+  CLI::App* sheet = app.add_subcommand(
+      "sheet", "contact sheet of cut templates, one labelled tile each (PNG)");
+  sheet->add_option("TEMPLATE", sheet_args.items,
+                    "template files, each optionally with its own cut and view: "
+                    "PATH.yaml[:CUT][@up|@upright]")
+      ->required();
+  sheet->add_option("-o,--output", sheet_args.output, "sheet to write (.png)")->required();
+  sheet->add_option("--cut", sheet_args.cut,
+                    "cut of templates without their own: as piece --cut, or across (one "
+                    "horizontal plane at mid-height)");
+  sheet->add_option("--tile", sheet_args.tile, "tile width in pixels")
+      ->check(CLI::Range(64, 2048));
+  sheet->add_option("--columns", sheet_args.columns, "columns (0: about sqrt(4/3 tiles))")
+      ->check(CLI::Range(0, 64));
+  sheet->add_option("--cube", sheet_args.cube, "cube-map texels per face edge for PMVC")
+      ->check(CLI::Range(2, 256));
+
   cutaway::cli::SceneArgs scene_args;
   CLI::App* scene = app.add_subcommand(
       "scene", "the main job: a scene of cut objects as glTF or POV-Ray, and pictures of it");
@@ -473,6 +491,7 @@ int main(int argc, char** argv) {
     if (*check) return run_check(check_files);
     const cutaway::cli::Common common{backend, threads, stats};
     if (*piece) return cutaway::cli::run_piece(piece_args, common);
+    if (*sheet) return cutaway::cli::run_sheet(sheet_args, common);
     if (*scene) {
       scene_args.quiet = quiet;
       return cutaway::cli::run_scene(scene_args, common);
