@@ -1,0 +1,192 @@
+// The template library beside the paper's Table 1 (Takayama et al. 2010): for each of its
+// thirteen models, the DS vertex and face counts of build_model, the template's size on disk
+// (the YAML plus the PLY files it references) and the time of a typical cut: one cross-section
+// through the middle of the object (the horizontal plane at mid-height of the DS model's
+// bounds), meshed and coloured as `cutaway section` does (cpu backend, cube 16, size bound
+// 3 x the template edge), best of N. The vertical cut through the axis is timed too. The BVH
+// of the diffusion surfaces is built once per model and reported apart (bvh_s).
+//
+// Run:   make bench                       (builds and runs the `benchmarks` target)
+//   or:  cmake --build build --target bench_templates && ./build/bench_templates
+// Options: --threads N (0: all cores, default), --cube N (default 16), --repeat N (best of N,
+//          default 3).
+// The paper's figures come from ../shared/reference/paper-table1.tsv beside the repository
+// when present, else from the copy below. Its times are for a 2010 laptop (2.6 GHz CPU,
+// NVIDIA Quadro FX 570M); its sizes are of its model files, ours of the templates.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cross_section.h"
+#include "diffusion/diffusion.h"
+#include "model_builder.h"
+#include "template_parser.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+namespace fs = std::filesystem;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// One row of Table 1.
+struct PaperRow {
+  std::string title, symmetry, design_min, cut_s, vertices, faces, size_kb;
+};
+
+/// Table 1 as shipped with the reference material (title symmetry design_min cut_s vertices
+/// faces size_kb), used when the TSV is absent.
+const char* kTable1 =
+    "title\tsymmetry\tdesign_min\tcut_s\tvertices\tfaces\tsize_kb\n"
+    "tomato\tnfold\t25\t6.1\t10619\t20412\t669\n"
+    "onion\tcylindrical\t10\t1.9\t4184\t8110\t264\n"
+    "persimmon\tnfold\t16\t8.1\t9162\t18208\t584\n"
+    "pepper\tnfold\t20\t6.8\t9317\t18328\t592\n"
+    "avocado\tcylindrical\t8\t0.8\t2699\t5341\t172\n"
+    "apple\tnfold\t25\t3.3\t4074\t7685\t255\n"
+    "okra\tnfold\t17\t3.7\t9400\t18480\t597\n"
+    "star_fruit\tnfold\t15\t3.2\t6357\t12190\t400\n"
+    "strawberry\tcylindrical\t141\t7.7\t18158\t32049\t1110\n"
+    "cucumber\tnfold\t184\t7.9\t14984\t28592\t942\n"
+    "kiwi\tnfold\t162\t27.7\t21438\t38688\t1321\n"
+    "volcano\tcylindrical\t187\t10.9\t11057\t20673\t690\n"
+    "kidney\tnone\t362\t3.9\t2939\t5694\t185\n";
+
+/// The rows of a Table 1 TSV in file order (comment lines start with '#'; columns by header).
+std::vector<PaperRow> parse_table1(std::istream& in) {
+  std::vector<PaperRow> rows;
+  std::vector<std::string> header;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string c; std::getline(ss, c, '\t');) cells.push_back(c);
+    if (header.empty()) {
+      header = cells;
+      continue;
+    }
+    auto cell = [&](const char* name) -> std::string {
+      const auto it = std::find(header.begin(), header.end(), name);
+      const size_t k = static_cast<size_t>(it - header.begin());
+      return it != header.end() && k < cells.size() ? cells[k] : "-";
+    };
+    rows.push_back({cell("title"), cell("symmetry"), cell("design_min"), cell("cut_s"),
+                    cell("vertices"), cell("faces"), cell("size_kb")});
+  }
+  return rows;
+}
+
+std::vector<PaperRow> read_table1(std::string* source) {
+  const fs::path tsv =
+      fs::path(CUTAWAY_SOURCE_DIR) / ".." / "shared" / "reference" / "paper-table1.tsv";
+  std::ifstream in(tsv);
+  if (in) {
+    std::vector<PaperRow> rows = parse_table1(in);
+    if (!rows.empty()) {
+      *source = fs::weakly_canonical(tsv).string();
+      return rows;
+    }
+  }
+  *source = "built-in copy";
+  std::istringstream copy(kTable1);
+  return parse_table1(copy);
+}
+
+/// Bytes of the template file plus every distinct mesh file its surfaces reference.
+uintmax_t size_on_disk(const cutaway::Template& t) {
+  std::set<fs::path> files{fs::weakly_canonical(t.file)};
+  for (const auto& s : t.surfaces)
+    if (!s.mesh_file.empty()) files.insert(fs::weakly_canonical(s.mesh_file));
+  uintmax_t bytes = 0;
+  for (const fs::path& f : files) bytes += fs::file_size(f);
+  return bytes;
+}
+
+std::string symmetry_text(const cutaway::Template& t) {
+  switch (t.symmetry) {
+    case cutaway::Symmetry::Cylindrical: return "cylindrical";
+    case cutaway::Symmetry::NFold: return std::to_string(t.folds) + "-fold";
+    default: return "none";
+  }
+}
+
+/// Best of `repeat` timings of one cross-section with `plane`.
+double time_cut(const cutaway::DsModel& model, const cutaway::Plane& plane,
+                const cutaway::DiffusionBackend& backend, double edge_m, int repeat,
+                size_t* section_vertices) {
+  double best = 1e300;
+  for (int r = 0; r < repeat; ++r) {
+    const auto t0 = Clock::now();
+    const cutaway::CrossSection cs =
+        cutaway::make_cross_section(model, plane, backend, cutaway::CrossSectionOptions{edge_m});
+    best = std::min(best, seconds_since(t0));
+    *section_vertices = cs.position.size();
+  }
+  return best;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int threads = 0, cube = cutaway::DiffusionOptions{}.cube_size, repeat = 3;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--threads" && i + 1 < argc) threads = std::atoi(argv[++i]);
+    else if (a == "--cube" && i + 1 < argc) cube = std::atoi(argv[++i]);
+    else if (a == "--repeat" && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
+    else {
+      std::fprintf(stderr, "usage: bench_templates [--threads N] [--cube N] [--repeat N]\n");
+      return 2;
+    }
+  }
+  std::string source;
+  const std::vector<PaperRow> table1 = read_table1(&source);
+  const unsigned cores = std::thread::hardware_concurrency();
+  std::printf("# bench_templates: cpu backend, cube %d, %d threads (%u cores), best of %d; "
+              "cut_s: the horizontal cross-section at mid-height (triangulation + PMVC, BVH "
+              "built: bvh_s); paper: %s\n",
+              cube, threads > 0 ? threads : static_cast<int>(cores), cores, repeat,
+              source.c_str());
+  std::printf("%-11s %-11s %8s %8s %9s %7s %7s %7s | %-11s %8s %8s %9s %7s\n", "template",
+              "symmetry", "vertices", "faces", "size_kb", "bvh_s", "cut_s", "vcut_s",
+              "paper_sym", "vertices", "faces", "size_kb", "cut_s");
+  int missing = 0;
+  for (const PaperRow& paper : table1) {
+    const fs::path path = fs::path(CUTAWAY_SOURCE_DIR) / "templates" / (paper.title + ".yaml");
+    if (!fs::exists(path)) {
+      std::printf("%-11s (no template)\n", paper.title.c_str());
+      ++missing;
+      continue;
+    }
+    const cutaway::Template tmpl = cutaway::load_template(path.string());
+    const cutaway::DsModel model = cutaway::build_model(tmpl);
+    const auto t_bvh = Clock::now();
+    const auto cpu = cutaway::make_cpu_diffusion(model, {cube, threads});
+    const double bvh_s = seconds_since(t_bvh);
+    const glm::dvec3 mid = 0.5 * (model.bbox_min + model.bbox_max);
+    size_t hv = 0, vv = 0;
+    const double cut_s =
+        time_cut(model, {{0, mid.y, 0}, {0, 1, 0}}, *cpu, tmpl.edge_m, repeat, &hv);
+    const double vcut_s =
+        time_cut(model, {{mid.x, 0, 0}, {1, 0, 0}}, *cpu, tmpl.edge_m, repeat, &vv);
+    std::printf("%-11s %-11s %8zu %8zu %9.1f %7.3f %7.3f %7.3f | %-11s %8s %8s %9s %7s\n",
+                tmpl.name.c_str(), symmetry_text(tmpl).c_str(), model.vertex_count(),
+                model.face_count(), size_on_disk(tmpl) / 1024.0, bvh_s, cut_s, vcut_s,
+                paper.symmetry.c_str(), paper.vertices.c_str(), paper.faces.c_str(),
+                paper.size_kb.c_str(), paper.cut_s.c_str());
+    std::fflush(stdout);
+  }
+  return missing ? 1 : 0;
+}
