@@ -288,7 +288,7 @@ void write_instance(std::string& out, const AssetInstance& inst, const std::stri
   out += ">\n}\n\n";
 }
 
-/// The strokes as sphere_sweep objects: widths in pixels of an image assets.height pixels high
+/// The strokes as tubes (spheres joined by cones): widths in pixels of an image assets.height pixels high
 /// become radii at each point's depth along the camera's view direction, and every point moves
 /// toward the eye by its radius so that the tube stays in front of the surface it outlines.
 void write_strokes(std::string& out, const SceneAssets& a, const std::vector<Stroke>& strokes) {
@@ -296,7 +296,7 @@ void write_strokes(std::string& out, const SceneAssets& a, const std::vector<Str
   const glm::dvec3 forward = glm::normalize(c.target - c.eye);
   const double metres_per_pixel_per_depth =
       2 * std::tan(c.fov_y_deg * M_PI / 360) / std::max(1, a.height);
-  out += "// Silhouette strokes (Northrup and Markosian 2000): one sphere_sweep each.\n";
+  out += "// Silhouette strokes (Northrup and Markosian 2000): spheres joined by cones.\n";
   out += "#declare Cutaway_Stroke_Finish = finish { emission 1 ambient 0 diffuse 0 specular 0 "
          "}\n\n";
   for (size_t s = 0; s < strokes.size(); ++s) {
@@ -321,13 +321,25 @@ void write_strokes(std::string& out, const SceneAssets& a, const std::vector<Str
       radii.push_back(r);
     }
     if (centres.size() < 2) continue;
-    out += "sphere_sweep { linear_spline " + std::to_string(centres.size()) + ",\n";
+    // A sphere at every point and a cone between neighbours: the same tube as a linear
+    // sphere_sweep, but POV-Ray's sphere_sweep shows spikes on such thin strokes.
+    out += "union {\n";
     for (size_t k = 0; k < centres.size(); ++k) {
-      out += "  ";
+      out += "  sphere { ";
       append_vector(out, centres[k]);
       out += ", ";
       append_number(out, radii[k]);
-      out += k + 1 < centres.size() ? ",\n" : "\n";
+      out += " }\n";
+      if (k + 1 == centres.size()) break;
+      out += "  cone { ";
+      append_vector(out, centres[k]);
+      out += ", ";
+      append_number(out, radii[k]);
+      out += ", ";
+      append_vector(out, centres[k + 1]);
+      out += ", ";
+      append_number(out, radii[k + 1]);
+      out += " }\n";
     }
     out += "  pigment { rgb ";
     append_vector(out, stroke.colour);

@@ -61,12 +61,14 @@ namespace cutaway {
 ///               non-zero direction (directional) and intensity >= 0
 /// - with `strokes` (extract_strokes() for an image assets.width x assets.height), after the
 ///   instances: `#declare Cutaway_Stroke_Finish` (emission 1, no diffuse or specular) and one
-///   `sphere_sweep { linear_spline N, <centre>, radius, ... }` per stroke with its colour and
-///   `no_shadow`. A point at depth d along the view direction with width w pixels gets the
-///   radius r = w / 2 * d * 2 tan(fov_y / 2) / assets.height (so it covers w pixels in a
-///   render of that height) and moves toward the eye by r; a closed stroke repeats its first
-///   point; points behind the eye or within 0.1 micrometre of the previous one are left out,
-///   and strokes left with fewer than 2 points are skipped.
+///   `union { sphere {...} cone {...} sphere {...} ... }` per stroke: a sphere at every point
+///   and a cone between neighbours (the tube of a linear sphere_sweep; POV-Ray's own
+///   sphere_sweep shows spikes on strokes this thin), with its colour and `no_shadow`. A point
+///   at depth d along the view direction with width w pixels gets the radius
+///   r = w / 2 * d * 2 tan(fov_y / 2) / assets.height (so it covers w pixels in a render of that
+///   height) and moves toward the eye by r; a closed stroke repeats its first point; points
+///   behind the eye or within 0.1 micrometre of the previous one are left out, and strokes left
+///   with fewer than 2 points are skipped.
 ///
 /// @throws std::invalid_argument naming the mesh, instance or light that breaks a precondition
 std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* strokes = nullptr);

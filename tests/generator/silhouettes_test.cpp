@@ -1,0 +1,230 @@
+// extract_strokes (generator/silhouettes.h): silhouettes of a cube seen from a corner, hidden
+// edges removed, the crease threshold, linking of collinear edges into one stroke, tapering,
+// and the POV-Ray sphere_sweep export of strokes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "pov_export.h"
+#include "silhouettes.h"
+
+namespace cutaway {
+namespace {
+
+/// An axis-aligned box at `centre` with half-extents `half`, 4 vertices per face (so the faces
+/// share no vertex: extraction must weld them by position), outward, counter-clockwise.
+AssetMesh box(const std::string& name, const glm::dvec3& half,
+              const glm::dvec3& centre = glm::dvec3(0.0)) {
+  AssetMesh m;
+  m.name = name;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const double sign : {1.0, -1.0}) {
+      glm::dvec3 n(0.0), u(0.0), v(0.0);
+      n[axis] = sign;
+      u[(axis + 1) % 3] = 1;
+      v[(axis + 2) % 3] = 1;
+      if (sign < 0) std::swap(u, v);
+      const auto base = static_cast<unsigned>(m.position.size());
+      for (const auto& [a, b] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+        m.position.push_back(centre + half * (n + double(a) * u + double(b) * v));
+        m.normal.push_back(n);
+        m.colour.push_back({0.5, 0.4, 0.3});
+      }
+      m.triangle.push_back({base, base + 1, base + 2});
+      m.triangle.push_back({base, base + 2, base + 3});
+    }
+  }
+  return m;
+}
+
+SceneAssets scene_of(std::vector<AssetMesh> meshes, const glm::dvec3& eye, double fov_deg = 40) {
+  SceneAssets a;
+  a.name = "test";
+  a.meshes = std::move(meshes);
+  for (size_t i = 0; i < a.meshes.size(); ++i) {
+    AssetInstance inst;
+    inst.name = "i" + std::to_string(i);
+    inst.mesh = static_cast<int>(i);
+    a.instances.push_back(inst);
+  }
+  a.camera.eye = eye;
+  a.camera.target = glm::dvec3(0.0);
+  a.camera.up = {0, 1, 0};
+  a.camera.fov_y_deg = fov_deg;
+  a.width = 200;
+  a.height = 200;
+  return a;
+}
+
+StrokeOptions exact() {
+  StrokeOptions o;
+  o.smoothing = 0;  // points stay on the mesh's vertices
+  return o;
+}
+
+// The cube is seen along its diagonal from afar (nearly orthographic): its outline is a
+// regular hexagon, turning 60 degrees at each corner.
+TEST(Silhouettes, CubeFromACornerGivesItsHexagonAsOneClosedStroke) {
+  const SceneAssets a = scene_of({box("cube", glm::dvec3(0.05))}, glm::dvec3(2.0, 2.0, 2.0), 4);
+  StrokeOptions o = exact();
+  o.crease_deg = 100;  // cube edges are 90-degree creases: silhouettes only
+  const std::vector<Stroke> strokes = extract_strokes(a, o);
+  ASSERT_EQ(strokes.size(), 1u);
+  const Stroke& s = strokes[0];
+  EXPECT_TRUE(s.closed);
+  ASSERT_EQ(s.points.size(), 6u);
+  ASSERT_EQ(s.width_px.size(), 6u);
+  for (const glm::dvec3& p : s.points)
+    for (int i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(std::abs(p[i]), 0.05);
+  // Neither the corner nearest the eye nor the one farthest away is on the silhouette.
+  for (const glm::dvec3& p : s.points) {
+    EXPECT_FALSE(p.x > 0 && p.y > 0 && p.z > 0);
+    EXPECT_FALSE(p.x < 0 && p.y < 0 && p.z < 0);
+  }
+  for (double w : s.width_px) EXPECT_GT(w, 0);
+  EXPECT_LT(glm::length(s.colour), glm::length(glm::dvec3(0.5, 0.4, 0.3)));  // darkened
+}
+
+TEST(Silhouettes, CubeCreasesFacingTheEyeAreStrokesOfTheirOwn) {
+  const SceneAssets a = scene_of({box("cube", glm::dvec3(0.05))}, glm::dvec3(2.0, 2.0, 2.0), 4);
+  const std::vector<Stroke> strokes = extract_strokes(a, exact());
+  // The hexagon, and the three edges of the near corner, which meet at 120 degrees (a turn of
+  // 60: two of them link) and turn 120 degrees into the hexagon (never linked); the three
+  // edges of the far corner face away and are hidden.
+  ASSERT_EQ(strokes.size(), 3u);
+  int closed = 0;
+  size_t open_edges = 0;
+  const glm::dvec3 near_corner(0.05);
+  for (const Stroke& s : strokes) {
+    if (s.closed) {
+      ++closed;
+      EXPECT_EQ(s.points.size(), 6u);
+    } else {
+      open_edges += s.points.size() - 1;
+      EXPECT_NE(std::find(s.points.begin(), s.points.end(), near_corner), s.points.end());
+    }
+  }
+  EXPECT_EQ(open_edges, 3u);
+  EXPECT_EQ(closed, 1);
+}
+
+TEST(Silhouettes, HiddenEdgesAreRemoved) {
+  // A small box far behind a big one, seen along -z: the big one hides it completely.
+  AssetMesh big = box("big", {0.1, 0.1, 0.01}, {0, 0, 0.05});
+  AssetMesh small = box("small", glm::dvec3(0.02), {0, 0, -0.2});
+  const glm::dvec3 eye(0.01, 0.02, 0.6);
+  const std::vector<Stroke> both = extract_strokes(scene_of({big, small}, eye), exact());
+  ASSERT_FALSE(both.empty());
+  for (const Stroke& s : both)
+    for (const glm::dvec3& p : s.points) EXPECT_GT(p.z, 0.0) << "an edge of the hidden box";
+  // Alone, the small box has strokes.
+  const std::vector<Stroke> alone = extract_strokes(scene_of({small}, eye), exact());
+  EXPECT_FALSE(alone.empty());
+}
+
+/// Two quads meeting at a ridge along z (x = 0), each sloping down by `slope_deg`: an open
+/// mesh whose ridge is a crease of dihedral angle 2 * slope_deg; its outline is boundary.
+AssetMesh roof(double slope_deg) {
+  AssetMesh m;
+  m.name = "roof";
+  const double s = glm::radians(slope_deg);
+  const double w = 0.05, d = 0.05;
+  const glm::dvec3 left(-w * std::cos(s), -w * std::sin(s), 0);
+  const glm::dvec3 right(w * std::cos(s), -w * std::sin(s), 0);
+  m.position = {{0, 0, -d}, {0, 0, d}, left + glm::dvec3(0, 0, d), left + glm::dvec3(0, 0, -d),
+                right + glm::dvec3(0, 0, -d), right + glm::dvec3(0, 0, d)};
+  m.triangle = {{0, 3, 2}, {0, 2, 1}, {0, 1, 5}, {0, 5, 4}};
+  m.normal.assign(m.position.size(), {0, 1, 0});
+  m.colour.assign(m.position.size(), {0.2, 0.6, 0.2});
+  return m;
+}
+
+bool has_ridge_stroke(const std::vector<Stroke>& strokes) {
+  for (const Stroke& s : strokes)
+    if (std::all_of(s.points.begin(), s.points.end(),
+                    [](const glm::dvec3& p) { return p.x == 0 && p.y == 0; }))
+      return true;
+  return false;
+}
+
+TEST(Silhouettes, CreaseThreshold) {
+  const glm::dvec3 eye(0.02, 0.4, 0.15);
+  const SceneAssets a = scene_of({roof(20)}, eye);  // normals 40 degrees apart
+  StrokeOptions o = exact();
+  o.crease_deg = 60;
+  EXPECT_FALSE(has_ridge_stroke(extract_strokes(a, o)));
+  o.crease_deg = 30;
+  EXPECT_TRUE(has_ridge_stroke(extract_strokes(a, o)));
+  // The boundary is there either way.
+  o.crease_deg = 60;
+  EXPECT_GE(extract_strokes(a, o).size(), 3u);
+}
+
+TEST(Silhouettes, CollinearEdgesLinkIntoOneTaperedStroke) {
+  // A flat strip of 10 quads in the xz plane seen from above: its long sides are 10 edges each.
+  AssetMesh strip;
+  strip.name = "strip";
+  for (int i = 0; i <= 10; ++i)
+    for (const double z : {-0.01, 0.01}) strip.position.push_back({-0.1 + 0.02 * i, 0, z});
+  for (unsigned i = 0; i < 10; ++i) {
+    const unsigned a = 2 * i;
+    strip.triangle.push_back({a, a + 1, a + 3});
+    strip.triangle.push_back({a, a + 3, a + 2});
+  }
+  strip.normal.assign(strip.position.size(), {0, 1, 0});
+  strip.colour.assign(strip.position.size(), {0.9, 0.1, 0.1});
+  SceneAssets a = scene_of({strip}, {0.0, 0.35, 0.05});
+  const std::vector<Stroke> strokes = extract_strokes(a, exact());
+  ASSERT_EQ(strokes.size(), 4u);  // the corners turn 90 degrees: four sides
+  int long_sides = 0;
+  for (const Stroke& s : strokes) {
+    EXPECT_FALSE(s.closed);
+    if (s.points.size() != 11) continue;
+    ++long_sides;
+    EXPECT_LT(s.width_px.front(), 0.5 * s.width_px[5]);  // thin at both ends
+    EXPECT_LT(s.width_px.back(), 0.5 * s.width_px[5]);
+    EXPECT_EQ(*std::max_element(s.width_px.begin(), s.width_px.end()), s.width_px[5]);
+  }
+  EXPECT_EQ(long_sides, 2);
+}
+
+TEST(Silhouettes, StrengthZeroGivesNothingAndResultsAreDeterministic) {
+  const SceneAssets a = scene_of({box("cube", glm::dvec3(0.05))}, glm::dvec3(2.0, 2.0, 2.0), 4);
+  StrokeOptions o;
+  o.strength = 0;
+  EXPECT_TRUE(extract_strokes(a, o).empty());
+  o.strength = 1;
+  const auto s1 = extract_strokes(a, o), s2 = extract_strokes(a, o);
+  ASSERT_EQ(s1.size(), s2.size());
+  for (size_t i = 0; i < s1.size(); ++i) {
+    EXPECT_EQ(s1[i].points, s2[i].points);
+    EXPECT_EQ(s1[i].width_px, s2[i].width_px);
+  }
+  o.strength = 2;
+  const auto thick = extract_strokes(a, o);
+  ASSERT_EQ(thick.size(), s1.size());
+  EXPECT_DOUBLE_EQ(thick[0].width_px[0], 2 * s1[0].width_px[0]);
+}
+
+TEST(Silhouettes, PovExportWritesOneTubePerStroke) {
+  const SceneAssets a = scene_of({box("cube", glm::dvec3(0.05))}, glm::dvec3(2.0, 2.0, 2.0), 4);
+  const std::vector<Stroke> strokes = extract_strokes(a);
+  const std::string pov = scene_to_pov(a, &strokes);
+  size_t count = 0;
+  for (size_t at = pov.find("union {"); at != std::string::npos; at = pov.find("union {", at + 1))
+    ++count;
+  EXPECT_EQ(count, strokes.size());
+  size_t cones = 0;
+  for (size_t at = pov.find("cone {"); at != std::string::npos; at = pov.find("cone {", at + 1))
+    ++cones;
+  EXPECT_GE(cones, 6u);  // the hexagon, closed: six cones
+  EXPECT_NE(pov.find("no_shadow"), std::string::npos);
+  EXPECT_EQ(scene_to_pov(a).find("cone {"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace cutaway
