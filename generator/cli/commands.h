@@ -63,6 +63,7 @@ struct SheetArgs {
   int tile = 400;                  ///< tile width in pixels (height 3/4 of it plus the label)
   int columns = 0;                 ///< 0: about sqrt(4/3 * tiles)
   int cube = 16;
+  double silhouettes = 1.0;  ///< silhouette stroke strength; 0: none
 };
 int run_sheet(const SheetArgs& args, const Common& common);
 

@@ -442,6 +442,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 64));
   sheet->add_option("--cube", sheet_args.cube, "cube-map texels per face edge for PMVC")
       ->check(CLI::Range(2, 256));
+  sheet->add_option("--silhouettes", sheet_args.silhouettes,
+                    "silhouette stroke strength (0: off; default 1)")
+      ->check(CLI::Range(0.0, 10.0));
 
   cutaway::cli::SceneArgs scene_args;
   CLI::App* scene = app.add_subcommand(

@@ -23,6 +23,7 @@
 #include "pieces.h"
 #include "scene_builder.h"
 #include "scene_preview.h"
+#include "silhouettes.h"
 #include "template_parser.h"
 #include "text_label.h"
 
@@ -193,7 +194,16 @@ Image sheet_tile(const LoadedItem& item, const SheetArgs& a, const Common& commo
   for (Piece& p : set.pieces)
     for (PiecePart& part : p.parts) modulate_colours(part.mesh, tmpl.npr, 1.0, 0);
   const int picture_h = a.tile * 3 / 4;
-  const Image picture = render_scene_preview(sheet_assets(set, tmpl.name, item.view, a.tile, picture_h));
+  const SceneAssets assets = sheet_assets(set, tmpl.name, item.view, a.tile, picture_h);
+  std::vector<Stroke> strokes;  // silhouettes as `cutaway piece --png` draws them
+  if (a.silhouettes > 0) {
+    StrokeOptions so;
+    so.strength = a.silhouettes;
+    strokes = extract_strokes(assets, so);
+  }
+  ScenePreviewOptions preview;
+  preview.strokes = &strokes;
+  const Image picture = render_scene_preview(assets, preview);
   // The label strip below the picture: the name, and the cut in grey.
   const int scale = std::max(1, a.tile / 160);
   const LabelSize name_size = label_size(tmpl.name, scale);
