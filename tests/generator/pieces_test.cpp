@@ -86,6 +86,8 @@ struct Case {
   const char* cut;
 };
 
+void PrintTo(const Case& c, std::ostream* os) { *os << c.file << " cut " << c.cut; }
+
 class PiecesTest : public ::testing::TestWithParam<Case> {};
 
 TEST_P(PiecesTest, ClosedManifoldsWhoseVolumesAddUp) {
