@@ -4,7 +4,7 @@
 BUILD ?= build
 JOBS  ?= $(shell nproc)
 
-.PHONY: all deps deps-test build demo test fuzz bench gallery clean
+.PHONY: all deps deps-test build demo test fuzz bench gallery template-sheet clean
 
 all: build
 
@@ -31,6 +31,9 @@ test: deps-test $(BUILD)/build.ninja
 
 gallery: build
 	bash scripts/make-gallery.sh
+
+template-sheet: build
+	bash scripts/template-sheet.sh
 
 bench: build
 	cmake --build $(BUILD) --target benchmarks -j $(JOBS)
