@@ -177,6 +177,10 @@ Topology make_topology(const AssetMesh& mesh) {
   return t;
 }
 
+/// Faces whose normals are closer than about 8 degrees lie in one face of the object: a seam
+/// between them is a structure line, not a flat-shaded edge.
+constexpr double kCoplanarCos = 0.99;
+
 /// A visible feature edge of one instance.
 struct FeatureEdge {
   uint32_t a, b;      // welded ids
@@ -317,11 +321,18 @@ std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptio
       facing[f] = glm::dot(n, eye_object - mesh.position[mesh.triangle[f].x]) > 0 ? 1 : -1;
     }
 
-    // 2. Feature edges, 3. visible ones.
-    std::vector<FeatureEdge> visible;
+    // The mesh vertex of triangle f that welds to `w`.
+    const auto corner = [&](uint32_t f, uint32_t w) {
+      const glm::uvec3& tri = mesh.triangle[f];
+      for (int k = 0; k < 3; ++k)
+        if (topo.weld[tri[k]] == w) return tri[k];
+      return tri[0];
+    };
+    // 2. Feature edges, 3. visible ones: outlines, and structure lines inside cut faces.
+    std::vector<FeatureEdge> visible, structure;
     for (const Topology::Edge& e : topo.edges) {
       const uint32_t* faces = &topo.edge_faces[e.first_face];
-      bool feature = false;
+      bool feature = false, seam = false;
       int front_face = -1;
       for (uint32_t k = 0; k < e.face_count; ++k)
         if (facing[faces[k]] > 0) front_face = static_cast<int>(faces[k]);
@@ -334,9 +345,15 @@ std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptio
         } else if (front_face >= 0) {
           const glm::dvec3 &n0 = topo.face_normal[f0], &n1 = topo.face_normal[f1];
           feature = glm::dot(n0, n1) < crease_cos * glm::length(n0) * glm::length(n1);
+          // A seam inside a smooth surface: the two faces use different copies of the edge's
+          // vertices. Cross-sections split their vertices exactly along the cut segments, so
+          // these are the outlines of the structures inside a cut face.
+          seam = !feature && options.structure_width > 0 &&
+                 glm::dot(n0, n1) > kCoplanarCos * glm::length(n0) * glm::length(n1) &&
+                 (corner(f0, e.a) != corner(f1, e.a) || corner(f0, e.b) != corner(f1, e.b));
         }
       }
-      if (!feature) continue;
+      if (!feature && !seam) continue;
       const uint32_t va = topo.representative[e.a], vb = topo.representative[e.b];
       const glm::dvec3 &pa = px[va], &pb = px[vb];
       if (pa.z <= 0 || pb.z <= 0) continue;
@@ -357,18 +374,24 @@ std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptio
       const int cf = front_face >= 0 ? front_face : static_cast<int>(faces[0]);
       const glm::uvec3& tri = mesh.triangle[static_cast<size_t>(cf)];
       colour = (mesh.colour[tri.x] + mesh.colour[tri.y] + mesh.colour[tri.z]) / 3.0;
-      visible.push_back({e.a, e.b, colour});
+      (seam ? structure : visible).push_back({e.a, e.b, colour});
     }
-    if (visible.empty()) continue;
+    if (visible.empty() && structure.empty()) continue;
 
-    // 4. Linking.
+    // 4. Linking, outlines and structure lines apart.
     std::vector<glm::dvec3> screen(topo.representative.size());
     for (size_t w = 0; w < topo.representative.size(); ++w) screen[w] = px[topo.representative[w]];
-    std::vector<bool> closed;
-    const auto lines = link_edges(visible, screen, options.max_turn_deg, &closed);
+    std::vector<bool> closed, structure_closed;
+    auto lines = link_edges(visible, screen, options.max_turn_deg, &closed);
+    const size_t outlines = lines.size();
+    const auto structure_lines =
+        link_edges(structure, screen, options.max_turn_deg, &structure_closed);
+    lines.insert(lines.end(), structure_lines.begin(), structure_lines.end());
+    closed.insert(closed.end(), structure_closed.begin(), structure_closed.end());
 
     // 5. Strokes: smoothed, filtered by length, tapered.
     for (size_t l = 0; l < lines.size(); ++l) {
+      const double line_width = l < outlines ? base_width : base_width * options.structure_width;
       const std::vector<uint32_t>& ids = lines[l].first;
       Stroke s;
       s.closed = closed[l];
@@ -400,14 +423,14 @@ std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptio
       const double total = s.closed ? arc[n] : arc[n - 1];
       if (!(total >= options.min_length_px) || n < 2) continue;
       const double scale =
-          options.strength * std::min(1.0, std::sqrt(total / (30 * base_width)));
+          options.strength * std::min(1.0, std::sqrt(total / (30 * line_width)));
       s.width_px.resize(n);
       for (size_t k = 0; k < n; ++k) {
         const double t = arc[k] / total;
         const double profile = s.closed
                                    ? 0.8 + 0.2 * std::cos(2 * M_PI * t)
                                    : 0.15 + 0.85 * std::pow(std::sin(M_PI * t), 0.6);
-        s.width_px[k] = base_width * scale * profile;
+        s.width_px[k] = line_width * scale * profile;
       }
       s.colour = options.darkening * lines[l].second;
       strokes.push_back(std::move(s));

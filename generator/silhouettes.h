@@ -34,6 +34,8 @@ struct StrokeOptions {
   double max_turn_deg = 70;   ///< linking never turns by more than this at a joint
   int smoothing = 2;          ///< Laplacian smoothing passes over each stroke's points
   double darkening = 0.12;    ///< colour = darkening * mean colour of the faces along it
+  double structure_width = 0.6;  ///< width of structure lines (inside cut faces) relative to
+                                 ///< outlines; 0 turns them off
 };
 
 /// Extracts the strokes of `assets` as seen from `assets.camera` in an image of the options'
@@ -44,7 +46,12 @@ struct StrokeOptions {
 /// - a silhouette: one adjacent face turns toward the eye, the other away;
 /// - a crease: the normals of its two faces differ by more than crease_deg and one of them
 ///   faces the eye (every cap outline, where a cut face meets the skin);
-/// - a boundary (one face) or non-manifold (more than two) edge.
+/// - a boundary (one face) or non-manifold (more than two) edge;
+/// - a structure line: an edge of two nearly coplanar faces (one facing the eye) that use
+///   different copies of its vertices. Cross-sections split their vertices along the
+///   cut segments (paper Fig. 3c), so these are the outlines of the structures inside a cut
+///   face (flesh and gel, rings, seeds): the strokes "along structures" of the paper's Fig. 10.
+///   They are linked apart from the outlines and drawn structure_width times as wide.
 /// Degenerate (zero-area) faces are ignored. Visibility: a CPU z-buffer of all instances at the
 /// image size; an edge is kept when at least half of its sample points (about one per pixel,
 /// at least 3) lie within a depth tolerance of the nearest surface in their 3x3 pixel

@@ -12,11 +12,6 @@ build_dir="${1:-build}"
 if [[ ! -f "$build_dir/build.ninja" && ! -f "$build_dir/Makefile" ]]; then
   cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release
 fi
-# A shared build tree is built under its lock where one is in use.
-if [[ -e /tmp/cutaway-build.lock ]]; then
-  flock /tmp/cutaway-build.lock cmake --build "$build_dir" --target cutaway_tests
-else
-  cmake --build "$build_dir" --target cutaway_tests
-fi
+cmake --build "$build_dir" --target cutaway_tests
 CUTAWAY_UPDATE_GOLDEN=1 "$build_dir/cutaway_tests" --gtest_filter='Golden.*'
 git status --short tests/golden

@@ -192,6 +192,42 @@ TEST(Silhouettes, CollinearEdgesLinkIntoOneTaperedStroke) {
   EXPECT_EQ(long_sides, 2);
 }
 
+TEST(Silhouettes, SeamsInsideAFlatFaceAreThinnerStructureLines) {
+  // The strip of CollinearEdgesLinkIntoOneTaperedStroke, with its middle cross edge (x = 0)
+  // split: the two halves use their own copies of its vertices, as a cross-section's two sides
+  // of a cut segment do.
+  AssetMesh strip;
+  strip.name = "strip";
+  for (int i = 0; i <= 10; ++i)
+    for (const double z : {-0.01, 0.01}) strip.position.push_back({-0.1 + 0.02 * i, 0, z});
+  strip.position.push_back(strip.position[10]);  // copies of the x = 0 vertices: 22, 23
+  strip.position.push_back(strip.position[11]);
+  for (unsigned i = 0; i < 10; ++i) {
+    unsigned a = 2 * i, b = a + 1, c = a + 3, d = a + 2;
+    if (i == 5) a = 22, b = 23;  // the right half starts on the copies
+    strip.triangle.push_back({a, b, c});
+    strip.triangle.push_back({a, c, d});
+  }
+  strip.normal.assign(strip.position.size(), {0, 1, 0});
+  strip.colour.assign(strip.position.size(), {0.9, 0.1, 0.1});
+  const SceneAssets a = scene_of({strip}, {0.0, 0.35, 0.05});
+  StrokeOptions o = exact();
+  o.min_length_px = 1;
+  const std::vector<Stroke> with = extract_strokes(a, o);
+  o.structure_width = 0;
+  const std::vector<Stroke> without = extract_strokes(a, o);
+  ASSERT_EQ(with.size(), without.size() + 1);
+  // The extra stroke runs along x = 0, thinner than an outline of the same length would be.
+  const Stroke* seam = nullptr;
+  for (const Stroke& s : with)
+    if (s.points.size() == 2 && s.points[0].x == 0 && s.points[1].x == 0) seam = &s;
+  ASSERT_NE(seam, nullptr);
+  double outline_max = 0;
+  for (const Stroke& s : without)
+    outline_max = std::max(outline_max, *std::max_element(s.width_px.begin(), s.width_px.end()));
+  EXPECT_LT(*std::max_element(seam->width_px.begin(), seam->width_px.end()), outline_max);
+}
+
 TEST(Silhouettes, StrengthZeroGivesNothingAndResultsAreDeterministic) {
   const SceneAssets a = scene_of({box("cube", glm::dvec3(0.05))}, glm::dvec3(2.0, 2.0, 2.0), 4);
   StrokeOptions o;
