@@ -175,6 +175,11 @@ void write_camera(std::string& out, const AssetCamera& c) {
 
 void write_lights(std::string& out, const SceneAssets& a) {
   const Bounds b = scene_bounds(a);
+  // Only the brightest light casts shadows (the first of equals): the others fill them in, as
+  // the OpenGL preview's ambient term does, instead of leaving them black.
+  size_t shadow_caster = 0;
+  for (size_t i = 1; i < a.lights.size(); ++i)
+    if (a.lights[i].intensity > a.lights[shadow_caster].intensity) shadow_caster = i;
   for (size_t i = 0; i < a.lights.size(); ++i) {
     const AssetLight& l = a.lights[i];
     const std::string who = "light " + std::to_string(i) + " '" + sanitised(l.name) + "'";
@@ -194,6 +199,7 @@ void write_lights(std::string& out, const SceneAssets& a) {
       append_vector(out, l.colour * (l.intensity / kPi));
       out += "\n  parallel\n  point_at ";
       append_vector(out, b.centre);
+      if (i != shadow_caster) out += "\n  shadowless";
       out += "\n}\n\n";
     } else {
       require(finite(l.position), who + ": non-finite position");
@@ -206,7 +212,9 @@ void write_lights(std::string& out, const SceneAssets& a) {
                                      (2 * kPi * kPointFadeDistance_m * kPointFadeDistance_m)));
       out += "\n  fade_distance ";
       append_number(out, kPointFadeDistance_m);
-      out += "\n  fade_power 2\n}\n\n";
+      out += "\n  fade_power 2";
+      if (i != shadow_caster) out += "\n  shadowless";
+      out += "\n}\n\n";
     }
   }
 }
@@ -367,7 +375,7 @@ std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* s
   out += " }\n\n";
   write_camera(out, assets.camera);
   write_lights(out, assets);
-  out += "#declare Cutaway_Finish = finish { ambient 0.06 diffuse 0.8 specular 0.25 "
+  out += "#declare Cutaway_Finish = finish { ambient 0.15 diffuse 0.8 specular 0.25 "
          "roughness 0.02 }\n\n";
 
   std::vector<std::string> ids(assets.meshes.size());

@@ -36,8 +36,9 @@ namespace cutaway {
 ///     `colour * intensity / (2 pi 0.01^2)`, so that at a distance d >> 1 cm the brightness is
 ///     colour * intensity / (pi d^2), the inverse-square law of `intensity` candela (POV-Ray's
 ///     attenuation is 2 / (1 + (d / fade_distance)^fade_power); it stays finite within 1 cm);
-///   all lights cast shadows;
-/// - `#declare Cutaway_Finish`: ambient 0.06, diffuse 0.8, specular 0.25, roughness 0.02 (a
+///   only the brightest light casts shadows (the others are `shadowless`, so shadows are
+///   filled in rather than black);
+/// - `#declare Cutaway_Finish`: ambient 0.15, diffuse 0.8, specular 0.25, roughness 0.02 (a
 ///   small, sharp highlight as on moist fruit);
 /// - each mesh with at least one triangle declared ONCE as `#declare Mesh_<k>_<name> = mesh2`:
 ///   vertex_vectors (metres), normal_vectors (omitted when the mesh has no normals; a zero or

@@ -309,7 +309,7 @@ TEST(PovExport, RendersLikeTheOpenGlCamera) {
   const glm::dvec3 left_front = s.instances[0].translation + glm::dvec3(0, 0, 0.25);
   const glm::dvec2 left_px = project(s.camera, left_front, s.width, s.height);
   const double cos_sun = glm::dot(glm::dvec3(0, 0, 1), -s.lights[0].direction);
-  const glm::dvec3 expected = kRed * (0.06 + 0.8 * cos_sun);
+  const glm::dvec3 expected = kRed * (0.15 + 0.8 * cos_sun);
   const glm::dvec3 got = png.linear(left_px);
   EXPECT_NEAR(got.r, expected.r, 0.03);
   EXPECT_NEAR(got.g, expected.g, 0.01);
