@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates the README's pictures in doc/ with the cutaway binary (`make gallery`): models,
-# cuts, variants, pieces and the default salad (OpenGL preview and POV-Ray render). Seeded and
-# deterministic: the same program gives the same pictures.
+# cuts, variants, pieces, the default salad (OpenGL preview and POV-Ray render), the board
+# scene and the contact sheet of all templates. Seeded and deterministic: the same program
+# gives the same pictures.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cutaway=${CUTAWAY:-./build/cutaway}
@@ -18,4 +19,7 @@ run piece templates/cucumber.yaml --cut slices:20 --png doc/cucumber-slices.png
 run scene scenes/salad.yaml -o /tmp/cutaway-gallery-salad.pov --png doc/salad.png \
   --render doc/salad-povray.png
 rm -f /tmp/cutaway-gallery-salad.pov
+run scene scenes/board.yaml -o /tmp/cutaway-gallery-board.glb --png doc/board.png
+rm -f /tmp/cutaway-gallery-board.glb
+CUTAWAY="$cutaway" bash scripts/template-sheet.sh doc/templates-sheet.png
 echo "gallery: wrote doc/*.png" >&2
