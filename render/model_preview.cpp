@@ -17,6 +17,7 @@
 
 #include "atomic_file.h"
 #include "gl_context.h"
+#include "gl_buffers.h"
 #include "gl_program.h"
 #include "offscreen_target.h"
 
@@ -183,28 +184,12 @@ Image render_model_preview(const DsModel& model, const PreviewOptions& options) 
   const OffscreenTarget target(*context, options.width, options.height, options.samples,
                               "render_model_preview");
 
-  GLuint vertex_array = 0, buffers[2] = {0, 0};
-  glGenVertexArrays(1, &vertex_array);
-  glBindVertexArray(vertex_array);
-  glGenBuffers(2, buffers);
-  glBindBuffer(GL_ARRAY_BUFFER, buffers[0]);
-  glBufferData(GL_ARRAY_BUFFER,
-               static_cast<GLsizeiptr>(geometry.vertices.size() * sizeof(PreviewVertex)),
-               geometry.vertices.data(), GL_STATIC_DRAW);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffers[1]);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER,
-               static_cast<GLsizeiptr>(geometry.indices.size() * sizeof(uint32_t)),
-               geometry.indices.data(), GL_STATIC_DRAW);
-  const auto attribute = [](GLuint location, GLint size, size_t offset) {
-    glEnableVertexAttribArray(location);
-    glVertexAttribPointer(location, size, GL_FLOAT, GL_FALSE, sizeof(PreviewVertex),
-                          reinterpret_cast<const void*>(offset));
-  };
-  attribute(0, 3, offsetof(PreviewVertex, position));
-  attribute(1, 3, offsetof(PreviewVertex, normal));
-  attribute(2, 3, offsetof(PreviewVertex, front));
-  attribute(3, 3, offsetof(PreviewVertex, back));
-  attribute(4, 1, offsetof(PreviewVertex, alpha));
+  make_vertex_array(geometry.vertices, geometry.indices,
+                    {{0, 3, offsetof(PreviewVertex, position)},
+                     {1, 3, offsetof(PreviewVertex, normal)},
+                     {2, 3, offsetof(PreviewVertex, front)},
+                     {3, 3, offsetof(PreviewVertex, back)},
+                     {4, 1, offsetof(PreviewVertex, alpha)}});
 
   glUseProgram(program.id());
   const glm::mat4 view_from_object_f(view_from_object), clip_from_view_f(clip_from_view);

@@ -19,6 +19,7 @@
 #include "diffusion/cube_directions.h"
 #include "diffusion/diffusion_sheets.h"
 #include "gl_context.h"
+#include "gl_buffers.h"
 #include "gl_program.h"
 #include "shader_sources.h"
 
@@ -178,24 +179,10 @@ class GlDiffusion final : public DiffusionBackend {
         for (int k = 0; k < 3; ++k) indices.push_back(base + t[k]);
     }
     index_count_ = static_cast<GLsizei>(indices.size());
-    glGenVertexArrays(1, &vertex_array_);
-    glBindVertexArray(vertex_array_);
-    GLuint buffers[2] = {0, 0};
-    glGenBuffers(2, buffers);
-    glBindBuffer(GL_ARRAY_BUFFER, buffers[0]);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(SheetVertex)),
-                 vertices.data(), GL_STATIC_DRAW);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffers[1]);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(uint32_t)),
-                 indices.data(), GL_STATIC_DRAW);
-    const auto attribute = [](GLuint location, size_t offset) {
-      glEnableVertexAttribArray(location);
-      glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, sizeof(SheetVertex),
-                            reinterpret_cast<const void*>(offset));
-    };
-    attribute(0, offsetof(SheetVertex, position));
-    attribute(1, offsetof(SheetVertex, colour_front));
-    attribute(2, offsetof(SheetVertex, colour_back));
+    vertex_array_ = make_vertex_array(vertices, indices,
+                                      {{0, 3, offsetof(SheetVertex, position)},
+                                       {1, 3, offsetof(SheetVertex, colour_front)},
+                                       {2, 3, offsetof(SheetVertex, colour_back)}});
     glBindVertexArray(0);
   }
 

@@ -16,6 +16,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "gl_context.h"
+#include "gl_buffers.h"
 #include "gl_program.h"
 #include "offscreen_target.h"
 #include "stroke_renderer.h"
@@ -190,24 +191,9 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
                                "render_scene_preview");
   attach_depth_buffer(target, *context);
 
-  GLuint vertex_array = 0, buffers[2] = {0, 0};
-  glGenVertexArrays(1, &vertex_array);
-  glBindVertexArray(vertex_array);
-  glGenBuffers(2, buffers);
-  glBindBuffer(GL_ARRAY_BUFFER, buffers[0]);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(SceneVertex)),
-               vertices.data(), GL_STATIC_DRAW);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffers[1]);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(uint32_t)),
-               indices.data(), GL_STATIC_DRAW);
-  const auto attribute = [](GLuint location, size_t offset) {
-    glEnableVertexAttribArray(location);
-    glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, sizeof(SceneVertex),
-                          reinterpret_cast<const void*>(offset));
-  };
-  attribute(0, offsetof(SceneVertex, position));
-  attribute(1, offsetof(SceneVertex, normal));
-  attribute(2, offsetof(SceneVertex, colour));
+  make_vertex_array(vertices, indices, {{0, 3, offsetof(SceneVertex, position)},
+                                        {1, 3, offsetof(SceneVertex, normal)},
+                                        {2, 3, offsetof(SceneVertex, colour)}});
 
   // Lights in the view frame; the documented mapping: scale = colour * (lux / 3) * exposure.
   glUseProgram(program.id());

@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 
 #include "gl_context.h"
+#include "gl_buffers.h"
 #include "gl_program.h"
 #include "offscreen_target.h"
 
@@ -106,22 +107,8 @@ Image render_section_preview(const CrossSection& section, const SectionPreviewOp
   const OffscreenTarget target(*context, width, height, options.samples,
                                "render_section_preview", GL_RGBA32F);
 
-  GLuint vertex_array = 0, buffers[2] = {0, 0};
-  glGenVertexArrays(1, &vertex_array);
-  glBindVertexArray(vertex_array);
-  glGenBuffers(2, buffers);
-  glBindBuffer(GL_ARRAY_BUFFER, buffers[0]);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(SectionVertex)),
-               vertices.data(), GL_STATIC_DRAW);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffers[1]);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(uint32_t)),
-               indices.data(), GL_STATIC_DRAW);
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(SectionVertex),
-                        reinterpret_cast<const void*>(offsetof(SectionVertex, section)));
-  glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(SectionVertex),
-                        reinterpret_cast<const void*>(offsetof(SectionVertex, colour)));
+  make_vertex_array(vertices, indices, {{0, 2, offsetof(SectionVertex, section)},
+                                        {1, 3, offsetof(SectionVertex, colour)}});
 
   glUseProgram(program.id());
   glUniform2f(program.uniform("clip_from_section"), static_cast<float>(clip_from_section.x),

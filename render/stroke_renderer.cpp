@@ -12,6 +12,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 
+#include "gl_buffers.h"
 #include "gl_program.h"
 
 namespace cutaway {
@@ -107,19 +108,10 @@ void draw_strokes(const std::vector<Stroke>& strokes, const AssetCamera& camera,
   if (vertices.empty()) return;
 
   const GlProgram program("stroke.vert", "stroke.frag");
-  GLuint vertex_array = 0, buffer = 0;
-  glGenVertexArrays(1, &vertex_array);
-  glBindVertexArray(vertex_array);
-  glGenBuffers(1, &buffer);
-  glBindBuffer(GL_ARRAY_BUFFER, buffer);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(StrokeVertex)),
-               vertices.data(), GL_STATIC_DRAW);
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(StrokeVertex),
-                        reinterpret_cast<const void*>(offsetof(StrokeVertex, pixel)));
-  glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(StrokeVertex),
-                        reinterpret_cast<const void*>(offsetof(StrokeVertex, colour)));
+  // The vertex array and buffer belong to the caller's context, which frees them.
+  make_vertex_array(vertices.data(), vertices.size() * sizeof(StrokeVertex),
+                    static_cast<GLsizei>(sizeof(StrokeVertex)), nullptr, 0,
+                    {{0, 2, offsetof(StrokeVertex, pixel)}, {1, 3, offsetof(StrokeVertex, colour)}});
   glUseProgram(program.id());
   glUniform2f(program.uniform("image_size"), static_cast<float>(width),
               static_cast<float>(height));
@@ -130,8 +122,6 @@ void draw_strokes(const std::vector<Stroke>& strokes, const AssetCamera& camera,
   const GLenum error = glGetError();
   glUseProgram(0);
   glBindVertexArray(0);
-  glDeleteBuffers(1, &buffer);
-  glDeleteVertexArrays(1, &vertex_array);
   if (error != GL_NO_ERROR)
     throw std::runtime_error("draw_strokes: OpenGL error " + std::to_string(error));
 }
