@@ -4,10 +4,12 @@
 #include <cctype>
 #include <cstdlib>
 #include <fstream>
+#include <cstring>
 #include <sstream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <stb/stb_image.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -157,6 +159,23 @@ std::vector<std::filesystem::path> shipped_templates() {
   }
   std::sort(out.begin(), out.end());
   return out;
+}
+
+PngInfo png_info(const std::filesystem::path& file) {
+  const std::string png = read_file(file);
+  PngInfo info;
+  int channels = 0;
+  unsigned char* pixels =
+      stbi_load_from_memory(reinterpret_cast<const unsigned char*>(png.data()),
+                            static_cast<int>(png.size()), &info.width, &info.height, &channels, 4);
+  if (!pixels) return PngInfo{};
+  for (int i = 0; i < info.width * info.height; ++i) {
+    const unsigned char* px = pixels + 4 * i;
+    info.not_background += std::memcmp(px, pixels, 3) != 0;
+    info.dark += px[0] < 8 && px[1] < 8 && px[2] < 8;
+  }
+  stbi_image_free(pixels);
+  return info;
 }
 
 }  // namespace cutaway::test

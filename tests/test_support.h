@@ -66,6 +66,16 @@ struct ThreeLoadReport {
 /// failed report (ok false, error set), never a skip. Takes about a second or two.
 ThreeLoadReport load_gltf_three(const std::filesystem::path& file);
 
+/// A summary of a PNG file for checks on pictures.
+struct PngInfo {
+  int width = 0, height = 0;  ///< 0 when the file is not a PNG stb_image can read
+  size_t not_background = 0;  ///< pixels whose RGB differs from the top-left pixel's
+  size_t dark = 0;            ///< pixels with R, G and B all below 8
+};
+
+/// Reads `file` with stb_image and summarises it.
+PngInfo png_info(const std::filesystem::path& file);
+
 /// The template files shipped in templates/ (absolute paths, sorted).
 std::vector<std::filesystem::path> shipped_templates();
 

@@ -17,26 +17,6 @@ namespace fs = std::filesystem;
 
 const char* kTiny = "tests/data/scenes/tiny.yaml";
 
-/// Width and height of a PNG and how many pixels differ from its top-left pixel.
-struct PngInfo {
-  int width = 0, height = 0;
-  size_t not_background = 0;
-};
-
-PngInfo png_info(const fs::path& file) {
-  const std::string png = test::read_file(file);
-  PngInfo info;
-  int channels = 0;
-  unsigned char* pixels =
-      stbi_load_from_memory(reinterpret_cast<const unsigned char*>(png.data()),
-                            static_cast<int>(png.size()), &info.width, &info.height, &channels, 4);
-  if (!pixels) return info;
-  for (int i = 0; i < info.width * info.height; ++i)
-    info.not_background += std::memcmp(pixels + 4 * i, pixels, 3) != 0;
-  stbi_image_free(pixels);
-  return info;
-}
-
 std::vector<std::string> scene_args(const fs::path& dir, const std::string& stem,
                                     std::vector<std::string> extra = {}) {
   std::vector<std::string> args = {"scene", kTiny, "--backend", "cpu", "--cube", "4", "-q",
@@ -66,7 +46,7 @@ TEST(SceneCommand, ExportsValidGltfAndPovRayAndPictures) {
   EXPECT_GE(three.meshes, 8);  // the bowl and at least 7 pieces (4 wedges, 2 halves, slices)
   EXPECT_GT(three.triangles, 10000);
   for (const char* f : {"preview.png", "povray.png"}) {
-    const PngInfo png = png_info(dir / f);
+    const test::PngInfo png = test::png_info(dir / f);
     EXPECT_EQ(png.width, 160) << f;
     EXPECT_EQ(png.height, 120) << f;
     EXPECT_GT(png.not_background, 160u * 120u / 8) << f << ": (nearly) empty";
@@ -125,7 +105,7 @@ TEST(PieceCommand, HalvesGiveTwoValidMeshesAndAPicture) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const test::GltfReport report = test::validate_gltf(dir / "halves.glb");
   EXPECT_EQ(report.errors, 0) << report.output;
-  const PngInfo png = png_info(dir / "halves.png");
+  const test::PngInfo png = test::png_info(dir / "halves.png");
   EXPECT_EQ(png.width, 800);
   EXPECT_GT(png.not_background, 800u * 600u / 20);
 }

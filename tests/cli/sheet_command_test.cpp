@@ -14,30 +14,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Width and height of a PNG, how many pixels differ from its top-left pixel and how many are
-/// near black (label text; the renders have no black).
-struct PngInfo {
-  int width = 0, height = 0;
-  size_t not_background = 0, dark = 0;
-};
-
-PngInfo png_info(const fs::path& file) {
-  const std::string png = test::read_file(file);
-  PngInfo info;
-  int channels = 0;
-  unsigned char* pixels =
-      stbi_load_from_memory(reinterpret_cast<const unsigned char*>(png.data()),
-                            static_cast<int>(png.size()), &info.width, &info.height, &channels, 4);
-  if (!pixels) return info;
-  for (int i = 0; i < info.width * info.height; ++i) {
-    const unsigned char* p = pixels + 4 * i;
-    info.not_background += std::memcmp(p, pixels, 3) != 0;
-    info.dark += p[0] < 8 && p[1] < 8 && p[2] < 8;
-  }
-  stbi_image_free(pixels);
-  return info;
-}
-
 TEST(SheetCommand, TwoTemplatesMakeOneLabelledRow) {
   const fs::path dir = test::fresh_dir("sheet");
   const fs::path out = dir / "sheet.png";
@@ -45,7 +21,7 @@ TEST(SheetCommand, TwoTemplatesMakeOneLabelledRow) {
       {"sheet", "templates/avocado.yaml", "templates/apple.yaml:across", "--tile", "128",
        "--cube", "4", "--backend", "cpu", "-q", "-o", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const PngInfo info = png_info(out);
+  const test::PngInfo info = test::png_info(out);
   // Two tiles of 128 pixels in one row, margins of 4 pixels around and between them.
   EXPECT_EQ(info.width, 2 * 128 + 3 * 4);
   // A tile is 96 pixels of picture plus a label strip.

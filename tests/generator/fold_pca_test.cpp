@@ -152,8 +152,12 @@ TEST(FoldPca, VariantWithNFoldsHasNChambers) {
     check_template_curves(v);
     const DsModel m = build_model(v);
     for (const auto& s : m.surfaces) {
-      if (s.name == "chambers") EXPECT_EQ(components(s.mesh), np);
-      if (s.name == "skin") EXPECT_EQ(components(s.mesh), 1);
+      if (s.name == "chambers") {
+        EXPECT_EQ(components(s.mesh), np);
+      }
+      if (s.name == "skin") {
+        EXPECT_EQ(components(s.mesh), 1);
+      }
     }
   }
 }

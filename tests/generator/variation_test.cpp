@@ -56,7 +56,9 @@ TEST(Variation, EveryVariantOfEveryShippedTemplateBuilds) {
       varies = t.variation_folds_max > t.variation_folds_min ||
                !fold_pca(fold_features(t, {})).axes.empty();
     }
-    if (varies) EXPECT_GE(distinct, 100) << t.name;
+    if (varies) {
+      EXPECT_GE(distinct, 100) << t.name;
+    }
   }
 }
 
