@@ -22,45 +22,56 @@ bool same_sections(const Template& a, const Template& b) {
   return true;
 }
 
-// 200 seeds per shipped template. For speed the meshes are built at twice the template's edge
-// length (the curves, and so the rules they must keep, are the same at any resolution).
-TEST(Variation, EveryVariantOfEveryShippedTemplateBuilds) {
-  for (const auto& path : test::shipped_templates()) {
-    Template t = load_template(path.string());
-    t.edge_m *= 2;
-    const auto t0 = std::chrono::steady_clock::now();
-    int distinct = 0, redraws = 0, halved = 0;
-    Template first;
-    for (uint64_t seed = 0; seed < 200; ++seed) {
-      const Variant v = make_variant(t, seed);
-      if (seed == 0) first = v.tmpl;
-      redraws += v.draws - 1;
-      halved += v.amount < t.variation_amount;
-      EXPECT_NO_THROW(check_template_curves(v.tmpl)) << t.name << " seed " << seed;
-      EXPECT_GE(v.model.surfaces.size(), t.surfaces.size());
-      distinct += seed > 0 && !same_sections(v.tmpl, first);
-      EXPECT_EQ(v.tmpl.grains.size(), t.grains.size());
-      for (size_t i = 0; i < t.surfaces.size(); ++i)
-        EXPECT_EQ(v.tmpl.surfaces[i].profile, t.surfaces[i].profile);
-    }
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::printf("%s: 200 variants in %.2f s (%.1f/s), %d differ from seed 0's, %d redraws, "
-                "%d with a halved amount\n",
-                t.name.c_str(), s, 200 / s, distinct, redraws, halved);
-    // Cylindrical: drawn loops vary. N-fold: a fold-count range or unequal folds vary (the
-    // shipped cucumber has three equal folds and a fixed count: all its variants agree).
-    bool varies = false;
-    if (t.symmetry == Symmetry::Cylindrical) {
-      for (const auto& sf : t.surfaces) varies |= sf.kind == SurfaceKind::Around && !sf.section.circle;
-    } else if (t.symmetry == Symmetry::NFold) {
-      varies = t.variation_folds_max > t.variation_folds_min ||
-               !fold_pca(fold_features(t, {})).axes.empty();
-    }
-    if (varies) {
-      EXPECT_GE(distinct, 100) << t.name;
-    }
+// 200 seeds per shipped template, one test per template (so that CTest runs them in
+// parallel). For speed the meshes are built at twice the template's edge length (the curves,
+// and so the rules they must keep, are the same at any resolution).
+class ShippedVariation : public ::testing::TestWithParam<std::filesystem::path> {};
+
+TEST_P(ShippedVariation, EveryVariantBuilds) {
+  const std::filesystem::path& path = GetParam();
+  Template t = load_template(path.string());
+  t.edge_m *= 2;
+  const auto t0 = std::chrono::steady_clock::now();
+  int distinct = 0, redraws = 0, halved = 0;
+  Template first;
+  for (uint64_t seed = 0; seed < 200; ++seed) {
+    const Variant v = make_variant(t, seed);
+    if (seed == 0) first = v.tmpl;
+    redraws += v.draws - 1;
+    halved += v.amount < t.variation_amount;
+    EXPECT_NO_THROW(check_template_curves(v.tmpl)) << t.name << " seed " << seed;
+    EXPECT_GE(v.model.surfaces.size(), t.surfaces.size());
+    distinct += seed > 0 && !same_sections(v.tmpl, first);
+    EXPECT_EQ(v.tmpl.grains.size(), t.grains.size());
+    for (size_t i = 0; i < t.surfaces.size(); ++i)
+      EXPECT_EQ(v.tmpl.surfaces[i].profile, t.surfaces[i].profile);
+  }
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("%s: 200 variants in %.2f s (%.1f/s), %d differ from seed 0's, %d redraws, "
+              "%d with a halved amount\n",
+              t.name.c_str(), s, 200 / s, distinct, redraws, halved);
+  // Cylindrical: drawn loops vary. N-fold: a fold-count range or unequal folds vary (the
+  // shipped cucumber has three equal folds and a fixed count: all its variants agree).
+  bool varies = false;
+  if (t.symmetry == Symmetry::Cylindrical) {
+    for (const auto& sf : t.surfaces) varies |= sf.kind == SurfaceKind::Around && !sf.section.circle;
+  } else if (t.symmetry == Symmetry::NFold) {
+    varies = t.variation_folds_max > t.variation_folds_min ||
+             !fold_pca(fold_features(t, {})).axes.empty();
+  }
+  if (varies) {
+    EXPECT_GE(distinct, 100) << t.name;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Templates, ShippedVariation,
+                         ::testing::ValuesIn(test::shipped_templates()),
+                         [](const ::testing::TestParamInfo<std::filesystem::path>& info) {
+                           std::string n = info.param.stem().string();
+                           for (char& c : n)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return n;
+                         });
 
 TEST(Variation, SameSeedSameVariant) {
   for (const char* name : {"templates/onion.yaml", "templates/tomato.yaml"}) {
