@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -171,7 +172,12 @@ int run_check(const std::vector<std::string>& files) {
       if (format && format->is_scalar() && format->string().rfind("cutaway-scene/", 0) == 0) {
         const cutaway::Scene scene = cutaway::load_scene(f);
         int objects = 0;
-        for (const auto& item : scene.items) objects += item.count;
+        std::set<std::string> built;  // each template's model once: its geometric rules too
+        for (const auto& item : scene.items) {
+          objects += item.count;
+          if (built.insert(item.template_path).second)
+            cutaway::build_model(cutaway::load_template(item.template_path));
+        }
         std::printf("%s: ok (scene '%s', %zu items, %d objects)\n", f.c_str(),
                     scene.name.c_str(), scene.items.size(), objects);
         continue;

@@ -63,6 +63,8 @@ std::vector<BadSceneCase> bad_scenes() {
       bad("bad_template_name", 8, 15, "items[0].template", "not 'Tomato'"),
       bad("broken_template", 5, 32, "symmetry.folds", "folds >= 2",
           "tests/bad_input/folds_one.yaml"),
+      bad("template_model_invalid", 15, 5, "surfaces[1]", "crosses the skin",
+          "tests/bad_input/nested_crosses_skin.yaml"),
       bad("count_zero", 9, 12, "items[0].count", "must be a whole number from 1 to 64, not 0"),
       bad("count_fractional", 9, 12, "items[0].count", "must be a whole number, not '2.5'"),
       bad("variation_too_large", 13, 16, "items[1].variation", "must be between 0 and 10, not 12"),
