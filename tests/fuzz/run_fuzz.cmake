@@ -1,9 +1,10 @@
 # Configures and builds the fuzz sub-project (tests/fuzz, clang) into the build tree, then runs
-# the template-parser fuzzer for a bounded time; any crash, sanitizer report, timeout or
-# out-of-memory fails. Run by the CTest test fuzz_template_parser:
-#   cmake -DSOURCE_DIR=<repo> -DBINARY_DIR=<build>/fuzz -DCLANGXX=clang++ -DSECONDS=60
-#         -DGENERATOR=Ninja -P tests/fuzz/run_fuzz.cmake
-foreach(var SOURCE_DIR BINARY_DIR CLANGXX SECONDS GENERATOR)
+# one parser's fuzzer (KIND template or scene) for a bounded time; any crash, sanitizer report,
+# timeout or out-of-memory fails. Run by the CTest tests fuzz_template_parser and
+# fuzz_scene_parser:
+#   cmake -DKIND=template -DSOURCE_DIR=<repo> -DBINARY_DIR=<build>/fuzz -DCLANGXX=clang++
+#         -DSECONDS=60 -DGENERATOR=Ninja -P tests/fuzz/run_fuzz.cmake
+foreach(var KIND SOURCE_DIR BINARY_DIR CLANGXX SECONDS GENERATOR)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "run_fuzz.cmake: -D${var}=... is required")
   endif()
@@ -26,20 +27,26 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "building the fuzz target failed:\n${out}")
 endif()
 
-# Seed corpus: the shipped templates and the bad-input fixtures. The working corpus persists
-# in the build tree, so coverage grows from run to run.
-file(REMOVE_RECURSE ${BINARY_DIR}/seeds)
-file(MAKE_DIRECTORY ${BINARY_DIR}/seeds ${BINARY_DIR}/corpus ${BINARY_DIR}/artifacts)
-file(GLOB seeds ${SOURCE_DIR}/templates/*.yaml ${SOURCE_DIR}/tests/bad_input/*)
-file(COPY ${seeds} DESTINATION ${BINARY_DIR}/seeds)
+# Seed corpus: the shipped files and the bad-input fixtures of the format. The working corpus
+# persists in the build tree, so coverage grows from run to run.
+set(work ${BINARY_DIR}/${KIND})
+file(REMOVE_RECURSE ${work}/seeds)
+file(MAKE_DIRECTORY ${work}/seeds ${work}/corpus ${work}/artifacts)
+if(KIND STREQUAL "scene")
+  file(GLOB seeds ${SOURCE_DIR}/scenes/*.yaml ${SOURCE_DIR}/tests/data/scenes/*.yaml
+       ${SOURCE_DIR}/tests/data/scenes/bad/*.yaml)
+else()
+  file(GLOB seeds ${SOURCE_DIR}/templates/*.yaml ${SOURCE_DIR}/tests/bad_input/*)
+endif()
+file(COPY ${seeds} DESTINATION ${work}/seeds)
 
 execute_process(
   COMMAND ${CMAKE_COMMAND} -E env
           ASAN_OPTIONS=detect_stack_use_after_return=1:allocator_may_return_null=0
           UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-          ${BINARY_DIR}/template_fuzz -max_total_time=${SECONDS} -rss_limit_mb=2048 -timeout=10
-          -dict=${SOURCE_DIR}/tests/fuzz/template.dict -print_final_stats=1
-          -artifact_prefix=${BINARY_DIR}/artifacts/ ${BINARY_DIR}/corpus ${BINARY_DIR}/seeds
+          ${BINARY_DIR}/${KIND}_fuzz -max_total_time=${SECONDS} -rss_limit_mb=2048 -timeout=10
+          -dict=${SOURCE_DIR}/tests/fuzz/${KIND}.dict -print_final_stats=1
+          -artifact_prefix=${work}/artifacts/ ${work}/corpus ${work}/seeds
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
 # libFuzzer prints a line per new input: keep the start (the seed run) and the end (stats).
 string(LENGTH "${out}" len)
@@ -50,7 +57,7 @@ if(len GREATER 12000)
   set(out "${head}\n...\n${tail}")
 endif()
 if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "the template-parser fuzzer found a problem (exit code ${rc}); the input "
-                      "is in ${BINARY_DIR}/artifacts/:\n${out}")
+  message(FATAL_ERROR "the ${KIND}-parser fuzzer found a problem (exit code ${rc}); the input "
+                      "is in ${work}/artifacts/:\n${out}")
 endif()
-message(STATUS "fuzz_template_parser: no findings in ${SECONDS} s\n${out}")
+message(STATUS "fuzz_${KIND}_parser: no findings in ${SECONDS} s\n${out}")
