@@ -119,10 +119,12 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
     cdt.insert_constraint(va, vb);
     if (c.segment >= 0) segment_of.emplace(std::minmax(va, vb), seg2[c.segment].index);
   }
-  // Blur bands (paper §3.1, Fig. 2): a vertex on each sheet of a blurred segment, +-blur from
-  // its midpoint along its front direction, so that the transition across the band is sampled
-  // at regular distances rather than wherever refinement happens to put vertices. Not near a
-  // split line: a point a hair's breadth off a constraint makes refinement split it endlessly.
+  // Blur bands (paper §3.1, Fig. 2): pairs of vertices on the two sheets of a blurred cut
+  // segment, +-blur along its front direction, every max(1.5 blur, edge / 5) along it, so that
+  // the steep transition across the band is sampled as a ladder parallel to the cut line
+  // (sparser pairs leave line vertices of the refinement without partners, and the colour
+  // across the band zigzags). Not near a split line: a point a hair's breadth off a constraint
+  // makes refinement split it endlessly.
   auto near_split_line = [&](const glm::dvec2& p) {
     for (const Line2& l : lines)
       if (std::fabs(glm::dot(p, l.normal) - l.offset) < 0.25 * options.edge_m) return true;
@@ -130,12 +132,19 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
   };
   for (const Segment2& s : seg2) {
     const CutSegment& cut = segments[s.index];
+    const double front_len = glm::length(s.front);
     const double blur = 0.5 * (cut.blur_a + cut.blur_b);
-    const double len = glm::length(s.front);
-    if (blur <= 0 || len == 0) continue;
-    const glm::dvec2 mid = 0.5 * (s.a + s.b), offset = s.front / len * blur;
-    for (const glm::dvec2& p : {mid + offset, mid - offset})
-      if (!near_split_line(p)) cdt.insert(Point2(p.x, p.y));
+    if (blur <= 0 || front_len == 0) continue;
+    const double spacing = std::max(1.5 * blur, 0.2 * options.edge_m);
+    const int pairs = std::max(1, static_cast<int>(std::ceil(glm::distance(s.a, s.b) / spacing)));
+    const glm::dvec2 across = s.front / front_len;
+    for (int k = 0; k < pairs; ++k) {
+      const double t = (k + 0.5) / pairs;
+      const glm::dvec2 p = s.a + (s.b - s.a) * t;
+      const double b = cut.blur_a + (cut.blur_b - cut.blur_a) * t;
+      for (const glm::dvec2& q : {p + across * b, p - across * b})
+        if (!near_split_line(q)) cdt.insert(Point2(q.x, q.y));
+    }
   }
   // The input segment that a constrained edge (a, b) lies on (null on a split line).
   auto segment_on = [&](Vertex a, Vertex b) -> const Segment2* {
