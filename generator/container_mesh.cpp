@@ -152,7 +152,7 @@ std::optional<AssetMesh> container_mesh(const Container& c) {
       break;
     }
     case ContainerType::Plate: {
-      const double well = plate_well(c), foot = 0.5 * R;
+      const double foot = 0.5 * R;
       append_curve(pts, nrm, 40, [&](double t) {
         const double r = R * t;
         return glm::dvec2(r, plate_inner(c, r));
@@ -171,7 +171,6 @@ std::optional<AssetMesh> container_mesh(const Container& c) {
       nrm.push_back({0, -1});
       pts.push_back({0, 0});
       nrm.push_back({0, -1});
-      (void)well;
       break;
     }
   }

@@ -47,7 +47,6 @@ struct SceneArgs {
   std::vector<std::string> outputs;
   int64_t seed = -1;  ///< >= 0: overrides the scene's seed
   int cube = 16;
-  bool quiet = false;
 };
 int run_scene(const SceneArgs& args, const Common& common);
 

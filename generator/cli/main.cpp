@@ -501,10 +501,7 @@ int main(int argc, char** argv) {
     const cutaway::cli::Common common{backend, threads, stats};
     if (*piece) return cutaway::cli::run_piece(piece_args, common);
     if (*sheet) return cutaway::cli::run_sheet(sheet_args, common);
-    if (*scene) {
-      scene_args.quiet = quiet;
-      return cutaway::cli::run_scene(scene_args, common);
-    }
+    if (*scene) return cutaway::cli::run_scene(scene_args, common);
     if (*variants) {
       variants_args.shard_given = variants->count("--shard") > 0;
       return run_variants(variants_args, backend, threads, quiet);
