@@ -47,17 +47,8 @@ std::string vector_text(const glm::dvec3& v) {
   return s;
 }
 
-std::string sanitised(std::string_view name) {
-  std::string s(name);
-  for (char& c : s) {
-    const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
-    if (!ok) c = '_';
-  }
-  return s;
-}
-
 std::string mesh_identifier(size_t k, const std::string& name) {
-  std::string id = "Mesh_" + std::to_string(k) + "_" + sanitised(name);
+  std::string id = "Mesh_" + std::to_string(k) + "_" + asset_name(name);
   if (id.size() > kMaxIdentifier) id.resize(kMaxIdentifier);
   return id;
 }
@@ -71,7 +62,7 @@ void require(bool ok, const std::string& what) {
 }
 
 void check_mesh(const AssetMesh& m, size_t k) {
-  const std::string who = "mesh " + std::to_string(k) + " '" + sanitised(m.name) + "'";
+  const std::string who = "mesh " + std::to_string(k) + " '" + asset_name(m.name) + "'";
   const size_t n = m.position.size();
   require(m.normal.empty() || m.normal.size() == n, who + ": normal count differs from positions");
   require(m.colour.size() == n, who + ": colour count differs from positions");
@@ -182,10 +173,10 @@ void write_lights(std::string& out, const SceneAssets& a) {
     if (a.lights[i].intensity > a.lights[shadow_caster].intensity) shadow_caster = i;
   for (size_t i = 0; i < a.lights.size(); ++i) {
     const AssetLight& l = a.lights[i];
-    const std::string who = "light " + std::to_string(i) + " '" + sanitised(l.name) + "'";
+    const std::string who = "light " + std::to_string(i) + " '" + asset_name(l.name) + "'";
     require(finite(l.colour) && std::isfinite(l.intensity) && l.intensity >= 0,
             who + ": colour and intensity must be finite, intensity >= 0");
-    out += "// Light " + std::to_string(i) + ": " + sanitised(l.name);
+    out += "// Light " + std::to_string(i) + ": " + asset_name(l.name);
     if (l.type == LightType::Directional) {
       require(finite(l.direction) && glm::length(l.direction) > 0,
               who + ": direction must be finite and non-zero");
@@ -231,7 +222,7 @@ void write_mesh(std::string& out, const AssetMesh& m, const std::string& id, siz
     vertex_texture[i] = it->second;
   }
 
-  out += "// Mesh " + std::to_string(k) + ": " + sanitised(m.name) + " (" +
+  out += "// Mesh " + std::to_string(k) + ": " + asset_name(m.name) + " (" +
          std::to_string(m.position.size()) + " vertices, " + std::to_string(m.triangle.size()) +
          " triangles, distinct colours: " + std::to_string(colours.size()) + ")\n";
   out += "#declare " + id + " = mesh2 {\n  vertex_vectors {\n    " +
@@ -263,7 +254,7 @@ void write_mesh(std::string& out, const AssetMesh& m, const std::string& id, siz
 }
 
 void check_instance(const AssetInstance& inst, size_t i, size_t mesh_count) {
-  const std::string who = "instance " + std::to_string(i) + " '" + sanitised(inst.name) + "'";
+  const std::string who = "instance " + std::to_string(i) + " '" + asset_name(inst.name) + "'";
   require(inst.mesh >= 0 && static_cast<size_t>(inst.mesh) < mesh_count,
           who + ": mesh index out of range");
   const glm::dquat q = inst.rotation;
@@ -279,7 +270,7 @@ void write_instance(std::string& out, const AssetInstance& inst, const std::stri
   // glm matrices are column-major: r[c] is the image of the c-th basis vector, which is the
   // c-th row of POV-Ray's matrix (it maps row vectors: p' = p * M).
   const glm::dmat3 r = glm::mat3_cast(q / qlen);
-  out += "// Instance " + std::to_string(i) + ": " + sanitised(inst.name) + "\nobject {\n  " + id +
+  out += "// Instance " + std::to_string(i) + ": " + asset_name(inst.name) + "\nobject {\n  " + id +
          "\n  matrix <";
   for (int c = 0; c < 3; ++c) {
     for (int row = 0; row < 3; ++row) {
@@ -365,7 +356,7 @@ std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* s
   require(finite(assets.background), "non-finite background colour");
 
   std::string out;
-  out += "// " + sanitised(assets.name) + ": a scene written by cutaway (POV-Ray 3.7).\n";
+  out += "// " + asset_name(assets.name) + ": a scene written by cutaway (POV-Ray 3.7).\n";
   out += "// Units: metres, +Y up. Colours: linear RGB (assumed_gamma 1.0).\n";
   out += "// Render: povray +I<this file> +FN +W" + std::to_string(assets.width) + " +H" +
          std::to_string(assets.height) + " +A0.3 File_Gamma=sRGB\n\n";

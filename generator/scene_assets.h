@@ -4,12 +4,24 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
 namespace cutaway {
+
+/// `name` with every byte outside [A-Za-z0-9] replaced by '_': a name every exporter accepts
+/// (glTF, POV-Ray identifiers). Locale-independent.
+inline std::string asset_name(std::string_view name) {
+  std::string s(name);
+  for (char& c : s) {
+    const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
+    if (!ok) c = '_';
+  }
+  return s;
+}
 
 /// One triangle mesh in its own frame (metres). Triangles are counter-clockwise seen from
 /// outside (the normal side).

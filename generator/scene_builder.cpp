@@ -28,14 +28,6 @@ double seconds_since(Clock::time_point t0) {
 /// The default view: from the front (+Z), 50 degrees above the horizon.
 const glm::dvec3 kDefaultToCamera(0, std::sin(glm::radians(50.0)), std::cos(glm::radians(50.0)));
 
-/// [A-Za-z0-9_] only.
-std::string sanitised(const std::string& name) {
-  std::string out = name;
-  for (char& c : out)
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  return out;
-}
-
 /// A seeded choice of `keep` of n indices, in increasing order (partial Fisher-Yates).
 std::vector<size_t> choose(size_t n, size_t keep, uint64_t seed) {
   std::vector<size_t> all(n);
@@ -132,50 +124,6 @@ AssetMesh asset_mesh(const ShadedMesh& mesh, const std::string& name) {
   return out;
 }
 
-SceneAssets piece_assets(const PieceSet& set, const std::string& name, double explode,
-                         int width, int height) {
-  SceneAssets assets;
-  assets.name = name;
-  assets.width = width;
-  assets.height = height;
-  assets.background = {1, 1, 1};
-  std::vector<ShadedMesh> meshes;
-  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-lo);
-  for (const Piece& piece : set.pieces) {
-    meshes.push_back(merge_parts(piece));
-    for (const glm::dvec3& p : meshes.back().position) {
-      lo = glm::min(lo, p);
-      hi = glm::max(hi, p);
-    }
-  }
-  const glm::dvec3 centre = 0.5 * (lo + hi);
-  const double size = glm::distance(lo, hi);
-  glm::dvec3 elo(std::numeric_limits<double>::max()), ehi(-elo);
-  for (size_t k = 0; k < meshes.size(); ++k) {
-    glm::dvec3 c(0.0);
-    for (const glm::dvec3& p : meshes[k].position) c += p;
-    c /= static_cast<double>(meshes[k].position.size());
-    const glm::dvec3 d = c - centre;
-    // Apart by a share of the piece's own offset (slices spread evenly) plus a fixed gap.
-    const glm::dvec3 offset = glm::length(d) > 1e-9 * size
-                                  ? explode * (2.0 * d + 0.25 * size * glm::normalize(d))
-                                  : glm::dvec3(0.0);
-    for (const glm::dvec3& p : meshes[k].position) {
-      elo = glm::min(elo, p + offset);
-      ehi = glm::max(ehi, p + offset);
-    }
-    const std::string piece_name = sanitised(name) + "_piece" + std::to_string(set.pieces[k].cell);
-    assets.instances.push_back({piece_name, static_cast<int>(k), {1, 0, 0, 0}, offset});
-    assets.meshes.push_back(asset_mesh(meshes[k], piece_name));
-  }
-  const double az = glm::radians(20.0), el = glm::radians(50.0);
-  assets.camera = frame_box(elo, ehi,
-                            {std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el)},
-                            30, static_cast<double>(width) / height);
-  assets.lights = studio_lights(assets.camera);
-  return assets;
-}
-
 glm::dvec3 largest_cap_normal(const Piece& piece) {
   double best = 0;
   glm::dvec3 normal(0.0);
@@ -239,7 +187,7 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
         modulate_colours(shapes.back(), variant.tmpl.npr, scene.render.perlin,
                          object_seed(seed, ii, j, 3));
         caps.push_back(largest_cap_normal(piece));
-        names.push_back("i" + std::to_string(i) + "_" + sanitised(tmpl.name) + "_" +
+        names.push_back("i" + std::to_string(i) + "_" + asset_name(tmpl.name) + "_" +
                         std::to_string(j) + "_piece" + std::to_string(piece.cell));
       }
       ++st.objects;

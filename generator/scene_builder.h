@@ -65,12 +65,6 @@ std::vector<AssetLight> studio_lights(const AssetCamera& camera);
 /// A shaded mesh (e.g. merge_parts of a piece) as an exportable mesh named `name`.
 AssetMesh asset_mesh(const ShadedMesh& mesh, const std::string& name);
 
-/// The pieces of one object for `cutaway piece`: each pulled away from the object's centre
-/// along the direction d to its own centroid by explode * (2 |d| + size / 4) (size: the
-/// object's bounding-box diagonal), so slices spread evenly, framed from the front-right 50 degrees up, studio lights, white background.
-SceneAssets piece_assets(const PieceSet& set, const std::string& name, double explode,
-                         int width, int height);
-
 /// The outward normal of the piece's largest cap (by area), object frame; zero if it has none.
 glm::dvec3 largest_cap_normal(const Piece& piece);
 

@@ -16,6 +16,7 @@
 #include "gltf_export.h"
 #include "model_builder.h"
 #include "model_preview.h"
+#include "piece_views.h"
 #include "pieces.h"
 #include "pov_export.h"
 #include "povray_runner.h"

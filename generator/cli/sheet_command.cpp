@@ -20,6 +20,7 @@
 #include "cut_spec.h"
 #include "diffusion_backends.h"
 #include "model_builder.h"
+#include "piece_views.h"
 #include "pieces.h"
 #include "scene_builder.h"
 #include "scene_preview.h"
@@ -33,18 +34,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// How a tile shows its pieces.
-enum class View {
-  Up,       ///< each piece lying with its largest cut face up, seen from 55 degrees above
-  Upright,  ///< each piece standing as in the object, turned about its axis so that its
-            ///< largest cut face looks at the camera, seen from 25 degrees above
-};
-
 /// One tile's template, cut and view: "PATH.yaml[:CUT][@VIEW]" (the cut after the first ':'
 /// that follows ".yaml"; VIEW up or upright).
 struct SheetItem {
   std::string template_path, cut;
-  View view = View::Up;
+  PieceView view = PieceView::Up;
 };
 
 SheetItem parse_item(std::string text, const std::string& default_cut) {
@@ -52,7 +46,7 @@ SheetItem parse_item(std::string text, const std::string& default_cut) {
   const size_t at = text.rfind('@');
   if (at != std::string::npos && text.find(".yaml", at) == std::string::npos) {
     const std::string view = text.substr(at + 1);
-    if (view == "upright") item.view = View::Upright;
+    if (view == "upright") item.view = PieceView::Upright;
     else if (view != "up")
       throw UsageError("'" + text + "': the view after @ must be up or upright");
     text.resize(at);
@@ -63,92 +57,10 @@ SheetItem parse_item(std::string text, const std::string& default_cut) {
   return item;
 }
 
-/// The axis-aligned bounds of `mesh` turned by `rotation`.
-void rotated_bounds(const ShadedMesh& mesh, const glm::dquat& rotation, glm::dvec3& lo,
-                    glm::dvec3& hi) {
-  lo = glm::dvec3(std::numeric_limits<double>::max());
-  hi = -lo;
-  for (const glm::dvec3& p : mesh.position) {
-    const glm::dvec3 q = rotation * p;
-    lo = glm::min(lo, q);
-    hi = glm::max(hi, q);
-  }
-}
-
-/// The turn that shows a piece whose largest cap has the outward `normal` (zero: no cap, no
-/// turn) as `view` asks: the normal up (Up), or turned about +Y toward +Z (Upright).
-glm::dquat view_rotation(const glm::dvec3& normal, View view) {
-  const glm::dquat none(1, 0, 0, 0);
-  if (glm::length(normal) < 0.5) return none;
-  if (view == View::Up) return glm::rotation(glm::normalize(normal), glm::dvec3(0, 1, 0));
-  const glm::dvec2 flat(normal.x, normal.z);
-  if (glm::length(flat) < 1e-3) return none;  // a horizontal cap: no turn shows it better
-  return glm::angleAxis(std::atan2(normal.x, normal.z) * -1.0, glm::dvec3(0, 1, 0));
-}
-
-/// The pieces of one object as a little scene: each piece turned as `view` asks (a piece
-/// without caps keeps its pose), standing on y = 0, in a grid of cells of the largest piece's
-/// footprint whose column count makes the view closest to the tile's aspect; seen from the
-/// front (+Z) and above, with the studio lights.
-SceneAssets sheet_assets(const PieceSet& set, const std::string& name, View view, int width,
-                         int height) {
-  const double el = glm::radians(view == View::Up ? 55.0 : 25.0);
-  const glm::dvec3 to_camera(0, std::sin(el), std::cos(el));
-  SceneAssets assets;
-  assets.name = name;
-  assets.width = width;
-  assets.height = height;
-  assets.background = {1, 1, 1};
-  const size_t n = set.pieces.size();
-  std::vector<glm::dquat> rotation(n);
-  std::vector<glm::dvec3> lo(n), hi(n);
-  glm::dvec3 cell(0.0);
-  for (size_t k = 0; k < n; ++k) {
-    const Piece& piece = set.pieces[k];
-    rotation[k] = view_rotation(largest_cap_normal(piece), view);
-    const ShadedMesh mesh = merge_parts(piece);
-    rotated_bounds(mesh, rotation[k], lo[k], hi[k]);
-    cell = glm::max(cell, hi[k] - lo[k]);
-    const std::string piece_name = name + "_piece" + std::to_string(piece.cell);
-    assets.meshes.push_back(asset_mesh(mesh, piece_name));
-  }
-  // Columns: the grid whose projected width / height is nearest the image's aspect. Rows are
-  // far enough apart that a front row hides at most the bottom of the row behind it.
-  const double gap = 0.12 * std::max(cell.x, cell.z);
-  const double pitch = std::max(cell.z + gap, 0.8 * cell.y / std::tan(el));
-  const double aspect = static_cast<double>(width) / height;
-  int columns = 1;
-  double best = std::numeric_limits<double>::max();
-  for (int c = 1; c <= static_cast<int>(n); ++c) {
-    const int rows = static_cast<int>((n + c - 1) / c);
-    const double w = c * cell.x + (c - 1) * gap;
-    const double d = cell.z + (rows - 1) * pitch;
-    const double h = d * std::sin(el) + cell.y * std::cos(el);
-    const double miss = std::abs(std::log(w / h / aspect));
-    if (miss < best - 1e-9) best = miss, columns = c;
-  }
-  const int rows = static_cast<int>((n + columns - 1) / columns);
-  glm::dvec3 all_lo(std::numeric_limits<double>::max()), all_hi(-all_lo);
-  for (size_t k = 0; k < n; ++k) {
-    const int col = static_cast<int>(k) % columns, row = static_cast<int>(k) / columns;
-    // The cell's centre on the ground; rows run from the back (-Z) to the front (+Z).
-    const glm::dvec3 centre((col - 0.5 * (columns - 1)) * (cell.x + gap), 0,
-                            (row - 0.5 * (rows - 1)) * pitch);
-    const glm::dvec3 mid = 0.5 * (lo[k] + hi[k]);
-    const glm::dvec3 offset = centre - glm::dvec3(mid.x, lo[k].y, mid.z);
-    all_lo = glm::min(all_lo, lo[k] + offset);
-    all_hi = glm::max(all_hi, hi[k] + offset);
-    assets.instances.push_back({assets.meshes[k].name, static_cast<int>(k), rotation[k], offset});
-  }
-  assets.camera = frame_box(all_lo, all_hi, to_camera, 30, aspect);
-  assets.lights = studio_lights(assets.camera);
-  return assets;
-}
-
 /// One tile's template, loaded, and its cut, parsed and checked.
 struct LoadedItem {
   std::string text;  ///< the cut as given
-  View view = View::Up;
+  PieceView view = PieceView::Up;
   Template tmpl;
   CutSpec cut;
   bool across = false;  ///< "across": one horizontal plane through the model's mid-height
@@ -194,7 +106,7 @@ Image sheet_tile(const LoadedItem& item, const SheetArgs& a, const Common& commo
   for (Piece& p : set.pieces)
     for (PiecePart& part : p.parts) modulate_colours(part.mesh, tmpl.npr, 1.0, 0);
   const int picture_h = a.tile * 3 / 4;
-  const SceneAssets assets = sheet_assets(set, tmpl.name, item.view, a.tile, picture_h);
+  const SceneAssets assets = grid_piece_assets(set, tmpl.name, item.view, a.tile, picture_h);
   std::vector<Stroke> strokes;  // silhouettes as `cutaway piece --png` draws them
   if (a.silhouettes > 0) {
     StrokeOptions so;

@@ -23,6 +23,7 @@
 #include "diffusion_backends.h"
 #include "model_builder.h"
 #include "model_preview.h"
+#include "piece_views.h"
 #include "pieces.h"
 #include "plane_spec.h"
 #include "scene_builder.h"
