@@ -17,7 +17,6 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <map>
 #include <mutex>
 #include <sstream>
 #include <string>
@@ -34,11 +33,13 @@
 #include "diffusion/diffusion.h"
 #include "diffusion/diffusion_sheets.h"
 #include "model_builder.h"
+#include "paper_table1.h"
 #include "pmvc_gl.h"
 #include "template_parser.h"
 
 namespace {
 
+using namespace cutaway::bench;
 using Clock = std::chrono::steady_clock;
 namespace fs = std::filesystem;
 
@@ -132,33 +133,6 @@ class RawEmbree {
   double checksum_ = 0;
 };
 
-/// The paper's Table 1 (../shared/reference/paper-table1.tsv from the repository root), by
-/// title: cut seconds, vertices, faces. Empty when the file is absent.
-std::map<std::string, std::vector<std::string>> read_table1() {
-  std::map<std::string, std::vector<std::string>> rows;
-  std::ifstream in(fs::path(CUTAWAY_SOURCE_DIR) / ".." / "shared" / "reference" /
-                   "paper-table1.tsv");
-  std::string line;
-  std::vector<std::string> header;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    for (std::string c; std::getline(ss, c, '\t');) cells.push_back(c);
-    if (header.empty()) {
-      header = cells;
-      continue;
-    }
-    auto cell = [&](const char* name) -> std::string {
-      const auto it = std::find(header.begin(), header.end(), name);
-      const size_t k = static_cast<size_t>(it - header.begin());
-      return it != header.end() && k < cells.size() ? cells[k] : "-";
-    };
-    if (!cells.empty()) rows[cells[0]] = {cell("cut_s"), cell("vertices"), cell("faces")};
-  }
-  return rows;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -175,7 +149,8 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  const auto table1 = read_table1();
+  std::string table1_source;
+  const std::vector<PaperRow> table1 = read_table1(&table1_source);
   std::vector<fs::path> templates;
   for (const auto& e : fs::directory_iterator(fs::path(CUTAWAY_SOURCE_DIR) / "templates"))
     if (e.path().extension() == ".yaml") templates.push_back(e.path());
@@ -197,9 +172,10 @@ int main(int argc, char** argv) {
     RawEmbree raw(model, threads), raw_fast(model, threads, false);
     std::unique_ptr<cutaway::DiffusionBackend> gl_backend;
     if (gl) gl_backend = cutaway::make_gl_diffusion(model, {cube, threads});
-    const auto t1 = table1.find(tmpl.name);
+    const PaperRow* row = find_row(table1, tmpl.name);
     const std::vector<std::string> paper =
-        t1 != table1.end() ? t1->second : std::vector<std::string>{"-", "-", "-"};
+        row ? std::vector<std::string>{row->cut_s, row->vertices, row->faces}
+            : std::vector<std::string>{"-", "-", "-"};
     const double mid = 0.5 * (model.bbox_min.y + model.bbox_max.y);
     const struct {
       const char* name;
