@@ -78,12 +78,16 @@ StitchStats stitch_seams(std::vector<ShadedMesh*>& parts, double tolerance_m) {
   StitchStats stats;
   // 1. Snap boundary vertices onto earlier parts' boundary vertices.
   std::vector<BoundaryVertex> all;
+  // Boundary edges per part: snapping moves vertices but keeps every part's triangles, so they
+  // serve step 2 too.
+  std::vector<std::vector<BoundaryEdge>> edges(parts.size());
   // Grid cells as large as the longest boundary edge: an edge query then visits a few cells.
   double cell = tolerance_m;
   {
     for (size_t p = 0; p < parts.size(); ++p) {
       std::set<unsigned> seen;
-      for (const BoundaryEdge& e : boundary_edges(*parts[p])) {
+      edges[p] = boundary_edges(*parts[p]);
+      for (const BoundaryEdge& e : edges[p]) {
         cell = std::max(cell, glm::distance(parts[p]->position[e.a], parts[p]->position[e.b]));
         for (unsigned v : {e.a, e.b})
           if (seen.insert(v).second) all.push_back({p, v});
@@ -123,7 +127,7 @@ StitchStats stitch_seams(std::vector<ShadedMesh*>& parts, double tolerance_m) {
     ShadedMesh& mesh = *parts[p];
     // Per triangle and corner: the points to insert on the edge starting there, by parameter.
     std::map<size_t, std::array<std::vector<std::pair<double, glm::dvec3>>, 3>> inserts;
-    for (const BoundaryEdge& e : boundary_edges(mesh)) {
+    for (const BoundaryEdge& e : edges[p]) {
       const glm::dvec3 a = mesh.position[e.a], b = mesh.position[e.b], ab = b - a;
       const double len2 = glm::dot(ab, ab);
       if (len2 == 0) continue;
