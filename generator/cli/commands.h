@@ -7,6 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "cut_spec.h"
+#include "ds_model.h"
+#include "pieces.h"
+#include "template.h"
+
 namespace cutaway::cli {
 
 /// A bad command-line argument: reported like InputError, exit code 2.
@@ -28,6 +33,19 @@ struct Common {
   int threads = 0;               ///< 0: all cores
   bool stats = false;            ///< JSON timings and counts on stderr
 };
+
+/// `text` (the `--cut` notation) for `tmpl`, refused when it is malformed or would make more
+/// than kMaxPiecesPerCut pieces.
+/// @throws UsageError "WHAT: rule" (`what` names the cut for the user)
+CutSpec checked_cut(const Template& tmpl, const std::string& text, const std::string& what);
+
+/// `model` (of `tmpl`) cut into pieces with the chosen diffusion backend (cube-map size
+/// `cube`), their colours modulated by the template's Perlin bands with strength `perlin` and
+/// `seed` in the object frame. `backend_name`, when given, receives the backend's name.
+/// @throws UsageError "WHAT: rule" when the cut misses the object
+PieceSet cut_object(const DsModel& model, const Template& tmpl, const CutSpec& cut, int cube,
+                    const Common& common, double perlin, uint64_t seed, const std::string& what,
+                    std::string* backend_name = nullptr);
 
 /// `cutaway piece TEMPLATE --cut SPEC [--seed S] [-o pieces.glb|.gltf|.pov] [--png p.png]`.
 struct PieceArgs {

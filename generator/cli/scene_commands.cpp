@@ -127,41 +127,56 @@ Written write_outputs(const SceneAssets& assets, const std::vector<std::string>&
 
 }  // namespace
 
+CutSpec checked_cut(const Template& tmpl, const std::string& text, const std::string& what) {
+  CutSpec cut;
+  try {
+    cut = parse_cut_spec(text, tmpl.metres_per_unit);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(what + ": " + e.what());
+  }
+  const long long estimate = estimate_piece_count(cut, template_extents(tmpl));
+  if (estimate > kMaxPiecesPerCut)
+    throw UsageError(what + ": would make about " + std::to_string(estimate) +
+                     " pieces (at most " + std::to_string(kMaxPiecesPerCut) + ")");
+  return cut;
+}
+
+PieceSet cut_object(const DsModel& model, const Template& tmpl, const CutSpec& cut, int cube,
+                    const Common& common, double perlin, uint64_t seed, const std::string& what,
+                    std::string* backend_name) {
+  const auto diffusion =
+      make_diffusion(model, {cube, common.threads}, parse_diffusion_choice(common.backend));
+  if (backend_name) *backend_name = diffusion->name();
+  PieceOptions options;
+  options.section.edge_m = tmpl.edge_m;
+  PieceSet set;
+  try {
+    set = cut_pieces(model, cut, *diffusion, options);
+  } catch (const std::domain_error& e) {
+    throw UsageError(what + ": " + e.what());
+  }
+  for (Piece& p : set.pieces)
+    for (PiecePart& part : p.parts) modulate_colours(part.mesh, tmpl.npr, perlin, seed);
+  return set;
+}
+
 int run_piece(const PieceArgs& a, const Common& common) {
   if (a.output.empty() && a.png.empty()) throw UsageError("give -o and/or --png");
   if (!a.output.empty()) output_format("-o", a.output);
   if (!a.png.empty()) require_extension("--png", a.png, ".png");
   const auto t0 = Clock::now();
   const Template tmpl = load_template(a.template_path);
-  CutSpec cut;
-  try {
-    cut = parse_cut_spec(a.cut, tmpl.metres_per_unit);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--cut: ") + e.what());
-  }
-  const long long estimate = estimate_piece_count(cut, template_extents(tmpl));
-  if (estimate > kMaxPiecesPerCut)
-    throw UsageError("--cut " + a.cut + ": would make about " + std::to_string(estimate) +
-                     " pieces (at most " + std::to_string(kMaxPiecesPerCut) + ")");
+  const CutSpec cut = checked_cut(tmpl, a.cut, "--cut " + a.cut);
   const DsModel model =
       a.seed >= 0 ? make_variant(tmpl, static_cast<uint64_t>(a.seed)).model : build_model(tmpl);
   const double t_model = seconds_since(t0);
-  const auto diffusion =
-      make_diffusion(model, {a.cube, common.threads}, parse_diffusion_choice(common.backend));
-  PieceOptions options;
-  options.section.edge_m = tmpl.edge_m;
-  PieceSet set;
   const auto t1 = Clock::now();
-  try {
-    set = cut_pieces(model, cut, *diffusion, options);
-  } catch (const std::domain_error& e) {
-    throw UsageError("--cut " + a.cut + ": " + e.what());
-  }
+  // Perlin colour modulation in the object frame: the variant's seed, or 0 for the template.
+  std::string backend_name;
+  const PieceSet set = cut_object(model, tmpl, cut, a.cube, common, a.perlin,
+                                  a.seed >= 0 ? static_cast<uint64_t>(a.seed) : 0,
+                                  "--cut " + a.cut, &backend_name);
   const double t_cut = seconds_since(t1);
-  // Perlin colour modulation in the object frame (the seed's, or 0 for the template).
-  for (Piece& p : set.pieces)
-    for (PiecePart& part : p.parts)
-      modulate_colours(part.mesh, tmpl.npr, a.perlin, a.seed >= 0 ? static_cast<uint64_t>(a.seed) : 0);
   size_t triangles = 0;
   for (const Piece& p : set.pieces)
     for (const PiecePart& part : p.parts) triangles += part.mesh.triangle.size();
@@ -178,7 +193,7 @@ int run_piece(const PieceArgs& a, const Common& common) {
                  "\"triangles\": %zu, \"diffused_points\": %zu, \"seconds\": {\"model\": %.4f, "
                  "\"cut\": %.4f, \"sections\": %.4f, \"diffuse\": %.4f, \"clip\": %.4f, "
                  "\"strokes\": %.4f, \"export\": %.4f, \"png\": %.4f}}\n",
-                 tmpl.name.c_str(), diffusion->name().c_str(), set.pieces.size(),
+                 tmpl.name.c_str(), backend_name.c_str(), set.pieces.size(),
                  set.cells.planes.size(), triangles, set.diffused_points, t_model, t_cut,
                  set.seconds_sections, set.seconds_diffuse, set.seconds_clip, w.strokes_s,
                  w.export_s, w.preview_s);

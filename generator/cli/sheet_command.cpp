@@ -73,16 +73,7 @@ LoadedItem load_item(const SheetItem& item) {
     out.across = true;
     return out;
   }
-  try {
-    out.cut = parse_cut_spec(item.cut, out.tmpl.metres_per_unit);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(item.template_path + ": cut '" + item.cut + "': " + e.what());
-  }
-  const long long estimate = estimate_piece_count(out.cut, template_extents(out.tmpl));
-  if (estimate > kMaxPiecesPerCut)
-    throw UsageError(item.template_path + ": cut '" + item.cut + "' would make about " +
-                     std::to_string(estimate) + " pieces (at most " +
-                     std::to_string(kMaxPiecesPerCut) + ")");
+  out.cut = checked_cut(out.tmpl, item.cut, item.template_path + ": cut '" + item.cut + "'");
   return out;
 }
 
@@ -93,18 +84,8 @@ Image sheet_tile(const LoadedItem& item, const SheetArgs& a, const Common& commo
   CutSpec cut = item.cut;
   const DsModel model = build_model(tmpl);
   if (item.across) cut.plane = {{0, 0.5 * (model.bbox_min.y + model.bbox_max.y), 0}, {0, 1, 0}};
-  const auto diffusion =
-      make_diffusion(model, {a.cube, common.threads}, parse_diffusion_choice(common.backend));
-  PieceOptions options;
-  options.section.edge_m = tmpl.edge_m;
-  PieceSet set;
-  try {
-    set = cut_pieces(model, cut, *diffusion, options);
-  } catch (const std::domain_error& e) {
-    throw UsageError(tmpl.name + ": cut '" + item.text + "': " + e.what());
-  }
-  for (Piece& p : set.pieces)
-    for (PiecePart& part : p.parts) modulate_colours(part.mesh, tmpl.npr, 1.0, 0);
+  const PieceSet set = cut_object(model, tmpl, cut, a.cube, common, 1.0, 0,
+                                  tmpl.name + ": cut '" + item.text + "'");
   const int picture_h = a.tile * 3 / 4;
   const SceneAssets assets = grid_piece_assets(set, tmpl.name, item.view, a.tile, picture_h);
   std::vector<Stroke> strokes;  // silhouettes as `cutaway piece --png` draws them
