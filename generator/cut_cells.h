@@ -48,7 +48,7 @@ bool in_cell(const CutCells& cells, const Cell& cell, const glm::dvec3& x, int s
 ///   (count 2: one half-space each); opposite half-planes share one plane;
 /// - dice: planes x, y, z = const, `size_m` apart, centred on the bounds; one cell per box
 ///   that overlaps the bounds.
-/// Cells that cannot touch the bounds are left out. Deterministic order.
+/// Deterministic order; a cell the object misses simply yields no piece (cut_pieces).
 /// @pre the lengths of `cut` are positive and finite; count >= 2 for wedges
 CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min,
                         const glm::dvec3& bbox_max);
