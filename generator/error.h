@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace cutaway {
 
@@ -39,6 +40,11 @@ class InternalError : public std::logic_error {
  public:
   using std::logic_error::logic_error;
 };
+
+/// `text` as a message quotes a user's value: in double quotes, with backslash, double quote and
+/// control characters escaped (\n, \t, \xHH), and the middle of a text longer than
+/// `max_bytes` elided as "…(N bytes)…", so a 10 MB value makes a short message.
+std::string quoted(std::string_view text, size_t max_bytes = 60);
 
 [[noreturn]] void check_failed(const char* file, int line, const char* condition,
                                const std::string& detail);
