@@ -45,6 +45,18 @@ class InternalError : public std::logic_error {
 /// control characters escaped (\n, \t, \xHH), and the middle of a text longer than
 /// `max_bytes` elided as "…(N bytes)…", so a 10 MB value makes a short message.
 std::string quoted(std::string_view text, size_t max_bytes = 60);
+/// As above. Without these two overloads, argument-dependent lookup would pick std::quoted for
+/// a std::string argument (an exact match, where the string_view one needs a conversion).
+inline std::string quoted(const std::string& text, size_t max_bytes = 60) {
+  return quoted(std::string_view(text), max_bytes);
+}
+inline std::string quoted(std::string& text, size_t max_bytes = 60) {
+  return quoted(std::string_view(text), max_bytes);
+}
+/// As above, for a string literal or other NUL-terminated text.
+inline std::string quoted(const char* text, size_t max_bytes = 60) {
+  return quoted(std::string_view(text), max_bytes);
+}
 
 [[noreturn]] void check_failed(const char* file, int line, const char* condition,
                                const std::string& detail);
