@@ -1,15 +1,150 @@
-// Output files are written to a temporary file beside the target and renamed into place, so a
-// failed run never leaves a partial file (design/architecture.md, Command line).
+// Output files without partial or mixed results (design/architecture.md, Command line):
+//  - write_file_atomically(): one file, written to a temporary file beside the target and
+//    renamed into place;
+//  - OutputSet: the files of one command, checked before any work, staged in a hidden folder
+//    beside each target and renamed into place together at the end (all or none);
+//  - RemoveOnSignal: temporary files and folders removed when the process is stopped by
+//    SIGTERM, SIGINT or SIGHUP.
+// Names of temporary files, for cleaning up after a SIGKILL or a power cut (which nothing can
+// catch): "NAME.tmp-XXXXXX" (a file, write_file_atomically()) and ".cutaway.tmp-XXXXXX/" (a
+// folder beside the outputs, OutputSet), X being random letters and digits.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
+#include <map>
+#include <stdexcept>
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace cutaway {
 
 /// Writes `bytes` to `path` atomically: a temporary file "PATH.tmp-XXXXXX" in the same
-/// directory, flushed, then renamed over `path`. Creates missing parent directories.
-/// @throws std::runtime_error when the file cannot be written (the temporary file is removed).
+/// directory, flushed (fsync), then renamed over `path`. Creates missing parent directories.
+/// A symbolic link at `path` is replaced by the file (OutputSet writes through links).
+/// The temporary file is removed when the write fails, and by RemoveOnSignal's handlers when
+/// SIGTERM, SIGINT or SIGHUP stops the process during the write; after a SIGKILL it stays
+/// behind, while `path` keeps its old bytes.
+/// @throws std::runtime_error "cannot write PATH: REASON" when the file cannot be written (the
+///         temporary file is removed; an existing `path` is unchanged)
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
+
+/// Removes a temporary file, or a folder with the files directly in it, when the process is
+/// stopped by SIGTERM, SIGINT or SIGHUP while the guard lives; the destructor only stops
+/// watching (it removes nothing).
+///
+/// The handlers are installed on first use, for those of the three signals whose action is
+/// still the default (a signal the process ignores, e.g. SIGHUP under nohup, stays ignored; a
+/// handler of the program's own stays). They use only system calls (unlink, unlinkat, rmdir,
+/// open, lseek, getdents64, close, sigaction, raise) and then raise the signal again with its default
+/// action, so the process still ends "killed by signal N". At most 128 paths are watched at a
+/// time; beyond that a path is simply not watched (it still works, without the cleanup).
+/// Thread-safe.
+class RemoveOnSignal {
+ public:
+  enum class Kind { File, Folder };
+  RemoveOnSignal() = default;
+  /// Watches `path` (made absolute, at most PATH_MAX - 1 bytes; longer ones are not watched).
+  explicit RemoveOnSignal(const std::filesystem::path& path, Kind kind = Kind::File);
+  ~RemoveOnSignal();
+  RemoveOnSignal(RemoveOnSignal&& other) noexcept;
+  RemoveOnSignal& operator=(RemoveOnSignal&& other) noexcept;
+  RemoveOnSignal(const RemoveOnSignal&) = delete;
+  RemoveOnSignal& operator=(const RemoveOnSignal&) = delete;
+  /// Stops watching now.
+  void release() noexcept;
+
+ private:
+  int slot_ = -1;
+};
+
+/// An output path refused before any work: what() is "OPTION PATH: RULE", e.g.
+/// "--png out/x.png: is a directory", or "-o: the path is empty". The CLI reports it as bad
+/// input (exit code 2).
+class OutputPathError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// The output files of one command, written all or none.
+///
+/// Every output is registered with add() before any work starts; add() checks the path and
+/// returns where to write it instead: a file of the same name in a fresh hidden folder
+/// ".cutaway.tmp-XXXXXX" in the target's directory (one per directory). Writers write there
+/// (any writer: companion files they put beside it, e.g. the .bin of a .gltf, are staged
+/// too). commit() then renames every staged file onto its target, back to back at the very
+/// end; abort() (or the destructor, without commit()) removes everything staged and every
+/// directory add() created, so no target changes. The staging folders are watched by
+/// RemoveOnSignal, so SIGTERM, SIGINT or SIGHUP removes them too; after a SIGKILL a
+/// ".cutaway.tmp-XXXXXX" folder stays behind, and every target has its old bytes or its new
+/// ones, never part of a file.
+///
+/// Renames of several files cannot be one atomic operation: a crash during commit() (a few
+/// rename() calls, microseconds) can still leave some targets new and others old, and a
+/// rename that fails there (rare: the targets were checked just before) leaves the earlier
+/// ones in place (the error says which). Two processes writing the same target leave one
+/// complete file, the last one renamed.
+///
+/// Rules add() applies to a path (each refusal an OutputPathError "OPTION PATH: RULE"):
+///  - not empty, and not ending in '/';
+///  - a symbolic link is written through: the link stays and the file it points to (followed
+///    to the end of the chain, at most 40 links, which may not exist yet) is replaced;
+///  - an existing target must be a regular file: a directory, a character or block device
+///    (/dev/null and /dev/full included), a FIFO or a socket is refused ("is not a regular
+///    file");
+///  - the target's directory is created when missing (with its missing parents; abort()
+///    removes them again), unless some part of it exists and is not a directory;
+///  - the directory must let us create files (the staging folder is created there, so a
+///    read-only file system or missing permission is found here, not after the work);
+///  - no two outputs may have the same target (a link and its target are the same target).
+/// Not thread-safe: one thread registers, writes and commits.
+class OutputSet {
+ public:
+  OutputSet() = default;
+  ~OutputSet();
+  OutputSet(const OutputSet&) = delete;
+  OutputSet& operator=(const OutputSet&) = delete;
+
+  /// Registers output `path`, given by command-line option `option` (named in errors), and
+  /// returns the path to write it to (in a staging folder; the same file name).
+  /// @throws OutputPathError when the path breaks one of the rules above
+  std::filesystem::path add(const std::string& option, const std::string& path);
+
+  /// Renames every staged file onto its target (a registered output that was never written
+  /// stays as it was), syncs the directories and removes the staging folders. Call once, after
+  /// all writes succeeded. On failure everything not yet renamed is removed.
+  /// @throws std::runtime_error "cannot write TARGET: REASON" when a target became a directory
+  ///         or another non-regular file since add(), or a rename fails
+  void commit();
+
+  /// Removes everything staged and the directories add() created (those still empty). Safe to
+  /// call more than once, and after commit() (then it does nothing).
+  void abort() noexcept;
+
+  /// `message` with every staging path in it replaced by the target's directory, so that an
+  /// error of a writer names the file the user asked for.
+  std::string describe(std::string message) const;
+
+ private:
+  struct Target {
+    std::filesystem::path path;  ///< where the file goes (links resolved, absolute)
+    std::string given;           ///< the path as the user gave it
+  };
+  struct Stage {
+    std::filesystem::path dir;              ///< the targets' directory (resolved, absolute)
+    std::filesystem::path folder;           ///< the staging folder in it
+    std::map<std::string, Target> targets;  ///< staged file name -> its target
+    RemoveOnSignal guard;
+  };
+  /// The stage of directory `dir`, its staging folder created on first use.
+  /// @throws OutputPathError "WHAT: cannot create files in DIR: REASON"
+  Stage& stage_for(const std::string& what, const std::filesystem::path& dir);
+
+  std::vector<Stage> stages_;
+  std::map<std::filesystem::path, std::string> given_;   ///< target -> "OPTION PATH"
+  std::vector<std::filesystem::path> created_dirs_;      ///< by add(), in creation order
+  bool done_ = false;
+};
 
 }  // namespace cutaway

@@ -10,6 +10,8 @@
 #include <vector>
 
 #include <fcntl.h>
+#include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -24,7 +26,8 @@ namespace fs = std::filesystem;
 constexpr size_t kMaxCaptured = 256 * 1024;  // bytes of POV-Ray's output kept (the tail)
 constexpr int kTailLines = 15;               // lines of it quoted in an error
 
-// A fresh directory under the system's temporary directory, removed with everything in it.
+// A fresh directory under the system's temporary directory, removed with everything in it,
+// also when SIGTERM, SIGINT or SIGHUP stops the process (RemoveOnSignal).
 class TempDir {
  public:
   TempDir() {
@@ -34,6 +37,7 @@ class TempDir {
                                std::string(std::strerror(errno)));
     }
     path_ = tmpl;
+    guard_ = RemoveOnSignal(path_, RemoveOnSignal::Kind::Folder);
   }
   ~TempDir() {
     std::error_code ec;
@@ -45,6 +49,7 @@ class TempDir {
 
  private:
   fs::path path_;
+  RemoveOnSignal guard_;
 };
 
 // Closes a file descriptor when it goes out of scope.
@@ -119,12 +124,15 @@ ChildResult run_in(const fs::path& dir, const std::string& exe,
   }
   Fd exec_read{err_pipe[0]}, exec_write{err_pipe[1]};
 
+  const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error(std::string("cannot fork: ") + std::strerror(errno));
   if (pid == 0) {
     // Child: async-signal-safe calls only. On failure the errno goes to the parent through the
-    // close-on-exec pipe (which exec closes on success).
+    // close-on-exec pipe (which exec closes on success). POV-Ray gets SIGTERM when the thread
+    // that started it ends (the process killed, even by SIGKILL), so no render outlives us.
     int err = 0;
+    if (::prctl(PR_SET_PDEATHSIG, SIGTERM) != 0 || ::getppid() != parent) ::_exit(127);
     const int null_fd = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
     if (null_fd < 0 || ::dup2(null_fd, 0) < 0 || ::dup2(out_pipe[1], 1) < 0 ||
         ::dup2(out_pipe[1], 2) < 0 || ::chdir(dir_text.c_str()) != 0) {

@@ -26,7 +26,9 @@ struct PovrayOptions {
 /// (PNG output, no display, no pause, no progress or statistics; fatal errors and warnings are
 /// kept), and the PNG is then written to `png_out` atomically (write_file_atomically(): a
 /// failed run leaves no partial file and an existing `png_out` untouched). The temporary
-/// directory is removed in every case. The PNG is 8-bit RGB, sRGB-encoded (a scene written with
+/// directory is removed in every case, also when SIGTERM, SIGINT or SIGHUP stops the process
+/// (RemoveOnSignal); POV-Ray itself gets SIGTERM when the calling thread ends (PR_SET_PDEATHSIG:
+/// call this from a thread that outlives the render, e.g. the main thread). The PNG is 8-bit RGB, sRGB-encoded (a scene written with
 /// `assumed_gamma 1.0` and linear colours, as scene_to_pov() writes, comes out right).
 ///
 /// The scene must be self-contained: it is rendered away from its own directory, so only
