@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "atomic_file.h"
 #include "cut_spec.h"
 #include "ds_model.h"
 #include "pieces.h"
@@ -26,6 +27,10 @@ inline void require_extension(const std::string& option, const std::string& path
     throw UsageError(option + ": '" + path + "' must end in " + ext);
   }
 }
+
+// Outputs: every subcommand registers each file it will write in the OutputSet main() owns,
+// before any work, writes to the path add() returns, and main() commits the set when the
+// subcommand returns 0 (atomic_file.h; a refused path is OutputPathError, exit code 2).
 
 /// Options common to all subcommands.
 struct Common {
@@ -56,7 +61,7 @@ struct PieceArgs {
   double perlin = 1.0;  ///< Perlin colour modulation strength (the template's npr bands)
   double silhouettes = 1.0;  ///< silhouette stroke strength over the PNG and in .pov; 0: none
 };
-int run_piece(const PieceArgs& args, const Common& common);
+int run_piece(const PieceArgs& args, const Common& common, OutputSet& outputs);
 
 /// `cutaway scene SCENE [--seed S] -o OUT.glb|.gltf|.pov [-o ...] [--png preview.png]
 /// [--render out.png]`: one build, any number of exports.
@@ -66,7 +71,7 @@ struct SceneArgs {
   int64_t seed = -1;  ///< >= 0: overrides the scene's seed
   int cube = 16;
 };
-int run_scene(const SceneArgs& args, const Common& common);
+int run_scene(const SceneArgs& args, const Common& common, OutputSet& outputs);
 
 /// `cutaway sheet TEMPLATE[:CUT][@VIEW]... -o sheet.png [--cut SPEC] [--tile PX] [--columns N]`:
 /// a contact sheet, one labelled tile per template, cut (by CUT or --cut: a `piece --cut` spec,
@@ -82,6 +87,6 @@ struct SheetArgs {
   int cube = 16;
   double silhouettes = 1.0;  ///< silhouette stroke strength; 0: none
 };
-int run_sheet(const SheetArgs& args, const Common& common);
+int run_sheet(const SheetArgs& args, const Common& common, OutputSet& outputs);
 
 }  // namespace cutaway::cli

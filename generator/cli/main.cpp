@@ -53,9 +53,12 @@ struct ModelArgs {
   int64_t seed = -1;  ///< >= 0: build the variant of this seed instead of the template
 };
 
-int run_model(const ModelArgs& a, bool stats) {
+int run_model(const ModelArgs& a, bool stats, cutaway::OutputSet& outputs) {
   const auto t0 = Clock::now();
   const cutaway::Template tmpl = cutaway::load_template(a.template_path);
+  const std::string glb = a.output.empty() && a.png.empty() ? tmpl.name + ".glb" : a.output;
+  const std::filesystem::path glb_file = glb.empty() ? "" : outputs.add("-o", glb);
+  const std::filesystem::path png_file = a.png.empty() ? "" : outputs.add("--png", a.png);
   const double t_parse = seconds_since(t0);
   const auto t1 = Clock::now();
   const cutaway::DsModel model =
@@ -65,7 +68,6 @@ int run_model(const ModelArgs& a, bool stats) {
   spdlog::info("{}: {} surfaces, {} vertices, {} faces", tmpl.name, model.surfaces.size(),
                model.vertex_count(), model.face_count());
 
-  const std::string glb = a.output.empty() && a.png.empty() ? tmpl.name + ".glb" : a.output;
   double t_render = 0, t_export = 0;
   cutaway::Image image;
   if (!a.png.empty()) {
@@ -77,12 +79,12 @@ int run_model(const ModelArgs& a, bool stats) {
   }
   if (!glb.empty()) {
     const auto t3 = Clock::now();
-    cutaway::write_model_glb(glb, model, cutaway::GltfModelOptions{});
+    cutaway::write_model_glb(glb_file, model, cutaway::GltfModelOptions{});
     t_export = seconds_since(t3);
     spdlog::info("wrote {}", glb);
   }
   if (!a.png.empty()) {
-    cutaway::write_png(a.png, image);
+    cutaway::write_png(png_file, image);
     spdlog::info("wrote {}", a.png);
   }
   if (stats) {
@@ -105,7 +107,8 @@ struct SectionArgs {
   int width = 800;
 };
 
-int run_section(const SectionArgs& a, const std::string& backend, int threads, bool stats) {
+int run_section(const SectionArgs& a, const std::string& backend, int threads, bool stats,
+                cutaway::OutputSet& outputs) {
   const auto t0 = Clock::now();
   const cutaway::Template tmpl = cutaway::load_template(a.template_path);
   cutaway::Plane plane;
@@ -114,6 +117,9 @@ int run_section(const SectionArgs& a, const std::string& backend, int threads, b
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--plane: ") + e.what());
   }
+  const std::string out = a.output.empty() && a.png.empty() ? tmpl.name + "-section.glb" : a.output;
+  const std::filesystem::path out_file = out.empty() ? "" : outputs.add("-o", out);
+  const std::filesystem::path png_file = a.png.empty() ? "" : outputs.add("--png", a.png);
   const cutaway::DsModel model = cutaway::build_model(tmpl);
   const double t_model = seconds_since(t0);
   const auto t1 = Clock::now();
@@ -136,15 +142,14 @@ int run_section(const SectionArgs& a, const std::string& backend, int threads, b
     opt.width = a.width;
     image = cutaway::render_section_preview(section, opt);
   }
-  const std::string out = a.output.empty() && a.png.empty() ? tmpl.name + "-section.glb" : a.output;
   if (!out.empty()) {
     const bool ply = std::filesystem::path(out).extension() == ".ply";
-    cutaway::write_file_atomically(out, ply ? cutaway::section_to_ply(section)
+    cutaway::write_file_atomically(out_file, ply ? cutaway::section_to_ply(section)
                                             : cutaway::section_to_glb(section));
     spdlog::info("wrote {}", out);
   }
   if (!a.png.empty()) {
-    cutaway::write_png(a.png, image);
+    cutaway::write_png(png_file, image);
     spdlog::info("wrote {}", a.png);
   }
   if (stats) {
@@ -279,12 +284,23 @@ cutaway::CrossSection variant_section(const cutaway::Variant& v, const std::stri
   return cutaway::make_cross_section(v.model, plane, *diffusion, {v.tmpl.edge_m});
 }
 
-int run_variants(const VariantsArgs& a, const std::string& backend, int threads, bool quiet) {
+int run_variants(const VariantsArgs& a, const std::string& backend, int threads, bool quiet,
+                 cutaway::OutputSet& outputs) {
   const Shard shard = a.shard_given ? parse_shard(a.shard) : Shard{};
   const cutaway::Template tmpl = cutaway::load_template(a.template_path);
   const std::filesystem::path dir(a.output_dir);
-  std::filesystem::create_directories(dir);
   const int first = shard.begin(a.count), last = shard.end(a.count);
+  // Every file is registered (and DIR created) before the first variant is built.
+  std::vector<std::filesystem::path> glb_files;
+  for (int i = first; i < last; ++i) {
+    const uint64_t seed = a.seed + static_cast<uint64_t>(i);
+    glb_files.push_back(outputs.add(
+        "-o", (dir / (tmpl.name + "-" + std::to_string(seed) + ".glb")).string()));
+  }
+  const std::filesystem::path manifest_file = outputs.add("-o", (dir / "manifest.json").string());
+  const std::filesystem::path sheet_file =
+      a.sheet > 0 ? outputs.add("-o", (dir / "contact-sheet.png").string())
+                  : std::filesystem::path();
   std::string manifest = "{\"template\": \"" + tmpl.name + "\", ";
   if (a.shard_given)
     manifest += "\"shard\": \"" + std::to_string(shard.k) + "/" + std::to_string(shard.m) + "\", ";
@@ -299,7 +315,7 @@ int run_variants(const VariantsArgs& a, const std::string& backend, int threads,
     const cutaway::Variant v = cutaway::make_variant(tmpl, seed);
     const std::string glb = cutaway::model_to_glb(v.model, cutaway::GltfModelOptions{});
     const std::string file = tmpl.name + "-" + std::to_string(seed) + ".glb";
-    cutaway::write_file_atomically(dir / file, glb);
+    cutaway::write_file_atomically(glb_files[static_cast<size_t>(i - first)], glb);
     const double seconds = seconds_since(t0);
     char line[512];
     std::snprintf(line, sizeof line,
@@ -314,9 +330,9 @@ int run_variants(const VariantsArgs& a, const std::string& backend, int threads,
     progress.show(i - first + 1);
   }
   manifest += "]}\n";
-  cutaway::write_file_atomically(dir / "manifest.json", manifest);
-  // The contact sheet comes last, so that the variants and the manifest are complete even if
-  // it fails; its variants are built again (same seed, same model) rather than all kept.
+  cutaway::write_file_atomically(manifest_file, manifest);
+  // The contact sheet comes last (all files are committed together, or none); its variants
+  // are built again (same seed, same model) rather than all kept.
   for (int i = first; i < std::min(last, first + a.sheet); ++i) {
     const uint64_t seed = a.seed + static_cast<uint64_t>(i);
     try {
@@ -338,11 +354,23 @@ int run_variants(const VariantsArgs& a, const std::string& backend, int threads,
     }
     const int columns =
         static_cast<int>(std::ceil(std::sqrt(static_cast<double>(tiles.size()))));
-    cutaway::write_png(dir / "contact-sheet.png", cutaway::compose_grid(tiles, columns));
+    cutaway::write_png(sheet_file, cutaway::compose_grid(tiles, columns));
   }
   spdlog::info("wrote {} variant(s) of {}, manifest.json{} to {}", last - first, tmpl.name,
                sections.empty() ? "" : ", contact-sheet.png", dir.string());
   return 0;
+}
+
+/// Refuses an output option given an empty path (`-o ""`), which would otherwise read as
+/// "not given" (and, for `model`, write NAME.glb).
+/// @throws cutaway::OutputPathError "OPTION: the path is empty"
+void refuse_empty_output_paths(const CLI::App& command) {
+  for (const char* name : {"-o", "--png", "--render"}) {
+    const CLI::Option* option = command.get_option_no_throw(name);
+    if (option == nullptr) continue;
+    for (const std::string& value : option->results())
+      if (value.empty()) throw cutaway::OutputPathError(std::string(name) + ": the path is empty");
+  }
 }
 
 }  // namespace
@@ -483,11 +511,15 @@ int main(int argc, char** argv) {
   }
   spdlog::set_level(quiet ? spdlog::level::err
                           : (verbose ? spdlog::level::debug : spdlog::level::info));
-  try {
+  // Every file a command writes goes through `outputs`: registered and checked before any
+  // work, committed (renamed into place together) only when the command succeeds.
+  cutaway::OutputSet outputs;
+  const auto run = [&]() -> int {
+    for (const CLI::App* command : app.get_subcommands()) refuse_empty_output_paths(*command);
     if (*model) {
       if (!model_args.output.empty()) require_extension("-o", model_args.output, ".glb");
       if (!model_args.png.empty()) require_extension("--png", model_args.png, ".png");
-      return run_model(model_args, stats);
+      return run_model(model_args, stats, outputs);
     }
     if (*section) {
       if (!section_args.output.empty() &&
@@ -495,26 +527,35 @@ int main(int argc, char** argv) {
         require_extension("-o", section_args.output, ".glb");
       }
       if (!section_args.png.empty()) require_extension("--png", section_args.png, ".png");
-      return run_section(section_args, backend, threads, stats);
+      return run_section(section_args, backend, threads, stats, outputs);
     }
     if (*check) return run_check(check_files);
     const cutaway::cli::Common common{backend, threads, stats};
-    if (*piece) return cutaway::cli::run_piece(piece_args, common);
-    if (*sheet) return cutaway::cli::run_sheet(sheet_args, common);
-    if (*scene) return cutaway::cli::run_scene(scene_args, common);
+    if (*piece) return cutaway::cli::run_piece(piece_args, common, outputs);
+    if (*sheet) return cutaway::cli::run_sheet(sheet_args, common, outputs);
+    if (*scene) return cutaway::cli::run_scene(scene_args, common, outputs);
     if (*variants) {
       variants_args.shard_given = variants->count("--shard") > 0;
-      return run_variants(variants_args, backend, threads, quiet);
+      return run_variants(variants_args, backend, threads, quiet, outputs);
     }
+    return 0;
+  };
+  try {
+    const int code = run();
+    if (code == 0) outputs.commit();
+    return code;
   } catch (const cutaway::InputError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;
   } catch (const UsageError& e) {
     std::fprintf(stderr, "cutaway: %s\n", e.what());
     return 2;
+  } catch (const cutaway::OutputPathError& e) {
+    std::fprintf(stderr, "cutaway: %s\n", e.what());
+    return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "cutaway: error: %s\n", e.what());
+    // A writer's error names its staging path; describe() names the user's file instead.
+    std::fprintf(stderr, "cutaway: error: %s\n", outputs.describe(e.what()).c_str());
     return 1;
   }
-  return 0;
 }

@@ -47,21 +47,43 @@ Format output_format(const std::string& option, const std::string& path) {
   throw UsageError(option + ": '" + path + "' must end in .glb, .gltf or .pov");
 }
 
-void make_parent(const std::string& path) {
-  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
+/// One output file: the path as the user gave it (for messages and the format) and where to
+/// write it (OutputSet::add()'s staging path).
+struct Target {
+  std::string given;
+  std::filesystem::path file;
+};
+
+/// The outputs of `piece` and `scene`, registered in `outputs` before any work: each of
+/// `paths` (-o; a .gltf with the .bin beside it), `png` and `render` when given.
+struct Targets {
+  std::vector<Target> exports;
+  Target png, render;
+};
+Targets register_outputs(OutputSet& outputs, const std::vector<std::string>& paths,
+                         const std::string& png, const std::string& render) {
+  Targets t;
+  for (const std::string& path : paths) {
+    t.exports.push_back({path, outputs.add("-o", path)});
+    if (std::filesystem::path(path).extension() == ".gltf") {
+      std::filesystem::path bin(path);
+      outputs.add("-o", bin.replace_extension(".bin").string());  // written beside the .gltf
+    }
+  }
+  if (!png.empty()) t.png = {png, outputs.add("--png", png)};
+  if (!render.empty()) t.render = {render, outputs.add("--render", render)};
+  return t;
 }
 
-/// Writes `assets` as each of `paths` (glTF or POV-Ray by extension), `png` (OpenGL preview)
-/// and `render` (POV-Ray), each when asked for. Returns the seconds spent on each.
+/// Writes `assets` as each of `t.exports` (glTF or POV-Ray by extension), `t.png` (OpenGL
+/// preview) and `t.render` (POV-Ray), each when asked for. Returns the seconds spent on each.
 /// With `silhouettes` > 0, silhouette strokes of that strength (extract_strokes() at the
 /// assets' image size) are drawn over the PNG and written into the POV-Ray files.
 struct Written {
   double strokes_s = 0, export_s = 0, preview_s = 0, povray_s = 0;
   size_t strokes = 0;
 };
-Written write_outputs(const SceneAssets& assets, const std::vector<std::string>& paths,
-                      const std::string& png, const std::string& render, int threads,
+Written write_outputs(const SceneAssets& assets, const Targets& t, int threads,
                       double silhouettes) {
   Written w;
   auto t0 = Clock::now();
@@ -76,50 +98,50 @@ Written write_outputs(const SceneAssets& assets, const std::vector<std::string>&
   }
   const std::vector<Stroke>* stroke_ptr = strokes.empty() ? nullptr : &strokes;
   t0 = Clock::now();
-  std::string pov_written;
-  for (const std::string& path : paths) {
-    make_parent(path);
-    if (output_format("-o", path) == Format::Gltf) {
-      write_scene_gltf(path, assets);
+  std::filesystem::path pov_written;
+  for (const Target& out : t.exports) {
+    if (output_format("-o", out.given) == Format::Gltf) {
+      write_scene_gltf(out.file, assets);
     } else {
-      write_scene_pov(path, assets, stroke_ptr);
-      pov_written = path;
+      write_scene_pov(out.file, assets, stroke_ptr);
+      pov_written = out.file;
     }
-    spdlog::info("wrote {}", path);
+    spdlog::info("wrote {}", out.given);
   }
   w.export_s = seconds_since(t0);
-  if (!png.empty()) {
+  if (!t.png.given.empty()) {
     t0 = Clock::now();
-    make_parent(png);
     ScenePreviewOptions preview;
     preview.strokes = stroke_ptr;
-    write_png(png, render_scene_preview(assets, preview));
-    spdlog::info("wrote {}", png);
+    write_png(t.png.file, render_scene_preview(assets, preview));
+    spdlog::info("wrote {}", t.png.given);
     w.preview_s = seconds_since(t0);
   }
-  if (!render.empty()) {
+  if (!t.render.given.empty()) {
     t0 = Clock::now();
-    make_parent(render);
     // POV-Ray renders a .pov file: the one written, or a temporary one.
     std::filesystem::path pov = pov_written;
     std::filesystem::path temp;
+    RemoveOnSignal temp_guard;
     if (pov_written.empty()) {
       temp = std::filesystem::temp_directory_path() /
              ("cutaway-" + std::to_string(::getpid()) + "-" + assets.name + ".pov");
+      temp_guard = RemoveOnSignal(temp);
       write_scene_pov(temp, assets, stroke_ptr);
       pov = temp;
     }
     PovrayOptions options;
     options.threads = threads;
     try {
-      spdlog::info("rendering {} with POV-Ray at {} x {}", render, assets.width, assets.height);
-      render_povray(pov, render, assets.width, assets.height, options);
+      spdlog::info("rendering {} with POV-Ray at {} x {}", t.render.given, assets.width,
+                   assets.height);
+      render_povray(pov, t.render.file, assets.width, assets.height, options);
     } catch (...) {
       if (!temp.empty()) std::filesystem::remove(temp);
       throw;
     }
     if (!temp.empty()) std::filesystem::remove(temp);
-    spdlog::info("wrote {}", render);
+    spdlog::info("wrote {}", t.render.given);
     w.povray_s = seconds_since(t0);
   }
   return w;
@@ -160,10 +182,13 @@ PieceSet cut_object(const DsModel& model, const Template& tmpl, const CutSpec& c
   return set;
 }
 
-int run_piece(const PieceArgs& a, const Common& common) {
+int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
   if (a.output.empty() && a.png.empty()) throw UsageError("give -o and/or --png");
   if (!a.output.empty()) output_format("-o", a.output);
   if (!a.png.empty()) require_extension("--png", a.png, ".png");
+  std::vector<std::string> exports;
+  if (!a.output.empty()) exports.push_back(a.output);
+  const Targets targets = register_outputs(outputs, exports, a.png, "");
   const auto t0 = Clock::now();
   const Template tmpl = load_template(a.template_path);
   const CutSpec cut = checked_cut(tmpl, a.cut, "--cut " + a.cut);
@@ -183,10 +208,7 @@ int run_piece(const PieceArgs& a, const Common& common) {
   spdlog::info("{}: {} pieces, {} triangles, {} cut planes", tmpl.name, set.pieces.size(),
                triangles, set.cells.planes.size());
   const SceneAssets assets = piece_assets(set, tmpl.name, 0.3, a.width, a.height);
-  std::vector<std::string> outputs;
-  if (!a.output.empty()) outputs.push_back(a.output);
-  const Written w =
-      write_outputs(assets, outputs, a.png, "", common.threads, a.silhouettes);
+  const Written w = write_outputs(assets, targets, common.threads, a.silhouettes);
   if (common.stats) {
     std::fprintf(stderr,
                  "{\"template\": \"%s\", \"backend\": \"%s\", \"pieces\": %zu, \"planes\": %zu, "
@@ -201,11 +223,12 @@ int run_piece(const PieceArgs& a, const Common& common) {
   return 0;
 }
 
-int run_scene(const SceneArgs& a, const Common& common) {
+int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
   if (a.outputs.empty()) throw UsageError("-o is required (.glb, .gltf or .pov)");
   for (const std::string& path : a.outputs) output_format("-o", path);
   if (!a.png.empty()) require_extension("--png", a.png, ".png");
   if (!a.render.empty()) require_extension("--render", a.render, ".png");
+  const Targets targets = register_outputs(outputs, a.outputs, a.png, a.render);
   const auto t0 = Clock::now();
   const Scene scene = load_scene(a.scene_path);
   const double t_parse = seconds_since(t0);
@@ -230,8 +253,7 @@ int run_scene(const SceneArgs& a, const Common& common) {
                  st.pieces - st.placed, st.pieces);
   spdlog::info("{}: {} objects, {} pieces placed, {} triangles (seed {})", scene.name,
                st.objects, st.placed, st.triangles, seed);
-  const Written w = write_outputs(assets, a.outputs, a.png, a.render, common.threads,
-                                  scene.render.silhouettes);
+  const Written w = write_outputs(assets, targets, common.threads, scene.render.silhouettes);
   if (common.stats) {
     std::fprintf(
         stderr,

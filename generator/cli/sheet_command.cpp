@@ -118,10 +118,11 @@ Image sheet_tile(const LoadedItem& item, const SheetArgs& a, const Common& commo
 
 }  // namespace
 
-int run_sheet(const SheetArgs& a, const Common& common) {
+int run_sheet(const SheetArgs& a, const Common& common, OutputSet& outputs) {
   if (a.items.empty()) throw UsageError("give at least one template");
   require_extension("-o", a.output, ".png");
   if (a.tile < 64 || a.tile > 2048) throw UsageError("--tile must be in 64..2048");
+  const std::filesystem::path file = outputs.add("-o", a.output);
   // Every template and cut is checked before anything is rendered.
   std::vector<LoadedItem> items;
   for (const std::string& text : a.items) items.push_back(load_item(parse_item(text, a.cut)));
@@ -132,9 +133,7 @@ int run_sheet(const SheetArgs& a, const Common& common) {
                     : static_cast<int>(std::ceil(std::sqrt(4.0 / 3.0 * static_cast<double>(tiles.size()))));
   GridOptions grid;
   grid.margin = std::max(4, a.tile / 32);
-  const std::filesystem::path parent = std::filesystem::path(a.output).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
-  write_png(a.output, compose_grid(tiles, columns, grid));
+  write_png(file, compose_grid(tiles, columns, grid));
   spdlog::info("wrote {} ({} tiles, {} columns)", a.output, tiles.size(), columns);
   return 0;
 }
