@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <regex>
 #include <stdexcept>
 
+#include "error.h"
 #include "mesh_import.h"
 #include "plane_spec.h"
+#include "text_rules.h"
 #include "template.h"
 
 namespace cutaway {
@@ -16,25 +17,14 @@ namespace {
 const char* const kForms =
     "write whole, halves, slices:THICKNESS, wedges:COUNT, dice:SIZE or plane:SPEC";
 
-/// A decimal number (no hex, no nan or inf), as the whole of `s`; throws otherwise.
-double parse_number(const std::string& s, const std::string& what) {
-  static const std::regex num(R"(\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*)");
-  if (!std::regex_match(s, num)) {
-    throw std::invalid_argument(what + " must be a number, not '" + s + "'");
-  }
-  const double v = std::strtod(s.c_str(), nullptr);
-  if (!std::isfinite(v)) throw std::invalid_argument(what + " must be finite, not '" + s + "'");
-  return v;
-}
-
 /// A positive length in units of `metres_per_unit` as metres, at least kMinCutLength_m.
 double parse_cut_length(const std::string& s, const std::string& what, double metres_per_unit) {
-  const double v = parse_number(s, what);
-  if (!(v > 0)) throw std::invalid_argument(what + " must be positive, not '" + s + "'");
+  const double v = parse_decimal(s, what);
+  if (!(v > 0)) throw std::invalid_argument(what + " must be positive, not " + quoted(s));
   const double m = v * metres_per_unit;
-  if (!std::isfinite(m)) throw std::invalid_argument(what + " is too large: '" + s + "'");
+  if (!std::isfinite(m)) throw std::invalid_argument(what + " is too large: " + quoted(s));
   if (m < kMinCutLength_m * (1 - 1e-9)) {  // 0.05 cm is 0.5 mm too
-    throw std::invalid_argument(what + " must be at least 0.5 mm, not '" + s + "'");
+    throw std::invalid_argument(what + " must be at least 0.5 mm, not " + quoted(s));
   }
   return m;
 }
@@ -88,7 +78,7 @@ CutSpec parse_cut_spec(const std::string& text, double metres_per_unit) {
   const bool has_arg = colon != std::string::npos;
   const std::string arg = has_arg ? text.substr(colon + 1) : "";
   if (kind == "whole" || kind == "halves") {
-    if (has_arg) throw std::invalid_argument("'" + text + "': '" + kind + "' takes no value");
+    if (has_arg) throw std::invalid_argument(quoted(text) + ": '" + kind + "' takes no value");
     cut.type = kind == "whole" ? CutType::Whole : CutType::Halves;
     return cut;
   }
@@ -96,7 +86,7 @@ CutSpec parse_cut_spec(const std::string& text, double metres_per_unit) {
     if (!has_arg || arg.empty()) {
       const char* value = kind == "slices" ? "THICKNESS" : kind == "wedges" ? "COUNT"
                           : kind == "dice" ? "SIZE" : "SPEC";
-      throw std::invalid_argument("'" + text + "': write " + kind + ":" + value);
+      throw std::invalid_argument(quoted(text) + ": write " + kind + ":" + value);
     }
   }
   if (kind == "slices") {
@@ -110,10 +100,10 @@ CutSpec parse_cut_spec(const std::string& text, double metres_per_unit) {
     return cut;
   }
   if (kind == "wedges") {
-    const double n = parse_number(arg, "the wedge count");
+    const double n = parse_decimal(arg, "the wedge count");
     if (n != std::floor(n) || n < 2 || n > 64) {
-      throw std::invalid_argument("the wedge count must be a whole number from 2 to 64, not '" +
-                                  arg + "'");
+      throw std::invalid_argument("the wedge count must be a whole number from 2 to 64, not " +
+                                  quoted(arg));
     }
     cut.type = CutType::Wedges;
     cut.count = static_cast<int>(n);
@@ -124,7 +114,7 @@ CutSpec parse_cut_spec(const std::string& text, double metres_per_unit) {
     cut.plane = parse_plane_spec(arg, metres_per_unit);
     return cut;
   }
-  throw std::invalid_argument("'" + text + "' is not a cut: " + kForms);
+  throw std::invalid_argument(quoted(text) + " is not a cut: " + kForms);
 }
 
 ObjectExtents template_extents(const Template& t) {

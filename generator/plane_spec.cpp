@@ -1,43 +1,80 @@
 #include "plane_spec.h"
 
+#include <algorithm>
 #include <cmath>
-#include <regex>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 
+#include "error.h"
+#include "text_rules.h"
+
 namespace cutaway {
 
+namespace {
+
+/// `text` split at every `sep` (empty parts kept).
+std::vector<std::string_view> split(std::string_view text, char sep) {
+  std::vector<std::string_view> parts;
+  size_t begin = 0;
+  while (true) {
+    const size_t at = text.find(sep, begin);
+    parts.push_back(text.substr(begin, at == std::string_view::npos ? text.npos : at - begin));
+    if (at == std::string_view::npos) return parts;
+    begin = at + 1;
+  }
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+  return s;
+}
+
+/// A coordinate in template units as metres; refused when it leaves the double range.
+double to_metres(std::string_view text, const char* what, double metres_per_unit) {
+  const double m = parse_decimal(text, what) * metres_per_unit;
+  if (!std::isfinite(m)) throw std::invalid_argument(std::string(what) + " is too large");
+  return m;
+}
+
+}  // namespace
+
 Plane parse_plane_spec(const std::string& spec, double metres_per_unit) {
-  static const std::string num = R"(\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*)";
-  static const std::regex axis_form(R"(\s*([xyzXYZ])\s*=)" + num);
-  static const std::regex point_normal_form(num + "," + num + "," + num + "/" + num + "," + num +
-                                            "," + num);
-  std::smatch m;
+  const std::string_view s = trim(spec);
+  const auto not_a_plane = [&] {
+    return std::invalid_argument(quoted(spec) +
+                                 " is not a plane: write AXIS=VALUE (e.g. y=20) or "
+                                 "px,py,pz/nx,ny,nz (a point and a normal, template units)");
+  };
   Plane plane;
-  if (std::regex_match(spec, m, axis_form)) {
-    const int axis = std::tolower(m[1].str()[0]) - 'x';
+  if (const size_t eq = s.find('='); eq != std::string_view::npos) {
+    const std::string_view axis_text = trim(s.substr(0, eq));
+    if (axis_text.size() != 1 || std::string_view("xyzXYZ").find(axis_text[0]) == s.npos)
+      throw not_a_plane();
+    const int axis = std::tolower(axis_text[0]) - 'x';
     plane.point = glm::dvec3(0.0);
-    plane.point[axis] = std::stod(m[2].str()) * metres_per_unit;
+    plane.point[axis] = to_metres(s.substr(eq + 1), "the plane's coordinate", metres_per_unit);
     plane.normal = glm::dvec3(0.0);
     plane.normal[axis] = 1;
     return plane;
   }
-  if (std::regex_match(spec, m, point_normal_form)) {
-    for (int k = 0; k < 3; ++k) {
-      plane.point[k] = std::stod(m[1 + k].str()) * metres_per_unit;
-      plane.normal[k] = std::stod(m[4 + k].str());
-    }
-    const double len = glm::length(plane.normal);
-    if (!(len > 0) || !std::isfinite(len)) {
-      throw std::invalid_argument("'" + spec + "': the plane's normal must not be zero");
-    }
-    plane.normal /= len;
-    return plane;
+  const auto halves = split(s, '/');
+  if (halves.size() != 2) throw not_a_plane();
+  const auto point = split(halves[0], ','), normal = split(halves[1], ',');
+  if (point.size() != 3 || normal.size() != 3) throw not_a_plane();
+  for (int k = 0; k < 3; ++k) {
+    plane.point[k] = to_metres(point[k], "a point coordinate", metres_per_unit);
+    plane.normal[k] = parse_decimal(normal[k], "a normal component");
   }
-  throw std::invalid_argument("'" + spec +
-                              "' is not a plane: write AXIS=VALUE (e.g. y=20) or "
-                              "px,py,pz/nx,ny,nz (a point and a normal, template units)");
+  // Scale by the largest component first, so that tiny (even subnormal) normals normalise.
+  const double largest = std::max({std::fabs(plane.normal.x), std::fabs(plane.normal.y),
+                                   std::fabs(plane.normal.z)});
+  if (!(largest > 0)) {
+    throw std::invalid_argument(quoted(spec) + ": the plane's normal must not be zero");
+  }
+  plane.normal = glm::normalize(plane.normal / largest);
+  return plane;
 }
 
 }  // namespace cutaway

@@ -6,12 +6,13 @@
 #include <filesystem>
 #include <map>
 #include <optional>
-#include <regex>
 #include <sstream>
 #include <vector>
 
 #include "colour.h"
 #include "template_parser.h"
+#include "text_rules.h"
+#include "error.h"
 #include "yaml_reader.h"
 
 #ifndef CUTAWAY_TEMPLATES_DIR
@@ -88,12 +89,12 @@ Container parse_container(const YamlField& f, double m) {
     c.colour = hex_colour("#c49a6c");
     own = {"width", "depth", "height", "color"};
   } else if (t != "none") {
-    type.fail("must be bowl, plate, board or none, not '" + t + "'");
+    type.fail("must be bowl, plate, board or none, not " + quoted(t));
   }
   // A field of another container type gets a message that says so, before unknown fields.
   for (const char* key : {"diameter", "width", "depth", "height", "color"}) {
     if (auto x = f.get(key); x && std::find(own.begin(), own.end(), key) == own.end()) {
-      x->fail("a '" + t + "' container has no " + key);
+      x->fail("a " + quoted(t) + " container has no " + key);
     }
   }
   if (c.type == ContainerType::Board) f.allow_only({"type", "width", "depth", "height", "color"});
@@ -118,10 +119,10 @@ CutSpec parse_cut(const YamlField& f, double m, std::optional<YamlField>& length
   else if (t == "slices") cut.type = CutType::Slices, own = "thickness";
   else if (t == "wedges") cut.type = CutType::Wedges, own = "count";
   else if (t == "dice") cut.type = CutType::Dice, own = "size";
-  else type.fail("must be whole, halves, slices, wedges or dice, not '" + t + "'");
+  else type.fail("must be whole, halves, slices, wedges or dice, not " + quoted(t));
   for (const char* key : {"thickness", "count", "size"}) {
     if (auto x = f.get(key); x && (!own || std::string_view(own) != key)) {
-      x->fail("a '" + t + "' cut has no " + key);
+      x->fail("a " + quoted(t) + " cut has no " + key);
     }
   }
   if (own) {
@@ -152,15 +153,13 @@ std::string resolve_template(const YamlField& f, const fs::path& scene_dir) {
   if (is_path) {
     const fs::path p = fs::path(v).is_absolute() ? fs::path(v) : (scene_dir / v).lexically_normal();
     if (!fs::is_regular_file(p, ec)) {
-      f.fail("the template file '" + p.string() + "' does not exist (a path is relative to the "
+      f.fail("the template file " + quoted(p.string()) + " does not exist (a path is relative to the "
              "scene's folder)");
     }
     return p.string();
   }
-  static const std::regex name_re("[a-z0-9_-]+");
-  if (!std::regex_match(v, name_re)) {
-    f.fail("a template name uses only a-z, 0-9, '_' and '-' (or write a path ending in .yaml), "
-           "not '" + v + "'");
+  if (const std::string rule = name_rule(v); !rule.empty()) {
+    f.fail("a template is a name or a path ending in .yaml; " + rule);
   }
   std::vector<fs::path> dirs{(scene_dir / ".." / "templates").lexically_normal()};
   if (const char* env = std::getenv("CUTAWAY_TEMPLATES"); env && *env) dirs.emplace_back(env);
@@ -171,7 +170,7 @@ std::string resolve_template(const YamlField& f, const fs::path& scene_dir) {
     if (fs::is_regular_file(p, ec)) return p.string();
     looked += (looked.empty() ? "" : ", ") + d.string();
   }
-  f.fail("no template named '" + v + "' (looked for " + v + ".yaml in " + looked + ")");
+  f.fail("no template named " + quoted(v) + " (looked for " + v + ".yaml in " + looked + ")");
 }
 
 /// Reads every item's template once; refuses cuts that make too many pieces.
@@ -207,17 +206,13 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
 
   const YamlField format = root.require("format");
   if (format.string() != "cutaway-scene/1") {
-    format.fail("unsupported format '" + format.string() +
-                "' (this version of cutaway reads cutaway-scene/1)");
+    format.fail("unsupported format " + quoted(format.string()) + " (this version of cutaway reads cutaway-scene/1)");
   }
   root.allow_only({"format", "name", "seed", "units", "container", "items", "camera", "render"});
 
   const YamlField name = root.require("name");
   s.name = name.string();
-  static const std::regex name_re("[a-z0-9_-]+");
-  if (!std::regex_match(s.name, name_re)) {
-    name.fail("a name uses only a-z, 0-9, '_' and '-', not '" + s.name + "'");
-  }
+  if (const std::string rule = name_rule(s.name); !rule.empty()) name.fail(rule);
   if (auto seed = root.get("seed")) {
     const int64_t v = seed->integer();
     if (v < 0) seed->fail("must not be negative");
@@ -228,7 +223,7 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
     if (v == "mm") s.metres_per_unit = 1e-3;
     else if (v == "cm") s.metres_per_unit = 1e-2;
     else if (v == "m") s.metres_per_unit = 1.0;
-    else u->fail("must be mm, cm or m, not '" + v + "'");
+    else u->fail("must be mm, cm or m, not " + quoted(v));
   }
   const double m = s.metres_per_unit;
 

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <filesystem>
 #include <numbers>
-#include <regex>
 #include <set>
 #include <sstream>
 
@@ -12,6 +11,8 @@
 #include "colour.h"
 #include "mesh_import.h"
 #include "template_checks.h"
+#include "text_rules.h"
+#include "error.h"
 #include "yaml_reader.h"
 
 namespace cutaway {
@@ -49,7 +50,7 @@ Gradient<T> parse_gradient(const YamlField& f, ParseValue parse_value) {
   const std::string a = along.string();
   if (a == "profile") g.along = GradientAxis::Profile;
   else if (a == "section") g.along = GradientAxis::Section;
-  else along.fail("must be 'profile' or 'section', not '" + a + "'");
+  else along.fail("must be 'profile' or 'section', not " + quoted(a));
   const YamlField stops = f.require("stops");
   if (stops.size() < 1) stops.fail("a gradient needs at least one stop [t, value]");
   for (size_t i = 0; i < stops.size(); ++i) {
@@ -110,7 +111,7 @@ SectionSpec parse_section(const YamlField& f, double m) {
   if (f.is_scalar()) {
     if (f.string() != "circle") {
       f.fail("must be 'circle', a loop [[x, z], ...], {polar: [[deg, radius], ...]} or a list "
-             "of loops, not '" + f.string() + "'");
+             "of loops, not " + quoted(f.string()));
     }
     s.circle = true;
     return s;
@@ -138,11 +139,10 @@ SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::stri
   if (k == "around") s.kind = SurfaceKind::Around;
   else if (k == "within") s.kind = SurfaceKind::Within;
   else if (k == "mesh") s.kind = SurfaceKind::Mesh;
-  else kind.fail("must be 'around', 'within' or 'mesh', not '" + k + "'");
+  else kind.fail("must be 'around', 'within' or 'mesh', not " + quoted(k));
 
   if (t.symmetry == Symmetry::Cylindrical && s.kind != SurfaceKind::Around) {
-    kind.fail("a cylindrical template has only 'around' surfaces ('" + k +
-              "' needs symmetry nfold" + (s.kind == SurfaceKind::Mesh ? " or none)" : ")"));
+    kind.fail("a cylindrical template has only 'around' surfaces (" + quoted(k) + " needs symmetry nfold" + (s.kind == SurfaceKind::Mesh ? " or none)" : ")"));
   }
   if (t.symmetry == Symmetry::None && s.kind != SurfaceKind::Mesh) {
     kind.fail("a template with symmetry none has only 'mesh' surfaces");
@@ -238,7 +238,7 @@ GrainSpec parse_grain(const YamlField& f, const Template& t) {
   g.on = on.string();
   bool found = false;
   for (const auto& s : t.surfaces) found = found || s.name == g.on;
-  if (!found) on.fail("no surface is named '" + g.on + "'");
+  if (!found) on.fail("no surface is named " + quoted(g.on));
   if (auto region = f.get("region")) {
     region->allow_only({"profile", "section"});
     if (auto x = region->get("profile")) g.region_profile = parse_range(*x);
@@ -249,7 +249,7 @@ GrainSpec parse_grain(const YamlField& f, const Template& t) {
   if (g.spacing <= 0) spacing.fail("the Poisson-disc spacing must be positive");
   if (auto side = f.get("side")) {
     const std::string v = side->string();
-    if (v != "front" && v != "back") side->fail("must be 'front' or 'back', not '" + v + "'");
+    if (v != "front" && v != "back") side->fail("must be 'front' or 'back', not " + quoted(v));
     g.on_front = v == "front";
   }
   if (auto x = f.get("depth")) g.depth = parse_length(*x, m);
@@ -350,22 +350,18 @@ Template parse_template(std::string_view text, const std::string& file,
 
   const YamlField format = root.require("format");
   if (format.string() != "cutaway-template/1") {
-    format.fail("unsupported format '" + format.string() +
-                "' (this version of cutaway reads cutaway-template/1)");
+    format.fail("unsupported format " + quoted(format.string()) + " (this version of cutaway reads cutaway-template/1)");
   }
   const YamlField name = root.require("name");
   t.name = name.string();
-  static const std::regex name_re("[a-z0-9_-]+");
-  if (!std::regex_match(t.name, name_re)) {
-    name.fail("a name uses only a-z, 0-9, '_' and '-', not '" + t.name + "'");
-  }
+  if (const std::string rule = name_rule(t.name); !rule.empty()) name.fail(rule);
   if (auto d = root.get("description")) t.description = d->string();
   if (auto u = root.get("units")) {
     const std::string v = u->string();
     if (v == "mm") t.metres_per_unit = 1e-3;
     else if (v == "cm") t.metres_per_unit = 1e-2;
     else if (v == "m") t.metres_per_unit = 1.0;
-    else u->fail("must be mm, cm or m, not '" + v + "'");
+    else u->fail("must be mm, cm or m, not " + quoted(v));
   }
 
   const YamlField sym = root.require("symmetry");
@@ -375,7 +371,7 @@ Template parse_template(std::string_view text, const std::string& file,
   if (ty == "cylindrical") t.symmetry = Symmetry::Cylindrical;
   else if (ty == "nfold") t.symmetry = Symmetry::NFold;
   else if (ty == "none") t.symmetry = Symmetry::None;
-  else type.fail("must be cylindrical, nfold or none, not '" + ty + "'");
+  else type.fail("must be cylindrical, nfold or none, not " + quoted(ty));
   if (t.symmetry == Symmetry::NFold) {
     const YamlField folds = sym.require("folds");
     const int64_t n = folds.integer();
@@ -426,13 +422,12 @@ Template parse_template(std::string_view text, const std::string& file,
   for (size_t i = 0; i < surfaces.size(); ++i) {
     SurfaceSpec s = parse_surface(surfaces[i], t, base_dir);
     if (!names.insert(s.name).second) {
-      surfaces[i].require("name").fail("surface names must be unique: '" + s.name +
-                                       "' is used twice");
+      surfaces[i].require("name").fail("surface names must be unique: " + quoted(s.name) + " is used twice");
     }
     if (s.is_skin) {
       if (t.skin >= 0) {
-        surfaces[i].require("role").fail("only one surface may have role skin ('" +
-                                         t.surfaces[t.skin].name + "' has it already)");
+        surfaces[i].require("role").fail("only one surface may have role skin (" +
+                                         quoted(t.surfaces[t.skin].name) + " has it already)");
       }
       t.skin = static_cast<int>(i);
     }

@@ -1,0 +1,31 @@
+// The small lexical rules shared by the template and scene formats and the command line: plain
+// names and decimal numbers. Both are scanned by hand in one pass (no std::regex: its recursive
+// matcher overflows the stack on inputs of a few ten thousand characters).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+namespace cutaway {
+
+/// The longest name a template or scene may have (it becomes part of output file names).
+inline constexpr size_t kMaxNameLength = 64;
+/// The longest text accepted as one decimal number (digits, sign, point and exponent).
+inline constexpr size_t kMaxNumberLength = 64;
+
+/// Whether `s` is a plain name: 1..kMaxNameLength characters of a-z, 0-9, '_' and '-'.
+bool is_plain_name(std::string_view s);
+
+/// The rule a name breaks, in words ("" when `s` is a plain name).
+std::string name_rule(std::string_view s);
+
+/// Parses a decimal number: optional blanks, optional sign, digits with an optional point (or a
+/// point and digits), an optional exponent, optional blanks; nothing else (no hex, inf or nan).
+/// Values below the smallest double become 0 or a subnormal; they are accepted.
+/// @param what  names the value in the message, e.g. "the slice thickness"
+/// @throws std::invalid_argument "WHAT must be a number, not '...'" (malformed or longer than
+///         kMaxNumberLength characters) or "WHAT is too large: '...'" (beyond the double range)
+double parse_decimal(std::string_view s, const std::string& what);
+
+}  // namespace cutaway
