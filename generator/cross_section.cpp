@@ -11,22 +11,60 @@
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
 #include <CGAL/Delaunay_mesh_vertex_base_2.h>
 #include <CGAL/Delaunay_mesher_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <glm/geometric.hpp>
 
+#include "error.h"
 #include "split_lines.h"
 
 namespace cutaway {
 
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+// Exact constructions: refinement splits constrained edges at computed midpoints, and with
+// inexact ones a midpoint of a tiny or nearly flat edge (a plane nearly tangent to a surface
+// cuts a sliver loop) can land outside both faces of its edge, which corrupts the triangulation
+// (CGAL Refine_edges.h: n == zone.fh) and crashes. Exact intersections for the same reason.
+using K = CGAL::Exact_predicates_exact_constructions_kernel;
 using Vb = CGAL::Delaunay_mesh_vertex_base_2<K>;
 using Fb = CGAL::Delaunay_mesh_face_base_2<K>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
-using CdtBase = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predicates_tag>;
+using CdtBase = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_intersections_tag>;
 using Cdt = CGAL::Constrained_triangulation_plus_2<CdtBase>;
-using Criteria = CGAL::Delaunay_mesh_size_criteria_2<Cdt>;
+/// CGAL's size and angle criteria with a floor: a triangle whose shortest edge is below
+/// `min_edge` (metres) is never bad, so refinement does not chase features far below the
+/// template's resolution (sliver loops of a nearly tangent plane, tiny angles between cut
+/// segments).
+class Criteria : public CGAL::Delaunay_mesh_size_criteria_2<Cdt> {
+ public:
+  using Base = CGAL::Delaunay_mesh_size_criteria_2<Cdt>;
+  Criteria(double shape_bound, double size_bound, double min_edge)
+      : Base(shape_bound, size_bound), min_edge_(min_edge) {}
+
+  class Is_bad : public Base::Is_bad {
+   public:
+    Is_bad(const Base::Is_bad& base, double min_edge)
+        : Base::Is_bad(base), min_squared_(min_edge * min_edge) {}
+    using Base::Is_bad::operator();
+    CGAL::Mesh_2::Face_badness operator()(const Cdt::Face_handle& f, Quality& q) const {
+      const CGAL::Mesh_2::Face_badness badness = Base::Is_bad::operator()(f, q);
+      if (badness == CGAL::Mesh_2::NOT_BAD) return badness;
+      for (int i = 0; i < 3; ++i) {
+        const double squared = CGAL::to_double(
+            CGAL::squared_distance(f->vertex(i)->point(), f->vertex(Cdt::ccw(i))->point()));
+        if (squared < min_squared_) return CGAL::Mesh_2::NOT_BAD;
+      }
+      return badness;
+    }
+
+   private:
+    double min_squared_;
+  };
+  Is_bad is_bad_object() const { return Is_bad(Base::is_bad_object(), min_edge_); }
+
+ private:
+  double min_edge_;
+};
 using Mesher = CGAL::Delaunay_mesher_2<Cdt, Criteria>;
 using Vertex = Cdt::Vertex_handle;
 using Face = Cdt::Face_handle;
@@ -38,7 +76,7 @@ struct Segment2 {
   int index;               // into the cut segment list
 };
 
-glm::dvec2 to2(const Point2& p) { return {p.x(), p.y()}; }
+glm::dvec2 to2(const Point2& p) { return {CGAL::to_double(p.x()), CGAL::to_double(p.y())}; }
 
 /// Which side of segment s the point c lies on: +1 front, -1 back, 0 on its line.
 int side_of(const Segment2& s, const glm::dvec2& c) {
@@ -112,40 +150,6 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
       1e-6 * options.edge_m);
   Cdt cdt;
   std::map<std::pair<Vertex, Vertex>, int> segment_of;  // constraint end points -> index
-  for (const Constraint2& c : constraints) {
-    const Vertex va = cdt.insert(Point2(c.a.x, c.a.y));
-    const Vertex vb = cdt.insert(Point2(c.b.x, c.b.y));
-    if (va == vb) continue;
-    cdt.insert_constraint(va, vb);
-    if (c.segment >= 0) segment_of.emplace(std::minmax(va, vb), seg2[c.segment].index);
-  }
-  // Blur bands (paper §3.1, Fig. 2): pairs of vertices on the two sheets of a blurred cut
-  // segment, +-blur along its front direction, every max(1.5 blur, edge / 5) along it, so that
-  // the steep transition across the band is sampled as a ladder parallel to the cut line
-  // (sparser pairs leave line vertices of the refinement without partners, and the colour
-  // across the band zigzags). Not near a split line: a point a hair's breadth off a constraint
-  // makes refinement split it endlessly.
-  auto near_split_line = [&](const glm::dvec2& p) {
-    for (const Line2& l : lines)
-      if (std::fabs(glm::dot(p, l.normal) - l.offset) < 0.25 * options.edge_m) return true;
-    return false;
-  };
-  for (const Segment2& s : seg2) {
-    const CutSegment& cut = segments[s.index];
-    const double front_len = glm::length(s.front);
-    const double blur = 0.5 * (cut.blur_a + cut.blur_b);
-    if (blur <= 0 || front_len == 0) continue;
-    const double spacing = std::max(1.5 * blur, 0.2 * options.edge_m);
-    const int pairs = std::max(1, static_cast<int>(std::ceil(glm::distance(s.a, s.b) / spacing)));
-    const glm::dvec2 across = s.front / front_len;
-    for (int k = 0; k < pairs; ++k) {
-      const double t = (k + 0.5) / pairs;
-      const glm::dvec2 p = s.a + (s.b - s.a) * t;
-      const double b = cut.blur_a + (cut.blur_b - cut.blur_a) * t;
-      for (const glm::dvec2& q : {p + across * b, p - across * b})
-        if (!near_split_line(q)) cdt.insert(Point2(q.x, q.y));
-    }
-  }
   // The input segment that a constrained edge (a, b) lies on (null on a split line).
   auto segment_on = [&](Vertex a, Vertex b) -> const Segment2* {
     for (auto ctx = cdt.contexts_begin(a, b); ctx != cdt.contexts_end(a, b); ++ctx) {
@@ -159,59 +163,107 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
     return nullptr;
   };
 
-  if (cdt.dimension() < 2) throw std::domain_error("the plane only touches the object");
-
-  // 2. The domain: flood regions across unconstrained edges and decide each region once.
-  std::map<Face, int> region;
-  std::vector<bool> region_in;
-  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) {
-    if (region.count(f)) continue;
-    const int id = static_cast<int>(region_in.size());
-    bool in = true;
-    std::queue<Face> queue;
-    queue.push(f);
-    region[f] = id;
-    while (!queue.empty()) {
-      const Face g = queue.front();
-      queue.pop();
-      if (cdt.is_infinite(g)) in = false;
-      for (int i = 0; i < 3; ++i) {
-        const Face nb = g->neighbor(i);
-        // Split lines divide cells, not regions: flood across them.
-        const Segment2* s = g->is_constrained(i)
-                                ? segment_on(g->vertex(Cdt::cw(i)), g->vertex(Cdt::ccw(i)))
-                                : nullptr;
-        if (!s) {
-          if (!region.count(nb)) {
-            region[nb] = id;
-            queue.push(nb);
-          }
-          continue;
-        }
-        if (cdt.is_infinite(g)) continue;
-        const int side = side_of(*s, to2(g->vertex(i)->point()));
-        const DsSurface& surface = model.surfaces[segments[s->index].surface];
-        if (side > 0 && (surface.role == SurfaceRole::Skin || !surface.visible_front)) in = false;
-        if (side < 0 && !surface.visible_back) in = false;
+  // Steps 1 and 2 (run again without refinement when refinement runs out of budget).
+  auto triangulate_domain = [&] {
+    for (const Constraint2& c : constraints) {
+      const Vertex va = cdt.insert(Point2(c.a.x, c.a.y));
+      const Vertex vb = cdt.insert(Point2(c.b.x, c.b.y));
+      if (va == vb) continue;
+      cdt.insert_constraint(va, vb);
+      if (c.segment >= 0) segment_of.emplace(std::minmax(va, vb), seg2[c.segment].index);
+    }
+    // Blur bands (paper §3.1, Fig. 2): pairs of vertices on the two sheets of a blurred cut
+    // segment, +-blur along its front direction, every max(1.5 blur, edge / 5) along it, so that
+    // the steep transition across the band is sampled as a ladder parallel to the cut line
+    // (sparser pairs leave line vertices of the refinement without partners, and the colour
+    // across the band zigzags). Not near a split line: a point a hair's breadth off a constraint
+    // makes refinement split it endlessly.
+    auto near_split_line = [&](const glm::dvec2& p) {
+      for (const Line2& l : lines)
+        if (std::fabs(glm::dot(p, l.normal) - l.offset) < 0.25 * options.edge_m) return true;
+      return false;
+    };
+    for (const Segment2& s : seg2) {
+      const CutSegment& cut = segments[s.index];
+      const double front_len = glm::length(s.front);
+      const double blur = 0.5 * (cut.blur_a + cut.blur_b);
+      if (blur <= 0 || front_len == 0) continue;
+      const double spacing = std::max(1.5 * blur, 0.2 * options.edge_m);
+      const int pairs = std::max(1, static_cast<int>(std::ceil(glm::distance(s.a, s.b) / spacing)));
+      const glm::dvec2 across = s.front / front_len;
+      for (int k = 0; k < pairs; ++k) {
+        const double t = (k + 0.5) / pairs;
+        const glm::dvec2 p = s.a + (s.b - s.a) * t;
+        const double b = cut.blur_a + (cut.blur_b - cut.blur_a) * t;
+        for (const glm::dvec2& q : {p + across * b, p - across * b})
+          if (!near_split_line(q)) cdt.insert(Point2(q.x, q.y));
       }
     }
-    region_in.push_back(in);
-  }
-  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) {
-    f->set_in_domain(region_in[region[f]]);
-  }
 
-  // 3. Conforming Delaunay refinement inside the domain (angle and size criteria).
-  Mesher mesher(cdt, Criteria(options.shape_bound, options.interior_edge * options.edge_m));
-  mesher.init(true);
-  // A budget of Steiner points: constraints that meet at tiny angles or pass a hair's breadth
-  // from a vertex (split lines crossing cut loops) can make refinement cascade without end.
-  const size_t budget = 20 * cdt.number_of_vertices() + 20000;
-  size_t inserted = 0;
-  while (!mesher.is_refinement_done() && inserted < budget) {
-    if (mesher.step_by_step_refine_mesh()) ++inserted;
+    if (cdt.dimension() < 2) throw std::domain_error("the plane only touches the object");
+
+    // 2. The domain: flood regions across unconstrained edges and decide each region once.
+    std::map<Face, int> region;
+    std::vector<bool> region_in;
+    for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) {
+      if (region.count(f)) continue;
+      const int id = static_cast<int>(region_in.size());
+      bool in = true;
+      std::queue<Face> queue;
+      queue.push(f);
+      region[f] = id;
+      while (!queue.empty()) {
+        const Face g = queue.front();
+        queue.pop();
+        if (cdt.is_infinite(g)) in = false;
+        for (int i = 0; i < 3; ++i) {
+          const Face nb = g->neighbor(i);
+          // Split lines divide cells, not regions: flood across them.
+          const Segment2* s = g->is_constrained(i)
+                                  ? segment_on(g->vertex(Cdt::cw(i)), g->vertex(Cdt::ccw(i)))
+                                  : nullptr;
+          if (!s) {
+            if (!region.count(nb)) {
+              region[nb] = id;
+              queue.push(nb);
+            }
+            continue;
+          }
+          if (cdt.is_infinite(g)) continue;
+          const int side = side_of(*s, to2(g->vertex(i)->point()));
+          const DsSurface& surface = model.surfaces[segments[s->index].surface];
+          if (side > 0 && (surface.role == SurfaceRole::Skin || !surface.visible_front)) in = false;
+          if (side < 0 && !surface.visible_back) in = false;
+        }
+      }
+      region_in.push_back(in);
+    }
+    for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) {
+      f->set_in_domain(region_in[region[f]]);
+    }
+  };
+  triangulate_domain();
+
+  // 3. Conforming Delaunay refinement inside the domain (angle and size criteria, no triangle
+  // edge below 1e-3 edge). A budget counted in refinement steps, so that the result does not
+  // depend on the machine: constraints that meet at tiny angles can make refinement cascade
+  // without end. When the budget runs out the refinement is dropped whole and the cap is the
+  // constrained Delaunay triangulation of step 1 alone: coarser, but valid, and its boundary
+  // is exactly the cut segments.
+  {
+    Mesher mesher(cdt, Criteria(options.shape_bound, options.interior_edge * options.edge_m,
+                                1e-3 * options.edge_m));
+    mesher.init(true);
+    const size_t budget = 10 * cdt.number_of_vertices() + 10000;
+    for (size_t step = 0; step < budget && !mesher.is_refinement_done(); ++step)
+      mesher.step_by_step_refine_mesh();
+    cs.refinement_capped = !mesher.is_refinement_done();
   }
-  cs.refinement_capped = !mesher.is_refinement_done();
+  if (cs.refinement_capped) {
+    cdt.clear();
+    segment_of.clear();
+    triangulate_domain();
+  }
   if (restriction.keep) {
     for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
       if (!f->is_in_domain()) continue;
@@ -229,7 +281,8 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
   std::vector<glm::dvec3> to_diffuse;
   std::vector<std::vector<unsigned>> diffuse_targets;
   auto add_vertex = [&](const Point2& p, int surface) {
-    cs.position.push_back(plane.point + cs.u_axis * p.x() + cs.v_axis * p.y());
+    const glm::dvec2 q = to2(p);
+    cs.position.push_back(plane.point + cs.u_axis * q.x + cs.v_axis * q.y);
     cs.colour.push_back(glm::dvec3(0.0));
     cs.cut_surface.push_back(surface);
     return static_cast<unsigned>(cs.position.size() - 1);
@@ -325,6 +378,7 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
   if (cs.triangle.empty()) throw std::domain_error("the plane only touches the object");
 
   // 5. PMVC colours.
+  for (const glm::dvec3& p : to_diffuse) CUTAWAY_CHECK(std::isfinite(p.x + p.y + p.z));
   cs.diffused_points = to_diffuse.size();
   const auto triangulated = std::chrono::steady_clock::now();
   cs.seconds_triangulate = std::chrono::duration<double>(triangulated - start).count();

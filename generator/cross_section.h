@@ -55,8 +55,8 @@ struct CrossSection {
   size_t diffused_points = 0;  ///< PMVC evaluations: interior vertices and the locations of
                                ///< blurred cut vertices (their duplicates share one)
   size_t cut_segments = 0;       ///< input cut segments
-  bool refinement_capped = false;  ///< Delaunay refinement stopped at its budget of Steiner
-                                   ///< points (some triangles miss the angle bound)
+  bool refinement_capped = false;  ///< Delaunay refinement ran out of its step budget, so the
+                                   ///< cap is the unrefined constrained Delaunay triangulation
   double seconds_triangulate = 0;  ///< wall time: cut segments, triangulation, splitting
   double seconds_diffuse = 0;      ///< wall time: PMVC colours
 };
