@@ -1,6 +1,8 @@
 #include "grains.h"
 
 #include <algorithm>
+#include <array>
+#include <sstream>
 #include <cmath>
 #include <numbers>
 #include <unordered_map>
@@ -41,37 +43,89 @@ struct HashGrid {
   }
 };
 
+/// The triangles of `on` whose three vertices' params lie in the grain's region.
+struct RegionTriangles {
+  std::vector<std::array<int, 3>> vertices;
+  std::vector<double> cumulative_area;  ///< m^2, running sum in triangle order
+  double area() const { return cumulative_area.empty() ? 0.0 : cumulative_area.back(); }
+};
+
+RegionTriangles region_triangles(const GrainSpec& spec, const DsMesh& m) {
+  RegionTriangles r;
+  double total = 0;
+  for (auto fh : m.faces()) {
+    std::array<int, 3> t;
+    int k = 0;
+    bool inside = true;
+    for (auto vh : m.fv_range(fh)) {
+      t[k++] = vh.idx();
+      const auto& par = m.data(vh).param;
+      inside &= in_range(par[0], spec.region_profile) && in_range(par[1], spec.region_section);
+    }
+    if (!inside) continue;
+    const glm::dvec3 a = point(m, m.vertex_handle(t[0])), b = point(m, m.vertex_handle(t[1])),
+                     c = point(m, m.vertex_handle(t[2]));
+    const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
+    if (!(area > 0)) continue;
+    total += area;
+    r.vertices.push_back(t);
+    r.cumulative_area.push_back(total);
+  }
+  return r;
+}
+
+const DsSurface& grain_support(const GrainSpec& spec, const DsModel& model) {
+  const DsSurface* on = nullptr;
+  for (const auto& s : model.surfaces)
+    if (s.name == spec.on && s.role != SurfaceRole::Grain) on = &s;
+  CUTAWAY_CHECK(on != nullptr);
+  return *on;
+}
+
 }  // namespace
+
+void check_grain_limits(const Template& tmpl, const DsModel& model) {
+  const DsMesh& skin = model.skin().mesh;
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  for (auto vh : skin.vertices()) {
+    lo = glm::min(lo, point(skin, vh));
+    hi = glm::max(hi, point(skin, vh));
+  }
+  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  for (const GrainSpec& spec : tmpl.grains) {
+    const double area = region_triangles(spec, grain_support(spec, model).mesh).area();
+    const double most = area / (0.5 * std::sqrt(3.0) * spec.spacing * spec.spacing);
+    if (most > kMaxGrainsPerSet) {
+      std::ostringstream s;
+      s << "the spacing is too small for the region: up to " << static_cast<long long>(most)
+        << " grains could fit (at most " << kMaxGrainsPerSet << " per grain set)";
+      throw InputError(spec.spacing_loc, spec.path + ".spacing", s.str());
+    }
+    const double largest = std::max({spec.semi_axes.x, spec.semi_axes.y, spec.semi_axes.z});
+    if (largest > extent) {
+      std::ostringstream s;
+      s << "a grain's semi-axis (" << largest * 1e3 << " mm) is larger than the object ("
+        << extent * 1e3 << " mm across)";
+      throw InputError(spec.shape_loc, spec.path + ".shape", s.str());
+    }
+    if (spec.depth > extent) {
+      std::ostringstream s;
+      s << "the depth (" << spec.depth * 1e3 << " mm) is larger than the object ("
+        << extent * 1e3 << " mm across)";
+      throw InputError(spec.loc, spec.path + ".depth", s.str());
+    }
+  }
+}
 
 std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface& on, Rng& rng,
                                          const GrainOptions& opt) {
   CUTAWAY_CHECK(spec.spacing > 0);
   const DsMesh& m = on.mesh;
   const std::vector<glm::dvec3> normals = vertex_normals(m);
-  struct Tri {
-    int v[3];
-  };
-  std::vector<Tri> tris;
-  std::vector<double> cumulative;
-  double total = 0;
-  for (auto fh : m.faces()) {
-    Tri t;
-    int k = 0;
-    bool inside = true;
-    for (auto vh : m.fv_range(fh)) {
-      t.v[k++] = vh.idx();
-      const auto& par = m.data(vh).param;
-      inside &= in_range(par[0], spec.region_profile) && in_range(par[1], spec.region_section);
-    }
-    if (!inside) continue;
-    const glm::dvec3 a = point(m, m.vertex_handle(t.v[0])), b = point(m, m.vertex_handle(t.v[1])),
-                     c = point(m, m.vertex_handle(t.v[2]));
-    const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
-    if (!(area > 0)) continue;
-    total += area;
-    tris.push_back(t);
-    cumulative.push_back(total);
-  }
+  const RegionTriangles region = region_triangles(spec, m);
+  const auto& tris = region.vertices;
+  const auto& cumulative = region.cumulative_area;
+  const double total = region.area();
   std::vector<GrainPlacement> out;
   if (tris.empty()) return out;
   HashGrid grid{spec.spacing, {}};
@@ -93,11 +147,11 @@ std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface&
     glm::dvec3 pos[3];
     double tp[3];
     for (int k = 0; k < 3; ++k) {
-      const auto vh = m.vertex_handle(tris[ti].v[k]);
+      const auto vh = m.vertex_handle(tris[ti][k]);
       pos[k] = point(m, vh);
       tp[k] = m.data(vh).param[0];
       p += w[k] * pos[k];
-      n += w[k] * normals[tris[ti].v[k]];
+      n += w[k] * normals[tris[ti][k]];
     }
     const glm::dvec3 fn = glm::cross(pos[1] - pos[0], pos[2] - pos[0]);
     n = glm::length(n) > 1e-12 ? glm::normalize(n) : glm::normalize(fn);
@@ -163,7 +217,7 @@ void add_ellipsoids(const std::vector<GrainPlacement>& grains, const glm::dvec3&
       auto& d = mesh.data(h);
       d.front = {front.x, front.y, front.z};
       d.back = {back.x, back.y, back.z};
-      d.blur = blur;
+      d.blur = vertex_blur(blur);
       vh.push_back(h);
     };
     add(0, 0, -1);  // bottom pole
@@ -190,14 +244,12 @@ void add_ellipsoids(const std::vector<GrainPlacement>& grains, const glm::dvec3&
 }
 
 void scatter_grains(const Template& t, DsModel& model, uint64_t seed, const GrainOptions& opt) {
+  check_grain_limits(t, model);
   for (size_t gi = 0; gi < t.grains.size(); ++gi) {
     const GrainSpec& spec = t.grains[gi];
-    const DsSurface* on = nullptr;
-    for (const auto& s : model.surfaces)
-      if (s.name == spec.on && s.role != SurfaceRole::Grain) on = &s;
-    CUTAWAY_CHECK(on != nullptr);
     Rng rng(derive_seed(seed, {kPurposeGrains, gi}));
-    const auto grains = place_grains(spec, *on, rng, opt);
+    const auto grains = place_grains(spec, grain_support(spec, model), rng, opt);
+    if (grains.empty()) continue;  // no surface without faces: exporters and sheets need some
     DsSurface s;
     s.name = spec.name;
     s.role = SurfaceRole::Grain;

@@ -52,10 +52,24 @@ void add_ellipsoids(const std::vector<GrainPlacement>& grains, const glm::dvec3&
                     const glm::dvec3& back, double blur, const GrainOptions& options,
                     DsMesh& mesh);
 
+/// The most grains one grain set may ask for: the region's area over the area a grain's
+/// Poisson disc claims in the densest packing (sqrt(3)/2 spacing^2). Each grain is a mesh of
+/// 50 vertices, so this bounds a set at 1M vertices.
+inline constexpr double kMaxGrainsPerSet = 20000;
+
+/// Refuses grain sets of `tmpl` that would take unbounded work or make no sense on `model`
+/// (built from tmpl), before any dart is thrown: more than kMaxGrainsPerSet grains for the
+/// region's area (a spacing far too small), or an ellipsoid semi-axis or a depth larger than
+/// the skin's bounding box. A region with no area is allowed (it gets no grains).
+/// @throws InputError at the grain's `spacing`, `shape` or item, naming the rule
+void check_grain_limits(const Template& tmpl, const DsModel& model);
+
 /// Scatters every grain set of `tmpl` over its `on` surface of `model` and appends one
-/// DsSurface per set (role Grain, name of the set, many components); bounds updated. Grain set
-/// i uses the stream derive_seed(seed, {grains purpose, i}).
+/// DsSurface per set that got grains (role Grain, name of the set, many components; a set whose
+/// region gets none adds no surface); bounds updated. Grain set i uses the stream
+/// derive_seed(seed, {grains purpose, i}).
 /// @pre model was built from tmpl (build_model); every grain's `on` names one of its surfaces
+/// @throws InputError from check_grain_limits
 void scatter_grains(const Template& tmpl, DsModel& model, uint64_t seed,
                     const GrainOptions& options = {});
 

@@ -98,7 +98,7 @@ struct GrainSpec {
   glm::dvec3 front{0.0}, back{0.0};          ///< linear RGB
   double blur = 0.0;                         ///< metres
   double jitter = 0.0;                       ///< relative variation of size and orientation, 0..1
-  FileLoc loc;
+  FileLoc loc, spacing_loc, shape_loc;       ///< the item, its `spacing` and its `shape`
   std::string path;
 };
 

@@ -246,6 +246,7 @@ GrainSpec parse_grain(const YamlField& f, const Template& t) {
   }
   const YamlField spacing = f.require("spacing");
   g.spacing = parse_length(spacing, m);
+  g.spacing_loc = spacing.loc();
   if (g.spacing <= 0) spacing.fail("the Poisson-disc spacing must be positive");
   if (auto side = f.get("side")) {
     const std::string v = side->string();
@@ -254,6 +255,7 @@ GrainSpec parse_grain(const YamlField& f, const Template& t) {
   }
   if (auto x = f.get("depth")) g.depth = parse_length(*x, m);
   const YamlField shape = f.require("shape");
+  g.shape_loc = shape.loc();
   shape.allow_only({"ellipsoid"});
   const YamlField ell = shape.require("ellipsoid");
   if (!ell.is_sequence() || ell.size() != 3) ell.fail("must be three semi-axes [a, b, c]");

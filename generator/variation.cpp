@@ -1,5 +1,7 @@
 #include "variation.h"
 
+#include <optional>
+
 #include <cmath>
 
 #include "grains.h"
@@ -55,13 +57,17 @@ Variant make_variant(const Template& t, uint64_t seed, const VariationOptions& o
   for (int h = 0; h <= opt.halvings; ++h, scale *= 0.5) {
     for (int a = 0; a < opt.attempts; ++a) {
       Template v = draw_variant(t, seed, draw++, scale, opt);
+      std::optional<DsModel> m;
       try {
         check_template_curves(v);
-        DsModel m = build_model(v);
-        scatter_grains(v, m, seed);
-        return {std::move(v), std::move(m), static_cast<int>(draw), t.variation_amount * scale};
+        m = build_model(v);
       } catch (const InputError&) {
         // A draw broke a rule (a loop left its fold, a surface crossed the skin): draw again.
+      }
+      if (m) {
+        // Outside the retry: a grain set over its limits is the template's fault, not the draw's.
+        scatter_grains(v, *m, seed);
+        return {std::move(v), std::move(*m), static_cast<int>(draw), t.variation_amount * scale};
       }
       if (t.symmetry == Symmetry::None || !(t.variation_amount > 0)) break;
     }

@@ -24,6 +24,7 @@
 #include "diffusion_backends.h"
 #include "error.h"
 #include "gltf_export.h"
+#include "grains.h"
 #include "model_builder.h"
 #include "model_preview.h"
 #include "plane_spec.h"
@@ -180,8 +181,10 @@ int run_check(const std::vector<std::string>& files) {
         std::set<std::string> built;  // each template's model once: its geometric rules too
         for (const auto& item : scene.items) {
           objects += item.count;
-          if (built.insert(item.template_path).second)
-            cutaway::build_model(cutaway::load_template(item.template_path));
+          if (built.insert(item.template_path).second) {
+            const cutaway::Template t = cutaway::load_template(item.template_path);
+            cutaway::check_grain_limits(t, cutaway::build_model(t));
+          }
         }
         std::printf("%s: ok (scene '%s', %zu items, %d objects)\n", f.c_str(),
                     scene.name.c_str(), scene.items.size(), objects);
@@ -189,6 +192,7 @@ int run_check(const std::vector<std::string>& files) {
       }
       const cutaway::Template tmpl = cutaway::load_template(f);
       const cutaway::DsModel model = cutaway::build_model(tmpl);
+      cutaway::check_grain_limits(tmpl, model);
       std::printf("%s: ok (template '%s', %zu surfaces, %zu DS faces)\n", f.c_str(),
                   tmpl.name.c_str(), model.surfaces.size(), model.face_count());
     } catch (const cutaway::InputError& e) {
