@@ -187,7 +187,7 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
       const CutSegment& cut = segments[s.index];
       const double front_len = glm::length(s.front);
       const double blur = 0.5 * (cut.blur_a + cut.blur_b);
-      if (blur <= 0 || front_len == 0) continue;
+      if (blur < kMinBlur_m || front_len == 0) continue;
       const double spacing = std::max(1.5 * blur, 0.2 * options.edge_m);
       const int pairs = std::max(1, static_cast<int>(std::ceil(glm::distance(s.a, s.b) / spacing)));
       const glm::dvec2 across = s.front / front_len;

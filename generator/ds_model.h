@@ -29,6 +29,14 @@ struct DsMeshTraits : public OpenMesh::DefaultTraits {
 
 using DsMesh = OpenMesh::TriMesh_ArrayKernelT<DsMeshTraits>;
 
+/// The smallest blur a DS vertex carries, metres (1 um): the two sheets of a blurred surface sit
+/// at +-blur, and sheets closer than this cannot be told apart in single-precision ray casting
+/// or placed as distinct points of a cut's triangulation (a blur of 1e-300 m made both loop).
+inline constexpr double kMinBlur_m = 1e-6;
+
+/// `blur_m` as a DS vertex carries it: values below kMinBlur_m are sharp (0).
+inline double vertex_blur(double blur_m) { return blur_m < kMinBlur_m ? 0.0 : blur_m; }
+
 /// What a surface is for. The skin is the object's closed outer boundary.
 enum class SurfaceRole { Skin, Structure, Grain };
 

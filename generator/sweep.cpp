@@ -70,7 +70,7 @@ void add_grid(const SweepGrid& g, const SurfaceSpec& spec, bool flip, DsMesh& me
       const glm::dvec3 f = spec.front.at(t.x, t.y), b = spec.back.at(t.x, t.y);
       d.front = {f.x, f.y, f.z};
       d.back = {b.x, b.y, b.z};
-      d.blur = spec.blur.at(t.x, t.y);
+      d.blur = vertex_blur(spec.blur.at(t.x, t.y));
       d.param = {t.x, t.y};
       vh.push_back(h);
     }
