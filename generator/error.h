@@ -41,9 +41,13 @@ class InternalError : public std::logic_error {
   using std::logic_error::logic_error;
 };
 
-/// `text` as a message quotes a user's value: in double quotes, with backslash, double quote and
-/// control characters escaped (\n, \t, \xHH), and the middle of a text longer than
-/// `max_bytes` elided as "…(N bytes)…", so a 10 MB value makes a short message.
+/// `text` as a message quotes a user's value: in double quotes, with backslash and double quote
+/// escaped, \n, \r and \t written so, other control characters (C0, DEL, C1) and bytes that
+/// are not UTF-8 as \xHH, zero-width, bidirectional-override and line-separator characters as
+/// \uHHHH, so that the message is one line of visible UTF-8; the middle of a
+/// text longer than `max_bytes` bytes is elided as "…(N bytes)…" (its first max_bytes/2 and
+/// last max_bytes/4 bytes are kept, cut at character starts), so a 10 MB value makes a short
+/// message. E.g. quoted("name ") is "\"name \"", quoted("a\x7f") is "\"a\\x7f\"".
 std::string quoted(std::string_view text, size_t max_bytes = 60);
 /// As above. Without these two overloads, argument-dependent lookup would pick std::quoted for
 /// a std::string argument (an exact match, where the string_view one needs a conversion).

@@ -150,7 +150,7 @@ FileLoc null_item_loc(const YAML::Mark& mark, const std::string* text, const std
 std::string describe(const YAML::Node& n) {
   switch (n.Type()) {
     case YAML::NodeType::Null: return "nothing";
-    case YAML::NodeType::Scalar: return "'" + n.Scalar() + "'";
+    case YAML::NodeType::Scalar: return quoted(n.Scalar());
     case YAML::NodeType::Sequence: return "a list";
     case YAML::NodeType::Map: return "a mapping";
     default: return "nothing";
@@ -158,6 +158,21 @@ std::string describe(const YAML::Node& n) {
 }
 
 }  // namespace
+
+bool is_plain_key(std::string_view key) {
+  if (key.empty() || key.size() > kMaxPlainKeyLength) return false;
+  for (const char c : key) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '_' || c == '-';
+    if (!ok) return false;
+  }
+  return true;
+}
+
+std::string child_path(const std::string& parent, std::string_view key) {
+  if (!is_plain_key(key)) return parent + "[" + quoted(key) + "]";
+  return parent == "(root)" ? std::string(key) : parent + "." + std::string(key);
+}
 
 YamlField::YamlField(YAML::Node node, std::string path, std::string file)
     : node_(std::move(node)), path_(std::move(path)), file_(std::move(file)) {}
@@ -183,8 +198,7 @@ std::optional<YamlField> YamlField::get(const std::string& key) const {
   expect_map();
   for (const auto& kv : node_) {
     if (kv.first.IsScalar() && kv.first.Scalar() == key) {
-      const std::string child = path_ == "(root)" ? key : path_ + "." + key;
-      YamlField f(kv.second, child, file_, text_);
+      YamlField f(kv.second, child_path(path_, key), file_, text_);
       // An empty value ("key:", "key: ~") is reported at its key: yaml-cpp marks an empty
       // value at the next token (often the next line), or not at all.
       if (kv.second.IsNull()) f.loc_ = loc_of(kv.first.Mark(), file_);
@@ -196,7 +210,7 @@ std::optional<YamlField> YamlField::get(const std::string& key) const {
 
 YamlField YamlField::require(const std::string& key) const {
   auto f = get(key);
-  if (!f) fail("missing required field '" + key + "'");
+  if (!f) fail("missing required field '" + key + "'");  // a name from the code, not the user
   return *f;
 }
 
@@ -204,7 +218,6 @@ void YamlField::allow_only(std::initializer_list<std::string_view> allowed) cons
   expect_map();
   std::set<std::string> seen;
   for (const auto& kv : node_) {
-    const std::string prefix = path_ == "(root)" ? "" : path_ + ".";
     if (!kv.first.IsScalar()) {
       throw InputError(loc_of(kv.first.Mark(), file_), path_, "keys must be plain names");
     }
@@ -214,12 +227,12 @@ void YamlField::allow_only(std::initializer_list<std::string_view> allowed) cons
     if (!ok) {
       std::string list;
       for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      throw InputError(loc_of(kv.first.Mark(), file_), prefix + key,
-                       "unknown field '" + key + "' (expected one of: " + list + ")");
+      throw InputError(loc_of(kv.first.Mark(), file_), child_path(path_, key),
+                       "unknown field " + quoted(key) + " (expected one of: " + list + ")");
     }
     if (!seen.insert(key).second) {
-      throw InputError(loc_of(kv.first.Mark(), file_), prefix + key,
-                       "field '" + key + "' is given twice");
+      throw InputError(loc_of(kv.first.Mark(), file_), child_path(path_, key),
+                       "field " + quoted(key) + " is given twice");
     }
   }
 }
@@ -289,7 +302,11 @@ YamlField parse_yaml(std::string_view text, const std::string& file) {
   try {
     root = YAML::Load(std::string(text));
   } catch (const YAML::Exception& e) {
-    throw InputError(loc_of(e.mark, file), "(file)", "YAML syntax error: " + e.msg);
+    // yaml-cpp appends some of the input to a few messages (an escape character, a version):
+    // written as quoted() writes it when it holds anything to escape.
+    std::string msg = e.msg;
+    if (const std::string q = quoted(msg, 200); q != '"' + msg + '"') msg = q;
+    throw InputError(loc_of(e.mark, file), "(file)", "YAML syntax error: " + msg);
   }
   if (!root.IsDefined() || root.IsNull()) {
     throw InputError(FileLoc{file, 1, 1}, "(root)", "the file is empty");
@@ -319,7 +336,7 @@ glm::dvec3 parse_colour(const YamlField& f) {
     static const std::regex hex("#[0-9a-fA-F]{6}");
     if (!std::regex_match(s, hex)) {
       f.fail("a colour must be \"#rrggbb\" (hex digits) or [r, g, b] with components in 0..1, "
-             "not '" + s + "'");
+             "not " + quoted(s));
     }
     glm::dvec3 c;
     for (int k = 0; k < 3; ++k) c[k] = std::stoi(s.substr(1 + 2 * k, 2), nullptr, 16) / 255.0;

@@ -43,15 +43,16 @@ class YamlField {
   /// `require` fails with "missing required field 'KEY'" when absent.
   YamlField require(const std::string& key) const;
   std::optional<YamlField> get(const std::string& key) const;
-  /// Fails at the first key not in `allowed` ("unknown field 'KEY' (expected one of ...)"),
-  /// and at a key given twice. Requires a map.
+  /// Fails at the first key not in `allowed` ("unknown field \"KEY\" (expected one of ...)"),
+  /// and at a key given twice, each at the key's path (child_path) with the key quoted (quoted():
+  /// escaped, long keys elided). Requires a map.
   void allow_only(std::initializer_list<std::string_view> allowed) const;
 
   /// Sequence access. Requires a sequence (else fails with "must be a list").
   size_t size() const;
   YamlField operator[](size_t i) const;
 
-  /// Scalars. Each fails with a rule naming the expected type.
+  /// Scalars. Each fails with a rule naming the expected type and the value found (quoted()).
   std::string string() const;
   double number() const;     ///< finite (NaN and infinities are refused)
   int64_t integer() const;   ///< a whole number
@@ -70,6 +71,20 @@ class YamlField {
   std::shared_ptr<const std::string> text_;  ///< the whole document (may be null)
   std::optional<FileLoc> loc_;               ///< where an empty value is written, when known
 };
+
+/// The longest key a field path shows as it is (longer keys are quoted, and elided).
+inline constexpr size_t kMaxPlainKeyLength = 64;
+
+/// Whether a mapping key stands in field paths as it is: 1..kMaxPlainKeyLength characters of
+/// A-Z, a-z, 0-9, '_' and '-'.
+bool is_plain_key(std::string_view key);
+
+/// The field path of `key` in the mapping at `parent`: "parent.key" ("key" when `parent` is
+/// "(root)") for a plain key (is_plain_key), else `parent["key"]` with the key as quoted()
+/// writes it (escaped, elided when long), e.g. `symmetry[""]`, `symmetry["name "]`,
+/// `(root)["f\x7frmat"]`: a message shows where the key is even when it is empty, ends in a
+/// blank or holds control characters.
+std::string child_path(const std::string& parent, std::string_view key);
 
 /// A COLOR of the template and scene formats: "#rrggbb" or [r, g, b] with components in 0..1,
 /// both sRGB (spec/template-format.md). Returns linear RGB.

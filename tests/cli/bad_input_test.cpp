@@ -105,22 +105,22 @@ std::vector<BadCase> bad_cases() {
                   return s;
                 }),
       // Fields and types.
-      fixture("unknown_field_top", 5, 1, "colour", "unknown field 'colour'"),
-      fixture("unknown_field_nested", 14, 5, "surfaces[0].bakc", "unknown field 'bakc'"),
+      fixture("unknown_field_top", 5, 1, "colour", "unknown field \"colour\""),
+      fixture("unknown_field_nested", 14, 5, "surfaces[0].bakc", "unknown field \"bakc\""),
       fixture("wrong_format", 2, 9, "format", "unsupported format 'cutaway-template/2'"),
       fixture("missing_name", 2, 1, "(root)", "missing required field 'name'"),
       fixture("missing_profile", 8, 5, "surfaces[0]", "missing required field 'profile'"),
-      fixture("wrong_type", 6, 20, "resolution.edge", "must be a number, not 'fine'"),
+      fixture("wrong_type", 6, 20, "resolution.edge", "must be a number, not \"fine\""),
       generated("empty_value", 4, 3, "symmetry.type", "must be a text value, not nothing",
                 [] { return kHead + "name: bad\nsymmetry:\n  type:\nsurfaces: []\n"; }),
       generated(
           "empty_list_item", 5, 3, "surfaces[0]", "must be a mapping",
           [] { return kHead + "name: bad\nsymmetry: {type: cylindrical}\nsurfaces:\n  -\n"; }),
-      fixture("nan_edge", 6, 20, "resolution.edge", "must be a finite number, not '.nan'"),
+      fixture("nan_edge", 6, 20, "resolution.edge", "must be a finite number, not \".nan\""),
       fixture("infinite_point", 11, 33, "surfaces[0].profile[2][0]", "must be a finite number"),
       // Colours, blur, gradients.
-      fixture("colour_short", 13, 12, "surfaces[0].front", "not '#12345'"),
-      fixture("colour_not_hex", 13, 12, "surfaces[0].front", "not '#zzzzzz'"),
+      fixture("colour_short", 13, 12, "surfaces[0].front", "not \"#12345\""),
+      fixture("colour_not_hex", 13, 12, "surfaces[0].front", "not \"#zzzzzz\""),
       fixture("colour_out_of_range", 14, 12, "surfaces[0].back[0]",
               "must be between 0 and 1, not 1.2"),
       fixture("negative_blur", 15, 11, "surfaces[0].blur", "must not be negative"),
@@ -157,12 +157,12 @@ std::vector<BadCase> bad_cases() {
       fixture("missing_mesh_file", 10, 11, "surfaces[0].file", "does not exist"),
       // NPR (doc/npr.md).
       fixture("npr_unknown_field", 19, 37, "npr.perlin.bands[1].colour",
-              "unknown field 'colour'"),
+              "unknown field \"colour\""),
       fixture("npr_amplitude_out_of_range", 19, 20, "npr.perlin.bands[0].amplitude",
               "must be between 0 and 1, not 1.5"),
       fixture("npr_reach_without_tint", 18, 46, "npr.perlin.bands[0].reach", "needs a tint"),
       fixture("npr_period_zero", 18, 18, "npr.perlin.bands[0].period", "at least 1 micrometre"),
-      fixture("npr_tint_not_colour", 18, 45, "npr.perlin.bands[0].tint", "not 'red'"),
+      fixture("npr_tint_not_colour", 18, 45, "npr.perlin.bands[0].tint", "not \"red\""),
       // Detected after sweeping (generator/model_checks.cpp): at the surface's mapping.
       fixture("nested_crosses_skin", 15, 5, "surfaces[1]", "touches or crosses the skin 'skin'"),
       fixture("nested_outside_skin", 15, 5, "surfaces[1]", "lies outside the skin 'skin'"),

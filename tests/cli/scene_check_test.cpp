@@ -41,8 +41,8 @@ BadSceneCase bad(std::string name, int line, int column, std::string field, std:
 std::vector<BadSceneCase> bad_scenes() {
   return {
       // The file and its top-level fields.
-      bad("unknown_field", 6, 1, "colour", "unknown field 'colour'"),
-      bad("duplicate_field", 5, 1, "seed", "field 'seed' is given twice"),
+      bad("unknown_field", 6, 1, "colour", "unknown field \"colour\""),
+      bad("duplicate_field", 5, 1, "seed", "field \"seed\" is given twice"),
       bad("wrong_format", 2, 9, "format", "unsupported format 'cutaway-scene/2'"),
       bad("bad_name", 3, 7, "name", "a name uses only a-z, 0-9, '_' and '-', not 'Summer Salad'"),
       bad("negative_seed", 4, 7, "seed", "must not be negative"),
@@ -53,7 +53,7 @@ std::vector<BadSceneCase> bad_scenes() {
       bad("negative_diameter", 6, 35, "container.diameter", "must be positive"),
       bad("container_field_of_other_type", 6, 32, "container.width",
           "a 'bowl' container has no width"),
-      bad("container_colour", 6, 59, "container.color", "not '#f3efgg'"),
+      bad("container_colour", 6, 59, "container.color", "not \"#f3efgg\""),
       // Items and their templates.
       bad("no_items", 7, 8, "items", "a scene needs at least one item"),
       bad("item_without_template", 11, 5, "items[1]", "missing required field 'template'"),
@@ -66,7 +66,7 @@ std::vector<BadSceneCase> bad_scenes() {
       bad("template_model_invalid", 15, 5, "surfaces[1]", "crosses the skin",
           "tests/bad_input/nested_crosses_skin.yaml"),
       bad("count_zero", 9, 12, "items[0].count", "must be a whole number from 1 to 64, not 0"),
-      bad("count_fractional", 9, 12, "items[0].count", "must be a whole number, not '2.5'"),
+      bad("count_fractional", 9, 12, "items[0].count", "must be a whole number, not \"2.5\""),
       bad("variation_too_large", 13, 16, "items[1].variation", "must be between 0 and 10, not 12"),
       bad("keep_zero", 13, 11, "items[1].keep", "must be more than 0 and at most 1"),
       // Cuts.

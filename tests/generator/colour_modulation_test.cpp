@@ -285,7 +285,7 @@ TEST(NprBlock, RefusesBadValuesWithTheirLocation) {
     std::string field, rule;
   };
   const Case cases[] = {
-      {"npr: {silhouettes: 1}\n", 10, 7, "npr.silhouettes", "unknown field 'silhouettes'"},
+      {"npr: {silhouettes: 1}\n", 10, 7, "npr.silhouettes", "unknown field \"silhouettes\""},
       {"npr: {perlin: {}}\n", 10, 15, "npr.perlin", "missing required field 'bands'"},
       {"npr: {perlin: {bands: [{amplitude: 0.1}]}}\n", 10, 24, "npr.perlin.bands[0]",
        "missing required field 'period'"},
@@ -294,7 +294,7 @@ TEST(NprBlock, RefusesBadValuesWithTheirLocation) {
       {"npr: {perlin: {bands: [{period: 1, amplitude: -0.1}]}}\n", 10, 47,
        "npr.perlin.bands[0].amplitude", "must be between 0 and 1"},
       {"npr: {perlin: {bands: [{period: 1, amplitude: 0.1, tint: '#fff'}]}}\n", 10, 58,
-       "npr.perlin.bands[0].tint", "not '#fff'"},
+       "npr.perlin.bands[0].tint", "not \"#fff\""},
       {"npr: {perlin: {bands: [{period: 1, amplitude: 0.1, tint: '#ffffff', reach: 0}]}}\n",
        10, 76, "npr.perlin.bands[0].reach", "must be positive"},
       {"npr: {perlin: {bands: [{period: 1, amplitude: 0.1, tint: '#ffffff', reach: 2}]}}\n",

@@ -256,7 +256,7 @@ TEST(SceneParser, ErrorUnknownItemField) {
   EXPECT_EQ(e.loc().line, 6);
   EXPECT_EQ(e.loc().column, 5);
   EXPECT_EQ(e.field(), "items[0].colour");
-  EXPECT_NE(e.rule().find("unknown field 'colour'"), std::string::npos) << e.rule();
+  EXPECT_NE(e.rule().find("unknown field \"colour\""), std::string::npos) << e.rule();
   EXPECT_EQ(std::string(e.what()).rfind(scene_file() + ":6:5: items[0].colour: unknown field", 0),
             0u)
       << e.what();
@@ -270,7 +270,7 @@ TEST(SceneParser, ErrorsOfTypeAndRange) {
       {kHead + "items: {template: tomato}\n", "items", "must be a list"},
       {kHead + "items: [tomato]\n", "items[0]", "must be a mapping"},
       {kHead + "items: [{template: tomato, count: many}]\n", "items[0].count",
-       "must be a number, not 'many'"},
+       "must be a number, not \"many\""},
       {kHead + "items: [{template: tomato, count: 65}]\n", "items[0].count", "from 1 to 64"},
       {kHead + "items: [{template: tomato, keep: 1.5}]\n", "items[0].keep", "at most 1"},
       {kHead + "items: [{template: tomato, variation: -1}]\n", "items[0].variation",
@@ -283,7 +283,7 @@ TEST(SceneParser, ErrorsOfTypeAndRange) {
       {kHead + "items: [{template: tomato, cut: {type: whole, size: 4}}]\n", "items[0].cut.size",
        "a 'whole' cut has no size"},
       {kHead + "items: [{template: tomato, cut: {type: slices, thickness: 3, spacing: 2}}]\n",
-       "items[0].cut.spacing", "unknown field 'spacing'"},
+       "items[0].cut.spacing", "unknown field \"spacing\""},
       {kHead + "items: [{template: \"\"}]\n", "items[0].template", "must not be empty"},
       {kHead + "container: {type: none, height: 3}\n" + kItem, "container.height",
        "a 'none' container has no height"},
@@ -302,7 +302,7 @@ TEST(SceneParser, ErrorsOfTypeAndRange) {
       {kHead + "camera: {eye: [0, 1, 1]}\n" + kItem, "camera", "missing required field 'target'"},
       {kHead + "render: {height: 9000}\n" + kItem, "render.height", "from 16 to 8192"},
       {kHead + "render: {silhouettes: 11}\n" + kItem, "render.silhouettes", "between 0 and 10"},
-      {kHead + "render: {dpi: 300}\n" + kItem, "render.dpi", "unknown field 'dpi'"},
+      {kHead + "render: {dpi: 300}\n" + kItem, "render.dpi", "unknown field \"dpi\""},
       {"format: cutaway-template/1\nname: t\n" + kItem, "format", "unsupported format"},
       {"name: t\n" + kItem, "(root)", "missing required field 'format'"},
       {"format: cutaway-scene/1\n" + kItem, "(root)", "missing required field 'name'"},

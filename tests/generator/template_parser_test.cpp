@@ -208,7 +208,7 @@ surfaces:
   EXPECT_EQ(e.loc().line, 9);
   EXPECT_EQ(e.loc().column, 5);
   EXPECT_EQ(e.field(), "surfaces[0].colour");
-  EXPECT_NE(e.rule().find("unknown field 'colour'"), std::string::npos) << e.rule();
+  EXPECT_NE(e.rule().find("unknown field \"colour\""), std::string::npos) << e.rule();
   EXPECT_EQ(std::string(e.what()).rfind("t.yaml:9:5: surfaces[0].colour: unknown field", 0), 0u)
       << e.what();
 }
