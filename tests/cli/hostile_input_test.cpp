@@ -1,0 +1,218 @@
+// Hostile input on the command line: `cutaway check` on templates whose PLY meshes lie in their
+// headers or name vertices that do not exist, whose keys are empty, end in a blank or hold
+// control characters, and whose values are 10 MB long. Each must exit with code 2 and one short
+// line "FILE:LINE:COL: field: rule" that names the field and quotes what it echoes; the meshes
+// within a second and without large allocations (the child runs with 1 GiB of address space:
+// before the guard, these files made OpenMesh reserve gigabytes). The templates
+// are in tests/data/reliability/ (copies of templates/kidney.yaml with one broken mesh each,
+// and of shipped templates with one bad key); the long values are generated here.
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "test_support.h"
+
+namespace cutaway {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// What one run of build/cutaway under limits did.
+struct LimitedRun {
+  int exit_code = -1;  ///< -1: killed by a signal
+  int signal = 0;
+  std::string err;     ///< stderr
+  double seconds = 0;  ///< wall time
+};
+
+/// Runs build/cutaway with `args` in the source directory, with at most 1 GiB of address space
+/// (an allocation beyond it fails: std::bad_alloc, exit code 1) and 60 s of CPU time (a
+/// regression fails the test instead of taking the machine).
+LimitedRun run_limited(const std::vector<std::string>& args) {
+  const fs::path err_file = test::fresh_dir("hostile_run") / "stderr.txt";
+  std::vector<std::string> words{CUTAWAY_BINARY};
+  words.insert(words.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  const std::string err_path = err_file.string();
+  const auto t0 = std::chrono::steady_clock::now();
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    // Only async-signal-safe calls between fork and exec.
+    const rlimit as{rlim_t{1} << 30, rlim_t{1} << 30}, cpu{60, 60};
+    ::setrlimit(RLIMIT_AS, &as);
+    ::setrlimit(RLIMIT_CPU, &cpu);
+    if (::chdir(CUTAWAY_SOURCE_DIR) != 0) ::_exit(126);
+    const int null = ::open("/dev/null", O_RDWR);
+    const int err = ::open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(null, 0);
+    ::dup2(null, 1);
+    ::dup2(err, 2);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  LimitedRun r;
+  int status = 0;
+  if (pid < 0 || ::waitpid(pid, &status, 0) != pid) {
+    ADD_FAILURE() << "cannot run " << CUTAWAY_BINARY;
+    return r;
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
+  r.err = test::read_file(err_file);
+  return r;
+}
+
+/// Whether `s` has a raw control character other than its final line break.
+bool has_raw_control(const std::string& s) {
+  for (size_t i = 0; i < s.size(); ++i) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if ((c < 0x20 || c == 0x7f) && !(c == '\n' && i + 1 == s.size())) return true;
+  }
+  return false;
+}
+
+/// Checks a refusal: exit code 2, one short line of text starting "INPUT:L:C: " that names the
+/// field (`field` is the path or its beginning) and contains `rule`.
+void expect_refusal(const LimitedRun& r, const std::string& input, const std::string& field,
+                    const std::string& rule) {
+  EXPECT_EQ(r.signal, 0) << r.err;
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_LT(r.err.size(), 1000u) << r.err.substr(0, 2000);
+  EXPECT_FALSE(has_raw_control(r.err)) << r.err.substr(0, 2000);
+  EXPECT_EQ(r.err.rfind(input + ":", 0), 0u) << r.err.substr(0, 2000);
+  EXPECT_NE(r.err.find(": " + field), std::string::npos)
+      << "field " << field << " not named in\n  " << r.err.substr(0, 2000);
+  EXPECT_NE(r.err.find(rule), std::string::npos)
+      << "rule '" << rule << "' missing in\n  " << r.err.substr(0, 2000);
+  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+}
+
+struct HostileMesh {
+  std::string name;   ///< tests/data/reliability/NAME.yaml
+  std::string field;  ///< the template field that names the broken mesh
+  std::string rule;   ///< a fragment of the rule
+};
+
+std::ostream& operator<<(std::ostream& os, const HostileMesh& c) { return os << c.name; }
+
+class HostilePly : public ::testing::TestWithParam<HostileMesh> {};
+
+TEST_P(HostilePly, RefusedFastInLittleMemory) {
+  const HostileMesh& c = GetParam();
+  const std::string input = "tests/data/reliability/" + c.name + ".yaml";
+  const LimitedRun r = run_limited({"check", input});
+  expect_refusal(r, input, c.field + ": ", c.rule);
+  std::printf("%s: exit %d in %.3f s\n", c.name.c_str(), r.exit_code, r.seconds);
+  // About 0.05 s; a loaded machine gets some slack.
+  EXPECT_LT(r.seconds, 2.0) << "a header's claim must be refused before any work";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Reproducers, HostilePly,
+    ::testing::Values(
+        HostileMesh{"kidney-vertex-count-1e30", "surfaces[1].file",
+                    "the vertex count \"1000000000000000000000000000000\" is too large"},
+        HostileMesh{"kidney-vertex-count-1e9", "surfaces[1].file",
+                    "the PLY header declares 1000000000 vertices but the file has only 93766 "
+                    "bytes"},
+        HostileMesh{"kidney-vertex-count-negative", "surfaces[0].file",
+                    "the vertex count must be a whole number >= 0, not \"-5\""},
+        HostileMesh{"kidney-face-index-out-of-range", "surfaces[2].file",
+                    "face 2552 has vertex index 99999999999, but the file has only 2612 "
+                    "vertices"}),
+    [](const auto& info) {
+      std::string n = info.param.name;
+      for (char& ch : n)
+        if (ch == '-') ch = '_';
+      return n;
+    });
+
+/// The shipped kidney passes under the same limits: they do not refuse honest meshes.
+TEST(HostilePlyControl, TheShippedKidneyPassesUnderTheSameLimits) {
+  const LimitedRun r = run_limited({"check", "templates/kidney.yaml"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+}
+
+TEST(HostileKeys, EmptyKeyIsQuotedInThePath) {
+  const std::string input = "tests/data/reliability/key-empty.yaml";
+  expect_refusal(run_limited({"check", input}), input, "symmetry[\"\"]: ", "unknown field \"\"");
+}
+
+TEST(HostileKeys, KeyWithATrailingBlankIsQuotedInThePath) {
+  const std::string input = "tests/data/reliability/key-trailing-space.yaml";
+  expect_refusal(run_limited({"check", input}), input, "symmetry[\"name \"]: ",
+                 "unknown field \"name \"");
+}
+
+TEST(HostileKeys, ControlCharacterInAKeyIsEscaped) {
+  const std::string input = "tests/data/reliability/key-control-char.yaml";
+  const LimitedRun r = run_limited({"check", input});
+  expect_refusal(r, input, "(root)[\"f\\x7frmat\"]: ", "unknown field \"f\\x7frmat\"");
+  EXPECT_EQ(r.err.find('\x7f'), std::string::npos);
+}
+
+/// A valid template with `from` replaced by `to`.
+std::string edited_base(const std::string& from, const std::string& to) {
+  std::string t = test::read_file(test::source_path("tests/bad_input/valid_cylindrical.yaml"));
+  const size_t at = t.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) t.replace(at, from.size(), to);
+  return t;
+}
+
+struct LongValue {
+  std::string name;
+  std::string from, to;  ///< the edit of the valid base
+  std::string field;
+  std::string rule;
+};
+
+std::ostream& operator<<(std::ostream& os, const LongValue& c) { return os << c.name; }
+
+class HostileLongValue : public ::testing::TestWithParam<LongValue> {};
+
+const std::string k10MB(10u << 20, 'x');
+
+TEST_P(HostileLongValue, MessageStaysShort) {
+  const LongValue& c = GetParam();
+  const fs::path file = test::fresh_dir("hostile_long_value") / (c.name + ".yaml");
+  std::ofstream(file, std::ios::binary) << edited_base(c.from, c.to);
+  const LimitedRun r = run_limited({"check", file.string()});
+  expect_refusal(r, file.string(), c.field, c.rule);
+  std::printf("%s: %zu bytes of message in %.2f s\n", c.name.c_str(), r.err.size(), r.seconds);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    TenMegabytes, HostileLongValue,
+    ::testing::Values(
+        LongValue{"number", "edge: 2", "edge: " + k10MB, "resolution.edge: ",
+                  "must be a number, not \"xxx"},
+        LongValue{"colour", "front: \"#c8281e\"", "front: \"#" + k10MB + "\"",
+                  "surfaces[0].front: ", "…(10485761 bytes)…xxx"},
+        LongValue{"mesh_file", "    kind: around\n    role: skin\n    profile",
+                  "    kind: around\n    role: skin\n    file: " + k10MB + "\n    profile",
+                  "surfaces[0].file: ", "only a 'mesh' surface has a file"},
+        LongValue{"key", "    section: circle",
+                  "    ? " + k10MB + "\n    : 1\n    section: circle",
+                  "surfaces[0][\"xxx", "unknown field \"xxx"},
+        LongValue{"escaped_value", "edge: 2", "edge: \"\\t\\e" + k10MB + "\\u0085\"",
+                  "resolution.edge: ", "must be a number, not \"\\t\\x1bxxx"}),
+    [](const auto& info) { return info.param.name; });
+
+}  // namespace
+}  // namespace cutaway
