@@ -46,10 +46,10 @@ TEST(Quoted, ElidesTheMiddleOfLongValues) {
   const std::string q = quoted(big);
   EXPECT_LT(q.size(), 120u) << q;
   EXPECT_EQ(q.rfind("\"abcd", 0), 0u) << q;
-  EXPECT_NE(q.find("(" + std::to_string(big.size()) + " bytes)"), std::string::npos) << q;
+  EXPECT_NE(q.find("(10485768 bytes)"), std::string::npos) << q;
   EXPECT_EQ(q.substr(q.size() - 5), "wxyz\"") << q;
   // A limit of its own; a value at the limit is whole.
-  EXPECT_EQ(quoted(std::string(24, 'a'), 24), "\"" + std::string(24, 'a') + "\"");
+  EXPECT_EQ(quoted(std::string(24, 'a'), 24), "\"aaaaaaaaaaaaaaaaaaaaaaaa\"");
   EXPECT_NE(quoted(std::string(25, 'a'), 24).find("(25 bytes)"), std::string::npos);
 }
 
