@@ -107,7 +107,7 @@ std::vector<BadCase> bad_cases() {
       // Fields and types.
       fixture("unknown_field_top", 5, 1, "colour", "unknown field \"colour\""),
       fixture("unknown_field_nested", 14, 5, "surfaces[0].bakc", "unknown field \"bakc\""),
-      fixture("wrong_format", 2, 9, "format", "unsupported format 'cutaway-template/2'"),
+      fixture("wrong_format", 2, 9, "format", "unsupported format \"cutaway-template/2\""),
       fixture("missing_name", 2, 1, "(root)", "missing required field 'name'"),
       fixture("missing_profile", 8, 5, "surfaces[0]", "missing required field 'profile'"),
       fixture("wrong_type", 6, 20, "resolution.edge", "must be a number, not \"fine\""),
@@ -152,8 +152,8 @@ std::vector<BadCase> bad_cases() {
       // Surfaces and grains.
       fixture("no_skin", 8, 3, "surfaces", "no surface has role skin"),
       fixture("two_skins", 17, 11, "surfaces[1].role", "only one surface may have role skin"),
-      fixture("duplicate_names", 15, 11, "surfaces[1].name", "'skin' is used twice"),
-      fixture("grain_on_missing_surface", 17, 9, "grains[0].on", "no surface is named 'gel'"),
+      fixture("duplicate_names", 15, 11, "surfaces[1].name", "\"skin\" is used twice"),
+      fixture("grain_on_missing_surface", 17, 9, "grains[0].on", "no surface is named \"gel\""),
       fixture("missing_mesh_file", 10, 11, "surfaces[0].file", "does not exist"),
       // NPR (doc/npr.md).
       fixture("npr_unknown_field", 19, 37, "npr.perlin.bands[1].colour",
@@ -164,8 +164,8 @@ std::vector<BadCase> bad_cases() {
       fixture("npr_period_zero", 18, 18, "npr.perlin.bands[0].period", "at least 1 micrometre"),
       fixture("npr_tint_not_colour", 18, 45, "npr.perlin.bands[0].tint", "not \"red\""),
       // Detected after sweeping (generator/model_checks.cpp): at the surface's mapping.
-      fixture("nested_crosses_skin", 15, 5, "surfaces[1]", "touches or crosses the skin 'skin'"),
-      fixture("nested_outside_skin", 15, 5, "surfaces[1]", "lies outside the skin 'skin'"),
+      fixture("nested_crosses_skin", 15, 5, "surfaces[1]", "touches or crosses the skin \"skin\""),
+      fixture("nested_outside_skin", 15, 5, "surfaces[1]", "lies outside the skin \"skin\""),
   };
 }
 

@@ -77,7 +77,7 @@ TEST(CutSpec, Rejections) {
   EXPECT_NE(error_of("slices:nan").find("must be a number"), std::string::npos);
   EXPECT_NE(error_of("slices:inf").find("must be a number"), std::string::npos);
   EXPECT_NE(error_of("slices:0x10").find("must be a number"), std::string::npos);
-  EXPECT_NE(error_of("slices:1e999").find("must be finite"), std::string::npos);
+  EXPECT_NE(error_of("slices:1e999").find("is too large"), std::string::npos);
   EXPECT_NE(error_of("dice:0").find("must be positive"), std::string::npos);
   EXPECT_NE(error_of("wedges:1").find("from 2 to 64"), std::string::npos);
   EXPECT_NE(error_of("wedges:65").find("from 2 to 64"), std::string::npos);

@@ -241,7 +241,7 @@ TEST(SceneParser, TemplateNameLookupOrder) {
     EXPECT_EQ(e.field(), "items[2].template");
     EXPECT_EQ(e.loc().line, 3);
     EXPECT_EQ(e.loc().column, 59);
-    EXPECT_NE(e.rule().find("no template named 'pear'"), std::string::npos) << e.rule();
+    EXPECT_NE(e.rule().find("no template named \"pear\""), std::string::npos) << e.rule();
     EXPECT_NE(e.rule().find((root / "project/templates").string()), std::string::npos) << e.rule();
   }
 }
@@ -281,14 +281,14 @@ TEST(SceneParser, ErrorsOfTypeAndRange) {
       {kHead + "items: [{template: tomato, cut: {type: dice, size: 0.4}}]\n", "items[0].cut.size",
        "at least 0.5 mm"},
       {kHead + "items: [{template: tomato, cut: {type: whole, size: 4}}]\n", "items[0].cut.size",
-       "a 'whole' cut has no size"},
+       "a \"whole\" cut has no size"},
       {kHead + "items: [{template: tomato, cut: {type: slices, thickness: 3, spacing: 2}}]\n",
        "items[0].cut.spacing", "unknown field \"spacing\""},
       {kHead + "items: [{template: \"\"}]\n", "items[0].template", "must not be empty"},
       {kHead + "container: {type: none, height: 3}\n" + kItem, "container.height",
-       "a 'none' container has no height"},
+       "a \"none\" container has no height"},
       {kHead + "container: {type: board, diameter: 3}\n" + kItem, "container.diameter",
-       "a 'board' container has no diameter"},
+       "a \"board\" container has no diameter"},
       {kHead + "container: {type: board, depth: 0}\n" + kItem, "container.depth",
        "must be positive"},
       {kHead + "container: {diameter: 3}\n" + kItem, "container", "missing required field 'type'"},
