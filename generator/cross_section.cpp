@@ -1,5 +1,16 @@
 #include "cross_section.h"
 
+// CGAL's own checks stay on in this file, also in Release builds. Delaunay refinement with
+// inexact constructions can corrupt its triangulation near a nearly degenerate input (a plane
+// nearly tangent to a surface cuts a sliver loop; the midpoint of a tiny constrained edge lands
+// outside both of its faces, CGAL Refine_edges.h "n == zone.fh", or a circumcentre of three
+// nearly collinear points is infinite), and without the checks it goes on to crash. With them
+// the failure is an exception, and the refinement is dropped (step 3). Exact constructions
+// avoid the failure but cost unbounded time in the same cases (numbers of thousands of bits).
+#ifndef CGAL_DEBUG
+#define CGAL_DEBUG
+#endif
+
 #include <chrono>
 #include <map>
 #include <queue>
@@ -11,7 +22,7 @@
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
 #include <CGAL/Delaunay_mesh_vertex_base_2.h>
 #include <CGAL/Delaunay_mesher_2.h>
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <glm/geometric.hpp>
 
 #include "error.h"
@@ -21,15 +32,11 @@ namespace cutaway {
 
 namespace {
 
-// Exact constructions: refinement splits constrained edges at computed midpoints, and with
-// inexact ones a midpoint of a tiny or nearly flat edge (a plane nearly tangent to a surface
-// cuts a sliver loop) can land outside both faces of its edge, which corrupts the triangulation
-// (CGAL Refine_edges.h: n == zone.fh) and crashes. Exact intersections for the same reason.
-using K = CGAL::Exact_predicates_exact_constructions_kernel;
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Vb = CGAL::Delaunay_mesh_vertex_base_2<K>;
 using Fb = CGAL::Delaunay_mesh_face_base_2<K>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
-using CdtBase = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_intersections_tag>;
+using CdtBase = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predicates_tag>;
 using Cdt = CGAL::Constrained_triangulation_plus_2<CdtBase>;
 /// CGAL's size and angle criteria with a floor: a triangle whose shortest edge is below
 /// `min_edge` (metres) is never bad, so refinement does not chase features far below the
@@ -247,10 +254,11 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
   // 3. Conforming Delaunay refinement inside the domain (angle and size criteria, no triangle
   // edge below 1e-3 edge). A budget counted in refinement steps, so that the result does not
   // depend on the machine: constraints that meet at tiny angles can make refinement cascade
-  // without end. When the budget runs out the refinement is dropped whole and the cap is the
+  // without end. When the budget runs out, or CGAL's checks find that rounding corrupted the
+  // triangulation, the refinement is dropped whole and the cap is the
   // constrained Delaunay triangulation of step 1 alone: coarser, but valid, and its boundary
   // is exactly the cut segments.
-  {
+  try {
     Mesher mesher(cdt, Criteria(options.shape_bound, options.interior_edge * options.edge_m,
                                 1e-3 * options.edge_m));
     mesher.init(true);
@@ -258,6 +266,8 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
     for (size_t step = 0; step < budget && !mesher.is_refinement_done(); ++step)
       mesher.step_by_step_refine_mesh();
     cs.refinement_capped = !mesher.is_refinement_done();
+  } catch (const CGAL::Failure_exception&) {
+    cs.refinement_capped = true;
   }
   if (cs.refinement_capped) {
     cdt.clear();

@@ -55,8 +55,10 @@ struct CrossSection {
   size_t diffused_points = 0;  ///< PMVC evaluations: interior vertices and the locations of
                                ///< blurred cut vertices (their duplicates share one)
   size_t cut_segments = 0;       ///< input cut segments
-  bool refinement_capped = false;  ///< Delaunay refinement ran out of its step budget, so the
-                                   ///< cap is the unrefined constrained Delaunay triangulation
+  bool refinement_capped = false;  ///< Delaunay refinement ran out of its step budget or
+                                   ///< failed CGAL's checks (rounding near a degenerate input),
+                                   ///< so the cap is the unrefined constrained Delaunay
+                                   ///< triangulation
   double seconds_triangulate = 0;  ///< wall time: cut segments, triangulation, splitting
   double seconds_diffuse = 0;      ///< wall time: PMVC colours
 };
