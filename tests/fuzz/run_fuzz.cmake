@@ -1,7 +1,7 @@
 # Configures and builds the fuzz sub-project (tests/fuzz, clang) into the build tree, then runs
-# one parser's fuzzer (KIND template, scene or ply) for a bounded time; any crash, sanitizer
+# one parser's fuzzer (KIND template, scene, ply or cut) for a bounded time; any crash, sanitizer
 # report, timeout or out-of-memory fails. Run by the CTest tests fuzz_template_parser,
-# fuzz_scene_parser and fuzz_ply_parser:
+# fuzz_scene_parser, fuzz_ply_parser and fuzz_cut_parser:
 #   cmake -DKIND=template -DSOURCE_DIR=<repo> -DBINARY_DIR=<build>/fuzz -DCLANGXX=clang++
 #         -DSECONDS=60 -DGENERATOR=Ninja -P tests/fuzz/run_fuzz.cmake
 foreach(var KIND SOURCE_DIR BINARY_DIR CLANGXX SECONDS GENERATOR)
@@ -35,6 +35,8 @@ file(MAKE_DIRECTORY ${work}/seeds ${work}/corpus ${work}/artifacts)
 if(KIND STREQUAL "ply")
   # Small PLY files only: libFuzzer's longest input follows the longest seed.
   file(GLOB seeds ${SOURCE_DIR}/tests/fuzz/ply_corpus/*.ply ${SOURCE_DIR}/tests/data/*.ply)
+elseif(KIND STREQUAL "cut")
+  file(GLOB seeds ${SOURCE_DIR}/tests/fuzz/cut_corpus/*)
 elseif(KIND STREQUAL "scene")
   file(GLOB seeds ${SOURCE_DIR}/scenes/*.yaml ${SOURCE_DIR}/tests/data/scenes/*.yaml
        ${SOURCE_DIR}/tests/data/scenes/bad/*.yaml)

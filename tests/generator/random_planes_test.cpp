@@ -1,0 +1,165 @@
+// Random cuts of every shipped template, as a batch of seeded variants meets them: planes through
+// the bounding box at random, planes through a vertex of each surface with a random normal
+// (nearly tangent to it), planes at the extremes of each surface's bounding box (touching its
+// poles and tips), and the same on a seeded variant. Every cut must end in a cross-section
+// whose boundary is closed and whose colours are finite, or in the clean "misses" / "only
+// touches" error; never a crash, a hang or another error.
+//
+// `make test` cuts kPlanesPerTemplate planes per template. CUTAWAY_RANDOM_PLANES=N (set by
+// `make fuzz`) cuts N per template instead, with a seed offset CUTAWAY_RANDOM_PLANES_SEED.
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "cross_section.h"
+#include "diffusion/diffusion.h"
+#include "model_builder.h"
+#include "random.h"
+#include "template_parser.h"
+#include "test_support.h"
+#include "variation.h"
+
+namespace cutaway {
+namespace {
+
+constexpr int kPlanesPerTemplate = 24;
+
+int env_int(const char* name, int fallback) {
+  const char* v = std::getenv(name);
+  return v && *v ? std::atoi(v) : fallback;
+}
+
+glm::dvec3 random_unit(Rng& rng) {
+  while (true) {
+    const glm::dvec3 d(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
+    const double len = glm::length(d);
+    if (len > 1e-3 && len <= 1) return d / len;
+  }
+}
+
+/// The i-th plane of the stream: cycles through the kinds of cut.
+Plane random_plane(const DsModel& model, Rng& rng, int i) {
+  Plane p;
+  const int kind = i % 4;
+  const DsSurface& surface =
+      model.surfaces[rng.below(static_cast<uint32_t>(model.surfaces.size()))];
+  const DsMesh& mesh = surface.mesh;
+  if (kind == 0) {  // anywhere through the bounding box
+    for (int k = 0; k < 3; ++k) p.point[k] = rng.uniform(model.bbox_min[k], model.bbox_max[k]);
+    p.normal = random_unit(rng);
+  } else if (kind == 1) {  // through a vertex of a surface: nearly tangent to it there
+    const auto vh =
+        mesh.vertex_handle(static_cast<int>(rng.below(static_cast<uint32_t>(mesh.n_vertices()))));
+    const auto& q = mesh.point(vh);
+    p.point = {q[0], q[1], q[2]};
+    p.normal = random_unit(rng);
+  } else {  // at an extreme of the surface's bounding box along an axis, or just inside it
+    const int axis = static_cast<int>(rng.below(static_cast<uint32_t>(3)));
+    double lo = INFINITY, hi = -INFINITY;
+    for (auto vh : mesh.vertices()) {
+      lo = std::min(lo, mesh.point(vh)[axis]);
+      hi = std::max(hi, mesh.point(vh)[axis]);
+    }
+    const double inset[] = {0.0, 1e-12, 1e-9, 1e-6, 1e-4};
+    const double d = inset[rng.below(static_cast<uint32_t>(5))];
+    p.point = glm::dvec3(0.0);
+    p.point[axis] = kind == 2 ? hi - d : lo + d;
+    p.normal = glm::dvec3(0.0);
+    p.normal[axis] = 1;
+    if (rng.uniform() < 0.5) {  // tilted a hair
+      p.normal += 1e-7 * random_unit(rng);
+      p.normal = glm::normalize(p.normal);
+    }
+  }
+  return p;
+}
+
+/// Boundary edges (used by one triangle) welded by exact position: every welded vertex must
+/// have as many boundary edges leaving it as entering it, so the boundary is closed loops.
+::testing::AssertionResult closed_boundary(const CrossSection& cs) {
+  std::map<std::tuple<double, double, double>, int> id;
+  auto weld = [&](unsigned v) {
+    const glm::dvec3& p = cs.position[v];
+    return id.emplace(std::make_tuple(p.x, p.y, p.z), static_cast<int>(id.size())).first->second;
+  };
+  std::map<std::pair<int, int>, int> directed;
+  for (const glm::uvec3& t : cs.triangle)
+    for (int k = 0; k < 3; ++k) ++directed[{weld(t[k]), weld(t[(k + 1) % 3])}];
+  std::map<int, int> balance;
+  for (const auto& [e, n] : directed) {
+    const auto twin = directed.find({e.second, e.first});
+    const int open = n - (twin == directed.end() ? 0 : twin->second);
+    if (open > 0) {
+      balance[e.first] += open;
+      balance[e.second] -= open;
+    }
+  }
+  for (const auto& [v, b] : balance)
+    if (b != 0) return ::testing::AssertionFailure() << "boundary vertex " << v << " is open";
+  return ::testing::AssertionSuccess();
+}
+
+/// Cuts `model` with `count` planes of the stream `seed`; returns how many gave sections.
+int cut_many(const DsModel& model, double edge_m, const std::string& what, uint64_t seed,
+             int count) {
+  const auto diffusion = make_cpu_diffusion(model, DiffusionOptions{4, 0});
+  Rng rng(seed);
+  int sections = 0;
+  for (int i = 0; i < count; ++i) {
+    const Plane plane = random_plane(model, rng, i);
+    SCOPED_TRACE(what + " plane " + std::to_string(i) + ": point (" +
+                 std::to_string(plane.point.x) + ", " + std::to_string(plane.point.y) + ", " +
+                 std::to_string(plane.point.z) + ") normal (" + std::to_string(plane.normal.x) +
+                 ", " + std::to_string(plane.normal.y) + ", " + std::to_string(plane.normal.z) +
+                 ")");
+    CrossSection cs;
+    try {
+      cs = make_cross_section(model, plane, *diffusion, {edge_m});
+    } catch (const std::domain_error& e) {
+      const std::string m = e.what();
+      EXPECT_TRUE(m.find("misses") != m.npos || m.find("only touches") != m.npos) << m;
+      continue;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "unexpected error: " << e.what();
+      continue;
+    }
+    ++sections;
+    EXPECT_FALSE(cs.triangle.empty());
+    for (const glm::dvec3& c : cs.colour)
+      EXPECT_TRUE(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z));
+    for (const glm::dvec3& p : cs.position)
+      EXPECT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+    EXPECT_TRUE(closed_boundary(cs));
+  }
+  return sections;
+}
+
+class RandomPlanes : public ::testing::TestWithParam<std::filesystem::path> {};
+
+TEST_P(RandomPlanes, CutOrMissCleanly) {
+  const int count = env_int("CUTAWAY_RANDOM_PLANES", kPlanesPerTemplate);
+  const uint64_t offset = static_cast<uint64_t>(env_int("CUTAWAY_RANDOM_PLANES_SEED", 0));
+  const Template t = load_template(GetParam().string());
+  const DsModel model = build_model(t);
+  const int a =
+      cut_many(model, t.edge_m, t.name, derive_seed(offset, {1, model.face_count()}), count);
+  // A seeded variant, grains included, as a batch of variants makes them.
+  const Variant v = make_variant(t, 1000 + offset);
+  const int b =
+      cut_many(v.model, v.tmpl.edge_m, t.name + " variant", derive_seed(offset, {2}), count / 2);
+  // Random planes are no use if most of them miss: at least a quarter must cut.
+  EXPECT_GE(a + b, (count + count / 2) / 4) << "sections: " << a << " + " << b;
+}
+
+INSTANTIATE_TEST_SUITE_P(Templates, RandomPlanes, ::testing::ValuesIn(test::shipped_templates()),
+                         [](const auto& info) { return info.param.stem().string(); });
+
+}  // namespace
+}  // namespace cutaway
