@@ -35,13 +35,29 @@ gallery: build
 template-sheet: build
 	bash scripts/template-sheet.sh
 
-# The geometry, parsing and export tests under AddressSanitizer and UBSan (a separate build,
-# build-asan/; about 15 minutes on 2 cores, so not part of `make test`).
+# Every test of cutaway_tests under AddressSanitizer and UBSan (a separate build, build-asan/;
+# about 15 minutes of build on 2 cores and a slow run, so not part of `make test`).
 sanitize: deps-test
 	cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCUTAWAY_SANITIZE=ON
-	cmake --build build-asan --target cutaway_tests -j $(JOBS)
-	ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	  ./build-asan/cutaway_tests --gtest_filter='Pieces*:CutCells*:ClipMesh*:*PiecesTest*:SceneLayout*:Silhouettes*:CutSpec*:SceneParser*:CrossSection*:*TemplateLibrary*:PovExport*:ColourModulation*:Perlin*'
+	cmake --build build-asan -j $(JOBS)
+	cd build-asan && ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  ctest --output-on-failure -j $(JOBS) -LE fuzz --timeout 1800
+
+# Longer hunts than `make test` makes (CI may skip this; about 25 minutes on 2 cores): every
+# libFuzzer target for FUZZ_SECONDS each, then the random-plane property test with
+# RANDOM_PLANES planes per template (and half as many per seeded variant) from another seed.
+FUZZ_SECONDS ?= 240
+RANDOM_PLANES ?= 300
+RANDOM_PLANES_SEED ?= 1
+fuzz: deps-test $(BUILD)/build.ninja
+	cmake --build $(BUILD) -j $(JOBS)
+	for kind in template scene ply cut; do \
+	  cmake -DKIND=$$kind -DSOURCE_DIR=$(CURDIR) -DBINARY_DIR=$(CURDIR)/$(BUILD)/fuzz \
+	    -DCLANGXX=$$(command -v clang++ || command -v clang++-14) -DSECONDS=$(FUZZ_SECONDS) \
+	    -DGENERATOR=Ninja -P tests/fuzz/run_fuzz.cmake || exit 1; \
+	done
+	cd $(BUILD) && CUTAWAY_RANDOM_PLANES=$(RANDOM_PLANES) CUTAWAY_RANDOM_PLANES_SEED=$(RANDOM_PLANES_SEED) \
+	  ./cutaway_tests --gtest_filter='Templates/RandomPlanes.*'
 
 bench: build
 	cmake --build $(BUILD) --target benchmarks -j $(JOBS)
