@@ -6,6 +6,10 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
+#include "shaded_mesh.h"
+
 namespace cutaway::test {
 
 /// What one run of the `cutaway` executable did.
@@ -78,5 +82,11 @@ PngInfo png_info(const std::filesystem::path& file);
 
 /// The template files shipped in templates/ (absolute paths, sorted).
 std::vector<std::filesystem::path> shipped_templates();
+
+/// Welds the mesh's vertices by exact position; every directed edge must have exactly one
+/// twin running the other way, no triangle may have two corners at one point, and the
+/// triangles around each vertex must form a single fan: a closed, consistently oriented
+/// 2-manifold.
+::testing::AssertionResult closed_and_oriented(const ShadedMesh& mesh);
 
 }  // namespace cutaway::test

@@ -47,47 +47,6 @@ std::string template_path(const PaperModel& m) {
   return test::source_path(std::string("templates/") + m.name + ".yaml").string();
 }
 
-/// Welds the mesh's vertices by exact position; every directed edge must have exactly one
-/// twin running the other way, no triangle may have two corners at one point, and the
-/// triangles around each vertex must form a single fan.
-::testing::AssertionResult closed_and_oriented(const ShadedMesh& mesh) {
-  std::map<std::tuple<double, double, double>, unsigned> id;
-  std::vector<std::array<unsigned, 3>> tris;
-  for (const glm::uvec3& t : mesh.triangle) {
-    std::array<unsigned, 3> w{};
-    for (int k = 0; k < 3; ++k) {
-      const glm::dvec3& p = mesh.position[t[k]];
-      w[k] = id.emplace(std::make_tuple(p.x, p.y, p.z), static_cast<unsigned>(id.size()))
-                 .first->second;
-    }
-    if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0])
-      return ::testing::AssertionFailure() << "a triangle with two corners at one point";
-    tris.push_back(w);
-  }
-  std::map<std::pair<unsigned, unsigned>, int> directed;
-  for (const auto& t : tris)
-    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
-  for (const auto& [e, n] : directed) {
-    if (n != 1) return ::testing::AssertionFailure() << "an edge used " << n << " times one way";
-    if (!directed.count({e.second, e.first}))
-      return ::testing::AssertionFailure() << "an open edge";
-  }
-  std::map<unsigned, std::map<unsigned, unsigned>> fan;  // around v: a -> b for (v, a, b)
-  for (const auto& t : tris)
-    for (int k = 0; k < 3; ++k) fan[t[k]][t[(k + 1) % 3]] = t[(k + 2) % 3];
-  for (const auto& [v, next] : fan) {
-    size_t steps = 0;
-    const unsigned start = next.begin()->first;
-    unsigned a = start;
-    do {
-      a = next.at(a);
-    } while (++steps <= next.size() && a != start);
-    if (steps != next.size())
-      return ::testing::AssertionFailure() << "a vertex with more than one fan of triangles";
-  }
-  return ::testing::AssertionSuccess();
-}
-
 TEST(TemplateLibrary, EveryModelOfTable1IsShipped) {
   for (const PaperModel& m : kTable1) {
     EXPECT_TRUE(std::filesystem::is_regular_file(template_path(m))) << m.name;
@@ -140,7 +99,7 @@ TEST_P(TemplateLibrary, LoadsBuildsAndCutsIntoClosedPieces) {
     EXPECT_GE(set.pieces.size(), cut == "halves" ? 2u : 3u);
     for (const Piece& piece : set.pieces) {
       const ShadedMesh mesh = merge_parts(piece);
-      EXPECT_TRUE(closed_and_oriented(mesh)) << "piece of cell " << piece.cell;
+      EXPECT_TRUE(test::closed_and_oriented(mesh)) << "piece of cell " << piece.cell;
       EXPECT_GT(signed_volume(mesh), 0) << "piece of cell " << piece.cell;
     }
   }
