@@ -45,10 +45,12 @@ sanitize: deps-test
 
 # Longer hunts than `make test` makes (CI may skip this; about 25 minutes on 2 cores): every
 # libFuzzer target for FUZZ_SECONDS each, then the random-plane property test with
-# RANDOM_PLANES planes per template (and half as many per seeded variant) from another seed.
+# RANDOM_PLANES planes per template (and half as many per seeded variant) from another seed,
+# and the seeded-dice closedness test with DICE_SEEDS seeds per template.
 FUZZ_SECONDS ?= 240
 RANDOM_PLANES ?= 300
 RANDOM_PLANES_SEED ?= 1
+DICE_SEEDS ?= 6
 fuzz: deps-test $(BUILD)/build.ninja
 	cmake --build $(BUILD) -j $(JOBS)
 	for kind in template scene ply cut; do \
@@ -58,6 +60,7 @@ fuzz: deps-test $(BUILD)/build.ninja
 	done
 	cd $(BUILD) && CUTAWAY_RANDOM_PLANES=$(RANDOM_PLANES) CUTAWAY_RANDOM_PLANES_SEED=$(RANDOM_PLANES_SEED) \
 	  ./cutaway_tests --gtest_filter='Templates/RandomPlanes.*'
+	cd $(BUILD) && CUTAWAY_DICE_SEEDS=$(DICE_SEEDS) ./cutaway_tests --gtest_filter='Templates/SeededDice.*'
 
 bench: build
 	cmake --build $(BUILD) --target benchmarks -j $(JOBS)
