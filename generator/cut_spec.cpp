@@ -7,8 +7,8 @@
 #include "error.h"
 #include "mesh_import.h"
 #include "plane_spec.h"
-#include "text_rules.h"
 #include "template.h"
+#include "text_rules.h"
 
 namespace cutaway {
 

@@ -124,7 +124,8 @@ std::string quoted(std::string_view text, size_t max_bytes) {
     // Cut at UTF-8 character starts so that no character is split (escape_into would write
     // the halves as bytes).
     auto start_of_char = [&](size_t i) {
-      for (size_t k = 0; k < 3 && i > 0 && (static_cast<unsigned char>(text[i]) & 0xC0) == 0x80; ++k)
+      for (size_t k = 0; k < 3 && i > 0 && (static_cast<unsigned char>(text[i]) & 0xC0) == 0x80;
+           ++k)
         --i;
       return i;
     };

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <array>
-#include <sstream>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <unordered_map>
 
 #include <glm/geometric.hpp>
@@ -110,8 +110,8 @@ void check_grain_limits(const Template& tmpl, const DsModel& model) {
     }
     if (spec.depth > extent) {
       std::ostringstream s;
-      s << "the depth (" << spec.depth * 1e3 << " mm) is larger than the object ("
-        << extent * 1e3 << " mm across)";
+      s << "the depth (" << spec.depth * 1e3 << " mm) is larger than the object (" << extent * 1e3
+        << " mm across)";
       throw InputError(spec.loc, spec.path + ".depth", s.str());
     }
   }

@@ -50,13 +50,16 @@ void check_model(const Template& t, const DsModel& model, const std::vector<int>
     if (PMP::do_intersect(skin_sm, sm)) {
       throw InputError(spec.loc, spec.path,
                        "surface " + quoted(spec.name) + " touches or crosses the skin " +
-                           quoted(skin_spec.name) + ": every other surface must lie inside the skin");
+                           quoted(skin_spec.name) +
+                           ": every other surface must lie inside the skin");
     }
     for (auto vh : mesh.vertices()) {
       const auto& p = mesh.point(vh);
       if (side(Kernel::Point_3(p[0], p[1], p[2])) != CGAL::ON_BOUNDED_SIDE) {
         throw InputError(spec.loc, spec.path,
-                         "surface " + quoted(spec.name) + " lies outside the skin " + quoted(skin_spec.name) + ": every other surface must lie inside the skin");
+                         "surface " + quoted(spec.name) + " lies outside the skin " +
+                             quoted(skin_spec.name) +
+                             ": every other surface must lie inside the skin");
       }
     }
   }

@@ -68,8 +68,8 @@ Plane parse_plane_spec(const std::string& spec, double metres_per_unit) {
     plane.normal[k] = parse_decimal(normal[k], "a normal component");
   }
   // Scale by the largest component first, so that tiny (even subnormal) normals normalise.
-  const double largest = std::max({std::fabs(plane.normal.x), std::fabs(plane.normal.y),
-                                   std::fabs(plane.normal.z)});
+  const double largest =
+      std::max({std::fabs(plane.normal.x), std::fabs(plane.normal.y), std::fabs(plane.normal.z)});
   if (!(largest > 0)) {
     throw std::invalid_argument(quoted(spec) + ": the plane's normal must not be zero");
   }

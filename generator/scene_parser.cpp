@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "colour.h"
+#include "error.h"
 #include "template_parser.h"
 #include "text_rules.h"
-#include "error.h"
 #include "yaml_reader.h"
 
 #ifndef CUTAWAY_TEMPLATES_DIR
@@ -119,7 +119,8 @@ CutSpec parse_cut(const YamlField& f, double m, std::optional<YamlField>& length
   else if (t == "slices") cut.type = CutType::Slices, own = "thickness";
   else if (t == "wedges") cut.type = CutType::Wedges, own = "count";
   else if (t == "dice") cut.type = CutType::Dice, own = "size";
-  else type.fail("must be whole, halves, slices, wedges or dice, not " + quoted(t));
+  else
+    type.fail("must be whole, halves, slices, wedges or dice, not " + quoted(t));
   for (const char* key : {"thickness", "count", "size"}) {
     if (auto x = f.get(key); x && (!own || std::string_view(own) != key)) {
       x->fail("a " + quoted(t) + " cut has no " + key);
@@ -153,7 +154,8 @@ std::string resolve_template(const YamlField& f, const fs::path& scene_dir) {
   if (is_path) {
     const fs::path p = fs::path(v).is_absolute() ? fs::path(v) : (scene_dir / v).lexically_normal();
     if (!fs::is_regular_file(p, ec)) {
-      f.fail("the template file " + quoted(p.string()) + " does not exist (a path is relative to the "
+      f.fail("the template file " + quoted(p.string()) +
+             " does not exist (a path is relative to the "
              "scene's folder)");
     }
     return p.string();
@@ -168,7 +170,7 @@ std::string resolve_template(const YamlField& f, const fs::path& scene_dir) {
   for (const auto& d : dirs) {
     const fs::path p = d / (v + ".yaml");
     if (fs::is_regular_file(p, ec)) return p.string();
-    looked += (looked.empty() ? "" : ", ") + d.string();
+    looked += (looked.empty() ? "" : ", ") + quoted(d.string());
   }
   f.fail("no template named " + quoted(v) + " (looked for " + v + ".yaml in " + looked + ")");
 }
@@ -185,8 +187,8 @@ class TemplateCheck {
     const long long n = estimate_piece_count(item.cut, it->second.extents);
     if (n > kMaxPiecesPerCut && length_field) {
       std::ostringstream s;
-      s << "too small: would make " << n << " pieces of template '" << it->second.name
-        << "' (at most " << kMaxPiecesPerCut << " per object)";
+      s << "too small: would make " << n << " pieces of template " << quoted(it->second.name)
+        << " (at most " << kMaxPiecesPerCut << " per object)";
       length_field->fail(s.str());
     }
   }
@@ -206,7 +208,8 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
 
   const YamlField format = root.require("format");
   if (format.string() != "cutaway-scene/1") {
-    format.fail("unsupported format " + quoted(format.string()) + " (this version of cutaway reads cutaway-scene/1)");
+    format.fail("unsupported format " + quoted(format.string()) +
+                " (this version of cutaway reads cutaway-scene/1)");
   }
   root.allow_only({"format", "name", "seed", "units", "container", "items", "camera", "render"});
 
@@ -223,7 +226,8 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
     if (v == "mm") s.metres_per_unit = 1e-3;
     else if (v == "cm") s.metres_per_unit = 1e-2;
     else if (v == "m") s.metres_per_unit = 1.0;
-    else u->fail("must be mm, cm or m, not " + quoted(v));
+    else
+      u->fail("must be mm, cm or m, not " + quoted(v));
   }
   const double m = s.metres_per_unit;
 

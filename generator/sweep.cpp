@@ -24,9 +24,9 @@ struct SweepGrid {
 void check_vertex_budget(size_t rows, size_t cols, const SurfaceSpec& spec, const Template& t) {
   if (rows * cols > kMaxSweepVertices) {
     throw InputError(t.edge_loc, "resolution.edge",
-                     "the edge length is too small: surface " + quoted(spec.name) + " would get at least " + std::to_string(rows * cols) +
-                         " vertices (at most " +
-                         std::to_string(kMaxSweepVertices) + ")");
+                     "the edge length is too small: surface " + quoted(spec.name) +
+                         " would get at least " + std::to_string(rows * cols) +
+                         " vertices (at most " + std::to_string(kMaxSweepVertices) + ")");
   }
 }
 

@@ -9,10 +9,10 @@
 #include <glm/geometric.hpp>
 
 #include "colour.h"
+#include "error.h"
 #include "mesh_import.h"
 #include "template_checks.h"
 #include "text_rules.h"
-#include "error.h"
 #include "yaml_reader.h"
 
 namespace cutaway {
@@ -50,7 +50,8 @@ Gradient<T> parse_gradient(const YamlField& f, ParseValue parse_value) {
   const std::string a = along.string();
   if (a == "profile") g.along = GradientAxis::Profile;
   else if (a == "section") g.along = GradientAxis::Section;
-  else along.fail("must be 'profile' or 'section', not " + quoted(a));
+  else
+    along.fail("must be 'profile' or 'section', not " + quoted(a));
   const YamlField stops = f.require("stops");
   if (stops.size() < 1) stops.fail("a gradient needs at least one stop [t, value]");
   for (size_t i = 0; i < stops.size(); ++i) {
@@ -110,8 +111,10 @@ SectionSpec parse_section(const YamlField& f, double m) {
   s.loc = f.loc();
   if (f.is_scalar()) {
     if (f.string() != "circle") {
-      f.fail("must be 'circle', a loop [[x, z], ...], {polar: [[deg, radius], ...]} or a list "
-             "of loops, not " + quoted(f.string()));
+      f.fail(
+          "must be 'circle', a loop [[x, z], ...], {polar: [[deg, radius], ...]} or a list "
+          "of loops, not " +
+          quoted(f.string()));
     }
     s.circle = true;
     return s;
@@ -139,10 +142,12 @@ SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::stri
   if (k == "around") s.kind = SurfaceKind::Around;
   else if (k == "within") s.kind = SurfaceKind::Within;
   else if (k == "mesh") s.kind = SurfaceKind::Mesh;
-  else kind.fail("must be 'around', 'within' or 'mesh', not " + quoted(k));
+  else
+    kind.fail("must be 'around', 'within' or 'mesh', not " + quoted(k));
 
   if (t.symmetry == Symmetry::Cylindrical && s.kind != SurfaceKind::Around) {
-    kind.fail("a cylindrical template has only 'around' surfaces (" + quoted(k) + " needs symmetry nfold" + (s.kind == SurfaceKind::Mesh ? " or none)" : ")"));
+    kind.fail("a cylindrical template has only 'around' surfaces (" + quoted(k) +
+              " needs symmetry nfold" + (s.kind == SurfaceKind::Mesh ? " or none)" : ")"));
   }
   if (t.symmetry == Symmetry::None && s.kind != SurfaceKind::Mesh) {
     kind.fail("a template with symmetry none has only 'mesh' surfaces");
@@ -352,7 +357,8 @@ Template parse_template(std::string_view text, const std::string& file,
 
   const YamlField format = root.require("format");
   if (format.string() != "cutaway-template/1") {
-    format.fail("unsupported format " + quoted(format.string()) + " (this version of cutaway reads cutaway-template/1)");
+    format.fail("unsupported format " + quoted(format.string()) +
+                " (this version of cutaway reads cutaway-template/1)");
   }
   const YamlField name = root.require("name");
   t.name = name.string();
@@ -363,7 +369,8 @@ Template parse_template(std::string_view text, const std::string& file,
     if (v == "mm") t.metres_per_unit = 1e-3;
     else if (v == "cm") t.metres_per_unit = 1e-2;
     else if (v == "m") t.metres_per_unit = 1.0;
-    else u->fail("must be mm, cm or m, not " + quoted(v));
+    else
+      u->fail("must be mm, cm or m, not " + quoted(v));
   }
 
   const YamlField sym = root.require("symmetry");
@@ -373,7 +380,8 @@ Template parse_template(std::string_view text, const std::string& file,
   if (ty == "cylindrical") t.symmetry = Symmetry::Cylindrical;
   else if (ty == "nfold") t.symmetry = Symmetry::NFold;
   else if (ty == "none") t.symmetry = Symmetry::None;
-  else type.fail("must be cylindrical, nfold or none, not " + quoted(ty));
+  else
+    type.fail("must be cylindrical, nfold or none, not " + quoted(ty));
   if (t.symmetry == Symmetry::NFold) {
     const YamlField folds = sym.require("folds");
     const int64_t n = folds.integer();
@@ -424,7 +432,8 @@ Template parse_template(std::string_view text, const std::string& file,
   for (size_t i = 0; i < surfaces.size(); ++i) {
     SurfaceSpec s = parse_surface(surfaces[i], t, base_dir);
     if (!names.insert(s.name).second) {
-      surfaces[i].require("name").fail("surface names must be unique: " + quoted(s.name) + " is used twice");
+      surfaces[i].require("name").fail("surface names must be unique: " + quoted(s.name) +
+                                       " is used twice");
     }
     if (s.is_skin) {
       if (t.skin >= 0) {

@@ -60,8 +60,7 @@ double parse_decimal(std::string_view s, const std::string& what) {
   const std::string_view core = s.substr(b, e - b);
   if (core.size() > kMaxNumberLength) {
     throw std::invalid_argument(what + " must be a number of at most " +
-                                std::to_string(kMaxNumberLength) + " characters, not " +
-                                quoted(s));
+                                std::to_string(kMaxNumberLength) + " characters, not " + quoted(s));
   }
   if (!is_decimal_grammar(core)) {
     throw std::invalid_argument(what + " must be a number, not " + quoted(s));

@@ -1,8 +1,7 @@
 #include "variation.h"
 
-#include <optional>
-
 #include <cmath>
+#include <optional>
 
 #include "grains.h"
 #include "model_builder.h"

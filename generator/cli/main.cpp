@@ -132,7 +132,7 @@ int run_section(const SectionArgs& a, const std::string& backend, int threads, b
   try {
     section = cutaway::make_cross_section(model, plane, *diffusion, {tmpl.edge_m});
   } catch (const std::domain_error& e) {
-    throw UsageError(std::string("--plane ") + a.plane + ": " + e.what());
+    throw UsageError("--plane " + cutaway::quoted(a.plane) + ": " + e.what());
   }
   const double t_section = seconds_since(t2);
   spdlog::info("{}: cross-section with {} vertices ({} interior), {} triangles", tmpl.name,
@@ -145,8 +145,8 @@ int run_section(const SectionArgs& a, const std::string& backend, int threads, b
   }
   if (!out.empty()) {
     const bool ply = std::filesystem::path(out).extension() == ".ply";
-    cutaway::write_file_atomically(out_file, ply ? cutaway::section_to_ply(section)
-                                            : cutaway::section_to_glb(section));
+    cutaway::write_file_atomically(
+        out_file, ply ? cutaway::section_to_ply(section) : cutaway::section_to_glb(section));
     spdlog::info("wrote {}", out);
   }
   if (!a.png.empty()) {
@@ -298,8 +298,8 @@ int run_variants(const VariantsArgs& a, const std::string& backend, int threads,
   std::vector<std::filesystem::path> glb_files;
   for (int i = first; i < last; ++i) {
     const uint64_t seed = a.seed + static_cast<uint64_t>(i);
-    glb_files.push_back(outputs.add(
-        "-o", (dir / (tmpl.name + "-" + std::to_string(seed) + ".glb")).string()));
+    glb_files.push_back(
+        outputs.add("-o", (dir / (tmpl.name + "-" + std::to_string(seed) + ".glb")).string()));
   }
   const std::filesystem::path manifest_file = outputs.add("-o", (dir / "manifest.json").string());
   const std::filesystem::path sheet_file =

@@ -191,7 +191,7 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
   const Targets targets = register_outputs(outputs, exports, a.png, "");
   const auto t0 = Clock::now();
   const Template tmpl = load_template(a.template_path);
-  const CutSpec cut = checked_cut(tmpl, a.cut, "--cut " + a.cut);
+  const CutSpec cut = checked_cut(tmpl, a.cut, "--cut " + quoted(a.cut));
   const DsModel model =
       a.seed >= 0 ? make_variant(tmpl, static_cast<uint64_t>(a.seed)).model : build_model(tmpl);
   const double t_model = seconds_since(t0);
@@ -200,7 +200,7 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
   std::string backend_name;
   const PieceSet set = cut_object(model, tmpl, cut, a.cube, common, a.perlin,
                                   a.seed >= 0 ? static_cast<uint64_t>(a.seed) : 0,
-                                  "--cut " + a.cut, &backend_name);
+                                  "--cut " + quoted(a.cut), &backend_name);
   const double t_cut = seconds_since(t1);
   size_t triangles = 0;
   for (const Piece& p : set.pieces)

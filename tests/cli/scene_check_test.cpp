@@ -80,7 +80,7 @@ std::vector<BadSceneCase> bad_scenes() {
       bad("slices_thinner_than_minimum", 12, 36, "items[1].cut.thickness", "at least 0.5 mm"),
       bad("slices_missing_thickness", 12, 10, "items[1].cut", "missing required field 'thickness'"),
       bad("dice_too_many_pieces", 12, 29, "items[1].cut.size",
-          "too small: would make 25920 pieces of template 'cucumber' (at most 512 per object)"),
+          "too small: would make 25920 pieces of template \"cucumber\" (at most 512 per object)"),
       // Camera and render settings.
       bad("camera_eye_is_target", 14, 38, "camera.target", "must differ from its eye"),
       bad("camera_missing_eye", 14, 9, "camera", "missing required field 'eye'"),

@@ -349,7 +349,7 @@ TEST(SceneParser, LoadSceneRefusesTooManyPieces) {
   EXPECT_EQ(e.field(), "items[0].cut.thickness");
   EXPECT_EQ(e.loc().line, 5);
   EXPECT_EQ(e.loc().column, 36);
-  EXPECT_NE(e.rule().find("too small: would make 801 pieces of template 'spheres' (at most 512"),
+  EXPECT_NE(e.rule().find("too small: would make 801 pieces of template \"spheres\" (at most 512"),
             std::string::npos)
       << e.rule();
 
