@@ -154,7 +154,7 @@ std::string resolve_template(const YamlField& f, const fs::path& scene_dir) {
   if (is_path) {
     const fs::path p = fs::path(v).is_absolute() ? fs::path(v) : (scene_dir / v).lexically_normal();
     if (!fs::is_regular_file(p, ec)) {
-      f.fail("the template file " + quoted(p.string()) +
+      f.fail("the template file " + quoted(p.string(), 4096) +
              " does not exist (a path is relative to the "
              "scene's folder)");
     }
@@ -170,7 +170,7 @@ std::string resolve_template(const YamlField& f, const fs::path& scene_dir) {
   for (const auto& d : dirs) {
     const fs::path p = d / (v + ".yaml");
     if (fs::is_regular_file(p, ec)) return p.string();
-    looked += (looked.empty() ? "" : ", ") + quoted(d.string());
+    looked += (looked.empty() ? "" : ", ") + quoted(d.string(), 4096);  // paths whole (PATH_MAX)
   }
   f.fail("no template named " + quoted(v) + " (looked for " + v + ".yaml in " + looked + ")");
 }
