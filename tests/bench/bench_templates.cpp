@@ -10,8 +10,7 @@
 //   or:  cmake --build build --target bench_templates && ./build/bench_templates
 // Options: --threads N (0: all cores, default), --cube N (default 16), --repeat N (best of N,
 //          default 3).
-// The paper's figures come from ../shared/reference/paper-table1.tsv beside the repository
-// when present, else from the copy below. Its times are for a 2010 laptop (2.6 GHz CPU,
+// The paper's figures come from tests/data/paper-table1.tsv. Its times are for a 2010 laptop (2.6 GHz CPU,
 // NVIDIA Quadro FX 570M); its sizes are of its model files, ours of the templates.
 #include <algorithm>
 #include <chrono>
