@@ -20,10 +20,6 @@ InputError::InputError(FileLoc loc, std::string field, std::string rule)
       field_(std::move(field)),
       rule_(std::move(rule)) {}
 
-namespace {
-
-/// Length of the valid UTF-8 character at s[i] (1..4), or 0 when s[i] does not start one
-/// (a stray continuation byte, a truncated or overlong sequence, a surrogate, beyond U+10FFFF).
 size_t utf8_length(std::string_view s, size_t i) {
   const auto c = static_cast<unsigned char>(s[i]);
   if (c < 0x80) return 1;
@@ -51,6 +47,8 @@ size_t utf8_length(std::string_view s, size_t i) {
   if (cp < min_cp[n] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return 0;
   return n;
 }
+
+namespace {
 
 /// Whether the 3-byte UTF-8 character at s[i] is one that changes how a line shows without
 /// showing itself: zero-width characters and marks U+200B..U+200F, the line and paragraph

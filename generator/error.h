@@ -41,6 +41,11 @@ class InternalError : public std::logic_error {
   using std::logic_error::logic_error;
 };
 
+/// Length of the valid UTF-8 character at s[i] (1..4), or 0 when s[i] does not start one
+/// (a stray continuation byte, a truncated or overlong sequence, a surrogate, beyond U+10FFFF).
+/// @pre i < s.size()
+size_t utf8_length(std::string_view s, size_t i);
+
 /// `text` as a message quotes a user's value: in double quotes, with backslash and double quote
 /// escaped, \n, \r and \t written so, other control characters (C0, DEL, C1) and bytes that
 /// are not UTF-8 as \xHH, zero-width, bidirectional-override and line-separator characters as

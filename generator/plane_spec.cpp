@@ -25,12 +25,6 @@ std::vector<std::string_view> split(std::string_view text, char sep) {
   }
 }
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
-  return s;
-}
-
 /// A coordinate in template units as metres; refused when it leaves the double range.
 double to_metres(std::string_view text, const char* what, double metres_per_unit) {
   const double m = parse_decimal(text, what) * metres_per_unit;
@@ -41,7 +35,7 @@ double to_metres(std::string_view text, const char* what, double metres_per_unit
 }  // namespace
 
 Plane parse_plane_spec(const std::string& spec, double metres_per_unit) {
-  const std::string_view s = trim(spec);
+  const std::string_view s = trim_blanks(spec);
   const auto not_a_plane = [&] {
     return std::invalid_argument(quoted(spec) +
                                  " is not a plane: write AXIS=VALUE (e.g. y=20) or "
@@ -49,7 +43,7 @@ Plane parse_plane_spec(const std::string& spec, double metres_per_unit) {
   };
   Plane plane;
   if (const size_t eq = s.find('='); eq != std::string_view::npos) {
-    const std::string_view axis_text = trim(s.substr(0, eq));
+    const std::string_view axis_text = trim_blanks(s.substr(0, eq));
     if (axis_text.size() != 1 || std::string_view("xyzXYZ").find(axis_text[0]) == s.npos)
       throw not_a_plane();
     const int axis = std::tolower(axis_text[0]) - 'x';

@@ -37,6 +37,12 @@ bool is_decimal_grammar(std::string_view s) {
 
 }  // namespace
 
+std::string_view trim_blanks(std::string_view s) {
+  while (!s.empty() && is_blank(s.front())) s.remove_prefix(1);
+  while (!s.empty() && is_blank(s.back())) s.remove_suffix(1);
+  return s;
+}
+
 bool is_plain_name(std::string_view s) { return name_rule(s).empty(); }
 
 std::string name_rule(std::string_view s) {
@@ -54,10 +60,7 @@ std::string name_rule(std::string_view s) {
 }
 
 double parse_decimal(std::string_view s, const std::string& what) {
-  size_t b = 0, e = s.size();
-  while (b < e && is_blank(s[b])) ++b;
-  while (e > b && is_blank(s[e - 1])) --e;
-  const std::string_view core = s.substr(b, e - b);
+  const std::string_view core = trim_blanks(s);
   if (core.size() > kMaxNumberLength) {
     throw std::invalid_argument(what + " must be a number of at most " +
                                 std::to_string(kMaxNumberLength) + " characters, not " + quoted(s));

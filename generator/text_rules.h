@@ -14,6 +14,9 @@ inline constexpr size_t kMaxNameLength = 64;
 /// The longest text accepted as one decimal number (digits, sign, point and exponent).
 inline constexpr size_t kMaxNumberLength = 64;
 
+/// `s` without leading and trailing blanks (spaces and tabs).
+std::string_view trim_blanks(std::string_view s);
+
 /// Whether `s` is a plain name: 1..kMaxNameLength characters of a-z, 0-9, '_' and '-'.
 bool is_plain_name(std::string_view s);
 
