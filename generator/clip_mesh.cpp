@@ -13,7 +13,7 @@ ShadedMesh clip_to_half_space(const ShadedMesh& mesh, const Plane& plane, bool k
   std::vector<bool> positive(n);
   for (size_t i = 0; i < n; ++i) {
     d[i] = glm::dot(mesh.position[i] - plane.point, plane.normal);
-    if (std::fabs(d[i]) <= 1e-9) d[i] = 0;
+    if (std::fabs(d[i]) <= kOnPlane_m) d[i] = 0;
     positive[i] = d[i] >= 0;
   }
   auto kept = [&](unsigned i) { return positive[i] == keep_positive; };

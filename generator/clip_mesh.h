@@ -9,7 +9,7 @@
 namespace cutaway {
 
 /// Keeps the part of `mesh` where dot(x - p, n) <= 0 (`keep_positive` false) or >= 0 (true).
-/// A vertex within 1e-9 m of the plane lies on it and counts as positive (the rule of
+/// A vertex within kOnPlane_m of the plane lies on it and counts as positive (the rule of
 /// cut_segments()): it is kept by a positive cell, and for a negative cell the boundary passes
 /// through it. A crossing is computed once per mesh edge from its positive end, and shared by
 /// both triangles at that edge, so a closed mesh gets a closed boundary; new vertices

@@ -120,7 +120,7 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
     (keep ? grains : swept).push_back(s);
   }
   std::vector<CutSegment> segments = merge_collinear_segments(
-      swept, options.merge_tolerance * options.edge_m, options.edge_m);
+      swept, options.merge_tolerance * options.edge_m, options.edge_m, restriction.split_planes);
   segments.insert(segments.end(), grains.begin(), grains.end());
   cs.cut_segments = segments.size();
   bool hits_skin = false;
@@ -132,8 +132,15 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
     return glm::dvec2(glm::dot(d, cs.u_axis), glm::dot(d, cs.v_axis));
   };
   std::vector<Segment2> seg2;
+  // Cut vertices keep their 3D positions: one within kOnPlane_m of the plane is a surface
+  // vertex that lies on it only by symbolic perturbation, and the clipped skin has it there.
+  std::map<std::pair<double, double>, glm::dvec3> lifted;
   for (size_t i = 0; i < segments.size(); ++i) {
     const CutSegment& s = segments[i];
+    for (const glm::dvec3& p : {s.a, s.b}) {
+      const glm::dvec2 q = project(p);
+      lifted.emplace(std::make_pair(q.x, q.y), p);
+    }
     seg2.push_back({project(s.a), project(s.b),
                     {glm::dot(s.front_normal, cs.u_axis), glm::dot(s.front_normal, cs.v_axis)},
                     static_cast<int>(i)});
@@ -151,10 +158,9 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
   }
   const std::vector<Line2> lines =
       split_lines(plane, cs.u_axis, cs.v_axis, restriction.split_planes);
-  const std::vector<Constraint2> constraints = arrange_split_lines(
-      ends, lines,
-      lo - glm::dvec2(2 * options.edge_m), hi + glm::dvec2(2 * options.edge_m),
-      1e-6 * options.edge_m);
+  const std::vector<Constraint2> constraints =
+      arrange_split_lines(ends, lines, lo - glm::dvec2(2 * options.edge_m),
+                          hi + glm::dvec2(2 * options.edge_m), kOnPlane_m);
   Cdt cdt;
   std::map<std::pair<Vertex, Vertex>, int> segment_of;  // constraint end points -> index
   // The input segment that a constrained edge (a, b) lies on (null on a split line).
@@ -292,7 +298,9 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
   std::vector<std::vector<unsigned>> diffuse_targets;
   auto add_vertex = [&](const Point2& p, int surface) {
     const glm::dvec2 q = to2(p);
-    cs.position.push_back(plane.point + cs.u_axis * q.x + cs.v_axis * q.y);
+    const auto exact = lifted.find({q.x, q.y});
+    cs.position.push_back(exact != lifted.end() ? exact->second
+                                                : plane.point + cs.u_axis * q.x + cs.v_axis * q.y);
     cs.colour.push_back(glm::dvec3(0.0));
     cs.cut_surface.push_back(surface);
     return static_cast<unsigned>(cs.position.size() - 1);

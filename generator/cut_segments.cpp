@@ -9,11 +9,6 @@ namespace cutaway {
 
 namespace {
 
-/// Vertices closer to the plane than this (metres) lie on it: sweeps put vertices on planes
-/// through the axis up to rounding, and a crossing a few ulps from a vertex would only add a
-/// degenerate sliver to the triangulation.
-constexpr double kOnPlane_m = 1e-9;
-
 glm::dvec3 to_glm(const OpenMesh::Vec3d& v) { return {v[0], v[1], v[2]}; }
 
 /// A point where the plane crosses a mesh edge, with the DS attributes there.
@@ -90,7 +85,8 @@ std::vector<CutSegment> cut_segments(const DsModel& model, const Plane& plane) {
 }
 
 std::vector<CutSegment> merge_collinear_segments(const std::vector<CutSegment>& segments,
-                                                 double tolerance_m, double max_length_m) {
+                                                 double tolerance_m, double max_length_m,
+                                                 const std::vector<Plane>& split_planes) {
   using Key = std::array<double, 3>;
   auto key = [](const glm::dvec3& p) { return Key{p.x, p.y, p.z}; };
   std::vector<CutSegment> segs = segments;
@@ -119,6 +115,14 @@ std::vector<CutSegment> merge_collinear_segments(const std::vector<CutSegment>& 
     if (chord > max_length_m || chord == 0) continue;
     const double off = glm::length(glm::cross(p - q, r - q)) / chord;
     if (off > tolerance_m) continue;
+    bool straddles = false;
+    for (const Plane& split : split_planes) {
+      const double dq = glm::dot(q - split.point, split.normal);
+      const double dp = glm::dot(p - split.point, split.normal);
+      const double dr = glm::dot(r - split.point, split.normal);
+      straddles = straddles || !((dq > 0 && dp > 0 && dr > 0) || (dq < 0 && dp < 0 && dr < 0));
+    }
+    if (straddles) continue;
     // A loop smaller than the tolerance must keep three segments: merging q-p-r where a
     // segment r-q exists would leave a two-segment loop of no area.
     bool closes_loop = false;

@@ -17,6 +17,13 @@ struct Plane {
   glm::dvec3 normal{0, 0, 1};  ///< unit length
 };
 
+/// Vertices closer to a cutting plane than this (metres) lie on it (symbolic perturbation,
+/// shared by cut_segments and clip_to_half_space): sweeps put vertices on planes through the
+/// axis up to rounding, and a crossing a few nanometres from a vertex would only add a sliver
+/// (two crossings nanometres apart) to the cap and the clipped skin. The vertex keeps its
+/// position: the cap's triangulation uses it as it is (make_cross_section).
+constexpr double kOnPlane_m = 1e-8;
+
 /// One piece of the intersection of the plane with one DS triangle.
 struct CutSegment {
   int surface = -1;              ///< index into DsModel::surfaces
@@ -27,10 +34,10 @@ struct CutSegment {
 };
 
 /// Intersects every triangle of every surface with `plane`. Robust to vertices and edges on
-/// the plane by symbolic perturbation: a vertex within 1e-9 m of the plane lies on it, and a
-/// vertex on the plane counts as lying on the positive side, so every crossing is computed once per mesh edge (or vertex) and shared by
-/// the triangles around it: the segments of a closed surface form closed loops. Segments of
-/// zero length are dropped.
+/// the plane by symbolic perturbation: a vertex within kOnPlane_m of the plane lies on it, and a
+/// vertex on the plane counts as lying on the positive side, so every crossing is computed once per
+/// mesh edge (or vertex) and shared by the triangles around it: the segments of a closed surface
+/// form closed loops. Segments of zero length are dropped.
 /// @param plane  plane.normal must be unit length
 /// @return segments in surface order, then face order (deterministic)
 std::vector<CutSegment> cut_segments(const DsModel& model, const Plane& plane);
@@ -39,9 +46,14 @@ std::vector<CutSegment> cut_segments(const DsModel& model, const Plane& plane);
 /// segment, where that point lies within `tolerance_m` of the chord of the merged segment and
 /// the chord is at most `max_length_m` long (a horizontal plane crosses both triangles of each
 /// quad of a sweep: two nearly collinear segments per quad). The merged segment keeps the
-/// outer end points' attributes and the first segment's normal. One pass, in segment order
-/// (deterministic); metres.
+/// outer end points' attributes and the first segment's normal. Two segments are not merged
+/// where their three end points are not all strictly on one side of every plane of
+/// `split_planes` (the other planes of a cut): there the merged chord would cross that plane
+/// away from the surface, and the two caps meeting along the planes' common line would place
+/// the surface's crossing at different points (a seam that cannot close). One pass, in segment
+/// order (deterministic); metres.
 std::vector<CutSegment> merge_collinear_segments(const std::vector<CutSegment>& segments,
-                                                 double tolerance_m, double max_length_m);
+                                                 double tolerance_m, double max_length_m,
+                                                 const std::vector<Plane>& split_planes = {});
 
 }  // namespace cutaway

@@ -1,11 +1,14 @@
 #include "pieces.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 
 #include "clip_mesh.h"
+#include "manifold_check.h"
 #include "seam_stitch.h"
 
 namespace cutaway {
@@ -73,13 +76,43 @@ ShadedMesh cap_in_cell(const CrossSection& section, const CutCells& cells, const
   return out;
 }
 
-}  // namespace
+/// `cells` with its planes moved for attempt `attempt` and put in general position against the
+/// vertices of `model` (see kMaxCutAttempts).
+CutCells general_position(const CutCells& cells, const DsModel& model, int attempt, double edge_m) {
+  CutCells out = cells;
+  const double clearance = kVertexClearance * edge_m;
+  for (Plane& plane : out.planes) {
+    const bool through_axis =
+        std::fabs(plane.normal.y) < 1e-12 && std::fabs(glm::dot(plane.point, plane.normal)) < 1e-12;
+    if (through_axis) continue;
+    const glm::dvec3 base = plane.point + plane.normal * (attempt * kNudgeOffset * edge_m);
+    // Steps of 2.5 clearances: a band of width 2 clearances around the plane, clear of vertices.
+    for (int step = 0; step < 64; ++step) {
+      plane.point = base + plane.normal * (2.5 * step * clearance);
+      bool clear = true;
+      for (const DsSurface& surface : model.surfaces) {
+        for (auto vh : surface.mesh.vertices()) {
+          const auto& p = surface.mesh.point(vh);
+          const double d =
+              std::fabs(glm::dot(glm::dvec3(p[0], p[1], p[2]) - plane.point, plane.normal));
+          if (d > kOnPlane_m && d < clearance) {
+            clear = false;
+            break;
+          }
+        }
+        if (!clear) break;
+      }
+      if (clear) break;
+    }
+  }
+  return out;
+}
 
-PieceSet cut_pieces(const DsModel& model, const CutSpec& cut, const DiffusionBackend& diffusion,
-                    const PieceOptions& options) {
+/// The pieces of `model` in `cells` (steps 1-3 of cut_pieces).
+PieceSet pieces_in_cells(const DsModel& model, const CutCells& cells,
+                         const DiffusionBackend& diffusion, const PieceOptions& options) {
   PieceSet set;
-  set.cells = make_cut_cells(cut, model.bbox_min, model.bbox_max);
-  const CutCells& cells = set.cells;
+  set.cells = cells;
 
   // 1. One cross-section per plane, restricted to the cells that have a face on it.
   const auto sections_start = std::chrono::steady_clock::now();
@@ -128,7 +161,8 @@ PieceSet cut_pieces(const DsModel& model, const CutSpec& cut, const DiffusionBac
   }
 
   // 3. Per cell: clip, add the caps, stitch.
-  const double tolerance = options.stitch_tolerance * options.section.edge_m;
+  const double tolerance =
+      std::max(options.stitch_tolerance * options.section.edge_m, 2 * kOnPlane_m);
   for (size_t c = 0; c < cells.cells.size(); ++c) {
     const Cell& cell = cells.cells[c];
     Piece piece;
@@ -150,6 +184,37 @@ PieceSet cut_pieces(const DsModel& model, const CutSpec& cut, const DiffusionBac
     set.pieces.push_back(std::move(piece));
   }
   set.seconds_clip = seconds_since(clip_start);
+  return set;
+}
+
+}  // namespace
+
+PieceSet cut_pieces(const DsModel& model, const CutSpec& cut, const DiffusionBackend& diffusion,
+                    const PieceOptions& options) {
+  const CutCells cells = make_cut_cells(cut, model.bbox_min, model.bbox_max);
+  // Nudging helps only where there are planes to move and the uncut skin is itself sound.
+  const bool may_retry =
+      !cells.planes.empty() &&
+      manifold_defect(shaded_surface(model.skin(), true, false), kMinVertexSeparation_m).empty();
+  PieceSet set;
+  for (int attempt = 0;; ++attempt) {
+    const CutCells moved = general_position(cells, model, attempt, options.section.edge_m);
+    PieceSet next = pieces_in_cells(model, moved, diffusion, options);
+    const auto check_start = std::chrono::steady_clock::now();
+    for (const Piece& piece : next.pieces)
+      if (!manifold_defect(merge_parts(piece), kMinVertexSeparation_m).empty())
+        ++next.defective_pieces;
+    next.seconds_clip += seconds_since(check_start);
+    // Totals over all attempts.
+    next.seconds_sections += set.seconds_sections;
+    next.seconds_diffuse += set.seconds_diffuse;
+    next.seconds_clip += set.seconds_clip;
+    next.diffused_points += set.diffused_points;
+    next.stitched_vertices += set.stitched_vertices;
+    next.attempts = attempt + 1;
+    set = std::move(next);
+    if (set.defective_pieces == 0 || !may_retry || attempt + 1 == kMaxCutAttempts) break;
+  }
   if (set.pieces.empty()) throw std::domain_error("the cut misses the object");
   if (cut.type == CutType::Plane && set.pieces.size() < 2)
     throw std::domain_error("the plane misses the object");

@@ -37,22 +37,42 @@ struct Piece {
 struct PieceOptions {
   CrossSectionOptions section;  ///< meshing of the caps (its edge_m: the template's edge);
                                 ///< cut_pieces turns merge_boundary off
-  /// Seam vertices closer than this (in edge_m) are one: the same crossing computed by the
-  /// clip and by the cap's triangulation differ by rounding, or by the 1e-6 edge that a split
-  /// line may bend to pass through a cut vertex (arrange_split_lines).
+  /// Seam vertices closer than this (in edge_m, and at least 2 kOnPlane_m) are one: the same
+  /// crossing computed by the clip and by the cap's triangulation differ by rounding, or by
+  /// the kOnPlane_m that a split line may bend to pass through a cut vertex
+  /// (arrange_split_lines).
   double stitch_tolerance = 1e-5;
 };
 
+/// Planes in general position (general_position): a plane that does not contain the object's
+/// axis is moved along its normal until no surface vertex lies between kOnPlane_m (on the
+/// plane, by symbolic perturbation) and kVertexClearance template edges from it, so that no two
+/// crossings of the plane with the surfaces lie nanometres apart. A cut that still gives a
+/// defective piece is redone up to kMaxCutAttempts - 1 times, attempt k first moving those
+/// planes by k * kNudgeOffset template edges (2.5 um for a 2.5 mm edge). Planes through the
+/// axis (halves, wedges, centred dice) never move: moved, they would pass micrometres from the
+/// poles of the sweep.
+constexpr int kMaxCutAttempts = 4;
+constexpr double kNudgeOffset = 1e-3;
+constexpr double kVertexClearance = 1e-4;
+/// Distinct vertices of a piece are at least this far apart (metres), or the piece is defective.
+constexpr double kMinVertexSeparation_m = 1e-9;
+
 /// The pieces of one cut object and what making them cost.
 struct PieceSet {
-  CutCells cells;
+  CutCells cells;                      ///< as cut: the planes moved by the last attempt's nudge
   std::vector<Piece> pieces;           ///< in cell order; cells the object misses give none
   std::vector<CrossSection> sections;  ///< one per plane of `cells` (empty where it misses)
   size_t diffused_points = 0;          ///< PMVC evaluations over all caps
   size_t stitched_vertices = 0;        ///< seam vertices snapped or inserted
   double seconds_sections = 0;         ///< cross-sections: triangulation and diffusion
   double seconds_diffuse = 0;          ///< of which PMVC diffusion
-  double seconds_clip = 0;             ///< clipping and stitching
+  double seconds_clip = 0;             ///< clipping, stitching and checking
+  // Counts and times are totals over all attempts.
+  int attempts = 1;             ///< cuts made (1 unless the first was near-degenerate)
+  size_t defective_pieces = 0;  ///< pieces of the last attempt that manifold_defect finds
+                                ///< fault with (0 for a closed skin but in rare
+                                ///< configurations that kMaxCutAttempts do not escape)
 };
 
 /// Cuts `model` into pieces along `cut` (make_cut_cells with the model's bounds). Every plane is
@@ -61,7 +81,11 @@ struct PieceSet {
 /// that some cell uses. Surfaces that are hollow on one side (visible_front or visible_back
 /// false, not the skin) are the walls of hollow regions: clipped and shown with the colour of
 /// their other side, facing the hollow. Grains and other structure surfaces only colour the
-/// caps. Deterministic.
+/// caps. The planes are first put in general position (kVertexClearance). Every piece is checked
+/// with manifold_defect (kMinVertexSeparation_m); when one fails (a near-degenerate configuration:
+/// a surface edge passing nanometres from the line where two cutting planes meet, so that the two
+/// caps' seams cannot agree), the whole cut is redone with its planes nudged (kMaxCutAttempts; in
+/// the spirit of symbolic perturbation, but with real sub-micrometre moves). Deterministic.
 /// @param model  its skin (surfaces[0]) closed and outward
 /// @throws std::domain_error when the cut misses the object entirely (no piece), or a `plane`
 ///         cut leaves it whole

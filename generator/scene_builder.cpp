@@ -177,6 +177,8 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
       st.seconds_diffuse += set.seconds_diffuse;
       st.seconds_clip += set.seconds_clip;
       st.diffused_points += set.diffused_points;
+      st.recut_objects += set.attempts > 1;
+      st.defective_pieces += set.defective_pieces;
       const size_t n = set.pieces.size();
       const size_t keep = std::clamp<size_t>(
           static_cast<size_t>(std::llround(item.keep * static_cast<double>(n))), 1, n);

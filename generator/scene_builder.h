@@ -34,6 +34,8 @@ struct SceneBuildOptions {
 struct SceneStats {
   int objects = 0, pieces = 0, placed = 0;  ///< pieces: kept after `keep`; placed: of those
   size_t triangles = 0, diffused_points = 0;
+  int recut_objects = 0;        ///< objects whose cut was redone with nudged planes
+  size_t defective_pieces = 0;  ///< pieces left with a manifold defect after every attempt
   double seconds_variants = 0;  ///< make_variant (sweep, synthesis, grains, checks)
   double seconds_backend = 0;   ///< building the diffusion backends (BVH or GL setup)
   double seconds_sections = 0;  ///< cap cross-sections (triangulation + PMVC)

@@ -96,11 +96,30 @@ StitchStats stitch_seams(std::vector<ShadedMesh*>& parts, double tolerance_m) {
     std::sort(all.begin(), all.end(), [](const BoundaryVertex& x, const BoundaryVertex& y) {
       return x.part != y.part ? x.part < y.part : x.vertex < y.vertex;
     });
+    // Where the vertices were before snapping: a vertex only snaps onto a target that has no
+    // nearer boundary vertex in the snapping vertex's own part (mutual nearest; vertices that
+    // share a position tie), so that of two vertices of one part closer than the tolerance (a
+    // Steiner point beside a corner) only the one that matches moves, and the other is inserted
+    // into the seam in step 2.
+    std::vector<glm::dvec3> original(all.size());
+    PointGrid originals(cell);
+    for (size_t i = 0; i < all.size(); ++i) {
+      original[i] = parts[all[i].part]->position[all[i].vertex];
+      originals.add(original[i], i);
+    }
+    const glm::dvec3 r(tolerance_m);
+    // The distance from q to the nearest boundary vertex of `part` (before snapping).
+    auto nearest_in_part = [&](const glm::dvec3& q, size_t part) {
+      double best_d = 2 * tolerance_m;
+      originals.for_box(q - 2.0 * r, q + 2.0 * r, [&](size_t k) {
+        if (all[k].part == part) best_d = std::min(best_d, glm::distance(original[k], q));
+      });
+      return best_d;
+    };
     PointGrid grid(cell);
     std::set<std::pair<size_t, size_t>> taken;  // (target, part): one vertex per part each
     for (size_t i = 0; i < all.size(); ++i) {
       glm::dvec3& p = parts[all[i].part]->position[all[i].vertex];
-      const glm::dvec3 r(tolerance_m);
       size_t best = all.size();
       double best_d = tolerance_m;
       grid.for_box(p - r, p + r, [&](size_t j) {
@@ -111,6 +130,9 @@ StitchStats stitch_seams(std::vector<ShadedMesh*>& parts, double tolerance_m) {
           best = j;
         }
       });
+      if (best < all.size() &&
+          glm::distance(original[i], original[best]) > nearest_in_part(original[best], all[i].part))
+        best = all.size();
       if (best < all.size()) {
         taken.insert({best, all[i].part});
         const glm::dvec3 q = parts[all[best].part]->position[all[best].vertex];

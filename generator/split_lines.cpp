@@ -61,27 +61,30 @@ std::vector<Constraint2> arrange_split_lines(
     on_line[j].push_back({t0, p0 + d * t0});
     on_line[j].push_back({t1, p0 + d * t1});
   }
-  // Segment-line crossings.
+  // Segment-line crossings. An end point within snap_m of a line lies on it (the line bends
+  // through it): no crossing is made a hair's breadth from a cut vertex.
   for (size_t i = 0; i < segments.size(); ++i) {
     const auto& [a, b] = segments[i];
-    const double len = glm::distance(a, b);
     for (size_t j = 0; j < lines.size(); ++j) {
       if (!line_used[j]) continue;
-      const double da = glm::dot(a, lines[j].normal) - lines[j].offset;
-      const double db = glm::dot(b, lines[j].normal) - lines[j].offset;
-      if ((da > 0 && db > 0) || (da < 0 && db < 0) || da == db) continue;
-      const double t = da / (da - db);
-      glm::dvec2 p = a + (b - a) * t;
-      double ts = t;
-      if (t * len <= snap_m) {
-        p = a;
-        ts = 0;
-      } else if ((1 - t) * len <= snap_m) {
-        p = b;
-        ts = 1;
+      auto side = [&](const glm::dvec2& p) {
+        const double d = glm::dot(p, lines[j].normal) - lines[j].offset;
+        return std::fabs(d) <= snap_m ? 0.0 : d;
+      };
+      const double da = side(a), db = side(b);
+      auto on_line_at = [&](const glm::dvec2& p) {
+        on_line[j].push_back({glm::dot(p - foot(lines[j]), dir(lines[j])), p});
+      };
+      if (da == 0 || db == 0) {  // the line passes through an end point (or both)
+        if (da == 0) on_line_at(a);
+        if (db == 0) on_line_at(b);
+        continue;
       }
-      if (ts > 0 && ts < 1) on_segment[i].push_back({ts, p});
-      on_line[j].push_back({glm::dot(p - foot(lines[j]), dir(lines[j])), p});
+      if ((da > 0) == (db > 0)) continue;
+      const double t = da / (da - db);
+      const glm::dvec2 p = a + (b - a) * t;
+      on_segment[i].push_back({t, p});
+      on_line_at(p);
     }
   }
   // Line-line crossings inside the box.

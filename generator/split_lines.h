@@ -34,11 +34,11 @@ struct Constraint2 {
 };
 
 /// Cuts the segments (#S, each a pair of end points) and the lines (clipped to the box lo..hi)
-/// at their crossings so that constraints only meet at shared end points. A crossing within
-/// `snap_m` of a segment's end point is moved onto that end point (the line bends by at most
-/// snap_m there), so no sliver shorter than snap_m is made. Crossings of two lines inside the
-/// box split both. Zero-length pieces are dropped. Deterministic: segments in input order, then
-/// lines.
+/// at their crossings so that constraints only meet at shared end points. A segment end point
+/// within `snap_m` of a line lies on it (the line bends by at most snap_m there to pass
+/// through it), so no crossing is made a hair's breadth from a cut vertex. Crossings of two lines
+/// inside the box split both. Zero-length pieces are dropped. Deterministic: segments in input
+/// order, then lines.
 std::vector<Constraint2> arrange_split_lines(
     const std::vector<std::pair<glm::dvec2, glm::dvec2>>& segments,
     const std::vector<Line2>& lines, const glm::dvec2& lo, const glm::dvec2& hi, double snap_m);

@@ -1,5 +1,7 @@
 #include "test_support.h"
 
+#include "manifold_check.h"
+
 #include <algorithm>
 #include <tuple>
 #include <map>
@@ -182,41 +184,9 @@ PngInfo png_info(const std::filesystem::path& file) {
 }
 
 ::testing::AssertionResult closed_and_oriented(const ShadedMesh& mesh) {
-  std::map<std::tuple<double, double, double>, unsigned> id;
-  std::vector<std::array<unsigned, 3>> tris;
-  for (const glm::uvec3& t : mesh.triangle) {
-    std::array<unsigned, 3> w{};
-    for (int k = 0; k < 3; ++k) {
-      const glm::dvec3& p = mesh.position[t[k]];
-      w[k] = id.emplace(std::make_tuple(p.x, p.y, p.z), static_cast<unsigned>(id.size()))
-                 .first->second;
-    }
-    if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0])
-      return ::testing::AssertionFailure() << "a triangle with two corners at one point";
-    tris.push_back(w);
-  }
-  std::map<std::pair<unsigned, unsigned>, int> directed;
-  for (const auto& t : tris)
-    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
-  for (const auto& [e, n] : directed) {
-    if (n != 1) return ::testing::AssertionFailure() << "an edge used " << n << " times one way";
-    if (!directed.count({e.second, e.first}))
-      return ::testing::AssertionFailure() << "an open edge";
-  }
-  std::map<unsigned, std::map<unsigned, unsigned>> fan;  // around v: a -> b for (v, a, b)
-  for (const auto& t : tris)
-    for (int k = 0; k < 3; ++k) fan[t[k]][t[(k + 1) % 3]] = t[(k + 2) % 3];
-  for (const auto& [v, next] : fan) {
-    size_t steps = 0;
-    const unsigned start = next.begin()->first;
-    unsigned a = start;
-    do {
-      a = next.at(a);
-    } while (++steps <= next.size() && a != start);
-    if (steps != next.size())
-      return ::testing::AssertionFailure() << "a vertex with more than one fan of triangles";
-  }
-  return ::testing::AssertionSuccess();
+  const std::string defect = manifold_defect(mesh, 0);
+  if (defect.empty()) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << defect;
 }
 
 }  // namespace cutaway::test

@@ -207,6 +207,11 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
     for (const PiecePart& part : p.parts) triangles += part.mesh.triangle.size();
   spdlog::info("{}: {} pieces, {} triangles, {} cut planes", tmpl.name, set.pieces.size(),
                triangles, set.cells.planes.size());
+  if (set.attempts > 1)
+    spdlog::info("the cut was redone {} times with its planes nudged (near-degenerate position)",
+                 set.attempts - 1);
+  if (set.defective_pieces > 0)
+    spdlog::warn("{} pieces are not closed 2-manifolds", set.defective_pieces);
   const SceneAssets assets = piece_assets(set, tmpl.name, 0.3, a.width, a.height);
   const Written w = write_outputs(assets, targets, common.threads, a.silhouettes);
   if (common.stats) {
@@ -251,6 +256,8 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
   if (st.placed < st.pieces)
     spdlog::warn("{} of {} pieces did not fit in the container and were left out",
                  st.pieces - st.placed, st.pieces);
+  if (st.defective_pieces > 0)
+    spdlog::warn("{} pieces are not closed 2-manifolds", st.defective_pieces);
   spdlog::info("{}: {} objects, {} pieces placed, {} triangles (seed {})", scene.name,
                st.objects, st.placed, st.triangles, seed);
   const Written w = write_outputs(assets, targets, common.threads, scene.render.silhouettes);
