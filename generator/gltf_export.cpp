@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -17,6 +18,7 @@
 #include <unistd.h>
 
 #include "atomic_file.h"
+#include "pbr_material.h"
 
 namespace cutaway {
 
@@ -141,13 +143,33 @@ std::vector<double> gltf_vec3(const glm::dvec3& v) { return {v.x + 0.0, v.y + 0.
   throw std::invalid_argument("scene assets: " + what);
 }
 
-/// Adds mesh `mesh` (one primitive, material `material`) to `m`; returns the glTF mesh index.
-int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh, int material) {
+/// The primitives of `mesh` (one of material 0 when it lists none), checked to cover its
+/// triangles in order and to name materials that exist.
+std::vector<AssetPrimitive> checked_primitives(const AssetMesh& mesh, size_t materials) {
+  if (mesh.primitives.empty()) return {{0, mesh.triangle.size(), 0}};
+  size_t next = 0;
+  for (const AssetPrimitive& p : mesh.primitives) {
+    if (p.first != next || p.count == 0)
+      bad_assets("mesh '" + mesh.name + "': primitives must cover the triangles in order");
+    if (p.material < 0 || static_cast<size_t>(p.material) >= materials)
+      bad_assets("mesh '" + mesh.name + "': material index out of range");
+    next += p.count;
+  }
+  if (next != mesh.triangle.size())
+    bad_assets("mesh '" + mesh.name + "': primitives must cover the triangles in order");
+  return mesh.primitives;
+}
+
+/// Adds mesh `mesh` to `m` (one primitive per AssetPrimitive, sharing the vertex attributes;
+/// material k of the assets is glTF material gltf_material[k]); returns the glTF mesh index.
+int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh,
+                   const std::vector<int>& gltf_material) {
   const size_t n = mesh.position.size();
   if (n == 0 || mesh.triangle.empty()) bad_assets("mesh '" + mesh.name + "' has no triangles");
   if (mesh.normal.size() != n || mesh.colour.size() != n) {
     bad_assets("mesh '" + mesh.name + "': position, normal and colour counts differ");
   }
+  const std::vector<AssetPrimitive> primitives = checked_primitives(mesh, gltf_material.size());
   std::vector<float> pos, normal, colour;
   pos.reserve(3 * n);
   normal.reserve(3 * n);
@@ -172,38 +194,95 @@ int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh, int material) {
       bad_assets("mesh '" + mesh.name + "': a triangle index is out of range");
     }
   }
-  tinygltf::Primitive prim;
-  prim.mode = TINYGLTF_MODE_TRIANGLES;
-  prim.material = material;
-  prim.attributes["POSITION"] = add_vec3_accessor(m, pos, true);
-  prim.attributes["NORMAL"] = add_vec3_accessor(m, normal, false);
-  prim.attributes["COLOR_0"] = add_vec3_accessor(m, colour, false);
-  if (n <= 65535) {  // 65535 itself is the primitive restart value, never an index
-    std::vector<uint16_t> idx;
-    idx.reserve(3 * mesh.triangle.size());
-    for (const glm::uvec3& t : mesh.triangle) {
-      idx.insert(idx.end(), {static_cast<uint16_t>(t.x), static_cast<uint16_t>(t.y),
-                             static_cast<uint16_t>(t.z)});
-    }
-    prim.indices = add_u16_index_accessor(m, idx);
-  } else {
-    std::vector<uint32_t> idx;
-    idx.reserve(3 * mesh.triangle.size());
-    for (const glm::uvec3& t : mesh.triangle) idx.insert(idx.end(), {t.x, t.y, t.z});
-    prim.indices = add_index_accessor(m, idx);
-  }
+  std::map<std::string, int> attributes;
+  attributes["POSITION"] = add_vec3_accessor(m, pos, true);
+  attributes["NORMAL"] = add_vec3_accessor(m, normal, false);
+  attributes["COLOR_0"] = add_vec3_accessor(m, colour, false);
   tinygltf::Mesh gm;
   gm.name = mesh.name;
-  gm.primitives.push_back(prim);
+  for (const AssetPrimitive& p : primitives) {
+    tinygltf::Primitive prim;
+    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    prim.material = gltf_material[static_cast<size_t>(p.material)];
+    prim.attributes = attributes;
+    const auto first = mesh.triangle.begin() + static_cast<std::ptrdiff_t>(p.first);
+    const auto last = first + static_cast<std::ptrdiff_t>(p.count);
+    if (n <= 65535) {  // 65535 itself is the primitive restart value, never an index
+      std::vector<uint16_t> idx;
+      idx.reserve(3 * p.count);
+      for (auto t = first; t != last; ++t) {
+        idx.insert(idx.end(), {static_cast<uint16_t>(t->x), static_cast<uint16_t>(t->y),
+                               static_cast<uint16_t>(t->z)});
+      }
+      prim.indices = add_u16_index_accessor(m, idx);
+    } else {
+      std::vector<uint32_t> idx;
+      idx.reserve(3 * p.count);
+      for (auto t = first; t != last; ++t) idx.insert(idx.end(), {t->x, t->y, t->z});
+      prim.indices = add_index_accessor(m, idx);
+    }
+    gm.primitives.push_back(prim);
+  }
   m.meshes.push_back(gm);
   return static_cast<int>(m.meshes.size()) - 1;
+}
+
+/// Adds `material` to `m` as an opaque, single-sided metallic-roughness material (white base
+/// colour: vertex colours give the colour, metallic 0) with KHR_materials_clearcoat,
+/// KHR_materials_sheen and KHR_materials_diffuse_transmission where its values ask for them
+/// (each added to extensionsUsed once).
+void add_pbr_material(tinygltf::Model& m, const AssetMaterial& material) {
+  const PbrMaterial& pbr = material.pbr;
+  auto check = [&](double v, const char* what) {
+    if (!(v >= 0 && v <= 1))
+      bad_assets("material '" + material.name + "': " + what + " not in 0..1");
+  };
+  check(pbr.roughness, "roughness");
+  check(pbr.translucency, "translucency");
+  check(pbr.clearcoat, "clearcoat");
+  check(pbr.clearcoat_roughness, "clearcoat_roughness");
+  check(pbr.sheen_roughness, "sheen_roughness");
+  for (int k = 0; k < 3; ++k) check(pbr.sheen[k], "sheen");
+  const int index = add_material(m, material.name, 1.0, false, pbr.roughness);
+  tinygltf::Material& mat = m.materials[static_cast<size_t>(index)];
+  auto use = [&m, &mat](const std::string& extension, tinygltf::Value::Object values) {
+    mat.extensions[extension] = tinygltf::Value(std::move(values));
+    if (std::find(m.extensionsUsed.begin(), m.extensionsUsed.end(), extension) ==
+        m.extensionsUsed.end())
+      m.extensionsUsed.push_back(extension);
+  };
+  if (pbr.clearcoat > 0) {
+    use("KHR_materials_clearcoat",
+        {{"clearcoatFactor", tinygltf::Value(pbr.clearcoat)},
+         {"clearcoatRoughnessFactor", tinygltf::Value(pbr.clearcoat_roughness)}});
+  }
+  if (pbr.sheen != glm::dvec3(0.0)) {
+    use("KHR_materials_sheen",
+        {{"sheenColorFactor", tinygltf::Value(tinygltf::Value::Array{
+                                  tinygltf::Value(pbr.sheen.x), tinygltf::Value(pbr.sheen.y),
+                                  tinygltf::Value(pbr.sheen.z)})},
+         {"sheenRoughnessFactor", tinygltf::Value(pbr.sheen_roughness)}});
+  }
+  if (pbr.translucency > 0) {
+    use("KHR_materials_diffuse_transmission",
+        {{"diffuseTransmissionFactor", tinygltf::Value(pbr.translucency)}});
+  }
 }
 
 /// The scene as a tinygltf model with all binary data in buffer 0 (no URI).
 tinygltf::Model scene_model(const SceneAssets& assets) {
   tinygltf::Model m = new_model();
-  const int material = add_material(m, "vertex colour", 1.0, false, 0.6);
-  for (const AssetMesh& mesh : assets.meshes) add_asset_mesh(m, mesh, material);
+  // Only the materials some mesh uses (an unused one is a validator notice), in their order.
+  std::vector<int> gltf_material(assets.materials.size(), -1);
+  for (const AssetMesh& mesh : assets.meshes)
+    for (const AssetPrimitive& p : checked_primitives(mesh, assets.materials.size()))
+      gltf_material[static_cast<size_t>(p.material)] = 0;
+  for (size_t k = 0; k < assets.materials.size(); ++k) {
+    if (gltf_material[k] < 0) continue;
+    gltf_material[k] = static_cast<int>(m.materials.size());
+    add_pbr_material(m, assets.materials[k]);
+  }
+  for (const AssetMesh& mesh : assets.meshes) add_asset_mesh(m, mesh, gltf_material);
 
   tinygltf::Scene scene;
   scene.name = assets.name;

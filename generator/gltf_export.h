@@ -36,10 +36,16 @@ void write_model_glb(const std::filesystem::path& path, const DsModel& model,
 std::string section_to_glb(const CrossSection& section);
 
 /// Encodes a scene as binary glTF (.glb), metres, +Y up:
-/// - one mesh per AssetMesh (same order and name), one opaque single-sided primitive:
-///   POSITION (float, with min/max), NORMAL (float, renormalised), COLOR_0 (float vec3, linear
-///   RGB clamped to 0..1), indices uint16 when the mesh has at most 65535 vertices, else uint32;
-/// - one material for all: vertex colour times a white base colour, metallic 0, roughness 0.6;
+/// - one mesh per AssetMesh (same order and name), one opaque single-sided primitive per
+///   AssetPrimitive (one for a mesh without), all sharing the mesh's POSITION (float, with
+///   min/max), NORMAL (float, renormalised) and COLOR_0 (float vec3, linear RGB clamped to
+///   0..1) accessors, each with its own indices (uint16 when the mesh has at most 65535
+///   vertices, else uint32);
+/// - the materials some primitive uses, in the order of SceneAssets::materials: vertex colour
+///   times a white base colour, metallic 0, the material's roughness, and
+///   KHR_materials_clearcoat (clearcoat > 0), KHR_materials_sheen (sheen not black) and
+///   KHR_materials_diffuse_transmission (translucency > 0), each listed in extensionsUsed;
+///   material 0 by default is "vertex colour", roughness 0.6, no extension;
 /// - one node per AssetInstance (same order and name): rotation [x, y, z, w] (normalised,
 ///   w >= 0) and translation;
 /// - a node "camera" at `camera.eye` rotated so that its -Z looks at `camera.target` with +Y
@@ -52,7 +58,9 @@ std::string section_to_glb(const CrossSection& section);
 /// Deterministic: the same assets give the same bytes.
 /// @throws std::invalid_argument when the assets break their documented invariants: a mesh
 ///   without triangles, with arrays of different lengths, an index out of range or a
-///   non-finite position; an instance whose mesh index is out of range or whose rotation is
+///   non-finite position, primitives that do not cover its triangles in order or name a
+///   material that does not exist, a material value outside 0..1; an instance whose mesh
+///   index is out of range or whose rotation is
 ///   zero; eye == target, fov_y_deg outside (0, 180), aspect <= 0, not 0 < znear < zfar; a
 ///   zero light direction.
 std::string scene_to_glb(const SceneAssets& assets);

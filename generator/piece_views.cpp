@@ -38,9 +38,11 @@ glm::dquat view_rotation(const glm::dvec3& normal, PieceView view) {
 
 }  // namespace
 
-SceneAssets piece_assets(const PieceSet& set, const std::string& name, double explode,
-                         int width, int height) {
+SceneAssets piece_assets(const PieceSet& set, const std::string& name,
+                         const PbrMaterial& skin_material, const PbrMaterial& cut_material,
+                         double explode, int width, int height) {
   SceneAssets assets;
+  const PieceMaterials materials = add_piece_materials(assets, name, skin_material, cut_material);
   assets.name = name;
   assets.width = width;
   assets.height = height;
@@ -72,7 +74,8 @@ SceneAssets piece_assets(const PieceSet& set, const std::string& name, double ex
     }
     const std::string piece_name = asset_name(name) + "_piece" + std::to_string(set.pieces[k].cell);
     assets.instances.push_back({piece_name, static_cast<int>(k), {1, 0, 0, 0}, offset});
-    assets.meshes.push_back(asset_mesh(meshes[k], piece_name));
+    assets.meshes.push_back(
+        piece_mesh(meshes[k], surface_triangle_count(set.pieces[k]), materials, piece_name));
   }
   const double az = glm::radians(20.0), el = glm::radians(50.0);
   assets.camera = frame_box(elo, ehi,
@@ -82,8 +85,9 @@ SceneAssets piece_assets(const PieceSet& set, const std::string& name, double ex
   return assets;
 }
 
-SceneAssets grid_piece_assets(const PieceSet& set, const std::string& name, PieceView view, int width,
-                         int height) {
+SceneAssets grid_piece_assets(const PieceSet& set, const std::string& name,
+                              const PbrMaterial& skin_material, const PbrMaterial& cut_material,
+                              PieceView view, int width, int height) {
   const double el = glm::radians(view == PieceView::Up ? 55.0 : 25.0);
   const glm::dvec3 to_camera(0, std::sin(el), std::cos(el));
   SceneAssets assets;
@@ -91,6 +95,7 @@ SceneAssets grid_piece_assets(const PieceSet& set, const std::string& name, Piec
   assets.width = width;
   assets.height = height;
   assets.background = {1, 1, 1};
+  const PieceMaterials materials = add_piece_materials(assets, name, skin_material, cut_material);
   const size_t n = set.pieces.size();
   std::vector<glm::dquat> rotation(n);
   std::vector<glm::dvec3> lo(n), hi(n);
@@ -102,7 +107,7 @@ SceneAssets grid_piece_assets(const PieceSet& set, const std::string& name, Piec
     rotated_bounds(mesh, rotation[k], lo[k], hi[k]);
     cell = glm::max(cell, hi[k] - lo[k]);
     const std::string piece_name = name + "_piece" + std::to_string(piece.cell);
-    assets.meshes.push_back(asset_mesh(mesh, piece_name));
+    assets.meshes.push_back(piece_mesh(mesh, surface_triangle_count(piece), materials, piece_name));
   }
   // Columns: the grid whose projected width / height is nearest the image's aspect. Rows are
   // far enough apart that a front row hides at most the bottom of the row behind it.
@@ -136,6 +141,5 @@ SceneAssets grid_piece_assets(const PieceSet& set, const std::string& name, Piec
   assets.lights = studio_lights(assets.camera);
   return assets;
 }
-
 
 }  // namespace cutaway

@@ -233,4 +233,11 @@ ShadedMesh merge_parts(const Piece& piece) {
   return out;
 }
 
+size_t surface_triangle_count(const Piece& piece) {
+  size_t n = 0;
+  for (const PiecePart& part : piece.parts)
+    if (part.kind != PartKind::Cap) n += part.mesh.triangle.size();
+  return n;
+}
+
 }  // namespace cutaway

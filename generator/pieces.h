@@ -92,7 +92,11 @@ struct PieceSet {
 PieceSet cut_pieces(const DsModel& model, const CutSpec& cut, const DiffusionBackend& diffusion,
                     const PieceOptions& options);
 
-/// All parts of `piece` in one mesh (vertices of different parts stay separate).
+/// All parts of `piece` in one mesh (vertices of different parts stay separate), in part
+/// order: the skin's and walls' triangles first, then the caps'.
 ShadedMesh merge_parts(const Piece& piece);
+
+/// The number of triangles of the skin and walls of `piece` (the first ones of merge_parts).
+size_t surface_triangle_count(const Piece& piece);
 
 }  // namespace cutaway

@@ -61,7 +61,7 @@ void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("POV-Ray export: " + what);
 }
 
-void check_mesh(const AssetMesh& m, size_t k) {
+void check_mesh(const AssetMesh& m, size_t k, size_t materials) {
   const std::string who = "mesh " + std::to_string(k) + " '" + asset_name(m.name) + "'";
   const size_t n = m.position.size();
   require(m.normal.empty() || m.normal.size() == n, who + ": normal count differs from positions");
@@ -71,6 +71,15 @@ void check_mesh(const AssetMesh& m, size_t k) {
   for (const auto& t : m.triangle) {
     require(t.x < n && t.y < n && t.z < n, who + ": triangle index out of range");
   }
+  size_t next = 0;
+  for (const AssetPrimitive& p : m.primitives) {
+    require(p.first == next && p.count > 0, who + ": primitives must cover the triangles in order");
+    require(p.material >= 0 && static_cast<size_t>(p.material) < materials,
+            who + ": material index out of range");
+    next += p.count;
+  }
+  require(m.primitives.empty() || next == m.triangle.size(),
+          who + ": primitives must cover the triangles in order");
 }
 
 // Shading normals that POV-Ray accepts: a zero or non-finite normal becomes the area-weighted
@@ -210,17 +219,51 @@ void write_lights(std::string& out, const SceneAssets& a) {
   }
 }
 
-void write_mesh(std::string& out, const AssetMesh& m, const std::string& id, size_t k) {
-  // Distinct colours by their written text, in order of first use.
-  std::map<std::string, size_t> colour_index;
-  std::vector<std::string> colours;
-  std::vector<size_t> vertex_texture(m.position.size());
-  for (size_t i = 0; i < m.colour.size(); ++i) {
-    std::string text = vector_text(m.colour[i]);
-    const auto [it, inserted] = colour_index.emplace(text, colours.size());
-    if (inserted) colours.push_back(std::move(text));
-    vertex_texture[i] = it->second;
+/// The POV-Ray finish identifier of material k: Cutaway_Finish for material 0, the scene's
+/// plain one, and Cutaway_Finish_<k> for the others.
+std::string finish_identifier(size_t k) {
+  return k == 0 ? "Cutaway_Finish" : "Cutaway_Finish_" + std::to_string(k);
+}
+
+/// `#declare` of the finish of `material` (scene_to_pov documents the mapping).
+void write_finish(std::string& out, const PbrMaterial& pbr, size_t k) {
+  out += "#declare " + finish_identifier(k) + " = finish { ambient 0.15 diffuse 0.8";
+  if (pbr.translucency > 0) {  // POV-Ray 3.7's backside illumination
+    out += ", ";
+    append_number(out, 0.8 * pbr.translucency);
   }
+  out += " specular ";
+  append_number(out, 0.625 * (1 - pbr.roughness));
+  out += " roughness ";
+  append_number(out, 0.0005 + 0.05 * pbr.roughness * pbr.roughness);
+  if (pbr.clearcoat > 0) {
+    out += " phong ";
+    append_number(out, 0.6 * pbr.clearcoat);
+    out += " phong_size ";
+    append_number(out, std::round(4 / (pbr.clearcoat_roughness + 0.05)));
+  }
+  out += " }\n";
+}
+
+void write_mesh(std::string& out, const AssetMesh& m, const std::string& id, size_t k) {
+  // Each face's material, then the distinct (colour, material) pairs by their written text,
+  // in order of first use.
+  std::vector<int> face_material(m.triangle.size(), 0);
+  for (const AssetPrimitive& p : m.primitives)
+    for (size_t f = p.first; f < p.first + p.count; ++f) face_material[f] = p.material;
+  std::map<std::string, size_t> texture_index;
+  std::vector<std::string> colours;
+  auto texture_of = [&](unsigned vertex, int material) {
+    std::string text = "texture { pigment { rgb " + vector_text(m.colour[vertex]) + " } finish { " +
+                       finish_identifier(static_cast<size_t>(material)) + " } }";
+    const auto [it, inserted] = texture_index.emplace(text, colours.size());
+    if (inserted) colours.push_back(std::move(text));
+    return it->second;
+  };
+  std::vector<glm::uvec3> face_textures(m.triangle.size());
+  for (size_t f = 0; f < m.triangle.size(); ++f)
+    for (int c = 0; c < 3; ++c)
+      face_textures[f][c] = static_cast<unsigned>(texture_of(m.triangle[f][c], face_material[f]));
 
   out += "// Mesh " + std::to_string(k) + ": " + asset_name(m.name) + " (" +
          std::to_string(m.position.size()) + " vertices, " + std::to_string(m.triangle.size()) +
@@ -241,14 +284,13 @@ void write_mesh(std::string& out, const AssetMesh& m, const std::string& id, siz
     out += "\n  }\n";
   }
   out += "  texture_list {\n    " + std::to_string(colours.size());
-  for (const auto& c : colours) {
-    out += ",\n    texture { pigment { rgb " + c + " } finish { Cutaway_Finish } }";
-  }
+  for (const auto& c : colours) out += ",\n    " + c;
   out += "\n  }\n  face_indices {\n    " + std::to_string(m.triangle.size());
-  for (const auto& t : m.triangle) {
+  for (size_t f = 0; f < m.triangle.size(); ++f) {
+    const glm::uvec3 t = m.triangle[f], x = face_textures[f];
     out += ",\n    <" + std::to_string(t.x) + ", " + std::to_string(t.y) + ", " +
-           std::to_string(t.z) + ">, " + std::to_string(vertex_texture[t.x]) + ", " +
-           std::to_string(vertex_texture[t.y]) + ", " + std::to_string(vertex_texture[t.z]);
+           std::to_string(t.z) + ">, " + std::to_string(x.x) + ", " + std::to_string(x.y) + ", " +
+           std::to_string(x.z);
   }
   out += "\n  }\n}\n\n";
 }
@@ -349,7 +391,15 @@ void write_strokes(std::string& out, const SceneAssets& a, const std::vector<Str
 }  // namespace
 
 std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* strokes) {
-  for (size_t k = 0; k < assets.meshes.size(); ++k) check_mesh(assets.meshes[k], k);
+  require(!assets.materials.empty(), "no materials");
+  for (const AssetMaterial& material : assets.materials) {
+    const PbrMaterial& p = material.pbr;
+    for (double v : {p.roughness, p.translucency, p.clearcoat, p.clearcoat_roughness})
+      require(v >= 0 && v <= 1,
+              "material '" + asset_name(material.name) + "': a value not in 0..1");
+  }
+  for (size_t k = 0; k < assets.meshes.size(); ++k)
+    check_mesh(assets.meshes[k], k, assets.materials.size());
   for (size_t i = 0; i < assets.instances.size(); ++i) {
     check_instance(assets.instances[i], i, assets.meshes.size());
   }
@@ -366,8 +416,13 @@ std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* s
   out += " }\n\n";
   write_camera(out, assets.camera);
   write_lights(out, assets);
-  out += "#declare Cutaway_Finish = finish { ambient 0.15 diffuse 0.8 specular 0.25 "
-         "roughness 0.02 }\n\n";
+  // Material 0 keeps the finish of scenes written before materials: a small, sharp highlight.
+  out +=
+      "#declare Cutaway_Finish = finish { ambient 0.15 diffuse 0.8 specular 0.25 "
+      "roughness 0.02 }\n";
+  for (size_t k = 1; k < assets.materials.size(); ++k)
+    write_finish(out, assets.materials[k].pbr, k);
+  out += "\n";
 
   std::vector<std::string> ids(assets.meshes.size());
   for (size_t k = 0; k < assets.meshes.size(); ++k) {

@@ -39,13 +39,18 @@ namespace cutaway {
 ///   only the brightest light casts shadows (the others are `shadowless`, so shadows are
 ///   filled in rather than black);
 /// - `#declare Cutaway_Finish`: ambient 0.15, diffuse 0.8, specular 0.25, roughness 0.02 (a
-///   small, sharp highlight as on moist fruit);
+///   small, sharp highlight as on moist fruit), the finish of material 0; then
+///   `#declare Cutaway_Finish_<k>` for every other material k: ambient 0.15, diffuse 0.8 (with
+///   backside illumination 0.8 translucency when translucent), specular 0.625 (1 - roughness),
+///   roughness 0.0005 + 0.05 roughness^2, and for a clear coat phong 0.6 clearcoat and
+///   phong_size round(4 / (clearcoat_roughness + 0.05)); sheen is not shown;
 /// - each mesh with at least one triangle declared ONCE as `#declare Mesh_<k>_<name> = mesh2`:
 ///   vertex_vectors (metres), normal_vectors (omitted when the mesh has no normals; a zero or
 ///   non-finite normal is replaced by the area-weighted normal of its triangles), texture_list
-///   with one texture per distinct vertex colour (deduplicated by their written text, in order
-///   of first use), face_indices with three texture indices per face (POV-Ray interpolates the
-///   vertex colours across each triangle). Meshes without triangles are left out, with their
+///   with one texture per distinct pair of vertex colour and the finish of the material of a
+///   face using it (deduplicated by their written text, in order of first use), face_indices
+///   with three texture indices per face (POV-Ray interpolates the vertex colours across each
+///   triangle). Meshes without triangles are left out, with their
 ///   instances.
 /// - one `object { Mesh_<k>_<name> matrix <...> }` per instance: the 3x3 rotation of the
 ///   (normalised) quaternion and the translation in POV-Ray's row-vector `matrix` form.

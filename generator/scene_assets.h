@@ -10,6 +10,8 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
+#include "pbr_material.h"
+
 namespace cutaway {
 
 /// `name` with every byte outside [A-Za-z0-9] replaced by '_': a name every exporter accepts
@@ -23,6 +25,18 @@ inline std::string asset_name(std::string_view name) {
   return s;
 }
 
+/// A named material; vertex colours give the base colour.
+struct AssetMaterial {
+  std::string name;  ///< unique in the scene
+  PbrMaterial pbr;
+};
+
+/// Triangles [first, first + count) of a mesh, drawn with one material.
+struct AssetPrimitive {
+  size_t first = 0, count = 0;
+  int material = 0;  ///< index into SceneAssets::materials
+};
+
 /// One triangle mesh in its own frame (metres). Triangles are counter-clockwise seen from
 /// outside (the normal side).
 struct AssetMesh {
@@ -31,6 +45,9 @@ struct AssetMesh {
   std::vector<glm::dvec3> normal;     ///< #V, unit length (shading normals)
   std::vector<glm::dvec3> colour;     ///< #V, linear RGB 0..1
   std::vector<glm::uvec3> triangle;   ///< #F, indices into the vertex arrays
+  /// The triangles by material, in order, covering all of them without gaps (a piece: skin
+  /// and walls, then caps). Empty: one primitive of material 0.
+  std::vector<AssetPrimitive> primitives;
 };
 
 /// One placed copy of a mesh: scene point = translation + rotation * (mesh point).
@@ -65,6 +82,8 @@ struct AssetLight {
 /// A whole scene ready for export: meshes (pieces, container), their instances, camera, lights.
 struct SceneAssets {
   std::string name;
+  /// Material 0 is the plain default every mesh without primitives uses.
+  std::vector<AssetMaterial> materials{AssetMaterial{"vertex colour", PbrMaterial{}}};
   std::vector<AssetMesh> meshes;
   std::vector<AssetInstance> instances;
   AssetCamera camera;

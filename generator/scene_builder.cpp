@@ -114,13 +114,36 @@ std::vector<AssetLight> studio_lights(const AssetCamera& camera) {
           light("rim", 0.2 * r + 0.8 * u + 0.9 * f, 1.0, {1.0, 1.0, 1.0})};
 }
 
-AssetMesh asset_mesh(const ShadedMesh& mesh, const std::string& name) {
+PieceMaterials add_piece_materials(SceneAssets& assets, const std::string& name,
+                                   const PbrMaterial& skin, const PbrMaterial& cut) {
+  auto index = [&assets](const std::string& material_name, const PbrMaterial& pbr) {
+    if (pbr == PbrMaterial{}) return 0;
+    for (size_t k = 0; k < assets.materials.size(); ++k)
+      if (assets.materials[k].name == material_name) return static_cast<int>(k);
+    assets.materials.push_back({material_name, pbr});
+    return static_cast<int>(assets.materials.size()) - 1;
+  };
+  const std::string base = asset_name(name);
+  const int skin_id = index(base + "_skin", skin);
+  return {skin_id, skin == cut ? skin_id : index(base + "_cut", cut)};
+}
+
+AssetMesh piece_mesh(const ShadedMesh& merged, size_t surface_triangles, PieceMaterials materials,
+                     const std::string& name) {
   AssetMesh out;
   out.name = name;
-  out.position = mesh.position;
-  out.normal = mesh.normal;
-  out.colour = mesh.colour;
-  out.triangle = mesh.triangle;
+  out.position = merged.position;
+  out.normal = merged.normal;
+  out.colour = merged.colour;
+  out.triangle = merged.triangle;
+  const size_t n = merged.triangle.size();
+  if (materials.skin == materials.cut) {
+    if (materials.skin != 0) out.primitives.push_back({0, n, materials.skin});
+  } else {
+    if (surface_triangles > 0) out.primitives.push_back({0, surface_triangles, materials.skin});
+    if (surface_triangles < n)
+      out.primitives.push_back({surface_triangles, n - surface_triangles, materials.cut});
+  }
   return out;
 }
 
@@ -150,13 +173,18 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
   int total = 0;
   for (const SceneItem& item : scene.items) total += item.count;
 
+  SceneAssets assets;
   std::vector<ShadedMesh> shapes;  // kept pieces, object frame
+  std::vector<size_t> surface_triangles;  // of each shape: its skin and walls
+  std::vector<PieceMaterials> materials;  // of each shape
   std::vector<glm::dvec3> caps;
   std::vector<std::string> names;
   for (size_t i = 0; i < scene.items.size(); ++i) {
     const SceneItem& item = scene.items[i];
     Template tmpl = load_template(item.template_path);
     tmpl.variation_amount *= item.variation;
+    const PieceMaterials item_materials =
+        add_piece_materials(assets, tmpl.name, tmpl.skin_material, tmpl.cut_material);
     for (int j = 0; j < item.count; ++j) {
       const int ii = static_cast<int>(i);
       auto t0 = Clock::now();
@@ -185,6 +213,8 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
       for (size_t k : choose(n, keep, object_seed(seed, ii, j, 2))) {
         const Piece& piece = set.pieces[k];
         shapes.push_back(merge_parts(piece));
+        surface_triangles.push_back(surface_triangle_count(piece));
+        materials.push_back(item_materials);
         // Perlin colour modulation in the object frame: every piece of one object agrees.
         modulate_colours(shapes.back(), variant.tmpl.npr, scene.render.perlin,
                          object_seed(seed, ii, j, 3));
@@ -220,7 +250,6 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
       layout_pieces(layout, scene.container, layout_options, derive_seed(seed, {~0ull, 4}));
   st.seconds_layout = seconds_since(t0);
 
-  SceneAssets assets;
   assets.name = scene.name;
   assets.width = scene.render.width;
   assets.height = scene.render.height;
@@ -243,7 +272,7 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
       lo = glm::min(lo, q);
       hi = glm::max(hi, q);
     }
-    AssetMesh mesh = asset_mesh(shapes[s], names[s]);
+    AssetMesh mesh = piece_mesh(shapes[s], surface_triangles[s], materials[s], names[s]);
     st.triangles += mesh.triangle.size();
     assets.instances.push_back(
         {names[s], static_cast<int>(assets.meshes.size()), place.rotation, place.translation});

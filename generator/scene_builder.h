@@ -64,8 +64,23 @@ AssetCamera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dve
 /// fill from the right (1.2 lux) and a rim light from behind (1 lux); directional.
 std::vector<AssetLight> studio_lights(const AssetCamera& camera);
 
-/// A shaded mesh (e.g. merge_parts of a piece) as an exportable mesh named `name`.
-AssetMesh asset_mesh(const ShadedMesh& mesh, const std::string& name);
+/// Where one template's two materials are in SceneAssets::materials.
+struct PieceMaterials {
+  int skin = 0, cut = 0;
+};
+
+/// Adds the skin and cut materials of the template named `name` to assets.materials, as
+/// NAME_skin and NAME_cut (once per scene: a template seen before gets the same indices); a
+/// default PbrMaterial is material 0, the scene's plain one.
+PieceMaterials add_piece_materials(SceneAssets& assets, const std::string& name,
+                                   const PbrMaterial& skin, const PbrMaterial& cut);
+
+/// A piece as an exportable mesh named `name`: `merged` is merge_parts of it (possibly
+/// recoloured), whose first `surface_triangles` triangles are its skin and walls and the rest
+/// its caps (surface_triangle_count); one primitive of each material, or one for all when
+/// the two are the same.
+AssetMesh piece_mesh(const ShadedMesh& merged, size_t surface_triangles, PieceMaterials materials,
+                     const std::string& name);
 
 /// The outward normal of the piece's largest cap (by area), object frame; zero if it has none.
 glm::dvec3 largest_cap_normal(const Piece& piece);

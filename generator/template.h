@@ -11,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "error.h"
+#include "pbr_material.h"
 
 namespace cutaway {
 
@@ -142,6 +143,9 @@ struct Template {
   int skin = -1;                      ///< index of the surface with role skin (-1: none, only
                                       ///< for symmetry none)
   NprSettings npr;                    ///< NPR parameters (spec: `npr`)
+  /// Materials (spec: `materials`): the skin's outside (and the walls of hollows), and the
+  /// cut faces. Absent: PbrMaterial{} for both, the look of templates written before them.
+  PbrMaterial skin_material, cut_material;
 };
 
 }  // namespace cutaway

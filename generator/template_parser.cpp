@@ -314,6 +314,28 @@ NprSettings parse_npr(const YamlField& f, double metres_per_unit) {
   return npr;
 }
 
+/// One material of `materials` (spec: materials): {roughness, translucency, clearcoat,
+/// clearcoat_roughness, sheen, sheen_roughness}, each optional (PbrMaterial's defaults), the
+/// numbers in 0..1, `sheen` a colour.
+PbrMaterial parse_material(const YamlField& f) {
+  f.allow_only({"roughness", "translucency", "clearcoat", "clearcoat_roughness", "sheen",
+                "sheen_roughness"});
+  PbrMaterial m;
+  if (auto x = f.get("roughness")) m.roughness = x->number_in(0, 1);
+  if (auto x = f.get("translucency")) m.translucency = x->number_in(0, 1);
+  if (auto x = f.get("clearcoat")) m.clearcoat = x->number_in(0, 1);
+  if (auto x = f.get("clearcoat_roughness")) {
+    if (!f.get("clearcoat")) x->fail("a clearcoat_roughness needs a clearcoat");
+    m.clearcoat_roughness = x->number_in(0, 1);
+  }
+  if (auto x = f.get("sheen")) m.sheen = parse_colour(*x);
+  if (auto x = f.get("sheen_roughness")) {
+    if (!f.get("sheen")) x->fail("a sheen_roughness needs a sheen colour");
+    m.sheen_roughness = x->number_in(0, 1);
+  }
+  return m;
+}
+
 /// The bands a template without `npr.perlin` gets (template.h, NprSettings): untinted fine
 /// grain and broad mottling, their periods fractions of the skin's height (metres).
 std::vector<PerlinBand> default_perlin_bands(double height_m) {
@@ -350,8 +372,8 @@ double skin_height(const Template& t) {
 Template parse_template(std::string_view text, const std::string& file,
                         const std::string& base_dir) {
   const YamlField root = parse_yaml(text, file);
-  root.allow_only({"format", "name", "description", "units", "symmetry", "resolution",
-                   "variation", "surfaces", "grains", "npr"});
+  root.allow_only({"format", "name", "description", "units", "symmetry", "resolution", "variation",
+                   "surfaces", "grains", "npr", "materials"});
   Template t;
   t.file = file;
 
@@ -453,6 +475,11 @@ Template parse_template(std::string_view text, const std::string& file,
   }
 
   if (auto npr = root.get("npr")) t.npr = parse_npr(*npr, t.metres_per_unit);
+  if (auto materials = root.get("materials")) {
+    materials->allow_only({"skin", "cut"});
+    if (auto skin = materials->get("skin")) t.skin_material = parse_material(*skin);
+    if (auto cut = materials->get("cut")) t.cut_material = parse_material(*cut);
+  }
 
   t.edge_loc = FileLoc{file, 1, 1};
   if (auto res = root.get("resolution")) {

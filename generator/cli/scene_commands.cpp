@@ -212,7 +212,8 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
                  set.attempts - 1);
   if (set.defective_pieces > 0)
     spdlog::warn("{} pieces are not closed 2-manifolds", set.defective_pieces);
-  const SceneAssets assets = piece_assets(set, tmpl.name, 0.3, a.width, a.height);
+  const SceneAssets assets =
+      piece_assets(set, tmpl.name, tmpl.skin_material, tmpl.cut_material, 0.3, a.width, a.height);
   const Written w = write_outputs(assets, targets, common.threads, a.silhouettes);
   if (common.stats) {
     std::fprintf(stderr,

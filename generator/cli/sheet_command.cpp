@@ -87,7 +87,8 @@ Image sheet_tile(const LoadedItem& item, const SheetArgs& a, const Common& commo
   const PieceSet set = cut_object(model, tmpl, cut, a.cube, common, 1.0, 0,
                                   tmpl.name + ": cut '" + item.text + "'");
   const int picture_h = a.tile * 3 / 4;
-  const SceneAssets assets = grid_piece_assets(set, tmpl.name, item.view, a.tile, picture_h);
+  const SceneAssets assets = grid_piece_assets(set, tmpl.name, tmpl.skin_material,
+                                               tmpl.cut_material, item.view, a.tile, picture_h);
   std::vector<Stroke> strokes;  // silhouettes as `cutaway piece --png` draws them
   if (a.silhouettes > 0) {
     StrokeOptions so;

@@ -13,6 +13,7 @@
 #include "clip_mesh.h"
 #include "cut_cells.h"
 #include "model_builder.h"
+#include "piece_views.h"
 #include "pieces.h"
 #include "template_parser.h"
 #include "test_support.h"
@@ -132,6 +133,52 @@ INSTANTIATE_TEST_SUITE_P(
         if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
       return name;
     });
+
+TEST(Pieces, ExportAsSkinAndCapPrimitivesWithTheTemplatesMaterials) {
+  const Template tmpl = load_template(test::source_path("templates/tomato.yaml").string());
+  ASSERT_NE(tmpl.skin_material, tmpl.cut_material);
+  const DsModel model = build_model(tmpl);
+  const auto diffusion = make_cpu_diffusion(model, {8, 0});
+  PieceOptions options;
+  options.section.edge_m = tmpl.edge_m;
+  const PieceSet set = cut_pieces(model, parse_cut_spec("wedges:4", 1e-3), *diffusion, options);
+  const SceneAssets assets =
+      piece_assets(set, tmpl.name, tmpl.skin_material, tmpl.cut_material, 0.3, 64, 48);
+  ASSERT_EQ(assets.materials.size(), 3u);
+  EXPECT_EQ(assets.materials[1].name, "tomato_skin");
+  EXPECT_EQ(assets.materials[1].pbr, tmpl.skin_material);
+  EXPECT_EQ(assets.materials[2].name, "tomato_cut");
+  EXPECT_EQ(assets.materials[2].pbr, tmpl.cut_material);
+  ASSERT_EQ(assets.meshes.size(), set.pieces.size());
+  for (size_t k = 0; k < set.pieces.size(); ++k) {
+    const AssetMesh& mesh = assets.meshes[k];
+    ASSERT_EQ(mesh.primitives.size(), 2u);
+    const AssetPrimitive& skin = mesh.primitives[0];
+    const AssetPrimitive& cut = mesh.primitives[1];
+    EXPECT_EQ(skin.material, 1);
+    EXPECT_EQ(cut.material, 2);
+    EXPECT_EQ(skin.first, 0u);
+    EXPECT_EQ(skin.count, surface_triangle_count(set.pieces[k]));
+    EXPECT_EQ(cut.first, skin.count);
+    EXPECT_EQ(cut.first + cut.count, mesh.triangle.size());
+    // Every cut triangle lies on a cutting plane: its vertices' shading normals are a plane's.
+    for (size_t f = cut.first; f < cut.first + cut.count; ++f)
+      for (int c = 0; c < 3; ++c) {
+        const glm::dvec3 n = mesh.normal[mesh.triangle[f][c]];
+        bool on_plane = false;
+        for (const Plane& plane : set.cells.planes)
+          on_plane = on_plane || std::fabs(std::fabs(glm::dot(n, plane.normal)) - 1) < 1e-9;
+        ASSERT_TRUE(on_plane) << "piece " << k << " triangle " << f;
+      }
+  }
+  // A template without materials: one primitive of the plain material, as before them.
+  const Template plain = load_template(test::source_path("templates/spheres.yaml").string());
+  ASSERT_EQ(plain.skin_material, PbrMaterial{});
+  const SceneAssets plain_assets =
+      piece_assets(set, plain.name, plain.skin_material, plain.cut_material, 0.3, 64, 48);
+  EXPECT_EQ(plain_assets.materials.size(), 1u);
+  for (const AssetMesh& mesh : plain_assets.meshes) EXPECT_TRUE(mesh.primitives.empty());
+}
 
 TEST(Pieces, CapsOnEitherSideOfACutAreMirrorImagesWithEqualColours) {
   const Template tmpl = load_template(test::source_path("templates/tomato.yaml").string());

@@ -356,5 +356,45 @@ TEST(PovExport, RendersLikeTheOpenGlCamera) {
   EXPECT_LE(glm::length(below - bg), 2.5);
 }
 
+TEST(PovExport, AFinishPerMaterialOnTheFacesThatUseIt) {
+  SceneAssets s = test_scene();
+  PbrMaterial wet;
+  wet.roughness = 0.2;
+  wet.translucency = 0.5;
+  wet.clearcoat = 0.8;
+  wet.clearcoat_roughness = 0.05;
+  s.materials.push_back({"cut", wet});
+  // Mesh 0: its first two triangles plain, the rest wet.
+  const size_t n = s.meshes[0].triangle.size();
+  s.meshes[0].primitives = {{0, 2, 0}, {2, n - 2, 1}};
+  const std::string text = scene_to_pov(s);
+  EXPECT_EQ(count(text,
+                  "#declare Cutaway_Finish = finish { ambient 0.15 diffuse 0.8 specular "
+                  "0.25 roughness 0.02 }"),
+            1u);
+  // Translucency as POV-Ray 3.7's backside illumination; the clear coat as a sharp phong.
+  EXPECT_EQ(count(text,
+                  "#declare Cutaway_Finish_1 = finish { ambient 0.15 diffuse 0.8, 0.4 "
+                  "specular 0.5 roughness 0.0025 phong 0.48 phong_size 40 }"),
+            1u)
+      << text.substr(0, 2000);
+  EXPECT_GE(count(text, "finish { Cutaway_Finish_1 }"), 1u);
+  // Every texture of mesh 1 (no primitives) uses the plain finish.
+  const size_t mesh1 = text.find("// Mesh 1");
+  ASSERT_NE(mesh1, std::string::npos);
+  const std::string body = text.substr(mesh1, text.find("// Mesh 2") - mesh1);
+  EXPECT_EQ(count(body, "Cutaway_Finish_1"), 0u);
+  // POV-Ray reads it.
+  const fs::path dir = test::fresh_dir("pov_export_materials");
+  write_scene_pov(dir / "scene.pov", s);
+  PovrayOptions options;
+  options.threads = 2;
+  render_povray(dir / "scene.pov", dir / "scene.png", s.width, s.height, options);
+  EXPECT_EQ(read_png(dir / "scene.png").width, s.width);
+  // A material index out of range is refused.
+  s.meshes[0].primitives[1].material = 2;
+  EXPECT_THROW(scene_to_pov(s), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace cutaway

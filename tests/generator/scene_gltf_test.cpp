@@ -3,6 +3,7 @@
 // GLTFLoader in headless Chromium), and the errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -368,6 +369,113 @@ TEST(SceneGltf, InvalidAssetsThrow) {
   expect_invalid([](SceneAssets& s) { s.camera.znear = 0; }, "znear");
   expect_invalid([](SceneAssets& s) { s.camera.fov_y_deg = 180; }, "fov");
   expect_invalid([](SceneAssets& s) { s.lights[0].direction = glm::dvec3(0.0); }, "direction");
+  expect_invalid(
+      [](SceneAssets& s) {
+        s.meshes[0].primitives = {{0, 6, 0}, {7, 5, 0}};
+      },
+      "a gap between primitives");
+  expect_invalid(
+      [](SceneAssets& s) {
+        s.meshes[0].primitives = {{0, 6, 0}};
+      },
+      "primitives that miss triangles");
+  expect_invalid(
+      [](SceneAssets& s) {
+        s.meshes[0].primitives = {{0, 12, 1}};
+      },
+      "a material index out of range");
+  expect_invalid(
+      [](SceneAssets& s) {
+        s.materials.push_back({"bad", PbrMaterial{}});
+        s.materials.back().pbr.roughness = 1.5;
+        s.meshes[0].primitives = {{0, 12, 1}};
+      },
+      "roughness 1.5");
+}
+
+/// small_scene() with the cube in two primitives: its first 4 triangles "skin" (glossy, waxy,
+/// fuzzy), the other 8 "cut" (wet, translucent); the plate keeps material 0. An unused
+/// material is listed too.
+SceneAssets scene_with_materials() {
+  SceneAssets s = small_scene();
+  PbrMaterial skin;
+  skin.roughness = 0.3;
+  skin.clearcoat = 0.7;
+  skin.clearcoat_roughness = 0.2;
+  skin.sheen = {0.6, 0.5, 0.4};
+  skin.sheen_roughness = 0.5;
+  PbrMaterial cut;
+  cut.roughness = 0.25;
+  cut.translucency = 0.4;
+  cut.clearcoat = 0.9;
+  cut.clearcoat_roughness = 0.05;
+  s.materials.push_back({"unused", cut});
+  s.materials.push_back({"tomato_skin", skin});
+  s.materials.push_back({"tomato_cut", cut});
+  s.meshes[0].primitives = {{0, 4, 2}, {4, 8, 3}};
+  return s;
+}
+
+TEST(SceneGltf, SkinAndCutPrimitivesWithTheirMaterials) {
+  const auto dir = test::fresh_dir("scene-gltf-materials");
+  const SceneAssets s = scene_with_materials();
+  write_scene_gltf(dir / "salad.glb", s);
+  const auto report = test::validate_gltf(dir / "salad.glb");
+  EXPECT_EQ(report.errors, 0) << report.output;
+  EXPECT_EQ(validator_warnings(report), 0) << report.output;
+
+  const tinygltf::Model m = load(dir / "salad.glb");
+  // The used materials only, in the assets' order: plain, skin, cut.
+  ASSERT_EQ(m.materials.size(), 3u);
+  EXPECT_EQ(m.materials[0].name, "vertex colour");
+  EXPECT_TRUE(m.materials[0].extensions.empty());
+  EXPECT_EQ(m.materials[1].name, "tomato_skin");
+  EXPECT_EQ(m.materials[2].name, "tomato_cut");
+  const tinygltf::Material& skin = m.materials[1];
+  EXPECT_DOUBLE_EQ(skin.pbrMetallicRoughness.roughnessFactor, 0.3);
+  EXPECT_DOUBLE_EQ(skin.pbrMetallicRoughness.metallicFactor, 0.0);
+  ASSERT_TRUE(skin.extensions.count("KHR_materials_clearcoat"));
+  EXPECT_DOUBLE_EQ(
+      skin.extensions.at("KHR_materials_clearcoat").Get("clearcoatFactor").GetNumberAsDouble(),
+      0.7);
+  ASSERT_TRUE(skin.extensions.count("KHR_materials_sheen"));
+  EXPECT_DOUBLE_EQ(
+      skin.extensions.at("KHR_materials_sheen").Get("sheenColorFactor").Get(1).GetNumberAsDouble(),
+      0.5);
+  EXPECT_FALSE(skin.extensions.count("KHR_materials_diffuse_transmission"));
+  const tinygltf::Material& cut = m.materials[2];
+  ASSERT_TRUE(cut.extensions.count("KHR_materials_diffuse_transmission"));
+  EXPECT_DOUBLE_EQ(cut.extensions.at("KHR_materials_diffuse_transmission")
+                       .Get("diffuseTransmissionFactor")
+                       .GetNumberAsDouble(),
+                   0.4);
+  EXPECT_FALSE(cut.extensions.count("KHR_materials_sheen"));
+  for (const char* ext : {"KHR_materials_clearcoat", "KHR_materials_sheen",
+                          "KHR_materials_diffuse_transmission", "KHR_lights_punctual"})
+    EXPECT_EQ(std::count(m.extensionsUsed.begin(), m.extensionsUsed.end(), ext), 1) << ext;
+
+  // The cube: two primitives sharing their attributes, 4 and 8 triangles; the plate: one.
+  ASSERT_EQ(m.meshes[0].primitives.size(), 2u);
+  const auto& p0 = m.meshes[0].primitives[0];
+  const auto& p1 = m.meshes[0].primitives[1];
+  EXPECT_EQ(p0.material, 1);
+  EXPECT_EQ(p1.material, 2);
+  EXPECT_EQ(p0.attributes, p1.attributes);
+  EXPECT_EQ(m.accessors[static_cast<size_t>(p0.indices)].count, 12u);
+  EXPECT_EQ(m.accessors[static_cast<size_t>(p1.indices)].count, 24u);
+  ASSERT_EQ(m.meshes[1].primitives.size(), 1u);
+  EXPECT_EQ(m.meshes[1].primitives[0].material, 0);
+}
+
+TEST(SceneGltf, ThreeJsLoadsSkinAndCutPrimitives) {
+  const auto dir = test::fresh_dir("scene-gltf-materials-three");
+  const SceneAssets s = scene_with_materials();
+  write_scene_gltf(dir / "salad.glb", s);
+  const test::ThreeLoadReport r = test::load_gltf_three(dir / "salad.glb");
+  ASSERT_TRUE(r.ok) << r.error << "\n" << r.output;
+  EXPECT_EQ(r.mesh_objects, 2 * 2 + 1);  // the cube's two primitives, twice; the plate
+  EXPECT_EQ(r.triangles, instanced_triangles(s));
+  EXPECT_TRUE(r.warnings.empty()) << r.output;
 }
 
 }  // namespace

@@ -193,6 +193,59 @@ TEST(TemplateParser, JsonIsAccepted) {
   EXPECT_NEAR(t.edge_m, 0.04 / 64, 1e-15);
 }
 
+TEST(TemplateParser, MaterialsOfSkinAndCut) {
+  // Absent: the plain default for both.
+  const Template plain = parse(kTemplate);
+  EXPECT_EQ(plain.skin_material, PbrMaterial{});
+  EXPECT_EQ(plain.cut_material, PbrMaterial{});
+  const Template t = parse(std::string(kTemplate) + R"(materials:
+  skin: {roughness: 0.3, clearcoat: 0.6, clearcoat_roughness: 0.1, sheen: "#ffffff",
+         sheen_roughness: 0.5}
+  cut: {translucency: 0.4}
+)");
+  EXPECT_DOUBLE_EQ(t.skin_material.roughness, 0.3);
+  EXPECT_DOUBLE_EQ(t.skin_material.clearcoat, 0.6);
+  EXPECT_DOUBLE_EQ(t.skin_material.clearcoat_roughness, 0.1);
+  EXPECT_EQ(t.skin_material.sheen, glm::dvec3(1.0));  // sRGB white is linear white
+  EXPECT_DOUBLE_EQ(t.skin_material.sheen_roughness, 0.5);
+  EXPECT_DOUBLE_EQ(t.skin_material.translucency, 0.0);
+  // Unwritten values keep their defaults.
+  EXPECT_DOUBLE_EQ(t.cut_material.translucency, 0.4);
+  EXPECT_DOUBLE_EQ(t.cut_material.roughness, PbrMaterial{}.roughness);
+  EXPECT_DOUBLE_EQ(t.cut_material.clearcoat, 0.0);
+}
+
+TEST(TemplateParser, ErrorsInMaterials) {
+  struct Case {
+    const char* yaml;
+    int line, column;
+    const char* field;
+    const char* rule;
+  };
+  const int base = 29;  // the first line after kTemplate
+  for (const Case& c : std::initializer_list<Case>{
+           {"materials:\n  skin: {roughness: 1.5}\n", base + 1, 21, "materials.skin.roughness",
+            "between 0 and 1"},
+           {"materials:\n  cut: {translucency: -0.1}\n", base + 1, 23, "materials.cut.translucency",
+            "between 0 and 1"},
+           {"materials:\n  cut: {shine: 1}\n", base + 1, 9, "materials.cut.shine",
+            "unknown field \"shine\""},
+           {"materials:\n  flesh: {roughness: 0.2}\n", base + 1, 3, "materials.flesh",
+            "unknown field \"flesh\""},
+           {"materials:\n  skin: {clearcoat_roughness: 0.2}\n", base + 1, 31,
+            "materials.skin.clearcoat_roughness", "needs a clearcoat"},
+           {"materials:\n  skin: {sheen_roughness: 0.2}\n", base + 1, 27,
+            "materials.skin.sheen_roughness", "needs a sheen colour"},
+           {"materials:\n  skin: {sheen: 3}\n", base + 1, 17, "materials.skin.sheen", ""},
+       }) {
+    const InputError e = error_of(std::string(kTemplate) + c.yaml);
+    EXPECT_EQ(e.field(), c.field) << c.yaml;
+    EXPECT_EQ(e.loc().line, c.line) << c.yaml;
+    EXPECT_EQ(e.loc().column, c.column) << c.yaml;
+    EXPECT_NE(e.rule().find(c.rule), std::string::npos) << c.yaml << ": " << e.rule();
+  }
+}
+
 TEST(TemplateParser, ErrorUnknownField) {
   const InputError e = error_of(R"(format: cutaway-template/1
 name: x

@@ -144,7 +144,8 @@ void pieces_case(const std::string& name, double npr) {
       cut_pieces(model, parse_cut_spec("halves", tomato().metres_per_unit), *diffusion, options);
   for (Piece& p : set.pieces)
     for (PiecePart& part : p.parts) modulate_colours(part.mesh, tomato().npr, npr, 0);
-  const SceneAssets assets = piece_assets(set, tomato().name, 0.3, kWidth, kHeight);
+  const SceneAssets assets = piece_assets(set, tomato().name, tomato().skin_material,
+                                          tomato().cut_material, 0.3, kWidth, kHeight);
   StrokeOptions so;
   so.strength = npr;
   const std::vector<Stroke> strokes = extract_strokes(assets, so);

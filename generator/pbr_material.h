@@ -1,0 +1,26 @@
+// Physically based material properties in the field's terms (the glTF 2.0 metallic-roughness
+// model and its KHR material extensions): what the skin of a fruit and its cut flesh look like
+// beyond their colours. Templates write them (spec: `materials`), exporters map them.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+namespace cutaway {
+
+/// One material. Colours come from the diffusion surfaces (vertex colours); these are the
+/// other channels. Every value is dimensionless; the default is today's plain look.
+struct PbrMaterial {
+  double roughness = 0.6;          ///< perceptual roughness 0..1 (glTF roughnessFactor)
+  double translucency = 0;         ///< diffuse transmission weight 0..1, light through thin
+                                   ///< flesh (KHR_materials_diffuse_transmission)
+  double clearcoat = 0;            ///< weight 0..1 of a clear layer on top: wax on an apple,
+                                   ///< the wet film on cut flesh (KHR_materials_clearcoat)
+  double clearcoat_roughness = 0;  ///< perceptual roughness 0..1 of that layer
+  glm::dvec3 sheen{0.0};           ///< sheen colour, linear RGB 0..1, the soft back-scatter of
+                                   ///< fuzz (peach, kiwi); black: none (KHR_materials_sheen)
+  double sheen_roughness = 0.3;    ///< 0..1
+
+  bool operator==(const PbrMaterial&) const = default;
+};
+
+}  // namespace cutaway
