@@ -14,6 +14,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 #include <nlohmann/json.hpp>
+#include <stb/stb_image_write.h>
 #include <tiny_gltf.h>
 #include <unistd.h>
 
@@ -53,6 +54,16 @@ int add_vec3_accessor(tinygltf::Model& m, const std::vector<float>& xyz, bool wi
       a.maxValues[i % 3] = std::max<double>(a.maxValues[i % 3], xyz[i]);
     }
   }
+  m.accessors.push_back(a);
+  return static_cast<int>(m.accessors.size()) - 1;
+}
+
+int add_vec2_accessor(tinygltf::Model& m, const std::vector<float>& xy) {
+  tinygltf::Accessor a;
+  a.bufferView = add_view(m, xy.data(), xy.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  a.type = TINYGLTF_TYPE_VEC2;
+  a.count = xy.size() / 2;
   m.accessors.push_back(a);
   return static_cast<int>(m.accessors.size()) - 1;
 }
@@ -143,6 +154,22 @@ std::vector<double> gltf_vec3(const glm::dvec3& v) { return {v.x + 0.0, v.y + 0.
   throw std::invalid_argument("scene assets: " + what);
 }
 
+/// `texture` as PNG bytes (stb_image_write; deterministic).
+std::string encode_png(const AssetTexture& texture) {
+  if (texture.width <= 0 || texture.height <= 0 ||
+      texture.srgb.size() != static_cast<size_t>(texture.width) * texture.height * 3)
+    bad_assets("texture '" + texture.name + "': size and pixels disagree");
+  std::string out;
+  auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                               static_cast<size_t>(size));
+  };
+  if (!stbi_write_png_to_func(append, &out, texture.width, texture.height, 3, texture.srgb.data(),
+                              texture.width * 3))
+    bad_assets("texture '" + texture.name + "': PNG encoding failed");
+  return out;
+}
+
 /// The primitives of `mesh` (one of material 0 when it lists none), checked to cover its
 /// triangles in order and to name materials that exist.
 std::vector<AssetPrimitive> checked_primitives(const AssetMesh& mesh, size_t materials) {
@@ -194,17 +221,39 @@ int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh,
       bad_assets("mesh '" + mesh.name + "': a triangle index is out of range");
     }
   }
-  std::map<std::string, int> attributes;
-  attributes["POSITION"] = add_vec3_accessor(m, pos, true);
-  attributes["NORMAL"] = add_vec3_accessor(m, normal, false);
-  attributes["COLOR_0"] = add_vec3_accessor(m, colour, false);
+  if (!mesh.uv.empty() && mesh.uv.size() != n)
+    bad_assets("mesh '" + mesh.name + "': uv count differs from positions");
+  const int positions = add_vec3_accessor(m, pos, true);
+  const int normals = add_vec3_accessor(m, normal, false);
+  int colours = -1, uvs = -1;  // added when some primitive uses them
   tinygltf::Mesh gm;
   gm.name = mesh.name;
   for (const AssetPrimitive& p : primitives) {
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_TRIANGLES;
     prim.material = gltf_material[static_cast<size_t>(p.material)];
-    prim.attributes = attributes;
+    prim.attributes["POSITION"] = positions;
+    prim.attributes["NORMAL"] = normals;
+    // A textured material takes its colour from TEXCOORD_0, never also from COLOR_0 (glTF
+    // would multiply the two).
+    if (m.materials[static_cast<size_t>(prim.material)]
+            .pbrMetallicRoughness.baseColorTexture.index >= 0) {
+      if (mesh.uv.empty()) bad_assets("mesh '" + mesh.name + "': a textured material needs uv");
+      if (uvs < 0) {
+        std::vector<float> xy;
+        xy.reserve(2 * n);
+        for (const glm::dvec2& q : mesh.uv) {
+          if (!std::isfinite(q.x) || !std::isfinite(q.y))
+            bad_assets("mesh '" + mesh.name + "': a uv is not finite");
+          xy.insert(xy.end(), {static_cast<float>(q.x), static_cast<float>(q.y)});
+        }
+        uvs = add_vec2_accessor(m, xy);
+      }
+      prim.attributes["TEXCOORD_0"] = uvs;
+    } else {
+      if (colours < 0) colours = add_vec3_accessor(m, colour, false);
+      prim.attributes["COLOR_0"] = colours;
+    }
     const auto first = mesh.triangle.begin() + static_cast<std::ptrdiff_t>(p.first);
     const auto last = first + static_cast<std::ptrdiff_t>(p.count);
     if (n <= 65535) {  // 65535 itself is the primitive restart value, never an index
@@ -230,8 +279,10 @@ int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh,
 /// Adds `material` to `m` as an opaque, single-sided metallic-roughness material (white base
 /// colour: vertex colours give the colour, metallic 0) with KHR_materials_clearcoat,
 /// KHR_materials_sheen and KHR_materials_diffuse_transmission where its values ask for them
-/// (each added to extensionsUsed once).
-void add_pbr_material(tinygltf::Model& m, const AssetMaterial& material) {
+/// (each added to extensionsUsed once); its base colour texture is glTF texture
+/// textures[base_colour_texture].
+void add_pbr_material(tinygltf::Model& m, const AssetMaterial& material,
+                      const std::vector<int>& textures) {
   const PbrMaterial& pbr = material.pbr;
   auto check = [&](double v, const char* what) {
     if (!(v >= 0 && v <= 1))
@@ -245,6 +296,13 @@ void add_pbr_material(tinygltf::Model& m, const AssetMaterial& material) {
   for (int k = 0; k < 3; ++k) check(pbr.sheen[k], "sheen");
   const int index = add_material(m, material.name, 1.0, false, pbr.roughness);
   tinygltf::Material& mat = m.materials[static_cast<size_t>(index)];
+  if (material.base_colour_texture >= 0) {
+    if (static_cast<size_t>(material.base_colour_texture) >= textures.size())
+      bad_assets("material '" + material.name + "': texture index out of range");
+    mat.pbrMetallicRoughness.baseColorTexture.index =
+        textures[static_cast<size_t>(material.base_colour_texture)];
+    mat.pbrMetallicRoughness.baseColorTexture.texCoord = 0;
+  }
   auto use = [&m, &mat](const std::string& extension, tinygltf::Value::Object values) {
     mat.extensions[extension] = tinygltf::Value(std::move(values));
     if (std::find(m.extensionsUsed.begin(), m.extensionsUsed.end(), extension) ==
@@ -277,10 +335,40 @@ tinygltf::Model scene_model(const SceneAssets& assets) {
   for (const AssetMesh& mesh : assets.meshes)
     for (const AssetPrimitive& p : checked_primitives(mesh, assets.materials.size()))
       gltf_material[static_cast<size_t>(p.material)] = 0;
+  // The textures of those materials, as PNG images in the buffer, in the assets' order.
+  std::vector<int> gltf_texture(assets.textures.size(), -1);
+  for (size_t k = 0; k < assets.materials.size(); ++k) {
+    const int t = assets.materials[k].base_colour_texture;
+    if (gltf_material[k] >= 0 && t >= 0 && static_cast<size_t>(t) < assets.textures.size())
+      gltf_texture[static_cast<size_t>(t)] = 0;
+  }
+  for (size_t t = 0; t < assets.textures.size(); ++t) {
+    if (gltf_texture[t] < 0) continue;
+    if (m.samplers.empty()) {
+      tinygltf::Sampler sampler;
+      sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+      sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+      sampler.wrapS = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+      sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+      m.samplers.push_back(sampler);
+    }
+    const std::string png = encode_png(assets.textures[t]);
+    tinygltf::Image image;
+    image.name = assets.textures[t].name;
+    image.mimeType = "image/png";
+    image.bufferView = add_view(m, png.data(), png.size(), 0);
+    m.images.push_back(image);
+    tinygltf::Texture texture;
+    texture.name = assets.textures[t].name;
+    texture.sampler = 0;
+    texture.source = static_cast<int>(m.images.size()) - 1;
+    m.textures.push_back(texture);
+    gltf_texture[t] = static_cast<int>(m.textures.size()) - 1;
+  }
   for (size_t k = 0; k < assets.materials.size(); ++k) {
     if (gltf_material[k] < 0) continue;
     gltf_material[k] = static_cast<int>(m.materials.size());
-    add_pbr_material(m, assets.materials[k]);
+    add_pbr_material(m, assets.materials[k], gltf_texture);
   }
   for (const AssetMesh& mesh : assets.meshes) add_asset_mesh(m, mesh, gltf_material);
 

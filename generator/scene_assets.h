@@ -3,11 +3,13 @@
 // the OpenGL preview all read this; none of them knows about templates or cuts.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "pbr_material.h"
@@ -25,10 +27,20 @@ inline std::string asset_name(std::string_view name) {
   return s;
 }
 
-/// A named material; vertex colours give the base colour.
+/// An image for texturing: sRGB, 8 bits per channel, RGB, row 0 at the top.
+struct AssetTexture {
+  std::string name;
+  int width = 0, height = 0;
+  std::vector<uint8_t> srgb;  ///< width * height * 3
+};
+
+/// A named material. Its base colour is the vertex colours, or its texture when it has one
+/// (then the mesh's uv addresses it and the vertex colours are only a fallback for exporters
+/// without textures).
 struct AssetMaterial {
   std::string name;  ///< unique in the scene
   PbrMaterial pbr;
+  int base_colour_texture = -1;  ///< index into SceneAssets::textures, or -1
 };
 
 /// Triangles [first, first + count) of a mesh, drawn with one material.
@@ -44,6 +56,8 @@ struct AssetMesh {
   std::vector<glm::dvec3> position;   ///< #V, metres
   std::vector<glm::dvec3> normal;     ///< #V, unit length (shading normals)
   std::vector<glm::dvec3> colour;     ///< #V, linear RGB 0..1
+  std::vector<glm::dvec2> uv;         ///< #V texture coordinates 0..1 (glTF: v down from the
+                                      ///< top row), or empty: no textured material
   std::vector<glm::uvec3> triangle;   ///< #F, indices into the vertex arrays
   /// The triangles by material, in order, covering all of them without gaps (a piece: skin
   /// and walls, then caps). Empty: one primitive of material 0.
@@ -83,7 +97,8 @@ struct AssetLight {
 struct SceneAssets {
   std::string name;
   /// Material 0 is the plain default every mesh without primitives uses.
-  std::vector<AssetMaterial> materials{AssetMaterial{"vertex colour", PbrMaterial{}}};
+  std::vector<AssetMaterial> materials{AssetMaterial{"vertex colour", PbrMaterial{}, -1}};
+  std::vector<AssetTexture> textures;
   std::vector<AssetMesh> meshes;
   std::vector<AssetInstance> instances;
   AssetCamera camera;

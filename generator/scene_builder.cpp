@@ -129,13 +129,14 @@ PieceMaterials add_piece_materials(SceneAssets& assets, const std::string& name,
 }
 
 AssetMesh piece_mesh(const ShadedMesh& merged, size_t surface_triangles, PieceMaterials materials,
-                     const std::string& name) {
+                     const std::string& name, const std::vector<glm::dvec2>& uv) {
   AssetMesh out;
   out.name = name;
   out.position = merged.position;
   out.normal = merged.normal;
   out.colour = merged.colour;
   out.triangle = merged.triangle;
+  out.uv = uv;
   const size_t n = merged.triangle.size();
   if (materials.skin == materials.cut) {
     if (materials.skin != 0) out.primitives.push_back({0, n, materials.skin});
@@ -145,6 +146,26 @@ AssetMesh piece_mesh(const ShadedMesh& merged, size_t surface_triangles, PieceMa
       out.primitives.push_back({surface_triangles, n - surface_triangles, materials.cut});
   }
   return out;
+}
+
+PieceMaterials add_cap_texture(SceneAssets& assets, const PieceSet& set,
+                               const std::vector<const Piece*>& pieces, PieceMaterials materials,
+                               const std::string& object, const ColourModulation* modulation,
+                               double strength, const CapAtlasOptions& options,
+                               std::vector<std::vector<glm::dvec2>>& uv) {
+  CapAtlas atlas = bake_cap_atlas(pieces, set.sections, modulation, strength, options);
+  if (atlas.width == 0) {
+    uv.assign(pieces.size(), {});
+    return materials;
+  }
+  uv = std::move(atlas.uv);
+  assets.textures.push_back({object + "_cut", atlas.width, atlas.height, std::move(atlas.srgb)});
+  AssetMaterial cut = assets.materials[static_cast<size_t>(materials.cut)];
+  cut.name = object + "_cut";
+  cut.base_colour_texture = static_cast<int>(assets.textures.size()) - 1;
+  assets.materials.push_back(cut);
+  materials.cut = static_cast<int>(assets.materials.size()) - 1;
+  return materials;
 }
 
 glm::dvec3 largest_cap_normal(const Piece& piece) {
@@ -177,6 +198,7 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
   std::vector<ShadedMesh> shapes;  // kept pieces, object frame
   std::vector<size_t> surface_triangles;  // of each shape: its skin and walls
   std::vector<PieceMaterials> materials;  // of each shape
+  std::vector<std::vector<glm::dvec2>> uvs;  // of each shape: cap texture coordinates or none
   std::vector<glm::dvec3> caps;
   std::vector<std::string> names;
   for (size_t i = 0; i < scene.items.size(); ++i) {
@@ -210,17 +232,31 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
       const size_t n = set.pieces.size();
       const size_t keep = std::clamp<size_t>(
           static_cast<size_t>(std::llround(item.keep * static_cast<double>(n))), 1, n);
-      for (size_t k : choose(n, keep, object_seed(seed, ii, j, 2))) {
-        const Piece& piece = set.pieces[k];
+      const std::vector<size_t> kept = choose(n, keep, object_seed(seed, ii, j, 2));
+      const std::string object =
+          "i" + std::to_string(i) + "_" + asset_name(tmpl.name) + "_" + std::to_string(j);
+      PieceMaterials object_materials = item_materials;
+      std::vector<std::vector<glm::dvec2>> uv(kept.size());
+      if (options.cap_colours == CapColours::Texture) {
+        const auto t_bake = Clock::now();
+        std::vector<const Piece*> kept_pieces;
+        for (size_t k : kept) kept_pieces.push_back(&set.pieces[k]);
+        const ColourModulation modulation(variant.tmpl.npr, object_seed(seed, ii, j, 3));
+        object_materials = add_cap_texture(assets, set, kept_pieces, item_materials, object,
+                                           &modulation, scene.render.perlin, options.atlas, uv);
+        st.seconds_bake += seconds_since(t_bake);
+      }
+      for (size_t q = 0; q < kept.size(); ++q) {
+        const Piece& piece = set.pieces[kept[q]];
         shapes.push_back(merge_parts(piece));
         surface_triangles.push_back(surface_triangle_count(piece));
-        materials.push_back(item_materials);
+        materials.push_back(object_materials);
+        uvs.push_back(std::move(uv[q]));
         // Perlin colour modulation in the object frame: every piece of one object agrees.
         modulate_colours(shapes.back(), variant.tmpl.npr, scene.render.perlin,
                          object_seed(seed, ii, j, 3));
         caps.push_back(largest_cap_normal(piece));
-        names.push_back("i" + std::to_string(i) + "_" + asset_name(tmpl.name) + "_" +
-                        std::to_string(j) + "_piece" + std::to_string(piece.cell));
+        names.push_back(object + "_piece" + std::to_string(piece.cell));
       }
       ++st.objects;
       if (options.progress)
@@ -272,7 +308,7 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
       lo = glm::min(lo, q);
       hi = glm::max(hi, q);
     }
-    AssetMesh mesh = piece_mesh(shapes[s], surface_triangles[s], materials[s], names[s]);
+    AssetMesh mesh = piece_mesh(shapes[s], surface_triangles[s], materials[s], names[s], uvs[s]);
     st.triangles += mesh.triangle.size();
     assets.instances.push_back(
         {names[s], static_cast<int>(assets.meshes.size()), place.rotation, place.translation});

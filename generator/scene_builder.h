@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 
+#include "cap_atlas.h"
 #include "diffusion/diffusion.h"
 #include "pieces.h"
 #include "scene.h"
@@ -22,8 +23,16 @@ namespace cutaway {
 /// Makes the diffusion backend for one object's DS model (the CLI's --backend choice).
 using DiffusionFactory = std::function<std::unique_ptr<DiffusionBackend>(const DsModel&)>;
 
+/// Where cut faces take their colours from.
+enum class CapColours {
+  Texture,  ///< a baked texture per object (bake_cap_atlas); glTF caps use TEXCOORD_0
+  Vertex,   ///< the vertex colours (COLOR_0), as before textures
+};
+
 /// Options of build_scene.
 struct SceneBuildOptions {
+  CapColours cap_colours = CapColours::Texture;
+  CapAtlasOptions atlas;       ///< with CapColours::Texture
   DiffusionFactory diffusion;  ///< required
   /// Called after each object with (objects done, objects in all, a line of text); may be empty.
   std::function<void(int, int, const std::string&)> progress;
@@ -41,6 +50,7 @@ struct SceneStats {
   double seconds_sections = 0;  ///< cap cross-sections (triangulation + PMVC)
   double seconds_diffuse = 0;   ///< of which PMVC
   double seconds_clip = 0;      ///< clipping the skin and walls, stitching
+  double seconds_bake = 0;      ///< baking cap textures
   double seconds_layout = 0;    ///< placement
 };
 
@@ -78,9 +88,19 @@ PieceMaterials add_piece_materials(SceneAssets& assets, const std::string& name,
 /// A piece as an exportable mesh named `name`: `merged` is merge_parts of it (possibly
 /// recoloured), whose first `surface_triangles` triangles are its skin and walls and the rest
 /// its caps (surface_triangle_count); one primitive of each material, or one for all when
-/// the two are the same.
+/// the two are the same. `uv`: #V texture coordinates (CapAtlas::uv) or empty.
 AssetMesh piece_mesh(const ShadedMesh& merged, size_t surface_triangles, PieceMaterials materials,
-                     const std::string& name);
+                     const std::string& name, const std::vector<glm::dvec2>& uv = {});
+
+/// Bakes the caps of `pieces` (of one object, cut into `set`) into a texture added to
+/// `assets`, adds a copy of material `materials.cut` textured with it, named "<object>_cut",
+/// and returns the object's materials with it, and per piece the texture coordinates of its
+/// merge_parts vertices in `uv`. Pieces without caps: `materials` and empty uv.
+PieceMaterials add_cap_texture(SceneAssets& assets, const PieceSet& set,
+                               const std::vector<const Piece*>& pieces, PieceMaterials materials,
+                               const std::string& object, const ColourModulation* modulation,
+                               double strength, const CapAtlasOptions& options,
+                               std::vector<std::vector<glm::dvec2>>& uv);
 
 /// The outward normal of the piece's largest cap (by area), object frame; zero if it has none.
 glm::dvec3 largest_cap_normal(const Piece& piece);

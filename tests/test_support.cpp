@@ -107,14 +107,19 @@ GltfReport validate_gltf(const std::filesystem::path& file) {
   return r;
 }
 
-ThreeLoadReport load_gltf_three(const std::filesystem::path& file) {
+ThreeLoadReport load_gltf_three(const std::filesystem::path& file,
+                                const std::filesystem::path& screenshot, int width, int height) {
   const auto log = std::filesystem::path(CUTAWAY_TEST_TMP) /
                    ("three-" + std::to_string(::getpid()) + ".log");
   std::filesystem::create_directories(log.parent_path());
-  const std::string cmd = "cd " + shell_quote(CUTAWAY_SOURCE_DIR) +
-                          " && node tests/tools/load_gltf_three.mjs " +
-                          shell_quote(std::filesystem::absolute(file).string()) + " >" +
-                          shell_quote(log.string()) + " 2>&1";
+  const std::string cmd =
+      "cd " + shell_quote(CUTAWAY_SOURCE_DIR) + " && node tests/tools/load_gltf_three.mjs " +
+      shell_quote(std::filesystem::absolute(file).string()) +
+      (screenshot.empty()
+           ? std::string()
+           : " --screenshot " + shell_quote(std::filesystem::absolute(screenshot).string()) + " " +
+                 std::to_string(width) + " " + std::to_string(height)) +
+      " >" + shell_quote(log.string()) + " 2>&1";
   const int code = system_exit_code(std::system(cmd.c_str()));
   ThreeLoadReport r;
   r.output = slurp(log);

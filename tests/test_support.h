@@ -67,8 +67,12 @@ struct ThreeLoadReport {
 /// Loads `file` (.glb, or .gltf with its .bin) with three.js's GLTFLoader in headless Chromium
 /// (tests/tools/load_gltf_three.mjs: /usr/bin/chromium through npm playwright-core, three from
 /// node_modules/, served on 127.0.0.1 only). Chromium, node or the npm modules missing is a
-/// failed report (ok false, error set), never a skip. Takes about a second or two.
-ThreeLoadReport load_gltf_three(const std::filesystem::path& file);
+/// failed report (ok false, error set), never a skip. Takes about a second or two. With
+/// `screenshot`, also renders the file with its camera and lights (WebGL in software) into
+/// that PNG, width x height pixels.
+ThreeLoadReport load_gltf_three(const std::filesystem::path& file,
+                                const std::filesystem::path& screenshot = {}, int width = 800,
+                                int height = 600);
 
 /// A summary of a PNG file for checks on pictures.
 struct PngInfo {

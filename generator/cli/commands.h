@@ -70,6 +70,8 @@ struct SceneArgs {
   std::vector<std::string> outputs;
   int64_t seed = -1;  ///< >= 0: overrides the scene's seed
   int cube = 16;
+  std::string colours = "texture";  ///< "texture" or "vertex" (CapColours)
+  double texels_per_mm = 8.6;       ///< CapAtlasOptions::texels_per_m / 1000
 };
 int run_scene(const SceneArgs& args, const Common& common, OutputSet& outputs);
 

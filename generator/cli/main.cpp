@@ -498,6 +498,16 @@ int main(int argc, char** argv) {
   scene->add_option("--render", scene_args.render, "POV-Ray render (PNG)");
   scene->add_option("--cube", scene_args.cube, "cube-map texels per face edge for PMVC")
       ->check(CLI::Range(2, 256));
+  scene
+      ->add_option("--colours", scene_args.colours,
+                   "cut faces in glTF: texture (a baked texture per object, the default) or "
+                   "vertex (vertex colours)")
+      ->check(CLI::IsMember({"texture", "vertex"}));
+  scene
+      ->add_option("--texels-per-mm", scene_args.texels_per_mm,
+                   "texel density of baked cut-face textures (default 8.6: a 60 mm cut face "
+                   "516 texels across)")
+      ->check(CLI::Range(0.1, 100.0));
 
   std::vector<std::string> check_files;
   CLI::App* check =

@@ -242,6 +242,8 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
   const DiffusionChoice choice = parse_diffusion_choice(common.backend);
   std::string backend_name;
   SceneBuildOptions options;
+  options.cap_colours = a.colours == "vertex" ? CapColours::Vertex : CapColours::Texture;
+  options.atlas.texels_per_m = 1000 * a.texels_per_mm;
   options.diffusion = [&](const DsModel& model) {
     auto backend = make_diffusion(model, {a.cube, common.threads}, choice);
     backend_name = backend->name();

@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
+#include <stb/stb_image.h>
 #include <tiny_gltf.h>
 
 #include "gltf_export.h"
@@ -476,6 +477,84 @@ TEST(SceneGltf, ThreeJsLoadsSkinAndCutPrimitives) {
   EXPECT_EQ(r.mesh_objects, 2 * 2 + 1);  // the cube's two primitives, twice; the plate
   EXPECT_EQ(r.triangles, instanced_triangles(s));
   EXPECT_TRUE(r.warnings.empty()) << r.output;
+}
+
+/// small_scene() with the cube textured: every face mapped onto a 64 x 64 texture whose left
+/// half is blue and right half yellow, while its vertex colours stay red.
+SceneAssets scene_with_texture() {
+  SceneAssets s = small_scene();
+  AssetTexture texture{"halves", 64, 64, {}};
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const bool left = x < 32;
+      texture.srgb.insert(texture.srgb.end(), {static_cast<uint8_t>(left ? 20 : 240),
+                                               static_cast<uint8_t>(left ? 40 : 220),
+                                               static_cast<uint8_t>(left ? 230 : 20)});
+    }
+  s.textures.push_back(texture);
+  s.materials.push_back({"cube_texture", PbrMaterial{}, 0});
+  AssetMesh& cube = s.meshes[0];
+  for (size_t v = 0; v < cube.position.size(); ++v) {
+    const int corner = static_cast<int>(v % 4);  // (-1,-1), (1,-1), (1,1), (-1,1) per face
+    cube.uv.push_back({corner == 1 || corner == 2 ? 1.0 : 0.0, corner >= 2 ? 1.0 : 0.0});
+  }
+  cube.primitives = {{0, cube.triangle.size(), 1}};
+  return s;
+}
+
+TEST(SceneGltf, TexturedPrimitivesUseTexcoordsAndNoVertexColours) {
+  const auto dir = test::fresh_dir("scene-gltf-texture");
+  const SceneAssets s = scene_with_texture();
+  write_scene_gltf(dir / "salad.glb", s);
+  const auto report = test::validate_gltf(dir / "salad.glb");
+  EXPECT_EQ(report.errors, 0) << report.output;
+  EXPECT_EQ(validator_warnings(report), 0) << report.output;
+  const tinygltf::Model m = load(dir / "salad.glb");
+  ASSERT_EQ(m.images.size(), 1u);
+  EXPECT_EQ(m.images[0].mimeType, "image/png");
+  EXPECT_EQ(m.images[0].width, 64);
+  ASSERT_EQ(m.textures.size(), 1u);
+  ASSERT_EQ(m.materials.size(), 2u);
+  EXPECT_EQ(m.materials[1].pbrMetallicRoughness.baseColorTexture.index, 0);
+  const auto& cube = m.meshes[0].primitives[0];
+  EXPECT_EQ(cube.material, 1);
+  EXPECT_TRUE(cube.attributes.count("TEXCOORD_0"));
+  EXPECT_FALSE(cube.attributes.count("COLOR_0"));
+  const auto& plate = m.meshes[1].primitives[0];
+  EXPECT_TRUE(plate.attributes.count("COLOR_0"));
+  EXPECT_FALSE(plate.attributes.count("TEXCOORD_0"));
+  // Same assets, same bytes (the PNG included).
+  EXPECT_EQ(scene_to_glb(s), scene_to_glb(s));
+  // A textured material on a mesh without uv, or a texture index out of range, is refused.
+  SceneAssets bad = s;
+  bad.meshes[0].uv.clear();
+  EXPECT_THROW(scene_to_glb(bad), std::invalid_argument);
+  bad = s;
+  bad.materials[1].base_colour_texture = 1;
+  EXPECT_THROW(scene_to_glb(bad), std::invalid_argument);
+}
+
+TEST(SceneGltf, ThreeJsRendersTheTexture) {
+  // Blue shows only if three.js takes the cube's colour from the texture: its vertex colours
+  // are red, and red times blue would be dark.
+  const auto dir = test::fresh_dir("scene-gltf-texture-three");
+  write_scene_gltf(dir / "salad.glb", scene_with_texture());
+  const test::ThreeLoadReport r =
+      test::load_gltf_three(dir / "salad.glb", dir / "shot.png", 320, 240);
+  ASSERT_TRUE(r.ok) << r.error << "\n" << r.output;
+  int w = 0, h = 0, channels = 0;
+  unsigned char* pixels = stbi_load((dir / "shot.png").c_str(), &w, &h, &channels, 3);
+  ASSERT_NE(pixels, nullptr) << r.output;
+  EXPECT_EQ(w, 320);
+  size_t blue = 0, yellow = 0;
+  for (int i = 0; i < w * h; ++i) {
+    const unsigned char* p = pixels + 3 * i;
+    if (p[2] > 2 * p[0] && p[2] > 60) ++blue;
+    if (p[0] > 2 * p[2] && p[1] > 2 * p[2] && p[1] > 60) ++yellow;
+  }
+  stbi_image_free(pixels);
+  EXPECT_GT(blue, 100u);
+  EXPECT_GT(yellow, 100u);
 }
 
 }  // namespace

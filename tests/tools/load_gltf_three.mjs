@@ -1,6 +1,8 @@
 // Loads one glTF file (.glb, or .gltf with its .bin beside it) with three.js's GLTFLoader in
 // headless Chromium: a real glTF client, not a schema check.
-// Usage: node tests/tools/load_gltf_three.mjs FILE.glb|FILE.gltf
+// Usage: node tests/tools/load_gltf_three.mjs FILE.glb|FILE.gltf [--screenshot OUT.png [W H]]
+// With --screenshot it also renders the file with its camera and lights (WebGL through
+// SwiftShader) to OUT.png, W x H pixels (800 x 600 by default).
 // Prints one JSON line:
 //   {ok, meshes, nodes, cameras, lights, triangles, mesh_objects, camera_position,
 //    camera_direction, light_directions, warnings, seconds, error}
@@ -77,6 +79,23 @@ window.loadGltf = async (url) => {
   });
   return r;
 };
+// Renders the file with its first camera and lights over a grey background, as PNG data URL.
+window.renderGltf = async (url, width, height) => {
+  const gltf = await new GLTFLoader().loadAsync(url);
+  const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  renderer.setSize(width, height);
+  renderer.outputColorSpace = THREE.SRGBColorSpace;
+  document.body.appendChild(renderer.domElement);
+  const scene = new THREE.Scene();
+  scene.background = new THREE.Color(0.72, 0.72, 0.74);
+  scene.add(gltf.scene);
+  scene.add(new THREE.HemisphereLight(0xffffff, 0x808080, 0.6));
+  const camera = gltf.cameras[0];
+  camera.aspect = width / height;
+  camera.updateProjectionMatrix();
+  renderer.render(scene, camera);
+  return renderer.domElement.toDataURL('image/png');
+};
 window.pageReady = true;
 </script></body></html>`;
 
@@ -122,6 +141,9 @@ function serve(fileDir) {
 
 async function main() {
   const file = process.argv[2];
+  // --screenshot OUT.png [WIDTH HEIGHT]: also render the file to OUT.png (WebGL in software).
+  const shot = process.argv[3] === '--screenshot' ? process.argv[4] : null;
+  const shotWidth = Number(process.argv[5] ?? 800), shotHeight = Number(process.argv[6] ?? 600);
   if (!file) {
     return report({ error: 'usage: node tests/tools/load_gltf_three.mjs FILE.glb|FILE.gltf' });
   }
@@ -155,7 +177,8 @@ async function main() {
       headless: true,
       timeout: TIMEOUT_MS,
       args: [
-        '--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+        '--headless', '--no-sandbox', '--disable-quic', '--no-first-run',
+        ...(shot ? ['--use-angle=swiftshader', '--enable-unsafe-swiftshader'] : ['--disable-gpu']),
         '--disable-background-networking', '--disable-component-update', '--disable-sync',
         '--no-proxy-server', '--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE 127.0.0.1',
         '--disable-features=Translate,OptimizationHints,MediaRouter,DialMediaRouteProvider',
@@ -175,6 +198,11 @@ async function main() {
     await page.waitForFunction(() => window.pageReady === true, null, { timeout: TIMEOUT_MS });
     const url = '/file/' + encodeURIComponent(path.basename(abs));
     const result = await page.evaluate((u) => window.loadGltf(u), url);
+    if (shot) {
+      const data = await page.evaluate(([u, w, h]) => window.renderGltf(u, w, h),
+                                       [url, shotWidth, shotHeight]);
+      fs.writeFileSync(shot, Buffer.from(data.split(',')[1], 'base64'));
+    }
     return report({ ok: true, ...result, warnings });
   } catch (e) {
     return report({ error: String(e?.message ?? e).split('\n')[0], warnings });

@@ -1,0 +1,50 @@
+// Baked cap textures (the paper's limitation "DSs lack texture detail", addressed as its §7
+// suggests): the cut faces of one object's pieces get UVs from their plane frames, packed into
+// one texture atlas, and their colours (PMVC-diffused at the cap's vertices, Perlin-modulated
+// per texel in the object frame) baked at texel resolution, so detail finer than the cap mesh
+// survives and the geometry no longer has to carry the colour.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "colour_modulation.h"
+#include "pieces.h"
+
+namespace cutaway {
+
+/// How caps are baked.
+struct CapAtlasOptions {
+  double texels_per_m = 8600;  ///< texel density on the cut plane (a 60 mm cap: 516 texels)
+  int padding = 4;             ///< texels around each island, filled by dilation so that
+                               ///< mip-mapping does not bleed the background into its edges
+  int max_size = 4096;         ///< largest atlas side; denser islands are scaled down to fit
+};
+
+/// One object's cap atlas.
+struct CapAtlas {
+  int width = 0, height = 0;  ///< texels (0 x 0: no caps)
+  std::vector<uint8_t> srgb;  ///< width * height * 3, row 0 at the top (v = 0), sRGB 8-bit
+  double texels_per_m = 0;    ///< the density used (options.texels_per_m, or less to fit)
+  /// Per piece of the input, per vertex of merge_parts(piece): texture coordinates in 0..1
+  /// (glTF convention: u to the right, v down from the top row); (0, 0) on the skin and walls.
+  std::vector<std::vector<glm::dvec2>> uv;
+};
+
+/// Bakes the caps of `pieces` (all cut from one object by one cut_pieces call whose sections
+/// are `sections`) into one atlas. Each cap part is an island: its triangles mapped by the
+/// plane frame of its section (u_axis, v_axis: so the two caps of one cut are mirror images in
+/// texture space too), at texels_per_m, packed with stb_rect_pack in piece and part order.
+/// Every texel whose centre lies in a cap triangle gets the barycentric interpolation of the
+/// triangle's vertex colours (linear RGB), modulated by `modulation` at the texel's point in
+/// the object frame with `strength` (none when modulation is null), then encoded as sRGB;
+/// the islands are dilated by `padding` texels; other texels are black. Deterministic.
+/// @throws std::invalid_argument when texels_per_m <= 0, padding < 0 or max_size < 16
+CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
+                        const std::vector<CrossSection>& sections,
+                        const ColourModulation* modulation, double strength,
+                        const CapAtlasOptions& options);
+
+}  // namespace cutaway
