@@ -14,12 +14,12 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 #include <nlohmann/json.hpp>
-#include <stb/stb_image_write.h>
 #include <tiny_gltf.h>
 #include <unistd.h>
 
 #include "atomic_file.h"
 #include "pbr_material.h"
+#include "texture_png.h"
 
 namespace cutaway {
 
@@ -152,22 +152,6 @@ std::vector<double> gltf_vec3(const glm::dvec3& v) { return {v.x + 0.0, v.y + 0.
 
 [[noreturn]] void bad_assets(const std::string& what) {
   throw std::invalid_argument("scene assets: " + what);
-}
-
-/// `texture` as PNG bytes (stb_image_write; deterministic).
-std::string encode_png(const AssetTexture& texture) {
-  if (texture.width <= 0 || texture.height <= 0 ||
-      texture.srgb.size() != static_cast<size_t>(texture.width) * texture.height * 3)
-    bad_assets("texture '" + texture.name + "': size and pixels disagree");
-  std::string out;
-  auto append = [](void* context, void* data, int size) {
-    static_cast<std::string*>(context)->append(static_cast<const char*>(data),
-                                               static_cast<size_t>(size));
-  };
-  if (!stbi_write_png_to_func(append, &out, texture.width, texture.height, 3, texture.srgb.data(),
-                              texture.width * 3))
-    bad_assets("texture '" + texture.name + "': PNG encoding failed");
-  return out;
 }
 
 /// The primitives of `mesh` (one of material 0 when it lists none), checked to cover its

@@ -14,6 +14,7 @@
 #include <glm/mat3x3.hpp>
 
 #include "atomic_file.h"
+#include "texture_png.h"
 
 namespace cutaway {
 
@@ -245,25 +246,46 @@ void write_finish(std::string& out, const PbrMaterial& pbr, size_t k) {
   out += " }\n";
 }
 
-void write_mesh(std::string& out, const AssetMesh& m, const std::string& id, size_t k) {
-  // Each face's material, then the distinct (colour, material) pairs by their written text,
-  // in order of first use.
+/// The image file of material `material` when it is textured, has a file and the mesh has
+/// uv; else empty (the faces keep their vertex colours).
+std::string image_of(const SceneAssets& a, const AssetMesh& m, int material,
+                     const std::vector<std::string>& texture_files) {
+  const int t = a.materials[static_cast<size_t>(material)].base_colour_texture;
+  if (t < 0 || m.uv.empty() || static_cast<size_t>(t) >= texture_files.size()) return "";
+  return texture_files[static_cast<size_t>(t)];
+}
+
+void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, const std::string& id,
+                size_t k, const std::vector<std::string>& texture_files) {
+  // Each face's material, then the distinct textures by their written text, in order of first
+  // use: a (colour, finish) pair per corner, or one uv-mapped image per textured face.
   std::vector<int> face_material(m.triangle.size(), 0);
   for (const AssetPrimitive& p : m.primitives)
     for (size_t f = p.first; f < p.first + p.count; ++f) face_material[f] = p.material;
   std::map<std::string, size_t> texture_index;
   std::vector<std::string> colours;
-  auto texture_of = [&](unsigned vertex, int material) {
-    std::string text = "texture { pigment { rgb " + vector_text(m.colour[vertex]) + " } finish { " +
-                       finish_identifier(static_cast<size_t>(material)) + " } }";
+  auto index_of = [&](std::string text) {
     const auto [it, inserted] = texture_index.emplace(text, colours.size());
     if (inserted) colours.push_back(std::move(text));
-    return it->second;
+    return static_cast<unsigned>(it->second);
   };
   std::vector<glm::uvec3> face_textures(m.triangle.size());
-  for (size_t f = 0; f < m.triangle.size(); ++f)
+  std::vector<bool> imaged(m.triangle.size(), false);
+  for (size_t f = 0; f < m.triangle.size(); ++f) {
+    const std::string finish = finish_identifier(static_cast<size_t>(face_material[f]));
+    const std::string image = image_of(a, m, face_material[f], texture_files);
+    if (!image.empty()) {
+      imaged[f] = true;
+      face_textures[f].x = index_of("texture { uv_mapping pigment { image_map { png \"" + image +
+                                    "\" interpolate 2 } } finish { " + finish + " } }");
+      continue;
+    }
     for (int c = 0; c < 3; ++c)
-      face_textures[f][c] = static_cast<unsigned>(texture_of(m.triangle[f][c], face_material[f]));
+      face_textures[f][c] =
+          index_of("texture { pigment { rgb " + vector_text(m.colour[m.triangle[f][c]]) +
+                   " } finish { " + finish + " } }");
+  }
+  const bool with_uv = std::find(imaged.begin(), imaged.end(), true) != imaged.end();
 
   out += "// Mesh " + std::to_string(k) + ": " + asset_name(m.name) + " (" +
          std::to_string(m.position.size()) + " vertices, " + std::to_string(m.triangle.size()) +
@@ -283,14 +305,31 @@ void write_mesh(std::string& out, const AssetMesh& m, const std::string& id, siz
     }
     out += "\n  }\n";
   }
+  if (with_uv) {  // POV-Ray's image v runs up from the bottom row, glTF's down from the top
+    out += "  uv_vectors {\n    " + std::to_string(m.uv.size());
+    for (const glm::dvec2& q : m.uv) {
+      out += ",\n    <";
+      append_number(out, q.x);
+      out += ", ";
+      append_number(out, 1 - q.y);
+      out += ">";
+    }
+    out += "\n  }\n";
+  }
   out += "  texture_list {\n    " + std::to_string(colours.size());
   for (const auto& c : colours) out += ",\n    " + c;
   out += "\n  }\n  face_indices {\n    " + std::to_string(m.triangle.size());
   for (size_t f = 0; f < m.triangle.size(); ++f) {
     const glm::uvec3 t = m.triangle[f], x = face_textures[f];
     out += ",\n    <" + std::to_string(t.x) + ", " + std::to_string(t.y) + ", " +
-           std::to_string(t.z) + ">, " + std::to_string(x.x) + ", " + std::to_string(x.y) + ", " +
-           std::to_string(x.z);
+           std::to_string(t.z) + ">, " + std::to_string(x.x);
+    if (!imaged[f]) out += ", " + std::to_string(x.y) + ", " + std::to_string(x.z);
+  }
+  if (with_uv) {
+    out += "\n  }\n  uv_indices {\n    " + std::to_string(m.triangle.size());
+    for (const glm::uvec3& t : m.triangle)
+      out += ",\n    <" + std::to_string(t.x) + ", " + std::to_string(t.y) + ", " +
+             std::to_string(t.z) + ">";
   }
   out += "\n  }\n}\n\n";
 }
@@ -390,7 +429,16 @@ void write_strokes(std::string& out, const SceneAssets& a, const std::vector<Str
 
 }  // namespace
 
-std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* strokes) {
+std::vector<std::string> pov_texture_files(const std::filesystem::path& pov,
+                                           const SceneAssets& assets) {
+  std::vector<std::string> out;
+  for (const AssetTexture& t : assets.textures)
+    out.push_back(pov.stem().string() + "_" + asset_name(t.name) + ".png");
+  return out;
+}
+
+std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* strokes,
+                         const std::vector<std::string>& texture_files) {
   require(!assets.materials.empty(), "no materials");
   for (const AssetMaterial& material : assets.materials) {
     const PbrMaterial& p = material.pbr;
@@ -428,7 +476,7 @@ std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* s
   for (size_t k = 0; k < assets.meshes.size(); ++k) {
     if (assets.meshes[k].triangle.empty()) continue;  // POV-Ray refuses empty meshes
     ids[k] = mesh_identifier(k, assets.meshes[k].name);
-    write_mesh(out, assets.meshes[k], ids[k], k);
+    write_mesh(out, assets, assets.meshes[k], ids[k], k, texture_files);
   }
   for (size_t i = 0; i < assets.instances.size(); ++i) {
     const auto& id = ids[static_cast<size_t>(assets.instances[i].mesh)];
@@ -442,8 +490,14 @@ std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* s
 }
 
 void write_scene_pov(const std::filesystem::path& path, const SceneAssets& assets,
-                     const std::vector<Stroke>* strokes) {
-  write_file_atomically(path, scene_to_pov(assets, strokes));
+                     const std::vector<Stroke>* strokes, bool with_textures) {
+  std::vector<std::string> files;
+  if (with_textures) {
+    files = pov_texture_files(path, assets);
+    for (size_t t = 0; t < files.size(); ++t)
+      write_file_atomically(path.parent_path() / files[t], encode_png(assets.textures[t]));
+  }
+  write_file_atomically(path, scene_to_pov(assets, strokes, files));
 }
 
 }  // namespace cutaway

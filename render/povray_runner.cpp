@@ -215,6 +215,8 @@ void render_povray(const fs::path& pov_file, const fs::path& png_out, int width,
     args.push_back("-A");
   }
   if (options.threads > 0) args.push_back("+WT" + std::to_string(options.threads));
+  // Files the scene names (image_map textures) are found beside it.
+  args.push_back("+L" + fs::absolute(pov_file).parent_path().string());
 
   const ChildResult run = run_in(dir.path(), exe, args);
   const fs::path image = dir.path() / "scene.png";

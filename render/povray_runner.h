@@ -28,11 +28,13 @@ struct PovrayOptions {
 /// failed run leaves no partial file and an existing `png_out` untouched). The temporary
 /// directory is removed in every case, also when SIGTERM, SIGINT or SIGHUP stops the process
 /// (RemoveOnSignal); POV-Ray itself gets SIGTERM when the calling thread ends (PR_SET_PDEATHSIG:
-/// call this from a thread that outlives the render, e.g. the main thread). The PNG is 8-bit RGB, sRGB-encoded (a scene written with
-/// `assumed_gamma 1.0` and linear colours, as scene_to_pov() writes, comes out right).
+/// call this from a thread that outlives the render, e.g. the main thread). The PNG is 8-bit RGB,
+/// sRGB-encoded (a scene written with `assumed_gamma 1.0` and linear colours, as scene_to_pov()
+/// writes, comes out right).
 ///
-/// The scene must be self-contained: it is rendered away from its own directory, so only
-/// POV-Ray's standard include files (colors.inc, ...) can be #included.
+/// The scene is rendered away from its own directory, with that directory on POV-Ray's
+/// library path (+L): files it names by relative name (image_map textures written beside it)
+/// are found there, besides POV-Ray's standard include files (colors.inc, ...).
 ///
 /// @param pov_file  a readable POV-Ray scene file
 /// @param png_out   where the PNG goes; missing parent directories are created

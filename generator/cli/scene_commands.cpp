@@ -103,7 +103,7 @@ Written write_outputs(const SceneAssets& assets, const Targets& t, int threads,
     if (output_format("-o", out.given) == Format::Gltf) {
       write_scene_gltf(out.file, assets);
     } else {
-      write_scene_pov(out.file, assets, stroke_ptr);
+      write_scene_pov(out.file, assets, stroke_ptr, true);
       pov_written = out.file;
     }
     spdlog::info("wrote {}", out.given);
@@ -127,7 +127,7 @@ Written write_outputs(const SceneAssets& assets, const Targets& t, int threads,
       temp = std::filesystem::temp_directory_path() /
              ("cutaway-" + std::to_string(::getpid()) + "-" + assets.name + ".pov");
       temp_guard = RemoveOnSignal(temp);
-      write_scene_pov(temp, assets, stroke_ptr);
+      write_scene_pov(temp, assets, stroke_ptr);  // vertex colours: no texture files to clean
       pov = temp;
     }
     PovrayOptions options;
@@ -263,6 +263,11 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
     spdlog::warn("{} pieces are not closed 2-manifolds", st.defective_pieces);
   spdlog::info("{}: {} objects, {} pieces placed, {} triangles (seed {})", scene.name,
                st.objects, st.placed, st.triangles, seed);
+  // The textures of each .pov go beside it, committed with it.
+  for (const Target& out : targets.exports)
+    if (output_format("-o", out.given) == Format::Pov)
+      for (const std::string& name : pov_texture_files(out.given, assets))
+        outputs.add("-o", (std::filesystem::path(out.given).parent_path() / name).string());
   const Written w = write_outputs(assets, targets, common.threads, scene.render.silhouettes);
   if (common.stats) {
     std::fprintf(

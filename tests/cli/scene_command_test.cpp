@@ -54,26 +54,31 @@ TEST(SceneCommand, ExportsValidGltfAndPovRayAndPictures) {
   const std::string pov = test::read_file(dir / "tiny.pov");
   EXPECT_NE(pov.find("assumed_gamma 1.0"), std::string::npos);
   EXPECT_NE(pov.find("mesh2"), std::string::npos);
+  // The .pov's cut-face textures beside it, one per object with caps, named in it.
+  EXPECT_EQ(pov.find("image_map { png \"tiny_i0_tomato_0_cut.png\""), pov.find("image_map"));
   // Nothing but the outputs is left in the folder.
   EXPECT_EQ(test::files_in(dir),
             (std::vector<std::string>{"povray.png", "preview.png", "tiny.bin", "tiny.glb",
-                                      "tiny.gltf", "tiny.pov"}));
+                                      "tiny.gltf", "tiny.pov", "tiny_i0_tomato_0_cut.png",
+                                      "tiny_i1_onion_0_cut.png", "tiny_i2_cucumber_0_cut.png"}));
 }
 
 TEST(SceneCommand, SameSeedSameBytesWhateverTheThreadsAnotherSeedAnotherLayout) {
+  // One folder per run, the same file names (a .pov names its texture files by its stem).
   const fs::path dir = test::fresh_dir("scene-determinism");
-  for (const auto& [stem, extra] :
-       std::vector<std::pair<std::string, std::vector<std::string>>>{
+  for (const auto& [run, extra] : std::vector<std::pair<std::string, std::vector<std::string>>>{
            {"a", {"--threads", "1"}}, {"b", {"--threads", "2"}}, {"c", {"--seed", "12"}}}) {
-    const test::RunResult r = test::run_cutaway(scene_args(dir, stem, extra));
+    fs::create_directories(dir / run);
+    const test::RunResult r = test::run_cutaway(scene_args(dir / run, "s", extra));
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
-  for (const char* ext : {".glb", ".pov"}) {
-    const std::string a = test::read_file(dir / (std::string("a") + ext));
-    ASSERT_FALSE(a.empty());
-    EXPECT_TRUE(a == test::read_file(dir / (std::string("b") + ext))) << ext;
-    EXPECT_FALSE(a == test::read_file(dir / (std::string("c") + ext))) << ext;
+  for (const char* file : {"s.glb", "s.pov", "s_i0_tomato_0_cut.png"}) {
+    const std::string a = test::read_file(dir / "a" / file);
+    ASSERT_FALSE(a.empty()) << file;
+    EXPECT_TRUE(a == test::read_file(dir / "b" / file)) << file;
+    EXPECT_FALSE(a == test::read_file(dir / "c" / file)) << file;
   }
+  EXPECT_EQ(test::files_in(dir / "a"), test::files_in(dir / "b"));
 }
 
 TEST(SceneCommand, RefusesBadArgumentsAndLeavesNothing) {

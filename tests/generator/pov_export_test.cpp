@@ -396,5 +396,46 @@ TEST(PovExport, AFinishPerMaterialOnTheFacesThatUseIt) {
   EXPECT_THROW(scene_to_pov(s), std::invalid_argument);
 }
 
+TEST(PovExport, TexturedFacesUseTheirImageBesideTheScene) {
+  // Mesh 0 (a red cube) mapped onto a 16 x 16 texture, blue on the left, yellow on the right.
+  SceneAssets s = test_scene();
+  AssetTexture texture{"halves", 16, 16, {}};
+  for (int i = 0; i < 16 * 16; ++i) {
+    const bool left = i % 16 < 8;
+    texture.srgb.insert(texture.srgb.end(), {uint8_t(left ? 20 : 240), uint8_t(left ? 40 : 220),
+                                             uint8_t(left ? 230 : 20)});
+  }
+  s.textures.push_back(texture);
+  s.materials.push_back({"cube_texture", PbrMaterial{}, 0});
+  AssetMesh& cube = s.meshes[0];
+  for (size_t v = 0; v < cube.position.size(); ++v) {
+    const int corner = static_cast<int>(v % 4);
+    cube.uv.push_back({corner == 1 || corner == 2 ? 1.0 : 0.0, corner >= 2 ? 1.0 : 0.0});
+  }
+  cube.primitives = {{0, cube.triangle.size(), 1}};
+  const fs::path dir = test::fresh_dir("pov_export_texture");
+  write_scene_pov(dir / "scene.pov", s, nullptr, true);
+  EXPECT_EQ(test::files_in(dir), (std::vector<std::string>{"scene.pov", "scene_halves.png"}));
+  const std::string text = test::read_file(dir / "scene.pov");
+  EXPECT_EQ(count(text, "image_map { png \"scene_halves.png\" interpolate 2 }"), 1u);
+  EXPECT_EQ(count(text, "uv_vectors {"), 1u);
+  EXPECT_EQ(count(text, "uv_indices {"), 1u);
+  // Without texture files the faces keep their vertex colours.
+  EXPECT_EQ(count(scene_to_pov(s), "image_map"), 0u);
+  PovrayOptions options;
+  options.threads = 2;
+  render_povray(dir / "scene.pov", dir / "scene.png", s.width, s.height, options);
+  const Png png = read_png(dir / "scene.png");
+  size_t blue = 0, yellow = 0;
+  for (int y = 0; y < png.height; ++y)
+    for (int x = 0; x < png.width; ++x) {
+      const glm::dvec3 c = png.srgb8(x, y);
+      if (c.b > 2 * c.r && c.b > 60) ++blue;
+      if (c.r > 2 * c.b && c.g > 2 * c.b && c.g > 60) ++yellow;
+    }
+  EXPECT_GT(blue, 20u);
+  EXPECT_GT(yellow, 20u);
+}
+
 }  // namespace
 }  // namespace cutaway

@@ -1,0 +1,16 @@
+// Textures as PNG files: the one encoder of AssetTexture images, for glTF (embedded) and
+// POV-Ray (files beside the scene).
+#pragma once
+
+#include <string>
+
+#include "scene_assets.h"
+
+namespace cutaway {
+
+/// `texture` as PNG bytes (stb_image_write, 8-bit RGB; deterministic: the same texture gives
+/// the same bytes).
+/// @throws std::invalid_argument when its size and pixel count disagree or it is empty
+std::string encode_png(const AssetTexture& texture);
+
+}  // namespace cutaway
