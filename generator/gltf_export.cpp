@@ -180,12 +180,44 @@ int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh,
   if (mesh.normal.size() != n || mesh.colour.size() != n) {
     bad_assets("mesh '" + mesh.name + "': position, normal and colour counts differ");
   }
+  if (!mesh.uv.empty() && mesh.uv.size() != n)
+    bad_assets("mesh '" + mesh.name + "': uv count differs from positions");
   const std::vector<AssetPrimitive> primitives = checked_primitives(mesh, gltf_material.size());
-  std::vector<float> pos, normal, colour;
-  pos.reserve(3 * n);
-  normal.reserve(3 * n);
-  colour.reserve(3 * n);
+  // Per primitive: textured or not, and its triangles (the coarse ones of a textured primitive
+  // that has them: its colour is in the texture).
+  std::vector<bool> textured;
+  std::vector<std::vector<glm::uvec3>> lists;
+  for (const AssetPrimitive& p : primitives) {
+    const int material = gltf_material[static_cast<size_t>(p.material)];
+    textured.push_back(
+        m.materials[static_cast<size_t>(material)].pbrMetallicRoughness.baseColorTexture.index >=
+        0);
+    if (textured.back() && mesh.uv.empty())
+      bad_assets("mesh '" + mesh.name + "': a textured material needs uv");
+    if (textured.back() && !p.coarse.empty()) {
+      lists.push_back(p.coarse);
+    } else {
+      const auto first = mesh.triangle.begin() + static_cast<std::ptrdiff_t>(p.first);
+      lists.emplace_back(first, first + static_cast<std::ptrdiff_t>(p.count));
+    }
+    for (const glm::uvec3& t : lists.back())
+      if (t.x >= n || t.y >= n || t.z >= n)
+        bad_assets("mesh '" + mesh.name + "': a triangle index is out of range");
+  }
+  // Only the vertices some triangle uses, in their order.
+  std::vector<unsigned> remap(n, ~0u);
+  for (const auto& list : lists)
+    for (const glm::uvec3& t : list)
+      for (int k = 0; k < 3; ++k) remap[t[k]] = 0;
+  unsigned used = 0;
+  for (unsigned& r : remap)
+    if (r == 0) r = used++;
+  std::vector<float> pos, normal, colour, xy;
+  pos.reserve(3 * used);
+  normal.reserve(3 * used);
+  colour.reserve(3 * used);
   for (size_t i = 0; i < n; ++i) {
+    if (remap[i] == ~0u) continue;
     const glm::dvec3& p = mesh.position[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
       bad_assets("mesh '" + mesh.name + "': a position is not finite");
@@ -199,59 +231,45 @@ int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh,
       normal.push_back(static_cast<float>(nrm[k]));
       colour.push_back(static_cast<float>(c[k]));
     }
-  }
-  for (const glm::uvec3& t : mesh.triangle) {
-    if (t.x >= n || t.y >= n || t.z >= n) {
-      bad_assets("mesh '" + mesh.name + "': a triangle index is out of range");
+    if (!mesh.uv.empty()) {
+      const glm::dvec2 q = mesh.uv[i];
+      if (!std::isfinite(q.x) || !std::isfinite(q.y))
+        bad_assets("mesh '" + mesh.name + "': a uv is not finite");
+      xy.insert(xy.end(), {static_cast<float>(q.x), static_cast<float>(q.y)});
     }
   }
-  if (!mesh.uv.empty() && mesh.uv.size() != n)
-    bad_assets("mesh '" + mesh.name + "': uv count differs from positions");
   const int positions = add_vec3_accessor(m, pos, true);
   const int normals = add_vec3_accessor(m, normal, false);
   int colours = -1, uvs = -1;  // added when some primitive uses them
   tinygltf::Mesh gm;
   gm.name = mesh.name;
-  for (const AssetPrimitive& p : primitives) {
+  for (size_t k = 0; k < primitives.size(); ++k) {
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_TRIANGLES;
-    prim.material = gltf_material[static_cast<size_t>(p.material)];
+    prim.material = gltf_material[static_cast<size_t>(primitives[k].material)];
     prim.attributes["POSITION"] = positions;
     prim.attributes["NORMAL"] = normals;
     // A textured material takes its colour from TEXCOORD_0, never also from COLOR_0 (glTF
     // would multiply the two).
-    if (m.materials[static_cast<size_t>(prim.material)]
-            .pbrMetallicRoughness.baseColorTexture.index >= 0) {
-      if (mesh.uv.empty()) bad_assets("mesh '" + mesh.name + "': a textured material needs uv");
-      if (uvs < 0) {
-        std::vector<float> xy;
-        xy.reserve(2 * n);
-        for (const glm::dvec2& q : mesh.uv) {
-          if (!std::isfinite(q.x) || !std::isfinite(q.y))
-            bad_assets("mesh '" + mesh.name + "': a uv is not finite");
-          xy.insert(xy.end(), {static_cast<float>(q.x), static_cast<float>(q.y)});
-        }
-        uvs = add_vec2_accessor(m, xy);
-      }
+    if (textured[k]) {
+      if (uvs < 0) uvs = add_vec2_accessor(m, xy);
       prim.attributes["TEXCOORD_0"] = uvs;
     } else {
       if (colours < 0) colours = add_vec3_accessor(m, colour, false);
       prim.attributes["COLOR_0"] = colours;
     }
-    const auto first = mesh.triangle.begin() + static_cast<std::ptrdiff_t>(p.first);
-    const auto last = first + static_cast<std::ptrdiff_t>(p.count);
-    if (n <= 65535) {  // 65535 itself is the primitive restart value, never an index
+    if (used <= 65535) {  // 65535 itself is the primitive restart value, never an index
       std::vector<uint16_t> idx;
-      idx.reserve(3 * p.count);
-      for (auto t = first; t != last; ++t) {
-        idx.insert(idx.end(), {static_cast<uint16_t>(t->x), static_cast<uint16_t>(t->y),
-                               static_cast<uint16_t>(t->z)});
-      }
+      idx.reserve(3 * lists[k].size());
+      for (const glm::uvec3& t : lists[k])
+        idx.insert(idx.end(), {static_cast<uint16_t>(remap[t.x]), static_cast<uint16_t>(remap[t.y]),
+                               static_cast<uint16_t>(remap[t.z])});
       prim.indices = add_u16_index_accessor(m, idx);
     } else {
       std::vector<uint32_t> idx;
-      idx.reserve(3 * p.count);
-      for (auto t = first; t != last; ++t) idx.insert(idx.end(), {t->x, t->y, t->z});
+      idx.reserve(3 * lists[k].size());
+      for (const glm::uvec3& t : lists[k])
+        idx.insert(idx.end(), {remap[t.x], remap[t.y], remap[t.z]});
       prim.indices = add_index_accessor(m, idx);
     }
     gm.primitives.push_back(prim);

@@ -257,11 +257,24 @@ std::string image_of(const SceneAssets& a, const AssetMesh& m, int material,
 
 void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, const std::string& id,
                 size_t k, const std::vector<std::string>& texture_files) {
-  // Each face's material, then the distinct textures by their written text, in order of first
-  // use: a (colour, finish) pair per corner, or one uv-mapped image per textured face.
-  std::vector<int> face_material(m.triangle.size(), 0);
-  for (const AssetPrimitive& p : m.primitives)
-    for (size_t f = p.first; f < p.first + p.count; ++f) face_material[f] = p.material;
+  // The faces with their materials: a textured primitive's coarse triangles where it has them
+  // and its image is written (its colour is in the texture), else the mesh's own.
+  std::vector<glm::uvec3> faces;
+  std::vector<int> face_material;
+  std::vector<AssetPrimitive> primitives = m.primitives;
+  if (primitives.empty()) primitives.push_back({0, m.triangle.size(), 0, {}});
+  for (const AssetPrimitive& p : primitives) {
+    const bool coarse = !p.coarse.empty() && !image_of(a, m, p.material, texture_files).empty();
+    if (coarse) {
+      faces.insert(faces.end(), p.coarse.begin(), p.coarse.end());
+    } else {
+      faces.insert(faces.end(), m.triangle.begin() + static_cast<std::ptrdiff_t>(p.first),
+                   m.triangle.begin() + static_cast<std::ptrdiff_t>(p.first + p.count));
+    }
+    face_material.resize(faces.size(), p.material);
+  }
+  // The distinct textures by their written text, in order of first use: a (colour, finish)
+  // pair per corner, or one uv-mapped image per textured face.
   std::map<std::string, size_t> texture_index;
   std::vector<std::string> colours;
   auto index_of = [&](std::string text) {
@@ -269,9 +282,9 @@ void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, cons
     if (inserted) colours.push_back(std::move(text));
     return static_cast<unsigned>(it->second);
   };
-  std::vector<glm::uvec3> face_textures(m.triangle.size());
-  std::vector<bool> imaged(m.triangle.size(), false);
-  for (size_t f = 0; f < m.triangle.size(); ++f) {
+  std::vector<glm::uvec3> face_textures(faces.size());
+  std::vector<bool> imaged(faces.size(), false);
+  for (size_t f = 0; f < faces.size(); ++f) {
     const std::string finish = finish_identifier(static_cast<size_t>(face_material[f]));
     const std::string image = image_of(a, m, face_material[f], texture_files);
     if (!image.empty()) {
@@ -282,13 +295,13 @@ void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, cons
     }
     for (int c = 0; c < 3; ++c)
       face_textures[f][c] =
-          index_of("texture { pigment { rgb " + vector_text(m.colour[m.triangle[f][c]]) +
+          index_of("texture { pigment { rgb " + vector_text(m.colour[faces[f][c]]) +
                    " } finish { " + finish + " } }");
   }
   const bool with_uv = std::find(imaged.begin(), imaged.end(), true) != imaged.end();
 
   out += "// Mesh " + std::to_string(k) + ": " + asset_name(m.name) + " (" +
-         std::to_string(m.position.size()) + " vertices, " + std::to_string(m.triangle.size()) +
+         std::to_string(m.position.size()) + " vertices, " + std::to_string(faces.size()) +
          " triangles, distinct colours: " + std::to_string(colours.size()) + ")\n";
   out += "#declare " + id + " = mesh2 {\n  vertex_vectors {\n    " +
          std::to_string(m.position.size());
@@ -318,16 +331,16 @@ void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, cons
   }
   out += "  texture_list {\n    " + std::to_string(colours.size());
   for (const auto& c : colours) out += ",\n    " + c;
-  out += "\n  }\n  face_indices {\n    " + std::to_string(m.triangle.size());
-  for (size_t f = 0; f < m.triangle.size(); ++f) {
-    const glm::uvec3 t = m.triangle[f], x = face_textures[f];
+  out += "\n  }\n  face_indices {\n    " + std::to_string(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const glm::uvec3 t = faces[f], x = face_textures[f];
     out += ",\n    <" + std::to_string(t.x) + ", " + std::to_string(t.y) + ", " +
            std::to_string(t.z) + ">, " + std::to_string(x.x);
     if (!imaged[f]) out += ", " + std::to_string(x.y) + ", " + std::to_string(x.z);
   }
   if (with_uv) {
-    out += "\n  }\n  uv_indices {\n    " + std::to_string(m.triangle.size());
-    for (const glm::uvec3& t : m.triangle)
+    out += "\n  }\n  uv_indices {\n    " + std::to_string(faces.size());
+    for (const glm::uvec3& t : faces)
       out += ",\n    <" + std::to_string(t.x) + ", " + std::to_string(t.y) + ", " +
              std::to_string(t.z) + ">";
   }

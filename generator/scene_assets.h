@@ -47,6 +47,10 @@ struct AssetMaterial {
 struct AssetPrimitive {
   size_t first = 0, count = 0;
   int material = 0;  ///< index into SceneAssets::materials
+  /// Empty, or the same surface in fewer triangles (over the mesh's vertices) for exporters
+  /// that take its colour from the material's texture: a cut face's outline triangulated
+  /// (coarse_cap_triangles), whose inner vertices only carried colour.
+  std::vector<glm::uvec3> coarse;
 };
 
 /// One triangle mesh in its own frame (metres). Triangles are counter-clockwise seen from

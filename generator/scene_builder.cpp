@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "colour_modulation.h"
+#include "coarse_cap.h"
 #include "container_mesh.h"
 #include "random.h"
 #include "template_parser.h"
@@ -129,7 +130,8 @@ PieceMaterials add_piece_materials(SceneAssets& assets, const std::string& name,
 }
 
 AssetMesh piece_mesh(const ShadedMesh& merged, size_t surface_triangles, PieceMaterials materials,
-                     const std::string& name, const std::vector<glm::dvec2>& uv) {
+                     const std::string& name, const std::vector<glm::dvec2>& uv,
+                     const std::vector<glm::uvec3>& coarse_caps) {
   AssetMesh out;
   out.name = name;
   out.position = merged.position;
@@ -143,7 +145,22 @@ AssetMesh piece_mesh(const ShadedMesh& merged, size_t surface_triangles, PieceMa
   } else {
     if (surface_triangles > 0) out.primitives.push_back({0, surface_triangles, materials.skin});
     if (surface_triangles < n)
-      out.primitives.push_back({surface_triangles, n - surface_triangles, materials.cut});
+      out.primitives.push_back(
+          {surface_triangles, n - surface_triangles, materials.cut, coarse_caps});
+  }
+  return out;
+}
+
+std::vector<glm::uvec3> coarse_caps(const Piece& piece, const std::vector<CrossSection>& sections) {
+  std::vector<glm::uvec3> out;
+  unsigned offset = 0;
+  for (const PiecePart& part : piece.parts) {
+    if (part.kind == PartKind::Cap) {
+      const CrossSection& section = sections.at(static_cast<size_t>(part.plane));
+      for (const glm::uvec3& t : coarse_cap_triangles(part.mesh, section.u_axis, section.v_axis))
+        out.push_back(t + offset);
+    }
+    offset += static_cast<unsigned>(part.mesh.position.size());
   }
   return out;
 }
@@ -199,6 +216,7 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
   std::vector<size_t> surface_triangles;  // of each shape: its skin and walls
   std::vector<PieceMaterials> materials;  // of each shape
   std::vector<std::vector<glm::dvec2>> uvs;  // of each shape: cap texture coordinates or none
+  std::vector<std::vector<glm::uvec3>> coarse;  // of each shape: its caps' coarse triangles
   std::vector<glm::dvec3> caps;
   std::vector<std::string> names;
   for (size_t i = 0; i < scene.items.size(); ++i) {
@@ -252,6 +270,9 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
         surface_triangles.push_back(surface_triangle_count(piece));
         materials.push_back(object_materials);
         uvs.push_back(std::move(uv[q]));
+        coarse.push_back(options.cap_colours == CapColours::Texture
+                             ? coarse_caps(piece, set.sections)
+                             : std::vector<glm::uvec3>{});
         // Perlin colour modulation in the object frame: every piece of one object agrees.
         modulate_colours(shapes.back(), variant.tmpl.npr, scene.render.perlin,
                          object_seed(seed, ii, j, 3));
@@ -308,7 +329,8 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
       lo = glm::min(lo, q);
       hi = glm::max(hi, q);
     }
-    AssetMesh mesh = piece_mesh(shapes[s], surface_triangles[s], materials[s], names[s], uvs[s]);
+    AssetMesh mesh =
+        piece_mesh(shapes[s], surface_triangles[s], materials[s], names[s], uvs[s], coarse[s]);
     st.triangles += mesh.triangle.size();
     assets.instances.push_back(
         {names[s], static_cast<int>(assets.meshes.size()), place.rotation, place.translation});

@@ -88,9 +88,15 @@ PieceMaterials add_piece_materials(SceneAssets& assets, const std::string& name,
 /// A piece as an exportable mesh named `name`: `merged` is merge_parts of it (possibly
 /// recoloured), whose first `surface_triangles` triangles are its skin and walls and the rest
 /// its caps (surface_triangle_count); one primitive of each material, or one for all when
-/// the two are the same. `uv`: #V texture coordinates (CapAtlas::uv) or empty.
+/// the two are the same. `uv`: #V texture coordinates (CapAtlas::uv) or empty; `coarse_caps`:
+/// the caps' coarse triangles (coarse_caps()) for the cap primitive, or empty.
 AssetMesh piece_mesh(const ShadedMesh& merged, size_t surface_triangles, PieceMaterials materials,
-                     const std::string& name, const std::vector<glm::dvec2>& uv = {});
+                     const std::string& name, const std::vector<glm::dvec2>& uv = {},
+                     const std::vector<glm::uvec3>& coarse_caps = {});
+
+/// The caps of `piece` re-triangulated from their outlines (coarse_cap_triangles in the plane
+/// frame of their section), over the vertex indices of merge_parts(piece).
+std::vector<glm::uvec3> coarse_caps(const Piece& piece, const std::vector<CrossSection>& sections);
 
 /// Bakes the caps of `pieces` (of one object, cut into `set`) into a texture added to
 /// `assets`, adds a copy of material `materials.cut` textured with it, named "<object>_cut",

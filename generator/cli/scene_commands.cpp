@@ -276,12 +276,13 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
         "\"pieces\": %d, \"placed\": %d, \"triangles\": %zu, \"diffused_points\": %zu, "
         "\"seconds\": {\"parse\": %.4f, \"build\": %.4f, \"variants\": %.4f, "
         "\"backend_setup\": %.4f, \"sections\": %.4f, \"diffuse\": %.4f, \"clip\": %.4f, "
-        "\"layout\": %.4f, \"strokes\": %.4f, \"export\": %.4f, \"png\": %.4f, "
+        "\"bake\": %.4f, \"layout\": %.4f, \"strokes\": %.4f, \"export\": %.4f, \"png\": %.4f, "
         "\"povray\": %.4f}}\n",
-        scene.name.c_str(), static_cast<unsigned long long>(seed), backend_name.c_str(),
-        st.objects, st.pieces, st.placed, st.triangles, st.diffused_points, t_parse, t_build,
+        scene.name.c_str(), static_cast<unsigned long long>(seed), backend_name.c_str(), st.objects,
+        st.pieces, st.placed, st.triangles, st.diffused_points, t_parse, t_build,
         st.seconds_variants, st.seconds_backend, st.seconds_sections, st.seconds_diffuse,
-        st.seconds_clip, st.seconds_layout, w.strokes_s, w.export_s, w.preview_s, w.povray_s);
+        st.seconds_clip, st.seconds_bake, st.seconds_layout, w.strokes_s, w.export_s, w.preview_s,
+        w.povray_s);
   }
   return 0;
 }

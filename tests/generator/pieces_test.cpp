@@ -14,6 +14,7 @@
 #include "cut_cells.h"
 #include "model_builder.h"
 #include "piece_views.h"
+#include "scene_builder.h"
 #include "pieces.h"
 #include "template_parser.h"
 #include "test_support.h"
@@ -178,6 +179,40 @@ TEST(Pieces, ExportAsSkinAndCapPrimitivesWithTheTemplatesMaterials) {
       piece_assets(set, plain.name, plain.skin_material, plain.cut_material, 0.3, 64, 48);
   EXPECT_EQ(plain_assets.materials.size(), 1u);
   for (const AssetMesh& mesh : plain_assets.meshes) EXPECT_TRUE(mesh.primitives.empty());
+}
+
+TEST(Pieces, CoarseCapsKeepPiecesClosedWithTheSameArea) {
+  for (const auto& [file, cut] : std::vector<std::pair<const char*, const char*>>{
+           {"templates/tomato.yaml", "wedges:4"}, {"templates/pepper.yaml", "slices:20"}}) {
+    SCOPED_TRACE(file);
+    const Template tmpl = load_template(test::source_path(file).string());
+    const DsModel model = build_model(tmpl);
+    const auto diffusion = make_cpu_diffusion(model, {4, 0});
+    PieceOptions options;
+    options.section.edge_m = tmpl.edge_m;
+    const PieceSet set = cut_pieces(model, parse_cut_spec(cut, 1e-3), *diffusion, options);
+    size_t fine = 0, coarse = 0;
+    for (const Piece& piece : set.pieces) {
+      ShadedMesh mesh = merge_parts(piece);
+      const std::vector<glm::uvec3> caps = coarse_caps(piece, set.sections);
+      const size_t surface = surface_triangle_count(piece);
+      auto area = [&mesh](auto first, auto last) {
+        double a = 0;
+        for (auto t = first; t != last; ++t)
+          a += 0.5 * glm::length(glm::cross(mesh.position[t->y] - mesh.position[t->x],
+                                            mesh.position[t->z] - mesh.position[t->x]));
+        return a;
+      };
+      const double fine_area = area(mesh.triangle.begin() + surface, mesh.triangle.end());
+      EXPECT_NEAR(area(caps.begin(), caps.end()), fine_area, 1e-9 * fine_area + 1e-12);
+      fine += mesh.triangle.size() - surface;
+      coarse += caps.size();
+      mesh.triangle.resize(surface);
+      mesh.triangle.insert(mesh.triangle.end(), caps.begin(), caps.end());
+      EXPECT_TRUE(closed_oriented_manifold(mesh)) << "piece of cell " << piece.cell;
+    }
+    EXPECT_LT(3 * coarse, fine) << "cap triangles: fine " << fine << ", coarse " << coarse;
+  }
 }
 
 TEST(Pieces, CapsOnEitherSideOfACutAreMirrorImagesWithEqualColours) {

@@ -525,6 +525,24 @@ TEST(SceneGltf, TexturedPrimitivesUseTexcoordsAndNoVertexColours) {
   EXPECT_FALSE(plate.attributes.count("TEXCOORD_0"));
   // Same assets, same bytes (the PNG included).
   EXPECT_EQ(scene_to_glb(s), scene_to_glb(s));
+  // A textured primitive with coarse triangles is written with those, over the vertices they
+  // use (here: three faces of the cube, 12 of its 24 vertices).
+  SceneAssets coarse = s;
+  coarse.meshes[0].primitives[0].coarse.assign(coarse.meshes[0].triangle.begin(),
+                                               coarse.meshes[0].triangle.begin() + 6);
+  write_scene_gltf(dir / "coarse.glb", coarse);
+  EXPECT_EQ(test::validate_gltf(dir / "coarse.glb").errors, 0);
+  const tinygltf::Model mc = load(dir / "coarse.glb");
+  const auto& cp = mc.meshes[0].primitives[0];
+  EXPECT_EQ(mc.accessors[static_cast<size_t>(cp.indices)].count, 18u);
+  EXPECT_EQ(mc.accessors[static_cast<size_t>(cp.attributes.at("POSITION"))].count, 12u);
+  // Coarse triangles of an untextured primitive are not used (its colour is in its vertices).
+  coarse.materials[1].base_colour_texture = -1;
+  const tinygltf::Model mv = [&] {
+    write_scene_gltf(dir / "vertex.glb", coarse);
+    return load(dir / "vertex.glb");
+  }();
+  EXPECT_EQ(mv.accessors[static_cast<size_t>(mv.meshes[0].primitives[0].indices)].count, 36u);
   // A textured material on a mesh without uv, or a texture index out of range, is refused.
   SceneAssets bad = s;
   bad.meshes[0].uv.clear();
