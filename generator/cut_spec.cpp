@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "error.h"
@@ -70,6 +71,32 @@ long long ceil_count(double length, double step) {
 }
 
 }  // namespace
+
+std::string cut_label(const CutSpec& cut) {
+  auto mm = [](double metres) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3f", metres * 1000);
+    std::string s = text;
+    while (s.back() == '0') s.pop_back();
+    if (s.back() == '.') s.pop_back();
+    return s + "mm";
+  };
+  switch (cut.type) {
+    case CutType::Whole:
+      return "whole";
+    case CutType::Halves:
+      return "halves";
+    case CutType::Slices:
+      return "slices:" + mm(cut.thickness_m);
+    case CutType::Wedges:
+      return "wedges:" + std::to_string(cut.count);
+    case CutType::Dice:
+      return "dice:" + mm(cut.size_m);
+    case CutType::Plane:
+      return "plane";
+  }
+  return "whole";
+}
 
 CutSpec parse_cut_spec(const std::string& text, double metres_per_unit) {
   CutSpec cut;

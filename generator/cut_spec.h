@@ -34,6 +34,10 @@ inline constexpr double kMinCutLength_m = 0.5e-3;
 ///         a whole number in 2..64
 CutSpec parse_cut_spec(const std::string& text, double metres_per_unit);
 
+/// A short label of `cut` in millimetres: "whole", "halves", "slices:6mm", "wedges:8",
+/// "dice:12mm" or "plane" (lengths with up to 3 decimals, trailing zeros dropped).
+std::string cut_label(const CutSpec& cut);
+
 /// How far an object reaches, metres: the bounding cylinder about its axis (+Y).
 struct ObjectExtents {
   double radius_m = 0;  ///< largest distance from the axis

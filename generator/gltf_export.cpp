@@ -395,6 +395,19 @@ tinygltf::Model scene_model(const SceneAssets& assets) {
     node.mesh = inst.mesh;
     node.rotation = gltf_rotation(q);
     node.translation = gltf_vec3(inst.translation);
+    if (!inst.piece.template_name.empty()) {
+      const PieceInfo& info = inst.piece;
+      tinygltf::Value::Array parts;
+      for (const std::string& kind : info.parts) parts.emplace_back(kind);
+      node.extras = tinygltf::Value(tinygltf::Value::Object{
+          {"template", tinygltf::Value(info.template_name)},
+          // A decimal string: a 64-bit seed does not fit a JSON number exactly.
+          {"seed", tinygltf::Value(std::to_string(info.seed))},
+          {"cut", tinygltf::Value(info.cut)},
+          {"piece", tinygltf::Value(info.cell)},
+          {"parts", tinygltf::Value(parts)},
+          {"volume_m3", tinygltf::Value(info.volume_m3)}});
+    }
     add_node(node);
   }
 

@@ -47,7 +47,8 @@ std::string section_to_glb(const CrossSection& section);
 ///   KHR_materials_diffuse_transmission (translucency > 0), each listed in extensionsUsed;
 ///   material 0 by default is "vertex colour", roughness 0.6, no extension;
 /// - one node per AssetInstance (same order and name): rotation [x, y, z, w] (normalised,
-///   w >= 0) and translation;
+///   w >= 0) and translation; a piece's node (PieceInfo with a template) has extras
+///   {template, seed (decimal string), cut, piece (its cell), parts, volume_m3};
 /// - a node "camera" at `camera.eye` rotated so that its -Z looks at `camera.target` with +Y
 ///   towards `camera.up` (when `up` is parallel to the view: +Y of the scene, else -Z),
 ///   holding a perspective camera (yfov in radians, aspectRatio, znear, zfar);

@@ -68,12 +68,23 @@ struct AssetMesh {
   std::vector<AssetPrimitive> primitives;
 };
 
+/// What a placed piece is, for the people who use the asset (glTF node extras).
+struct PieceInfo {
+  std::string template_name;       ///< empty: not a piece (a container)
+  uint64_t seed = 0;               ///< the variant's seed
+  std::string cut;                 ///< cut_label() of its cut
+  int cell = -1;                   ///< its cell of the cut (the piece index)
+  std::vector<std::string> parts;  ///< the kinds of its parts: "skin", "wall", "cap"
+  double volume_m3 = 0;            ///< enclosed volume, cubic metres
+};
+
 /// One placed copy of a mesh: scene point = translation + rotation * (mesh point).
 struct AssetInstance {
   std::string name;          ///< unique in the scene
   int mesh = -1;             ///< index into SceneAssets::meshes
   glm::dquat rotation{1, 0, 0, 0};  ///< unit quaternion (w, x, y, z)
   glm::dvec3 translation{0.0};      ///< metres
+  PieceInfo piece;                  ///< for pieces
 };
 
 /// A pinhole camera in the scene frame (+Y up, metres).

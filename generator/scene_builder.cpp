@@ -151,6 +151,19 @@ AssetMesh piece_mesh(const ShadedMesh& merged, size_t surface_triangles, PieceMa
   return out;
 }
 
+PieceInfo piece_info(const Piece& piece, const ShadedMesh& merged, const std::string& template_name,
+                     uint64_t seed, const CutSpec& cut) {
+  PieceInfo info{template_name, seed, cut_label(cut), piece.cell, {}, signed_volume(merged)};
+  for (const PiecePart& part : piece.parts) {
+    const std::string kind = part.kind == PartKind::Skin   ? "skin"
+                             : part.kind == PartKind::Wall ? "wall"
+                                                           : "cap";
+    if (std::find(info.parts.begin(), info.parts.end(), kind) == info.parts.end())
+      info.parts.push_back(kind);
+  }
+  return info;
+}
+
 std::vector<glm::uvec3> coarse_caps(const Piece& piece, const std::vector<CrossSection>& sections) {
   std::vector<glm::uvec3> out;
   unsigned offset = 0;
@@ -219,6 +232,7 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
   std::vector<std::vector<glm::uvec3>> coarse;  // of each shape: its caps' coarse triangles
   std::vector<glm::dvec3> caps;
   std::vector<std::string> names;
+  std::vector<PieceInfo> infos;
   for (size_t i = 0; i < scene.items.size(); ++i) {
     const SceneItem& item = scene.items[i];
     Template tmpl = load_template(item.template_path);
@@ -278,6 +292,8 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
                          object_seed(seed, ii, j, 3));
         caps.push_back(largest_cap_normal(piece));
         names.push_back(object + "_piece" + std::to_string(piece.cell));
+        infos.push_back(
+            piece_info(piece, shapes.back(), tmpl.name, object_seed(seed, ii, j, 1), item.cut));
       }
       ++st.objects;
       if (options.progress)
@@ -332,8 +348,8 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
     AssetMesh mesh =
         piece_mesh(shapes[s], surface_triangles[s], materials[s], names[s], uvs[s], coarse[s]);
     st.triangles += mesh.triangle.size();
-    assets.instances.push_back(
-        {names[s], static_cast<int>(assets.meshes.size()), place.rotation, place.translation});
+    assets.instances.push_back({names[s], static_cast<int>(assets.meshes.size()), place.rotation,
+                                place.translation, infos[s]});
     assets.meshes.push_back(std::move(mesh));
     ++st.placed;
   }

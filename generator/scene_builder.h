@@ -94,6 +94,11 @@ AssetMesh piece_mesh(const ShadedMesh& merged, size_t surface_triangles, PieceMa
                      const std::string& name, const std::vector<glm::dvec2>& uv = {},
                      const std::vector<glm::uvec3>& coarse_caps = {});
 
+/// What `piece` is (its glTF node extras): template, variant seed, cut_label(cut), its cell,
+/// the kinds of its parts and the volume of `merged` (merge_parts of it).
+PieceInfo piece_info(const Piece& piece, const ShadedMesh& merged, const std::string& template_name,
+                     uint64_t seed, const CutSpec& cut);
+
 /// The caps of `piece` re-triangulated from their outlines (coarse_cap_triangles in the plane
 /// frame of their section), over the vertex indices of merge_parts(piece).
 std::vector<glm::uvec3> coarse_caps(const Piece& piece, const std::vector<CrossSection>& sections);

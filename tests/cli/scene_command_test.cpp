@@ -3,6 +3,7 @@
 // same scene and seed give byte-identical files across runs and thread counts, another seed
 // another layout; bad arguments are refused with exit code 2 and leave nothing behind.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cstring>
 
@@ -54,6 +55,28 @@ TEST(SceneCommand, ExportsValidGltfAndPovRayAndPictures) {
   const std::string pov = test::read_file(dir / "tiny.pov");
   EXPECT_NE(pov.find("assumed_gamma 1.0"), std::string::npos);
   EXPECT_NE(pov.find("mesh2"), std::string::npos);
+  // Every piece's node says what it is; the bowl's has no extras.
+  const auto gltf = nlohmann::json::parse(test::read_file(dir / "tiny.gltf"));
+  int pieces = 0;
+  for (const auto& node : gltf["nodes"]) {
+    if (!node.contains("mesh")) continue;
+    if (!node.contains("extras")) {
+      EXPECT_EQ(node["name"], "bowl");
+      continue;
+    }
+    ++pieces;
+    const auto& x = node["extras"];
+    EXPECT_TRUE(x["template"] == "tomato" || x["template"] == "onion" ||
+                x["template"] == "cucumber")
+        << x.dump();
+    EXPECT_TRUE(x["seed"].is_string());
+    EXPECT_TRUE(x["cut"].is_string());
+    EXPECT_GE(x["piece"].get<int>(), 0);
+    EXPECT_EQ(x["parts"][0], "skin");
+    EXPECT_GT(x["volume_m3"].get<double>(), 1e-7);
+    EXPECT_LT(x["volume_m3"].get<double>(), 1e-3);
+  }
+  EXPECT_GE(pieces, 7);
   // The .pov's cut-face textures beside it, one per object with caps, named in it.
   EXPECT_EQ(pov.find("image_map { png \"tiny_i0_tomato_0_cut.png\""), pov.find("image_map"));
   // Nothing but the outputs is left in the folder.
