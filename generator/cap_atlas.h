@@ -1,5 +1,5 @@
-// Baked cap textures (the paper's limitation "DSs lack texture detail", addressed as its §7
-// suggests): the cut faces of one object's pieces get UVs from their plane frames, packed into
+// Baked cap textures (paper §6, Limitations: DSs "lack information about texture details"):
+// the cut faces of one object's pieces get UVs from their plane frames, packed into
 // one texture atlas, and their colours (PMVC-diffused at the cap's vertices, Perlin-modulated
 // per texel in the object frame) baked at texel resolution, so detail finer than the cap mesh
 // survives and the geometry no longer has to carry the colour.

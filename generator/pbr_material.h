@@ -1,6 +1,7 @@
 // Physically based material properties in the field's terms (the glTF 2.0 metallic-roughness
 // model and its KHR material extensions): what the skin of a fruit and its cut flesh look like
-// beyond their colours. Templates write them (spec: `materials`), exporters map them.
+// beyond their colours; paper §6 suggests "assigning translucent material information to DSs in
+// addition to colors". Templates write them (README, Templates: materials), exporters map them.
 #pragma once
 
 #include <glm/vec3.hpp>

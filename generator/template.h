@@ -143,7 +143,7 @@ struct Template {
   int skin = -1;                      ///< index of the surface with role skin (-1: none, only
                                       ///< for symmetry none)
   NprSettings npr;                    ///< NPR parameters (spec: `npr`)
-  /// Materials (spec: `materials`): the skin's outside (and the walls of hollows), and the
+  /// Materials (README, Templates: `materials`): the skin's outside (and the walls of hollows), and the
   /// cut faces. Absent: PbrMaterial{} for both, the look of templates written before them.
   PbrMaterial skin_material, cut_material;
 };

@@ -314,7 +314,7 @@ NprSettings parse_npr(const YamlField& f, double metres_per_unit) {
   return npr;
 }
 
-/// One material of `materials` (spec: materials): {roughness, translucency, clearcoat,
+/// One material of `materials` (README, Templates): {roughness, translucency, clearcoat,
 /// clearcoat_roughness, sheen, sheen_roughness}, each optional (PbrMaterial's defaults), the
 /// numbers in 0..1, `sheen` a colour.
 PbrMaterial parse_material(const YamlField& f) {
