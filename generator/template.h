@@ -143,8 +143,9 @@ struct Template {
   int skin = -1;                      ///< index of the surface with role skin (-1: none, only
                                       ///< for symmetry none)
   NprSettings npr;                    ///< NPR parameters (spec: `npr`)
-  /// Materials (README, Templates: `materials`): the skin's outside (and the walls of hollows), and the
-  /// cut faces. Absent: PbrMaterial{} for both, the look of templates written before them.
+  /// Materials (README, Templates: `materials`): the skin's outside (and the walls of
+  /// hollows), and the cut faces. Absent: PbrMaterial{} for both, the look of templates
+  /// written before them.
   PbrMaterial skin_material, cut_material;
 };
 
