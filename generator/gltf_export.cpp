@@ -157,7 +157,7 @@ std::vector<double> gltf_vec3(const glm::dvec3& v) { return {v.x + 0.0, v.y + 0.
 /// The primitives of `mesh` (one of material 0 when it lists none), checked to cover its
 /// triangles in order and to name materials that exist.
 std::vector<AssetPrimitive> checked_primitives(const AssetMesh& mesh, size_t materials) {
-  if (mesh.primitives.empty()) return {{0, mesh.triangle.size(), 0}};
+  if (mesh.primitives.empty()) return {{0, mesh.triangle.size(), 0, {}}};
   size_t next = 0;
   for (const AssetPrimitive& p : mesh.primitives) {
     if (p.first != next || p.count == 0)

@@ -73,7 +73,7 @@ SceneAssets piece_assets(const PieceSet& set, const std::string& name,
       ehi = glm::max(ehi, p + offset);
     }
     const std::string piece_name = asset_name(name) + "_piece" + std::to_string(set.pieces[k].cell);
-    assets.instances.push_back({piece_name, static_cast<int>(k), {1, 0, 0, 0}, offset});
+    assets.instances.push_back({piece_name, static_cast<int>(k), {1, 0, 0, 0}, offset, {}});
     assets.meshes.push_back(
         piece_mesh(meshes[k], surface_triangle_count(set.pieces[k]), materials, piece_name));
   }
@@ -135,7 +135,8 @@ SceneAssets grid_piece_assets(const PieceSet& set, const std::string& name,
     const glm::dvec3 offset = centre - glm::dvec3(mid.x, lo[k].y, mid.z);
     all_lo = glm::min(all_lo, lo[k] + offset);
     all_hi = glm::max(all_hi, hi[k] + offset);
-    assets.instances.push_back({assets.meshes[k].name, static_cast<int>(k), rotation[k], offset});
+    assets.instances.push_back(
+        {assets.meshes[k].name, static_cast<int>(k), rotation[k], offset, {}});
   }
   assets.camera = frame_box(all_lo, all_hi, to_camera, 30, aspect);
   assets.lights = studio_lights(assets.camera);

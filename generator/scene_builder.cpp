@@ -141,9 +141,9 @@ AssetMesh piece_mesh(const ShadedMesh& merged, size_t surface_triangles, PieceMa
   out.uv = uv;
   const size_t n = merged.triangle.size();
   if (materials.skin == materials.cut) {
-    if (materials.skin != 0) out.primitives.push_back({0, n, materials.skin});
+    if (materials.skin != 0) out.primitives.push_back({0, n, materials.skin, {}});
   } else {
-    if (surface_triangles > 0) out.primitives.push_back({0, surface_triangles, materials.skin});
+    if (surface_triangles > 0) out.primitives.push_back({0, surface_triangles, materials.skin, {}});
     if (surface_triangles < n)
       out.primitives.push_back(
           {surface_triangles, n - surface_triangles, materials.cut, coarse_caps});
@@ -333,7 +333,7 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
       lo = glm::min(lo, p);
       hi = glm::max(hi, p);
     }
-    assets.instances.push_back({container->name, 0, {1, 0, 0, 0}, {0, 0, 0}});
+    assets.instances.push_back({container->name, 0, {1, 0, 0, 0}, {0, 0, 0}, {}});
     assets.meshes.push_back(std::move(*container));
   }
   for (size_t k = 0; k < order.size(); ++k) {
