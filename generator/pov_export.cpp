@@ -273,8 +273,11 @@ void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, cons
     }
     face_material.resize(faces.size(), p.material);
   }
-  // The distinct textures by their written text, in order of first use: a (colour, finish)
-  // pair per corner, or one uv-mapped image per textured face.
+  // The distinct textures by their written text: first a (colour, finish) pair per vertex in
+  // vertex order (the finish of the first vertex-coloured face using it; in a mesh without
+  // textured faces, material 0 for an unused vertex: so a mesh of one plain material is written
+  // as before materials), then in
+  // order of first use the pairs of other corners and one uv-mapped image per textured face.
   std::map<std::string, size_t> texture_index;
   std::vector<std::string> colours;
   auto index_of = [&](std::string text) {
@@ -282,23 +285,31 @@ void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, cons
     if (inserted) colours.push_back(std::move(text));
     return static_cast<unsigned>(it->second);
   };
-  std::vector<glm::uvec3> face_textures(faces.size());
+  auto pair_of = [&](unsigned vertex, int material) {
+    return index_of("texture { pigment { rgb " + vector_text(m.colour[vertex]) + " } finish { " +
+                    finish_identifier(static_cast<size_t>(material)) + " } }");
+  };
   std::vector<bool> imaged(faces.size(), false);
+  std::vector<int> vertex_material(m.position.size(), -1);
   for (size_t f = 0; f < faces.size(); ++f) {
-    const std::string finish = finish_identifier(static_cast<size_t>(face_material[f]));
-    const std::string image = image_of(a, m, face_material[f], texture_files);
-    if (!image.empty()) {
-      imaged[f] = true;
-      face_textures[f].x = index_of("texture { uv_mapping pigment { image_map { png \"" + image +
-                                    "\" interpolate 2 } } finish { " + finish + " } }");
+    imaged[f] = !image_of(a, m, face_material[f], texture_files).empty();
+    for (int c = 0; c < 3 && !imaged[f]; ++c)
+      if (vertex_material[faces[f][c]] < 0) vertex_material[faces[f][c]] = face_material[f];
+  }
+  const bool any_image = std::find(imaged.begin(), imaged.end(), true) != imaged.end();
+  for (unsigned v = 0; v < m.position.size(); ++v)
+    if (vertex_material[v] >= 0 || !any_image) pair_of(v, std::max(vertex_material[v], 0));
+  std::vector<glm::uvec3> face_textures(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) {
+    if (imaged[f]) {
+      face_textures[f].x = index_of(
+          "texture { uv_mapping pigment { image_map { png \"" +
+          image_of(a, m, face_material[f], texture_files) + "\" interpolate 2 } } finish { " +
+          finish_identifier(static_cast<size_t>(face_material[f])) + " } }");
       continue;
     }
-    for (int c = 0; c < 3; ++c)
-      face_textures[f][c] =
-          index_of("texture { pigment { rgb " + vector_text(m.colour[faces[f][c]]) +
-                   " } finish { " + finish + " } }");
+    for (int c = 0; c < 3; ++c) face_textures[f][c] = pair_of(faces[f][c], face_material[f]);
   }
-  const bool with_uv = std::find(imaged.begin(), imaged.end(), true) != imaged.end();
 
   out += "// Mesh " + std::to_string(k) + ": " + asset_name(m.name) + " (" +
          std::to_string(m.position.size()) + " vertices, " + std::to_string(faces.size()) +
@@ -318,7 +329,7 @@ void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, cons
     }
     out += "\n  }\n";
   }
-  if (with_uv) {  // POV-Ray's image v runs up from the bottom row, glTF's down from the top
+  if (any_image) {  // POV-Ray's image v runs up from the bottom row, glTF's down from the top
     out += "  uv_vectors {\n    " + std::to_string(m.uv.size());
     for (const glm::dvec2& q : m.uv) {
       out += ",\n    <";
@@ -338,7 +349,7 @@ void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, cons
            std::to_string(t.z) + ">, " + std::to_string(x.x);
     if (!imaged[f]) out += ", " + std::to_string(x.y) + ", " + std::to_string(x.z);
   }
-  if (with_uv) {
+  if (any_image) {
     out += "\n  }\n  uv_indices {\n    " + std::to_string(faces.size());
     for (const glm::uvec3& t : faces)
       out += ",\n    <" + std::to_string(t.x) + ", " + std::to_string(t.y) + ", " +
