@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <map>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 
@@ -154,21 +154,10 @@ std::vector<double> gltf_vec3(const glm::dvec3& v) { return {v.x + 0.0, v.y + 0.
   throw std::invalid_argument("scene assets: " + what);
 }
 
-/// The primitives of `mesh` (one of material 0 when it lists none), checked to cover its
-/// triangles in order and to name materials that exist.
-std::vector<AssetPrimitive> checked_primitives(const AssetMesh& mesh, size_t materials) {
-  if (mesh.primitives.empty()) return {{0, mesh.triangle.size(), 0, {}}};
-  size_t next = 0;
-  for (const AssetPrimitive& p : mesh.primitives) {
-    if (p.first != next || p.count == 0)
-      bad_assets("mesh '" + mesh.name + "': primitives must cover the triangles in order");
-    if (p.material < 0 || static_cast<size_t>(p.material) >= materials)
-      bad_assets("mesh '" + mesh.name + "': material index out of range");
-    next += p.count;
-  }
-  if (next != mesh.triangle.size())
-    bad_assets("mesh '" + mesh.name + "': primitives must cover the triangles in order");
-  return mesh.primitives;
+/// Throws for primitives of `mesh` that break their rules (primitives_defect).
+void check_primitives(const AssetMesh& mesh, size_t materials) {
+  const std::string defect = primitives_defect(mesh, materials);
+  if (!defect.empty()) bad_assets("mesh '" + mesh.name + "': " + defect);
 }
 
 /// Adds mesh `mesh` to `m` (one primitive per AssetPrimitive, sharing the vertex attributes;
@@ -182,11 +171,13 @@ int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh,
   }
   if (!mesh.uv.empty() && mesh.uv.size() != n)
     bad_assets("mesh '" + mesh.name + "': uv count differs from positions");
-  const std::vector<AssetPrimitive> primitives = checked_primitives(mesh, gltf_material.size());
+  check_primitives(mesh, gltf_material.size());
+  const std::vector<AssetPrimitive> plain{{0, mesh.triangle.size(), 0, {}}};
+  const std::vector<AssetPrimitive>& primitives = mesh.primitives.empty() ? plain : mesh.primitives;
   // Per primitive: textured or not, and its triangles (the coarse ones of a textured primitive
   // that has them: its colour is in the texture).
   std::vector<bool> textured;
-  std::vector<std::vector<glm::uvec3>> lists;
+  std::vector<std::span<const glm::uvec3>> lists;
   for (const AssetPrimitive& p : primitives) {
     const int material = gltf_material[static_cast<size_t>(p.material)];
     textured.push_back(
@@ -194,12 +185,9 @@ int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh,
         0);
     if (textured.back() && mesh.uv.empty())
       bad_assets("mesh '" + mesh.name + "': a textured material needs uv");
-    if (textured.back() && !p.coarse.empty()) {
-      lists.push_back(p.coarse);
-    } else {
-      const auto first = mesh.triangle.begin() + static_cast<std::ptrdiff_t>(p.first);
-      lists.emplace_back(first, first + static_cast<std::ptrdiff_t>(p.count));
-    }
+    lists.push_back(textured.back() && !p.coarse.empty()
+                        ? std::span<const glm::uvec3>(p.coarse)
+                        : std::span<const glm::uvec3>(mesh.triangle).subspan(p.first, p.count));
     for (const glm::uvec3& t : lists.back())
       if (t.x >= n || t.y >= n || t.z >= n)
         bad_assets("mesh '" + mesh.name + "': a triangle index is out of range");
@@ -286,16 +274,8 @@ int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh,
 void add_pbr_material(tinygltf::Model& m, const AssetMaterial& material,
                       const std::vector<int>& textures) {
   const PbrMaterial& pbr = material.pbr;
-  auto check = [&](double v, const char* what) {
-    if (!(v >= 0 && v <= 1))
-      bad_assets("material '" + material.name + "': " + what + " not in 0..1");
-  };
-  check(pbr.roughness, "roughness");
-  check(pbr.translucency, "translucency");
-  check(pbr.clearcoat, "clearcoat");
-  check(pbr.clearcoat_roughness, "clearcoat_roughness");
-  check(pbr.sheen_roughness, "sheen_roughness");
-  for (int k = 0; k < 3; ++k) check(pbr.sheen[k], "sheen");
+  if (const std::string_view field = out_of_range_field(pbr); !field.empty())
+    bad_assets("material '" + material.name + "': " + std::string(field) + " not in 0..1");
   const int index = add_material(m, material.name, 1.0, false, pbr.roughness);
   tinygltf::Material& mat = m.materials[static_cast<size_t>(index)];
   if (material.base_colour_texture >= 0) {
@@ -334,9 +314,12 @@ tinygltf::Model scene_model(const SceneAssets& assets) {
   tinygltf::Model m = new_model();
   // Only the materials some mesh uses (an unused one is a validator notice), in their order.
   std::vector<int> gltf_material(assets.materials.size(), -1);
-  for (const AssetMesh& mesh : assets.meshes)
-    for (const AssetPrimitive& p : checked_primitives(mesh, assets.materials.size()))
+  for (const AssetMesh& mesh : assets.meshes) {
+    check_primitives(mesh, assets.materials.size());
+    if (mesh.primitives.empty()) gltf_material[0] = 0;
+    for (const AssetPrimitive& p : mesh.primitives)
       gltf_material[static_cast<size_t>(p.material)] = 0;
+  }
   // The textures of those materials, as PNG images in the buffer, in the assets' order.
   std::vector<int> gltf_texture(assets.textures.size(), -1);
   for (size_t k = 0; k < assets.materials.size(); ++k) {

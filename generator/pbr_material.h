@@ -4,6 +4,8 @@
 // addition to colors". Templates write them (README, Templates: materials), exporters map them.
 #pragma once
 
+#include <string_view>
+
 #include <glm/vec3.hpp>
 
 namespace cutaway {
@@ -23,5 +25,18 @@ struct PbrMaterial {
 
   bool operator==(const PbrMaterial&) const = default;
 };
+
+/// The first field of `m` outside 0..1 ("roughness", "translucency", "clearcoat",
+/// "clearcoat_roughness", "sheen_roughness", "sheen"), or "" when every value is in range.
+inline std::string_view out_of_range_field(const PbrMaterial& m) {
+  auto bad = [](double v) { return !(v >= 0 && v <= 1); };
+  if (bad(m.roughness)) return "roughness";
+  if (bad(m.translucency)) return "translucency";
+  if (bad(m.clearcoat)) return "clearcoat";
+  if (bad(m.clearcoat_roughness)) return "clearcoat_roughness";
+  if (bad(m.sheen_roughness)) return "sheen_roughness";
+  if (bad(m.sheen.r) || bad(m.sheen.g) || bad(m.sheen.b)) return "sheen";
+  return "";
+}
 
 }  // namespace cutaway

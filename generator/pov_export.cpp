@@ -72,15 +72,8 @@ void check_mesh(const AssetMesh& m, size_t k, size_t materials) {
   for (const auto& t : m.triangle) {
     require(t.x < n && t.y < n && t.z < n, who + ": triangle index out of range");
   }
-  size_t next = 0;
-  for (const AssetPrimitive& p : m.primitives) {
-    require(p.first == next && p.count > 0, who + ": primitives must cover the triangles in order");
-    require(p.material >= 0 && static_cast<size_t>(p.material) < materials,
-            who + ": material index out of range");
-    next += p.count;
-  }
-  require(m.primitives.empty() || next == m.triangle.size(),
-          who + ": primitives must cover the triangles in order");
+  const std::string defect = primitives_defect(m, materials);
+  require(defect.empty(), who + ": " + defect);
 }
 
 // Shading normals that POV-Ray accepts: a zero or non-finite normal becomes the area-weighted
@@ -257,22 +250,25 @@ std::string image_of(const SceneAssets& a, const AssetMesh& m, int material,
 
 void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, const std::string& id,
                 size_t k, const std::vector<std::string>& texture_files) {
-  // The faces with their materials: a textured primitive's coarse triangles where it has them
-  // and its image is written (its colour is in the texture), else the mesh's own.
+  // The faces with their materials and images: a textured primitive's coarse triangles where
+  // it has them and its image is written (its colour is in the texture), else the mesh's own.
   std::vector<glm::uvec3> faces;
   std::vector<int> face_material;
-  std::vector<AssetPrimitive> primitives = m.primitives;
-  if (primitives.empty()) primitives.push_back({0, m.triangle.size(), 0, {}});
-  for (const AssetPrimitive& p : primitives) {
-    const bool coarse = !p.coarse.empty() && !image_of(a, m, p.material, texture_files).empty();
-    if (coarse) {
+  std::vector<std::string> images;  // per primitive; empty: vertex colours
+  std::vector<size_t> face_primitive;
+  const std::vector<AssetPrimitive> plain{{0, m.triangle.size(), 0, {}}};
+  for (const AssetPrimitive& p : m.primitives.empty() ? plain : m.primitives) {
+    const std::string& image = images.emplace_back(image_of(a, m, p.material, texture_files));
+    if (!image.empty() && !p.coarse.empty()) {
       faces.insert(faces.end(), p.coarse.begin(), p.coarse.end());
     } else {
       faces.insert(faces.end(), m.triangle.begin() + static_cast<std::ptrdiff_t>(p.first),
                    m.triangle.begin() + static_cast<std::ptrdiff_t>(p.first + p.count));
     }
     face_material.resize(faces.size(), p.material);
+    face_primitive.resize(faces.size(), images.size() - 1);
   }
+  auto face_image = [&](size_t f) -> const std::string& { return images[face_primitive[f]]; };
   // The distinct textures by their written text: first a (colour, finish) pair per vertex in
   // vertex order (the finish of the first vertex-coloured face using it; in a mesh without
   // textured faces, material 0 for an unused vertex: so a mesh of one plain material is written
@@ -289,23 +285,22 @@ void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, cons
     return index_of("texture { pigment { rgb " + vector_text(m.colour[vertex]) + " } finish { " +
                     finish_identifier(static_cast<size_t>(material)) + " } }");
   };
-  std::vector<bool> imaged(faces.size(), false);
   std::vector<int> vertex_material(m.position.size(), -1);
+  bool any_image = false;
   for (size_t f = 0; f < faces.size(); ++f) {
-    imaged[f] = !image_of(a, m, face_material[f], texture_files).empty();
-    for (int c = 0; c < 3 && !imaged[f]; ++c)
+    any_image = any_image || !face_image(f).empty();
+    for (int c = 0; c < 3 && face_image(f).empty(); ++c)
       if (vertex_material[faces[f][c]] < 0) vertex_material[faces[f][c]] = face_material[f];
   }
-  const bool any_image = std::find(imaged.begin(), imaged.end(), true) != imaged.end();
   for (unsigned v = 0; v < m.position.size(); ++v)
     if (vertex_material[v] >= 0 || !any_image) pair_of(v, std::max(vertex_material[v], 0));
   std::vector<glm::uvec3> face_textures(faces.size());
   for (size_t f = 0; f < faces.size(); ++f) {
-    if (imaged[f]) {
-      face_textures[f].x = index_of(
-          "texture { uv_mapping pigment { image_map { png \"" +
-          image_of(a, m, face_material[f], texture_files) + "\" interpolate 2 } } finish { " +
-          finish_identifier(static_cast<size_t>(face_material[f])) + " } }");
+    if (!face_image(f).empty()) {
+      face_textures[f].x =
+          index_of("texture { uv_mapping pigment { image_map { png \"" + face_image(f) +
+                   "\" interpolate 2 } } finish { " +
+                   finish_identifier(static_cast<size_t>(face_material[f])) + " } }");
       continue;
     }
     for (int c = 0; c < 3; ++c) face_textures[f][c] = pair_of(faces[f][c], face_material[f]);
@@ -347,7 +342,7 @@ void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, cons
     const glm::uvec3 t = faces[f], x = face_textures[f];
     out += ",\n    <" + std::to_string(t.x) + ", " + std::to_string(t.y) + ", " +
            std::to_string(t.z) + ">, " + std::to_string(x.x);
-    if (!imaged[f]) out += ", " + std::to_string(x.y) + ", " + std::to_string(x.z);
+    if (face_image(f).empty()) out += ", " + std::to_string(x.y) + ", " + std::to_string(x.z);
   }
   if (any_image) {
     out += "\n  }\n  uv_indices {\n    " + std::to_string(faces.size());
@@ -465,10 +460,9 @@ std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* s
                          const std::vector<std::string>& texture_files) {
   require(!assets.materials.empty(), "no materials");
   for (const AssetMaterial& material : assets.materials) {
-    const PbrMaterial& p = material.pbr;
-    for (double v : {p.roughness, p.translucency, p.clearcoat, p.clearcoat_roughness})
-      require(v >= 0 && v <= 1,
-              "material '" + asset_name(material.name) + "': a value not in 0..1");
+    const std::string_view field = out_of_range_field(material.pbr);
+    require(field.empty(),
+            "material '" + asset_name(material.name) + "': " + std::string(field) + " not in 0..1");
   }
   for (size_t k = 0; k < assets.meshes.size(); ++k)
     check_mesh(assets.meshes[k], k, assets.materials.size());

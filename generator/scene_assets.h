@@ -68,6 +68,11 @@ struct AssetMesh {
   std::vector<AssetPrimitive> primitives;
 };
 
+/// What is wrong with the primitives of `mesh` for a scene of `materials` materials, or ""
+/// when nothing is: they must cover its triangles in order, none empty, each naming an
+/// existing material (no primitives: one of material 0, which must exist).
+std::string primitives_defect(const AssetMesh& mesh, size_t materials);
+
 /// What a placed piece is, for the people who use the asset (glTF node extras).
 struct PieceInfo {
   std::string template_name;       ///< empty: not a piece (a container)
