@@ -226,12 +226,8 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
 
   SceneAssets assets;
   std::vector<ShadedMesh> shapes;  // kept pieces, object frame
-  std::vector<size_t> surface_triangles;  // of each shape: its skin and walls
-  std::vector<PieceMaterials> materials;  // of each shape
-  std::vector<std::vector<glm::dvec2>> uvs;  // of each shape: cap texture coordinates or none
-  std::vector<std::vector<glm::uvec3>> coarse;  // of each shape: its caps' coarse triangles
+  std::vector<AssetMesh> meshes;   // of each shape: as exported, once placed
   std::vector<glm::dvec3> caps;
-  std::vector<std::string> names;
   std::vector<PieceInfo> infos;
   for (size_t i = 0; i < scene.items.size(); ++i) {
     const SceneItem& item = scene.items[i];
@@ -281,17 +277,16 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
       for (size_t q = 0; q < kept.size(); ++q) {
         const Piece& piece = set.pieces[kept[q]];
         shapes.push_back(merge_parts(piece));
-        surface_triangles.push_back(surface_triangle_count(piece));
-        materials.push_back(object_materials);
-        uvs.push_back(std::move(uv[q]));
-        coarse.push_back(options.cap_colours == CapColours::Texture
-                             ? coarse_caps(piece, set.sections)
-                             : std::vector<glm::uvec3>{});
         // Perlin colour modulation in the object frame: every piece of one object agrees.
         modulate_colours(shapes.back(), variant.tmpl.npr, scene.render.perlin,
                          object_seed(seed, ii, j, 3));
+        meshes.push_back(piece_mesh(shapes.back(), surface_triangle_count(piece),
+                                    object_materials, object + "_piece" + std::to_string(piece.cell),
+                                    uv[q],
+                                    options.cap_colours == CapColours::Texture
+                                        ? coarse_caps(piece, set.sections)
+                                        : std::vector<glm::uvec3>{}));
         caps.push_back(largest_cap_normal(piece));
-        names.push_back(object + "_piece" + std::to_string(piece.cell));
         infos.push_back(
             piece_info(piece, shapes.back(), tmpl.name, object_seed(seed, ii, j, 1), item.cut));
       }
@@ -345,12 +340,10 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
       lo = glm::min(lo, q);
       hi = glm::max(hi, q);
     }
-    AssetMesh mesh =
-        piece_mesh(shapes[s], surface_triangles[s], materials[s], names[s], uvs[s], coarse[s]);
-    st.triangles += mesh.triangle.size();
-    assets.instances.push_back({names[s], static_cast<int>(assets.meshes.size()), place.rotation,
-                                place.translation, infos[s]});
-    assets.meshes.push_back(std::move(mesh));
+    st.triangles += meshes[s].triangle.size();
+    assets.instances.push_back({meshes[s].name, static_cast<int>(assets.meshes.size()),
+                                place.rotation, place.translation, infos[s]});
+    assets.meshes.push_back(std::move(meshes[s]));
     ++st.placed;
   }
   if (assets.instances.empty()) lo = hi = glm::dvec3(0.0);
