@@ -137,11 +137,10 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
   std::map<std::pair<double, double>, glm::dvec3> lifted;
   for (size_t i = 0; i < segments.size(); ++i) {
     const CutSegment& s = segments[i];
-    for (const glm::dvec3& p : {s.a, s.b}) {
-      const glm::dvec2 q = project(p);
-      lifted.emplace(std::make_pair(q.x, q.y), p);
-    }
-    seg2.push_back({project(s.a), project(s.b),
+    const glm::dvec2 a = project(s.a), b = project(s.b);
+    lifted.emplace(std::make_pair(a.x, a.y), s.a);
+    lifted.emplace(std::make_pair(b.x, b.y), s.b);
+    seg2.push_back({a, b,
                     {glm::dot(s.front_normal, cs.u_axis), glm::dot(s.front_normal, cs.v_axis)},
                     static_cast<int>(i)});
   }
