@@ -183,9 +183,31 @@ PngInfo png_info(const std::filesystem::path& file) {
     const unsigned char* px = pixels + 4 * i;
     info.not_background += std::memcmp(px, pixels, 3) != 0;
     info.dark += px[0] < 8 && px[1] < 8 && px[2] < 8;
+    info.blue += px[2] > 2 * px[0] && px[2] > 60;
+    info.yellow += px[0] > 2 * px[2] && px[1] > 2 * px[2] && px[1] > 60;
   }
   stbi_image_free(pixels);
   return info;
+}
+
+void texture_with_halves(SceneAssets& assets, size_t mesh, int size) {
+  AssetTexture texture{"halves", size, size, {}};
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const bool left = x < size / 2;
+      texture.srgb.insert(texture.srgb.end(), {static_cast<uint8_t>(left ? 20 : 240),
+                                               static_cast<uint8_t>(left ? 40 : 220),
+                                               static_cast<uint8_t>(left ? 230 : 20)});
+    }
+  assets.textures.push_back(texture);
+  assets.materials.push_back(
+      {"cube_texture", PbrMaterial{}, static_cast<int>(assets.textures.size()) - 1});
+  AssetMesh& m = assets.meshes[mesh];
+  for (size_t v = 0; v < m.position.size(); ++v) {
+    const int corner = static_cast<int>(v % 4);
+    m.uv.push_back({corner == 1 || corner == 2 ? 1.0 : 0.0, corner >= 2 ? 1.0 : 0.0});
+  }
+  m.primitives = {{0, m.triangle.size(), static_cast<int>(assets.materials.size()) - 1, {}}};
 }
 
 ::testing::AssertionResult closed_and_oriented(const ShadedMesh& mesh) {

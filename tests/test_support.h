@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "scene_assets.h"
 #include "shaded_mesh.h"
 
 namespace cutaway::test {
@@ -79,10 +80,18 @@ struct PngInfo {
   int width = 0, height = 0;  ///< 0 when the file is not a PNG stb_image can read
   size_t not_background = 0;  ///< pixels whose RGB differs from the top-left pixel's
   size_t dark = 0;            ///< pixels with R, G and B all below 8
+  size_t blue = 0;            ///< pixels clearly blue: B > 2 R and B > 60
+  size_t yellow = 0;          ///< pixels clearly yellow: R and G > 2 B, and G > 60
 };
 
 /// Reads `file` with stb_image and summarises it.
 PngInfo png_info(const std::filesystem::path& file);
+
+/// Maps mesh `mesh` of `assets` (4 vertices per face, in each face the corners (-1, -1),
+/// (1, -1), (1, 1), (-1, 1) of its square, as the tests' cubes are built) onto a new `size` x
+/// `size` texture "halves", blue on its left half and yellow on its right, through a new
+/// plain material "cube_texture" for all its triangles.
+void texture_with_halves(SceneAssets& assets, size_t mesh, int size);
 
 /// The template files shipped in templates/ (absolute paths, sorted).
 std::vector<std::filesystem::path> shipped_templates();

@@ -399,20 +399,7 @@ TEST(PovExport, AFinishPerMaterialOnTheFacesThatUseIt) {
 TEST(PovExport, TexturedFacesUseTheirImageBesideTheScene) {
   // Mesh 0 (a red cube) mapped onto a 16 x 16 texture, blue on the left, yellow on the right.
   SceneAssets s = test_scene();
-  AssetTexture texture{"halves", 16, 16, {}};
-  for (int i = 0; i < 16 * 16; ++i) {
-    const bool left = i % 16 < 8;
-    texture.srgb.insert(texture.srgb.end(), {uint8_t(left ? 20 : 240), uint8_t(left ? 40 : 220),
-                                             uint8_t(left ? 230 : 20)});
-  }
-  s.textures.push_back(texture);
-  s.materials.push_back({"cube_texture", PbrMaterial{}, 0});
-  AssetMesh& cube = s.meshes[0];
-  for (size_t v = 0; v < cube.position.size(); ++v) {
-    const int corner = static_cast<int>(v % 4);
-    cube.uv.push_back({corner == 1 || corner == 2 ? 1.0 : 0.0, corner >= 2 ? 1.0 : 0.0});
-  }
-  cube.primitives = {{0, cube.triangle.size(), 1}};
+  test::texture_with_halves(s, 0, 16);
   const fs::path dir = test::fresh_dir("pov_export_texture");
   write_scene_pov(dir / "scene.pov", s, nullptr, true);
   EXPECT_EQ(test::files_in(dir), (std::vector<std::string>{"scene.pov", "scene_halves.png"}));
@@ -425,16 +412,9 @@ TEST(PovExport, TexturedFacesUseTheirImageBesideTheScene) {
   PovrayOptions options;
   options.threads = 2;
   render_povray(dir / "scene.pov", dir / "scene.png", s.width, s.height, options);
-  const Png png = read_png(dir / "scene.png");
-  size_t blue = 0, yellow = 0;
-  for (int y = 0; y < png.height; ++y)
-    for (int x = 0; x < png.width; ++x) {
-      const glm::dvec3 c = png.srgb8(x, y);
-      if (c.b > 2 * c.r && c.b > 60) ++blue;
-      if (c.r > 2 * c.b && c.g > 2 * c.b && c.g > 60) ++yellow;
-    }
-  EXPECT_GT(blue, 20u);
-  EXPECT_GT(yellow, 20u);
+  const test::PngInfo png = test::png_info(dir / "scene.png");
+  EXPECT_GT(png.blue, 20u);
+  EXPECT_GT(png.yellow, 20u);
 }
 
 }  // namespace

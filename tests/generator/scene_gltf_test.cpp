@@ -12,7 +12,6 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
-#include <stb/stb_image.h>
 #include <tiny_gltf.h>
 
 #include "gltf_export.h"
@@ -394,6 +393,16 @@ TEST(SceneGltf, InvalidAssetsThrow) {
       "roughness 1.5");
 }
 
+/// Writes `s` to `file`, expects the Khronos validator to find neither errors nor warnings in
+/// it, and reads it back.
+tinygltf::Model write_valid_and_load(const SceneAssets& s, const fs::path& file) {
+  write_scene_gltf(file, s);
+  const auto report = test::validate_gltf(file);
+  EXPECT_EQ(report.errors, 0) << report.output;
+  EXPECT_EQ(validator_warnings(report), 0) << report.output;
+  return load(file);
+}
+
 /// small_scene() with the cube in two primitives: its first 4 triangles "skin" (glossy, waxy,
 /// fuzzy), the other 8 "cut" (wet, translucent); the plate keeps material 0. An unused
 /// material is listed too.
@@ -419,13 +428,7 @@ SceneAssets scene_with_materials() {
 
 TEST(SceneGltf, SkinAndCutPrimitivesWithTheirMaterials) {
   const auto dir = test::fresh_dir("scene-gltf-materials");
-  const SceneAssets s = scene_with_materials();
-  write_scene_gltf(dir / "salad.glb", s);
-  const auto report = test::validate_gltf(dir / "salad.glb");
-  EXPECT_EQ(report.errors, 0) << report.output;
-  EXPECT_EQ(validator_warnings(report), 0) << report.output;
-
-  const tinygltf::Model m = load(dir / "salad.glb");
+  const tinygltf::Model m = write_valid_and_load(scene_with_materials(), dir / "salad.glb");
   // The used materials only, in the assets' order: plain, skin, cut.
   ASSERT_EQ(m.materials.size(), 3u);
   EXPECT_EQ(m.materials[0].name, "vertex colour");
@@ -483,33 +486,14 @@ TEST(SceneGltf, ThreeJsLoadsSkinAndCutPrimitives) {
 /// half is blue and right half yellow, while its vertex colours stay red.
 SceneAssets scene_with_texture() {
   SceneAssets s = small_scene();
-  AssetTexture texture{"halves", 64, 64, {}};
-  for (int y = 0; y < 64; ++y)
-    for (int x = 0; x < 64; ++x) {
-      const bool left = x < 32;
-      texture.srgb.insert(texture.srgb.end(), {static_cast<uint8_t>(left ? 20 : 240),
-                                               static_cast<uint8_t>(left ? 40 : 220),
-                                               static_cast<uint8_t>(left ? 230 : 20)});
-    }
-  s.textures.push_back(texture);
-  s.materials.push_back({"cube_texture", PbrMaterial{}, 0});
-  AssetMesh& cube = s.meshes[0];
-  for (size_t v = 0; v < cube.position.size(); ++v) {
-    const int corner = static_cast<int>(v % 4);  // (-1,-1), (1,-1), (1,1), (-1,1) per face
-    cube.uv.push_back({corner == 1 || corner == 2 ? 1.0 : 0.0, corner >= 2 ? 1.0 : 0.0});
-  }
-  cube.primitives = {{0, cube.triangle.size(), 1}};
+  test::texture_with_halves(s, 0, 64);
   return s;
 }
 
 TEST(SceneGltf, TexturedPrimitivesUseTexcoordsAndNoVertexColours) {
   const auto dir = test::fresh_dir("scene-gltf-texture");
   const SceneAssets s = scene_with_texture();
-  write_scene_gltf(dir / "salad.glb", s);
-  const auto report = test::validate_gltf(dir / "salad.glb");
-  EXPECT_EQ(report.errors, 0) << report.output;
-  EXPECT_EQ(validator_warnings(report), 0) << report.output;
-  const tinygltf::Model m = load(dir / "salad.glb");
+  const tinygltf::Model m = write_valid_and_load(s, dir / "salad.glb");
   ASSERT_EQ(m.images.size(), 1u);
   EXPECT_EQ(m.images[0].mimeType, "image/png");
   EXPECT_EQ(m.images[0].width, 64);
@@ -530,9 +514,7 @@ TEST(SceneGltf, TexturedPrimitivesUseTexcoordsAndNoVertexColours) {
   SceneAssets coarse = s;
   coarse.meshes[0].primitives[0].coarse.assign(coarse.meshes[0].triangle.begin(),
                                                coarse.meshes[0].triangle.begin() + 6);
-  write_scene_gltf(dir / "coarse.glb", coarse);
-  EXPECT_EQ(test::validate_gltf(dir / "coarse.glb").errors, 0);
-  const tinygltf::Model mc = load(dir / "coarse.glb");
+  const tinygltf::Model mc = write_valid_and_load(coarse, dir / "coarse.glb");
   const auto& cp = mc.meshes[0].primitives[0];
   EXPECT_EQ(mc.accessors[static_cast<size_t>(cp.indices)].count, 18u);
   EXPECT_EQ(mc.accessors[static_cast<size_t>(cp.attributes.at("POSITION"))].count, 12u);
@@ -560,19 +542,10 @@ TEST(SceneGltf, ThreeJsRendersTheTexture) {
   const test::ThreeLoadReport r =
       test::load_gltf_three(dir / "salad.glb", dir / "shot.png", 320, 240);
   ASSERT_TRUE(r.ok) << r.error << "\n" << r.output;
-  int w = 0, h = 0, channels = 0;
-  unsigned char* pixels = stbi_load((dir / "shot.png").c_str(), &w, &h, &channels, 3);
-  ASSERT_NE(pixels, nullptr) << r.output;
-  EXPECT_EQ(w, 320);
-  size_t blue = 0, yellow = 0;
-  for (int i = 0; i < w * h; ++i) {
-    const unsigned char* p = pixels + 3 * i;
-    if (p[2] > 2 * p[0] && p[2] > 60) ++blue;
-    if (p[0] > 2 * p[2] && p[1] > 2 * p[2] && p[1] > 60) ++yellow;
-  }
-  stbi_image_free(pixels);
-  EXPECT_GT(blue, 100u);
-  EXPECT_GT(yellow, 100u);
+  const test::PngInfo shot = test::png_info(dir / "shot.png");
+  ASSERT_EQ(shot.width, 320) << r.output;
+  EXPECT_GT(shot.blue, 100u);
+  EXPECT_GT(shot.yellow, 100u);
 }
 
 }  // namespace
