@@ -198,7 +198,7 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
     for (const Segment2& s : seg2) {
       const CutSegment& cut = segments[s.index];
       const double front_len = glm::length(s.front);
-      const double blur = 0.5 * (cut.blur_a + cut.blur_b);
+      const double blur = 0.5 * (cut.at_a.blur + cut.at_b.blur);
       if (blur < kMinBlur_m || front_len == 0) continue;
       const double spacing = std::max(1.5 * blur, 0.2 * options.edge_m);
       const int pairs = std::max(1, static_cast<int>(std::ceil(glm::distance(s.a, s.b) / spacing)));
@@ -206,7 +206,7 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
       for (int k = 0; k < pairs; ++k) {
         const double t = (k + 0.5) / pairs;
         const glm::dvec2 p = s.a + (s.b - s.a) * t;
-        const double b = cut.blur_a + (cut.blur_b - cut.blur_a) * t;
+        const double b = cut.at_a.blur + (cut.at_b.blur - cut.at_a.blur) * t;
         for (const glm::dvec2& q : {p + across * b, p - across * b})
           if (!near_split_line(q)) cdt.insert(Point2(q.x, q.y));
       }
@@ -301,6 +301,7 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
     cs.position.push_back(exact != lifted.end() ? exact->second
                                                 : plane.point + cs.u_axis * q.x + cs.v_axis * q.y);
     cs.colour.push_back(glm::dvec3(0.0));
+    cs.material.push_back(glm::dvec2(0.0));
     cs.cut_surface.push_back(surface);
     return static_cast<unsigned>(cs.position.size() - 1);
   };
@@ -362,6 +363,7 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
       }
       int surface = -1;
       glm::dvec3 colour(0.0);
+      glm::dvec2 material(0.0);
       bool diffuse = true;
       if (s) {
         const CutSegment& cut = segments[s->index];
@@ -369,14 +371,15 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
         const glm::dvec2 p = to2(v->point());
         const double len2 = glm::dot(s->b - s->a, s->b - s->a);
         const double t = len2 > 0 ? std::clamp(glm::dot(p - s->a, s->b - s->a) / len2, 0.0, 1.0) : 0;
-        const double blur = cut.blur_a + (cut.blur_b - cut.blur_a) * t;
+        const DsAttributes at = lerp(cut.at_a, cut.at_b, t);
         const bool front = side_of(*s, to2(c->point())) > 0;
-        colour = front ? cut.front_a + (cut.front_b - cut.front_a) * t
-                       : cut.back_a + (cut.back_b - cut.back_a) * t;
-        diffuse = blur > 0;
+        colour = at.colour(front);
+        material = at.material(front);
+        diffuse = at.blur > 0;
       }
       const unsigned id = add_vertex(v->point(), surface);
       cs.colour[id] = colour;
+      cs.material[id] = material;
       if (diffuse) blurred.push_back(id);
       for (const Face& f : wedge) corner_id[{v, f}] = id;
     }
@@ -399,11 +402,17 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
   cs.diffused_points = to_diffuse.size();
   const auto triangulated = std::chrono::steady_clock::now();
   cs.seconds_triangulate = std::chrono::duration<double>(triangulated - start).count();
-  const std::vector<glm::dvec3> colours = diffusion.diffuse(to_diffuse);
+  std::vector<glm::dvec3> colours(to_diffuse.size());
+  std::vector<glm::dvec2> materials(to_diffuse.size());
+  diffusion.diffuse_channels(to_diffuse, colours, materials);
   cs.seconds_diffuse =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - triangulated).count();
-  for (size_t i = 0; i < colours.size(); ++i)
-    for (unsigned id : diffuse_targets[i]) cs.colour[id] = colours[i];
+  for (size_t i = 0; i < colours.size(); ++i) {
+    for (unsigned id : diffuse_targets[i]) {
+      cs.colour[id] = colours[i];
+      cs.material[id] = materials[i];
+    }
+  }
   return cs;
 }
 

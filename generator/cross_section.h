@@ -1,6 +1,6 @@
 // Cross-sections (paper §3.2, Fig. 3; design/algorithms.md §3): the cut face of a DS model on a
 // plane, triangulated by conforming constrained Delaunay refinement with the cut segments as
-// constraints, split along them, and coloured by PMVC diffusion.
+// constraints, split along them, and coloured by PMVC diffusion (colour and material channels).
 #pragma once
 
 #include <cstddef>
@@ -48,6 +48,7 @@ struct CrossSection {
   std::vector<glm::dvec3> position;   ///< #V, metres, object frame
   std::vector<glm::uvec3> triangle;   ///< #F, counter-clockwise seen from the normal's side
   std::vector<glm::dvec3> colour;     ///< #V, linear RGB
+  std::vector<glm::dvec2> material;   ///< #V, material channels (roughness, translucency)
   /// #V: the surface a vertex lies on (a cut vertex, one duplicate per side), or -1 for an
   /// interior vertex.
   std::vector<int> cut_surface;

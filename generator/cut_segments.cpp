@@ -11,13 +11,28 @@ namespace {
 
 glm::dvec3 to_glm(const OpenMesh::Vec3d& v) { return {v[0], v[1], v[2]}; }
 
+DsAttributes attributes_of(const DsMesh::VertexData& d) {
+  return {to_glm(d.front),
+          to_glm(d.back),
+          {d.material_front[0], d.material_front[1]},
+          {d.material_back[0], d.material_back[1]},
+          d.blur};
+}
+
 /// A point where the plane crosses a mesh edge, with the DS attributes there.
 struct Crossing {
-  glm::dvec3 p, front, back;
-  double blur;
+  glm::dvec3 p;
+  DsAttributes at;
 };
 
 }  // namespace
+
+DsAttributes lerp(const DsAttributes& a, const DsAttributes& b, double t) {
+  return {a.front + (b.front - a.front) * t, a.back + (b.back - a.back) * t,
+          a.material_front + (b.material_front - a.material_front) * t,
+          a.material_back + (b.material_back - a.material_back) * t,
+          a.blur + (b.blur - a.blur) * t};
+}
 
 std::vector<CutSegment> cut_segments(const DsModel& model, const Plane& plane) {
   std::vector<CutSegment> out;
@@ -34,13 +49,9 @@ std::vector<CutSegment> cut_segments(const DsModel& model, const Plane& plane) {
       if (!positive(a.idx())) std::swap(a, b);
       const double da = dist[a.idx()], db = dist[b.idx()];
       const double t = da == 0 ? 0.0 : da / (da - db);
-      const auto& A = mesh.data(a);
-      const auto& B = mesh.data(b);
       Crossing c;
       c.p = to_glm(mesh.point(a)) + (to_glm(mesh.point(b)) - to_glm(mesh.point(a))) * t;
-      c.front = to_glm(A.front) + (to_glm(B.front) - to_glm(A.front)) * t;
-      c.back = to_glm(A.back) + (to_glm(B.back) - to_glm(A.back)) * t;
-      c.blur = A.blur + (B.blur - A.blur) * t;
+      c.at = lerp(attributes_of(mesh.data(a)), attributes_of(mesh.data(b)), t);
       return c;
     };
     for (auto fh : mesh.faces()) {
@@ -72,12 +83,8 @@ std::vector<CutSegment> cut_segments(const DsModel& model, const Plane& plane) {
       s.a = c1.p;
       s.b = c2.p;
       s.front_normal = n / len;
-      s.front_a = c1.front;
-      s.front_b = c2.front;
-      s.back_a = c1.back;
-      s.back_b = c2.back;
-      s.blur_a = c1.blur;
-      s.blur_b = c2.blur;
+      s.at_a = c1.at;
+      s.at_b = c2.at;
       out.push_back(s);
     }
   }
@@ -134,18 +141,12 @@ std::vector<CutSegment> merge_collinear_segments(const std::vector<CutSegment>& 
     if (closes_loop) continue;
     CutSegment merged = s;
     merged.a = q;
-    merged.front_a = s_ends_at_p ? s.front_a : s.front_b;
-    merged.back_a = s_ends_at_p ? s.back_a : s.back_b;
-    merged.blur_a = s_ends_at_p ? s.blur_a : s.blur_b;
+    merged.at_a = s_ends_at_p ? s.at_a : s.at_b;
     merged.b = r;
-    merged.front_b = t_starts_at_p ? t.front_b : t.front_a;
-    merged.back_b = t_starts_at_p ? t.back_b : t.back_a;
-    merged.blur_b = t_starts_at_p ? t.blur_b : t.blur_a;
+    merged.at_b = t_starts_at_p ? t.at_b : t.at_a;
     if (!s_ends_at_p) {  // the loop runs r -> p -> q: keep its direction
       std::swap(merged.a, merged.b);
-      std::swap(merged.front_a, merged.front_b);
-      std::swap(merged.back_a, merged.back_b);
-      std::swap(merged.blur_a, merged.blur_b);
+      std::swap(merged.at_a, merged.at_b);
     }
     s = merged;
     alive[j] = false;

@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "ds_model.h"
@@ -24,13 +25,28 @@ struct Plane {
 /// position: the cap's triangulation uses it as it is (make_cross_section).
 constexpr double kOnPlane_m = 1e-8;
 
+/// The DS attributes at one point of a surface (ds_model.h, DsMeshTraits).
+struct DsAttributes {
+  glm::dvec3 front{0.0}, back{0.0};                    ///< linear RGB
+  glm::dvec2 material_front{0.0}, material_back{0.0};  ///< (roughness, translucency), 0..1
+  double blur = 0;                                     ///< metres
+
+  /// The colour (or material channels) that the `front` or back side shows.
+  const glm::dvec3& colour(bool front_side) const { return front_side ? front : back; }
+  const glm::dvec2& material(bool front_side) const {
+    return front_side ? material_front : material_back;
+  }
+};
+
+/// (1 - t) * a + t * b, attribute by attribute.
+DsAttributes lerp(const DsAttributes& a, const DsAttributes& b, double t);
+
 /// One piece of the intersection of the plane with one DS triangle.
 struct CutSegment {
   int surface = -1;              ///< index into DsModel::surfaces
   glm::dvec3 a{0.0}, b{0.0};     ///< end points on the plane, metres
   glm::dvec3 front_normal{0.0};  ///< the triangle's unit normal (points to the front side)
-  glm::dvec3 front_a{0.0}, front_b{0.0}, back_a{0.0}, back_b{0.0};  ///< linear RGB
-  double blur_a = 0, blur_b = 0;  ///< metres
+  DsAttributes at_a, at_b;       ///< interpolated at a and at b
 };
 
 /// Intersects every triangle of every surface with `plane`. Robust to vertices and edges on

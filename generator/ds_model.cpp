@@ -18,6 +18,14 @@ size_t DsModel::vertex_count() const {
   return n;
 }
 
+void set_material(DsMesh& mesh, const glm::dvec2& front, const glm::dvec2& back) {
+  for (auto vh : mesh.vertices()) {
+    auto& d = mesh.data(vh);
+    d.material_front = {front.x, front.y};
+    d.material_back = {back.x, back.y};
+  }
+}
+
 void update_bounds(DsModel& model) {
   const double inf = std::numeric_limits<double>::infinity();
   glm::dvec3 lo(inf), hi(-inf);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace cutaway {
@@ -24,6 +25,9 @@ struct DsMeshTraits : public OpenMesh::DefaultTraits {
     /// (t_profile, t_section): normalised arc-length parameters of the sweep that made the
     /// vertex (0 for imported meshes); gradients and grain regions use them.
     OpenMesh::Vec2d param{0, 0};
+    /// Material channels (roughness, translucency), each 0..1, shown on the front and the back
+    /// side (paper §6: material information on DSs besides colours); diffused like colours.
+    OpenMesh::Vec2d material_front{0.6, 0}, material_back{0.6, 0};
   };
 };
 
@@ -63,6 +67,10 @@ struct DsModel {
   /// The skin (surfaces[0]).
   const DsSurface& skin() const { return surfaces.front(); }
 };
+
+/// Sets the material channels (roughness, translucency; 0..1) of every vertex of `mesh`: one
+/// value per side.
+void set_material(DsMesh& mesh, const glm::dvec2& front, const glm::dvec2& back);
 
 /// Recomputes `model.bbox_min/max` from the surfaces' vertices.
 void update_bounds(DsModel& model);

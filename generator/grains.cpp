@@ -254,6 +254,7 @@ void scatter_grains(const Template& t, DsModel& model, uint64_t seed, const Grai
     s.name = spec.name;
     s.role = SurfaceRole::Grain;
     add_ellipsoids(grains, spec.front, spec.back, spec.blur, opt, s.mesh);
+    set_material(s.mesh, spec.material_front, spec.material_back);
     model.surfaces.push_back(std::move(s));
   }
   update_bounds(model);

@@ -19,6 +19,7 @@ DsModel build_model(const Template& t) {
       case SurfaceKind::Within: model.surfaces.push_back(sweep_within(spec, t)); break;
       case SurfaceKind::Mesh: model.surfaces.push_back(import_mesh_surface(spec, t)); break;
     }
+    set_material(model.surfaces.back().mesh, spec.material_front, spec.material_back);
   }
   update_bounds(model);
   check_model(t, model, order);

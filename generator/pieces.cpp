@@ -28,9 +28,11 @@ ShadedMesh shaded_surface(const DsSurface& surface, bool show_front, bool facing
     const auto& p = surface.mesh.point(vh);
     const auto& data = surface.mesh.data(vh);
     const auto& c = show_front ? data.front : data.back;
+    const auto& m = show_front ? data.material_front : data.material_back;
     out.position.emplace_back(p[0], p[1], p[2]);
     out.normal.push_back(normals[vh.idx()]);
     out.colour.emplace_back(c[0], c[1], c[2]);
+    out.material.emplace_back(m[0], m[1]);
   }
   for (auto fh : surface.mesh.faces()) {
     glm::uvec3 t;
@@ -66,6 +68,7 @@ ShadedMesh cap_in_cell(const CrossSection& section, const CutCells& cells, const
         out.position.push_back(section.position[t[k]]);
         out.normal.push_back(normal);
         out.colour.push_back(section.colour[t[k]]);
+        out.material.push_back(section.material[t[k]]);
         remap[t[k]] = static_cast<unsigned>(out.position.size() - 1);
       }
       t[k] = remap[t[k]];
@@ -228,6 +231,7 @@ ShadedMesh merge_parts(const Piece& piece) {
     out.position.insert(out.position.end(), part.mesh.position.begin(), part.mesh.position.end());
     out.normal.insert(out.normal.end(), part.mesh.normal.begin(), part.mesh.normal.end());
     out.colour.insert(out.colour.end(), part.mesh.colour.begin(), part.mesh.colour.end());
+    out.material.insert(out.material.end(), part.mesh.material.begin(), part.mesh.material.end());
     for (const glm::uvec3& t : part.mesh.triangle) out.triangle.push_back(t + base);
   }
   return out;

@@ -8,6 +8,7 @@ unsigned copy_vertex(const ShadedMesh& from, unsigned i, ShadedMesh& to) {
   to.position.push_back(from.position[i]);
   to.normal.push_back(from.normal[i]);
   to.colour.push_back(from.colour[i]);
+  to.material.push_back(from.material[i]);
   return static_cast<unsigned>(to.position.size() - 1);
 }
 
@@ -16,11 +17,13 @@ unsigned add_interpolated_vertex(ShadedMesh& mesh, unsigned a, unsigned b, doubl
   const glm::dvec3 pa = mesh.position[a], pb = mesh.position[b];
   const glm::dvec3 na = mesh.normal[a], nb = mesh.normal[b];
   const glm::dvec3 ca = mesh.colour[a], cb = mesh.colour[b];
+  const glm::dvec2 ma = mesh.material[a], mb = mesh.material[b];
   mesh.position.push_back(pa + (pb - pa) * t);
   const glm::dvec3 n = na + (nb - na) * t;
   const double len = glm::length(n);
   mesh.normal.push_back(len > 0 ? n / len : na);
   mesh.colour.push_back(ca + (cb - ca) * t);
+  mesh.material.push_back(ma + (mb - ma) * t);
   return static_cast<unsigned>(mesh.position.size() - 1);
 }
 

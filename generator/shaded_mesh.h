@@ -3,6 +3,7 @@
 
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace cutaway {
@@ -12,6 +13,7 @@ struct ShadedMesh {
   std::vector<glm::dvec3> position;  ///< #V, metres
   std::vector<glm::dvec3> normal;    ///< #V, unit shading normals (outward)
   std::vector<glm::dvec3> colour;    ///< #V, linear RGB
+  std::vector<glm::dvec2> material;  ///< #V, material channels (roughness, translucency) 0..1
   std::vector<glm::uvec3> triangle;  ///< #F, counter-clockwise seen from outside
 };
 

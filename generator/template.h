@@ -75,6 +75,9 @@ struct SurfaceSpec {
   ColourField front = ColourField::constant({0.5, 0.5, 0.5});
   ColourField back = ColourField::constant({0.5, 0.5, 0.5});
   LengthField blur = LengthField::constant(0.0);
+  /// Material channels (roughness, translucency) of each side, 0..1 (spec: `roughness`,
+  /// `translucency`); absent: the template's cut material.
+  glm::dvec2 material_front{0.6, 0.0}, material_back{0.6, 0.0};
   bool visible_front = true;
   bool visible_back = true;
   /// mesh: the PLY file, resolved relative to the template's directory.
@@ -98,6 +101,7 @@ struct GrainSpec {
                                              ///< tangent, normal), metres
   glm::dvec3 front{0.0}, back{0.0};          ///< linear RGB
   double blur = 0.0;                         ///< metres
+  glm::dvec2 material_front{0.6, 0.0}, material_back{0.6, 0.0};  ///< (roughness, translucency)
   double jitter = 0.0;                       ///< relative variation of size and orientation, 0..1
   FileLoc loc, spacing_loc, shape_loc;       ///< the item, its `spacing` and its `shape`
   std::string path;

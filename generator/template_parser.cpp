@@ -127,9 +127,30 @@ SectionSpec parse_section(const YamlField& f, double m) {
   return s;
 }
 
+/// The material channels of a surface's or grain's two sides (spec: `roughness`,
+/// `translucency`): each field is a number in 0..1 for both sides or {front: x, back: y}
+/// (either may be left out); what is not written takes the cut material's value.
+void parse_material_channels(const YamlField& f, const PbrMaterial& cut, glm::dvec2& front,
+                             glm::dvec2& back) {
+  front = back = {cut.roughness, cut.translucency};
+  auto channel = [&](const char* key, int k) {
+    const auto x = f.get(key);
+    if (!x) return;
+    if (!x->is_map()) {
+      front[k] = back[k] = x->number_in(0, 1);
+      return;
+    }
+    x->allow_only({"front", "back"});
+    if (auto v = x->get("front")) front[k] = v->number_in(0, 1);
+    if (auto v = x->get("back")) back[k] = v->number_in(0, 1);
+  };
+  channel("roughness", 0);
+  channel("translucency", 1);
+}
+
 SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::string& base_dir) {
   f.allow_only({"name", "kind", "role", "profile", "section", "smooth", "front", "back", "blur",
-                "visible", "file"});
+                "roughness", "translucency", "visible", "file"});
   SurfaceSpec s;
   s.path = f.path();
   s.loc = f.loc();
@@ -216,6 +237,7 @@ SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::stri
   if (auto x = f.get("blur")) {
     s.blur = parse_gradient<double>(*x, [m](const YamlField& v) { return parse_length(v, m); });
   }
+  parse_material_channels(f, t.cut_material, s.material_front, s.material_back);
   if (auto vis = f.get("visible")) {
     vis->allow_only({"front", "back"});
     if (auto x = vis->get("front")) s.visible_front = x->boolean();
@@ -233,7 +255,7 @@ glm::dvec2 parse_range(const YamlField& f) {
 
 GrainSpec parse_grain(const YamlField& f, const Template& t) {
   f.allow_only({"name", "on", "region", "spacing", "side", "depth", "shape", "front", "back",
-                "blur", "jitter"});
+                "blur", "roughness", "translucency", "jitter"});
   GrainSpec g;
   g.path = f.path();
   g.loc = f.loc();
@@ -272,6 +294,7 @@ GrainSpec parse_grain(const YamlField& f, const Template& t) {
   g.back = parse_colour(f.require("back"));
   if (auto x = f.get("blur")) g.blur = parse_length(*x, m);
   if (auto x = f.get("jitter")) g.jitter = x->number_in(0, 1);
+  parse_material_channels(f, t.cut_material, g.material_front, g.material_back);
   return g;
 }
 
@@ -448,6 +471,13 @@ Template parse_template(std::string_view text, const std::string& file,
     }
   }
 
+  // Materials first: the cut material is the default of every surface's material channels.
+  if (auto materials = root.get("materials")) {
+    materials->allow_only({"skin", "cut"});
+    if (auto skin = materials->get("skin")) t.skin_material = parse_material(*skin);
+    if (auto cut = materials->get("cut")) t.cut_material = parse_material(*cut);
+  }
+
   const YamlField surfaces = root.require("surfaces");
   if (surfaces.size() == 0) surfaces.fail("a template needs at least one surface");
   std::set<std::string> names;
@@ -475,11 +505,6 @@ Template parse_template(std::string_view text, const std::string& file,
   }
 
   if (auto npr = root.get("npr")) t.npr = parse_npr(*npr, t.metres_per_unit);
-  if (auto materials = root.get("materials")) {
-    materials->allow_only({"skin", "cut"});
-    if (auto skin = materials->get("skin")) t.skin_material = parse_material(*skin);
-    if (auto cut = materials->get("cut")) t.cut_material = parse_material(*cut);
-  }
 
   t.edge_loc = FileLoc{file, 1, 1};
   if (auto res = root.get("resolution")) {

@@ -29,13 +29,15 @@ namespace {
 /// Near plane, metres. With the reversed float depth buffer the precision does not depend on
 /// it, so it can be far below any sheet spacing (kMinSheetOffset_m).
 constexpr float kNear_m = 1e-7f;
-/// Upper bound on the colour + depth targets of one batch, bytes.
+/// Upper bound on the colour, material and depth targets of one batch, bytes.
 constexpr size_t kMaxBatchBytes = size_t{64} << 20;
 /// One vertex as shaders/pmvc.vert reads it.
 struct SheetVertex {
   glm::vec3 position;      // metres
   glm::vec3 colour_front;  // linear RGB
   glm::vec3 colour_back;   // linear RGB; = colour_front on a sheet that is not two-faced
+  glm::vec2 material_front;  // (roughness, translucency)
+  glm::vec2 material_back;   // = material_front on a sheet that is not two-faced
 };
 
 void check_gl(const char* what) {
@@ -64,7 +66,7 @@ class GlDiffusion final : public DiffusionBackend {
     if (n_ > max_size)
       throw std::invalid_argument("gl diffusion: cube_size " + std::to_string(n_) +
                                   " exceeds the texture size limit " + std::to_string(max_size));
-    const size_t bytes_per_point = size_t{6} * n_ * n_ * (16 + 4);
+    const size_t bytes_per_point = size_t{6} * n_ * n_ * (16 + 8 + 4);
     batch_ = static_cast<int>(std::clamp<size_t>(kMaxBatchBytes / bytes_per_point, 1,
                                                  static_cast<size_t>(max_layers / 6)));
 
@@ -87,23 +89,30 @@ class GlDiffusion final : public DiffusionBackend {
 
   std::string name() const override { return "gl"; }
 
-  std::vector<glm::dvec3> diffuse(std::span<const glm::dvec3> points) const override {
-    std::vector<glm::dvec3> out(points.size(), glm::dvec3(0.0));
-    if (points.empty() || index_count_ == 0) return out;
+  void diffuse_channels(std::span<const glm::dvec3> points, std::span<glm::dvec3> colour,
+                        std::span<glm::dvec2> material) const override {
+    check_channel_sizes(points.size(), colour.size(), material.size());
+    std::fill(colour.begin(), colour.end(), glm::dvec3(0.0));
+    std::fill(material.begin(), material.end(), glm::dvec2(0.0));
+    if (points.empty() || index_count_ == 0) return;
     const std::lock_guard lock(mutex_);
     context_->make_current();
     std::vector<glm::vec4> eyes;
-    std::vector<glm::dvec4> sums(static_cast<size_t>(batch_));
+    // Per point: (sum colour w, sum w), (sum material w, 0, 0).
+    std::vector<glm::dvec4> sums(2 * static_cast<size_t>(batch_));
     for (size_t base = 0; base < points.size(); base += eyes.size()) {
       const size_t count = std::min<size_t>(batch_, points.size() - base);
       eyes.assign(count, glm::vec4(0.0f));
       for (size_t i = 0; i < count; ++i) eyes[i] = glm::vec4(glm::vec3(points[base + i]), 1.0f);
       render(eyes);
       reduce(static_cast<int>(count), sums);
-      for (size_t i = 0; i < count; ++i)
-        if (sums[i].w > 0) out[base + i] = glm::dvec3(sums[i]) / sums[i].w;
+      for (size_t i = 0; i < count; ++i) {
+        const double w = sums[2 * i].w;
+        if (w <= 0) continue;
+        colour[base + i] = glm::dvec3(sums[2 * i]) / w;
+        if (!material.empty()) material[base + i] = glm::dvec2(sums[2 * i + 1]) / w;
+      }
     }
-    return out;
   }
 
  private:
@@ -121,6 +130,7 @@ class GlDiffusion final : public DiffusionBackend {
     const GLfloat zero[4] = {0, 0, 0, 0};
     const GLfloat far_depth = 0;
     glClearBufferfv(GL_COLOR, 0, zero);
+    glClearBufferfv(GL_COLOR, 1, zero);
     glClearBufferfv(GL_DEPTH, 0, &far_depth);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, eye_buffer_);
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
@@ -134,19 +144,22 @@ class GlDiffusion final : public DiffusionBackend {
     check_gl("while rendering the cube maps");
   }
 
-  /// Sums the layers of `count` points into sums[0 .. count - 1].
+  /// Sums the layers of `count` points into sums[0 .. 2 count - 1] (two per point).
   void reduce(int count, std::vector<glm::dvec4>& sums) const {
     glUseProgram(reduce_->id());
     glUniform1i(n_location_, n_);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D_ARRAY, colour_);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, material_);
+    glActiveTexture(GL_TEXTURE0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, solid_angle_buffer_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, sum_buffer_);
     glDispatchCompute(static_cast<GLuint>(count), 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, sum_buffer_);
     glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
-                       static_cast<GLsizeiptr>(count * sizeof(glm::dvec4)), sums.data());
+                       static_cast<GLsizeiptr>(2 * count * sizeof(glm::dvec4)), sums.data());
     check_gl("while summing the cube maps");
   }
 
@@ -174,7 +187,8 @@ class GlDiffusion final : public DiffusionBackend {
       const auto base = static_cast<uint32_t>(vertices.size());
       for (size_t v = 0; v < s.position.size(); ++v)
         vertices.push_back({s.position[v], s.colour_front[v],
-                            s.two_faced ? s.colour_back[v] : s.colour_front[v]});
+                            s.two_faced ? s.colour_back[v] : s.colour_front[v], s.material_front[v],
+                            s.two_faced ? s.material_back[v] : s.material_front[v]});
       for (const glm::uvec3& t : s.triangle)
         for (int k = 0; k < 3; ++k) indices.push_back(base + t[k]);
     }
@@ -182,7 +196,9 @@ class GlDiffusion final : public DiffusionBackend {
     vertex_array_ = make_vertex_array(vertices, indices,
                                       {{0, 3, offsetof(SheetVertex, position)},
                                        {1, 3, offsetof(SheetVertex, colour_front)},
-                                       {2, 3, offsetof(SheetVertex, colour_back)}});
+                                       {2, 3, offsetof(SheetVertex, colour_back)},
+                                       {3, 2, offsetof(SheetVertex, material_front)},
+                                       {4, 2, offsetof(SheetVertex, material_back)}});
     glBindVertexArray(0);
   }
 
@@ -193,6 +209,11 @@ class GlDiffusion final : public DiffusionBackend {
     glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA32F, n_, n_, layers);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glGenTextures(1, &material_);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, material_);
+    glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RG32F, n_, n_, layers);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glGenTextures(1, &depth_);
     glBindTexture(GL_TEXTURE_2D_ARRAY, depth_);
     glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_DEPTH_COMPONENT32F, n_, n_, layers);
@@ -200,10 +221,13 @@ class GlDiffusion final : public DiffusionBackend {
     glGenFramebuffers(1, &framebuffer_);
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
     glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, colour_, 0);
+    glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, material_, 0);
     glFramebufferTexture(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, depth_, 0);
+    const GLenum draw_buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glDrawBuffers(2, draw_buffers);
     const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)
-      throw std::runtime_error("gl diffusion: layered RGBA32F + DEPTH32F framebuffer of " +
+      throw std::runtime_error("gl diffusion: layered RGBA32F + RG32F + DEPTH32F framebuffer of " +
                                std::to_string(n_) + "^2 x " + std::to_string(layers) +
                                " is incomplete (status " + std::to_string(status) + ")");
 
@@ -221,7 +245,7 @@ class GlDiffusion final : public DiffusionBackend {
                  static_cast<GLsizeiptr>(directions.solid_angle.size() * sizeof(double)),
                  directions.solid_angle.data(), GL_STATIC_DRAW);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, sum_buffer_);
-    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(batch_ * sizeof(glm::dvec4)),
+    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(2 * batch_ * sizeof(glm::dvec4)),
                  nullptr, GL_DYNAMIC_READ);
     near_location_ = render_->uniform("near_m");
     n_location_ = glGetUniformLocation(reduce_->id(), "n");
@@ -236,7 +260,7 @@ class GlDiffusion final : public DiffusionBackend {
   std::unique_ptr<GlProgram> reduce_;
   GLuint vertex_array_ = 0;
   GLsizei index_count_ = 0;
-  GLuint colour_ = 0, depth_ = 0, framebuffer_ = 0;
+  GLuint colour_ = 0, material_ = 0, depth_ = 0, framebuffer_ = 0;
   GLuint eye_buffer_ = 0, solid_angle_buffer_ = 0, sum_buffer_ = 0;
   GLint near_location_ = -1, n_location_ = -1;
   mutable std::mutex mutex_;

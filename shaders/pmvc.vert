@@ -8,6 +8,8 @@
 layout(location = 0) in vec3 in_position;      // metres, object frame
 layout(location = 1) in vec3 in_colour_front;  // linear RGB
 layout(location = 2) in vec3 in_colour_back;   // linear RGB (= front on a one-colour sheet)
+layout(location = 3) in vec2 in_material_front;  // (roughness, translucency)
+layout(location = 4) in vec2 in_material_back;   // (= front on a one-colour sheet)
 
 layout(std430, binding = 0) readonly buffer Eyes {
   vec4 eye[];  // xyz: the batch's points, metres
@@ -18,6 +20,8 @@ uniform float near_m;
 out vec3 v_offset;  // hit - point, metres
 out vec3 v_front;
 out vec3 v_back;
+out vec2 v_material_front;
+out vec2 v_material_back;
 
 // Rows U, V, N per face (+X, -X, +Y, -Y, +Z, -Z): face_point(f, a, b) = a U + b V + N.
 const vec3 kU[6] = vec3[6](vec3(0, 0, -1), vec3(0, 0, 1), vec3(1, 0, 0), vec3(1, 0, 0),
@@ -34,6 +38,8 @@ void main() {
   v_offset = q;
   v_front = in_colour_front;
   v_back = in_colour_back;
+  v_material_front = in_material_front;
+  v_material_back = in_material_back;
   gl_Position = vec4(dot(q, kU[face]), dot(q, kV[face]), near_m, dot(q, kN[face]));
   gl_Layer = gl_InstanceID;
 }

@@ -5,9 +5,11 @@
 
 #include <memory>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "ds_model.h"
@@ -26,17 +28,38 @@ struct DiffusionOptions {
 
 /// colour(x) = sum_w c(w) dOmega(w) / r(w)  /  sum_w dOmega(w) / r(w) over the cube-map texel
 /// directions w that hit a sheet; r(w) is the Euclidean distance to the first hit and c(w) the
-/// colour the hit sheet shows there (make_diffusion_sheets).
+/// colour the hit sheet shows there (make_diffusion_sheets). The material channels (roughness,
+/// translucency) are diffused the same way, from the same rays (paper §6: material information
+/// on DSs besides colours).
 class DiffusionBackend {
  public:
   virtual ~DiffusionBackend() = default;
-  /// Linear RGB colours (#P) at `points` (#P, metres, object frame). A point that sees no
-  /// sheet in any direction (outside the object) gets black. Each point is summed in a fixed
-  /// order: the result does not depend on the thread count.
-  virtual std::vector<glm::dvec3> diffuse(std::span<const glm::dvec3> points) const = 0;
+  /// Linear RGB colours (`colour`, #P) and, when `material` is not empty (#P), material
+  /// channels (roughness, translucency; 0..1) at `points` (#P, metres, object frame), in one
+  /// ray cast per direction. A point that sees no sheet in any direction (outside the object)
+  /// gets zeros. Each point is summed in a fixed order: the result does not depend on the
+  /// thread count.
+  /// @throws std::invalid_argument when colour (or a non-empty material) is not #P long
+  virtual void diffuse_channels(std::span<const glm::dvec3> points, std::span<glm::dvec3> colour,
+                                std::span<glm::dvec2> material) const = 0;
+  /// Colours only (#P).
+  std::vector<glm::dvec3> diffuse(std::span<const glm::dvec3> points) const {
+    std::vector<glm::dvec3> colour(points.size());
+    diffuse_channels(points, colour, {});
+    return colour;
+  }
   /// "cpu" or "gl".
   virtual std::string name() const = 0;
 };
+
+/// The sizes diffuse_channels needs: throws std::invalid_argument unless colour has one entry
+/// per point and material none or one per point.
+inline void check_channel_sizes(size_t points, size_t colour, size_t material) {
+  if (colour != points || (material != 0 && material != points))
+    throw std::invalid_argument("diffusion: " + std::to_string(points) + " points but " +
+                                std::to_string(colour) + " colours and " +
+                                std::to_string(material) + " material channels");
+}
 
 /// The CPU backend: Embree 3 ray casting, packets of 16 directions of one point, TBB over
 /// points. Builds the BVH of all sheets once.

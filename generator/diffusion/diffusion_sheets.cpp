@@ -9,6 +9,7 @@ namespace cutaway {
 namespace {
 
 glm::vec3 to_vec3(const OpenMesh::Vec3d& v) { return {v[0], v[1], v[2]}; }
+glm::vec2 to_vec2(const OpenMesh::Vec2d& v) { return {v[0], v[1]}; }
 
 /// Copies the mesh into a sheet, each vertex moved by `sign * max(blur, min) * normal`
 /// (sign 0: not moved).
@@ -22,6 +23,9 @@ DiffusionSheet sheet_of(const DsMesh& mesh, const std::vector<glm::dvec3>& norma
     s.position.push_back(glm::vec3(q));
     s.colour_front.push_back(to_vec3(sign < 0 ? d.back : d.front));
     s.colour_back.push_back(to_vec3(sign == 0 ? d.back : (sign < 0 ? d.back : d.front)));
+    s.material_front.push_back(to_vec2(sign < 0 ? d.material_back : d.material_front));
+    s.material_back.push_back(
+        to_vec2(sign == 0 ? d.material_back : (sign < 0 ? d.material_back : d.material_front)));
   }
   for (auto fh : mesh.faces()) {
     glm::uvec3 t;

@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "ds_model.h"
@@ -20,6 +21,8 @@ struct DiffusionSheet {
   /// Per vertex, linear RGB. `two_faced`: colour_front where a ray meets the front face,
   /// colour_back where it meets the back face. Otherwise colour_front on both faces.
   std::vector<glm::vec3> colour_front, colour_back;
+  /// Per vertex, material channels (roughness, translucency), shown like the colours.
+  std::vector<glm::vec2> material_front, material_back;
   bool two_faced = false;
 };
 

@@ -39,10 +39,13 @@ class CpuDiffusion final : public DiffusionBackend {
 
   std::string name() const override { return "cpu"; }
 
-  std::vector<glm::dvec3> diffuse(std::span<const glm::dvec3> points) const override {
-    std::vector<glm::dvec3> out(points.size(), glm::dvec3(0.0));
+  void diffuse_channels(std::span<const glm::dvec3> points, std::span<glm::dvec3> colour,
+                        std::span<glm::dvec2> material) const override {
+    check_channel_sizes(points.size(), colour.size(), material.size());
+    const bool with_material = !material.empty();
     auto body = [&](const oneapi::tbb::blocked_range<size_t>& range) {
-      for (size_t i = range.begin(); i != range.end(); ++i) out[i] = diffuse_point(points[i]);
+      for (size_t i = range.begin(); i != range.end(); ++i)
+        diffuse_point(points[i], colour[i], with_material ? &material[i] : nullptr);
     };
     if (options_.threads > 0) {
       oneapi::tbb::task_arena arena(options_.threads);
@@ -52,14 +55,15 @@ class CpuDiffusion final : public DiffusionBackend {
     } else {
       oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<size_t>(0, points.size(), 4), body);
     }
-    return out;
   }
 
  private:
-  /// One point: all cube-map directions in packets of 16, summed in direction order.
-  glm::dvec3 diffuse_point(const glm::dvec3& x) const {
+  /// One point: all cube-map directions in packets of 16, summed in direction order; the
+  /// material channels from the same hits when `material` is not null.
+  void diffuse_point(const glm::dvec3& x, glm::dvec3& colour_out, glm::dvec2* material) const {
     const size_t count = directions_.direction.size();
     glm::dvec3 sum_colour(0.0);
+    glm::dvec2 sum_material(0.0);
     double sum_weight = 0;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -76,16 +80,21 @@ class CpuDiffusion final : public DiffusionBackend {
         const glm::uvec3 t = s.triangle[prim];
         const float u = rh.hit.u[l], v = rh.hit.v[l], w0 = 1.0f - u - v;
         const glm::vec3 d = directions_.direction[base + l];
-        const bool front_face = glm::dot(d, s.face_normal[prim]) < 0;
-        const auto& c = (!s.two_faced || front_face) ? s.colour_front : s.colour_back;
+        const bool front = !s.two_faced || glm::dot(d, s.face_normal[prim]) < 0;
+        const auto& c = front ? s.colour_front : s.colour_back;
         const glm::vec3 colour = w0 * c[t[0]] + u * c[t[1]] + v * c[t[2]];
         const double r = std::max(static_cast<double>(rh.ray.tfar[l]), 1e-9);
         const double weight = directions_.solid_angle[base + l] / r;
         sum_colour += glm::dvec3(colour) * weight;
         sum_weight += weight;
+        if (material) {
+          const auto& m = front ? s.material_front : s.material_back;
+          sum_material += glm::dvec2(w0 * m[t[0]] + u * m[t[1]] + v * m[t[2]]) * weight;
+        }
       }
     }
-    return sum_weight > 0 ? sum_colour / sum_weight : glm::dvec3(0.0);
+    colour_out = sum_weight > 0 ? sum_colour / sum_weight : glm::dvec3(0.0);
+    if (material) *material = sum_weight > 0 ? sum_material / sum_weight : glm::dvec2(0.0);
   }
 
   DiffusionOptions options_;

@@ -120,14 +120,14 @@ TEST(CutSegments, OrientationAndAttributes) {
       const glm::dvec3 mid = 0.5 * (s.a + s.b);
       const double in_plane_out = glm::dot(s.front_normal, mid - plane.normal * glm::dot(mid, plane.normal));
       EXPECT_GT(in_plane_out, 0) << "front normal points inwards";
-      EXPECT_EQ(s.blur_a, 0.0);
-      EXPECT_EQ(s.blur_b, 0.0);
+      EXPECT_EQ(s.at_a.blur, 0.0);
+      EXPECT_EQ(s.at_b.blur, 0.0);
       if (s.surface == 0) {
-        EXPECT_LT(glm::length(s.front_a - skin_front), 1e-12);
-        EXPECT_LT(glm::length(s.back_b - glm::dvec3(1, 0, 0)), 1e-12);
+        EXPECT_LT(glm::length(s.at_a.front - skin_front), 1e-12);
+        EXPECT_LT(glm::length(s.at_b.back - glm::dvec3(1, 0, 0)), 1e-12);
       } else {
-        EXPECT_LT(glm::length(s.front_b - glm::dvec3(0, 1, 0)), 1e-12);
-        EXPECT_LT(glm::length(s.back_a - glm::dvec3(0, 1, 0)), 1e-12);
+        EXPECT_LT(glm::length(s.at_b.front - glm::dvec3(0, 1, 0)), 1e-12);
+        EXPECT_LT(glm::length(s.at_a.back - glm::dvec3(0, 1, 0)), 1e-12);
       }
     }
     EXPECT_TRUE(left == 0 || right == 0) << describe(plane) << ": " << left << " / " << right;
@@ -141,8 +141,8 @@ TEST(CutSegments, AttributesInterpolateAlongTheEdge) {
   double blur_min = 1e9, blur_max = -1e9;
   for (const CutSegment& s : cut_segments(model, plane)) {
     if (model.surfaces[s.surface].name != "core") continue;
-    blur_min = std::min({blur_min, s.blur_a, s.blur_b});
-    blur_max = std::max({blur_max, s.blur_a, s.blur_b});
+    blur_min = std::min({blur_min, s.at_a.blur, s.at_b.blur});
+    blur_max = std::max({blur_max, s.at_a.blur, s.at_b.blur});
   }
   EXPECT_NEAR(blur_min, 0.0015, 1e-12);
   EXPECT_NEAR(blur_max, 0.0015, 1e-12);
@@ -155,8 +155,8 @@ TEST(CutSegments, AttributesInterpolateAlongTheEdge) {
     if (model.surfaces[s.surface].name != "chambers") continue;
     ++chamber;
     for (int k = 0; k < 3; ++k) {
-      EXPECT_GE(s.back_a[k], std::min(lo[k], hi[k]) - 1e-9);
-      EXPECT_LE(s.back_a[k], std::max(lo[k], hi[k]) + 1e-9);
+      EXPECT_GE(s.at_a.back[k], std::min(lo[k], hi[k]) - 1e-9);
+      EXPECT_LE(s.at_a.back[k], std::max(lo[k], hi[k]) + 1e-9);
     }
   }
   EXPECT_GT(chamber, 0u);

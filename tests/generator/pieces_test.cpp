@@ -295,6 +295,7 @@ TEST(ClipMesh, ClosedBoundaryAndVerticesOnThePlane) {
   sq.position = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   sq.normal.assign(4, {0, 0, 1});
   sq.colour = {{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {0, 0, 0}};
+  sq.material = {{0, 1}, {1, 0}, {1, 0}, {0, 1}};
   sq.triangle = {{0, 1, 2}, {0, 2, 3}};
   const ShadedMesh half = clip_to_half_space(sq, {{0.5, 0, 0}, {1, 0, 0}}, false);
   double area = 0;
@@ -302,8 +303,11 @@ TEST(ClipMesh, ClosedBoundaryAndVerticesOnThePlane) {
     area += 0.5 * glm::length(glm::cross(half.position[t[1]] - half.position[t[0]],
                                          half.position[t[2]] - half.position[t[0]]));
   EXPECT_NEAR(area, 0.5, 1e-12);
-  for (size_t i = 0; i < half.position.size(); ++i)
-    EXPECT_NEAR(half.colour[i].x, half.position[i].x, 1e-12);  // interpolated linearly
+  for (size_t i = 0; i < half.position.size(); ++i) {  // interpolated linearly
+    EXPECT_NEAR(half.colour[i].x, half.position[i].x, 1e-12);
+    EXPECT_NEAR(half.material[i].x, half.position[i].x, 1e-12);
+    EXPECT_NEAR(half.material[i].y, 1 - half.position[i].x, 1e-12);
+  }
   // The diagonal's crossing is shared: 3 + 2 crossings = 5 vertices... (0,0),(0,1),(.5,0),(.5,.5),(.5,1)
   EXPECT_EQ(half.position.size(), 5u);
   // x <= 1: vertices at x = 1 count as positive, the boundary passes through them, no slivers.

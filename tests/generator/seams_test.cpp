@@ -70,6 +70,7 @@ ShadedMesh triangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& 
   m.position = {a, b, c};
   m.normal.assign(3, glm::dvec3(0, 0, 1));
   m.colour.assign(3, glm::dvec3(0.5));
+  m.material.assign(3, glm::dvec2(0.5, 0));
   m.triangle = {{0, 1, 2}};
   return m;
 }
@@ -82,6 +83,7 @@ TEST(Seams, OnlyTheNearestVertexOfAPartSnapsOntoASeamVertex) {
   b.position = {{3e-9, 0, 0}, {0, 0, 0}, {1e-3, 1e-3, 0}, {1e-3, -1e-3, 0}};
   b.normal.assign(4, glm::dvec3(0, 0, 1));
   b.colour.assign(4, glm::dvec3(0.5));
+  b.material.assign(4, glm::dvec2(0.5, 0));
   b.triangle = {{0, 3, 2}, {1, 0, 2}};
   std::vector<ShadedMesh*> parts = {&a, &b};
   stitch_seams(parts, 2e-8);
@@ -96,6 +98,7 @@ ShadedMesh tetrahedron() {
   m.position = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   m.normal.assign(4, glm::dvec3(0, 0, 1));
   m.colour.assign(4, glm::dvec3(0.5));
+  m.material.assign(4, glm::dvec2(0.5, 0));
   m.triangle = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
   return m;
 }
@@ -116,6 +119,7 @@ TEST(ManifoldCheck, FindsOpenFlippedDegenerateAndNearDuplicateMeshes) {
   split.position.push_back(split.position[3]);
   split.normal.push_back(split.normal[3]);
   split.colour.push_back(split.colour[3]);
+  split.material.push_back(split.material[3]);
   split.triangle[3][2] = 4;
   EXPECT_EQ(manifold_defect(split, 1e-9), "");
   split.position[4].x += 1e-10;
@@ -126,6 +130,7 @@ TEST(ManifoldCheck, FindsOpenFlippedDegenerateAndNearDuplicateMeshes) {
     bow.position.push_back(-bow.position[v]);
     bow.normal.push_back(-bow.normal[v]);
     bow.colour.push_back(bow.colour[v]);
+    bow.material.push_back(bow.material[v]);
   }
   for (glm::uvec3 t : tetrahedron().triangle) bow.triangle.push_back({t.x + 4, t.z + 4, t.y + 4});
   EXPECT_EQ(manifold_defect(bow, 0), "a vertex with more than one fan of triangles");

@@ -14,6 +14,7 @@
 #include "diffusion/diffusion.h"
 #include "diffusion/diffusion_sheets.h"
 #include "generator/diffusion/analytic_spheres.h"
+#include "generator/diffusion/material_channels.h"
 #include "model_builder.h"
 #include "pmvc_gl.h"
 #include "template_parser.h"
@@ -82,6 +83,16 @@ surfaces:
     const glm::dvec3 want = i < 2 ? glm::dvec3(1.0) : blue_grey;
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(colours[i][c], want[c], 1e-6) << "point " << i;
   }
+}
+
+TEST(PmvcGl, MaterialChannelsAreDiffusedFromTheSameRaysAsColours) {
+  const test::MaterialChannelErrors e =
+      test::material_channel_errors(tomato(), tomato_points(), [](const DsModel& m) {
+        return make_gl_diffusion(m, DiffusionOptions{16, 0});
+      });
+  EXPECT_GT(e.distinct_values, 0.05);
+  EXPECT_LT(e.material_vs_colour, 1e-6);
+  EXPECT_EQ(e.colour_change, 0.0);
 }
 
 TEST(PmvcGl, AgreesWithTheCpuBackendInsideTheTomato) {

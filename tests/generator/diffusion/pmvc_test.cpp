@@ -10,6 +10,7 @@
 #include "diffusion/cube_directions.h"
 #include "diffusion/diffusion.h"
 #include "generator/diffusion/analytic_spheres.h"
+#include "generator/diffusion/material_channels.h"
 #include "model_builder.h"
 #include "template_parser.h"
 #include "test_support.h"
@@ -74,6 +75,49 @@ TEST(PmvcCpu, ResultDoesNotDependOnThreadCount) {
   const auto two = make_cpu_diffusion(model, DiffusionOptions{16, 2})->diffuse(pts);
   ASSERT_EQ(one.size(), two.size());
   for (size_t i = 0; i < one.size(); ++i) EXPECT_EQ(one[i], two[i]) << "point " << i;
+}
+
+TEST(PmvcCpu, MaterialChannelsAreDiffusedFromTheSameRaysAsColours) {
+  const DsModel model =
+      build_model(load_template(test::source_path("templates/tomato.yaml").string()));
+  std::vector<glm::dvec3> pts;
+  for (int i = 0; i < 64; ++i) pts.push_back({0.001 * (i % 8) * 3, 0.01 + 0.004 * (i / 8), 0.002});
+  const test::MaterialChannelErrors e =
+      test::material_channel_errors(model, pts, [](const DsModel& m) {
+        return make_cpu_diffusion(m, DiffusionOptions{16, 2});
+      });
+  EXPECT_GT(e.distinct_values, 0.05);  // the channels vary: the check means something
+  EXPECT_LT(e.material_vs_colour, 1e-6);
+  EXPECT_EQ(e.colour_change, 0.0);  // colours do not depend on whether materials are asked for
+}
+
+TEST(PmvcCpu, TemplateMaterialChannelsReachTheCutFace) {
+  // Roughness 0.2 on the core's outside, 0.8 everywhere else; translucency from the cut
+  // material (0.4) except 0.9 on the skin's inside.
+  const std::string text = R"(format: cutaway-template/1
+name: channels
+symmetry: {type: cylindrical}
+resolution: {edge: 3}
+materials: {cut: {roughness: 0.8, translucency: 0.4}}
+surfaces:
+  - {name: skin, kind: around, role: skin, profile: [[0, 0], [20, 10], [25, 30], [0, 50]], translucency: {back: 0.9}}
+  - {name: core, kind: around, profile: [[0, 10], [8, 20], [0, 35]], roughness: {front: 0.2}}
+)";
+  const DsModel model = build_model(parse_template(text, "channels.yaml", "."));
+  const auto backend = make_cpu_diffusion(model, DiffusionOptions{8, 1});
+  // Inside the core it sees only the core's back (0.8, 0.4); between, a blend.
+  const std::vector<glm::dvec3> pts = {{0, 0.02, 0.001}, {0.015, 0.02, 0.003}};
+  std::vector<glm::dvec3> colour(pts.size());
+  std::vector<glm::dvec2> material(pts.size());
+  backend->diffuse_channels(pts, colour, material);
+  EXPECT_NEAR(material[0].x, 0.8, 1e-6);
+  EXPECT_NEAR(material[0].y, 0.4, 1e-6);
+  EXPECT_GT(material[1].x, 0.2);
+  EXPECT_LT(material[1].x, 0.8);
+  EXPECT_GT(material[1].y, 0.4);
+  EXPECT_LT(material[1].y, 0.9);
+  std::vector<glm::dvec2> short_material(1);
+  EXPECT_THROW(backend->diffuse_channels(pts, colour, short_material), std::invalid_argument);
 }
 
 }  // namespace
