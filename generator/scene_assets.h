@@ -27,11 +27,14 @@ inline std::string asset_name(std::string_view name) {
   return s;
 }
 
-/// An image for texturing: sRGB, 8 bits per channel, RGB, row 0 at the top.
+/// An image for texturing, 8 bits per channel, row 0 at the top: a base colour (RGB, sRGB) or
+/// a material map (RGBA, linear: G roughness, B metallic, A translucency; the channels glTF's
+/// metallicRoughnessTexture and KHR_materials_diffuse_transmission's texture read).
 struct AssetTexture {
   std::string name;
   int width = 0, height = 0;
-  std::vector<uint8_t> srgb;  ///< width * height * 3
+  int channels = 3;             ///< 3 (RGB) or 4 (RGBA)
+  std::vector<uint8_t> pixels;  ///< width * height * channels, row by row
 };
 
 /// A named material. Its base colour is the vertex colours, or its texture when it has one
@@ -41,6 +44,10 @@ struct AssetMaterial {
   std::string name;  ///< unique in the scene
   PbrMaterial pbr;
   int base_colour_texture = -1;  ///< index into SceneAssets::textures, or -1
+  /// Index into SceneAssets::textures of an RGBA material map (roughness, translucency), or -1.
+  /// With one, pbr.roughness and pbr.translucency are the map's means (for renderers that
+  /// cannot read it), and the map holds the values themselves (glTF factors 1).
+  int material_texture = -1;
 };
 
 /// Triangles [first, first + count) of a mesh, drawn with one material.

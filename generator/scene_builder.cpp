@@ -189,7 +189,7 @@ PieceMaterials add_cap_texture(SceneAssets& assets, const PieceSet& set,
     return materials;
   }
   uv = std::move(atlas.uv);
-  assets.textures.push_back({object + "_cut", atlas.width, atlas.height, std::move(atlas.srgb)});
+  assets.textures.push_back({object + "_cut", atlas.width, atlas.height, 3, std::move(atlas.srgb)});
   AssetMaterial cut = assets.materials[static_cast<size_t>(materials.cut)];
   cut.name = object + "_cut";
   cut.base_colour_texture = static_cast<int>(assets.textures.size()) - 1;

@@ -8,15 +8,17 @@ namespace cutaway {
 
 std::string encode_png(const AssetTexture& texture) {
   if (texture.width <= 0 || texture.height <= 0 ||
-      texture.srgb.size() != static_cast<size_t>(texture.width) * texture.height * 3)
+      (texture.channels != 3 && texture.channels != 4) ||
+      texture.pixels.size() !=
+          static_cast<size_t>(texture.width) * texture.height * texture.channels)
     throw std::invalid_argument("texture '" + texture.name + "': size and pixels disagree");
   std::string out;
   auto append = [](void* context, void* data, int size) {
     static_cast<std::string*>(context)->append(static_cast<const char*>(data),
                                                static_cast<size_t>(size));
   };
-  if (!stbi_write_png_to_func(append, &out, texture.width, texture.height, 3, texture.srgb.data(),
-                              texture.width * 3))
+  if (!stbi_write_png_to_func(append, &out, texture.width, texture.height, texture.channels,
+                              texture.pixels.data(), texture.width * texture.channels))
     throw std::invalid_argument("texture '" + texture.name + "': PNG encoding failed");
   return out;
 }

@@ -8,7 +8,7 @@
 
 namespace cutaway {
 
-/// `texture` as PNG bytes (stb_image_write, 8-bit RGB; deterministic: the same texture gives
+/// `texture` as PNG bytes (stb_image_write, 8-bit RGB or RGBA; deterministic: the same texture gives
 /// the same bytes).
 /// @throws std::invalid_argument when its size and pixel count disagree or it is empty
 std::string encode_png(const AssetTexture& texture);

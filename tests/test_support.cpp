@@ -191,11 +191,11 @@ PngInfo png_info(const std::filesystem::path& file) {
 }
 
 void texture_with_halves(SceneAssets& assets, size_t mesh, int size) {
-  AssetTexture texture{"halves", size, size, {}};
+  AssetTexture texture{"halves", size, size, 3, {}};
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) {
       const bool left = x < size / 2;
-      texture.srgb.insert(texture.srgb.end(), {static_cast<uint8_t>(left ? 20 : 240),
+      texture.pixels.insert(texture.pixels.end(), {static_cast<uint8_t>(left ? 20 : 240),
                                                static_cast<uint8_t>(left ? 40 : 220),
                                                static_cast<uint8_t>(left ? 230 : 20)});
     }
