@@ -4,10 +4,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <stb/stb_rect_pack.h>
 
-#include "colour.h"
+#include "texel_bake.h"
 
 namespace cutaway {
 
@@ -109,74 +110,25 @@ CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
   atlas.height = height;
   atlas.texels_per_m = density;
 
-  // Rasterise every cap triangle at texel centres.
-  std::vector<glm::dvec3> colour(static_cast<size_t>(width) * height, glm::dvec3(0.0));
-  std::vector<uint8_t> filled(colour.size(), 0);
+  // Rasterise every cap triangle at texel centres, then dilate.
+  TexelCanvas canvas(width, height, false);
   for (size_t k = 0; k < islands.size(); ++k) {
     const Island& island = islands[k];
-    const ShadedMesh& mesh = island.part->mesh;
     std::vector<glm::dvec2> texel(island.uv_m.size());
     for (size_t v = 0; v < texel.size(); ++v) {
       texel[v] = (island.uv_m[v] - island.lo) * density + glm::dvec2(pad) + glm::dvec2(at[k]);
       atlas.uv[island.piece][island.first_vertex + v] =
           texel[v] / glm::dvec2(static_cast<double>(width), static_cast<double>(height));
     }
-    for (const glm::uvec3& t : mesh.triangle) {
-      const glm::dvec2 a = texel[t.x], b = texel[t.y], c = texel[t.z];
-      const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-      if (area == 0) continue;
-      const glm::ivec2 lo(static_cast<int>(std::floor(std::min({a.x, b.x, c.x}))),
-                          static_cast<int>(std::floor(std::min({a.y, b.y, c.y}))));
-      const glm::ivec2 hi(static_cast<int>(std::ceil(std::max({a.x, b.x, c.x}))),
-                          static_cast<int>(std::ceil(std::max({a.y, b.y, c.y}))));
-      for (int y = std::max(lo.y, 0); y <= std::min(hi.y, height - 1); ++y)
-        for (int x = std::max(lo.x, 0); x <= std::min(hi.x, width - 1); ++x) {
-          const glm::dvec2 p(x + 0.5, y + 0.5);
-          // Barycentric weights; a small tolerance closes hairline gaps on shared edges.
-          const double wa = ((b.x - p.x) * (c.y - p.y) - (b.y - p.y) * (c.x - p.x)) / area;
-          const double wb = ((c.x - p.x) * (a.y - p.y) - (c.y - p.y) * (a.x - p.x)) / area;
-          const double wc = 1 - wa - wb;
-          if (wa < -1e-9 || wb < -1e-9 || wc < -1e-9) continue;
-          const size_t i = static_cast<size_t>(y) * width + x;
-          glm::dvec3 c_lin = wa * mesh.colour[t.x] + wb * mesh.colour[t.y] + wc * mesh.colour[t.z];
-          if (modulation) {
-            const glm::dvec3 where =
-                wa * mesh.position[t.x] + wb * mesh.position[t.y] + wc * mesh.position[t.z];
-            c_lin = (*modulation)(where, c_lin, strength);
-          }
-          colour[i] = c_lin;
-          filled[i] = 1;
-        }
-    }
+    rasterise(island.part->mesh, texel, modulation, strength, canvas);
   }
-  // Dilation: `pad` rings, each texel taking the mean of its filled 8-neighbours.
-  for (int ring = 0; ring < pad; ++ring) {
-    std::vector<uint8_t> before = filled;
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x) {
-        const size_t i = static_cast<size_t>(y) * width + x;
-        if (before[i]) continue;
-        glm::dvec3 sum(0.0);
-        int n = 0;
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            const int xx = x + dx, yy = y + dy;
-            if (xx < 0 || yy < 0 || xx >= width || yy >= height) continue;
-            const size_t j = static_cast<size_t>(yy) * width + xx;
-            if (before[j]) sum += colour[j], ++n;
-          }
-        if (n > 0) {
-          colour[i] = sum / static_cast<double>(n);
-          filled[i] = 1;
-        }
-      }
-  }
-  atlas.srgb.resize(colour.size() * 3);
-  for (size_t i = 0; i < colour.size(); ++i) {
-    const glm::dvec3 s = linear_to_srgb(glm::clamp(colour[i], 0.0, 1.0));
-    for (int k = 0; k < 3; ++k)
-      atlas.srgb[3 * i + k] = static_cast<uint8_t>(std::lround(255.0 * s[k]));
-  }
+  const MaterialStats stats = material_stats(canvas);
+  dilate(canvas, pad);
+  atlas.srgb = srgb_pixels(canvas);
+  // To 1e-6: the diffusion's single-precision sheets give 0.30000001 for 0.3.
+  atlas.material_mean = glm::round(stats.mean * 1e6) / 1e6;
+  if (std::max(stats.spread.x, stats.spread.y) >= kMaterialMapSpread)
+    atlas.material = material_pixels(canvas);
   return atlas;
 }
 

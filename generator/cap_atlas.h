@@ -23,10 +23,19 @@ struct CapAtlasOptions {
   int max_size = 4096;         ///< largest atlas side; denser islands are scaled down to fit
 };
 
+/// Material channels varying less than this over an object's caps (half an 8-bit step) make no
+/// material map: the cut material's factors carry their mean.
+inline constexpr double kMaterialMapSpread = 0.5 / 255;
+
 /// One object's cap atlas.
 struct CapAtlas {
   int width = 0, height = 0;  ///< texels (0 x 0: no caps)
   std::vector<uint8_t> srgb;  ///< width * height * 3, row 0 at the top (v = 0), sRGB 8-bit
+  /// width * height * 4: the material map (texel_bake.h, material_pixels), or empty where the
+  /// material channels do not vary over the caps (spread below kMaterialMapSpread).
+  std::vector<uint8_t> material;
+  glm::dvec2 material_mean{0.0};  ///< mean (roughness, translucency) over the caps' texels,
+                                  ///< to 1e-6 (the diffusion's single precision)
   double texels_per_m = 0;    ///< the density used (options.texels_per_m, or less to fit)
   /// Per piece of the input, per vertex of merge_parts(piece): texture coordinates in 0..1
   /// (glTF convention: u to the right, v down from the top row); (0, 0) on the skin and walls.
@@ -38,9 +47,10 @@ struct CapAtlas {
 /// plane frame of its section (u_axis, v_axis: so the two caps of one cut are mirror images in
 /// texture space too), at texels_per_m, packed with stb_rect_pack in piece and part order.
 /// Every texel whose centre lies in a cap triangle gets the barycentric interpolation of the
-/// triangle's vertex colours (linear RGB), modulated by `modulation` at the texel's point in
-/// the object frame with `strength` (none when modulation is null), then encoded as sRGB;
-/// the islands are dilated by `padding` texels; other texels are black. Deterministic.
+/// triangle's vertex colours (linear RGB) and material channels, the colour modulated by
+/// `modulation` at the texel's point in the object frame with `strength` (none when modulation
+/// is null), then encoded as sRGB (texel_bake.h); the islands are dilated by `padding` texels;
+/// other texels are black. Deterministic.
 /// @throws std::invalid_argument when texels_per_m <= 0, padding < 0 or max_size < 16
 CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
                         const std::vector<CrossSection>& sections,

@@ -266,6 +266,21 @@ int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh,
   return static_cast<int>(m.meshes.size()) - 1;
 }
 
+/// `name` as a relative URI: every byte outside RFC 3986's unreserved set percent-encoded.
+std::string uri_encode(const std::string& name) {
+  std::string out;
+  for (unsigned char c : name) {
+    if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~') {
+      out += static_cast<char>(c);
+    } else {
+      char hex[4];
+      std::snprintf(hex, sizeof hex, "%%%02X", c);
+      out += hex;
+    }
+  }
+  return out;
+}
+
 /// Adds `material` to `m` as an opaque, single-sided metallic-roughness material (white base
 /// colour: vertex colours give the colour, metallic 0) with KHR_materials_clearcoat,
 /// KHR_materials_sheen and KHR_materials_diffuse_transmission where its values ask for them
@@ -285,6 +300,15 @@ void add_pbr_material(tinygltf::Model& m, const AssetMaterial& material,
         textures[static_cast<size_t>(material.base_colour_texture)];
     mat.pbrMetallicRoughness.baseColorTexture.texCoord = 0;
   }
+  const int material_map = material.material_texture < 0 ? -1 : [&] {
+    if (static_cast<size_t>(material.material_texture) >= textures.size())
+      bad_assets("material '" + material.name + "': material texture index out of range");
+    return textures[static_cast<size_t>(material.material_texture)];
+  }();
+  if (material_map >= 0) {  // the map holds the values: factors 1
+    mat.pbrMetallicRoughness.roughnessFactor = 1.0;
+    mat.pbrMetallicRoughness.metallicRoughnessTexture.index = material_map;
+  }
   auto use = [&m, &mat](const std::string& extension, tinygltf::Value::Object values) {
     mat.extensions[extension] = tinygltf::Value(std::move(values));
     if (std::find(m.extensionsUsed.begin(), m.extensionsUsed.end(), extension) ==
@@ -303,14 +327,23 @@ void add_pbr_material(tinygltf::Model& m, const AssetMaterial& material,
                                   tinygltf::Value(pbr.sheen.z)})},
          {"sheenRoughnessFactor", tinygltf::Value(pbr.sheen_roughness)}});
   }
-  if (pbr.translucency > 0) {
+  if (material_map >= 0 && pbr.translucency > 0) {
+    use("KHR_materials_diffuse_transmission",
+        {{"diffuseTransmissionFactor", tinygltf::Value(1.0)},
+         {"diffuseTransmissionTexture",
+          tinygltf::Value(tinygltf::Value::Object{{"index", tinygltf::Value(material_map)}})}});
+  } else if (pbr.translucency > 0) {
     use("KHR_materials_diffuse_transmission",
         {{"diffuseTransmissionFactor", tinygltf::Value(pbr.translucency)}});
   }
 }
 
-/// The scene as a tinygltf model with all binary data in buffer 0 (no URI).
-tinygltf::Model scene_model(const SceneAssets& assets) {
+/// The scene as a tinygltf model with all binary data in buffer 0 (no URI). With
+/// `image_files` (texture_file_names(), one per texture), each used texture's image refers to
+/// its file instead and `pngs` receives (file name, PNG bytes) for each.
+tinygltf::Model scene_model(const SceneAssets& assets,
+                            const std::vector<std::string>* image_files = nullptr,
+                            std::vector<std::pair<std::string, std::string>>* pngs = nullptr) {
   tinygltf::Model m = new_model();
   // Only the materials some mesh uses (an unused one is a validator notice), in their order.
   std::vector<int> gltf_material(assets.materials.size(), -1);
@@ -323,29 +356,42 @@ tinygltf::Model scene_model(const SceneAssets& assets) {
   // The textures of those materials, as PNG images in the buffer, in the assets' order.
   std::vector<int> gltf_texture(assets.textures.size(), -1);
   for (size_t k = 0; k < assets.materials.size(); ++k) {
-    const int t = assets.materials[k].base_colour_texture;
-    if (gltf_material[k] >= 0 && t >= 0 && static_cast<size_t>(t) < assets.textures.size())
-      gltf_texture[static_cast<size_t>(t)] = 0;
+    for (const int t :
+         {assets.materials[k].base_colour_texture, assets.materials[k].material_texture})
+      if (gltf_material[k] >= 0 && t >= 0 && static_cast<size_t>(t) < assets.textures.size())
+        gltf_texture[static_cast<size_t>(t)] = 0;
   }
   for (size_t t = 0; t < assets.textures.size(); ++t) {
     if (gltf_texture[t] < 0) continue;
-    if (m.samplers.empty()) {
+    // Samplers: clamped, or repeating in u (a texture that runs around, the skin's).
+    const int wrap_s = assets.textures[t].wrap_u ? TINYGLTF_TEXTURE_WRAP_REPEAT
+                                                 : TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    int sampler_index = -1;
+    for (size_t k = 0; k < m.samplers.size(); ++k)
+      if (m.samplers[k].wrapS == wrap_s) sampler_index = static_cast<int>(k);
+    if (sampler_index < 0) {
       tinygltf::Sampler sampler;
       sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
       sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
-      sampler.wrapS = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+      sampler.wrapS = wrap_s;
       sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
       m.samplers.push_back(sampler);
+      sampler_index = static_cast<int>(m.samplers.size()) - 1;
     }
-    const std::string png = encode_png(assets.textures[t]);
+    std::string png = encode_png(assets.textures[t]);
     tinygltf::Image image;
     image.name = assets.textures[t].name;
     image.mimeType = "image/png";
-    image.bufferView = add_view(m, png.data(), png.size(), 0);
+    if (image_files) {
+      image.uri = uri_encode(image_files->at(t));
+      pngs->emplace_back(image_files->at(t), std::move(png));
+    } else {
+      image.bufferView = add_view(m, png.data(), png.size(), 0);
+    }
     m.images.push_back(image);
     tinygltf::Texture texture;
     texture.name = assets.textures[t].name;
-    texture.sampler = 0;
+    texture.sampler = sampler_index;
     texture.source = static_cast<int>(m.images.size()) - 1;
     m.textures.push_back(texture);
     gltf_texture[t] = static_cast<int>(m.textures.size()) - 1;
@@ -440,21 +486,6 @@ tinygltf::Model scene_model(const SceneAssets& assets) {
   if (!m.lights.empty()) m.extensionsUsed.push_back("KHR_lights_punctual");
   m.scenes.push_back(scene);
   return m;
-}
-
-/// `name` as a relative URI: every byte outside RFC 3986's unreserved set percent-encoded.
-std::string uri_encode(const std::string& name) {
-  std::string out;
-  for (unsigned char c : name) {
-    if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~') {
-      out += static_cast<char>(c);
-    } else {
-      char hex[4];
-      std::snprintf(hex, sizeof hex, "%%%02X", c);
-      out += hex;
-    }
-  }
-  return out;
 }
 
 /// Writes `bytes` to a fresh temporary file beside `target` (flushed) and returns its path.
@@ -598,11 +629,16 @@ void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& asse
   if (!fs::is_directory(dir, ec)) {
     throw std::runtime_error("cannot write " + path.string() + ": no directory " + dir.string());
   }
-  tinygltf::Model m = scene_model(assets);
   if (ext == ".glb") {
+    tinygltf::Model m = scene_model(assets);
     write_file_atomically(path, to_glb(m));
     return;
   }
+  // .gltf: the textures as PNG files beside it, written first (each atomically).
+  const std::vector<std::string> image_files = texture_file_names(path, assets);
+  std::vector<std::pair<std::string, std::string>> pngs;
+  tinygltf::Model m = scene_model(assets, &image_files, &pngs);
+  for (const auto& [name, png] : pngs) write_file_atomically(dir / name, png);
   // .gltf: serialise without the buffer's bytes, then point buffer 0 at the .bin beside it.
   fs::path bin_path = path;
   bin_path.replace_extension(".bin");

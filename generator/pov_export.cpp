@@ -448,14 +448,6 @@ void write_strokes(std::string& out, const SceneAssets& a, const std::vector<Str
 
 }  // namespace
 
-std::vector<std::string> pov_texture_files(const std::filesystem::path& pov,
-                                           const SceneAssets& assets) {
-  std::vector<std::string> out;
-  for (const AssetTexture& t : assets.textures)
-    out.push_back(pov.stem().string() + "_" + asset_name(t.name) + ".png");
-  return out;
-}
-
 std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* strokes,
                          const std::vector<std::string>& texture_files) {
   require(!assets.materials.empty(), "no materials");
@@ -511,7 +503,7 @@ void write_scene_pov(const std::filesystem::path& path, const SceneAssets& asset
                      const std::vector<Stroke>* strokes, bool with_textures) {
   std::vector<std::string> files;
   if (with_textures) {
-    files = pov_texture_files(path, assets);
+    files = texture_file_names(path, assets);
     for (size_t t = 0; t < files.size(); ++t)
       write_file_atomically(path.parent_path() / files[t], encode_png(assets.textures[t]));
   }

@@ -77,7 +77,7 @@ namespace cutaway {
 ///   with fewer than 2 points are skipped.
 ///
 /// @throws std::invalid_argument naming the mesh, instance or light that breaks a precondition
-/// - with `texture_files` (pov_texture_files()): faces whose material has a base colour texture
+/// - with `texture_files` (texture_file_names()): faces whose material has a base colour texture
 ///   (and whose mesh has uv) get one texture each, `uv_mapping` with `image_map { png NAME
 ///   interpolate 2 }` and the material's finish; such meshes add uv_vectors (v flipped: POV-Ray
 ///   counts from the bottom row) and uv_indices (the face indices). Without, those faces keep
@@ -85,17 +85,12 @@ namespace cutaway {
 std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* strokes = nullptr,
                          const std::vector<std::string>& texture_files = {});
 
-/// The file names (beside the .pov at `pov`) of the assets' textures: "<pov stem>_<texture
-/// name>.png", in the order of SceneAssets::textures.
-std::vector<std::string> pov_texture_files(const std::filesystem::path& pov,
-                                           const SceneAssets& assets);
-
 /// Writes scene_to_pov(assets) to `path` atomically (write_file_atomically(): a temporary file,
 /// then rename; a failed run leaves no partial file).
 /// @throws std::invalid_argument as scene_to_pov
 /// @throws std::runtime_error when the file cannot be written
 /// With `with_textures`, the textures are written first, as PNG files beside it
-/// (pov_texture_files(), each atomically), and the scene uses them.
+/// (texture_file_names(), each atomically), and the scene uses them.
 void write_scene_pov(const std::filesystem::path& path, const SceneAssets& assets,
                      const std::vector<Stroke>* strokes = nullptr, bool with_textures = false);
 

@@ -35,6 +35,7 @@ struct AssetTexture {
   int width = 0, height = 0;
   int channels = 3;             ///< 3 (RGB) or 4 (RGBA)
   std::vector<uint8_t> pixels;  ///< width * height * channels, row by row
+  bool wrap_u = false;          ///< repeats in u (addressed beyond 0..1), clamped in v
 };
 
 /// A named material. Its base colour is the vertex colours, or its texture when it has one

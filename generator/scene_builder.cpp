@@ -189,9 +189,17 @@ PieceMaterials add_cap_texture(SceneAssets& assets, const PieceSet& set,
     return materials;
   }
   uv = std::move(atlas.uv);
-  assets.textures.push_back({object + "_cut", atlas.width, atlas.height, 3, std::move(atlas.srgb)});
   AssetMaterial cut = assets.materials[static_cast<size_t>(materials.cut)];
   cut.name = object + "_cut";
+  // The diffused material channels: their mean as factors, and a map where they vary.
+  cut.pbr.roughness = atlas.material_mean.x;
+  cut.pbr.translucency = atlas.material_mean.y;
+  if (!atlas.material.empty()) {
+    assets.textures.push_back(
+        {object + "_cut_material", atlas.width, atlas.height, 4, std::move(atlas.material)});
+    cut.material_texture = static_cast<int>(assets.textures.size()) - 1;
+  }
+  assets.textures.push_back({object + "_cut", atlas.width, atlas.height, 3, std::move(atlas.srgb)});
   cut.base_colour_texture = static_cast<int>(assets.textures.size()) - 1;
   assets.materials.push_back(cut);
   materials.cut = static_cast<int>(assets.materials.size()) - 1;

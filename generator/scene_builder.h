@@ -105,8 +105,10 @@ std::vector<glm::uvec3> coarse_caps(const Piece& piece, const std::vector<CrossS
 
 /// Bakes the caps of `pieces` (of one object, cut into `set`) into a texture added to
 /// `assets`, adds a copy of material `materials.cut` textured with it, named "<object>_cut",
-/// and returns the object's materials with it, and per piece the texture coordinates of its
-/// merge_parts vertices in `uv`. Pieces without caps: `materials` and empty uv.
+/// its roughness and translucency the means of the diffused material channels and, where
+/// those vary, a material map "<object>_cut_material" (cap_atlas.h), and returns the object's
+/// materials with it, and per piece the texture coordinates of its merge_parts vertices in `uv`.
+/// Pieces without caps: `materials` and empty uv.
 PieceMaterials add_cap_texture(SceneAssets& assets, const PieceSet& set,
                                const std::vector<const Piece*>& pieces, PieceMaterials materials,
                                const std::string& object, const ColourModulation* modulation,

@@ -23,4 +23,12 @@ std::string encode_png(const AssetTexture& texture) {
   return out;
 }
 
+std::vector<std::string> texture_file_names(const std::filesystem::path& scene,
+                                            const SceneAssets& assets) {
+  std::vector<std::string> out;
+  for (const AssetTexture& t : assets.textures)
+    out.push_back(scene.stem().string() + "_" + asset_name(t.name) + ".png");
+  return out;
+}
+
 }  // namespace cutaway

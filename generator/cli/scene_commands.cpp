@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 #include <stdexcept>
 
 #include <unistd.h>
@@ -25,6 +26,7 @@
 #include "scene_preview.h"
 #include "silhouettes.h"
 #include "template_parser.h"
+#include "texture_png.h"
 #include "variation.h"
 
 namespace cutaway::cli {
@@ -263,11 +265,16 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
     spdlog::warn("{} pieces are not closed 2-manifolds", st.defective_pieces);
   spdlog::info("{}: {} objects, {} pieces placed, {} triangles (seed {})", scene.name,
                st.objects, st.placed, st.triangles, seed);
-  // The textures of each .pov go beside it, committed with it.
+  // The textures of each .pov and .gltf go beside it, committed with it (a .pov and a .gltf
+  // of one stem share them).
+  std::set<std::string> texture_files;
   for (const Target& out : targets.exports)
-    if (output_format("-o", out.given) == Format::Pov)
-      for (const std::string& name : pov_texture_files(out.given, assets))
-        outputs.add("-o", (std::filesystem::path(out.given).parent_path() / name).string());
+    if (output_format("-o", out.given) == Format::Pov ||
+        std::filesystem::path(out.given).extension() == ".gltf")
+      for (const std::string& name : texture_file_names(out.given, assets)) {
+        const std::string file = (std::filesystem::path(out.given).parent_path() / name).string();
+        if (texture_files.insert(file).second) outputs.add("-o", file);
+      }
   const Written w = write_outputs(assets, targets, common.threads, scene.render.silhouettes);
   if (common.stats) {
     std::fprintf(

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstring>
+#include <set>
 
 #include <stb/stb_image.h>
 
@@ -79,11 +80,37 @@ TEST(SceneCommand, ExportsValidGltfAndPovRayAndPictures) {
   EXPECT_GE(pieces, 7);
   // The .pov's cut-face textures beside it, one per object with caps, named in it.
   EXPECT_EQ(pov.find("image_map { png \"tiny_i0_tomato_0_cut.png\""), pov.find("image_map"));
+  // The .gltf refers to the same files (no image bytes in its buffer); the cut faces of the
+  // tomato and the cucumber, whose material channels vary, have material maps read by both
+  // the roughness and the translucency; the onion's do not vary.
+  std::set<std::string> uris;
+  for (const auto& image : gltf["images"]) {
+    EXPECT_FALSE(image.contains("bufferView")) << image.dump();
+    uris.insert(image["uri"].get<std::string>());
+  }
+  EXPECT_EQ(uris,
+            (std::set<std::string>{"tiny_i0_tomato_0_cut.png", "tiny_i0_tomato_0_cut_material.png",
+                                   "tiny_i1_onion_0_cut.png", "tiny_i2_cucumber_0_cut.png",
+                                   "tiny_i2_cucumber_0_cut_material.png"}));
+  int material_maps = 0;
+  for (const auto& material : gltf["materials"]) {
+    const auto& pbr = material["pbrMetallicRoughness"];
+    if (!pbr.contains("metallicRoughnessTexture")) continue;
+    ++material_maps;
+    EXPECT_EQ(pbr.value("roughnessFactor", 1.0), 1.0) << material.dump();  // glTF default 1
+    EXPECT_EQ(material["extensions"]["KHR_materials_diffuse_transmission"]
+                      ["diffuseTransmissionTexture"]["index"],
+              pbr["metallicRoughnessTexture"]["index"])
+        << material.dump();
+  }
+  EXPECT_EQ(material_maps, 2);
   // Nothing but the outputs is left in the folder.
   EXPECT_EQ(test::files_in(dir),
             (std::vector<std::string>{"povray.png", "preview.png", "tiny.bin", "tiny.glb",
                                       "tiny.gltf", "tiny.pov", "tiny_i0_tomato_0_cut.png",
-                                      "tiny_i1_onion_0_cut.png", "tiny_i2_cucumber_0_cut.png"}));
+                                      "tiny_i0_tomato_0_cut_material.png",
+                                      "tiny_i1_onion_0_cut.png", "tiny_i2_cucumber_0_cut.png",
+                                      "tiny_i2_cucumber_0_cut_material.png"}));
 }
 
 TEST(SceneCommand, SameSeedSameBytesWhateverTheThreadsAnotherSeedAnotherLayout) {
