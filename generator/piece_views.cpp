@@ -75,7 +75,7 @@ SceneAssets piece_assets(const PieceSet& set, const std::string& name,
     const std::string piece_name = asset_name(name) + "_piece" + std::to_string(set.pieces[k].cell);
     assets.instances.push_back({piece_name, static_cast<int>(k), {1, 0, 0, 0}, offset, {}});
     assets.meshes.push_back(
-        piece_mesh(meshes[k], surface_triangle_count(set.pieces[k]), materials, piece_name));
+        piece_mesh(meshes[k], set.pieces[k], materials, piece_name));
   }
   const double az = glm::radians(20.0), el = glm::radians(50.0);
   assets.camera = frame_box(elo, ehi,
@@ -107,7 +107,7 @@ SceneAssets grid_piece_assets(const PieceSet& set, const std::string& name,
     rotated_bounds(mesh, rotation[k], lo[k], hi[k]);
     cell = glm::max(cell, hi[k] - lo[k]);
     const std::string piece_name = name + "_piece" + std::to_string(piece.cell);
-    assets.meshes.push_back(piece_mesh(mesh, surface_triangle_count(piece), materials, piece_name));
+    assets.meshes.push_back(piece_mesh(mesh, piece, materials, piece_name));
   }
   // Columns: the grid whose projected width / height is nearest the image's aspect. Rows are
   // far enough apart that a front row hides at most the bottom of the row behind it.

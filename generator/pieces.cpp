@@ -33,6 +33,7 @@ ShadedMesh shaded_surface(const DsSurface& surface, bool show_front, bool facing
     out.normal.push_back(normals[vh.idx()]);
     out.colour.emplace_back(c[0], c[1], c[2]);
     out.material.emplace_back(m[0], m[1]);
+    out.param.emplace_back(data.param[0], data.param[1]);
   }
   for (auto fh : surface.mesh.faces()) {
     glm::uvec3 t;
@@ -69,6 +70,7 @@ ShadedMesh cap_in_cell(const CrossSection& section, const CutCells& cells, const
         out.normal.push_back(normal);
         out.colour.push_back(section.colour[t[k]]);
         out.material.push_back(section.material[t[k]]);
+        out.param.push_back(glm::dvec2(0.0));
         remap[t[k]] = static_cast<unsigned>(out.position.size() - 1);
       }
       t[k] = remap[t[k]];
@@ -232,6 +234,10 @@ ShadedMesh merge_parts(const Piece& piece) {
     out.normal.insert(out.normal.end(), part.mesh.normal.begin(), part.mesh.normal.end());
     out.colour.insert(out.colour.end(), part.mesh.colour.begin(), part.mesh.colour.end());
     out.material.insert(out.material.end(), part.mesh.material.begin(), part.mesh.material.end());
+    if (part.mesh.param.empty())
+      out.param.resize(out.position.size(), glm::dvec2(0.0));
+    else
+      out.param.insert(out.param.end(), part.mesh.param.begin(), part.mesh.param.end());
     for (const glm::uvec3& t : part.mesh.triangle) out.triangle.push_back(t + base);
   }
   return out;

@@ -126,10 +126,10 @@ PieceMaterials add_piece_materials(SceneAssets& assets, const std::string& name,
   };
   const std::string base = asset_name(name);
   const int skin_id = index(base + "_skin", skin);
-  return {skin_id, skin == cut ? skin_id : index(base + "_cut", cut)};
+  return {skin_id, skin_id, skin == cut ? skin_id : index(base + "_cut", cut)};
 }
 
-AssetMesh piece_mesh(const ShadedMesh& merged, size_t surface_triangles, PieceMaterials materials,
+AssetMesh piece_mesh(const ShadedMesh& merged, const Piece& piece, PieceMaterials materials,
                      const std::string& name, const std::vector<glm::dvec2>& uv,
                      const std::vector<glm::uvec3>& coarse_caps) {
   AssetMesh out;
@@ -140,14 +140,26 @@ AssetMesh piece_mesh(const ShadedMesh& merged, size_t surface_triangles, PieceMa
   out.triangle = merged.triangle;
   out.uv = uv;
   const size_t n = merged.triangle.size();
-  if (materials.skin == materials.cut) {
-    if (materials.skin != 0) out.primitives.push_back({0, n, materials.skin, {}});
-  } else {
-    if (surface_triangles > 0) out.primitives.push_back({0, surface_triangles, materials.skin, {}});
-    if (surface_triangles < n)
-      out.primitives.push_back(
-          {surface_triangles, n - surface_triangles, materials.cut, coarse_caps});
+  const size_t surface = surface_triangle_count(piece);
+  const size_t skin = !piece.parts.empty() && piece.parts[0].kind == PartKind::Skin
+                          ? piece.parts[0].mesh.triangle.size()
+                          : 0;
+  const struct {
+    size_t first, count;
+    int material;
+  } runs[3] = {{0, skin, materials.skin},
+               {skin, surface - skin, materials.wall},
+               {surface, n - surface, materials.cut}};
+  for (const auto& run : runs) {
+    if (run.count == 0) continue;
+    if (!out.primitives.empty() && out.primitives.back().material == run.material)
+      out.primitives.back().count += run.count;
+    else
+      out.primitives.push_back({run.first, run.count, run.material, {}});
   }
+  if (surface < n && out.primitives.back().first == surface)  // the caps alone
+    out.primitives.back().coarse = coarse_caps;
+  if (out.primitives.size() == 1 && out.primitives[0].material == 0) out.primitives.clear();
   return out;
 }
 
@@ -203,6 +215,48 @@ PieceMaterials add_cap_texture(SceneAssets& assets, const PieceSet& set,
   cut.base_colour_texture = static_cast<int>(assets.textures.size()) - 1;
   assets.materials.push_back(cut);
   materials.cut = static_cast<int>(assets.materials.size()) - 1;
+  return materials;
+}
+
+std::vector<std::vector<glm::dvec2>> unwrap_skins(PieceSet& set, const std::vector<size_t>& kept) {
+  std::vector<std::vector<glm::dvec2>> uv;
+  for (size_t k : kept) {
+    Piece& piece = set.pieces[k];
+    const bool skin = !piece.parts.empty() && piece.parts[0].kind == PartKind::Skin;
+    uv.push_back(skin ? unwrap_skin(piece.parts[0].mesh) : std::vector<glm::dvec2>{});
+  }
+  return uv;
+}
+
+PieceMaterials add_skin_texture(SceneAssets& assets, const DsSurface& skin, const PieceSet& set,
+                                const std::vector<size_t>& kept,
+                                const std::vector<std::vector<glm::dvec2>>& skin_uv,
+                                PieceMaterials materials, const std::string& object,
+                                const ColourModulation* modulation, double strength,
+                                const SkinTextureOptions& options,
+                                std::vector<std::vector<glm::dvec2>>& uv) {
+  std::vector<const ShadedMesh*> parts;
+  std::vector<const std::vector<glm::dvec2>*> part_uv;
+  for (size_t q = 0; q < kept.size(); ++q) {
+    if (skin_uv[q].empty()) continue;
+    const ShadedMesh& part = set.pieces[kept[q]].parts[0].mesh;
+    parts.push_back(&part);
+    part_uv.push_back(&skin_uv[q]);
+    size_t vertices = 0;
+    for (const PiecePart& p : set.pieces[kept[q]].parts) vertices += p.mesh.position.size();
+    uv[q].resize(vertices, glm::dvec2(0.0));
+    std::copy(skin_uv[q].begin(), skin_uv[q].end(), uv[q].begin());  // the skin comes first
+  }
+  if (parts.empty()) return materials;
+  const glm::ivec2 size = skin_texture_size(skin, options);
+  assets.textures.push_back(
+      {object + "_skin", size.x, size.y, 3,
+       bake_skin_texture(parts, part_uv, size, modulation, strength, options), true});
+  AssetMaterial textured = assets.materials[static_cast<size_t>(materials.skin)];
+  textured.name = object + "_skin";
+  textured.base_colour_texture = static_cast<int>(assets.textures.size()) - 1;
+  assets.materials.push_back(textured);
+  materials.skin = static_cast<int>(assets.materials.size()) - 1;
   return materials;
 }
 
@@ -275,11 +329,19 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
       std::vector<std::vector<glm::dvec2>> uv(kept.size());
       if (options.cap_colours == CapColours::Texture) {
         const auto t_bake = Clock::now();
+        // Swept skins first: unwrapping adds vertices to the skin parts, which come first.
+        const bool swept = variant.tmpl.surfaces[static_cast<size_t>(variant.tmpl.skin)].kind ==
+                           SurfaceKind::Around;
+        const std::vector<std::vector<glm::dvec2>> skin_uv =
+            swept ? unwrap_skins(set, kept) : std::vector<std::vector<glm::dvec2>>(kept.size());
         std::vector<const Piece*> kept_pieces;
         for (size_t k : kept) kept_pieces.push_back(&set.pieces[k]);
         const ColourModulation modulation(variant.tmpl.npr, object_seed(seed, ii, j, 3));
         object_materials = add_cap_texture(assets, set, kept_pieces, item_materials, object,
                                            &modulation, scene.render.perlin, options.atlas, uv);
+        object_materials = add_skin_texture(assets, variant.model.skin(), set, kept, skin_uv,
+                                            object_materials, object, &modulation,
+                                            scene.render.perlin, options.skin, uv);
         st.seconds_bake += seconds_since(t_bake);
       }
       for (size_t q = 0; q < kept.size(); ++q) {
@@ -288,7 +350,7 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
         // Perlin colour modulation in the object frame: every piece of one object agrees.
         modulate_colours(shapes.back(), variant.tmpl.npr, scene.render.perlin,
                          object_seed(seed, ii, j, 3));
-        meshes.push_back(piece_mesh(shapes.back(), surface_triangle_count(piece),
+        meshes.push_back(piece_mesh(shapes.back(), piece,
                                     object_materials, object + "_piece" + std::to_string(piece.cell),
                                     uv[q],
                                     options.cap_colours == CapColours::Texture

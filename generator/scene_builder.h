@@ -17,6 +17,7 @@
 #include "scene.h"
 #include "scene_assets.h"
 #include "scene_layout.h"
+#include "skin_texture.h"
 
 namespace cutaway {
 
@@ -33,6 +34,7 @@ enum class CapColours {
 struct SceneBuildOptions {
   CapColours cap_colours = CapColours::Texture;
   CapAtlasOptions atlas;       ///< with CapColours::Texture
+  SkinTextureOptions skin;     ///< with CapColours::Texture: the swept skins' textures
   DiffusionFactory diffusion;  ///< required
   /// Called after each object with (objects done, objects in all, a line of text); may be empty.
   std::function<void(int, int, const std::string&)> progress;
@@ -74,9 +76,10 @@ AssetCamera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dve
 /// fill from the right (1.2 lux) and a rim light from behind (1 lux); directional.
 std::vector<AssetLight> studio_lights(const AssetCamera& camera);
 
-/// Where one template's two materials are in SceneAssets::materials.
+/// Where the materials of one object's pieces are in SceneAssets::materials: the skin's, the
+/// hollow walls' (the skin's material without the skin's texture) and the cut faces'.
 struct PieceMaterials {
-  int skin = 0, cut = 0;
+  int skin = 0, wall = 0, cut = 0;
 };
 
 /// Adds the skin and cut materials of the template named `name` to assets.materials, as
@@ -85,12 +88,12 @@ struct PieceMaterials {
 PieceMaterials add_piece_materials(SceneAssets& assets, const std::string& name,
                                    const PbrMaterial& skin, const PbrMaterial& cut);
 
-/// A piece as an exportable mesh named `name`: `merged` is merge_parts of it (possibly
-/// recoloured), whose first `surface_triangles` triangles are its skin and walls and the rest
-/// its caps (surface_triangle_count); one primitive of each material, or one for all when
-/// the two are the same. `uv`: #V texture coordinates (CapAtlas::uv) or empty; `coarse_caps`:
-/// the caps' coarse triangles (coarse_caps()) for the cap primitive, or empty.
-AssetMesh piece_mesh(const ShadedMesh& merged, size_t surface_triangles, PieceMaterials materials,
+/// `piece` as an exportable mesh named `name`: `merged` is merge_parts of it (possibly
+/// recoloured), its triangles those of the skin, the walls and the caps in turn; one primitive
+/// per run of parts of one material (skin, walls, caps; none when all are material 0).
+/// `uv`: #V texture coordinates (CapAtlas::uv and the skin's) or empty; `coarse_caps`: the
+/// caps' coarse triangles (coarse_caps()) for the cap primitive, or empty.
+AssetMesh piece_mesh(const ShadedMesh& merged, const Piece& piece, PieceMaterials materials,
                      const std::string& name, const std::vector<glm::dvec2>& uv = {},
                      const std::vector<glm::uvec3>& coarse_caps = {});
 
@@ -114,6 +117,24 @@ PieceMaterials add_cap_texture(SceneAssets& assets, const PieceSet& set,
                                const std::string& object, const ColourModulation* modulation,
                                double strength, const CapAtlasOptions& options,
                                std::vector<std::vector<glm::dvec2>>& uv);
+
+/// Unwraps the skin part of each kept piece of `set` (unwrap_skin: adds vertices along the
+/// seam and at the poles) and returns per kept piece its coordinates, or nothing for a piece
+/// without skin.
+std::vector<std::vector<glm::dvec2>> unwrap_skins(PieceSet& set, const std::vector<size_t>& kept);
+
+/// Bakes the unwrapped skins of the kept pieces of `set` (one object whose DS skin is `skin`)
+/// into a texture "<object>_skin" repeating in u (skin_texture.h), adds a copy of material
+/// `materials.skin` textured with it and returns the object's materials with it as the skin's;
+/// writes each kept piece's skin coordinates into the first entries of uv[q] (sized to the
+/// piece's merge_parts vertices). No skins: `materials` unchanged.
+PieceMaterials add_skin_texture(SceneAssets& assets, const DsSurface& skin, const PieceSet& set,
+                                const std::vector<size_t>& kept,
+                                const std::vector<std::vector<glm::dvec2>>& skin_uv,
+                                PieceMaterials materials, const std::string& object,
+                                const ColourModulation* modulation, double strength,
+                                const SkinTextureOptions& options,
+                                std::vector<std::vector<glm::dvec2>>& uv);
 
 /// The outward normal of the piece's largest cap (by area), object frame; zero if it has none.
 glm::dvec3 largest_cap_normal(const Piece& piece);

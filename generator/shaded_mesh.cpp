@@ -1,5 +1,7 @@
 #include "shaded_mesh.h"
 
+#include <cmath>
+
 #include <glm/geometric.hpp>
 
 namespace cutaway {
@@ -9,6 +11,7 @@ unsigned copy_vertex(const ShadedMesh& from, unsigned i, ShadedMesh& to) {
   to.normal.push_back(from.normal[i]);
   to.colour.push_back(from.colour[i]);
   to.material.push_back(from.material[i]);
+  if (!from.param.empty()) to.param.push_back(from.param[i]);
   return static_cast<unsigned>(to.position.size() - 1);
 }
 
@@ -24,6 +27,15 @@ unsigned add_interpolated_vertex(ShadedMesh& mesh, unsigned a, unsigned b, doubl
   mesh.normal.push_back(len > 0 ? n / len : na);
   mesh.colour.push_back(ca + (cb - ca) * t);
   mesh.material.push_back(ma + (mb - ma) * t);
+  if (!mesh.param.empty()) {
+    const glm::dvec2 qa = mesh.param[a];
+    glm::dvec2 qb = mesh.param[b];
+    if (qb.y - qa.y > 0.5) qb.y -= 1;  // across t_section = 0: the short way
+    if (qa.y - qb.y > 0.5) qb.y += 1;
+    glm::dvec2 q = qa + (qb - qa) * t;
+    q.y -= std::floor(q.y);
+    mesh.param.push_back(q);
+  }
   return static_cast<unsigned>(mesh.position.size() - 1);
 }
 

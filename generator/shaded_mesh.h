@@ -14,13 +14,17 @@ struct ShadedMesh {
   std::vector<glm::dvec3> normal;    ///< #V, unit shading normals (outward)
   std::vector<glm::dvec3> colour;    ///< #V, linear RGB
   std::vector<glm::dvec2> material;  ///< #V, material channels (roughness, translucency) 0..1
+  /// #V or empty: the sweep parameters (t_profile, t_section) of the DS surface a vertex lies
+  /// on (ds_model.h), t_section cyclic (0 and 1 are one); (0, 0) off swept surfaces.
+  std::vector<glm::dvec2> param;
   std::vector<glm::uvec3> triangle;  ///< #F, counter-clockwise seen from outside
 };
 
 /// Appends vertex i of `from` to `to`, returns its index in `to`.
 unsigned copy_vertex(const ShadedMesh& from, unsigned i, ShadedMesh& to);
 
-/// Appends the vertex (1 - t) * a + t * b of `mesh` (normal renormalised) and returns its index.
+/// Appends the vertex (1 - t) * a + t * b of `mesh` (normal renormalised; t_section
+/// interpolated the short way round its cycle) and returns its index.
 unsigned add_interpolated_vertex(ShadedMesh& mesh, unsigned a, unsigned b, double t);
 
 /// Drops vertices that no triangle uses, keeping the others' order.

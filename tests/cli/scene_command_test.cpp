@@ -78,8 +78,9 @@ TEST(SceneCommand, ExportsValidGltfAndPovRayAndPictures) {
     EXPECT_LT(x["volume_m3"].get<double>(), 1e-3);
   }
   EXPECT_GE(pieces, 7);
-  // The .pov's cut-face textures beside it, one per object with caps, named in it.
-  EXPECT_EQ(pov.find("image_map { png \"tiny_i0_tomato_0_cut.png\""), pov.find("image_map"));
+  // The .pov's textures beside it (cut faces and skins, one each per object), named in it.
+  EXPECT_EQ(pov.find("image_map { png \"tiny_i0_tomato_0_skin.png\""), pov.find("image_map"));
+  EXPECT_NE(pov.find("image_map { png \"tiny_i0_tomato_0_cut.png\""), std::string::npos);
   // The .gltf refers to the same files (no image bytes in its buffer); the cut faces of the
   // tomato and the cucumber, whose material channels vary, have material maps read by both
   // the roughness and the translucency; the onion's do not vary.
@@ -88,10 +89,12 @@ TEST(SceneCommand, ExportsValidGltfAndPovRayAndPictures) {
     EXPECT_FALSE(image.contains("bufferView")) << image.dump();
     uris.insert(image["uri"].get<std::string>());
   }
-  EXPECT_EQ(uris,
-            (std::set<std::string>{"tiny_i0_tomato_0_cut.png", "tiny_i0_tomato_0_cut_material.png",
-                                   "tiny_i1_onion_0_cut.png", "tiny_i2_cucumber_0_cut.png",
-                                   "tiny_i2_cucumber_0_cut_material.png"}));
+  const std::set<std::string> textures = {
+      "tiny_i0_tomato_0_cut.png",           "tiny_i0_tomato_0_cut_material.png",
+      "tiny_i0_tomato_0_skin.png",          "tiny_i1_onion_0_cut.png",
+      "tiny_i1_onion_0_skin.png",           "tiny_i2_cucumber_0_cut.png",
+      "tiny_i2_cucumber_0_cut_material.png", "tiny_i2_cucumber_0_skin.png"};
+  EXPECT_EQ(uris, textures);
   int material_maps = 0;
   for (const auto& material : gltf["materials"]) {
     const auto& pbr = material["pbrMetallicRoughness"];
@@ -105,12 +108,10 @@ TEST(SceneCommand, ExportsValidGltfAndPovRayAndPictures) {
   }
   EXPECT_EQ(material_maps, 2);
   // Nothing but the outputs is left in the folder.
-  EXPECT_EQ(test::files_in(dir),
-            (std::vector<std::string>{"povray.png", "preview.png", "tiny.bin", "tiny.glb",
-                                      "tiny.gltf", "tiny.pov", "tiny_i0_tomato_0_cut.png",
-                                      "tiny_i0_tomato_0_cut_material.png",
-                                      "tiny_i1_onion_0_cut.png", "tiny_i2_cucumber_0_cut.png",
-                                      "tiny_i2_cucumber_0_cut_material.png"}));
+  std::set<std::string> outputs = textures;
+  outputs.insert({"povray.png", "preview.png", "tiny.bin", "tiny.glb", "tiny.gltf", "tiny.pov"});
+  const std::vector<std::string> files = test::files_in(dir);
+  EXPECT_EQ(std::set<std::string>(files.begin(), files.end()), outputs);
 }
 
 TEST(SceneCommand, SameSeedSameBytesWhateverTheThreadsAnotherSeedAnotherLayout) {

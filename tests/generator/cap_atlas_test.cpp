@@ -113,6 +113,68 @@ TEST(CapAtlas, TexelsAgreeWithDirectPmvcAwayFromCutSegments) {
   EXPECT_LT(worst, 8.0);
 }
 
+TEST(CapAtlas, TheMaterialMapAgreesWithDirectPmvcAwayFromCutSegments) {
+  // The tomato's gel and core have their own roughness and translucency (templates/tomato.yaml).
+  const Halves& h = tomato_halves();
+  const CapAtlas atlas =
+      bake_cap_atlas(all_pieces(h.set), h.set.sections, nullptr, 0, CapAtlasOptions{});
+  ASSERT_EQ(atlas.material.size(), static_cast<size_t>(atlas.width) * atlas.height * 4);
+  const CrossSection& section = h.set.sections[0];
+  std::vector<glm::dvec3> cut_vertices;
+  for (size_t v = 0; v < section.position.size(); ++v)
+    if (section.cut_surface[v] >= 0) cut_vertices.push_back(section.position[v]);
+  const Piece& piece = h.set.pieces[0];
+  unsigned offset = 0;
+  std::vector<glm::dvec3> points;
+  std::vector<glm::dvec2> baked;
+  for (const PiecePart& part : piece.parts) {
+    if (part.kind == PartKind::Cap) {
+      for (size_t f = 0; f < part.mesh.triangle.size(); f += 3) {
+        const glm::uvec3 t = part.mesh.triangle[f];
+        const glm::dvec3 centre =
+            (part.mesh.position[t.x] + part.mesh.position[t.y] + part.mesh.position[t.z]) / 3.0;
+        bool near_cut = false;
+        for (const glm::dvec3& c : cut_vertices)
+          near_cut = near_cut || glm::distance(c, centre) < h.tmpl.edge_m;
+        if (near_cut) continue;
+        const glm::dvec2 uv =
+            (atlas.uv[0][offset + t.x] + atlas.uv[0][offset + t.y] + atlas.uv[0][offset + t.z]) /
+            3.0;
+        const int x = std::clamp(static_cast<int>(uv.x * atlas.width), 0, atlas.width - 1);
+        const int y = std::clamp(static_cast<int>(uv.y * atlas.height), 0, atlas.height - 1);
+        const size_t i = 4 * (static_cast<size_t>(y) * atlas.width + x);
+        EXPECT_EQ(atlas.material[i], 255);    // no occlusion
+        EXPECT_EQ(atlas.material[i + 2], 0);  // not metallic
+        points.push_back(centre);
+        baked.push_back({atlas.material[i + 1], atlas.material[i + 3]});
+      }
+    }
+    offset += static_cast<unsigned>(part.mesh.position.size());
+  }
+  ASSERT_GT(points.size(), 50u);
+  std::vector<glm::dvec3> colour(points.size());
+  std::vector<glm::dvec2> direct(points.size());
+  h.diffusion->diffuse_channels(points, colour, direct);
+  double sum = 0, worst = 0, lo = 1, hi = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const glm::dvec2 d = glm::abs(baked[i] - 255.0 * direct[i]);
+    sum += std::max(d.x, d.y);
+    worst = std::max({worst, d.x, d.y});
+    lo = std::min(lo, direct[i].y);
+    hi = std::max(hi, direct[i].y);
+  }
+  const double mean = sum / static_cast<double>(points.size());
+  std::printf("material map vs direct PMVC over %zu points: mean %.2f, max %.2f (of 255); "
+              "translucency %.2f..%.2f\n",
+              points.size(), mean, worst, lo, hi);
+  EXPECT_GT(hi - lo, 0.2);  // the gel and the wall differ: the map is not a constant
+  EXPECT_LT(mean, 1.0);
+  EXPECT_LT(worst, 8.0);
+  // The factors other renderers use are the map's mean, within the channels' range.
+  EXPECT_GT(atlas.material_mean.y, lo);
+  EXPECT_LT(atlas.material_mean.y, hi);
+}
+
 TEST(CapAtlas, TheTwoCapsOfACutAgreeThroughTheirTextures) {
   const Halves& h = tomato_halves();
   const ColourModulation modulation(h.tmpl.npr, 7);
