@@ -74,8 +74,7 @@ SceneAssets piece_assets(const PieceSet& set, const std::string& name,
     }
     const std::string piece_name = asset_name(name) + "_piece" + std::to_string(set.pieces[k].cell);
     assets.instances.push_back({piece_name, static_cast<int>(k), {1, 0, 0, 0}, offset, {}});
-    assets.meshes.push_back(
-        piece_mesh(meshes[k], set.pieces[k], materials, piece_name));
+    assets.meshes.push_back(piece_mesh(meshes[k], set.pieces[k], materials, piece_name));
   }
   const double az = glm::radians(20.0), el = glm::radians(50.0);
   assets.camera = frame_box(elo, ehi,

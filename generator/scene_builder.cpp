@@ -249,9 +249,9 @@ PieceMaterials add_skin_texture(SceneAssets& assets, const DsSurface& skin, cons
   }
   if (parts.empty()) return materials;
   const glm::ivec2 size = skin_texture_size(skin, options);
-  assets.textures.push_back(
-      {object + "_skin", size.x, size.y, 3,
-       bake_skin_texture(parts, part_uv, size, modulation, strength, options), true});
+  assets.textures.push_back({object + "_skin", size.x, size.y, 3,
+                             bake_skin_texture(parts, part_uv, size, modulation, strength, options),
+                             true});
   AssetMaterial textured = assets.materials[static_cast<size_t>(materials.skin)];
   textured.name = object + "_skin";
   textured.base_colour_texture = static_cast<int>(assets.textures.size()) - 1;
@@ -339,9 +339,9 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
         const ColourModulation modulation(variant.tmpl.npr, object_seed(seed, ii, j, 3));
         object_materials = add_cap_texture(assets, set, kept_pieces, item_materials, object,
                                            &modulation, scene.render.perlin, options.atlas, uv);
-        object_materials = add_skin_texture(assets, variant.model.skin(), set, kept, skin_uv,
-                                            object_materials, object, &modulation,
-                                            scene.render.perlin, options.skin, uv);
+        object_materials =
+            add_skin_texture(assets, variant.model.skin(), set, kept, skin_uv, object_materials,
+                             object, &modulation, scene.render.perlin, options.skin, uv);
         st.seconds_bake += seconds_since(t_bake);
       }
       for (size_t q = 0; q < kept.size(); ++q) {
@@ -350,9 +350,8 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
         // Perlin colour modulation in the object frame: every piece of one object agrees.
         modulate_colours(shapes.back(), variant.tmpl.npr, scene.render.perlin,
                          object_seed(seed, ii, j, 3));
-        meshes.push_back(piece_mesh(shapes.back(), piece,
-                                    object_materials, object + "_piece" + std::to_string(piece.cell),
-                                    uv[q],
+        meshes.push_back(piece_mesh(shapes.back(), piece, object_materials,
+                                    object + "_piece" + std::to_string(piece.cell), uv[q],
                                     options.cap_colours == CapColours::Texture
                                         ? coarse_caps(piece, set.sections)
                                         : std::vector<glm::uvec3>{}));

@@ -89,11 +89,14 @@ TEST(SceneCommand, ExportsValidGltfAndPovRayAndPictures) {
     EXPECT_FALSE(image.contains("bufferView")) << image.dump();
     uris.insert(image["uri"].get<std::string>());
   }
-  const std::set<std::string> textures = {
-      "tiny_i0_tomato_0_cut.png",           "tiny_i0_tomato_0_cut_material.png",
-      "tiny_i0_tomato_0_skin.png",          "tiny_i1_onion_0_cut.png",
-      "tiny_i1_onion_0_skin.png",           "tiny_i2_cucumber_0_cut.png",
-      "tiny_i2_cucumber_0_cut_material.png", "tiny_i2_cucumber_0_skin.png"};
+  const std::set<std::string> textures = {"tiny_i0_tomato_0_cut.png",
+                                          "tiny_i0_tomato_0_cut_material.png",
+                                          "tiny_i0_tomato_0_skin.png",
+                                          "tiny_i1_onion_0_cut.png",
+                                          "tiny_i1_onion_0_skin.png",
+                                          "tiny_i2_cucumber_0_cut.png",
+                                          "tiny_i2_cucumber_0_cut_material.png",
+                                          "tiny_i2_cucumber_0_skin.png"};
   EXPECT_EQ(uris, textures);
   int material_maps = 0;
   for (const auto& material : gltf["materials"]) {

@@ -164,9 +164,10 @@ TEST(CapAtlas, TheMaterialMapAgreesWithDirectPmvcAwayFromCutSegments) {
     hi = std::max(hi, direct[i].y);
   }
   const double mean = sum / static_cast<double>(points.size());
-  std::printf("material map vs direct PMVC over %zu points: mean %.2f, max %.2f (of 255); "
-              "translucency %.2f..%.2f\n",
-              points.size(), mean, worst, lo, hi);
+  std::printf(
+      "material map vs direct PMVC over %zu points: mean %.2f, max %.2f (of 255); "
+      "translucency %.2f..%.2f\n",
+      points.size(), mean, worst, lo, hi);
   EXPECT_GT(hi - lo, 0.2);  // the gel and the wall differ: the map is not a constant
   EXPECT_LT(mean, 1.0);
   EXPECT_LT(worst, 8.0);

@@ -27,7 +27,7 @@ TEST(SkinTexture, CornersAcrossTheSeamAndAtAPoleUnwrap) {
   EXPECT_DOUBLE_EQ(seam[0].x, 0.95);
   EXPECT_DOUBLE_EQ(seam[1].x, 1.02);  // continued past 1: the texture repeats in u
   EXPECT_DOUBLE_EQ(seam[2].x, 0.97);
-  EXPECT_DOUBLE_EQ(seam[0].y, 0.5);   // v = 1 - t_profile
+  EXPECT_DOUBLE_EQ(seam[0].y, 0.5);  // v = 1 - t_profile
   const auto pole = skin_corner_uv(m, {3, 4, 5});
   EXPECT_DOUBLE_EQ(pole[0].x, 0.35);  // the pole takes the mean u of the other two
   EXPECT_DOUBLE_EQ(pole[0].y, 0.0);
@@ -118,15 +118,15 @@ TEST(SkinTexture, TheTextureShowsTheSkinColourWhereItsVerticesMap) {
       const int y = std::clamp(static_cast<int>(uv[k][v].y * size.y), 0, size.y - 1);
       const size_t i = 3 * (static_cast<size_t>(y) * size.x + x);
       const glm::dvec3 want = 255.0 * linear_to_srgb(skins[k].colour[v]);
-      const double e = std::max({std::fabs(a[i] - want.x), std::fabs(a[i + 1] - want.y),
-                                 std::fabs(a[i + 2] - want.z)});
+      const double e = std::max(
+          {std::fabs(a[i] - want.x), std::fabs(a[i + 1] - want.y), std::fabs(a[i + 2] - want.z)});
       sum += e;
       worst = std::max(worst, e);
       ++n;
     }
   ASSERT_GT(n, 200u);
-  std::printf("skin texels vs vertex colours over %zu vertices: mean %.2f, max %.2f (of 255)\n",
-              n, sum / n, worst);
+  std::printf("skin texels vs vertex colours over %zu vertices: mean %.2f, max %.2f (of 255)\n", n,
+              sum / n, worst);
   EXPECT_LT(sum / n, 2.0);
   EXPECT_LT(worst, 12.0);
 }
