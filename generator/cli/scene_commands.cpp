@@ -121,28 +121,30 @@ Written write_outputs(const SceneAssets& assets, const Targets& t, int threads,
   }
   if (!t.render.given.empty()) {
     t0 = Clock::now();
-    // POV-Ray renders a .pov file: the one written, or a temporary one.
+    // POV-Ray renders a .pov file: the one written, or a temporary one with its textures in
+    // a temporary folder.
     std::filesystem::path pov = pov_written;
     std::filesystem::path temp;
     RemoveOnSignal temp_guard;
     if (pov_written.empty()) {
       temp = std::filesystem::temp_directory_path() /
-             ("cutaway-" + std::to_string(::getpid()) + "-" + assets.name + ".pov");
-      temp_guard = RemoveOnSignal(temp);
-      write_scene_pov(temp, assets, stroke_ptr);  // vertex colours: no texture files to clean
-      pov = temp;
+             ("cutaway-" + std::to_string(::getpid()) + "-render");
+      std::filesystem::create_directory(temp);
+      temp_guard = RemoveOnSignal(temp, RemoveOnSignal::Kind::Folder);
+      pov = temp / (asset_name(assets.name) + ".pov");
     }
     PovrayOptions options;
     options.threads = threads;
     try {
+      if (!temp.empty()) write_scene_pov(pov, assets, stroke_ptr, true);
       spdlog::info("rendering {} with POV-Ray at {} x {}", t.render.given, assets.width,
                    assets.height);
       render_povray(pov, t.render.file, assets.width, assets.height, options);
     } catch (...) {
-      if (!temp.empty()) std::filesystem::remove(temp);
+      if (!temp.empty()) std::filesystem::remove_all(temp);
       throw;
     }
-    if (!temp.empty()) std::filesystem::remove(temp);
+    if (!temp.empty()) std::filesystem::remove_all(temp);
     spdlog::info("wrote {}", t.render.given);
     w.povray_s = seconds_since(t0);
   }
