@@ -2,6 +2,7 @@
 
 #include <glad/gl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <memory>
@@ -25,20 +26,33 @@ namespace cutaway {
 namespace {
 
 constexpr int kMaxImageSide = 16384;
-constexpr int kMaxLights = 16;              // shaders/scene.frag: kMaxLights
-constexpr double kReferenceLux = 3.0;       // AssetLight's default intensity shows at scale 1
+constexpr int kMaxLights = 16;          // shaders/scene.frag: kMaxLights
+constexpr double kReferenceLux = 3.0;   // AssetLight's default intensity shows at scale 1
+constexpr double kShininess = 48;       // Blinn-Phong exponent at the default roughness
+constexpr double kSpecular = 0.15;      // highlight weight at the default roughness
+constexpr double kMaxShininess = 1024;  // the largest exponent (roughness near 0)
 
-/// One vertex as shaders/scene.vert reads it (locations 0..2).
+/// One vertex as shaders/scene.vert reads it (locations 0..3).
 struct SceneVertex {
   float position[3];  // metres, mesh frame
   float normal[3];    // mesh frame
   float colour[3];    // linear RGB
+  float uv[2];        // texture coordinates; 0 for meshes without
 };
 
-/// Where one uploaded mesh's triangles lie in the shared index buffer.
-struct MeshRange {
+/// The Blinn-Phong highlight of a material (shaders/scene.frag: shininess, specular_weight).
+struct Highlight {
+  float shininess = 0;  // exponent
+  float weight = 0;     // of the light's scale
+};
+
+/// One primitive of an uploaded mesh: its triangles in the shared index buffer, drawn with one
+/// material.
+struct MeshDraw {
   size_t first_index = 0;  // offset into the index buffer, in indices
-  size_t index_count = 0;  // 0: not uploaded (no instances, or no triangles)
+  size_t index_count = 0;
+  int texture = -1;  // base colour: index into SceneAssets::textures, or -1: vertex colours
+  Highlight highlight;
 };
 
 [[noreturn]] void fail(const std::string& what) {
@@ -49,7 +63,39 @@ bool finite(const glm::dvec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-void check_mesh(const AssetMesh& m, size_t index) {
+void check_texture(const AssetTexture& t, size_t index) {
+  const std::string name = "texture " + std::to_string(index) + " '" + t.name + "'";
+  if (t.width < 1 || t.height < 1)
+    fail(name + " is " + std::to_string(t.width) + "x" + std::to_string(t.height) +
+         " (must be at least 1x1)");
+  if (t.channels != 3 && t.channels != 4)
+    fail(name + " has " + std::to_string(t.channels) + " channels (must be 3 or 4)");
+  const size_t bytes = static_cast<size_t>(t.width) * static_cast<size_t>(t.height) *
+                       static_cast<size_t>(t.channels);
+  if (t.pixels.size() != bytes)
+    fail(name + " has " + std::to_string(t.pixels.size()) + " bytes of pixels, not width * " +
+         "height * channels = " + std::to_string(bytes));
+}
+
+void check_material(const AssetMaterial& m, size_t index,
+                    const std::vector<AssetTexture>& textures) {
+  const std::string name = "material " + std::to_string(index) + " '" + m.name + "'";
+  if (!(m.pbr.roughness >= 0 && m.pbr.roughness <= 1))
+    fail(name + " has roughness " + std::to_string(m.pbr.roughness) + ", not in 0..1");
+  const auto check_index = [&](const char* field, int texture) {
+    if (texture < -1 || texture >= static_cast<int>(textures.size()))
+      fail(name + " has " + field + " " + std::to_string(texture) + ", neither -1 nor in 0.." +
+           std::to_string(static_cast<long>(textures.size()) - 1));
+  };
+  check_index("base_colour_texture", m.base_colour_texture);
+  check_index("material_texture", m.material_texture);
+  if (m.base_colour_texture >= 0 &&
+      textures[static_cast<size_t>(m.base_colour_texture)].channels != 3)
+    fail(name + ": its base colour texture " + std::to_string(m.base_colour_texture) +
+         " is not RGB (3 channels)");
+}
+
+void check_mesh(const AssetMesh& m, size_t index, size_t materials) {
   const std::string name = "mesh " + std::to_string(index) + " '" + m.name + "'";
   const size_t n = m.position.size();
   if (m.normal.size() != n || m.colour.size() != n)
@@ -63,6 +109,14 @@ void check_mesh(const AssetMesh& m, size_t index) {
       if (m.triangle[t][i] >= n)
         fail(name + ": triangle " + std::to_string(t) + " has vertex index " +
              std::to_string(m.triangle[t][i]) + ", not below " + std::to_string(n));
+  if (!m.uv.empty() && m.uv.size() != n)
+    fail(name + " has " + std::to_string(m.uv.size()) + " texture coordinates for " +
+         std::to_string(n) + " positions (must be equal, or none)");
+  for (size_t v = 0; v < m.uv.size(); ++v)
+    if (!std::isfinite(m.uv[v].x) || !std::isfinite(m.uv[v].y))
+      fail(name + ": vertex " + std::to_string(v) + " has non-finite texture coordinates");
+  const std::string defect = primitives_defect(m, materials);
+  if (!defect.empty()) fail(name + ": " + defect);
 }
 
 void check_camera(const AssetCamera& c) {
@@ -107,6 +161,8 @@ glm::ivec2 check_input(const SceneAssets& a, const ScenePreviewOptions& o) {
   for (size_t i = 0; i < a.lights.size(); ++i) check_light(a.lights[i], i);
   if (!finite(a.background) || a.background.r < 0 || a.background.g < 0 || a.background.b < 0)
     fail("background must be finite and >= 0");
+  for (size_t i = 0; i < a.textures.size(); ++i) check_texture(a.textures[i], i);
+  for (size_t i = 0; i < a.materials.size(); ++i) check_material(a.materials[i], i, a.textures);
   std::vector<bool> checked(a.meshes.size(), false);
   for (size_t i = 0; i < a.instances.size(); ++i) {
     const AssetInstance& inst = a.instances[i];
@@ -119,10 +175,68 @@ glm::ivec2 check_input(const SceneAssets& a, const ScenePreviewOptions& o) {
         !std::isfinite(q.z) || !(glm::length(q) > 0) || !finite(inst.translation))
       fail(name + " has a zero or non-finite rotation, or a non-finite translation");
     const auto m = static_cast<size_t>(inst.mesh);
-    if (!checked[m]) check_mesh(a.meshes[m], m);
+    if (!checked[m]) check_mesh(a.meshes[m], m, a.materials.size());
     checked[m] = true;
   }
   return {width, height};
+}
+
+/// The highlight of a material of perceptual roughness `roughness` (0..1): a Blinn-Phong
+/// exponent falling as 1 / roughness^2 (as for a Beckmann lobe of slope roughness), kShininess at
+/// the default roughness, at most kMaxShininess; its weight normalised by (exponent + 8), so a
+/// rougher material has a broader, weaker highlight. The default roughness gives exactly
+/// kShininess and kSpecular.
+Highlight highlight(double roughness) {
+  const double ratio = PbrMaterial{}.roughness / roughness;  // +inf for roughness 0
+  const double shininess = std::min(kShininess * (ratio * ratio), kMaxShininess);
+  return {static_cast<float>(shininess),
+          static_cast<float>(kSpecular * ((shininess + 8) / (kShininess + 8)))};
+}
+
+/// The draws of `mesh`, whose triangles start at `first_index` in the index buffer: one per
+/// primitive (one of material 0 when it has none), textured where its material has a base
+/// colour texture and the mesh has texture coordinates.
+std::vector<MeshDraw> mesh_draws(const SceneAssets& a, const AssetMesh& mesh, size_t first_index) {
+  const std::vector<AssetPrimitive> plain{{0, mesh.triangle.size(), 0, {}}};
+  std::vector<MeshDraw> draws;
+  for (const AssetPrimitive& p : mesh.primitives.empty() ? plain : mesh.primitives) {
+    const AssetMaterial& material = a.materials[static_cast<size_t>(p.material)];
+    draws.push_back({first_index + 3 * p.first, 3 * p.count,
+                     mesh.uv.empty() ? -1 : material.base_colour_texture,
+                     highlight(material.pbr.roughness)});
+  }
+  return draws;
+}
+
+/// Uploads `texture` (RGB, sRGB, row 0 at the top) as a GL_SRGB8 texture with mipmaps, filtered
+/// trilinearly, repeating in s where it wraps in u (else clamped) and clamped in t. Row 0 lies
+/// at t = 0, so glTF texture coordinates (v down from the top row) address it as they are. The
+/// texture belongs to the current context, which frees it.
+/// @throws std::invalid_argument when it is larger than GL_MAX_TEXTURE_SIZE
+/// @throws std::runtime_error when OpenGL reports an error
+GLuint upload_base_colour(const AssetTexture& texture, size_t index, const GlContext& context) {
+  const std::string name = "texture " + std::to_string(index) + " '" + texture.name + "'";
+  GLint max_side = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
+  if (texture.width > max_side || texture.height > max_side)
+    fail(name + " is " + std::to_string(texture.width) + "x" + std::to_string(texture.height) +
+         ", larger than GL_MAX_TEXTURE_SIZE " + std::to_string(max_side) + " on " +
+         context.description());
+  GLuint id = 0;
+  glGenTextures(1, &id);
+  glBindTexture(GL_TEXTURE_2D, id);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);  // rows of 3 * width bytes, unpadded
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8, texture.width, texture.height, 0, GL_RGB,
+               GL_UNSIGNED_BYTE, texture.pixels.data());
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, texture.wrap_u ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  if (glGetError() != GL_NO_ERROR)
+    throw std::runtime_error("render_scene_preview: cannot upload " + name + " on " +
+                             context.description());
+  return id;
 }
 
 /// A depth renderbuffer matching `target` (size and samples), attached to its framebuffer.
@@ -151,10 +265,11 @@ void attach_depth_buffer(const OffscreenTarget& target, const GlContext& context
 Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions& options) {
   const glm::ivec2 size = check_input(assets, options);
 
-  // Every instanced mesh once, in one vertex and one index buffer (indices already offset).
+  // Every instanced mesh once, in one vertex and one index buffer (indices already offset),
+  // and the draws of its primitives.
   std::vector<SceneVertex> vertices;
   std::vector<uint32_t> indices;
-  std::vector<MeshRange> ranges(assets.meshes.size());
+  std::vector<std::vector<MeshDraw>> draws(assets.meshes.size());  // empty: not uploaded
   std::vector<bool> used(assets.meshes.size(), false);
   for (const AssetInstance& inst : assets.instances) used[static_cast<size_t>(inst.mesh)] = true;
   for (size_t m = 0; m < assets.meshes.size(); ++m) {
@@ -168,10 +283,11 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
         sv.normal[i] = static_cast<float>(mesh.normal[v][i]);
         sv.colour[i] = static_cast<float>(mesh.colour[v][i]);
       }
+      if (!mesh.uv.empty())
+        for (int i = 0; i < 2; ++i) sv.uv[i] = static_cast<float>(mesh.uv[v][i]);
       vertices.push_back(sv);
     }
-    ranges[m].first_index = indices.size();
-    ranges[m].index_count = 3 * mesh.triangle.size();
+    draws[m] = mesh_draws(assets, mesh, indices.size());
     for (const glm::uvec3& t : mesh.triangle)
       indices.insert(indices.end(), {base + t.x, base + t.y, base + t.z});
   }
@@ -191,9 +307,19 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
                                "render_scene_preview");
   attach_depth_buffer(target, *context);
 
-  make_vertex_array(vertices, indices, {{0, 3, offsetof(SceneVertex, position)},
-                                        {1, 3, offsetof(SceneVertex, normal)},
-                                        {2, 3, offsetof(SceneVertex, colour)}});
+  make_vertex_array(vertices, indices,
+                    {{0, 3, offsetof(SceneVertex, position)},
+                     {1, 3, offsetof(SceneVertex, normal)},
+                     {2, 3, offsetof(SceneVertex, colour)},
+                     {3, 2, offsetof(SceneVertex, uv)}});
+  // Each base colour texture that some draw samples, once (0: not uploaded).
+  std::vector<GLuint> textures(assets.textures.size(), 0);
+  for (const std::vector<MeshDraw>& list : draws)
+    for (const MeshDraw& draw : list) {
+      if (draw.texture < 0) continue;
+      const auto t = static_cast<size_t>(draw.texture);
+      if (textures[t] == 0) textures[t] = upload_base_colour(assets.textures[t], t, *context);
+    }
 
   // Lights in the view frame; the documented mapping: scale = colour * (lux / 3) * exposure.
   glUseProgram(program.id());
@@ -218,6 +344,11 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
   glUniformMatrix4fv(program.uniform("clip_from_view"), 1, GL_FALSE,
                      glm::value_ptr(clip_from_view));
   const GLint view_from_object_location = program.uniform("view_from_object");
+  const GLint textured_location = program.uniform("textured");
+  const GLint shininess_location = program.uniform("shininess");
+  const GLint specular_weight_location = program.uniform("specular_weight");
+  glUniform1i(program.uniform("base_colour"), 0);  // texture unit 0
+  glActiveTexture(GL_TEXTURE0);
 
   target.bind();
   glClearColor(static_cast<float>(assets.background.r), static_cast<float>(assets.background.g),
@@ -231,14 +362,21 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
   glDisable(GL_BLEND);
 
   for (const AssetInstance& inst : assets.instances) {
-    const MeshRange& range = ranges[static_cast<size_t>(inst.mesh)];
-    if (range.index_count == 0) continue;
+    const std::vector<MeshDraw>& list = draws[static_cast<size_t>(inst.mesh)];
+    if (list.empty()) continue;
     const glm::dmat4 scene_from_object = glm::translate(glm::dmat4(1.0), inst.translation) *
                                          glm::mat4_cast(glm::normalize(inst.rotation));
     const glm::mat4 view_from_object(view_from_scene * scene_from_object);
     glUniformMatrix4fv(view_from_object_location, 1, GL_FALSE, glm::value_ptr(view_from_object));
-    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(range.index_count), GL_UNSIGNED_INT,
-                   reinterpret_cast<const void*>(range.first_index * sizeof(uint32_t)));
+    for (const MeshDraw& draw : list) {
+      glUniform1i(textured_location, draw.texture >= 0 ? 1 : 0);
+      if (draw.texture >= 0)
+        glBindTexture(GL_TEXTURE_2D, textures[static_cast<size_t>(draw.texture)]);
+      glUniform1f(shininess_location, draw.highlight.shininess);
+      glUniform1f(specular_weight_location, draw.highlight.weight);
+      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(draw.index_count), GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(draw.first_index * sizeof(uint32_t)));
+    }
   }
   if (options.strokes != nullptr) draw_strokes(*options.strokes, camera, size.x, size.y);
 

@@ -1,5 +1,6 @@
-// Opaque OpenGL render of a whole scene (SceneAssets): every instance of every mesh, seen from
-// the scene's camera, lit by its lights, rendered offscreen (render/gl_context.h).
+// Opaque OpenGL render of a whole scene (SceneAssets): every instance of every mesh, coloured by
+// its materials (vertex colours or base colour textures), seen from the scene's camera, lit by
+// its lights, rendered offscreen (render/gl_context.h).
 #pragma once
 
 #include "model_preview.h"  // Image, write_png
@@ -27,18 +28,26 @@ struct ScenePreviewOptions {
 ///
 /// Every instance places its mesh by scene point = translation + rotation * mesh point (the
 /// quaternion is normalised); each mesh is uploaded once and drawn once per instance, in
-/// instance order, with a depth test. Triangles are drawn from both sides (no culling) and lit
+/// instance order, primitive by primitive (`primitives`, their full triangles; `coarse` is not
+/// used), with a depth test. Triangles are drawn from both sides (no culling) and lit
 /// two-sided, so an open mesh or a flipped triangle still shades sensibly.
 ///
-/// Shading, in linear RGB with the per-vertex linear `colour` as albedo a and the stored
-/// per-vertex `normal` (interpolated, renormalised, flipped toward the eye on back faces; a
-/// zero normal falls back to the triangle's own) as n:
+/// Shading, in linear RGB with the albedo a and the stored per-vertex `normal` (interpolated,
+/// renormalised, flipped toward the eye on back faces; a zero normal falls back to the
+/// triangle's own) as n:
 ///   colour = a * exposure * (H(n) + sum_i c_i * s_i * 0.75 * max(n . l_i, 0))
-///            + exposure * sum_i c_i * s_i * 0.15 * (n . h_i)^48   (only where n . l_i > 0)
-/// where, per light i, c_i is its linear colour, l_i the unit direction toward it, h_i the
-/// Blinn-Phong half vector, and s_i = E_i / 3 lux the illuminance it gives relative to the
-/// AssetLight default: E_i is `intensity` in lux for a directional light and
-/// `intensity` / d^2 (candela over squared metres to the light) for a point light. So one
+///            + exposure * sum_i c_i * s_i * w * (n . h_i)^p   (only where n . l_i > 0)
+/// The albedo a is the primitive's material's base colour texture (sRGB, decoded to linear;
+/// mipmapped, filtered trilinearly; repeating in u where `wrap_u`, else clamped, and clamped in v)
+/// sampled at the mesh's interpolated `uv` (glTF convention: v = 0 at the top row) when the
+/// material has one and the mesh has `uv`, else the per-vertex linear `colour`. The highlight
+/// follows the material's perceptual `pbr.roughness` r: exponent p = min(48 * (0.6 / r)^2, 1024)
+/// and weight w = 0.15 * (p + 8) / 56, so the default r = 0.6 gives p = 48 and w = 0.15, and a
+/// rougher material a broader, weaker highlight. Other material channels (the material map,
+/// clearcoat, sheen, translucency) are not shown. Per light i, c_i is its linear colour, l_i the
+/// unit direction toward it, h_i the Blinn-Phong half vector, and s_i = E_i / 3 lux the illuminance
+/// it gives relative to the AssetLight default: E_i is `intensity` in lux for a directional light
+/// and `intensity` / d^2 (candela over squared metres to the light) for a point light. So one
 /// default directional light (3 lux) falling head-on shows 0.75 * a plus the ambient.
 /// H(n) is a hemisphere ambient of 0.25 from the sky (+Y) down to 0.10 from the ground,
 /// blended by n.y, so faces turned away from every light are darker but never black. There are
@@ -50,8 +59,12 @@ struct ScenePreviewOptions {
 ///
 /// Creates its own offscreen OpenGL context (create_offscreen_context()) for the call.
 /// @param assets  every instance's `mesh` indexes `meshes`; an instanced mesh has as many
-///                normals and colours as positions, triangle indices below that count and
-///                finite positions (metres); rotations non-zero and finite; camera: eye, target,
+///                normals and colours as positions (and as many finite `uv`, or none),
+///                triangle indices below that count, finite positions (metres) and valid
+///                primitives (primitives_defect()); every texture is at least 1x1 with 3 or 4
+///                channels and width * height * channels bytes of pixels; every material has
+///                roughness in 0..1 and texture indices -1 or in range, its base colour
+///                texture having 3 channels; rotations non-zero and finite; camera: eye, target,
 ///                up finite, eye != target, up not parallel to the view direction,
 ///                0 < fov_y_deg < 180, 0 < znear < zfar; at most 16 lights, each with finite
 ///                fields, intensity >= 0, a non-zero direction (directional); background
@@ -60,7 +73,8 @@ struct ScenePreviewOptions {
 /// @param options see ScenePreviewOptions for ranges; the image size also comes from
 ///                `assets.width/height` when the options leave it 0
 /// @returns an opaque image of width x height pixels, sRGB8, rows top first
-/// @throws std::invalid_argument when the assets or options break the preconditions
+/// @throws std::invalid_argument when the assets or options break the preconditions, or a
+///         used texture is larger than GL_MAX_TEXTURE_SIZE
 /// @throws std::runtime_error when no OpenGL context can be created or rendering fails
 Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions& options = {});
 

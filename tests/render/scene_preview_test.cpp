@@ -1,11 +1,14 @@
 // render_scene_preview (render/scene_preview.h): image size, background, where instances
-// project (not mirrored, camera convention), lighting, quaternion placement, determinism,
-// refusals. Small images keep it fast on software OpenGL. A failing test leaves its image in
+// project (not mirrored, camera convention), lighting, quaternion placement, textured
+// materials (sRGB decoding, glTF texture coordinates, wrapping in u), determinism, refusals.
+// Small images keep it fast on software OpenGL. A failing test leaves its image in
 // build/test-tmp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -252,9 +255,156 @@ TEST(ScenePreview, RefusesBadInput) {
   a = two_cubes();
   a.instances[0].rotation = glm::dquat(0, 0, 0, 0);
   EXPECT_TRUE(refused(a, small));
+  // Textures, materials, texture coordinates and primitives.
+  const auto textured = [] {
+    SceneAssets t = two_cubes();
+    test::texture_with_halves(t, 0, 8);
+    return t;
+  };
+  EXPECT_FALSE(refused(textured(), small));
+  a = textured();
+  a.materials[1].base_colour_texture = 1;
+  EXPECT_TRUE(refused(a, small));
+  a = textured();
+  a.materials[1].material_texture = -2;
+  EXPECT_TRUE(refused(a, small));
+  a = textured();
+  a.materials[1].pbr.roughness = 1.5;
+  EXPECT_TRUE(refused(a, small));
+  a = textured();
+  a.textures[0].pixels.pop_back();
+  EXPECT_TRUE(refused(a, small));
+  a = textured();
+  a.textures[0].channels = 4;  // a material map cannot be a base colour
+  a.textures[0].pixels.resize(8 * 8 * 4);
+  EXPECT_TRUE(refused(a, small));
+  a = textured();
+  a.meshes[0].uv.pop_back();
+  EXPECT_TRUE(refused(a, small));
+  a = textured();
+  a.meshes[0].primitives[0].count -= 1;  // leaves the last triangle out
+  EXPECT_TRUE(refused(a, small));
+  a = textured();
+  a.meshes[0].primitives[0].material = 2;
+  EXPECT_TRUE(refused(a, small));
   EXPECT_TRUE(refused(two_cubes(), ScenePreviewOptions{16, 12, 0, 1.0}));
   EXPECT_TRUE(refused(two_cubes(), ScenePreviewOptions{16, 20000, 1, 1.0}));
   EXPECT_TRUE(refused(two_cubes(), ScenePreviewOptions{16, 12, 1, 0.0}));
+}
+
+/// One cube, its front (+Z) and top faces lit, seen from the front and a little above, mapped
+/// onto the blue-left, yellow-right texture of test::texture_with_halves: its front face runs
+/// from u = 0 at x = -0.15 to u = 1 at x = 0.15 and from v = 0 at y = -0.15 up to v = 1.
+SceneAssets textured_cube() {
+  SceneAssets a = two_cubes();
+  a.name = "textured_cube";
+  a.meshes = {box("cube", glm::dvec3(0.15), {0.8, 0.05, 0.05})};
+  a.instances = {instance("cube", 0, glm::dvec3(0.0))};
+  a.camera.eye = {0, 0.35, 0.9};
+  a.lights[0].direction = glm::normalize(glm::dvec3(0.2, -0.5, -1));
+  test::texture_with_halves(a, 0, 64);
+  return a;
+}
+
+/// Whether `c` is clearly blue or clearly yellow, as test::png_info counts them.
+bool blue(const glm::ivec3& c) { return c.b > 2 * c.r && c.b > 60; }
+bool yellow(const glm::ivec3& c) { return c.r > 2 * c.b && c.g > 2 * c.b && c.g > 60; }
+
+TEST(ScenePreview, TexturedMaterialsTakeTheirColourFromTheTexture) {
+  const SceneAssets a = textured_cube();
+  ScenePreviewOptions o;
+  o.samples = 4;
+  const Image im = render_scene_preview(a, o);
+  const std::string path = keep(im, "textured_cube");
+  // The front face: blue left of its middle, yellow right of it; the top face (u along +Z):
+  // blue at the back, yellow at the front. Never the red of the vertex colours.
+  for (const double x : {-0.12, -0.04})
+    EXPECT_TRUE(blue(pixel(im, project(a, {x, 0, 0.15})))) << "front, x = " << x;
+  for (const double x : {0.04, 0.12})
+    EXPECT_TRUE(yellow(pixel(im, project(a, {x, 0, 0.15})))) << "front, x = " << x;
+  EXPECT_TRUE(blue(pixel(im, project(a, {0, 0.15, -0.1}))));
+  EXPECT_TRUE(yellow(pixel(im, project(a, {0, 0.15, 0.1}))));
+  const test::PngInfo info = test::png_info(path);
+  const size_t cube = info.not_background;
+  EXPECT_GT(cube, size_t{kWidth * kHeight / 10});
+  EXPECT_GT(info.blue, cube / 4);
+  EXPECT_GT(info.yellow, cube / 4);
+  EXPECT_GT(info.blue + info.yellow, cube * 4 / 5) << "the cube is blue and yellow but its edges";
+  EXPECT_TRUE(render_scene_preview(a, o).rgba == im.rgba) << "the same input, the same bytes";
+
+  // The texture is decoded from sRGB: the blue half looks like a vertex-coloured cube of the
+  // decoded blue, to within rounding.
+  SceneAssets plain = a;
+  for (glm::dvec3& c : plain.meshes[0].colour) c = srgb_to_linear(glm::dvec3(20, 40, 230) / 255.0);
+  plain.meshes[0].primitives.clear();
+  const Image reference = render_scene_preview(plain, o);
+  for (const glm::dvec3& p : {glm::dvec3(-0.1, -0.05, 0.15), glm::dvec3(0, 0.15, -0.1)}) {
+    const glm::ivec3 d = pixel(im, project(a, p)) - pixel(reference, project(a, p));
+    EXPECT_LE(std::max({std::abs(d.r), std::abs(d.g), std::abs(d.b)}), 1) << p.x << "," << p.z;
+  }
+  if (HasFailure()) ADD_FAILURE() << "image: " << path;
+}
+
+TEST(ScenePreview, TextureCoordinatesFollowGltfAndRepeatInUWhereTheTextureWraps) {
+  SceneAssets a = textured_cube();
+  ScenePreviewOptions o;
+  o.samples = 4;
+  // u from 0 to 2 across each face. A texture that wraps in u: blue, yellow, blue, yellow from
+  // left to right; one that does not is clamped: yellow from the middle on.
+  for (glm::dvec2& uv : a.meshes[0].uv) uv.x *= 2;
+  a.textures[0].wrap_u = true;
+  const Image repeated = render_scene_preview(a, o);
+  EXPECT_TRUE(blue(pixel(repeated, project(a, {-0.11, 0, 0.15}))));
+  EXPECT_TRUE(yellow(pixel(repeated, project(a, {-0.04, 0, 0.15}))));
+  EXPECT_TRUE(blue(pixel(repeated, project(a, {0.04, 0, 0.15}))));
+  EXPECT_TRUE(yellow(pixel(repeated, project(a, {0.11, 0, 0.15}))));
+  a.textures[0].wrap_u = false;
+  const Image clamped = render_scene_preview(a, o);
+  EXPECT_TRUE(blue(pixel(clamped, project(a, {-0.11, 0, 0.15}))));
+  EXPECT_TRUE(yellow(pixel(clamped, project(a, {0.04, 0, 0.15}))));
+  EXPECT_TRUE(yellow(pixel(clamped, project(a, {0.11, 0, 0.15}))));
+  if (HasFailure())
+    ADD_FAILURE() << "images: " << keep(repeated, "repeated_u") << ", "
+                  << keep(clamped, "clamped_u");
+
+  // Blue in the top rows of the texture: v = 0 is the top row, so blue where v is small, at
+  // the bottom of the front face.
+  a = textured_cube();
+  AssetTexture& t = a.textures[0];
+  const uint8_t top[3] = {20, 40, 230}, bottom[3] = {240, 220, 20};  // the halves' colours
+  t.pixels.clear();
+  for (int y = 0; y < t.height; ++y) {
+    const uint8_t* colour = y < t.height / 2 ? top : bottom;
+    for (int x = 0; x < t.width; ++x) t.pixels.insert(t.pixels.end(), colour, colour + 3);
+  }
+  const Image rows = render_scene_preview(a, o);
+  EXPECT_TRUE(blue(pixel(rows, project(a, {0, -0.1, 0.15}))));
+  EXPECT_TRUE(yellow(pixel(rows, project(a, {0, 0.1, 0.15}))));
+  if (HasFailure()) ADD_FAILURE() << "image: " << keep(rows, "top_rows");
+}
+
+TEST(ScenePreview, DefaultMaterialsDrawExactlyAsVertexColours) {
+  const SceneAssets plain = two_cubes();
+  ScenePreviewOptions o;
+  o.samples = 4;
+  const Image reference = render_scene_preview(plain, o);
+  // Texture coordinates, and primitives of another material with the default PbrMaterial,
+  // change nothing; nor does a textured material on a mesh without texture coordinates.
+  SceneAssets a = plain;
+  a.materials.push_back({"another", PbrMaterial{}, -1});
+  for (AssetMesh& m : a.meshes) {
+    m.uv.assign(m.position.size(), glm::dvec2(0.5, 0.5));
+    m.primitives = {{0, 4, 1, {}}, {4, m.triangle.size() - 4, 0, {}}};
+  }
+  EXPECT_TRUE(render_scene_preview(a, o).rgba == reference.rgba);
+  a = plain;
+  test::texture_with_halves(a, 0, 8);
+  a.meshes[0].uv.clear();
+  EXPECT_TRUE(render_scene_preview(a, o).rgba == reference.rgba);
+  // A rougher material's highlight differs.
+  a = plain;
+  a.materials[0].pbr.roughness = 1;
+  EXPECT_FALSE(render_scene_preview(a, o).rgba == reference.rgba);
 }
 
 }  // namespace
