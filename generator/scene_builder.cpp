@@ -327,11 +327,17 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
           "i" + std::to_string(i) + "_" + asset_name(tmpl.name) + "_" + std::to_string(j);
       PieceMaterials object_materials = item_materials;
       std::vector<std::vector<glm::dvec2>> uv(kept.size());
+      // The kept pieces before their skins were unwrapped: the layout and the node extras see
+      // the pieces as cut (the unwrapped skins only add copies of vertices, which would change
+      // nothing but the order in which the layout meets them).
+      std::vector<Piece> as_cut;
       if (options.cap_colours == CapColours::Texture) {
         const auto t_bake = Clock::now();
         // Swept skins first: unwrapping adds vertices to the skin parts, which come first.
         const bool swept = variant.tmpl.surfaces[static_cast<size_t>(variant.tmpl.skin)].kind ==
                            SurfaceKind::Around;
+        if (swept)
+          for (size_t k : kept) as_cut.push_back(set.pieces[k]);
         const std::vector<std::vector<glm::dvec2>> skin_uv =
             swept ? unwrap_skins(set, kept) : std::vector<std::vector<glm::dvec2>>(kept.size());
         std::vector<const Piece*> kept_pieces;
@@ -346,15 +352,16 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
       }
       for (size_t q = 0; q < kept.size(); ++q) {
         const Piece& piece = set.pieces[kept[q]];
-        shapes.push_back(merge_parts(piece));
+        ShadedMesh merged = merge_parts(piece);
         // Perlin colour modulation in the object frame: every piece of one object agrees.
-        modulate_colours(shapes.back(), variant.tmpl.npr, scene.render.perlin,
+        modulate_colours(merged, variant.tmpl.npr, scene.render.perlin,
                          object_seed(seed, ii, j, 3));
-        meshes.push_back(piece_mesh(shapes.back(), piece, object_materials,
+        meshes.push_back(piece_mesh(merged, piece, object_materials,
                                     object + "_piece" + std::to_string(piece.cell), uv[q],
                                     options.cap_colours == CapColours::Texture
                                         ? coarse_caps(piece, set.sections)
                                         : std::vector<glm::uvec3>{}));
+        shapes.push_back(as_cut.empty() ? std::move(merged) : merge_parts(as_cut[q]));
         caps.push_back(largest_cap_normal(piece));
         infos.push_back(
             piece_info(piece, shapes.back(), tmpl.name, object_seed(seed, ii, j, 1), item.cut));
