@@ -7,19 +7,18 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 cutaway=${CUTAWAY:-./build/cutaway}
 run() { echo "+ cutaway $*" >&2; "$cutaway" -q --backend cpu "$@"; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
 
 run model templates/tomato.yaml --png doc/tomato-model.png --size 400
 run section templates/tomato.yaml --plane y=26 --png doc/tomato-section.png --size 400
-run variants templates/tomato.yaml --count 41 --seed 1 --sheet 41 --tile 80 -o /tmp/cutaway-gallery-variants
-cp /tmp/cutaway-gallery-variants/contact-sheet.png doc/tomato-variants.png
-rm -rf /tmp/cutaway-gallery-variants
+run variants templates/tomato.yaml --count 41 --seed 1 --sheet 41 --tile 80 -o "$tmp/variants"
+cp "$tmp/variants/contact-sheet.png" doc/tomato-variants.png
 run piece templates/tomato.yaml --cut wedges:6 --png doc/tomato-wedges.png
 run piece templates/onion.yaml --cut halves --png doc/onion-halves.png
 run piece templates/cucumber.yaml --cut slices:20 --png doc/cucumber-slices.png
-run scene scenes/salad.yaml -o /tmp/cutaway-gallery-salad.pov --png doc/salad.png \
-  --render doc/salad-povray.png
-rm -f /tmp/cutaway-gallery-salad.pov
-run scene scenes/board.yaml -o /tmp/cutaway-gallery-board.glb --png doc/board.png
-rm -f /tmp/cutaway-gallery-board.glb
+# The scenes' exports (and their textures) go to the temporary folder.
+run scene scenes/salad.yaml -o "$tmp/salad.pov" --png doc/salad.png --render doc/salad-povray.png
+run scene scenes/board.yaml -o "$tmp/board.glb" --png doc/board.png
 CUTAWAY="$cutaway" bash scripts/template-sheet.sh doc/templates-sheet.png
 echo "gallery: wrote doc/*.png" >&2

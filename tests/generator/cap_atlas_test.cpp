@@ -57,24 +57,21 @@ glm::dvec3 texel_at(const CapAtlas& atlas, glm::dvec2 uv) {
   return {double(atlas.srgb[i]), double(atlas.srgb[i + 1]), double(atlas.srgb[i + 2])};
 }
 
-TEST(CapAtlas, TexelsAgreeWithDirectPmvcAwayFromCutSegments) {
-  const Halves& h = tomato_halves();
-  const CapAtlas atlas =
-      bake_cap_atlas(all_pieces(h.set), h.set.sections, nullptr, 0, CapAtlasOptions{});
-  ASSERT_GT(atlas.width, 0);
-  // A 60 mm tomato's cap is at least 512 texels across at the default density.
-  EXPECT_GE(atlas.width, 512);
+/// Points on the first piece's cap to compare the atlas with: the centres of every third cap
+/// triangle at least one edge from every cut vertex (across a cut segment the colour jumps
+/// within a texel), with their texture coordinates.
+struct CapSamples {
+  std::vector<glm::dvec3> points;
+  std::vector<glm::dvec2> uv;
+};
+CapSamples cap_samples(const Halves& h, const CapAtlas& atlas) {
   const CrossSection& section = h.set.sections[0];
   std::vector<glm::dvec3> cut_vertices;
   for (size_t v = 0; v < section.position.size(); ++v)
     if (section.cut_surface[v] >= 0) cut_vertices.push_back(section.position[v]);
-  // Sample the first piece's cap at the centres of every third triangle, at least one edge
-  // from every cut vertex (across a cut segment the colour jumps within a texel).
-  const Piece& piece = h.set.pieces[0];
+  CapSamples out;
   unsigned offset = 0;
-  std::vector<glm::dvec3> points;
-  std::vector<glm::dvec3> baked;
-  for (const PiecePart& part : piece.parts) {
+  for (const PiecePart& part : h.set.pieces[0].parts) {
     if (part.kind == PartKind::Cap) {
       for (size_t f = 0; f < part.mesh.triangle.size(); f += 3) {
         const glm::uvec3 t = part.mesh.triangle[f];
@@ -84,15 +81,27 @@ TEST(CapAtlas, TexelsAgreeWithDirectPmvcAwayFromCutSegments) {
         for (const glm::dvec3& c : cut_vertices)
           near_cut = near_cut || glm::distance(c, centre) < h.tmpl.edge_m;
         if (near_cut) continue;
-        const glm::dvec2 uv =
+        out.points.push_back(centre);
+        out.uv.push_back(
             (atlas.uv[0][offset + t.x] + atlas.uv[0][offset + t.y] + atlas.uv[0][offset + t.z]) /
-            3.0;
-        points.push_back(centre);
-        baked.push_back(texel_at(atlas, uv));
+            3.0);
       }
     }
     offset += static_cast<unsigned>(part.mesh.position.size());
   }
+  return out;
+}
+
+TEST(CapAtlas, TexelsAgreeWithDirectPmvcAwayFromCutSegments) {
+  const Halves& h = tomato_halves();
+  const CapAtlas atlas =
+      bake_cap_atlas(all_pieces(h.set), h.set.sections, nullptr, 0, CapAtlasOptions{});
+  ASSERT_GT(atlas.width, 0);
+  // A 60 mm tomato's cap is at least 512 texels across at the default density.
+  EXPECT_GE(atlas.width, 512);
+  const auto [points, uv] = cap_samples(h, atlas);
+  std::vector<glm::dvec3> baked;
+  for (const glm::dvec2& q : uv) baked.push_back(texel_at(atlas, q));
   ASSERT_GT(points.size(), 50u);
   const std::vector<glm::dvec3> direct = h.diffusion->diffuse(points);
   double sum = 0, worst = 0;
@@ -119,37 +128,15 @@ TEST(CapAtlas, TheMaterialMapAgreesWithDirectPmvcAwayFromCutSegments) {
   const CapAtlas atlas =
       bake_cap_atlas(all_pieces(h.set), h.set.sections, nullptr, 0, CapAtlasOptions{});
   ASSERT_EQ(atlas.material.size(), static_cast<size_t>(atlas.width) * atlas.height * 4);
-  const CrossSection& section = h.set.sections[0];
-  std::vector<glm::dvec3> cut_vertices;
-  for (size_t v = 0; v < section.position.size(); ++v)
-    if (section.cut_surface[v] >= 0) cut_vertices.push_back(section.position[v]);
-  const Piece& piece = h.set.pieces[0];
-  unsigned offset = 0;
-  std::vector<glm::dvec3> points;
+  const auto [points, uv] = cap_samples(h, atlas);
   std::vector<glm::dvec2> baked;
-  for (const PiecePart& part : piece.parts) {
-    if (part.kind == PartKind::Cap) {
-      for (size_t f = 0; f < part.mesh.triangle.size(); f += 3) {
-        const glm::uvec3 t = part.mesh.triangle[f];
-        const glm::dvec3 centre =
-            (part.mesh.position[t.x] + part.mesh.position[t.y] + part.mesh.position[t.z]) / 3.0;
-        bool near_cut = false;
-        for (const glm::dvec3& c : cut_vertices)
-          near_cut = near_cut || glm::distance(c, centre) < h.tmpl.edge_m;
-        if (near_cut) continue;
-        const glm::dvec2 uv =
-            (atlas.uv[0][offset + t.x] + atlas.uv[0][offset + t.y] + atlas.uv[0][offset + t.z]) /
-            3.0;
-        const int x = std::clamp(static_cast<int>(uv.x * atlas.width), 0, atlas.width - 1);
-        const int y = std::clamp(static_cast<int>(uv.y * atlas.height), 0, atlas.height - 1);
-        const size_t i = 4 * (static_cast<size_t>(y) * atlas.width + x);
-        EXPECT_EQ(atlas.material[i], 255);    // no occlusion
-        EXPECT_EQ(atlas.material[i + 2], 0);  // not metallic
-        points.push_back(centre);
-        baked.push_back({atlas.material[i + 1], atlas.material[i + 3]});
-      }
-    }
-    offset += static_cast<unsigned>(part.mesh.position.size());
+  for (const glm::dvec2& q : uv) {
+    const int x = std::clamp(static_cast<int>(q.x * atlas.width), 0, atlas.width - 1);
+    const int y = std::clamp(static_cast<int>(q.y * atlas.height), 0, atlas.height - 1);
+    const size_t i = 4 * (static_cast<size_t>(y) * atlas.width + x);
+    EXPECT_EQ(atlas.material[i], 255);    // no occlusion
+    EXPECT_EQ(atlas.material[i + 2], 0);  // not metallic
+    baked.push_back({atlas.material[i + 1], atlas.material[i + 3]});
   }
   ASSERT_GT(points.size(), 50u);
   std::vector<glm::dvec3> colour(points.size());

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -243,6 +244,38 @@ TEST(TemplateParser, ErrorsInMaterials) {
     EXPECT_EQ(e.loc().line, c.line) << c.yaml;
     EXPECT_EQ(e.loc().column, c.column) << c.yaml;
     EXPECT_NE(e.rule().find(c.rule), std::string::npos) << c.yaml << ": " << e.rule();
+  }
+}
+
+TEST(TemplateParser, SurfaceMaterialChannelsDefaultToTheCutMaterial) {
+  const std::string head = R"(format: cutaway-template/1
+name: x
+symmetry: {type: cylindrical}
+materials: {cut: {roughness: 0.8, translucency: 0.4}}
+surfaces:
+)";
+  const Template t = parse(
+      head +
+      R"(  - {name: skin, kind: around, role: skin, profile: [[0, 0], [20, 10], [0, 40]], roughness: 0.2}
+  - {name: core, kind: around, profile: [[0, 10], [8, 20], [0, 30]], translucency: {back: 0.9}}
+)");
+  EXPECT_EQ(t.surfaces[0].material_front, glm::dvec2(0.2, 0.4));
+  EXPECT_EQ(t.surfaces[0].material_back, glm::dvec2(0.2, 0.4));
+  EXPECT_EQ(t.surfaces[1].material_front, glm::dvec2(0.8, 0.4));
+  EXPECT_EQ(t.surfaces[1].material_back, glm::dvec2(0.8, 0.9));
+  const std::string skin =
+      "  - {name: skin, kind: around, role: skin, profile: [[0, 0], [20, 10], [0, 40]], ";
+  for (const auto& [yaml, field, rule] :
+       std::initializer_list<std::tuple<std::string, std::string, std::string>>{
+           {"roughness: 1.5}\n", "surfaces[0].roughness", "between 0 and 1"},
+           {"translucency: {back: -1}}\n", "surfaces[0].translucency.back", "between 0 and 1"},
+           {"translucency: {inside: 1}}\n", "surfaces[0].translucency.inside",
+            "unknown field \"inside\""},
+           {"roughness: shiny}\n", "surfaces[0].roughness", ""}}) {
+    const InputError e = error_of(head + skin + yaml);
+    EXPECT_EQ(e.field(), field) << yaml;
+    EXPECT_EQ(e.loc().line, 6) << yaml;
+    EXPECT_NE(e.rule().find(rule), std::string::npos) << yaml << ": " << e.rule();
   }
 }
 
