@@ -1,5 +1,6 @@
 # Imports a glTF file with Blender's importer and prints what a user would look at: objects,
-# each material's base colour source (vertex colours or an image texture), roughness,
+# each material's base colour source (vertex colours or an image texture), roughness (a
+# value, or 'from a map' where the material map is wired to it),
 # clearcoat and sheen, and one piece's custom properties (its glTF node extras).
 # Usage (Debian 12: apt install blender python3-numpy):
 #   blender -b --factory-startup --python scripts/check-blender-import.py -- FILE.glb
@@ -21,8 +22,9 @@ for mat in bpy.data.materials:
     if bsdf is None:
         continue
     sources = [link.from_node.type for link in bsdf.inputs['Base Color'].links]
+    rough = bsdf.inputs['Roughness']
     print('material', mat.name, 'base colour from', sources,
-          'roughness', round(bsdf.inputs['Roughness'].default_value, 3),
+          'roughness', 'from a map' if rough.links else round(rough.default_value, 3),
           'clearcoat', round(bsdf.inputs['Clearcoat'].default_value, 3),
           'sheen', round(bsdf.inputs['Sheen'].default_value, 3))
 print('images', len(bpy.data.images))
