@@ -31,6 +31,13 @@ namespace {
 constexpr float kNear_m = 1e-7f;
 /// Upper bound on the colour, material and depth targets of one batch, bytes.
 constexpr size_t kMaxBatchBytes = size_t{64} << 20;
+/// One batch point as shaders/pmvc.vert reads it: its position and the rows of R^T for its
+/// cube's rotation R (cube_rotation; identity when the cubes are not turned).
+struct BatchPoint {
+  glm::vec4 eye;         // xyz: metres
+  glm::vec4 to_cube[3];  // xyz: row i of R^T
+};
+
 /// One vertex as shaders/pmvc.vert reads it.
 struct SheetVertex {
   glm::vec3 position;      // metres
@@ -54,7 +61,8 @@ void check_gl(const char* what) {
 
 class GlDiffusion final : public DiffusionBackend {
  public:
-  GlDiffusion(const DsModel& model, const DiffusionOptions& options) : n_(options.cube_size) {
+  GlDiffusion(const DsModel& model, const DiffusionOptions& options)
+      : n_(options.cube_size), rotate_cubes_(options.rotate_cubes) {
     if (n_ < 1)
       throw std::invalid_argument("gl diffusion: cube_size must be >= 1, got " +
                                   std::to_string(n_));
@@ -97,13 +105,19 @@ class GlDiffusion final : public DiffusionBackend {
     if (points.empty() || index_count_ == 0) return;
     const std::lock_guard lock(mutex_);
     context_->make_current();
-    std::vector<glm::vec4> eyes;
+    std::vector<BatchPoint> eyes;
     // Per point: (sum colour w, sum w), (sum material w, 0, 0).
     std::vector<glm::dvec4> sums(2 * static_cast<size_t>(batch_));
     for (size_t base = 0; base < points.size(); base += eyes.size()) {
       const size_t count = std::min<size_t>(batch_, points.size() - base);
-      eyes.assign(count, glm::vec4(0.0f));
-      for (size_t i = 0; i < count; ++i) eyes[i] = glm::vec4(glm::vec3(points[base + i]), 1.0f);
+      eyes.resize(count);
+      for (size_t i = 0; i < count; ++i) {
+        const glm::dvec3& p = points[base + i];
+        const glm::dmat3 r = rotate_cubes_ ? cube_rotation(p) : glm::dmat3(1.0);
+        eyes[i].eye = glm::vec4(glm::vec3(p), 1.0f);
+        for (int row = 0; row < 3; ++row)  // row `row` of R^T is column `row` of R
+          eyes[i].to_cube[row] = glm::vec4(glm::vec3(r[row]), 0.0f);
+      }
       render(eyes);
       reduce(static_cast<int>(count), sums);
       for (size_t i = 0; i < count; ++i) {
@@ -117,7 +131,7 @@ class GlDiffusion final : public DiffusionBackend {
 
  private:
   /// Draws the batch: one instance per (point, face), into layer 6 point + face.
-  void render(const std::vector<glm::vec4>& eyes) const {
+  void render(const std::vector<BatchPoint>& eyes) const {
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
     glViewport(0, 0, n_, n_);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
@@ -134,7 +148,7 @@ class GlDiffusion final : public DiffusionBackend {
     glClearBufferfv(GL_DEPTH, 0, &far_depth);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, eye_buffer_);
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
-                    static_cast<GLsizeiptr>(eyes.size() * sizeof(glm::vec4)), eyes.data());
+                    static_cast<GLsizeiptr>(eyes.size() * sizeof(BatchPoint)), eyes.data());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, eye_buffer_);
     glUseProgram(render_->id());
     glUniform1f(near_location_, kNear_m);
@@ -238,7 +252,7 @@ class GlDiffusion final : public DiffusionBackend {
     solid_angle_buffer_ = buffers[1];
     sum_buffer_ = buffers[2];
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, eye_buffer_);
-    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(batch_ * sizeof(glm::vec4)),
+    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(batch_ * sizeof(BatchPoint)),
                  nullptr, GL_DYNAMIC_DRAW);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, solid_angle_buffer_);
     glBufferData(GL_SHADER_STORAGE_BUFFER,
@@ -253,6 +267,7 @@ class GlDiffusion final : public DiffusionBackend {
   }
 
   int n_ = 0;
+  bool rotate_cubes_ = true;
   int batch_ = 1;  // points per batch
   std::unique_ptr<GlContext> context_;
   std::unique_ptr<GlProgram> render_;

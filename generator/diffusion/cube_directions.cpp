@@ -1,10 +1,15 @@
 #include "cube_directions.h"
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <numbers>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "error.h"
+#include "random.h"
 
 namespace cutaway {
 
@@ -45,6 +50,22 @@ CubeDirections make_cube_directions(int n) {
     }
   }
   return d;
+}
+
+glm::dmat3 cube_rotation(const glm::dvec3& point) {
+  uint64_t bits[3];
+  for (int k = 0; k < 3; ++k) {
+    const double v = point[k] == 0 ? 0.0 : point[k];  // -0 and +0 get one rotation
+    std::memcpy(&bits[k], &v, sizeof v);
+  }
+  constexpr uint64_t kPurposeCubeRotation = 0x63756265726f74ull;  // "cuberot"
+  Rng rng(derive_seed(kPurposeCubeRotation, {bits[0], bits[1], bits[2]}));
+  const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
+  constexpr double kTwoPi = 2 * std::numbers::pi;
+  const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
+  const glm::dquat q(b * std::cos(kTwoPi * u3), a * std::sin(kTwoPi * u2),
+                     a * std::cos(kTwoPi * u2), b * std::sin(kTwoPi * u3));  // (w, x, y, z)
+  return glm::mat3_cast(q);
 }
 
 }  // namespace cutaway

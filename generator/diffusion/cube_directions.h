@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
 namespace cutaway {
@@ -20,5 +21,14 @@ struct CubeDirections {
 /// with A(x, y) = atan2(x y, sqrt(x^2 + y^2 + 1)); they sum to 4 pi.
 /// @pre n >= 1
 CubeDirections make_cube_directions(int n);
+
+/// The rotation of the cube map at `point` (metres): a uniformly random rotation (Shoemake's
+/// unit quaternion from three uniforms of a pcg32 stream) seeded by the bits of the point's
+/// coordinates (-0 as +0), so the same point always gets the same rotation whatever the thread
+/// count or batch. Turning every point's cube differently keeps the texel grid from lining up
+/// with an object's symmetry, where the errors of the texels would add up instead of
+/// cancelling. A ray goes along R d for each
+/// cube direction d.
+glm::dmat3 cube_rotation(const glm::dvec3& point);
 
 }  // namespace cutaway

@@ -24,6 +24,9 @@ struct DiffusionOptions {
   /// the rays.
   int cube_size = 16;
   int threads = 0;     ///< worker threads; 0 = all cores. Results do not depend on it.
+  /// Each point's cube map turned by its own seeded rotation (cube_rotation): texel errors
+  /// cancel instead of adding up where the cube's grid lines up with an object's symmetry.
+  bool rotate_cubes = true;
 };
 
 /// colour(x) = sum_w c(w) dOmega(w) / r(w)  /  sum_w dOmega(w) / r(w) over the cube-map texel

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -40,12 +41,12 @@ inline void commit_sheet_scene(RTCDevice device, RTCScene scene,
 /// Sets `rh` to the rays from `origin` (metres) along directions[base .. base + 16) (fewer at
 /// the end: the unused lanes repeat the last direction and are invalid) and `valid` to the
 /// Embree mask. Returns the number of valid lanes.
-inline int fill_ray_packet(const CubeDirections& directions, size_t base, const glm::dvec3& origin,
-                           RTCRayHit16& rh, int (&valid)[16]) {
-  const int lanes = static_cast<int>(std::min<size_t>(16, directions.direction.size() - base));
+inline int fill_ray_packet(std::span<const glm::vec3> directions, size_t base,
+                           const glm::dvec3& origin, RTCRayHit16& rh, int (&valid)[16]) {
+  const int lanes = static_cast<int>(std::min<size_t>(16, directions.size() - base));
   for (int l = 0; l < 16; ++l) {
     valid[l] = l < lanes ? -1 : 0;
-    const glm::vec3 d = directions.direction[base + std::min(l, lanes - 1)];
+    const glm::vec3 d = directions[base + std::min(l, lanes - 1)];
     rh.ray.org_x[l] = static_cast<float>(origin.x);
     rh.ray.org_y[l] = static_cast<float>(origin.y);
     rh.ray.org_z[l] = static_cast<float>(origin.z);

@@ -120,7 +120,7 @@ class RawEmbree {
     alignas(64) RTCRayHit16 rh;
     alignas(64) int valid[16];
     for (size_t base = 0; base < count; base += 16) {
-      const int lanes = cutaway::fill_ray_packet(dirs, base, x, rh, valid);
+      const int lanes = cutaway::fill_ray_packet(dirs.direction, base, x, rh, valid);
       rtcIntersect16(valid, scene_, &context, &rh);
       for (int l = 0; l < lanes; ++l)
         if (rh.hit.geomID[l] != RTC_INVALID_GEOMETRY_ID) sum += rh.ray.tfar[l];
