@@ -42,6 +42,17 @@ void append_vector(std::string& out, const glm::dvec3& v) {
   out += '>';
 }
 
+/// `v` as POV-Ray reads it back from append_vector's text (6 significant digits).
+glm::dvec3 written(const glm::dvec3& v) {
+  glm::dvec3 out;
+  for (int k = 0; k < 3; ++k) {
+    std::string text;
+    append_number(text, v[k]);
+    std::from_chars(text.data(), text.data() + text.size(), out[k]);
+  }
+  return out;
+}
+
 std::string vector_text(const glm::dvec3& v) {
   std::string s;
   append_vector(s, v);
@@ -414,8 +425,10 @@ void write_strokes(std::string& out, const SceneAssets& a, const std::vector<Str
       if (!(depth > 0)) continue;
       const double r = std::max(1e-6, 0.5 * stroke.width_px[k % n] * depth *
                                           metres_per_pixel_per_depth);
-      const glm::dvec3 q = p + r * glm::normalize(c.eye - p);
-      if (!centres.empty() && glm::length(q - centres.back()) < 1e-7) continue;
+      // As written: two points whose text is the same would make a cone of zero length, which
+      // POV-Ray refuses ("Degenerate cone/cylinder", a fatal parse error).
+      const glm::dvec3 q = written(p + r * glm::normalize(c.eye - p));
+      if (!centres.empty() && q == centres.back()) continue;
       centres.push_back(q);
       radii.push_back(r);
     }

@@ -3,6 +3,7 @@
 // pinhole projection of the same camera (not mirrored, not flipped) and an analytic Lambert
 // colour.
 #include "pov_export.h"
+#include "silhouettes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -192,6 +193,30 @@ TEST(PovExport, DeterministicAndStructured) {
   write_scene_pov(dir / "scene.pov", s);
   EXPECT_EQ(test::read_file(dir / "scene.pov"), a);
   EXPECT_EQ(test::files_in(dir), std::vector<std::string>{"scene.pov"});
+}
+
+TEST(PovExport, StrokePointsThatWriteAlikeMakeNoDegenerateCone) {
+  // Two points 0.2 um apart (more than the 0.1 um that used to tell points apart) are distinct
+  // but write alike with 6 significant digits near 1 m: a cone between them would have equal
+  // ends, which POV-Ray refuses ("Degenerate cone/cylinder", a fatal parse error).
+  const SceneAssets assets = test_scene();
+  Stroke stroke;
+  stroke.points = {{1.0, 0.1, 0.2}, {1.0000002, 0.1, 0.2}, {1.01, 0.12, 0.2}, {1.01, 0.12, 0.2}};
+  stroke.width_px = {1, 1, 1, 1};
+  Stroke closed = stroke;
+  closed.closed = true;
+  closed.points = {{1.1, 0.1, 0.2}, {1.12, 0.1, 0.2}, {1.1000002, 0.1, 0.2}};
+  closed.width_px = {1, 1, 1};
+  const std::vector<Stroke> strokes = {stroke, closed};
+  const std::string pov = scene_to_pov(assets, &strokes);
+  size_t cones = 0;
+  for (size_t at = pov.find("cone { "); at != std::string::npos; at = pov.find("cone { ", at + 1)) {
+    const size_t a0 = pov.find('<', at), a1 = pov.find('>', a0);
+    const size_t b0 = pov.find('<', a1), b1 = pov.find('>', b0);
+    EXPECT_NE(pov.substr(a0, a1 - a0), pov.substr(b0, b1 - b0)) << pov.substr(at, b1 - at);
+    ++cones;
+  }
+  EXPECT_GE(cones, 2u);
 }
 
 TEST(PovExport, InstanceMatrixIsRowVectorForm) {
