@@ -9,6 +9,8 @@
 #include <span>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <unordered_map>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -192,20 +194,19 @@ int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh,
       if (t.x >= n || t.y >= n || t.z >= n)
         bad_assets("mesh '" + mesh.name + "': a triangle index is out of range");
   }
-  // Only the vertices some triangle uses, in their order.
-  std::vector<unsigned> remap(n, ~0u);
+  // Only the vertices some triangle uses, in their order, each written once: a vertex whose
+  // written attributes (float position, normal, colour, uv) equal an earlier one's is welded
+  // to it (the copies of cut vertices on both sides of a seam that show the same colour).
+  std::vector<bool> needed(n, false);
   for (const auto& list : lists)
     for (const glm::uvec3& t : list)
-      for (int k = 0; k < 3; ++k) remap[t[k]] = 0;
+      for (int k = 0; k < 3; ++k) needed[t[k]] = true;
+  std::vector<unsigned> remap(n, ~0u);
+  std::unordered_map<std::string, unsigned> written;
   unsigned used = 0;
-  for (unsigned& r : remap)
-    if (r == 0) r = used++;
   std::vector<float> pos, normal, colour, xy;
-  pos.reserve(3 * used);
-  normal.reserve(3 * used);
-  colour.reserve(3 * used);
   for (size_t i = 0; i < n; ++i) {
-    if (remap[i] == ~0u) continue;
+    if (!needed[i]) continue;
     const glm::dvec3& p = mesh.position[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
       bad_assets("mesh '" + mesh.name + "': a position is not finite");
@@ -214,17 +215,29 @@ int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh,
     const glm::dvec3 nrm =
         len > 0 && std::isfinite(len) ? mesh.normal[i] / len : glm::dvec3(0, 1, 0);
     const glm::dvec3 c = glm::clamp(mesh.colour[i], 0.0, 1.0);
+    float vertex[11] = {};
     for (int k = 0; k < 3; ++k) {
-      pos.push_back(static_cast<float>(p[k]));
-      normal.push_back(static_cast<float>(nrm[k]));
-      colour.push_back(static_cast<float>(c[k]));
+      vertex[k] = static_cast<float>(p[k]);
+      vertex[3 + k] = static_cast<float>(nrm[k]);
+      vertex[6 + k] = static_cast<float>(c[k]);
     }
     if (!mesh.uv.empty()) {
       const glm::dvec2 q = mesh.uv[i];
       if (!std::isfinite(q.x) || !std::isfinite(q.y))
         bad_assets("mesh '" + mesh.name + "': a uv is not finite");
-      xy.insert(xy.end(), {static_cast<float>(q.x), static_cast<float>(q.y)});
+      vertex[9] = static_cast<float>(q.x);
+      vertex[10] = static_cast<float>(q.y);
     }
+    for (float& v : vertex) v += 0.0f;  // -0 and +0 write alike
+    const auto [it, added] =
+        written.emplace(std::string(reinterpret_cast<const char*>(vertex), sizeof vertex), used);
+    remap[i] = it->second;
+    if (!added) continue;
+    ++used;
+    pos.insert(pos.end(), vertex, vertex + 3);
+    normal.insert(normal.end(), vertex + 3, vertex + 6);
+    colour.insert(colour.end(), vertex + 6, vertex + 9);
+    if (!mesh.uv.empty()) xy.insert(xy.end(), vertex + 9, vertex + 11);
   }
   const int positions = add_vec3_accessor(m, pos, true);
   const int normals = add_vec3_accessor(m, normal, false);

@@ -255,6 +255,35 @@ TEST(SceneGltf, StructureReadsBackWithTinygltf) {
   EXPECT_EQ(m.nodes[5].translation, (std::vector<double>{0.1, 0.4, 0.2}));
 }
 
+TEST(SceneGltf, VerticesThatWriteAlikeAreWeldedAndOthersKept) {
+  // The cube with every vertex copied (the copies used by the second triangle of each face):
+  // the copies weld back to 24 vertices. A copy with another colour of a vertex that the first
+  // triangle still uses stays apart.
+  SceneAssets s = small_scene();
+  AssetMesh& m = s.meshes[0];
+  const AssetMesh plain = m;
+  for (glm::uvec3& t : m.triangle) {
+    if ((&t - m.triangle.data()) % 2 == 0) continue;
+    for (int k = 0; k < 3; ++k) {
+      const unsigned v = t[k];
+      m.position.push_back(m.position[v]);
+      m.normal.push_back(m.normal[v]);
+      m.colour.push_back(m.colour[v]);
+      t[k] = static_cast<unsigned>(m.position.size() - 1);
+    }
+  }
+  const auto dir = test::fresh_dir("scene-gltf-weld");
+  write_scene_gltf(dir / "welded.glb", s);
+  tinygltf::Model welded = load(dir / "welded.glb");
+  EXPECT_EQ(welded.accessors.at(welded.meshes[0].primitives[0].attributes.at("POSITION")).count,
+            plain.position.size());
+  m.colour[m.colour.size() - 3] = glm::dvec3(0.1, 0.2, 0.3);  // the last face's first corner
+  write_scene_gltf(dir / "apart.glb", s);
+  tinygltf::Model apart = load(dir / "apart.glb");
+  EXPECT_EQ(apart.accessors.at(apart.meshes[0].primitives[0].attributes.at("POSITION")).count,
+            plain.position.size() + 1);
+}
+
 TEST(SceneGltf, LookRotationsHandleAViewAlongTheUpVector) {
   SceneAssets s = small_scene();
   s.camera.eye = {0, 1, 0};  // straight down, up = +Y: parallel
