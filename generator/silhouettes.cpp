@@ -328,6 +328,12 @@ std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptio
         if (topo.weld[tri[k]] == w) return tri[k];
       return tri[0];
     };
+    // Two copies of a vertex that differ only in texture coordinates (made for a texture's
+    // seam: a skin's t_section = 0, its poles) are one vertex of the surface.
+    const auto same_copy = [&](uint32_t u, uint32_t v) {
+      return u == v || (!mesh.uv.empty() && mesh.uv[u] != mesh.uv[v] &&
+                        mesh.colour[u] == mesh.colour[v] && mesh.normal[u] == mesh.normal[v]);
+    };
     // 2. Feature edges, 3. visible ones: outlines, and structure lines inside cut faces.
     std::vector<FeatureEdge> visible, structure;
     for (const Topology::Edge& e : topo.edges) {
@@ -350,7 +356,8 @@ std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptio
           // these are the outlines of the structures inside a cut face.
           seam = !feature && options.structure_width > 0 &&
                  glm::dot(n0, n1) > kCoplanarCos * glm::length(n0) * glm::length(n1) &&
-                 (corner(f0, e.a) != corner(f1, e.a) || corner(f0, e.b) != corner(f1, e.b));
+                 (!same_copy(corner(f0, e.a), corner(f1, e.a)) ||
+                  !same_copy(corner(f0, e.b), corner(f1, e.b)));
         }
       }
       if (!feature && !seam) continue;

@@ -228,6 +228,38 @@ TEST(Silhouettes, SeamsInsideAFlatFaceAreThinnerStructureLines) {
   EXPECT_LT(*std::max_element(seam->width_px.begin(), seam->width_px.end()), outline_max);
 }
 
+TEST(Silhouettes, CopiesMadeOnlyForTextureCoordinatesAreNoSeam) {
+  // The same split strip, textured: where the copies differ from their originals only in
+  // their texture coordinates (a skin texture's seam), there is no structure line; where they
+  // also differ in colour (the two sides of a cut segment), there is.
+  AssetMesh strip;
+  strip.name = "strip";
+  for (int i = 0; i <= 10; ++i)
+    for (const double z : {-0.01, 0.01}) strip.position.push_back({-0.1 + 0.02 * i, 0, z});
+  strip.position.push_back(strip.position[10]);
+  strip.position.push_back(strip.position[11]);
+  for (unsigned i = 0; i < 10; ++i) {
+    unsigned a = 2 * i, b = a + 1, c = a + 3, d = a + 2;
+    if (i == 5) a = 22, b = 23;
+    strip.triangle.push_back({a, b, c});
+    strip.triangle.push_back({a, c, d});
+  }
+  strip.normal.assign(strip.position.size(), {0, 1, 0});
+  strip.colour.assign(strip.position.size(), {0.9, 0.1, 0.1});
+  for (const glm::dvec3& p : strip.position) strip.uv.push_back({p.x + 0.1, p.z});
+  strip.uv[22].x += 1;  // the copies: u + 1, as across t_section = 0
+  strip.uv[23].x += 1;
+  StrokeOptions o = exact();
+  o.min_length_px = 1;
+  const std::vector<Stroke> textured = extract_strokes(scene_of({strip}, {0.0, 0.35, 0.05}), o);
+  o.structure_width = 0;
+  const std::vector<Stroke> outlines = extract_strokes(scene_of({strip}, {0.0, 0.35, 0.05}), o);
+  EXPECT_EQ(textured.size(), outlines.size());
+  strip.colour[22] = strip.colour[23] = {0.1, 0.9, 0.1};
+  o.structure_width = StrokeOptions{}.structure_width;
+  EXPECT_EQ(extract_strokes(scene_of({strip}, {0.0, 0.35, 0.05}), o).size(), outlines.size() + 1);
+}
+
 TEST(Silhouettes, StrengthZeroGivesNothingAndResultsAreDeterministic) {
   const SceneAssets a = scene_of({box("cube", glm::dvec3(0.05))}, glm::dvec3(2.0, 2.0, 2.0), 4);
   StrokeOptions o;
