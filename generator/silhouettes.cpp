@@ -412,7 +412,11 @@ std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptio
           if (!s.closed && (k == 0 || k + 1 == n)) continue;
           const glm::dvec3& prev = s.points[(k + n - 1) % n];
           const glm::dvec3& next = s.points[(k + 1) % n];
-          q[k] = 0.25 * prev + 0.5 * s.points[k] + 0.25 * next;
+          const glm::dvec3 shift = 0.25 * (prev + next) - 0.5 * s.points[k];
+          const double limit =
+              options.smoothing_shift_px * -proj.view(s.points[k]).z / proj.pixel_per_depth;
+          const double length = glm::length(shift);
+          q[k] = s.points[k] + (length > limit ? shift * (limit / length) : shift);
         }
         s.points = std::move(q);
       }

@@ -33,6 +33,9 @@ struct StrokeOptions {
   double min_length_px = 4;   ///< shorter strokes (projected length) are dropped
   double max_turn_deg = 70;   ///< linking never turns by more than this at a joint
   int smoothing = 2;          ///< Laplacian smoothing passes over each stroke's points
+  double smoothing_shift_px = 1.5;  ///< the most a pass moves a point, pixels: smoothing takes
+                                    ///< out the zigzag of mesh edges, not the corners of long
+                                    ///< edges (a box's outline)
   double darkening = 0.12;    ///< colour = darkening * mean colour of the faces along it
   double structure_width = 0.6;  ///< width of structure lines (inside cut faces) relative to
                                  ///< outlines; 0 turns them off

@@ -260,6 +260,37 @@ TEST(Silhouettes, CopiesMadeOnlyForTextureCoordinatesAreNoSeam) {
   EXPECT_EQ(extract_strokes(scene_of({strip}, {0.0, 0.35, 0.05}), o).size(), outlines.size() + 1);
 }
 
+/// The largest distance, in pixels at its depth, of a stroke point of `strokes` from the
+/// surface of the box of half extents `half` at the origin (exact on its faces, a lower bound
+/// off them).
+double largest_offset_px(const std::vector<Stroke>& strokes, const glm::dvec3& half,
+                         const SceneAssets& a) {
+  const double metres_per_px_at_1m = 2 * std::tan(glm::radians(a.camera.fov_y_deg) / 2) / a.height;
+  double worst = 0;
+  for (const Stroke& s : strokes)
+    for (const glm::dvec3& p : s.points) {
+      const glm::dvec3 d = glm::abs(p) - half;
+      const double off = std::fabs(std::max({d.x, d.y, d.z}));
+      worst = std::max(worst, off / (glm::distance(p, a.camera.eye) * metres_per_px_at_1m));
+    }
+  return worst;
+}
+
+TEST(Silhouettes, SmoothingKeepsTheCornersOfLongEdges) {
+  // A box's outline is a few long edges: smoothing (default options) moves a corner by at most
+  // smoothing_shift_px per pass, not by a quarter of its edges (which pulled a board's outline
+  // 50 pixels into the board, drawn over the pieces on it).
+  const glm::dvec3 half(0.1, 0.02, 0.08);
+  const SceneAssets a = scene_of({box("box", half)}, {0.05, 0.3, 0.25});
+  StrokeOptions o;
+  const std::vector<Stroke> strokes = extract_strokes(a, o);
+  ASSERT_FALSE(strokes.empty());
+  EXPECT_LE(largest_offset_px(strokes, half, a), o.smoothing * o.smoothing_shift_px + 0.5);
+  // Unlimited, as before: the corners move far off the box.
+  o.smoothing_shift_px = 1e9;
+  EXPECT_GT(largest_offset_px(extract_strokes(a, o), half, a), 6.0);
+}
+
 TEST(Silhouettes, StrengthZeroGivesNothingAndResultsAreDeterministic) {
   const SceneAssets a = scene_of({box("cube", glm::dvec3(0.05))}, glm::dvec3(2.0, 2.0, 2.0), 4);
   StrokeOptions o;
