@@ -181,6 +181,12 @@ Topology make_topology(const AssetMesh& mesh) {
 /// between them is a structure line, not a flat-shaded edge.
 constexpr double kCoplanarCos = 0.99;
 
+/// Feature edges projecting at least this long (pixels) are split into the runs of them in
+/// sight, of at least kMinRun_px one-pixel samples each; shorter ones are kept whole when most
+/// of them is in sight.
+constexpr double kSplitEdge_px = 24;
+constexpr int kMinRun_px = 4;
+
 /// A visible feature edge of one instance.
 struct FeatureEdge {
   uint32_t a, b;      // welded ids
@@ -334,6 +340,21 @@ std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptio
       return u == v || (!mesh.uv.empty() && mesh.uv[u] != mesh.uv[v] &&
                         mesh.colour[u] == mesh.colour[v] && mesh.normal[u] == mesh.normal[v]);
     };
+    // Stroke points by id: the welded vertices, then points where a long edge goes in or out
+    // of sight (object frame, and pixels with depth).
+    std::vector<glm::dvec3> point(topo.representative.size()), screen(point.size());
+    for (size_t w = 0; w < topo.representative.size(); ++w) {
+      point[w] = mesh.position[topo.representative[w]];
+      screen[w] = px[topo.representative[w]];
+    }
+    // The id of the point at screen parameter t of edge a-b (perspective-correct), added.
+    const auto point_on = [&](uint32_t a, uint32_t b, double t) {
+      const double inv_d = (1 - t) / screen[a].z + t / screen[b].z;
+      const double s = (t / screen[b].z) / inv_d;  // the object-space parameter
+      point.push_back(glm::mix(point[a], point[b], s));
+      screen.push_back(glm::dvec3(glm::mix(xy(screen[a]), xy(screen[b]), t), 1 / inv_d));
+      return static_cast<uint32_t>(point.size() - 1);
+    };
     // 2. Feature edges, 3. visible ones: outlines, and structure lines inside cut faces.
     std::vector<FeatureEdge> visible, structure;
     for (const Topology::Edge& e : topo.edges) {
@@ -365,7 +386,8 @@ std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptio
       const glm::dvec3 &pa = px[va], &pb = px[vb];
       if (pa.z <= 0 || pb.z <= 0) continue;
       const double length = glm::length(glm::dvec2(pb - pa));
-      const int n = std::clamp(static_cast<int>(std::ceil(length)), 3, 64);
+      const int n = std::clamp(static_cast<int>(std::ceil(length)), 3, 512);
+      std::vector<bool> sample_seen(static_cast<size_t>(n));
       int seen = 0;
       for (int k = 0; k < n; ++k) {
         const double t = (k + 0.5) / n;
@@ -374,20 +396,38 @@ std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptio
         const double d = 1 / inv_d;
         const glm::dvec2 s = glm::mix(glm::dvec2(pa), glm::dvec2(pb), t);
         const double tolerance = 1e-3 * d + 2.5 * d / proj.pixel_per_depth;
-        if (depth.visible(s.x, s.y, d, tolerance)) ++seen;
+        sample_seen[static_cast<size_t>(k)] = depth.visible(s.x, s.y, d, tolerance);
+        seen += sample_seen[static_cast<size_t>(k)];
       }
-      if (2 * seen < n) continue;
       glm::dvec3 colour;
       const int cf = front_face >= 0 ? front_face : static_cast<int>(faces[0]);
       const glm::uvec3& tri = mesh.triangle[static_cast<size_t>(cf)];
       colour = (mesh.colour[tri.x] + mesh.colour[tri.y] + mesh.colour[tri.z]) / 3.0;
-      (seam ? structure : visible).push_back({e.a, e.b, colour});
+      std::vector<FeatureEdge>& out = seam ? structure : visible;
+      if (length < kSplitEdge_px || seen == n) {  // short, or all in sight: by majority
+        if (2 * seen >= n) out.push_back({e.a, e.b, colour});
+        continue;
+      }
+      // A long edge partly hidden (a board's edge behind a piece): its runs in sight of at
+      // least kMinRun_px samples, each a stroke edge of its own.
+      for (int k = 0; k < n;) {
+        if (!sample_seen[static_cast<size_t>(k)]) {
+          ++k;
+          continue;
+        }
+        int end = k;
+        while (end < n && sample_seen[static_cast<size_t>(end)]) ++end;
+        if (end - k >= kMinRun_px) {
+          const uint32_t from = k == 0 ? e.a : point_on(e.a, e.b, static_cast<double>(k) / n);
+          const uint32_t to = end == n ? e.b : point_on(e.a, e.b, static_cast<double>(end) / n);
+          out.push_back({from, to, colour});
+        }
+        k = end;
+      }
     }
     if (visible.empty() && structure.empty()) continue;
 
     // 4. Linking, outlines and structure lines apart.
-    std::vector<glm::dvec3> screen(topo.representative.size());
-    for (size_t w = 0; w < topo.representative.size(); ++w) screen[w] = px[topo.representative[w]];
     std::vector<bool> closed, structure_closed;
     auto lines = link_edges(visible, screen, options.max_turn_deg, &closed);
     const size_t outlines = lines.size();
@@ -402,9 +442,7 @@ std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptio
       const std::vector<uint32_t>& ids = lines[l].first;
       Stroke s;
       s.closed = closed[l];
-      for (uint32_t w : ids)
-        s.points.emplace_back(
-            scene_from_object * glm::dvec4(mesh.position[topo.representative[w]], 1.0));
+      for (uint32_t w : ids) s.points.emplace_back(scene_from_object * glm::dvec4(point[w], 1.0));
       const size_t n = s.points.size();
       for (int pass = 0; pass < options.smoothing && n > 2; ++pass) {
         std::vector<glm::dvec3> q = s.points;

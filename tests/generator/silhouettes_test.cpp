@@ -126,6 +126,28 @@ TEST(Silhouettes, HiddenEdgesAreRemoved) {
   EXPECT_FALSE(alone.empty());
 }
 
+TEST(Silhouettes, ALongEdgePartlyHiddenIsDrawnOnlyWhereInSight) {
+  // A wide, flat box far behind a narrow pillar that hides the middle of it (seen along -z):
+  // its long outline edges are drawn on both sides of the pillar, never across it.
+  AssetMesh wide = box("wide", {0.2, 0.02, 0.01}, {0, 0, -0.2});
+  AssetMesh pillar = box("pillar", {0.03, 0.2, 0.01}, {0, 0, 0.1});
+  const glm::dvec3 eye(0.0, 0.01, 0.8);
+  const std::vector<Stroke> strokes = extract_strokes(scene_of({wide, pillar}, eye, 50), exact());
+  bool left = false, right = false;
+  for (const Stroke& s : strokes) {
+    for (size_t k = 0; k + 1 < s.points.size(); ++k) {
+      const glm::dvec3 &a = s.points[k], &b = s.points[k + 1];
+      if (a.z > -0.1 || b.z > -0.1) continue;  // the pillar's own strokes
+      EXPECT_FALSE(std::min(a.x, b.x) < 0 && std::max(a.x, b.x) > 0)
+          << "a stroke of the wide box across the pillar: " << a.x << " .. " << b.x;
+      left = left || std::min(a.x, b.x) < -0.1;
+      right = right || std::max(a.x, b.x) > 0.1;
+    }
+  }
+  EXPECT_TRUE(left);
+  EXPECT_TRUE(right);
+}
+
 /// Two quads meeting at a ridge along z (x = 0), each sloping down by `slope_deg`: an open
 /// mesh whose ridge is a crease of dihedral angle 2 * slope_deg; its outline is boundary.
 AssetMesh roof(double slope_deg) {
