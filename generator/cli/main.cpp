@@ -383,6 +383,7 @@ int main(int argc, char** argv) {
   CLI::App app{"cutaway: cut objects with a consistent interior, from diffusion surfaces "
                "(Takayama et al. 2010)"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", "cutaway " CUTAWAY_VERSION);
   app.fallthrough();  // common options may follow the subcommand
   bool stats = false, quiet = false, verbose = false;
   app.add_flag("--stats", stats, "print JSON timings and counts on stderr");

@@ -227,6 +227,13 @@ TEST(BadInputFixtures, BasesAreValid) {
   EXPECT_TRUE(r.err.empty()) << r.err;
 }
 
+TEST(Cli, VersionPrintsTheProjectVersion) {
+  const auto r = test::run_cutaway({"--version"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("cutaway ", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find('.'), std::string::npos) << r.out;  // MAJOR.MINOR.PATCH
+}
+
 TEST(CheckCommand, ShippedTemplateIsValid) {
   const auto r = test::run_cutaway({"check", "templates/spheres.yaml"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
