@@ -52,17 +52,16 @@ CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
   CapAtlas atlas;
   std::vector<Island> islands;
   for (size_t i = 0; i < pieces.size(); ++i) {
-    unsigned offset = 0;
-    size_t vertices = 0;
-    for (const PiecePart& part : pieces[i]->parts) vertices += part.mesh.position.size();
-    atlas.uv.emplace_back(vertices, glm::dvec2(0.0));
-    for (const PiecePart& part : pieces[i]->parts) {
+    const std::vector<unsigned> offsets = part_vertex_offsets(*pieces[i]);
+    atlas.uv.emplace_back(offsets.back(), glm::dvec2(0.0));
+    for (size_t k = 0; k < pieces[i]->parts.size(); ++k) {
+      const PiecePart& part = pieces[i]->parts[k];
       if (part.kind == PartKind::Cap && !part.mesh.triangle.empty()) {
         const CrossSection& section = sections.at(static_cast<size_t>(part.plane));
         Island island;
         island.piece = i;
         island.part = &part;
-        island.first_vertex = offset;
+        island.first_vertex = offsets[k];
         for (const glm::dvec3& p : part.mesh.position) {
           const glm::dvec3 d = p - section.plane.point;
           island.uv_m.emplace_back(glm::dot(d, section.u_axis), glm::dot(d, section.v_axis));
@@ -74,7 +73,6 @@ CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
         }
         islands.push_back(std::move(island));
       }
-      offset += static_cast<unsigned>(part.mesh.position.size());
     }
   }
   if (islands.empty()) return atlas;

@@ -243,6 +243,18 @@ ShadedMesh merge_parts(const Piece& piece) {
   return out;
 }
 
+std::vector<unsigned> part_vertex_offsets(const Piece& piece) {
+  std::vector<unsigned> offsets{0};
+  for (const PiecePart& part : piece.parts)
+    offsets.push_back(offsets.back() + static_cast<unsigned>(part.mesh.position.size()));
+  return offsets;
+}
+
+const PiecePart* skin_part(const Piece& piece) {
+  return !piece.parts.empty() && piece.parts[0].kind == PartKind::Skin ? &piece.parts[0]
+                                                                         : nullptr;
+}
+
 size_t surface_triangle_count(const Piece& piece) {
   size_t n = 0;
   for (const PiecePart& part : piece.parts)

@@ -99,4 +99,11 @@ ShadedMesh merge_parts(const Piece& piece);
 /// The number of triangles of the skin and walls of `piece` (the first ones of merge_parts).
 size_t surface_triangle_count(const Piece& piece);
 
+/// Where each part's vertices start in merge_parts(piece): #parts + 1 offsets, the last one the
+/// merged mesh's vertex count.
+std::vector<unsigned> part_vertex_offsets(const Piece& piece);
+
+/// The piece's skin part (parts[0] when the piece has skin), or null.
+const PiecePart* skin_part(const Piece& piece);
+
 }  // namespace cutaway

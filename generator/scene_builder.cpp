@@ -141,9 +141,8 @@ AssetMesh piece_mesh(const ShadedMesh& merged, const Piece& piece, PieceMaterial
   out.uv = uv;
   const size_t n = merged.triangle.size();
   const size_t surface = surface_triangle_count(piece);
-  const size_t skin = !piece.parts.empty() && piece.parts[0].kind == PartKind::Skin
-                          ? piece.parts[0].mesh.triangle.size()
-                          : 0;
+  const PiecePart* skin_surface = skin_part(piece);
+  const size_t skin = skin_surface ? skin_surface->mesh.triangle.size() : 0;
   const struct {
     size_t first, count;
     int material;
@@ -178,14 +177,13 @@ PieceInfo piece_info(const Piece& piece, const ShadedMesh& merged, const std::st
 
 std::vector<glm::uvec3> coarse_caps(const Piece& piece, const std::vector<CrossSection>& sections) {
   std::vector<glm::uvec3> out;
-  unsigned offset = 0;
-  for (const PiecePart& part : piece.parts) {
-    if (part.kind == PartKind::Cap) {
-      const CrossSection& section = sections.at(static_cast<size_t>(part.plane));
-      for (const glm::uvec3& t : coarse_cap_triangles(part.mesh, section.u_axis, section.v_axis))
-        out.push_back(t + offset);
-    }
-    offset += static_cast<unsigned>(part.mesh.position.size());
+  const std::vector<unsigned> offsets = part_vertex_offsets(piece);
+  for (size_t k = 0; k < piece.parts.size(); ++k) {
+    const PiecePart& part = piece.parts[k];
+    if (part.kind != PartKind::Cap) continue;
+    const CrossSection& section = sections.at(static_cast<size_t>(part.plane));
+    for (const glm::uvec3& t : coarse_cap_triangles(part.mesh, section.u_axis, section.v_axis))
+      out.push_back(t + offsets[k]);
   }
   return out;
 }
@@ -222,8 +220,7 @@ std::vector<std::vector<glm::dvec2>> unwrap_skins(PieceSet& set, const std::vect
   std::vector<std::vector<glm::dvec2>> uv;
   for (size_t k : kept) {
     Piece& piece = set.pieces[k];
-    const bool skin = !piece.parts.empty() && piece.parts[0].kind == PartKind::Skin;
-    uv.push_back(skin ? unwrap_skin(piece.parts[0].mesh) : std::vector<glm::dvec2>{});
+    uv.push_back(skin_part(piece) ? unwrap_skin(piece.parts[0].mesh) : std::vector<glm::dvec2>{});
   }
   return uv;
 }
@@ -239,12 +236,10 @@ PieceMaterials add_skin_texture(SceneAssets& assets, const DsSurface& skin, cons
   std::vector<const std::vector<glm::dvec2>*> part_uv;
   for (size_t q = 0; q < kept.size(); ++q) {
     if (skin_uv[q].empty()) continue;
-    const ShadedMesh& part = set.pieces[kept[q]].parts[0].mesh;
-    parts.push_back(&part);
+    const Piece& piece = set.pieces[kept[q]];
+    parts.push_back(&skin_part(piece)->mesh);
     part_uv.push_back(&skin_uv[q]);
-    size_t vertices = 0;
-    for (const PiecePart& p : set.pieces[kept[q]].parts) vertices += p.mesh.position.size();
-    uv[q].resize(vertices, glm::dvec2(0.0));
+    uv[q].resize(part_vertex_offsets(piece).back(), glm::dvec2(0.0));
     std::copy(skin_uv[q].begin(), skin_uv[q].end(), uv[q].begin());  // the skin comes first
   }
   if (parts.empty()) return materials;
@@ -327,17 +322,17 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
           "i" + std::to_string(i) + "_" + asset_name(tmpl.name) + "_" + std::to_string(j);
       PieceMaterials object_materials = item_materials;
       std::vector<std::vector<glm::dvec2>> uv(kept.size());
-      // The kept pieces before their skins were unwrapped: the layout and the node extras see
-      // the pieces as cut (the unwrapped skins only add copies of vertices, which would change
-      // nothing but the order in which the layout meets them).
-      std::vector<Piece> as_cut;
+      // The kept pieces merged before their skins were unwrapped: the layout and the node extras
+      // see the pieces as cut (the unwrapped skins only add copies of vertices, which would
+      // change nothing but the order in which the layout meets them).
+      std::vector<ShadedMesh> as_cut;
       if (options.cap_colours == CapColours::Texture) {
         const auto t_bake = Clock::now();
         // Swept skins first: unwrapping adds vertices to the skin parts, which come first.
         const bool swept = variant.tmpl.surfaces[static_cast<size_t>(variant.tmpl.skin)].kind ==
                            SurfaceKind::Around;
         if (swept)
-          for (size_t k : kept) as_cut.push_back(set.pieces[k]);
+          for (size_t k : kept) as_cut.push_back(merge_parts(set.pieces[k]));
         const std::vector<std::vector<glm::dvec2>> skin_uv =
             swept ? unwrap_skins(set, kept) : std::vector<std::vector<glm::dvec2>>(kept.size());
         std::vector<const Piece*> kept_pieces;
@@ -361,7 +356,7 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
                                     options.cap_colours == CapColours::Texture
                                         ? coarse_caps(piece, set.sections)
                                         : std::vector<glm::uvec3>{}));
-        shapes.push_back(as_cut.empty() ? std::move(merged) : merge_parts(as_cut[q]));
+        shapes.push_back(as_cut.empty() ? std::move(merged) : std::move(as_cut[q]));
         caps.push_back(largest_cap_normal(piece));
         infos.push_back(
             piece_info(piece, shapes.back(), tmpl.name, object_seed(seed, ii, j, 1), item.cut));
