@@ -187,9 +187,7 @@ int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh,
         0);
     if (textured.back() && mesh.uv.empty())
       bad_assets("mesh '" + mesh.name + "': a textured material needs uv");
-    lists.push_back(textured.back() && !p.coarse.empty()
-                        ? std::span<const glm::uvec3>(p.coarse)
-                        : std::span<const glm::uvec3>(mesh.triangle).subspan(p.first, p.count));
+    lists.push_back(primitive_triangles(mesh, p, textured.back()));
     for (const glm::uvec3& t : lists.back())
       if (t.x >= n || t.y >= n || t.z >= n)
         bad_assets("mesh '" + mesh.name + "': a triangle index is out of range");

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <span>
 #include <string_view>
 #include <system_error>
 #include <vector>
@@ -270,12 +271,8 @@ void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, cons
   const std::vector<AssetPrimitive> plain{{0, m.triangle.size(), 0, {}}};
   for (const AssetPrimitive& p : m.primitives.empty() ? plain : m.primitives) {
     const std::string& image = images.emplace_back(image_of(a, m, p.material, texture_files));
-    if (!image.empty() && !p.coarse.empty()) {
-      faces.insert(faces.end(), p.coarse.begin(), p.coarse.end());
-    } else {
-      faces.insert(faces.end(), m.triangle.begin() + static_cast<std::ptrdiff_t>(p.first),
-                   m.triangle.begin() + static_cast<std::ptrdiff_t>(p.first + p.count));
-    }
+    const std::span<const glm::uvec3> drawn = primitive_triangles(m, p, !image.empty());
+    faces.insert(faces.end(), drawn.begin(), drawn.end());
     face_material.resize(faces.size(), p.material);
     face_primitive.resize(faces.size(), images.size() - 1);
   }

@@ -2,6 +2,12 @@
 
 namespace cutaway {
 
+std::span<const glm::uvec3> primitive_triangles(const AssetMesh& mesh, const AssetPrimitive& p,
+                                                bool textured) {
+  if (textured && !p.coarse.empty()) return p.coarse;
+  return std::span<const glm::uvec3>(mesh.triangle).subspan(p.first, p.count);
+}
+
 std::string primitives_defect(const AssetMesh& mesh, size_t materials) {
   if (mesh.primitives.empty() && materials == 0) return "material index out of range";
   size_t next = 0;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -75,6 +76,12 @@ struct AssetMesh {
   /// and walls, then caps). Empty: one primitive of material 0.
   std::vector<AssetPrimitive> primitives;
 };
+
+/// The triangles an exporter writes for primitive `p` of `mesh`: its coarse ones when its
+/// colour comes from a texture (`textured`) and it has them, else its own range of
+/// mesh.triangle.
+std::span<const glm::uvec3> primitive_triangles(const AssetMesh& mesh, const AssetPrimitive& p,
+                                                bool textured);
 
 /// What is wrong with the primitives of `mesh` for a scene of `materials` materials, or ""
 /// when nothing is: they must cover its triangles in order, none empty, each naming an
