@@ -1,4 +1,6 @@
 // The CPU PMVC backend (design/algorithms.md §2, Backends: cpu).
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -62,16 +64,9 @@ class CpuDiffusion final : public DiffusionBackend {
   /// material channels from the same hits when `material` is not null.
   void diffuse_point(const glm::dvec3& x, glm::dvec3& colour_out, glm::dvec2* material) const {
     const size_t count = directions_.direction.size();
-    // The cube turned by the point's rotation (or not): the ray directions R d.
-    std::vector<glm::vec3> turned;
-    if (options_.rotate_cubes) {
-      const glm::mat3 r(cube_rotation(x));
-      turned.reserve(count);
-      for (const glm::vec3& d : directions_.direction) turned.push_back(r * d);
-    }
-    const std::span<const glm::vec3> rays = options_.rotate_cubes
-                                                ? std::span<const glm::vec3>(turned)
-                                                : std::span<const glm::vec3>(directions_.direction);
+    // The cube turned by the point's rotation (or not): each packet's ray directions R d.
+    const glm::mat3 turn = options_.rotate_cubes ? glm::mat3(cube_rotation(x)) : glm::mat3(1.0f);
+    std::array<glm::vec3, 16> rays;
     glm::dvec3 sum_colour(0.0);
     glm::dvec2 sum_material(0.0);
     double sum_weight = 0;
@@ -81,7 +76,10 @@ class CpuDiffusion final : public DiffusionBackend {
     alignas(64) RTCRayHit16 rh;
     alignas(64) int valid[16];
     for (size_t base = 0; base < count; base += 16) {
-      const int lanes = fill_ray_packet(rays, base, x, rh, valid);
+      const size_t packet = std::min<size_t>(16, count - base);
+      for (size_t l = 0; l < packet; ++l) rays[l] = turn * directions_.direction[base + l];
+      const int lanes = fill_ray_packet(std::span<const glm::vec3>(rays.data(), packet), 0, x, rh,
+                                        valid);
       rtcIntersect16(valid, scene_, &context, &rh);
       for (int l = 0; l < lanes; ++l) {
         if (rh.hit.geomID[l] == RTC_INVALID_GEOMETRY_ID) continue;
@@ -89,7 +87,7 @@ class CpuDiffusion final : public DiffusionBackend {
         const unsigned prim = rh.hit.primID[l];
         const glm::uvec3 t = s.triangle[prim];
         const float u = rh.hit.u[l], v = rh.hit.v[l], w0 = 1.0f - u - v;
-        const glm::vec3 d = rays[base + l];
+        const glm::vec3 d = rays[static_cast<size_t>(l)];
         const bool front = !s.two_faced || glm::dot(d, s.face_normal[prim]) < 0;
         const auto& c = front ? s.colour_front : s.colour_back;
         const glm::vec3 colour = w0 * c[t[0]] + u * c[t[1]] + v * c[t[2]];
