@@ -11,9 +11,11 @@
 #define CGAL_DEBUG
 #endif
 
+#include <array>
 #include <chrono>
 #include <map>
 #include <queue>
+#include <tuple>
 #include <stdexcept>
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
@@ -25,7 +27,9 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <glm/geometric.hpp>
 
+#include "band_sampling.h"
 #include "error.h"
+#include "harmonic_sampling.h"
 #include "split_lines.h"
 
 namespace cutaway {
@@ -175,6 +179,25 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
     return nullptr;
   };
 
+  // Adaptive sampling: the blurred cut segments of each surface joined into chains, along which
+  // the lines of their blur bands are sampled (band_sampling.h).
+  const bool adaptive = options.sampling == CapSampling::Adaptive;
+  SegmentChains chains;
+  if (adaptive) {
+    std::vector<std::array<glm::dvec2, 2>> ends2;
+    std::vector<int> group;
+    for (const Segment2& s : seg2) {
+      const CutSegment& cut = segments[s.index];
+      ends2.push_back({s.a, s.b});
+      group.push_back(cut.at_a.blur > 0 || cut.at_b.blur > 0 ? cut.surface : -1);
+    }
+    chains = chain_segments(ends2, group);
+  }
+  // Band lines of a chain: its front sheet's trace, the cut, its back sheet's trace.
+  auto band_line = [](int chain, int side) { return 3 * chain + 1 - side; };
+  // Ladder points (plane coordinates) -> (band line, arc length).
+  std::map<std::pair<double, double>, std::pair<int, double>> ladder;
+
   // Steps 1 and 2 (run again without refinement when refinement runs out of budget).
   auto triangulate_domain = [&] {
     for (const Constraint2& c : constraints) {
@@ -207,8 +230,15 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
         const double t = (k + 0.5) / pairs;
         const glm::dvec2 p = s.a + (s.b - s.a) * t;
         const double b = cut.at_a.blur + (cut.at_b.blur - cut.at_a.blur) * t;
-        for (const glm::dvec2& q : {p + across * b, p - across * b})
-          if (!near_split_line(q)) cdt.insert(Point2(q.x, q.y));
+        for (const int side : {1, -1}) {
+          const glm::dvec2 q = p + across * (side * b);
+          if (near_split_line(q)) continue;
+          cdt.insert(Point2(q.x, q.y));
+          if (adaptive && chains.chain[s.index] >= 0)
+            ladder.emplace(std::make_pair(q.x, q.y),
+                           std::make_pair(band_line(chains.chain[s.index], side),
+                                          chains.arc_length(s.index, t, glm::distance(s.a, s.b))));
+        }
       }
     }
 
@@ -290,16 +320,70 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
     }
   }
 
-  // 4. Output vertices: one per interior vertex, one per side (wedge) of a cut vertex.
+  // 4. Adaptive sampling, first of the blur bands' lines (band_sampling.h).
+  const auto meshed = std::chrono::steady_clock::now();
+  // Band samples: vertex -> colour and material channels.
+  std::map<Vertex, std::pair<glm::dvec3, glm::dvec2>> samples;
+  // Where a vertex at plane coordinates q lies in the object frame.
+  auto lift = [&](const glm::dvec2& q) {
+    const auto exact = lifted.find({q.x, q.y});
+    return exact != lifted.end() ? exact->second : plane.point + cs.u_axis * q.x + cs.v_axis * q.y;
+  };
+  if (adaptive) {
+    // The blur bands' lines first: ladder points and vertices on blurred cut segments.
+    std::vector<Vertex> band_vertices;
+    std::vector<BandPoint> band_points;
+    for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
+      bool in_domain = false;
+      auto f = cdt.incident_faces(v), done = f;
+      do {
+        in_domain = in_domain || (!cdt.is_infinite(f) && f->is_in_domain());
+      } while (++f != done);
+      if (!in_domain) continue;
+      const glm::dvec2 q = to2(v->point());
+      if (const auto rung = ladder.find({q.x, q.y}); rung != ladder.end()) {
+        band_vertices.push_back(v);
+        band_points.push_back({rung->second.first, rung->second.second, lift(q)});
+        continue;
+      }
+      auto e = cdt.incident_edges(v), last = e;
+      do {
+        if (cdt.is_infinite(e->first) && cdt.is_infinite(e->first->neighbor(e->second))) continue;
+        if (!cdt.is_constrained(*e)) continue;
+        const Vertex a = e->first->vertex(Cdt::cw(e->second));
+        const Vertex b = e->first->vertex(Cdt::ccw(e->second));
+        const Segment2* s = segment_on(v, a == Vertex(v) ? b : a);
+        if (!s || chains.chain[s->index] < 0) continue;
+        const double length = glm::distance(s->a, s->b);
+        const double t =
+            length > 0 ? std::clamp(glm::dot(q - s->a, s->b - s->a) / (length * length), 0.0, 1.0)
+                       : 0;
+        band_vertices.push_back(v);
+        band_points.push_back({band_line(chains.chain[s->index], 0),
+                               chains.arc_length(s->index, t, length), lift(q)});
+        break;
+      } while (++e != last);
+    }
+    std::vector<glm::dvec3> colours(band_points.size());
+    std::vector<glm::dvec2> materials(band_points.size());
+    const BandSamplingCounts band = sample_bands(
+        band_points, diffusion, {options.band_spacing * options.edge_m, options.tolerance}, colours,
+        materials);
+    for (size_t i = 0; i < band_vertices.size(); ++i)
+      samples.emplace(band_vertices[i], std::make_pair(colours[i], materials[i]));
+    cs.diffused_points = band.diffused;
+  }
+  const double seconds_sampling =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - meshed).count();
+
+  // 5. Output vertices: one per interior vertex, one per side (wedge) of a cut vertex.
   std::map<std::pair<Vertex, Face>, unsigned> corner_id;
   // One PMVC evaluation per location: the duplicates of a blurred cut vertex share it.
   std::vector<glm::dvec3> to_diffuse;
+  std::vector<unsigned> interpolated;  // adaptive: interior vertices left to harmonic sampling
   std::vector<std::vector<unsigned>> diffuse_targets;
   auto add_vertex = [&](const Point2& p, int surface) {
-    const glm::dvec2 q = to2(p);
-    const auto exact = lifted.find({q.x, q.y});
-    cs.position.push_back(exact != lifted.end() ? exact->second
-                                                : plane.point + cs.u_axis * q.x + cs.v_axis * q.y);
+    cs.position.push_back(lift(to2(p)));
     cs.colour.push_back(glm::dvec3(0.0));
     cs.material.push_back(glm::dvec2(0.0));
     cs.cut_surface.push_back(surface);
@@ -332,8 +416,14 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
     if (constrained < 2) {
       const unsigned id = add_vertex(v->point(), -1);
       ++cs.interior_vertices;
-      to_diffuse.push_back(cs.position[id]);
-      diffuse_targets.push_back({id});
+      if (const auto sampled = samples.find(v); sampled != samples.end()) {
+        std::tie(cs.colour[id], cs.material[id]) = sampled->second;
+      } else if (adaptive) {
+        interpolated.push_back(id);
+      } else {
+        to_diffuse.push_back(cs.position[id]);
+        diffuse_targets.push_back({id});
+      }
       for (const Face& f : faces) corner_id[{v, f}] = id;
       continue;
     }
@@ -383,7 +473,10 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
       if (diffuse) blurred.push_back(id);
       for (const Face& f : wedge) corner_id[{v, f}] = id;
     }
-    if (!blurred.empty()) {
+    if (blurred.empty()) continue;
+    if (const auto sampled = samples.find(v); sampled != samples.end()) {
+      for (unsigned id : blurred) std::tie(cs.colour[id], cs.material[id]) = sampled->second;
+    } else {
       to_diffuse.push_back(cs.position[blurred.front()]);
       diffuse_targets.push_back(std::move(blurred));
     }
@@ -397,21 +490,35 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
 
   if (cs.triangle.empty()) throw std::domain_error("the plane only touches the object");
 
-  // 5. PMVC colours.
+  // 6. PMVC colours of the points not sampled yet: every one left (dense), or the cut
+  // vertices off the bands and then the interior by harmonic sampling (adaptive).
   for (const glm::dvec3& p : to_diffuse) CUTAWAY_CHECK(std::isfinite(p.x + p.y + p.z));
-  cs.diffused_points = to_diffuse.size();
+  cs.diffused_points += to_diffuse.size();
   const auto triangulated = std::chrono::steady_clock::now();
-  cs.seconds_triangulate = std::chrono::duration<double>(triangulated - start).count();
+  cs.seconds_triangulate =
+      std::chrono::duration<double>(triangulated - start).count() - seconds_sampling;
   std::vector<glm::dvec3> colours(to_diffuse.size());
   std::vector<glm::dvec2> materials(to_diffuse.size());
   diffusion.diffuse_channels(to_diffuse, colours, materials);
   cs.seconds_diffuse =
+      seconds_sampling +
       std::chrono::duration<double>(std::chrono::steady_clock::now() - triangulated).count();
   for (size_t i = 0; i < colours.size(); ++i) {
     for (unsigned id : diffuse_targets[i]) {
       cs.colour[id] = colours[i];
       cs.material[id] = materials[i];
     }
+  }
+  if (adaptive) {
+    const auto interior = std::chrono::steady_clock::now();
+    std::vector<bool> free(cs.position.size(), false);
+    for (unsigned id : interpolated) free[id] = true;
+    const HarmonicSamplingCounts counts = sample_harmonically(
+        cs.position, cs.triangle, free, cs.colour, cs.material, diffusion,
+        {options.harmonic_spacing * options.edge_m, 0.5 * options.edge_m, options.tolerance});
+    cs.diffused_points += counts.diffused;
+    cs.seconds_diffuse +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - interior).count();
   }
   return cs;
 }

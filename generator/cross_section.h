@@ -16,11 +16,29 @@
 
 namespace cutaway {
 
+/// Which points of a cap are diffused.
+enum class CapSampling {
+  /// Every vertex of a mesh refined to `interior_edge` everywhere (paper §3.2).
+  Dense,
+  /// The same mesh; its blur bands' lines sampled sparsely along their length
+  /// (band_sampling.h), its other interior vertices sparsely by Poisson-disc and harmonic
+  /// interpolation (harmonic_sampling.h), both refined where a test point's diffused colour
+  /// or material channels differ from the interpolation by more than `tolerance`.
+  Adaptive,
+};
+
 /// How a cross-section is meshed.
 struct CrossSectionOptions {
   double edge_m = 0.002;       ///< the template's edge length, metres
   double interior_edge = 3.0;  ///< largest triangle edge, in edge_m: the cut segments are
                                ///< finer, and refinement grades from them into the interior
+  CapSampling sampling = CapSampling::Dense;
+  double tolerance = 0.01;        ///< adaptive: largest interpolation error left at a test
+                                  ///< point, linear RGB (and material channels, 0..1)
+  double harmonic_spacing = 6.0;  ///< adaptive: Poisson-disc radius of the first interior
+                                  ///< samples, in edge_m (harmonic_sampling.h)
+  double band_spacing = 8.0;      ///< adaptive: largest arc length between the first samples
+                                  ///< along a blur band's lines, in edge_m (band_sampling.h)
   double merge_tolerance = 0.01;  ///< nearly collinear cut segments are merged up to edge_m
                                   ///< long where they deviate less than this, in edge_m
   /// Whether the skin's and the hollow walls' segments (the domain's boundary) are merged too.
@@ -53,8 +71,9 @@ struct CrossSection {
   /// interior vertex.
   std::vector<int> cut_surface;
   size_t interior_vertices = 0;  ///< vertices off the cut segments
-  size_t diffused_points = 0;  ///< PMVC evaluations: interior vertices and the locations of
-                               ///< blurred cut vertices (their duplicates share one)
+  size_t diffused_points = 0;    ///< PMVC evaluations: interior vertices and the locations of
+                                 ///< blurred cut vertices (their duplicates share one); adaptive
+                                 ///< sampling: the samples and test points only
   size_t cut_segments = 0;       ///< input cut segments
   bool refinement_capped = false;  ///< Delaunay refinement ran out of its step budget or
                                    ///< failed CGAL's checks (rounding near a degenerate input),

@@ -302,6 +302,7 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
       st.seconds_backend += seconds_since(t0);
       PieceOptions piece_options;
       piece_options.section.edge_m = variant.tmpl.edge_m;
+      piece_options.section.sampling = options.sampling;
       PieceSet set;
       try {
         set = cut_pieces(variant.model, item.cut, *diffusion, piece_options);

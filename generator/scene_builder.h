@@ -36,6 +36,7 @@ struct SceneBuildOptions {
   CapAtlasOptions atlas;       ///< with CapColours::Texture
   SkinTextureOptions skin;     ///< with CapColours::Texture: the swept skins' textures
   DiffusionFactory diffusion;  ///< required
+  CapSampling sampling = CapSampling::Dense;  ///< which cap points are diffused
   /// Called after each object with (objects done, objects in all, a line of text); may be empty.
   std::function<void(int, int, const std::string&)> progress;
   LayoutOptions layout;        ///< its to_camera is replaced by the scene camera's direction

@@ -108,8 +108,13 @@ struct SectionArgs {
   int width = 800;
 };
 
+/// The --sampling value (checked by CLI11 to be "dense" or "adaptive").
+cutaway::CapSampling parse_sampling(const std::string& sampling) {
+  return sampling == "adaptive" ? cutaway::CapSampling::Adaptive : cutaway::CapSampling::Dense;
+}
+
 int run_section(const SectionArgs& a, const std::string& backend, int threads, bool stats,
-                cutaway::OutputSet& outputs) {
+                cutaway::CapSampling sampling, cutaway::OutputSet& outputs) {
   const auto t0 = Clock::now();
   const cutaway::Template tmpl = cutaway::load_template(a.template_path);
   cutaway::Plane plane;
@@ -130,7 +135,9 @@ int run_section(const SectionArgs& a, const std::string& backend, int threads, b
   const auto t2 = Clock::now();
   cutaway::CrossSection section;
   try {
-    section = cutaway::make_cross_section(model, plane, *diffusion, {tmpl.edge_m});
+    cutaway::CrossSectionOptions options{tmpl.edge_m};
+    options.sampling = sampling;
+    section = cutaway::make_cross_section(model, plane, *diffusion, options);
   } catch (const std::domain_error& e) {
     throw UsageError("--plane " + cutaway::quoted(a.plane) + ": " + e.what());
   }
@@ -397,6 +404,12 @@ int main(int argc, char** argv) {
                  "colour diffusion: cpu (Embree), gl (OpenGL cube maps), auto (gl on a GPU, "
                  "else cpu)")
       ->check(CLI::IsMember({"auto", "cpu", "gl"}));
+  std::string sampling = "dense";
+  app.add_option("--sampling", sampling,
+                 "which points of a cut face are diffused: dense (every vertex) or adaptive "
+                 "(sparse samples along blur bands and in the interior, interpolated and "
+                 "refined where a test point disagrees)")
+      ->check(CLI::IsMember({"dense", "adaptive"}));
 
   ModelArgs model_args;
   CLI::App* model = app.add_subcommand("model", "build the DS model of a template (glb, PNG)");
@@ -542,10 +555,10 @@ int main(int argc, char** argv) {
         require_extension("-o", section_args.output, ".glb");
       }
       if (!section_args.png.empty()) require_extension("--png", section_args.png, ".png");
-      return run_section(section_args, backend, threads, stats, outputs);
+      return run_section(section_args, backend, threads, stats, parse_sampling(sampling), outputs);
     }
     if (*check) return run_check(check_files);
-    const cutaway::cli::Common common{backend, threads, stats};
+    const cutaway::cli::Common common{backend, threads, stats, parse_sampling(sampling)};
     if (*piece) return cutaway::cli::run_piece(piece_args, common, outputs);
     if (*sheet) return cutaway::cli::run_sheet(sheet_args, common, outputs);
     if (*scene) return cutaway::cli::run_scene(scene_args, common, outputs);

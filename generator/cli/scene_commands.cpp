@@ -175,6 +175,7 @@ PieceSet cut_object(const DsModel& model, const Template& tmpl, const CutSpec& c
   if (backend_name) *backend_name = diffusion->name();
   PieceOptions options;
   options.section.edge_m = tmpl.edge_m;
+  options.section.sampling = common.sampling;
   PieceSet set;
   try {
     set = cut_pieces(model, cut, *diffusion, options);
@@ -246,6 +247,7 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
   const DiffusionChoice choice = parse_diffusion_choice(common.backend);
   std::string backend_name;
   SceneBuildOptions options;
+  options.sampling = common.sampling;
   options.cap_colours = a.colours == "vertex" ? CapColours::Vertex : CapColours::Texture;
   options.atlas.texels_per_m = 1000 * a.texels_per_mm;
   options.diffusion = [&](const DsModel& model) {

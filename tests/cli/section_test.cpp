@@ -1,6 +1,6 @@
 // `cutaway section` end to end: glb (Khronos validator), PLY and PNG output, --stats, bad planes
 // and planes that miss or only touch the object (exit 2, nothing written), and byte-identical
-// output across runs and thread counts.
+// output across runs and thread counts, with either --sampling.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -125,9 +125,14 @@ TEST(SectionCommand, PlaneMissingOrTouchingTheObjectExitsTwo) {
 }
 
 TEST(SectionCommand, ByteIdenticalAcrossRunsAndThreadCounts) {
-  std::string glb[3];
-  const std::vector<std::vector<std::string>> extra = {{}, {"--threads", "1"}, {"--threads", "2"}};
-  for (int run = 0; run < 3; ++run) {
+  std::string glb[5];
+  const std::vector<std::vector<std::string>> extra = {
+      {},
+      {"--threads", "1"},
+      {"--threads", "2"},
+      {"--sampling", "adaptive", "--threads", "1"},
+      {"--sampling", "adaptive", "--threads", "2"}};
+  for (int run = 0; run < 5; ++run) {
     const fs::path dir = test::fresh_dir("cli_section_det_" + std::to_string(run));
     std::vector<std::string> args = {"section", "templates/tomato.yaml", "--plane",
                                      "3,25,-2/0.3,0.2,1", "--cube", "8", "-o",
@@ -140,6 +145,25 @@ TEST(SectionCommand, ByteIdenticalAcrossRunsAndThreadCounts) {
   ASSERT_FALSE(glb[0].empty());
   EXPECT_TRUE(glb[0] == glb[1]) << "the glb differs between two runs";
   EXPECT_TRUE(glb[1] == glb[2]) << "the glb differs between --threads 1 and 2";
+  EXPECT_TRUE(glb[3] == glb[4]) << "adaptive sampling: the glb differs between --threads 1 and 2";
+  EXPECT_FALSE(glb[0] == glb[3]) << "--sampling adaptive changed nothing";
+}
+
+TEST(SectionCommand, AdaptiveSamplingDiffusesFewerPointsOnTheSameMesh) {
+  long points[2] = {0, 0}, vertices[2] = {0, 0};
+  const char* modes[2] = {"dense", "adaptive"};
+  for (int m = 0; m < 2; ++m) {
+    const fs::path dir = test::fresh_dir(std::string("cli_section_sampling_") + modes[m]);
+    const test::RunResult r =
+        test::run_cutaway({"--sampling", modes[m], "section", "templates/tomato.yaml", "--plane",
+                           "y=30", "--cube", "8", "-q", "--stats", "-o", (dir / "x.glb").string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.err);
+    points[m] = j.at("diffused_points").get<long>();
+    vertices[m] = j.at("vertices").get<long>();
+  }
+  EXPECT_EQ(vertices[0], vertices[1]);
+  EXPECT_GT(points[0], 2 * points[1]);
 }
 
 }  // namespace

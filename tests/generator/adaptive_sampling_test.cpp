@@ -1,0 +1,273 @@
+// Adaptive cap sampling (cross_section.h, CapSampling::Adaptive; band_sampling.h,
+// harmonic_sampling.h) against dense sampling and a cube-32 reference: on every shipped
+// template's mid-height cut, the colours both caps interpolate at the centroids of the dense
+// cap's interior triangles are compared with a cube-32 diffusion at those centroids; and the
+// two samplers on their own, on fields whose interpolation is known.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <optional>
+#include <utility>
+
+#include <gtest/gtest.h>
+
+#include "band_sampling.h"
+#include "colour.h"
+#include "cross_section.h"
+#include "harmonic_sampling.h"
+#include "model_builder.h"
+#include "template_parser.h"
+#include "test_support.h"
+
+namespace cutaway {
+namespace {
+
+/// The cap's linear interpolation of its vertex colours at `point` (on its plane), or nothing
+/// where no triangle holds it.
+std::optional<glm::dvec3> interpolate(const CrossSection& cs, const glm::dvec3& point) {
+  auto in_plane = [&](const glm::dvec3& p) {
+    return glm::dvec2(glm::dot(p - cs.plane.point, cs.u_axis),
+                      glm::dot(p - cs.plane.point, cs.v_axis));
+  };
+  const glm::dvec2 q = in_plane(point);
+  for (const glm::uvec3& t : cs.triangle) {
+    const glm::dvec2 a = in_plane(cs.position[t[0]]), b = in_plane(cs.position[t[1]]),
+                     c = in_plane(cs.position[t[2]]);
+    const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    if (area == 0) continue;
+    const double wa = ((b.x - q.x) * (c.y - q.y) - (b.y - q.y) * (c.x - q.x)) / area;
+    const double wb = ((c.x - q.x) * (a.y - q.y) - (c.y - q.y) * (a.x - q.x)) / area;
+    const double wc = 1 - wa - wb;
+    if (wa < -1e-9 || wb < -1e-9 || wc < -1e-9) continue;
+    return wa * cs.colour[t[0]] + wb * cs.colour[t[1]] + wc * cs.colour[t[2]];
+  }
+  return std::nullopt;
+}
+
+/// Largest sRGB difference (of 255) over the channels.
+double srgb_error(const glm::dvec3& a, const glm::dvec3& b) {
+  const glm::dvec3 d = 255.0 * glm::abs(linear_to_srgb(glm::clamp(a, 0.0, 1.0)) -
+                                        linear_to_srgb(glm::clamp(b, 0.0, 1.0)));
+  return std::max({d.x, d.y, d.z});
+}
+
+TEST(AdaptiveSampling, MatchesDenseCube32ReferenceOnEveryTemplatesMidHeightCut) {
+  size_t dense_points = 0, adaptive_points = 0;
+  for (const std::filesystem::path& path : test::shipped_templates()) {
+    const Template t = load_template(path.string());
+    const DsModel model = build_model(t);
+    const double mid = 0.5 * (model.bbox_min.y + model.bbox_max.y);
+    const Plane plane{{0, mid, 0}, {0, 1, 0}};
+    const auto cube16 = make_cpu_diffusion(model, DiffusionOptions{16, 0});
+    CrossSectionOptions options{t.edge_m};
+    options.sampling = CapSampling::Dense;
+    const CrossSection dense = make_cross_section(model, plane, *cube16, options);
+    options.sampling = CapSampling::Adaptive;
+    const CrossSection adaptive = make_cross_section(model, plane, *cube16, options);
+    dense_points += dense.diffused_points;
+    adaptive_points += adaptive.diffused_points;
+    // Up to 200 centroids of dense triangles off the cut segments, evenly through the list.
+    std::vector<glm::dvec3> points;
+    std::vector<size_t> interior;
+    for (size_t f = 0; f < dense.triangle.size(); ++f) {
+      const glm::uvec3 tri = dense.triangle[f];
+      if (dense.cut_surface[tri[0]] < 0 && dense.cut_surface[tri[1]] < 0 &&
+          dense.cut_surface[tri[2]] < 0)
+        interior.push_back(f);
+    }
+    const size_t step = std::max<size_t>(1, interior.size() / 200);
+    for (size_t i = 0; i < interior.size(); i += step) {
+      const glm::uvec3 tri = dense.triangle[interior[i]];
+      points.push_back((dense.position[tri[0]] + dense.position[tri[1]] + dense.position[tri[2]]) /
+                       3.0);
+    }
+    ASSERT_GT(points.size(), 10u) << t.name;
+    const std::vector<glm::dvec3> reference =
+        make_cpu_diffusion(model, DiffusionOptions{32, 0})->diffuse(points);
+    double sum = 0, max = 0, dense_sum = 0, dense_max = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+      const std::optional<glm::dvec3> a = interpolate(adaptive, points[i]);
+      const std::optional<glm::dvec3> d = interpolate(dense, points[i]);
+      ASSERT_TRUE(a && d) << t.name << ": a dense centroid outside the adaptive cap";
+      const double e = srgb_error(*a, reference[i]), ed = srgb_error(*d, reference[i]);
+      sum += e;
+      max = std::max(max, e);
+      dense_sum += ed;
+      dense_max = std::max(dense_max, ed);
+    }
+    const double n = static_cast<double>(points.size());
+    std::printf(
+        "%-10s %5zu -> %5zu points (%4.1fx); error vs cube 32 at %3zu centroids: "
+        "adaptive mean %.2f max %.2f, dense mean %.2f max %.2f (sRGB of 255)\n",
+        t.name.c_str(), dense.diffused_points, adaptive.diffused_points,
+        static_cast<double>(dense.diffused_points) / adaptive.diffused_points, points.size(),
+        sum / n, max, dense_sum / n, dense_max);
+    // Measured (tolerance 0.01): adaptive exceeds dense by at most 1.43 (star fruit).
+    EXPECT_LE(sum / n, dense_sum / n + 2.0) << t.name;
+  }
+  std::printf("all templates: %zu -> %zu points (%.1fx)\n", dense_points, adaptive_points,
+              static_cast<double>(dense_points) / adaptive_points);
+  // Measured: 3.5x.
+  EXPECT_GE(static_cast<double>(dense_points), 3.0 * adaptive_points);
+}
+
+TEST(AdaptiveSampling, RandomAndNearlyTangentPlanesGiveFiniteColoursInRange) {
+  for (const char* name : {"tomato", "persimmon", "kiwi"}) {
+    const Template t = load_template(test::source_path(std::string("templates/") + name + ".yaml"));
+    const DsModel model = build_model(t);
+    const auto cube8 = make_cpu_diffusion(model, DiffusionOptions{8, 0});
+    CrossSectionOptions options{t.edge_m};
+    options.sampling = CapSampling::Adaptive;
+    const glm::dvec3 centre = 0.5 * (model.bbox_min + model.bbox_max);
+    const glm::dvec3 half = 0.5 * (model.bbox_max - model.bbox_min);
+    for (int k = 0; k < 8; ++k) {
+      // Planes through the middle at assorted tilts, and planes grazing the skin's top.
+      const glm::dvec3 normal =
+          glm::normalize(glm::dvec3(std::sin(1.7 * k), 1.0, std::cos(2.3 * k)));
+      const Plane plane{k % 2 ? centre : centre + glm::dvec3(0, half.y * (0.97 + 0.004 * k), 0),
+                        k % 2 ? normal : glm::dvec3(0, 1, 0)};
+      CrossSection cs;
+      try {
+        cs = make_cross_section(model, plane, *cube8, options);
+      } catch (const std::domain_error&) {
+        continue;  // missed or only touched
+      }
+      for (const glm::dvec3& c : cs.colour) {
+        ASSERT_TRUE(std::isfinite(c.x + c.y + c.z)) << name << " plane " << k;
+        ASSERT_GE(std::min({c.x, c.y, c.z}), -1e-6) << name << " plane " << k;
+        ASSERT_LE(std::max({c.x, c.y, c.z}), 1 + 1e-6) << name << " plane " << k;
+      }
+    }
+  }
+}
+
+/// A "diffusion" that returns a known field: colour = field(point), material = its (x, y).
+class FieldDiffusion : public DiffusionBackend {
+ public:
+  explicit FieldDiffusion(std::function<glm::dvec3(const glm::dvec3&)> field)
+      : field_(std::move(field)) {}
+  void diffuse_channels(std::span<const glm::dvec3> points, std::span<glm::dvec3> colour,
+                        std::span<glm::dvec2> material) const override {
+    for (size_t i = 0; i < points.size(); ++i) {
+      colour[i] = field_(points[i]);
+      if (!material.empty()) material[i] = glm::dvec2(colour[i]);
+    }
+    calls += points.size();
+  }
+  std::string name() const override { return "field"; }
+  mutable size_t calls = 0;
+
+ private:
+  std::function<glm::dvec3(const glm::dvec3&)> field_;
+};
+
+TEST(BandSampling, ChainsFollowSharedEndPointsWhateverTheSegmentsOrientation) {
+  // A unit square's sides, two of them reversed, and a lone segment of another group.
+  const std::vector<std::array<glm::dvec2, 2>> segments{{glm::dvec2(0, 0), glm::dvec2(1, 0)},
+                                                        {glm::dvec2(1, 1), glm::dvec2(1, 0)},
+                                                        {glm::dvec2(5, 5), glm::dvec2(6, 5)},
+                                                        {glm::dvec2(1, 1), glm::dvec2(0, 1)},
+                                                        {glm::dvec2(0, 0), glm::dvec2(0, 1)}};
+  const std::vector<int> group{3, 3, -1, 3, 3};
+  const SegmentChains chains = chain_segments(segments, group);
+  EXPECT_EQ(chains.chains, 1);
+  EXPECT_EQ(chains.chain[2], -1);
+  std::vector<double> offsets;
+  for (size_t i : {0u, 1u, 3u, 4u}) {
+    EXPECT_EQ(chains.chain[i], 0);
+    offsets.push_back(chains.offset[i]);
+  }
+  // The sides follow one another, 1 apart; the loop is cut open at the end of side 0.
+  std::sort(offsets.begin(), offsets.end());
+  EXPECT_EQ(offsets, (std::vector<double>{0, 1, 2, 3}));
+  EXPECT_DOUBLE_EQ(chains.arc_length(0, 1, 1), 4.0);  // (1, 0): end of side 0
+  EXPECT_DOUBLE_EQ(chains.arc_length(1, 1, 1), 0.0);  // (1, 0): where side 1 starts the chain
+  // The shared corner (1, 1): both sides place it at the same arc length.
+  EXPECT_DOUBLE_EQ(chains.arc_length(1, 0, 1), chains.arc_length(3, 0, 1));
+}
+
+TEST(BandSampling, LinearFieldIsExactFromFewSamplesAndAKinkIsRefined) {
+  std::vector<BandPoint> points;
+  for (int line = 0; line < 2; ++line)
+    for (int i = 0; i < 200; ++i)
+      points.push_back({line, 0.001 * i, glm::dvec3(0.001 * i, line, 0)});
+  auto run = [&](const FieldDiffusion& field) {
+    std::vector<glm::dvec3> colour(points.size());
+    std::vector<glm::dvec2> material(points.size());
+    const BandSamplingCounts counts = sample_bands(points, field, {0.02, 0.001}, colour, material);
+    double worst = 0;
+    std::vector<glm::dvec3> exact(points.size());
+    std::vector<glm::dvec2> unused(points.size());
+    FieldDiffusion copy = field;
+    copy.diffuse_channels(
+        [&] {
+          std::vector<glm::dvec3> p;
+          for (const BandPoint& b : points) p.push_back(b.position);
+          return p;
+        }(),
+        exact, unused);
+    for (size_t i = 0; i < points.size(); ++i)
+      worst = std::max(worst, glm::length(colour[i] - exact[i]));
+    return std::make_pair(counts, worst);
+  };
+  const auto [linear, linear_error] =
+      run(FieldDiffusion([](const glm::dvec3& p) { return glm::dvec3(p.x * 3, 0.5, p.y); }));
+  EXPECT_LT(linear_error, 1e-12);
+  EXPECT_EQ(linear.failed, 0u);
+  EXPECT_LT(linear.diffused, 50u);  // 400 points
+  const auto [kink, kink_error] =
+      run(FieldDiffusion([](const glm::dvec3& p) { return glm::dvec3(std::fabs(p.x - 0.0995)); }));
+  EXPECT_GT(kink.failed, 0u);
+  EXPECT_LT(kink_error, 0.002);
+  EXPECT_LT(kink.diffused, 100u);
+}
+
+TEST(HarmonicSampling, ReproducesALinearFieldOnAnAcuteMeshAndRefinesABump) {
+  // An equilateral lattice (all angles 60 degrees: cotangent weights positive, exact for
+  // linear fields); the outer ring of vertices is known, the rest free.
+  const int n = 30;
+  const double h = 0.001;
+  std::vector<glm::dvec3> position;
+  std::vector<glm::uvec3> triangle;
+  std::vector<bool> free;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      position.emplace_back(h * (i + 0.5 * j), h * j * std::sqrt(0.75), 0);
+      free.push_back(i > 0 && j > 0 && i < n && j < n);
+    }
+  auto at = [&](int i, int j) { return static_cast<unsigned>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      triangle.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
+      triangle.push_back({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  auto run = [&](const FieldDiffusion& field) {
+    std::vector<glm::dvec3> colour(position.size());
+    std::vector<glm::dvec2> material(position.size());
+    field.diffuse_channels(position, colour, material);  // boundary values (and the truth)
+    const std::vector<glm::dvec3> exact = colour;
+    for (size_t v = 0; v < position.size(); ++v)
+      if (free[v]) colour[v] = glm::dvec3(-1.0);
+    const HarmonicSamplingCounts counts = sample_harmonically(
+        position, triangle, free, colour, material, field, {6 * h, 0.5 * h, 0.002});
+    double worst = 0;
+    for (size_t v = 0; v < position.size(); ++v)
+      worst = std::max(worst, glm::length(colour[v] - exact[v]));
+    return std::make_pair(counts, worst);
+  };
+  const auto [linear, linear_error] =
+      run(FieldDiffusion([](const glm::dvec3& p) { return glm::dvec3(100 * p.x, 50 * p.y, 0.2); }));
+  EXPECT_LT(linear_error, 1e-9);
+  EXPECT_EQ(linear.failed, 0u);
+  EXPECT_LT(linear.diffused, linear.free / 5);
+  const auto [bump, bump_error] = run(FieldDiffusion([](const glm::dvec3& p) {
+    const double r2 = glm::dot(p - glm::dvec3(0.02, 0.012, 0), p - glm::dvec3(0.02, 0.012, 0));
+    return glm::dvec3(std::exp(-r2 / (2 * 0.003 * 0.003)));
+  }));
+  EXPECT_GT(bump.failed, 0u);
+  EXPECT_LT(bump_error, 0.02);
+}
+
+}  // namespace
+}  // namespace cutaway
