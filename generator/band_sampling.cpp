@@ -46,7 +46,8 @@ SegmentChains chain_segments(std::span<const std::array<glm::dvec2, 2>> segments
     // Walk forward, laying out arc lengths.
     const int id = out.chains++;
     double s = 0;
-    for (size_t i = start; i < n && out.chain[i] < 0;) {
+    size_t i = start;
+    while (i < n && out.chain[i] < 0) {
       out.chain[i] = id;
       out.offset[i] = s;
       out.forward[i] = segments[i][0] == entry;
@@ -55,8 +56,50 @@ SegmentChains chain_segments(std::span<const std::array<glm::dvec2, 2>> segments
       entry = exit;
       i = joined(i, exit);
     }
+    out.length.push_back(s);
+    out.closed.push_back(i == start);
   }
   return out;
+}
+
+void mark_irregular_band_points(std::span<BandPoint> points, const SegmentChains& chains) {
+  // Points in a uniform grid of cells as wide as the widest band.
+  double cell = 0;
+  for (const BandPoint& p : points) cell = std::max(cell, p.width);
+  if (!(cell > 0)) return;
+  auto key = [&](const glm::dvec3& p) {
+    return std::make_tuple(static_cast<long>(std::floor(p.x / cell)),
+                           static_cast<long>(std::floor(p.y / cell)),
+                           static_cast<long>(std::floor(p.z / cell)));
+  };
+  std::map<std::tuple<long, long, long>, std::vector<size_t>> grid;
+  for (size_t i = 0; i < points.size(); ++i) grid[key(points[i].position)].push_back(i);
+  for (BandPoint& p : points) {
+    const int chain = p.line / 3;
+    if (chain < 0 || chain >= chains.chains)
+      throw std::invalid_argument("mark_irregular_band_points: a line of no chain");
+    if (!chains.closed[chain] &&
+        std::min(p.arc_length, chains.length[chain] - p.arc_length) < 2 * p.width) {
+      p.exact = true;
+      continue;
+    }
+    const auto [x, y, z] = key(p.position);
+    for (long dx = -1; dx <= 1 && !p.exact; ++dx)
+      for (long dy = -1; dy <= 1 && !p.exact; ++dy)
+        for (long dz = -1; dz <= 1 && !p.exact; ++dz) {
+          const auto found = grid.find({x + dx, y + dy, z + dz});
+          if (found == grid.end()) continue;
+          for (size_t j : found->second) {
+            const BandPoint& q = points[j];
+            const double d = glm::distance(p.position, q.position);
+            if (d >= 0.9 * p.width || &q == &p) continue;
+            if (q.line != p.line || std::fabs(q.arc_length - p.arc_length) > 1.5 * d + p.width) {
+              p.exact = true;
+              break;
+            }
+          }
+        }
+  }
 }
 
 namespace {
@@ -108,7 +151,8 @@ BandSamplingCounts sample_bands(std::span<const BandPoint> points,
     const BandPoint& p = points[order[k]];
     const bool line_start = k == 0 || points[order[k - 1]].line != p.line;
     const bool line_end = k + 1 == order.size() || points[order[k + 1]].line != p.line;
-    if (line_start || line_end || points[order[k + 1]].arc_length - last > options.spacing_m) {
+    if (line_start || line_end || p.exact ||
+        points[order[k + 1]].arc_length - last > options.spacing_m) {
       first.push_back(order[k]);
       last = p.arc_length;
     }

@@ -22,6 +22,8 @@ struct SegmentChains {
   std::vector<int> chain;      ///< per segment: chain index, or -1 for a segment not chained
   std::vector<double> offset;  ///< per segment: arc length of its start on the chain (metres)
   std::vector<bool> forward;   ///< per segment: whether the chain runs from its a to its b
+  std::vector<double> length;  ///< per chain: arc length (metres)
+  std::vector<bool> closed;    ///< per chain: whether it is a closed loop
   int chains = 0;
 
   /// Arc length on its chain of the point at parameter t (0 at a, 1 at b) of segment i.
@@ -37,12 +39,27 @@ struct SegmentChains {
 SegmentChains chain_segments(std::span<const std::array<glm::dvec2, 2>> segments,
                              std::span<const int> group);
 
+/// The lines of chain `chain`'s band: its front sheet's trace (side +1), the cut (0), its back
+/// sheet's trace (-1).
+inline int band_line(int chain, int side) { return 3 * chain + 1 - side; }
+
 /// A point to colour on one line of a band.
 struct BandPoint {
-  int line = 0;              ///< which line: points of one line are interpolated together
-  double arc_length = 0;     ///< along the line, metres
+  int line = 0;              ///< which line (band_line): points of one line are interpolated
+                             ///< together
+  double arc_length = 0;     ///< along the line (its chain's arc length), metres
   glm::dvec3 position{0.0};  ///< object frame, metres
+  double width = 0;          ///< the band's half width there (the blur), metres
+  bool exact = false;        ///< always diffused, and a sample (mark_irregular_band_points)
 };
+
+/// Sets `exact` on the band points (#P) where the band is not a strip along one line, so that
+/// interpolation along a line cannot be trusted: within two widths (arc length) of an open end
+/// of its chain (the band turns round the end), and where a point of another line, or of the
+/// same line further than 1.5 times their distance plus a width away along it, lies within 0.9
+/// of the point's width (a narrow loop's inner trace meets its cut or crosses itself, or another
+/// band runs into this one).
+void mark_irregular_band_points(std::span<BandPoint> points, const SegmentChains& chains);
 
 /// How sparsely the lines are sampled.
 struct BandSamplingOptions {

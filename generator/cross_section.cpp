@@ -193,10 +193,12 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
     }
     chains = chain_segments(ends2, group);
   }
-  // Band lines of a chain: its front sheet's trace, the cut, its back sheet's trace.
-  auto band_line = [](int chain, int side) { return 3 * chain + 1 - side; };
-  // Ladder points (plane coordinates) -> (band line, arc length).
-  std::map<std::pair<double, double>, std::pair<int, double>> ladder;
+  // Ladder points (plane coordinates) -> band line, arc length and the band's half width.
+  struct Rung {
+    int line;
+    double arc_length, width;
+  };
+  std::map<std::pair<double, double>, Rung> ladder;
 
   // Steps 1 and 2 (run again without refinement when refinement runs out of budget).
   auto triangulate_domain = [&] {
@@ -236,8 +238,8 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
           cdt.insert(Point2(q.x, q.y));
           if (adaptive && chains.chain[s.index] >= 0)
             ladder.emplace(std::make_pair(q.x, q.y),
-                           std::make_pair(band_line(chains.chain[s.index], side),
-                                          chains.arc_length(s.index, t, glm::distance(s.a, s.b))));
+                           Rung{band_line(chains.chain[s.index], side),
+                                chains.arc_length(s.index, t, glm::distance(s.a, s.b)), b});
         }
       }
     }
@@ -343,7 +345,8 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
       const glm::dvec2 q = to2(v->point());
       if (const auto rung = ladder.find({q.x, q.y}); rung != ladder.end()) {
         band_vertices.push_back(v);
-        band_points.push_back({rung->second.first, rung->second.second, lift(q)});
+        band_points.push_back(
+            {rung->second.line, rung->second.arc_length, lift(q), rung->second.width});
         continue;
       }
       auto e = cdt.incident_edges(v), last = e;
@@ -359,11 +362,14 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
             length > 0 ? std::clamp(glm::dot(q - s->a, s->b - s->a) / (length * length), 0.0, 1.0)
                        : 0;
         band_vertices.push_back(v);
+        const CutSegment& cut = segments[s->index];
         band_points.push_back({band_line(chains.chain[s->index], 0),
-                               chains.arc_length(s->index, t, length), lift(q)});
+                               chains.arc_length(s->index, t, length), lift(q),
+                               cut.at_a.blur + (cut.at_b.blur - cut.at_a.blur) * t});
         break;
       } while (++e != last);
     }
+    mark_irregular_band_points(band_points, chains);
     std::vector<glm::dvec3> colours(band_points.size());
     std::vector<glm::dvec2> materials(band_points.size());
     const BandSamplingCounts band = sample_bands(

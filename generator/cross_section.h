@@ -21,9 +21,10 @@ enum class CapSampling {
   /// Every vertex of a mesh refined to `interior_edge` everywhere (paper §3.2).
   Dense,
   /// The same mesh; its blur bands' lines sampled sparsely along their length
-  /// (band_sampling.h), its other interior vertices sparsely by Poisson-disc and harmonic
-  /// interpolation (harmonic_sampling.h), both refined where a test point's diffused colour
-  /// or material channels differ from the interpolation by more than `tolerance`.
+  /// (band_sampling.h) except where a band is not a strip along one line, its other interior
+  /// vertices sparsely by Poisson-disc and harmonic interpolation (harmonic_sampling.h) except
+  /// the rim next to the cuts, both refined where a test point's diffused colour or material
+  /// channels differ from the interpolation by more than `tolerance`.
   Adaptive,
 };
 
@@ -33,7 +34,7 @@ struct CrossSectionOptions {
   double interior_edge = 3.0;  ///< largest triangle edge, in edge_m: the cut segments are
                                ///< finer, and refinement grades from them into the interior
   CapSampling sampling = CapSampling::Dense;
-  double tolerance = 0.01;        ///< adaptive: largest interpolation error left at a test
+  double tolerance = 0.02;        ///< adaptive: largest interpolation error left at a test
                                   ///< point, linear RGB (and material channels, 0..1)
   double harmonic_spacing = 6.0;  ///< adaptive: Poisson-disc radius of the first interior
                                   ///< samples, in edge_m (harmonic_sampling.h)

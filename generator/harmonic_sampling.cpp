@@ -155,6 +155,21 @@ HarmonicSamplingCounts sample_harmonically(
 
   // 1. First samples, and one in every connected set of free vertices with no known neighbour.
   std::vector<size_t> first = poisson(options.spacing_m, free);
+  // The rim: free vertices next to a known one (on a cut, or on a band's line) are all
+  // diffused. There the field turns from the cut's or the band's colour to the flesh's within
+  // an edge or two, which no interpolation from samples further in reproduces.
+  {
+    std::vector<bool> picked(n, false);
+    for (size_t i : first) picked[i] = true;
+    for (size_t i = 0; i < n; ++i) {
+      if (!free[i] || picked[i]) continue;
+      for (const auto& [j, w] : neighbours[i]) {
+        if (free[j]) continue;
+        first.push_back(i);
+        break;
+      }
+    }
+  }
   {
     std::vector<bool> chosen(n, false), seen(n, false);
     for (size_t i : first) chosen[i] = true;
