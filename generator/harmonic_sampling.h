@@ -38,7 +38,8 @@ struct HarmonicSamplingCounts {
 /// 1. the free vertices of a Poisson-disc set of radius spacing_m (greedy in vertex order)
 ///    are diffused, and so is every free vertex next to one that is not free (the rim along
 ///    a cut or a band's line, where the field turns from their colour to the flesh's within an
-///    edge or two: measured, interpolating the rim left mean errors up to 3.3 of 255);
+///    edge or two: interpolated, the rim left mean errors of up to 1.5 of 255 on a template's
+///    cut, and diffusing it only along unblurred cuts up to 3.3);
 /// 2. the rest get the harmonic interpolation of all known values: the solution of the
 ///    cotangent Laplace equation (weights clamped to at least 0.05) with known vertices fixed,
 ///    solved by sparse LDLT (Eigen);
