@@ -133,15 +133,10 @@ BandSamplingCounts sample_bands(std::span<const BandPoint> points,
   });
   std::vector<bool> sampled(points.size(), false);
   auto diffuse = [&](const std::vector<size_t>& which) {
-    std::vector<glm::dvec3> where, c(which.size());
-    std::vector<glm::dvec2> m(which.size());
+    std::vector<glm::dvec3> where;
     for (size_t i : which) where.push_back(points[i].position);
-    diffusion.diffuse_channels(where, c, m);
-    for (size_t k = 0; k < which.size(); ++k) {
-      colour[which[k]] = c[k];
-      material[which[k]] = m[k];
-      sampled[which[k]] = true;
-    }
+    diffusion.diffuse_into(where, which, colour, material);
+    for (size_t i : which) sampled[i] = true;
     counts.diffused += which.size();
   };
   // First samples: each line's ends and points at most spacing_m apart.

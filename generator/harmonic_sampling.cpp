@@ -84,15 +84,10 @@ HarmonicSamplingCounts sample_harmonically(
   }
 
   auto diffuse = [&](const std::vector<size_t>& which) {
-    std::vector<glm::dvec3> where, c(which.size());
-    std::vector<glm::dvec2> m(which.size());
+    std::vector<glm::dvec3> where;
     for (size_t i : which) where.push_back(position[i]);
-    diffusion.diffuse_channels(where, c, m);
-    for (size_t k = 0; k < which.size(); ++k) {
-      colour[which[k]] = c[k];
-      material[which[k]] = m[k];
-      unknown[which[k]] = false;
-    }
+    diffusion.diffuse_into(where, which, colour, material);
+    for (size_t i : which) unknown[i] = false;
     counts.diffused += which.size();
   };
   // Greedy Poisson-disc choice among unknown vertices passing `eligible`; the free vertices

@@ -51,6 +51,19 @@ class DiffusionBackend {
     diffuse_channels(points, colour, {});
     return colour;
   }
+  /// Diffuses `where` (#K, as diffuse_channels) in one batch and writes point k's colour and
+  /// material channels to entry which[k] (#K) of `colour` and `material`: for samplers that
+  /// diffuse a subset of their points.
+  void diffuse_into(std::span<const glm::dvec3> where, std::span<const size_t> which,
+                    std::span<glm::dvec3> colour, std::span<glm::dvec2> material) const {
+    std::vector<glm::dvec3> c(where.size());
+    std::vector<glm::dvec2> m(where.size());
+    diffuse_channels(where, c, m);
+    for (size_t k = 0; k < which.size(); ++k) {
+      colour[which[k]] = c[k];
+      material[which[k]] = m[k];
+    }
+  }
   /// "cpu" or "gl".
   virtual std::string name() const = 0;
 };
