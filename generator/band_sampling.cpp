@@ -10,6 +10,8 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "colour.h"
+
 namespace cutaway {
 
 SegmentChains chain_segments(std::span<const std::array<glm::dvec2, 2>> segments,
@@ -102,18 +104,6 @@ void mark_irregular_band_points(std::span<BandPoint> points, const SegmentChains
   }
 }
 
-namespace {
-
-/// Largest difference over the colour and material channels.
-double channel_error(const glm::dvec3& c, const glm::dvec2& m, const glm::dvec3& c_ref,
-                     const glm::dvec2& m_ref) {
-  const glm::dvec3 dc = glm::abs(c - c_ref);
-  const glm::dvec2 dm = glm::abs(m - m_ref);
-  return std::max({dc.x, dc.y, dc.z, dm.x, dm.y});
-}
-
-}  // namespace
-
 BandSamplingCounts sample_bands(std::span<const BandPoint> points,
                                 const DiffusionBackend& diffusion,
                                 const BandSamplingOptions& options, std::span<glm::dvec3> colour,
@@ -193,7 +183,7 @@ BandSamplingCounts sample_bands(std::span<const BandPoint> points,
     std::vector<std::pair<size_t, size_t>> next;
     for (size_t g = 0; g < gaps.size(); ++g) {
       const size_t t = tests[g];
-      if (channel_error(colour[t], material[t], c_interp[g], m_interp[g]) <= options.tolerance)
+      if (visible_difference(colour[t], material[t], c_interp[g], m_interp[g]) <= options.tolerance)
         continue;
       ++counts.failed;
       const auto [lo, hi] = gaps[g];

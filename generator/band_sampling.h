@@ -65,8 +65,8 @@ void mark_irregular_band_points(std::span<BandPoint> points, const SegmentChains
 struct BandSamplingOptions {
   double spacing_m = 0;  ///< largest arc length between the first samples of a line (its
                          ///< two ends are always samples)
-  double tolerance = 0;  ///< largest accepted |diffused - interpolated| at a test point, any
-                         ///< colour (linear RGB) or material channel
+  double tolerance = 0;  ///< largest accepted visible_difference (colour.h, of 255) between
+                         ///< a test point's diffused and interpolated values
 };
 
 /// Counts of one band sampling.

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/common.hpp>
+
 namespace cutaway {
 
 double srgb_to_linear(double c) {
@@ -20,6 +22,13 @@ glm::dvec3 srgb_to_linear(const glm::dvec3& c) {
 
 glm::dvec3 linear_to_srgb(const glm::dvec3& c) {
   return {linear_to_srgb(c.x), linear_to_srgb(c.y), linear_to_srgb(c.z)};
+}
+
+double visible_difference(const glm::dvec3& colour, const glm::dvec2& material,
+                          const glm::dvec3& colour_ref, const glm::dvec2& material_ref) {
+  const glm::dvec3 dc = glm::abs(linear_to_srgb(colour) - linear_to_srgb(colour_ref));
+  const glm::dvec2 dm = glm::abs(material - material_ref);
+  return 255.0 * std::max({dc.x, dc.y, dc.z, dm.x, dm.y});
 }
 
 }  // namespace cutaway

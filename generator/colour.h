@@ -2,6 +2,7 @@
 // is linear RGB (design/algorithms.md §7).
 #pragma once
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace cutaway {
@@ -17,5 +18,13 @@ glm::dvec3 srgb_to_linear(const glm::dvec3& c);
 
 /// Component-wise linear_to_srgb.
 glm::dvec3 linear_to_srgb(const glm::dvec3& c);
+
+/// How far apart two samples of a cap's field look, in steps of 1/255: the largest difference
+/// over the sRGB-encoded colour channels (`colour`, linear RGB in) and the material channels
+/// (`material`, 0..1 as they are). Adaptive sampling's tests use it, so that a tolerance is the
+/// same visible step in dark and light flesh (in linear RGB, 0.02 is 17/255 near black and
+/// 3/255 near white).
+double visible_difference(const glm::dvec3& colour, const glm::dvec2& material,
+                          const glm::dvec3& colour_ref, const glm::dvec2& material_ref);
 
 }  // namespace cutaway

@@ -22,9 +22,9 @@ enum class CapSampling {
   Dense,
   /// The same mesh; its blur bands' lines sampled sparsely along their length
   /// (band_sampling.h) except where a band is not a strip along one line, its other interior
-  /// vertices sparsely by Poisson-disc and harmonic interpolation (harmonic_sampling.h) except
-  /// the rim next to the cuts, both refined where a test point's diffused colour or material
-  /// channels differ from the interpolation by more than `tolerance`.
+  /// vertices sparsely by Poisson-disc and harmonic interpolation (harmonic_sampling.h), both
+  /// refined where a test point's diffused colour or material channels differ visibly from the
+  /// interpolation (by more than `tolerance`, colour.h visible_difference).
   Adaptive,
 };
 
@@ -34,11 +34,11 @@ struct CrossSectionOptions {
   double interior_edge = 3.0;  ///< largest triangle edge, in edge_m: the cut segments are
                                ///< finer, and refinement grades from them into the interior
   CapSampling sampling = CapSampling::Dense;
-  double tolerance = 0.02;        ///< adaptive: largest interpolation error left at a test
-                                  ///< point, linear RGB (and material channels, 0..1)
+  double tolerance = 2.0;  ///< adaptive: largest interpolation error left at a test point,
+                           ///< in steps of 1/255 (visible_difference: sRGB, material channels)
   double harmonic_spacing = 6.0;  ///< adaptive: Poisson-disc radius of the first interior
                                   ///< samples, in edge_m (harmonic_sampling.h)
-  double band_spacing = 8.0;      ///< adaptive: largest arc length between the first samples
+  double band_spacing = 16.0;     ///< adaptive: largest arc length between the first samples
                                   ///< along a blur band's lines, in edge_m (band_sampling.h)
   double merge_tolerance = 0.01;  ///< nearly collinear cut segments are merged up to edge_m
                                   ///< long where they deviate less than this, in edge_m

@@ -11,6 +11,8 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "colour.h"
+
 namespace cutaway {
 
 namespace {
@@ -150,21 +152,6 @@ HarmonicSamplingCounts sample_harmonically(
 
   // 1. First samples, and one in every connected set of free vertices with no known neighbour.
   std::vector<size_t> first = poisson(options.spacing_m, free);
-  // The rim: free vertices next to a known one (on a cut, or on a band's line) are all
-  // diffused. There the field turns from the cut's or the band's colour to the flesh's within
-  // an edge or two, which no interpolation from samples further in reproduces.
-  {
-    std::vector<bool> picked(n, false);
-    for (size_t i : first) picked[i] = true;
-    for (size_t i = 0; i < n; ++i) {
-      if (!free[i] || picked[i]) continue;
-      for (const auto& [j, w] : neighbours[i]) {
-        if (free[j]) continue;
-        first.push_back(i);
-        break;
-      }
-    }
-  }
   {
     std::vector<bool> chosen(n, false), seen(n, false);
     for (size_t i : first) chosen[i] = true;
@@ -217,9 +204,8 @@ HarmonicSamplingCounts sample_harmonically(
     bool any_failed = false;
     for (size_t k = 0; k < tests.size(); ++k) {
       const size_t i = tests[k];
-      const glm::dvec3 dc = glm::abs(colour[i] - c_interp[k]);
-      const glm::dvec2 dm = glm::abs(material[i] - m_interp[k]);
-      if (std::max({dc.x, dc.y, dc.z, dm.x, dm.y}) <= options.tolerance) continue;
+      if (visible_difference(colour[i], material[i], c_interp[k], m_interp[k]) <= options.tolerance)
+        continue;
       ++counts.failed;
       failures.add(position[i]);
       any_failed = true;

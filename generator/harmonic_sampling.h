@@ -20,8 +20,8 @@ struct HarmonicSamplingOptions {
   double spacing_m = 0;      ///< Poisson-disc radius of the first samples
   double min_spacing_m = 0;  ///< refinement halves the radius down to this; a region still
                              ///< failing below it has every vertex diffused
-  double tolerance = 0;      ///< largest accepted |diffused - interpolated| at a test point, any
-                             ///< colour (linear RGB) or material channel
+  double tolerance = 0;      ///< largest accepted visible_difference (colour.h, of 255)
+                             ///< between a test point's diffused and interpolated values
 };
 
 /// Counts of one sampling.
@@ -36,10 +36,7 @@ struct HarmonicSamplingCounts {
 /// #F, `colour` #V linear RGB, `material` #V; the other vertices' colour and material are
 /// boundary values and are not changed) with few PMVC evaluations:
 /// 1. the free vertices of a Poisson-disc set of radius spacing_m (greedy in vertex order)
-///    are diffused, and so is every free vertex next to one that is not free (the rim along
-///    a cut or a band's line, where the field turns from their colour to the flesh's within an
-///    edge or two: interpolated, the rim left mean errors of up to 1.5 of 255 on a template's
-///    cut, and diffusing it only along unblurred cuts up to 3.3);
+///    are diffused;
 /// 2. the rest get the harmonic interpolation of all known values: the solution of the
 ///    cotangent Laplace equation (weights clamped to at least 0.05) with known vertices fixed,
 ///    solved by sparse LDLT (Eigen);

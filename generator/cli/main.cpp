@@ -106,6 +106,7 @@ struct SectionArgs {
   std::string png;
   int cube = 16;
   int width = 800;
+  int64_t seed = -1;  ///< >= 0: cut the variant of this seed instead of the template
 };
 
 /// The --sampling value (checked by CLI11 to be "dense" or "adaptive").
@@ -126,7 +127,9 @@ int run_section(const SectionArgs& a, const std::string& backend, int threads, b
   const std::string out = a.output.empty() && a.png.empty() ? tmpl.name + "-section.glb" : a.output;
   const std::filesystem::path out_file = out.empty() ? "" : outputs.add("-o", out);
   const std::filesystem::path png_file = a.png.empty() ? "" : outputs.add("--png", a.png);
-  const cutaway::DsModel model = cutaway::build_model(tmpl);
+  const cutaway::DsModel model =
+      a.seed >= 0 ? cutaway::make_variant(tmpl, static_cast<uint64_t>(a.seed)).model
+                  : cutaway::build_model(tmpl);
   const double t_model = seconds_since(t0);
   const auto t1 = Clock::now();
   const auto diffusion = cutaway::make_diffusion(model, {a.cube, threads},
@@ -436,6 +439,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(16, 8192));
   section->add_option("--cube", section_args.cube, "cube-map texels per face edge for PMVC")
       ->check(CLI::Range(2, 256));
+  section->add_option("--seed", section_args.seed, "cut the random variant of this seed")
+      ->check(CLI::NonNegativeNumber);
 
   VariantsArgs variants_args;
   CLI::App* variants = app.add_subcommand(

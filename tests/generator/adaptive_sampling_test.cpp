@@ -22,11 +22,9 @@
 namespace cutaway {
 namespace {
 
-/// Largest sRGB difference (of 255) over the channels.
+/// Largest sRGB difference (of 255) over the colour channels.
 double srgb_error(const glm::dvec3& a, const glm::dvec3& b) {
-  const glm::dvec3 d = 255.0 * glm::abs(linear_to_srgb(glm::clamp(a, 0.0, 1.0)) -
-                                        linear_to_srgb(glm::clamp(b, 0.0, 1.0)));
-  return std::max({d.x, d.y, d.z});
+  return visible_difference(a, glm::dvec2(0), b, glm::dvec2(0));
 }
 
 TEST(AdaptiveSampling, MatchesDenseCube32ReferenceOnEveryTemplatesMidHeightCut) {
@@ -76,14 +74,14 @@ TEST(AdaptiveSampling, MatchesDenseCube32ReferenceOnEveryTemplatesMidHeightCut) 
         t.name.c_str(), dense.diffused_points, adaptive.diffused_points,
         static_cast<double>(dense.diffused_points) / adaptive.diffused_points, points.size(),
         sum / n, max, dense_sum / n, dense_max);
-    // The bound: mean error at most 1 of 255 (measured over all interior vertices:
-    // at most 0.89, the two spheres; the largest single error is 66, at a kiwi spoke's tip).
+    // The bound: mean error at most 1 of 255 (measured: at most 0.88, star fruit; the largest
+    // single error is 15, volcano and star fruit).
     EXPECT_LE(sum / n, 1.0) << t.name;
   }
   std::printf("all templates: %zu -> %zu points (%.1fx)\n", dense_points, adaptive_points,
               static_cast<double>(dense_points) / adaptive_points);
-  // Measured: 2.5x.
-  EXPECT_GE(static_cast<double>(dense_points), 2.2 * adaptive_points);
+  // Measured: 3.1x.
+  EXPECT_GE(static_cast<double>(dense_points), 2.9 * adaptive_points);
 }
 
 TEST(AdaptiveSampling, RandomAndNearlyTangentPlanesGiveFiniteColoursInRange) {
@@ -169,7 +167,7 @@ TEST(BandSampling, LinearFieldIsExactFromFewSamplesAndAKinkIsRefined) {
   auto run = [&](const FieldDiffusion& field) {
     std::vector<glm::dvec3> colour(points.size());
     std::vector<glm::dvec2> material(points.size());
-    const BandSamplingCounts counts = sample_bands(points, field, {0.02, 0.001}, colour, material);
+    const BandSamplingCounts counts = sample_bands(points, field, {0.02, 0.25}, colour, material);
     double worst = 0;
     std::vector<glm::dvec3> exact(points.size());
     std::vector<glm::dvec2> unused(points.size());
@@ -255,7 +253,7 @@ TEST(HarmonicSampling, ReproducesALinearFieldOnAnAcuteMeshAndRefinesABump) {
     for (size_t v = 0; v < position.size(); ++v)
       if (free[v]) colour[v] = glm::dvec3(-1.0);
     const HarmonicSamplingCounts counts = sample_harmonically(
-        position, triangle, free, colour, material, field, {6 * h, 0.5 * h, 0.002});
+        position, triangle, free, colour, material, field, {6 * h, 0.5 * h, 0.5});
     double worst = 0;
     for (size_t v = 0; v < position.size(); ++v)
       worst = std::max(worst, glm::length(colour[v] - exact[v]));
