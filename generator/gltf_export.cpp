@@ -15,6 +15,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
+#include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 #include <unistd.h>
@@ -237,6 +238,30 @@ int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh,
     colour.insert(colour.end(), vertex + 6, vertex + 9);
     if (!mesh.uv.empty()) xy.insert(xy.end(), vertex + 9, vertex + 11);
   }
+  // Per primitive, its triangles in written vertex indices, reordered for the GPU's post-transform
+  // vertex cache (meshoptimizer: Forsyth-style greedy order); then the vertices renumbered in
+  // the order the primitives first use them (fewer cache misses when vertices are fetched).
+  std::vector<std::vector<uint32_t>> idx(primitives.size());
+  std::vector<uint32_t> all;
+  for (size_t k = 0; k < primitives.size(); ++k) {
+    for (const glm::uvec3& t : lists[k])
+      idx[k].insert(idx[k].end(), {remap[t.x], remap[t.y], remap[t.z]});
+    const std::vector<uint32_t> input = idx[k];
+    meshopt_optimizeVertexCache(idx[k].data(), input.data(), input.size(), used);
+    all.insert(all.end(), idx[k].begin(), idx[k].end());
+  }
+  std::vector<uint32_t> fetch(used);
+  meshopt_optimizeVertexFetchRemap(fetch.data(), all.data(), all.size(), used);
+  for (std::vector<uint32_t>& list : idx)
+    meshopt_remapIndexBuffer(list.data(), std::vector<uint32_t>(list).data(), list.size(),
+                             fetch.data());
+  for (std::vector<float>* stream : {&pos, &normal, &colour, &xy}) {
+    if (stream->empty()) continue;
+    const std::vector<float> input = *stream;
+    meshopt_remapVertexBuffer(stream->data(), input.data(), used,
+                              input.size() / used * sizeof(float), fetch.data());
+  }
+
   const int positions = add_vec3_accessor(m, pos, true);
   const int normals = add_vec3_accessor(m, normal, false);
   int colours = -1, uvs = -1;  // added when some primitive uses them
@@ -258,18 +283,9 @@ int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh,
       prim.attributes["COLOR_0"] = colours;
     }
     if (used <= 65535) {  // 65535 itself is the primitive restart value, never an index
-      std::vector<uint16_t> idx;
-      idx.reserve(3 * lists[k].size());
-      for (const glm::uvec3& t : lists[k])
-        idx.insert(idx.end(), {static_cast<uint16_t>(remap[t.x]), static_cast<uint16_t>(remap[t.y]),
-                               static_cast<uint16_t>(remap[t.z])});
-      prim.indices = add_u16_index_accessor(m, idx);
+      prim.indices = add_u16_index_accessor(m, std::vector<uint16_t>(idx[k].begin(), idx[k].end()));
     } else {
-      std::vector<uint32_t> idx;
-      idx.reserve(3 * lists[k].size());
-      for (const glm::uvec3& t : lists[k])
-        idx.insert(idx.end(), {remap[t.x], remap[t.y], remap[t.z]});
-      prim.indices = add_index_accessor(m, idx);
+      prim.indices = add_index_accessor(m, idx[k]);
     }
     gm.primitives.push_back(prim);
   }

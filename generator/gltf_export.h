@@ -40,7 +40,8 @@ std::string section_to_glb(const CrossSection& section);
 ///   AssetPrimitive (one for a mesh without), all sharing the mesh's POSITION (float, with
 ///   min/max), NORMAL (float, renormalised) and COLOR_0 (float vec3, linear RGB clamped to
 ///   0..1) accessors, each with its own indices (uint16 when the mesh has at most 65535
-///   vertices, else uint32);
+///   vertices, else uint32); each primitive's triangles in the order meshoptimizer gives for
+///   the GPU's post-transform vertex cache, the vertices in the order of their first use;
 /// - the materials some primitive uses, in the order of SceneAssets::materials: vertex colour
 ///   times a white base colour, metallic 0, the material's roughness, and
 ///   KHR_materials_clearcoat (clearcoat > 0), KHR_materials_sheen (sheen not black) and
