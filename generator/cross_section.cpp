@@ -89,6 +89,15 @@ struct Segment2 {
 
 glm::dvec2 to2(const Point2& p) { return {CGAL::to_double(p.x()), CGAL::to_double(p.y())}; }
 
+/// Whether some finite face around vertex v lies in the meshed domain (v is a vertex of the cap).
+bool in_domain(const Cdt& cdt, Vertex v) {
+  auto f = cdt.incident_faces(v), done = f;
+  do {
+    if (!cdt.is_infinite(f) && f->is_in_domain()) return true;
+  } while (++f != done);
+  return false;
+}
+
 /// Which side of segment s the point c lies on: +1 front, -1 back, 0 on its line.
 int side_of(const Segment2& s, const glm::dvec2& c) {
   const double d = glm::dot(c - s.a, s.front);
@@ -336,12 +345,7 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
     std::vector<Vertex> band_vertices;
     std::vector<BandPoint> band_points;
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
-      bool in_domain = false;
-      auto f = cdt.incident_faces(v), done = f;
-      do {
-        in_domain = in_domain || (!cdt.is_infinite(f) && f->is_in_domain());
-      } while (++f != done);
-      if (!in_domain) continue;
+      if (!in_domain(cdt, v)) continue;
       const glm::dvec2 q = to2(v->point());
       if (const auto rung = ladder.find({q.x, q.y}); rung != ladder.end()) {
         band_vertices.push_back(v);
@@ -396,15 +400,13 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
     return static_cast<unsigned>(cs.position.size() - 1);
   };
   for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
+    if (!in_domain(cdt, v)) continue;
     // The in-domain faces around v in counter-clockwise order, split at constrained edges.
     std::vector<Face> faces;
     auto fc = cdt.incident_faces(v), done = fc;
     do {
       faces.push_back(fc);
     } while (++fc != done);
-    bool any_in = false;
-    for (const Face& f : faces) any_in = any_in || (!cdt.is_infinite(f) && f->is_in_domain());
-    if (!any_in) continue;
     // Whether the edge between faces[k] and the next face counter-clockwise is constrained:
     // in face (v, a, b) that edge is (v, b), opposite a = vertex(ccw(index of v)).
     auto constrained_after = [&](size_t k) {

@@ -193,8 +193,8 @@ int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh,
       if (t.x >= n || t.y >= n || t.z >= n)
         bad_assets("mesh '" + mesh.name + "': a triangle index is out of range");
   }
-  // Only the vertices some triangle uses, in their order, each written once: a vertex whose
-  // written attributes (float position, normal, colour, uv) equal an earlier one's is welded
+  // Only the vertices some triangle uses, each written once (ordered for fetching below): a vertex
+  // whose written attributes (float position, normal, colour, uv) equal an earlier one's is welded
   // to it (the copies of cut vertices on both sides of a seam that show the same colour).
   std::vector<bool> needed(n, false);
   for (const auto& list : lists)

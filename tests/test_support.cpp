@@ -1,6 +1,8 @@
 #include "test_support.h"
 
 #include "manifold_check.h"
+#include "model_builder.h"
+#include "template_parser.h"
 
 #include <algorithm>
 #include <tuple>
@@ -169,6 +171,23 @@ std::vector<std::filesystem::path> shipped_templates() {
   }
   std::sort(out.begin(), out.end());
   return out;
+}
+
+MidHeightCut mid_height_cut(const std::filesystem::path& path) {
+  MidHeightCut cut{load_template(path.string()), {}, {}};
+  cut.model = build_model(cut.tmpl);
+  cut.plane = {{0, 0.5 * (cut.model.bbox_min.y + cut.model.bbox_max.y), 0}, {0, 1, 0}};
+  return cut;
+}
+
+std::vector<size_t> interior_vertices(const CrossSection& cs, size_t at_most) {
+  std::vector<size_t> interior;
+  for (size_t v = 0; v < cs.position.size(); ++v)
+    if (cs.cut_surface[v] < 0) interior.push_back(v);
+  const size_t step = std::max<size_t>(1, interior.size() / at_most);
+  std::vector<size_t> picked;
+  for (size_t i = 0; i < interior.size(); i += step) picked.push_back(interior[i]);
+  return picked;
 }
 
 PngInfo png_info(const std::filesystem::path& file) {

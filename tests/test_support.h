@@ -8,8 +8,11 @@
 
 #include <gtest/gtest.h>
 
+#include "cross_section.h"
+#include "ds_model.h"
 #include "scene_assets.h"
 #include "shaded_mesh.h"
+#include "template.h"
 
 namespace cutaway::test {
 
@@ -95,6 +98,21 @@ void texture_with_halves(SceneAssets& assets, size_t mesh, int size);
 
 /// The template files shipped in templates/ (absolute paths, sorted).
 std::vector<std::filesystem::path> shipped_templates();
+
+/// A template, its DS model and the horizontal plane through the middle of the model's bounding
+/// box (the cut the accuracy tests make on every shipped template).
+struct MidHeightCut {
+  Template tmpl;
+  DsModel model;
+  Plane plane;
+};
+
+/// Loads and builds the template at `path` (throws as load_template does).
+MidHeightCut mid_height_cut(const std::filesystem::path& path);
+
+/// Up to about `at_most` interior vertices of `cs` (off the cut segments, cut_surface < 0),
+/// evenly through its vertex list, in order.
+std::vector<size_t> interior_vertices(const CrossSection& cs, size_t at_most);
 
 /// Welds the mesh's vertices by exact position; every directed edge must have exactly one
 /// twin running the other way, no triangle may have two corners at one point, and the

@@ -30,10 +30,10 @@ double srgb_error(const glm::dvec3& a, const glm::dvec3& b) {
 TEST(AdaptiveSampling, MatchesDenseCube32ReferenceOnEveryTemplatesMidHeightCut) {
   size_t dense_points = 0, adaptive_points = 0;
   for (const std::filesystem::path& path : test::shipped_templates()) {
-    const Template t = load_template(path.string());
-    const DsModel model = build_model(t);
-    const double mid = 0.5 * (model.bbox_min.y + model.bbox_max.y);
-    const Plane plane{{0, mid, 0}, {0, 1, 0}};
+    const test::MidHeightCut cut = test::mid_height_cut(path);
+    const Template& t = cut.tmpl;
+    const DsModel& model = cut.model;
+    const Plane& plane = cut.plane;
     const auto cube16 = make_cpu_diffusion(model, DiffusionOptions{16, 0});
     CrossSectionOptions options{t.edge_m};
     options.sampling = CapSampling::Dense;
@@ -45,16 +45,9 @@ TEST(AdaptiveSampling, MatchesDenseCube32ReferenceOnEveryTemplatesMidHeightCut) 
     ASSERT_EQ(adaptive.position, dense.position) << t.name << ": not the same mesh";
     // Up to 300 vertices off the cut segments, evenly through the list: the reference is a
     // cube-32 diffusion of the same cap's vertices.
-    std::vector<size_t> interior;
-    for (size_t v = 0; v < dense.position.size(); ++v)
-      if (dense.cut_surface[v] < 0) interior.push_back(v);
-    std::vector<size_t> picked;
+    const std::vector<size_t> picked = test::interior_vertices(dense, 300);
     std::vector<glm::dvec3> points;
-    const size_t step = std::max<size_t>(1, interior.size() / 300);
-    for (size_t i = 0; i < interior.size(); i += step) {
-      picked.push_back(interior[i]);
-      points.push_back(dense.position[interior[i]]);
-    }
+    for (size_t v : picked) points.push_back(dense.position[v]);
     ASSERT_GT(points.size(), 10u) << t.name;
     const std::vector<glm::dvec3> reference =
         make_cpu_diffusion(model, DiffusionOptions{32, 0})->diffuse(points);

@@ -10,8 +10,6 @@
 
 #include "colour.h"
 #include "cross_section.h"
-#include "model_builder.h"
-#include "template_parser.h"
 #include "test_support.h"
 
 namespace cutaway {
@@ -20,32 +18,23 @@ namespace {
 TEST(CubeAccuracy, Cube16AgreesWithCube32OnEveryTemplatesMidHeightCut) {
   double worst_mean = 0, worst_max = 0;
   for (const std::filesystem::path& path : test::shipped_templates()) {
-    const Template t = load_template(path.string());
-    const DsModel model = build_model(t);
-    const double mid = 0.5 * (model.bbox_min.y + model.bbox_max.y);
-    const Plane plane{{0, mid, 0}, {0, 1, 0}};
+    const test::MidHeightCut cut = test::mid_height_cut(path);
+    const Template& t = cut.tmpl;
+    const DsModel& model = cut.model;
     const auto cube16 = make_cpu_diffusion(model, DiffusionOptions{16, 0});
     const CrossSection cs =
-        make_cross_section(model, plane, *cube16, CrossSectionOptions{t.edge_m});
+        make_cross_section(model, cut.plane, *cube16, CrossSectionOptions{t.edge_m});
     // Up to 150 diffused (interior) vertices, evenly through the vertex list.
-    std::vector<size_t> picked;
-    std::vector<size_t> interior;
-    for (size_t v = 0; v < cs.position.size(); ++v)
-      if (cs.cut_surface[v] < 0) interior.push_back(v);
-    const size_t step = std::max<size_t>(1, interior.size() / 150);
+    const std::vector<size_t> picked = test::interior_vertices(cs, 150);
     std::vector<glm::dvec3> points;
-    for (size_t i = 0; i < interior.size(); i += step) {
-      picked.push_back(interior[i]);
-      points.push_back(cs.position[interior[i]]);
-    }
+    for (size_t v : picked) points.push_back(cs.position[v]);
     ASSERT_GT(points.size(), 10u) << t.name;
     const std::vector<glm::dvec3> reference =
         make_cpu_diffusion(model, DiffusionOptions{32, 0})->diffuse(points);
     double sum = 0, max = 0;
     for (size_t i = 0; i < points.size(); ++i) {
-      const glm::dvec3 a = 255.0 * linear_to_srgb(glm::clamp(cs.colour[picked[i]], 0.0, 1.0));
-      const glm::dvec3 b = 255.0 * linear_to_srgb(glm::clamp(reference[i], 0.0, 1.0));
-      const double e = std::max({std::fabs(a.x - b.x), std::fabs(a.y - b.y), std::fabs(a.z - b.z)});
+      const double e =
+          visible_difference(cs.colour[picked[i]], glm::dvec2(0), reference[i], glm::dvec2(0));
       sum += e;
       max = std::max(max, e);
     }
