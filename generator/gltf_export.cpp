@@ -61,32 +61,11 @@ int add_vec3_accessor(tinygltf::Model& m, const std::vector<float>& xyz, bool wi
   return static_cast<int>(m.accessors.size()) - 1;
 }
 
-int add_vec2_accessor(tinygltf::Model& m, const std::vector<float>& xy) {
-  tinygltf::Accessor a;
-  a.bufferView = add_view(m, xy.data(), xy.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
-  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-  a.type = TINYGLTF_TYPE_VEC2;
-  a.count = xy.size() / 2;
-  m.accessors.push_back(a);
-  return static_cast<int>(m.accessors.size()) - 1;
-}
-
 int add_index_accessor(tinygltf::Model& m, const std::vector<uint32_t>& idx) {
   tinygltf::Accessor a;
   a.bufferView = add_view(m, idx.data(), idx.size() * sizeof(uint32_t),
                           TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
   a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-  a.type = TINYGLTF_TYPE_SCALAR;
-  a.count = idx.size();
-  m.accessors.push_back(a);
-  return static_cast<int>(m.accessors.size()) - 1;
-}
-
-int add_u16_index_accessor(tinygltf::Model& m, const std::vector<uint16_t>& idx) {
-  tinygltf::Accessor a;
-  a.bufferView = add_view(m, idx.data(), idx.size() * sizeof(uint16_t),
-                          TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-  a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
   a.type = TINYGLTF_TYPE_SCALAR;
   a.count = idx.size();
   m.accessors.push_back(a);
@@ -163,10 +142,196 @@ void check_primitives(const AssetMesh& mesh, size_t materials) {
   if (!defect.empty()) bad_assets("mesh '" + mesh.name + "': " + defect);
 }
 
-/// Adds mesh `mesh` to `m` (one primitive per AssetPrimitive, sharing the vertex attributes;
-/// material k of the assets is glTF material gltf_material[k]); returns the glTF mesh index.
-int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh,
-                   const std::vector<int>& gltf_material) {
+/// How a quantized mesh's positions map back to metres: p = offset + scale * q, where q is the
+/// stored normalized value (each component in -1..1). Identity for float positions.
+struct MeshFrame {
+  glm::dvec3 offset{0.0};
+  double scale = 1.0;
+};
+
+/// Writes a scene's vertex attributes and indices as the compression mode asks:
+/// - None: float32 attributes, one tightly packed buffer view each, in buffer 0;
+/// - Quantize (KHR_mesh_quantization): POSITION as normalized SHORT over the mesh's bounding
+///   cube (MeshFrame, stride 8), NORMAL as normalized BYTE (stride 4), COLOR_0 as normalized
+///   UNSIGNED_SHORT (stride 8), TEXCOORD_0 as normalized UNSIGNED_SHORT when every coordinate
+///   lies in 0..1 (else float); still one plain buffer view each, in buffer 0;
+/// - Meshopt: the Quantize data, each view encoded by meshoptimizer's vertex or index codec
+///   into buffer 0 (EXT_meshopt_compression); the views themselves lie in buffer 1, a fallback
+///   that holds no bytes (its byteLength is fallback_bytes()).
+/// Indices are UNSIGNED_SHORT when the mesh has at most 65535 vertices (65535 is the primitive
+/// restart value, never an index), else UNSIGNED_INT.
+class SceneBuffers {
+ public:
+  SceneBuffers(tinygltf::Model& m, GltfCompression compression)
+      : m_(m), compression_(compression) {}
+
+  tinygltf::Model& model() { return m_; }
+  size_t fallback_bytes() const { return fallback_; }
+  /// (buffer view, its "extensions" object) of each encoded view: tinygltf does not write
+  /// extensions of buffer views, so they are added to the serialised JSON.
+  const std::vector<std::pair<int, nlohmann::json>>& view_extensions() const {
+    return view_extensions_;
+  }
+
+  /// #V x 3 positions (metres); returns the accessor and sets `frame`.
+  int positions(const std::vector<float>& xyz, MeshFrame& frame) {
+    const size_t count = xyz.size() / 3;
+    glm::dvec3 lo(xyz[0], xyz[1], xyz[2]), hi = lo;
+    for (size_t i = 0; i < count; ++i)
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min<double>(lo[k], xyz[3 * i + k]);
+        hi[k] = std::max<double>(hi[k], xyz[3 * i + k]);
+      }
+    if (compression_ == GltfCompression::None) {
+      frame = {};
+      return accessor(xyz.data(), count, 12, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                      false, {lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z});
+    }
+    frame.offset = (lo + hi) * 0.5;
+    const glm::dvec3 half = (hi - lo) * 0.5;
+    frame.scale = std::max({half.x, half.y, half.z});
+    if (!(frame.scale > 0)) frame.scale = 1.0;
+    std::vector<int16_t> q(count * 4, 0);
+    std::vector<double> qlo(3, 32767), qhi(3, -32767);
+    for (size_t i = 0; i < count; ++i)
+      for (int k = 0; k < 3; ++k) {
+        const double v = (xyz[3 * i + k] - frame.offset[k]) / frame.scale;
+        q[4 * i + k] = static_cast<int16_t>(std::lround(std::clamp(v, -1.0, 1.0) * 32767));
+        qlo[k] = std::min<double>(qlo[k], q[4 * i + k]);
+        qhi[k] = std::max<double>(qhi[k], q[4 * i + k]);
+      }
+    return accessor(q.data(), count, 8, TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC3, true,
+                    qlo, qhi);
+  }
+
+  /// #V x 3 unit normals.
+  int normals(const std::vector<float>& xyz) {
+    const size_t count = xyz.size() / 3;
+    if (compression_ == GltfCompression::None)
+      return accessor(xyz.data(), count, 12, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                      false);
+    std::vector<int8_t> q(count * 4, 0);
+    for (size_t i = 0; i < 3 * count; ++i)
+      q[i / 3 * 4 + i % 3] = static_cast<int8_t>(std::lround(std::clamp(xyz[i], -1.f, 1.f) * 127));
+    return accessor(q.data(), count, 4, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC3, true);
+  }
+
+  /// #V x 3 linear RGB colours in 0..1.
+  int colours(const std::vector<float>& rgb) {
+    const size_t count = rgb.size() / 3;
+    if (compression_ == GltfCompression::None)
+      return accessor(rgb.data(), count, 12, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                      false);
+    std::vector<uint16_t> q(count * 4, 0);
+    for (size_t i = 0; i < 3 * count; ++i)
+      q[i / 3 * 4 + i % 3] = static_cast<uint16_t>(std::lround(rgb[i] * 65535.0));
+    return accessor(q.data(), count, 8, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC3,
+                    true);
+  }
+
+  /// #V x 2 texture coordinates.
+  int uvs(const std::vector<float>& xy) {
+    const size_t count = xy.size() / 2;
+    const bool unit = std::all_of(xy.begin(), xy.end(), [](float v) { return v >= 0 && v <= 1; });
+    if (compression_ == GltfCompression::None || !unit)
+      return accessor(xy.data(), count, 8, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2,
+                      false);
+    std::vector<uint16_t> q(xy.size());
+    for (size_t i = 0; i < xy.size(); ++i)
+      q[i] = static_cast<uint16_t>(std::lround(xy[i] * 65535.0));
+    return accessor(q.data(), count, 4, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC2,
+                    true);
+  }
+
+  /// A triangle list over `vertices` vertices.
+  int indices(const std::vector<uint32_t>& idx, size_t vertices) {
+    tinygltf::Accessor a;
+    a.type = TINYGLTF_TYPE_SCALAR;
+    a.count = idx.size();
+    const bool narrow = vertices <= 65535;
+    a.componentType =
+        narrow ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    const size_t size = narrow ? 2 : 4;
+    const int target = TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;
+    if (compression_ == GltfCompression::Meshopt) {
+      std::vector<unsigned char> packed(meshopt_encodeIndexBufferBound(idx.size(), vertices));
+      packed.resize(
+          meshopt_encodeIndexBuffer(packed.data(), packed.size(), idx.data(), idx.size()));
+      a.bufferView = encoded_view(packed, idx.size(), size, 0, "TRIANGLES", target);
+    } else if (narrow) {
+      const std::vector<uint16_t> shorts(idx.begin(), idx.end());
+      a.bufferView = add_view(m_, shorts.data(), shorts.size() * 2, target);
+    } else {
+      a.bufferView = add_view(m_, idx.data(), idx.size() * 4, target);
+    }
+    m_.accessors.push_back(a);
+    return static_cast<int>(m_.accessors.size()) - 1;
+  }
+
+ private:
+  /// An accessor over `count` elements `stride` bytes apart (the element itself first).
+  int accessor(const void* data, size_t count, size_t stride, int component, int type,
+               bool normalized, std::vector<double> lo = {}, std::vector<double> hi = {}) {
+    tinygltf::Accessor a;
+    a.componentType = component;
+    a.type = type;
+    a.normalized = normalized;
+    a.count = count;
+    a.minValues = std::move(lo);
+    a.maxValues = std::move(hi);
+    const int target = TINYGLTF_TARGET_ARRAY_BUFFER;
+    if (compression_ == GltfCompression::Meshopt) {
+      std::vector<unsigned char> packed(meshopt_encodeVertexBufferBound(count, stride));
+      packed.resize(meshopt_encodeVertexBuffer(packed.data(), packed.size(), data, count, stride));
+      a.bufferView = encoded_view(packed, count, stride, stride, "ATTRIBUTES", target);
+    } else {
+      a.bufferView = add_view(m_, data, count * stride, target);
+      if (compression_ != GltfCompression::None) m_.bufferViews.back().byteStride = stride;
+    }
+    m_.accessors.push_back(a);
+    return static_cast<int>(m_.accessors.size()) - 1;
+  }
+
+  /// A view of `count` elements of `size` bytes in the fallback buffer (byteStride
+  /// `view_stride`, 0 for none) whose bytes are `packed`, meshoptimizer's encoding in `mode`.
+  int encoded_view(const std::vector<unsigned char>& packed, size_t count, size_t size,
+                   size_t view_stride, const char* mode, int target) {
+    auto& buf = m_.buffers[0].data;
+    while (buf.size() % 4) buf.push_back(0);
+    const size_t offset = buf.size();
+    buf.insert(buf.end(), packed.begin(), packed.end());
+    fallback_ = (fallback_ + 3) / 4 * 4;
+    tinygltf::BufferView view;
+    view.buffer = 1;
+    view.byteOffset = fallback_;
+    view.byteLength = count * size;
+    view.byteStride = view_stride;
+    view.target = target;
+    fallback_ += view.byteLength;
+    m_.bufferViews.push_back(view);
+    const int index = static_cast<int>(m_.bufferViews.size()) - 1;
+    view_extensions_.emplace_back(index, nlohmann::json{{"EXT_meshopt_compression",
+                                                         {{"buffer", 0},
+                                                          {"byteOffset", offset},
+                                                          {"byteLength", packed.size()},
+                                                          {"byteStride", size},
+                                                          {"count", count},
+                                                          {"mode", mode}}}});
+    return index;
+  }
+
+  tinygltf::Model& m_;
+  GltfCompression compression_;
+  size_t fallback_ = 0;
+  std::vector<std::pair<int, nlohmann::json>> view_extensions_;
+};
+
+/// Adds mesh `mesh` through `out` (one primitive per AssetPrimitive, sharing the vertex
+/// attributes; material k of the assets is glTF material gltf_material[k]); returns how its
+/// positions map back to metres (the glTF mesh is the model's last).
+MeshFrame add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
+                         const std::vector<int>& gltf_material) {
+  tinygltf::Model& m = out.model();
   const size_t n = mesh.position.size();
   if (n == 0 || mesh.triangle.empty()) bad_assets("mesh '" + mesh.name + "' has no triangles");
   if (mesh.normal.size() != n || mesh.colour.size() != n) {
@@ -262,8 +427,9 @@ int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh,
                               input.size() / used * sizeof(float), fetch.data());
   }
 
-  const int positions = add_vec3_accessor(m, pos, true);
-  const int normals = add_vec3_accessor(m, normal, false);
+  MeshFrame frame;
+  const int positions = out.positions(pos, frame);
+  const int normals = out.normals(normal);
   int colours = -1, uvs = -1;  // added when some primitive uses them
   tinygltf::Mesh gm;
   gm.name = mesh.name;
@@ -276,21 +442,17 @@ int add_asset_mesh(tinygltf::Model& m, const AssetMesh& mesh,
     // A textured material takes its colour from TEXCOORD_0, never also from COLOR_0 (glTF
     // would multiply the two).
     if (textured[k]) {
-      if (uvs < 0) uvs = add_vec2_accessor(m, xy);
+      if (uvs < 0) uvs = out.uvs(xy);
       prim.attributes["TEXCOORD_0"] = uvs;
     } else {
-      if (colours < 0) colours = add_vec3_accessor(m, colour, false);
+      if (colours < 0) colours = out.colours(colour);
       prim.attributes["COLOR_0"] = colours;
     }
-    if (used <= 65535) {  // 65535 itself is the primitive restart value, never an index
-      prim.indices = add_u16_index_accessor(m, std::vector<uint16_t>(idx[k].begin(), idx[k].end()));
-    } else {
-      prim.indices = add_index_accessor(m, idx[k]);
-    }
+    prim.indices = out.indices(idx[k], used);
     gm.primitives.push_back(prim);
   }
   m.meshes.push_back(gm);
-  return static_cast<int>(m.meshes.size()) - 1;
+  return frame;
 }
 
 /// `name` as a relative URI: every byte outside RFC 3986's unreserved set percent-encoded.
@@ -365,13 +527,18 @@ void add_pbr_material(tinygltf::Model& m, const AssetMaterial& material,
   }
 }
 
-/// The scene as a tinygltf model with all binary data in buffer 0 (no URI). With
+/// The scene as a tinygltf model with all binary data in buffer 0 (no URI; with Meshopt
+/// compression, buffer 1 is the fallback, whose byteLength `fallback_bytes` receives, and
+/// `view_extensions` the extensions of the encoded buffer views). With
 /// `image_files` (texture_file_names(), one per texture), each used texture's image refers to
 /// its file instead and `pngs` receives (file name, PNG bytes) for each.
-tinygltf::Model scene_model(const SceneAssets& assets,
+tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& options,
+                            size_t& fallback_bytes,
+                            std::vector<std::pair<int, nlohmann::json>>& view_extensions,
                             const std::vector<std::string>* image_files = nullptr,
                             std::vector<std::pair<std::string, std::string>>* pngs = nullptr) {
   tinygltf::Model m = new_model();
+  if (options.compression == GltfCompression::Meshopt) m.buffers.emplace_back();
   // Only the materials some mesh uses (an unused one is a validator notice), in their order.
   std::vector<int> gltf_material(assets.materials.size(), -1);
   for (const AssetMesh& mesh : assets.meshes) {
@@ -428,7 +595,18 @@ tinygltf::Model scene_model(const SceneAssets& assets,
     gltf_material[k] = static_cast<int>(m.materials.size());
     add_pbr_material(m, assets.materials[k], gltf_texture);
   }
-  for (const AssetMesh& mesh : assets.meshes) add_asset_mesh(m, mesh, gltf_material);
+  SceneBuffers out(m, options.compression);
+  std::vector<MeshFrame> frames;
+  for (const AssetMesh& mesh : assets.meshes)
+    frames.push_back(add_asset_mesh(out, mesh, gltf_material));
+  fallback_bytes = out.fallback_bytes();
+  view_extensions = out.view_extensions();
+  auto require = [&m](const std::string& extension) {
+    m.extensionsUsed.push_back(extension);
+    m.extensionsRequired.push_back(extension);
+  };
+  if (options.compression != GltfCompression::None) require("KHR_mesh_quantization");
+  if (options.compression == GltfCompression::Meshopt) require("EXT_meshopt_compression");
 
   tinygltf::Scene scene;
   scene.name = assets.name;
@@ -450,7 +628,10 @@ tinygltf::Model scene_model(const SceneAssets& assets,
     node.name = inst.name;
     node.mesh = inst.mesh;
     node.rotation = gltf_rotation(q);
-    node.translation = gltf_vec3(inst.translation);
+    // The mesh's frame folded into the node: R (offset + scale q) + t.
+    const MeshFrame& frame = frames[static_cast<size_t>(inst.mesh)];
+    node.translation = gltf_vec3(inst.translation + q * frame.offset);
+    if (frame.scale != 1.0) node.scale = {frame.scale, frame.scale, frame.scale};
     if (!inst.piece.template_name.empty()) {
       const PieceInfo& info = inst.piece;
       tinygltf::Value::Array parts;
@@ -513,6 +694,37 @@ tinygltf::Model scene_model(const SceneAssets& assets,
   if (!m.lights.empty()) m.extensionsUsed.push_back("KHR_lights_punctual");
   m.scenes.push_back(scene);
   return m;
+}
+
+/// A scene's glTF JSON (buffers without URIs) and the bytes of buffer 0.
+struct EncodedScene {
+  nlohmann::json doc;
+  std::vector<unsigned char> bin;
+};
+
+/// scene_model() serialised: buffer 0 holds `bin`; with Meshopt compression buffer 1 is the
+/// EXT_meshopt_compression fallback, which holds no bytes.
+EncodedScene encode_scene(const SceneAssets& assets, const GltfSceneOptions& options,
+                          const std::vector<std::string>* image_files = nullptr,
+                          std::vector<std::pair<std::string, std::string>>* pngs = nullptr) {
+  size_t fallback_bytes = 0;
+  std::vector<std::pair<int, nlohmann::json>> view_extensions;
+  tinygltf::Model m =
+      scene_model(assets, options, fallback_bytes, view_extensions, image_files, pngs);
+  EncodedScene scene;
+  scene.bin.swap(m.buffers[0].data);
+  std::ostringstream out;
+  tinygltf::TinyGLTF writer;
+  writer.WriteGltfSceneToStream(&m, out, false, false);
+  scene.doc = nlohmann::json::parse(out.str());
+  scene.doc["buffers"][0] = {{"byteLength", scene.bin.size()}};
+  if (options.compression == GltfCompression::Meshopt) {
+    scene.doc["buffers"][1] = {{"byteLength", fallback_bytes},
+                               {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}};
+    for (const auto& [view, extensions] : view_extensions)
+      scene.doc["bufferViews"][static_cast<size_t>(view)]["extensions"] = extensions;
+  }
+  return scene;
 }
 
 /// Writes `bytes` to a fresh temporary file beside `target` (flushed) and returns its path.
@@ -637,12 +849,42 @@ void write_model_glb(const std::filesystem::path& path, const DsModel& model,
   write_file_atomically(path, model_to_glb(model, options));
 }
 
-std::string scene_to_glb(const SceneAssets& assets) {
-  tinygltf::Model m = scene_model(assets);
-  return to_glb(m);
+std::string scene_to_glb(const SceneAssets& assets, const GltfSceneOptions& options) {
+  const EncodedScene scene = encode_scene(assets, options);
+  // GLB (glTF 2.0 §4.4): a 12-byte header, the JSON chunk padded with spaces, the BIN chunk
+  // padded with zeros, each length a multiple of 4, little-endian.
+  std::string json = scene.doc.dump();
+  json.resize((json.size() + 3) / 4 * 4, ' ');
+  std::string bin(scene.bin.begin(), scene.bin.end());
+  bin.resize((bin.size() + 3) / 4 * 4, '\0');
+  std::string glb;
+  auto u32 = [&glb](uint32_t v) {
+    for (int k = 0; k < 4; ++k) glb += static_cast<char>((v >> (8 * k)) & 0xff);
+  };
+  glb += "glTF";
+  u32(2);
+  u32(static_cast<uint32_t>(12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin.size())));
+  u32(static_cast<uint32_t>(json.size()));
+  glb += "JSON";
+  glb += json;
+  if (!bin.empty()) {
+    u32(static_cast<uint32_t>(bin.size()));
+    glb += std::string("BIN\0", 4);
+    glb += bin;
+  }
+  return glb;
 }
 
-void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& assets) {
+GltfCompression parse_gltf_compression(std::string_view name) {
+  if (name == "none") return GltfCompression::None;
+  if (name == "quantize") return GltfCompression::Quantize;
+  if (name == "meshopt") return GltfCompression::Meshopt;
+  throw std::invalid_argument("unknown glTF compression '" + std::string(name) +
+                              "' (none, quantize or meshopt)");
+}
+
+void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& assets,
+                      const GltfSceneOptions& options) {
   namespace fs = std::filesystem;
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -657,27 +899,20 @@ void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& asse
     throw std::runtime_error("cannot write " + path.string() + ": no directory " + dir.string());
   }
   if (ext == ".glb") {
-    tinygltf::Model m = scene_model(assets);
-    write_file_atomically(path, to_glb(m));
+    write_file_atomically(path, scene_to_glb(assets, options));
     return;
   }
   // .gltf: the textures as PNG files beside it, written first (each atomically).
   const std::vector<std::string> image_files = texture_file_names(path, assets);
   std::vector<std::pair<std::string, std::string>> pngs;
-  tinygltf::Model m = scene_model(assets, &image_files, &pngs);
+  EncodedScene scene = encode_scene(assets, options, &image_files, &pngs);
   for (const auto& [name, png] : pngs) write_file_atomically(dir / name, png);
-  // .gltf: serialise without the buffer's bytes, then point buffer 0 at the .bin beside it.
+  // .gltf: buffer 0 is the .bin beside it.
   fs::path bin_path = path;
   bin_path.replace_extension(".bin");
-  std::vector<unsigned char> bin;
-  bin.swap(m.buffers[0].data);
-  std::ostringstream out;
-  tinygltf::TinyGLTF writer;
-  writer.WriteGltfSceneToStream(&m, out, false, false);
-  nlohmann::json doc = nlohmann::json::parse(out.str());
-  doc["buffers"][0] = {{"byteLength", bin.size()},
-                       {"uri", uri_encode(bin_path.filename().string())}};
-  const std::string json_text = doc.dump(2) + "\n";
+  const std::vector<unsigned char>& bin = scene.bin;
+  scene.doc["buffers"][0]["uri"] = uri_encode(bin_path.filename().string());
+  const std::string json_text = scene.doc.dump(2) + "\n";
 
   const fs::path bin_tmp =
       stage_file(bin_path, std::string_view(reinterpret_cast<const char*>(bin.data()), bin.size()));

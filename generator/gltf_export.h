@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include "cross_section.h"
 #include "ds_model.h"
@@ -35,12 +36,39 @@ void write_model_glb(const std::filesystem::path& path, const DsModel& model,
 /// Deterministic.
 std::string section_to_glb(const CrossSection& section);
 
+/// How a scene's glTF stores its vertex data (meshoptimizer, Debian's libmeshoptimizer-dev).
+enum class GltfCompression {
+  /// float32 attributes: every glTF 2.0 loader reads them.
+  None,
+  /// KHR_mesh_quantization (listed as required): positions as normalized SHORT over each mesh's
+  /// bounding cube, the cube's centre and half size folded into the nodes that use the mesh
+  /// (their translation and uniform scale); normals as normalized BYTE; colours and texture
+  /// coordinates in 0..1 as normalized UNSIGNED_SHORT. About 1/65535 of the largest half
+  /// extent (1.5 micrometres on a 10 cm fruit), 1/127 on normals. three.js, Blender 3.4+ and
+  /// the Khronos validator read it.
+  Quantize,
+  /// Quantize, each buffer view then encoded by meshoptimizer's vertex and index codecs
+  /// (EXT_meshopt_compression, listed as required; the fallback buffer holds no bytes).
+  /// three.js reads it with its MeshoptDecoder; Blender 3.4 does not.
+  Meshopt,
+};
+
+/// Options of the scene glTF export.
+struct GltfSceneOptions {
+  GltfCompression compression = GltfCompression::Quantize;
+};
+
+/// "none", "quantize" or "meshopt" as a GltfCompression.
+/// @throws std::invalid_argument for any other name
+GltfCompression parse_gltf_compression(std::string_view name);
+
 /// Encodes a scene as binary glTF (.glb), metres, +Y up:
 /// - one mesh per AssetMesh (same order and name), one opaque single-sided primitive per
-///   AssetPrimitive (one for a mesh without), all sharing the mesh's POSITION (float, with
-///   min/max), NORMAL (float, renormalised) and COLOR_0 (float vec3, linear RGB clamped to
-///   0..1) accessors, each with its own indices (uint16 when the mesh has at most 65535
-///   vertices, else uint32); each primitive's triangles in the order meshoptimizer gives for
+///   AssetPrimitive (one for a mesh without), all sharing the mesh's POSITION (with min/max),
+///   NORMAL (renormalised), COLOR_0 (vec3, linear RGB clamped to 0..1) and TEXCOORD_0
+///   accessors, stored as `options.compression` says, each with its own indices (uint16 when
+///   the mesh has at most 65535 vertices, else uint32); each primitive's triangles in the
+///   order meshoptimizer gives for
 ///   the GPU's post-transform vertex cache, the vertices in the order of their first use;
 /// - the materials some primitive uses, in the order of SceneAssets::materials: vertex colour
 ///   times a white base colour, metallic 0, the material's roughness, and
@@ -65,7 +93,7 @@ std::string section_to_glb(const CrossSection& section);
 ///   index is out of range or whose rotation is
 ///   zero; eye == target, fov_y_deg outside (0, 180), aspect <= 0, not 0 < znear < zfar; a
 ///   zero light direction.
-std::string scene_to_glb(const SceneAssets& assets);
+std::string scene_to_glb(const SceneAssets& assets, const GltfSceneOptions& options = {});
 
 /// Writes the scene as glTF, the format chosen by the extension of `path` (case-insensitive):
 /// ".glb": binary glTF, one file (the bytes of scene_to_glb);
@@ -78,6 +106,7 @@ std::string scene_to_glb(const SceneAssets& assets);
 /// @throws std::invalid_argument for any other extension and for invalid assets (see
 ///   scene_to_glb); std::runtime_error when the directory is missing or a file cannot be
 ///   written.
-void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& assets);
+void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& assets,
+                      const GltfSceneOptions& options = {});
 
 }  // namespace cutaway

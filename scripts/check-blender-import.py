@@ -1,7 +1,8 @@
 # Imports a glTF file with Blender's importer and prints what a user would look at: objects,
 # each material's base colour source (vertex colours or an image texture), roughness (a
 # value, or 'from a map' where the material map is wired to it),
-# clearcoat and sheen, and one piece's custom properties (its glTF node extras).
+# clearcoat and sheen, one piece's custom properties (its glTF node extras), the triangle count
+# and the world bounding box.
 # Usage (Debian 12: apt install blender python3-numpy):
 #   blender -b --factory-startup --python scripts/check-blender-import.py -- FILE.glb
 import sys
@@ -32,3 +33,11 @@ for o in meshes:
     if 'template' in o.keys():
         print('extras of', o.name, {k: o[k] for k in o.keys() if not k.startswith('_')})
         break
+# Where the vertices landed (world space, metres): quantized files put each mesh's scale and
+# offset in its object's transform, so these agree with the float file's within a micrometre.
+corners = [o.matrix_world @ v.co for o in meshes for v in o.data.vertices]
+if corners:
+    lo = [round(min(c[k] for c in corners), 5) for k in range(3)]
+    hi = [round(max(c[k] for c in corners), 5) for k in range(3)]
+    print('triangles', sum(len(p.vertices) - 2 for o in meshes for p in o.data.polygons),
+          'bounds', lo, hi)

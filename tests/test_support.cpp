@@ -209,6 +209,33 @@ PngInfo png_info(const std::filesystem::path& file) {
   return info;
 }
 
+double fraction_differing(const std::filesystem::path& a, const std::filesystem::path& b,
+                          int tolerance) {
+  int size[2][2] = {}, channels = 0;
+  unsigned char* pixels[2] = {};
+  const std::filesystem::path files[2] = {a, b};
+  for (int k = 0; k < 2; ++k) {
+    const std::string png = read_file(files[k]);
+    pixels[k] =
+        stbi_load_from_memory(reinterpret_cast<const unsigned char*>(png.data()),
+                              static_cast<int>(png.size()), &size[k][0], &size[k][1], &channels, 4);
+  }
+  double fraction = 1.0;
+  if (pixels[0] && pixels[1] && size[0][0] == size[1][0] && size[0][1] == size[1][1]) {
+    const int n = size[0][0] * size[0][1];
+    int differing = 0;
+    for (int i = 0; i < n; ++i) {
+      int worst = 0;
+      for (int c = 0; c < 3; ++c)
+        worst = std::max(worst, std::abs(pixels[0][4 * i + c] - pixels[1][4 * i + c]));
+      differing += worst > tolerance;
+    }
+    fraction = n > 0 ? static_cast<double>(differing) / n : 0.0;
+  }
+  for (unsigned char* p : pixels) stbi_image_free(p);
+  return fraction;
+}
+
 void texture_with_halves(SceneAssets& assets, size_t mesh, int size) {
   AssetTexture texture{"halves", size, size, 3, {}};
   for (int y = 0; y < size; ++y)

@@ -90,6 +90,11 @@ struct PngInfo {
 /// Reads `file` with stb_image and summarises it.
 PngInfo png_info(const std::filesystem::path& file);
 
+/// The fraction of pixels of two PNG files of one size whose RGB differ by more than
+/// `tolerance` (of 255) in some channel; 1 when the sizes differ or a file cannot be read.
+double fraction_differing(const std::filesystem::path& a, const std::filesystem::path& b,
+                          int tolerance);
+
 /// Maps mesh `mesh` of `assets` (4 vertices per face, in each face the corners (-1, -1),
 /// (1, -1), (1, 1), (-1, 1) of its square, as the tests' cubes are built) onto a new `size` x
 /// `size` texture "halves", blue on its left half and yellow on its right, through a new

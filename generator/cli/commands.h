@@ -61,6 +61,7 @@ struct PieceArgs {
   int cube = 16;
   double perlin = 1.0;  ///< Perlin colour modulation strength (the template's npr bands)
   double silhouettes = 1.0;  ///< silhouette stroke strength over the PNG and in .pov; 0: none
+  std::string compress = "quantize";  ///< glTF vertex data: none, quantize or meshopt
 };
 int run_piece(const PieceArgs& args, const Common& common, OutputSet& outputs);
 
@@ -73,6 +74,7 @@ struct SceneArgs {
   int cube = 16;
   std::string colours = "texture";  ///< "texture" or "vertex" (CapColours)
   double texels_per_mm = 8.6;       ///< CapAtlasOptions::texels_per_m / 1000
+  std::string compress = "quantize";  ///< glTF vertex data: none, quantize or meshopt
 };
 int run_scene(const SceneArgs& args, const Common& common, OutputSet& outputs);
 

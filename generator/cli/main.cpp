@@ -387,6 +387,16 @@ void refuse_empty_output_paths(const CLI::App& command) {
   }
 }
 
+/// `--compress none|quantize|meshopt` of the commands that write glTF scenes.
+void add_compress_option(CLI::App* command, std::string& compress) {
+  command
+      ->add_option("--compress", compress,
+                   "glTF vertex data: quantize (KHR_mesh_quantization, the default; three.js, "
+                   "Blender 3.4+), meshopt (quantize + EXT_meshopt_compression; three.js with "
+                   "MeshoptDecoder) or none (float32)")
+      ->check(CLI::IsMember({"none", "quantize", "meshopt"}));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -481,6 +491,7 @@ int main(int argc, char** argv) {
   piece->add_option("--silhouettes", piece_args.silhouettes,
                     "silhouette stroke strength over the PNG and in .pov (0: off; default 1)")
       ->check(CLI::Range(0.0, 10.0));
+  add_compress_option(piece, piece_args.compress);
 
   cutaway::cli::SheetArgs sheet_args;
   CLI::App* sheet = app.add_subcommand(
@@ -527,6 +538,7 @@ int main(int argc, char** argv) {
                    "texel density of baked cut-face textures (default 8.6: a 60 mm cut face "
                    "516 texels across)")
       ->check(CLI::Range(0.1, 100.0));
+  add_compress_option(scene, scene_args.compress);
 
   std::vector<std::string> check_files;
   CLI::App* check =

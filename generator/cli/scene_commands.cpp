@@ -78,15 +78,18 @@ Targets register_outputs(OutputSet& outputs, const std::vector<std::string>& pat
 }
 
 /// Writes `assets` as each of `t.exports` (glTF or POV-Ray by extension), `t.png` (OpenGL
-/// preview) and `t.render` (POV-Ray), each when asked for. Returns the seconds spent on each.
+/// preview) and `t.render` (POV-Ray), each when asked for; glTF with the vertex data stored as
+/// `compress` (parse_gltf_compression) says. Returns the seconds spent on each.
 /// With `silhouettes` > 0, silhouette strokes of that strength (extract_strokes() at the
 /// assets' image size) are drawn over the PNG and written into the POV-Ray files.
 struct Written {
   double strokes_s = 0, export_s = 0, preview_s = 0, povray_s = 0;
   size_t strokes = 0;
 };
-Written write_outputs(const SceneAssets& assets, const Targets& t, int threads,
-                      double silhouettes) {
+Written write_outputs(const SceneAssets& assets, const Targets& t, int threads, double silhouettes,
+                      const std::string& compress) {
+  GltfSceneOptions gltf;
+  gltf.compression = parse_gltf_compression(compress);
   Written w;
   auto t0 = Clock::now();
   std::vector<Stroke> strokes;
@@ -103,7 +106,7 @@ Written write_outputs(const SceneAssets& assets, const Targets& t, int threads,
   std::filesystem::path pov_written;
   for (const Target& out : t.exports) {
     if (output_format("-o", out.given) == Format::Gltf) {
-      write_scene_gltf(out.file, assets);
+      write_scene_gltf(out.file, assets, gltf);
     } else {
       write_scene_pov(out.file, assets, stroke_ptr, true);
       pov_written = out.file;
@@ -219,7 +222,7 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
     spdlog::warn("{} pieces are not closed 2-manifolds", set.defective_pieces);
   const SceneAssets assets =
       piece_assets(set, tmpl.name, tmpl.skin_material, tmpl.cut_material, 0.3, a.width, a.height);
-  const Written w = write_outputs(assets, targets, common.threads, a.silhouettes);
+  const Written w = write_outputs(assets, targets, common.threads, a.silhouettes, a.compress);
   if (common.stats) {
     std::fprintf(stderr,
                  "{\"template\": \"%s\", \"backend\": \"%s\", \"pieces\": %zu, \"planes\": %zu, "
@@ -279,7 +282,8 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
         const std::string file = (std::filesystem::path(out.given).parent_path() / name).string();
         if (texture_files.insert(file).second) outputs.add("-o", file);
       }
-  const Written w = write_outputs(assets, targets, common.threads, scene.render.silhouettes);
+  const Written w =
+      write_outputs(assets, targets, common.threads, scene.render.silhouettes, a.compress);
   if (common.stats) {
     std::fprintf(
         stderr,

@@ -141,11 +141,11 @@ TEST(SceneCommand, RefusesBadArgumentsAndLeavesNothing) {
       {"scene", kTiny, "-o", (dir / "x.obj").string()},
       {"scene", kTiny, "-o", (dir / "x.glb").string(), "--png", (dir / "x.jpg").string()},
       {"scene", "tests/data/scenes/missing.yaml", "-o", (dir / "x.glb").string()},
+      {"scene", kTiny, "-o", (dir / "x.glb").string(), "--compress", "zip"},
       {"scene", "tests/data/scenes/bad/unknown_field.yaml", "-o", (dir / "x.glb").string()},
       {"piece", "templates/tomato.yaml", "--cut", "slices:0", "-o", (dir / "x.glb").string()},
       {"piece", "templates/tomato.yaml", "--cut", "dice:0.5", "-o", (dir / "x.glb").string()},
-      {"piece", "templates/tomato.yaml", "--cut", "plane:y=500", "-o",
-       (dir / "x.glb").string()},
+      {"piece", "templates/tomato.yaml", "--cut", "plane:y=500", "-o", (dir / "x.glb").string()},
   };
   for (const auto& args : bad) {
     const test::RunResult r = test::run_cutaway(args);
@@ -167,6 +167,18 @@ TEST(PieceCommand, HalvesGiveTwoValidMeshesAndAPicture) {
   const test::PngInfo png = test::png_info(dir / "halves.png");
   EXPECT_EQ(png.width, 800);
   EXPECT_GT(png.not_background, 800u * 600u / 20);
+  // The same halves meshopt-compressed: valid, smaller, the same triangles in three.js.
+  const test::RunResult m = test::run_cutaway(
+      {"piece", "templates/tomato.yaml", "--cut", "halves", "--backend", "cpu", "--cube", "4", "-q",
+       "-o", (dir / "meshopt.glb").string(), "--compress", "meshopt"});
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  EXPECT_EQ(test::validate_gltf(dir / "meshopt.glb").errors, 0);
+  EXPECT_LT(fs::file_size(dir / "meshopt.glb"), fs::file_size(dir / "halves.glb") / 2);
+  const test::ThreeLoadReport plain = test::load_gltf_three(dir / "halves.glb");
+  const test::ThreeLoadReport packed = test::load_gltf_three(dir / "meshopt.glb");
+  ASSERT_TRUE(packed.ok) << packed.error << "\n" << packed.output;
+  EXPECT_EQ(packed.triangles, plain.triangles);
+  EXPECT_GT(plain.triangles, 10000);
 }
 
 }  // namespace

@@ -170,7 +170,7 @@ TEST(SceneGltf, TheSameAssetsGiveTheSameBytes) {
 TEST(SceneGltf, StructureReadsBackWithTinygltf) {
   const auto dir = test::fresh_dir("scene-gltf");
   const SceneAssets s = small_scene();
-  write_scene_gltf(dir / "scene.glb", s);
+  write_scene_gltf(dir / "scene.glb", s, {GltfCompression::None});
   const tinygltf::Model m = load(dir / "scene.glb");
 
   EXPECT_EQ(m.asset.version, "2.0");
@@ -561,6 +561,113 @@ TEST(SceneGltf, TexturedPrimitivesUseTexcoordsAndNoVertexColours) {
   bad = s;
   bad.materials[1].base_colour_texture = 1;
   EXPECT_THROW(scene_to_glb(bad), std::invalid_argument);
+}
+
+/// The float32 value of normalized component `k` of element `i` of accessor `a` (SHORT,
+/// BYTE, UNSIGNED_SHORT or FLOAT), as glTF defines the conversion.
+double component(const tinygltf::Model& m, const tinygltf::Accessor& a, size_t i, int k) {
+  const tinygltf::BufferView& view = m.bufferViews.at(static_cast<size_t>(a.bufferView));
+  const size_t size = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType));
+  const size_t stride =
+      view.byteStride ? view.byteStride : size * tinygltf::GetNumComponentsInType(a.type);
+  const unsigned char* p = m.buffers.at(static_cast<size_t>(view.buffer)).data.data() +
+                           view.byteOffset + a.byteOffset + i * stride +
+                           static_cast<size_t>(k) * size;
+  switch (a.componentType) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+      float f;
+      std::memcpy(&f, p, 4);
+      return f;
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      int16_t v;
+      std::memcpy(&v, p, 2);
+      return std::max(v / 32767.0, -1.0);
+    }
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+      return std::max(static_cast<int8_t>(*p) / 127.0, -1.0);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      uint16_t v;
+      std::memcpy(&v, p, 2);
+      return v / 65535.0;
+    }
+  }
+  ADD_FAILURE() << "component type " << a.componentType;
+  return 0;
+}
+
+TEST(SceneGltf, QuantizedVerticesLandWhereTheAssetsPutThemWithinTheirStep) {
+  const auto dir = test::fresh_dir("scene-gltf-quantize");
+  const SceneAssets s = small_scene();
+  write_scene_gltf(dir / "q.glb", s, {GltfCompression::Quantize});
+  const tinygltf::Model m = load(dir / "q.glb");
+  EXPECT_EQ(m.extensionsRequired, (std::vector<std::string>{"KHR_mesh_quantization"}));
+  for (size_t i = 0; i < s.instances.size(); ++i) {
+    const AssetInstance& inst = s.instances[i];
+    const AssetMesh& mesh = s.meshes[static_cast<size_t>(inst.mesh)];
+    const tinygltf::Node& node = m.nodes[i];
+    ASSERT_EQ(node.scale.size(), 3u);
+    const double scale = node.scale[0];
+    const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+    const glm::dvec3 t(node.translation[0], node.translation[1], node.translation[2]);
+    const auto& prim = m.meshes[static_cast<size_t>(node.mesh)].primitives[0];
+    const tinygltf::Accessor& pos = m.accessors.at(prim.attributes.at("POSITION"));
+    const tinygltf::Accessor& nrm = m.accessors.at(prim.attributes.at("NORMAL"));
+    EXPECT_EQ(pos.componentType, TINYGLTF_COMPONENT_TYPE_SHORT);
+    EXPECT_TRUE(pos.normalized);
+    EXPECT_EQ(nrm.componentType, TINYGLTF_COMPONENT_TYPE_BYTE);
+    // Every written vertex, placed by its node, lies within half a quantisation step (per
+    // axis) of a vertex of the assets placed by their instance, with a normal within 1/127.
+    const double step = scale / 32767;
+    for (size_t v = 0; v < pos.count; ++v) {
+      const glm::dvec3 local(component(m, pos, v, 0), component(m, pos, v, 1),
+                             component(m, pos, v, 2));
+      const glm::dvec3 world = q * (scale * local) + t;
+      const glm::dvec3 normal =
+          q * glm::dvec3(component(m, nrm, v, 0), component(m, nrm, v, 1), component(m, nrm, v, 2));
+      double nearest = 1e9, normal_error = 1e9;
+      for (size_t k = 0; k < mesh.position.size(); ++k) {
+        const double d = glm::length(inst.rotation * mesh.position[k] + inst.translation - world);
+        if (d < nearest - 1e-12) normal_error = 1e9;
+        if (d < nearest + 1e-12) {
+          nearest = std::min(nearest, d);
+          normal_error =
+              std::min(normal_error, glm::length(inst.rotation * mesh.normal[k] - normal));
+        }
+      }
+      EXPECT_LE(nearest, 0.5 * std::sqrt(3.0) * step + 1e-7) << inst.name << " vertex " << v;
+      EXPECT_LE(normal_error, std::sqrt(3.0) / 127) << inst.name << " vertex " << v;
+    }
+  }
+}
+
+TEST(SceneGltf, EveryCompressionPassesTheValidatorAndRendersTheSameInThreeJs) {
+  const auto dir = test::fresh_dir("scene-gltf-compress");
+  SceneAssets s = scene_with_texture();
+  s.meshes[1] = plate("plate", 0.12, 4000);  // enough vertices for the sizes to tell
+  const std::vector<std::pair<std::string, GltfCompression>> modes = {
+      {"none", GltfCompression::None},
+      {"quantize", GltfCompression::Quantize},
+      {"meshopt", GltfCompression::Meshopt}};
+  for (const auto& [name, mode] : modes) {
+    const fs::path file = dir / (name + ".glb");
+    write_scene_gltf(file, s, {mode});
+    const auto report = test::validate_gltf(file);
+    EXPECT_EQ(report.errors, 0) << name << ": " << report.output;
+    EXPECT_EQ(validator_warnings(report), 0) << name << ": " << report.output;
+    const test::ThreeLoadReport r = test::load_gltf_three(file, dir / (name + ".png"), 320, 240);
+    ASSERT_TRUE(r.ok) << name << ": " << r.error << "\n" << r.output;
+    EXPECT_EQ(r.triangles, instanced_triangles(s)) << name;
+    EXPECT_TRUE(r.warnings.empty()) << name << ": " << r.output;
+    if (mode != GltfCompression::None) {
+      // The golden images' tolerance: at most 0.5 % of pixels off by more than 16 of 255.
+      EXPECT_LE(test::fraction_differing(dir / (name + ".png"), dir / "none.png", 16), 0.005)
+          << name;
+    }
+  }
+  const auto bytes = [&](const char* name) { return fs::file_size(dir / name); };
+  EXPECT_LT(bytes("quantize.glb"), bytes("none.glb"));
+  EXPECT_LT(bytes("meshopt.glb"), bytes("quantize.glb"));
 }
 
 TEST(SceneGltf, ThreeJsRendersTheTexture) {

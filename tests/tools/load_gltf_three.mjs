@@ -47,8 +47,11 @@ const PAGE = `<!doctype html>
 <script type="module">
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
+// EXT_meshopt_compression needs the decoder; KHR_mesh_quantization needs nothing.
+const newLoader = () => new GLTFLoader().setMeshoptDecoder(MeshoptDecoder);
 window.loadGltf = async (url) => {
-  const gltf = await new GLTFLoader().loadAsync(url);
+  const gltf = await newLoader().loadAsync(url);
   const meshes = await gltf.parser.getDependencies('mesh');
   const nodes = await gltf.parser.getDependencies('node');
   gltf.scene.updateMatrixWorld(true);
@@ -81,7 +84,7 @@ window.loadGltf = async (url) => {
 };
 // Renders the file with its first camera and lights over a grey background, as PNG data URL.
 window.renderGltf = async (url, width, height) => {
-  const gltf = await new GLTFLoader().loadAsync(url);
+  const gltf = await newLoader().loadAsync(url);
   const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
   renderer.setSize(width, height);
   renderer.outputColorSpace = THREE.SRGBColorSpace;
