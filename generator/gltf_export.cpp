@@ -326,11 +326,37 @@ class SceneBuffers {
   std::vector<std::pair<int, nlohmann::json>> view_extensions_;
 };
 
+/// A triangle list (indices into #V x 3 float `xyz`) simplified by meshoptimizer's edge
+/// collapse (Garland-Heckbert quadrics) towards `fraction` of its triangles, the edges on its
+/// border locked (meshopt_SimplifyLockBorder: a primitive's border is a cut outline or the seam
+/// to the next primitive, so a closed piece stays closed), the error at most `error` of the
+/// mesh's extent; then ordered for the vertex cache.
+std::vector<uint32_t> simplified(const std::vector<uint32_t>& idx, const std::vector<float>& xyz,
+                                 double fraction, double error) {
+  const size_t vertices = xyz.size() / 3;
+  std::vector<uint32_t> out(idx.size());
+  const size_t target = static_cast<size_t>(static_cast<double>(idx.size() / 3) * fraction) * 3;
+  out.resize(meshopt_simplify(out.data(), idx.data(), idx.size(), xyz.data(), vertices,
+                              3 * sizeof(float), target, static_cast<float>(error),
+                              meshopt_SimplifyLockBorder, nullptr));
+  const std::vector<uint32_t> input = out;
+  meshopt_optimizeVertexCache(out.data(), input.data(), input.size(), vertices);
+  return out;
+}
+
+/// A scene mesh as written: its glTF mesh, the frame its positions need, its coarser levels.
+struct AddedMesh {
+  int index = -1;
+  MeshFrame frame;
+  std::vector<int> lods;  ///< glTF meshes of levels 1, 2, ... (names ending _LOD1, _LOD2, ...)
+};
+
 /// Adds mesh `mesh` through `out` (one primitive per AssetPrimitive, sharing the vertex
-/// attributes; material k of the assets is glTF material gltf_material[k]); returns how its
-/// positions map back to metres (the glTF mesh is the model's last).
-MeshFrame add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
-                         const std::vector<int>& gltf_material) {
+/// attributes; material k of the assets is glTF material gltf_material[k]), and `lods` coarser
+/// levels over the same vertices: level l has about 2^-l of each primitive's triangles
+/// (simplified(), error at most 2^(l-1) % of the mesh's extent, so a level may keep more).
+AddedMesh add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
+                         const std::vector<int>& gltf_material, int lods) {
   tinygltf::Model& m = out.model();
   const size_t n = mesh.position.size();
   if (n == 0 || mesh.triangle.empty()) bad_assets("mesh '" + mesh.name + "' has no triangles");
@@ -431,28 +457,42 @@ MeshFrame add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
   const int positions = out.positions(pos, frame);
   const int normals = out.normals(normal);
   int colours = -1, uvs = -1;  // added when some primitive uses them
-  tinygltf::Mesh gm;
-  gm.name = mesh.name;
-  for (size_t k = 0; k < primitives.size(); ++k) {
-    tinygltf::Primitive prim;
-    prim.mode = TINYGLTF_MODE_TRIANGLES;
-    prim.material = gltf_material[static_cast<size_t>(primitives[k].material)];
-    prim.attributes["POSITION"] = positions;
-    prim.attributes["NORMAL"] = normals;
-    // A textured material takes its colour from TEXCOORD_0, never also from COLOR_0 (glTF
-    // would multiply the two).
-    if (textured[k]) {
-      if (uvs < 0) uvs = out.uvs(xy);
-      prim.attributes["TEXCOORD_0"] = uvs;
-    } else {
-      if (colours < 0) colours = out.colours(colour);
-      prim.attributes["COLOR_0"] = colours;
+  // One glTF mesh per level of detail, all over the same vertex accessors.
+  auto add_level = [&](const std::string& name, const std::vector<std::vector<uint32_t>>& lists) {
+    tinygltf::Mesh gm;
+    gm.name = name;
+    for (size_t k = 0; k < primitives.size(); ++k) {
+      tinygltf::Primitive prim;
+      prim.mode = TINYGLTF_MODE_TRIANGLES;
+      prim.material = gltf_material[static_cast<size_t>(primitives[k].material)];
+      prim.attributes["POSITION"] = positions;
+      prim.attributes["NORMAL"] = normals;
+      // A textured material takes its colour from TEXCOORD_0, never also from COLOR_0 (glTF
+      // would multiply the two).
+      if (textured[k]) {
+        if (uvs < 0) uvs = out.uvs(xy);
+        prim.attributes["TEXCOORD_0"] = uvs;
+      } else {
+        if (colours < 0) colours = out.colours(colour);
+        prim.attributes["COLOR_0"] = colours;
+      }
+      prim.indices = out.indices(lists[k], used);
+      gm.primitives.push_back(prim);
     }
-    prim.indices = out.indices(idx[k], used);
-    gm.primitives.push_back(prim);
+    m.meshes.push_back(gm);
+    return static_cast<int>(m.meshes.size()) - 1;
+  };
+  AddedMesh added;
+  added.frame = frame;
+  added.index = add_level(mesh.name, idx);
+  for (int level = 1; level <= lods; ++level) {
+    std::vector<std::vector<uint32_t>> coarser(idx.size());
+    for (size_t k = 0; k < idx.size(); ++k)
+      coarser[k] =
+          simplified(idx[k], pos, std::ldexp(1.0, -level), 0.01 * std::ldexp(1.0, level - 1));
+    added.lods.push_back(add_level(mesh.name + "_LOD" + std::to_string(level), coarser));
   }
-  m.meshes.push_back(gm);
-  return frame;
+  return added;
 }
 
 /// `name` as a relative URI: every byte outside RFC 3986's unreserved set percent-encoded.
@@ -596,9 +636,9 @@ tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& o
     add_pbr_material(m, assets.materials[k], gltf_texture);
   }
   SceneBuffers out(m, options.compression);
-  std::vector<MeshFrame> frames;
+  std::vector<AddedMesh> added;
   for (const AssetMesh& mesh : assets.meshes)
-    frames.push_back(add_asset_mesh(out, mesh, gltf_material));
+    added.push_back(add_asset_mesh(out, mesh, gltf_material, options.lods));
   fallback_bytes = out.fallback_bytes();
   view_extensions = out.view_extensions();
   auto require = [&m](const std::string& extension) {
@@ -614,6 +654,8 @@ tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& o
     m.nodes.push_back(std::move(node));
     scene.nodes.push_back(static_cast<int>(m.nodes.size()) - 1);
   };
+  const size_t scene_nodes = assets.instances.size() + 1 + assets.lights.size();
+  std::vector<tinygltf::Node> lod_nodes;  // after the scene's nodes
   for (const AssetInstance& inst : assets.instances) {
     if (inst.mesh < 0 || inst.mesh >= static_cast<int>(assets.meshes.size())) {
       bad_assets("instance '" + inst.name + "': mesh index out of range");
@@ -626,25 +668,44 @@ tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& o
     if (q.w < 0) q = -q;
     tinygltf::Node node;
     node.name = inst.name;
-    node.mesh = inst.mesh;
+    const AddedMesh& mesh = added[static_cast<size_t>(inst.mesh)];
+    node.mesh = mesh.index;
     node.rotation = gltf_rotation(q);
     // The mesh's frame folded into the node: R (offset + scale q) + t.
-    const MeshFrame& frame = frames[static_cast<size_t>(inst.mesh)];
-    node.translation = gltf_vec3(inst.translation + q * frame.offset);
-    if (frame.scale != 1.0) node.scale = {frame.scale, frame.scale, frame.scale};
+    node.translation = gltf_vec3(inst.translation + q * mesh.frame.offset);
+    if (mesh.frame.scale != 1.0)
+      node.scale = {mesh.frame.scale, mesh.frame.scale, mesh.frame.scale};
+    tinygltf::Value::Object extras;
+    // Levels of detail (MSFT_lod): a node per level, placed alike, outside the scene's list;
+    // level l is shown down to 0.2 * 4^-l of the screen's height, the last one always.
+    if (!mesh.lods.empty()) {
+      tinygltf::Value::Array ids, coverage;
+      for (size_t l = 0; l < mesh.lods.size(); ++l) {
+        tinygltf::Node level = node;
+        level.name = inst.name + "_LOD" + std::to_string(l + 1);
+        level.mesh = mesh.lods[l];
+        ids.emplace_back(static_cast<int>(scene_nodes + lod_nodes.size()));
+        lod_nodes.push_back(std::move(level));
+        coverage.emplace_back(0.2 * std::ldexp(1.0, -2 * static_cast<int>(l)));
+      }
+      coverage.emplace_back(0.0);
+      node.extensions["MSFT_lod"] =
+          tinygltf::Value(tinygltf::Value::Object{{"ids", tinygltf::Value(ids)}});
+      extras["MSFT_screencoverage"] = tinygltf::Value(coverage);
+    }
     if (!inst.piece.template_name.empty()) {
       const PieceInfo& info = inst.piece;
       tinygltf::Value::Array parts;
       for (const std::string& kind : info.parts) parts.emplace_back(kind);
-      node.extras = tinygltf::Value(tinygltf::Value::Object{
-          {"template", tinygltf::Value(info.template_name)},
-          // A decimal string: a 64-bit seed does not fit a JSON number exactly.
-          {"seed", tinygltf::Value(std::to_string(info.seed))},
-          {"cut", tinygltf::Value(info.cut)},
-          {"piece", tinygltf::Value(info.cell)},
-          {"parts", tinygltf::Value(parts)},
-          {"volume_m3", tinygltf::Value(info.volume_m3)}});
+      extras["template"] = tinygltf::Value(info.template_name);
+      // A decimal string: a 64-bit seed does not fit a JSON number exactly.
+      extras["seed"] = tinygltf::Value(std::to_string(info.seed));
+      extras["cut"] = tinygltf::Value(info.cut);
+      extras["piece"] = tinygltf::Value(info.cell);
+      extras["parts"] = tinygltf::Value(parts);
+      extras["volume_m3"] = tinygltf::Value(info.volume_m3);
     }
+    if (!extras.empty()) node.extras = tinygltf::Value(std::move(extras));
     add_node(node);
   }
 
@@ -692,6 +753,8 @@ tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& o
     add_node(node);
   }
   if (!m.lights.empty()) m.extensionsUsed.push_back("KHR_lights_punctual");
+  for (tinygltf::Node& node : lod_nodes) m.nodes.push_back(std::move(node));
+  if (options.lods > 0) m.extensionsUsed.push_back("MSFT_lod");
   m.scenes.push_back(scene);
   return m;
 }

@@ -56,6 +56,15 @@ enum class GltfCompression {
 /// Options of the scene glTF export.
 struct GltfSceneOptions {
   GltfCompression compression = GltfCompression::Quantize;
+  /// Coarser levels of detail per mesh (0..4), made by meshoptimizer's simplifier: level l
+  /// keeps about 2^-l of each primitive's triangles where the error stays within 2^(l-1) % of
+  /// the mesh's extent, the primitives' borders (cut outlines, the seams between skin and cap)
+  /// locked so that closed pieces stay closed; the same vertices, new indices. Written as
+  /// glTF meshes and nodes named `<name>_LOD<l>` (the suffix Unreal and Unity take for levels)
+  /// and tied to the full node by MSFT_lod, with extras.MSFT_screencoverage 0.2 * 4^-l for
+  /// level l and 0 for the last (always shown); those nodes are not in the scene's node list.
+  /// Viewers without MSFT_lod show the full meshes.
+  int lods = 0;
 };
 
 /// "none", "quantize" or "meshopt" as a GltfCompression.

@@ -50,14 +50,16 @@ namespace cutaway {
 ///   with one texture per distinct pair of vertex colour and the finish of the material of a
 ///   face using it (deduplicated by their written text, in order of first use), face_indices
 ///   with three texture indices per face (POV-Ray interpolates the vertex colours across each
-///   triangle). Meshes without triangles are left out, with their
-///   instances.
+///   triangle). The lists hold one item per line, without spaces or indentation: positions
+///   with 6 significant digits, normals with 4, uv with 5. Meshes without triangles are left
+///   out, with their instances.
 /// - one `object { Mesh_<k>_<name> matrix <...> }` per instance: the 3x3 rotation of the
 ///   (normalised) quaternion and the translation in POV-Ray's row-vector `matrix` form.
 ///
 /// Identifiers are `Mesh_<k>_` + the mesh name with every character outside [A-Za-z0-9_]
 /// replaced by '_', cut to 40 characters (POV-Ray's limit); names in comments are sanitised the
-/// same way. Numbers are written with std::to_chars (shortest of %g with 6 significant digits,
+/// same way. Numbers are written with std::to_chars (shortest of %g with 6 significant digits
+/// unless said otherwise,
 /// independent of the C locale, -0 written as 0), so the same assets give byte-identical text.
 ///
 /// @param assets meshes with normal.size() == position.size() or 0, colour.size() ==
@@ -80,7 +82,8 @@ namespace cutaway {
 /// - with `texture_files` (texture_file_names()): faces whose material has a base colour texture
 ///   (and whose mesh has uv) get one texture each, `uv_mapping` with `image_map { png NAME
 ///   interpolate 2 }` and the material's finish; such meshes add uv_vectors (v flipped: POV-Ray
-///   counts from the bottom row) and uv_indices (the face indices). Without, those faces keep
+///   counts from the bottom row) and no uv_indices (POV-Ray then uses the face indices). Without,
+///   those faces keep
 ///   their vertex colours.
 std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* strokes = nullptr,
                          const std::vector<std::string>& texture_files = {});

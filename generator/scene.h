@@ -50,6 +50,9 @@ struct RenderSettings {
   int width = 1280, height = 960;  ///< pixels
   double perlin = 1.0;       ///< NPR Perlin colour modulation strength, 0 turns it off
   double silhouettes = 1.0;  ///< NPR silhouette stroke strength, 0 turns them off
+  /// Texel density of the baked cut-face textures, texels per millimetre (0.1..100): about
+  /// twice the pixels per millimetre the closest cut face gets in the pictures wanted.
+  double texels_per_mm = 8.6;
 };
 
 /// A whole parsed, validated scene.

@@ -339,8 +339,10 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
         std::vector<const Piece*> kept_pieces;
         for (size_t k : kept) kept_pieces.push_back(&set.pieces[k]);
         const ColourModulation modulation(variant.tmpl.npr, object_seed(seed, ii, j, 3));
+        CapAtlasOptions atlas = options.atlas;
+        if (atlas.texels_per_m == 0) atlas.texels_per_m = 1000 * scene.render.texels_per_mm;
         object_materials = add_cap_texture(assets, set, kept_pieces, item_materials, object,
-                                           &modulation, scene.render.perlin, options.atlas, uv);
+                                           &modulation, scene.render.perlin, atlas, uv);
         object_materials =
             add_skin_texture(assets, variant.model.skin(), set, kept, skin_uv, object_materials,
                              object, &modulation, scene.render.perlin, options.skin, uv);

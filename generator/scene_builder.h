@@ -33,7 +33,9 @@ enum class CapColours {
 /// Options of build_scene.
 struct SceneBuildOptions {
   CapColours cap_colours = CapColours::Texture;
-  CapAtlasOptions atlas;       ///< with CapColours::Texture
+  /// With CapColours::Texture; texels_per_m 0 (the default here): the scene's
+  /// render.texels_per_mm.
+  CapAtlasOptions atlas{.texels_per_m = 0};
   SkinTextureOptions skin;     ///< with CapColours::Texture: the swept skins' textures
   DiffusionFactory diffusion;  ///< required
   CapSampling sampling = CapSampling::Dense;  ///< which cap points are diffused

@@ -273,11 +273,12 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
   }
 
   if (auto r = root.get("render")) {
-    r->allow_only({"width", "height", "perlin", "silhouettes"});
+    r->allow_only({"width", "height", "perlin", "silhouettes", "texels_per_mm"});
     if (auto x = r->get("width")) s.render.width = parse_int_in(*x, 16, 8192);
     if (auto x = r->get("height")) s.render.height = parse_int_in(*x, 16, 8192);
     if (auto x = r->get("perlin")) s.render.perlin = x->number_in(0, 10);
     if (auto x = r->get("silhouettes")) s.render.silhouettes = x->number_in(0, 10);
+    if (auto x = r->get("texels_per_mm")) s.render.texels_per_mm = x->number_in(0.1, 100);
   }
   return s;
 }

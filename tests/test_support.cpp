@@ -209,6 +209,36 @@ PngInfo png_info(const std::filesystem::path& file) {
   return info;
 }
 
+bool watertight(const tinygltf::Model& m, const tinygltf::Mesh& mesh) {
+  std::map<std::array<float, 3>, int> id;
+  std::map<std::pair<int, int>, int> edges;
+  for (const tinygltf::Primitive& prim : mesh.primitives) {
+    const tinygltf::Accessor& pos = m.accessors.at(prim.attributes.at("POSITION"));
+    const tinygltf::BufferView& pv = m.bufferViews.at(pos.bufferView);
+    const auto* xyz = reinterpret_cast<const float*>(m.buffers[0].data.data() + pv.byteOffset);
+    const tinygltf::Accessor& idx = m.accessors.at(prim.indices);
+    const tinygltf::BufferView& iv = m.bufferViews.at(idx.bufferView);
+    const unsigned char* raw = m.buffers[0].data.data() + iv.byteOffset;
+    auto vertex = [&](size_t i) {
+      uint32_t v = 0;
+      if (idx.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+        uint16_t s;
+        std::memcpy(&s, raw + 2 * i, 2);
+        v = s;
+      } else {
+        std::memcpy(&v, raw + 4 * i, 4);
+      }
+      const std::array<float, 3> p = {xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]};
+      return id.emplace(p, static_cast<int>(id.size())).first->second;
+    };
+    for (size_t t = 0; t + 2 < idx.count; t += 3) {
+      const int c[3] = {vertex(t), vertex(t + 1), vertex(t + 2)};
+      for (int k = 0; k < 3; ++k) ++edges[std::minmax(c[k], c[(k + 1) % 3])];
+    }
+  }
+  return std::all_of(edges.begin(), edges.end(), [](const auto& e) { return e.second % 2 == 0; });
+}
+
 double fraction_differing(const std::filesystem::path& a, const std::filesystem::path& b,
                           int tolerance) {
   int size[2][2] = {}, channels = 0;

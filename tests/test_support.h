@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tiny_gltf.h>
+
 #include "cross_section.h"
 #include "ds_model.h"
 #include "scene_assets.h"
@@ -89,6 +91,11 @@ struct PngInfo {
 
 /// Reads `file` with stb_image and summarises it.
 PngInfo png_info(const std::filesystem::path& file);
+
+/// Whether the triangles of all primitives of glTF mesh `mesh` (float positions, buffer 0) form
+/// a surface without holes once vertices at one position are one: every edge in an even number
+/// of triangles (two on a 2-manifold; simplification may pinch a sliver near a pole into four).
+bool watertight(const tinygltf::Model& m, const tinygltf::Mesh& mesh);
 
 /// The fraction of pixels of two PNG files of one size whose RGB differ by more than
 /// `tolerance` (of 255) in some channel; 1 when the sizes differ or a file cannot be read.

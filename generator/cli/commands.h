@@ -62,6 +62,7 @@ struct PieceArgs {
   double perlin = 1.0;  ///< Perlin colour modulation strength (the template's npr bands)
   double silhouettes = 1.0;  ///< silhouette stroke strength over the PNG and in .pov; 0: none
   std::string compress = "quantize";  ///< glTF vertex data: none, quantize or meshopt
+  int lods = 0;                       ///< glTF levels of detail per mesh (GltfSceneOptions)
 };
 int run_piece(const PieceArgs& args, const Common& common, OutputSet& outputs);
 
@@ -73,8 +74,9 @@ struct SceneArgs {
   int64_t seed = -1;  ///< >= 0: overrides the scene's seed
   int cube = 16;
   std::string colours = "texture";  ///< "texture" or "vertex" (CapColours)
-  double texels_per_mm = 8.6;       ///< CapAtlasOptions::texels_per_m / 1000
+  double texels_per_mm = 0;         ///< CapAtlasOptions::texels_per_m / 1000; 0: the scene's
   std::string compress = "quantize";  ///< glTF vertex data: none, quantize or meshopt
+  int lods = 0;                       ///< glTF levels of detail per mesh (GltfSceneOptions)
 };
 int run_scene(const SceneArgs& args, const Common& common, OutputSet& outputs);
 

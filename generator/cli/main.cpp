@@ -387,14 +387,19 @@ void refuse_empty_output_paths(const CLI::App& command) {
   }
 }
 
-/// `--compress none|quantize|meshopt` of the commands that write glTF scenes.
-void add_compress_option(CLI::App* command, std::string& compress) {
+/// `--compress none|quantize|meshopt` and `--lods N` of the commands that write glTF scenes.
+void add_gltf_options(CLI::App* command, std::string& compress, int& lods) {
   command
       ->add_option("--compress", compress,
                    "glTF vertex data: quantize (KHR_mesh_quantization, the default; three.js, "
                    "Blender 3.4+), meshopt (quantize + EXT_meshopt_compression; three.js with "
                    "MeshoptDecoder) or none (float32)")
       ->check(CLI::IsMember({"none", "quantize", "meshopt"}));
+  command
+      ->add_option("--lods", lods,
+                   "glTF levels of detail per mesh (MSFT_lod, nodes NAME_LOD1...): level L has "
+                   "about 2^-L of the triangles, outlines and seams kept (default 0)")
+      ->check(CLI::Range(0, 4));
 }
 
 }  // namespace
@@ -491,7 +496,7 @@ int main(int argc, char** argv) {
   piece->add_option("--silhouettes", piece_args.silhouettes,
                     "silhouette stroke strength over the PNG and in .pov (0: off; default 1)")
       ->check(CLI::Range(0.0, 10.0));
-  add_compress_option(piece, piece_args.compress);
+  add_gltf_options(piece, piece_args.compress, piece_args.lods);
 
   cutaway::cli::SheetArgs sheet_args;
   CLI::App* sheet = app.add_subcommand(
@@ -535,10 +540,10 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"texture", "vertex"}));
   scene
       ->add_option("--texels-per-mm", scene_args.texels_per_mm,
-                   "texel density of baked cut-face textures (default 8.6: a 60 mm cut face "
-                   "516 texels across)")
+                   "texel density of baked cut-face textures (default: the scene's "
+                   "render.texels_per_mm, else 8.6: a 60 mm cut face 516 texels across)")
       ->check(CLI::Range(0.1, 100.0));
-  add_compress_option(scene, scene_args.compress);
+  add_gltf_options(scene, scene_args.compress, scene_args.lods);
 
   std::vector<std::string> check_files;
   CLI::App* check =

@@ -79,7 +79,8 @@ Targets register_outputs(OutputSet& outputs, const std::vector<std::string>& pat
 
 /// Writes `assets` as each of `t.exports` (glTF or POV-Ray by extension), `t.png` (OpenGL
 /// preview) and `t.render` (POV-Ray), each when asked for; glTF with the vertex data stored as
-/// `compress` (parse_gltf_compression) says. Returns the seconds spent on each.
+/// `compress` (parse_gltf_compression) says and `lods` levels of detail. Returns the seconds
+/// spent on each.
 /// With `silhouettes` > 0, silhouette strokes of that strength (extract_strokes() at the
 /// assets' image size) are drawn over the PNG and written into the POV-Ray files.
 struct Written {
@@ -87,9 +88,10 @@ struct Written {
   size_t strokes = 0;
 };
 Written write_outputs(const SceneAssets& assets, const Targets& t, int threads, double silhouettes,
-                      const std::string& compress) {
+                      const std::string& compress, int lods) {
   GltfSceneOptions gltf;
   gltf.compression = parse_gltf_compression(compress);
+  gltf.lods = lods;
   Written w;
   auto t0 = Clock::now();
   std::vector<Stroke> strokes;
@@ -222,7 +224,8 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
     spdlog::warn("{} pieces are not closed 2-manifolds", set.defective_pieces);
   const SceneAssets assets =
       piece_assets(set, tmpl.name, tmpl.skin_material, tmpl.cut_material, 0.3, a.width, a.height);
-  const Written w = write_outputs(assets, targets, common.threads, a.silhouettes, a.compress);
+  const Written w =
+      write_outputs(assets, targets, common.threads, a.silhouettes, a.compress, a.lods);
   if (common.stats) {
     std::fprintf(stderr,
                  "{\"template\": \"%s\", \"backend\": \"%s\", \"pieces\": %zu, \"planes\": %zu, "
@@ -252,7 +255,7 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
   SceneBuildOptions options;
   options.sampling = common.sampling;
   options.cap_colours = a.colours == "vertex" ? CapColours::Vertex : CapColours::Texture;
-  options.atlas.texels_per_m = 1000 * a.texels_per_mm;
+  options.atlas.texels_per_m = 1000 * a.texels_per_mm;  // 0: the scene's
   options.diffusion = [&](const DsModel& model) {
     auto backend = make_diffusion(model, {a.cube, common.threads}, choice);
     backend_name = backend->name();
@@ -283,7 +286,7 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
         if (texture_files.insert(file).second) outputs.add("-o", file);
       }
   const Written w =
-      write_outputs(assets, targets, common.threads, scene.render.silhouettes, a.compress);
+      write_outputs(assets, targets, common.threads, scene.render.silhouettes, a.compress, a.lods);
   if (common.stats) {
     std::fprintf(
         stderr,

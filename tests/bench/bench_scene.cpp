@@ -4,8 +4,10 @@
 //
 // Run:   make bench
 //   or:  cmake --build build --target bench_scene && ./build/bench_scene [--repeat N] [--threads N]
-// One line per scene, then one line per stage of the default salad, then per scene the cap
-// sampling compared: dense against adaptive (PMVC points and diffusion seconds, and ratios).
+// One line per scene, then one line per stage of the default salad, the scene's file sizes
+// (.glb in each --compress mode, .pov) and its peak memory (each scene runs in a child process);
+// then per scene the cap sampling compared: dense against adaptive (PMVC points and diffusion
+// seconds, and ratios).
 // `--only NAME` runs one scene.
 #include <algorithm>
 #include <chrono>
@@ -15,9 +17,16 @@
 #include <string>
 #include <vector>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include "gltf_export.h"
+#include "pov_export.h"
 #include "scene_builder.h"
 #include "scene_parser.h"
+#include "silhouettes.h"
+#include "texture_png.h"
 
 namespace {
 
@@ -26,6 +35,83 @@ namespace fs = std::filesystem;
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// One scene end to end, best of `repeat`: a line of counts and seconds; the default salad's
+/// stages; the scene's file sizes (.glb in every compression, .pov with its silhouettes).
+void bench_scene(const fs::path& path, int repeat, int threads, double target_s) {
+  double best = 1e300;
+  cutaway::SceneStats best_stats;
+  cutaway::SceneAssets best_assets;
+  double best_parse = 0, best_export = 0;
+  size_t bytes = 0;
+  for (int r = 0; r < repeat; ++r) {
+    const auto t0 = Clock::now();
+    const cutaway::Scene scene = cutaway::load_scene(path.string());
+    const double parse = seconds_since(t0);
+    cutaway::SceneBuildOptions options;
+    options.diffusion = [threads](const cutaway::DsModel& model) {
+      return cutaway::make_cpu_diffusion(model, {16, threads});
+    };
+    cutaway::SceneStats stats;
+    cutaway::SceneAssets assets = cutaway::build_scene(scene, scene.seed, options, &stats);
+    const auto t1 = Clock::now();
+    const std::string glb = cutaway::scene_to_glb(assets);
+    const double exported = seconds_since(t1);
+    const double total = seconds_since(t0);
+    if (total < best) {
+      best = total;
+      best_stats = stats;
+      best_assets = std::move(assets);
+      best_parse = parse;
+      best_export = exported;
+      bytes = glb.size();
+    }
+  }
+  std::printf(
+      "%-12s %2d objects %3d pieces %7zu triangles %6zu PMVC points => %.2f s "
+      "(glb %.1f MB)%s\n",
+      path.stem().c_str(), best_stats.objects, best_stats.placed, best_stats.triangles,
+      best_stats.diffused_points, best, bytes / 1e6,
+      path.stem() == "salad"
+          ? (best <= target_s ? "  [target <= 30 s: met]" : "  [target <= 30 s: MISSED]")
+          : "");
+  if (path.stem() == "salad") {
+    const auto line = [&](const char* stage, double s) {
+      std::printf("  salad %-28s %6.2f s  %5.1f %%\n", stage, s, 100 * s / best);
+    };
+    line("parse scene + templates", best_parse);
+    line("variants (sweep, synthesis)", best_stats.seconds_variants);
+    line("diffusion backends (BVH)", best_stats.seconds_backend);
+    line("cap sections: triangulation", best_stats.seconds_sections - best_stats.seconds_diffuse);
+    line("cap sections: PMVC diffusion", best_stats.seconds_diffuse);
+    line("clip skin + stitch seams", best_stats.seconds_clip);
+    line("layout", best_stats.seconds_layout);
+    line("export .glb (quantize)", best_export);
+  }
+  // Sizes: the .glb in each compression (textures embedded), the .pov with the silhouette
+  // strokes the scene asks for (its textures are PNG files beside it, not counted).
+  std::printf("  %s sizes:", path.stem().c_str());
+  size_t images = 0;
+  for (const cutaway::AssetTexture& t : best_assets.textures)
+    images += cutaway::encode_png(t).size();
+  for (const auto& [name, mode] : {std::pair{"none", cutaway::GltfCompression::None},
+                                   {"quantize", cutaway::GltfCompression::Quantize},
+                                   {"meshopt", cutaway::GltfCompression::Meshopt}}) {
+    const auto t0 = Clock::now();
+    const size_t size = cutaway::scene_to_glb(best_assets, {mode}).size();
+    std::printf(" glb %s %.1f MB (%.2f s)", name, size / 1e6, seconds_since(t0));
+  }
+  const cutaway::Scene scene = cutaway::load_scene(path.string());
+  cutaway::StrokeOptions strokes;
+  strokes.strength = scene.render.silhouettes;
+  const std::vector<cutaway::Stroke> lines = strokes.strength > 0
+                                                 ? cutaway::extract_strokes(best_assets, strokes)
+                                                 : std::vector<cutaway::Stroke>{};
+  std::printf(
+      " | pov %.1f MB | of which textures %.1f MB  [large scene: glb <= 20 MB default, "
+      "<= 8 MB meshopt]\n",
+      cutaway::scene_to_pov(best_assets, &lines).size() / 1e6, images / 1e6);
 }
 
 }  // namespace
@@ -45,53 +131,23 @@ int main(int argc, char** argv) {
   std::sort(scenes.begin(), scenes.end());
   const double target_s = 30;
   for (const fs::path& path : scenes) {
-    double best = 1e300;
-    cutaway::SceneStats best_stats;
-    double best_parse = 0, best_export = 0;
-    size_t bytes = 0;
-    for (int r = 0; r < repeat; ++r) {
-      const auto t0 = Clock::now();
-      const cutaway::Scene scene = cutaway::load_scene(path.string());
-      const double parse = seconds_since(t0);
-      cutaway::SceneBuildOptions options;
-      options.diffusion = [threads](const cutaway::DsModel& model) {
-        return cutaway::make_cpu_diffusion(model, {16, threads});
-      };
-      cutaway::SceneStats stats;
-      const cutaway::SceneAssets assets = cutaway::build_scene(scene, scene.seed, options, &stats);
-      const auto t1 = Clock::now();
-      const std::string glb = cutaway::scene_to_glb(assets);
-      const double exported = seconds_since(t1);
-      const double total = seconds_since(t0);
-      if (total < best) {
-        best = total;
-        best_stats = stats;
-        best_parse = parse;
-        best_export = exported;
-        bytes = glb.size();
-      }
+    // Each scene in a child process, so that its peak memory (RSS) is its own.
+    std::fflush(stdout);
+    const pid_t child = fork();
+    if (child == 0) {
+      bench_scene(path, repeat, threads, target_s);
+      std::fflush(stdout);
+      _exit(0);
     }
-    std::printf("%-12s %2d objects %3d pieces %7zu triangles %6zu PMVC points => %.2f s "
-                "(glb %.1f MB)%s\n",
-                path.stem().c_str(), best_stats.objects, best_stats.placed, best_stats.triangles,
-                best_stats.diffused_points, best, bytes / 1e6,
-                path.stem() == "salad"
-                    ? (best <= target_s ? "  [target <= 30 s: met]" : "  [target <= 30 s: MISSED]")
-                    : "");
-    if (path.stem() == "salad") {
-      const auto line = [&](const char* stage, double s) {
-        std::printf("  salad %-28s %6.2f s  %5.1f %%\n", stage, s, 100 * s / best);
-      };
-      line("parse scene + templates", best_parse);
-      line("variants (sweep, synthesis)", best_stats.seconds_variants);
-      line("diffusion backends (BVH)", best_stats.seconds_backend);
-      line("cap sections: triangulation",
-           best_stats.seconds_sections - best_stats.seconds_diffuse);
-      line("cap sections: PMVC diffusion", best_stats.seconds_diffuse);
-      line("clip skin + stitch seams", best_stats.seconds_clip);
-      line("layout", best_stats.seconds_layout);
-      line("export .glb", best_export);
+    int status = 0;
+    rusage usage{};
+    if (child < 0 || wait4(child, &status, 0, &usage) != child || !WIFEXITED(status) ||
+        WEXITSTATUS(status) != 0) {
+      std::fprintf(stderr, "%s: the benchmark failed\n", path.stem().c_str());
+      return 1;
     }
+    std::printf("  %s peak memory (RSS) %.2f GB  [target < 2 GB]\n", path.stem().c_str(),
+                usage.ru_maxrss / 1e6);  // kilobytes
   }
   // Cap sampling: the same build with dense and with adaptive sampling.
   for (const fs::path& path : scenes) {

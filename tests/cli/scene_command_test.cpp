@@ -9,6 +9,7 @@
 #include <set>
 
 #include <stb/stb_image.h>
+#include <tiny_gltf.h>
 
 #include "test_support.h"
 
@@ -179,6 +180,50 @@ TEST(PieceCommand, HalvesGiveTwoValidMeshesAndAPicture) {
   ASSERT_TRUE(packed.ok) << packed.error << "\n" << packed.output;
   EXPECT_EQ(packed.triangles, plain.triangles);
   EXPECT_GT(plain.triangles, 10000);
+}
+
+TEST(PieceCommand, LevelsOfDetailHalveTheTrianglesAndLeaveNoHoles) {
+  const fs::path dir = test::fresh_dir("piece-lods");
+  const test::RunResult r = test::run_cutaway(
+      {"piece", "templates/tomato.yaml", "--cut", "wedges:4", "--backend", "cpu", "--cube", "4",
+       "-q", "-o", (dir / "lods.glb").string(), "--lods", "2", "--compress", "none"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const test::GltfReport report = test::validate_gltf(dir / "lods.glb");
+  EXPECT_EQ(report.errors, 0) << report.output;
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model m;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, (dir / "lods.glb").string())) << err;
+  ASSERT_EQ(m.meshes.size(), 12u);  // 4 pieces, 3 levels each
+  auto triangles = [&](const tinygltf::Mesh& mesh) {
+    size_t n = 0;
+    for (const auto& prim : mesh.primitives) n += m.accessors.at(prim.indices).count / 3;
+    return static_cast<double>(n);
+  };
+  for (size_t piece = 0; piece < 4; ++piece) {
+    const tinygltf::Mesh& full = m.meshes[3 * piece];
+    const tinygltf::Mesh& lod1 = m.meshes[3 * piece + 1];
+    const tinygltf::Mesh& lod2 = m.meshes[3 * piece + 2];
+    EXPECT_EQ(lod1.name, full.name + "_LOD1");
+    EXPECT_EQ(lod2.name, full.name + "_LOD2");
+    EXPECT_TRUE(test::watertight(m, full)) << full.name;
+    EXPECT_TRUE(test::watertight(m, lod1)) << lod1.name;
+    EXPECT_TRUE(test::watertight(m, lod2)) << lod2.name;
+    EXPECT_NEAR(triangles(lod1) / triangles(full), 0.5, 0.1) << lod1.name;
+    EXPECT_NEAR(triangles(lod2) / triangles(full), 0.25, 0.1) << lod2.name;
+    // The full node names its levels' nodes, which draw the level meshes where it stands.
+    const tinygltf::Node& node = m.nodes[piece];
+    ASSERT_TRUE(node.extensions.count("MSFT_lod")) << node.name;
+    const tinygltf::Value& ids = node.extensions.at("MSFT_lod").Get("ids");
+    ASSERT_EQ(ids.ArrayLen(), 2u);
+    for (int l = 0; l < 2; ++l) {
+      const tinygltf::Node& level = m.nodes.at(static_cast<size_t>(ids.Get(l).GetNumberAsInt()));
+      EXPECT_EQ(level.name, node.name + "_LOD" + std::to_string(l + 1));
+      EXPECT_EQ(level.mesh, 3 * static_cast<int>(piece) + 1 + l);
+      EXPECT_EQ(level.translation, node.translation);
+      EXPECT_EQ(level.rotation, node.rotation);
+    }
+  }
 }
 
 }  // namespace

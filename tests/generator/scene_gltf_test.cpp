@@ -670,6 +670,59 @@ TEST(SceneGltf, EveryCompressionPassesTheValidatorAndRendersTheSameInThreeJs) {
   EXPECT_LT(bytes("meshopt.glb"), bytes("quantize.glb"));
 }
 
+/// A closed cube, each face its own n x n grid with its own vertices, as two primitives (five
+/// faces, then the sixth, as a piece's skin and cap): flat patches whose straight borders a
+/// simplifier could shorten at no cost unless they are locked.
+AssetMesh gridded_cube(int n) {
+  AssetMesh m;
+  m.name = "gridded_cube";
+  const AssetMesh faces = cube("c", 0.02, {0.5, 0.5, 0.5});  // 4 corners per face
+  for (size_t f = 0; f < 6; ++f) {
+    const glm::dvec3 o = faces.position[4 * f], u = faces.position[4 * f + 1] - o,
+                     v = faces.position[4 * f + 3] - o;
+    const auto base = static_cast<unsigned>(m.position.size());
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        m.position.push_back(o + u * (double(i) / n) + v * (double(j) / n));
+        m.normal.push_back(faces.normal[4 * f]);
+        m.colour.push_back({0.5, 0.5, 0.5});
+      }
+    const auto at = [&](int i, int j) { return base + static_cast<unsigned>(j * (n + 1) + i); };
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        m.triangle.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+        m.triangle.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+      }
+  }
+  const size_t cap = m.triangle.size() / 6;
+  m.primitives = {{0, 5 * cap, 0, {}}, {5 * cap, cap, 0, {}}};
+  return m;
+}
+
+TEST(SceneGltf, LevelsOfDetailKeepBordersSoClosedMeshesStayClosed) {
+  const auto dir = test::fresh_dir("scene-gltf-lods");
+  SceneAssets s = small_scene();
+  s.meshes[0] = gridded_cube(16);
+  GltfSceneOptions options{GltfCompression::None, 2};
+  write_scene_gltf(dir / "lods.glb", s, options);
+  const auto report = test::validate_gltf(dir / "lods.glb");
+  EXPECT_EQ(report.errors, 0) << report.output;
+  const tinygltf::Model m = load(dir / "lods.glb");
+  ASSERT_EQ(m.meshes.size(), 6u);  // two meshes, three levels each
+  EXPECT_EQ(m.meshes[1].name, "gridded_cube_LOD1");
+  for (size_t k = 0; k < 3; ++k) EXPECT_TRUE(test::watertight(m, m.meshes[k])) << k;
+  // The flat faces lose inner vertices only: each level still has fewer triangles.
+  const auto triangles = [&](size_t k) {
+    return m.accessors.at(m.meshes[k].primitives[0].indices).count;
+  };
+  EXPECT_LT(triangles(1), triangles(0));
+  EXPECT_LT(triangles(2), triangles(1));
+  EXPECT_EQ(m.extensionsUsed.back(), "MSFT_lod");
+  // Scene nodes first as without levels; the level nodes after them, outside the scene's list.
+  EXPECT_EQ(m.nodes.size(), static_cast<size_t>(kNodes) + 2 * 3);
+  EXPECT_EQ(m.scenes[0].nodes.size(), static_cast<size_t>(kNodes));
+}
+
 TEST(SceneGltf, ThreeJsRendersTheTexture) {
   // Blue shows only if three.js takes the cube's colour from the texture: its vertex colours
   // are red, and red times blue would be dark.

@@ -109,6 +109,7 @@ TEST(SceneParser, SmallSceneValues) {
   EXPECT_EQ(s.render.height, 480);
   EXPECT_DOUBLE_EQ(s.render.perlin, 0.5);
   EXPECT_DOUBLE_EQ(s.render.silhouettes, 1.5);
+  EXPECT_DOUBLE_EQ(s.render.texels_per_mm, 4);
 }
 
 TEST(SceneParser, Defaults) {
@@ -126,6 +127,7 @@ TEST(SceneParser, Defaults) {
   EXPECT_EQ(s.render.height, 960);
   EXPECT_DOUBLE_EQ(s.render.perlin, 1.0);
   EXPECT_DOUBLE_EQ(s.render.silhouettes, 1.0);
+  EXPECT_DOUBLE_EQ(s.render.texels_per_mm, 8.6);
 }
 
 TEST(SceneParser, ContainerDefaultsPerType) {
@@ -302,6 +304,8 @@ TEST(SceneParser, ErrorsOfTypeAndRange) {
       {kHead + "camera: {eye: [0, 1, 1]}\n" + kItem, "camera", "missing required field 'target'"},
       {kHead + "render: {height: 9000}\n" + kItem, "render.height", "from 16 to 8192"},
       {kHead + "render: {silhouettes: 11}\n" + kItem, "render.silhouettes", "between 0 and 10"},
+      {kHead + "render: {texels_per_mm: 0}\n" + kItem, "render.texels_per_mm",
+       "between 0.1 and 100"},
       {kHead + "render: {dpi: 300}\n" + kItem, "render.dpi", "unknown field \"dpi\""},
       {"format: cutaway-template/1\nname: t\n" + kItem, "format", "unsupported format"},
       {"name: t\n" + kItem, "(root)", "missing required field 'format'"},
