@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <span>
 #include <sstream>
 #include <stdexcept>
@@ -204,29 +205,14 @@ class SceneBuffers {
                     qlo, qhi);
   }
 
-  /// #V x 3 unit normals.
+  /// #V x 3 unit normals: normalized BYTE.
   int normals(const std::vector<float>& xyz) {
-    const size_t count = xyz.size() / 3;
-    if (compression_ == GltfCompression::None)
-      return accessor(xyz.data(), count, 12, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
-                      false);
-    std::vector<int8_t> q(count * 4, 0);
-    for (size_t i = 0; i < 3 * count; ++i)
-      q[i / 3 * 4 + i % 3] = static_cast<int8_t>(std::lround(std::clamp(xyz[i], -1.f, 1.f) * 127));
-    return accessor(q.data(), count, 4, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC3, true);
+    return vec3(xyz, std::vector<int8_t>{}, TINYGLTF_COMPONENT_TYPE_BYTE, -1.f);
   }
 
-  /// #V x 3 linear RGB colours in 0..1.
+  /// #V x 3 linear RGB colours in 0..1: normalized UNSIGNED_SHORT.
   int colours(const std::vector<float>& rgb) {
-    const size_t count = rgb.size() / 3;
-    if (compression_ == GltfCompression::None)
-      return accessor(rgb.data(), count, 12, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
-                      false);
-    std::vector<uint16_t> q(count * 4, 0);
-    for (size_t i = 0; i < 3 * count; ++i)
-      q[i / 3 * 4 + i % 3] = static_cast<uint16_t>(std::lround(rgb[i] * 65535.0));
-    return accessor(q.data(), count, 8, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC3,
-                    true);
+    return vec3(rgb, std::vector<uint16_t>{}, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, 0.f);
   }
 
   /// #V x 2 texture coordinates.
@@ -269,6 +255,22 @@ class SceneBuffers {
   }
 
  private:
+  /// A VEC3 accessor of `xyz` (each in lo..1): float without compression, else normalized
+  /// components of T (BYTE or UNSIGNED_SHORT, glTF type `component`), each element padded to
+  /// 4 of them so that it is 4-byte aligned.
+  template <typename T>
+  int vec3(const std::vector<float>& xyz, std::vector<T> q, int component, float lo) {
+    const size_t count = xyz.size() / 3;
+    if (compression_ == GltfCompression::None)
+      return accessor(xyz.data(), count, 12, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                      false);
+    const double top = std::numeric_limits<T>::max();
+    q.assign(count * 4, 0);
+    for (size_t i = 0; i < 3 * count; ++i)
+      q[i / 3 * 4 + i % 3] = static_cast<T>(std::lround(std::clamp(xyz[i], lo, 1.f) * top));
+    return accessor(q.data(), count, 4 * sizeof(T), component, TINYGLTF_TYPE_VEC3, true);
+  }
+
   /// An accessor over `count` elements `stride` bytes apart (the element itself first).
   int accessor(const void* data, size_t count, size_t stride, int component, int type,
                bool normalized, std::vector<double> lo = {}, std::vector<double> hi = {}) {
@@ -918,22 +920,23 @@ std::string scene_to_glb(const SceneAssets& assets, const GltfSceneOptions& opti
   // padded with zeros, each length a multiple of 4, little-endian.
   std::string json = scene.doc.dump();
   json.resize((json.size() + 3) / 4 * 4, ' ');
-  std::string bin(scene.bin.begin(), scene.bin.end());
-  bin.resize((bin.size() + 3) / 4 * 4, '\0');
+  const size_t bin_bytes = (scene.bin.size() + 3) / 4 * 4;
   std::string glb;
+  glb.reserve(28 + json.size() + bin_bytes);
   auto u32 = [&glb](uint32_t v) {
     for (int k = 0; k < 4; ++k) glb += static_cast<char>((v >> (8 * k)) & 0xff);
   };
   glb += "glTF";
   u32(2);
-  u32(static_cast<uint32_t>(12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin.size())));
+  u32(static_cast<uint32_t>(12 + 8 + json.size() + (bin_bytes == 0 ? 0 : 8 + bin_bytes)));
   u32(static_cast<uint32_t>(json.size()));
   glb += "JSON";
   glb += json;
-  if (!bin.empty()) {
-    u32(static_cast<uint32_t>(bin.size()));
+  if (bin_bytes > 0) {
+    u32(static_cast<uint32_t>(bin_bytes));
     glb += std::string("BIN\0", 4);
-    glb += bin;
+    glb.append(reinterpret_cast<const char*>(scene.bin.data()), scene.bin.size());
+    glb.resize(glb.size() + bin_bytes - scene.bin.size(), '\0');
   }
   return glb;
 }

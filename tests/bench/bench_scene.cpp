@@ -43,11 +43,12 @@ void bench_scene(const fs::path& path, int repeat, int threads, double target_s)
   double best = 1e300;
   cutaway::SceneStats best_stats;
   cutaway::SceneAssets best_assets;
+  cutaway::Scene scene;
   double best_parse = 0, best_export = 0;
   size_t bytes = 0;
   for (int r = 0; r < repeat; ++r) {
     const auto t0 = Clock::now();
-    const cutaway::Scene scene = cutaway::load_scene(path.string());
+    scene = cutaway::load_scene(path.string());
     const double parse = seconds_since(t0);
     cutaway::SceneBuildOptions options;
     options.diffusion = [threads](const cutaway::DsModel& model) {
@@ -102,7 +103,6 @@ void bench_scene(const fs::path& path, int repeat, int threads, double target_s)
     const size_t size = cutaway::scene_to_glb(best_assets, {mode}).size();
     std::printf(" glb %s %.1f MB (%.2f s)", name, size / 1e6, seconds_since(t0));
   }
-  const cutaway::Scene scene = cutaway::load_scene(path.string());
   cutaway::StrokeOptions strokes;
   strokes.strength = scene.render.silhouettes;
   const std::vector<cutaway::Stroke> lines = strokes.strength > 0
