@@ -29,11 +29,18 @@ inline constexpr double kMaterialMapSpread = 0.5 / 255;
 
 /// One object's cap atlas.
 struct CapAtlas {
-  int width = 0, height = 0;  ///< texels (0 x 0: no caps)
+  int width = 0, height = 0;  ///< texels (0 x 0: no caps); both even
   std::vector<uint8_t> srgb;  ///< width * height * 3, row 0 at the top (v = 0), sRGB 8-bit
-  /// width * height * 4: the material map (texel_bake.h, material_pixels), or empty where the
-  /// material channels do not vary over the caps (spread below kMaterialMapSpread).
+  /// width * height: 1 on the islands and their padding, 0 on the background (which holds a
+  /// smooth extension of the islands, fill_background).
+  std::vector<uint8_t> covered;
+  /// material_width * material_height * 4: the material map (texel_bake.h, material_pixels) at
+  /// half the colour's resolution over the same layout (the same texture coordinates address
+  /// it), or empty where the material channels do not vary over the caps (spread below
+  /// kMaterialMapSpread). Half: roughness and translucency change more slowly than colour
+  /// within the flesh, and the eye resolves them less; it is a quarter of the texels.
   std::vector<uint8_t> material;
+  int material_width = 0, material_height = 0;  ///< texels of the material map
   glm::dvec2 material_mean{0.0};  ///< mean (roughness, translucency) over the caps' texels,
                                   ///< to 1e-6 (the diffusion's single precision)
   double texels_per_m = 0;    ///< the density used (options.texels_per_m, or less to fit)
@@ -43,14 +50,16 @@ struct CapAtlas {
 };
 
 /// Bakes the caps of `pieces` (all cut from one object by one cut_pieces call whose sections
-/// are `sections`) into one atlas. Each cap part is an island: its triangles mapped by the
-/// plane frame of its section (u_axis, v_axis: so the two caps of one cut are mirror images in
-/// texture space too), at texels_per_m, packed with stb_rect_pack in piece and part order.
+/// are `sections`) into one atlas. Cap triangles are mapped by the plane frame of their section
+/// (u_axis, v_axis) at texels_per_m. Caps of one plane whose bounding rectangles overlap share
+/// one island: the two caps of a cut cover the same region and carry the same field there, so
+/// they address the same texels and the plane is baked once, not once per side. Islands are
+/// packed with stb_rect_pack in the order of their first cap (piece and part order).
 /// Every texel whose centre lies in a cap triangle gets the barycentric interpolation of the
 /// triangle's vertex colours (linear RGB) and material channels, the colour modulated by
 /// `modulation` at the texel's point in the object frame with `strength` (none when modulation
-/// is null), then encoded as sRGB (texel_bake.h); the islands are dilated by `padding` texels;
-/// other texels are black. Deterministic.
+/// is null), then encoded as sRGB (texel_bake.h); the islands are dilated by `padding` texels
+/// and the background filled by pull-push (fill_background). Deterministic.
 /// @throws std::invalid_argument when texels_per_m <= 0, padding < 0 or max_size < 16
 CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
                         const std::vector<CrossSection>& sections,

@@ -23,7 +23,7 @@
 
 #include "atomic_file.h"
 #include "pbr_material.h"
-#include "texture_png.h"
+#include "texture_image.h"
 
 namespace cutaway {
 
@@ -156,7 +156,8 @@ struct MeshFrame {
 ///   cube (MeshFrame, stride 8), NORMAL as normalized BYTE (stride 4), COLOR_0 as normalized
 ///   UNSIGNED_SHORT (stride 8), TEXCOORD_0 as normalized UNSIGNED_SHORT when every coordinate
 ///   lies in 0..1 (else float); still one plain buffer view each, in buffer 0;
-/// - Meshopt: the Quantize data, each view encoded by meshoptimizer's vertex or index codec
+/// - Meshopt: the Quantize data (positions on 14-bit steps, stored as SHORT), each view
+///   encoded by meshoptimizer's vertex or index codec
 ///   into buffer 0 (EXT_meshopt_compression); the views themselves lie in buffer 1, a fallback
 ///   that holds no bytes (its byteLength is fallback_bytes()).
 /// Indices are UNSIGNED_SHORT when the mesh has at most 65535 vertices (65535 is the primitive
@@ -192,15 +193,20 @@ class SceneBuffers {
     const glm::dvec3 half = (hi - lo) * 0.5;
     frame.scale = std::max({half.x, half.y, half.z});
     if (!(frame.scale > 0)) frame.scale = 1.0;
+    // Steps over each half extent: 16 bits, or 14 for meshopt, whose codec stores the deltas of
+    // the smaller integers in fewer bytes; the node's scale then stretches 14-bit integers read
+    // as normalized SHORT (q / 32767) back to the extent.
+    const double steps = compression_ == GltfCompression::Meshopt ? 8191 : 32767;
     std::vector<int16_t> q(count * 4, 0);
-    std::vector<double> qlo(3, 32767), qhi(3, -32767);
+    std::vector<double> qlo(3, steps), qhi(3, -steps);
     for (size_t i = 0; i < count; ++i)
       for (int k = 0; k < 3; ++k) {
         const double v = (xyz[3 * i + k] - frame.offset[k]) / frame.scale;
-        q[4 * i + k] = static_cast<int16_t>(std::lround(std::clamp(v, -1.0, 1.0) * 32767));
+        q[4 * i + k] = static_cast<int16_t>(std::lround(std::clamp(v, -1.0, 1.0) * steps));
         qlo[k] = std::min<double>(qlo[k], q[4 * i + k]);
         qhi[k] = std::max<double>(qhi[k], q[4 * i + k]);
       }
+    frame.scale *= 32767 / steps;
     return accessor(q.data(), count, 8, TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC3, true,
                     qlo, qhi);
   }
@@ -573,12 +579,12 @@ void add_pbr_material(tinygltf::Model& m, const AssetMaterial& material,
 /// compression, buffer 1 is the fallback, whose byteLength `fallback_bytes` receives, and
 /// `view_extensions` the extensions of the encoded buffer views). With
 /// `image_files` (texture_file_names(), one per texture), each used texture's image refers to
-/// its file instead and `pngs` receives (file name, PNG bytes) for each.
+/// its file instead and `images` receives (file name, image bytes) for each.
 tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& options,
                             size_t& fallback_bytes,
                             std::vector<std::pair<int, nlohmann::json>>& view_extensions,
                             const std::vector<std::string>* image_files = nullptr,
-                            std::vector<std::pair<std::string, std::string>>* pngs = nullptr) {
+                            std::vector<std::pair<std::string, std::string>>* images = nullptr) {
   tinygltf::Model m = new_model();
   if (options.compression == GltfCompression::Meshopt) m.buffers.emplace_back();
   // Only the materials some mesh uses (an unused one is a validator notice), in their order.
@@ -589,7 +595,8 @@ tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& o
     for (const AssetPrimitive& p : mesh.primitives)
       gltf_material[static_cast<size_t>(p.material)] = 0;
   }
-  // The textures of those materials, as PNG images in the buffer, in the assets' order.
+  // The textures of those materials, as images in the buffer (JPEG or PNG, texture_image.h),
+  // in the assets' order.
   std::vector<int> gltf_texture(assets.textures.size(), -1);
   for (size_t k = 0; k < assets.materials.size(); ++k) {
     for (const int t :
@@ -614,15 +621,15 @@ tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& o
       m.samplers.push_back(sampler);
       sampler_index = static_cast<int>(m.samplers.size()) - 1;
     }
-    std::string png = encode_png(assets.textures[t]);
+    std::string bytes = encode_texture(assets.textures[t], options.textures);
     tinygltf::Image image;
     image.name = assets.textures[t].name;
-    image.mimeType = "image/png";
+    image.mimeType = texture_mime_type(assets.textures[t], options.textures);
     if (image_files) {
       image.uri = uri_encode(image_files->at(t));
-      pngs->emplace_back(image_files->at(t), std::move(png));
+      images->emplace_back(image_files->at(t), std::move(bytes));
     } else {
-      image.bufferView = add_view(m, png.data(), png.size(), 0);
+      image.bufferView = add_view(m, bytes.data(), bytes.size(), 0);
     }
     m.images.push_back(image);
     tinygltf::Texture texture;
@@ -771,11 +778,11 @@ struct EncodedScene {
 /// EXT_meshopt_compression fallback, which holds no bytes.
 EncodedScene encode_scene(const SceneAssets& assets, const GltfSceneOptions& options,
                           const std::vector<std::string>* image_files = nullptr,
-                          std::vector<std::pair<std::string, std::string>>* pngs = nullptr) {
+                          std::vector<std::pair<std::string, std::string>>* images = nullptr) {
   size_t fallback_bytes = 0;
   std::vector<std::pair<int, nlohmann::json>> view_extensions;
   tinygltf::Model m =
-      scene_model(assets, options, fallback_bytes, view_extensions, image_files, pngs);
+      scene_model(assets, options, fallback_bytes, view_extensions, image_files, images);
   EncodedScene scene;
   scene.bin.swap(m.buffers[0].data);
   std::ostringstream out;
@@ -968,11 +975,11 @@ void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& asse
     write_file_atomically(path, scene_to_glb(assets, options));
     return;
   }
-  // .gltf: the textures as PNG files beside it, written first (each atomically).
-  const std::vector<std::string> image_files = texture_file_names(path, assets);
-  std::vector<std::pair<std::string, std::string>> pngs;
-  EncodedScene scene = encode_scene(assets, options, &image_files, &pngs);
-  for (const auto& [name, png] : pngs) write_file_atomically(dir / name, png);
+  // .gltf: the textures as image files beside it, written first (each atomically).
+  const std::vector<std::string> image_files = texture_file_names(path, assets, options.textures);
+  std::vector<std::pair<std::string, std::string>> images;
+  EncodedScene scene = encode_scene(assets, options, &image_files, &images);
+  for (const auto& [name, bytes] : images) write_file_atomically(dir / name, bytes);
   // .gltf: buffer 0 is the .bin beside it.
   fs::path bin_path = path;
   bin_path.replace_extension(".bin");

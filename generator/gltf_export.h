@@ -9,6 +9,7 @@
 #include "cross_section.h"
 #include "ds_model.h"
 #include "scene_assets.h"
+#include "texture_image.h"
 
 namespace cutaway {
 
@@ -47,7 +48,8 @@ enum class GltfCompression {
   /// extent (1.5 micrometres on a 10 cm fruit), 1/127 on normals. three.js, Blender 3.4+ and
   /// the Khronos validator read it.
   Quantize,
-  /// Quantize, each buffer view then encoded by meshoptimizer's vertex and index codecs
+  /// Quantize with positions on 14-bit steps (1/16383 of the largest extent: 6 micrometres on a
+  /// 10 cm fruit), each buffer view then encoded by meshoptimizer's vertex and index codecs
   /// (EXT_meshopt_compression, listed as required; the fallback buffer holds no bytes).
   /// three.js reads it with its MeshoptDecoder; Blender 3.4 does not.
   Meshopt,
@@ -65,6 +67,8 @@ struct GltfSceneOptions {
   /// level l and 0 for the last (always shown); those nodes are not in the scene's node list.
   /// Viewers without MSFT_lod show the full meshes.
   int lods = 0;
+  /// How base-colour textures are stored (texture_image.h); material maps are always PNG.
+  TextureFormat textures = TextureFormat::Jpeg;
 };
 
 /// "none", "quantize" or "meshopt" as a GltfCompression.

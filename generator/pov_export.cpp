@@ -15,7 +15,7 @@
 #include <glm/mat3x3.hpp>
 
 #include "atomic_file.h"
-#include "texture_png.h"
+#include "texture_image.h"
 
 namespace cutaway {
 
@@ -316,7 +316,9 @@ void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, cons
   for (size_t f = 0; f < faces.size(); ++f) {
     if (!face_image(f).empty()) {
       face_textures[f].x =
-          index_of("texture { uv_mapping pigment { image_map { png \"" + face_image(f) +
+          index_of("texture { uv_mapping pigment { image_map { " +
+                   std::string(face_image(f).ends_with(".jpg") ? "jpeg" : "png") + " \"" +
+                   face_image(f) +
                    "\" interpolate 2 } } finish { " +
                    finish_identifier(static_cast<size_t>(face_material[f])) + " } }");
       continue;
@@ -517,12 +519,13 @@ std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* s
 }
 
 void write_scene_pov(const std::filesystem::path& path, const SceneAssets& assets,
-                     const std::vector<Stroke>* strokes, bool with_textures) {
+                     const std::vector<Stroke>* strokes, std::optional<TextureFormat> textures) {
   std::vector<std::string> files;
-  if (with_textures) {
-    files = texture_file_names(path, assets);
+  if (textures) {
+    files = texture_file_names(path, assets, *textures);
     for (size_t t = 0; t < files.size(); ++t)
-      write_file_atomically(path.parent_path() / files[t], encode_png(assets.textures[t]));
+      write_file_atomically(path.parent_path() / files[t],
+                            encode_texture(assets.textures[t], *textures));
   }
   write_file_atomically(path, scene_to_pov(assets, strokes, files));
 }

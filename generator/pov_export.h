@@ -4,10 +4,12 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "scene_assets.h"
 #include "silhouettes.h"  // Stroke
+#include "texture_image.h"
 
 namespace cutaway {
 
@@ -81,7 +83,7 @@ namespace cutaway {
 /// @throws std::invalid_argument naming the mesh, instance or light that breaks a precondition
 /// - with `texture_files` (texture_file_names()): faces whose material has a base colour texture
 ///   (and whose mesh has uv) get one texture each, `uv_mapping` with `image_map { png NAME
-///   interpolate 2 }` and the material's finish; such meshes add uv_vectors (v flipped: POV-Ray
+///   interpolate 2 }` (`jpeg` for a NAME ending in .jpg) and the material's finish; such meshes add uv_vectors (v flipped: POV-Ray
 ///   counts from the bottom row) and no uv_indices (POV-Ray then uses the face indices). Without,
 ///   those faces keep
 ///   their vertex colours.
@@ -92,9 +94,10 @@ std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* s
 /// then rename; a failed run leaves no partial file).
 /// @throws std::invalid_argument as scene_to_pov
 /// @throws std::runtime_error when the file cannot be written
-/// With `with_textures`, the textures are written first, as PNG files beside it
+/// With `textures`, the textures are written first, as image files of that format beside it
 /// (texture_file_names(), each atomically), and the scene uses them.
 void write_scene_pov(const std::filesystem::path& path, const SceneAssets& assets,
-                     const std::vector<Stroke>* strokes = nullptr, bool with_textures = false);
+                     const std::vector<Stroke>* strokes = nullptr,
+                     std::optional<TextureFormat> textures = std::nullopt);
 
 }  // namespace cutaway

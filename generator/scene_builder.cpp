@@ -206,7 +206,8 @@ PieceMaterials add_cap_texture(SceneAssets& assets, const PieceSet& set,
   cut.pbr.translucency = atlas.material_mean.y;
   if (!atlas.material.empty()) {
     assets.textures.push_back(
-        {object + "_cut_material", atlas.width, atlas.height, 4, std::move(atlas.material)});
+        {object + "_cut_material", atlas.material_width, atlas.material_height, 4,
+         std::move(atlas.material)});
     cut.material_texture = static_cast<int>(assets.textures.size()) - 1;
   }
   assets.textures.push_back({object + "_cut", atlas.width, atlas.height, 3, std::move(atlas.srgb)});

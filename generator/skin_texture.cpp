@@ -110,6 +110,7 @@ std::vector<uint8_t> bake_skin_texture(const std::vector<const ShadedMesh*>& par
     rasterise(*parts[i], texel, modulation, strength, canvas);
   }
   dilate(canvas, options.padding);
+  fill_background(canvas);
   return srgb_pixels(canvas);
 }
 

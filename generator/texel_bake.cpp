@@ -86,6 +86,103 @@ void dilate(TexelCanvas& canvas, int rings) {
   }
 }
 
+void fill_background(TexelCanvas& canvas) {
+  // One pyramid level: weighted sums turned into means, a weight in 0..1 per texel.
+  struct Level {
+    int width = 0, height = 0;
+    std::vector<glm::dvec3> colour;
+    std::vector<glm::dvec2> material;
+    std::vector<double> weight;
+  };
+  if (std::find(canvas.covered.begin(), canvas.covered.end(), 1) == canvas.covered.end()) return;
+  std::vector<Level> levels(1);
+  levels[0].width = canvas.width;
+  levels[0].height = canvas.height;
+  levels[0].colour = std::move(canvas.colour);
+  levels[0].material = std::move(canvas.material);
+  for (const uint8_t c : canvas.covered) levels[0].weight.push_back(c ? 1.0 : 0.0);
+  // Pull: each coarser texel is the weighted mean of its (up to) 2 x 2 finer ones, its weight
+  // their summed weight clamped to 1.
+  while (levels.back().width > 1 || levels.back().height > 1) {
+    const Level& fine = levels.back();
+    Level coarse;
+    coarse.width = (fine.width + 1) / 2;
+    coarse.height = (fine.height + 1) / 2;
+    const size_t n = static_cast<size_t>(coarse.width) * coarse.height;
+    coarse.colour.assign(n, glm::dvec3(0.0));
+    coarse.material.assign(n, glm::dvec2(0.0));
+    coarse.weight.assign(n, 0.0);
+    for (int y = 0; y < fine.height; ++y)
+      for (int x = 0; x < fine.width; ++x) {
+        const size_t f = static_cast<size_t>(y) * fine.width + x;
+        const size_t c = static_cast<size_t>(y / 2) * coarse.width + x / 2;
+        coarse.colour[c] += fine.weight[f] * fine.colour[f];
+        coarse.material[c] += fine.weight[f] * fine.material[f];
+        coarse.weight[c] += fine.weight[f];
+      }
+    for (size_t c = 0; c < n; ++c) {
+      if (coarse.weight[c] > 0) {
+        coarse.colour[c] /= coarse.weight[c];
+        coarse.material[c] /= coarse.weight[c];
+      }
+      coarse.weight[c] = std::min(coarse.weight[c], 1.0);
+    }
+    levels.push_back(std::move(coarse));
+  }
+  // Push: from the coarsest level down, a texel of weight w keeps w of its own mean and takes
+  // 1 - w from the bilinear upsampling of the (already filled) coarser level.
+  for (size_t k = levels.size() - 1; k-- > 0;) {
+    Level& fine = levels[k];
+    const Level& coarse = levels[k + 1];
+    auto at = [&coarse](int x, int y) {
+      return static_cast<size_t>(std::clamp(y, 0, coarse.height - 1)) * coarse.width +
+             static_cast<size_t>(std::clamp(x, 0, coarse.width - 1));
+    };
+    for (int y = 0; y < fine.height; ++y)
+      for (int x = 0; x < fine.width; ++x) {
+        const size_t f = static_cast<size_t>(y) * fine.width + x;
+        if (fine.weight[f] >= 1) continue;
+        // The fine texel's centre in coarse texel units, and its four nearest coarse centres.
+        const double cx = (x + 0.5) / 2 - 0.5, cy = (y + 0.5) / 2 - 0.5;
+        const int x0 = static_cast<int>(std::floor(cx)), y0 = static_cast<int>(std::floor(cy));
+        const double tx = cx - x0, ty = cy - y0;
+        const size_t i00 = at(x0, y0), i10 = at(x0 + 1, y0), i01 = at(x0, y0 + 1),
+                     i11 = at(x0 + 1, y0 + 1);
+        const glm::dvec3 colour =
+            (1 - ty) * ((1 - tx) * coarse.colour[i00] + tx * coarse.colour[i10]) +
+            ty * ((1 - tx) * coarse.colour[i01] + tx * coarse.colour[i11]);
+        const glm::dvec2 material =
+            (1 - ty) * ((1 - tx) * coarse.material[i00] + tx * coarse.material[i10]) +
+            ty * ((1 - tx) * coarse.material[i01] + tx * coarse.material[i11]);
+        const double w = fine.weight[f];
+        fine.colour[f] = w * fine.colour[f] + (1 - w) * colour;
+        fine.material[f] = w * fine.material[f] + (1 - w) * material;
+        fine.weight[f] = 1;
+      }
+  }
+  canvas.colour = std::move(levels[0].colour);
+  canvas.material = std::move(levels[0].material);
+}
+
+TexelCanvas half_size(const TexelCanvas& canvas) {
+  TexelCanvas half((canvas.width + 1) / 2, (canvas.height + 1) / 2, canvas.wrap_u);
+  std::vector<int> count(half.colour.size(), 0);
+  for (int y = 0; y < canvas.height; ++y)
+    for (int x = 0; x < canvas.width; ++x) {
+      const size_t i = static_cast<size_t>(y) * canvas.width + x;
+      const size_t h = static_cast<size_t>(y / 2) * half.width + x / 2;
+      half.colour[h] += canvas.colour[i];
+      half.material[h] += canvas.material[i];
+      half.covered[h] = half.covered[h] | canvas.covered[i];
+      ++count[h];
+    }
+  for (size_t h = 0; h < half.colour.size(); ++h) {
+    half.colour[h] /= static_cast<double>(count[h]);
+    half.material[h] /= static_cast<double>(count[h]);
+  }
+  return half;
+}
+
 namespace {
 uint8_t byte_of(double v) {
   return static_cast<uint8_t>(std::lround(255.0 * std::clamp(v, 0.0, 1.0)));

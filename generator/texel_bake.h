@@ -1,8 +1,8 @@
 // Baking surface attributes into texels (the cap atlas and the skin texture): triangles mapped
 // to texel space are rasterised at texel centres with their vertex colours and material
 // channels interpolated barycentrically and the Perlin colour modulation evaluated per texel in
-// the object frame; islands are then dilated so that mip-mapping does not bleed the background
-// into their edges.
+// the object frame; islands are then dilated and the background filled by pull-push so that
+// mip-mapping and JPEG do not bleed a black background into their edges.
 #pragma once
 
 #include <cstdint>
@@ -41,6 +41,20 @@ void rasterise(const ShadedMesh& mesh, std::span<const glm::dvec2> texel,
 
 /// `rings` rings of dilation: each uncovered texel with covered 8-neighbours takes their mean.
 void dilate(TexelCanvas& canvas, int rings);
+
+/// Fills every texel still uncovered (after rasterise and dilate) by pull-push (Gortler et al.
+/// 1996, "The Lumigraph" §3.4; the hole filling of texture atlases): the covered texels are
+/// averaged into a pyramid of half-size levels, each level's empty texels taken from the
+/// bilinear upsampling of the next coarser one, so the background becomes a smooth extension
+/// of the islands. Covered texels keep their values. Mip-mapping then blends the islands with
+/// their own colours at every level, not with black, and JPEG spends no bits on edges between
+/// islands and background. A canvas without a covered texel stays as it is. Deterministic.
+void fill_background(TexelCanvas& canvas);
+
+/// The canvas at half its width and height (each rounded up): every texel the mean of the 2 x 2
+/// texels it covers (fewer at an odd edge), covered where any of them is. Texture coordinates
+/// address both alike where width and height are even.
+TexelCanvas half_size(const TexelCanvas& canvas);
 
 /// The colours as 8-bit sRGB RGB (width * height * 3).
 std::vector<uint8_t> srgb_pixels(const TexelCanvas& canvas);

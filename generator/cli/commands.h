@@ -63,6 +63,7 @@ struct PieceArgs {
   double silhouettes = 1.0;  ///< silhouette stroke strength over the PNG and in .pov; 0: none
   std::string compress = "quantize";  ///< glTF vertex data: none, quantize or meshopt
   int lods = 0;                       ///< glTF levels of detail per mesh (GltfSceneOptions)
+  std::string textures = "jpeg";      ///< base-colour texture images: jpeg or png (TextureFormat)
 };
 int run_piece(const PieceArgs& args, const Common& common, OutputSet& outputs);
 
@@ -77,6 +78,7 @@ struct SceneArgs {
   double texels_per_mm = 0;         ///< CapAtlasOptions::texels_per_m / 1000; 0: the scene's
   std::string compress = "quantize";  ///< glTF vertex data: none, quantize or meshopt
   int lods = 0;                       ///< glTF levels of detail per mesh (GltfSceneOptions)
+  std::string textures = "jpeg";      ///< base-colour texture images: jpeg or png (TextureFormat)
 };
 int run_scene(const SceneArgs& args, const Common& common, OutputSet& outputs);
 

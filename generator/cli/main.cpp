@@ -387,8 +387,10 @@ void refuse_empty_output_paths(const CLI::App& command) {
   }
 }
 
-/// `--compress none|quantize|meshopt` and `--lods N` of the commands that write glTF scenes.
-void add_gltf_options(CLI::App* command, std::string& compress, int& lods) {
+/// `--compress none|quantize|meshopt`, `--lods N` and `--textures jpeg|png` of the commands
+/// that write glTF and POV-Ray scenes.
+void add_export_options(CLI::App* command, std::string& compress, int& lods,
+                        std::string& textures) {
   command
       ->add_option("--compress", compress,
                    "glTF vertex data: quantize (KHR_mesh_quantization, the default; three.js, "
@@ -400,6 +402,11 @@ void add_gltf_options(CLI::App* command, std::string& compress, int& lods) {
                    "glTF levels of detail per mesh (MSFT_lod, nodes NAME_LOD1...): level L has "
                    "about 2^-L of the triangles, outlines and seams kept (default 0)")
       ->check(CLI::Range(0, 4));
+  command
+      ->add_option("--textures", textures,
+                   "base-colour texture images in .glb, .gltf and .pov: jpeg (the default, about "
+                   "a fifth of png's bytes) or png (lossless); material maps are always png")
+      ->check(CLI::IsMember({"jpeg", "png"}));
 }
 
 }  // namespace
@@ -496,7 +503,7 @@ int main(int argc, char** argv) {
   piece->add_option("--silhouettes", piece_args.silhouettes,
                     "silhouette stroke strength over the PNG and in .pov (0: off; default 1)")
       ->check(CLI::Range(0.0, 10.0));
-  add_gltf_options(piece, piece_args.compress, piece_args.lods);
+  add_export_options(piece, piece_args.compress, piece_args.lods, piece_args.textures);
 
   cutaway::cli::SheetArgs sheet_args;
   CLI::App* sheet = app.add_subcommand(
@@ -543,7 +550,7 @@ int main(int argc, char** argv) {
                    "texel density of baked cut-face textures (default: the scene's "
                    "render.texels_per_mm, else 8.6: a 60 mm cut face 516 texels across)")
       ->check(CLI::Range(0.1, 100.0));
-  add_gltf_options(scene, scene_args.compress, scene_args.lods);
+  add_export_options(scene, scene_args.compress, scene_args.lods, scene_args.textures);
 
   std::vector<std::string> check_files;
   CLI::App* check =

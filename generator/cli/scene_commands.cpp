@@ -26,7 +26,7 @@
 #include "scene_preview.h"
 #include "silhouettes.h"
 #include "template_parser.h"
-#include "texture_png.h"
+#include "texture_image.h"
 #include "variation.h"
 
 namespace cutaway::cli {
@@ -77,10 +77,20 @@ Targets register_outputs(OutputSet& outputs, const std::vector<std::string>& pat
   return t;
 }
 
+/// The glTF options of `--compress`, `--lods` and `--textures` (the texture format serves
+/// the .pov files' images too).
+GltfSceneOptions export_options(const std::string& compress, int lods,
+                                const std::string& textures) {
+  GltfSceneOptions gltf;
+  gltf.compression = parse_gltf_compression(compress);
+  gltf.lods = lods;
+  gltf.textures = parse_texture_format(textures);
+  return gltf;
+}
+
 /// Writes `assets` as each of `t.exports` (glTF or POV-Ray by extension), `t.png` (OpenGL
-/// preview) and `t.render` (POV-Ray), each when asked for; glTF with the vertex data stored as
-/// `compress` (parse_gltf_compression) says and `lods` levels of detail. Returns the seconds
-/// spent on each.
+/// preview) and `t.render` (POV-Ray), each when asked for; glTF as `gltf` says, POV-Ray with
+/// its textures in gltf.textures' format. Returns the seconds spent on each.
 /// With `silhouettes` > 0, silhouette strokes of that strength (extract_strokes() at the
 /// assets' image size) are drawn over the PNG and written into the POV-Ray files.
 struct Written {
@@ -88,10 +98,7 @@ struct Written {
   size_t strokes = 0;
 };
 Written write_outputs(const SceneAssets& assets, const Targets& t, int threads, double silhouettes,
-                      const std::string& compress, int lods) {
-  GltfSceneOptions gltf;
-  gltf.compression = parse_gltf_compression(compress);
-  gltf.lods = lods;
+                      const GltfSceneOptions& gltf) {
   Written w;
   auto t0 = Clock::now();
   std::vector<Stroke> strokes;
@@ -110,7 +117,7 @@ Written write_outputs(const SceneAssets& assets, const Targets& t, int threads, 
     if (output_format("-o", out.given) == Format::Gltf) {
       write_scene_gltf(out.file, assets, gltf);
     } else {
-      write_scene_pov(out.file, assets, stroke_ptr, true);
+      write_scene_pov(out.file, assets, stroke_ptr, gltf.textures);
       pov_written = out.file;
     }
     spdlog::info("wrote {}", out.given);
@@ -141,7 +148,7 @@ Written write_outputs(const SceneAssets& assets, const Targets& t, int threads, 
     PovrayOptions options;
     options.threads = threads;
     try {
-      if (!temp.empty()) write_scene_pov(pov, assets, stroke_ptr, true);
+      if (!temp.empty()) write_scene_pov(pov, assets, stroke_ptr, gltf.textures);
       spdlog::info("rendering {} with POV-Ray at {} x {}", t.render.given, assets.width,
                    assets.height);
       render_povray(pov, t.render.file, assets.width, assets.height, options);
@@ -225,7 +232,8 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
   const SceneAssets assets =
       piece_assets(set, tmpl.name, tmpl.skin_material, tmpl.cut_material, 0.3, a.width, a.height);
   const Written w =
-      write_outputs(assets, targets, common.threads, a.silhouettes, a.compress, a.lods);
+      write_outputs(assets, targets, common.threads, a.silhouettes,
+                    export_options(a.compress, a.lods, a.textures));
   if (common.stats) {
     std::fprintf(stderr,
                  "{\"template\": \"%s\", \"backend\": \"%s\", \"pieces\": %zu, \"planes\": %zu, "
@@ -281,12 +289,14 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
   for (const Target& out : targets.exports)
     if (output_format("-o", out.given) == Format::Pov ||
         std::filesystem::path(out.given).extension() == ".gltf")
-      for (const std::string& name : texture_file_names(out.given, assets)) {
+      for (const std::string& name :
+           texture_file_names(out.given, assets, parse_texture_format(a.textures))) {
         const std::string file = (std::filesystem::path(out.given).parent_path() / name).string();
         if (texture_files.insert(file).second) outputs.add("-o", file);
       }
   const Written w =
-      write_outputs(assets, targets, common.threads, scene.render.silhouettes, a.compress, a.lods);
+      write_outputs(assets, targets, common.threads, scene.render.silhouettes,
+                    export_options(a.compress, a.lods, a.textures));
   if (common.stats) {
     std::fprintf(
         stderr,

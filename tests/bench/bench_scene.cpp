@@ -26,7 +26,7 @@
 #include "scene_builder.h"
 #include "scene_parser.h"
 #include "silhouettes.h"
-#include "texture_png.h"
+#include "texture_image.h"
 
 namespace {
 
@@ -95,7 +95,7 @@ void bench_scene(const fs::path& path, int repeat, int threads, double target_s)
   std::printf("  %s sizes:", path.stem().c_str());
   size_t images = 0;
   for (const cutaway::AssetTexture& t : best_assets.textures)
-    images += cutaway::encode_png(t).size();
+    images += cutaway::encode_texture(t, cutaway::TextureFormat::Jpeg).size();
   for (const auto& [name, mode] : {std::pair{"none", cutaway::GltfCompression::None},
                                    {"quantize", cutaway::GltfCompression::Quantize},
                                    {"meshopt", cutaway::GltfCompression::Meshopt}}) {

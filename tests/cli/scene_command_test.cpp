@@ -79,9 +79,10 @@ TEST(SceneCommand, ExportsValidGltfAndPovRayAndPictures) {
     EXPECT_LT(x["volume_m3"].get<double>(), 1e-3);
   }
   EXPECT_GE(pieces, 7);
-  // The .pov's textures beside it (cut faces and skins, one each per object), named in it.
-  EXPECT_EQ(pov.find("image_map { png \"tiny_i0_tomato_0_skin.png\""), pov.find("image_map"));
-  EXPECT_NE(pov.find("image_map { png \"tiny_i0_tomato_0_cut.png\""), std::string::npos);
+  // The .pov's textures beside it (cut faces and skins, one each per object, JPEG by
+  // default), named in it.
+  EXPECT_EQ(pov.find("image_map { jpeg \"tiny_i0_tomato_0_skin.jpg\""), pov.find("image_map"));
+  EXPECT_NE(pov.find("image_map { jpeg \"tiny_i0_tomato_0_cut.jpg\""), std::string::npos);
   // The .gltf refers to the same files (no image bytes in its buffer); the cut faces of the
   // tomato and the cucumber, whose material channels vary, have material maps read by both
   // the roughness and the translucency; the onion's do not vary.
@@ -90,14 +91,15 @@ TEST(SceneCommand, ExportsValidGltfAndPovRayAndPictures) {
     EXPECT_FALSE(image.contains("bufferView")) << image.dump();
     uris.insert(image["uri"].get<std::string>());
   }
-  const std::set<std::string> textures = {"tiny_i0_tomato_0_cut.png",
+  // Base colours as JPEG, material maps (linear, with alpha) as PNG.
+  const std::set<std::string> textures = {"tiny_i0_tomato_0_cut.jpg",
                                           "tiny_i0_tomato_0_cut_material.png",
-                                          "tiny_i0_tomato_0_skin.png",
-                                          "tiny_i1_onion_0_cut.png",
-                                          "tiny_i1_onion_0_skin.png",
-                                          "tiny_i2_cucumber_0_cut.png",
+                                          "tiny_i0_tomato_0_skin.jpg",
+                                          "tiny_i1_onion_0_cut.jpg",
+                                          "tiny_i1_onion_0_skin.jpg",
+                                          "tiny_i2_cucumber_0_cut.jpg",
                                           "tiny_i2_cucumber_0_cut_material.png",
-                                          "tiny_i2_cucumber_0_skin.png"};
+                                          "tiny_i2_cucumber_0_skin.jpg"};
   EXPECT_EQ(uris, textures);
   int material_maps = 0;
   for (const auto& material : gltf["materials"]) {
@@ -127,7 +129,7 @@ TEST(SceneCommand, SameSeedSameBytesWhateverTheThreadsAnotherSeedAnotherLayout) 
     const test::RunResult r = test::run_cutaway(scene_args(dir / run, "s", extra));
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
-  for (const char* file : {"s.glb", "s.pov", "s_i0_tomato_0_cut.png"}) {
+  for (const char* file : {"s.glb", "s.pov", "s_i0_tomato_0_cut.jpg"}) {
     const std::string a = test::read_file(dir / "a" / file);
     ASSERT_FALSE(a.empty()) << file;
     EXPECT_TRUE(a == test::read_file(dir / "b" / file)) << file;
@@ -143,6 +145,7 @@ TEST(SceneCommand, RefusesBadArgumentsAndLeavesNothing) {
       {"scene", kTiny, "-o", (dir / "x.glb").string(), "--png", (dir / "x.jpg").string()},
       {"scene", "tests/data/scenes/missing.yaml", "-o", (dir / "x.glb").string()},
       {"scene", kTiny, "-o", (dir / "x.glb").string(), "--compress", "zip"},
+      {"scene", kTiny, "-o", (dir / "x.pov").string(), "--textures", "gif"},
       {"scene", "tests/data/scenes/bad/unknown_field.yaml", "-o", (dir / "x.glb").string()},
       {"piece", "templates/tomato.yaml", "--cut", "slices:0", "-o", (dir / "x.glb").string()},
       {"piece", "templates/tomato.yaml", "--cut", "dice:0.5", "-o", (dir / "x.glb").string()},

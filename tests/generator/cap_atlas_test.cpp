@@ -57,6 +57,11 @@ glm::dvec3 texel_at(const CapAtlas& atlas, glm::dvec2 uv) {
   return {double(atlas.srgb[i]), double(atlas.srgb[i + 1]), double(atlas.srgb[i + 2])};
 }
 
+/// The texels an atlas bakes (its islands with their padding).
+double baked_texels(const CapAtlas& atlas) {
+  return static_cast<double>(std::count(atlas.covered.begin(), atlas.covered.end(), 1));
+}
+
 /// Points on the first piece's cap to compare the atlas with: the centres of every third cap
 /// triangle at least one edge from every cut vertex (across a cut segment the colour jumps
 /// within a texel), with their texture coordinates.
@@ -127,13 +132,18 @@ TEST(CapAtlas, TheMaterialMapAgreesWithDirectPmvcAwayFromCutSegments) {
   const Halves& h = tomato_halves();
   const CapAtlas atlas =
       bake_cap_atlas(all_pieces(h.set), h.set.sections, nullptr, 0, CapAtlasOptions{});
-  ASSERT_EQ(atlas.material.size(), static_cast<size_t>(atlas.width) * atlas.height * 4);
+  // Half the colour's resolution, over the same layout.
+  ASSERT_EQ(atlas.material_width * 2, atlas.width);
+  ASSERT_EQ(atlas.material_height * 2, atlas.height);
+  ASSERT_EQ(atlas.material.size(),
+            static_cast<size_t>(atlas.material_width) * atlas.material_height * 4);
   const auto [points, uv] = cap_samples(h, atlas);
   std::vector<glm::dvec2> baked;
   for (const glm::dvec2& q : uv) {
-    const int x = std::clamp(static_cast<int>(q.x * atlas.width), 0, atlas.width - 1);
-    const int y = std::clamp(static_cast<int>(q.y * atlas.height), 0, atlas.height - 1);
-    const size_t i = 4 * (static_cast<size_t>(y) * atlas.width + x);
+    const int w = atlas.material_width, h = atlas.material_height;
+    const int x = std::clamp(static_cast<int>(q.x * w), 0, w - 1);
+    const int y = std::clamp(static_cast<int>(q.y * h), 0, h - 1);
+    const size_t i = 4 * (static_cast<size_t>(y) * w + x);
     EXPECT_EQ(atlas.material[i], 255);    // no occlusion
     EXPECT_EQ(atlas.material[i + 2], 0);  // not metallic
     baked.push_back({atlas.material[i + 1], atlas.material[i + 3]});
@@ -192,6 +202,52 @@ TEST(CapAtlas, TheTwoCapsOfACutAgreeThroughTheirTextures) {
   }
   EXPECT_GT(compared, 500u);
   EXPECT_LE(worst, 1.0) << "texels at the same point of the two caps differ";
+}
+
+TEST(CapAtlas, TheTwoCapsOfACutShareOneIsland) {
+  // Halves: one plane, two caps covering the same region: one island, so the same point of
+  // either cap has the same texture coordinates and the atlas holds the cap once.
+  const Halves& h = tomato_halves();
+  CapAtlasOptions options;
+  options.texels_per_m = 3000;
+  const CapAtlas atlas = bake_cap_atlas(all_pieces(h.set), h.set.sections, nullptr, 0, options);
+  std::map<std::tuple<double, double, double>, glm::dvec2> uv_of_first;
+  size_t compared = 0;
+  for (int k = 0; k < 2; ++k) {
+    unsigned offset = 0;
+    for (const PiecePart& part : h.set.pieces[k].parts) {
+      for (size_t v = 0; part.kind == PartKind::Cap && v < part.mesh.position.size(); ++v) {
+        const glm::dvec3 p = part.mesh.position[v];
+        const glm::dvec2 uv = atlas.uv[k][offset + v];
+        if (k == 0) {
+          uv_of_first[{p.x, p.y, p.z}] = uv;
+        } else if (const auto it = uv_of_first.find({p.x, p.y, p.z}); it != uv_of_first.end()) {
+          EXPECT_LT(glm::distance(it->second, uv), 1e-12);
+          ++compared;
+        }
+      }
+      offset += static_cast<unsigned>(part.mesh.position.size());
+    }
+  }
+  EXPECT_GT(compared, 100u);
+  // The atlas holds the cap once: as many baked texels as the atlas of one half.
+  const CapAtlas one = bake_cap_atlas({&h.set.pieces[0]}, h.set.sections, nullptr, 0, options);
+  EXPECT_LT(baked_texels(atlas), 1.05 * baked_texels(one));
+
+  // Wedges: each face between two wedges is baked once, so 8 wedges (16 caps on 8 faces) bake
+  // about four times the texels of one wedge (2 caps on 2 faces), not eight times.
+  PieceOptions piece_options;
+  piece_options.section.edge_m = h.tmpl.edge_m;
+  const PieceSet wedges = cut_pieces(h.model, parse_cut_spec("wedges:8", 1e-3), *h.diffusion,
+                                     piece_options);
+  ASSERT_EQ(wedges.pieces.size(), 8u);
+  const CapAtlas eight = bake_cap_atlas(all_pieces(wedges), wedges.sections, nullptr, 0, options);
+  const CapAtlas single = bake_cap_atlas({&wedges.pieces[0]}, wedges.sections, nullptr, 0, options);
+  const double ratio = baked_texels(eight) / baked_texels(single);
+  std::printf("wedges: 8 wedges bake %.0f texels, one wedge %.0f (%.2fx)\n", baked_texels(eight),
+              baked_texels(single), ratio);
+  EXPECT_GT(ratio, 3.0);
+  EXPECT_LT(ratio, 5.0);
 }
 
 TEST(CapAtlas, IslandsAreDisjointDilatedAndDeterministic) {

@@ -11,6 +11,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -422,25 +423,33 @@ TEST(PovExport, AFinishPerMaterialOnTheFacesThatUseIt) {
 }
 
 TEST(PovExport, TexturedFacesUseTheirImageBesideTheScene) {
-  // Mesh 0 (a red cube) mapped onto a 16 x 16 texture, blue on the left, yellow on the right.
+  // Mesh 0 (a red cube) mapped onto a 16 x 16 texture, blue on the left, yellow on the right;
+  // its image as PNG and as JPEG.
   SceneAssets s = test_scene();
   test::texture_with_halves(s, 0, 16);
-  const fs::path dir = test::fresh_dir("pov_export_texture");
-  write_scene_pov(dir / "scene.pov", s, nullptr, true);
-  EXPECT_EQ(test::files_in(dir), (std::vector<std::string>{"scene.pov", "scene_halves.png"}));
-  const std::string text = test::read_file(dir / "scene.pov");
-  EXPECT_EQ(count(text, "image_map { png \"scene_halves.png\" interpolate 2 }"), 1u);
-  EXPECT_EQ(count(text, "uv_vectors {"), 1u);
-  // No uv_indices: POV-Ray takes the face indices (the render below shows both halves).
-  EXPECT_EQ(count(text, "uv_indices {"), 0u);
+  for (const auto& [format, type, file] :
+       {std::tuple{TextureFormat::Png, "png", "scene_halves.png"},
+        std::tuple{TextureFormat::Jpeg, "jpeg", "scene_halves.jpg"}}) {
+    SCOPED_TRACE(type);
+    const fs::path dir = test::fresh_dir(std::string("pov_export_texture_") + type);
+    write_scene_pov(dir / "scene.pov", s, nullptr, format);
+    EXPECT_EQ(test::files_in(dir), (std::vector<std::string>{"scene.pov", file}));
+    const std::string text = test::read_file(dir / "scene.pov");
+    EXPECT_EQ(count(text, std::string("image_map { ") + type + " \"" + file +
+                              "\" interpolate 2 }"),
+              1u);
+    EXPECT_EQ(count(text, "uv_vectors {"), 1u);
+    // No uv_indices: POV-Ray takes the face indices (the render below shows both halves).
+    EXPECT_EQ(count(text, "uv_indices {"), 0u);
+    PovrayOptions options;
+    options.threads = 2;
+    render_povray(dir / "scene.pov", dir / "scene.png", s.width, s.height, options);
+    const test::PngInfo png = test::png_info(dir / "scene.png");
+    EXPECT_GT(png.blue, 20u);
+    EXPECT_GT(png.yellow, 20u);
+  }
   // Without texture files the faces keep their vertex colours.
   EXPECT_EQ(count(scene_to_pov(s), "image_map"), 0u);
-  PovrayOptions options;
-  options.threads = 2;
-  render_povray(dir / "scene.pov", dir / "scene.png", s.width, s.height, options);
-  const test::PngInfo png = test::png_info(dir / "scene.png");
-  EXPECT_GT(png.blue, 20u);
-  EXPECT_GT(png.yellow, 20u);
 }
 
 }  // namespace

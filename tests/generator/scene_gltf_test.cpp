@@ -524,7 +524,7 @@ TEST(SceneGltf, TexturedPrimitivesUseTexcoordsAndNoVertexColours) {
   const SceneAssets s = scene_with_texture();
   const tinygltf::Model m = write_valid_and_load(s, dir / "salad.glb");
   ASSERT_EQ(m.images.size(), 1u);
-  EXPECT_EQ(m.images[0].mimeType, "image/png");
+  EXPECT_EQ(m.images[0].mimeType, "image/jpeg");  // base colours as JPEG by default
   EXPECT_EQ(m.images[0].width, 64);
   ASSERT_EQ(m.textures.size(), 1u);
   ASSERT_EQ(m.materials.size(), 2u);
