@@ -49,7 +49,8 @@ enum class GltfCompression {
   /// the Khronos validator read it.
   Quantize,
   /// Quantize with positions on 14-bit steps (1/16383 of the largest extent: 6 micrometres on a
-  /// 10 cm fruit), each buffer view then encoded by meshoptimizer's vertex and index codecs
+  /// 10 cm fruit) and normals through the octahedral filter (8-bit), each buffer view then
+  /// encoded by meshoptimizer's vertex and index codecs
   /// (EXT_meshopt_compression, listed as required; the fallback buffer holds no bytes).
   /// three.js reads it with its MeshoptDecoder; Blender 3.4 does not.
   Meshopt,

@@ -668,6 +668,24 @@ TEST(SceneGltf, EveryCompressionPassesTheValidatorAndRendersTheSameInThreeJs) {
   const auto bytes = [&](const char* name) { return fs::file_size(dir / name); };
   EXPECT_LT(bytes("quantize.glb"), bytes("none.glb"));
   EXPECT_LT(bytes("meshopt.glb"), bytes("quantize.glb"));
+  // meshopt: normals through the OCTAHEDRAL filter (their views say so, the picture above
+  // shows them decoded), positions as SHORT on 14-bit steps (|q| <= 8191 in min and max).
+  const std::string glb = test::read_file(dir / "meshopt.glb");
+  uint32_t json_bytes = 0;
+  std::memcpy(&json_bytes, glb.data() + 12, 4);
+  const auto j = nlohmann::json::parse(glb.substr(20, json_bytes));
+  size_t filtered = 0;
+  for (const auto& mesh : j["meshes"])
+    for (const auto& prim : mesh["primitives"]) {
+      const auto& normal = j["accessors"][prim["attributes"]["NORMAL"].get<size_t>()];
+      const auto& view = j["bufferViews"][normal["bufferView"].get<size_t>()];
+      EXPECT_EQ(view["extensions"]["EXT_meshopt_compression"].value("filter", ""), "OCTAHEDRAL");
+      ++filtered;
+      const auto& position = j["accessors"][prim["attributes"]["POSITION"].get<size_t>()];
+      for (const double q : position["max"]) EXPECT_LE(std::abs(q), 8191);
+      for (const double q : position["min"]) EXPECT_LE(std::abs(q), 8191);
+    }
+  EXPECT_GE(filtered, 2u);
 }
 
 /// A closed cube, each face its own n x n grid with its own vertices, as two primitives (five
