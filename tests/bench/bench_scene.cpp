@@ -5,7 +5,8 @@
 // Run:   make bench
 //   or:  cmake --build build --target bench_scene && ./build/bench_scene [--repeat N] [--threads N]
 // One line per scene, then one line per stage of the default salad, the scene's file sizes
-// (.glb in each --compress mode, .pov) and its peak memory (each scene runs in a child process);
+// (.glb in each --compress mode, .pov), the checks of its outputs (validator, three.js, POV-Ray)
+// and its peak memory (each scene runs in a child process);
 // then per scene the cap sampling compared: dense against adaptive (PMVC points and diffusion
 // seconds, and ratios).
 // `--only NAME` runs one scene.
@@ -23,6 +24,7 @@
 
 #include "gltf_export.h"
 #include "pov_export.h"
+#include "povray_runner.h"
 #include "scene_builder.h"
 #include "scene_parser.h"
 #include "silhouettes.h"
@@ -35,6 +37,65 @@ namespace fs = std::filesystem;
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// The scene's outputs as a user gets them, written to a temporary folder and checked: each
+/// .glb (quantize, meshopt) by the Khronos validator and three.js in headless Chromium (the
+/// npm tools `make test` installs; skipped without them), the .pov with its textures rendered
+/// by POV-Ray at the scene's size. One line.
+void check_outputs(const std::string& name, const cutaway::SceneAssets& assets,
+                   const std::vector<cutaway::Stroke>& strokes) {
+  const fs::path dir = fs::temp_directory_path() / ("cutaway-bench-" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const fs::path source(CUTAWAY_SOURCE_DIR);
+  const bool tools = fs::exists(source / "node_modules" / "gltf-validator") &&
+                     fs::exists(source / "node_modules" / "three");
+  std::printf("  %s checks:", name.c_str());
+  for (const auto& [mode_name, mode] : {std::pair{"quantize", cutaway::GltfCompression::Quantize},
+                                        {"meshopt", cutaway::GltfCompression::Meshopt}}) {
+    const fs::path glb = dir / (std::string(mode_name) + ".glb");
+    cutaway::write_scene_gltf(glb, assets, {mode});
+    if (!tools) continue;
+    // The tools print one JSON line; its error and triangle counts are what this line reports.
+    const auto run = [](const std::string& command) {
+      std::string out;
+      if (FILE* pipe = popen(command.c_str(), "r")) {
+        char buf[4096];
+        for (size_t n; (n = fread(buf, 1, sizeof buf, pipe)) > 0;) out.append(buf, n);
+        pclose(pipe);
+      }
+      return out;
+    };
+    const auto field = [](const std::string& json, const std::string& key) {
+      const size_t at = json.find("\"" + key + "\":");
+      if (at == std::string::npos) return std::string("?");
+      const size_t from = at + key.size() + 3;
+      return json.substr(from, json.find_first_of(",}", from) - from);
+    };
+    const std::string report = run("cd '" + source.string() +
+                                   "' && node tests/tools/validate_gltf.mjs '" + glb.string() +
+                                   "' 2>/dev/null");
+    const std::string three = run("cd '" + source.string() +
+                                  "' && node tests/tools/load_gltf_three.mjs '" + glb.string() +
+                                  "' 2>/dev/null");
+    std::printf(" %s: validator %s errors %s warnings, three.js ok %s %s triangles |", mode_name,
+                field(report, "errors").c_str(), field(report, "warnings").c_str(),
+                field(three, "ok").c_str(), field(three, "triangles").c_str());
+  }
+  if (!tools) std::printf(" validator and three.js skipped (npm tools: make test installs them) |");
+  const auto t0 = Clock::now();
+  cutaway::write_scene_pov(dir / "scene.pov", assets, strokes.empty() ? nullptr : &strokes,
+                           cutaway::TextureFormat::Jpeg);
+  cutaway::PovrayOptions povray;
+  try {
+    cutaway::render_povray(dir / "scene.pov", dir / "scene.png", assets.width, assets.height,
+                           povray);
+    std::printf(" POV-Ray rendered %d x %d in %.1f s\n", assets.width, assets.height,
+                seconds_since(t0));
+  } catch (const std::exception& e) {
+    std::printf(" POV-Ray FAILED: %s\n", e.what());
+  }
+  fs::remove_all(dir);
 }
 
 /// One scene end to end, best of `repeat`: a line of counts and seconds; the default salad's
@@ -112,6 +173,7 @@ void bench_scene(const fs::path& path, int repeat, int threads, double target_s)
       " | pov %.1f MB | of which textures %.1f MB  [large scene: glb <= 20 MB default, "
       "<= 8 MB meshopt]\n",
       cutaway::scene_to_pov(best_assets, &lines).size() / 1e6, images / 1e6);
+  check_outputs(path.stem().string(), best_assets, lines);
 }
 
 }  // namespace
