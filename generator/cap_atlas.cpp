@@ -31,7 +31,7 @@ struct Island {
   std::vector<size_t> caps;     ///< indices into the cap parts, in piece and part order
 };
 
-/// Whether rectangles [a_lo, a_hi] and [b_lo, b_hi] share an area wider than `eps` each way.
+/// Whether the rectangles of islands `a` and `b` share an area wider than `eps` each way.
 bool overlap(const Island& a, const Island& b, double eps) {
   const glm::dvec2 lo = glm::max(a.lo, b.lo), hi = glm::min(a.hi, b.hi);
   return hi.x - lo.x > eps && hi.y - lo.y > eps;
@@ -40,12 +40,11 @@ bool overlap(const Island& a, const Island& b, double eps) {
 /// One island per cap part, then islands of one plane whose rectangles overlap merged until
 /// none do (the two caps of a cut have the same rectangle; caps of different faces of one plane
 /// that merge only cost the texels between them). Islands keep the order of their first cap.
-std::vector<Island> group_islands(const std::vector<CapPart>& caps,
-                                  const std::vector<int>& plane_of) {
+std::vector<Island> group_islands(const std::vector<CapPart>& caps) {
   std::vector<Island> islands;
   for (size_t c = 0; c < caps.size(); ++c) {
     Island island;
-    island.plane = plane_of[c];
+    island.plane = caps[c].part->plane;
     island.lo = island.hi = caps[c].uv_m.front();
     for (const glm::dvec2& q : caps[c].uv_m) {
       island.lo = glm::min(island.lo, q);
@@ -102,7 +101,6 @@ CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
     throw std::invalid_argument("bake_cap_atlas: bad options");
   CapAtlas atlas;
   std::vector<CapPart> caps;
-  std::vector<int> plane_of;
   for (size_t i = 0; i < pieces.size(); ++i) {
     const std::vector<unsigned> offsets = part_vertex_offsets(*pieces[i]);
     atlas.uv.emplace_back(offsets.back(), glm::dvec2(0.0));
@@ -119,12 +117,11 @@ CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
           cap.uv_m.emplace_back(glm::dot(d, section.u_axis), glm::dot(d, section.v_axis));
         }
         caps.push_back(std::move(cap));
-        plane_of.push_back(part.plane);
       }
     }
   }
   if (caps.empty()) return atlas;
-  const std::vector<Island> islands = group_islands(caps, plane_of);
+  const std::vector<Island> islands = group_islands(caps);
 
   // Pack at the asked density, or at 0.8 of it until everything fits in max_size squared.
   const int pad = options.padding;

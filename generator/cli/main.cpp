@@ -405,7 +405,7 @@ void add_export_options(CLI::App* command, std::string& compress, int& lods,
   command
       ->add_option("--textures", textures,
                    "base-colour texture images in .glb, .gltf and .pov: jpeg (the default, about "
-                   "a fifth of png's bytes) or png (lossless); material maps are always png")
+                   "a tenth of png's bytes) or png (lossless); material maps are always png")
       ->check(CLI::IsMember({"jpeg", "png"}));
 }
 
