@@ -1,7 +1,7 @@
 // Textures as image files: the one encoder of AssetTexture images, for glTF (embedded, or files
 // beside a .gltf) and POV-Ray (files beside the scene). Base colours may be JPEG (a tenth of
-// the PNG's bytes on a baked cap atlas, at a mean error under 2/255); material maps hold linear data
-// and an alpha channel, so they are always PNG.
+// the PNG's bytes on a baked cap atlas, at a mean error under 2/255); material maps hold
+// linear data and an alpha channel, so they are always PNG.
 #pragma once
 
 #include <filesystem>
