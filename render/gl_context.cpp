@@ -7,6 +7,7 @@
 #include <GL/osmesa.h>
 
 #include <array>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
@@ -19,6 +20,13 @@ namespace {
 const char* gl_string(GLenum name) {
   const GLubyte* s = glGetString(name);
   return s ? reinterpret_cast<const char*>(s) : "?";
+}
+
+/// The last EGL error as hexadecimal text, e.g. "0x3001".
+std::string egl_error() {
+  char text[16];
+  std::snprintf(text, sizeof text, "0x%04x", static_cast<unsigned>(eglGetError()));
+  return text;
 }
 
 /// OSMesa (Mesa's llvmpipe, software). Made current on a 1x1 RGBA buffer that nothing draws into.
@@ -88,20 +96,30 @@ class EglContext final : public GlContext {
     std::array<EGLDeviceEXT, 16> devices{};
     EGLint count = 0;
     if (!query_devices(static_cast<EGLint>(devices.size()), devices.data(), &count) || count == 0)
-      throw std::runtime_error("EGL: no devices");
+      throw std::runtime_error("EGL: no devices (eglQueryDevicesEXT: " + egl_error() + ")");
+    std::string reasons;  // why each device was passed over
     for (EGLint i = 0; i < count && context_ == EGL_NO_CONTEXT; ++i) {
       const char* ext = query_device_string(devices[i], EGL_EXTENSIONS);
-      if (ext && std::strstr(ext, "EGL_MESA_device_software")) continue;
+      const std::string device = "; device " + std::to_string(i) + ": ";
+      if (ext && std::strstr(ext, "EGL_MESA_device_software")) {
+        reasons += device + "software";
+        continue;
+      }
       EGLDisplay display = platform_display(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
-      if (display == EGL_NO_DISPLAY || !eglInitialize(display, nullptr, nullptr)) continue;
-      if (try_context(display)) {
+      if (display == EGL_NO_DISPLAY || !eglInitialize(display, nullptr, nullptr)) {
+        reasons += device + "eglInitialize failed (" + egl_error() + ")";
+        continue;
+      }
+      const std::string refused = try_context(display);
+      if (refused.empty()) {
         display_ = display;
       } else {
+        reasons += device + refused;
         eglTerminate(display);
       }
     }
     if (context_ == EGL_NO_CONTEXT)
-      throw std::runtime_error("EGL: no GPU device gives an OpenGL 4.5 core context");
+      throw std::runtime_error("EGL: no GPU device gives an OpenGL 4.5 core context" + reasons);
     make_current();
     if (gladLoadGL(reinterpret_cast<GLADloadfunc>(eglGetProcAddress)) == 0) {
       eglDestroyContext(display_, context_);
@@ -124,19 +142,25 @@ class EglContext final : public GlContext {
   bool hardware() const override { return true; }
 
  private:
-  bool try_context(EGLDisplay display) {
+  /// Creates context_ on `display`; returns "" on success, else why not.
+  std::string try_context(EGLDisplay display) {
     const char* ext = eglQueryString(display, EGL_EXTENSIONS);
-    if (!ext || !std::strstr(ext, "EGL_KHR_surfaceless_context")) return false;
-    if (!eglBindAPI(EGL_OPENGL_API)) return false;
-    const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    if (!ext || !std::strstr(ext, "EGL_KHR_surfaceless_context"))
+      return "no EGL_KHR_surfaceless_context";
+    if (!eglBindAPI(EGL_OPENGL_API)) return "eglBindAPI(OpenGL) failed (" + egl_error() + ")";
+    // EGL_SURFACE_TYPE defaults to EGL_WINDOW_BIT, which a device display without a window
+    // system has no config for (the NVIDIA driver answers none): ask for pbuffer configs.
+    const EGLint config_attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE,
+                                     EGL_OPENGL_BIT, EGL_NONE};
     EGLConfig config;
     EGLint n = 0;
-    if (!eglChooseConfig(display, config_attribs, &config, 1, &n) || n == 0) return false;
+    if (!eglChooseConfig(display, config_attribs, &config, 1, &n) || n == 0)
+      return "no OpenGL config (" + egl_error() + ")";
     const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
                                       EGL_CONTEXT_OPENGL_PROFILE_MASK,
                                       EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     context_ = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs);
-    return context_ != EGL_NO_CONTEXT;
+    return context_ != EGL_NO_CONTEXT ? "" : "eglCreateContext(4.5 core) failed (" + egl_error() + ")";
   }
   EGLDisplay display_ = EGL_NO_DISPLAY;
   EGLContext context_ = EGL_NO_CONTEXT;
@@ -153,10 +177,16 @@ std::unique_ptr<GlContext> create_gpu_context() {
 }
 
 std::unique_ptr<GlContext> create_offscreen_context() {
+  std::string gpu_error;
   try {
     return create_gpu_context();
-  } catch (const std::runtime_error&) {
-    return std::make_unique<OsMesaContext>();  // no GPU reachable through EGL: software
+  } catch (const std::runtime_error& e) {
+    gpu_error = e.what();  // no GPU reachable through EGL: software
+  }
+  try {
+    return std::make_unique<OsMesaContext>();
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(std::string(e.what()) + "; and no GPU: " + gpu_error);
   }
 }
 

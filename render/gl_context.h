@@ -34,8 +34,8 @@ class GlContext {
 /// gives an OpenGL 4.5 core context, OSMesa otherwise. The environment variable
 /// CUTAWAY_GL=osmesa forces OSMesa.
 /// @returns a context that is current on the calling thread
-/// @throws std::runtime_error with the reason when no OpenGL 3.3+ core context can be created
-///         or its entry points cannot be loaded
+/// @throws std::runtime_error with both reasons (OSMesa's and EGL's) when no OpenGL 3.3+ core
+///         context can be created or its entry points cannot be loaded
 std::unique_ptr<GlContext> create_offscreen_context();
 
 /// Creates an offscreen context on a GPU through EGL only (what `--backend auto` asks for).

@@ -7,7 +7,9 @@
 // Run:   make bench                       (builds and runs the `benchmarks` target)
 //   or:  cmake --build build --target bench_sections && ./build/bench_sections
 // Options: --threads N (0: all cores, default), --cube N (default: the CLI default, 16), --repeat N (best of N
-//          timings per cut, default 3), --gl (also time the GL backend; slow on llvmpipe).
+//          timings per cut, default 3), --gl (also time the GL backend, its agreement with the
+//          cpu backend in steps of 1/255, and whole cuts with it, dense and adaptive; slow on
+//          llvmpipe).
 // One line per case; the last line compares the tomato's cut with the target of 0.6 s.
 #include <algorithm>
 #include <chrono>
@@ -28,6 +30,7 @@
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
 
+#include "colour.h"
 #include "cross_section.h"
 #include "diffusion/cube_directions.h"
 #include "diffusion/embree_sheets.h"
@@ -153,6 +156,28 @@ std::pair<double, double> colour_and_material_seconds(const cutaway::DiffusionBa
   return {alone, both};
 }
 
+/// How far the colours and material channels of two backends lie apart at the same points, in
+/// steps of 1/255 (colour.h visible_difference).
+struct Agreement {
+  double mean = 0, max = 0;
+};
+
+Agreement agreement(const cutaway::DiffusionBackend& a, const cutaway::DiffusionBackend& b,
+                    const std::vector<glm::dvec3>& points) {
+  std::vector<glm::dvec3> colour_a(points.size()), colour_b(points.size());
+  std::vector<glm::dvec2> material_a(points.size()), material_b(points.size());
+  a.diffuse_channels(points, colour_a, material_a);
+  b.diffuse_channels(points, colour_b, material_b);
+  Agreement result;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const double d =
+        cutaway::visible_difference(colour_a[i], material_a[i], colour_b[i], material_b[i]);
+    result.mean += d / static_cast<double>(points.size());
+    result.max = std::max(result.max, d);
+  }
+  return result;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -232,11 +257,31 @@ int main(int argc, char** argv) {
                   rays / diffuse_s, rays / raw_s, raw_s / diffuse_s, rays / fast_s);
       if (gl_backend) {
         const auto [gl_colour_s, gl_s] = colour_and_material_seconds(*gl_backend, points, repeat);
+        const Agreement agree = agreement(*gl_backend, *cpu, points);
         std::printf(
-            "%-9s %-10s gl pmvc_points=%zu pmvc_s=%.3f gl_rays_per_s=%.3g "
-            "colour_s=%.3f material_cost=%+.1f%%\n",
+            "%-9s %-10s gl pmvc_points=%zu pmvc_s=%.4f gl_rays_per_s=%.3g "
+            "colour_s=%.4f material_cost=%+.1f%% vs_cpu_mean=%.3f/255 vs_cpu_max=%.2f/255\n",
             tmpl.name.c_str(), cut.name, points.size(), gl_s, rays / gl_s, gl_colour_s,
-            100 * (gl_s / gl_colour_s - 1));
+            100 * (gl_s / gl_colour_s - 1), agree.mean, agree.max);
+        // Whole cuts (triangulation on the CPU, PMVC on the GL backend) in both samplings.
+        for (const auto sampling : {cutaway::CapSampling::Dense, cutaway::CapSampling::Adaptive}) {
+          cutaway::CrossSectionOptions options{tmpl.edge_m};
+          options.sampling = sampling;
+          double gl_cut_s = 1e300, gl_pmvc_s = 1e300;
+          size_t diffused = 0;
+          for (int r = 0; r < repeat; ++r) {
+            const auto t0 = Clock::now();
+            const cutaway::CrossSection gl_cs =
+                cutaway::make_cross_section(model, cut.plane, *gl_backend, options);
+            gl_cut_s = std::min(gl_cut_s, seconds_since(t0));
+            gl_pmvc_s = std::min(gl_pmvc_s, gl_cs.seconds_diffuse);
+            diffused = gl_cs.diffused_points;
+          }
+          std::printf("%-9s %-10s gl %s cut_s=%.4f pmvc_s=%.4f diffused_points=%zu\n",
+                      tmpl.name.c_str(), cut.name,
+                      sampling == cutaway::CapSampling::Dense ? "dense" : "adaptive", gl_cut_s,
+                      gl_pmvc_s, diffused);
+        }
       }
       if (tmpl.name == "tomato") tomato_cut = std::max(tomato_cut, cut_s);
       std::fflush(stdout);
