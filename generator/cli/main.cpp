@@ -429,7 +429,7 @@ int main(int argc, char** argv) {
                  "colour diffusion: cpu (Embree), gl (OpenGL cube maps), auto (gl on a GPU, "
                  "else cpu)")
       ->check(CLI::IsMember({"auto", "cpu", "gl"}));
-  std::string sampling = "dense";
+  std::string sampling = "adaptive";  // dense: every vertex, for comparison
   app.add_option("--sampling", sampling,
                  "which points of a cut face are diffused: dense (every vertex) or adaptive "
                  "(sparse samples along blur bands and in the interior, interpolated and "
