@@ -6,6 +6,8 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "base/constants.h"
+
 namespace cutaway {
 
 namespace {
@@ -43,7 +45,7 @@ AssetMesh lathe(const std::vector<glm::dvec2>& profile, const std::vector<glm::d
     first[i] = static_cast<int>(mesh.position.size());
     const int ring = profile[i].x == 0 ? 1 : kLatheSegments;
     for (int k = 0; k < ring; ++k) {
-      const double a = 2 * M_PI * k / kLatheSegments;
+      const double a = 2 * kPi * k / kLatheSegments;
       const double c = std::cos(a), s = -std::sin(a);
       mesh.position.push_back({profile[i].x * c, profile[i].y, profile[i].x * s});
       mesh.normal.push_back(glm::normalize(glm::dvec3(normals[i].x * c, normals[i].y, normals[i].x * s)));
@@ -127,20 +129,20 @@ std::optional<AssetMesh> container_mesh(const Container& c) {
       const double inner_R = R - bowl_wall(c), foot = 0.45 * R;
       // Inside, from the axis out to the rim, with normals pointing up and inwards.
       append_curve(pts, nrm, 40, [&](double t) {
-        const double r = inner_R * std::sin(t * M_PI / 2);
+        const double r = inner_R * std::sin(t * kPi / 2);
         return glm::dvec2(r, bowl_inner(c, r));
       });
       for (glm::dvec2& n : nrm) n = -n;  // the inside faces the axis and up
       // The rounded rim from the inner to the outer edge.
       const size_t rim_start = pts.size();
       append_curve(pts, nrm, 8, [&](double t) {
-        const double a = M_PI * t, w = bowl_wall(c);
+        const double a = kPi * t, w = bowl_wall(c);
         return glm::dvec2(inner_R + 0.5 * w * (1 - std::cos(a)), H + 0.5 * w * std::sin(a));
       });
       for (size_t k = rim_start; k < nrm.size(); ++k) nrm[k] = -nrm[k];
       // Outside, from the rim down to the foot.
       append_curve(pts, nrm, 40, [&](double t) {
-        const double a = t * M_PI / 2;
+        const double a = t * kPi / 2;
         return glm::dvec2(foot + (R - foot) * std::cos(a), H * (1 - std::sin(a)));
       });
       for (size_t k = nrm.size() - 41; k < nrm.size(); ++k) nrm[k] = -nrm[k];

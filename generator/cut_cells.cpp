@@ -4,6 +4,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "base/constants.h"
 #include "error.h"
 
 namespace cutaway {
@@ -87,7 +88,7 @@ CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min,
           flipped[k] = true;
           continue;
         }
-        const double t = 2 * M_PI * k / n;
+        const double t = 2 * kPi * k / n;
         plane_of[k] = static_cast<int>(out.planes.size());
         out.planes.push_back({{0, 0, 0}, {std::sin(t), 0, std::cos(t)}});
       }

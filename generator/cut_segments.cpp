@@ -9,8 +9,6 @@ namespace cutaway {
 
 namespace {
 
-glm::dvec3 to_glm(const OpenMesh::Vec3d& v) { return {v[0], v[1], v[2]}; }
-
 DsAttributes attributes_of(const DsMesh::VertexData& d) {
   return {to_glm(d.front),
           to_glm(d.back),

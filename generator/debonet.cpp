@@ -3,17 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include <glm/geometric.hpp>
 
+#include "base/constants.h"
 #include "error.h"
 
 namespace cutaway {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 /// Cyclic [1 4 6 4 1] / 16 filter, times `gain`.
 CyclicSignal blur(const CyclicSignal& s, double gain) {

@@ -33,6 +33,9 @@ struct DsMeshTraits : public OpenMesh::DefaultTraits {
 
 using DsMesh = OpenMesh::TriMesh_ArrayKernelT<DsMeshTraits>;
 
+/// A DS mesh point or vector (OpenMesh, metres) as a GLM vector.
+inline glm::dvec3 to_glm(const OpenMesh::Vec3d& v) { return {v[0], v[1], v[2]}; }
+
 /// The smallest blur a DS vertex carries, metres (1 um): the two sheets of a blurred surface sit
 /// at +-blur, and sheets closer than this cannot be told apart in single-precision ray casting
 /// or placed as distinct points of a cut's triangulation (a blur of 1e-300 m made both loop).

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include <Eigen/Dense>
 #include <glm/geometric.hpp>
 
+#include "base/constants.h"
 #include "error.h"
 #include "template_checks.h"
 
@@ -14,7 +14,6 @@ namespace cutaway {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 
 glm::dvec2 xz_at(double rho, double phi) { return {rho * std::cos(phi), -rho * std::sin(phi)}; }

@@ -3,24 +3,22 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <sstream>
 #include <unordered_map>
 
 #include <glm/geometric.hpp>
 
+#include "base/constants.h"
 #include "error.h"
 
 namespace cutaway {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr uint64_t kPurposeGrains = 0x677261696e;  // "grain"
 
 glm::dvec3 point(const DsMesh& m, DsMesh::VertexHandle v) {
-  const auto& p = m.point(v);
-  return {p[0], p[1], p[2]};
+  return to_glm(m.point(v));
 }
 
 bool in_range(double x, const glm::dvec2& r) { return x >= r.x - 1e-12 && x <= r.y + 1e-12; }

@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "base/timer.h"
 #include "clip_mesh.h"
 #include "manifold_check.h"
 #include "seam_stitch.h"
@@ -14,10 +15,6 @@
 namespace cutaway {
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 /// A DS surface as a shaded mesh showing one side's colour; `facing_back` turns its back side
 /// outwards (reversed winding and normals).

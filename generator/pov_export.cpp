@@ -14,6 +14,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "base/constants.h"
 #include "atomic_file.h"
 #include "texture_image.h"
 
@@ -21,7 +22,6 @@ namespace cutaway {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kPointFadeDistance_m = 0.01;  // POV-Ray fade_distance of point lights
 constexpr size_t kMaxIdentifier = 40;           // POV-Ray's identifier length limit
 
@@ -411,7 +411,7 @@ void write_strokes(std::string& out, const SceneAssets& a, const std::vector<Str
   const AssetCamera& c = a.camera;
   const glm::dvec3 forward = glm::normalize(c.target - c.eye);
   const double metres_per_pixel_per_depth =
-      2 * std::tan(c.fov_y_deg * M_PI / 360) / std::max(1, a.height);
+      2 * std::tan(c.fov_y_deg * kPi / 360) / std::max(1, a.height);
   out += "// Silhouette strokes (Northrup and Markosian 2000): spheres joined by cones.\n";
   out += "#declare Cutaway_Stroke_Finish = finish { emission 1 ambient 0 diffuse 0 specular 0 "
          "}\n\n";

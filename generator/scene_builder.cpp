@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "base/timer.h"
 #include "colour_modulation.h"
 #include "coarse_cap.h"
 #include "container_mesh.h"
@@ -21,10 +22,6 @@ namespace cutaway {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 /// The default view: from the front (+Z), 50 degrees above the horizon.
 const glm::dvec3 kDefaultToCamera(0, std::sin(glm::radians(50.0)), std::cos(glm::radians(50.0)));

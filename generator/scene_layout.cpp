@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtx/quaternion.hpp>
 
+#include "base/constants.h"
 #include "container_mesh.h"
 #include "random.h"
 
@@ -102,10 +103,10 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
     Rng rng(derive_seed(seed, {p}));
     const LayoutPiece& piece = pieces[p];
     // Orientation: the largest cap towards `facing` (tilted), spun about it.
-    const glm::dvec3 tilt_axis = glm::angleAxis(rng.uniform(0, 2 * M_PI), facing) *
+    const glm::dvec3 tilt_axis = glm::angleAxis(rng.uniform(0, 2 * kPi), facing) *
                                  perpendicular(facing);
     const double tilt = glm::radians(options.tilt_deg) * rng.uniform();
-    const double spin = rng.uniform(0, 2 * M_PI);
+    const double spin = rng.uniform(0, 2 * kPi);
     glm::dquat rotation;
     if (glm::length(piece.cap_normal) > 0) {
       const glm::dvec3 target = glm::angleAxis(tilt, tilt_axis) * facing;

@@ -15,6 +15,8 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 
+#include "base/constants.h"
+
 namespace cutaway {
 namespace {
 
@@ -477,8 +479,8 @@ std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptio
       for (size_t k = 0; k < n; ++k) {
         const double t = arc[k] / total;
         const double profile = s.closed
-                                   ? 0.8 + 0.2 * std::cos(2 * M_PI * t)
-                                   : 0.15 + 0.85 * std::pow(std::sin(M_PI * t), 0.6);
+                                   ? 0.8 + 0.2 * std::cos(2 * kPi * t)
+                                   : 0.15 + 0.85 * std::pow(std::sin(kPi * t), 0.6);
         s.width_px[k] = line_width * scale * profile;
       }
       s.colour = options.darkening * lines[l].second;

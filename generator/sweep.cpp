@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include <glm/geometric.hpp>
 
+#include "base/constants.h"
 #include "curves.h"
 #include "template_checks.h"
 
@@ -13,7 +13,6 @@ namespace cutaway {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 /// Row-major grid of vertices; a row of one vertex is a pole.
 struct SweepGrid {

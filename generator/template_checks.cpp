@@ -1,18 +1,17 @@
 #include "template_checks.h"
 
 #include <cmath>
-#include <numbers>
 #include <sstream>
 
 #include <glm/geometric.hpp>
 
+#include "base/constants.h"
 #include "curves.h"
 
 namespace cutaway {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 
 std::string degrees(double rad) {

@@ -2,12 +2,12 @@
 
 #include <cmath>
 #include <filesystem>
-#include <numbers>
 #include <set>
 #include <sstream>
 
 #include <glm/geometric.hpp>
 
+#include "base/constants.h"
 #include "colour.h"
 #include "error.h"
 #include "mesh_import.h"
@@ -19,7 +19,7 @@ namespace cutaway {
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kDeg = kPi / 180.0;
 /// The largest coordinate or length a template may use, metres: far beyond any object cutaway
 /// models, and small enough that differences and squares of lengths stay finite.
 constexpr double kMaxMetres = 1e6;
@@ -442,11 +442,11 @@ Template parse_template(std::string_view text, const std::string& file,
         if (i > 0 && a <= t.fold_angles.back() / kDeg) (*fa)[i].fail("fold angles must increase");
         t.fold_angles.push_back(a * kDeg);
       }
-      if (t.fold_angles.back() - t.fold_angles.front() >= 2 * std::numbers::pi) {
+      if (t.fold_angles.back() - t.fold_angles.front() >= 2 * kPi) {
         fa->fail("fold angles must span less than 360 degrees");
       }
     } else {
-      for (int k = 0; k < t.folds; ++k) t.fold_angles.push_back(2 * std::numbers::pi * k / t.folds);
+      for (int k = 0; k < t.folds; ++k) t.fold_angles.push_back(2 * kPi * k / t.folds);
     }
   } else {
     for (const char* key : {"folds", "fold_angles"}) {

@@ -17,6 +17,7 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "base/timer.h"
 #include "atomic_file.h"
 #include "commands.h"
 #include "contact_sheet.h"
@@ -39,10 +40,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
+using cutaway::seconds_since;
 using cutaway::cli::require_extension;
 using cutaway::cli::UsageError;
 

@@ -10,6 +10,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "base/timer.h"
 #include "atomic_file.h"
 #include "colour_modulation.h"
 #include "commands.h"
@@ -34,10 +35,6 @@ namespace cutaway::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 enum class Format { Gltf, Pov };
 

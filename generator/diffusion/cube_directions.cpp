@@ -3,11 +3,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <numbers>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "base/constants.h"
 #include "error.h"
 #include "random.h"
 
@@ -61,7 +61,7 @@ glm::dmat3 cube_rotation(const glm::dvec3& point) {
   constexpr uint64_t kPurposeCubeRotation = 0x63756265726f74ull;  // "cuberot"
   Rng rng(derive_seed(kPurposeCubeRotation, {bits[0], bits[1], bits[2]}));
   const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
-  constexpr double kTwoPi = 2 * std::numbers::pi;
+  constexpr double kTwoPi = 2 * kPi;
   const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
   const glm::dquat q(b * std::cos(kTwoPi * u3), a * std::sin(kTwoPi * u2),
                      a * std::cos(kTwoPi * u2), b * std::sin(kTwoPi * u3));  // (w, x, y, z)

@@ -22,6 +22,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "base/timer.h"
 #include "gltf_export.h"
 #include "pov_export.h"
 #include "povray_runner.h"
@@ -34,10 +35,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 namespace fs = std::filesystem;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 /// The scene's outputs as a user gets them, written to a temporary folder and checked: each
 /// .glb (quantize, meshopt) by the Khronos validator and three.js in headless Chromium (the

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <numbers>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -13,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "base/constants.h"
 #include "colour.h"
 #include "cross_section.h"
 #include "diffusion/diffusion.h"
@@ -24,7 +24,6 @@
 namespace cutaway {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 DsModel model_of(const std::string& relative) {
   return build_model(load_template(test::source_path(relative).string()));

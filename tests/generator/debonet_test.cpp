@@ -1,10 +1,10 @@
 // De Bonet synthesis on cyclic signals and section loops (generator/debonet.h).
+#include "base/constants.h"
 #include "debonet.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 #include <set>
 
 #include <glm/geometric.hpp>
@@ -12,7 +12,6 @@
 namespace cutaway {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 /// A textured 2-channel cyclic signal: a few incommensurate bumps plus pseudo-random detail.
 CyclicSignal texture(int n) {

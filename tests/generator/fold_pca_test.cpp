@@ -1,10 +1,10 @@
 // PCA fold blending (generator/fold_pca.h) on the tomato and on a tomato whose folds differ.
+#include "base/constants.h"
 #include "fold_pca.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 #include <numeric>
 
 #include <glm/geometric.hpp>
@@ -17,7 +17,6 @@
 namespace cutaway {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 /// The shipped tomato with equal folds: its chambers' per-fold loops replaced by fold 0's loop,
 /// repeated in every fold (its skin's lobes are already 5-fold symmetric).

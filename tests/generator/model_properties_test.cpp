@@ -9,12 +9,12 @@
 #include <cmath>
 #include <map>
 #include <memory>
-#include <numbers>
 #include <numeric>
 #include <unordered_map>
 
 #include <glm/geometric.hpp>
 
+#include "base/constants.h"
 #include "curves.h"
 #include "mesh_import.h"
 #include "model_builder.h"
@@ -26,9 +26,6 @@ namespace cutaway {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kPi = std::numbers::pi;
-
-glm::dvec3 to_glm(const DsMesh::Point& p) { return {p[0], p[1], p[2]}; }
 
 /// A built template, kept for the whole test program (building is the expensive part).
 struct Built {

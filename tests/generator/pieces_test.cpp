@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "base/constants.h"
 #include "clip_mesh.h"
 #include "cut_cells.h"
 #include "model_builder.h"
@@ -278,13 +279,13 @@ TEST(CutCells, SlicesAreCentredAndWedgesPartitionSpace) {
     ASSERT_EQ(wedges.cells.size(), size_t(n));
     // Every direction about the axis lies in exactly one wedge, the wedge of its angle.
     for (int k = 0; k < 72; ++k) {
-      const double t = 2 * M_PI * (k + 0.5) / 72;
+      const double t = 2 * kPi * (k + 0.5) / 72;
       const glm::dvec3 x(std::cos(t), 0.3, -std::sin(t));
       int inside = 0, which = -1;
       for (size_t c = 0; c < wedges.cells.size(); ++c)
         if (in_cell(wedges, wedges.cells[c], x)) ++inside, which = static_cast<int>(c);
       EXPECT_EQ(inside, 1) << n << " wedges, angle " << t;
-      EXPECT_EQ(which, static_cast<int>(t / (2 * M_PI / n))) << n << " wedges, angle " << t;
+      EXPECT_EQ(which, static_cast<int>(t / (2 * kPi / n))) << n << " wedges, angle " << t;
     }
   }
 }

@@ -2,6 +2,7 @@
 // a small asymmetric scene with the system's povray (render/povray_runner.h) checked against a
 // pinhole projection of the same camera (not mirrored, not flipped) and an analytic Lambert
 // colour.
+#include "base/constants.h"
 #include "pov_export.h"
 #include "silhouettes.h"
 
@@ -28,7 +29,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kPi = 3.14159265358979323846;
 const glm::dvec3 kRed{0.7, 0.04, 0.03};     // the cube, linear RGB
 const glm::dvec3 kBlue{0.03, 0.06, 0.6};    // the tetrahedron's front face, linear RGB
 const glm::dvec3 kPaleBlue{0.1, 0.2, 0.9};  // its back apex

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
+#include "base/constants.h"
 #include "gltf_export.h"
 #include "test_support.h"
 
@@ -53,7 +54,7 @@ AssetMesh plate(const std::string& name, double radius, int segments) {
   m.normal.push_back({0, 1, 0});
   m.colour.push_back({0.9, 0.9, 0.85});
   for (int i = 0; i < segments; ++i) {
-    const double a = 2 * M_PI * i / segments;
+    const double a = 2 * kPi * i / segments;
     m.position.push_back({radius * std::cos(a), 0, -radius * std::sin(a)});
     m.normal.push_back({0, 1, 0});
     m.colour.push_back({0.8, 0.8, 0.75});
@@ -222,7 +223,7 @@ TEST(SceneGltf, StructureReadsBackWithTinygltf) {
   // The camera: a perspective camera at the eye whose -Z looks at the target, +Y up-ish.
   ASSERT_EQ(m.cameras.size(), 1u);
   EXPECT_EQ(m.cameras[0].type, "perspective");
-  EXPECT_NEAR(m.cameras[0].perspective.yfov, 35 * M_PI / 180, 1e-12);
+  EXPECT_NEAR(m.cameras[0].perspective.yfov, 35 * kPi / 180, 1e-12);
   EXPECT_NEAR(m.cameras[0].perspective.aspectRatio, 4.0 / 3, 1e-12);
   EXPECT_DOUBLE_EQ(m.cameras[0].perspective.znear, 0.01);
   EXPECT_DOUBLE_EQ(m.cameras[0].perspective.zfar, 5);

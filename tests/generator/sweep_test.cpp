@@ -1,13 +1,13 @@
 // Type I and Type II sweeps (generator/sweep.h, design/algorithms.md §1) on tiny hand-made
 // templates whose answers are known exactly: polyline profiles (smooth: false) with straight
 // rails, square and diamond sections.
+#include "base/constants.h"
 #include "sweep.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <map>
-#include <numbers>
 
 #include <glm/geometric.hpp>
 
@@ -18,7 +18,6 @@
 namespace cutaway {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 Template parse(const std::string& text) { return parse_template(text, "sweep_test.yaml", "."); }
 

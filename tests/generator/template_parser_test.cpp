@@ -1,10 +1,10 @@
 // parse_template (generator/template_parser.h) on in-memory text: the values it produces (units to
 // metres, sRGB to linear, polar sections, gradients, defaults) and the InputError it raises
 // (file, line, column, field path, rule).
+#include "base/constants.h"
 #include "template_parser.h"
 
 #include <cmath>
-#include <numbers>
 #include <string>
 #include <tuple>
 
@@ -16,7 +16,6 @@
 namespace cutaway {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 const char* const kTemplate = R"(format: cutaway-template/1
 name: test-fruit_1

@@ -4,12 +4,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "base/constants.h"
+#include "base/timer.h"
 #include "colour.h"
 #include "diffusion/diffusion.h"
 #include "diffusion/diffusion_sheets.h"
@@ -23,10 +24,6 @@
 namespace cutaway {
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 /// ~200 points inside the tomato's skin: polar rings r < 25 mm on horizontal planes at
 /// 10..42 mm (the fruit's axis is y).
 std::vector<glm::dvec3> tomato_points() {
@@ -34,7 +31,7 @@ std::vector<glm::dvec3> tomato_points() {
   for (double y : {10.5, 18.5, 26.0, 34.0, 41.5}) {
     for (double r : {0.7, 6.3, 12.1, 17.9, 24.2}) {
       for (int k = 0; k < 8; ++k) {
-        const double angle = 2 * std::numbers::pi * (k + 0.37 * r / 25) / 8;
+        const double angle = 2 * kPi * (k + 0.37 * r / 25) / 8;
         points.push_back(1e-3 * glm::dvec3(r * std::cos(angle), y, r * std::sin(angle)));
       }
     }

@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <numbers>
 #include <vector>
 
 #include <glm/geometric.hpp>
 
+#include "base/constants.h"
 #include "diffusion/diffusion.h"
 
 namespace cutaway::test {
@@ -40,7 +40,7 @@ inline double inner_share(double a, double b, double r) {
   auto d1 = [&](double t) { return r * std::cos(t) - std::sqrt(std::max(0.0, a * a - r * r * std::sin(t) * std::sin(t))); };
   auto d2 = [&](double t) { return r * std::cos(t) + std::sqrt(b * b - r * r * std::sin(t) * std::sin(t)); };
   const double wa = integrate([&](double t) { return std::sin(t) / d1(t); }, 0, theta0);
-  const double wb = integrate([&](double t) { return std::sin(t) / d2(t); }, theta0, std::numbers::pi);
+  const double wb = integrate([&](double t) { return std::sin(t) / d2(t); }, theta0, kPi);
   return wa / (wa + wb);
 }
 

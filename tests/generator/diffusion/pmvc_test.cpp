@@ -1,11 +1,11 @@
 // PMVC colour diffusion against the reference checks of design/algorithms.md §2.
 #include <chrono>
 #include <cmath>
-#include <numbers>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "base/constants.h"
 #include "colour.h"
 #include "diffusion/cube_directions.h"
 #include "diffusion/diffusion.h"
@@ -18,7 +18,6 @@
 namespace cutaway {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 using test::inner_share;
 
