@@ -1,4 +1,4 @@
-// Output files without partial or mixed results (design/architecture.md, Command line):
+// Output files without partial or mixed results (doc/architecture.md, Command line):
 //  - write_file_atomically(): one file, written to a temporary file beside the target and
 //    renamed into place;
 //  - OutputSet: the files of one command, checked before any work, staged in a hidden folder

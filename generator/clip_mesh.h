@@ -1,4 +1,4 @@
-// Clipping a triangle mesh to a half-space (design/algorithms.md §4: the skin and the walls of
+// Clipping a triangle mesh to a half-space (doc/algorithms.md §4: the skin and the walls of
 // hollow regions clipped to a piece's convex cell), with the same on-plane rule as the cut
 // segments, so clipped boundaries meet the caps' cut loops.
 #pragma once

@@ -1,5 +1,5 @@
 // sRGB <-> linear RGB conversion (IEC 61966-2-1). Templates are sRGB; everything inside cutaway
-// is linear RGB (design/algorithms.md §7).
+// is linear RGB (doc/algorithms.md §7).
 #pragma once
 
 #include <glm/vec2.hpp>

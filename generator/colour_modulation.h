@@ -1,4 +1,4 @@
-// NPR colour modulation with improved Perlin noise (design/algorithms.md §6; paper §5, Fig. 10:
+// NPR colour modulation with improved Perlin noise (doc/algorithms.md §6; paper §5, Fig. 10:
 // "color modulation based on 3D Perlin noise with manually adjusted weights on different
 // frequency bands based on the unmodulated color"). Template parameters: NprSettings
 // (template.h, doc/npr.md); the scene's render.perlin is the strength.

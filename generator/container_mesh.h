@@ -1,4 +1,4 @@
-// The containers of scenes (spec/scene-format.md: bowl, plate, board, none): their meshes for
+// The containers of scenes (doc/scene-format.md: bowl, plate, board, none): their meshes for
 // export, and the surface pieces rest on, as a height above the floor for the layout.
 // Scene frame: +Y up, metres, the container standing on y = 0 centred on the Y axis.
 #pragma once
@@ -10,7 +10,8 @@
 
 namespace cutaway {
 
-/// The bowl and plate profiles, the board's box (design decisions, not in the spec):
+/// The bowl and plate profiles, the board's box (choices of this code; the scene format fixes
+/// only the sizes):
 /// - bowl: inner surface an ellipse from the well bottom (y = 0.08 H, floor thickness) up to the
 ///   rim (y = H) at inner radius R - wall (wall = 0.03 D); outer surface an ellipse down to a
 ///   foot ring of radius 0.45 R at y = 0;

@@ -1,4 +1,4 @@
-// Cross-sections (paper §3.2, Fig. 3; design/algorithms.md §3): the cut face of a DS model on a
+// Cross-sections (paper §3.2, Fig. 3; doc/algorithms.md §3): the cut face of a DS model on a
 // plane, triangulated by conforming constrained Delaunay refinement with the cut segments as
 // constraints, split along them, and coloured by PMVC diffusion (colour and material channels).
 #pragma once
@@ -52,7 +52,7 @@ struct CrossSectionOptions {
                               ///< 0.125 is a minimum angle a of about 20.7 degrees
 };
 
-/// Restricts a cross-section to the faces of convex cells (design/algorithms.md §4): the lines
+/// Restricts a cross-section to the faces of convex cells (doc/algorithms.md §4): the lines
 /// where other cutting planes meet this one become extra constraints of the triangulation, so
 /// that every triangle lies on one side of each, and only the triangles whose centroid `keep`
 /// accepts are coloured and returned.

@@ -1,5 +1,5 @@
 // Planar curves of templates: centripetal Catmull-Rom fitting, uniform arc-length resampling and
-// the geometric predicates the template rules need (design/algorithms.md §1).
+// the geometric predicates the template rules need (doc/algorithms.md §1).
 #pragma once
 
 #include <optional>

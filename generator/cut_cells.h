@@ -1,4 +1,4 @@
-// The convex cells of a cut (design/algorithms.md §4; spec/scene-format.md, Cuts): the distinct
+// The convex cells of a cut (doc/algorithms.md §4; doc/scene-format.md, Cuts): the distinct
 // cutting planes of a CutSpec and, for every piece, the half-spaces that bound it.
 #pragma once
 

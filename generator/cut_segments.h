@@ -1,4 +1,4 @@
-// Cut segments (paper §3.2, Fig. 3a; design/algorithms.md §3 step 1): the intersection of a
+// Cut segments (paper §3.2, Fig. 3a; doc/algorithms.md §3 step 1): the intersection of a
 // cutting plane with every DS triangle, each piece carrying its surface and the DS attributes
 // interpolated at its end points.
 #pragma once

@@ -1,4 +1,4 @@
-// How an object is cut into pieces (spec/scene-format.md, Cuts; design/algorithms.md §4): a cut
+// How an object is cut into pieces (doc/scene-format.md, Cuts; doc/algorithms.md §4): a cut
 // is a set of planes in the object's frame (axis +Y), and every piece is one convex cell of them.
 #pragma once
 
@@ -26,8 +26,9 @@ inline constexpr int kMaxPiecesPerCut = 512;
 /// The thinnest slice and the smallest dice a cut may use, metres (0.5 mm).
 inline constexpr double kMinCutLength_m = 0.5e-3;
 
-/// Parses the command line's `--cut` notation (design/architecture.md): `whole`, `halves`,
-/// `slices:THICKNESS`, `wedges:COUNT`, `dice:SIZE` or `plane:SPEC` (SPEC as parse_plane_spec).
+/// Parses the command line's `--cut` notation (doc/architecture.md, Command line): `whole`,
+/// `halves`, `slices:THICKNESS`, `wedges:COUNT`, `dice:SIZE` or `plane:SPEC` (SPEC as
+/// parse_plane_spec).
 /// Lengths are in template units and become metres with `metres_per_unit`.
 /// @throws std::invalid_argument naming the rule when `text` is not of these forms, a length is
 ///         not positive and finite (or below kMinCutLength_m once in metres), or a count is not

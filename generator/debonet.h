@@ -1,5 +1,5 @@
 // Multiresolution texture synthesis (De Bonet 1997) on cyclic 1D multi-channel signals, and its
-// use for the horizontal curves of cylindrical templates (paper §4.2, design/algorithms.md §5):
+// use for the horizontal curves of cylindrical templates (paper §4.2, doc/algorithms.md §5):
 // a star-shaped section loop becomes a cyclic array of (radius, angle to the next point), a 1D
 // texture sample; a synthesised array becomes a new loop.
 #pragma once
@@ -65,9 +65,9 @@ CyclicSignal debonet_synthesize(const CyclicSignal& signal, const DeBonetOptions
                                 Rng& rng);
 
 /// A star-shaped section loop in polar form: `count` points spaced uniformly by arc length,
-/// from the loop's crossing of angle 0, counter-clockwise seen from +Y (spec: Frame and units).
-/// rho: distance from the axis (metres); dphi: angle to the next point (radians, > 0, summing
-/// to 2 pi).
+/// from the loop's crossing of angle 0, counter-clockwise seen from +Y (doc/template-format.md,
+/// Frame and units). rho: distance from the axis (metres); dphi: angle to the next point
+/// (radians, > 0, summing to 2 pi).
 struct PolarLoop {
   std::vector<double> rho, dphi;
 };

@@ -1,5 +1,6 @@
-// Two error channels (design/style.md): InputError for bad user input (exit code 2, the message
-// names file, line, column, field and rule) and CUTAWAY_CHECK for broken internal invariants.
+// Two error channels (doc/architecture.md, Errors and Style): InputError for bad user input
+// (exit code 2, the message names file, line, column, field and rule) and CUTAWAY_CHECK for
+// broken internal invariants.
 #pragma once
 
 #include <sstream>

@@ -1,5 +1,5 @@
 // PCA fold blending for N-fold templates (paper §4.2, after the morphable model of Blanz and
-// Vetter 1999; design/algorithms.md §5): every fold's horizontal curves form one feature vector,
+// Vetter 1999; doc/algorithms.md §5): every fold's horizontal curves form one feature vector,
 // PCA over the N folds, new folds drawn as the mean plus random multiples of the principal
 // vectors, N' folds rebuilt (N' may differ from N).
 #pragma once

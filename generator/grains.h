@@ -1,4 +1,4 @@
-// Grains (paper §4 step 2, design/algorithms.md §5): small closed ellipsoid DSs scattered over a
+// Grains (paper §4 step 2, doc/algorithms.md §5): small closed ellipsoid DSs scattered over a
 // surface region by dart throwing with a Poisson-disc radius (kiwi and tomato seeds).
 #pragma once
 

@@ -749,7 +749,8 @@ DsSurface import_mesh_surface(const SurfaceSpec& spec, const Template& tmpl) {
   s.role = spec.is_skin ? SurfaceRole::Skin : SurfaceRole::Structure;
   s.visible_front = spec.visible_front;
   s.visible_back = spec.visible_back;
-  // A closed mesh's front is its outside (spec: Front and back): wound inwards, it is turned.
+  // A closed mesh's front is its outside (doc/template-format.md, Surfaces: Front and back):
+  // wound inwards, it is turned.
   bool closed = true;
   for (auto h : ply.halfedges()) closed = closed && !ply.is_boundary(h);
   double volume = 0;

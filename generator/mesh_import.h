@@ -1,4 +1,4 @@
-// `mesh` surfaces (spec/template-format.md, Surfaces): triangle meshes read from PLY with
+// `mesh` surfaces (doc/template-format.md, Surfaces): triangle meshes read from PLY with
 // OpenMesh, with optional per-vertex DS attributes.
 #pragma once
 

@@ -1,5 +1,5 @@
-// Geometric rules that need the swept surfaces (spec/template-format.md, Errors: "a nested
-// surface that crosses the skin").
+// Geometric rules that need the swept surfaces (doc/template-format.md, Errors: every surface
+// other than the skin lies inside it without touching or crossing it).
 #pragma once
 
 #include "ds_model.h"

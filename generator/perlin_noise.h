@@ -1,6 +1,6 @@
 // Improved Perlin noise in 3D (Perlin 2002, "Improving noise", SIGGRAPH 2002): gradient noise on
 // the integer lattice with the quintic fade 6t^5 - 15t^4 + 10t^3 and the 12 cube-edge gradients,
-// for the NPR colour modulation of design/algorithms.md §6 (paper §5, Fig. 10).
+// for the NPR colour modulation of doc/algorithms.md §6 (paper §5, Fig. 10).
 #pragma once
 
 #include <array>

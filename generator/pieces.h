@@ -1,4 +1,4 @@
-// Cut pieces (design/algorithms.md §4): a piece is the object's volume inside one convex cell of
+// Cut pieces (doc/algorithms.md §4): a piece is the object's volume inside one convex cell of
 // a cut. Its surface is the skin clipped to the cell, the walls of hollow regions clipped
 // likewise, and one cap per cell face: the cross-section of that plane (paper §3.2) restricted
 // to the cell, coloured by PMVC diffusion. The parts are stitched along their seams, so a piece

@@ -1,4 +1,4 @@
-// The command line's cutting-plane notation (design/architecture.md, Command line).
+// The command line's cutting-plane notation (doc/architecture.md, Command line).
 #pragma once
 
 #include <string>

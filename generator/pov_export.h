@@ -1,5 +1,5 @@
-// POV-Ray 3.7 export of a whole scene (design/architecture.md, data flow: SceneAssets -> export;
-// design/algorithms.md §7: `assumed_gamma 1.0` with linear colours; POV-Ray 3.7 documentation,
+// POV-Ray 3.7 export of a whole scene (doc/architecture.md, Data flow: SceneAssets -> export;
+// doc/algorithms.md §7: `assumed_gamma 1.0` with linear colours; POV-Ray 3.7 documentation,
 // "mesh2", "camera", "light_source").
 #pragma once
 

@@ -1,4 +1,4 @@
-// Deterministic random numbers (design/algorithms.md §7): pcg32 streams seeded through SplitMix64
+// Deterministic random numbers (doc/algorithms.md §7): pcg32 streams seeded through SplitMix64
 // from a path such as (seed, item, object, purpose), and our own uniform and normal transforms
 // (the std:: distributions differ between standard libraries, so they are never used).
 #pragma once

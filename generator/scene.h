@@ -1,4 +1,4 @@
-// The parsed scene (spec/scene-format.md): plain data, lengths in metres, colours linear RGB.
+// The parsed scene (doc/scene-format.md): plain data, lengths in metres, colours linear RGB.
 // Parsing and validation live in scene_parser.h; layout and export never see YAML.
 #pragma once
 

@@ -1,4 +1,4 @@
-// What a scene becomes before export (design/architecture.md, Key types): triangle meshes with
+// What a scene becomes before export (doc/architecture.md, Key types): triangle meshes with
 // per-vertex colours, instances of them with transforms, a camera and lights. glTF, POV-Ray and
 // the OpenGL preview all read this; none of them knows about templates or cuts.
 #pragma once

@@ -1,4 +1,4 @@
-// The main job (design/architecture.md, data flow): from a parsed scene to SceneAssets ready for
+// The main job (doc/architecture.md, Data flow): from a parsed scene to SceneAssets ready for
 // glTF, POV-Ray or the OpenGL preview. For each item and object: a seeded variant of the
 // template (variation.h), cut into pieces (pieces.h), a seeded share of them kept; then all
 // pieces placed in the container (scene_layout.h), with a camera and lights. Colours are
@@ -61,7 +61,7 @@ struct SceneStats {
 
 /// The seed of item `item`, object `object`, for `purpose` (1: variant, 2: which pieces are
 /// kept, 3: Perlin colour modulation): derive_seed(scene_seed, {item, object, purpose}), so adding an item does not change
-/// the others (spec/scene-format.md, Determinism).
+/// the others (doc/scene-format.md, Determinism).
 uint64_t object_seed(uint64_t scene_seed, int item, int object, int purpose);
 
 /// The scene's camera (its `camera` block, or one framing the container and the pile from the

@@ -1,4 +1,4 @@
-// Seeded placement of pieces in a container (design/algorithms.md §4): every piece rests on the
+// Seeded placement of pieces in a container (doc/algorithms.md §4): every piece rests on the
 // container or on pieces placed before it, and no two pieces interpenetrate. The pile is kept
 // as a height field over the container (Tetris-like dropping of conservative piece footprints),
 // so non-interpenetration holds by construction; cut faces are turned towards the camera.

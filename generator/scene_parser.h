@@ -1,4 +1,4 @@
-// Reads and validates scene files (spec/scene-format.md, all of it). Every broken rule is an
+// Reads and validates scene files (doc/scene-format.md, all of it). Every broken rule is an
 // InputError "FILE:LINE:COL: field.path: rule"; templates a scene names are found (and, by
 // load_scene, read and checked) here, so that layout and export never see YAML.
 #pragma once

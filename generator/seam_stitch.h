@@ -1,4 +1,4 @@
-// Stitching the parts of a piece along their seams (design/algorithms.md §4): the clipped skin,
+// Stitching the parts of a piece along their seams (doc/algorithms.md §4): the clipped skin,
 // the clipped walls and the caps are made separately, so a seam can carry a vertex on one side
 // that the other side lacks (a T-junction: a Steiner point of the cap's refinement, or a skin
 // crossing inside a merged cut segment). Stitching makes both sides share every seam vertex, so

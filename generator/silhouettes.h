@@ -1,4 +1,4 @@
-// Artistic silhouettes (design/algorithms.md §6; paper §5, Fig. 10; Northrup and Markosian
+// Artistic silhouettes (doc/algorithms.md §6; paper §5, Fig. 10; Northrup and Markosian
 // 2000, "Artistic silhouettes: a hybrid approach"): for the scene's camera, the silhouette,
 // crease and boundary edges of every instance, hidden parts removed, linked into long strokes
 // with a tapered width. The OpenGL preview draws them (render/stroke_renderer.h) and the

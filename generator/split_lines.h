@@ -1,8 +1,8 @@
-// Split lines of a restricted cross-section (design/algorithms.md §4: "the other planes' lines
-// become extra constraints"): where the other cutting planes of a cut meet this plane, and the
-// planar arrangement of those lines with the cut segments, so that no two constraints cross
-// (CGAL's Delaunay refinement is not reliable with crossing constraints whose crossings are
-// computed inexactly).
+// Split lines of a restricted cross-section (doc/algorithms.md §4, Restricted cross-sections:
+// the lines of the other planes are extra constraints): where the other cutting planes of a
+// cut meet this plane, and the planar arrangement of those lines with the cut segments, so
+// that no two constraints cross (CGAL's Delaunay refinement is not reliable with crossing
+// constraints whose crossings are computed inexactly).
 #pragma once
 
 #include <vector>

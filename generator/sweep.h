@@ -1,4 +1,4 @@
-// Sweeps of the paper's sketching interface (§4.1; design/algorithms.md §1): a profile curve in
+// Sweeps of the paper's sketching interface (§4.1; doc/algorithms.md §1): a profile curve in
 // the vertical plane and a section loop in the horizontal plane become a DS triangle mesh.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The parsed template (spec/template-format.md): plain data, lengths in metres, colours in linear
+// The parsed template (doc/template-format.md): plain data, lengths in metres, colours in linear
 // RGB, angles in radians. Parsing and validation live in template_parser.h; algorithms never see
 // YAML.
 #pragma once
@@ -18,11 +18,12 @@ namespace cutaway {
 enum class Symmetry { Cylindrical, NFold, None };
 enum class SurfaceKind { Around, Within, Mesh };
 
-/// What a gradient's parameter t runs along (spec: GRADIENT).
+/// What a gradient's parameter t runs along (doc/template-format.md, GRADIENT).
 enum class GradientAxis { Constant, Profile, Section };
 
 /// A value that is constant or varies linearly between stops along the profile or the section
-/// (spec: COLOR / LENGTH / GRADIENT). T is glm::dvec3 (linear RGB) or double (metres).
+/// (doc/template-format.md: COLOR, LENGTH, GRADIENT). T is glm::dvec3 (linear RGB) or double
+/// (metres).
 template <class T>
 struct Gradient {
   GradientAxis along = GradientAxis::Constant;
@@ -62,7 +63,7 @@ struct SectionSpec {
   FileLoc loc;
 };
 
-/// One diffusion surface of the template (spec: Surfaces).
+/// One diffusion surface of the template (doc/template-format.md, Surfaces).
 struct SurfaceSpec {
   std::string name;
   SurfaceKind kind = SurfaceKind::Around;
@@ -75,8 +76,8 @@ struct SurfaceSpec {
   ColourField front = ColourField::constant({0.5, 0.5, 0.5});
   ColourField back = ColourField::constant({0.5, 0.5, 0.5});
   LengthField blur = LengthField::constant(0.0);
-  /// Material channels (roughness, translucency) of each side, 0..1 (spec: `roughness`,
-  /// `translucency`); absent: the template's cut material.
+  /// Material channels (roughness, translucency) of each side, 0..1 (doc/template-format.md,
+  /// Materials: `roughness`, `translucency`); absent: the template's cut material.
   glm::dvec2 material_front{0.6, 0.0}, material_back{0.6, 0.0};
   bool visible_front = true;
   bool visible_back = true;
@@ -88,7 +89,7 @@ struct SurfaceSpec {
   std::string path;
 };
 
-/// Grains scattered over a surface by Poisson-disc dart throwing (spec: Grains).
+/// Grains scattered over a surface by Poisson-disc dart throwing (doc/template-format.md, Grains).
 struct GrainSpec {
   std::string name;
   std::string on;                            ///< name of the surface they are scattered over
@@ -107,7 +108,7 @@ struct GrainSpec {
   std::string path;
 };
 
-/// One frequency band of the Perlin colour modulation (design/algorithms.md §6; doc/npr.md).
+/// One frequency band of the Perlin colour modulation (doc/algorithms.md §6; doc/npr.md).
 /// Its weight for an unmodulated colour c is amplitude * closeness(c), where closeness is 1 for
 /// an untinted band and otherwise falls smoothly from 1 at the tint to 0 at `reach` (distance
 /// in sRGB 0..1 components): (1 - (d / reach)^2)^2 for d < reach.
@@ -119,8 +120,8 @@ struct PerlinBand {
   double reach = 0.25;           ///< sRGB distance at which the weight reaches 0, > 0
 };
 
-/// Non-photorealistic rendering parameters of a template (spec: `npr`, doc/npr.md). A scene
-/// scales the modulation with its render.perlin strength.
+/// Non-photorealistic rendering parameters of a template (doc/template-format.md, NPR;
+/// doc/npr.md). A scene scales the modulation with its render.perlin strength.
 struct NprSettings {
   /// The Perlin bands. When the template has no `npr.perlin`, two untinted bands derived from
   /// the skin's height h: fine grain (period h / 16, amplitude 0.2) and broad mottling (period
@@ -146,7 +147,7 @@ struct Template {
   std::vector<GrainSpec> grains;
   int skin = -1;                      ///< index of the surface with role skin (-1: none, only
                                       ///< for symmetry none)
-  NprSettings npr;                    ///< NPR parameters (spec: `npr`)
+  NprSettings npr;                    ///< NPR parameters (doc/template-format.md, NPR)
   /// Materials (README, Templates: `materials`): the skin's outside (and the walls of
   /// hollows), and the cut faces. Absent: PbrMaterial{} for both, the look of templates
   /// written before them.

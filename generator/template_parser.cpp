@@ -40,7 +40,7 @@ double parse_length(const YamlField& f, double metres_per_unit) {
   return v * metres_per_unit;
 }
 
-/// COLOR or GRADIENT / LENGTH or GRADIENT (spec: GRADIENT).
+/// COLOR or GRADIENT / LENGTH or GRADIENT (doc/template-format.md, GRADIENT).
 template <class T, class ParseValue>
 Gradient<T> parse_gradient(const YamlField& f, ParseValue parse_value) {
   if (!f.is_map()) return Gradient<T>::constant(parse_value(f));
@@ -127,9 +127,10 @@ SectionSpec parse_section(const YamlField& f, double m) {
   return s;
 }
 
-/// The material channels of a surface's or grain's two sides (spec: `roughness`,
-/// `translucency`): each field is a number in 0..1 for both sides or {front: x, back: y}
-/// (either may be left out); what is not written takes the cut material's value.
+/// The material channels of a surface's or grain's two sides (doc/template-format.md,
+/// Materials: `roughness`, `translucency`): each field is a number in 0..1 for both sides or
+/// {front: x, back: y} (either may be left out); what is not written takes the cut material's
+/// value.
 void parse_material_channels(const YamlField& f, const PbrMaterial& cut, glm::dvec2& front,
                              glm::dvec2& back) {
   front = back = {cut.roughness, cut.translucency};
@@ -301,7 +302,8 @@ GrainSpec parse_grain(const YamlField& f, const Template& t) {
 /// The most Perlin bands a template may have (each costs one noise evaluation per vertex).
 constexpr size_t kMaxPerlinBands = 8;
 
-/// `npr` (spec: npr, doc/npr.md): {perlin: {bands: [{period, amplitude, tint, reach}, ...]}}.
+/// `npr` (doc/template-format.md, NPR; doc/npr.md): {perlin: {bands: [{period, amplitude,
+/// tint, reach}, ...]}}.
 NprSettings parse_npr(const YamlField& f, double metres_per_unit) {
   f.allow_only({"perlin"});
   NprSettings npr;

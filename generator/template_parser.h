@@ -1,4 +1,4 @@
-// Reads and validates templates (spec/template-format.md, all of it). Every broken rule, the
+// Reads and validates templates (doc/template-format.md, all of it). Every broken rule, the
 // geometric ones included, is an InputError "FILE:LINE:COL: field.path: rule".
 #pragma once
 

@@ -1,4 +1,4 @@
-// Random variants of a template (paper §4.2, design/algorithms.md §5): only the horizontal
+// Random variants of a template (paper §4.2, doc/algorithms.md §5): only the horizontal
 // curves change; profiles, colours, blur and grains are kept, so attributes carry over.
 // Cylindrical templates: De Bonet synthesis of the section loops (debonet.h); N-fold templates:
 // PCA fold blending (fold_pca.h); symmetry none: unchanged.

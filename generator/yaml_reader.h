@@ -1,6 +1,6 @@
 // A thin reading layer over yaml-cpp for cutaway's declarative files (templates and scenes):
 // every access knows its field path and source position, so every rule broken by the input
-// becomes an InputError "FILE:LINE:COL: field.path: rule" (spec/template-format.md, Errors).
+// becomes an InputError "FILE:LINE:COL: field.path: rule" (doc/template-format.md, Errors).
 #pragma once
 
 #include <cstdint>
@@ -87,7 +87,7 @@ bool is_plain_key(std::string_view key);
 std::string child_path(const std::string& parent, std::string_view key);
 
 /// A COLOR of the template and scene formats: "#rrggbb" or [r, g, b] with components in 0..1,
-/// both sRGB (spec/template-format.md). Returns linear RGB.
+/// both sRGB (doc/template-format.md). Returns linear RGB.
 /// @throws InputError at `f` naming the accepted forms
 glm::dvec3 parse_colour(const YamlField& f);
 

@@ -1,4 +1,4 @@
-// Choosing a colour diffusion backend (design/architecture.md, Diffusion backends):
+// Choosing a colour diffusion backend (doc/architecture.md, Diffusion backends):
 // `--backend auto|cpu|gl`.
 #pragma once
 

@@ -80,7 +80,7 @@ class OsMesaContext final : public GlContext {
 };
 
 /// EGL on a GPU without a display (EGL_EXT_platform_device), surfaceless: the GL backend's way
-/// to a real GPU (design/architecture.md, Diffusion backends). Software EGL devices
+/// to a real GPU (doc/architecture.md, Diffusion backends). Software EGL devices
 /// (EGL_MESA_device_software) are skipped: OSMesa serves those.
 class EglContext final : public GlContext {
  public:

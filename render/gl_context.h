@@ -1,6 +1,6 @@
 // Offscreen OpenGL contexts. One interface, one backend per way of reaching OpenGL: EGL on a
-// GPU (EGL_EXT_platform_device, no display) and OSMesa (llvmpipe, software) without one (design/architecture.md, Diffusion backends; design/style.md: renderer behind
-// an interface).
+// GPU (EGL_EXT_platform_device, no display) and OSMesa (llvmpipe, software) without one
+// (doc/architecture.md, Diffusion backends; Style: interfaces with several backends).
 #pragma once
 
 #include <memory>

@@ -1,4 +1,4 @@
-// The OpenGL PMVC backend (render/pmvc_gl.h; design/algorithms.md §2, Backends: gl).
+// The OpenGL PMVC backend (render/pmvc_gl.h; doc/algorithms.md §2, Backends: gl).
 #include "pmvc_gl.h"
 
 #include <glad/gl.h>

@@ -1,4 +1,4 @@
-// The OpenGL PMVC backend (paper §3.2; design/algorithms.md §2, Backends: gl): the colour at a
+// The OpenGL PMVC backend (paper §3.2; doc/algorithms.md §2, Backends: gl): the colour at a
 // point is the average over its cube map's texels of the colour each texel sees, weighted "by
 // the inverse of the distances", with "the integration performed entirely on the GPU". The
 // texels are cast as rays in a compute shader instead of rasterised: the result is the same

@@ -1,5 +1,5 @@
 // The `cutaway` command line: parses arguments and calls the libraries; nothing else lives
-// here (design/style.md). Exit codes: 0 success, 2 bad input, 1 internal failure.
+// here (doc/architecture.md, Style). Exit codes: 0 success, 2 bad input, 1 internal failure.
 #include <algorithm>
 #include <chrono>
 #include <cmath>

@@ -1,5 +1,5 @@
 // The discretised sphere of directions of the PMVC colour diffusion, shared by every backend
-// (design/algorithms.md §2): the texel centres of a cube map and their exact solid angles.
+// (doc/algorithms.md §2): the texel centres of a cube map and their exact solid angles.
 #pragma once
 
 #include <vector>

@@ -1,5 +1,5 @@
 // Colour diffusion with positive mean value coordinates (PMVC; paper §3.2, Lipman et al. 2007;
-// design/algorithms.md §2): the colour at a point inside the object is the average of the
+// doc/algorithms.md §2): the colour at a point inside the object is the average of the
 // colours of the DS sheets it sees first in every direction, weighted by solid angle / distance.
 #pragma once
 
@@ -18,10 +18,10 @@ namespace cutaway {
 
 /// Settings shared by every diffusion backend.
 struct DiffusionOptions {
-  /// Texels per cube-map face edge (6 n^2 directions per point). 16, not the 32 of
-  /// design/algorithms.md: on the shipped templates colours differ from 32 by 7e-5 on average
-  /// (at most 0.002, linear) and the two-sphere error is 0.0016 against 0.0013, at a quarter of
-  /// the rays.
+  /// Texels per cube-map face edge (6 n^2 directions per point). 16, not 32
+  /// (doc/algorithms.md §2, Cube size 16): on the shipped templates colours differ from 32 by
+  /// 7e-5 on average (at most 0.002, linear) and the two-sphere error is 0.0016 against
+  /// 0.0013, at a quarter of the rays.
   int cube_size = 16;
   int threads = 0;     ///< worker threads; 0 = all cores. Results do not depend on it.
   /// Each point's cube map turned by its own seeded rotation (cube_rotation): texel errors

@@ -1,4 +1,4 @@
-// The sheets that colour diffusion sees (paper §3.1, Fig. 2; design/algorithms.md §2, Blur):
+// The sheets that colour diffusion sees (paper §3.1, Fig. 2; doc/algorithms.md §2, Blur):
 // each blurred DS becomes two sheets moved apart along the normals by the blur, each showing
 // one side's colour on both faces; an unblurred DS stays one sheet whose colour depends on the
 // face a ray meets.

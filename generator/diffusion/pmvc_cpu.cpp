@@ -1,4 +1,4 @@
-// The CPU PMVC backend (design/algorithms.md §2, Backends: cpu).
+// The CPU PMVC backend (doc/algorithms.md §2, Backends: cpu).
 #include <algorithm>
 #include <array>
 #include <cmath>

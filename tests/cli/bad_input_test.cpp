@@ -1,4 +1,4 @@
-// Bad input on the command line (spec/template-format.md, Errors): for every broken template
+// Bad input on the command line (doc/template-format.md, Errors): for every broken template
 // `cutaway model` exits with code 2, prints one line "FILE:LINE:COL: field.path: rule" on stderr
 // that points at the offending node, and leaves nothing behind in the output folder. Fixtures
 // are in tests/bad_input/ (each a near-valid template with one defect); binary junk and the

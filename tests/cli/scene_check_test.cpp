@@ -1,4 +1,4 @@
-// `cutaway check` on scene files (spec/scene-format.md): a bad scene exits with code 2 and one
+// `cutaway check` on scene files (doc/scene-format.md): a bad scene exits with code 2 and one
 // line "FILE:LINE:COL: field.path: rule" on stderr that points at the offending node. Fixtures
 // are in tests/data/scenes/bad/ (each a copy of valid_bowl.yaml with one defect); every scene
 // shipped in scenes/ passes.

@@ -1,4 +1,4 @@
-// Cross-sections (design/algorithms.md §3) against properties a cut face must have: one colour
+// Cross-sections (doc/algorithms.md §3) against properties a cut face must have: one colour
 // in gives that colour out, the analytic two-sphere PMVC, the same colour on a line whatever
 // plane cuts through it, holes where a side is hollow, blur bands about twice the blur wide,
 // and degenerate planes (tangent, through vertices and edges, missing the object).

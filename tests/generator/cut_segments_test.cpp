@@ -1,4 +1,4 @@
-// Cut segments (design/algorithms.md §3 step 1): end points on the plane, closed loops for
+// Cut segments (doc/algorithms.md §3 step 1): end points on the plane, closed loops for
 // closed surfaces even when the plane runs through mesh vertices and along mesh edges, one
 // consistent orientation, and the DS attributes carried along.
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Cut pieces (design/algorithms.md §4) against the properties the issue names: a piece of an
+// Cut pieces (doc/algorithms.md §4) against the properties every piece must have: a piece of an
 // object without hollows is a closed, consistently oriented 2-manifold; the pieces' volumes add
 // up to the object's; the two caps on either side of one cut are mirror images with equal
 // colours. Over several templates and every kind of cut.

@@ -1,4 +1,4 @@
-// Scene layout (design/algorithms.md §4) checked independently of the height field that makes
+// Scene layout (doc/algorithms.md §4) checked independently of the height field that makes
 // it: no two placed pieces intersect (CGAL's surface and bounded-side tests on the welded piece
 // meshes), no piece cuts into the container, and every piece rests on something (moved 4 mm
 // down, and at most one and a half height-field cells sideways, it would hit the container or

@@ -1,4 +1,4 @@
-// Type I and Type II sweeps (generator/sweep.h, design/algorithms.md §1) on tiny hand-made
+// Type I and Type II sweeps (generator/sweep.h, doc/algorithms.md §1) on tiny hand-made
 // templates whose answers are known exactly: polyline profiles (smooth: false) with straight
 // rails, square and diamond sections.
 #include "base/constants.h"

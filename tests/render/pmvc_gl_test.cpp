@@ -1,5 +1,5 @@
 // The GL PMVC backend (render/pmvc_gl.h) against the analytic reference of
-// design/algorithms.md §2(b), the CPU backend, and itself (determinism across batches).
+// doc/algorithms.md §2(b), the CPU backend, and itself (determinism across batches).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -120,7 +120,7 @@ TEST(PmvcGl, AgreesWithTheCpuBackendInsideTheTomato) {
       rays / cpu_s);
   RecordProperty("mean_difference", std::to_string(mean));
   RecordProperty("max_difference", std::to_string(max));
-  EXPECT_LE(mean, 0.005);  // design/algorithms.md: backends agree to 0.005 per channel on average
+  EXPECT_LE(mean, 0.005);  // doc/algorithms.md §2: backends agree to 0.005 per channel on average
   EXPECT_LE(max, 0.05);
 }
 

@@ -1,4 +1,4 @@
-// The analytic PMVC reference of design/algorithms.md §2(b), shared by the backends' tests: two
+// The analytic PMVC reference of doc/algorithms.md §2(b), shared by the backends' tests: two
 // concentric spheres (templates/spheres.yaml), inner radius a showing colour A outwards, outer
 // radius b showing colour B inwards.
 #pragma once
@@ -34,7 +34,7 @@ double integrate(F f, double a, double b, int pieces = 4000) {
 }
 
 /// Share of the inner sphere's colour at distance r from the centre of two concentric spheres
-/// of radii a < r < b (algorithms.md §2(b)).
+/// of radii a < r < b (doc/algorithms.md §2(b)).
 inline double inner_share(double a, double b, double r) {
   const double theta0 = std::asin(a / r);
   auto d1 = [&](double t) { return r * std::cos(t) - std::sqrt(std::max(0.0, a * a - r * r * std::sin(t) * std::sin(t))); };

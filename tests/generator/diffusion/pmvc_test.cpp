@@ -1,4 +1,4 @@
-// PMVC colour diffusion against the reference checks of design/algorithms.md §2.
+// PMVC colour diffusion against the reference checks of doc/algorithms.md §2.
 #include <chrono>
 #include <cmath>
 
