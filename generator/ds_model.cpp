@@ -49,8 +49,7 @@ std::vector<glm::dvec3> vertex_normals(const DsMesh& mesh) {
     std::array<int, 3> v;
     int k = 0;
     for (auto vh : mesh.fv_range(fh)) {
-      const auto& q = mesh.point(vh);
-      p[k] = {q[0], q[1], q[2]};
+      p[k] = to_glm(mesh.point(vh));
       v[k++] = vh.idx();
     }
     const glm::dvec3 fn = glm::cross(p[1] - p[0], p[2] - p[0]);  // length = 2 * area

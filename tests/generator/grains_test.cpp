@@ -34,10 +34,7 @@ double signed_volume(const DsMesh& m) {
   for (auto fh : m.faces()) {
     glm::dvec3 p[3];
     int k = 0;
-    for (auto vh : m.fv_range(fh)) {
-      const auto& q = m.point(vh);
-      p[k++] = {q[0], q[1], q[2]};
-    }
+    for (auto vh : m.fv_range(fh)) p[k++] = to_glm(m.point(vh));
     v += glm::dot(p[0], glm::cross(p[1], p[2])) / 6;
   }
   return v;
