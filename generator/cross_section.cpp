@@ -28,6 +28,7 @@
 #include <glm/geometric.hpp>
 
 #include "band_sampling.h"
+#include "base/timer.h"
 #include "error.h"
 #include "harmonic_sampling.h"
 #include "split_lines.h"
@@ -383,8 +384,7 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
       samples.emplace(band_vertices[i], std::make_pair(colours[i], materials[i]));
     cs.diffused_points = band.diffused;
   }
-  const double seconds_sampling =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - meshed).count();
+  const double seconds_sampling = seconds_since(meshed);
 
   // 5. Output vertices: one per interior vertex, one per side (wedge) of a cut vertex.
   std::map<std::pair<Vertex, Face>, unsigned> corner_id;
@@ -508,9 +508,7 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
   std::vector<glm::dvec3> colours(to_diffuse.size());
   std::vector<glm::dvec2> materials(to_diffuse.size());
   diffusion.diffuse_channels(to_diffuse, colours, materials);
-  cs.seconds_diffuse =
-      seconds_sampling +
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - triangulated).count();
+  cs.seconds_diffuse = seconds_sampling + seconds_since(triangulated);
   for (size_t i = 0; i < colours.size(); ++i) {
     for (unsigned id : diffuse_targets[i]) {
       cs.colour[id] = colours[i];
@@ -525,8 +523,7 @@ CrossSection make_cross_section(const DsModel& model, const Plane& plane,
         cs.position, cs.triangle, free, cs.colour, cs.material, diffusion,
         {options.harmonic_spacing * options.edge_m, 0.5 * options.edge_m, options.tolerance});
     cs.diffused_points += counts.diffused;
-    cs.seconds_diffuse +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - interior).count();
+    cs.seconds_diffuse += seconds_since(interior);
   }
   return cs;
 }

@@ -14,6 +14,7 @@
 #include <glm/gtx/quaternion.hpp>
 #include <spdlog/spdlog.h>
 
+#include "base/timer.h"
 #include "colour_modulation.h"
 #include "commands.h"
 #include "contact_sheet.h"
@@ -113,7 +114,7 @@ Image sheet_tile(const LoadedItem& item, const SheetArgs& a, const Common& commo
   draw_label(tile, tmpl.name, x, picture_h + scale, scale, glm::dvec3(0.0));
   draw_label(tile, cut_text, x + name_size.width, picture_h + scale, scale, glm::dvec3(0.5));
   spdlog::info("{} ({}): {} pieces, {:.1f} s", tmpl.name, item.text, set.pieces.size(),
-               std::chrono::duration<double>(Clock::now() - t0).count());
+               seconds_since(t0));
   return tile;
 }
 
