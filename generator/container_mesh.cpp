@@ -12,8 +12,6 @@ namespace cutaway {
 
 namespace {
 
-constexpr int kLatheSegments = 96;
-
 double bowl_wall(const Container& c) { return 0.03 * c.diameter_m; }
 double bowl_floor(const Container& c) { return 0.08 * c.height_m; }
 double plate_well(const Container& c) { return 0.62 * 0.5 * c.diameter_m; }
@@ -37,15 +35,15 @@ double plate_inner(const Container& c, double r) {
 /// poles. Vertex normals from the profile's own normals (each point: the average of its two
 /// segments'), so creases come out where the profile says (points repeated at creases).
 AssetMesh lathe(const std::vector<glm::dvec2>& profile, const std::vector<glm::dvec2>& normals,
-                const glm::dvec3& colour) {
+                const glm::dvec3& colour, int segments) {
   AssetMesh mesh;
   const int n = static_cast<int>(profile.size());
   std::vector<int> first(n);
   for (int i = 0; i < n; ++i) {
     first[i] = static_cast<int>(mesh.position.size());
-    const int ring = profile[i].x == 0 ? 1 : kLatheSegments;
+    const int ring = profile[i].x == 0 ? 1 : segments;
     for (int k = 0; k < ring; ++k) {
-      const double a = 2 * kPi * k / kLatheSegments;
+      const double a = 2 * kPi * k / segments;
       const double c = std::cos(a), s = -std::sin(a);
       mesh.position.push_back({profile[i].x * c, profile[i].y, profile[i].x * s});
       mesh.normal.push_back(glm::normalize(glm::dvec3(normals[i].x * c, normals[i].y, normals[i].x * s)));
@@ -53,11 +51,11 @@ AssetMesh lathe(const std::vector<glm::dvec2>& profile, const std::vector<glm::d
     }
   }
   auto at = [&](int i, int k) {
-    return static_cast<unsigned>(first[i] + (profile[i].x == 0 ? 0 : k % kLatheSegments));
+    return static_cast<unsigned>(first[i] + (profile[i].x == 0 ? 0 : k % segments));
   };
   for (int i = 0; i + 1 < n; ++i) {
     if (profile[i] == profile[i + 1]) continue;  // a crease: the repeated point
-    for (int k = 0; k < kLatheSegments; ++k) {
+    for (int k = 0; k < segments; ++k) {
       const unsigned a = at(i, k), b = at(i, k + 1), c = at(i + 1, k), d = at(i + 1, k + 1);
       // Walking from profile point i to i+1 with the angle increasing (towards -Z from +X),
       // the outward side is to the right of the profile direction in the (r, y) plane.
@@ -113,7 +111,7 @@ AssetMesh box_mesh(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3&
 
 }  // namespace
 
-std::optional<AssetMesh> container_mesh(const Container& c) {
+std::optional<AssetMesh> container_mesh(const Container& c, int segments, int profile_samples) {
   std::vector<glm::dvec2> pts, nrm;
   const double R = 0.5 * c.diameter_m, H = c.height_m;
   switch (c.type) {
@@ -128,7 +126,7 @@ std::optional<AssetMesh> container_mesh(const Container& c) {
     case ContainerType::Bowl: {
       const double inner_R = R - bowl_wall(c), foot = 0.45 * R;
       // Inside, from the axis out to the rim, with normals pointing up and inwards.
-      append_curve(pts, nrm, 40, [&](double t) {
+      append_curve(pts, nrm, profile_samples, [&](double t) {
         const double r = inner_R * std::sin(t * kPi / 2);
         return glm::dvec2(r, bowl_inner(c, r));
       });
@@ -141,11 +139,11 @@ std::optional<AssetMesh> container_mesh(const Container& c) {
       });
       for (size_t k = rim_start; k < nrm.size(); ++k) nrm[k] = -nrm[k];
       // Outside, from the rim down to the foot.
-      append_curve(pts, nrm, 40, [&](double t) {
+      append_curve(pts, nrm, profile_samples, [&](double t) {
         const double a = t * kPi / 2;
         return glm::dvec2(foot + (R - foot) * std::cos(a), H * (1 - std::sin(a)));
       });
-      for (size_t k = nrm.size() - 41; k < nrm.size(); ++k) nrm[k] = -nrm[k];
+      for (size_t k = nrm.size() - profile_samples - 1; k < nrm.size(); ++k) nrm[k] = -nrm[k];
       // The flat bottom back to the axis (a crease at the foot).
       pts.push_back(pts.back());
       nrm.push_back({0, -1});
@@ -155,7 +153,7 @@ std::optional<AssetMesh> container_mesh(const Container& c) {
     }
     case ContainerType::Plate: {
       const double foot = 0.5 * R;
-      append_curve(pts, nrm, 40, [&](double t) {
+      append_curve(pts, nrm, profile_samples, [&](double t) {
         const double r = R * t;
         return glm::dvec2(r, plate_inner(c, r));
       });
@@ -176,7 +174,7 @@ std::optional<AssetMesh> container_mesh(const Container& c) {
       break;
     }
   }
-  AssetMesh mesh = lathe(pts, nrm, c.colour);
+  AssetMesh mesh = lathe(pts, nrm, c.colour, segments);
   mesh.name = c.type == ContainerType::Bowl ? "bowl" : "plate";
   return mesh;
 }

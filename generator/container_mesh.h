@@ -18,9 +18,14 @@ namespace cutaway {
 /// - plate: a flat well of radius 0.62 R at y = 0.3 H, rising to the rim at y = H (power 1.6);
 /// - board: a box W x D x H;
 /// - none: the floor y = 0.
+/// `segments` (>= 3): the bowl's and plate's segments around the axis; `profile_samples` (>= 2):
+/// segments along each curve of their profiles. Every vertex lies on the surfaces above, so a
+/// coarser mesh's inner surface lies inside the bowl or above the plate, never below the finer
+/// one's (the physics collides with a coarse one: fewer triangles).
 /// @return the container's mesh (linear colour `container.colour`, outward normals, closed),
 ///         or nothing for type none
-std::optional<AssetMesh> container_mesh(const Container& container);
+std::optional<AssetMesh> container_mesh(const Container& container, int segments = 96,
+                                        int profile_samples = 40);
 
 /// The height (metres) of the surface that pieces rest on at (x, z), or nothing where pieces
 /// may not rest (outside the bowl's or plate's inner rim, off the board, beyond `none_radius_m`

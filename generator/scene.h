@@ -14,6 +14,13 @@
 
 namespace cutaway {
 
+/// How an item's pieces are arranged in the container (doc/scene-format.md, `arrange`).
+enum class Arrangement {
+  Pile,     ///< dropped onto the container and the pieces before them, then settled
+  Fan,      ///< each object's pieces in a fanned row, each overlapping the one before
+  Scatter,  ///< spread apart over the container, none resting on another
+};
+
 /// One entry of `items`: `count` seeded variants of one template, each cut the same way.
 struct SceneItem {
   std::string template_name;  ///< as written (a name from templates/ or a relative path)
@@ -22,6 +29,9 @@ struct SceneItem {
   CutSpec cut;                ///< lengths already in metres
   double keep = 1.0;          ///< fraction of the pieces placed, in (0, 1]
   double variation = 1.0;     ///< scales the template's variation amount, >= 0
+  /// Its `arrange`, else the scene's, else the container's default (scatter on a board or on
+  /// the floor, pile in a bowl or on a plate).
+  Arrangement arrange = Arrangement::Pile;
   FileLoc loc;                ///< where the item is written
   std::string path;           ///< field path prefix for errors, e.g. "items[2]"
 };

@@ -12,7 +12,9 @@
 #include "base/timer.h"
 #include "colour_modulation.h"
 #include "coarse_cap.h"
+#include "collision_shape.h"
 #include "container_mesh.h"
+#include "physics_settle.h"
 #include "random.h"
 #include "template_parser.h"
 #include "variation.h"
@@ -282,7 +284,8 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
   SceneAssets assets;
   std::vector<ShadedMesh> shapes;  // kept pieces, object frame
   std::vector<AssetMesh> meshes;   // of each shape: as exported, once placed
-  std::vector<glm::dvec3> caps;
+  std::vector<LayoutPiece> arranged;  // of each shape: cap, arrangement, row (mesh set below)
+  std::vector<double> densities;      // of each shape, kg/m^3
   std::vector<PieceInfo> infos;
   for (size_t i = 0; i < scene.items.size(); ++i) {
     const SceneItem& item = scene.items[i];
@@ -358,7 +361,9 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
                                         ? coarse_caps(piece, set.sections)
                                         : std::vector<glm::uvec3>{}));
         shapes.push_back(as_cut.empty() ? std::move(merged) : std::move(as_cut[q]));
-        caps.push_back(largest_cap_normal(piece));
+        arranged.push_back({nullptr, largest_cap_normal(piece), item.arrange, st.objects,
+                            piece.cell});
+        densities.push_back(tmpl.density_kg_m3);
         infos.push_back(
             piece_info(piece, shapes.back(), tmpl.name, object_seed(seed, ii, j, 1), item.cut));
       }
@@ -382,13 +387,38 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
       std::swap(order[k - 1], order[rng.below(static_cast<uint32_t>(k))]);
   }
   std::vector<LayoutPiece> layout;
-  for (size_t k : order) layout.push_back({&shapes[k], caps[k]});
+  for (size_t k : order) {
+    layout.push_back(arranged[k]);
+    layout.back().mesh = &shapes[k];
+  }
   LayoutOptions layout_options = options.layout;
   layout_options.to_camera =
       scene.camera ? glm::normalize(scene.camera->eye - scene.camera->target) : kDefaultToCamera;
-  const std::vector<Placement> placements =
+  const std::vector<Placement> drops =
       layout_pieces(layout, scene.container, layout_options, derive_seed(seed, {~0ull, 4}));
   st.seconds_layout = seconds_since(t0);
+
+  // Settling: rigid bodies dropped from the layout's poses.
+  const auto t_physics = Clock::now();
+  std::vector<CollisionShape> collision(order.size());
+  std::vector<SettleBody> bodies(order.size());
+  for (size_t k = 0; k < order.size(); ++k) {
+    if (!drops[k].placed) continue;
+    collision[k] = collision_shape(shapes[order[k]], options.collision);
+    st.decomposed_pieces += collision[k].decomposed;
+    bodies[k] = {&collision[k], densities[order[k]], drops[k]};
+  }
+  const SettleResult settled = settle_pieces(bodies, scene.container, options.settle);
+  const std::vector<Placement>& placements = settled.placements;
+  st.seconds_physics = seconds_since(t_physics);
+  st.simulated_seconds = settled.simulated_s;
+  st.settled = settled.all_asleep;
+  st.redropped = settled.redrops;
+  st.lost = settled.lost;
+  if (options.check_stability) {
+    for (size_t k = 0; k < order.size(); ++k) bodies[k].drop = placements[k];
+    st.stability_motion_m = settle_motion(bodies, scene.container, options.settle);
+  }
 
   assets.name = scene.name;
   assets.width = scene.render.width;

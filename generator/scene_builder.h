@@ -13,6 +13,7 @@
 
 #include "cap_atlas.h"
 #include "diffusion/diffusion.h"
+#include "physics_settle.h"
 #include "pieces.h"
 #include "scene.h"
 #include "scene_assets.h"
@@ -42,6 +43,10 @@ struct SceneBuildOptions {
   /// Called after each object with (objects done, objects in all, a line of text); may be empty.
   std::function<void(int, int, const std::string&)> progress;
   LayoutOptions layout;        ///< its to_camera is replaced by the scene camera's direction
+  CollisionShapeOptions collision;  ///< the pieces' rigid bodies
+  SettleOptions settle;             ///< the settling of the layout's drop poses
+  /// Whether to run the stability check after settling (SceneStats::stability_motion_m).
+  bool check_stability = false;
 };
 
 /// Counts and timings of one build_scene call (wall seconds).
@@ -56,7 +61,13 @@ struct SceneStats {
   double seconds_diffuse = 0;   ///< of which PMVC
   double seconds_clip = 0;      ///< clipping the skin and walls, stitching
   double seconds_bake = 0;      ///< baking cap textures
-  double seconds_layout = 0;    ///< placement
+  double seconds_layout = 0;    ///< drop poses (the height-field layout)
+  double seconds_physics = 0;   ///< collision shapes and settling
+  double simulated_seconds = 0;     ///< simulated time of the settling
+  bool settled = false;             ///< every piece came to rest before the time cap
+  int decomposed_pieces = 0;        ///< pieces colliding as several convex parts
+  int redropped = 0, lost = 0;      ///< settle_pieces: drops again; pieces left out
+  double stability_motion_m = -1;   ///< with check_stability: settle_motion over 1 s, metres
 };
 
 /// The seed of item `item`, object `object`, for `purpose` (1: variant, 2: which pieces are

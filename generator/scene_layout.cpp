@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/gtx/quaternion.hpp>
 
 #include "base/constants.h"
@@ -83,80 +85,234 @@ glm::dvec3 perpendicular(const glm::dvec3& d) {
   return glm::normalize(glm::cross(d, a));
 }
 
+/// A piece turned into its placing orientation, centred over the origin in x and z.
+struct Turned {
+  glm::dquat rotation{1, 0, 0, 0};
+  glm::dvec3 centre{0.0};       ///< subtracted from the turned vertices
+  std::vector<glm::dvec3> q;    ///< the turned, centred vertices
+  Footprint f;
+};
+
+Turned turn(const LayoutPiece& piece, const glm::dquat& rotation, double cs) {
+  Turned t;
+  t.rotation = glm::normalize(rotation);
+  t.q.resize(piece.mesh->position.size());
+  for (size_t v = 0; v < t.q.size(); ++v) {
+    t.q[v] = t.rotation * piece.mesh->position[v];
+    t.centre += t.q[v];
+  }
+  t.centre /= static_cast<double>(t.q.size());
+  t.centre.y = 0;
+  for (glm::dvec3& v : t.q) v -= t.centre;
+  t.f = footprint(t.q, piece.mesh->triangle, cs);
+  return t;
+}
+
+/// The height field of the pile over the container: cell (i, j) covers
+/// [x0 + i cs, x0 + (i + 1) cs] x [x0 + j cs, ...]; the piece's local cell (a, b) lands on
+/// (i + a, j + b).
+class HeightField {
+ public:
+  HeightField(const Container& container, const LayoutOptions& o)
+      : container_(&container), options_(&o), cs_(o.cell_m) {
+    const double radius = rest_radius(container, o.none_radius_m);
+    n_ = static_cast<int>(std::ceil(2 * radius / cs_)) + 1;
+    x0_ = -0.5 * (n_ - 1) * cs_;
+    surface_.assign(static_cast<size_t>(n_) * n_, -kBlocked);
+  }
+
+  int cells() const { return n_; }
+  /// The centre of the piece placed at cell (i, j), x and z.
+  glm::dvec2 at(int i, int j) const { return {x0_ + i * cs_, x0_ + j * cs_}; }
+  /// The cell of a point, rounded.
+  glm::ivec2 cell(double x, double z) const {
+    return {static_cast<int>(std::lround((x - x0_) / cs_)),
+            static_cast<int>(std::lround((z - x0_) / cs_))};
+  }
+
+  /// The lowest height at which piece t placed at (i, j) is above the container and the pile,
+  /// or kBlocked where a vertex is outside the resting area.
+  double rest(const Turned& t, int i, int j) const {
+    double y = -kBlocked;
+    const glm::dvec2 o = at(i, j);
+    for (const glm::dvec3& v : t.q) {
+      const auto h = rest_height(*container_, v.x + o.x, v.z + o.y, options_->none_radius_m);
+      if (!h) return kBlocked;
+      y = std::max(y, *h - v.y);
+    }
+    for (int a = 0; a < t.f.na; ++a) {
+      for (int b = 0; b < t.f.nb; ++b) {
+        const size_t k = static_cast<size_t>(a) * t.f.nb + b;
+        if (t.f.bottom[k] == kBlocked) continue;
+        const int gi = i + t.f.a0 + a, gj = j + t.f.b0 + b;
+        if (gi < 0 || gj < 0 || gi >= n_ || gj >= n_) return kBlocked;
+        y = std::max(y, surface_[static_cast<size_t>(gi) * n_ + gj] - t.f.bottom[k]);
+      }
+    }
+    return y;
+  }
+
+  /// Whether no piece lies within `gap` cells of t's footprint placed at (i, j).
+  bool free(const Turned& t, int i, int j, int gap) const {
+    for (int a = -gap; a < t.f.na + gap; ++a) {
+      for (int b = -gap; b < t.f.nb + gap; ++b) {
+        const int gi = i + t.f.a0 + a, gj = j + t.f.b0 + b;
+        if (gi < 0 || gj < 0 || gi >= n_ || gj >= n_) continue;
+        if (surface_[static_cast<size_t>(gi) * n_ + gj] != -kBlocked) return false;
+      }
+    }
+    return true;
+  }
+
+  /// Raises the field to the top of t placed at (i, j) with its origin at height y.
+  void raise(const Turned& t, int i, int j, double y) {
+    for (int a = 0; a < t.f.na; ++a) {
+      for (int b = 0; b < t.f.nb; ++b) {
+        const size_t k = static_cast<size_t>(a) * t.f.nb + b;
+        if (t.f.bottom[k] == kBlocked) continue;
+        double& s = surface_[static_cast<size_t>(i + t.f.a0 + a) * n_ + (j + t.f.b0 + b)];
+        s = std::max(s, y + t.f.top[k]);
+      }
+    }
+  }
+
+  Placement placement(const Turned& t, int i, int j, double y) const {
+    const glm::dvec2 o = at(i, j);
+    return {true, t.rotation, glm::dvec3(o.x, y, o.y) - t.centre};
+  }
+
+ private:
+  const Container* container_;
+  const LayoutOptions* options_;
+  double cs_, x0_;
+  int n_;
+  std::vector<double> surface_;
+};
+
+/// The pile's and scatter's orientation: the largest cap towards `facing` (tilted), spun about
+/// it; a whole object upright, tilted and spun.
+glm::dquat facing_rotation(const LayoutPiece& piece, const glm::dvec3& facing,
+                           const LayoutOptions& options, Rng& rng) {
+  const glm::dvec3 up(0, 1, 0);
+  const glm::dvec3 tilt_axis =
+      glm::angleAxis(rng.uniform(0, 2 * kPi), facing) * perpendicular(facing);
+  const double tilt = glm::radians(options.tilt_deg) * rng.uniform();
+  const double spin = rng.uniform(0, 2 * kPi);
+  if (glm::length(piece.cap_normal) > 0) {
+    const glm::dvec3 target = glm::angleAxis(tilt, tilt_axis) * facing;
+    return glm::angleAxis(spin, target) * glm::rotation(glm::normalize(piece.cap_normal), target);
+  }
+  return glm::angleAxis(tilt, tilt_axis) * glm::angleAxis(spin, up);
+}
+
+/// Places one fan row: the pieces `row` (indices into pieces, in rank order).
+void place_fan(const std::vector<LayoutPiece>& pieces, const std::vector<size_t>& row,
+               const LayoutOptions& options, Rng& rng, HeightField& field,
+               std::vector<Placement>& out) {
+  const glm::dvec3 up(0, 1, 0);
+  const double heading = rng.uniform(0, 2 * kPi);
+  const glm::dvec3 d(std::cos(heading), 0, std::sin(heading));  // the row's direction
+  // Each piece's cap up, leaning along the row; a whole object upright.
+  const glm::dvec3 lean = glm::angleAxis(glm::radians(options.fan_tilt_deg), glm::cross(d, up)) *
+                          up;  // tilted from up towards +d
+  std::vector<Turned> turned;
+  std::vector<double> along;  // each piece's centre along the row, from the first's
+  for (size_t k = 0; k < row.size(); ++k) {
+    const LayoutPiece& piece = pieces[row[k]];
+    const glm::dquat r = glm::length(piece.cap_normal) > 0
+                             ? glm::rotation(glm::normalize(piece.cap_normal), lean)
+                             : glm::dquat(1, 0, 0, 0);
+    turned.push_back(turn(piece, r, options.cell_m));
+    double lo = kBlocked, hi = -kBlocked;
+    for (const glm::dvec3& v : turned.back().q) {
+      lo = std::min(lo, glm::dot(v, d));
+      hi = std::max(hi, glm::dot(v, d));
+    }
+    along.push_back(k == 0 ? 0 : along.back() + options.fan_step * (hi - lo));
+  }
+  const double middle = 0.5 * along.back();
+  // Candidate row centres; each row is tried on a copy of the height field.
+  double best_score = kBlocked;
+  std::vector<Placement> best;
+  HeightField best_field = field;
+  const int n = field.cells();
+  for (int attempt = 0; attempt < 4 * options.candidates; ++attempt) {
+    if (attempt >= options.candidates && !best.empty()) break;
+    const glm::dvec2 c = field.at(static_cast<int>(rng.below(static_cast<uint32_t>(n))),
+                                  static_cast<int>(rng.below(static_cast<uint32_t>(n))));
+    HeightField trial = field;
+    std::vector<Placement> placed;
+    double score = options.centre_weight * glm::length(c) * static_cast<double>(row.size());
+    for (size_t k = 0; k < row.size() && score < kBlocked; ++k) {
+      const double s = along[k] - middle;
+      const glm::ivec2 ij = trial.cell(c.x + s * d.x, c.y + s * d.z);
+      const double y = trial.rest(turned[k], ij.x, ij.y);
+      if (y == kBlocked) {
+        score = kBlocked;
+        break;
+      }
+      score += y;
+      trial.raise(turned[k], ij.x, ij.y, y + options.clearance_m);
+      placed.push_back(trial.placement(turned[k], ij.x, ij.y, y + options.clearance_m));
+    }
+    if (score < best_score) {
+      best_score = score;
+      best = std::move(placed);
+      best_field = std::move(trial);
+    }
+  }
+  if (best.empty()) return;  // no room for the row
+  field = std::move(best_field);
+  for (size_t k = 0; k < row.size(); ++k) out[row[k]] = best[k];
+}
+
 }  // namespace
 
 std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
                                      const Container& container, const LayoutOptions& options,
                                      uint64_t seed) {
-  const double cs = options.cell_m;
-  const double radius = rest_radius(container, options.none_radius_m);
-  const int n = static_cast<int>(std::ceil(2 * radius / cs)) + 1;
-  const double x0 = -0.5 * (n - 1) * cs;  // cell i covers [x0 + i cs, x0 + (i + 1) cs]
-  // The height field of the pile: the top of the pieces placed so far (the container is
-  // checked at the pieces' vertices, exactly: its resting surfaces are convex).
-  std::vector<double> surface(static_cast<size_t>(n) * n, -kBlocked);
-
+  HeightField field(container, options);
+  const int n = field.cells();
   const glm::dvec3 up(0, 1, 0);
   const glm::dvec3 facing = glm::normalize(up + glm::normalize(options.to_camera));
   std::vector<Placement> out(pieces.size());
-  for (size_t p = 0; p < pieces.size(); ++p) {
-    Rng rng(derive_seed(seed, {p}));
-    const LayoutPiece& piece = pieces[p];
-    // Orientation: the largest cap towards `facing` (tilted), spun about it.
-    const glm::dvec3 tilt_axis = glm::angleAxis(rng.uniform(0, 2 * kPi), facing) *
-                                 perpendicular(facing);
-    const double tilt = glm::radians(options.tilt_deg) * rng.uniform();
-    const double spin = rng.uniform(0, 2 * kPi);
-    glm::dquat rotation;
-    if (glm::length(piece.cap_normal) > 0) {
-      const glm::dvec3 target = glm::angleAxis(tilt, tilt_axis) * facing;
-      rotation = glm::angleAxis(spin, target) *
-                 glm::rotation(glm::normalize(piece.cap_normal), target);
-    } else {
-      rotation = glm::angleAxis(tilt, tilt_axis) * glm::angleAxis(spin, up);
-    }
-    rotation = glm::normalize(rotation);
-    // The turned piece, centred over the origin in x and z.
-    std::vector<glm::dvec3> q(piece.mesh->position.size());
-    glm::dvec3 centre(0.0);
-    for (size_t v = 0; v < q.size(); ++v) {
-      q[v] = rotation * piece.mesh->position[v];
-      centre += q[v];
-    }
-    centre /= static_cast<double>(q.size());
-    centre.y = 0;
-    for (glm::dvec3& v : q) v -= centre;
-    const Footprint f = footprint(q, piece.mesh->triangle, cs);
 
-    // Candidate positions: random cells; the piece's local cell (a, b) lands on (i + a, j + b).
-    auto rest = [&](int i, int j) {
-      double y = -kBlocked;
-      const double tx = x0 + i * cs, tz = x0 + j * cs;
-      for (const glm::dvec3& v : q) {
-        const auto h = rest_height(container, v.x + tx, v.z + tz, options.none_radius_m);
-        if (!h) return kBlocked;
-        y = std::max(y, *h - v.y);
-      }
-      for (int a = 0; a < f.na; ++a) {
-        for (int b = 0; b < f.nb; ++b) {
-          const size_t k = static_cast<size_t>(a) * f.nb + b;
-          if (f.bottom[k] == kBlocked) continue;
-          const int gi = i + f.a0 + a, gj = j + f.b0 + b;
-          if (gi < 0 || gj < 0 || gi >= n || gj >= n) return kBlocked;
-          y = std::max(y, surface[static_cast<size_t>(gi) * n + gj] - f.bottom[k]);
-        }
-      }
-      return y;
-    };
+  // Fan rows first, by group, each in rank order.
+  std::map<int, std::vector<size_t>> rows;
+  for (size_t p = 0; p < pieces.size(); ++p) {
+    if (pieces[p].arrange == Arrangement::Fan) rows[pieces[p].group].push_back(p);
+  }
+  for (auto& [group, row] : rows) {
+    std::stable_sort(row.begin(), row.end(),
+                     [&](size_t a, size_t b) { return pieces[a].rank < pieces[b].rank; });
+    Rng rng(derive_seed(seed, {~0ull, static_cast<uint64_t>(group)}));
+    place_fan(pieces, row, options, rng, field, out);
+  }
+
+  std::vector<glm::dvec2> scattered;  // where the scattered pieces went
+  const int gap = static_cast<int>(std::ceil(options.scatter_gap_m / options.cell_m));
+  for (size_t p = 0; p < pieces.size(); ++p) {
+    const LayoutPiece& piece = pieces[p];
+    if (piece.arrange == Arrangement::Fan) continue;
+    Rng rng(derive_seed(seed, {p}));
+    const Turned t = turn(piece, facing_rotation(piece, facing, options, rng), options.cell_m);
+    const bool scatter = piece.arrange == Arrangement::Scatter;
     double best_score = kBlocked, best_y = 0;
     int best_i = -1, best_j = -1;
     for (int attempt = 0; attempt < 4 * options.candidates; ++attempt) {
       if (attempt >= options.candidates && best_i >= 0) break;  // more only while none fits
       const int i = static_cast<int>(rng.below(static_cast<uint32_t>(n)));
       const int j = static_cast<int>(rng.below(static_cast<uint32_t>(n)));
-      const double y = rest(i, j);
+      if (scatter && !field.free(t, i, j, gap)) continue;
+      const double y = field.rest(t, i, j);
       if (y == kBlocked) continue;
-      const double score = y + options.centre_weight * std::hypot(x0 + i * cs, x0 + j * cs);
+      const glm::dvec2 at = field.at(i, j);
+      double score = y + options.centre_weight * glm::length(at);
+      if (scatter && !scattered.empty()) {
+        double nearest = kBlocked;
+        for (const glm::dvec2& o : scattered) nearest = std::min(nearest, glm::length(at - o));
+        score = -nearest;
+      }
       if (score < best_score) {
         best_score = score;
         best_y = y;
@@ -166,17 +322,9 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
     }
     if (best_i < 0) continue;  // not placed: the container is full
     const double y = best_y + options.clearance_m;
-    for (int a = 0; a < f.na; ++a) {
-      for (int b = 0; b < f.nb; ++b) {
-        const size_t k = static_cast<size_t>(a) * f.nb + b;
-        if (f.bottom[k] == kBlocked) continue;
-        double& s = surface[static_cast<size_t>(best_i + f.a0 + a) * n + (best_j + f.b0 + b)];
-        s = std::max(s, y + f.top[k]);
-      }
-    }
-    out[p].placed = true;
-    out[p].rotation = rotation;
-    out[p].translation = glm::dvec3(x0 + best_i * cs, y, x0 + best_j * cs) - centre;
+    field.raise(t, best_i, best_j, y);
+    out[p] = field.placement(t, best_i, best_j, y);
+    if (scatter) scattered.push_back(field.at(best_i, best_j));
   }
   return out;
 }

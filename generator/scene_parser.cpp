@@ -175,6 +175,15 @@ std::string resolve_template(const YamlField& f, const fs::path& scene_dir) {
   f.fail("no template named " + quoted(v) + " (looked for " + v + ".yaml in " + looked + ")");
 }
 
+/// `arrange`: pile, fan or scatter.
+Arrangement parse_arrangement(const YamlField& f) {
+  const std::string v = f.string();
+  if (v == "pile") return Arrangement::Pile;
+  if (v == "fan") return Arrangement::Fan;
+  if (v == "scatter") return Arrangement::Scatter;
+  f.fail("must be pile, fan or scatter, not " + quoted(v));
+}
+
 /// Reads every item's template once; refuses cuts that make too many pieces.
 class TemplateCheck {
  public:
@@ -211,7 +220,8 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
     format.fail("unsupported format " + quoted(format.string()) +
                 " (this version of cutaway reads cutaway-scene/1)");
   }
-  root.allow_only({"format", "name", "seed", "units", "container", "items", "camera", "render"});
+  root.allow_only(
+      {"format", "name", "seed", "units", "container", "arrange", "items", "camera", "render"});
 
   const YamlField name = root.require("name");
   s.name = name.string();
@@ -232,6 +242,11 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
   const double m = s.metres_per_unit;
 
   if (auto c = root.get("container")) s.container = parse_container(*c, m);
+  Arrangement arrange = s.container.type == ContainerType::Board ||
+                                s.container.type == ContainerType::None
+                            ? Arrangement::Scatter
+                            : Arrangement::Pile;
+  if (auto a = root.get("arrange")) arrange = parse_arrangement(*a);
 
   fs::path scene_dir = fs::path(file).parent_path();
   if (scene_dir.empty()) scene_dir = ".";
@@ -240,7 +255,7 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
   if (items.size() == 0) items.fail("a scene needs at least one item");
   for (size_t i = 0; i < items.size(); ++i) {
     const YamlField f = items[i];
-    f.allow_only({"template", "count", "cut", "keep", "variation"});
+    f.allow_only({"template", "count", "cut", "keep", "variation", "arrange"});
     SceneItem item;
     item.loc = f.loc();
     item.path = f.path();
@@ -257,6 +272,8 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
       }
     }
     if (auto x = f.get("variation")) item.variation = x->number_in(0, 10);
+    item.arrange = arrange;
+    if (auto x = f.get("arrange")) item.arrange = parse_arrangement(*x);
     if (load_templates) templates.check(item, length_field);
     s.items.push_back(std::move(item));
   }

@@ -152,6 +152,9 @@ struct Template {
   /// hollows), and the cut faces. Absent: PbrMaterial{} for both, the look of templates
   /// written before them.
   PbrMaterial skin_material, cut_material;
+  /// Mass per volume of the object (kg/m^3; `density`, default that of water), for settling
+  /// its pieces in scenes (physics_settle.h).
+  double density_kg_m3 = 1000;
 };
 
 }  // namespace cutaway

@@ -398,7 +398,7 @@ Template parse_template(std::string_view text, const std::string& file,
                         const std::string& base_dir) {
   const YamlField root = parse_yaml(text, file);
   root.allow_only({"format", "name", "description", "units", "symmetry", "resolution", "variation",
-                   "surfaces", "grains", "npr", "materials"});
+                   "surfaces", "grains", "npr", "materials", "density"});
   Template t;
   t.file = file;
 
@@ -474,6 +474,7 @@ Template parse_template(std::string_view text, const std::string& file,
   }
 
   // Materials first: the cut material is the default of every surface's material channels.
+  if (auto d = root.get("density")) t.density_kg_m3 = d->number_in(50, 5000);
   if (auto materials = root.get("materials")) {
     materials->allow_only({"skin", "cut"});
     if (auto skin = materials->get("skin")) t.skin_material = parse_material(*skin);

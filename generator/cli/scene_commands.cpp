@@ -8,6 +8,7 @@
 
 #include <unistd.h>
 
+#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
 #include "base/timer.h"
@@ -295,19 +296,37 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
       write_outputs(assets, targets, common.threads, scene.render.silhouettes,
                     export_options(a.compress, a.lods, a.textures));
   if (common.stats) {
-    std::fprintf(
-        stderr,
-        "{\"scene\": \"%s\", \"seed\": %llu, \"backend\": \"%s\", \"objects\": %d, "
-        "\"pieces\": %d, \"placed\": %d, \"triangles\": %zu, \"diffused_points\": %zu, "
-        "\"seconds\": {\"parse\": %.4f, \"build\": %.4f, \"variants\": %.4f, "
-        "\"backend_setup\": %.4f, \"sections\": %.4f, \"diffuse\": %.4f, \"clip\": %.4f, "
-        "\"bake\": %.4f, \"layout\": %.4f, \"strokes\": %.4f, \"export\": %.4f, \"png\": %.4f, "
-        "\"povray\": %.4f}}\n",
-        scene.name.c_str(), static_cast<unsigned long long>(seed), backend_name.c_str(), st.objects,
-        st.pieces, st.placed, st.triangles, st.diffused_points, t_parse, t_build,
-        st.seconds_variants, st.seconds_backend, st.seconds_sections, st.seconds_diffuse,
-        st.seconds_clip, st.seconds_bake, st.seconds_layout, w.strokes_s, w.export_s, w.preview_s,
-        w.povray_s);
+    const nlohmann::ordered_json j = {
+        {"scene", scene.name},
+        {"seed", seed},
+        {"backend", backend_name},
+        {"objects", st.objects},
+        {"pieces", st.pieces},
+        {"placed", st.placed},
+        {"triangles", st.triangles},
+        {"diffused_points", st.diffused_points},
+        {"physics",
+         {{"simulated_seconds", st.simulated_seconds},
+          {"settled", st.settled},
+          {"decomposed_pieces", st.decomposed_pieces},
+          {"redropped", st.redropped},
+          {"lost", st.lost}}},
+        {"seconds",
+         {{"parse", t_parse},
+          {"build", t_build},
+          {"variants", st.seconds_variants},
+          {"backend_setup", st.seconds_backend},
+          {"sections", st.seconds_sections},
+          {"diffuse", st.seconds_diffuse},
+          {"clip", st.seconds_clip},
+          {"bake", st.seconds_bake},
+          {"layout", st.seconds_layout},
+          {"physics", st.seconds_physics},
+          {"strokes", w.strokes_s},
+          {"export", w.export_s},
+          {"png", w.preview_s},
+          {"povray", w.povray_s}}}};
+    std::fprintf(stderr, "%s\n", j.dump().c_str());
   }
   return 0;
 }

@@ -1,0 +1,257 @@
+#include "collision_shape.h"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <map>
+#include <cmath>
+#include <tuple>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/convex_hull_3.h>
+#include <HACD/hacdHACD.h>
+#include <glm/geometric.hpp>
+#include <meshoptimizer.h>
+
+#include "error.h"
+
+namespace cutaway {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using HullMesh = CGAL::Surface_mesh<Kernel::Point_3>;
+
+/// The mesh with its vertices welded by exact position and degenerate triangles dropped.
+struct Welded {
+  std::vector<glm::dvec3> point;
+  std::vector<std::array<unsigned, 3>> triangle;
+};
+
+Welded weld(const ShadedMesh& mesh) {
+  Welded w;
+  std::map<std::tuple<double, double, double>, unsigned> index;
+  std::vector<unsigned> id(mesh.position.size());
+  for (size_t i = 0; i < mesh.position.size(); ++i) {
+    const glm::dvec3& p = mesh.position[i];
+    auto [it, added] = index.emplace(std::make_tuple(p.x, p.y, p.z), w.point.size());
+    if (added) w.point.push_back(p);
+    id[i] = it->second;
+  }
+  for (const glm::uvec3& t : mesh.triangle) {
+    const std::array<unsigned, 3> u{id[t[0]], id[t[1]], id[t[2]]};
+    if (u[0] != u[1] && u[1] != u[2] && u[0] != u[2]) w.triangle.push_back(u);
+  }
+  return w;
+}
+
+/// The corners of the convex hull of `points` and the hull's volume (cubic metres).
+std::pair<std::vector<glm::dvec3>, double> convex_hull(const std::vector<glm::dvec3>& points) {
+  std::vector<Kernel::Point_3> in;
+  in.reserve(points.size());
+  for (const glm::dvec3& p : points) in.emplace_back(p.x, p.y, p.z);
+  HullMesh hull;
+  CGAL::convex_hull_3(in.begin(), in.end(), hull);
+  // CGAL's vertex order may differ between runs: sorted, the corners are the same every run.
+  std::vector<glm::dvec3> corners;
+  for (const auto v : hull.vertices()) {
+    const Kernel::Point_3& p = hull.point(v);
+    corners.emplace_back(p.x(), p.y(), p.z());
+  }
+  std::sort(corners.begin(), corners.end(), [](const glm::dvec3& a, const glm::dvec3& b) {
+    return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+  });
+  double volume = 0;
+  for (const auto f : hull.faces()) {
+    std::array<glm::dvec3, 3> c;
+    int k = 0;
+    for (const auto v : CGAL::vertices_around_face(hull.halfedge(f), hull)) {
+      if (k < 3) c[k] = glm::dvec3(hull.point(v).x(), hull.point(v).y(), hull.point(v).z());
+      ++k;
+    }
+    volume += glm::dot(c[0], glm::cross(c[1], c[2])) / 6;
+  }
+  volume = std::round(volume * 1e12) / 1e12;  // to the cubic millimetre's millionth, as above
+  return {corners, volume};
+}
+
+/// The part standing for `points` (the corners of a convex hull): at most `max_corners` of them
+/// by farthest-point sampling from the one farthest from their mean, and the largest distance
+/// of any of them outside the hull of those kept.
+ConvexPart reduce(const std::vector<glm::dvec3>& points, int max_corners) {
+  ConvexPart part;
+  if (static_cast<int>(points.size()) <= max_corners) {
+    part.corners = points;
+    return part;
+  }
+  glm::dvec3 mean(0.0);
+  for (const glm::dvec3& p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  std::vector<double> gap(points.size());
+  for (size_t k = 0; k < points.size(); ++k) gap[k] = glm::length(points[k] - mean);
+  std::vector<glm::dvec3> kept;
+  while (static_cast<int>(kept.size()) < max_corners) {
+    const size_t far = static_cast<size_t>(std::max_element(gap.begin(), gap.end()) - gap.begin());
+    kept.push_back(points[far]);
+    for (size_t k = 0; k < points.size(); ++k)
+      gap[k] = std::min(gap[k], glm::length(points[k] - points[far]));
+  }
+  part.corners = convex_hull(kept).first;
+  std::vector<Kernel::Point_3> in;
+  for (const glm::dvec3& p : part.corners) in.emplace_back(p.x, p.y, p.z);
+  HullMesh hull;
+  CGAL::convex_hull_3(in.begin(), in.end(), hull);
+  // Distances to the hull's triangles, each point against all (a few hundred): exact
+  // predicates, the same order every run.
+  std::vector<Kernel::Triangle_3> faces_of_hull;
+  for (const auto f : hull.faces()) {
+    std::vector<Kernel::Point_3> c;
+    for (const auto v : CGAL::vertices_around_face(hull.halfedge(f), hull)) c.push_back(hull.point(v));
+    faces_of_hull.emplace_back(c[0], c[1], c[2]);
+  }
+  for (const glm::dvec3& p : points) {
+    const Kernel::Point_3 q(p.x, p.y, p.z);
+    bool outside = false;
+    for (const Kernel::Triangle_3& t : faces_of_hull)
+      outside = outside || CGAL::orientation(t[0], t[1], t[2], q) == CGAL::POSITIVE;
+    if (!outside) continue;
+    double d2 = std::numeric_limits<double>::max();
+    for (const Kernel::Triangle_3& t : faces_of_hull)
+      d2 = std::min(d2, CGAL::to_double(CGAL::squared_distance(q, t)));
+    part.outside_m = std::max(part.outside_m, std::sqrt(d2));
+  }
+  // Rounded up to 0.1 um: the distances' last bits depend on the order of the hull's faces,
+  // which CGAL does not fix between runs.
+  part.outside_m = std::ceil(part.outside_m * 1e7) / 1e7;
+  return part;
+}
+
+/// The decomposition's parts: HACD clusters the triangles of the simplified piece; every
+/// vertex of the piece joins the clusters of the nearest simplified vertex, so the parts'
+/// hulls cover the piece's vertices, not only the simplified ones. Empty if HACD fails.
+std::vector<ConvexPart> decompose(const Welded& w, const CollisionShapeOptions& o) {
+  std::vector<float> xyz;
+  for (const glm::dvec3& p : w.point) {
+    xyz.push_back(static_cast<float>(p.x));
+    xyz.push_back(static_cast<float>(p.y));
+    xyz.push_back(static_cast<float>(p.z));
+  }
+  std::vector<unsigned> indices;
+  for (const auto& t : w.triangle) indices.insert(indices.end(), t.begin(), t.end());
+  std::vector<unsigned> simple(indices.size());
+  const size_t target = std::min(indices.size(), static_cast<size_t>(3 * o.decomposition_triangles));
+  simple.resize(meshopt_simplify(simple.data(), indices.data(), indices.size(), xyz.data(),
+                                 w.point.size(), 3 * sizeof(float), target, 0.02f, 0, nullptr));
+  if (simple.size() < 12) return {};
+
+  // HACD numbers the simplified mesh's vertices densely.
+  std::vector<long> dense(w.point.size(), -1);
+  std::vector<HACD::Vec3<HACD::Real>> points;
+  std::vector<unsigned> used;
+  std::vector<HACD::Vec3<long>> triangles;
+  std::vector<std::array<long, 3>> corners;  // the same triangles, readable
+  for (size_t i = 0; i < simple.size(); i += 3) {
+    long t[3];
+    for (int k = 0; k < 3; ++k) {
+      const unsigned v = simple[i + k];
+      if (dense[v] < 0) {
+        dense[v] = static_cast<long>(points.size());
+        points.emplace_back(w.point[v].x, w.point[v].y, w.point[v].z);
+        used.push_back(v);
+      }
+      t[k] = dense[v];
+    }
+    triangles.emplace_back(t[0], t[1], t[2]);
+    corners.push_back({t[0], t[1], t[2]});
+  }
+  glm::dvec3 lo(w.point[0]), hi(w.point[0]);
+  for (const glm::dvec3& p : w.point) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  HACD::HACD hacd;
+  hacd.SetPoints(points.data());
+  hacd.SetNPoints(points.size());
+  hacd.SetTriangles(triangles.data());
+  hacd.SetNTriangles(triangles.size());
+  hacd.SetCompacityWeight(0.1);
+  hacd.SetVolumeWeight(0.0);
+  hacd.SetNClusters(1);
+  hacd.SetNVerticesPerCH(64);
+  hacd.SetScaleFactor(1000);  // HACD rescales the mesh so its largest extent is this
+  hacd.SetConcavity(1000 * o.concavity);
+  hacd.SetConnectDist(30);  // joins pieces of the surface closer than 3 % of the extent
+  hacd.SetAddExtraDistPoints(false);
+  hacd.SetAddNeighboursDistPoints(false);
+  hacd.SetAddFacesPoints(false);
+  if (!hacd.Compute() || hacd.GetNClusters() == 0 || extent <= 0) return {};
+  const long* partition = hacd.GetPartition();
+  const size_t clusters = hacd.GetNClusters();
+
+  // Clusters of each simplified vertex, then of each vertex of the piece.
+  std::vector<std::vector<size_t>> of_vertex(used.size());
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const long c = partition[t];
+    if (c < 0 || static_cast<size_t>(c) >= clusters) return {};
+    for (int k = 0; k < 3; ++k) {
+      std::vector<size_t>& list = of_vertex[static_cast<size_t>(corners[t][k])];
+      if (std::find(list.begin(), list.end(), static_cast<size_t>(c)) == list.end())
+        list.push_back(static_cast<size_t>(c));
+    }
+  }
+  std::vector<std::vector<glm::dvec3>> members(clusters);
+  for (const glm::dvec3& p : w.point) {
+    size_t nearest = 0;
+    double best = std::numeric_limits<double>::max();
+    for (size_t k = 0; k < used.size(); ++k) {
+      const glm::dvec3 d = w.point[used[k]] - p;
+      const double d2 = glm::dot(d, d);
+      if (d2 < best) {
+        best = d2;
+        nearest = k;
+      }
+    }
+    for (size_t c : of_vertex[nearest]) members[c].push_back(p);
+  }
+  std::vector<ConvexPart> parts;
+  for (const auto& m : members) {
+    if (m.size() >= 4) parts.push_back(reduce(convex_hull(m).first, o.max_corners));
+  }
+  if (parts.empty() || static_cast<int>(parts.size()) > o.max_parts) return {};
+  return parts;
+}
+
+}  // namespace
+
+CollisionShape collision_shape(const ShadedMesh& mesh, const CollisionShapeOptions& options) {
+  const Welded w = weld(mesh);
+  CUTAWAY_CHECK(w.point.size() >= 4 && !w.triangle.empty());
+  CollisionShape s;
+  glm::dvec3 moment(0.0);
+  for (const auto& t : w.triangle) {
+    const glm::dvec3 &a = w.point[t[0]], &b = w.point[t[1]], &c = w.point[t[2]];
+    const double v = glm::dot(a, glm::cross(b, c)) / 6;  // the tetrahedron (0, a, b, c)
+    s.volume_m3 += v;
+    moment += v * (a + b + c) / 4.0;
+  }
+  auto [hull, hull_volume] = convex_hull(w.point);
+  CUTAWAY_CHECK(hull_volume > 0);
+  if (s.volume_m3 > 0) {
+    s.centroid = moment / s.volume_m3;
+    s.convexity = std::min(1.0, s.volume_m3 / hull_volume);
+  } else {  // not a closed outward surface: collide as the hull, centred on its corners
+    for (const glm::dvec3& p : hull) s.centroid += p;
+    s.centroid /= static_cast<double>(hull.size());
+    s.volume_m3 = hull_volume;
+  }
+  if (s.convexity < options.min_convexity) {
+    s.parts = decompose(w, options);
+    s.decomposed = !s.parts.empty();
+  }
+  if (s.parts.empty()) s.parts.push_back(reduce(hull, options.max_corners));
+  return s;
+}
+
+}  // namespace cutaway

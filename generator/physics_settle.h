@@ -1,0 +1,70 @@
+// Rigid-body settling of placed pieces with Bullet (doc/algorithms.md §4, Settling): every
+// piece a rigid body (its collision_shape, mass = density x volume), the container static
+// convex tiles (a box for the board) on a table at y = 0, stepped single-threaded with a fixed
+// time step, bodies added in input order, until the layout rests or a time cap is reached.
+// A piece that ends outside the container is dropped again from above the pile; after
+// `max_redrops` it is reported as not placed, never silently lost.
+#pragma once
+
+#include <vector>
+
+#include "collision_shape.h"
+#include "scene.h"
+#include "scene_layout.h"
+
+namespace cutaway {
+
+/// One piece to settle: its collision shape (object frame) and its drop pose.
+struct SettleBody {
+  const CollisionShape* shape = nullptr;  ///< required
+  double density_kg_m3 = 1000;            ///< > 0
+  Placement drop;  ///< where it starts, at rest; not placed: the piece is left out
+};
+
+/// Options of settle_pieces. Lengths in metres, times in seconds.
+struct SettleOptions {
+  double time_step_s = 1.0 / 240;  ///< fixed step
+  double max_seconds = 4.5;        ///< simulated time cap per round of drops
+  double margin_m = 0.00025;       ///< collision margin around each convex part
+  int solver_iterations = 20;      ///< Bullet's sequential impulse iterations per step
+  double friction = 0.8;           ///< Coulomb friction (piece on piece and on the container)
+  double linear_damping = 0.2;     ///< fraction of velocity lost per second
+  double angular_damping = 0.5;
+  double sleep_speed_m_s = 0.005;      ///< a body below this speed ...
+  double sleep_spin_rad_s = 0.15;      ///< ... and this spin for 2 s sleeps (Bullet's rule)
+  /// Cooling: from this simulated time on, the damping rises to 1 (all velocity lost every
+  /// step) over cool_seconds, so slow slides and rocking end. Seconds.
+  double cool_from_s = 2, cool_seconds = 1.5;
+  /// The layout is at rest when every body sleeps or no corner of any body's collision shape
+  /// moved more than this in the last quarter second (checked every quarter second), metres.
+  double rest_motion_m = 0.00005;
+  /// The bowl's and plate's collision mesh (container_mesh): segments around the axis and
+  /// along each profile curve (the exported mesh has 96 and 40). Its chords lie on the open
+  /// side of the exported surface: on a 26 cm bowl at most 0.6 mm above it.
+  int container_segments = 32, container_profile_samples = 12;
+  int max_redrops = 3;             ///< drops again of a piece that left the container
+  double none_radius_m = 0.2;      ///< resting radius on the floor (container type none)
+};
+
+/// What settle_pieces did.
+struct SettleResult {
+  std::vector<Placement> placements;  ///< one per body, input order; placed false: lost
+  double simulated_s = 0;             ///< simulated seconds, all rounds
+  int steps = 0;
+  bool all_asleep = false;  ///< the layout came to rest (rest_motion_m) before the time cap
+  int redrops = 0;          ///< drops again of pieces that had left the container
+  int lost = 0;             ///< pieces still outside after max_redrops drops again
+};
+
+/// Settles `bodies` from their drop poses in `container`. Deterministic: the same bodies and
+/// options give the same placements (single-threaded Bullet, fixed order and step).
+SettleResult settle_pieces(const std::vector<SettleBody>& bodies, const Container& container,
+                           const SettleOptions& options);
+
+/// The stability check: simulates the bodies from their drop poses (a settled layout), at rest,
+/// for `seconds` and returns how far the farthest corner of any body's collision shape moved
+/// (metres). Bodies not placed are left out.
+double settle_motion(const std::vector<SettleBody>& bodies, const Container& container,
+                     const SettleOptions& options, double seconds = 1.0);
+
+}  // namespace cutaway

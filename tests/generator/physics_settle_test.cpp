@@ -1,0 +1,230 @@
+// Settling with Bullet (doc/algorithms.md §4, Settling): collision shapes that enclose their
+// pieces, a decomposition for a hollow piece, deterministic settling, pieces that fall out of
+// the container dropped again, a piece at rest staying put, and the arrangements of a scene:
+// scatter on a board (none on another) and fan on a plate (each slice on the one before).
+#include <algorithm>
+#include <map>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "collision_shape.h"
+#include "diffusion/diffusion.h"
+#include "model_builder.h"
+#include "physics_settle.h"
+#include "pieces.h"
+#include "scene_builder.h"
+#include "scene_parser.h"
+#include "template_parser.h"
+#include "test_support.h"
+
+namespace cutaway {
+namespace {
+
+/// The pieces of `name` cut by `cut`, merged (as the scene builder places them).
+std::vector<ShadedMesh> pieces_of(const std::string& name, const std::string& cut) {
+  const Template tmpl = load_template(test::source_path("templates/" + name + ".yaml").string());
+  const DsModel model = build_model(tmpl);
+  const auto diffusion = make_cpu_diffusion(model, {4, 0});
+  PieceOptions options;
+  options.section.edge_m = tmpl.edge_m;
+  const PieceSet set = cut_pieces(model, parse_cut_spec(cut, 1e-3), *diffusion, options);
+  std::vector<ShadedMesh> out;
+  for (const Piece& p : set.pieces) out.push_back(merge_parts(p));
+  return out;
+}
+
+/// How far p lies outside the convex hull of `corners` (0 inside), by the hull's support
+/// planes in 64 x 32 directions: a lower bound of the distance, exact enough to test coverage.
+double outside(const std::vector<glm::dvec3>& corners, const glm::dvec3& p) {
+  double worst = -1;
+  for (int i = 0; i < 64; ++i) {
+    for (int j = 1; j < 32; ++j) {
+      const double a = 2 * 3.14159265358979 * i / 64, b = 3.14159265358979 * j / 32;
+      const glm::dvec3 d(std::sin(b) * std::cos(a), std::cos(b), std::sin(b) * std::sin(a));
+      double support = -1e9;
+      for (const glm::dvec3& c : corners) support = std::max(support, glm::dot(c, d));
+      worst = std::max(worst, glm::dot(p, d) - support);
+    }
+  }
+  return std::max(0.0, worst);
+}
+
+TEST(CollisionShape, AConvexPieceIsItsHullAndTheHullEnclosesEveryVertex) {
+  const std::vector<ShadedMesh> halves = pieces_of("tomato", "halves");
+  ASSERT_EQ(halves.size(), 2u);
+  const CollisionShape s = collision_shape(halves[0]);
+  EXPECT_FALSE(s.decomposed);
+  ASSERT_EQ(s.parts.size(), 1u);
+  EXPECT_GT(s.convexity, 0.8);
+  EXPECT_LE(s.convexity, 1.0);
+  EXPECT_NEAR(s.volume_m3, signed_volume(halves[0]), 1e-12);
+  EXPECT_LE(static_cast<int>(s.parts[0].corners.size()), CollisionShapeOptions{}.max_corners);
+  EXPECT_LT(s.parts[0].outside_m, 0.0015);
+  for (size_t v = 0; v < halves[0].position.size(); v += 7)
+    EXPECT_LE(outside(s.parts[0].corners, halves[0].position[v]), s.parts[0].outside_m + 1e-9);
+}
+
+TEST(CollisionShape, AHollowPepperHalfIsDecomposedAndItsPartsCoverIt) {
+  const std::vector<ShadedMesh> halves = pieces_of("pepper", "halves");
+  ASSERT_FALSE(halves.empty());
+  const CollisionShape s = collision_shape(halves[0]);
+  EXPECT_LT(s.convexity, 0.8);
+  ASSERT_TRUE(s.decomposed);
+  EXPECT_GE(s.parts.size(), 2u);
+  // Every vertex of the piece is inside (or within the margin of) some part.
+  for (size_t v = 0; v < halves[0].position.size(); v += 5) {
+    double best = 1e9;
+    for (const ConvexPart& part : s.parts)
+      best = std::min(best, outside(part.corners, halves[0].position[v]) - part.outside_m);
+    EXPECT_LE(best, 1e-9) << "vertex " << v;
+  }
+  // Same input, same shape.
+  const CollisionShape again = collision_shape(halves[0]);
+  ASSERT_EQ(again.parts.size(), s.parts.size());
+  for (size_t k = 0; k < s.parts.size(); ++k) EXPECT_EQ(again.parts[k].corners, s.parts[k].corners);
+}
+
+/// A bowl, a piece dropped into it from `drop` and settled.
+SettleResult settle_one(const CollisionShape& shape, const Container& bowl, Placement drop) {
+  return settle_pieces({{&shape, 1000, drop}}, bowl, SettleOptions{});
+}
+
+TEST(PhysicsSettle, APieceFallsToTheFloorOfTheBowlAndStaysThere) {
+  const std::vector<ShadedMesh> halves = pieces_of("tomato", "halves");
+  const CollisionShape shape = collision_shape(halves[0]);
+  Container bowl{ContainerType::Bowl, 0.2, 0, 0, 0.07};
+  const Placement drop{true, glm::dquat(1, 0, 0, 0), glm::dvec3(0.01, 0.12, 0.0)};
+  const SettleResult r = settle_one(shape, bowl, drop);
+  ASSERT_TRUE(r.placements[0].placed);
+  EXPECT_TRUE(r.all_asleep);
+  EXPECT_EQ(r.lost, 0);
+  // It fell: its lowest point is now near the floor of the bowl (0.08 x height).
+  double low = 1;
+  for (const glm::dvec3& p : halves[0].position)
+    low = std::min(low, (r.placements[0].translation + r.placements[0].rotation * p).y);
+  EXPECT_LT(low, 0.08 * 0.07 + 0.004);
+  EXPECT_GT(low, 0.08 * 0.07 - 0.001);
+  // Deterministic, and at rest: one more second moves it less than 1 mm.
+  const SettleResult again = settle_one(shape, bowl, drop);
+  EXPECT_EQ(again.placements[0].translation, r.placements[0].translation);
+  EXPECT_EQ(again.placements[0].rotation, r.placements[0].rotation);
+  EXPECT_LT(settle_motion({{&shape, 1000, r.placements[0]}}, bowl, SettleOptions{}), 0.001);
+}
+
+TEST(PhysicsSettle, APieceThatFallsOffTheBoardIsDroppedAgainOrCounted) {
+  const std::vector<ShadedMesh> halves = pieces_of("tomato", "halves");
+  const CollisionShape shape = collision_shape(halves[0]);
+  Container board{ContainerType::Board, 0, 0.3, 0.2, 0.02};
+  // Dropped beside the board: it lands on the table, outside.
+  const Placement beside{true, glm::dquat(1, 0, 0, 0), glm::dvec3(0.3, 0.1, 0.0)};
+  const SettleResult r = settle_one(shape, board, beside);
+  EXPECT_EQ(r.redrops, SettleOptions{}.max_redrops);
+  EXPECT_EQ(r.lost, 1);
+  EXPECT_FALSE(r.placements[0].placed);
+  // Dropped half over the edge (its centre on the board): it stays or is dropped again,
+  // and ends on the board.
+  const Placement edge{true, glm::dquat(1, 0, 0, 0), glm::dvec3(0.13, 0.06, 0.0)};
+  const SettleResult e = settle_one(shape, board, edge);
+  EXPECT_EQ(e.lost, 0);
+  ASSERT_TRUE(e.placements[0].placed);
+  const glm::dvec3 c = e.placements[0].translation + e.placements[0].rotation * shape.centroid;
+  EXPECT_LT(std::fabs(c.x), 0.15);
+  EXPECT_GT(c.y, 0.02);
+}
+
+/// The scene file's pieces, as placed: per instance its mesh in the scene frame.
+std::vector<std::vector<glm::dvec3>> placed_points(const SceneAssets& assets) {
+  std::vector<std::vector<glm::dvec3>> out;
+  for (size_t k = 1; k < assets.instances.size(); ++k) {
+    const AssetInstance& inst = assets.instances[k];
+    out.emplace_back();
+    for (const glm::dvec3& p : assets.meshes[inst.mesh].position)
+      out.back().push_back(inst.translation + inst.rotation * p);
+  }
+  return out;
+}
+
+TEST(PhysicsSettle, ScatterOnABoardPutsEveryPieceOnTheBoardApart) {
+  const Scene scene = parse_scene(R"(format: cutaway-scene/1
+name: scatter
+seed: 5
+container: {type: board, width: 360, depth: 240, height: 20}
+items:
+  - template: tomato
+    cut: {type: halves}
+  - template: cucumber
+    cut: {type: slices, thickness: 20}
+    keep: 0.5
+)", test::source_path("scenes/scatter.yaml").string());
+  ASSERT_EQ(scene.items[0].arrange, Arrangement::Scatter);  // the board's default
+  SceneBuildOptions options;
+  options.diffusion = [](const DsModel& model) { return make_cpu_diffusion(model, {4, 0}); };
+  options.cap_colours = CapColours::Vertex;
+  options.check_stability = true;
+  SceneStats stats;
+  const SceneAssets assets = build_scene(scene, scene.seed, options, &stats);
+  EXPECT_EQ(stats.placed, stats.pieces);
+  EXPECT_EQ(stats.lost, 0);
+  EXPECT_LT(stats.stability_motion_m, 0.001);
+  const auto pieces = placed_points(assets);
+  for (const auto& p : pieces) {
+    double low = 1;
+    for (const glm::dvec3& q : p) low = std::min(low, q.y);
+    EXPECT_NEAR(low, 0.02, 0.0015);  // on the board's top, not on another piece
+  }
+}
+
+TEST(PhysicsSettle, FanOnAPlateLaysEachSliceOverThePreviousOne) {
+  const Scene scene = parse_scene(R"(format: cutaway-scene/1
+name: fan
+seed: 2
+container: {type: plate, diameter: 280, height: 20}
+arrange: fan
+items:
+  - template: cucumber
+    cut: {type: slices, thickness: 10}
+    keep: 0.5
+)", test::source_path("scenes/fan.yaml").string());
+  SceneBuildOptions options;
+  options.diffusion = [](const DsModel& model) { return make_cpu_diffusion(model, {4, 0}); };
+  options.cap_colours = CapColours::Vertex;
+  SceneStats stats;
+  const SceneAssets assets = build_scene(scene, scene.seed, options, &stats);
+  ASSERT_EQ(stats.placed, stats.pieces);
+  ASSERT_GE(stats.placed, 4);
+  // The slices in row order (their cells), with their footprints' extents along the row.
+  std::map<int, std::vector<glm::dvec3>> by_cell;
+  const auto points = placed_points(assets);
+  for (size_t k = 0; k < points.size(); ++k)
+    by_cell[assets.instances[k + 1].piece.cell] = points[k];
+  std::vector<glm::dvec3> centre;
+  for (const auto& [cell, p] : by_cell) {
+    glm::dvec3 c(0.0);
+    for (const glm::dvec3& q : p) c += q;
+    centre.push_back(c / static_cast<double>(p.size()));
+  }
+  const glm::dvec3 row = glm::normalize(centre.back() - centre.front());
+  std::vector<std::pair<double, double>> extent;  // along the row
+  std::vector<double> top;
+  for (const auto& [cell, p] : by_cell) {
+    double lo = 1e9, hi = -1e9, y = -1;
+    for (const glm::dvec3& q : p) {
+      lo = std::min(lo, glm::dot(q, row));
+      hi = std::max(hi, glm::dot(q, row));
+      y = std::max(y, q.y);
+    }
+    extent.emplace_back(lo, hi);
+    top.push_back(y);
+  }
+  for (size_t k = 1; k < extent.size(); ++k) {
+    // Consecutive slices overlap along the row, and each lies higher than the plate alone
+    // would hold it: part of it rests on the one before.
+    EXPECT_LT(extent[k].first, extent[k - 1].second) << "slice " << k;
+    EXPECT_GT(extent[k].second, extent[k - 1].second) << "slice " << k;
+  }
+  EXPECT_GT(*std::max_element(top.begin(), top.end()), top.front());
+}
+
+}  // namespace
+}  // namespace cutaway
