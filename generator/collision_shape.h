@@ -18,7 +18,7 @@ struct CollisionShapeOptions {
   /// its hull; a less convex one (a pepper half's cup, an okra slice's ring) is decomposed.
   double min_convexity = 0.8;
   /// HACD's concavity bound, as a fraction of the piece's largest bounding-box extent.
-  double concavity = 0.04;
+  double concavity = 0.1;
   /// The piece is simplified to about this many triangles before the decomposition.
   int decomposition_triangles = 1500;
   int max_parts = 16;  ///< at most this many convex parts
