@@ -11,6 +11,7 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/convex_hull_3.h>
 #include <HACD/hacdHACD.h>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <meshoptimizer.h>
 
@@ -76,54 +77,171 @@ std::pair<std::vector<glm::dvec3>, double> convex_hull(const std::vector<glm::dv
   return {corners, volume};
 }
 
-/// The part standing for `points` (the corners of a convex hull): at most `max_corners` of them
-/// by farthest-point sampling from the one farthest from their mean, and the largest distance
-/// of any of them outside the hull of those kept.
-ConvexPart reduce(const std::vector<glm::dvec3>& points, int max_corners) {
-  ConvexPart part;
-  if (static_cast<int>(points.size()) <= max_corners) {
-    part.corners = points;
-    return part;
-  }
-  glm::dvec3 mean(0.0);
-  for (const glm::dvec3& p : points) mean += p;
-  mean /= static_cast<double>(points.size());
-  std::vector<double> gap(points.size());
-  for (size_t k = 0; k < points.size(); ++k) gap[k] = glm::length(points[k] - mean);
-  std::vector<glm::dvec3> kept;
-  while (static_cast<int>(kept.size()) < max_corners) {
-    const size_t far = static_cast<size_t>(std::max_element(gap.begin(), gap.end()) - gap.begin());
-    kept.push_back(points[far]);
-    for (size_t k = 0; k < points.size(); ++k)
-      gap[k] = std::min(gap[k], glm::length(points[k] - points[far]));
-  }
-  part.corners = convex_hull(kept).first;
+/// The planes of the convex hull of `corners`: unit outward normal and offset (n . x = d on
+/// the plane), and the hull's triangles for exact distances.
+struct HullPlanes {
+  std::vector<std::pair<glm::dvec3, double>> plane;
+  std::vector<Kernel::Triangle_3> triangle;
+};
+
+HullPlanes hull_planes(const std::vector<glm::dvec3>& corners) {
   std::vector<Kernel::Point_3> in;
-  for (const glm::dvec3& p : part.corners) in.emplace_back(p.x, p.y, p.z);
+  for (const glm::dvec3& p : corners) in.emplace_back(p.x, p.y, p.z);
   HullMesh hull;
   CGAL::convex_hull_3(in.begin(), in.end(), hull);
-  // Distances to the hull's triangles, each point against all (a few hundred): exact
-  // predicates, the same order every run.
-  std::vector<Kernel::Triangle_3> faces_of_hull;
+  HullPlanes h;
   for (const auto f : hull.faces()) {
     std::vector<Kernel::Point_3> c;
     for (const auto v : CGAL::vertices_around_face(hull.halfedge(f), hull)) c.push_back(hull.point(v));
-    faces_of_hull.emplace_back(c[0], c[1], c[2]);
+    h.triangle.emplace_back(c[0], c[1], c[2]);
+    const glm::dvec3 a(c[0].x(), c[0].y(), c[0].z()), b(c[1].x(), c[1].y(), c[1].z()),
+        d(c[2].x(), c[2].y(), c[2].z());
+    const glm::dvec3 n = glm::cross(b - a, d - a);
+    const double len = glm::length(n);
+    if (len > 0) h.plane.emplace_back(n / len, glm::dot(n / len, a));
   }
+  return h;
+}
+
+/// The largest distance of any of `points` outside the convex hull of `corners` (0 if none
+/// is outside), metres, rounded up to 0.1 um: the distances' last bits depend on the order of
+/// the hull's faces, which CGAL does not fix between runs.
+double outside_distance(const std::vector<glm::dvec3>& points,
+                        const std::vector<glm::dvec3>& corners) {
+  const HullPlanes h = hull_planes(corners);
+  double outside = 0;
   for (const glm::dvec3& p : points) {
     const Kernel::Point_3 q(p.x, p.y, p.z);
-    bool outside = false;
-    for (const Kernel::Triangle_3& t : faces_of_hull)
-      outside = outside || CGAL::orientation(t[0], t[1], t[2], q) == CGAL::POSITIVE;
-    if (!outside) continue;
+    bool out = false;
+    for (const Kernel::Triangle_3& t : h.triangle)
+      out = out || CGAL::orientation(t[0], t[1], t[2], q) == CGAL::POSITIVE;
+    if (!out) continue;
     double d2 = std::numeric_limits<double>::max();
-    for (const Kernel::Triangle_3& t : faces_of_hull)
+    for (const Kernel::Triangle_3& t : h.triangle)
       d2 = std::min(d2, CGAL::to_double(CGAL::squared_distance(q, t)));
-    part.outside_m = std::max(part.outside_m, std::sqrt(d2));
+    outside = std::max(outside, std::sqrt(d2));
   }
-  // Rounded up to 0.1 um: the distances' last bits depend on the order of the hull's faces,
-  // which CGAL does not fix between runs.
-  part.outside_m = std::ceil(part.outside_m * 1e7) / 1e7;
+  return std::ceil(outside * 1e7) / 1e7;
+}
+
+/// The corners of a convex hull moved outward so that every face's plane moves out by at
+/// least `distance` (metres): each corner along the mean normal of its faces, by distance over
+/// the smallest cosine between that mean and a face's normal (at most 3 x distance). A point
+/// within `distance` outside the hull is then (nearly always) inside the grown one; the caller
+/// measures what is left.
+std::vector<glm::dvec3> inflate(const std::vector<glm::dvec3>& corners, double distance) {
+  std::vector<Kernel::Point_3> in;
+  for (const glm::dvec3& p : corners) in.emplace_back(p.x, p.y, p.z);
+  HullMesh hull;
+  CGAL::convex_hull_3(in.begin(), in.end(), hull);
+  std::vector<glm::dvec3> out;
+  for (const auto v : hull.vertices()) {
+    std::vector<glm::dvec3> normals;
+    for (const auto f : CGAL::faces_around_target(hull.halfedge(v), hull)) {
+      if (f == HullMesh::null_face()) continue;
+      std::vector<glm::dvec3> c;
+      for (const auto u : CGAL::vertices_around_face(hull.halfedge(f), hull))
+        c.emplace_back(hull.point(u).x(), hull.point(u).y(), hull.point(u).z());
+      const glm::dvec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
+      if (glm::length(n) == 0) continue;
+      // Each plane once: how CGAL triangulates a planar face (a cut face's corners) varies.
+      bool seen = false;
+      for (const glm::dvec3& m : normals) seen = seen || glm::dot(m, glm::normalize(n)) > 1 - 1e-9;
+      if (!seen) normals.push_back(glm::normalize(n));
+    }
+    // Summed in a fixed order: the faces around a corner come in CGAL's order.
+    std::sort(normals.begin(), normals.end(), [](const glm::dvec3& a, const glm::dvec3& b) {
+      return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+    });
+    const glm::dvec3 p(hull.point(v).x(), hull.point(v).y(), hull.point(v).z());
+    glm::dvec3 mean(0.0);
+    for (const glm::dvec3& n : normals) mean += n;
+    if (glm::length(mean) == 0) {
+      out.push_back(p);
+      continue;
+    }
+    mean = glm::normalize(mean);
+    double cosine = 1;
+    for (const glm::dvec3& n : normals) cosine = std::min(cosine, glm::dot(mean, n));
+    const glm::dvec3 moved = p + mean * (distance / std::max(cosine, 1.0 / 3));
+    // To 0.1 nm: the last bits of the normals depend on the order of CGAL's faces.
+    out.push_back(glm::round(moved * 1e10) / 1e10);
+  }
+  std::sort(out.begin(), out.end(), [](const glm::dvec3& a, const glm::dvec3& b) {
+    return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+  });
+  return out;
+}
+
+/// The part standing for `points` (the corners of a convex hull), by greedy refinement in the
+/// manner of Quickhull (Barber, Dobkin and Huhdanpaa 1996): start from `seed_corners` corners
+/// picked by farthest-point sampling, then, round after round, add the points farthest outside
+/// the hull of those kept (at most one per neighbourhood of a twentieth of the extent, so a
+/// round adds corners all over the hull) until none lies more than `corner_tolerance_m` outside
+/// or `max_corners` are kept. The kept hull is then grown by the largest distance of a point
+/// outside it (inflate), so that it encloses them all: Bullet's polyhedral contacts touch the
+/// hull itself, not the hull grown by its collision margin. `outside_m` is what is left outside.
+ConvexPart reduce(const std::vector<glm::dvec3>& points, const CollisionShapeOptions& o) {
+  ConvexPart part;
+  if (static_cast<int>(points.size()) <= o.max_corners) {
+    part.corners = points;
+    return part;
+  }
+  glm::dvec3 mean(0.0), lo(points[0]), hi(points[0]);
+  for (const glm::dvec3& p : points) {
+    mean += p;
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  mean /= static_cast<double>(points.size());
+  const double spacing = glm::length(hi - lo) / 20;
+  std::vector<bool> kept(points.size(), false);
+  std::vector<size_t> chosen;
+  std::vector<double> gap(points.size());
+  for (size_t k = 0; k < points.size(); ++k) gap[k] = glm::length(points[k] - mean);
+  while (static_cast<int>(chosen.size()) < std::min(o.seed_corners, o.max_corners)) {
+    const size_t far = static_cast<size_t>(std::max_element(gap.begin(), gap.end()) - gap.begin());
+    chosen.push_back(far);
+    kept[far] = true;
+    for (size_t k = 0; k < points.size(); ++k)
+      gap[k] = std::min(gap[k], glm::length(points[k] - points[far]));
+  }
+  for (;;) {
+    std::vector<glm::dvec3> corners;
+    for (size_t k : chosen) corners.push_back(points[k]);
+    const HullPlanes h = hull_planes(corners);
+    // Each point's distance outside (largest over the hull's planes), rounded to 1 nm so the
+    // order of candidates does not depend on the order of CGAL's faces.
+    std::vector<std::pair<double, size_t>> candidate;
+    for (size_t k = 0; k < points.size(); ++k) {
+      if (kept[k]) continue;
+      double d = 0;
+      for (const auto& [n, offset] : h.plane) d = std::max(d, glm::dot(n, points[k]) - offset);
+      d = std::round(d * 1e9) / 1e9;
+      if (d > o.corner_tolerance_m) candidate.emplace_back(-d, k);
+    }
+    if (candidate.empty() || static_cast<int>(chosen.size()) >= o.max_corners) break;
+    std::sort(candidate.begin(), candidate.end());
+    std::vector<size_t> added;
+    for (const auto& [minus_d, k] : candidate) {
+      if (static_cast<int>(chosen.size() + added.size()) >= o.max_corners) break;
+      bool near = false;
+      for (size_t a : added) near = near || glm::length(points[a] - points[k]) < spacing;
+      if (!near) added.push_back(k);
+    }
+    for (size_t k : added) {
+      chosen.push_back(k);
+      kept[k] = true;
+    }
+  }
+  const std::vector<glm::dvec3> corners = convex_hull([&] {
+    std::vector<glm::dvec3> c;
+    for (size_t k : chosen) c.push_back(points[k]);
+    return c;
+  }()).first;
+  const double outside = outside_distance(points, corners);
+  part.corners = outside > 0 ? inflate(corners, outside) : corners;
+  part.outside_m = outside > 0 ? outside_distance(points, part.corners) : 0;
   return part;
 }
 
@@ -217,7 +335,7 @@ std::vector<ConvexPart> decompose(const Welded& w, const CollisionShapeOptions& 
   }
   std::vector<ConvexPart> parts;
   for (const auto& m : members) {
-    if (m.size() >= 4) parts.push_back(reduce(convex_hull(m).first, o.max_corners));
+    if (m.size() >= 4) parts.push_back(reduce(convex_hull(m).first, o));
   }
   if (parts.empty() || static_cast<int>(parts.size()) > o.max_parts) return {};
   return parts;
@@ -250,7 +368,7 @@ CollisionShape collision_shape(const ShadedMesh& mesh, const CollisionShapeOptio
     s.parts = decompose(w, options);
     s.decomposed = !s.parts.empty();
   }
-  if (s.parts.empty()) s.parts.push_back(reduce(hull, options.max_corners));
+  if (s.parts.empty()) s.parts.push_back(reduce(hull, options));
   return s;
 }
 

@@ -22,9 +22,13 @@ struct CollisionShapeOptions {
   /// The piece is simplified to about this many triangles before the decomposition.
   int decomposition_triangles = 1500;
   int max_parts = 16;  ///< at most this many convex parts
-  /// A part's hull keeps at most this many corners (farthest-point sampling of the full
-  /// hull's corners): the cost of a contact grows with them.
-  int max_corners = 96;
+  /// A part's hull is refined from seed_corners corners (farthest-point sampling of the full
+  /// hull's) by adding the corners farthest outside until none lies more than
+  /// corner_tolerance_m (metres) outside, keeping at most max_corners: the cost of a contact
+  /// grows with them.
+  int seed_corners = 24;
+  double corner_tolerance_m = 0.0005;
+  int max_corners = 128;
 };
 
 /// One convex part: the corners of a convex hull of at most max_corners corners, and how far

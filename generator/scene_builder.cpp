@@ -255,6 +255,18 @@ PieceMaterials add_skin_texture(SceneAssets& assets, const DsSurface& skin, cons
   return materials;
 }
 
+/// The number of distinct cut planes among the piece's caps (normals apart by over 2.5 degrees).
+int cut_faces(const Piece& piece) {
+  std::vector<glm::dvec3> normals;
+  for (const PiecePart& part : piece.parts) {
+    if (part.kind != PartKind::Cap || part.mesh.normal.empty()) continue;
+    bool seen = false;
+    for (const glm::dvec3& n : normals) seen = seen || glm::dot(n, part.mesh.normal[0]) > 0.999;
+    if (!seen) normals.push_back(part.mesh.normal[0]);
+  }
+  return static_cast<int>(normals.size());
+}
+
 glm::dvec3 largest_cap_normal(const Piece& piece) {
   double best = 0;
   glm::dvec3 normal(0.0);
@@ -362,7 +374,7 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
                                         : std::vector<glm::uvec3>{}));
         shapes.push_back(as_cut.empty() ? std::move(merged) : std::move(as_cut[q]));
         arranged.push_back({nullptr, largest_cap_normal(piece), item.arrange, st.objects,
-                            piece.cell});
+                            piece.cell, cut_faces(piece)});
         densities.push_back(tmpl.density_kg_m3);
         infos.push_back(
             piece_info(piece, shapes.back(), tmpl.name, object_seed(seed, ii, j, 1), item.cut));

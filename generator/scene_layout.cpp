@@ -277,14 +277,16 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
   const glm::dvec3 facing = glm::normalize(up + glm::normalize(options.to_camera));
   std::vector<Placement> out(pieces.size());
 
-  // Fan rows first, by group, each in rank order.
+  // Fan rows first, by group, each in rank order after the object's ends.
   std::map<int, std::vector<size_t>> rows;
   for (size_t p = 0; p < pieces.size(); ++p) {
     if (pieces[p].arrange == Arrangement::Fan) rows[pieces[p].group].push_back(p);
   }
   for (auto& [group, row] : rows) {
-    std::stable_sort(row.begin(), row.end(),
-                     [&](size_t a, size_t b) { return pieces[a].rank < pieces[b].rank; });
+    std::stable_sort(row.begin(), row.end(), [&](size_t a, size_t b) {
+      const bool end_a = pieces[a].cut_faces < 2, end_b = pieces[b].cut_faces < 2;
+      return end_a != end_b ? end_a : pieces[a].rank < pieces[b].rank;
+    });
     Rng rng(derive_seed(seed, {~0ull, static_cast<uint64_t>(group)}));
     place_fan(pieces, row, options, rng, field, out);
   }

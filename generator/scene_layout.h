@@ -25,6 +25,10 @@ struct LayoutPiece {
   Arrangement arrange = Arrangement::Pile;
   int group = 0;  ///< fan: pieces with one group form one row (one object)
   int rank = 0;   ///< fan: the order along the row (the pieces' cells)
+  /// fan: the piece's cut planes; a piece with one (an end of the object, rounded below its
+  /// cap) starts the row, where its cap is a flat rest for the next slice instead of it
+  /// sliding off the last one.
+  int cut_faces = 2;
 };
 
 /// Options of layout_pieces.
@@ -48,11 +52,12 @@ struct Placement {
   glm::dvec3 translation{0.0};
 };
 
-/// Places `pieces`: first the fan rows (by group, each in rank order), then the others in the
-/// given order. Every piece is turned, then put at the lowest height where every vertex is above
-/// the container's resting surface (exact for its convex surfaces) and its footprint (per cell:
-/// its lowest and highest surface points over the cell) clears the height field of the pieces
-/// before it by clearance_m; the height field then rises to the piece's top.
+/// Places `pieces`: first the fan rows (by group, the object's ends first, then in rank
+/// order), then the others in the given order. Every piece is turned, then put at the lowest
+/// height where every vertex is above the container's resting surface (exact for its convex
+/// surfaces) and its footprint (per cell: its lowest and highest surface points over the cell)
+/// clears the height field of the pieces before it by clearance_m; the height field then rises
+/// to the piece's top.
 /// - pile: the largest cap faces halfway between up and `to_camera` (a whole object stands
 ///   upright), tilted by up to tilt_deg and spun at random; of `candidates` random positions
 ///   (every vertex over the resting area) the lowest by score is taken;

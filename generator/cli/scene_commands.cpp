@@ -23,6 +23,7 @@
 #include "pieces.h"
 #include "pov_export.h"
 #include "povray_runner.h"
+#include "physics_settle.h"
 #include "scene_builder.h"
 #include "scene_parser.h"
 #include "scene_preview.h"
@@ -261,6 +262,7 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
   SceneBuildOptions options;
   options.sampling = common.sampling;
   options.cap_colours = a.colours == "vertex" ? CapColours::Vertex : CapColours::Texture;
+  options.check_stability = a.check_stability;
   options.atlas.texels_per_m = 1000 * a.texels_per_mm;  // 0: the scene's
   options.diffusion = [&](const DsModel& model) {
     auto backend = make_diffusion(model, {a.cube, common.threads}, choice);
@@ -279,6 +281,17 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
                  st.pieces - st.placed, st.pieces);
   if (st.defective_pieces > 0)
     spdlog::warn("{} pieces are not closed 2-manifolds", st.defective_pieces);
+  if (!st.settled)
+    spdlog::warn("the pieces were still moving when settling stopped after {:.1f} simulated s",
+                 st.simulated_seconds);
+  if (st.lost > 0)
+    spdlog::warn("{} pieces fell out of the container {} times and were left out", st.lost,
+                 SettleOptions{}.max_redrops + 1);
+  if (a.check_stability) {
+    const auto level = st.stability_motion_m > 0.001 ? spdlog::level::warn : spdlog::level::info;
+    spdlog::log(level, "stability check: in 1 s re-simulated, the pieces moved at most {:.2f} mm",
+                1000 * st.stability_motion_m);
+  }
   spdlog::info("{}: {} objects, {} pieces placed, {} triangles (seed {})", scene.name,
                st.objects, st.placed, st.triangles, seed);
   // The textures of each .pov and .gltf go beside it, committed with it (a .pov and a .gltf
@@ -310,7 +323,10 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
           {"settled", st.settled},
           {"decomposed_pieces", st.decomposed_pieces},
           {"redropped", st.redropped},
-          {"lost", st.lost}}},
+          {"lost", st.lost},
+          {"stability_motion_mm",
+           st.stability_motion_m >= 0 ? nlohmann::ordered_json(1000 * st.stability_motion_m)
+                                      : nlohmann::ordered_json(nullptr)}}},
         {"seconds",
          {{"parse", t_parse},
           {"build", t_build},

@@ -193,21 +193,28 @@ items:
   const SceneAssets assets = build_scene(scene, scene.seed, options, &stats);
   ASSERT_EQ(stats.placed, stats.pieces);
   ASSERT_GE(stats.placed, 4);
-  // The slices in row order (their cells), with their footprints' extents along the row.
-  std::map<int, std::vector<glm::dvec3>> by_cell;
+  // The row's direction: from one end of the row to the other (the two centres farthest
+  // apart); the slices in row order, by their centres along it.
   const auto points = placed_points(assets);
-  for (size_t k = 0; k < points.size(); ++k)
-    by_cell[assets.instances[k + 1].piece.cell] = points[k];
   std::vector<glm::dvec3> centre;
-  for (const auto& [cell, p] : by_cell) {
+  for (const auto& p : points) {
     glm::dvec3 c(0.0);
     for (const glm::dvec3& q : p) c += q;
     centre.push_back(c / static_cast<double>(p.size()));
   }
-  const glm::dvec3 row = glm::normalize(centre.back() - centre.front());
+  glm::dvec3 row(1, 0, 0);
+  double longest = 0;
+  for (const glm::dvec3& a : centre)
+    for (const glm::dvec3& b : centre)
+      if (glm::length(b - a) > longest && glm::dot(b - a, glm::dvec3(1, 0, 1)) > 0) {
+        longest = glm::length(b - a);
+        row = glm::normalize(b - a);
+      }
+  std::map<double, std::vector<glm::dvec3>> by_position;  // by the centre along the row
+  for (size_t k = 0; k < points.size(); ++k) by_position[glm::dot(centre[k], row)] = points[k];
   std::vector<std::pair<double, double>> extent;  // along the row
   std::vector<double> top;
-  for (const auto& [cell, p] : by_cell) {
+  for (const auto& [position, p] : by_position) {
     double lo = 1e9, hi = -1e9, y = -1;
     for (const glm::dvec3& q : p) {
       lo = std::min(lo, glm::dot(q, row));
