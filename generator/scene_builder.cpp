@@ -427,10 +427,8 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
   st.settled = settled.all_asleep;
   st.redropped = settled.redrops;
   st.lost = settled.lost;
-  if (options.check_stability) {
-    for (size_t k = 0; k < order.size(); ++k) bodies[k].drop = placements[k];
-    st.stability_motion_m = settle_motion(bodies, scene.container, options.settle);
-  }
+  st.stability_motion_m = settled.stability_motion_m;
+  st.stability_checks = settled.verify_rounds;
 
   assets.name = scene.name;
   assets.width = scene.render.width;

@@ -45,8 +45,6 @@ struct SceneBuildOptions {
   LayoutOptions layout;        ///< its to_camera is replaced by the scene camera's direction
   CollisionShapeOptions collision;  ///< the pieces' rigid bodies
   SettleOptions settle;             ///< the settling of the layout's drop poses
-  /// Whether to run the stability check after settling (SceneStats::stability_motion_m).
-  bool check_stability = false;
 };
 
 /// Counts and timings of one build_scene call (wall seconds).
@@ -64,10 +62,13 @@ struct SceneStats {
   double seconds_layout = 0;    ///< drop poses (the height-field layout)
   double seconds_physics = 0;   ///< collision shapes and settling
   double simulated_seconds = 0;     ///< simulated time of the settling
-  bool settled = false;             ///< every piece came to rest before the time cap
+  bool settled = false;             ///< the last round of settling came to rest before its cap
   int decomposed_pieces = 0;        ///< pieces colliding as several convex parts
   int redropped = 0, lost = 0;      ///< settle_pieces: drops again; pieces left out
-  double stability_motion_m = -1;   ///< with check_stability: settle_motion over 1 s, metres
+  /// The stability check of the placed layout: the farthest any piece's corner moved in 1 s
+  /// re-simulated from rest (metres; SettleResult::stability_motion_m), and the checks run.
+  double stability_motion_m = 0;
+  int stability_checks = 0;
 };
 
 /// The seed of item `item`, object `object`, for `purpose` (1: variant, 2: which pieces are

@@ -79,7 +79,6 @@ struct SceneArgs {
   std::string compress = "quantize";  ///< glTF vertex data: none, quantize or meshopt
   int lods = 0;                       ///< glTF levels of detail per mesh (GltfSceneOptions)
   std::string textures = "jpeg";      ///< base-colour texture images: jpeg or png (TextureFormat)
-  bool check_stability = false;       ///< re-simulate the settled layout for 1 s and report
 };
 int run_scene(const SceneArgs& args, const Common& common, OutputSet& outputs);
 

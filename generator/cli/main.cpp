@@ -549,9 +549,6 @@ int main(int argc, char** argv) {
                    "render.texels_per_mm, else 8.6: a 60 mm cut face 516 texels across)")
       ->check(CLI::Range(0.1, 100.0));
   add_export_options(scene, scene_args.compress, scene_args.lods, scene_args.textures);
-  scene->add_flag("--check-stability", scene_args.check_stability,
-                  "re-simulate the settled pieces for 1 s and report how far they move "
-                  "(warns over 1 mm)");
 
   std::vector<std::string> check_files;
   CLI::App* check =

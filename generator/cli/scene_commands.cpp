@@ -262,7 +262,6 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
   SceneBuildOptions options;
   options.sampling = common.sampling;
   options.cap_colours = a.colours == "vertex" ? CapColours::Vertex : CapColours::Texture;
-  options.check_stability = a.check_stability;
   options.atlas.texels_per_m = 1000 * a.texels_per_mm;  // 0: the scene's
   options.diffusion = [&](const DsModel& model) {
     auto backend = make_diffusion(model, {a.cube, common.threads}, choice);
@@ -287,10 +286,13 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
   if (st.lost > 0)
     spdlog::warn("{} pieces fell out of the container {} times and were left out", st.lost,
                  SettleOptions{}.max_redrops + 1);
-  if (a.check_stability) {
-    const auto level = st.stability_motion_m > 0.001 ? spdlog::level::warn : spdlog::level::info;
-    spdlog::log(level, "stability check: in 1 s re-simulated, the pieces moved at most {:.2f} mm",
-                1000 * st.stability_motion_m);
+  {
+    const double limit = SettleOptions{}.stable_motion_m;
+    const auto level = st.stability_motion_m > limit ? spdlog::level::warn : spdlog::level::info;
+    spdlog::log(level,
+                "stability check: re-simulated for 1 s, the settled pieces moved at most "
+                "{:.2f} mm (limit {:.0f} mm; {} checks)",
+                1000 * st.stability_motion_m, 1000 * limit, st.stability_checks);
   }
   spdlog::info("{}: {} objects, {} pieces placed, {} triangles (seed {})", scene.name,
                st.objects, st.placed, st.triangles, seed);
@@ -324,9 +326,8 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
           {"decomposed_pieces", st.decomposed_pieces},
           {"redropped", st.redropped},
           {"lost", st.lost},
-          {"stability_motion_mm",
-           st.stability_motion_m >= 0 ? nlohmann::ordered_json(1000 * st.stability_motion_m)
-                                      : nlohmann::ordered_json(nullptr)}}},
+          {"stability_motion_mm", 1000 * st.stability_motion_m},
+          {"stability_checks", st.stability_checks}}},
         {"seconds",
          {{"parse", t_parse},
           {"build", t_build},
