@@ -118,6 +118,9 @@ class World {
     btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape.get(), inertia);
     info.m_friction = static_cast<btScalar>(options_.friction);
     info.m_restitution = 0;
+    // Rolling and spinning resistance: a torque up to rolling_friction_m x the normal force.
+    info.m_rollingFriction = info.m_spinningFriction =
+        static_cast<btScalar>(options_.rolling_friction_m * kUnitsPerMetre);
     info.m_linearDamping = static_cast<btScalar>(options_.linear_damping);
     info.m_angularDamping = static_cast<btScalar>(options_.angular_damping);
     info.m_linearSleepingThreshold =

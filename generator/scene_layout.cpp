@@ -219,8 +219,10 @@ void place_fan(const std::vector<LayoutPiece>& pieces, const std::vector<size_t>
   std::vector<double> along;  // each piece's centre along the row, from the first's
   for (size_t k = 0; k < row.size(); ++k) {
     const LayoutPiece& piece = pieces[row[k]];
+    // The first piece, with none under it, lies flat: dropped leaning, it tipped over and slid
+    // away from the second.
     const glm::dquat r = glm::length(piece.cap_normal) > 0
-                             ? glm::rotation(glm::normalize(piece.cap_normal), lean)
+                             ? glm::rotation(glm::normalize(piece.cap_normal), k == 0 ? up : lean)
                              : glm::dquat(1, 0, 0, 0);
     turned.push_back(turn(piece, r, options.cell_m));
     double lo = kBlocked, hi = -kBlocked;
@@ -301,13 +303,12 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
     const bool scatter = piece.arrange == Arrangement::Scatter;
     double best_score = kBlocked, best_y = 0;
     int best_i = -1, best_j = -1;
-    for (int attempt = 0; attempt < 4 * options.candidates; ++attempt) {
-      if (attempt >= options.candidates && best_i >= 0) break;  // more only while none fits
-      const int i = static_cast<int>(rng.below(static_cast<uint32_t>(n)));
-      const int j = static_cast<int>(rng.below(static_cast<uint32_t>(n)));
-      if (scatter && !field.free(t, i, j, gap)) continue;
+    // A position for the piece at cell (i, j), scored: pile, the lowest near the axis; scatter,
+    // with its footprint grown by `gap_cells` free, the farthest from the scattered pieces.
+    const auto consider = [&](int i, int j, int gap_cells) {
+      if (scatter && !field.free(t, i, j, gap_cells)) return;
       const double y = field.rest(t, i, j);
-      if (y == kBlocked) continue;
+      if (y == kBlocked) return;
       const glm::dvec2 at = field.at(i, j);
       double score = y + options.centre_weight * glm::length(at);
       if (scatter && !scattered.empty()) {
@@ -320,6 +321,23 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
         best_y = y;
         best_i = i;
         best_j = j;
+      }
+    };
+    // Scatter on a crowded board: the gap halves, then goes, before a piece is left out; with
+    // no gap, every cell on a grid of a scan step is tried after the random ones.
+    for (int g = scatter ? gap : 0; best_i < 0; g /= 2) {
+      for (int attempt = 0; attempt < 4 * options.candidates; ++attempt) {
+        if (attempt >= options.candidates && best_i >= 0) break;  // more only while none fits
+        const int i = static_cast<int>(rng.below(static_cast<uint32_t>(n)));
+        const int j = static_cast<int>(rng.below(static_cast<uint32_t>(n)));
+        consider(i, j, g);
+      }
+      if (g == 0) {
+        const int step = std::max(1, static_cast<int>(std::lround(options.scan_step_m /
+                                                                   options.cell_m)));
+        for (int i = 0; scatter && best_i < 0 && i < n; i += step)
+          for (int j = 0; j < n; j += step) consider(i, j, 0);
+        break;
       }
     }
     if (best_i < 0) continue;  // not placed: the container is full

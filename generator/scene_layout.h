@@ -43,6 +43,7 @@ struct LayoutOptions {
   double fan_tilt_deg = 18;        ///< fan: how far each piece's cap leans along the row, degrees
   double fan_step = 0.5;           ///< fan: advance per piece, fraction of its length in the row
   double scatter_gap_m = 0.008;    ///< scatter: free ground kept around each piece, metres
+  double scan_step_m = 0.004;      ///< scatter without a gap: the grid of positions scanned, m
 };
 
 /// Where one piece goes: scene point = translation + rotation * (object-frame point).
@@ -64,7 +65,9 @@ struct Placement {
 /// - fan: a row in a seeded direction, each piece's cap up and leaning fan_tilt_deg along the
 ///   row, advancing fan_step of its length; of `candidates` random row centres the lowest;
 /// - scatter: turned as for pile; of `candidates` positions whose footprint, grown by
-///   scatter_gap_m, is free of pieces, the farthest from the pieces placed (best candidate).
+///   scatter_gap_m, is free of pieces, the farthest from the pieces placed (best candidate);
+///   where none is found the gap halves until it is 0, and then every position on a grid of
+///   scan_step_m is tried, before the piece is left out.
 /// Deterministic in `seed`.
 /// @returns one placement per piece, in input order (placed false: no room was found)
 std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,

@@ -171,10 +171,13 @@ items:
   EXPECT_EQ(stats.lost, 0);
   EXPECT_LT(stats.stability_motion_m, 0.001);
   const auto pieces = placed_points(assets);
-  for (const auto& p : pieces) {
+  for (size_t k = 0; k < pieces.size(); ++k) {
     double low = 1;
-    for (const glm::dvec3& q : p) low = std::min(low, q.y);
-    EXPECT_NEAR(low, 0.02, 0.0015);  // on the board's top, not on another piece
+    for (const glm::dvec3& q : pieces[k]) low = std::min(low, q.y);
+    // On the board's top, not on another piece (which would lift it by 10 mm or more). A piece
+    // rests on its collision hull, reduced to at most 128 corners and grown to enclose it: on
+    // a tomato half's rounded skin the hull stands up to 1.5 mm proud of the mesh.
+    EXPECT_NEAR(low, 0.02, 0.002) << assets.instances[k + 1].name;
   }
 }
 
@@ -233,7 +236,9 @@ items:
     EXPECT_LT(extent[k].first, extent[k - 1].second) << "slice " << k;
     EXPECT_GT(extent[k].second, extent[k - 1].second) << "slice " << k;
   }
-  EXPECT_GT(*std::max_element(top.begin(), top.end()), top.front());
+  // Not all flat on the plate: the slices resting on others stand higher than the lowest.
+  EXPECT_GT(*std::max_element(top.begin(), top.end()),
+            *std::min_element(top.begin(), top.end()) + 0.002);
 }
 
 }  // namespace
