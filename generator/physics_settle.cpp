@@ -27,6 +27,16 @@ glm::dvec3 from_bt(const btVector3& v) {
   return glm::dvec3(v.x(), v.y(), v.z()) / kUnitsPerMetre;
 }
 
+/// The centre of mass of body `b` placed at the object-frame pose `pose` (metres).
+glm::dvec3 centre_of_mass(const SettleBody& b, const Placement& pose) {
+  return pose.translation + pose.rotation * b.shape->centroid;
+}
+
+/// Steps between two looks at whether the bodies rest: a quarter second.
+int steps_per_rest_check(const SettleOptions& o) {
+  return std::max(1, static_cast<int>(std::lround(0.25 / o.time_step_s)));
+}
+
 /// A Bullet world holding the table, the container and the bodies, in input order.
 class World {
  public:
@@ -140,11 +150,10 @@ class World {
 
   /// The Bullet transform of the body's centre of mass for an object-frame pose.
   static btTransform transform(const SettleBody& b, const Placement& pose) {
-    const glm::dvec3 origin = pose.translation + pose.rotation * b.shape->centroid;
     const glm::dquat& q = pose.rotation;
     return btTransform(btQuaternion(static_cast<btScalar>(q.x), static_cast<btScalar>(q.y),
                                     static_cast<btScalar>(q.z), static_cast<btScalar>(q.w)),
-                       to_bt(origin));
+                       to_bt(centre_of_mass(b, pose)));
   }
 
   /// The object-frame pose of body k.
@@ -265,7 +274,7 @@ void run_to_rest(World& world, const std::vector<SettleBody>& bodies, std::vecto
                  std::vector<int>& drops, double ceiling, const SettleOptions& options,
                  SettleResult& r) {
   const int max_steps = static_cast<int>(std::ceil(options.max_seconds / options.time_step_s));
-  const int check_every = std::max(1, static_cast<int>(std::lround(0.25 / options.time_step_s)));
+  const int check_every = steps_per_rest_check(options);
   for (;;) {
     int steps = 0;
     bool at_rest = false;
@@ -285,8 +294,7 @@ void run_to_rest(World& world, const std::vector<SettleBody>& bodies, std::vecto
     const double top = world.top();
     for (size_t k = 0; k < bodies.size(); ++k) {
       if (id[k] == SIZE_MAX) continue;
-      const Placement now = world.pose(id[k], bodies[k]);
-      const glm::dvec3 c = now.translation + now.rotation * bodies[k].shape->centroid;
+      const glm::dvec3 c = centre_of_mass(bodies[k], world.pose(id[k], bodies[k]));
       if (inside(world.container(), c, ceiling, options.none_radius_m)) continue;
       if (drops[k] == options.max_redrops) {
         world.remove(id[k]);
@@ -326,18 +334,17 @@ std::unique_ptr<World> world_at(const std::vector<SettleBody>& bodies,
 SettleResult settle_pieces(const std::vector<SettleBody>& bodies, const Container& container,
                            const SettleOptions& options) {
   SettleResult r;
-  std::vector<Placement> drops_at(bodies.size());
+  std::vector<Placement> drop_poses(bodies.size());
   double ceiling = 0.1;
   for (size_t k = 0; k < bodies.size(); ++k) {
+    drop_poses[k] = bodies[k].drop;
     if (!bodies[k].drop.placed) continue;
     CUTAWAY_CHECK(bodies[k].shape != nullptr && bodies[k].density_kg_m3 > 0);
-    drops_at[k] = bodies[k].drop;
-    const glm::dvec3 c = bodies[k].drop.translation + bodies[k].drop.rotation * bodies[k].shape->centroid;
-    ceiling = std::max(ceiling, 2 * c.y + 0.1);
+    ceiling = std::max(ceiling, 2 * centre_of_mass(bodies[k], bodies[k].drop).y + 0.1);
   }
   std::vector<size_t> id;
   std::vector<int> drops(bodies.size(), 0);
-  auto world = world_at(bodies, drops_at, container, options, id);
+  auto world = world_at(bodies, drop_poses, container, options, id);
   run_to_rest(*world, bodies, id, drops, ceiling, options, r);
   r.placements = world->poses(bodies, id);
   // The stability check: the layout in a new world, at rest, run for verify_seconds. If a piece
@@ -346,7 +353,7 @@ SettleResult settle_pieces(const std::vector<SettleBody>& bodies, const Containe
   // settles on in that world, from where the check stopped, and is checked again.
   const int verify_steps =
       static_cast<int>(std::ceil(options.verify_seconds / options.time_step_s));
-  const int check_every = std::max(1, static_cast<int>(std::lround(0.25 / options.time_step_s)));
+  const int check_every = steps_per_rest_check(options);
   SettleOptions verify = options;
   verify.solver_iterations = options.check_solver_iterations;
   for (int round = 1;; ++round) {

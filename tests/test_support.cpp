@@ -1,5 +1,6 @@
 #include "test_support.h"
 
+#include "diffusion/diffusion.h"
 #include "manifold_check.h"
 #include "model_builder.h"
 #include "template_parser.h"
@@ -74,6 +75,13 @@ std::filesystem::path fresh_dir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+SceneBuildOptions quick_scene_options(CapColours colours) {
+  SceneBuildOptions options;
+  options.diffusion = [](const DsModel& model) { return make_cpu_diffusion(model, {4, 0}); };
+  options.cap_colours = colours;
+  return options;
 }
 
 std::filesystem::path source_path(const std::string& relative) {

@@ -13,6 +13,7 @@
 #include "cross_section.h"
 #include "ds_model.h"
 #include "scene_assets.h"
+#include "scene_builder.h"
 #include "shaded_mesh.h"
 #include "template.h"
 
@@ -35,6 +36,10 @@ std::filesystem::path fresh_dir(const std::string& name);
 
 /// Absolute path of a file in the source tree, e.g. source_path("templates/tomato.yaml").
 std::filesystem::path source_path(const std::string& relative);
+
+/// Options of build_scene for quick scene tests: the cpu backend with 4 cube-map cells per face
+/// and all threads, cap colours `colours`, every other option its default.
+SceneBuildOptions quick_scene_options(CapColours colours);
 
 /// The bytes of the file at `path` (empty when it cannot be read).
 std::string read_file(const std::filesystem::path& path);

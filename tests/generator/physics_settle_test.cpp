@@ -162,9 +162,7 @@ items:
     keep: 0.5
 )", test::source_path("scenes/scatter.yaml").string());
   ASSERT_EQ(scene.items[0].arrange, Arrangement::Scatter);  // the board's default
-  SceneBuildOptions options;
-  options.diffusion = [](const DsModel& model) { return make_cpu_diffusion(model, {4, 0}); };
-  options.cap_colours = CapColours::Vertex;
+  const SceneBuildOptions options = test::quick_scene_options(CapColours::Vertex);
   SceneStats stats;
   const SceneAssets assets = build_scene(scene, scene.seed, options, &stats);
   EXPECT_EQ(stats.placed, stats.pieces);
@@ -192,9 +190,7 @@ items:
     cut: {type: slices, thickness: 10}
     keep: 0.5
 )", test::source_path("scenes/fan.yaml").string());
-  SceneBuildOptions options;
-  options.diffusion = [](const DsModel& model) { return make_cpu_diffusion(model, {4, 0}); };
-  options.cap_colours = CapColours::Vertex;
+  const SceneBuildOptions options = test::quick_scene_options(CapColours::Vertex);
   SceneStats stats;
   const SceneAssets assets = build_scene(scene, scene.seed, options, &stats);
   ASSERT_EQ(stats.placed, stats.pieces);

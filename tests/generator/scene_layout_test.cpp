@@ -16,7 +16,6 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "diffusion/diffusion.h"
 #include "scene_builder.h"
 #include "container_mesh.h"
 #include "scene_parser.h"
@@ -109,8 +108,7 @@ std::vector<Mesh> check_resting_pieces(const SceneAssets& assets) {
 
 TEST(SceneLayout, PiecesRestWithoutInterpenetrating) {
   const Scene scene = load_scene(test::source_path("tests/data/scenes/tiny.yaml").string());
-  SceneBuildOptions options;
-  options.diffusion = [](const DsModel& model) { return make_cpu_diffusion(model, {4, 0}); };
+  const SceneBuildOptions options = test::quick_scene_options(CapColours::Texture);
   SceneStats stats;
   const SceneAssets assets = build_scene(scene, scene.seed, options, &stats);
   EXPECT_EQ(stats.placed, stats.pieces);
@@ -130,9 +128,7 @@ items:
     count: 4
     cut: {type: slices, thickness: 10}
 )", test::source_path("scenes/pile.yaml").string());
-  SceneBuildOptions options;
-  options.diffusion = [](const DsModel& model) { return make_cpu_diffusion(model, {4, 0}); };
-  options.cap_colours = CapColours::Vertex;
+  const SceneBuildOptions options = test::quick_scene_options(CapColours::Vertex);
   SceneStats stats;
   const SceneAssets assets = build_scene(scene, scene.seed, options, &stats);
   ASSERT_GE(stats.pieces, 60);
