@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
@@ -48,6 +49,12 @@ Footprint footprint(const std::vector<glm::dvec3>& p, const std::vector<glm::uve
     const int a_hi = static_cast<int>(std::floor(std::max({a.x, b.x, c.x}) / cs));
     const int b_lo = static_cast<int>(std::floor(std::min({a.z, b.z, c.z}) / cs));
     const int b_hi = static_cast<int>(std::floor(std::max({a.z, b.z, c.z}) / cs));
+    if (a_lo == a_hi && b_lo == b_hi) {  // within one cell (most triangles): nothing to clip
+      const size_t k = static_cast<size_t>(a_lo - f.a0) * f.nb + (b_lo - f.b0);
+      f.bottom[k] = std::min({f.bottom[k], a.y, b.y, c.y});
+      f.top[k] = std::max({f.top[k], a.y, b.y, c.y});
+      continue;
+    }
     for (int i = a_lo; i <= a_hi; ++i) {
       for (int j = b_lo; j <= b_hi; ++j) {
         // The part of the triangle over the cell (clipped by its four sides in x and z, y
@@ -176,6 +183,19 @@ class HeightField {
     }
   }
 
+  /// Sets the cells under t placed at (i, j) back to their heights in `from` (a field of the
+  /// same container and options).
+  void restore(const HeightField& from, const Turned& t, int i, int j) {
+    for (int a = 0; a < t.f.na; ++a) {
+      for (int b = 0; b < t.f.nb; ++b) {
+        const size_t k = static_cast<size_t>(a) * t.f.nb + b;
+        if (t.f.bottom[k] == kBlocked) continue;
+        const size_t c = static_cast<size_t>(i + t.f.a0 + a) * n_ + (j + t.f.b0 + b);
+        surface_[c] = from.surface_[c];
+      }
+    }
+  }
+
   Placement placement(const Turned& t, int i, int j, double y) const {
     const glm::dvec2 o = at(i, j);
     return {true, t.rotation, glm::dvec3(o.x, y, o.y) - t.centre};
@@ -205,67 +225,153 @@ glm::dquat facing_rotation(const LayoutPiece& piece, const glm::dvec3& facing,
   return glm::angleAxis(tilt, tilt_axis) * glm::angleAxis(spin, up);
 }
 
-/// Places one fan row: the pieces `row` (indices into pieces, in rank order).
-void place_fan(const std::vector<LayoutPiece>& pieces, const std::vector<size_t>& row,
-               const LayoutOptions& options, Rng& rng, HeightField& field,
-               std::vector<Placement>& out) {
-  const glm::dvec3 up(0, 1, 0);
-  const double heading = rng.uniform(0, 2 * kPi);
-  const glm::dvec3 d(std::cos(heading), 0, std::sin(heading));  // the row's direction
-  // Each piece's cap up, leaning along the row; a whole object upright.
-  const glm::dvec3 lean = glm::angleAxis(glm::radians(options.fan_tilt_deg), glm::cross(d, up)) *
-                          up;  // tilted from up towards +d
-  std::vector<Turned> turned;
-  std::vector<double> along;  // each piece's centre along the row, from the first's
-  for (size_t k = 0; k < row.size(); ++k) {
-    const LayoutPiece& piece = pieces[row[k]];
-    // The first piece, with none under it, lies flat: dropped leaning, it tipped over and slid
-    // away from the second.
+/// One object's fan pieces turned for each of `headings` row directions (evenly spaced from
+/// `heading0`, radians), each turn computed once per piece, direction and pose: a row split in
+/// two reuses them.
+class FanTurns {
+ public:
+  FanTurns(const std::vector<LayoutPiece>& pieces, const LayoutOptions& options, int headings,
+           double heading0)
+      : pieces_(&pieces), options_(&options), headings_(headings), heading0_(heading0) {}
+
+  int headings() const { return headings_; }
+  /// The row direction of heading h, a horizontal unit vector.
+  glm::dvec3 direction(int h) const {
+    const double a = heading0_ + 2 * kPi * h / headings_;
+    return {std::cos(a), 0, std::sin(a)};
+  }
+  /// Piece p with its cap up (`flat`) or leaning fan_tilt_deg along direction h; a whole
+  /// object upright.
+  const Turned& get(size_t p, int h, bool flat) {
+    auto [it, added] = cache_.try_emplace({p, h, flat});
+    if (!added) return it->second;
+    const glm::dvec3 up(0, 1, 0), d = direction(h);
+    const glm::dvec3 lean =  // tilted from up towards +d
+        glm::angleAxis(glm::radians(options_->fan_tilt_deg), glm::cross(d, up)) * up;
+    const LayoutPiece& piece = (*pieces_)[p];
     const glm::dquat r = glm::length(piece.cap_normal) > 0
-                             ? glm::rotation(glm::normalize(piece.cap_normal), k == 0 ? up : lean)
+                             ? glm::rotation(glm::normalize(piece.cap_normal), flat ? up : lean)
                              : glm::dquat(1, 0, 0, 0);
-    turned.push_back(turn(piece, r, options.cell_m));
+    it->second = turn(piece, r, options_->cell_m);
+    return it->second;
+  }
+
+ private:
+  const std::vector<LayoutPiece>* pieces_;
+  const LayoutOptions* options_;
+  int headings_;
+  double heading0_;
+  std::map<std::tuple<size_t, int, bool>, Turned> cache_;
+};
+
+/// A fan row laid out in one direction: each piece turned and its centre's distance along the
+/// row from the row's middle.
+struct FanRow {
+  glm::dvec3 d{1, 0, 0};  ///< the row's direction, horizontal unit
+  std::vector<const Turned*> turned;
+  std::vector<double> along;
+};
+
+FanRow fan_row(const std::vector<LayoutPiece>& pieces, const std::vector<size_t>& row, int h,
+               const LayoutOptions& options, FanTurns& turns) {
+  FanRow f;
+  f.d = turns.direction(h);
+  for (size_t k = 0; k < row.size(); ++k) {
+    // The first piece, with none under it, lies flat: dropped leaning, it tipped over and slid
+    // away from the second. So does an end closing the row: leaning, the lowest point of its
+    // rounded side lay under the slice before it, and it rolled off the row.
+    const bool flat = k == 0 || pieces[row[k]].cut_faces < 2;
+    f.turned.push_back(&turns.get(row[k], h, flat));
     double lo = kBlocked, hi = -kBlocked;
-    for (const glm::dvec3& v : turned.back().q) {
-      lo = std::min(lo, glm::dot(v, d));
-      hi = std::max(hi, glm::dot(v, d));
+    for (const glm::dvec3& v : f.turned.back()->q) {
+      lo = std::min(lo, glm::dot(v, f.d));
+      hi = std::max(hi, glm::dot(v, f.d));
     }
-    along.push_back(k == 0 ? 0 : along.back() + options.fan_step * (hi - lo));
+    f.along.push_back(k == 0 ? 0 : f.along.back() + options.fan_step * (hi - lo));
   }
-  const double middle = 0.5 * along.back();
-  // Candidate row centres; each row is tried on a copy of the height field.
-  double best_score = kBlocked;
-  std::vector<Placement> best;
-  HeightField best_field = field;
+  const double middle = 0.5 * f.along.back();
+  for (double& a : f.along) a -= middle;
+  return f;
+}
+
+/// Places one fan row: the pieces `row` (indices into pieces, in row order). Candidates are
+/// a random heading (one of fan_headings) and a random centre; a row keeps a gap of free
+/// ground to the rows and pieces before it, relaxed like scatter's down to none, and, where
+/// `may_overlap`, may then lie over them. Returns false (nothing placed) where no candidate fits.
+bool place_fan(const std::vector<LayoutPiece>& pieces, const std::vector<size_t>& row,
+               bool may_overlap, const LayoutOptions& options, FanTurns& turns, Rng& rng,
+               HeightField& field, std::vector<Placement>& out) {
+  std::vector<FanRow> headings(static_cast<size_t>(turns.headings()));
   const int n = field.cells();
-  for (int attempt = 0; attempt < 4 * options.candidates; ++attempt) {
-    if (attempt >= options.candidates && !best.empty()) break;
-    const glm::dvec2 c = field.at(static_cast<int>(rng.below(static_cast<uint32_t>(n))),
-                                  static_cast<int>(rng.below(static_cast<uint32_t>(n))));
-    HeightField trial = field;
-    std::vector<Placement> placed;
-    double score = options.centre_weight * glm::length(c) * static_cast<double>(row.size());
-    for (size_t k = 0; k < row.size() && score < kBlocked; ++k) {
-      const double s = along[k] - middle;
-      const glm::ivec2 ij = trial.cell(c.x + s * d.x, c.y + s * d.z);
-      const double y = trial.rest(turned[k], ij.x, ij.y);
-      if (y == kBlocked) {
-        score = kBlocked;
-        break;
+  const int gap = static_cast<int>(std::ceil(options.scatter_gap_m / options.cell_m));
+  // Each candidate is tried on `trial` (the row's own pieces rest on each other), which is
+  // restored where the candidate raised it; the best one is then raised on the field.
+  struct Drop {
+    glm::ivec2 ij;
+    double y;
+  };
+  double best_score = kBlocked;
+  size_t best_heading = 0;
+  std::vector<Drop> best, drops;
+  HeightField trial = field;
+  // Gap g in cells, halving to 0; then -1: the row may lie over earlier pieces.
+  for (int g = gap; best.empty(); g = g > 0 ? g / 2 : g - 1) {
+    if (g < (may_overlap ? -1 : 0)) return false;
+    for (int attempt = 0; attempt < 4 * options.candidates; ++attempt) {
+      if (attempt >= options.candidates && !best.empty()) break;  // more only while none fits
+      const size_t h = rng.below(static_cast<uint32_t>(headings.size()));
+      if (headings[h].turned.empty())
+        headings[h] = fan_row(pieces, row, static_cast<int>(h), options, turns);
+      const FanRow& f = headings[h];
+      const glm::dvec2 c = field.at(static_cast<int>(rng.below(static_cast<uint32_t>(n))),
+                                    static_cast<int>(rng.below(static_cast<uint32_t>(n))));
+      drops.clear();
+      double score = options.centre_weight * glm::length(c) * static_cast<double>(row.size());
+      for (size_t k = 0; k < row.size(); ++k) {
+        const glm::ivec2 ij = field.cell(c.x + f.along[k] * f.d.x, c.y + f.along[k] * f.d.z);
+        // Free of the pieces before this row (the row's own pieces overlap by design).
+        const Turned& t = *f.turned[k];
+        const double y =
+            g >= 0 && !field.free(t, ij.x, ij.y, g) ? kBlocked : trial.rest(t, ij.x, ij.y);
+        if (y == kBlocked) {
+          score = kBlocked;
+          break;
+        }
+        score += y;
+        drops.push_back({ij, y + options.clearance_m});
+        trial.raise(t, ij.x, ij.y, drops.back().y);
       }
-      score += y;
-      trial.raise(turned[k], ij.x, ij.y, y + options.clearance_m);
-      placed.push_back(trial.placement(turned[k], ij.x, ij.y, y + options.clearance_m));
-    }
-    if (score < best_score) {
-      best_score = score;
-      best = std::move(placed);
-      best_field = std::move(trial);
+      for (size_t k = 0; k < drops.size(); ++k)
+        trial.restore(field, *f.turned[k], drops[k].ij.x, drops[k].ij.y);
+      if (score < best_score) {
+        best_score = score;
+        best_heading = h;
+        std::swap(best, drops);
+      }
     }
   }
-  if (best.empty()) return;  // no room for the row
-  field = std::move(best_field);
-  for (size_t k = 0; k < row.size(); ++k) out[row[k]] = best[k];
+  const FanRow& f = headings[best_heading];
+  for (size_t k = 0; k < row.size(); ++k) {
+    field.raise(*f.turned[k], best[k].ij.x, best[k].ij.y, best[k].y);
+    out[row[k]] = field.placement(*f.turned[k], best[k].ij.x, best[k].ij.y, best[k].y);
+  }
+  return true;
+}
+
+/// Places a fan row on free ground; a row that fits nowhere (longer than the plate, or the
+/// plate crowded) is split in two shorter rows while each keeps fan_min_row pieces, and only
+/// a row that cannot be split may lie over the pieces before it. Pieces of a row that fits
+/// nowhere at all are left unplaced.
+void place_fan_rows(const std::vector<LayoutPiece>& pieces, const std::vector<size_t>& row,
+                    const LayoutOptions& options, FanTurns& turns, Rng& rng, HeightField& field,
+                    std::vector<Placement>& out) {
+  const size_t min_row = static_cast<size_t>(std::max(1, options.fan_min_row));
+  const bool splits = row.size() >= 2 * min_row;
+  if (place_fan(pieces, row, !splits, options, turns, rng, field, out) || !splits) return;
+  const auto half = row.begin() + static_cast<std::ptrdiff_t>(row.size() / 2);
+  for (const std::vector<size_t>& part :
+       {std::vector<size_t>(row.begin(), half), std::vector<size_t>(half, row.end())})
+    place_fan_rows(pieces, part, options, turns, rng, field, out);
 }
 
 }  // namespace
@@ -279,18 +385,24 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
   const glm::dvec3 facing = glm::normalize(up + glm::normalize(options.to_camera));
   std::vector<Placement> out(pieces.size());
 
-  // Fan rows first, by group, each in rank order after the object's ends.
+  // Fan rows first, by group, each in rank order between the object's ends.
   std::map<int, std::vector<size_t>> rows;
   for (size_t p = 0; p < pieces.size(); ++p) {
     if (pieces[p].arrange == Arrangement::Fan) rows[pieces[p].group].push_back(p);
   }
   for (auto& [group, row] : rows) {
-    std::stable_sort(row.begin(), row.end(), [&](size_t a, size_t b) {
-      const bool end_a = pieces[a].cut_faces < 2, end_b = pieces[b].cut_faces < 2;
-      return end_a != end_b ? end_a : pieces[a].rank < pieces[b].rank;
-    });
+    std::stable_sort(row.begin(), row.end(),
+                     [&](size_t a, size_t b) { return pieces[a].rank < pieces[b].rank; });
+    // The first end starts the row (its cap a flat rest for the next slice), the other ends it.
+    std::vector<size_t> ends, slices;
+    for (size_t p : row) (pieces[p].cut_faces < 2 ? ends : slices).push_back(p);
+    row.clear();
+    if (!ends.empty()) row.push_back(ends[0]);
+    row.insert(row.end(), slices.begin(), slices.end());
+    row.insert(row.end(), ends.begin() + std::min<size_t>(1, ends.size()), ends.end());
     Rng rng(derive_seed(seed, {~0ull, static_cast<uint64_t>(group)}));
-    place_fan(pieces, row, options, rng, field, out);
+    FanTurns turns(pieces, options, options.fan_headings, rng.uniform(0, 2 * kPi));
+    place_fan_rows(pieces, row, options, turns, rng, field, out);
   }
 
   std::vector<glm::dvec2> scattered;  // where the scattered pieces went

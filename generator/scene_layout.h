@@ -27,7 +27,7 @@ struct LayoutPiece {
   int rank = 0;   ///< fan: the order along the row (the pieces' cells)
   /// fan: the piece's cut planes; a piece with one (an end of the object, rounded below its
   /// cap) starts the row, where its cap is a flat rest for the next slice instead of it
-  /// sliding off the last one.
+  /// sliding off the last one; the object's other end closes the row.
   int cut_faces = 2;
 };
 
@@ -42,6 +42,8 @@ struct LayoutOptions {
   double tilt_deg = 12;            ///< random tilt of each piece's facing direction, degrees
   double fan_tilt_deg = 18;        ///< fan: how far each piece's cap leans along the row, degrees
   double fan_step = 0.5;           ///< fan: advance per piece, fraction of its length in the row
+  int fan_headings = 12;           ///< fan: row directions tried, evenly spaced from a seeded one
+  int fan_min_row = 3;             ///< fan: a row that fits nowhere splits while halves keep this
   double scatter_gap_m = 0.008;    ///< scatter: free ground kept around each piece, metres
   double scan_step_m = 0.004;      ///< scatter without a gap: the grid of positions scanned, m
 };
@@ -53,8 +55,8 @@ struct Placement {
   glm::dvec3 translation{0.0};
 };
 
-/// Places `pieces`: first the fan rows (by group, the object's ends first, then in rank
-/// order), then the others in the given order. Every piece is turned, then put at the lowest
+/// Places `pieces`: first the fan rows (by group: an end of the object, the slices in rank
+/// order, the other end), then the others in the given order. Every piece is turned, then put at the lowest
 /// height where every vertex is above the container's resting surface (exact for its convex
 /// surfaces) and its footprint (per cell: its lowest and highest surface points over the cell)
 /// clears the height field of the pieces before it by clearance_m; the height field then rises
@@ -62,8 +64,12 @@ struct Placement {
 /// - pile: the largest cap faces halfway between up and `to_camera` (a whole object stands
 ///   upright), tilted by up to tilt_deg and spun at random; of `candidates` random positions
 ///   (every vertex over the resting area) the lowest by score is taken;
-/// - fan: a row in a seeded direction, each piece's cap up and leaning fan_tilt_deg along the
-///   row, advancing fan_step of its length; of `candidates` random row centres the lowest;
+/// - fan: a row, each piece's cap up and leaning fan_tilt_deg along the row (the first flat),
+///   advancing fan_step of its length; of `candidates` random row centres, each in one of
+///   fan_headings directions, whose pieces keep scatter_gap_m of free ground to the pieces
+///   before the row, the lowest by score; the gap relaxes as for scatter; a row that fits
+///   nowhere even without a gap is split into two rows while each keeps fan_min_row pieces,
+///   and one that cannot be split may lie over the pieces before it;
 /// - scatter: turned as for pile; of `candidates` positions whose footprint, grown by
 ///   scatter_gap_m, is free of pieces, the farthest from the pieces placed (best candidate);
 ///   where none is found the gap halves until it is 0, and then every position on a grid of

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the README's pictures in doc/ with the cutaway binary (`make gallery`): models,
 # cuts, variants, pieces, the default salad (OpenGL preview and POV-Ray render), the board
-# scene and the contact sheet of all templates. Seeded and deterministic: the same program
+# and plate scenes and the contact sheet of all templates. Seeded and deterministic: the same program
 # gives the same pictures.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,5 +20,6 @@ run piece templates/cucumber.yaml --cut slices:20 --png doc/cucumber-slices.png
 # The scenes' exports (and their textures) go to the temporary folder.
 run scene scenes/salad.yaml -o "$tmp/salad.pov" --png doc/salad.png --render doc/salad-povray.png
 run scene scenes/board.yaml -o "$tmp/board.glb" --png doc/board.png
+run scene scenes/plate.yaml -o "$tmp/plate.glb" --png doc/plate.png
 CUTAWAY="$cutaway" bash scripts/template-sheet.sh doc/templates-sheet.png
 echo "gallery: wrote doc/*.png" >&2

@@ -84,6 +84,15 @@ SceneBuildOptions quick_scene_options(CapColours colours) {
   return options;
 }
 
+SceneAssets build_settled_scene(const Scene& scene, CapColours colours, SceneStats* stats) {
+  SceneAssets assets = build_scene(scene, scene.seed, quick_scene_options(colours), stats);
+  EXPECT_EQ(stats->placed, stats->pieces);
+  EXPECT_EQ(stats->lost, 0);
+  EXPECT_LT(stats->stability_motion_m, 0.001);
+  EXPECT_GE(stats->stability_checks, 1);
+  return assets;
+}
+
 std::filesystem::path source_path(const std::string& relative) {
   return std::filesystem::path(CUTAWAY_SOURCE_DIR) / relative;
 }

@@ -41,6 +41,11 @@ std::filesystem::path source_path(const std::string& relative);
 /// and all threads, cap colours `colours`, every other option its default.
 SceneBuildOptions quick_scene_options(CapColours colours);
 
+/// Builds `scene` at its own seed with quick_scene_options(colours), its statistics into
+/// *stats, and checks (as gtest expectations) what every settled scene meets: every piece
+/// placed, none lost, and the stability check run and under 1 mm.
+SceneAssets build_settled_scene(const Scene& scene, CapColours colours, SceneStats* stats);
+
 /// The bytes of the file at `path` (empty when it cannot be read).
 std::string read_file(const std::filesystem::path& path);
 

@@ -1,9 +1,11 @@
 // Settling with Bullet (doc/algorithms.md §4, Settling): collision shapes that enclose their
 // pieces, a decomposition for a hollow piece, deterministic settling, pieces that fall out of
 // the container dropped again, a piece at rest staying put, and the arrangements of a scene:
-// scatter on a board (none on another) and fan on a plate (each slice on the one before).
+// scatter on a board (none on another) and fan on a plate (each slice on the one before, the
+// rows of several objects side by side).
 #include <algorithm>
 #include <map>
+#include <set>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -162,12 +164,8 @@ items:
     keep: 0.5
 )", test::source_path("scenes/scatter.yaml").string());
   ASSERT_EQ(scene.items[0].arrange, Arrangement::Scatter);  // the board's default
-  const SceneBuildOptions options = test::quick_scene_options(CapColours::Vertex);
   SceneStats stats;
-  const SceneAssets assets = build_scene(scene, scene.seed, options, &stats);
-  EXPECT_EQ(stats.placed, stats.pieces);
-  EXPECT_EQ(stats.lost, 0);
-  EXPECT_LT(stats.stability_motion_m, 0.001);
+  const SceneAssets assets = test::build_settled_scene(scene, CapColours::Vertex, &stats);
   const auto pieces = placed_points(assets);
   for (size_t k = 0; k < pieces.size(); ++k) {
     double low = 1;
@@ -190,10 +188,8 @@ items:
     cut: {type: slices, thickness: 10}
     keep: 0.5
 )", test::source_path("scenes/fan.yaml").string());
-  const SceneBuildOptions options = test::quick_scene_options(CapColours::Vertex);
   SceneStats stats;
-  const SceneAssets assets = build_scene(scene, scene.seed, options, &stats);
-  ASSERT_EQ(stats.placed, stats.pieces);
+  const SceneAssets assets = test::build_settled_scene(scene, CapColours::Vertex, &stats);
   ASSERT_GE(stats.placed, 4);
   // The row's direction: from one end of the row to the other (the two centres farthest
   // apart); the slices in row order, by their centres along it.
@@ -235,6 +231,58 @@ items:
   // Not all flat on the plate: the slices resting on others stand higher than the lowest.
   EXPECT_GT(*std::max_element(top.begin(), top.end()),
             *std::min_element(top.begin(), top.end()) + 0.002);
+}
+
+/// The points of a 2 mm lattice in x and z that lie under the placed piece `points` (under one
+/// of its triangles `triangles`, projected straight down).
+std::set<std::pair<int, int>> lattice_under(const std::vector<glm::dvec3>& points,
+                                            const std::vector<glm::uvec3>& triangles) {
+  constexpr double step = 0.002;
+  std::set<std::pair<int, int>> out;
+  for (const glm::uvec3& t : triangles) {
+    const glm::dvec2 a(points[t[0]].x, points[t[0]].z), b(points[t[1]].x, points[t[1]].z),
+        c(points[t[2]].x, points[t[2]].z);
+    const double det = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+    if (det == 0) continue;
+    for (int i = static_cast<int>(std::ceil(std::min({a.x, b.x, c.x}) / step));
+         i * step <= std::max({a.x, b.x, c.x}); ++i) {
+      for (int j = static_cast<int>(std::ceil(std::min({a.y, b.y, c.y}) / step));
+           j * step <= std::max({a.y, b.y, c.y}); ++j) {
+        const glm::dvec2 q(i * step, j * step);
+        const double u = ((b.x - q.x) * (c.y - q.y) - (c.x - q.x) * (b.y - q.y)) / det;
+        const double v = ((c.x - q.x) * (a.y - q.y) - (a.x - q.x) * (c.y - q.y)) / det;
+        if (u >= 0 && v >= 0 && u + v <= 1) out.insert({i, j});
+      }
+    }
+  }
+  return out;
+}
+
+TEST(PhysicsSettle, FanRowsOfSeveralObjectsLieSideBySideWithoutCrossing) {
+  // Cucumber, tomato and kiwi slices fanned on a plate of 300 mm.
+  const Scene scene = load_scene(test::source_path("scenes/plate.yaml").string());
+  SceneStats stats;
+  const SceneAssets assets = test::build_settled_scene(scene, CapColours::Vertex, &stats);
+  // No point of the plate lies under pieces of two objects: every row keeps to its own ground.
+  std::map<std::pair<int, int>, std::string> owner;  // lattice point -> object
+  std::set<std::string> objects;
+  int shared = 0;
+  std::string example;
+  const auto points = placed_points(assets);
+  for (size_t k = 0; k < points.size(); ++k) {
+    const std::string& name = assets.instances[k + 1].name;
+    const std::string object = name.substr(0, name.find("_piece"));
+    objects.insert(object);
+    const AssetMesh& mesh = assets.meshes[assets.instances[k + 1].mesh];
+    for (const auto& q : lattice_under(points[k], mesh.triangle)) {
+      const auto [it, added] = owner.try_emplace(q, object);
+      if (added || it->second == object) continue;
+      ++shared;
+      example = name + " over " + it->second;
+    }
+  }
+  EXPECT_EQ(objects.size(), 3u);
+  EXPECT_EQ(shared, 0) << example;
 }
 
 }  // namespace
