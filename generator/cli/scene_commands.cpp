@@ -285,14 +285,15 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
                  st.simulated_seconds);
   if (st.lost > 0)
     spdlog::warn("{} pieces fell out of the container {} times and were left out", st.lost,
-                 SettleOptions{}.max_redrops + 1);
+                 options.settle.max_redrops + 1);
   {
-    const double limit = SettleOptions{}.stable_motion_m;
+    const double limit = options.settle.stable_motion_m;
     const auto level = st.stability_motion_m > limit ? spdlog::level::warn : spdlog::level::info;
     spdlog::log(level,
-                "stability check: re-simulated for 1 s, the settled pieces moved at most "
-                "{:.2f} mm (limit {:.0f} mm; {} checks)",
-                1000 * st.stability_motion_m, 1000 * limit, st.stability_checks);
+                "stability check: re-simulated for {:g} s, the settled pieces moved at most "
+                "{:.2f} mm (limit {:g} mm; {} checks)",
+                options.settle.verify_seconds, 1000 * st.stability_motion_m, 1000 * limit,
+                st.stability_checks);
   }
   spdlog::info("{}: {} objects, {} pieces placed, {} triangles (seed {})", scene.name,
                st.objects, st.placed, st.triangles, seed);

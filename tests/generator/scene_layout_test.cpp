@@ -80,9 +80,10 @@ std::vector<Mesh> check_resting_pieces(const SceneAssets& assets) {
   }
   for (size_t a = 0; a < pieces.size(); ++a) {
     const std::string& name_a = assets.instances[a + 1].name;
-    if (PMP::do_intersect(pieces[a], container))
+    if (PMP::do_intersect(pieces[a], container)) {
       EXPECT_LE(depth_inside(pieces[a], container), kPenetrationTolerance_m)
           << name_a << " cuts into the container";
+    }
     for (size_t b = a + 1; b < pieces.size(); ++b) {
       if (!PMP::do_intersect(pieces[a], pieces[b],
                              CGAL::parameters::do_overlap_test_of_bounded_sides(true),
