@@ -47,65 +47,140 @@ Welded weld(const ShadedMesh& mesh) {
   return w;
 }
 
-/// The corners of the convex hull of `points` and the hull's volume (cubic metres).
-std::pair<std::vector<glm::dvec3>, double> convex_hull(const std::vector<glm::dvec3>& points) {
+/// A convex hull in a form that does not depend on the run: CGAL's hull is the same polytope
+/// every run, but the order of its vertices and faces, and how it triangulates a planar facet
+/// (a cut face's corners), vary with memory addresses, and the last bits of every normal
+/// computed from its triangles with them. Here the corners are sorted, and each facet (the
+/// triangles coplanar by CGAL's exact predicate, merged) takes its plane from canonical
+/// corners and its outline in order around it: the same numbers every run.
+struct Facets {
+  std::vector<glm::dvec3> corners;  ///< sorted (x, then y, then z)
+  struct Facet {
+    std::vector<unsigned> loop;  ///< corners, counter-clockwise seen from outside
+    glm::dvec3 normal{0.0};      ///< unit, outward
+    double offset = 0;           ///< normal . x = offset on the plane (metres)
+  };
+  std::vector<Facet> facets;  ///< sorted by their corners
+};
+
+bool lexicographic(const glm::dvec3& a, const glm::dvec3& b) {
+  return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+}
+
+Facets hull_facets(const std::vector<glm::dvec3>& points) {
   std::vector<Kernel::Point_3> in;
   in.reserve(points.size());
   for (const glm::dvec3& p : points) in.emplace_back(p.x, p.y, p.z);
   HullMesh hull;
   CGAL::convex_hull_3(in.begin(), in.end(), hull);
-  // CGAL's vertex order may differ between runs: sorted, the corners are the same every run.
-  std::vector<glm::dvec3> corners;
-  for (const auto v : hull.vertices()) {
-    const Kernel::Point_3& p = hull.point(v);
-    corners.emplace_back(p.x(), p.y(), p.z());
+  Facets out;
+  for (const auto v : hull.vertices())
+    out.corners.emplace_back(hull.point(v).x(), hull.point(v).y(), hull.point(v).z());
+  std::sort(out.corners.begin(), out.corners.end(), lexicographic);
+  const auto index = [&](HullMesh::Vertex_index v) {
+    const glm::dvec3 p(hull.point(v).x(), hull.point(v).y(), hull.point(v).z());
+    return static_cast<unsigned>(
+        std::lower_bound(out.corners.begin(), out.corners.end(), p, lexicographic) -
+        out.corners.begin());
+  };
+  // Coplanar neighbouring triangles join one facet (union-find over the faces).
+  std::vector<size_t> root(hull.number_of_faces());
+  for (size_t f = 0; f < root.size(); ++f) root[f] = f;
+  const auto find = [&](size_t f) {
+    while (root[f] != f) f = root[f] = root[root[f]];
+    return f;
+  };
+  for (const auto h : hull.halfedges()) {
+    if (hull.is_border(h) || hull.is_border(hull.opposite(h))) continue;
+    const auto o = hull.opposite(h);
+    if (CGAL::coplanar(hull.point(hull.source(h)), hull.point(hull.target(h)),
+                       hull.point(hull.target(hull.next(h))),
+                       hull.point(hull.target(hull.next(o)))))
+      root[find(hull.face(h))] = find(hull.face(o));
   }
-  std::sort(corners.begin(), corners.end(), [](const glm::dvec3& a, const glm::dvec3& b) {
-    return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
-  });
-  double volume = 0;
-  for (const auto f : hull.faces()) {
-    std::array<glm::dvec3, 3> c;
-    int k = 0;
-    for (const auto v : CGAL::vertices_around_face(hull.halfedge(f), hull)) {
-      if (k < 3) c[k] = glm::dvec3(hull.point(v).x(), hull.point(v).y(), hull.point(v).z());
-      ++k;
+  std::map<size_t, std::vector<unsigned>> groups;  // facet root -> its corners
+  for (const auto f : hull.faces())
+    for (const auto v : CGAL::vertices_around_face(hull.halfedge(f), hull))
+      groups[find(f)].push_back(index(v));
+  std::vector<std::vector<unsigned>> sets;
+  for (auto& [r, g] : groups) {
+    std::sort(g.begin(), g.end());
+    g.erase(std::unique(g.begin(), g.end()), g.end());
+    sets.push_back(std::move(g));
+  }
+  std::sort(sets.begin(), sets.end());
+  glm::dvec3 inside(0.0);
+  for (const glm::dvec3& c : out.corners) inside += c;
+  inside /= static_cast<double>(out.corners.size());
+  const auto point = [&](unsigned k) {
+    return Kernel::Point_3(out.corners[k].x, out.corners[k].y, out.corners[k].z);
+  };
+  for (const std::vector<unsigned>& g : sets) {
+    // The plane through the facet's first two corners and the first not in line with them.
+    size_t third = 2;
+    while (third < g.size() && CGAL::collinear(point(g[0]), point(g[1]), point(g[third])))
+      ++third;
+    if (third == g.size()) continue;  // degenerate
+    const glm::dvec3 a = out.corners[g[0]], u = out.corners[g[1]] - a;
+    glm::dvec3 n = glm::normalize(glm::cross(u, out.corners[g[third]] - a));
+    if (glm::dot(n, inside - a) > 0) n = -n;
+    Facets::Facet facet{g, n, glm::dot(n, a)};
+    // The outline: by angle about the facet's mean, counter-clockwise about the normal,
+    // starting at its first corner.
+    glm::dvec3 mean(0.0);
+    for (unsigned k : g) mean += out.corners[k];
+    mean /= static_cast<double>(g.size());
+    const glm::dvec3 e1 = glm::normalize(u), e2 = glm::cross(n, e1);
+    std::vector<std::pair<double, unsigned>> around;
+    for (unsigned k : g) {
+      const glm::dvec3 d = out.corners[k] - mean;
+      around.emplace_back(std::atan2(glm::dot(d, e2), glm::dot(d, e1)), k);
     }
-    volume += glm::dot(c[0], glm::cross(c[1], c[2])) / 6;
+    std::sort(around.begin(), around.end());
+    facet.loop.clear();
+    for (const auto& [angle, k] : around) facet.loop.push_back(k);
+    std::rotate(facet.loop.begin(), std::find(facet.loop.begin(), facet.loop.end(), g[0]),
+                facet.loop.end());
+    out.facets.push_back(std::move(facet));
   }
-  volume = std::round(volume * 1e12) / 1e12;  // to the cubic millimetre's millionth, as above
-  return {corners, volume};
+  return out;
+}
+
+/// The corners of the convex hull of `points` (sorted) and the hull's volume (cubic metres).
+std::pair<std::vector<glm::dvec3>, double> convex_hull(const std::vector<glm::dvec3>& points) {
+  const Facets h = hull_facets(points);
+  double volume = 0;
+  for (const Facets::Facet& f : h.facets) {
+    for (size_t k = 1; k + 1 < f.loop.size(); ++k)
+      volume += glm::dot(h.corners[f.loop[0]],
+                         glm::cross(h.corners[f.loop[k]], h.corners[f.loop[k + 1]])) / 6;
+  }
+  return {h.corners, volume};
 }
 
 /// The planes of the convex hull of `corners`: unit outward normal and offset (n . x = d on
-/// the plane), and the hull's triangles for exact distances.
+/// the plane), and the hull's triangles (each facet's fan) for exact distances.
 struct HullPlanes {
   std::vector<std::pair<glm::dvec3, double>> plane;
   std::vector<Kernel::Triangle_3> triangle;
 };
 
 HullPlanes hull_planes(const std::vector<glm::dvec3>& corners) {
-  std::vector<Kernel::Point_3> in;
-  for (const glm::dvec3& p : corners) in.emplace_back(p.x, p.y, p.z);
-  HullMesh hull;
-  CGAL::convex_hull_3(in.begin(), in.end(), hull);
-  HullPlanes h;
-  for (const auto f : hull.faces()) {
-    std::vector<Kernel::Point_3> c;
-    for (const auto v : CGAL::vertices_around_face(hull.halfedge(f), hull)) c.push_back(hull.point(v));
-    h.triangle.emplace_back(c[0], c[1], c[2]);
-    const glm::dvec3 a(c[0].x(), c[0].y(), c[0].z()), b(c[1].x(), c[1].y(), c[1].z()),
-        d(c[2].x(), c[2].y(), c[2].z());
-    const glm::dvec3 n = glm::cross(b - a, d - a);
-    const double len = glm::length(n);
-    if (len > 0) h.plane.emplace_back(n / len, glm::dot(n / len, a));
+  const Facets h = hull_facets(corners);
+  HullPlanes out;
+  const auto point = [&](unsigned k) {
+    return Kernel::Point_3(h.corners[k].x, h.corners[k].y, h.corners[k].z);
+  };
+  for (const Facets::Facet& f : h.facets) {
+    out.plane.emplace_back(f.normal, f.offset);
+    for (size_t k = 1; k + 1 < f.loop.size(); ++k)
+      out.triangle.emplace_back(point(f.loop[0]), point(f.loop[k]), point(f.loop[k + 1]));
   }
-  return h;
+  return out;
 }
 
 /// The largest distance of any of `points` outside the convex hull of `corners` (0 if none
-/// is outside), metres, rounded up to 0.1 um: the distances' last bits depend on the order of
-/// the hull's faces, which CGAL does not fix between runs.
+/// is outside), metres, rounded up to 0.1 um.
 double outside_distance(const std::vector<glm::dvec3>& points,
                         const std::vector<glm::dvec3>& corners) {
   const HullPlanes h = hull_planes(corners);
@@ -130,46 +205,25 @@ double outside_distance(const std::vector<glm::dvec3>& points,
 /// within `distance` outside the hull is then (nearly always) inside the grown one; the caller
 /// measures what is left.
 std::vector<glm::dvec3> inflate(const std::vector<glm::dvec3>& corners, double distance) {
-  std::vector<Kernel::Point_3> in;
-  for (const glm::dvec3& p : corners) in.emplace_back(p.x, p.y, p.z);
-  HullMesh hull;
-  CGAL::convex_hull_3(in.begin(), in.end(), hull);
+  const Facets h = hull_facets(corners);
+  std::vector<std::vector<glm::dvec3>> normals(h.corners.size());  // per corner, its facets'
+  for (const Facets::Facet& f : h.facets)
+    for (unsigned k : f.loop) normals[k].push_back(f.normal);
   std::vector<glm::dvec3> out;
-  for (const auto v : hull.vertices()) {
-    std::vector<glm::dvec3> normals;
-    for (const auto f : CGAL::faces_around_target(hull.halfedge(v), hull)) {
-      if (f == HullMesh::null_face()) continue;
-      std::vector<glm::dvec3> c;
-      for (const auto u : CGAL::vertices_around_face(hull.halfedge(f), hull))
-        c.emplace_back(hull.point(u).x(), hull.point(u).y(), hull.point(u).z());
-      const glm::dvec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
-      if (glm::length(n) == 0) continue;
-      // Each plane once: how CGAL triangulates a planar face (a cut face's corners) varies.
-      bool seen = false;
-      for (const glm::dvec3& m : normals) seen = seen || glm::dot(m, glm::normalize(n)) > 1 - 1e-9;
-      if (!seen) normals.push_back(glm::normalize(n));
-    }
-    // Summed in a fixed order: the faces around a corner come in CGAL's order.
-    std::sort(normals.begin(), normals.end(), [](const glm::dvec3& a, const glm::dvec3& b) {
-      return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
-    });
-    const glm::dvec3 p(hull.point(v).x(), hull.point(v).y(), hull.point(v).z());
+  for (size_t v = 0; v < h.corners.size(); ++v) {
+    const glm::dvec3& p = h.corners[v];
     glm::dvec3 mean(0.0);
-    for (const glm::dvec3& n : normals) mean += n;
+    for (const glm::dvec3& n : normals[v]) mean += n;
     if (glm::length(mean) == 0) {
       out.push_back(p);
       continue;
     }
     mean = glm::normalize(mean);
     double cosine = 1;
-    for (const glm::dvec3& n : normals) cosine = std::min(cosine, glm::dot(mean, n));
-    const glm::dvec3 moved = p + mean * (distance / std::max(cosine, 1.0 / 3));
-    // To 0.1 nm: the last bits of the normals depend on the order of CGAL's faces.
-    out.push_back(glm::round(moved * 1e10) / 1e10);
+    for (const glm::dvec3& n : normals[v]) cosine = std::min(cosine, glm::dot(mean, n));
+    out.push_back(p + mean * (distance / std::max(cosine, 1.0 / 3)));
   }
-  std::sort(out.begin(), out.end(), [](const glm::dvec3& a, const glm::dvec3& b) {
-    return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
-  });
+  std::sort(out.begin(), out.end(), lexicographic);
   return out;
 }
 
@@ -210,14 +264,12 @@ ConvexPart reduce(const std::vector<glm::dvec3>& points, const CollisionShapeOpt
     std::vector<glm::dvec3> corners;
     for (size_t k : chosen) corners.push_back(points[k]);
     const HullPlanes h = hull_planes(corners);
-    // Each point's distance outside (largest over the hull's planes), rounded to 1 nm so the
-    // order of candidates does not depend on the order of CGAL's faces.
+    // Each point's distance outside (largest over the hull's planes).
     std::vector<std::pair<double, size_t>> candidate;
     for (size_t k = 0; k < points.size(); ++k) {
       if (kept[k]) continue;
       double d = 0;
       for (const auto& [n, offset] : h.plane) d = std::max(d, glm::dot(n, points[k]) - offset);
-      d = std::round(d * 1e9) / 1e9;
       if (d > o.corner_tolerance_m) candidate.emplace_back(-d, k);
     }
     if (candidate.empty() || static_cast<int>(chosen.size()) >= o.max_corners) break;

@@ -288,8 +288,7 @@ void run_to_rest(World& world, const std::vector<SettleBody>& bodies, std::vecto
     }
     r.steps += steps;
     r.all_asleep = at_rest;
-    // Pieces that left the container are dropped again from above the pile, at their first
-    // position over the container.
+    // Pieces that left the container are dropped again from above the pile.
     bool dropped = false;
     const double top = world.top();
     for (size_t k = 0; k < bodies.size(); ++k) {
@@ -304,7 +303,12 @@ void run_to_rest(World& world, const std::vector<SettleBody>& bodies, std::vecto
       }
       ++drops[k];
       ++r.redrops;
+      // Each drop again nearer the container's axis (a quarter of the way per drop): a piece
+      // that left the container from its drop pose near an edge would leave it again there.
       Placement again = bodies[k].drop;
+      const double pull = static_cast<double>(drops[k]) / (options.max_redrops + 1);
+      const glm::dvec3 drop_centre = centre_of_mass(bodies[k], again);
+      again.translation -= pull * glm::dvec3(drop_centre.x, 0, drop_centre.z);
       double low = 0;
       for (const auto& part : bodies[k].shape->parts) {
         for (const glm::dvec3& p : part.corners) low = std::min(low, (again.rotation * p).y);

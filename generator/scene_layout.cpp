@@ -159,20 +159,34 @@ class HeightField {
     return y;
   }
 
-  /// Whether no piece lies within `gap` cells of t's footprint placed at (i, j).
-  bool free(const Turned& t, int i, int j, int gap) const {
-    for (int a = -gap; a < t.f.na + gap; ++a) {
-      for (int b = -gap; b < t.f.nb + gap; ++b) {
-        const int gi = i + t.f.a0 + a, gj = j + t.f.b0 + b;
-        if (gi < 0 || gj < 0 || gi >= n_ || gj >= n_) continue;
-        if (surface_[static_cast<size_t>(gi) * n_ + gj] != -kBlocked) return false;
+  /// Whether no piece lies within `gap` cells of t's footprint placed at (i, j): no cell of
+  /// the footprint's rectangle grown by `gap` is occupied (a summed-area table makes it one
+  /// lookup of four corners).
+  bool free(const Turned& t, int i, int j, int gap) {
+    if (occupied_dirty_) {
+      // occupied_[(a) * (n + 1) + b]: the occupied cells in [0, a) x [0, b).
+      occupied_.assign(static_cast<size_t>(n_ + 1) * (n_ + 1), 0);
+      for (int a = 0; a < n_; ++a) {
+        for (int b = 0; b < n_; ++b) {
+          occupied_[static_cast<size_t>(a + 1) * (n_ + 1) + b + 1] =
+              (surface_[static_cast<size_t>(a) * n_ + b] != -kBlocked) +
+              occupied_[static_cast<size_t>(a) * (n_ + 1) + b + 1] +
+              occupied_[static_cast<size_t>(a + 1) * (n_ + 1) + b] -
+              occupied_[static_cast<size_t>(a) * (n_ + 1) + b];
+        }
       }
+      occupied_dirty_ = false;
     }
-    return true;
+    const int a0 = std::clamp(i + t.f.a0 - gap, 0, n_), a1 = std::clamp(i + t.f.a0 + t.f.na + gap, 0, n_);
+    const int b0 = std::clamp(j + t.f.b0 - gap, 0, n_), b1 = std::clamp(j + t.f.b0 + t.f.nb + gap, 0, n_);
+    if (a0 >= a1 || b0 >= b1) return true;
+    const auto at = [&](int a, int b) { return occupied_[static_cast<size_t>(a) * (n_ + 1) + b]; };
+    return at(a1, b1) - at(a0, b1) - at(a1, b0) + at(a0, b0) == 0;
   }
 
   /// Raises the field to the top of t placed at (i, j) with its origin at height y.
   void raise(const Turned& t, int i, int j, double y) {
+    occupied_dirty_ = true;
     for (int a = 0; a < t.f.na; ++a) {
       for (int b = 0; b < t.f.nb; ++b) {
         const size_t k = static_cast<size_t>(a) * t.f.nb + b;
@@ -186,6 +200,7 @@ class HeightField {
   /// Sets the cells under t placed at (i, j) back to their heights in `from` (a field of the
   /// same container and options).
   void restore(const HeightField& from, const Turned& t, int i, int j) {
+    occupied_dirty_ = true;
     for (int a = 0; a < t.f.na; ++a) {
       for (int b = 0; b < t.f.nb; ++b) {
         const size_t k = static_cast<size_t>(a) * t.f.nb + b;
@@ -207,6 +222,8 @@ class HeightField {
   double cs_, x0_;
   int n_;
   std::vector<double> surface_;
+  std::vector<int32_t> occupied_;  ///< summed-area table of the occupied cells, for free()
+  bool occupied_dirty_ = true;     ///< surface_ changed since occupied_ was summed
 };
 
 /// The pile's and scatter's orientation: the largest cap towards `facing` (tilted), spun about
