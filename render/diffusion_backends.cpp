@@ -1,9 +1,9 @@
-#include "diffusion_backends.h"
+#include "render/diffusion_backends.h"
 
 #include <stdexcept>
 
-#include "gl_context.h"
-#include "pmvc_gl.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/pmvc_gl.h"
 
 namespace cutaway {
 

@@ -1,7 +1,6 @@
-#include "model_preview.h"
+#include "render/model_preview.h"
 
 #include <glad/gl.h>
-#include <stb_image_write.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,11 +14,11 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat4x4.hpp>
 
-#include "atomic_file.h"
-#include "gl_context.h"
-#include "gl_buffers.h"
-#include "gl_program.h"
-#include "offscreen_target.h"
+#include "base/atomic_file.h"
+#include "render/gl/gl_buffers.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_program.h"
+#include "render/gl/offscreen_target.h"
 
 namespace cutaway {
 namespace {
@@ -208,23 +207,6 @@ Image render_model_preview(const DsModel& model, const PreviewOptions& options) 
                  nullptr);
 
   return target.resolve_and_read();
-}
-
-void write_png(const std::filesystem::path& path, const Image& image) {
-  if (image.width < 1 || image.height < 1 ||
-      image.rgba.size() != static_cast<size_t>(image.width) * image.height * 4)
-    throw std::invalid_argument("write_png: image of " + std::to_string(image.width) + "x" +
-                                std::to_string(image.height) + " pixels has " +
-                                std::to_string(image.rgba.size()) + " bytes, not w*h*4");
-  std::string bytes;
-  const auto append = [](void* context, void* data, int size) {
-    static_cast<std::string*>(context)->append(static_cast<const char*>(data),
-                                               static_cast<size_t>(size));
-  };
-  if (!stbi_write_png_to_func(append, &bytes, image.width, image.height, 4, image.rgba.data(),
-                              image.width * 4))
-    throw std::runtime_error("write_png: cannot encode " + path.string() + " as PNG");
-  write_file_atomically(path, bytes);
 }
 
 }  // namespace cutaway

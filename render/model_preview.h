@@ -1,23 +1,13 @@
 // Preview image of a DS model: every surface see-through, so the inner structure shows (paper
-// Fig. 9), rendered offscreen with OpenGL (render/gl_context.h) and written as PNG.
+// Fig. 9), rendered offscreen with OpenGL (render/gl/gl_context.h) and written as PNG.
 #pragma once
-
-#include <cstdint>
-#include <filesystem>
-#include <vector>
 
 #include <glm/vec3.hpp>
 
-#include "ds_model.h"
+#include "model/ds_model.h"
+#include "render/image/image.h"
 
 namespace cutaway {
-
-/// An 8-bit RGBA image: `rgba` holds width * height * 4 bytes, rows top first, pixels left to
-/// right, R G B A each; colour is sRGB-encoded, alpha is linear (255 = opaque).
-struct Image {
-  int width = 0, height = 0;   ///< pixels
-  std::vector<uint8_t> rgba;   ///< width * height * 4 bytes, sRGB8 + alpha, row 0 = top
-};
 
 /// How render_model_preview() draws. Units are in the names; colours say sRGB or linear.
 struct PreviewOptions {
@@ -54,12 +44,5 @@ struct PreviewOptions {
 /// @throws std::invalid_argument when the model or options break the preconditions
 /// @throws std::runtime_error when no OpenGL context can be created or rendering fails
 Image render_model_preview(const DsModel& model, const PreviewOptions& options);
-
-/// Encodes `image` as PNG (8-bit RGBA, stb_image_write) and writes it atomically
-/// (write_file_atomically(): a failed write leaves no partial file).
-/// @param image width, height > 0 and rgba.size() == width * height * 4
-/// @throws std::invalid_argument when the image's size does not match its bytes
-/// @throws std::runtime_error when encoding or writing fails
-void write_png(const std::filesystem::path& path, const Image& image);
 
 }  // namespace cutaway

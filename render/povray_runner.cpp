@@ -1,4 +1,4 @@
-#include "povray_runner.h"
+#include "render/povray_runner.h"
 
 #include <cerrno>
 #include <cstdlib>
@@ -15,7 +15,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "atomic_file.h"
+#include "base/atomic_file.h"
 
 namespace cutaway {
 

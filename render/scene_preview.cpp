@@ -1,4 +1,4 @@
-#include "scene_preview.h"
+#include "render/scene_preview.h"
 
 #include <glad/gl.h>
 
@@ -16,11 +16,11 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat4x4.hpp>
 
-#include "gl_context.h"
-#include "gl_buffers.h"
-#include "gl_program.h"
-#include "offscreen_target.h"
-#include "stroke_renderer.h"
+#include "render/gl/gl_buffers.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_program.h"
+#include "render/gl/offscreen_target.h"
+#include "render/gl/stroke_renderer.h"
 
 namespace cutaway {
 namespace {

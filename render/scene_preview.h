@@ -1,11 +1,11 @@
 // Opaque OpenGL render of a whole scene (SceneAssets): every instance of every mesh, coloured by
 // its materials (vertex colours or base colour textures), seen from the scene's camera, lit by
-// its lights, rendered offscreen (render/gl_context.h).
+// its lights, rendered offscreen (render/gl/gl_context.h).
 #pragma once
 
-#include "model_preview.h"  // Image, write_png
-#include "scene_assets.h"
-#include "silhouettes.h"  // Stroke
+#include "npr/silhouettes.h"  // Stroke
+#include "render/image/image.h"
+#include "scene/scene_assets.h"
 
 namespace cutaway {
 
@@ -17,7 +17,7 @@ struct ScenePreviewOptions {
   double exposure = 1.0;  ///< scales the light of all lights and the ambient term (not the
                           ///< background), > 0 and finite
   /// Silhouette strokes (extract_strokes() for this image size) drawn over the render with
-  /// draw_strokes() (render/stroke_renderer.h); null or empty: none.
+  /// draw_strokes() (render/gl/stroke_renderer.h); null or empty: none.
   const std::vector<Stroke>* strokes = nullptr;
 };
 

@@ -1,4 +1,4 @@
-#include "section_preview.h"
+#include "render/section_preview.h"
 
 #include <glad/gl.h>
 
@@ -12,10 +12,10 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "gl_context.h"
-#include "gl_buffers.h"
-#include "gl_program.h"
-#include "offscreen_target.h"
+#include "render/gl/gl_buffers.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_program.h"
+#include "render/gl/offscreen_target.h"
 
 namespace cutaway {
 namespace {

@@ -1,11 +1,11 @@
 // Preview image of a cross-section: the coloured cut face seen head-on (paper §3.2, Fig. 3),
-// rendered offscreen with OpenGL (render/gl_context.h).
+// rendered offscreen with OpenGL (render/gl/gl_context.h).
 #pragma once
 
 #include <glm/vec3.hpp>
 
-#include "cross_section.h"
-#include "model_preview.h"  // Image, write_png
+#include "render/image/image.h"
+#include "section/cross_section.h"
 
 namespace cutaway {
 

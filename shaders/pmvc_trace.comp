@@ -1,5 +1,5 @@
 #version 430 core
-// PMVC by ray casting on the GPU (render/pmvc_gl.cpp): work group p casts the 6 n^2 cube-map
+// PMVC by ray casting on the GPU (render/gl/pmvc_gl.cpp): work group p casts the 6 n^2 cube-map
 // texel rays of batch point p (make_cube_directions, turned by the point's cube_rotation)
 // through a BVH of every sheet triangle (build_sheet_bvh), and sums the colour and material
 // channels of each ray's nearest hit weighted by the texel's solid angle / hit distance, in

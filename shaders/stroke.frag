@@ -1,5 +1,5 @@
 #version 330 core
-// Silhouette strokes (render/stroke_renderer.h), fragment stage: flat linear colour; the
+// Silhouette strokes (render/gl/stroke_renderer.h), fragment stage: flat linear colour; the
 // multisampled target smooths the edges.
 
 in vec3 v_colour;

@@ -1,5 +1,5 @@
 #version 330 core
-// Silhouette strokes (render/stroke_renderer.h), vertex stage: the strip's corners are already
+// Silhouette strokes (render/gl/stroke_renderer.h), vertex stage: the strip's corners are already
 // in pixels (x right, y down from the top row); this maps them to clip space.
 
 layout(location = 0) in vec2 in_pixel;

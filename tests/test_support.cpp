@@ -1,9 +1,9 @@
 #include "test_support.h"
 
 #include "diffusion/diffusion.h"
-#include "manifold_check.h"
-#include "model_builder.h"
-#include "template_parser.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "pieces/manifold_check.h"
 
 #include <algorithm>
 #include <tuple>

@@ -10,12 +10,12 @@
 
 #include <tiny_gltf.h>
 
-#include "cross_section.h"
-#include "ds_model.h"
-#include "scene_assets.h"
-#include "scene_builder.h"
-#include "shaded_mesh.h"
-#include "template.h"
+#include "model/ds_model.h"
+#include "model/template.h"
+#include "pieces/shaded_mesh.h"
+#include "scene/scene_assets.h"
+#include "scene/scene_builder.h"
+#include "section/cross_section.h"
 
 namespace cutaway::test {
 

@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "atomic_file.h"
-#include "cut_spec.h"
-#include "ds_model.h"
-#include "pieces.h"
-#include "template.h"
+#include "base/atomic_file.h"
+#include "model/ds_model.h"
+#include "model/template.h"
+#include "pieces/cut_spec.h"
+#include "pieces/pieces.h"
 
 namespace cutaway::cli {
 

@@ -15,19 +15,19 @@
 #include <spdlog/spdlog.h>
 
 #include "base/timer.h"
-#include "colour_modulation.h"
-#include "commands.h"
-#include "contact_sheet.h"
-#include "cut_spec.h"
-#include "diffusion_backends.h"
-#include "model_builder.h"
-#include "piece_views.h"
-#include "pieces.h"
-#include "scene_builder.h"
-#include "scene_preview.h"
-#include "silhouettes.h"
-#include "template_parser.h"
-#include "text_label.h"
+#include "cli/commands.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "npr/colour_modulation.h"
+#include "npr/silhouettes.h"
+#include "pieces/cut_spec.h"
+#include "pieces/pieces.h"
+#include "render/diffusion_backends.h"
+#include "render/image/contact_sheet.h"
+#include "render/image/text_label.h"
+#include "render/scene_preview.h"
+#include "scene/piece_views.h"
+#include "scene/scene_builder.h"
 
 namespace cutaway::cli {
 

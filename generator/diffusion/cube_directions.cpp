@@ -1,4 +1,4 @@
-#include "cube_directions.h"
+#include "diffusion/cube_directions.h"
 
 #include <cmath>
 #include <cstdint>
@@ -8,8 +8,8 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "base/constants.h"
-#include "error.h"
-#include "random.h"
+#include "base/error.h"
+#include "base/random.h"
 
 namespace cutaway {
 

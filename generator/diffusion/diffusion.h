@@ -12,7 +12,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "ds_model.h"
+#include "model/ds_model.h"
 
 namespace cutaway {
 

@@ -1,4 +1,4 @@
-#include "diffusion_sheets.h"
+#include "diffusion/diffusion_sheets.h"
 
 #include <algorithm>
 

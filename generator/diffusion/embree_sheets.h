@@ -11,8 +11,8 @@
 #include <embree3/rtcore.h>
 #include <glm/vec3.hpp>
 
-#include "cube_directions.h"
-#include "diffusion_sheets.h"
+#include "diffusion/cube_directions.h"
+#include "diffusion/diffusion_sheets.h"
 
 namespace cutaway {
 

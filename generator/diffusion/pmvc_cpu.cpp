@@ -10,10 +10,10 @@
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
 
-#include "cube_directions.h"
-#include "diffusion.h"
-#include "diffusion_sheets.h"
-#include "embree_sheets.h"
+#include "diffusion/cube_directions.h"
+#include "diffusion/diffusion.h"
+#include "diffusion/diffusion_sheets.h"
+#include "diffusion/embree_sheets.h"
 
 namespace cutaway {
 

@@ -1,5 +1,5 @@
 // Binned SAH BVH over the diffusion sheets (sheet_bvh.h).
-#include "sheet_bvh.h"
+#include "diffusion/sheet_bvh.h"
 
 #include <algorithm>
 #include <array>

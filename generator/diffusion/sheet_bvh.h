@@ -1,5 +1,5 @@
 // A bounding volume hierarchy over the triangles of the diffusion sheets, flat and in the
-// layout a GPU traversal reads (render/pmvc_gl.cpp, shaders/pmvc_trace.comp): the ray-casting
+// layout a GPU traversal reads (render/gl/pmvc_gl.cpp, shaders/pmvc_trace.comp): the ray-casting
 // acceleration structure of the gl PMVC backend, where Embree serves the cpu backend.
 #pragma once
 
@@ -8,7 +8,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "diffusion_sheets.h"
+#include "diffusion/diffusion_sheets.h"
 
 namespace cutaway {
 

@@ -24,13 +24,13 @@
 #include <unistd.h>
 
 #include "base/timer.h"
-#include "gltf_export.h"
-#include "pov_export.h"
-#include "povray_runner.h"
-#include "scene_builder.h"
-#include "scene_parser.h"
-#include "silhouettes.h"
-#include "texture_image.h"
+#include "export/gltf_export.h"
+#include "export/pov_export.h"
+#include "export/texture_image.h"
+#include "io/scene_parser.h"
+#include "npr/silhouettes.h"
+#include "render/povray_runner.h"
+#include "scene/scene_builder.h"
 
 namespace {
 

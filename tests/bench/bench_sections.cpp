@@ -30,16 +30,16 @@
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
 
-#include "colour.h"
-#include "cross_section.h"
+#include "base/colour.h"
 #include "diffusion/cube_directions.h"
-#include "diffusion/embree_sheets.h"
 #include "diffusion/diffusion.h"
 #include "diffusion/diffusion_sheets.h"
-#include "model_builder.h"
+#include "diffusion/embree_sheets.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
 #include "paper_table1.h"
-#include "pmvc_gl.h"
-#include "template_parser.h"
+#include "render/gl/pmvc_gl.h"
+#include "section/cross_section.h"
 
 namespace {
 

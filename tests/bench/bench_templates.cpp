@@ -24,11 +24,11 @@
 #include <thread>
 #include <vector>
 
-#include "cross_section.h"
-#include "paper_table1.h"
 #include "diffusion/diffusion.h"
-#include "model_builder.h"
-#include "template_parser.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "paper_table1.h"
+#include "section/cross_section.h"
 
 namespace {
 

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "template_parser.h"
-#include "variation.h"
+#include "io/template_parser.h"
+#include "variation/variation.h"
 
 namespace {
 

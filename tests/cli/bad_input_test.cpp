@@ -163,7 +163,7 @@ std::vector<BadCase> bad_cases() {
       fixture("npr_reach_without_tint", 18, 46, "npr.perlin.bands[0].reach", "needs a tint"),
       fixture("npr_period_zero", 18, 18, "npr.perlin.bands[0].period", "at least 1 micrometre"),
       fixture("npr_tint_not_colour", 18, 45, "npr.perlin.bands[0].tint", "not \"red\""),
-      // Detected after sweeping (generator/model_checks.cpp): at the surface's mapping.
+      // Detected after sweeping (generator/model/model_checks.cpp): at the surface's mapping.
       fixture("nested_crosses_skin", 15, 5, "surfaces[1]", "touches or crosses the skin \"skin\""),
       fixture("nested_outside_skin", 15, 5, "surfaces[1]", "lies outside the skin \"skin\""),
   };

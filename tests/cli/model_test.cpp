@@ -11,7 +11,7 @@
 #include <stb/stb_image.h>
 #include <tiny_gltf.h>
 
-#include "template_parser.h"
+#include "io/template_parser.h"
 #include "test_support.h"
 
 namespace cutaway {

@@ -1,5 +1,5 @@
 // Output faults: whatever goes wrong, the CLI never leaves a partial file or a mix of new and
-// old outputs (generator/atomic_file.h, OutputSet). Runs of `cutaway` stopped by SIGTERM,
+// old outputs (generator/base/atomic_file.h, OutputSet). Runs of `cutaway` stopped by SIGTERM,
 // SIGINT, SIGHUP (nothing temporary left, the old outputs whole) and SIGKILL (the old outputs
 // whole); a failure after some outputs were written (none changes); paths refused before any
 // work with exit code 2 (unwritable, a device, a FIFO, a directory, empty, given twice);
@@ -25,7 +25,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "atomic_file.h"
+#include "base/atomic_file.h"
 #include "test_support.h"
 
 namespace cutaway {

@@ -12,7 +12,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "cut_spec.h"
+#include "pieces/cut_spec.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

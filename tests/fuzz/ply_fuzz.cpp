@@ -12,9 +12,9 @@
 #include <string>
 #include <string_view>
 
-#include "error.h"
-#include "mesh_import.h"
-#include "template.h"
+#include "base/error.h"
+#include "model/mesh_import.h"
+#include "model/template.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);

@@ -1,10 +1,15 @@
-# Configures and builds the fuzz sub-project (tests/fuzz, clang) into the build tree, then runs
-# one parser's fuzzer (KIND template, scene, ply or cut) for a bounded time; any crash, sanitizer
-# report, timeout or out-of-memory fails. Run by the CTest tests fuzz_template_parser,
-# fuzz_scene_parser, fuzz_ply_parser and fuzz_cut_parser:
-#   cmake -DKIND=template -DSOURCE_DIR=<repo> -DBINARY_DIR=<build>/fuzz -DCLANGXX=clang++
-#         -DSECONDS=60 -DGENERATOR=Ninja -P tests/fuzz/run_fuzz.cmake
-foreach(var KIND SOURCE_DIR BINARY_DIR CLANGXX SECONDS GENERATOR)
+# KIND=build configures and builds the fuzz sub-project (tests/fuzz, clang) into the build tree
+# (the CTest test fuzz_build); KIND template, scene, ply or cut runs that parser's fuzzer, built
+# before, for SECONDS seconds: any crash, sanitizer report, timeout or out-of-memory fails (the
+# CTest tests fuzz_template_parser, fuzz_scene_parser, fuzz_ply_parser and fuzz_cut_parser):
+#   cmake -DKIND=build -DSOURCE_DIR=<repo> -DBINARY_DIR=<build>/fuzz -DCLANGXX=clang++
+#         -DGENERATOR=Ninja -P tests/fuzz/run_fuzz.cmake
+#   cmake -DKIND=template -DSECONDS=60 -DSOURCE_DIR=<repo> -DBINARY_DIR=<build>/fuzz ...
+set(required KIND SOURCE_DIR BINARY_DIR CLANGXX GENERATOR)
+if(NOT KIND STREQUAL "build")
+  list(APPEND required SECONDS)
+endif()
+foreach(var ${required})
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "run_fuzz.cmake: -D${var}=... is required")
   endif()
@@ -14,17 +19,24 @@ if(NOT EXISTS "${CLANGXX}")
                       "clang libclang-rt-14-dev); found: ${CLANGXX}")
 endif()
 
-execute_process(
-  COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/fuzz -B ${BINARY_DIR} -G ${GENERATOR}
-          -DCMAKE_CXX_COMPILER=${CLANGXX} -DCMAKE_BUILD_TYPE=RelWithDebInfo
-  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "configuring the fuzz target failed:\n${out}")
+if(KIND STREQUAL "build")
+  execute_process(
+    COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/fuzz -B ${BINARY_DIR} -G ${GENERATOR}
+            -DCMAKE_CXX_COMPILER=${CLANGXX} -DCMAKE_BUILD_TYPE=RelWithDebInfo
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "configuring the fuzz target failed:\n${out}")
+  endif()
+  execute_process(COMMAND ${CMAKE_COMMAND} --build ${BINARY_DIR}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "building the fuzz target failed:\n${out}")
+  endif()
+  message(STATUS "the fuzz targets are built in ${BINARY_DIR}")
+  return()
 endif()
-execute_process(COMMAND ${CMAKE_COMMAND} --build ${BINARY_DIR}
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "building the fuzz target failed:\n${out}")
+if(NOT EXISTS ${BINARY_DIR}/${KIND}_fuzz)
+  message(FATAL_ERROR "${BINARY_DIR}/${KIND}_fuzz is missing: the test fuzz_build builds it")
 endif()
 
 # Seed corpus: the shipped files and the bad-input fixtures of the format. The working corpus

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "error.h"
-#include "template_parser.h"
+#include "base/error.h"
+#include "io/template_parser.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);

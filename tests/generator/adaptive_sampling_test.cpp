@@ -11,12 +11,12 @@
 
 #include <gtest/gtest.h>
 
-#include "band_sampling.h"
-#include "colour.h"
-#include "cross_section.h"
-#include "harmonic_sampling.h"
-#include "model_builder.h"
-#include "template_parser.h"
+#include "base/colour.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "section/band_sampling.h"
+#include "section/cross_section.h"
+#include "section/harmonic_sampling.h"
 #include "test_support.h"
 
 namespace cutaway {

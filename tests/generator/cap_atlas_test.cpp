@@ -1,7 +1,7 @@
-// Baked cap textures (generator/cap_atlas.h): the texture agrees with direct PMVC evaluation
+// Baked cap textures (generator/material/cap_atlas.h): the texture agrees with direct PMVC evaluation
 // at texel centres away from the cut segments, the two caps of one cut agree through their
 // textures, islands do not overlap and are dilated, and baking is deterministic.
-#include "cap_atlas.h"
+#include "material/cap_atlas.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,10 +13,10 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "colour.h"
-#include "cut_spec.h"
-#include "model_builder.h"
-#include "template_parser.h"
+#include "base/colour.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "pieces/cut_spec.h"
 #include "test_support.h"
 
 namespace cutaway {

@@ -1,8 +1,8 @@
-// NPR Perlin colour modulation (generator/colour_modulation.h) and the template's `npr` block
+// NPR Perlin colour modulation (generator/npr/colour_modulation.h) and the template's `npr` block
 // (template_parser.h, doc/npr.md): strength 0 is the identity, a point gets the same colour in
 // whatever mesh it is (two caps sharing an edge agree along it), weights follow the documented
 // closeness to a band's tint, results stay in 0..1; the parser's values, defaults and errors.
-#include "colour_modulation.h"
+#include "npr/colour_modulation.h"
 
 #include <gtest/gtest.h>
 
@@ -13,10 +13,10 @@
 
 #include <glm/geometric.hpp>
 
-#include "colour.h"
-#include "error.h"
-#include "random.h"
-#include "template_parser.h"
+#include "base/colour.h"
+#include "base/error.h"
+#include "base/random.h"
+#include "io/template_parser.h"
 
 namespace cutaway {
 namespace {

@@ -12,13 +12,13 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "base/colour.h"
 #include "base/constants.h"
-#include "colour.h"
-#include "cross_section.h"
 #include "diffusion/diffusion.h"
 #include "generator/diffusion/analytic_spheres.h"
-#include "model_builder.h"
-#include "template_parser.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "section/cross_section.h"
 #include "test_support.h"
 
 namespace cutaway {

@@ -8,10 +8,10 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "colour.h"
-#include "cut_segments.h"
-#include "model_builder.h"
-#include "template_parser.h"
+#include "base/colour.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "section/cut_segments.h"
 #include "test_support.h"
 
 namespace cutaway {

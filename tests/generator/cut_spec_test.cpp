@@ -1,6 +1,6 @@
-// parse_cut_spec (generator/cut_spec.h): the command line's `--cut` forms, their units and their
+// parse_cut_spec (generator/pieces/cut_spec.h): the command line's `--cut` forms, their units and their
 // rejections; template_extents and estimate_piece_count on the shipped templates.
-#include "cut_spec.h"
+#include "pieces/cut_spec.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include "template.h"
-#include "template_parser.h"
+#include "io/template_parser.h"
+#include "model/template.h"
 #include "test_support.h"
 
 namespace cutaway {

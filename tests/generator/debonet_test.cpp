@@ -1,6 +1,6 @@
-// De Bonet synthesis on cyclic signals and section loops (generator/debonet.h).
+// De Bonet synthesis on cyclic signals and section loops (generator/variation/debonet.h).
 #include "base/constants.h"
-#include "debonet.h"
+#include "variation/debonet.h"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
-// quoted() (generator/error.h), the one way a message shows a user's value, and the field paths
-// of mapping keys (child_path, generator/yaml_reader.h): escaped, one line, short.
-#include "error.h"
+// quoted() (generator/base/error.h), the one way a message shows a user's value, and the field paths
+// of mapping keys (child_path, generator/io/yaml_reader.h): escaped, one line, short.
+#include "base/error.h"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "yaml_reader.h"
+#include "io/yaml_reader.h"
 
 namespace cutaway {
 namespace {

@@ -1,6 +1,6 @@
-// PCA fold blending (generator/fold_pca.h) on the tomato and on a tomato whose folds differ.
+// PCA fold blending (generator/variation/fold_pca.h) on the tomato and on a tomato whose folds differ.
 #include "base/constants.h"
-#include "fold_pca.h"
+#include "variation/fold_pca.h"
 
 #include <gtest/gtest.h>
 
@@ -9,9 +9,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "model_builder.h"
-#include "template_checks.h"
-#include "template_parser.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "model/template_checks.h"
 #include "test_support.h"
 
 namespace cutaway {

@@ -1,6 +1,6 @@
-// glTF export of DS models (generator/gltf_export.h): structure read back with tinygltf, colours
+// glTF export of DS models (generator/export/gltf_export.h): structure read back with tinygltf, colours
 // and winding of the two sides, determinism, and the Khronos validator.
-#include "gltf_export.h"
+#include "export/gltf_export.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 
 #include <tiny_gltf.h>
 
-#include "model_builder.h"
-#include "template_parser.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
 #include "test_support.h"
 
 namespace cutaway {

@@ -1,12 +1,12 @@
-// Grains (generator/grains.h) on the tomato's and the cucumber's chambers.
-#include "grains.h"
+// Grains (generator/variation/grains.h) on the tomato's and the cucumber's chambers.
+#include "variation/grains.h"
 
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
 
-#include "model_builder.h"
-#include "template_parser.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
 #include "test_support.h"
 
 namespace cutaway {

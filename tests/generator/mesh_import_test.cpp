@@ -1,6 +1,6 @@
-// `mesh` surfaces read from PLY (generator/mesh_import.h): ASCII and binary little-endian files,
+// `mesh` surfaces read from PLY (generator/model/mesh_import.h): ASCII and binary little-endian files,
 // per-vertex DS attributes as uchar or float sRGB, blur in template units, fallbacks, refusals.
-#include "mesh_import.h"
+#include "model/mesh_import.h"
 
 #include <gtest/gtest.h>
 
@@ -9,9 +9,9 @@
 #include <fstream>
 #include <optional>
 
-#include "colour.h"
-#include "model_builder.h"
-#include "template_parser.h"
+#include "base/colour.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
 #include "test_support.h"
 
 namespace cutaway {

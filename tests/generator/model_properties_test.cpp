@@ -15,11 +15,11 @@
 #include <glm/geometric.hpp>
 
 #include "base/constants.h"
-#include "curves.h"
-#include "mesh_import.h"
-#include "model_builder.h"
-#include "template_checks.h"
-#include "template_parser.h"
+#include "io/template_parser.h"
+#include "model/curves.h"
+#include "model/mesh_import.h"
+#include "model/model_builder.h"
+#include "model/template_checks.h"
 #include "test_support.h"
 
 namespace cutaway {

@@ -1,6 +1,6 @@
-// Improved Perlin noise (generator/perlin_noise.h): zero on the lattice, bounded by kBound,
+// Improved Perlin noise (generator/npr/perlin_noise.h): zero on the lattice, bounded by kBound,
 // continuous, deterministic per seed and different across seeds, about zero mean.
-#include "perlin_noise.h"
+#include "npr/perlin_noise.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <vector>
 
-#include "random.h"
+#include "base/random.h"
 
 namespace cutaway {
 namespace {

@@ -10,14 +10,14 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "collision_shape.h"
 #include "diffusion/diffusion.h"
-#include "model_builder.h"
-#include "physics_settle.h"
-#include "pieces.h"
-#include "scene_builder.h"
-#include "scene_parser.h"
-#include "template_parser.h"
+#include "io/scene_parser.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "pieces/pieces.h"
+#include "scene/collision_shape.h"
+#include "scene/physics_settle.h"
+#include "scene/scene_builder.h"
 #include "test_support.h"
 
 namespace cutaway {

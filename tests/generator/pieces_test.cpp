@@ -11,13 +11,13 @@
 #include <gtest/gtest.h>
 
 #include "base/constants.h"
-#include "clip_mesh.h"
-#include "cut_cells.h"
-#include "model_builder.h"
-#include "piece_views.h"
-#include "scene_builder.h"
-#include "pieces.h"
-#include "template_parser.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "pieces/clip_mesh.h"
+#include "pieces/cut_cells.h"
+#include "pieces/pieces.h"
+#include "scene/piece_views.h"
+#include "scene/scene_builder.h"
 #include "test_support.h"
 
 namespace cutaway {

@@ -1,10 +1,10 @@
-// POV-Ray export (generator/pov_export.h): the text's structure and determinism, and a render of
+// POV-Ray export (generator/export/pov_export.h): the text's structure and determinism, and a render of
 // a small asymmetric scene with the system's povray (render/povray_runner.h) checked against a
 // pinhole projection of the same camera (not mirrored, not flipped) and an analytic Lambert
 // colour.
 #include "base/constants.h"
-#include "pov_export.h"
-#include "silhouettes.h"
+#include "export/pov_export.h"
+#include "npr/silhouettes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,8 +20,8 @@
 #include <gtest/gtest.h>
 #include <stb/stb_image.h>
 
-#include "colour.h"
-#include "povray_runner.h"
+#include "base/colour.h"
+#include "render/povray_runner.h"
 #include "test_support.h"
 
 namespace cutaway {

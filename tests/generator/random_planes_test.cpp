@@ -18,13 +18,13 @@
 #include <tuple>
 #include <vector>
 
-#include "cross_section.h"
+#include "base/random.h"
 #include "diffusion/diffusion.h"
-#include "model_builder.h"
-#include "random.h"
-#include "template_parser.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "section/cross_section.h"
 #include "test_support.h"
-#include "variation.h"
+#include "variation/variation.h"
 
 namespace cutaway {
 namespace {

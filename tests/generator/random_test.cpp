@@ -1,6 +1,6 @@
-// Deterministic random numbers (generator/random.h): golden values catch any change of platform,
+// Deterministic random numbers (generator/base/random.h): golden values catch any change of platform,
 // compiler or library; moments check the transforms.
-#include "random.h"
+#include "base/random.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// glTF export of whole scenes (generator/gltf_export.h: scene_to_glb, write_scene_gltf): the
+// glTF export of whole scenes (generator/export/gltf_export.h: scene_to_glb, write_scene_gltf): the
 // Khronos validator, determinism, structure read back with tinygltf, a real client (three.js's
 // GLTFLoader in headless Chromium), and the errors.
 #include <gtest/gtest.h>
@@ -15,7 +15,7 @@
 #include <tiny_gltf.h>
 
 #include "base/constants.h"
-#include "gltf_export.h"
+#include "export/gltf_export.h"
 #include "test_support.h"
 
 namespace cutaway {

@@ -16,9 +16,9 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "scene_builder.h"
-#include "container_mesh.h"
-#include "scene_parser.h"
+#include "io/scene_parser.h"
+#include "scene/container_mesh.h"
+#include "scene/scene_builder.h"
 #include "test_support.h"
 
 namespace cutaway {

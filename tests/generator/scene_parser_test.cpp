@@ -1,7 +1,7 @@
-// parse_scene and load_scene (generator/scene_parser.h): every field with its default, units to
+// parse_scene and load_scene (generator/io/scene_parser.h): every field with its default, units to
 // metres, sRGB to linear, template resolution (scene folder, $CUTAWAY_TEMPLATES, the project's
 // templates/), and the InputError raised for bad input (file, line, column, field path, rule).
-#include "scene_parser.h"
+#include "io/scene_parser.h"
 
 #include <cstdlib>
 #include <filesystem>
@@ -11,8 +11,8 @@
 
 #include <gtest/gtest.h>
 
-#include "colour.h"
-#include "error.h"
+#include "base/colour.h"
+#include "base/error.h"
 #include "test_support.h"
 
 namespace cutaway {

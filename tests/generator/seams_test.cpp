@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "manifold_check.h"
-#include "seam_stitch.h"
-#include "split_lines.h"
+#include "pieces/manifold_check.h"
+#include "pieces/seam_stitch.h"
+#include "section/split_lines.h"
 
 namespace cutaway {
 namespace {

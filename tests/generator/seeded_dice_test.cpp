@@ -11,13 +11,13 @@
 
 #include <gtest/gtest.h>
 
-#include "cut_spec.h"
 #include "diffusion/diffusion.h"
-#include "manifold_check.h"
-#include "pieces.h"
-#include "template_parser.h"
+#include "io/template_parser.h"
+#include "pieces/cut_spec.h"
+#include "pieces/manifold_check.h"
+#include "pieces/pieces.h"
 #include "test_support.h"
-#include "variation.h"
+#include "variation/variation.h"
 
 namespace cutaway {
 namespace {

@@ -1,4 +1,4 @@
-// extract_strokes (generator/silhouettes.h): silhouettes of a cube seen from a corner, hidden
+// extract_strokes (generator/npr/silhouettes.h): silhouettes of a cube seen from a corner, hidden
 // edges removed, the crease threshold, linking of collinear edges into one stroke, tapering,
 // and the POV-Ray sphere_sweep export of strokes.
 #include <gtest/gtest.h>
@@ -9,8 +9,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "pov_export.h"
-#include "silhouettes.h"
+#include "export/pov_export.h"
+#include "npr/silhouettes.h"
 
 namespace cutaway {
 namespace {

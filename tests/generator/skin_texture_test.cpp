@@ -1,8 +1,8 @@
-// Skin textures (generator/skin_texture.h): unwrapping gives every skin triangle of a cut
+// Skin textures (generator/material/skin_texture.h): unwrapping gives every skin triangle of a cut
 // piece coordinates that span less than half the texture in u (the seam is split, not
 // stretched across the texture), copies only along the seam and at the poles, and the baked
 // texture shows the skin's front colour where its vertices map.
-#include "skin_texture.h"
+#include "material/skin_texture.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,11 +10,11 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "colour.h"
-#include "cut_spec.h"
-#include "model_builder.h"
-#include "pieces.h"
-#include "template_parser.h"
+#include "base/colour.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "pieces/cut_spec.h"
+#include "pieces/pieces.h"
 #include "test_support.h"
 
 namespace cutaway {

@@ -1,8 +1,8 @@
-// Type I and Type II sweeps (generator/sweep.h, doc/algorithms.md §1) on tiny hand-made
+// Type I and Type II sweeps (generator/model/sweep.h, doc/algorithms.md §1) on tiny hand-made
 // templates whose answers are known exactly: polyline profiles (smooth: false) with straight
 // rails, square and diamond sections.
 #include "base/constants.h"
-#include "sweep.h"
+#include "model/sweep.h"
 
 #include <gtest/gtest.h>
 
@@ -11,9 +11,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "colour.h"
-#include "template_checks.h"
-#include "template_parser.h"
+#include "base/colour.h"
+#include "io/template_parser.h"
+#include "model/template_checks.h"
 
 namespace cutaway {
 namespace {

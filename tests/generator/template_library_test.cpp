@@ -14,11 +14,11 @@
 
 #include <gtest/gtest.h>
 
-#include "cut_spec.h"
 #include "diffusion/diffusion.h"
-#include "model_builder.h"
-#include "pieces.h"
-#include "template_parser.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "pieces/cut_spec.h"
+#include "pieces/pieces.h"
 #include "test_support.h"
 
 namespace cutaway {

@@ -1,8 +1,8 @@
-// parse_template (generator/template_parser.h) on in-memory text: the values it produces (units to
+// parse_template (generator/io/template_parser.h) on in-memory text: the values it produces (units to
 // metres, sRGB to linear, polar sections, gradients, defaults) and the InputError it raises
 // (file, line, column, field path, rule).
 #include "base/constants.h"
-#include "template_parser.h"
+#include "io/template_parser.h"
 
 #include <cmath>
 #include <string>
@@ -10,8 +10,8 @@
 
 #include <gtest/gtest.h>
 
-#include "colour.h"
-#include "error.h"
+#include "base/colour.h"
+#include "base/error.h"
 
 namespace cutaway {
 namespace {

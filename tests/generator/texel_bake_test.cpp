@@ -1,7 +1,7 @@
-// Baking helpers (generator/texel_bake.h): the pull-push background fill keeps the covered
+// Baking helpers (generator/material/texel_bake.h): the pull-push background fill keeps the covered
 // texels, fills every other one with a convex mix of them that varies smoothly, and leaves an
 // empty canvas alone.
-#include "texel_bake.h"
+#include "material/texel_bake.h"
 
 #include <algorithm>
 

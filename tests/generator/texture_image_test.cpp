@@ -1,7 +1,7 @@
-// Texture images (generator/texture_image.h): JPEG base colours stay close to the baked texels
+// Texture images (generator/export/texture_image.h): JPEG base colours stay close to the baked texels
 // at a fraction of the PNG's bytes, material maps stay PNG, encoding is deterministic, and
 // file names and MIME types follow the format.
-#include "texture_image.h"
+#include "export/texture_image.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,10 +11,10 @@
 #include <gtest/gtest.h>
 #include <stb/stb_image.h>
 
-#include "cap_atlas.h"
-#include "cut_spec.h"
-#include "model_builder.h"
-#include "template_parser.h"
+#include "io/template_parser.h"
+#include "material/cap_atlas.h"
+#include "model/model_builder.h"
+#include "pieces/cut_spec.h"
 #include "test_support.h"
 
 namespace cutaway {

@@ -1,15 +1,15 @@
-// Variants of the shipped templates (generator/variation.h): every variant builds (closed skin,
+// Variants of the shipped templates (generator/variation/variation.h): every variant builds (closed skin,
 // nothing crosses the skin, `within` loops inside their folds: build_model runs check_model),
 // variants differ from each other, and the same seed gives the same variant.
-#include "variation.h"
+#include "variation/variation.h"
 
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <cstdio>
 
-#include "template_checks.h"
-#include "template_parser.h"
+#include "io/template_parser.h"
+#include "model/template_checks.h"
 #include "test_support.h"
 
 namespace cutaway {

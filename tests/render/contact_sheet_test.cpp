@@ -1,10 +1,10 @@
-// compose_grid (render/contact_sheet.h): sheet size, tile placement and centring, background,
+// compose_grid (render/image/contact_sheet.h): sheet size, tile placement and centring, background,
 // refusals.
 #include <gtest/gtest.h>
 
 #include <stdexcept>
 
-#include "contact_sheet.h"
+#include "render/image/contact_sheet.h"
 
 namespace cutaway {
 namespace {

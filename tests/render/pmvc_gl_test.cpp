@@ -1,4 +1,4 @@
-// The GL PMVC backend (render/pmvc_gl.h) against the analytic reference of
+// The GL PMVC backend (render/gl/pmvc_gl.h) against the analytic reference of
 // doc/algorithms.md §2(b), the CPU backend, and itself (determinism across batches).
 #include <algorithm>
 #include <chrono>
@@ -9,16 +9,16 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "base/colour.h"
 #include "base/constants.h"
 #include "base/timer.h"
-#include "colour.h"
 #include "diffusion/diffusion.h"
 #include "diffusion/diffusion_sheets.h"
 #include "generator/diffusion/analytic_spheres.h"
 #include "generator/diffusion/material_channels.h"
-#include "model_builder.h"
-#include "pmvc_gl.h"
-#include "template_parser.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "render/gl/pmvc_gl.h"
 #include "test_support.h"
 
 namespace cutaway {

@@ -1,6 +1,6 @@
 // The POV-Ray runner (render/povray_runner.h) on hand-written scenes: image size and content,
 // errors with POV-Ray's own message, no partial output, a missing executable.
-#include "povray_runner.h"
+#include "render/povray_runner.h"
 
 #include <stdexcept>
 #include <string>
@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 #include <stb/stb_image.h>
 
-#include "atomic_file.h"
+#include "base/atomic_file.h"
 #include "test_support.h"
 
 namespace cutaway {

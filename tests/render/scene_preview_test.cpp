@@ -15,8 +15,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "colour.h"
-#include "scene_preview.h"
+#include "base/colour.h"
+#include "render/scene_preview.h"
 #include "test_support.h"
 
 namespace cutaway {

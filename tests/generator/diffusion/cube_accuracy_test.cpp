@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include "colour.h"
-#include "cross_section.h"
+#include "base/colour.h"
+#include "section/cross_section.h"
 #include "test_support.h"
 
 namespace cutaway {

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "diffusion/diffusion.h"
-#include "ds_model.h"
+#include "model/ds_model.h"
 
 namespace cutaway::test {
 

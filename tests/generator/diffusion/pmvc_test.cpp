@@ -5,14 +5,14 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "base/colour.h"
 #include "base/constants.h"
-#include "colour.h"
 #include "diffusion/cube_directions.h"
 #include "diffusion/diffusion.h"
 #include "generator/diffusion/analytic_spheres.h"
 #include "generator/diffusion/material_channels.h"
-#include "model_builder.h"
-#include "template_parser.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
 #include "test_support.h"
 
 namespace cutaway {

@@ -9,8 +9,8 @@
 
 #include "diffusion/diffusion_sheets.h"
 #include "diffusion/sheet_bvh.h"
-#include "model_builder.h"
-#include "template_parser.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
 #include "test_support.h"
 
 namespace cutaway {

@@ -1,0 +1,1022 @@
+#include "export/gltf_export.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <span>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat3x3.hpp>
+#include <meshoptimizer.h>
+#include <nlohmann/json.hpp>
+#include <tiny_gltf.h>
+#include <unistd.h>
+
+#include "base/atomic_file.h"
+#include "export/texture_image.h"
+#include "model/pbr_material.h"
+
+namespace cutaway {
+
+namespace {
+
+/// Appends raw data to buffer 0 as a new buffer view (4-byte aligned); returns the view index.
+int add_view(tinygltf::Model& m, const void* data, size_t bytes, int target) {
+  auto& buf = m.buffers[0].data;
+  while (buf.size() % 4) buf.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = buf.size();
+  view.byteLength = bytes;
+  view.target = target;
+  const auto* p = static_cast<const unsigned char*>(data);
+  buf.insert(buf.end(), p, p + bytes);
+  m.bufferViews.push_back(view);
+  return static_cast<int>(m.bufferViews.size()) - 1;
+}
+
+int add_vec3_accessor(tinygltf::Model& m, const std::vector<float>& xyz, bool with_bounds) {
+  tinygltf::Accessor a;
+  a.bufferView = add_view(m, xyz.data(), xyz.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  a.type = TINYGLTF_TYPE_VEC3;
+  a.count = xyz.size() / 3;
+  if (with_bounds) {
+    a.minValues = {xyz[0], xyz[1], xyz[2]};
+    a.maxValues = a.minValues;
+    for (size_t i = 0; i < xyz.size(); ++i) {
+      a.minValues[i % 3] = std::min<double>(a.minValues[i % 3], xyz[i]);
+      a.maxValues[i % 3] = std::max<double>(a.maxValues[i % 3], xyz[i]);
+    }
+  }
+  m.accessors.push_back(a);
+  return static_cast<int>(m.accessors.size()) - 1;
+}
+
+int add_index_accessor(tinygltf::Model& m, const std::vector<uint32_t>& idx) {
+  tinygltf::Accessor a;
+  a.bufferView = add_view(m, idx.data(), idx.size() * sizeof(uint32_t),
+                          TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  a.type = TINYGLTF_TYPE_SCALAR;
+  a.count = idx.size();
+  m.accessors.push_back(a);
+  return static_cast<int>(m.accessors.size()) - 1;
+}
+
+int add_material(tinygltf::Model& m, const std::string& name, double alpha,
+                 bool double_sided = false, double roughness = 0.8) {
+  tinygltf::Material mat;
+  mat.name = name;
+  mat.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, alpha};
+  mat.pbrMetallicRoughness.metallicFactor = 0.0;
+  mat.pbrMetallicRoughness.roughnessFactor = roughness;
+  mat.alphaMode = alpha < 1.0 ? "BLEND" : "OPAQUE";
+  mat.doubleSided = double_sided;
+  m.materials.push_back(mat);
+  return static_cast<int>(m.materials.size()) - 1;
+}
+
+/// An empty glTF 2.0 model with one (empty) buffer and scene 0 as the default.
+tinygltf::Model new_model() {
+  tinygltf::Model m;
+  m.asset.version = "2.0";
+  m.asset.generator = "cutaway";
+  m.buffers.emplace_back();
+  m.defaultScene = 0;
+  return m;
+}
+
+/// The model as .glb bytes.
+std::string to_glb(tinygltf::Model& m) {
+  std::ostringstream out;
+  tinygltf::TinyGLTF writer;
+  writer.WriteGltfSceneToStream(&m, out, false, true);
+  return out.str();
+}
+
+// ---- scenes -------------------------------------------------------------------------------
+
+/// The unit quaternion turning a node so that its local -Z points along `forward` and its +Y
+/// lies in the plane of `forward` and `up` (towards `up`). When `up` is (nearly) parallel to
+/// `forward`, +Y of the scene is tried next, then -Z of the scene. Returned with w >= 0.
+glm::dquat look_rotation(glm::dvec3 forward, glm::dvec3 up) {
+  const glm::dvec3 f = glm::normalize(forward);
+  glm::dvec3 right(0.0);
+  for (const glm::dvec3& u : {up, glm::dvec3(0, 1, 0), glm::dvec3(0, 0, -1)}) {
+    const glm::dvec3 r = glm::cross(f, u);
+    if (glm::length(r) > 1e-9 * std::max(1.0, glm::length(u))) {
+      right = glm::normalize(r);
+      break;
+    }
+  }
+  const glm::dvec3 true_up = glm::cross(right, f);
+  const glm::dmat3 worldFromNode(right, true_up, -f);  // columns: the node's +X, +Y, +Z
+  glm::dquat q = glm::normalize(glm::quat_cast(worldFromNode));
+  if (q.w < 0) q = -q;
+  return q;
+}
+
+/// glTF's [x, y, z, w] order of a glm quaternion (+ 0.0 turns -0 into 0 in the JSON).
+std::vector<double> gltf_rotation(const glm::dquat& q) {
+  return {q.x + 0.0, q.y + 0.0, q.z + 0.0, q.w + 0.0};
+}
+
+std::vector<double> gltf_vec3(const glm::dvec3& v) { return {v.x + 0.0, v.y + 0.0, v.z + 0.0}; }
+
+[[noreturn]] void bad_assets(const std::string& what) {
+  throw std::invalid_argument("scene assets: " + what);
+}
+
+/// Throws for primitives of `mesh` that break their rules (primitives_defect).
+void check_primitives(const AssetMesh& mesh, size_t materials) {
+  const std::string defect = primitives_defect(mesh, materials);
+  if (!defect.empty()) bad_assets("mesh '" + mesh.name + "': " + defect);
+}
+
+/// How a quantized mesh's positions map back to metres: p = offset + scale * q, where q is the
+/// stored normalized value (each component in -1..1). Identity for float positions.
+struct MeshFrame {
+  glm::dvec3 offset{0.0};
+  double scale = 1.0;
+};
+
+/// Writes a scene's vertex attributes and indices as the compression mode asks:
+/// - None: float32 attributes, one tightly packed buffer view each, in buffer 0;
+/// - Quantize (KHR_mesh_quantization): POSITION as normalized SHORT over the mesh's bounding
+///   cube (MeshFrame, stride 8), NORMAL as normalized BYTE (stride 4), COLOR_0 as normalized
+///   UNSIGNED_SHORT (stride 8), TEXCOORD_0 as normalized UNSIGNED_SHORT when every coordinate
+///   lies in 0..1 (else float); still one plain buffer view each, in buffer 0;
+/// - Meshopt: the Quantize data (positions on 14-bit steps, stored as SHORT; normals through
+///   the OCTAHEDRAL filter), each view encoded by meshoptimizer's vertex or index codec
+///   into buffer 0 (EXT_meshopt_compression); the views themselves lie in buffer 1, a fallback
+///   that holds no bytes (its byteLength is fallback_bytes()).
+/// Indices are UNSIGNED_SHORT when the mesh has at most 65535 vertices (65535 is the primitive
+/// restart value, never an index), else UNSIGNED_INT.
+class SceneBuffers {
+ public:
+  SceneBuffers(tinygltf::Model& m, GltfCompression compression)
+      : m_(m), compression_(compression) {}
+
+  tinygltf::Model& model() { return m_; }
+  size_t fallback_bytes() const { return fallback_; }
+  /// (buffer view, its "extensions" object) of each encoded view: tinygltf does not write
+  /// extensions of buffer views, so they are added to the serialised JSON.
+  const std::vector<std::pair<int, nlohmann::json>>& view_extensions() const {
+    return view_extensions_;
+  }
+
+  /// #V x 3 positions (metres); returns the accessor and sets `frame`.
+  int positions(const std::vector<float>& xyz, MeshFrame& frame) {
+    const size_t count = xyz.size() / 3;
+    glm::dvec3 lo(xyz[0], xyz[1], xyz[2]), hi = lo;
+    for (size_t i = 0; i < count; ++i)
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min<double>(lo[k], xyz[3 * i + k]);
+        hi[k] = std::max<double>(hi[k], xyz[3 * i + k]);
+      }
+    if (compression_ == GltfCompression::None) {
+      frame = {};
+      return accessor(xyz.data(), count, 12, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                      false, {lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z});
+    }
+    frame.offset = (lo + hi) * 0.5;
+    const glm::dvec3 half = (hi - lo) * 0.5;
+    frame.scale = std::max({half.x, half.y, half.z});
+    if (!(frame.scale > 0)) frame.scale = 1.0;
+    // Steps over each half extent: 16 bits, or 14 for meshopt, whose codec stores the deltas of
+    // the smaller integers in fewer bytes; the node's scale then stretches 14-bit integers read
+    // as normalized SHORT (q / 32767) back to the extent.
+    const double steps = compression_ == GltfCompression::Meshopt ? 8191 : 32767;
+    std::vector<int16_t> q(count * 4, 0);
+    std::vector<double> qlo(3, steps), qhi(3, -steps);
+    for (size_t i = 0; i < count; ++i)
+      for (int k = 0; k < 3; ++k) {
+        const double v = (xyz[3 * i + k] - frame.offset[k]) / frame.scale;
+        q[4 * i + k] = static_cast<int16_t>(std::lround(std::clamp(v, -1.0, 1.0) * steps));
+        qlo[k] = std::min<double>(qlo[k], q[4 * i + k]);
+        qhi[k] = std::max<double>(qhi[k], q[4 * i + k]);
+      }
+    frame.scale *= 32767 / steps;
+    return accessor(q.data(), count, 8, TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC3, true,
+                    qlo, qhi);
+  }
+
+  /// #V x 3 unit normals: normalized BYTE; with meshopt through the codec's octahedral filter
+  /// (8-bit X/Y of the octahedral map, Z 1: the constant bytes cost nearly nothing and the
+  /// directions are spread more evenly than on the cube of three BYTEs).
+  int normals(const std::vector<float>& xyz) {
+    if (compression_ != GltfCompression::Meshopt)
+      return vec3(xyz, std::vector<int8_t>{}, TINYGLTF_COMPONENT_TYPE_BYTE, -1.f);
+    const size_t count = xyz.size() / 3;
+    std::vector<float> xyzw(count * 4, 0.f);
+    for (size_t i = 0; i < 3 * count; ++i) xyzw[i / 3 * 4 + i % 3] = xyz[i];
+    std::vector<int8_t> q(count * 4);
+    meshopt_encodeFilterOct(q.data(), count, 4, 8, xyzw.data());
+    return accessor(q.data(), count, 4, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC3, true, {},
+                    {}, "OCTAHEDRAL");
+  }
+
+  /// #V x 3 linear RGB colours in 0..1: normalized UNSIGNED_SHORT.
+  int colours(const std::vector<float>& rgb) {
+    return vec3(rgb, std::vector<uint16_t>{}, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, 0.f);
+  }
+
+  /// #V x 2 texture coordinates.
+  int uvs(const std::vector<float>& xy) {
+    const size_t count = xy.size() / 2;
+    const bool unit = std::all_of(xy.begin(), xy.end(), [](float v) { return v >= 0 && v <= 1; });
+    if (compression_ == GltfCompression::None || !unit)
+      return accessor(xy.data(), count, 8, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2,
+                      false);
+    std::vector<uint16_t> q(xy.size());
+    for (size_t i = 0; i < xy.size(); ++i)
+      q[i] = static_cast<uint16_t>(std::lround(xy[i] * 65535.0));
+    return accessor(q.data(), count, 4, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC2,
+                    true);
+  }
+
+  /// A triangle list over `vertices` vertices.
+  int indices(const std::vector<uint32_t>& idx, size_t vertices) {
+    tinygltf::Accessor a;
+    a.type = TINYGLTF_TYPE_SCALAR;
+    a.count = idx.size();
+    const bool narrow = vertices <= 65535;
+    a.componentType =
+        narrow ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    const size_t size = narrow ? 2 : 4;
+    const int target = TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;
+    if (compression_ == GltfCompression::Meshopt) {
+      std::vector<unsigned char> packed(meshopt_encodeIndexBufferBound(idx.size(), vertices));
+      packed.resize(
+          meshopt_encodeIndexBuffer(packed.data(), packed.size(), idx.data(), idx.size()));
+      a.bufferView = encoded_view(packed, idx.size(), size, 0, "TRIANGLES", target);
+    } else if (narrow) {
+      const std::vector<uint16_t> shorts(idx.begin(), idx.end());
+      a.bufferView = add_view(m_, shorts.data(), shorts.size() * 2, target);
+    } else {
+      a.bufferView = add_view(m_, idx.data(), idx.size() * 4, target);
+    }
+    m_.accessors.push_back(a);
+    return static_cast<int>(m_.accessors.size()) - 1;
+  }
+
+ private:
+  /// A VEC3 accessor of `xyz` (each in lo..1): float without compression, else normalized
+  /// components of T (BYTE or UNSIGNED_SHORT, glTF type `component`), each element padded to
+  /// 4 of them so that it is 4-byte aligned.
+  template <typename T>
+  int vec3(const std::vector<float>& xyz, std::vector<T> q, int component, float lo) {
+    const size_t count = xyz.size() / 3;
+    if (compression_ == GltfCompression::None)
+      return accessor(xyz.data(), count, 12, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                      false);
+    const double top = std::numeric_limits<T>::max();
+    q.assign(count * 4, 0);
+    for (size_t i = 0; i < 3 * count; ++i)
+      q[i / 3 * 4 + i % 3] = static_cast<T>(std::lround(std::clamp(xyz[i], lo, 1.f) * top));
+    return accessor(q.data(), count, 4 * sizeof(T), component, TINYGLTF_TYPE_VEC3, true);
+  }
+
+  /// An accessor over `count` elements `stride` bytes apart (the element itself first); with
+  /// meshopt, `filter` names the EXT_meshopt_compression filter `data` was encoded with.
+  int accessor(const void* data, size_t count, size_t stride, int component, int type,
+               bool normalized, std::vector<double> lo = {}, std::vector<double> hi = {},
+               const char* filter = nullptr) {
+    tinygltf::Accessor a;
+    a.componentType = component;
+    a.type = type;
+    a.normalized = normalized;
+    a.count = count;
+    a.minValues = std::move(lo);
+    a.maxValues = std::move(hi);
+    const int target = TINYGLTF_TARGET_ARRAY_BUFFER;
+    if (compression_ == GltfCompression::Meshopt) {
+      std::vector<unsigned char> packed(meshopt_encodeVertexBufferBound(count, stride));
+      packed.resize(meshopt_encodeVertexBuffer(packed.data(), packed.size(), data, count, stride));
+      a.bufferView = encoded_view(packed, count, stride, stride, "ATTRIBUTES", target, filter);
+    } else {
+      a.bufferView = add_view(m_, data, count * stride, target);
+      if (compression_ != GltfCompression::None) m_.bufferViews.back().byteStride = stride;
+    }
+    m_.accessors.push_back(a);
+    return static_cast<int>(m_.accessors.size()) - 1;
+  }
+
+  /// A view of `count` elements of `size` bytes in the fallback buffer (byteStride
+  /// `view_stride`, 0 for none) whose bytes are `packed`, meshoptimizer's encoding in `mode`
+  /// (with `filter`, when not null).
+  int encoded_view(const std::vector<unsigned char>& packed, size_t count, size_t size,
+                   size_t view_stride, const char* mode, int target,
+                   const char* filter = nullptr) {
+    auto& buf = m_.buffers[0].data;
+    while (buf.size() % 4) buf.push_back(0);
+    const size_t offset = buf.size();
+    buf.insert(buf.end(), packed.begin(), packed.end());
+    fallback_ = (fallback_ + 3) / 4 * 4;
+    tinygltf::BufferView view;
+    view.buffer = 1;
+    view.byteOffset = fallback_;
+    view.byteLength = count * size;
+    view.byteStride = view_stride;
+    view.target = target;
+    fallback_ += view.byteLength;
+    m_.bufferViews.push_back(view);
+    const int index = static_cast<int>(m_.bufferViews.size()) - 1;
+    nlohmann::json encoding = {{"buffer", 0},         {"byteOffset", offset},
+                               {"byteLength", packed.size()}, {"byteStride", size},
+                               {"count", count},      {"mode", mode}};
+    if (filter) encoding["filter"] = filter;
+    view_extensions_.emplace_back(index, nlohmann::json{{"EXT_meshopt_compression", encoding}});
+    return index;
+  }
+
+  tinygltf::Model& m_;
+  GltfCompression compression_;
+  size_t fallback_ = 0;
+  std::vector<std::pair<int, nlohmann::json>> view_extensions_;
+};
+
+/// A triangle list (indices into #V x 3 float `xyz`) simplified by meshoptimizer's edge
+/// collapse (Garland-Heckbert quadrics) towards `fraction` of its triangles, the edges on its
+/// border locked (meshopt_SimplifyLockBorder: a primitive's border is a cut outline or the seam
+/// to the next primitive, so a closed piece stays closed), the error at most `error` of the
+/// mesh's extent; then ordered for the vertex cache.
+std::vector<uint32_t> simplified(const std::vector<uint32_t>& idx, const std::vector<float>& xyz,
+                                 double fraction, double error) {
+  const size_t vertices = xyz.size() / 3;
+  std::vector<uint32_t> out(idx.size());
+  const size_t target = static_cast<size_t>(static_cast<double>(idx.size() / 3) * fraction) * 3;
+  out.resize(meshopt_simplify(out.data(), idx.data(), idx.size(), xyz.data(), vertices,
+                              3 * sizeof(float), target, static_cast<float>(error),
+                              meshopt_SimplifyLockBorder, nullptr));
+  const std::vector<uint32_t> input = out;
+  meshopt_optimizeVertexCache(out.data(), input.data(), input.size(), vertices);
+  return out;
+}
+
+/// A scene mesh as written: its glTF mesh, the frame its positions need, its coarser levels.
+struct AddedMesh {
+  int index = -1;
+  MeshFrame frame;
+  std::vector<int> lods;  ///< glTF meshes of levels 1, 2, ... (names ending _LOD1, _LOD2, ...)
+};
+
+/// Adds mesh `mesh` through `out` (one primitive per AssetPrimitive, sharing the vertex
+/// attributes; material k of the assets is glTF material gltf_material[k]), and `lods` coarser
+/// levels over the same vertices: level l has about 2^-l of each primitive's triangles
+/// (simplified(), error at most 2^(l-1) % of the mesh's extent, so a level may keep more).
+AddedMesh add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
+                         const std::vector<int>& gltf_material, int lods) {
+  tinygltf::Model& m = out.model();
+  const size_t n = mesh.position.size();
+  if (n == 0 || mesh.triangle.empty()) bad_assets("mesh '" + mesh.name + "' has no triangles");
+  if (mesh.normal.size() != n || mesh.colour.size() != n) {
+    bad_assets("mesh '" + mesh.name + "': position, normal and colour counts differ");
+  }
+  if (!mesh.uv.empty() && mesh.uv.size() != n)
+    bad_assets("mesh '" + mesh.name + "': uv count differs from positions");
+  check_primitives(mesh, gltf_material.size());
+  const std::vector<AssetPrimitive> plain{{0, mesh.triangle.size(), 0, {}}};
+  const std::vector<AssetPrimitive>& primitives = mesh.primitives.empty() ? plain : mesh.primitives;
+  // Per primitive: textured or not, and its triangles (the coarse ones of a textured primitive
+  // that has them: its colour is in the texture).
+  std::vector<bool> textured;
+  std::vector<std::span<const glm::uvec3>> lists;
+  for (const AssetPrimitive& p : primitives) {
+    const int material = gltf_material[static_cast<size_t>(p.material)];
+    textured.push_back(
+        m.materials[static_cast<size_t>(material)].pbrMetallicRoughness.baseColorTexture.index >=
+        0);
+    if (textured.back() && mesh.uv.empty())
+      bad_assets("mesh '" + mesh.name + "': a textured material needs uv");
+    lists.push_back(primitive_triangles(mesh, p, textured.back()));
+    for (const glm::uvec3& t : lists.back())
+      if (t.x >= n || t.y >= n || t.z >= n)
+        bad_assets("mesh '" + mesh.name + "': a triangle index is out of range");
+  }
+  // Only the vertices some triangle uses, each written once (ordered for fetching below): a vertex
+  // whose written attributes (float position, normal, colour, uv) equal an earlier one's is welded
+  // to it (the copies of cut vertices on both sides of a seam that show the same colour).
+  std::vector<bool> needed(n, false);
+  for (const auto& list : lists)
+    for (const glm::uvec3& t : list)
+      for (int k = 0; k < 3; ++k) needed[t[k]] = true;
+  std::vector<unsigned> remap(n, ~0u);
+  std::unordered_map<std::string, unsigned> written;
+  unsigned used = 0;
+  std::vector<float> pos, normal, colour, xy;
+  for (size_t i = 0; i < n; ++i) {
+    if (!needed[i]) continue;
+    const glm::dvec3& p = mesh.position[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      bad_assets("mesh '" + mesh.name + "': a position is not finite");
+    }
+    const double len = glm::length(mesh.normal[i]);
+    const glm::dvec3 nrm =
+        len > 0 && std::isfinite(len) ? mesh.normal[i] / len : glm::dvec3(0, 1, 0);
+    const glm::dvec3 c = glm::clamp(mesh.colour[i], 0.0, 1.0);
+    float vertex[11] = {};
+    for (int k = 0; k < 3; ++k) {
+      vertex[k] = static_cast<float>(p[k]);
+      vertex[3 + k] = static_cast<float>(nrm[k]);
+      vertex[6 + k] = static_cast<float>(c[k]);
+    }
+    if (!mesh.uv.empty()) {
+      const glm::dvec2 q = mesh.uv[i];
+      if (!std::isfinite(q.x) || !std::isfinite(q.y))
+        bad_assets("mesh '" + mesh.name + "': a uv is not finite");
+      vertex[9] = static_cast<float>(q.x);
+      vertex[10] = static_cast<float>(q.y);
+    }
+    for (float& v : vertex) v += 0.0f;  // -0 and +0 write alike
+    const auto [it, added] =
+        written.emplace(std::string(reinterpret_cast<const char*>(vertex), sizeof vertex), used);
+    remap[i] = it->second;
+    if (!added) continue;
+    ++used;
+    pos.insert(pos.end(), vertex, vertex + 3);
+    normal.insert(normal.end(), vertex + 3, vertex + 6);
+    colour.insert(colour.end(), vertex + 6, vertex + 9);
+    if (!mesh.uv.empty()) xy.insert(xy.end(), vertex + 9, vertex + 11);
+  }
+  // Per primitive, its triangles in written vertex indices, reordered for the GPU's post-transform
+  // vertex cache (meshoptimizer: Forsyth-style greedy order); then the vertices renumbered in
+  // the order the primitives first use them (fewer cache misses when vertices are fetched).
+  std::vector<std::vector<uint32_t>> idx(primitives.size());
+  std::vector<uint32_t> all;
+  for (size_t k = 0; k < primitives.size(); ++k) {
+    for (const glm::uvec3& t : lists[k])
+      idx[k].insert(idx[k].end(), {remap[t.x], remap[t.y], remap[t.z]});
+    const std::vector<uint32_t> input = idx[k];
+    meshopt_optimizeVertexCache(idx[k].data(), input.data(), input.size(), used);
+    all.insert(all.end(), idx[k].begin(), idx[k].end());
+  }
+  std::vector<uint32_t> fetch(used);
+  meshopt_optimizeVertexFetchRemap(fetch.data(), all.data(), all.size(), used);
+  for (std::vector<uint32_t>& list : idx)
+    meshopt_remapIndexBuffer(list.data(), std::vector<uint32_t>(list).data(), list.size(),
+                             fetch.data());
+  for (std::vector<float>* stream : {&pos, &normal, &colour, &xy}) {
+    if (stream->empty()) continue;
+    const std::vector<float> input = *stream;
+    meshopt_remapVertexBuffer(stream->data(), input.data(), used,
+                              input.size() / used * sizeof(float), fetch.data());
+  }
+
+  MeshFrame frame;
+  const int positions = out.positions(pos, frame);
+  const int normals = out.normals(normal);
+  int colours = -1, uvs = -1;  // added when some primitive uses them
+  // One glTF mesh per level of detail, all over the same vertex accessors.
+  auto add_level = [&](const std::string& name, const std::vector<std::vector<uint32_t>>& lists) {
+    tinygltf::Mesh gm;
+    gm.name = name;
+    for (size_t k = 0; k < primitives.size(); ++k) {
+      tinygltf::Primitive prim;
+      prim.mode = TINYGLTF_MODE_TRIANGLES;
+      prim.material = gltf_material[static_cast<size_t>(primitives[k].material)];
+      prim.attributes["POSITION"] = positions;
+      prim.attributes["NORMAL"] = normals;
+      // A textured material takes its colour from TEXCOORD_0, never also from COLOR_0 (glTF
+      // would multiply the two).
+      if (textured[k]) {
+        if (uvs < 0) uvs = out.uvs(xy);
+        prim.attributes["TEXCOORD_0"] = uvs;
+      } else {
+        if (colours < 0) colours = out.colours(colour);
+        prim.attributes["COLOR_0"] = colours;
+      }
+      prim.indices = out.indices(lists[k], used);
+      gm.primitives.push_back(prim);
+    }
+    m.meshes.push_back(gm);
+    return static_cast<int>(m.meshes.size()) - 1;
+  };
+  AddedMesh added;
+  added.frame = frame;
+  added.index = add_level(mesh.name, idx);
+  for (int level = 1; level <= lods; ++level) {
+    std::vector<std::vector<uint32_t>> coarser(idx.size());
+    for (size_t k = 0; k < idx.size(); ++k)
+      coarser[k] =
+          simplified(idx[k], pos, std::ldexp(1.0, -level), 0.01 * std::ldexp(1.0, level - 1));
+    added.lods.push_back(add_level(mesh.name + "_LOD" + std::to_string(level), coarser));
+  }
+  return added;
+}
+
+/// `name` as a relative URI: every byte outside RFC 3986's unreserved set percent-encoded.
+std::string uri_encode(const std::string& name) {
+  std::string out;
+  for (unsigned char c : name) {
+    if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~') {
+      out += static_cast<char>(c);
+    } else {
+      char hex[4];
+      std::snprintf(hex, sizeof hex, "%%%02X", c);
+      out += hex;
+    }
+  }
+  return out;
+}
+
+/// Adds `material` to `m` as an opaque, single-sided metallic-roughness material (white base
+/// colour: vertex colours give the colour, metallic 0) with KHR_materials_clearcoat,
+/// KHR_materials_sheen and KHR_materials_diffuse_transmission where its values ask for them
+/// (each added to extensionsUsed once); its base colour texture is glTF texture
+/// textures[base_colour_texture].
+void add_pbr_material(tinygltf::Model& m, const AssetMaterial& material,
+                      const std::vector<int>& textures) {
+  const PbrMaterial& pbr = material.pbr;
+  if (const std::string_view field = out_of_range_field(pbr); !field.empty())
+    bad_assets("material '" + material.name + "': " + std::string(field) + " not in 0..1");
+  const int index = add_material(m, material.name, 1.0, false, pbr.roughness);
+  tinygltf::Material& mat = m.materials[static_cast<size_t>(index)];
+  if (material.base_colour_texture >= 0) {
+    if (static_cast<size_t>(material.base_colour_texture) >= textures.size())
+      bad_assets("material '" + material.name + "': texture index out of range");
+    mat.pbrMetallicRoughness.baseColorTexture.index =
+        textures[static_cast<size_t>(material.base_colour_texture)];
+    mat.pbrMetallicRoughness.baseColorTexture.texCoord = 0;
+  }
+  const int material_map = material.material_texture < 0 ? -1 : [&] {
+    if (static_cast<size_t>(material.material_texture) >= textures.size())
+      bad_assets("material '" + material.name + "': material texture index out of range");
+    return textures[static_cast<size_t>(material.material_texture)];
+  }();
+  if (material_map >= 0) {  // the map holds the values: factors 1
+    mat.pbrMetallicRoughness.roughnessFactor = 1.0;
+    mat.pbrMetallicRoughness.metallicRoughnessTexture.index = material_map;
+  }
+  auto use = [&m, &mat](const std::string& extension, tinygltf::Value::Object values) {
+    mat.extensions[extension] = tinygltf::Value(std::move(values));
+    if (std::find(m.extensionsUsed.begin(), m.extensionsUsed.end(), extension) ==
+        m.extensionsUsed.end())
+      m.extensionsUsed.push_back(extension);
+  };
+  if (pbr.clearcoat > 0) {
+    use("KHR_materials_clearcoat",
+        {{"clearcoatFactor", tinygltf::Value(pbr.clearcoat)},
+         {"clearcoatRoughnessFactor", tinygltf::Value(pbr.clearcoat_roughness)}});
+  }
+  if (pbr.sheen != glm::dvec3(0.0)) {
+    use("KHR_materials_sheen",
+        {{"sheenColorFactor", tinygltf::Value(tinygltf::Value::Array{
+                                  tinygltf::Value(pbr.sheen.x), tinygltf::Value(pbr.sheen.y),
+                                  tinygltf::Value(pbr.sheen.z)})},
+         {"sheenRoughnessFactor", tinygltf::Value(pbr.sheen_roughness)}});
+  }
+  if (material_map >= 0 && pbr.translucency > 0) {
+    use("KHR_materials_diffuse_transmission",
+        {{"diffuseTransmissionFactor", tinygltf::Value(1.0)},
+         {"diffuseTransmissionTexture",
+          tinygltf::Value(tinygltf::Value::Object{{"index", tinygltf::Value(material_map)}})}});
+  } else if (pbr.translucency > 0) {
+    use("KHR_materials_diffuse_transmission",
+        {{"diffuseTransmissionFactor", tinygltf::Value(pbr.translucency)}});
+  }
+}
+
+/// The scene as a tinygltf model with all binary data in buffer 0 (no URI; with Meshopt
+/// compression, buffer 1 is the fallback, whose byteLength `fallback_bytes` receives, and
+/// `view_extensions` the extensions of the encoded buffer views). With
+/// `image_files` (texture_file_names(), one per texture), each used texture's image refers to
+/// its file instead and `images` receives (file name, image bytes) for each.
+tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& options,
+                            size_t& fallback_bytes,
+                            std::vector<std::pair<int, nlohmann::json>>& view_extensions,
+                            const std::vector<std::string>* image_files = nullptr,
+                            std::vector<std::pair<std::string, std::string>>* images = nullptr) {
+  tinygltf::Model m = new_model();
+  if (options.compression == GltfCompression::Meshopt) m.buffers.emplace_back();
+  // Only the materials some mesh uses (an unused one is a validator notice), in their order.
+  std::vector<int> gltf_material(assets.materials.size(), -1);
+  for (const AssetMesh& mesh : assets.meshes) {
+    check_primitives(mesh, assets.materials.size());
+    if (mesh.primitives.empty()) gltf_material[0] = 0;
+    for (const AssetPrimitive& p : mesh.primitives)
+      gltf_material[static_cast<size_t>(p.material)] = 0;
+  }
+  // The textures of those materials, as images in the buffer (JPEG or PNG, texture_image.h),
+  // in the assets' order.
+  std::vector<int> gltf_texture(assets.textures.size(), -1);
+  for (size_t k = 0; k < assets.materials.size(); ++k) {
+    for (const int t :
+         {assets.materials[k].base_colour_texture, assets.materials[k].material_texture})
+      if (gltf_material[k] >= 0 && t >= 0 && static_cast<size_t>(t) < assets.textures.size())
+        gltf_texture[static_cast<size_t>(t)] = 0;
+  }
+  for (size_t t = 0; t < assets.textures.size(); ++t) {
+    if (gltf_texture[t] < 0) continue;
+    // Samplers: clamped, or repeating in u (a texture that runs around, the skin's).
+    const int wrap_s = assets.textures[t].wrap_u ? TINYGLTF_TEXTURE_WRAP_REPEAT
+                                                 : TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    int sampler_index = -1;
+    for (size_t k = 0; k < m.samplers.size(); ++k)
+      if (m.samplers[k].wrapS == wrap_s) sampler_index = static_cast<int>(k);
+    if (sampler_index < 0) {
+      tinygltf::Sampler sampler;
+      sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+      sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+      sampler.wrapS = wrap_s;
+      sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+      m.samplers.push_back(sampler);
+      sampler_index = static_cast<int>(m.samplers.size()) - 1;
+    }
+    std::string bytes = encode_texture(assets.textures[t], options.textures);
+    tinygltf::Image image;
+    image.name = assets.textures[t].name;
+    image.mimeType = texture_mime_type(assets.textures[t], options.textures);
+    if (image_files) {
+      image.uri = uri_encode(image_files->at(t));
+      images->emplace_back(image_files->at(t), std::move(bytes));
+    } else {
+      image.bufferView = add_view(m, bytes.data(), bytes.size(), 0);
+    }
+    m.images.push_back(image);
+    tinygltf::Texture texture;
+    texture.name = assets.textures[t].name;
+    texture.sampler = sampler_index;
+    texture.source = static_cast<int>(m.images.size()) - 1;
+    m.textures.push_back(texture);
+    gltf_texture[t] = static_cast<int>(m.textures.size()) - 1;
+  }
+  for (size_t k = 0; k < assets.materials.size(); ++k) {
+    if (gltf_material[k] < 0) continue;
+    gltf_material[k] = static_cast<int>(m.materials.size());
+    add_pbr_material(m, assets.materials[k], gltf_texture);
+  }
+  SceneBuffers out(m, options.compression);
+  std::vector<AddedMesh> added;
+  for (const AssetMesh& mesh : assets.meshes)
+    added.push_back(add_asset_mesh(out, mesh, gltf_material, options.lods));
+  fallback_bytes = out.fallback_bytes();
+  view_extensions = out.view_extensions();
+  auto require = [&m](const std::string& extension) {
+    m.extensionsUsed.push_back(extension);
+    m.extensionsRequired.push_back(extension);
+  };
+  if (options.compression != GltfCompression::None) require("KHR_mesh_quantization");
+  if (options.compression == GltfCompression::Meshopt) require("EXT_meshopt_compression");
+
+  tinygltf::Scene scene;
+  scene.name = assets.name;
+  auto add_node = [&](tinygltf::Node node) {
+    m.nodes.push_back(std::move(node));
+    scene.nodes.push_back(static_cast<int>(m.nodes.size()) - 1);
+  };
+  const size_t scene_nodes = assets.instances.size() + 1 + assets.lights.size();
+  std::vector<tinygltf::Node> lod_nodes;  // after the scene's nodes
+  for (const AssetInstance& inst : assets.instances) {
+    if (inst.mesh < 0 || inst.mesh >= static_cast<int>(assets.meshes.size())) {
+      bad_assets("instance '" + inst.name + "': mesh index out of range");
+    }
+    const double qlen = glm::length(inst.rotation);
+    if (!(qlen > 0) || !std::isfinite(qlen)) {
+      bad_assets("instance '" + inst.name + "': zero rotation");
+    }
+    glm::dquat q = inst.rotation / qlen;
+    if (q.w < 0) q = -q;
+    tinygltf::Node node;
+    node.name = inst.name;
+    const AddedMesh& mesh = added[static_cast<size_t>(inst.mesh)];
+    node.mesh = mesh.index;
+    node.rotation = gltf_rotation(q);
+    // The mesh's frame folded into the node: R (offset + scale q) + t.
+    node.translation = gltf_vec3(inst.translation + q * mesh.frame.offset);
+    if (mesh.frame.scale != 1.0)
+      node.scale = {mesh.frame.scale, mesh.frame.scale, mesh.frame.scale};
+    tinygltf::Value::Object extras;
+    // Levels of detail (MSFT_lod): a node per level, placed alike, outside the scene's list;
+    // level l is shown down to 0.2 * 4^-l of the screen's height, the last one always.
+    if (!mesh.lods.empty()) {
+      tinygltf::Value::Array ids, coverage;
+      for (size_t l = 0; l < mesh.lods.size(); ++l) {
+        tinygltf::Node level = node;
+        level.name = inst.name + "_LOD" + std::to_string(l + 1);
+        level.mesh = mesh.lods[l];
+        ids.emplace_back(static_cast<int>(scene_nodes + lod_nodes.size()));
+        lod_nodes.push_back(std::move(level));
+        coverage.emplace_back(0.2 * std::ldexp(1.0, -2 * static_cast<int>(l)));
+      }
+      coverage.emplace_back(0.0);
+      node.extensions["MSFT_lod"] =
+          tinygltf::Value(tinygltf::Value::Object{{"ids", tinygltf::Value(ids)}});
+      extras["MSFT_screencoverage"] = tinygltf::Value(coverage);
+    }
+    if (!inst.piece.template_name.empty()) {
+      const PieceInfo& info = inst.piece;
+      tinygltf::Value::Array parts;
+      for (const std::string& kind : info.parts) parts.emplace_back(kind);
+      extras["template"] = tinygltf::Value(info.template_name);
+      // A decimal string: a 64-bit seed does not fit a JSON number exactly.
+      extras["seed"] = tinygltf::Value(std::to_string(info.seed));
+      extras["cut"] = tinygltf::Value(info.cut);
+      extras["piece"] = tinygltf::Value(info.cell);
+      extras["parts"] = tinygltf::Value(parts);
+      extras["volume_m3"] = tinygltf::Value(info.volume_m3);
+    }
+    if (!extras.empty()) node.extras = tinygltf::Value(std::move(extras));
+    add_node(node);
+  }
+
+  const AssetCamera& cam = assets.camera;
+  if (!(glm::length(cam.target - cam.eye) > 0)) bad_assets("camera eye and target coincide");
+  if (!(cam.fov_y_deg > 0 && cam.fov_y_deg < 180)) bad_assets("camera fov_y_deg not in (0, 180)");
+  if (!(cam.aspect > 0)) bad_assets("camera aspect not positive");
+  if (!(cam.znear > 0 && cam.zfar > cam.znear)) bad_assets("camera needs 0 < znear < zfar");
+  tinygltf::Camera camera;
+  camera.name = "camera";
+  camera.type = "perspective";
+  camera.perspective.yfov = glm::radians(cam.fov_y_deg);
+  camera.perspective.aspectRatio = cam.aspect;
+  camera.perspective.znear = cam.znear;
+  camera.perspective.zfar = cam.zfar;
+  m.cameras.push_back(camera);
+  tinygltf::Node camera_node;
+  camera_node.name = "camera";
+  camera_node.camera = 0;
+  camera_node.rotation = gltf_rotation(look_rotation(cam.target - cam.eye, cam.up));
+  camera_node.translation = gltf_vec3(cam.eye);
+  add_node(camera_node);
+
+  for (const AssetLight& light : assets.lights) {
+    tinygltf::Light gl;
+    gl.name = light.name;
+    gl.color = gltf_vec3(light.colour);
+    gl.intensity = light.intensity;
+    tinygltf::Node node;
+    node.name = light.name;
+    if (light.type == LightType::Directional) {
+      if (!(glm::length(light.direction) > 0)) {
+        bad_assets("light '" + light.name + "': zero direction");
+      }
+      gl.type = "directional";
+      node.rotation = gltf_rotation(look_rotation(light.direction, glm::dvec3(0, 1, 0)));
+    } else {
+      gl.type = "point";
+      node.translation = gltf_vec3(light.position);
+    }
+    m.lights.push_back(gl);
+    tinygltf::Value::Object ref;
+    ref["light"] = tinygltf::Value(static_cast<int>(m.lights.size()) - 1);
+    node.extensions["KHR_lights_punctual"] = tinygltf::Value(ref);
+    add_node(node);
+  }
+  if (!m.lights.empty()) m.extensionsUsed.push_back("KHR_lights_punctual");
+  for (tinygltf::Node& node : lod_nodes) m.nodes.push_back(std::move(node));
+  if (options.lods > 0) m.extensionsUsed.push_back("MSFT_lod");
+  m.scenes.push_back(scene);
+  return m;
+}
+
+/// A scene's glTF JSON (buffers without URIs) and the bytes of buffer 0.
+struct EncodedScene {
+  nlohmann::json doc;
+  std::vector<unsigned char> bin;
+};
+
+/// scene_model() serialised: buffer 0 holds `bin`; with Meshopt compression buffer 1 is the
+/// EXT_meshopt_compression fallback, which holds no bytes.
+EncodedScene encode_scene(const SceneAssets& assets, const GltfSceneOptions& options,
+                          const std::vector<std::string>* image_files = nullptr,
+                          std::vector<std::pair<std::string, std::string>>* images = nullptr) {
+  size_t fallback_bytes = 0;
+  std::vector<std::pair<int, nlohmann::json>> view_extensions;
+  tinygltf::Model m =
+      scene_model(assets, options, fallback_bytes, view_extensions, image_files, images);
+  EncodedScene scene;
+  scene.bin.swap(m.buffers[0].data);
+  std::ostringstream out;
+  tinygltf::TinyGLTF writer;
+  writer.WriteGltfSceneToStream(&m, out, false, false);
+  scene.doc = nlohmann::json::parse(out.str());
+  scene.doc["buffers"][0] = {{"byteLength", scene.bin.size()}};
+  if (options.compression == GltfCompression::Meshopt) {
+    scene.doc["buffers"][1] = {{"byteLength", fallback_bytes},
+                               {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}};
+    for (const auto& [view, extensions] : view_extensions)
+      scene.doc["bufferViews"][static_cast<size_t>(view)]["extensions"] = extensions;
+  }
+  return scene;
+}
+
+/// Writes `bytes` to a fresh temporary file beside `target` (flushed) and returns its path.
+std::filesystem::path stage_file(const std::filesystem::path& target, std::string_view bytes) {
+  std::string tmp = target.string() + ".tmp-XXXXXX";
+  const int fd = mkstemp(tmp.data());
+  if (fd < 0) {
+    throw std::runtime_error("cannot write " + target.string() + ": " + std::strerror(errno));
+  }
+  ::close(fd);
+  try {
+    write_file_atomically(tmp, bytes);
+  } catch (...) {
+    ::unlink(tmp.c_str());
+    throw;
+  }
+  return tmp;
+}
+
+void rename_or_throw(const std::filesystem::path& from, const std::filesystem::path& to) {
+  if (std::rename(from.c_str(), to.c_str()) != 0) {
+    throw std::runtime_error("cannot write " + to.string() + ": " + std::strerror(errno));
+  }
+}
+
+}  // namespace
+
+std::string model_to_glb(const DsModel& model, const GltfModelOptions& options) {
+  tinygltf::Model m = new_model();
+  const int skin_mat = add_material(m, "skin", options.skin_alpha);
+  const int inner_mat = add_material(m, "inner", options.inner_alpha);
+  tinygltf::Scene scene;
+  scene.name = model.name;
+  for (const DsSurface& s : model.surfaces) {
+    const DsMesh& mesh = s.mesh;
+    std::vector<float> pos, front, back;
+    for (auto vh : mesh.vertices()) {
+      const auto& p = mesh.point(vh);
+      const auto& d = mesh.data(vh);
+      for (int k = 0; k < 3; ++k) {
+        pos.push_back(static_cast<float>(p[k]));
+        front.push_back(static_cast<float>(d.front[k]));
+        back.push_back(static_cast<float>(d.back[k]));
+      }
+    }
+    std::vector<float> normals, flipped;
+    for (glm::dvec3 n : vertex_normals(mesh)) {
+      if (n == glm::dvec3(0.0)) n = {0, 1, 0};  // glTF normals must be unit length
+      for (int k = 0; k < 3; ++k) {
+        normals.push_back(static_cast<float>(n[k]));
+        flipped.push_back(static_cast<float>(-n[k]));
+      }
+    }
+    std::vector<uint32_t> idx, rev;
+    for (auto fh : mesh.faces()) {
+      std::array<uint32_t, 3> v;
+      int k = 0;
+      for (auto vh : mesh.fv_range(fh)) v[k++] = static_cast<uint32_t>(vh.idx());
+      idx.insert(idx.end(), {v[0], v[1], v[2]});
+      rev.insert(rev.end(), {v[0], v[2], v[1]});
+    }
+    const int apos = add_vec3_accessor(m, pos, true);
+    const int mat = s.role == SurfaceRole::Skin ? skin_mat : inner_mat;
+    tinygltf::Mesh gm;
+    gm.name = s.name;
+    for (int side = 0; side < 2; ++side) {
+      tinygltf::Primitive prim;
+      prim.mode = TINYGLTF_MODE_TRIANGLES;
+      prim.material = mat;
+      prim.attributes["POSITION"] = apos;
+      prim.attributes["NORMAL"] = add_vec3_accessor(m, side == 0 ? normals : flipped, false);
+      prim.attributes["COLOR_0"] = add_vec3_accessor(m, side == 0 ? front : back, false);
+      prim.indices = add_index_accessor(m, side == 0 ? idx : rev);
+      gm.primitives.push_back(prim);
+    }
+    m.meshes.push_back(gm);
+    tinygltf::Node node;
+    node.name = s.name;
+    node.mesh = static_cast<int>(m.meshes.size()) - 1;
+    m.nodes.push_back(node);
+    scene.nodes.push_back(static_cast<int>(m.nodes.size()) - 1);
+  }
+  m.scenes.push_back(scene);
+  return to_glb(m);
+}
+
+std::string section_to_glb(const CrossSection& section) {
+  tinygltf::Model m = new_model();
+  std::vector<float> pos, normal, colour;
+  for (size_t i = 0; i < section.position.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      pos.push_back(static_cast<float>(section.position[i][k]));
+      normal.push_back(static_cast<float>(section.plane.normal[k]));
+      colour.push_back(static_cast<float>(section.colour[i][k]));
+    }
+  }
+  std::vector<uint32_t> idx;
+  for (const glm::uvec3& t : section.triangle) idx.insert(idx.end(), {t.x, t.y, t.z});
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.material = add_material(m, "cut face", 1.0, true);
+  prim.attributes["POSITION"] = add_vec3_accessor(m, pos, true);
+  prim.attributes["NORMAL"] = add_vec3_accessor(m, normal, false);
+  prim.attributes["COLOR_0"] = add_vec3_accessor(m, colour, false);
+  prim.indices = add_index_accessor(m, idx);
+  tinygltf::Mesh mesh;
+  mesh.name = "cross-section";
+  mesh.primitives.push_back(prim);
+  m.meshes.push_back(mesh);
+  tinygltf::Node node;
+  node.name = "cross-section";
+  node.mesh = 0;
+  m.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
+  m.scenes.push_back(scene);
+  return to_glb(m);
+}
+
+void write_model_glb(const std::filesystem::path& path, const DsModel& model,
+                     const GltfModelOptions& options) {
+  write_file_atomically(path, model_to_glb(model, options));
+}
+
+std::string scene_to_glb(const SceneAssets& assets, const GltfSceneOptions& options) {
+  const EncodedScene scene = encode_scene(assets, options);
+  // GLB (glTF 2.0 §4.4): a 12-byte header, the JSON chunk padded with spaces, the BIN chunk
+  // padded with zeros, each length a multiple of 4, little-endian.
+  std::string json = scene.doc.dump();
+  json.resize((json.size() + 3) / 4 * 4, ' ');
+  const size_t bin_bytes = (scene.bin.size() + 3) / 4 * 4;
+  std::string glb;
+  glb.reserve(28 + json.size() + bin_bytes);
+  auto u32 = [&glb](uint32_t v) {
+    for (int k = 0; k < 4; ++k) glb += static_cast<char>((v >> (8 * k)) & 0xff);
+  };
+  glb += "glTF";
+  u32(2);
+  u32(static_cast<uint32_t>(12 + 8 + json.size() + (bin_bytes == 0 ? 0 : 8 + bin_bytes)));
+  u32(static_cast<uint32_t>(json.size()));
+  glb += "JSON";
+  glb += json;
+  if (bin_bytes > 0) {
+    u32(static_cast<uint32_t>(bin_bytes));
+    glb += std::string("BIN\0", 4);
+    glb.append(reinterpret_cast<const char*>(scene.bin.data()), scene.bin.size());
+    glb.resize(glb.size() + bin_bytes - scene.bin.size(), '\0');
+  }
+  return glb;
+}
+
+GltfCompression parse_gltf_compression(std::string_view name) {
+  if (name == "none") return GltfCompression::None;
+  if (name == "quantize") return GltfCompression::Quantize;
+  if (name == "meshopt") return GltfCompression::Meshopt;
+  throw std::invalid_argument("unknown glTF compression '" + std::string(name) +
+                              "' (none, quantize or meshopt)");
+}
+
+void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& assets,
+                      const GltfSceneOptions& options) {
+  namespace fs = std::filesystem;
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext != ".glb" && ext != ".gltf") {
+    throw std::invalid_argument("scene export: unknown extension '" + path.extension().string() +
+                                "' of " + path.string() + " (expected .glb or .gltf)");
+  }
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) {
+    throw std::runtime_error("cannot write " + path.string() + ": no directory " + dir.string());
+  }
+  if (ext == ".glb") {
+    write_file_atomically(path, scene_to_glb(assets, options));
+    return;
+  }
+  // .gltf: the textures as image files beside it, written first (each atomically).
+  const std::vector<std::string> image_files = texture_file_names(path, assets, options.textures);
+  std::vector<std::pair<std::string, std::string>> images;
+  EncodedScene scene = encode_scene(assets, options, &image_files, &images);
+  for (const auto& [name, bytes] : images) write_file_atomically(dir / name, bytes);
+  // .gltf: buffer 0 is the .bin beside it.
+  fs::path bin_path = path;
+  bin_path.replace_extension(".bin");
+  const std::vector<unsigned char>& bin = scene.bin;
+  scene.doc["buffers"][0]["uri"] = uri_encode(bin_path.filename().string());
+  const std::string json_text = scene.doc.dump(2) + "\n";
+
+  const fs::path bin_tmp =
+      stage_file(bin_path, std::string_view(reinterpret_cast<const char*>(bin.data()), bin.size()));
+  fs::path json_tmp;
+  try {
+    json_tmp = stage_file(path, json_text);
+    rename_or_throw(bin_tmp, bin_path);
+  } catch (...) {
+    ::unlink(bin_tmp.c_str());
+    if (!json_tmp.empty()) ::unlink(json_tmp.c_str());
+    throw;
+  }
+  try {
+    rename_or_throw(json_tmp, path);
+  } catch (...) {
+    ::unlink(json_tmp.c_str());
+    ::unlink(bin_path.c_str());
+    throw;
+  }
+}
+
+}  // namespace cutaway

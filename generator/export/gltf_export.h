@@ -1,0 +1,126 @@
+// glTF 2.0 export of DS models, cross-sections and whole scenes (Khronos glTF 2.0
+// specification; COLOR_0 is linear RGB; lights through KHR_lights_punctual).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "export/texture_image.h"
+#include "model/ds_model.h"
+#include "scene/scene_assets.h"
+#include "section/cross_section.h"
+
+namespace cutaway {
+
+/// How a DS model looks in glTF: alpha-blended surfaces so that the inner structure shows
+/// (paper Fig. 9).
+struct GltfModelOptions {
+  double skin_alpha = 0.35;   ///< opacity of the skin, 0..1
+  double inner_alpha = 0.7;   ///< opacity of every other surface, 0..1
+};
+
+/// Encodes the model as binary glTF (.glb): one mesh per DS surface with two primitives, the
+/// front side (its winding, front colours) and the back side (reversed winding, back colours),
+/// each single-sided, so a viewer shows each side's own colour; positions in metres (object
+/// frame, +Y up), per-vertex normals, COLOR_0 linear RGB; materials alpha-blended.
+/// Deterministic: the same model gives the same bytes.
+std::string model_to_glb(const DsModel& model, const GltfModelOptions& options);
+
+/// Writes model_to_glb to `path` atomically (temporary file, then rename).
+/// @throws std::runtime_error when the file cannot be written
+void write_model_glb(const std::filesystem::path& path, const DsModel& model,
+                     const GltfModelOptions& options);
+
+/// Encodes a cross-section as binary glTF: one mesh, one double-sided opaque primitive,
+/// positions in metres (object frame), the plane normal as NORMAL, COLOR_0 linear RGB.
+/// Deterministic.
+std::string section_to_glb(const CrossSection& section);
+
+/// How a scene's glTF stores its vertex data (meshoptimizer, Debian's libmeshoptimizer-dev).
+enum class GltfCompression {
+  /// float32 attributes: every glTF 2.0 loader reads them.
+  None,
+  /// KHR_mesh_quantization (listed as required): positions as normalized SHORT over each mesh's
+  /// bounding cube, the cube's centre and half size folded into the nodes that use the mesh
+  /// (their translation and uniform scale); normals as normalized BYTE; colours and texture
+  /// coordinates in 0..1 as normalized UNSIGNED_SHORT. About 1/65535 of the largest half
+  /// extent (1.5 micrometres on a 10 cm fruit), 1/127 on normals. three.js, Blender 3.4+ and
+  /// the Khronos validator read it.
+  Quantize,
+  /// Quantize with positions on 14-bit steps (1/16383 of the largest extent: 6 micrometres on a
+  /// 10 cm fruit) and normals through the octahedral filter (8-bit), each buffer view then
+  /// encoded by meshoptimizer's vertex and index codecs
+  /// (EXT_meshopt_compression, listed as required; the fallback buffer holds no bytes).
+  /// three.js reads it with its MeshoptDecoder; Blender 3.4 does not.
+  Meshopt,
+};
+
+/// Options of the scene glTF export.
+struct GltfSceneOptions {
+  GltfCompression compression = GltfCompression::Quantize;
+  /// Coarser levels of detail per mesh (0..4), made by meshoptimizer's simplifier: level l
+  /// keeps about 2^-l of each primitive's triangles where the error stays within 2^(l-1) % of
+  /// the mesh's extent, the primitives' borders (cut outlines, the seams between skin and cap)
+  /// locked so that closed pieces stay closed; the same vertices, new indices. Written as
+  /// glTF meshes and nodes named `<name>_LOD<l>` (the suffix Unreal and Unity take for levels)
+  /// and tied to the full node by MSFT_lod, with extras.MSFT_screencoverage 0.2 * 4^-l for
+  /// level l and 0 for the last (always shown); those nodes are not in the scene's node list.
+  /// Viewers without MSFT_lod show the full meshes.
+  int lods = 0;
+  /// How base-colour textures are stored (texture_image.h); material maps are always PNG.
+  TextureFormat textures = TextureFormat::Jpeg;
+};
+
+/// "none", "quantize" or "meshopt" as a GltfCompression.
+/// @throws std::invalid_argument for any other name
+GltfCompression parse_gltf_compression(std::string_view name);
+
+/// Encodes a scene as binary glTF (.glb), metres, +Y up:
+/// - one mesh per AssetMesh (same order and name), one opaque single-sided primitive per
+///   AssetPrimitive (one for a mesh without), all sharing the mesh's POSITION (with min/max),
+///   NORMAL (renormalised), COLOR_0 (vec3, linear RGB clamped to 0..1) and TEXCOORD_0
+///   accessors, stored as `options.compression` says, each with its own indices (uint16 when
+///   the mesh has at most 65535 vertices, else uint32); each primitive's triangles in the
+///   order meshoptimizer gives for
+///   the GPU's post-transform vertex cache, the vertices in the order of their first use;
+/// - the materials some primitive uses, in the order of SceneAssets::materials: vertex colour
+///   times a white base colour, metallic 0, the material's roughness, and
+///   KHR_materials_clearcoat (clearcoat > 0), KHR_materials_sheen (sheen not black) and
+///   KHR_materials_diffuse_transmission (translucency > 0), each listed in extensionsUsed;
+///   material 0 by default is "vertex colour", roughness 0.6, no extension;
+/// - one node per AssetInstance (same order and name): rotation [x, y, z, w] (normalised,
+///   w >= 0) and translation; a piece's node (PieceInfo with a template) has extras
+///   {template, seed (decimal string), cut, piece (its cell), parts, volume_m3};
+/// - a node "camera" at `camera.eye` rotated so that its -Z looks at `camera.target` with +Y
+///   towards `camera.up` (when `up` is parallel to the view: +Y of the scene, else -Z),
+///   holding a perspective camera (yfov in radians, aspectRatio, znear, zfar);
+/// - one node per AssetLight with a KHR_lights_punctual light (listed in extensionsUsed):
+///   directional lights (intensity in lux) rotated so that their -Z is `direction`; point
+///   lights (intensity in candela) translated to `position`, range infinite.
+/// Scene nodes in this order: instances, camera, lights. asset.generator is "cutaway".
+/// Deterministic: the same assets give the same bytes.
+/// @throws std::invalid_argument when the assets break their documented invariants: a mesh
+///   without triangles, with arrays of different lengths, an index out of range or a
+///   non-finite position, primitives that do not cover its triangles in order or name a
+///   material that does not exist, a material value outside 0..1; an instance whose mesh
+///   index is out of range or whose rotation is
+///   zero; eye == target, fov_y_deg outside (0, 180), aspect <= 0, not 0 < znear < zfar; a
+///   zero light direction.
+std::string scene_to_glb(const SceneAssets& assets, const GltfSceneOptions& options = {});
+
+/// Writes the scene as glTF, the format chosen by the extension of `path` (case-insensitive):
+/// ".glb": binary glTF, one file (the bytes of scene_to_glb);
+/// ".gltf": JSON, 2-space indented, with its binary buffer in a file beside it with the same
+///   stem and extension ".bin" (referenced by a relative, percent-encoded URI); otherwise the
+///   same content as the .glb.
+/// Files are written to temporaries in the target directory and renamed into place (the .bin
+/// first); a failure leaves neither file (should the last rename fail, the new .bin, which
+/// may have replaced an older one, is removed). The directory must exist (it is not created).
+/// @throws std::invalid_argument for any other extension and for invalid assets (see
+///   scene_to_glb); std::runtime_error when the directory is missing or a file cannot be
+///   written.
+void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& assets,
+                      const GltfSceneOptions& options = {});
+
+}  // namespace cutaway

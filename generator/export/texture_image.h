@@ -1,0 +1,47 @@
+// Textures as image files: the one encoder of AssetTexture images, for glTF (embedded, or files
+// beside a .gltf) and POV-Ray (files beside the scene). Base colours may be JPEG (a tenth of
+// the PNG's bytes on a baked cap atlas, at a mean error under 2/255); material maps hold
+// linear data and an alpha channel, so they are always PNG.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "scene/scene_assets.h"
+
+namespace cutaway {
+
+/// How base-colour textures (RGB, sRGB) are stored; material maps (RGBA) are always PNG.
+enum class TextureFormat {
+  Png,   ///< lossless, 8-bit RGB
+  Jpeg,  ///< baseline JPEG at kJpegQuality, chroma subsampled 2 x 2 (glTF core, POV-Ray,
+         ///< Blender and every browser read it)
+};
+
+/// The JPEG quality (1..100) of base-colour textures.
+inline constexpr int kJpegQuality = 90;
+
+/// "png" or "jpeg" as a TextureFormat.
+/// @throws std::invalid_argument for any other name
+TextureFormat parse_texture_format(std::string_view name);
+
+/// Whether `texture` is written as JPEG under `format`: an RGB texture with format Jpeg.
+bool is_jpeg(const AssetTexture& texture, TextureFormat format);
+
+/// The MIME type of `texture`'s image under `format`: "image/jpeg" or "image/png".
+const char* texture_mime_type(const AssetTexture& texture, TextureFormat format);
+
+/// `texture` as image bytes: JPEG (is_jpeg) or PNG (8-bit RGB or RGBA), by stb_image_write.
+/// Deterministic: the same texture and format give the same bytes.
+/// @throws std::invalid_argument when its size and pixel count disagree or it is empty
+std::string encode_texture(const AssetTexture& texture, TextureFormat format);
+
+/// The file names, beside a scene file at `scene` (.pov, .gltf), of the assets' textures:
+/// "<scene stem>_<texture name>.jpg" or ".png" (is_jpeg), in the order of
+/// SceneAssets::textures.
+std::vector<std::string> texture_file_names(const std::filesystem::path& scene,
+                                            const SceneAssets& assets, TextureFormat format);
+
+}  // namespace cutaway

@@ -1,0 +1,45 @@
+// Reads and validates scene files (doc/scene-format.md, all of it). Every broken rule is an
+// InputError "FILE:LINE:COL: field.path: rule"; templates a scene names are found (and, by
+// load_scene, read and checked) here, so that layout and export never see YAML.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "scene/scene.h"
+
+namespace cutaway {
+
+/// Parses and validates scene text, and resolves every item's template file.
+///
+/// Units: lengths in the file are in its `units` (mm, cm or m; default mm) and come out in
+/// metres (container sizes, camera eye and target, slice thickness, dice size); colours are sRGB
+/// ("#rrggbb" or [r, g, b] in 0..1) and come out linear RGB.
+///
+/// Defaults: seed 0; units mm; no container (type none) when `container` is absent; bowl
+/// 240 x 80 mm "#f3efe6", plate 260 x 20 mm "#fafafa", board 360 x 240 x 20 mm "#c49a6c";
+/// an item's count 1, cut whole, keep 1, variation 1; no camera; render 1280 x 960, perlin 1,
+/// silhouettes 1.
+///
+/// Template resolution: a value containing '/' or ending in ".yaml" is a path relative to the
+/// scene file's directory (or absolute); otherwise it is a name ([a-z0-9_-]+) looked up as
+/// NAME.yaml in `<scene dir>/../templates`, then in `$CUTAWAY_TEMPLATES` (when set), then in the
+/// project's templates/ folder. The template files are not read (see load_scene).
+///
+/// @param text  the file's bytes (YAML 1.2 or JSON, UTF-8)
+/// @param file  the scene's path: names it in messages, and relative template paths and
+///              names are resolved from its directory
+/// @return the scene (Scene::file = `file`)
+/// @throws InputError for any rule of the format the text breaks (syntax, unknown or repeated
+///         fields, types, ranges, a template that cannot be found), at the offending node
+Scene parse_scene(std::string_view text, const std::string& file);
+
+/// Reads the scene file at `path`, parses it as parse_scene, and reads every template it names
+/// with load_template, so that a broken template is reported (at its own file, line and column).
+/// Also refuses a cut that would make more than kMaxPiecesPerCut pieces of one object, estimated
+/// from the template's extents (estimate_piece_count), at the cut's thickness or size.
+/// @throws InputError as parse_scene, for the templates as load_template, and when the file
+///         cannot be read
+Scene load_scene(const std::string& path);
+
+}  // namespace cutaway

@@ -1,0 +1,544 @@
+#include "io/template_parser.h"
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+
+#include "base/colour.h"
+#include "base/constants.h"
+#include "base/error.h"
+#include "io/text_rules.h"
+#include "io/yaml_reader.h"
+#include "model/mesh_import.h"
+#include "model/template_checks.h"
+
+namespace cutaway {
+
+namespace {
+
+constexpr double kDeg = kPi / 180.0;
+/// The largest coordinate or length a template may use, metres: far beyond any object cutaway
+/// models, and small enough that differences and squares of lengths stay finite.
+constexpr double kMaxMetres = 1e6;
+/// The most edges the skin's height may span (resolution.edge >= height / this): keeps the
+/// surface meshes within memory (the default is 64).
+constexpr double kMaxEdgesPerHeight = 4096;
+
+/// `v` (in units of `scale` metres) when |v * scale| <= kMaxMetres; fails at `f` otherwise.
+double within_limit(const YamlField& f, double v, double scale) {
+  if (std::fabs(v * scale) > kMaxMetres) f.fail("must be at most 1000 km in size (|value| <= 1e6 m)");
+  return v;
+}
+
+/// A LENGTH: a number >= 0 in template units. Returns metres.
+double parse_length(const YamlField& f, double metres_per_unit) {
+  const double v = within_limit(f, f.number(), metres_per_unit);
+  if (v < 0) f.fail("must not be negative");
+  return v * metres_per_unit;
+}
+
+/// COLOR or GRADIENT / LENGTH or GRADIENT (doc/template-format.md, GRADIENT).
+template <class T, class ParseValue>
+Gradient<T> parse_gradient(const YamlField& f, ParseValue parse_value) {
+  if (!f.is_map()) return Gradient<T>::constant(parse_value(f));
+  f.allow_only({"along", "stops"});
+  Gradient<T> g;
+  const YamlField along = f.require("along");
+  const std::string a = along.string();
+  if (a == "profile") g.along = GradientAxis::Profile;
+  else if (a == "section") g.along = GradientAxis::Section;
+  else
+    along.fail("must be 'profile' or 'section', not " + quoted(a));
+  const YamlField stops = f.require("stops");
+  if (stops.size() < 1) stops.fail("a gradient needs at least one stop [t, value]");
+  for (size_t i = 0; i < stops.size(); ++i) {
+    const YamlField stop = stops[i];
+    if (!stop.is_sequence() || stop.size() != 2) stop.fail("a stop must be [t, value]");
+    const double t = stop[0].number_in(0.0, 1.0);
+    if (!g.stops.empty() && t <= g.stops.back().first) {
+      stop[0].fail("stops must be in increasing t");
+    }
+    g.stops.emplace_back(t, parse_value(stop[1]));
+  }
+  return g;
+}
+
+/// A point [a, b]; each coordinate within kMaxMetres once multiplied by `scale`.
+glm::dvec2 parse_pair(const YamlField& f, const char* what, double scale) {
+  if (!f.is_sequence() || f.size() != 2) f.fail(std::string("a point must be ") + what);
+  return {within_limit(f[0], f[0].number(), scale), within_limit(f[1], f[1].number(), scale)};
+}
+
+/// A list of [a, b] points, scaled by `scale` (1: checked against kMaxMetres as metres).
+std::vector<glm::dvec2> parse_points(const YamlField& f, double scale, const char* what) {
+  if (!f.is_sequence()) f.fail(std::string("must be a list of points ") + what);
+  std::vector<glm::dvec2> pts;
+  for (size_t i = 0; i < f.size(); ++i) pts.push_back(parse_pair(f[i], what, scale) * scale);
+  if (pts.size() < 3) f.fail("a curve needs at least 3 points, not " + std::to_string(pts.size()));
+  return pts;
+}
+
+/// One loop: [[x, z], ...] or {polar: [[deg, radius], ...]}; returns [x, z] in metres.
+std::vector<glm::dvec2> parse_loop(const YamlField& f, double m) {
+  if (f.is_map()) {
+    f.allow_only({"polar"});
+    const YamlField polar = f.require("polar");
+    std::vector<glm::dvec2> pts = parse_points(polar, 1.0, "[deg, radius]");
+    for (size_t i = 0; i < pts.size(); ++i) {
+      if (pts[i].y <= 0) polar[i][1].fail("a polar radius must be positive");
+      within_limit(polar[i][1], pts[i].y, m);
+      const double a = pts[i].x * kDeg, r = pts[i].y * m;
+      pts[i] = {r * std::cos(a), -r * std::sin(a)};  // angle from +X towards -Z
+    }
+    return pts;
+  }
+  return parse_points(f, m, "[x, z]");
+}
+
+bool looks_like_loop_list(const YamlField& f) {
+  // A list of loops: its first element is itself a loop (a list of points or {polar: ...}).
+  if (!f.is_sequence() || f.size() == 0) return false;
+  const YamlField first = f[0];
+  if (first.is_map()) return true;
+  return first.is_sequence() && first.size() > 0 && !first[0].is_scalar();
+}
+
+SectionSpec parse_section(const YamlField& f, double m) {
+  SectionSpec s;
+  s.loc = f.loc();
+  if (f.is_scalar()) {
+    if (f.string() != "circle") {
+      f.fail(
+          "must be 'circle', a loop [[x, z], ...], {polar: [[deg, radius], ...]} or a list "
+          "of loops, not " +
+          quoted(f.string()));
+    }
+    s.circle = true;
+    return s;
+  }
+  if (looks_like_loop_list(f)) {
+    for (size_t i = 0; i < f.size(); ++i) s.loops.push_back(parse_loop(f[i], m));
+  } else {
+    s.loops.push_back(parse_loop(f, m));
+  }
+  return s;
+}
+
+/// The material channels of a surface's or grain's two sides (doc/template-format.md,
+/// Materials: `roughness`, `translucency`): each field is a number in 0..1 for both sides or
+/// {front: x, back: y} (either may be left out); what is not written takes the cut material's
+/// value.
+void parse_material_channels(const YamlField& f, const PbrMaterial& cut, glm::dvec2& front,
+                             glm::dvec2& back) {
+  front = back = {cut.roughness, cut.translucency};
+  auto channel = [&](const char* key, int k) {
+    const auto x = f.get(key);
+    if (!x) return;
+    if (!x->is_map()) {
+      front[k] = back[k] = x->number_in(0, 1);
+      return;
+    }
+    x->allow_only({"front", "back"});
+    if (auto v = x->get("front")) front[k] = v->number_in(0, 1);
+    if (auto v = x->get("back")) back[k] = v->number_in(0, 1);
+  };
+  channel("roughness", 0);
+  channel("translucency", 1);
+}
+
+SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::string& base_dir) {
+  f.allow_only({"name", "kind", "role", "profile", "section", "smooth", "front", "back", "blur",
+                "roughness", "translucency", "visible", "file"});
+  SurfaceSpec s;
+  s.path = f.path();
+  s.loc = f.loc();
+  const YamlField name = f.require("name");
+  s.name = name.string();
+  if (s.name.empty()) name.fail("must not be empty");
+
+  const YamlField kind = f.require("kind");
+  const std::string k = kind.string();
+  if (k == "around") s.kind = SurfaceKind::Around;
+  else if (k == "within") s.kind = SurfaceKind::Within;
+  else if (k == "mesh") s.kind = SurfaceKind::Mesh;
+  else
+    kind.fail("must be 'around', 'within' or 'mesh', not " + quoted(k));
+
+  if (t.symmetry == Symmetry::Cylindrical && s.kind != SurfaceKind::Around) {
+    kind.fail("a cylindrical template has only 'around' surfaces (" + quoted(k) +
+              " needs symmetry nfold" + (s.kind == SurfaceKind::Mesh ? " or none)" : ")"));
+  }
+  if (t.symmetry == Symmetry::None && s.kind != SurfaceKind::Mesh) {
+    kind.fail("a template with symmetry none has only 'mesh' surfaces");
+  }
+
+  if (auto role = f.get("role")) {
+    if (role->string() != "skin") role->fail("the only role is 'skin' (or leave it out)");
+    s.is_skin = true;
+  }
+
+  const double m = t.metres_per_unit;
+  if (s.kind == SurfaceKind::Mesh) {
+    for (const char* key : {"profile", "section", "smooth"}) {
+      if (auto x = f.get(key)) x->fail(std::string("a 'mesh' surface has no ") + key);
+    }
+    const YamlField file = f.require("file");
+    s.mesh_loc = file.loc();
+    const std::filesystem::path p(file.string());
+    s.mesh_file = (p.is_absolute() ? p : std::filesystem::path(base_dir) / p).string();
+  } else {
+    if (auto x = f.get("file")) x->fail("only a 'mesh' surface has a file");
+    const YamlField profile = f.require("profile");
+    s.profile_loc = profile.loc();
+    s.profile = parse_points(profile, m, "[r, y]");
+    for (size_t i = 0; i < s.profile.size(); ++i) {
+      const double r = s.profile[i].x;
+      if (s.kind == SurfaceKind::Around) {
+        if (r < 0) profile[i][0].fail("r must be >= 0 (the profile lies right of the axis)");
+        if (r == 0 && i > 0 && i + 1 < s.profile.size()) {
+          profile[i][0].fail("only the end points of an 'around' profile may lie on the axis");
+        }
+      } else if (r <= 0) {
+        profile[i][0].fail("a 'within' profile must stay off the axis (r > 0)");
+      }
+    }
+    if (s.kind == SurfaceKind::Within) {
+      if (glm::distance(s.profile.front(), s.profile.back()) < 1e-12) s.profile.pop_back();
+    } else if (s.profile.back().y <= s.profile.front().y) {
+      profile.fail("an 'around' profile is ordered bottom to top (its last point must be higher "
+                   "than its first)");
+    }
+    if (auto section = f.get("section")) {
+      s.section = parse_section(*section, m);
+      if (s.kind == SurfaceKind::Around && s.section.loops.size() > 1) {
+        section->fail("an 'around' section is 'circle' or one loop around the axis");
+      }
+      if (s.kind == SurfaceKind::Within) {
+        if (s.section.circle) section->fail("a 'within' section is a loop inside fold 0, or N loops");
+        if (s.section.loops.size() != 1 && static_cast<int>(s.section.loops.size()) != t.folds) {
+          section->fail("a 'within' section is one loop or exactly " + std::to_string(t.folds) +
+                        " loops (one per fold), not " + std::to_string(s.section.loops.size()));
+        }
+      }
+    } else if (s.kind == SurfaceKind::Around) {
+      s.section.circle = true;
+      s.section.loc = f.loc();
+    } else {
+      f.fail("missing required field 'section' (a 'within' surface needs its loop)");
+    }
+    if (auto smooth = f.get("smooth")) s.smooth = smooth->boolean();
+  }
+
+  auto colour = [](const YamlField& x) { return parse_colour(x); };
+  if (auto x = f.get("front")) s.front = parse_gradient<glm::dvec3>(*x, colour);
+  if (auto x = f.get("back")) s.back = parse_gradient<glm::dvec3>(*x, colour);
+  if (auto x = f.get("blur")) {
+    s.blur = parse_gradient<double>(*x, [m](const YamlField& v) { return parse_length(v, m); });
+  }
+  parse_material_channels(f, t.cut_material, s.material_front, s.material_back);
+  if (auto vis = f.get("visible")) {
+    vis->allow_only({"front", "back"});
+    if (auto x = vis->get("front")) s.visible_front = x->boolean();
+    if (auto x = vis->get("back")) s.visible_back = x->boolean();
+  }
+  return s;
+}
+
+glm::dvec2 parse_range(const YamlField& f) {
+  if (!f.is_sequence() || f.size() != 2) f.fail("a range must be [from, to] in 0..1");
+  const glm::dvec2 r{f[0].number_in(0, 1), f[1].number_in(0, 1)};
+  if (r.x >= r.y) f.fail("a range [from, to] needs from < to");
+  return r;
+}
+
+GrainSpec parse_grain(const YamlField& f, const Template& t) {
+  f.allow_only({"name", "on", "region", "spacing", "side", "depth", "shape", "front", "back",
+                "blur", "roughness", "translucency", "jitter"});
+  GrainSpec g;
+  g.path = f.path();
+  g.loc = f.loc();
+  const double m = t.metres_per_unit;
+  g.name = f.require("name").string();
+  const YamlField on = f.require("on");
+  g.on = on.string();
+  bool found = false;
+  for (const auto& s : t.surfaces) found = found || s.name == g.on;
+  if (!found) on.fail("no surface is named " + quoted(g.on));
+  if (auto region = f.get("region")) {
+    region->allow_only({"profile", "section"});
+    if (auto x = region->get("profile")) g.region_profile = parse_range(*x);
+    if (auto x = region->get("section")) g.region_section = parse_range(*x);
+  }
+  const YamlField spacing = f.require("spacing");
+  g.spacing = parse_length(spacing, m);
+  g.spacing_loc = spacing.loc();
+  if (g.spacing <= 0) spacing.fail("the Poisson-disc spacing must be positive");
+  if (auto side = f.get("side")) {
+    const std::string v = side->string();
+    if (v != "front" && v != "back") side->fail("must be 'front' or 'back', not " + quoted(v));
+    g.on_front = v == "front";
+  }
+  if (auto x = f.get("depth")) g.depth = parse_length(*x, m);
+  const YamlField shape = f.require("shape");
+  g.shape_loc = shape.loc();
+  shape.allow_only({"ellipsoid"});
+  const YamlField ell = shape.require("ellipsoid");
+  if (!ell.is_sequence() || ell.size() != 3) ell.fail("must be three semi-axes [a, b, c]");
+  for (int k = 0; k < 3; ++k) {
+    g.semi_axes[k] = parse_length(ell[k], m);
+    if (g.semi_axes[k] <= 0) ell[k].fail("a semi-axis must be positive");
+  }
+  g.front = parse_colour(f.require("front"));
+  g.back = parse_colour(f.require("back"));
+  if (auto x = f.get("blur")) g.blur = parse_length(*x, m);
+  if (auto x = f.get("jitter")) g.jitter = x->number_in(0, 1);
+  parse_material_channels(f, t.cut_material, g.material_front, g.material_back);
+  return g;
+}
+
+/// The most Perlin bands a template may have (each costs one noise evaluation per vertex).
+constexpr size_t kMaxPerlinBands = 8;
+
+/// `npr` (doc/template-format.md, NPR; doc/npr.md): {perlin: {bands: [{period, amplitude,
+/// tint, reach}, ...]}}.
+NprSettings parse_npr(const YamlField& f, double metres_per_unit) {
+  f.allow_only({"perlin"});
+  NprSettings npr;
+  const auto perlin = f.get("perlin");
+  if (!perlin) return npr;
+  perlin->allow_only({"bands"});
+  const YamlField bands = perlin->require("bands");
+  if (bands.size() > kMaxPerlinBands) {
+    bands.fail("at most " + std::to_string(kMaxPerlinBands) + " bands, not " +
+               std::to_string(bands.size()));
+  }
+  npr.perlin_from_file = true;
+  for (size_t i = 0; i < bands.size(); ++i) {
+    const YamlField band = bands[i];
+    band.allow_only({"period", "amplitude", "tint", "reach"});
+    PerlinBand b;
+    const YamlField period = band.require("period");
+    const double period_m = parse_length(period, metres_per_unit);
+    if (!(period_m >= 1e-6)) period.fail("the period must be at least 1 micrometre");
+    b.frequency_per_m = 1.0 / period_m;
+    b.amplitude = band.require("amplitude").number_in(0.0, 1.0);
+    if (auto tint = band.get("tint")) {
+      b.tinted = true;
+      b.tint = parse_colour(*tint);
+    }
+    if (auto reach = band.get("reach")) {
+      if (!b.tinted) reach->fail("a reach needs a tint (an untinted band acts on every colour)");
+      b.reach = reach->number_in(0.0, 1.75);
+      if (b.reach <= 0) reach->fail("must be positive");
+    }
+    npr.perlin_bands.push_back(b);
+  }
+  return npr;
+}
+
+/// One material of `materials` (README, Templates): {roughness, translucency, clearcoat,
+/// clearcoat_roughness, sheen, sheen_roughness}, each optional (PbrMaterial's defaults), the
+/// numbers in 0..1, `sheen` a colour.
+PbrMaterial parse_material(const YamlField& f) {
+  f.allow_only({"roughness", "translucency", "clearcoat", "clearcoat_roughness", "sheen",
+                "sheen_roughness"});
+  PbrMaterial m;
+  if (auto x = f.get("roughness")) m.roughness = x->number_in(0, 1);
+  if (auto x = f.get("translucency")) m.translucency = x->number_in(0, 1);
+  if (auto x = f.get("clearcoat")) m.clearcoat = x->number_in(0, 1);
+  if (auto x = f.get("clearcoat_roughness")) {
+    if (!f.get("clearcoat")) x->fail("a clearcoat_roughness needs a clearcoat");
+    m.clearcoat_roughness = x->number_in(0, 1);
+  }
+  if (auto x = f.get("sheen")) m.sheen = parse_colour(*x);
+  if (auto x = f.get("sheen_roughness")) {
+    if (!f.get("sheen")) x->fail("a sheen_roughness needs a sheen colour");
+    m.sheen_roughness = x->number_in(0, 1);
+  }
+  return m;
+}
+
+/// The bands a template without `npr.perlin` gets (template.h, NprSettings): untinted fine
+/// grain and broad mottling, their periods fractions of the skin's height (metres).
+std::vector<PerlinBand> default_perlin_bands(double height_m) {
+  PerlinBand fine, broad;
+  fine.frequency_per_m = 16.0 / height_m;
+  fine.amplitude = 0.2;
+  broad.frequency_per_m = 5.0 / height_m;
+  broad.amplitude = 0.3;
+  return {fine, broad};
+}
+
+const char* units_name(const Template& t) {
+  return t.metres_per_unit == 1.0 ? "m" : (t.metres_per_unit == 1e-2 ? "cm" : "mm");
+}
+
+/// Skin height (metres) for the default edge length: the y range of the skin's profile or mesh.
+double skin_height(const Template& t) {
+  const SurfaceSpec& skin = t.surfaces[t.skin];
+  if (skin.kind == SurfaceKind::Mesh) {
+    const MeshBounds b = read_mesh_bounds(skin.mesh_file, t.metres_per_unit, skin.mesh_loc,
+                                          skin.path + ".file");
+    return b.max.y - b.min.y;
+  }
+  double lo = skin.profile.front().y, hi = lo;
+  for (const auto& p : skin.profile) {
+    lo = std::min(lo, p.y);
+    hi = std::max(hi, p.y);
+  }
+  return hi - lo;
+}
+
+}  // namespace
+
+Template parse_template(std::string_view text, const std::string& file,
+                        const std::string& base_dir) {
+  const YamlField root = parse_yaml(text, file);
+  root.allow_only({"format", "name", "description", "units", "symmetry", "resolution", "variation",
+                   "surfaces", "grains", "npr", "materials", "density"});
+  Template t;
+  t.file = file;
+
+  const YamlField format = root.require("format");
+  if (format.string() != "cutaway-template/1") {
+    format.fail("unsupported format " + quoted(format.string()) +
+                " (this version of cutaway reads cutaway-template/1)");
+  }
+  const YamlField name = root.require("name");
+  t.name = name.string();
+  if (const std::string rule = name_rule(t.name); !rule.empty()) name.fail(rule);
+  if (auto d = root.get("description")) t.description = d->string();
+  if (auto u = root.get("units")) {
+    const std::string v = u->string();
+    if (v == "mm") t.metres_per_unit = 1e-3;
+    else if (v == "cm") t.metres_per_unit = 1e-2;
+    else if (v == "m") t.metres_per_unit = 1.0;
+    else
+      u->fail("must be mm, cm or m, not " + quoted(v));
+  }
+
+  const YamlField sym = root.require("symmetry");
+  sym.allow_only({"type", "folds", "fold_angles"});
+  const YamlField type = sym.require("type");
+  const std::string ty = type.string();
+  if (ty == "cylindrical") t.symmetry = Symmetry::Cylindrical;
+  else if (ty == "nfold") t.symmetry = Symmetry::NFold;
+  else if (ty == "none") t.symmetry = Symmetry::None;
+  else
+    type.fail("must be cylindrical, nfold or none, not " + quoted(ty));
+  if (t.symmetry == Symmetry::NFold) {
+    const YamlField folds = sym.require("folds");
+    const int64_t n = folds.integer();
+    if (n < 2) folds.fail("an nfold template needs folds >= 2, not " + std::to_string(n));
+    if (n > 64) folds.fail("at most 64 folds");
+    t.folds = static_cast<int>(n);
+    if (auto fa = sym.get("fold_angles")) {
+      if (fa->size() != static_cast<size_t>(t.folds)) {
+        fa->fail("needs exactly " + std::to_string(t.folds) + " angles, one per fold");
+      }
+      for (size_t i = 0; i < fa->size(); ++i) {
+        const double a = (*fa)[i].number();
+        if (i > 0 && a <= t.fold_angles.back() / kDeg) (*fa)[i].fail("fold angles must increase");
+        t.fold_angles.push_back(a * kDeg);
+      }
+      if (t.fold_angles.back() - t.fold_angles.front() >= 2 * kPi) {
+        fa->fail("fold angles must span less than 360 degrees");
+      }
+    } else {
+      for (int k = 0; k < t.folds; ++k) t.fold_angles.push_back(2 * kPi * k / t.folds);
+    }
+  } else {
+    for (const char* key : {"folds", "fold_angles"}) {
+      if (auto x = sym.get(key)) x->fail(std::string(key) + " is only for symmetry type nfold");
+    }
+  }
+  t.variation_folds_min = t.variation_folds_max = t.folds;
+
+  if (auto var = root.get("variation")) {
+    var->allow_only({"amount", "folds"});
+    if (auto a = var->get("amount")) {
+      t.variation_amount = a->number();
+      if (t.variation_amount < 0) a->fail("must not be negative");
+    }
+    if (auto vf = var->get("folds")) {
+      if (t.symmetry != Symmetry::NFold) vf->fail("variation.folds is only for symmetry nfold");
+      if (!vf->is_sequence() || vf->size() != 2) vf->fail("must be [min, max] fold counts");
+      const int64_t lo = (*vf)[0].integer(), hi = (*vf)[1].integer();
+      if (lo < 2 || hi > 64 || lo > hi) vf->fail("needs 2 <= min <= max <= 64");
+      t.variation_folds_min = static_cast<int>(lo);
+      t.variation_folds_max = static_cast<int>(hi);
+    }
+  }
+
+  // Materials first: the cut material is the default of every surface's material channels.
+  if (auto d = root.get("density")) t.density_kg_m3 = d->number_in(50, 5000);
+  if (auto materials = root.get("materials")) {
+    materials->allow_only({"skin", "cut"});
+    if (auto skin = materials->get("skin")) t.skin_material = parse_material(*skin);
+    if (auto cut = materials->get("cut")) t.cut_material = parse_material(*cut);
+  }
+
+  const YamlField surfaces = root.require("surfaces");
+  if (surfaces.size() == 0) surfaces.fail("a template needs at least one surface");
+  std::set<std::string> names;
+  for (size_t i = 0; i < surfaces.size(); ++i) {
+    SurfaceSpec s = parse_surface(surfaces[i], t, base_dir);
+    if (!names.insert(s.name).second) {
+      surfaces[i].require("name").fail("surface names must be unique: " + quoted(s.name) +
+                                       " is used twice");
+    }
+    if (s.is_skin) {
+      if (t.skin >= 0) {
+        surfaces[i].require("role").fail("only one surface may have role skin (" +
+                                         quoted(t.surfaces[t.skin].name) + " has it already)");
+      }
+      t.skin = static_cast<int>(i);
+    }
+    t.surfaces.push_back(std::move(s));
+  }
+  if (t.skin < 0) {
+    surfaces.fail("no surface has role skin: exactly one surface must be the object's closed "
+                  "outer boundary");
+  }
+  if (auto grains = root.get("grains")) {
+    for (size_t i = 0; i < grains->size(); ++i) t.grains.push_back(parse_grain((*grains)[i], t));
+  }
+
+  if (auto npr = root.get("npr")) t.npr = parse_npr(*npr, t.metres_per_unit);
+
+  t.edge_loc = FileLoc{file, 1, 1};
+  if (auto res = root.get("resolution")) {
+    res->allow_only({"edge"});
+    t.edge_loc = res->loc();
+    if (auto e = res->get("edge")) {
+      t.edge_loc = e->loc();
+      t.edge_m = parse_length(*e, t.metres_per_unit);
+      if (t.edge_m <= 0) e->fail("the edge length must be positive");
+    }
+  }
+  check_template_curves(t);
+  const double h = skin_height(t);
+  if (!(h > 0)) root.require("surfaces").fail("the skin has no height");
+  if (t.edge_m == 0) {
+    t.edge_m = h / 64;
+  } else if (h / t.edge_m > kMaxEdgesPerHeight) {
+    std::ostringstream rule;
+    rule << "the edge length must be at least 1/" << kMaxEdgesPerHeight
+         << " of the skin's height (" << h / t.metres_per_unit << " " << units_name(t)
+         << "): the meshes would not fit in memory";
+    throw InputError(t.edge_loc, "resolution.edge", rule.str());
+  }
+  if (!t.npr.perlin_from_file) t.npr.perlin_bands = default_perlin_bands(h);
+  return t;
+}
+
+Template load_template(const std::string& path) {
+  const std::filesystem::path p(path);
+  return parse_template(read_input_file(path), path,
+                        p.has_parent_path() ? p.parent_path().string() : ".");
+}
+
+}  // namespace cutaway

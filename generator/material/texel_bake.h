@@ -1,0 +1,73 @@
+// Baking surface attributes into texels (the cap atlas and the skin texture): triangles mapped
+// to texel space are rasterised at texel centres with their vertex colours and material
+// channels interpolated barycentrically and the Perlin colour modulation evaluated per texel in
+// the object frame; islands are then dilated and the background filled by pull-push so that
+// mip-mapping and JPEG do not bleed a black background into their edges.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "npr/colour_modulation.h"
+#include "pieces/shaded_mesh.h"
+
+namespace cutaway {
+
+/// A texture being baked: linear values per texel, row 0 at the top.
+struct TexelCanvas {
+  int width = 0, height = 0;
+  /// With `wrap_u`, texel columns repeat (x modulo width): a texture addressed with u beyond
+  /// 0..1 under glTF's default REPEAT wrapping (the skin's section parameter runs around).
+  bool wrap_u = false;
+  std::vector<glm::dvec3> colour;    ///< width * height, linear RGB
+  std::vector<glm::dvec2> material;  ///< width * height, (roughness, translucency)
+  std::vector<uint8_t> covered;      ///< width * height, 1 where baked or dilated
+
+  /// An empty (black, uncovered) canvas of w x h texels.
+  TexelCanvas(int w, int h, bool wrap);
+};
+
+/// Rasterises every triangle of `mesh` at `texel` (#V positions in texel units: x right, y down;
+/// texel (i, j) has its centre at (i + 0.5, j + 0.5)) into `canvas`: each texel whose centre
+/// lies in a triangle gets the barycentric interpolation of its vertices' colour and material
+/// channels, the colour modulated by `modulation` (if not null) at the interpolated position
+/// (metres, object frame) with `strength`. Later triangles overwrite earlier ones.
+void rasterise(const ShadedMesh& mesh, std::span<const glm::dvec2> texel,
+               const ColourModulation* modulation, double strength, TexelCanvas& canvas);
+
+/// `rings` rings of dilation: each uncovered texel with covered 8-neighbours takes their mean.
+void dilate(TexelCanvas& canvas, int rings);
+
+/// Fills every texel still uncovered (after rasterise and dilate) by pull-push (Gortler et al.
+/// 1996, "The Lumigraph" §3.4; the hole filling of texture atlases): the covered texels are
+/// averaged into a pyramid of half-size levels, each level's empty texels taken from the
+/// bilinear upsampling of the next coarser one, so the background becomes a smooth extension
+/// of the islands. Covered texels keep their values. Mip-mapping then blends the islands with
+/// their own colours at every level, not with black, and JPEG spends no bits on edges between
+/// islands and background. A canvas without a covered texel stays as it is. Deterministic.
+void fill_background(TexelCanvas& canvas);
+
+/// The canvas at half its width and height (each rounded up): every texel the mean of the 2 x 2
+/// texels it covers (fewer at an odd edge), covered where any of them is. Texture coordinates
+/// address both alike where width and height are even.
+TexelCanvas half_size(const TexelCanvas& canvas);
+
+/// The colours as 8-bit sRGB RGB (width * height * 3).
+std::vector<uint8_t> srgb_pixels(const TexelCanvas& canvas);
+
+/// The material channels as an 8-bit linear RGBA material map (width * height * 4): R 255
+/// (no occlusion), G roughness, B 0 (not metallic), A translucency; the channels glTF's
+/// metallicRoughnessTexture and KHR_materials_diffuse_transmission's texture read.
+std::vector<uint8_t> material_pixels(const TexelCanvas& canvas);
+
+/// Mean and spread (max - min) of the material channels over the covered texels.
+struct MaterialStats {
+  glm::dvec2 mean{0.0}, spread{0.0};
+};
+MaterialStats material_stats(const TexelCanvas& canvas);
+
+}  // namespace cutaway

@@ -1,0 +1,65 @@
+#include "model/ds_model.h"
+
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+namespace cutaway {
+
+size_t DsModel::face_count() const {
+  size_t n = 0;
+  for (const auto& s : surfaces) n += s.mesh.n_faces();
+  return n;
+}
+
+size_t DsModel::vertex_count() const {
+  size_t n = 0;
+  for (const auto& s : surfaces) n += s.mesh.n_vertices();
+  return n;
+}
+
+void set_material(DsMesh& mesh, const glm::dvec2& front, const glm::dvec2& back) {
+  for (auto vh : mesh.vertices()) {
+    auto& d = mesh.data(vh);
+    d.material_front = {front.x, front.y};
+    d.material_back = {back.x, back.y};
+  }
+}
+
+void update_bounds(DsModel& model) {
+  const double inf = std::numeric_limits<double>::infinity();
+  glm::dvec3 lo(inf), hi(-inf);
+  for (const auto& s : model.surfaces) {
+    for (auto vh : s.mesh.vertices()) {
+      const auto& p = s.mesh.point(vh);
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], p[k]);
+        hi[k] = std::max(hi[k], p[k]);
+      }
+    }
+  }
+  model.bbox_min = lo;
+  model.bbox_max = hi;
+}
+
+std::vector<glm::dvec3> vertex_normals(const DsMesh& mesh) {
+  std::vector<glm::dvec3> n(mesh.n_vertices(), glm::dvec3(0.0));
+  for (auto fh : mesh.faces()) {
+    std::array<glm::dvec3, 3> p;
+    std::array<int, 3> v;
+    int k = 0;
+    for (auto vh : mesh.fv_range(fh)) {
+      p[k] = to_glm(mesh.point(vh));
+      v[k++] = vh.idx();
+    }
+    const glm::dvec3 fn = glm::cross(p[1] - p[0], p[2] - p[0]);  // length = 2 * area
+    for (int c : v) n[c] += fn;
+  }
+  for (auto& x : n) {
+    const double len = glm::length(x);
+    x = len > 0 ? x / len : glm::dvec3(0.0);
+  }
+  return n;
+}
+
+}  // namespace cutaway

@@ -1,0 +1,360 @@
+#include "model/sweep.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "base/constants.h"
+#include "model/curves.h"
+#include "model/template_checks.h"
+
+namespace cutaway {
+
+namespace {
+
+
+/// Row-major grid of vertices; a row of one vertex is a pole.
+struct SweepGrid {
+  std::vector<std::vector<glm::dvec3>> rows;
+  std::vector<std::vector<glm::dvec2>> params;  // (t_profile, t_section) per vertex
+};
+
+void check_vertex_budget(size_t rows, size_t cols, const SurfaceSpec& spec, const Template& t) {
+  if (rows * cols > kMaxSweepVertices) {
+    throw InputError(t.edge_loc, "resolution.edge",
+                     "the edge length is too small: surface " + quoted(spec.name) +
+                         " would get at least " + std::to_string(rows * cols) +
+                         " vertices (at most " + std::to_string(kMaxSweepVertices) + ")");
+  }
+}
+
+int segments_for(double length_m, double edge_m, int minimum) {
+  const double n = std::ceil(length_m / edge_m);
+  return static_cast<int>(std::clamp(n, static_cast<double>(minimum), 1e7));
+}
+
+/// Appends the grid's triangles to `faces` with vertex indices offset by `base`; rows are
+/// closed loops of equal length (or poles). Winding: (i,j) -> (i,j+1) -> (i+1,j+1).
+void grid_faces(const SweepGrid& g, std::vector<int>& index_of_row,
+                std::vector<std::array<int, 3>>& faces) {
+  for (size_t i = 0; i + 1 < g.rows.size(); ++i) {
+    const auto& a = g.rows[i];
+    const auto& b = g.rows[i + 1];
+    const size_t m = std::max(a.size(), b.size());
+    for (size_t j = 0; j < m; ++j) {
+      const size_t j1 = (j + 1) % m;
+      auto va = [&](size_t k) { return index_of_row[i] + static_cast<int>(a.size() == 1 ? 0 : k); };
+      auto vb = [&](size_t k) {
+        return index_of_row[i + 1] + static_cast<int>(b.size() == 1 ? 0 : k);
+      };
+      if (a.size() > 1) faces.push_back({va(j), va(j1), vb(j1)});
+      if (b.size() > 1) faces.push_back({va(j), vb(j1), vb(j)});
+    }
+  }
+}
+
+/// Adds one grid's vertices (with DS attributes) and faces to `mesh`. Flips the winding when
+/// `flip`.
+void add_grid(const SweepGrid& g, const SurfaceSpec& spec, bool flip, DsMesh& mesh) {
+  std::vector<DsMesh::VertexHandle> vh;
+  std::vector<int> index_of_row;
+  for (size_t i = 0; i < g.rows.size(); ++i) {
+    index_of_row.push_back(static_cast<int>(vh.size()));
+    for (size_t j = 0; j < g.rows[i].size(); ++j) {
+      const glm::dvec3& p = g.rows[i][j];
+      const glm::dvec2& t = g.params[i][j];
+      auto h = mesh.add_vertex(DsMesh::Point(p.x, p.y, p.z));
+      auto& d = mesh.data(h);
+      const glm::dvec3 f = spec.front.at(t.x, t.y), b = spec.back.at(t.x, t.y);
+      d.front = {f.x, f.y, f.z};
+      d.back = {b.x, b.y, b.z};
+      d.blur = vertex_blur(spec.blur.at(t.x, t.y));
+      d.param = {t.x, t.y};
+      vh.push_back(h);
+    }
+  }
+  std::vector<std::array<int, 3>> faces;
+  grid_faces(g, index_of_row, faces);
+  for (auto f : faces) {
+    if (flip) std::swap(f[1], f[2]);
+    const auto fh = mesh.add_face(vh[f[0]], vh[f[1]], vh[f[2]]);
+    CUTAWAY_CHECK(fh.is_valid());
+  }
+}
+
+/// Signed volume enclosed by a closed grid (positive when its normals point outwards).
+double grid_volume(const SweepGrid& g) {
+  std::vector<glm::dvec3> pts;
+  std::vector<int> index_of_row;
+  for (const auto& row : g.rows) {
+    index_of_row.push_back(static_cast<int>(pts.size()));
+    pts.insert(pts.end(), row.begin(), row.end());
+  }
+  std::vector<std::array<int, 3>> faces;
+  grid_faces(g, index_of_row, faces);
+  double v = 0;
+  for (const auto& f : faces) v += glm::dot(pts[f[0]], glm::cross(pts[f[1]], pts[f[2]])) / 6.0;
+  return v;
+}
+
+/// Fitted closed section loop in the XZ plane, turned so that its angle about the axis
+/// increases (counter-clockwise seen from +Y) and started where it crosses angle 0.
+Polyline2 around_loop_from_angle0(const Polyline2& fitted) {
+  Polyline2 loop = fitted;
+  // Angle increases from +X towards -Z: counter-clockwise in the (x, -z) plane.
+  Polyline2 flipped;
+  for (const auto& p : loop) flipped.push_back({p.x, -p.y});
+  if (signed_area(flipped) < 0) std::reverse(loop.begin(), loop.end());
+  const size_t n = loop.size();
+  for (size_t i = 0; i < n; ++i) {
+    const glm::dvec2 a = loop[i], b = loop[(i + 1) % n];
+    // Crossing of the +X half-axis (angle 0): -z goes from below 0 to >= 0 with x > 0.
+    if (-a.y < 0 && -b.y >= 0) {
+      const double s = (-a.y) / ((-a.y) - (-b.y));
+      const glm::dvec2 c = a + (b - a) * s;
+      if (c.x <= 0) continue;
+      Polyline2 out{c};
+      for (size_t k = 1; k <= n; ++k) {
+        const glm::dvec2 q = loop[(i + k) % n];
+        if (glm::distance(q, c) > 1e-12) out.push_back(q);
+      }
+      return out;
+    }
+  }
+  CUTAWAY_CHECK(!"section loop does not cross angle 0");
+  return loop;
+}
+
+/// A y-monotonic rail of a `within` profile: r and the closed profile's parameter as
+/// functions of height, by linear interpolation.
+struct Rail {
+  std::vector<double> y, r, t, s;  // s: normalised arc length along the rail
+
+  double at(const std::vector<double>& v, double yq) const {
+    if (yq <= y.front()) return v.front();
+    if (yq >= y.back()) return v.back();
+    const size_t i = static_cast<size_t>(std::upper_bound(y.begin(), y.end(), yq) - y.begin());
+    const double y0 = y[i - 1], y1 = y[i];
+    const double a = y1 > y0 ? (yq - y0) / (y1 - y0) : 1.0;
+    return v[i - 1] + (v[i] - v[i - 1]) * a;
+  }
+};
+
+}  // namespace
+
+DsSurface sweep_around(const SurfaceSpec& spec, const Template& t) {
+  CUTAWAY_CHECK(spec.kind == SurfaceKind::Around);
+  const double edge = t.edge_m;
+  const Polyline2 prof_fit = fit_curve(spec.profile, false, spec.smooth);
+  const int n = segments_for(curve_length(prof_fit, false), edge, 2);
+  // Every ring has at least 8 vertices: refuse before sampling the profile finely.
+  check_vertex_budget(static_cast<size_t>(n) + 1, 8, spec, t);
+  const Polyline2 prof = resample_uniform(prof_fit, false, n + 1);
+  double max_r = 0;
+  for (const auto& p : prof) max_r = std::max(max_r, p.x);
+
+  // The section as a unit-radius-at-angle-0 loop, perimeter in those units.
+  Polyline2 unit_loop;
+  double perimeter = 2 * kPi;
+  Polyline2 started;
+  double rho0 = 1;
+  if (!spec.section.circle) {
+    started = around_loop_from_angle0(fit_curve(spec.section.loops[0], true, spec.smooth));
+    rho0 = glm::length(started.front());
+    perimeter = curve_length(started, true) / rho0;
+  }
+  int m = segments_for(max_r * perimeter, edge, 8);
+  // An N-fold object maps onto itself under a turn by 2 pi / N only if every fold gets the same
+  // samples: a multiple of N, so that sample k m / N lies where sample 0 turned by k folds lies.
+  if (t.symmetry == Symmetry::NFold && t.folds > 1) m = (m + t.folds - 1) / t.folds * t.folds;
+  check_vertex_budget(static_cast<size_t>(n) + 1, static_cast<size_t>(m), spec, t);
+  if (spec.section.circle) {
+    for (int j = 0; j < m; ++j) {
+      const double phi = 2 * kPi * j / m;
+      unit_loop.push_back({std::cos(phi), -std::sin(phi)});
+    }
+  } else {
+    for (const auto& p : resample_uniform(started, true, m)) unit_loop.push_back(p / rho0);
+  }
+
+  SweepGrid g;
+  for (int i = 0; i <= n; ++i) {
+    const double r = prof[i].x, y = prof[i].y, tp = static_cast<double>(i) / n;
+    std::vector<glm::dvec3> row;
+    std::vector<glm::dvec2> par;
+    if ((i == 0 || i == n) && r <= 0) {
+      row.push_back({0, y, 0});
+      par.push_back({tp, 0});
+    } else {
+      for (int j = 0; j < m; ++j) {
+        row.push_back({r * unit_loop[j].x, y, r * unit_loop[j].y});
+        par.push_back({tp, static_cast<double>(j) / m});
+      }
+    }
+    g.rows.push_back(std::move(row));
+    g.params.push_back(std::move(par));
+  }
+  DsSurface s;
+  s.name = spec.name;
+  s.role = spec.is_skin ? SurfaceRole::Skin : SurfaceRole::Structure;
+  s.visible_front = spec.visible_front;
+  s.visible_back = spec.visible_back;
+  add_grid(g, spec, false, s.mesh);
+  return s;
+}
+
+DsSurface sweep_within(const SurfaceSpec& spec, const Template& t) {
+  CUTAWAY_CHECK(spec.kind == SurfaceKind::Within);
+  CUTAWAY_CHECK(t.symmetry == Symmetry::NFold);
+  const double edge = t.edge_m;
+
+  // The closed profile, counter-clockwise in the (r, y) plane, from its lowest point.
+  Polyline2 prof = fit_curve(spec.profile, true, spec.smooth);
+  if (signed_area(prof) < 0) std::reverse(prof.begin(), prof.end());
+  size_t lo = 0;
+  for (size_t i = 0; i < prof.size(); ++i)
+    if (prof[i].y < prof[lo].y) lo = i;
+  std::rotate(prof.begin(), prof.begin() + static_cast<long>(lo), prof.end());
+  const std::vector<double> tprof = arc_length_parameters(prof, true);
+  size_t hi = 0;
+  for (size_t i = 0; i < prof.size(); ++i)
+    if (prof[i].y > prof[hi].y) hi = i;
+
+  // Rail A: lowest -> highest going forward (counter-clockwise: the outer side first);
+  // rail B: lowest -> highest going backward.
+  Rail ra, rb;
+  for (size_t i = 0; i <= hi; ++i) {
+    ra.y.push_back(prof[i].y);
+    ra.r.push_back(prof[i].x);
+    ra.t.push_back(tprof[i]);
+  }
+  for (size_t k = 0; k + hi <= prof.size(); ++k) {
+    const size_t i = k == 0 ? 0 : prof.size() - k;
+    rb.y.push_back(prof[i].y);
+    rb.r.push_back(prof[i].x);
+    rb.t.push_back(k == 0 ? 1.0 : tprof[i]);
+  }
+  for (Rail* rail : {&ra, &rb}) {
+    // Enforce monotonic y (plateaus from the checks' tolerance) and arc length per rail.
+    for (size_t i = 1; i < rail->y.size(); ++i) rail->y[i] = std::max(rail->y[i], rail->y[i - 1]);
+    rail->s.assign(rail->y.size(), 0.0);
+    for (size_t i = 1; i < rail->y.size(); ++i) {
+      rail->s[i] = rail->s[i - 1] + std::hypot(rail->y[i] - rail->y[i - 1],
+                                               rail->r[i] - rail->r[i - 1]);
+    }
+  }
+  const double len_a = ra.s.back(), len_b = rb.s.back();
+  for (auto& v : ra.s) v /= len_a;
+  for (auto& v : rb.s) v /= len_b;
+  double mean_a = 0, mean_b = 0;
+  for (double r : ra.r) mean_a += r / ra.r.size();
+  for (double r : rb.r) mean_b += r / rb.r.size();
+  const Rail& inner = mean_a < mean_b ? ra : rb;
+  const Rail& outer = mean_a < mean_b ? rb : ra;
+  const double y_lo = prof[0].y, y_hi = prof[hi].y;
+
+  // Heights spaced by the mean normalised arc length of both rails.
+  const int n = segments_for(0.5 * (len_a + len_b), edge, 2);
+  // Every ring has at least 8 vertices: refuse before placing the heights.
+  check_vertex_budget(static_cast<size_t>(n + 1) * t.folds, 8, spec, t);
+  std::vector<double> heights(n + 1);
+  heights[0] = y_lo;
+  heights[n] = y_hi;
+  for (int i = 1; i < n; ++i) {
+    const double target = static_cast<double>(i) / n;
+    double a = y_lo, b = y_hi;
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (a + b);
+      const double sm = 0.5 * (ra.at(ra.s, mid) + rb.at(rb.s, mid));
+      (sm < target ? a : b) = mid;
+    }
+    heights[i] = 0.5 * (a + b);
+  }
+
+  // Section loops in their fold frames (u along the fold centre, w towards increasing angle),
+  // counter-clockwise in (u, w), started at the largest u.
+  const size_t nloops = spec.section.loops.size();
+  std::vector<Polyline2> frame_loops;
+  double max_scaled_perimeter = 0;
+  for (size_t k = 0; k < nloops; ++k) {
+    const double centre = t.fold_angles[k];
+    Polyline2 uw;
+    for (const auto& p : fit_curve(spec.section.loops[k], true, spec.smooth)) {
+      const double rel = horizontal_angle(p) - centre, rho = glm::length(p);
+      uw.push_back({rho * std::cos(rel), rho * std::sin(rel)});
+    }
+    if (signed_area(uw) < 0) std::reverse(uw.begin(), uw.end());
+    const auto start = std::max_element(uw.begin(), uw.end(), [](auto& a, auto& b) {
+      return a.x < b.x;
+    });
+    std::rotate(uw.begin(), start, uw.end());
+    double umin = uw[0].x, umax = uw[0].x;
+    for (const auto& p : uw) {
+      umin = std::min(umin, p.x);
+      umax = std::max(umax, p.x);
+    }
+    double max_width = 0;
+    for (int i = 0; i <= n; ++i) {
+      max_width = std::max(max_width, outer.at(outer.r, heights[i]) - inner.at(inner.r, heights[i]));
+    }
+    max_scaled_perimeter =
+        std::max(max_scaled_perimeter, curve_length(uw, true) * max_width / (umax - umin));
+    frame_loops.push_back(std::move(uw));
+  }
+  const int m = segments_for(max_scaled_perimeter, edge, 8);
+  check_vertex_budget(static_cast<size_t>(n + 1) * t.folds, static_cast<size_t>(m), spec, t);
+
+  DsSurface s;
+  s.name = spec.name;
+  s.role = spec.is_skin ? SurfaceRole::Skin : SurfaceRole::Structure;
+  s.visible_front = spec.visible_front;
+  s.visible_back = spec.visible_back;
+  const std::string field = spec.path + ".section";
+  for (int fold = 0; fold < t.folds; ++fold) {
+    const Polyline2 loop = resample_uniform(frame_loops[nloops == 1 ? 0 : fold], true, m);
+    double umin = loop[0].x, umax = loop[0].x;
+    for (const auto& p : loop) {
+      umin = std::min(umin, p.x);
+      umax = std::max(umax, p.x);
+    }
+    const double theta = t.fold_angles[fold];
+    const glm::dvec3 centre_dir(std::cos(theta), 0, -std::sin(theta));
+    const glm::dvec3 across_dir(-std::sin(theta), 0, -std::cos(theta));
+    const auto [span_lo, span_hi] = fold_span(t, fold);
+    SweepGrid g;
+    for (int i = 0; i <= n; ++i) {
+      const double y = heights[i];
+      const double rin = inner.at(inner.r, y), rout = outer.at(outer.r, y);
+      const double tin = inner.at(inner.t, y), tout = outer.at(outer.t, y);
+      std::vector<glm::dvec3> row;
+      std::vector<glm::dvec2> par;
+      if (i == 0 || i == n) {
+        row.push_back(centre_dir * rin + glm::dvec3(0, y, 0));
+        par.push_back({i == 0 ? 0.0 : tprof[hi], 0});
+      } else {
+        const double k = (rout - rin) / (umax - umin);
+        for (int j = 0; j < m; ++j) {
+          const double u = rin + (loop[j].x - umin) * k, w = loop[j].y * k;
+          const glm::dvec3 p = centre_dir * u + across_dir * w + glm::dvec3(0, y, 0);
+          const double rel = std::atan2(w, u);
+          if (rel <= span_lo - theta || rel >= span_hi - theta) {
+            throw InputError(spec.section.loc, field,
+                             "the swept 'within' surface leaves fold " + std::to_string(fold) +
+                                 " at height " + std::to_string(y / t.metres_per_unit) +
+                                 ": make the loop narrower across the fold");
+          }
+          const double a = (loop[j].x - umin) / (umax - umin);
+          row.push_back(p);
+          par.push_back({tin + (tout - tin) * a, static_cast<double>(j) / m});
+        }
+      }
+      g.rows.push_back(std::move(row));
+      g.params.push_back(std::move(par));
+    }
+    add_grid(g, spec, grid_volume(g) < 0, s.mesh);
+  }
+  return s;
+}
+
+}  // namespace cutaway

@@ -1,0 +1,160 @@
+// The parsed template (doc/template-format.md): plain data, lengths in metres, colours in linear
+// RGB, angles in radians. Parsing and validation live in template_parser.h; algorithms never see
+// YAML.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "base/error.h"
+#include "model/pbr_material.h"
+
+namespace cutaway {
+
+enum class Symmetry { Cylindrical, NFold, None };
+enum class SurfaceKind { Around, Within, Mesh };
+
+/// What a gradient's parameter t runs along (doc/template-format.md, GRADIENT).
+enum class GradientAxis { Constant, Profile, Section };
+
+/// A value that is constant or varies linearly between stops along the profile or the section
+/// (doc/template-format.md: COLOR, LENGTH, GRADIENT). T is glm::dvec3 (linear RGB) or double
+/// (metres).
+template <class T>
+struct Gradient {
+  GradientAxis along = GradientAxis::Constant;
+  /// Increasing t in 0..1 with their values; one stop when constant.
+  std::vector<std::pair<double, T>> stops;
+
+  /// A constant field.
+  static Gradient constant(T value) { return Gradient{GradientAxis::Constant, {{0.0, value}}}; }
+
+  /// The value at normalised arc length t_profile along the profile and t_section along the
+  /// section (both 0..1); the parameter the gradient does not run along is ignored. Values
+  /// beyond the first and last stops are clamped.
+  T at(double t_profile, double t_section) const {
+    const double t = along == GradientAxis::Profile ? t_profile : t_section;
+    if (stops.size() == 1 || t <= stops.front().first) return stops.front().second;
+    if (t >= stops.back().first) return stops.back().second;
+    for (size_t i = 1; i < stops.size(); ++i) {
+      if (t <= stops[i].first) {
+        const auto& [t0, v0] = stops[i - 1];
+        const auto& [t1, v1] = stops[i];
+        const double a = t1 > t0 ? (t - t0) / (t1 - t0) : 1.0;
+        return v0 + (v1 - v0) * a;
+      }
+    }
+    return stops.back().second;
+  }
+};
+
+using ColourField = Gradient<glm::dvec3>;  ///< linear RGB
+using LengthField = Gradient<double>;      ///< metres
+
+/// A horizontal curve: `circle`, or closed loops of [x, z] points (metres) in the XZ plane seen
+/// from +Y. `around`: one loop. `within`: one loop (fold 0, repeated) or one loop per fold.
+struct SectionSpec {
+  bool circle = false;
+  std::vector<std::vector<glm::dvec2>> loops;
+  FileLoc loc;
+};
+
+/// One diffusion surface of the template (doc/template-format.md, Surfaces).
+struct SurfaceSpec {
+  std::string name;
+  SurfaceKind kind = SurfaceKind::Around;
+  bool is_skin = false;
+  /// around: open curve bottom to top, [r, y] in metres, r >= 0. within: closed curve, r > 0.
+  std::vector<glm::dvec2> profile;
+  SectionSpec section;
+  /// true: centripetal Catmull-Rom spline through the points; false: polyline.
+  bool smooth = true;
+  ColourField front = ColourField::constant({0.5, 0.5, 0.5});
+  ColourField back = ColourField::constant({0.5, 0.5, 0.5});
+  LengthField blur = LengthField::constant(0.0);
+  /// Material channels (roughness, translucency) of each side, 0..1 (doc/template-format.md,
+  /// Materials: `roughness`, `translucency`); absent: the template's cut material.
+  glm::dvec2 material_front{0.6, 0.0}, material_back{0.6, 0.0};
+  bool visible_front = true;
+  bool visible_back = true;
+  /// mesh: the PLY file, resolved relative to the template's directory.
+  std::string mesh_file;
+  /// Where the surface, its profile and its section are written (for geometric errors).
+  FileLoc loc, profile_loc, mesh_loc;
+  /// Field path prefix for errors, e.g. "surfaces[2]".
+  std::string path;
+};
+
+/// Grains scattered over a surface by Poisson-disc dart throwing (doc/template-format.md, Grains).
+struct GrainSpec {
+  std::string name;
+  std::string on;                            ///< name of the surface they are scattered over
+  glm::dvec2 region_profile{0.0, 1.0};       ///< normalised arc-length range along the profile
+  glm::dvec2 region_section{0.0, 1.0};       ///< normalised arc-length range along the section
+  double spacing = 0.0;                      ///< Poisson-disc radius, metres
+  bool on_front = false;                     ///< side of `on` they sit on (default back)
+  double depth = 0.0;                        ///< centre distance from `on` towards the side, metres
+  glm::dvec3 semi_axes{0.0};                 ///< ellipsoid semi-axes (profile tangent, section
+                                             ///< tangent, normal), metres
+  glm::dvec3 front{0.0}, back{0.0};          ///< linear RGB
+  double blur = 0.0;                         ///< metres
+  glm::dvec2 material_front{0.6, 0.0}, material_back{0.6, 0.0};  ///< (roughness, translucency)
+  double jitter = 0.0;                       ///< relative variation of size and orientation, 0..1
+  FileLoc loc, spacing_loc, shape_loc;       ///< the item, its `spacing` and its `shape`
+  std::string path;
+};
+
+/// One frequency band of the Perlin colour modulation (doc/algorithms.md §6; doc/npr.md).
+/// Its weight for an unmodulated colour c is amplitude * closeness(c), where closeness is 1 for
+/// an untinted band and otherwise falls smoothly from 1 at the tint to 0 at `reach` (distance
+/// in sRGB 0..1 components): (1 - (d / reach)^2)^2 for d < reach.
+struct PerlinBand {
+  double frequency_per_m = 1.0;  ///< noise lattice cells per metre (1 / the file's `period`)
+  double amplitude = 0.0;        ///< relative colour change per unit of noise at strength 1, 0..1
+  bool tinted = false;           ///< false: the band acts on every colour with weight 1
+  glm::dvec3 tint{0.0};          ///< linear RGB; the colour the band acts on most
+  double reach = 0.25;           ///< sRGB distance at which the weight reaches 0, > 0
+};
+
+/// Non-photorealistic rendering parameters of a template (doc/template-format.md, NPR;
+/// doc/npr.md). A scene scales the modulation with its render.perlin strength.
+struct NprSettings {
+  /// The Perlin bands. When the template has no `npr.perlin`, two untinted bands derived from
+  /// the skin's height h: fine grain (period h / 16, amplitude 0.2) and broad mottling (period
+  /// h / 5, amplitude 0.3). An empty list turns the modulation off for the template.
+  std::vector<PerlinBand> perlin_bands;
+  bool perlin_from_file = false;  ///< whether the bands were written in the file
+};
+
+/// A whole parsed, validated template.
+struct Template {
+  std::string name;
+  std::string description;
+  std::string file;             ///< path it was read from
+  double metres_per_unit = 1e-3;
+  Symmetry symmetry = Symmetry::Cylindrical;
+  int folds = 1;                      ///< N of an N-fold template; 1 otherwise
+  std::vector<double> fold_angles;    ///< radians, increasing, one per fold (nfold)
+  double edge_m = 0.0;                ///< target edge length of the surface meshes, metres
+  FileLoc edge_loc;                   ///< where `resolution.edge` is (the file start if absent)
+  double variation_amount = 1.0;
+  int variation_folds_min = 1, variation_folds_max = 1;
+  std::vector<SurfaceSpec> surfaces;
+  std::vector<GrainSpec> grains;
+  int skin = -1;                      ///< index of the surface with role skin (-1: none, only
+                                      ///< for symmetry none)
+  NprSettings npr;                    ///< NPR parameters (doc/template-format.md, NPR)
+  /// Materials (README, Templates: `materials`): the skin's outside (and the walls of
+  /// hollows), and the cut faces. Absent: PbrMaterial{} for both, the look of templates
+  /// written before them.
+  PbrMaterial skin_material, cut_material;
+  /// Mass per volume of the object (kg/m^3; `density`, default that of water), for settling
+  /// its pieces in scenes (physics_settle.h).
+  double density_kg_m3 = 1000;
+};
+
+}  // namespace cutaway

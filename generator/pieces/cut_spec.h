@@ -1,0 +1,63 @@
+// How an object is cut into pieces (doc/scene-format.md, Cuts; doc/algorithms.md §4): a cut
+// is a set of planes in the object's frame (axis +Y), and every piece is one convex cell of them.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "base/plane.h"
+
+namespace cutaway {
+
+/// The kinds of cut of the scene format and of `cutaway piece --cut`.
+enum class CutType { Whole, Halves, Slices, Wedges, Dice, Plane };
+
+/// One cut, in metres (object frame). Only the fields of its type are used.
+struct CutSpec {
+  CutType type = CutType::Whole;
+  double thickness_m = 0;  ///< slices: distance between the parallel planes, > 0
+  int count = 0;           ///< wedges: number of wedges, >= 2
+  double size_m = 0;       ///< dice: edge of the cubes, > 0
+  Plane plane;             ///< plane: the one cutting plane (both halves are pieces)
+};
+
+/// The most pieces one cut may make of one object (scene files; `cutaway piece` may use it too).
+inline constexpr int kMaxPiecesPerCut = 512;
+/// The thinnest slice and the smallest dice a cut may use, metres (0.5 mm).
+inline constexpr double kMinCutLength_m = 0.5e-3;
+
+/// Parses the command line's `--cut` notation (doc/architecture.md, Command line): `whole`,
+/// `halves`, `slices:THICKNESS`, `wedges:COUNT`, `dice:SIZE` or `plane:SPEC` (SPEC as
+/// parse_plane_spec).
+/// Lengths are in template units and become metres with `metres_per_unit`.
+/// @throws std::invalid_argument naming the rule when `text` is not of these forms, a length is
+///         not positive and finite (or below kMinCutLength_m once in metres), or a count is not
+///         a whole number in 2..64
+CutSpec parse_cut_spec(const std::string& text, double metres_per_unit);
+
+/// A short label of `cut` in millimetres: "whole", "halves", "slices:6mm", "wedges:8",
+/// "dice:12mm" or "plane" (lengths with up to 3 decimals, trailing zeros dropped).
+std::string cut_label(const CutSpec& cut);
+
+/// How far an object reaches, metres: the bounding cylinder about its axis (+Y).
+struct ObjectExtents {
+  double radius_m = 0;  ///< largest distance from the axis
+  double height_m = 0;  ///< extent along the axis
+};
+
+struct Template;
+
+/// The extents of a template's skin, estimated from its curves without sweeping: the profile's
+/// largest r times the section loop's largest radius relative to its radius at angle 0 (the loop
+/// is scaled so that this radius equals r), and the profile's y range. A template without an
+/// `around` skin uses the bounds of its mesh surfaces (read from their PLY files).
+/// @throws InputError when a mesh file cannot be read
+ObjectExtents template_extents(const Template& t);
+
+/// Estimated number of pieces `cut` makes of an object within `extents`: whole 1, halves and
+/// plane 2, wedges `count`, slices ceil(height / thickness) + 1 (the end caps are pieces too),
+/// dice the cubes of the bounding box, ceil(2 r / size)^2 * ceil(height / size). Saturates at
+/// 1e9 (tiny lengths do not overflow).
+long long estimate_piece_count(const CutSpec& cut, const ObjectExtents& extents);
+
+}  // namespace cutaway

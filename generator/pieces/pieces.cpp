@@ -1,0 +1,262 @@
+#include "pieces/pieces.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+#include "base/timer.h"
+#include "pieces/clip_mesh.h"
+#include "pieces/manifold_check.h"
+#include "pieces/seam_stitch.h"
+
+namespace cutaway {
+
+namespace {
+
+/// A DS surface as a shaded mesh showing one side's colour; `facing_back` turns its back side
+/// outwards (reversed winding and normals).
+ShadedMesh shaded_surface(const DsSurface& surface, bool show_front, bool facing_back) {
+  ShadedMesh out;
+  const std::vector<glm::dvec3> normals = vertex_normals(surface.mesh);
+  for (auto vh : surface.mesh.vertices()) {
+    const auto& p = surface.mesh.point(vh);
+    const auto& data = surface.mesh.data(vh);
+    const auto& c = show_front ? data.front : data.back;
+    const auto& m = show_front ? data.material_front : data.material_back;
+    out.position.emplace_back(p[0], p[1], p[2]);
+    out.normal.push_back(normals[vh.idx()]);
+    out.colour.emplace_back(c[0], c[1], c[2]);
+    out.material.emplace_back(m[0], m[1]);
+    out.param.emplace_back(data.param[0], data.param[1]);
+  }
+  for (auto fh : surface.mesh.faces()) {
+    glm::uvec3 t;
+    int k = 0;
+    for (auto vh : surface.mesh.fv_range(fh)) t[k++] = static_cast<unsigned>(vh.idx());
+    out.triangle.push_back(t);
+  }
+  if (facing_back) flip(out);
+  return out;
+}
+
+/// The part of `mesh` inside `cell`.
+ShadedMesh clip_to_cell(ShadedMesh mesh, const CutCells& cells, const Cell& cell) {
+  for (const CellFace& f : cell.faces) {
+    if (mesh.triangle.empty()) break;
+    mesh = clip_to_half_space(mesh, cells.planes[f.plane], !f.outward);
+  }
+  return mesh;
+}
+
+/// The triangles of `section` in `cell` (by centroid), facing out of the cell through `face`.
+ShadedMesh cap_in_cell(const CrossSection& section, const CutCells& cells, const Cell& cell,
+                       const CellFace& face) {
+  ShadedMesh out;
+  std::vector<unsigned> remap(section.position.size(), ~0u);
+  const glm::dvec3 normal = face.outward ? section.plane.normal : -section.plane.normal;
+  for (glm::uvec3 t : section.triangle) {
+    const glm::dvec3 c =
+        (section.position[t[0]] + section.position[t[1]] + section.position[t[2]]) / 3.0;
+    if (!in_cell(cells, cell, c, face.plane)) continue;
+    for (int k = 0; k < 3; ++k) {
+      if (remap[t[k]] == ~0u) {
+        out.position.push_back(section.position[t[k]]);
+        out.normal.push_back(normal);
+        out.colour.push_back(section.colour[t[k]]);
+        out.material.push_back(section.material[t[k]]);
+        out.param.push_back(glm::dvec2(0.0));
+        remap[t[k]] = static_cast<unsigned>(out.position.size() - 1);
+      }
+      t[k] = remap[t[k]];
+    }
+    if (!face.outward) std::swap(t[1], t[2]);
+    out.triangle.push_back(t);
+  }
+  return out;
+}
+
+/// `cells` with its planes moved for attempt `attempt` and put in general position against the
+/// vertices of `model` (see kMaxCutAttempts).
+CutCells general_position(const CutCells& cells, const DsModel& model, int attempt, double edge_m) {
+  CutCells out = cells;
+  const double clearance = kVertexClearance * edge_m;
+  for (Plane& plane : out.planes) {
+    const bool through_axis =
+        std::fabs(plane.normal.y) < 1e-12 && std::fabs(glm::dot(plane.point, plane.normal)) < 1e-12;
+    if (through_axis) continue;
+    const glm::dvec3 base = plane.point + plane.normal * (attempt * kNudgeOffset * edge_m);
+    // Steps of 2.5 clearances: a band of width 2 clearances around the plane, clear of vertices.
+    for (int step = 0; step < 64; ++step) {
+      plane.point = base + plane.normal * (2.5 * step * clearance);
+      bool clear = true;
+      for (const DsSurface& surface : model.surfaces) {
+        for (auto vh : surface.mesh.vertices()) {
+          const auto& p = surface.mesh.point(vh);
+          const double d =
+              std::fabs(glm::dot(glm::dvec3(p[0], p[1], p[2]) - plane.point, plane.normal));
+          if (d > kOnPlane_m && d < clearance) {
+            clear = false;
+            break;
+          }
+        }
+        if (!clear) break;
+      }
+      if (clear) break;
+    }
+  }
+  return out;
+}
+
+/// The pieces of `model` in `cells` (steps 1-3 of cut_pieces).
+PieceSet pieces_in_cells(const DsModel& model, const CutCells& cells,
+                         const DiffusionBackend& diffusion, const PieceOptions& options) {
+  PieceSet set;
+  set.cells = cells;
+
+  // 1. One cross-section per plane, restricted to the cells that have a face on it.
+  const auto sections_start = std::chrono::steady_clock::now();
+  CrossSectionOptions section_options = options.section;
+  section_options.merge_boundary = false;
+  for (size_t i = 0; i < cells.planes.size(); ++i) {
+    CapRestriction restriction;
+    for (size_t j = 0; j < cells.planes.size(); ++j)
+      if (j != i) restriction.split_planes.push_back(cells.planes[j]);
+    const int plane = static_cast<int>(i);
+    restriction.keep = [&cells, plane](const glm::dvec3& c) {
+      for (const Cell& cell : cells.cells)
+        for (const CellFace& f : cell.faces)
+          if (f.plane == plane && in_cell(cells, cell, c, plane)) return true;
+      return false;
+    };
+    try {
+      set.sections.push_back(
+          make_cross_section(model, cells.planes[i], diffusion, section_options, restriction));
+      set.diffused_points += set.sections.back().diffused_points;
+      set.seconds_diffuse += set.sections.back().seconds_diffuse;
+    } catch (const std::domain_error&) {
+      set.sections.push_back(CrossSection{});  // the plane misses the object: no caps on it
+      set.sections.back().plane = cells.planes[i];
+    }
+  }
+  set.seconds_sections = seconds_since(sections_start);
+
+  // 2. The skin and the walls of hollow regions, each showing its outward side.
+  const auto clip_start = std::chrono::steady_clock::now();
+  struct Source {
+    int surface;
+    PartKind kind;
+    ShadedMesh mesh;
+  };
+  std::vector<Source> sources;
+  sources.push_back({0, PartKind::Skin, shaded_surface(model.skin(), true, false)});
+  for (size_t s = 1; s < model.surfaces.size(); ++s) {
+    const DsSurface& surface = model.surfaces[s];
+    if (surface.role == SurfaceRole::Grain || surface.visible_front == surface.visible_back)
+      continue;
+    // The hollow side faces out of the piece and shows the material side's colour.
+    const bool hollow_back = !surface.visible_back;
+    sources.push_back({static_cast<int>(s), PartKind::Wall,
+                       shaded_surface(surface, hollow_back, hollow_back)});
+  }
+
+  // 3. Per cell: clip, add the caps, stitch.
+  const double tolerance =
+      std::max(options.stitch_tolerance * options.section.edge_m, 2 * kOnPlane_m);
+  for (size_t c = 0; c < cells.cells.size(); ++c) {
+    const Cell& cell = cells.cells[c];
+    Piece piece;
+    piece.cell = static_cast<int>(c);
+    for (const Source& src : sources) {
+      ShadedMesh clipped = clip_to_cell(src.mesh, cells, cell);
+      if (!clipped.triangle.empty()) piece.parts.push_back({src.kind, src.surface, -1, clipped});
+    }
+    for (const CellFace& face : cell.faces) {
+      const CrossSection& section = set.sections[face.plane];
+      ShadedMesh cap = cap_in_cell(section, cells, cell, face);
+      if (!cap.triangle.empty()) piece.parts.push_back({PartKind::Cap, -1, face.plane, cap});
+    }
+    if (piece.parts.empty()) continue;
+    std::vector<ShadedMesh*> meshes;
+    for (PiecePart& part : piece.parts) meshes.push_back(&part.mesh);
+    const StitchStats stats = stitch_seams(meshes, tolerance);
+    set.stitched_vertices += stats.snapped + stats.inserted;
+    set.pieces.push_back(std::move(piece));
+  }
+  set.seconds_clip = seconds_since(clip_start);
+  return set;
+}
+
+}  // namespace
+
+PieceSet cut_pieces(const DsModel& model, const CutSpec& cut, const DiffusionBackend& diffusion,
+                    const PieceOptions& options) {
+  const CutCells cells = make_cut_cells(cut, model.bbox_min, model.bbox_max);
+  // Nudging helps only where there are planes to move and the uncut skin is itself sound.
+  const bool may_retry =
+      !cells.planes.empty() &&
+      manifold_defect(shaded_surface(model.skin(), true, false), kMinVertexSeparation_m).empty();
+  PieceSet set;
+  for (int attempt = 0;; ++attempt) {
+    const CutCells moved = general_position(cells, model, attempt, options.section.edge_m);
+    PieceSet next = pieces_in_cells(model, moved, diffusion, options);
+    const auto check_start = std::chrono::steady_clock::now();
+    for (const Piece& piece : next.pieces)
+      if (!manifold_defect(merge_parts(piece), kMinVertexSeparation_m).empty())
+        ++next.defective_pieces;
+    next.seconds_clip += seconds_since(check_start);
+    // Totals over all attempts.
+    next.seconds_sections += set.seconds_sections;
+    next.seconds_diffuse += set.seconds_diffuse;
+    next.seconds_clip += set.seconds_clip;
+    next.diffused_points += set.diffused_points;
+    next.stitched_vertices += set.stitched_vertices;
+    next.attempts = attempt + 1;
+    set = std::move(next);
+    if (set.defective_pieces == 0 || !may_retry || attempt + 1 == kMaxCutAttempts) break;
+  }
+  if (set.pieces.empty()) throw std::domain_error("the cut misses the object");
+  if (cut.type == CutType::Plane && set.pieces.size() < 2)
+    throw std::domain_error("the plane misses the object");
+  return set;
+}
+
+ShadedMesh merge_parts(const Piece& piece) {
+  ShadedMesh out;
+  for (const PiecePart& part : piece.parts) {
+    const unsigned base = static_cast<unsigned>(out.position.size());
+    out.position.insert(out.position.end(), part.mesh.position.begin(), part.mesh.position.end());
+    out.normal.insert(out.normal.end(), part.mesh.normal.begin(), part.mesh.normal.end());
+    out.colour.insert(out.colour.end(), part.mesh.colour.begin(), part.mesh.colour.end());
+    out.material.insert(out.material.end(), part.mesh.material.begin(), part.mesh.material.end());
+    if (part.mesh.param.empty())
+      out.param.resize(out.position.size(), glm::dvec2(0.0));
+    else
+      out.param.insert(out.param.end(), part.mesh.param.begin(), part.mesh.param.end());
+    for (const glm::uvec3& t : part.mesh.triangle) out.triangle.push_back(t + base);
+  }
+  return out;
+}
+
+std::vector<unsigned> part_vertex_offsets(const Piece& piece) {
+  std::vector<unsigned> offsets{0};
+  for (const PiecePart& part : piece.parts)
+    offsets.push_back(offsets.back() + static_cast<unsigned>(part.mesh.position.size()));
+  return offsets;
+}
+
+const PiecePart* skin_part(const Piece& piece) {
+  return !piece.parts.empty() && piece.parts[0].kind == PartKind::Skin ? &piece.parts[0]
+                                                                         : nullptr;
+}
+
+size_t surface_triangle_count(const Piece& piece) {
+  size_t n = 0;
+  for (const PiecePart& part : piece.parts)
+    if (part.kind != PartKind::Cap) n += part.mesh.triangle.size();
+  return n;
+}
+
+}  // namespace cutaway

@@ -1,0 +1,80 @@
+// The parsed scene (doc/scene-format.md): plain data, lengths in metres, colours linear RGB.
+// Parsing and validation live in scene_parser.h; layout and export never see YAML.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "base/error.h"
+#include "pieces/cut_spec.h"
+
+namespace cutaway {
+
+/// How an item's pieces are arranged in the container (doc/scene-format.md, `arrange`).
+enum class Arrangement {
+  Pile,     ///< dropped onto the container and the pieces before them, then settled
+  Fan,      ///< each object's pieces in a fanned row, each overlapping the one before
+  Scatter,  ///< spread apart over the container, none resting on another
+};
+
+/// One entry of `items`: `count` seeded variants of one template, each cut the same way.
+struct SceneItem {
+  std::string template_name;  ///< as written (a name from templates/ or a relative path)
+  std::string template_path;  ///< the resolved template file
+  int count = 1;              ///< whole objects, >= 1
+  CutSpec cut;                ///< lengths already in metres
+  double keep = 1.0;          ///< fraction of the pieces placed, in (0, 1]
+  double variation = 1.0;     ///< scales the template's variation amount, >= 0
+  /// Its `arrange`, else the scene's, else the container's default (scatter on a board or on
+  /// the floor, pile in a bowl or on a plate).
+  Arrangement arrange = Arrangement::Pile;
+  FileLoc loc;                ///< where the item is written
+  std::string path;           ///< field path prefix for errors, e.g. "items[2]"
+};
+
+enum class ContainerType { Bowl, Plate, Board, None };
+
+/// What the pieces rest in or on. Bowl and plate are round (diameter, height); the board is a
+/// box (width along X, depth along Z, height). Metres.
+struct Container {
+  ContainerType type = ContainerType::None;
+  double diameter_m = 0;  ///< bowl, plate: outer rim diameter
+  double width_m = 0;     ///< board: along X
+  double depth_m = 0;     ///< board: along Z
+  double height_m = 0;    ///< bowl, plate, board: total height
+  glm::dvec3 colour{0.9, 0.9, 0.9};  ///< linear RGB
+};
+
+/// A camera given in the scene file (metres, scene frame: +Y up, the container's base at y = 0).
+struct SceneCamera {
+  glm::dvec3 eye{0.0}, target{0.0};
+  double fov_deg = 40;  ///< vertical field of view, degrees
+};
+
+/// Output settings of the scene file's `render` block.
+struct RenderSettings {
+  int width = 1280, height = 960;  ///< pixels
+  double perlin = 1.0;       ///< NPR Perlin colour modulation strength, 0 turns it off
+  double silhouettes = 1.0;  ///< NPR silhouette stroke strength, 0 turns them off
+  /// Texel density of the baked cut-face textures, texels per millimetre (0.1..100): about
+  /// twice the pixels per millimetre the closest cut face gets in the pictures wanted.
+  double texels_per_mm = 8.6;
+};
+
+/// A whole parsed, validated scene.
+struct Scene {
+  std::string name;
+  std::string file;             ///< path it was read from
+  uint64_t seed = 0;            ///< default seed (the command line's --seed overrides it)
+  double metres_per_unit = 1e-3;
+  Container container;
+  std::vector<SceneItem> items;
+  std::optional<SceneCamera> camera;  ///< absent: the layout frames the scene
+  RenderSettings render;
+};
+
+}  // namespace cutaway

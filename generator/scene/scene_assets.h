@@ -1,0 +1,145 @@
+// What a scene becomes before export (doc/architecture.md, Key types): triangle meshes with
+// per-vertex colours, instances of them with transforms, a camera and lights. glTF, POV-Ray and
+// the OpenGL preview all read this; none of them knows about templates or cuts.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "model/pbr_material.h"
+
+namespace cutaway {
+
+/// `name` with every byte outside [A-Za-z0-9] replaced by '_': a name every exporter accepts
+/// (glTF, POV-Ray identifiers). Locale-independent.
+inline std::string asset_name(std::string_view name) {
+  std::string s(name);
+  for (char& c : s) {
+    const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
+    if (!ok) c = '_';
+  }
+  return s;
+}
+
+/// An image for texturing, 8 bits per channel, row 0 at the top: a base colour (RGB, sRGB) or
+/// a material map (RGBA, linear: G roughness, B metallic, A translucency; the channels glTF's
+/// metallicRoughnessTexture and KHR_materials_diffuse_transmission's texture read).
+struct AssetTexture {
+  std::string name;
+  int width = 0, height = 0;
+  int channels = 3;             ///< 3 (RGB) or 4 (RGBA)
+  std::vector<uint8_t> pixels;  ///< width * height * channels, row by row
+  bool wrap_u = false;          ///< repeats in u (addressed beyond 0..1), clamped in v
+};
+
+/// A named material. Its base colour is the vertex colours, or its texture when it has one
+/// (then the mesh's uv addresses it and the vertex colours are only a fallback for exporters
+/// without textures).
+struct AssetMaterial {
+  std::string name;  ///< unique in the scene
+  PbrMaterial pbr;
+  int base_colour_texture = -1;  ///< index into SceneAssets::textures, or -1
+  /// Index into SceneAssets::textures of an RGBA material map (roughness, translucency), or -1.
+  /// With one, pbr.roughness and pbr.translucency are the map's means (for renderers that
+  /// cannot read it), and the map holds the values themselves (glTF factors 1).
+  int material_texture = -1;
+};
+
+/// Triangles [first, first + count) of a mesh, drawn with one material.
+struct AssetPrimitive {
+  size_t first = 0, count = 0;
+  int material = 0;  ///< index into SceneAssets::materials
+  /// Empty, or the same surface in fewer triangles (over the mesh's vertices) for exporters
+  /// that take its colour from the material's texture: a cut face's outline triangulated
+  /// (coarse_cap_triangles), whose inner vertices only carried colour.
+  std::vector<glm::uvec3> coarse;
+};
+
+/// One triangle mesh in its own frame (metres). Triangles are counter-clockwise seen from
+/// outside (the normal side).
+struct AssetMesh {
+  std::string name;                   ///< unique in the scene, [A-Za-z0-9_]+
+  std::vector<glm::dvec3> position;   ///< #V, metres
+  std::vector<glm::dvec3> normal;     ///< #V, unit length (shading normals)
+  std::vector<glm::dvec3> colour;     ///< #V, linear RGB 0..1
+  std::vector<glm::dvec2> uv;         ///< #V texture coordinates 0..1 (glTF: v down from the
+                                      ///< top row), or empty: no textured material
+  std::vector<glm::uvec3> triangle;   ///< #F, indices into the vertex arrays
+  /// The triangles by material, in order, covering all of them without gaps (a piece: skin
+  /// and walls, then caps). Empty: one primitive of material 0.
+  std::vector<AssetPrimitive> primitives;
+};
+
+/// The triangles an exporter writes for primitive `p` of `mesh`: its coarse ones when its
+/// colour comes from a texture (`textured`) and it has them, else its own range of
+/// mesh.triangle.
+std::span<const glm::uvec3> primitive_triangles(const AssetMesh& mesh, const AssetPrimitive& p,
+                                                bool textured);
+
+/// What is wrong with the primitives of `mesh` for a scene of `materials` materials, or ""
+/// when nothing is: they must cover its triangles in order, none empty, each naming an
+/// existing material (no primitives: one of material 0, which must exist).
+std::string primitives_defect(const AssetMesh& mesh, size_t materials);
+
+/// What a placed piece is, for the people who use the asset (glTF node extras).
+struct PieceInfo {
+  std::string template_name;       ///< empty: not a piece (a container)
+  uint64_t seed = 0;               ///< the variant's seed
+  std::string cut;                 ///< cut_label() of its cut
+  int cell = -1;                   ///< its cell of the cut (the piece index)
+  std::vector<std::string> parts;  ///< the kinds of its parts: "skin", "wall", "cap"
+  double volume_m3 = 0;            ///< enclosed volume, cubic metres
+};
+
+/// One placed copy of a mesh: scene point = translation + rotation * (mesh point).
+struct AssetInstance {
+  std::string name;          ///< unique in the scene
+  int mesh = -1;             ///< index into SceneAssets::meshes
+  glm::dquat rotation{1, 0, 0, 0};  ///< unit quaternion (w, x, y, z)
+  glm::dvec3 translation{0.0};      ///< metres
+  PieceInfo piece;                  ///< for pieces
+};
+
+/// A pinhole camera in the scene frame (+Y up, metres).
+struct AssetCamera {
+  glm::dvec3 eye{0, 0.3, 0.3}, target{0.0}, up{0, 1, 0};
+  double fov_y_deg = 40;    ///< vertical field of view, degrees
+  double aspect = 4.0 / 3;  ///< width / height
+  double znear = 0.01, zfar = 10;  ///< metres
+};
+
+enum class LightType { Directional, Point };
+
+/// A light (the glTF KHR_lights_punctual model): directional lights shine along `direction`
+/// with `intensity` in lux; point lights sit at `position` with `intensity` in candela.
+struct AssetLight {
+  std::string name;
+  LightType type = LightType::Directional;
+  glm::dvec3 position{0.0};              ///< point: metres
+  glm::dvec3 direction{0, -1, 0};        ///< directional: unit, the way the light travels
+  glm::dvec3 colour{1, 1, 1};            ///< linear RGB
+  double intensity = 3;                  ///< lux (directional) or candela (point)
+};
+
+/// A whole scene ready for export: meshes (pieces, container), their instances, camera, lights.
+struct SceneAssets {
+  std::string name;
+  /// Material 0 is the plain default every mesh without primitives uses.
+  std::vector<AssetMaterial> materials{AssetMaterial{"vertex colour", PbrMaterial{}, -1}};
+  std::vector<AssetTexture> textures;
+  std::vector<AssetMesh> meshes;
+  std::vector<AssetInstance> instances;
+  AssetCamera camera;
+  std::vector<AssetLight> lights;
+  glm::dvec3 background{1, 1, 1};  ///< linear RGB
+  int width = 1280, height = 960;  ///< pixels of renders
+};
+
+}  // namespace cutaway

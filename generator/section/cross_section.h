@@ -1,0 +1,111 @@
+// Cross-sections (paper §3.2, Fig. 3; doc/algorithms.md §3): the cut face of a DS model on a
+// plane, triangulated by conforming constrained Delaunay refinement with the cut segments as
+// constraints, split along them, and coloured by PMVC diffusion (colour and material channels).
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "diffusion/diffusion.h"
+#include "model/ds_model.h"
+#include "section/cut_segments.h"
+
+namespace cutaway {
+
+/// Which points of a cap are diffused.
+enum class CapSampling {
+  /// Every vertex of a mesh refined to `interior_edge` everywhere (paper §3.2).
+  Dense,
+  /// The same mesh; its blur bands' lines sampled sparsely along their length
+  /// (band_sampling.h) except where a band is not a strip along one line, its other interior
+  /// vertices sparsely by Poisson-disc and harmonic interpolation (harmonic_sampling.h), both
+  /// refined where a test point's diffused colour or material channels differ visibly from the
+  /// interpolation (by more than `tolerance`, colour.h visible_difference). The default: on
+  /// the default salad it diffuses 1.9x fewer points in 1.8x less PMVC time, and its picture
+  /// differs from the dense one by 0.05/255 on average.
+  Adaptive,
+};
+
+/// How a cross-section is meshed.
+struct CrossSectionOptions {
+  double edge_m = 0.002;       ///< the template's edge length, metres
+  double interior_edge = 3.0;  ///< largest triangle edge, in edge_m: the cut segments are
+                               ///< finer, and refinement grades from them into the interior
+  CapSampling sampling = CapSampling::Adaptive;
+  double tolerance = 2.0;  ///< adaptive: largest interpolation error left at a test point,
+                           ///< in steps of 1/255 (visible_difference: sRGB, material channels)
+  double harmonic_spacing = 6.0;  ///< adaptive: Poisson-disc radius of the first interior
+                                  ///< samples, in edge_m (harmonic_sampling.h)
+  double band_spacing = 16.0;     ///< adaptive: largest arc length between the first samples
+                                  ///< along a blur band's lines, in edge_m (band_sampling.h)
+  double merge_tolerance = 0.01;  ///< nearly collinear cut segments are merged up to edge_m
+                                  ///< long where they deviate less than this, in edge_m
+  /// Whether the skin's and the hollow walls' segments (the domain's boundary) are merged too.
+  /// Pieces turn it off, so that the caps' boundaries run through exactly the crossings where
+  /// the clipped skin ends.
+  bool merge_boundary = true;
+  double shape_bound = 0.125; ///< Delaunay_mesh_size_criteria_2 shape bound B = 1/(4 sin^2 a):
+                              ///< 0.125 is a minimum angle a of about 20.7 degrees
+};
+
+/// Restricts a cross-section to the faces of convex cells (doc/algorithms.md §4): the lines
+/// where other cutting planes meet this one become extra constraints of the triangulation, so
+/// that every triangle lies on one side of each, and only the triangles whose centroid `keep`
+/// accepts are coloured and returned.
+struct CapRestriction {
+  std::vector<Plane> split_planes;  ///< planes whose lines on this plane are constraints;
+                                    ///< planes parallel to this one are ignored
+  std::function<bool(const glm::dvec3&)> keep;  ///< centroid (metres) -> keep; empty: all
+};
+
+/// The triangulated, coloured cut face on one plane.
+struct CrossSection {
+  Plane plane;
+  glm::dvec3 u_axis{1, 0, 0}, v_axis{0, 1, 0};  ///< in-plane frame: cross(u, v) = normal
+  std::vector<glm::dvec3> position;   ///< #V, metres, object frame
+  std::vector<glm::uvec3> triangle;   ///< #F, counter-clockwise seen from the normal's side
+  std::vector<glm::dvec3> colour;     ///< #V, linear RGB
+  std::vector<glm::dvec2> material;   ///< #V, material channels (roughness, translucency)
+  /// #V: the surface a vertex lies on (a cut vertex, one duplicate per side), or -1 for an
+  /// interior vertex.
+  std::vector<int> cut_surface;
+  size_t interior_vertices = 0;  ///< vertices off the cut segments
+  size_t diffused_points = 0;    ///< PMVC evaluations: interior vertices and the locations of
+                                 ///< blurred cut vertices (their duplicates share one); adaptive
+                                 ///< sampling: the samples and test points only
+  size_t cut_segments = 0;       ///< input cut segments
+  bool refinement_capped = false;  ///< Delaunay refinement ran out of its step budget or
+                                   ///< failed CGAL's checks (rounding near a degenerate input),
+                                   ///< so the cap is the unrefined constrained Delaunay
+                                   ///< triangulation
+  double seconds_triangulate = 0;  ///< wall time: cut segments, triangulation, splitting
+  double seconds_diffuse = 0;      ///< wall time: PMVC colours
+};
+
+/// The in-plane frame of a plane: u along the world axis least aligned with the normal,
+/// projected; v = cross(normal, u).
+void plane_frame(const Plane& plane, glm::dvec3& u, glm::dvec3& v);
+
+/// Cuts `model` with `plane` (cut_segments), triangulates the domain inside the skin's cut
+/// loops minus hollow sides (CGAL Constrained_Delaunay_triangulation_2 refined by
+/// Delaunay_mesher_2, conforming), splits every vertex on a cut segment into one duplicate per
+/// side (Fig. 3c) coloured with that side's DS colour where the blur is 0, and colours every
+/// other vertex with `diffusion` (PMVC).
+/// A region of the plane is in the domain when it is bounded (not connected to infinity), is
+/// not on the skin's front (outer) side, and is not on a hollow side (visible_front/back false)
+/// of any surface bounding it.
+/// With a `restriction`, its split planes' lines are constraints that do not bound the domain
+/// (vertices on them are split like cut vertices and diffused), and triangles whose centroid it
+/// does not keep are left out before diffusion.
+/// @throws std::domain_error when the plane misses the object or only touches it (no area), or
+///         the restriction keeps nothing: the caller reports it as bad input or skips the cap
+CrossSection make_cross_section(const DsModel& model, const Plane& plane,
+                                const DiffusionBackend& diffusion,
+                                const CrossSectionOptions& options,
+                                const CapRestriction& restriction = {});
+
+}  // namespace cutaway

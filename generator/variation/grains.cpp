@@ -1,0 +1,261 @@
+#include "variation/grains.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
+#include <unordered_map>
+
+#include <glm/geometric.hpp>
+
+#include "base/constants.h"
+#include "base/error.h"
+
+namespace cutaway {
+
+namespace {
+
+constexpr uint64_t kPurposeGrains = 0x677261696e;  // "grain"
+
+glm::dvec3 point(const DsMesh& m, DsMesh::VertexHandle v) {
+  return to_glm(m.point(v));
+}
+
+bool in_range(double x, const glm::dvec2& r) { return x >= r.x - 1e-12 && x <= r.y + 1e-12; }
+
+glm::dvec3 any_perpendicular(const glm::dvec3& n) {
+  const glm::dvec3 a = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  return glm::normalize(glm::cross(n, a));
+}
+
+struct HashGrid {
+  double cell;
+  std::unordered_map<uint64_t, std::vector<size_t>> cells;
+  static uint64_t key(int64_t x, int64_t y, int64_t z) {
+    return (static_cast<uint64_t>(x) * 73856093ULL) ^ (static_cast<uint64_t>(y) * 19349663ULL) ^
+           (static_cast<uint64_t>(z) * 83492791ULL);
+  }
+  glm::i64vec3 index(const glm::dvec3& p) const {
+    return {static_cast<int64_t>(std::floor(p.x / cell)), static_cast<int64_t>(std::floor(p.y / cell)),
+            static_cast<int64_t>(std::floor(p.z / cell))};
+  }
+};
+
+/// The triangles of `on` whose three vertices' params lie in the grain's region.
+struct RegionTriangles {
+  std::vector<std::array<int, 3>> vertices;
+  std::vector<double> cumulative_area;  ///< m^2, running sum in triangle order
+  double area() const { return cumulative_area.empty() ? 0.0 : cumulative_area.back(); }
+};
+
+RegionTriangles region_triangles(const GrainSpec& spec, const DsMesh& m) {
+  RegionTriangles r;
+  double total = 0;
+  for (auto fh : m.faces()) {
+    std::array<int, 3> t;
+    int k = 0;
+    bool inside = true;
+    for (auto vh : m.fv_range(fh)) {
+      t[k++] = vh.idx();
+      const auto& par = m.data(vh).param;
+      inside &= in_range(par[0], spec.region_profile) && in_range(par[1], spec.region_section);
+    }
+    if (!inside) continue;
+    const glm::dvec3 a = point(m, m.vertex_handle(t[0])), b = point(m, m.vertex_handle(t[1])),
+                     c = point(m, m.vertex_handle(t[2]));
+    const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
+    if (!(area > 0)) continue;
+    total += area;
+    r.vertices.push_back(t);
+    r.cumulative_area.push_back(total);
+  }
+  return r;
+}
+
+const DsSurface& grain_support(const GrainSpec& spec, const DsModel& model) {
+  const DsSurface* on = nullptr;
+  for (const auto& s : model.surfaces)
+    if (s.name == spec.on && s.role != SurfaceRole::Grain) on = &s;
+  CUTAWAY_CHECK(on != nullptr);
+  return *on;
+}
+
+}  // namespace
+
+void check_grain_limits(const Template& tmpl, const DsModel& model) {
+  const DsMesh& skin = model.skin().mesh;
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  for (auto vh : skin.vertices()) {
+    lo = glm::min(lo, point(skin, vh));
+    hi = glm::max(hi, point(skin, vh));
+  }
+  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  for (const GrainSpec& spec : tmpl.grains) {
+    const double area = region_triangles(spec, grain_support(spec, model).mesh).area();
+    const double most = area / (0.5 * std::sqrt(3.0) * spec.spacing * spec.spacing);
+    if (most > kMaxGrainsPerSet) {
+      std::ostringstream s;
+      s << "the spacing is too small for the region: up to " << static_cast<long long>(most)
+        << " grains could fit (at most " << kMaxGrainsPerSet << " per grain set)";
+      throw InputError(spec.spacing_loc, spec.path + ".spacing", s.str());
+    }
+    const double largest = std::max({spec.semi_axes.x, spec.semi_axes.y, spec.semi_axes.z});
+    if (largest > extent) {
+      std::ostringstream s;
+      s << "a grain's semi-axis (" << largest * 1e3 << " mm) is larger than the object ("
+        << extent * 1e3 << " mm across)";
+      throw InputError(spec.shape_loc, spec.path + ".shape", s.str());
+    }
+    if (spec.depth > extent) {
+      std::ostringstream s;
+      s << "the depth (" << spec.depth * 1e3 << " mm) is larger than the object (" << extent * 1e3
+        << " mm across)";
+      throw InputError(spec.loc, spec.path + ".depth", s.str());
+    }
+  }
+}
+
+std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface& on, Rng& rng,
+                                         const GrainOptions& opt) {
+  CUTAWAY_CHECK(spec.spacing > 0);
+  const DsMesh& m = on.mesh;
+  const std::vector<glm::dvec3> normals = vertex_normals(m);
+  const RegionTriangles region = region_triangles(spec, m);
+  const auto& tris = region.vertices;
+  const auto& cumulative = region.cumulative_area;
+  const double total = region.area();
+  std::vector<GrainPlacement> out;
+  if (tris.empty()) return out;
+  HashGrid grid{spec.spacing, {}};
+  const double side = spec.on_front ? 1.0 : -1.0;
+  int failures = 0;
+  while (failures < opt.max_consecutive_failures && out.size() < opt.max_grains) {
+    const double r = rng.uniform(0.0, total);
+    const size_t ti = std::min(
+        tris.size() - 1,
+        static_cast<size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), r) -
+                            cumulative.begin()));
+    double u = rng.uniform(), v = rng.uniform();
+    if (u + v > 1) {
+      u = 1 - u;
+      v = 1 - v;
+    }
+    const double w[3] = {1 - u - v, u, v};
+    glm::dvec3 p(0.0), n(0.0);
+    glm::dvec3 pos[3];
+    double tp[3];
+    for (int k = 0; k < 3; ++k) {
+      const auto vh = m.vertex_handle(tris[ti][k]);
+      pos[k] = point(m, vh);
+      tp[k] = m.data(vh).param[0];
+      p += w[k] * pos[k];
+      n += w[k] * normals[tris[ti][k]];
+    }
+    const glm::dvec3 fn = glm::cross(pos[1] - pos[0], pos[2] - pos[0]);
+    n = glm::length(n) > 1e-12 ? glm::normalize(n) : glm::normalize(fn);
+    const glm::dvec3 centre = p + side * spec.depth * n;
+    // Poisson-disc test against the accepted centres.
+    const auto c = grid.index(centre);
+    bool ok = true;
+    for (int dx = -1; dx <= 1 && ok; ++dx)
+      for (int dy = -1; dy <= 1 && ok; ++dy)
+        for (int dz = -1; dz <= 1 && ok; ++dz) {
+          const auto it = grid.cells.find(HashGrid::key(c.x + dx, c.y + dy, c.z + dz));
+          if (it == grid.cells.end()) continue;
+          for (size_t j : it->second)
+            if (glm::distance(out[j].centre, centre) < spec.spacing) {
+              ok = false;
+              break;
+            }
+        }
+    // Jitter is drawn for every dart, so the stream does not depend on acceptance order.
+    const double size_j = 1 + spec.jitter * rng.uniform(-1.0, 1.0);
+    const double turn = spec.jitter * 0.5 * kPi * rng.uniform(-1.0, 1.0);
+    if (!ok) {
+      ++failures;
+      continue;
+    }
+    failures = 0;
+    // Gradient of t_profile over the triangle.
+    const glm::dvec3 e1 = pos[1] - pos[0], e2 = pos[2] - pos[0];
+    const double fa2 = glm::dot(fn, fn);
+    glm::dvec3 grad(0.0);
+    if (fa2 > 0) {
+      grad = ((tp[1] - tp[0]) * glm::cross(e2, fn) + (tp[2] - tp[0]) * glm::cross(fn, e1)) / fa2;
+    }
+    grad -= glm::dot(grad, n) * n;
+    glm::dvec3 tprof = glm::length(grad) > 1e-12 ? glm::normalize(grad) : any_perpendicular(n);
+    glm::dvec3 tsec = glm::cross(n, tprof);
+    const glm::dvec3 a = std::cos(turn) * tprof + std::sin(turn) * tsec;
+    const glm::dvec3 b = glm::cross(n, a);
+    GrainPlacement g;
+    g.surface_point = p;
+    g.centre = centre;
+    g.axis_profile = a;
+    g.axis_section = b;
+    g.axis_normal = n;
+    g.semi_axes = spec.semi_axes * size_j;
+    grid.cells[HashGrid::key(c.x, c.y, c.z)].push_back(out.size());
+    out.push_back(g);
+  }
+  return out;
+}
+
+void add_ellipsoids(const std::vector<GrainPlacement>& grains, const glm::dvec3& front,
+                    const glm::dvec3& back, double blur, const GrainOptions& opt, DsMesh& mesh) {
+  const int R = std::max(2, opt.rings), S = std::max(3, opt.segments);
+  for (const auto& g : grains) {
+    // Unit sphere: z' along the normal axis, poles at +-1; rings between.
+    std::vector<DsMesh::VertexHandle> vh;
+    auto add = [&](double x, double y, double z) {
+      const glm::dvec3 p = g.centre + g.axis_profile * (g.semi_axes.x * x) +
+                           g.axis_section * (g.semi_axes.y * y) +
+                           g.axis_normal * (g.semi_axes.z * z);
+      const auto h = mesh.add_vertex(DsMesh::Point(p.x, p.y, p.z));
+      auto& d = mesh.data(h);
+      d.front = {front.x, front.y, front.z};
+      d.back = {back.x, back.y, back.z};
+      d.blur = vertex_blur(blur);
+      vh.push_back(h);
+    };
+    add(0, 0, -1);  // bottom pole
+    for (int i = 1; i < R; ++i) {
+      const double th = kPi * i / R - kPi / 2;
+      for (int j = 0; j < S; ++j) {
+        const double ph = 2 * kPi * j / S;
+        add(std::cos(th) * std::cos(ph), std::cos(th) * std::sin(ph), std::sin(th));
+      }
+    }
+    add(0, 0, 1);  // top pole
+    const int top = static_cast<int>(vh.size()) - 1;
+    auto ring = [&](int i, int j) { return vh[1 + (i - 1) * S + (j % S)]; };
+    // (x, y, z) right-handed with x, y tangent and z the normal: counter-clockwise about +z is
+    // outward at the top.
+    for (int j = 0; j < S; ++j) mesh.add_face(vh[0], ring(1, j + 1), ring(1, j));
+    for (int i = 1; i + 1 < R; ++i)
+      for (int j = 0; j < S; ++j) {
+        mesh.add_face(ring(i, j), ring(i, j + 1), ring(i + 1, j + 1));
+        mesh.add_face(ring(i, j), ring(i + 1, j + 1), ring(i + 1, j));
+      }
+    for (int j = 0; j < S; ++j) mesh.add_face(ring(R - 1, j), ring(R - 1, j + 1), vh[top]);
+  }
+}
+
+void scatter_grains(const Template& t, DsModel& model, uint64_t seed, const GrainOptions& opt) {
+  check_grain_limits(t, model);
+  for (size_t gi = 0; gi < t.grains.size(); ++gi) {
+    const GrainSpec& spec = t.grains[gi];
+    Rng rng(derive_seed(seed, {kPurposeGrains, gi}));
+    const auto grains = place_grains(spec, grain_support(spec, model), rng, opt);
+    if (grains.empty()) continue;  // no surface without faces: exporters and sheets need some
+    DsSurface s;
+    s.name = spec.name;
+    s.role = SurfaceRole::Grain;
+    add_ellipsoids(grains, spec.front, spec.back, spec.blur, opt, s.mesh);
+    set_material(s.mesh, spec.material_front, spec.material_back);
+    model.surfaces.push_back(std::move(s));
+  }
+  update_bounds(model);
+}
+
+}  // namespace cutaway

@@ -1,0 +1,76 @@
+// Grains (paper §4 step 2, doc/algorithms.md §5): small closed ellipsoid DSs scattered over a
+// surface region by dart throwing with a Poisson-disc radius (kiwi and tomato seeds).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "base/random.h"
+#include "model/ds_model.h"
+#include "model/template.h"
+
+namespace cutaway {
+
+/// Where one grain sits, metres, object frame.
+struct GrainPlacement {
+  glm::dvec3 surface_point{0.0};  ///< the dart's point on the `on` surface
+  glm::dvec3 centre{0.0};         ///< surface_point + depth along the normal towards the side
+  glm::dvec3 axis_profile{0.0};   ///< unit axes of the ellipsoid: along the profile tangent
+  glm::dvec3 axis_section{0.0};   ///<   along the section tangent (turned by the jitter)
+  glm::dvec3 axis_normal{0.0};    ///<   along the surface normal (front side)
+  glm::dvec3 semi_axes{0.0};      ///< semi-axes along those axes, jittered
+};
+
+/// Options of the dart throwing.
+struct GrainOptions {
+  /// Stop after this many consecutive rejected darts (the region is then nearly saturated).
+  int max_consecutive_failures = 2000;
+  size_t max_grains = 100000;  ///< hard cap per grain set
+  int rings = 6, segments = 10;  ///< ellipsoid mesh resolution (UV sphere)
+};
+
+/// Dart throwing (Cook 1986; the paper's "dart throwing while respecting a Poisson disc
+/// radius") on the triangles of `on` whose three vertices' params (t_profile, t_section) lie
+/// in spec.region_*: a dart is a point uniform by area (triangle by cumulative area, then
+/// barycentric coordinates); its grain centre lies spec.depth along the interpolated vertex
+/// normal towards spec.on_front's side; it is accepted when every accepted centre is at least
+/// spec.spacing away (3D, metres; a uniform hash grid). Frame: profile axis = gradient of
+/// t_profile over the triangle, projected off the normal (any perpendicular where it
+/// vanishes), then turned about the normal by jitter * 90 degrees * U(-1, 1); semi-axes scaled
+/// by 1 + jitter * U(-1, 1). Deterministic for a given rng state.
+/// Note: darts instead of Bridson's (2007) active list: the region is a set of triangles, on
+/// several components (one per fold), where a parameter-domain grid is not one-to-one.
+std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface& on, Rng& rng,
+                                         const GrainOptions& options = {});
+
+/// Appends one closed ellipsoid (UV sphere of options.rings x options.segments, poles on the
+/// normal axis, outward normals) per placement to `mesh`, with DS attributes front, back (linear
+/// RGB) and blur (metres).
+void add_ellipsoids(const std::vector<GrainPlacement>& grains, const glm::dvec3& front,
+                    const glm::dvec3& back, double blur, const GrainOptions& options,
+                    DsMesh& mesh);
+
+/// The most grains one grain set may ask for: the region's area over the area a grain's
+/// Poisson disc claims in the densest packing (sqrt(3)/2 spacing^2). Each grain is a mesh of
+/// 50 vertices, so this bounds a set at 1M vertices.
+inline constexpr double kMaxGrainsPerSet = 20000;
+
+/// Refuses grain sets of `tmpl` that would take unbounded work or make no sense on `model`
+/// (built from tmpl), before any dart is thrown: more than kMaxGrainsPerSet grains for the
+/// region's area (a spacing far too small), or an ellipsoid semi-axis or a depth larger than
+/// the skin's bounding box. A region with no area is allowed (it gets no grains).
+/// @throws InputError at the grain's `spacing`, `shape` or item, naming the rule
+void check_grain_limits(const Template& tmpl, const DsModel& model);
+
+/// Scatters every grain set of `tmpl` over its `on` surface of `model` and appends one
+/// DsSurface per set that got grains (role Grain, name of the set, many components; a set whose
+/// region gets none adds no surface); bounds updated. Grain set i uses the stream
+/// derive_seed(seed, {grains purpose, i}).
+/// @pre model was built from tmpl (build_model); every grain's `on` names one of its surfaces
+/// @throws InputError from check_grain_limits
+void scatter_grains(const Template& tmpl, DsModel& model, uint64_t seed,
+                    const GrainOptions& options = {});
+
+}  // namespace cutaway

@@ -1,0 +1,82 @@
+#include "variation/variation.h"
+
+#include <cmath>
+#include <optional>
+
+#include "model/model_builder.h"
+#include "model/template_checks.h"
+#include "variation/grains.h"
+
+namespace cutaway {
+
+namespace {
+
+/// Purpose tag of the variation streams in derive_seed paths.
+constexpr uint64_t kPurposeVariation = 0x7661726961;  // "varia"
+
+}  // namespace
+
+Template draw_variant(const Template& t, uint64_t seed, uint64_t draw, double amount_scale,
+                      const VariationOptions& opt) {
+  const double amount = t.variation_amount * amount_scale;
+  if (t.symmetry == Symmetry::None || !(amount > 0)) return t;
+  Rng rng(derive_seed(seed, {kPurposeVariation, draw}));
+  Template out = t;
+  if (t.symmetry == Symmetry::Cylindrical) {
+    std::vector<int> which;
+    std::vector<Polyline2> loops;
+    std::vector<bool> smooth;
+    for (int i = 0; i < static_cast<int>(t.surfaces.size()); ++i) {
+      const SurfaceSpec& s = t.surfaces[i];
+      if (s.kind != SurfaceKind::Around || s.section.circle) continue;
+      which.push_back(i);
+      loops.push_back(s.section.loops[0]);
+      smooth.push_back(s.smooth);
+    }
+    if (which.empty()) return t;
+    DeBonetOptions d = opt.debonet;
+    d.amount = amount;
+    const auto varied = synthesize_loops(loops, smooth, opt.loop_samples, d, rng);
+    for (size_t k = 0; k < which.size(); ++k) out.surfaces[which[k]].section.loops = {varied[k]};
+    return out;
+  }
+  // N-fold.
+  const FoldFeatures f = fold_features(t, opt.folds);
+  const FoldPca pca = fold_pca(f);
+  const int lo = std::max(1, t.variation_folds_min), hi = std::max(lo, t.variation_folds_max);
+  const int np = lo + static_cast<int>(rng.below(static_cast<uint32_t>(hi - lo + 1)));
+  std::vector<std::vector<double>> vectors;
+  for (int k = 0; k < np; ++k) vectors.push_back(draw_fold(pca, amount, rng));
+  return rebuild_folds(t, f, vectors, opt.folds);
+}
+
+Variant make_variant(const Template& t, uint64_t seed, const VariationOptions& opt) {
+  uint64_t draw = 0;
+  double scale = 1.0;
+  for (int h = 0; h <= opt.halvings; ++h, scale *= 0.5) {
+    for (int a = 0; a < opt.attempts; ++a) {
+      Template v = draw_variant(t, seed, draw++, scale, opt);
+      std::optional<DsModel> m;
+      try {
+        check_template_curves(v);
+        m = build_model(v);
+      } catch (const InputError&) {
+        // A draw broke a rule (a loop left its fold, a surface crossed the skin): draw again.
+      }
+      if (m) {
+        // Outside the retry: a grain set over its limits is the template's fault, not the draw's.
+        scatter_grains(v, *m, seed);
+        return {std::move(v), std::move(*m), static_cast<int>(draw), t.variation_amount * scale};
+      }
+      if (t.symmetry == Symmetry::None || !(t.variation_amount > 0)) break;
+    }
+    if (t.symmetry == Symmetry::None || !(t.variation_amount > 0)) break;
+  }
+  DsModel m = build_model(t);
+  scatter_grains(t, m, seed);
+  return {t, std::move(m), static_cast<int>(draw), 0.0};
+}
+
+Template vary(const Template& t, uint64_t seed) { return make_variant(t, seed).tmpl; }
+
+}  // namespace cutaway

@@ -1,0 +1,53 @@
+// Random variants of a template (paper §4.2, doc/algorithms.md §5): only the horizontal
+// curves change; profiles, colours, blur and grains are kept, so attributes carry over.
+// Cylindrical templates: De Bonet synthesis of the section loops (debonet.h); N-fold templates:
+// PCA fold blending (fold_pca.h); symmetry none: unchanged.
+#pragma once
+
+#include <cstdint>
+
+#include "model/ds_model.h"
+#include "model/template.h"
+#include "variation/debonet.h"
+#include "variation/fold_pca.h"
+
+namespace cutaway {
+
+/// Options of vary / make_variant.
+struct VariationOptions {
+  int loop_samples = 128;      ///< De Bonet: samples per section loop (a multiple of 8 x 2^k)
+  int attempts = 6;            ///< draws per amount before the amount is halved
+  int halvings = 3;            ///< amount halvings before giving up (the template unchanged)
+  DeBonetOptions debonet;      ///< its `amount` is replaced by the template's
+  FoldPcaOptions folds;
+};
+
+/// A variant and its DS model (grains scattered).
+struct Variant {
+  Template tmpl;
+  DsModel model;
+  int draws = 0;         ///< draws made (1 when the first one passed)
+  double amount = 0.0;   ///< the variation amount that passed (template's, or halved; 0: none)
+};
+
+/// One variant of `tmpl`, unchecked: cylindrical -> the drawn section loops (`around`, not
+/// `circle`) synthesised jointly by De Bonet with amount tmpl.variation_amount * amount_scale;
+/// N-fold -> N' folds (uniform in [variation_folds_min, max]) drawn by PCA fold blending with
+/// coefficients ~ N(0, amount^2); none or amount 0 -> tmpl. Deterministic in (seed, draw).
+/// Circle sections stay circles (nothing to vary; their radius channel would be constant).
+Template draw_variant(const Template& tmpl, uint64_t seed, uint64_t draw, double amount_scale,
+                      const VariationOptions& options = {});
+
+/// A variant that passes check_template_curves and build_model (closed skin, nothing crosses
+/// the skin, `within` loops inside their folds): draws with the template's amount until one
+/// passes (options.attempts draws), then with the amount halved (options.halvings times); if
+/// none passes, the template itself (amount 0). The model then gets its grains
+/// (scatter_grains with the same seed). Same seed -> identical result.
+/// @pre tmpl was returned by parse_template / load_template
+/// @throws InputError only when tmpl itself does not build
+Variant make_variant(const Template& tmpl, uint64_t seed, const VariationOptions& options = {});
+
+/// make_variant(tmpl, seed).tmpl: the varied template (builds the model once to check it).
+Template vary(const Template& tmpl, uint64_t seed);
+
+}  // namespace cutaway

@@ -1,0 +1,25 @@
+// Images as the renderers produce them (previews, contact sheets, POV-Ray renders read back) and
+// their one PNG writer.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace cutaway {
+
+/// An 8-bit RGBA image: `rgba` holds width * height * 4 bytes, rows top first, pixels left to
+/// right, R G B A each; colour is sRGB-encoded, alpha is linear (255 = opaque).
+struct Image {
+  int width = 0, height = 0;   ///< pixels
+  std::vector<uint8_t> rgba;   ///< width * height * 4 bytes, sRGB8 + alpha, row 0 = top
+};
+
+/// Encodes `image` as PNG (8-bit RGBA, stb_image_write) and writes it atomically
+/// (write_file_atomically(): a failed write leaves no partial file).
+/// @param image width, height > 0 and rgba.size() == width * height * 4
+/// @throws std::invalid_argument when the image's size does not match its bytes
+/// @throws std::runtime_error when encoding or writing fails
+void write_png(const std::filesystem::path& path, const Image& image);
+
+}  // namespace cutaway
