@@ -31,13 +31,12 @@ constexpr int kTailLines = 15;               // lines of it quoted in an error
 class TempDir {
  public:
   TempDir() {
-    std::string tmpl = (fs::temp_directory_path() / "cutaway-povray-XXXXXX").string();
-    if (::mkdtemp(tmpl.data()) == nullptr) {
+    path_ = create_watched((fs::temp_directory_path() / "cutaway-povray-").string(),
+                           RemoveOnSignal::Kind::Folder, guard_);
+    if (path_.empty()) {
       throw std::runtime_error("cannot create a temporary directory for POV-Ray: " +
                                std::string(std::strerror(errno)));
     }
-    path_ = tmpl;
-    guard_ = RemoveOnSignal(path_, RemoveOnSignal::Kind::Folder);
   }
   ~TempDir() {
     std::error_code ec;
@@ -146,6 +145,8 @@ ChildResult run_in(const fs::path& dir, const std::string& exe,
     ::_exit(127);
   }
 
+  // A signal that stops us now stops POV-Ray before its folder is swept (RemoveOnSignal).
+  RemoveOnSignal stop_child(pid);
   out_write.close();
   exec_write.close();
   ChildResult result;
@@ -164,6 +165,12 @@ ChildResult run_in(const fs::path& dir, const std::string& exe,
   do {
     got = ::read(exec_read.fd, &child_errno, sizeof child_errno);
   } while (got < 0 && errno == EINTR);
+  // Wait for its end without reaping it, stop watching, then reap: the watched process id is
+  // never one the system could have given to another process.
+  siginfo_t info;
+  while (::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOWAIT) < 0 && errno == EINTR) {
+  }
+  stop_child.release();
   while (::waitpid(pid, &result.status, 0) < 0) {
     if (errno != EINTR) {
       throw std::runtime_error(std::string("waitpid failed: ") + std::strerror(errno));

@@ -12,8 +12,10 @@
 #include <string>
 
 #include <fcntl.h>
+#include <sys/random.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace cutaway {
@@ -33,6 +35,7 @@ constexpr int kFree = 0, kFilling = 1, kWatched = 2;
 struct Slot {
   std::atomic<int> state{kFree};
   bool folder = false;
+  pid_t child = 0;  // > 0: a child process to stop, not a path
   char path[PATH_MAX];
 };
 Slot g_slots[kSlots];
@@ -83,12 +86,18 @@ extern "C" void remove_watched_and_reraise(int sig) {
     g_deferred_signal.store(sig, std::memory_order_release);
     return;
   }
-  // Files first: some lie in watched folders, which can only go once they are empty.
-  for (int pass = 0; pass < 2; ++pass) {
+  // Child processes first, so that none writes into a folder once it is swept; then files,
+  // some of which lie in watched folders, which can only go once they are empty.
+  for (int pass = 0; pass < 3; ++pass) {
     for (Slot& s : g_slots) {
       if (s.state.load(std::memory_order_acquire) != kWatched) continue;
-      if (pass == 0 && !s.folder) ::unlink(s.path);
-      if (pass == 1 && s.folder) sweep_folder(s.path);
+      if (pass == 0 && s.child > 0 && ::kill(s.child, SIGKILL) == 0) {
+        while (::waitpid(s.child, nullptr, 0) < 0 && errno == EINTR) {
+        }
+      }
+      if (s.child > 0) continue;
+      if (pass == 1 && !s.folder) ::unlink(s.path);
+      if (pass == 2 && s.folder) sweep_folder(s.path);
     }
   }
   struct sigaction dfl;
@@ -120,20 +129,27 @@ void install_handlers() {
   });
 }
 
-int watch(const fs::path& path, bool folder) {
-  std::error_code ec;
-  const std::string abs = fs::absolute(path, ec).string();
-  if (ec || abs.size() >= PATH_MAX) return -1;
+// Fills a free slot with a path (child 0) or a child process; returns it, or -1 when none is
+// free.
+int watch(const std::string& abs, bool folder, pid_t child) {
   install_handlers();
   for (int i = 0; i < kSlots; ++i) {
     int expected = kFree;
     if (!g_slots[i].state.compare_exchange_strong(expected, kFilling)) continue;
     std::memcpy(g_slots[i].path, abs.c_str(), abs.size() + 1);
     g_slots[i].folder = folder;
+    g_slots[i].child = child;
     g_slots[i].state.store(kWatched, std::memory_order_release);
     return i;
   }
   return -1;
+}
+
+int watch_path(const fs::path& path, bool folder) {
+  std::error_code ec;
+  const std::string abs = fs::absolute(path, ec).string();
+  if (ec || abs.size() >= PATH_MAX) return -1;
+  return watch(abs, folder, 0);
 }
 
 void unwatch(int slot) {
@@ -188,7 +204,9 @@ std::string target_rule(const fs::path& path) {
 // ---------------------------------------------------------------------------------------------
 
 RemoveOnSignal::RemoveOnSignal(const fs::path& path, Kind kind)
-    : slot_(watch(path, kind == Kind::Folder)) {}
+    : slot_(watch_path(path, kind == Kind::Folder)) {}
+
+RemoveOnSignal::RemoveOnSignal(pid_t child) : slot_(child > 0 ? watch("", false, child) : -1) {}
 
 RemoveOnSignal::~RemoveOnSignal() { release(); }
 
@@ -210,6 +228,29 @@ void RemoveOnSignal::release() noexcept {
   slot_ = -1;
 }
 
+fs::path create_watched(const std::string& prefix, RemoveOnSignal::Kind kind,
+                        RemoveOnSignal& guard, int* fd) {
+  constexpr char kChars[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    unsigned char random[6];
+    if (::getrandom(random, sizeof random, 0) != static_cast<ssize_t>(sizeof random)) return {};
+    std::string path = prefix;
+    for (const unsigned char r : random) path += kChars[r % (sizeof kChars - 1)];
+    guard = RemoveOnSignal(path, kind);
+    const bool made =
+        kind == RemoveOnSignal::Kind::Folder
+            ? ::mkdir(path.c_str(), 0700) == 0
+            : (*fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0600)) >= 0;
+    if (made) return path;
+    const int e = errno;
+    guard.release();  // not ours: it existed before, or nothing was made
+    errno = e;
+    if (e != EEXIST) return {};
+  }
+  errno = EEXIST;
+  return {};
+}
+
 // ---------------------------------------------------------------------------------------------
 
 void write_file_atomically(const fs::path& given, std::string_view bytes) {
@@ -221,13 +262,16 @@ void write_file_atomically(const fs::path& given, std::string_view bytes) {
   const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
   std::error_code ec;
   fs::create_directories(parent, ec);
-  std::string tmpl = (parent / (path.filename().string() + ".tmp-XXXXXX")).string();
-  const int fd = mkstemp(tmpl.data());
-  if (fd < 0) {
+  RemoveOnSignal guard;
+  int fd = -1;
+  const std::string tmpl =
+      create_watched((parent / (path.filename().string() + ".tmp-")).string(),
+                     RemoveOnSignal::Kind::File, guard, &fd)
+          .string();
+  if (tmpl.empty()) {
     throw std::runtime_error("cannot write " + given.string() + ": cannot create a file in " +
                              parent.string() + ": " + errno_text(errno));
   }
-  RemoveOnSignal guard(tmpl);
   auto fail = [&](int e) {
     ::close(fd);
     ::unlink(tmpl.c_str());
@@ -315,15 +359,14 @@ fs::path OutputSet::add(const std::string& option, const std::string& path) {
 OutputSet::Stage& OutputSet::stage_for(const std::string& what, const fs::path& dir) {
   for (Stage& s : stages_)
     if (s.dir == dir) return s;
-  std::string tmpl = (dir / ".cutaway.tmp-XXXXXX").string();
-  if (::mkdtemp(tmpl.data()) == nullptr) {
+  Stage s;
+  s.dir = dir;
+  s.folder = create_watched((dir / ".cutaway.tmp-").string(), RemoveOnSignal::Kind::Folder,
+                            s.guard);
+  if (s.folder.empty()) {
     throw OutputPathError(what + ": cannot create files in " + dir.string() + ": " +
                           errno_text(errno));
   }
-  Stage s;
-  s.dir = dir;
-  s.folder = tmpl;
-  s.guard = RemoveOnSignal(s.folder, RemoveOnSignal::Kind::Folder);
   stages_.push_back(std::move(s));
   return stages_.back();
 }

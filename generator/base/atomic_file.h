@@ -3,8 +3,8 @@
 //    renamed into place;
 //  - OutputSet: the files of one command, checked before any work, staged in a hidden folder
 //    beside each target and renamed into place together at the end (all or none);
-//  - RemoveOnSignal: temporary files and folders removed when the process is stopped by
-//    SIGTERM, SIGINT or SIGHUP.
+//  - RemoveOnSignal: temporary files and folders removed (and the child processes writing into
+//    them stopped first) when the process is stopped by SIGTERM, SIGINT or SIGHUP.
 // Names of temporary files, for cleaning up after a SIGKILL or a power cut (which nothing can
 // catch): "NAME.tmp-XXXXXX" (a file, write_file_atomically()) and ".cutaway.tmp-XXXXXX/" (a
 // folder beside the outputs, OutputSet), X being random letters and digits.
@@ -17,6 +17,8 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include <sys/types.h>
 
 namespace cutaway {
 
@@ -31,13 +33,16 @@ namespace cutaway {
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
 
 /// Removes a temporary file, or a folder with the files directly in it, when the process is
-/// stopped by SIGTERM, SIGINT or SIGHUP while the guard lives; the destructor only stops
-/// watching (it removes nothing).
+/// stopped by SIGTERM, SIGINT or SIGHUP while the guard lives; or stops a child process that
+/// writes into such a folder (SIGKILL, then reaped) before any file is removed, so that it
+/// cannot add a file after the folder was emptied. The destructor only stops watching (it
+/// removes and stops nothing).
 ///
 /// The handlers are installed on first use, for those of the three signals whose action is
 /// still the default (a signal the process ignores, e.g. SIGHUP under nohup, stays ignored; a
 /// handler of the program's own stays). They use only system calls (unlink, unlinkat, rmdir,
-/// open, lseek, getdents64, close, sigaction, raise) and then raise the signal again with its default
+/// open, lseek, getdents64, close, kill, waitpid, sigaction, raise) and then raise the signal
+/// again with its default
 /// action, so the process still ends "killed by signal N". At most 128 paths are watched at a
 /// time; beyond that a path is simply not watched (it still works, without the cleanup).
 /// Thread-safe.
@@ -47,6 +52,8 @@ class RemoveOnSignal {
   RemoveOnSignal() = default;
   /// Watches `path` (made absolute, at most PATH_MAX - 1 bytes; longer ones are not watched).
   explicit RemoveOnSignal(const std::filesystem::path& path, Kind kind = Kind::File);
+  /// Watches the child process `child` (> 0, started by this process and not reaped yet).
+  explicit RemoveOnSignal(pid_t child);
   ~RemoveOnSignal();
   RemoveOnSignal(RemoveOnSignal&& other) noexcept;
   RemoveOnSignal& operator=(RemoveOnSignal&& other) noexcept;
@@ -58,6 +65,14 @@ class RemoveOnSignal {
  private:
   int slot_ = -1;
 };
+
+/// Creates a new file (mode 0600, open for writing, its descriptor in *fd) or folder (mode
+/// 0700, fd null) named `prefix` followed by six random letters and digits, as mkstemp and
+/// mkdtemp do, but watched by `guard` from before it exists: no signal can find it created and
+/// not yet watched.
+/// @returns its path, or an empty path with errno set when it cannot be created
+std::filesystem::path create_watched(const std::string& prefix, RemoveOnSignal::Kind kind,
+                                     RemoveOnSignal& guard, int* fd = nullptr);
 
 /// An output path refused before any work: what() is "OPTION PATH: RULE", e.g.
 /// "--png out/x.png: is a directory", or "-o: the path is empty". The CLI reports it as bad

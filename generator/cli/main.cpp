@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -35,6 +36,7 @@
 #include "render/section_preview.h"
 #include "section/cross_section.h"
 #include "variation/grains.h"
+#include "variation/variant_batch.h"
 #include "variation/variation.h"
 
 namespace {
@@ -135,14 +137,12 @@ int run_section(const SectionArgs& a, const std::string& backend, int threads, b
                                                  cutaway::parse_diffusion_choice(backend));
   const double t_backend = seconds_since(t1);
   const auto t2 = Clock::now();
-  cutaway::CrossSection section;
-  try {
-    cutaway::CrossSectionOptions options{tmpl.edge_m};
-    options.sampling = sampling;
-    section = cutaway::make_cross_section(model, plane, *diffusion, options);
-  } catch (const std::domain_error& e) {
-    throw UsageError("--plane " + cutaway::quoted(a.plane) + ": " + e.what());
-  }
+  cutaway::CrossSectionOptions options{tmpl.edge_m};
+  options.sampling = sampling;
+  cutaway::Outcome<cutaway::CrossSection> made =
+      cutaway::make_cross_section(model, plane, *diffusion, options);
+  if (!made) throw UsageError("--plane " + cutaway::quoted(a.plane) + ": " + made.reason());
+  const cutaway::CrossSection section = std::move(*made);
   const double t_section = seconds_since(t2);
   spdlog::info("{}: cross-section with {} vertices ({} interior), {} triangles", tmpl.name,
                section.position.size(), section.interior_vertices, section.triangle.size());
@@ -212,13 +212,6 @@ int run_check(const std::vector<std::string>& files) {
   return failed ? 2 : 0;
 }
 
-/// FNV-1a, 64 bits: the content hash of a written file in manifests.
-uint64_t fnv1a64(const std::string& bytes) {
-  uint64_t h = 0xcbf29ce484222325ULL;
-  for (unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ULL;
-  return h;
-}
-
 struct VariantsArgs {
   std::string template_path;
   std::string output_dir;
@@ -229,33 +222,6 @@ struct VariantsArgs {
   int sheet = 64;     ///< contact sheet: at most this many tiles (0: no sheet)
   int tile = 256;     ///< contact-sheet tile size, pixels
 };
-
-/// The K-th of M shares of the variants 0..count-1: contiguous blocks, variant i in shard K
-/// when floor((K-1) count / M) <= i < floor(K count / M); shares differ by at most one.
-struct Shard {
-  int k = 1, m = 1;
-  int begin(int count) const { return static_cast<int>(int64_t{k - 1} * count / m); }
-  int end(int count) const { return static_cast<int>(int64_t{k} * count / m); }
-};
-
-/// Parses "K/M" (1 <= K <= M <= 100000).
-/// @throws UsageError on anything else
-Shard parse_shard(const std::string& text) {
-  const auto bad = [&] {
-    return UsageError("--shard: '" + text + "' must be K/M with whole numbers 1 <= K <= M");
-  };
-  const size_t slash = text.find('/');
-  if (slash == std::string::npos) throw bad();
-  const auto number = [&](const std::string& part) {
-    if (part.empty() || part.size() > 6 ||
-        part.find_first_not_of("0123456789") != std::string::npos)
-      throw bad();
-    return std::stoi(part);
-  };
-  Shard s{number(text.substr(0, slash)), number(text.substr(slash + 1))};
-  if (s.k < 1 || s.m < 1 || s.k > s.m || s.m > 100000) throw bad();
-  return s;
-}
 
 /// `variants: [=====>    ] 12/40` on stderr, redrawn in place; only when stderr is a terminal.
 class ProgressBar {
@@ -280,9 +246,9 @@ class ProgressBar {
 
 /// The horizontal cut of a variant for its contact-sheet tile: the plane y = mid-height of
 /// the skin's bounding box, coloured by PMVC with 8 x 8 texels per cube face (a quarter of
-/// the rays of `section`'s default 16: enough for a thumbnail).
-cutaway::CrossSection variant_section(const cutaway::Variant& v, const std::string& backend,
-                                      int threads) {
+/// the rays of `section`'s default 16: enough for a thumbnail); none when it misses the skin.
+cutaway::Outcome<cutaway::CrossSection> variant_section(const cutaway::Variant& v,
+                                                        const std::string& backend, int threads) {
   const cutaway::DsMesh& skin = v.model.skin().mesh;
   double lo = std::numeric_limits<double>::max(), hi = -lo;
   for (const auto vh : skin.vertices()) {
@@ -299,7 +265,12 @@ cutaway::CrossSection variant_section(const cutaway::Variant& v, const std::stri
 
 int run_variants(const VariantsArgs& a, const std::string& backend, int threads, bool quiet,
                  cutaway::OutputSet& outputs) {
-  const Shard shard = a.shard_given ? parse_shard(a.shard) : Shard{};
+  cutaway::Shard shard;
+  if (a.shard_given) {
+    const cutaway::Outcome<cutaway::Shard> parsed = cutaway::parse_shard(a.shard);
+    if (!parsed) throw UsageError("--shard: " + parsed.reason());
+    shard = *parsed;
+  }
   const cutaway::Template tmpl = cutaway::load_template(a.template_path);
   const std::filesystem::path dir(a.output_dir);
   const int first = shard.begin(a.count), last = shard.end(a.count);
@@ -314,10 +285,7 @@ int run_variants(const VariantsArgs& a, const std::string& backend, int threads,
   const std::filesystem::path sheet_file =
       a.sheet > 0 ? outputs.add("-o", (dir / "contact-sheet.png").string())
                   : std::filesystem::path();
-  std::string manifest = "{\"template\": \"" + tmpl.name + "\", ";
-  if (a.shard_given)
-    manifest += "\"shard\": \"" + std::to_string(shard.k) + "/" + std::to_string(shard.m) + "\", ";
-  manifest += "\"variants\": [\n";
+  std::vector<cutaway::VariantRecord> records;
   const ProgressBar progress(last - first, !quiet && isatty(fileno(stderr)));
   progress.show(0);
   std::vector<cutaway::CrossSection> sections;
@@ -329,30 +297,25 @@ int run_variants(const VariantsArgs& a, const std::string& backend, int threads,
     const std::string glb = cutaway::model_to_glb(v.model, cutaway::GltfModelOptions{});
     const std::string file = tmpl.name + "-" + std::to_string(seed) + ".glb";
     cutaway::write_file_atomically(glb_files[static_cast<size_t>(i - first)], glb);
-    const double seconds = seconds_since(t0);
-    char line[512];
-    std::snprintf(line, sizeof line,
-                  "  {\"file\": \"%s\", \"seed\": %llu, \"template\": \"%s\", "
-                  "\"fnv1a64\": \"%016llx\", \"ds_faces\": %zu, \"folds\": %d, "
-                  "\"seconds\": %.4f}%s\n",
-                  file.c_str(), static_cast<unsigned long long>(seed), tmpl.name.c_str(),
-                  static_cast<unsigned long long>(fnv1a64(glb)), v.model.face_count(),
-                  v.tmpl.folds, seconds, i + 1 < last ? "," : "");
-    manifest += line;
+    records.push_back({file, seed, cutaway::fnv1a64(glb), v.model.face_count(), v.tmpl.folds,
+                       seconds_since(t0)});
     spdlog::debug("wrote {}", (dir / file).string());
     progress.show(i - first + 1);
   }
-  manifest += "]}\n";
-  cutaway::write_file_atomically(manifest_file, manifest);
+  cutaway::write_file_atomically(
+      manifest_file, cutaway::variant_manifest(
+                         tmpl.name, a.shard_given ? std::optional(shard) : std::nullopt, records));
   // The contact sheet comes last (all files are committed together, or none); its variants
   // are built again (same seed, same model) rather than all kept.
   for (int i = first; i < std::min(last, first + a.sheet); ++i) {
     const uint64_t seed = a.seed + static_cast<uint64_t>(i);
-    try {
-      sections.push_back(variant_section(cutaway::make_variant(tmpl, seed), backend, threads));
-    } catch (const std::domain_error& e) {
+    cutaway::Outcome<cutaway::CrossSection> section =
+        variant_section(cutaway::make_variant(tmpl, seed), backend, threads);
+    if (section) {
+      sections.push_back(std::move(*section));
+    } else {
       spdlog::warn("seed {}: no horizontal section at mid-height ({}); its tile stays empty",
-                   seed, e.what());
+                   seed, section.reason());
       missing.push_back(i - first);
     }
   }

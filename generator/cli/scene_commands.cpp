@@ -188,12 +188,9 @@ PieceSet cut_object(const DsModel& model, const Template& tmpl, const CutSpec& c
   PieceOptions options;
   options.section.edge_m = tmpl.edge_m;
   options.section.sampling = common.sampling;
-  PieceSet set;
-  try {
-    set = cut_pieces(model, cut, *diffusion, options);
-  } catch (const std::domain_error& e) {
-    throw UsageError(what + ": " + e.what());
-  }
+  Outcome<PieceSet> made = cut_pieces(model, cut, *diffusion, options);
+  if (!made) throw UsageError(what + ": " + made.reason());
+  PieceSet set = std::move(*made);
   for (Piece& p : set.pieces)
     for (PiecePart& part : p.parts) modulate_colours(part.mesh, tmpl.npr, perlin, seed);
   return set;

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <stdexcept>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -131,12 +131,13 @@ PieceSet pieces_in_cells(const DsModel& model, const CutCells& cells,
           if (f.plane == plane && in_cell(cells, cell, c, plane)) return true;
       return false;
     };
-    try {
-      set.sections.push_back(
-          make_cross_section(model, cells.planes[i], diffusion, section_options, restriction));
-      set.diffused_points += set.sections.back().diffused_points;
-      set.seconds_diffuse += set.sections.back().seconds_diffuse;
-    } catch (const std::domain_error&) {
+    Outcome<CrossSection> section =
+        make_cross_section(model, cells.planes[i], diffusion, section_options, restriction);
+    if (section) {
+      set.diffused_points += section->diffused_points;
+      set.seconds_diffuse += section->seconds_diffuse;
+      set.sections.push_back(std::move(*section));
+    } else {
       set.sections.push_back(CrossSection{});  // the plane misses the object: no caps on it
       set.sections.back().plane = cells.planes[i];
     }
@@ -191,8 +192,8 @@ PieceSet pieces_in_cells(const DsModel& model, const CutCells& cells,
 
 }  // namespace
 
-PieceSet cut_pieces(const DsModel& model, const CutSpec& cut, const DiffusionBackend& diffusion,
-                    const PieceOptions& options) {
+Outcome<PieceSet> cut_pieces(const DsModel& model, const CutSpec& cut,
+                             const DiffusionBackend& diffusion, const PieceOptions& options) {
   const CutCells cells = make_cut_cells(cut, model.bbox_min, model.bbox_max);
   // Nudging helps only where there are planes to move and the uncut skin is itself sound.
   const bool may_retry =
@@ -217,9 +218,9 @@ PieceSet cut_pieces(const DsModel& model, const CutSpec& cut, const DiffusionBac
     set = std::move(next);
     if (set.defective_pieces == 0 || !may_retry || attempt + 1 == kMaxCutAttempts) break;
   }
-  if (set.pieces.empty()) throw std::domain_error("the cut misses the object");
+  if (set.pieces.empty()) return Outcome<PieceSet>::none(kCutMisses);
   if (cut.type == CutType::Plane && set.pieces.size() < 2)
-    throw std::domain_error("the plane misses the object");
+    return Outcome<PieceSet>::none(kPlaneMisses);
   return set;
 }
 

@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include "base/outcome.h"
 #include "diffusion/diffusion.h"
 #include "model/ds_model.h"
 #include "pieces/cut_cells.h"
@@ -87,10 +88,14 @@ struct PieceSet {
 /// caps' seams cannot agree), the whole cut is redone with its planes nudged (kMaxCutAttempts; in
 /// the spirit of symbolic perturbation, but with real sub-micrometre moves). Deterministic.
 /// @param model  its skin (surfaces[0]) closed and outward
-/// @throws std::domain_error when the cut misses the object entirely (no piece), or a `plane`
-///         cut leaves it whole
-PieceSet cut_pieces(const DsModel& model, const CutSpec& cut, const DiffusionBackend& diffusion,
-                    const PieceOptions& options);
+/// @returns the pieces, or none (an expected outcome): kCutMisses when the cut misses the
+///          object entirely (no piece), kPlaneMisses (cross_section.h) when a `plane` cut leaves
+///          it whole
+Outcome<PieceSet> cut_pieces(const DsModel& model, const CutSpec& cut,
+                             const DiffusionBackend& diffusion, const PieceOptions& options);
+
+/// Why cut_pieces gives no pieces (Outcome::reason), besides kPlaneMisses.
+inline constexpr const char* kCutMisses = "the cut misses the object";
 
 /// All parts of `piece` in one mesh (vertices of different parts stay separate), in part
 /// order: the skin's and walls' triangles first, then the caps'.

@@ -316,12 +316,10 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
       PieceOptions piece_options;
       piece_options.section.edge_m = variant.tmpl.edge_m;
       piece_options.section.sampling = options.sampling;
-      PieceSet set;
-      try {
-        set = cut_pieces(variant.model, item.cut, *diffusion, piece_options);
-      } catch (const std::domain_error&) {  // every plane misses this variant: keep it whole
-        set = cut_pieces(variant.model, CutSpec{}, *diffusion, piece_options);
-      }
+      Outcome<PieceSet> cut = cut_pieces(variant.model, item.cut, *diffusion, piece_options);
+      if (!cut)  // every plane misses this variant: keep it whole
+        cut = cut_pieces(variant.model, CutSpec{}, *diffusion, piece_options);
+      PieceSet set = std::move(*cut);
       st.seconds_sections += set.seconds_sections;
       st.seconds_diffuse += set.seconds_diffuse;
       st.seconds_clip += set.seconds_clip;

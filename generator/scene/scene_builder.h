@@ -157,8 +157,8 @@ glm::dvec3 largest_cap_normal(const Piece& piece);
 /// Builds the whole scene with `seed` (the file's seed unless the command line gives one).
 /// Deterministic: the same scene, templates and seed give the same assets, whatever the
 /// thread count of the diffusion backends.
-/// @throws InputError when a template cannot be read or built; std::domain_error never (a cut
-///         that misses an object leaves it whole)
+/// A cut that misses an object leaves it whole.
+/// @throws InputError when a template cannot be read or built
 SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptions& options,
                         SceneStats* stats = nullptr);
 

@@ -16,7 +16,7 @@
 #include <map>
 #include <queue>
 #include <tuple>
-#include <stdexcept>
+#include <utility>
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Constrained_triangulation_plus_2.h>
@@ -116,416 +116,507 @@ void plane_frame(const Plane& plane, glm::dvec3& u, glm::dvec3& v) {
   v = glm::cross(n, u);
 }
 
-CrossSection make_cross_section(const DsModel& model, const Plane& plane,
-                                const DiffusionBackend& diffusion,
-                                const CrossSectionOptions& options,
-                                const CapRestriction& restriction) {
-  const auto start = std::chrono::steady_clock::now();
-  CrossSection cs;
-  cs.plane = plane;
-  plane_frame(plane, cs.u_axis, cs.v_axis);
-  // Merging is for the swept surfaces' doubled segments; grain loops are small and stay as cut.
-  std::vector<CutSegment> swept, grains;  // grains: kept as cut
-  for (const CutSegment& s : cut_segments(model, plane)) {
-    const DsSurface& surface = model.surfaces[s.surface];
-    const bool boundary =
-        surface.role == SurfaceRole::Skin || surface.visible_front != surface.visible_back;
-    const bool keep = surface.role == SurfaceRole::Grain || (boundary && !options.merge_boundary);
-    (keep ? grains : swept).push_back(s);
-  }
-  std::vector<CutSegment> segments = merge_collinear_segments(
-      swept, options.merge_tolerance * options.edge_m, options.edge_m, restriction.split_planes);
-  segments.insert(segments.end(), grains.begin(), grains.end());
-  cs.cut_segments = segments.size();
-  bool hits_skin = false;
-  for (const auto& s : segments) hits_skin = hits_skin || s.surface == 0;
-  if (!hits_skin) throw std::domain_error("the plane misses the object");
+namespace {
 
-  auto project = [&](const glm::dvec3& p) {
-    const glm::dvec3 d = p - plane.point;
-    return glm::dvec2(glm::dot(d, cs.u_axis), glm::dot(d, cs.v_axis));
-  };
-  std::vector<Segment2> seg2;
-  // Cut vertices keep their 3D positions: one within kOnPlane_m of the plane is a surface
-  // vertex that lies on it only by symbolic perturbation, and the clipped skin has it there.
-  std::map<std::pair<double, double>, glm::dvec3> lifted;
-  for (size_t i = 0; i < segments.size(); ++i) {
-    const CutSegment& s = segments[i];
-    const glm::dvec2 a = project(s.a), b = project(s.b);
-    lifted.emplace(std::make_pair(a.x, a.y), s.a);
-    lifted.emplace(std::make_pair(b.x, b.y), s.b);
-    seg2.push_back({a, b,
-                    {glm::dot(s.front_normal, cs.u_axis), glm::dot(s.front_normal, cs.v_axis)},
-                    static_cast<int>(i)});
+/// The stages of make_cross_section over the state they share: the cut segments in plane
+/// coordinates, the triangulation and the output being filled. Each stage is one method, run
+/// once, in order (make_cross_section).
+class SectionMesher {
+ public:
+  SectionMesher(const DsModel& model, const Plane& plane, const CrossSectionOptions& options,
+                const CapRestriction& restriction)
+      : model_(model), plane_(plane), options_(options), restriction_(restriction),
+        adaptive_(options.sampling == CapSampling::Adaptive) {
+    cs_.plane = plane;
+    plane_frame(plane, cs_.u_axis, cs_.v_axis);
   }
 
-  // 1. Constrained Delaunay triangulation of the cut segments, and of the split lines of a
-  // restriction (cutting planes that bound cells, not the domain), arranged so that no two
-  // constraints cross.
-  std::vector<std::pair<glm::dvec2, glm::dvec2>> ends;
-  glm::dvec2 lo(0.0), hi(0.0);
-  for (const Segment2& s : seg2) {
-    ends.emplace_back(s.a, s.b);
-    lo = ends.size() == 1 ? glm::min(s.a, s.b) : glm::min(lo, glm::min(s.a, s.b));
-    hi = ends.size() == 1 ? glm::max(s.a, s.b) : glm::max(hi, glm::max(s.a, s.b));
-  }
-  const std::vector<Line2> lines =
-      split_lines(plane, cs.u_axis, cs.v_axis, restriction.split_planes);
-  const std::vector<Constraint2> constraints =
-      arrange_split_lines(ends, lines, lo - glm::dvec2(2 * options.edge_m),
-                          hi + glm::dvec2(2 * options.edge_m), kOnPlane_m);
-  Cdt cdt;
-  std::map<std::pair<Vertex, Vertex>, int> segment_of;  // constraint end points -> index
-  // The input segment that a constrained edge (a, b) lies on (null on a split line).
-  auto segment_on = [&](Vertex a, Vertex b) -> const Segment2* {
-    for (auto ctx = cdt.contexts_begin(a, b); ctx != cdt.contexts_end(a, b); ++ctx) {
-      // The constraint's vertex iterator is forward-only: walk it to find the last vertex.
-      const Vertex first = *ctx->vertices_begin();
-      Vertex last = first;
-      for (auto it = ctx->vertices_begin(); it != ctx->vertices_end(); ++it) last = *it;
-      auto found = segment_of.find(std::minmax(first, last));
-      if (found != segment_of.end()) return &seg2[found->second];
-    }
-    return nullptr;
-  };
+  /// Step 0: the cut segments, nearly collinear ones merged, in plane coordinates.
+  /// @returns false when none lies on the skin (the plane misses the object)
+  bool collect_segments();
+  /// Step 1 input: the constraints (cut segments and a restriction's split lines, arranged so
+  /// that no two cross) and, adaptive, the blurred segments' chains.
+  void arrange_constraints();
+  /// Steps 1 and 2: the constrained Delaunay triangulation with the blur bands' ladder points,
+  /// and the domain. @returns false when it has no area (the plane only touches the object)
+  bool triangulate_domain();
+  /// Step 3: conforming Delaunay refinement inside the domain, dropped when it fails; then the
+  /// restriction's cells.
+  void refine();
+  /// Step 4 (adaptive): the blur bands' lines sampled by band_sampling.h.
+  void sample_band_lines(const DiffusionBackend& diffusion);
+  /// Step 5: output vertices (cut vertices split per side) and triangles.
+  /// @returns false when no triangle is left (the plane only touches the object)
+  bool split_vertices();
+  /// Step 6: PMVC colours of the points not sampled yet; adaptive, the interior by harmonic
+  /// sampling. @returns the cross-section
+  CrossSection diffuse_rest(const DiffusionBackend& diffusion);
 
-  // Adaptive sampling: the blurred cut segments of each surface joined into chains, along which
-  // the lines of their blur bands are sampled (band_sampling.h).
-  const bool adaptive = options.sampling == CapSampling::Adaptive;
-  SegmentChains chains;
-  if (adaptive) {
-    std::vector<std::array<glm::dvec2, 2>> ends2;
-    std::vector<int> group;
-    for (const Segment2& s : seg2) {
-      const CutSegment& cut = segments[s.index];
-      ends2.push_back({s.a, s.b});
-      group.push_back(cut.at_a.blur > 0 || cut.at_b.blur > 0 ? cut.surface : -1);
-    }
-    chains = chain_segments(ends2, group);
-  }
-  // Ladder points (plane coordinates) -> band line, arc length and the band's half width.
+ private:
+  /// Ladder points (plane coordinates) -> band line, arc length and the band's half width.
   struct Rung {
     int line;
     double arc_length, width;
   };
-  std::map<std::pair<double, double>, Rung> ladder;
 
-  // Steps 1 and 2 (run again without refinement when refinement runs out of budget).
-  auto triangulate_domain = [&] {
-    for (const Constraint2& c : constraints) {
-      const Vertex va = cdt.insert(Point2(c.a.x, c.a.y));
-      const Vertex vb = cdt.insert(Point2(c.b.x, c.b.y));
-      if (va == vb) continue;
-      cdt.insert_constraint(va, vb);
-      if (c.segment >= 0) segment_of.emplace(std::minmax(va, vb), seg2[c.segment].index);
-    }
-    // Blur bands (paper §3.1, Fig. 2): pairs of vertices on the two sheets of a blurred cut
-    // segment, +-blur along its front direction, every max(1.5 blur, edge / 5) along it, so that
-    // the steep transition across the band is sampled as a ladder parallel to the cut line
-    // (sparser pairs leave line vertices of the refinement without partners, and the colour
-    // across the band zigzags). Not near a split line: a point a hair's breadth off a constraint
-    // makes refinement split it endlessly.
-    auto near_split_line = [&](const glm::dvec2& p) {
-      for (const Line2& l : lines)
-        if (std::fabs(glm::dot(p, l.normal) - l.offset) < 0.25 * options.edge_m) return true;
-      return false;
-    };
-    for (const Segment2& s : seg2) {
-      const CutSegment& cut = segments[s.index];
-      const double front_len = glm::length(s.front);
-      const double blur = 0.5 * (cut.at_a.blur + cut.at_b.blur);
-      if (blur < kMinBlur_m || front_len == 0) continue;
-      const double spacing = std::max(1.5 * blur, 0.2 * options.edge_m);
-      const int pairs = std::max(1, static_cast<int>(std::ceil(glm::distance(s.a, s.b) / spacing)));
-      const glm::dvec2 across = s.front / front_len;
-      for (int k = 0; k < pairs; ++k) {
-        const double t = (k + 0.5) / pairs;
-        const glm::dvec2 p = s.a + (s.b - s.a) * t;
-        const double b = cut.at_a.blur + (cut.at_b.blur - cut.at_a.blur) * t;
-        for (const int side : {1, -1}) {
-          const glm::dvec2 q = p + across * (side * b);
-          if (near_split_line(q)) continue;
-          cdt.insert(Point2(q.x, q.y));
-          if (adaptive && chains.chain[s.index] >= 0)
-            ladder.emplace(std::make_pair(q.x, q.y),
-                           Rung{band_line(chains.chain[s.index], side),
-                                chains.arc_length(s.index, t, glm::distance(s.a, s.b)), b});
-        }
-      }
-    }
+  /// The input segment that a constrained edge (a, b) lies on (null on a split line).
+  const Segment2* segment_on(Vertex a, Vertex b) const;
+  /// Where a vertex at plane coordinates q lies in the object frame.
+  glm::dvec3 lift(const glm::dvec2& q) const;
+  /// Whether p is within a quarter edge of a split line.
+  bool near_split_line(const glm::dvec2& p) const;
+  /// Inserts the ladder points of the blur bands (step 1).
+  void insert_blur_bands();
+  /// Marks the faces of each region bounded by cut segments in or out of the domain (step 2).
+  void mark_domain();
+  /// A new output vertex at p on `surface` (-1: interior), black for now.
+  unsigned add_vertex(const Point2& p, int surface);
+  /// Step 5 for an in-domain vertex v: one output vertex, or one per wedge of faces between
+  /// constrained edges around a cut vertex.
+  void split_vertex(Vertex v);
 
-    if (cdt.dimension() < 2) throw std::domain_error("the plane only touches the object");
+  const DsModel& model_;
+  const Plane& plane_;
+  const CrossSectionOptions& options_;
+  const CapRestriction& restriction_;
+  const bool adaptive_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  double seconds_sampling_ = 0;
+  CrossSection cs_;
 
-    // 2. The domain: flood regions across unconstrained edges and decide each region once.
-    std::map<Face, int> region;
-    std::vector<bool> region_in;
-    for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) {
-      if (region.count(f)) continue;
-      const int id = static_cast<int>(region_in.size());
-      bool in = true;
-      std::queue<Face> queue;
-      queue.push(f);
-      region[f] = id;
-      while (!queue.empty()) {
-        const Face g = queue.front();
-        queue.pop();
-        if (cdt.is_infinite(g)) in = false;
-        for (int i = 0; i < 3; ++i) {
-          const Face nb = g->neighbor(i);
-          // Split lines divide cells, not regions: flood across them.
-          const Segment2* s = g->is_constrained(i)
-                                  ? segment_on(g->vertex(Cdt::cw(i)), g->vertex(Cdt::ccw(i)))
-                                  : nullptr;
-          if (!s) {
-            if (!region.count(nb)) {
-              region[nb] = id;
-              queue.push(nb);
-            }
-            continue;
-          }
-          if (cdt.is_infinite(g)) continue;
-          const int side = side_of(*s, to2(g->vertex(i)->point()));
-          const DsSurface& surface = model.surfaces[segments[s->index].surface];
-          if (side > 0 && (surface.role == SurfaceRole::Skin || !surface.visible_front)) in = false;
-          if (side < 0 && !surface.visible_back) in = false;
-        }
-      }
-      region_in.push_back(in);
-    }
-    for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) {
-      f->set_in_domain(region_in[region[f]]);
-    }
+  std::vector<CutSegment> segments_;
+  std::vector<Segment2> seg2_;
+  // Cut vertices keep their 3D positions: one within kOnPlane_m of the plane is a surface
+  // vertex that lies on it only by symbolic perturbation, and the clipped skin has it there.
+  std::map<std::pair<double, double>, glm::dvec3> lifted_;
+  std::vector<Line2> lines_;
+  std::vector<Constraint2> constraints_;
+  SegmentChains chains_;
+  std::map<std::pair<double, double>, Rung> ladder_;
+  Cdt cdt_;
+  std::map<std::pair<Vertex, Vertex>, int> segment_of_;  // constraint end points -> index
+
+  // Band samples: vertex -> colour and material channels.
+  std::map<Vertex, std::pair<glm::dvec3, glm::dvec2>> samples_;
+  std::map<std::pair<Vertex, Face>, unsigned> corner_id_;
+  // One PMVC evaluation per location: the duplicates of a blurred cut vertex share it.
+  std::vector<glm::dvec3> to_diffuse_;
+  std::vector<std::vector<unsigned>> diffuse_targets_;
+  std::vector<unsigned> interpolated_;  // adaptive: interior vertices left to harmonic sampling
+};
+
+bool SectionMesher::collect_segments() {
+  // Merging is for the swept surfaces' doubled segments; grain loops are small and stay as cut.
+  std::vector<CutSegment> swept, grains;  // grains: kept as cut
+  for (const CutSegment& s : cut_segments(model_, plane_)) {
+    const DsSurface& surface = model_.surfaces[s.surface];
+    const bool boundary =
+        surface.role == SurfaceRole::Skin || surface.visible_front != surface.visible_back;
+    const bool keep = surface.role == SurfaceRole::Grain || (boundary && !options_.merge_boundary);
+    (keep ? grains : swept).push_back(s);
+  }
+  segments_ = merge_collinear_segments(swept, options_.merge_tolerance * options_.edge_m,
+                                       options_.edge_m, restriction_.split_planes);
+  segments_.insert(segments_.end(), grains.begin(), grains.end());
+  cs_.cut_segments = segments_.size();
+  bool hits_skin = false;
+  for (const auto& s : segments_) hits_skin = hits_skin || s.surface == 0;
+  if (!hits_skin) return false;
+
+  auto project = [&](const glm::dvec3& p) {
+    const glm::dvec3 d = p - plane_.point;
+    return glm::dvec2(glm::dot(d, cs_.u_axis), glm::dot(d, cs_.v_axis));
   };
-  triangulate_domain();
+  for (size_t i = 0; i < segments_.size(); ++i) {
+    const CutSegment& s = segments_[i];
+    const glm::dvec2 a = project(s.a), b = project(s.b);
+    lifted_.emplace(std::make_pair(a.x, a.y), s.a);
+    lifted_.emplace(std::make_pair(b.x, b.y), s.b);
+    seg2_.push_back({a, b,
+                     {glm::dot(s.front_normal, cs_.u_axis), glm::dot(s.front_normal, cs_.v_axis)},
+                     static_cast<int>(i)});
+  }
+  return true;
+}
 
-  // 3. Conforming Delaunay refinement inside the domain (angle and size criteria, no triangle
-  // edge below 1e-3 edge). A budget counted in refinement steps, so that the result does not
-  // depend on the machine: constraints that meet at tiny angles can make refinement cascade
-  // without end. When the budget runs out, or CGAL's checks find that rounding corrupted the
-  // triangulation, the refinement is dropped whole and the cap is the
-  // constrained Delaunay triangulation of step 1 alone: coarser, but valid, and its boundary
-  // is exactly the cut segments.
+void SectionMesher::arrange_constraints() {
+  std::vector<std::pair<glm::dvec2, glm::dvec2>> ends;
+  glm::dvec2 lo(0.0), hi(0.0);
+  for (const Segment2& s : seg2_) {
+    ends.emplace_back(s.a, s.b);
+    lo = ends.size() == 1 ? glm::min(s.a, s.b) : glm::min(lo, glm::min(s.a, s.b));
+    hi = ends.size() == 1 ? glm::max(s.a, s.b) : glm::max(hi, glm::max(s.a, s.b));
+  }
+  lines_ = split_lines(plane_, cs_.u_axis, cs_.v_axis, restriction_.split_planes);
+  constraints_ = arrange_split_lines(ends, lines_, lo - glm::dvec2(2 * options_.edge_m),
+                                     hi + glm::dvec2(2 * options_.edge_m), kOnPlane_m);
+
+  // Adaptive sampling: the blurred cut segments of each surface joined into chains, along which
+  // the lines of their blur bands are sampled (band_sampling.h).
+  if (adaptive_) {
+    std::vector<std::array<glm::dvec2, 2>> ends2;
+    std::vector<int> group;
+    for (const Segment2& s : seg2_) {
+      const CutSegment& cut = segments_[s.index];
+      ends2.push_back({s.a, s.b});
+      group.push_back(cut.at_a.blur > 0 || cut.at_b.blur > 0 ? cut.surface : -1);
+    }
+    chains_ = chain_segments(ends2, group);
+  }
+}
+
+const Segment2* SectionMesher::segment_on(Vertex a, Vertex b) const {
+  for (auto ctx = cdt_.contexts_begin(a, b); ctx != cdt_.contexts_end(a, b); ++ctx) {
+    // The constraint's vertex iterator is forward-only: walk it to find the last vertex.
+    const Vertex first = *ctx->vertices_begin();
+    Vertex last = first;
+    for (auto it = ctx->vertices_begin(); it != ctx->vertices_end(); ++it) last = *it;
+    auto found = segment_of_.find(std::minmax(first, last));
+    if (found != segment_of_.end()) return &seg2_[found->second];
+  }
+  return nullptr;
+}
+
+glm::dvec3 SectionMesher::lift(const glm::dvec2& q) const {
+  const auto exact = lifted_.find({q.x, q.y});
+  return exact != lifted_.end() ? exact->second
+                                : plane_.point + cs_.u_axis * q.x + cs_.v_axis * q.y;
+}
+
+bool SectionMesher::near_split_line(const glm::dvec2& p) const {
+  for (const Line2& l : lines_)
+    if (std::fabs(glm::dot(p, l.normal) - l.offset) < 0.25 * options_.edge_m) return true;
+  return false;
+}
+
+bool SectionMesher::triangulate_domain() {
+  for (const Constraint2& c : constraints_) {
+    const Vertex va = cdt_.insert(Point2(c.a.x, c.a.y));
+    const Vertex vb = cdt_.insert(Point2(c.b.x, c.b.y));
+    if (va == vb) continue;
+    cdt_.insert_constraint(va, vb);
+    if (c.segment >= 0) segment_of_.emplace(std::minmax(va, vb), seg2_[c.segment].index);
+  }
+  insert_blur_bands();
+  if (cdt_.dimension() < 2) return false;
+  mark_domain();
+  return true;
+}
+
+void SectionMesher::insert_blur_bands() {
+  // Blur bands (paper §3.1, Fig. 2): pairs of vertices on the two sheets of a blurred cut
+  // segment, +-blur along its front direction, every max(1.5 blur, edge / 5) along it, so that
+  // the steep transition across the band is sampled as a ladder parallel to the cut line
+  // (sparser pairs leave line vertices of the refinement without partners, and the colour
+  // across the band zigzags). Not near a split line: a point a hair's breadth off a constraint
+  // makes refinement split it endlessly.
+  for (const Segment2& s : seg2_) {
+    const CutSegment& cut = segments_[s.index];
+    const double front_len = glm::length(s.front);
+    const double blur = 0.5 * (cut.at_a.blur + cut.at_b.blur);
+    if (blur < kMinBlur_m || front_len == 0) continue;
+    const double spacing = std::max(1.5 * blur, 0.2 * options_.edge_m);
+    const int pairs = std::max(1, static_cast<int>(std::ceil(glm::distance(s.a, s.b) / spacing)));
+    const glm::dvec2 across = s.front / front_len;
+    for (int k = 0; k < pairs; ++k) {
+      const double t = (k + 0.5) / pairs;
+      const glm::dvec2 p = s.a + (s.b - s.a) * t;
+      const double b = cut.at_a.blur + (cut.at_b.blur - cut.at_a.blur) * t;
+      for (const int side : {1, -1}) {
+        const glm::dvec2 q = p + across * (side * b);
+        if (near_split_line(q)) continue;
+        cdt_.insert(Point2(q.x, q.y));
+        if (adaptive_ && chains_.chain[s.index] >= 0)
+          ladder_.emplace(std::make_pair(q.x, q.y),
+                          Rung{band_line(chains_.chain[s.index], side),
+                               chains_.arc_length(s.index, t, glm::distance(s.a, s.b)), b});
+      }
+    }
+  }
+}
+
+void SectionMesher::mark_domain() {
+  // Flood regions across unconstrained edges and decide each region once.
+  std::map<Face, int> region;
+  std::vector<bool> region_in;
+  for (auto f = cdt_.all_faces_begin(); f != cdt_.all_faces_end(); ++f) {
+    if (region.count(f)) continue;
+    const int id = static_cast<int>(region_in.size());
+    bool in = true;
+    std::queue<Face> queue;
+    queue.push(f);
+    region[f] = id;
+    while (!queue.empty()) {
+      const Face g = queue.front();
+      queue.pop();
+      if (cdt_.is_infinite(g)) in = false;
+      for (int i = 0; i < 3; ++i) {
+        const Face nb = g->neighbor(i);
+        // Split lines divide cells, not regions: flood across them.
+        const Segment2* s = g->is_constrained(i)
+                                ? segment_on(g->vertex(Cdt::cw(i)), g->vertex(Cdt::ccw(i)))
+                                : nullptr;
+        if (!s) {
+          if (!region.count(nb)) {
+            region[nb] = id;
+            queue.push(nb);
+          }
+          continue;
+        }
+        if (cdt_.is_infinite(g)) continue;
+        const int side = side_of(*s, to2(g->vertex(i)->point()));
+        const DsSurface& surface = model_.surfaces[segments_[s->index].surface];
+        if (side > 0 && (surface.role == SurfaceRole::Skin || !surface.visible_front)) in = false;
+        if (side < 0 && !surface.visible_back) in = false;
+      }
+    }
+    region_in.push_back(in);
+  }
+  for (auto f = cdt_.all_faces_begin(); f != cdt_.all_faces_end(); ++f) {
+    f->set_in_domain(region_in[region[f]]);
+  }
+}
+
+void SectionMesher::refine() {
+  // Angle and size criteria, no triangle edge below 1e-3 edge. A budget counted in refinement
+  // steps, so that the result does not depend on the machine: constraints that meet at tiny
+  // angles can make refinement cascade without end. When the budget runs out, or CGAL's checks
+  // find that rounding corrupted the triangulation, the refinement is dropped whole and the cap
+  // is the constrained Delaunay triangulation of step 1 alone: coarser, but valid, and its
+  // boundary is exactly the cut segments.
   try {
-    Mesher mesher(cdt, Criteria(options.shape_bound, options.interior_edge * options.edge_m,
-                                1e-3 * options.edge_m));
+    Mesher mesher(cdt_, Criteria(options_.shape_bound, options_.interior_edge * options_.edge_m,
+                                 1e-3 * options_.edge_m));
     mesher.init(true);
-    const size_t budget = 10 * cdt.number_of_vertices() + 10000;
+    const size_t budget = 10 * cdt_.number_of_vertices() + 10000;
     for (size_t step = 0; step < budget && !mesher.is_refinement_done(); ++step)
       mesher.step_by_step_refine_mesh();
-    cs.refinement_capped = !mesher.is_refinement_done();
+    cs_.refinement_capped = !mesher.is_refinement_done();
   } catch (const CGAL::Failure_exception&) {
-    cs.refinement_capped = true;
+    cs_.refinement_capped = true;
   }
-  if (cs.refinement_capped) {
-    cdt.clear();
-    segment_of.clear();
-    triangulate_domain();
+  if (cs_.refinement_capped) {
+    cdt_.clear();
+    segment_of_.clear();
+    // The same input triangulated the first time, so it has area again.
+    CUTAWAY_CHECK(triangulate_domain());
   }
-  if (restriction.keep) {
-    for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+  if (restriction_.keep) {
+    for (auto f = cdt_.finite_faces_begin(); f != cdt_.finite_faces_end(); ++f) {
       if (!f->is_in_domain()) continue;
       const glm::dvec2 c =
           (to2(f->vertex(0)->point()) + to2(f->vertex(1)->point()) + to2(f->vertex(2)->point())) /
           3.0;
-      if (!restriction.keep(plane.point + cs.u_axis * c.x + cs.v_axis * c.y))
+      if (!restriction_.keep(plane_.point + cs_.u_axis * c.x + cs_.v_axis * c.y))
         f->set_in_domain(false);
     }
   }
+}
 
-  // 4. Adaptive sampling, first of the blur bands' lines (band_sampling.h).
+void SectionMesher::sample_band_lines(const DiffusionBackend& diffusion) {
   const auto meshed = std::chrono::steady_clock::now();
-  // Band samples: vertex -> colour and material channels.
-  std::map<Vertex, std::pair<glm::dvec3, glm::dvec2>> samples;
-  // Where a vertex at plane coordinates q lies in the object frame.
-  auto lift = [&](const glm::dvec2& q) {
-    const auto exact = lifted.find({q.x, q.y});
-    return exact != lifted.end() ? exact->second : plane.point + cs.u_axis * q.x + cs.v_axis * q.y;
-  };
-  if (adaptive) {
+  if (adaptive_) {
     // The blur bands' lines first: ladder points and vertices on blurred cut segments.
     std::vector<Vertex> band_vertices;
     std::vector<BandPoint> band_points;
-    for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
-      if (!in_domain(cdt, v)) continue;
+    for (auto v = cdt_.finite_vertices_begin(); v != cdt_.finite_vertices_end(); ++v) {
+      if (!in_domain(cdt_, v)) continue;
       const glm::dvec2 q = to2(v->point());
-      if (const auto rung = ladder.find({q.x, q.y}); rung != ladder.end()) {
+      if (const auto rung = ladder_.find({q.x, q.y}); rung != ladder_.end()) {
         band_vertices.push_back(v);
         band_points.push_back(
             {rung->second.line, rung->second.arc_length, lift(q), rung->second.width});
         continue;
       }
-      auto e = cdt.incident_edges(v), last = e;
+      auto e = cdt_.incident_edges(v), last = e;
       do {
-        if (cdt.is_infinite(e->first) && cdt.is_infinite(e->first->neighbor(e->second))) continue;
-        if (!cdt.is_constrained(*e)) continue;
+        if (cdt_.is_infinite(e->first) && cdt_.is_infinite(e->first->neighbor(e->second)))
+          continue;
+        if (!cdt_.is_constrained(*e)) continue;
         const Vertex a = e->first->vertex(Cdt::cw(e->second));
         const Vertex b = e->first->vertex(Cdt::ccw(e->second));
         const Segment2* s = segment_on(v, a == Vertex(v) ? b : a);
-        if (!s || chains.chain[s->index] < 0) continue;
+        if (!s || chains_.chain[s->index] < 0) continue;
         const double length = glm::distance(s->a, s->b);
         const double t =
             length > 0 ? std::clamp(glm::dot(q - s->a, s->b - s->a) / (length * length), 0.0, 1.0)
                        : 0;
         band_vertices.push_back(v);
-        const CutSegment& cut = segments[s->index];
-        band_points.push_back({band_line(chains.chain[s->index], 0),
-                               chains.arc_length(s->index, t, length), lift(q),
+        const CutSegment& cut = segments_[s->index];
+        band_points.push_back({band_line(chains_.chain[s->index], 0),
+                               chains_.arc_length(s->index, t, length), lift(q),
                                cut.at_a.blur + (cut.at_b.blur - cut.at_a.blur) * t});
         break;
       } while (++e != last);
     }
-    mark_irregular_band_points(band_points, chains);
+    mark_irregular_band_points(band_points, chains_);
     std::vector<glm::dvec3> colours(band_points.size());
     std::vector<glm::dvec2> materials(band_points.size());
     const BandSamplingCounts band = sample_bands(
-        band_points, diffusion, {options.band_spacing * options.edge_m, options.tolerance}, colours,
-        materials);
+        band_points, diffusion, {options_.band_spacing * options_.edge_m, options_.tolerance},
+        colours, materials);
     for (size_t i = 0; i < band_vertices.size(); ++i)
-      samples.emplace(band_vertices[i], std::make_pair(colours[i], materials[i]));
-    cs.diffused_points = band.diffused;
+      samples_.emplace(band_vertices[i], std::make_pair(colours[i], materials[i]));
+    cs_.diffused_points = band.diffused;
   }
-  const double seconds_sampling = seconds_since(meshed);
+  seconds_sampling_ = seconds_since(meshed);
+}
 
-  // 5. Output vertices: one per interior vertex, one per side (wedge) of a cut vertex.
-  std::map<std::pair<Vertex, Face>, unsigned> corner_id;
-  // One PMVC evaluation per location: the duplicates of a blurred cut vertex share it.
-  std::vector<glm::dvec3> to_diffuse;
-  std::vector<unsigned> interpolated;  // adaptive: interior vertices left to harmonic sampling
-  std::vector<std::vector<unsigned>> diffuse_targets;
-  auto add_vertex = [&](const Point2& p, int surface) {
-    cs.position.push_back(lift(to2(p)));
-    cs.colour.push_back(glm::dvec3(0.0));
-    cs.material.push_back(glm::dvec2(0.0));
-    cs.cut_surface.push_back(surface);
-    return static_cast<unsigned>(cs.position.size() - 1);
-  };
-  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
-    if (!in_domain(cdt, v)) continue;
-    // The in-domain faces around v in counter-clockwise order, split at constrained edges.
-    std::vector<Face> faces;
-    auto fc = cdt.incident_faces(v), done = fc;
-    do {
-      faces.push_back(fc);
-    } while (++fc != done);
-    // Whether the edge between faces[k] and the next face counter-clockwise is constrained:
-    // in face (v, a, b) that edge is (v, b), opposite a = vertex(ccw(index of v)).
-    auto constrained_after = [&](size_t k) {
-      const Face f = faces[k];
-      return f->is_constrained(Cdt::ccw(f->index(v)));
-    };
-    size_t start = faces.size(), constrained = 0;
-    for (size_t k = 0; k < faces.size(); ++k) {
-      if (constrained_after(k)) {
-        if (start == faces.size()) start = (k + 1) % faces.size();
-        ++constrained;
-      }
-    }
-    // Off the cut segments, or at the open end of one (both sides meet there): diffused.
-    if (constrained < 2) {
-      const unsigned id = add_vertex(v->point(), -1);
-      ++cs.interior_vertices;
-      if (const auto sampled = samples.find(v); sampled != samples.end()) {
-        std::tie(cs.colour[id], cs.material[id]) = sampled->second;
-      } else if (adaptive) {
-        interpolated.push_back(id);
-      } else {
-        to_diffuse.push_back(cs.position[id]);
-        diffuse_targets.push_back({id});
-      }
-      for (const Face& f : faces) corner_id[{v, f}] = id;
-      continue;
-    }
-    std::vector<unsigned> blurred;
-    for (size_t n = 0; n < faces.size();) {
-      // One wedge: faces from `start` up to and including the next constrained edge.
-      std::vector<Face> wedge;
-      size_t k = (start + n) % faces.size();
-      while (true) {
-        wedge.push_back(faces[k]);
-        ++n;
-        if (constrained_after(k) || n >= faces.size()) break;
-        k = (k + 1) % faces.size();
-      }
-      bool wedge_in = false;
-      for (const Face& f : wedge) wedge_in = wedge_in || (!cdt.is_infinite(f) && f->is_in_domain());
-      if (!wedge_in) continue;
-      // The wedge is bounded by the constrained edge (v, w) before its first face and the one
-      // after its last face; one of them lies on a cut segment unless both are split lines.
-      const Face first = wedge.front(), last = wedge.back();
-      const int i = first->index(v), j = last->index(v);
-      Vertex c = first->vertex(Cdt::cw(i));
-      const Segment2* s = segment_on(v, first->vertex(Cdt::ccw(i)));
-      if (!s) {
-        s = segment_on(v, last->vertex(Cdt::cw(j)));
-        c = last->vertex(Cdt::ccw(j));
-      }
-      int surface = -1;
-      glm::dvec3 colour(0.0);
-      glm::dvec2 material(0.0);
-      bool diffuse = true;
-      if (s) {
-        const CutSegment& cut = segments[s->index];
-        surface = cut.surface;
-        const glm::dvec2 p = to2(v->point());
-        const double len2 = glm::dot(s->b - s->a, s->b - s->a);
-        const double t = len2 > 0 ? std::clamp(glm::dot(p - s->a, s->b - s->a) / len2, 0.0, 1.0) : 0;
-        const DsAttributes at = lerp(cut.at_a, cut.at_b, t);
-        const bool front = side_of(*s, to2(c->point())) > 0;
-        colour = at.colour(front);
-        material = at.material(front);
-        diffuse = at.blur > 0;
-      }
-      const unsigned id = add_vertex(v->point(), surface);
-      cs.colour[id] = colour;
-      cs.material[id] = material;
-      if (diffuse) blurred.push_back(id);
-      for (const Face& f : wedge) corner_id[{v, f}] = id;
-    }
-    if (blurred.empty()) continue;
-    if (const auto sampled = samples.find(v); sampled != samples.end()) {
-      for (unsigned id : blurred) std::tie(cs.colour[id], cs.material[id]) = sampled->second;
-    } else {
-      to_diffuse.push_back(cs.position[blurred.front()]);
-      diffuse_targets.push_back(std::move(blurred));
-    }
-  }
-  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+unsigned SectionMesher::add_vertex(const Point2& p, int surface) {
+  cs_.position.push_back(lift(to2(p)));
+  cs_.colour.push_back(glm::dvec3(0.0));
+  cs_.material.push_back(glm::dvec2(0.0));
+  cs_.cut_surface.push_back(surface);
+  return static_cast<unsigned>(cs_.position.size() - 1);
+}
+
+bool SectionMesher::split_vertices() {
+  for (auto v = cdt_.finite_vertices_begin(); v != cdt_.finite_vertices_end(); ++v)
+    if (in_domain(cdt_, v)) split_vertex(v);
+  for (auto f = cdt_.finite_faces_begin(); f != cdt_.finite_faces_end(); ++f) {
     if (!f->is_in_domain()) continue;
     glm::uvec3 t;
-    for (int k = 0; k < 3; ++k) t[k] = corner_id.at({f->vertex(k), f});
-    cs.triangle.push_back(t);
+    for (int k = 0; k < 3; ++k) t[k] = corner_id_.at({f->vertex(k), f});
+    cs_.triangle.push_back(t);
   }
+  return !cs_.triangle.empty();
+}
 
-  if (cs.triangle.empty()) throw std::domain_error("the plane only touches the object");
-
-  // 6. PMVC colours of the points not sampled yet: every one left (dense), or the cut
-  // vertices off the bands and then the interior by harmonic sampling (adaptive).
-  for (const glm::dvec3& p : to_diffuse) CUTAWAY_CHECK(std::isfinite(p.x + p.y + p.z));
-  cs.diffused_points += to_diffuse.size();
-  const auto triangulated = std::chrono::steady_clock::now();
-  cs.seconds_triangulate =
-      std::chrono::duration<double>(triangulated - start).count() - seconds_sampling;
-  std::vector<glm::dvec3> colours(to_diffuse.size());
-  std::vector<glm::dvec2> materials(to_diffuse.size());
-  diffusion.diffuse_channels(to_diffuse, colours, materials);
-  cs.seconds_diffuse = seconds_sampling + seconds_since(triangulated);
-  for (size_t i = 0; i < colours.size(); ++i) {
-    for (unsigned id : diffuse_targets[i]) {
-      cs.colour[id] = colours[i];
-      cs.material[id] = materials[i];
+void SectionMesher::split_vertex(Vertex v) {
+  // The faces around v in counter-clockwise order, split at constrained edges.
+  std::vector<Face> faces;
+  auto fc = cdt_.incident_faces(v), done = fc;
+  do {
+    faces.push_back(fc);
+  } while (++fc != done);
+  // Whether the edge between faces[k] and the next face counter-clockwise is constrained:
+  // in face (v, a, b) that edge is (v, b), opposite a = vertex(ccw(index of v)).
+  auto constrained_after = [&](size_t k) {
+    const Face f = faces[k];
+    return f->is_constrained(Cdt::ccw(f->index(v)));
+  };
+  size_t start = faces.size(), constrained = 0;
+  for (size_t k = 0; k < faces.size(); ++k) {
+    if (constrained_after(k)) {
+      if (start == faces.size()) start = (k + 1) % faces.size();
+      ++constrained;
     }
   }
-  if (adaptive) {
-    const auto interior = std::chrono::steady_clock::now();
-    std::vector<bool> free(cs.position.size(), false);
-    for (unsigned id : interpolated) free[id] = true;
-    const HarmonicSamplingCounts counts = sample_harmonically(
-        cs.position, cs.triangle, free, cs.colour, cs.material, diffusion,
-        {options.harmonic_spacing * options.edge_m, 0.5 * options.edge_m, options.tolerance});
-    cs.diffused_points += counts.diffused;
-    cs.seconds_diffuse += seconds_since(interior);
+  // Off the cut segments, or at the open end of one (both sides meet there): diffused.
+  if (constrained < 2) {
+    const unsigned id = add_vertex(v->point(), -1);
+    ++cs_.interior_vertices;
+    if (const auto sampled = samples_.find(v); sampled != samples_.end()) {
+      std::tie(cs_.colour[id], cs_.material[id]) = sampled->second;
+    } else if (adaptive_) {
+      interpolated_.push_back(id);
+    } else {
+      to_diffuse_.push_back(cs_.position[id]);
+      diffuse_targets_.push_back({id});
+    }
+    for (const Face& f : faces) corner_id_[{v, f}] = id;
+    return;
   }
-  return cs;
+  std::vector<unsigned> blurred;
+  for (size_t n = 0; n < faces.size();) {
+    // One wedge: faces from `start` up to and including the next constrained edge.
+    std::vector<Face> wedge;
+    size_t k = (start + n) % faces.size();
+    while (true) {
+      wedge.push_back(faces[k]);
+      ++n;
+      if (constrained_after(k) || n >= faces.size()) break;
+      k = (k + 1) % faces.size();
+    }
+    bool wedge_in = false;
+    for (const Face& f : wedge) wedge_in = wedge_in || (!cdt_.is_infinite(f) && f->is_in_domain());
+    if (!wedge_in) continue;
+    // The wedge is bounded by the constrained edge (v, w) before its first face and the one
+    // after its last face; one of them lies on a cut segment unless both are split lines.
+    const Face first = wedge.front(), last = wedge.back();
+    const int i = first->index(v), j = last->index(v);
+    Vertex c = first->vertex(Cdt::cw(i));
+    const Segment2* s = segment_on(v, first->vertex(Cdt::ccw(i)));
+    if (!s) {
+      s = segment_on(v, last->vertex(Cdt::cw(j)));
+      c = last->vertex(Cdt::ccw(j));
+    }
+    int surface = -1;
+    glm::dvec3 colour(0.0);
+    glm::dvec2 material(0.0);
+    bool diffuse = true;
+    if (s) {
+      const CutSegment& cut = segments_[s->index];
+      surface = cut.surface;
+      const glm::dvec2 p = to2(v->point());
+      const double len2 = glm::dot(s->b - s->a, s->b - s->a);
+      const double t = len2 > 0 ? std::clamp(glm::dot(p - s->a, s->b - s->a) / len2, 0.0, 1.0) : 0;
+      const DsAttributes at = lerp(cut.at_a, cut.at_b, t);
+      const bool front = side_of(*s, to2(c->point())) > 0;
+      colour = at.colour(front);
+      material = at.material(front);
+      diffuse = at.blur > 0;
+    }
+    const unsigned id = add_vertex(v->point(), surface);
+    cs_.colour[id] = colour;
+    cs_.material[id] = material;
+    if (diffuse) blurred.push_back(id);
+    for (const Face& f : wedge) corner_id_[{v, f}] = id;
+  }
+  if (blurred.empty()) return;
+  if (const auto sampled = samples_.find(v); sampled != samples_.end()) {
+    for (unsigned id : blurred) std::tie(cs_.colour[id], cs_.material[id]) = sampled->second;
+  } else {
+    to_diffuse_.push_back(cs_.position[blurred.front()]);
+    diffuse_targets_.push_back(std::move(blurred));
+  }
+}
+
+CrossSection SectionMesher::diffuse_rest(const DiffusionBackend& diffusion) {
+  // Every point left (dense), or the cut vertices off the bands and then the interior by
+  // harmonic sampling (adaptive).
+  for (const glm::dvec3& p : to_diffuse_) CUTAWAY_CHECK(std::isfinite(p.x + p.y + p.z));
+  cs_.diffused_points += to_diffuse_.size();
+  const auto triangulated = std::chrono::steady_clock::now();
+  cs_.seconds_triangulate =
+      std::chrono::duration<double>(triangulated - start_).count() - seconds_sampling_;
+  std::vector<glm::dvec3> colours(to_diffuse_.size());
+  std::vector<glm::dvec2> materials(to_diffuse_.size());
+  diffusion.diffuse_channels(to_diffuse_, colours, materials);
+  cs_.seconds_diffuse = seconds_sampling_ + seconds_since(triangulated);
+  for (size_t i = 0; i < colours.size(); ++i) {
+    for (unsigned id : diffuse_targets_[i]) {
+      cs_.colour[id] = colours[i];
+      cs_.material[id] = materials[i];
+    }
+  }
+  if (adaptive_) {
+    const auto interior = std::chrono::steady_clock::now();
+    std::vector<bool> free(cs_.position.size(), false);
+    for (unsigned id : interpolated_) free[id] = true;
+    const HarmonicSamplingCounts counts = sample_harmonically(
+        cs_.position, cs_.triangle, free, cs_.colour, cs_.material, diffusion,
+        {options_.harmonic_spacing * options_.edge_m, 0.5 * options_.edge_m, options_.tolerance});
+    cs_.diffused_points += counts.diffused;
+    cs_.seconds_diffuse += seconds_since(interior);
+  }
+  return std::move(cs_);
+}
+
+}  // namespace
+
+Outcome<CrossSection> make_cross_section(const DsModel& model, const Plane& plane,
+                                         const DiffusionBackend& diffusion,
+                                         const CrossSectionOptions& options,
+                                         const CapRestriction& restriction) {
+  SectionMesher mesher(model, plane, options, restriction);
+  if (!mesher.collect_segments()) return Outcome<CrossSection>::none(kPlaneMisses);
+  mesher.arrange_constraints();
+  if (!mesher.triangulate_domain()) return Outcome<CrossSection>::none(kPlaneOnlyTouches);
+  mesher.refine();
+  mesher.sample_band_lines(diffusion);
+  if (!mesher.split_vertices()) return Outcome<CrossSection>::none(kPlaneOnlyTouches);
+  return mesher.diffuse_rest(diffusion);
 }
 
 }  // namespace cutaway

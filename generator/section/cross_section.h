@@ -10,6 +10,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "base/outcome.h"
 #include "diffusion/diffusion.h"
 #include "model/ds_model.h"
 #include "section/cut_segments.h"
@@ -86,6 +87,10 @@ struct CrossSection {
   double seconds_diffuse = 0;      ///< wall time: PMVC colours
 };
 
+/// Why make_cross_section gives no cross-section (Outcome::reason).
+inline constexpr const char* kPlaneMisses = "the plane misses the object";
+inline constexpr const char* kPlaneOnlyTouches = "the plane only touches the object";
+
 /// The in-plane frame of a plane: u along the world axis least aligned with the normal,
 /// projected; v = cross(normal, u).
 void plane_frame(const Plane& plane, glm::dvec3& u, glm::dvec3& v);
@@ -101,9 +106,10 @@ void plane_frame(const Plane& plane, glm::dvec3& u, glm::dvec3& v);
 /// With a `restriction`, its split planes' lines are constraints that do not bound the domain
 /// (vertices on them are split like cut vertices and diffused), and triangles whose centroid it
 /// does not keep are left out before diffusion.
-/// @throws std::domain_error when the plane misses the object or only touches it (no area), or
-///         the restriction keeps nothing: the caller reports it as bad input or skips the cap
-CrossSection make_cross_section(const DsModel& model, const Plane& plane,
+/// @returns the cross-section, or none, an expected outcome the caller reports as bad input or
+///          skips (no cap), with the reason kPlaneMisses when no cut segment lies on the skin,
+///          kPlaneOnlyTouches when the cut face has no area or the restriction keeps nothing
+Outcome<CrossSection> make_cross_section(const DsModel& model, const Plane& plane,
                                 const DiffusionBackend& diffusion,
                                 const CrossSectionOptions& options,
                                 const CapRestriction& restriction = {});

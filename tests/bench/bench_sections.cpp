@@ -233,7 +233,7 @@ int main(int argc, char** argv) {
       for (int r = 0; r < repeat; ++r) {
         TimedBackend timed(*cpu);
         const auto t0 = Clock::now();
-        cs = cutaway::make_cross_section(model, cut.plane, timed,
+        cs = *cutaway::make_cross_section(model, cut.plane, timed,
                                          cutaway::CrossSectionOptions{tmpl.edge_m});
         cut_s = std::min(cut_s, seconds_since(t0));
         diffuse_s = std::min(diffuse_s, timed.seconds);
@@ -272,7 +272,7 @@ int main(int argc, char** argv) {
           for (int r = 0; r < repeat; ++r) {
             const auto t0 = Clock::now();
             const cutaway::CrossSection gl_cs =
-                cutaway::make_cross_section(model, cut.plane, *gl_backend, options);
+                *cutaway::make_cross_section(model, cut.plane, *gl_backend, options);
             gl_cut_s = std::min(gl_cut_s, seconds_since(t0));
             gl_pmvc_s = std::min(gl_pmvc_s, gl_cs.seconds_diffuse);
             diffused = gl_cs.diffused_points;

@@ -66,7 +66,7 @@ double time_cut(const cutaway::DsModel& model, const cutaway::Plane& plane,
   for (int r = 0; r < repeat; ++r) {
     const auto t0 = Clock::now();
     const cutaway::CrossSection cs =
-        cutaway::make_cross_section(model, plane, backend, cutaway::CrossSectionOptions{edge_m});
+        *cutaway::make_cross_section(model, plane, backend, cutaway::CrossSectionOptions{edge_m});
     best = std::min(best, seconds_since(t0));
     *section_vertices = cs.position.size();
   }

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "test_support.h"
+#include "variation/variant_batch.h"
 
 namespace cutaway {
 namespace {
@@ -24,12 +25,6 @@ std::string slurp(const fs::path& p) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-uint64_t fnv1a64(const std::string& bytes) {
-  uint64_t h = 0xcbf29ce484222325ULL;
-  for (unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ULL;
-  return h;
 }
 
 uint32_t big_endian_u32(const std::string& s, size_t at) {

@@ -7,7 +7,6 @@
 #include <fstream>
 #include <optional>
 #include <sstream>
-#include <stdexcept>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -97,7 +96,7 @@ TEST(CrossSection, OneColourEverywhereGivesThatColour) {
                           plane_of({0.001, 0.02, 0}, {1, 0.1, 0.3}),
                           plane_of({0, 0.03, 0}, {0.2, 1, -0.4})};
   for (const Plane& plane : planes) {
-    const CrossSection cs = make_cross_section(model, plane, *diffusion, {0.002});
+    const CrossSection cs = *make_cross_section(model, plane, *diffusion, {0.002});
     ASSERT_GT(cs.interior_vertices, 0u);
     size_t cut = 0;
     for (size_t i = 0; i < cs.position.size(); ++i) {
@@ -122,7 +121,7 @@ TEST(CrossSection, ConcentricSpheresMatchTheAnalyticColour) {
                           plane_of({0, 0.005, 0.003}, {0.3, 1, 0.2})};
   for (const Plane& plane : planes) {
     const CrossSection cs =
-        make_cross_section(model, plane, *diffusion, CrossSectionOptions{edge});
+        *make_cross_section(model, plane, *diffusion, CrossSectionOptions{edge});
     double sum = 0, max_err = 0;
     size_t n = 0, inside_inner = 0;
     for (size_t i = 0; i < cs.position.size(); ++i) {
@@ -162,7 +161,7 @@ TEST(CrossSection, PlanesThroughOneLineAgreeOnIt) {
   std::vector<CrossSection> sections;
   for (double deg : {0.0, 50.0, 90.0}) {
     const double th = deg * kPi / 180;
-    sections.push_back(make_cross_section(
+    sections.push_back(*make_cross_section(
         model, plane_of(on_line, {std::cos(th), 0, std::sin(th)}), *diffusion, {t.edge_m}));
   }
   double sum = 0, max_diff = 0, spread_lo = 1e9, spread_hi = -1e9;
@@ -227,7 +226,7 @@ TEST(CrossSection, HollowSideLeavesAHole) {
   const auto diffusion = make_cpu_diffusion(model, DiffusionOptions{8, 0});
   const Plane planes[] = {plane_of({0, 0, 0}, {0, 1, 0}), plane_of({0.002, 0.004, 0}, {1, 0.3, 0.5})};
   for (const Plane& plane : planes) {
-    const CrossSection cs = make_cross_section(model, plane, *diffusion, {t.edge_m});
+    const CrossSection cs = *make_cross_section(model, plane, *diffusion, {t.edge_m});
     expect_valid_triangulation(cs, "hollow");
     const std::vector<CutSegment> segs = cut_segments(model, plane);
     double area = 0;
@@ -270,7 +269,7 @@ TEST(CrossSection, BlurredSurfaceBlendsOverTwiceItsBlur) {
   const double blur = 0.003, a = 0.020;
   const auto diffusion = make_cpu_diffusion(model, DiffusionOptions{16, 0});
   const Plane plane = plane_of({0, 0, 0}, {0, 1, 0});
-  const CrossSection cs = make_cross_section(model, plane, *diffusion, {t.edge_m});
+  const CrossSection cs = *make_cross_section(model, plane, *diffusion, {t.edge_m});
   for (const glm::dvec3 dir : {glm::dvec3(1, 0, 0), glm::normalize(glm::dvec3(-0.6, 0, 0.8))}) {
     const auto profile = blue_profile(cs, dir, a - 3 * blur, a + 3 * blur, 0.0001);
     ASSERT_GT(profile.size(), 100u);
@@ -295,7 +294,7 @@ TEST(CrossSection, BlurredSurfaceBlendsOverTwiceItsBlur) {
   sharp_text.replace(at, 7, "blur: 0");
   const DsModel sharp = build_model(parse_template(sharp_text, "section_sharp.yaml", "."));
   const auto sharp_diffusion = make_cpu_diffusion(sharp, DiffusionOptions{16, 0});
-  const CrossSection cs0 = make_cross_section(sharp, plane, *sharp_diffusion, {t.edge_m});
+  const CrossSection cs0 = *make_cross_section(sharp, plane, *sharp_diffusion, {t.edge_m});
   const glm::dvec3 green(0, 1, 0), blue(0, 0, 1);
   size_t on_inner = 0, greens = 0, blues = 0;
   for (size_t i = 0; i < cs0.position.size(); ++i) {
@@ -331,21 +330,19 @@ TEST(CrossSection, TangentPlaneIsAnErrorOrATinySection) {
   const auto diffusion = make_cpu_diffusion(model, DiffusionOptions{8, 0});
   const double top = model.bbox_max.y;
   EXPECT_NEAR(top, 0.040, 1e-9);
-  try {
-    make_cross_section(model, plane_of({0, 0.040, 0}, {0, 1, 0}), *diffusion, {t.edge_m});
-    ADD_FAILURE() << "a plane touching the pole made a section";
-  } catch (const std::domain_error& e) {
-    EXPECT_NE(std::string(e.what()).find("misses"), std::string::npos) << e.what();
-  }
+  const Outcome<CrossSection> pole =
+      make_cross_section(model, plane_of({0, 0.040, 0}, {0, 1, 0}), *diffusion, {t.edge_m});
+  ASSERT_FALSE(pole) << "a plane touching the pole made a section";
+  EXPECT_EQ(pole.reason(), kPlaneMisses);
   for (double y : {0.039999, top - 1e-9, top - 2e-9, -0.039999}) {
-    try {
-      const CrossSection cs =
-          make_cross_section(model, plane_of({0, y, 0}, {0, 1, 0}), *diffusion, {t.edge_m});
-      expect_valid_triangulation(cs, "y = " + std::to_string(y));
-      for (const glm::dvec3& p : cs.position) EXPECT_LT(std::hypot(p.x, p.z), 0.002);
-    } catch (const std::domain_error& e) {
-      EXPECT_NE(std::string(e.what()).find("misses"), std::string::npos) << e.what();
+    const Outcome<CrossSection> cs =
+        make_cross_section(model, plane_of({0, y, 0}, {0, 1, 0}), *diffusion, {t.edge_m});
+    if (!cs) {
+      EXPECT_EQ(cs.reason(), kPlaneMisses) << "y = " << y;
+      continue;
     }
+    expect_valid_triangulation(*cs, "y = " + std::to_string(y));
+    for (const glm::dvec3& p : cs->position) EXPECT_LT(std::hypot(p.x, p.z), 0.002);
   }
 }
 
@@ -360,7 +357,7 @@ TEST(CrossSection, PlanesThroughVerticesGiveValidTriangulations) {
     const double mid = 0.5 * (model.bbox_min.y + model.bbox_max.y);
     for (const Plane& plane : {plane_of({0, 0, 0}, {0, 0, 1}), plane_of({0, 0, 0}, {1, 0, 0}),
                                plane_of({0, mid, 0}, {0, 1, 0})}) {
-      const CrossSection cs = make_cross_section(model, plane, *diffusion, {t.edge_m});
+      const CrossSection cs = *make_cross_section(model, plane, *diffusion, {t.edge_m});
       expect_valid_triangulation(cs, std::string(file) + " normal " +
                                          std::to_string(plane.normal.x) + "," +
                                          std::to_string(plane.normal.y) + "," +
@@ -373,14 +370,15 @@ TEST(CrossSection, PlanesThroughVerticesGiveValidTriangulations) {
   }
 }
 
-// 6c. A plane beyond the object: a clear error, not an empty section.
-TEST(CrossSection, PlaneMissingTheObjectIsAnError) {
+// 6c. A plane beyond the object: no section, and the reason, not an empty section.
+TEST(CrossSection, PlaneMissingTheObjectGivesNoSection) {
   const DsModel model = model_of("templates/spheres.yaml");
   const auto diffusion = make_cpu_diffusion(model, DiffusionOptions{4, 0});
-  EXPECT_THROW(make_cross_section(model, plane_of({0, 0.1, 0}, {0, 1, 0}), *diffusion, {0.0015}),
-               std::domain_error);
-  EXPECT_THROW(make_cross_section(model, plane_of({0.06, 0, 0}, {1, 1, 0}), *diffusion, {0.0015}),
-               std::domain_error);
+  for (const Plane& plane : {plane_of({0, 0.1, 0}, {0, 1, 0}), plane_of({0.06, 0, 0}, {1, 1, 0})}) {
+    const Outcome<CrossSection> cs = make_cross_section(model, plane, *diffusion, {0.0015});
+    ASSERT_FALSE(cs);
+    EXPECT_EQ(cs.reason(), kPlaneMisses);
+  }
 }
 
 }  // namespace

@@ -39,7 +39,7 @@ TEST_P(SeededDice, PiecesAreClosedWithoutSlivers) {
     PieceOptions options;
     options.section.edge_m = v.tmpl.edge_m;
     const PieceSet set =
-        cut_pieces(v.model, dice, *diffusion, options);
+        *cut_pieces(v.model, dice, *diffusion, options);
     EXPECT_GE(set.pieces.size(), 2u);
     EXPECT_EQ(set.defective_pieces, 0u);
     for (const Piece& piece : set.pieces) {

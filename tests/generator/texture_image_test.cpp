@@ -28,7 +28,7 @@ CapAtlas tomato_cap_atlas() {
   const auto diffusion = make_cpu_diffusion(model, {16, 0});
   PieceOptions options;
   options.section.edge_m = tmpl.edge_m;
-  const PieceSet set = cut_pieces(model, parse_cut_spec("wedges:8", 1e-3), *diffusion, options);
+  const PieceSet set = *cut_pieces(model, parse_cut_spec("wedges:8", 1e-3), *diffusion, options);
   std::vector<const Piece*> pieces;
   for (const Piece& p : set.pieces) pieces.push_back(&p);
   const ColourModulation modulation(tmpl.npr, 7);

@@ -24,7 +24,7 @@ TEST(CubeAccuracy, Cube16AgreesWithCube32OnEveryTemplatesMidHeightCut) {
     const auto cube16 = make_cpu_diffusion(model, DiffusionOptions{16, 0});
     CrossSectionOptions options{t.edge_m};
     options.sampling = CapSampling::Dense;  // every interior vertex diffused, none interpolated
-    const CrossSection cs = make_cross_section(model, cut.plane, *cube16, options);
+    const CrossSection cs = *make_cross_section(model, cut.plane, *cube16, options);
     // Up to 150 diffused (interior) vertices, evenly through the vertex list.
     const std::vector<size_t> picked = test::interior_vertices(cs, 150);
     std::vector<glm::dvec3> points;
