@@ -293,11 +293,11 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
   }
 
   const AssetCamera& camera = assets.camera;
-  const glm::dmat4 view_from_scene = glm::lookAt(camera.eye, camera.target, camera.up);
+  const glm::dmat4 view = view_from_scene(camera);
   const double aspect = static_cast<double>(size.x) / size.y;
   const glm::mat4 clip_from_view(
       glm::perspective(glm::radians(camera.fov_y_deg), aspect, camera.znear, camera.zfar));
-  const glm::dmat3 view_rotation(view_from_scene);
+  const glm::dmat3 view_rotation(view);
 
   const std::unique_ptr<GlContext> context = create_offscreen_context();
   // The vertex array, buffers and depth renderbuffer below are not deleted one by one: they
@@ -330,7 +330,7 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
     if (light.type == LightType::Directional)
       v = glm::dvec4(view_rotation * -glm::normalize(light.direction), 0.0);
     else
-      v = glm::dvec4(glm::dvec3(view_from_scene * glm::dvec4(light.position, 1.0)), 1.0);
+      v = glm::dvec4(glm::dvec3(view * glm::dvec4(light.position, 1.0)), 1.0);
     const glm::dvec3 scale = light.colour * (light.intensity / kReferenceLux * options.exposure);
     for (int k = 0; k < 4; ++k) light_vector[4 * i + k] = static_cast<float>(v[k]);
     for (int k = 0; k < 3; ++k) light_scale[3 * i + k] = static_cast<float>(scale[k]);
@@ -366,7 +366,7 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
     if (list.empty()) continue;
     const glm::dmat4 scene_from_object = glm::translate(glm::dmat4(1.0), inst.translation) *
                                          glm::mat4_cast(glm::normalize(inst.rotation));
-    const glm::mat4 view_from_object(view_from_scene * scene_from_object);
+    const glm::mat4 view_from_object(view * scene_from_object);
     glUniformMatrix4fv(view_from_object_location, 1, GL_FALSE, glm::value_ptr(view_from_object));
     for (const MeshDraw& draw : list) {
       glUniform1i(textured_location, draw.texture >= 0 ? 1 : 0);

@@ -156,14 +156,11 @@ void write_camera(std::string& out, const AssetCamera& c) {
   require(finite(c.eye) && finite(c.target) && finite(c.up), "camera: non-finite vector");
   require(c.fov_y_deg > 0 && c.fov_y_deg < 180, "camera: fov_y_deg outside (0, 180)");
   require(c.aspect > 0 && std::isfinite(c.aspect), "camera: aspect must be positive");
-  const glm::dvec3 view = c.target - c.eye;
-  require(glm::length(view) > 0, "camera: eye equals target");
-  const glm::dvec3 forward = glm::normalize(view);
-  const glm::dvec3 side = glm::cross(forward, c.up);
-  require(glm::length(side) > 1e-12 * std::max(1.0, glm::length(c.up)),
+  require(glm::length(c.target - c.eye) > 0, "camera: eye equals target");
+  require(glm::length(glm::cross(glm::normalize(c.target - c.eye), c.up)) >
+              1e-12 * std::max(1.0, glm::length(c.up)),
           "camera: up is parallel to the view direction");
-  const glm::dvec3 right = glm::normalize(side);
-  const glm::dvec3 up = glm::cross(right, forward);
+  const auto [forward, right, up] = camera_frame(c);
   const double tan_half = std::tan(c.fov_y_deg * kPi / 360.0);
 
   out += "// Camera: eye ";

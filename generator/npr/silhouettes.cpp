@@ -43,9 +43,8 @@ struct Projection {
 
 Projection make_projection(const AssetCamera& c, int width, int height) {
   Projection p;
-  p.view_from_scene = glm::lookAt(c.eye, c.target, c.up);
-  const double t = std::tan(glm::radians(c.fov_y_deg) / 2);
-  p.fy = height / (2 * t);
+  p.view_from_scene = view_from_scene(c);
+  p.fy = focal_length_px(c, height);
   p.fx = p.fy;  // square pixels: the aspect is the image's
   p.cx = width / 2.0;
   p.cy = height / 2.0;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
+#include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -114,6 +115,23 @@ struct AssetCamera {
   double aspect = 4.0 / 3;  ///< width / height
   double znear = 0.01, zfar = 10;  ///< metres
 };
+
+/// The camera's orthonormal frame, as glm::lookAt builds it: forward = normalize(target - eye),
+/// right = normalize(forward x up), up = right x forward (unit vectors, scene frame).
+/// @pre eye != target and `up` not parallel to the view direction
+struct CameraFrame {
+  glm::dvec3 forward, right, up;
+};
+CameraFrame camera_frame(const AssetCamera& camera);
+
+/// Scene (metres) -> view transform: the camera at the origin looking down -z with y up
+/// (glm::lookAt(eye, target, up); its rows are camera_frame's right, up and -forward).
+/// @pre as camera_frame
+glm::dmat4 view_from_scene(const AssetCamera& camera);
+
+/// The focal length in pixels of an image `height_px` pixels tall, with square pixels:
+/// height_px / (2 tan(fov_y / 2)).
+double focal_length_px(const AssetCamera& camera, int height_px);
 
 enum class LightType { Directional, Point };
 

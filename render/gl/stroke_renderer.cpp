@@ -8,7 +8,6 @@
 #include <string>
 
 #include <glm/geometric.hpp>
-#include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 
@@ -80,8 +79,8 @@ void add_run(const std::vector<glm::dvec2>& p, const std::vector<double>& half, 
 void draw_strokes(const std::vector<Stroke>& strokes, const AssetCamera& camera, int width,
                   int height, double width_scale) {
   if (strokes.empty()) return;
-  const glm::dmat4 view_from_scene = glm::lookAt(camera.eye, camera.target, camera.up);
-  const double f = height / (2 * std::tan(glm::radians(camera.fov_y_deg) / 2));
+  const glm::dmat4 view = view_from_scene(camera);
+  const double f = focal_length_px(camera, height);
   std::vector<StrokeVertex> vertices;
   for (const Stroke& s : strokes) {
     std::vector<glm::dvec2> run;
@@ -93,7 +92,7 @@ void draw_strokes(const std::vector<Stroke>& strokes, const AssetCamera& camera,
       half.clear();
     };
     for (size_t k = 0; k < s.points.size(); ++k) {
-      const glm::dvec3 v(view_from_scene * glm::dvec4(s.points[k], 1.0));
+      const glm::dvec3 v(view * glm::dvec4(s.points[k], 1.0));
       if (!(-v.z > camera.znear)) {
         whole = false;
         flush(false);
