@@ -2,10 +2,13 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "base/atomic_file.h"
 #include "model/ds_model.h"
@@ -26,6 +29,12 @@ inline void require_extension(const std::string& option, const std::string& path
   if (std::filesystem::path(path).extension() != ext) {
     throw UsageError(option + ": '" + path + "' must end in " + ext);
   }
+}
+
+/// Prints a subcommand's `--stats`: one line of JSON on stderr (its counts, then "seconds" per
+/// stage), keys in the order given.
+inline void print_stats(const nlohmann::ordered_json& stats) {
+  std::fprintf(stderr, "%s\n", stats.dump().c_str());
 }
 
 // Outputs: every subcommand registers each file it will write in the OutputSet main() owns,

@@ -44,6 +44,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 using cutaway::seconds_since;
+using cutaway::cli::print_stats;
 using cutaway::cli::require_extension;
 using cutaway::cli::UsageError;
 
@@ -90,12 +91,13 @@ int run_model(const ModelArgs& a, bool stats, cutaway::OutputSet& outputs) {
     spdlog::info("wrote {}", a.png);
   }
   if (stats) {
-    std::fprintf(stderr,
-                 "{\"template\": \"%s\", \"surfaces\": %zu, \"vertices\": %zu, \"faces\": %zu, "
-                 "\"seconds\": {\"parse\": %.4f, \"sweep\": %.4f, \"render\": %.4f, "
-                 "\"export\": %.4f}}\n",
-                 tmpl.name.c_str(), model.surfaces.size(), model.vertex_count(),
-                 model.face_count(), t_parse, t_sweep, t_render, t_export);
+    print_stats({{"template", tmpl.name},
+                 {"surfaces", model.surfaces.size()},
+                 {"vertices", model.vertex_count()},
+                 {"faces", model.face_count()},
+                 {"seconds",
+                  {{"parse", t_parse}, {"sweep", t_sweep}, {"render", t_render},
+                   {"export", t_export}}}});
   }
   return 0;
 }
@@ -163,17 +165,20 @@ int run_section(const SectionArgs& a, const std::string& backend, int threads, b
     spdlog::info("wrote {}", a.png);
   }
   if (stats) {
-    std::fprintf(stderr,
-                 "{\"template\": \"%s\", \"backend\": \"%s\", \"ds_faces\": %zu, "
-                 "\"cut_segments\": %zu, \"vertices\": %zu, \"interior_vertices\": %zu, "
-                 "\"diffused_points\": %zu, \"rays\": %zu, \"seconds\": {\"model\": %.4f, "
-                 "\"backend_setup\": %.4f, \"section\": %.4f, \"triangulate\": %.4f, "
-                 "\"diffuse\": %.4f}}\n",
-                 tmpl.name.c_str(), diffusion->name().c_str(), model.face_count(),
-                 section.cut_segments, section.position.size(), section.interior_vertices,
-                 section.diffused_points,
-                 section.diffused_points * 6 * static_cast<size_t>(a.cube * a.cube), t_model,
-                 t_backend, t_section, section.seconds_triangulate, section.seconds_diffuse);
+    print_stats({{"template", tmpl.name},
+                 {"backend", diffusion->name()},
+                 {"ds_faces", model.face_count()},
+                 {"cut_segments", section.cut_segments},
+                 {"vertices", section.position.size()},
+                 {"interior_vertices", section.interior_vertices},
+                 {"diffused_points", section.diffused_points},
+                 {"rays", section.diffused_points * 6 * static_cast<size_t>(a.cube * a.cube)},
+                 {"seconds",
+                  {{"model", t_model},
+                   {"backend_setup", t_backend},
+                   {"section", t_section},
+                   {"triangulate", section.seconds_triangulate},
+                   {"diffuse", section.seconds_diffuse}}}});
   }
   return 0;
 }

@@ -232,15 +232,21 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
       write_outputs(assets, targets, common.threads, a.silhouettes,
                     export_options(a.compress, a.lods, a.textures));
   if (common.stats) {
-    std::fprintf(stderr,
-                 "{\"template\": \"%s\", \"backend\": \"%s\", \"pieces\": %zu, \"planes\": %zu, "
-                 "\"triangles\": %zu, \"diffused_points\": %zu, \"seconds\": {\"model\": %.4f, "
-                 "\"cut\": %.4f, \"sections\": %.4f, \"diffuse\": %.4f, \"clip\": %.4f, "
-                 "\"strokes\": %.4f, \"export\": %.4f, \"png\": %.4f}}\n",
-                 tmpl.name.c_str(), backend_name.c_str(), set.pieces.size(),
-                 set.cells.planes.size(), triangles, set.diffused_points, t_model, t_cut,
-                 set.seconds_sections, set.seconds_diffuse, set.seconds_clip, w.strokes_s,
-                 w.export_s, w.preview_s);
+    print_stats({{"template", tmpl.name},
+                 {"backend", backend_name},
+                 {"pieces", set.pieces.size()},
+                 {"planes", set.cells.planes.size()},
+                 {"triangles", triangles},
+                 {"diffused_points", set.diffused_points},
+                 {"seconds",
+                  {{"model", t_model},
+                   {"cut", t_cut},
+                   {"sections", set.seconds_sections},
+                   {"diffuse", set.seconds_diffuse},
+                   {"clip", set.seconds_clip},
+                   {"strokes", w.strokes_s},
+                   {"export", w.export_s},
+                   {"png", w.preview_s}}}});
   }
   return 0;
 }
@@ -342,7 +348,7 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
           {"export", w.export_s},
           {"png", w.preview_s},
           {"povray", w.povray_s}}}};
-    std::fprintf(stderr, "%s\n", j.dump().c_str());
+    print_stats(j);
   }
   return 0;
 }
