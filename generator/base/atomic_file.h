@@ -42,9 +42,9 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view b
 /// still the default (a signal the process ignores, e.g. SIGHUP under nohup, stays ignored; a
 /// handler of the program's own stays). They use only system calls (unlink, unlinkat, rmdir,
 /// open, lseek, getdents64, close, kill, waitpid, sigaction, raise) and then raise the signal
-/// again with its default
-/// action, so the process still ends "killed by signal N". At most 128 paths are watched at a
-/// time; beyond that a path is simply not watched (it still works, without the cleanup).
+/// again with its default action, so the process still ends "killed by signal N". At most 128
+/// paths and child processes are watched at a time; beyond that one is simply not watched (it
+/// still works, without the cleanup).
 /// Thread-safe.
 class RemoveOnSignal {
  public:
