@@ -284,6 +284,76 @@ glm::dvec3 largest_cap_normal(const Piece& piece) {
   return normal;
 }
 
+CutObject cut_scene_object(SceneAssets& assets, const Variant& variant, uint64_t variant_seed,
+                           const PieceMaterials& materials, const std::string& object,
+                           const ObjectCutOptions& cut, const SceneBuildOptions& options,
+                           SceneStats& st) {
+  if (!options.diffusion) throw std::invalid_argument("cut_scene_object: no diffusion backend");
+  auto t0 = Clock::now();
+  const auto diffusion = options.diffusion(variant.model);
+  st.seconds_backend += seconds_since(t0);
+  PieceOptions piece_options;
+  piece_options.section.edge_m = variant.tmpl.edge_m;
+  piece_options.section.sampling = options.sampling;
+  Outcome<PieceSet> made = cut_pieces(variant.model, cut.cut, *diffusion, piece_options);
+  if (!made)  // every plane misses this variant: keep it whole
+    made = cut_pieces(variant.model, CutSpec{}, *diffusion, piece_options);
+  CutObject out;
+  out.set = std::move(*made);
+  PieceSet& set = out.set;
+  st.seconds_sections += set.seconds_sections;
+  st.seconds_diffuse += set.seconds_diffuse;
+  st.seconds_clip += set.seconds_clip;
+  st.diffused_points += set.diffused_points;
+  st.recut_objects += set.attempts > 1;
+  st.defective_pieces += set.defective_pieces;
+  const size_t n = set.pieces.size();
+  const size_t keep = std::clamp<size_t>(
+      static_cast<size_t>(std::llround(cut.keep * static_cast<double>(n))), 1, n);
+  out.kept = choose(n, keep, cut.keep_seed);
+  const std::vector<size_t>& kept = out.kept;
+  PieceMaterials object_materials = materials;
+  std::vector<std::vector<glm::dvec2>> uv(kept.size());
+  // The kept pieces merged before their skins were unwrapped: the layout and the node extras
+  // see the pieces as cut (the unwrapped skins only add copies of vertices, which would
+  // change nothing but the order in which the layout meets them).
+  std::vector<ShadedMesh> as_cut;
+  if (options.cap_colours == CapColours::Texture) {
+    const auto t_bake = Clock::now();
+    // Swept skins first: unwrapping adds vertices to the skin parts, which come first.
+    const bool swept = variant.tmpl.surfaces[static_cast<size_t>(variant.tmpl.skin)].kind ==
+                       SurfaceKind::Around;
+    if (swept)
+      for (size_t k : kept) as_cut.push_back(merge_parts(set.pieces[k]));
+    const std::vector<std::vector<glm::dvec2>> skin_uv =
+        swept ? unwrap_skins(set, kept) : std::vector<std::vector<glm::dvec2>>(kept.size());
+    std::vector<const Piece*> kept_pieces;
+    for (size_t k : kept) kept_pieces.push_back(&set.pieces[k]);
+    const ColourModulation modulation(variant.tmpl.npr, cut.modulation_seed);
+    object_materials = add_cap_texture(assets, set, kept_pieces, materials, object, &modulation,
+                                       cut.perlin, cut.atlas, uv);
+    object_materials =
+        add_skin_texture(assets, variant.model.skin(), set, kept, skin_uv, object_materials,
+                         object, &modulation, cut.perlin, options.skin, uv);
+    st.seconds_bake += seconds_since(t_bake);
+  }
+  for (size_t q = 0; q < kept.size(); ++q) {
+    const Piece& piece = set.pieces[kept[q]];
+    ShadedMesh merged = merge_parts(piece);
+    // Perlin colour modulation in the object frame: every piece of one object agrees.
+    modulate_colours(merged, variant.tmpl.npr, cut.perlin, cut.modulation_seed);
+    out.meshes.push_back(piece_mesh(merged, piece, object_materials,
+                                    object + "_piece" + std::to_string(piece.cell), uv[q],
+                                    options.cap_colours == CapColours::Texture
+                                        ? coarse_caps(piece, set.sections)
+                                        : std::vector<glm::uvec3>{}));
+    out.shapes.push_back(as_cut.empty() ? std::move(merged) : std::move(as_cut[q]));
+    out.infos.push_back(
+        piece_info(piece, out.shapes.back(), variant.tmpl.name, variant_seed, cut.cut));
+  }
+  return out;
+}
+
 SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptions& options,
                         SceneStats* stats) {
   if (!options.diffusion) throw std::invalid_argument("build_scene: no diffusion backend");
@@ -307,82 +377,37 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
         add_piece_materials(assets, tmpl.name, tmpl.skin_material, tmpl.cut_material);
     for (int j = 0; j < item.count; ++j) {
       const int ii = static_cast<int>(i);
-      auto t0 = Clock::now();
-      const Variant variant = make_variant(tmpl, object_seed(seed, ii, j, 1));
+      const auto t0 = Clock::now();
+      const uint64_t variant_seed = object_seed(seed, ii, j, 1);
+      const Variant variant = make_variant(tmpl, variant_seed);
       st.seconds_variants += seconds_since(t0);
-      t0 = Clock::now();
-      const auto diffusion = options.diffusion(variant.model);
-      st.seconds_backend += seconds_since(t0);
-      PieceOptions piece_options;
-      piece_options.section.edge_m = variant.tmpl.edge_m;
-      piece_options.section.sampling = options.sampling;
-      Outcome<PieceSet> cut = cut_pieces(variant.model, item.cut, *diffusion, piece_options);
-      if (!cut)  // every plane misses this variant: keep it whole
-        cut = cut_pieces(variant.model, CutSpec{}, *diffusion, piece_options);
-      PieceSet set = std::move(*cut);
-      st.seconds_sections += set.seconds_sections;
-      st.seconds_diffuse += set.seconds_diffuse;
-      st.seconds_clip += set.seconds_clip;
-      st.diffused_points += set.diffused_points;
-      st.recut_objects += set.attempts > 1;
-      st.defective_pieces += set.defective_pieces;
-      const size_t n = set.pieces.size();
-      const size_t keep = std::clamp<size_t>(
-          static_cast<size_t>(std::llround(item.keep * static_cast<double>(n))), 1, n);
-      const std::vector<size_t> kept = choose(n, keep, object_seed(seed, ii, j, 2));
+      ObjectCutOptions cut;
+      cut.cut = item.cut;
+      cut.keep = item.keep;
+      cut.keep_seed = object_seed(seed, ii, j, 2);
+      cut.modulation_seed = object_seed(seed, ii, j, 3);
+      cut.perlin = scene.render.perlin;
+      cut.atlas = options.atlas;
+      if (cut.atlas.texels_per_m == 0) cut.atlas.texels_per_m = 1000 * scene.render.texels_per_mm;
       const std::string object =
           "i" + std::to_string(i) + "_" + asset_name(tmpl.name) + "_" + std::to_string(j);
-      PieceMaterials object_materials = item_materials;
-      std::vector<std::vector<glm::dvec2>> uv(kept.size());
-      // The kept pieces merged before their skins were unwrapped: the layout and the node extras
-      // see the pieces as cut (the unwrapped skins only add copies of vertices, which would
-      // change nothing but the order in which the layout meets them).
-      std::vector<ShadedMesh> as_cut;
-      if (options.cap_colours == CapColours::Texture) {
-        const auto t_bake = Clock::now();
-        // Swept skins first: unwrapping adds vertices to the skin parts, which come first.
-        const bool swept = variant.tmpl.surfaces[static_cast<size_t>(variant.tmpl.skin)].kind ==
-                           SurfaceKind::Around;
-        if (swept)
-          for (size_t k : kept) as_cut.push_back(merge_parts(set.pieces[k]));
-        const std::vector<std::vector<glm::dvec2>> skin_uv =
-            swept ? unwrap_skins(set, kept) : std::vector<std::vector<glm::dvec2>>(kept.size());
-        std::vector<const Piece*> kept_pieces;
-        for (size_t k : kept) kept_pieces.push_back(&set.pieces[k]);
-        const ColourModulation modulation(variant.tmpl.npr, object_seed(seed, ii, j, 3));
-        CapAtlasOptions atlas = options.atlas;
-        if (atlas.texels_per_m == 0) atlas.texels_per_m = 1000 * scene.render.texels_per_mm;
-        object_materials = add_cap_texture(assets, set, kept_pieces, item_materials, object,
-                                           &modulation, scene.render.perlin, atlas, uv);
-        object_materials =
-            add_skin_texture(assets, variant.model.skin(), set, kept, skin_uv, object_materials,
-                             object, &modulation, scene.render.perlin, options.skin, uv);
-        st.seconds_bake += seconds_since(t_bake);
-      }
-      for (size_t q = 0; q < kept.size(); ++q) {
-        const Piece& piece = set.pieces[kept[q]];
-        ShadedMesh merged = merge_parts(piece);
-        // Perlin colour modulation in the object frame: every piece of one object agrees.
-        modulate_colours(merged, variant.tmpl.npr, scene.render.perlin,
-                         object_seed(seed, ii, j, 3));
-        meshes.push_back(piece_mesh(merged, piece, object_materials,
-                                    object + "_piece" + std::to_string(piece.cell), uv[q],
-                                    options.cap_colours == CapColours::Texture
-                                        ? coarse_caps(piece, set.sections)
-                                        : std::vector<glm::uvec3>{}));
-        shapes.push_back(as_cut.empty() ? std::move(merged) : std::move(as_cut[q]));
+      CutObject made = cut_scene_object(assets, variant, variant_seed, item_materials, object,
+                                        cut, options, st);
+      for (size_t q = 0; q < made.kept.size(); ++q) {
+        const Piece& piece = made.set.pieces[made.kept[q]];
+        meshes.push_back(std::move(made.meshes[q]));
+        shapes.push_back(std::move(made.shapes[q]));
         arranged.push_back({nullptr, largest_cap_normal(piece), item.arrange, st.objects,
                             piece.cell, cut_faces(piece)});
         densities.push_back(tmpl.density_kg_m3);
-        infos.push_back(
-            piece_info(piece, shapes.back(), tmpl.name, object_seed(seed, ii, j, 1), item.cut));
+        infos.push_back(std::move(made.infos[q]));
       }
       ++st.objects;
       if (options.progress)
         options.progress(st.objects, total,
                          tmpl.name + " " + std::to_string(j + 1) + "/" +
-                             std::to_string(item.count) + ": " + std::to_string(keep) +
-                             " of " + std::to_string(n) + " pieces");
+                             std::to_string(item.count) + ": " + std::to_string(made.kept.size()) +
+                             " of " + std::to_string(made.set.pieces.size()) + " pieces");
     }
   }
   st.pieces = static_cast<int>(shapes.size());

@@ -19,6 +19,7 @@
 #include "scene/scene.h"
 #include "scene/scene_assets.h"
 #include "scene/scene_layout.h"
+#include "variation/variation.h"
 
 namespace cutaway {
 
@@ -153,6 +154,39 @@ PieceMaterials add_skin_texture(SceneAssets& assets, const DsSurface& skin, cons
 
 /// The outward normal of the piece's largest cap (by area), object frame; zero if it has none.
 glm::dvec3 largest_cap_normal(const Piece& piece);
+
+/// How cut_scene_object() cuts and colours one object.
+struct ObjectCutOptions {
+  CutSpec cut;                    ///< a cut that misses the object leaves it whole
+  double keep = 1;                ///< the fraction of the pieces kept, (0, 1]; at least one
+  uint64_t keep_seed = 0;         ///< which pieces are kept (a seeded choice)
+  uint64_t modulation_seed = 0;   ///< Perlin colour modulation, in the object frame
+  double perlin = 1;              ///< its strength, 0..10
+  CapAtlasOptions atlas;          ///< with CapColours::Texture; texels_per_m > 0
+};
+
+/// One object cut into pieces, the kept ones ready for export, all in the object frame.
+struct CutObject {
+  PieceSet set;                    ///< every piece as cut (kept skins unwrapped when textured)
+  std::vector<size_t> kept;        ///< indices into set.pieces, increasing
+  std::vector<AssetMesh> meshes;   ///< per kept piece: as exported (materials, uv), named
+                                   ///< OBJECT_pieceCELL
+  std::vector<ShadedMesh> shapes;  ///< per kept piece: merge_parts as cut (layout, physics)
+  std::vector<PieceInfo> infos;    ///< per kept piece: its glTF node extras
+};
+
+/// Cuts `variant` (built from seed `variant_seed`) as `cut` says with the backend of
+/// options.diffusion, keeps a seeded share of the pieces and makes them exportable: with
+/// CapColours::Texture the caps and swept skins baked into textures added to `assets` (named
+/// after `object`), with materials derived from `materials` (add_piece_materials); colours
+/// Perlin-modulated in the object frame. Adds its timings and counts to `st` (seconds_backend,
+/// sections, diffuse, clip, bake; diffused_points, recut_objects, defective_pieces).
+/// Deterministic, as build_scene.
+/// @throws std::invalid_argument when options.diffusion is empty
+CutObject cut_scene_object(SceneAssets& assets, const Variant& variant, uint64_t variant_seed,
+                           const PieceMaterials& materials, const std::string& object,
+                           const ObjectCutOptions& cut, const SceneBuildOptions& options,
+                           SceneStats& st);
 
 /// Builds the whole scene with `seed` (the file's seed unless the command line gives one).
 /// Deterministic: the same scene, templates and seed give the same assets, whatever the
