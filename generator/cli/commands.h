@@ -107,4 +107,20 @@ struct SheetArgs {
 };
 int run_sheet(const SheetArgs& args, const Common& common, OutputSet& outputs);
 
+/// `cutaway batch BATCH.yaml -o DIR [--shard K/M]`, or with `--slurm [--array M] [--partition
+/// P] [--time T] [--cpus-per-task C] [--dry-run]` an sbatch array script written into DIR and
+/// submitted (generator/cli/batch_command.cpp; doc/batch-format.md).
+struct BatchArgs {
+  std::string batch_path, output_dir, shard;  ///< shard: "" for the whole batch
+  bool slurm = false, dry_run = false;
+  int array = 4, cpus_per_task = 1;
+  std::string partition, time;
+};
+int run_batch_command(const BatchArgs& args, const Common& common, bool quiet);
+
+/// `cutaway batch merge DIR`: checks the shards' manifests against batch.json, writes
+/// manifest.jsonl and contact-sheet.png (the sample's thumbnails, labelled) when every asset is
+/// there; returns 1 when the batch is incomplete.
+int run_batch_merge(const std::string& dir);
+
 }  // namespace cutaway::cli

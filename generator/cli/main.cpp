@@ -22,6 +22,7 @@
 #include "base/error.h"
 #include "base/timer.h"
 #include "cli/commands.h"
+#include "cli/progress_bar.h"
 #include "export/gltf_export.h"
 #include "export/ply_export.h"
 #include "io/plane_spec.h"
@@ -228,27 +229,6 @@ struct VariantsArgs {
   int tile = 256;     ///< contact-sheet tile size, pixels
 };
 
-/// `variants: [=====>    ] 12/40` on stderr, redrawn in place; only when stderr is a terminal.
-class ProgressBar {
- public:
-  ProgressBar(int total, bool enabled) : total_(total), on_(enabled && total > 0) {}
-  void show(int done) const {
-    if (!on_) return;
-    constexpr int kWidth = 30;
-    const int filled = static_cast<int>(int64_t{done} * kWidth / total_);
-    std::string bar(kWidth, ' ');
-    for (int i = 0; i < filled; ++i) bar[i] = '=';
-    if (filled < kWidth) bar[filled] = '>';
-    std::fprintf(stderr, "\rvariants: [%s] %d/%d", bar.c_str(), done, total_);
-    if (done == total_) std::fputc('\n', stderr);
-    std::fflush(stderr);
-  }
-
- private:
-  int total_;
-  bool on_;
-};
-
 /// The horizontal cut of a variant for its contact-sheet tile: the plane y = mid-height of
 /// the skin's bounding box, coloured by PMVC with 8 x 8 texels per cube face (a quarter of
 /// the rays of `section`'s default 16: enough for a thumbnail); none when it misses the skin.
@@ -291,7 +271,7 @@ int run_variants(const VariantsArgs& a, const std::string& backend, int threads,
       a.sheet > 0 ? outputs.add("-o", (dir / "contact-sheet.png").string())
                   : std::filesystem::path();
   std::vector<cutaway::VariantRecord> records;
-  const ProgressBar progress(last - first, !quiet && isatty(fileno(stderr)));
+  const cutaway::cli::ProgressBar progress("variants", last - first, !quiet && isatty(fileno(stderr)));
   progress.show(0);
   std::vector<cutaway::CrossSection> sections;
   std::vector<int> missing;  // sheet tiles whose plane gave no section
@@ -519,6 +499,31 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.1, 100.0));
   add_export_options(scene, scene_args.compress, scene_args.lods, scene_args.textures);
 
+  cutaway::cli::BatchArgs batch_args;
+  CLI::App* batch = app.add_subcommand(
+      "batch", "asset batches: solid cut pieces per variant and cut, sharded, resumable, on "
+               "Slurm (doc/batch-format.md)");
+  batch->require_subcommand(0, 1);
+  batch->add_option("BATCH", batch_args.batch_path, "batch file (.yaml)");
+  batch->add_option("-o,--output", batch_args.output_dir, "output folder");
+  batch->add_option("--shard", batch_args.shard,
+                    "K/M: build only the K-th of M contiguous shares of the variants");
+  batch->add_flag("--slurm", batch_args.slurm,
+                  "write DIR/batch.sbatch, an sbatch array job of --array shards, and submit it");
+  batch->add_option("--array", batch_args.array, "with --slurm: array tasks (shards; default 4)")
+      ->check(CLI::Range(1, 100000));
+  batch->add_option("--partition", batch_args.partition, "with --slurm: the Slurm partition");
+  batch->add_option("--time", batch_args.time, "with --slurm: each task's time limit (e.g. 2:00:00)");
+  batch->add_option("--cpus-per-task", batch_args.cpus_per_task,
+                    "with --slurm: CPUs per task, its --threads (default 1)")
+      ->check(CLI::Range(1, 1024));
+  batch->add_flag("--dry-run", batch_args.dry_run, "with --slurm: write the script, do not submit");
+  std::string merge_dir;
+  CLI::App* batch_merge = batch->add_subcommand(
+      "merge", "check and merge the shards' manifests of DIR; write manifest.jsonl and "
+               "contact-sheet.png");
+  batch_merge->add_option("DIR", merge_dir, "the batch's output folder")->required();
+
   std::vector<std::string> check_files;
   CLI::App* check =
       app.add_subcommand("check", "validate templates and scenes without writing anything");
@@ -558,6 +563,8 @@ int main(int argc, char** argv) {
     if (*piece) return cutaway::cli::run_piece(piece_args, common, outputs);
     if (*sheet) return cutaway::cli::run_sheet(sheet_args, common, outputs);
     if (*scene) return cutaway::cli::run_scene(scene_args, common, outputs);
+    if (*batch_merge) return cutaway::cli::run_batch_merge(merge_dir);
+    if (*batch) return cutaway::cli::run_batch_command(batch_args, common, quiet);
     if (*variants) {
       variants_args.shard_given = variants->count("--shard") > 0;
       return run_variants(variants_args, backend, threads, quiet, outputs);

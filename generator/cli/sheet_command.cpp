@@ -24,7 +24,6 @@
 #include "pieces/pieces.h"
 #include "render/diffusion_backends.h"
 #include "render/image/contact_sheet.h"
-#include "render/image/text_label.h"
 #include "render/scene_preview.h"
 #include "scene/piece_views.h"
 #include "scene/scene_builder.h"
@@ -100,19 +99,7 @@ Image sheet_tile(const LoadedItem& item, const SheetArgs& a, const Common& commo
   preview.strokes = &strokes;
   const Image picture = render_scene_preview(assets, preview);
   // The label strip below the picture: the name, and the cut in grey.
-  const int scale = std::max(1, a.tile / 160);
-  const LabelSize name_size = label_size(tmpl.name, scale);
-  const std::string cut_text = "  " + item.text;
-  const LabelSize cut_size = label_size(cut_text, scale);
-  const int strip = name_size.height + 4 * scale;
-  Image tile;
-  tile.width = a.tile;
-  tile.height = picture_h + strip;
-  tile.rgba.assign(static_cast<size_t>(tile.width) * tile.height * 4, 255);
-  std::copy(picture.rgba.begin(), picture.rgba.end(), tile.rgba.begin());
-  const int x = (tile.width - name_size.width - cut_size.width) / 2;
-  draw_label(tile, tmpl.name, x, picture_h + scale, scale, glm::dvec3(0.0));
-  draw_label(tile, cut_text, x + name_size.width, picture_h + scale, scale, glm::dvec3(0.5));
+  const Image tile = labelled_tile(picture, tmpl.name, item.text, std::max(1, a.tile / 160));
   spdlog::info("{} ({}): {} pieces, {:.1f} s", tmpl.name, item.text, set.pieces.size(),
                seconds_since(t0));
   return tile;

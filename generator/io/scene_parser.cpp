@@ -11,36 +11,16 @@
 
 #include "base/colour.h"
 #include "base/error.h"
+#include "io/format_fields.h"
 #include "io/template_parser.h"
 #include "io/text_rules.h"
 #include "io/yaml_reader.h"
-
-#ifndef CUTAWAY_TEMPLATES_DIR
-#define CUTAWAY_TEMPLATES_DIR "templates"
-#endif
 
 namespace cutaway {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-/// The largest length or coordinate a scene may use, metres: far beyond any table top.
-constexpr double kMaxSceneMetres = 1000;
-
-/// A number in scene units, |value| <= 1 km once in metres. Returns metres.
-double parse_coordinate(const YamlField& f, double metres_per_unit) {
-  const double m = f.number() * metres_per_unit;
-  if (std::fabs(m) > kMaxSceneMetres) f.fail("must be at most 1 km in size (|value| <= 1000 m)");
-  return m;
-}
-
-/// A positive LENGTH in scene units. Returns metres.
-double parse_positive_length(const YamlField& f, double metres_per_unit) {
-  const double m = parse_coordinate(f, metres_per_unit);
-  if (!(m > 0)) f.fail("must be positive");
-  return m;
-}
 
 /// A point [x, y, z] in scene units. Returns metres.
 glm::dvec3 parse_point(const YamlField& f, double metres_per_unit) {
@@ -57,16 +37,6 @@ glm::dvec3 hex_colour(const char* hex) {
     c[k] = std::stoi(std::string(hex + 1 + 2 * k, 2), nullptr, 16) / 255.0;
   }
   return srgb_to_linear(c);
-}
-
-/// An integer in [lo, hi] ("must be a whole number from LO to HI").
-int parse_int_in(const YamlField& f, int lo, int hi) {
-  const int64_t v = f.integer();
-  if (v < lo || v > hi) {
-    f.fail("must be a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
-           ", not " + std::to_string(v));
-  }
-  return static_cast<int>(v);
 }
 
 Container parse_container(const YamlField& f, double m) {
@@ -108,73 +78,6 @@ Container parse_container(const YamlField& f, double m) {
   return c;
 }
 
-/// The cut's length field (slices.thickness, dice.size) for later checks, if any.
-CutSpec parse_cut(const YamlField& f, double m, std::optional<YamlField>& length_field) {
-  CutSpec cut;
-  const YamlField type = f.require("type");
-  const std::string t = type.string();
-  const char* own = nullptr;  // the one field besides `type`
-  if (t == "whole") cut.type = CutType::Whole;
-  else if (t == "halves") cut.type = CutType::Halves;
-  else if (t == "slices") cut.type = CutType::Slices, own = "thickness";
-  else if (t == "wedges") cut.type = CutType::Wedges, own = "count";
-  else if (t == "dice") cut.type = CutType::Dice, own = "size";
-  else
-    type.fail("must be whole, halves, slices, wedges or dice, not " + quoted(t));
-  for (const char* key : {"thickness", "count", "size"}) {
-    if (auto x = f.get(key); x && (!own || std::string_view(own) != key)) {
-      x->fail("a " + quoted(t) + " cut has no " + key);
-    }
-  }
-  if (own) {
-    f.allow_only({"type", own});
-  } else {
-    f.allow_only({"type"});
-  }
-  if (!own) return cut;
-  const YamlField value = f.require(own);
-  if (cut.type == CutType::Wedges) {
-    cut.count = parse_int_in(value, 2, 64);
-    return cut;
-  }
-  const double len = parse_positive_length(value, m);
-  if (len < kMinCutLength_m * (1 - 1e-9)) value.fail("must be at least 0.5 mm");
-  (cut.type == CutType::Slices ? cut.thickness_m : cut.size_m) = len;
-  length_field = value;
-  return cut;
-}
-
-/// The template file an item's `template` value names (see parse_scene).
-std::string resolve_template(const YamlField& f, const fs::path& scene_dir) {
-  const std::string v = f.string();
-  if (v.empty()) f.fail("must not be empty (a template name or a path ending in .yaml)");
-  std::error_code ec;
-  const bool is_path = v.find('/') != std::string::npos ||
-                       (v.size() >= 5 && v.compare(v.size() - 5, 5, ".yaml") == 0);
-  if (is_path) {
-    const fs::path p = fs::path(v).is_absolute() ? fs::path(v) : (scene_dir / v).lexically_normal();
-    if (!fs::is_regular_file(p, ec)) {
-      f.fail("the template file " + quoted(p.string(), 4096) +
-             " does not exist (a path is relative to the "
-             "scene's folder)");
-    }
-    return p.string();
-  }
-  if (const std::string rule = name_rule(v); !rule.empty()) {
-    f.fail("a template is a name or a path ending in .yaml; " + rule);
-  }
-  std::vector<fs::path> dirs{(scene_dir / ".." / "templates").lexically_normal()};
-  if (const char* env = std::getenv("CUTAWAY_TEMPLATES"); env && *env) dirs.emplace_back(env);
-  dirs.emplace_back(CUTAWAY_TEMPLATES_DIR);
-  std::string looked;
-  for (const auto& d : dirs) {
-    const fs::path p = d / (v + ".yaml");
-    if (fs::is_regular_file(p, ec)) return p.string();
-    looked += (looked.empty() ? "" : ", ") + quoted(d.string(), 4096);  // paths whole (PATH_MAX)
-  }
-  f.fail("no template named " + quoted(v) + " (looked for " + v + ".yaml in " + looked + ")");
-}
-
 /// `arrange`: pile, fan or scatter.
 Arrangement parse_arrangement(const YamlField& f) {
   const std::string v = f.string();
@@ -183,32 +86,6 @@ Arrangement parse_arrangement(const YamlField& f) {
   if (v == "scatter") return Arrangement::Scatter;
   f.fail("must be pile, fan or scatter, not " + quoted(v));
 }
-
-/// Reads every item's template once; refuses cuts that make too many pieces.
-class TemplateCheck {
- public:
-  void check(const SceneItem& item, const std::optional<YamlField>& length_field) {
-    auto it = extents_.find(item.template_path);
-    if (it == extents_.end()) {
-      const Template t = load_template(item.template_path);
-      it = extents_.emplace(item.template_path, Entry{t.name, template_extents(t)}).first;
-    }
-    const long long n = estimate_piece_count(item.cut, it->second.extents);
-    if (n > kMaxPiecesPerCut && length_field) {
-      std::ostringstream s;
-      s << "too small: would make " << n << " pieces of template " << quoted(it->second.name)
-        << " (at most " << kMaxPiecesPerCut << " per object)";
-      length_field->fail(s.str());
-    }
-  }
-
- private:
-  struct Entry {
-    std::string name;
-    ObjectExtents extents;
-  };
-  std::map<std::string, Entry> extents_;
-};
 
 Scene parse(std::string_view text, const std::string& file, bool load_templates) {
   const YamlField root = parse_yaml(text, file);
@@ -261,7 +138,7 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
     item.path = f.path();
     const YamlField tmpl = f.require("template");
     item.template_name = tmpl.string();
-    item.template_path = resolve_template(tmpl, scene_dir);
+    item.template_path = resolve_template(tmpl, scene_dir, "scene");
     if (auto x = f.get("count")) item.count = parse_int_in(*x, 1, 64);
     std::optional<YamlField> length_field;
     if (auto x = f.get("cut")) item.cut = parse_cut(*x, m, length_field);
@@ -274,7 +151,7 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
     if (auto x = f.get("variation")) item.variation = x->number_in(0, 10);
     item.arrange = arrange;
     if (auto x = f.get("arrange")) item.arrange = parse_arrangement(*x);
-    if (load_templates) templates.check(item, length_field);
+    if (load_templates) templates.check(item.template_path, item.cut, length_field);
     s.items.push_back(std::move(item));
   }
 

@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "render/image/text_label.h"
 #include "render/section_preview.h"
 
 namespace cutaway {
@@ -120,6 +121,27 @@ std::vector<Image> render_section_tiles(const std::vector<CrossSection>& section
     tiles.push_back(std::move(tile));
   }
   return tiles;
+}
+
+Image labelled_tile(const Image& picture, const std::string& name, const std::string& detail,
+                    int scale) {
+  if (picture.width < 1 || picture.height < 1 ||
+      picture.rgba.size() != static_cast<size_t>(picture.width) * picture.height * 4 || scale < 1)
+    throw std::invalid_argument("labelled_tile: a malformed picture or a scale below 1");
+  const LabelSize name_size = label_size(name, scale);
+  const std::string detail_text = "  " + detail;
+  const LabelSize detail_size = label_size(detail_text, scale);
+  const int strip = name_size.height + 4 * scale;
+  Image tile;
+  tile.width = picture.width;
+  tile.height = picture.height + strip;
+  tile.rgba.assign(static_cast<size_t>(tile.width) * tile.height * 4, 255);
+  std::copy(picture.rgba.begin(), picture.rgba.end(), tile.rgba.begin());
+  const int x = (tile.width - name_size.width - detail_size.width) / 2;
+  draw_label(tile, name, x, picture.height + scale, scale, glm::dvec3(0.0));
+  draw_label(tile, detail_text, x + name_size.width, picture.height + scale, scale,
+             glm::dvec3(0.5));
+  return tile;
 }
 
 }  // namespace cutaway

@@ -3,6 +3,7 @@
 // common scale so that their size differences show.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -32,6 +33,13 @@ struct GridOptions {
 /// @throws std::invalid_argument when tiles is empty or a tile is malformed, columns < 1,
 ///         margin < 0, or the sheet would exceed 16384 pixels on a side
 Image compose_grid(const std::vector<Image>& tiles, int columns, const GridOptions& options = {});
+
+/// `picture` with a white label strip below it: `name` in black followed by two spaces and
+/// `detail` in grey, centred, in the bitmap font of text_label.h at `scale` (>= 1) times its
+/// size. The tile is as wide as the picture and the strip as high as the text plus 4 * scale.
+/// @throws std::invalid_argument when the picture is malformed or scale < 1
+Image labelled_tile(const Image& picture, const std::string& name, const std::string& detail,
+                    int scale);
 
 /// How render_section_tiles() draws.
 struct SectionTileOptions {

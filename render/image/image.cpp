@@ -1,5 +1,6 @@
 #include "render/image/image.h"
 
+#include <stb_image.h>
 #include <stb_image_write.h>
 
 #include <stdexcept>
@@ -9,10 +10,10 @@
 
 namespace cutaway {
 
-void write_png(const std::filesystem::path& path, const Image& image) {
+std::string encode_png(const Image& image) {
   if (image.width < 1 || image.height < 1 ||
       image.rgba.size() != static_cast<size_t>(image.width) * image.height * 4)
-    throw std::invalid_argument("write_png: image of " + std::to_string(image.width) + "x" +
+    throw std::invalid_argument("encode_png: image of " + std::to_string(image.width) + "x" +
                                 std::to_string(image.height) + " pixels has " +
                                 std::to_string(image.rgba.size()) + " bytes, not w*h*4");
   std::string bytes;
@@ -22,8 +23,27 @@ void write_png(const std::filesystem::path& path, const Image& image) {
   };
   if (!stbi_write_png_to_func(append, &bytes, image.width, image.height, 4, image.rgba.data(),
                               image.width * 4))
-    throw std::runtime_error("write_png: cannot encode " + path.string() + " as PNG");
-  write_file_atomically(path, bytes);
+    throw std::runtime_error("encode_png: cannot encode the image as PNG");
+  return bytes;
+}
+
+Image decode_png(std::string_view bytes) {
+  int w = 0, h = 0, channels = 0;
+  unsigned char* pixels =
+      stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()),
+                            static_cast<int>(bytes.size()), &w, &h, &channels, 4);
+  if (pixels == nullptr)
+    throw std::runtime_error(std::string("not a PNG image: ") + stbi_failure_reason());
+  Image image;
+  image.width = w;
+  image.height = h;
+  image.rgba.assign(pixels, pixels + static_cast<size_t>(w) * h * 4);
+  stbi_image_free(pixels);
+  return image;
+}
+
+void write_png(const std::filesystem::path& path, const Image& image) {
+  write_file_atomically(path, encode_png(image));
 }
 
 }  // namespace cutaway

@@ -4,6 +4,8 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
+#include <string_view>
 #include <vector>
 
 namespace cutaway {
@@ -15,7 +17,17 @@ struct Image {
   std::vector<uint8_t> rgba;   ///< width * height * 4 bytes, sRGB8 + alpha, row 0 = top
 };
 
-/// Encodes `image` as PNG (8-bit RGBA, stb_image_write) and writes it atomically
+/// `image` encoded as PNG (8-bit RGBA, stb_image_write).
+/// @param image width, height > 0 and rgba.size() == width * height * 4
+/// @throws std::invalid_argument when the image's size does not match its bytes
+/// @throws std::runtime_error when encoding fails
+std::string encode_png(const Image& image);
+
+/// The image a PNG holds (any bit depth and colour type, converted to 8-bit RGBA; stb_image).
+/// @throws std::runtime_error "not a PNG image: REASON" when `bytes` cannot be decoded
+Image decode_png(std::string_view bytes);
+
+/// Encodes `image` as PNG (encode_png) and writes it atomically
 /// (write_file_atomically(): a failed write leaves no partial file).
 /// @param image width, height > 0 and rgba.size() == width * height * 4
 /// @throws std::invalid_argument when the image's size does not match its bytes

@@ -1,0 +1,190 @@
+#include "batch/batch_assets.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+
+#include <glm/trigonometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include "base/timer.h"
+#include "export/gltf_export.h"
+#include "io/template_parser.h"
+#include "scene/piece_views.h"
+#include "variation/variant_batch.h"
+#include "variation/variation.h"
+
+namespace cutaway {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::string hex64(uint64_t v) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
+  return text;
+}
+
+/// The text an asset's fingerprint hashes: everything its bytes depend on.
+std::string fingerprint_text(const Batch& b, const BatchItem& item, uint64_t seed,
+                             const CutSpec& cut, bool thumbnail, const std::string& settings) {
+  char cut_numbers[96];  // cut_label rounds to micrometres; the fingerprint does not
+  std::snprintf(cut_numbers, sizeof cut_numbers, "%.17g %.17g %d", cut.thickness_m, cut.size_m,
+                cut.count);
+  const nlohmann::ordered_json j = {
+      {"cutaway", CUTAWAY_VERSION},
+      {"template", hex64(item.template_hash)},
+      {"seed", seed},
+      {"variation", item.variation},
+      {"cut", cut_label(cut) + " " + cut_numbers},
+      {"model", b.outputs.model},
+      {"thumbnail", thumbnail ? b.outputs.thumbnail_px : 0},
+      {"compress", static_cast<int>(b.export_options.gltf.compression)},
+      {"lods", b.export_options.gltf.lods},
+      {"textures", static_cast<int>(b.export_options.gltf.textures)},
+      {"texels_per_mm", b.export_options.texels_per_mm},
+      {"perlin", b.export_options.perlin},
+      {"cube", b.export_options.cube},
+      {"settings", settings}};
+  return j.dump();
+}
+
+/// The direction the asset camera looks from: front right, 35 degrees up.
+glm::dvec3 asset_view_direction() {
+  const double up = glm::radians(35.0), around = glm::radians(30.0);
+  return {std::cos(up) * std::sin(around), std::sin(up), std::cos(up) * std::cos(around)};
+}
+
+}  // namespace
+
+std::string cut_file_label(const CutSpec& cut) {
+  std::string label = cut_label(cut);
+  for (char& c : label)
+    if (c == ':') c = '-';
+  return label;
+}
+
+BatchPlan plan_batch(const Batch& batch, const std::string& settings) {
+  BatchPlan plan;
+  for (size_t i = 0; i < batch.items.size(); ++i) {
+    const BatchItem& item = batch.items[i];
+    for (int v = 0; v < item.count; ++v) {
+      const uint64_t seed = item.seed + static_cast<uint64_t>(v);
+      plan.units.push_back({i, seed, plan.assets.size()});
+      for (size_t c = 0; c < item.cuts.size(); ++c) {
+        BatchAsset a;
+        a.unit = plan.units.size() - 1;
+        a.item = i;
+        a.cut = c;
+        a.seed = seed;
+        a.stem = item.template_name + "-" + std::to_string(seed) + "-" + cut_file_label(item.cuts[c]);
+        plan.assets.push_back(std::move(a));
+      }
+    }
+  }
+  const size_t n = plan.assets.size();
+  const size_t sample = std::min(n, static_cast<size_t>(batch.outputs.sample));
+  for (size_t k = 0; k < sample; ++k) plan.assets[k * n / sample].sample = true;
+  for (BatchAsset& a : plan.assets) {
+    a.thumbnail = batch.outputs.thumbnails || a.sample;
+    const BatchItem& item = batch.items[a.item];
+    a.inputs = fnv1a64(fingerprint_text(batch, item, a.seed, item.cuts[a.cut], a.thumbnail,
+                                        settings));
+  }
+  return plan;
+}
+
+std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& plan, size_t unit,
+                                         const BatchBuildOptions& options, UnitTimings* timings) {
+  if (!options.diffusion) throw std::invalid_argument("build_batch_unit: no diffusion backend");
+  UnitTimings local;
+  UnitTimings& t = timings ? *timings : local;
+  t = UnitTimings{};
+  const BatchUnit& u = plan.units.at(unit);
+  const BatchItem& item = batch.items[u.item];
+  auto t0 = Clock::now();
+  Template tmpl = load_template(item.template_path);
+  tmpl.variation_amount *= item.variation;
+  const Variant variant = make_variant(tmpl, u.seed);
+  t.variant = seconds_since(t0);
+  const std::string variant_stem = item.template_name + "-" + std::to_string(u.seed);
+
+  SceneBuildOptions build;
+  build.diffusion = options.diffusion;
+  build.sampling = options.sampling;
+  std::vector<BuiltAsset> out;
+  for (size_t c = 0; c < item.cuts.size(); ++c) {
+    const BatchAsset& a = plan.assets[u.first_asset + c];
+    t0 = Clock::now();
+    SceneAssets assets;
+    assets.name = a.stem;
+    assets.background = {1, 1, 1};
+    const PieceMaterials materials =
+        add_piece_materials(assets, tmpl.name, tmpl.skin_material, tmpl.cut_material);
+    ObjectCutOptions cut;
+    cut.cut = item.cuts[c];
+    cut.modulation_seed = u.seed;
+    cut.perlin = batch.export_options.perlin;
+    cut.atlas.texels_per_m = 1000 * batch.export_options.texels_per_mm;
+    SceneStats st;
+    CutObject object =
+        cut_scene_object(assets, variant, u.seed, materials, asset_name(a.stem), cut, build, st);
+    t.cut += seconds_since(t0) - st.seconds_bake;
+    t.bake += st.seconds_bake;
+
+    t0 = Clock::now();
+    BuiltAsset built;
+    AssetRecord& r = built.record;
+    r.file = a.stem + ".glb";
+    r.template_name = item.template_name;
+    r.seed = u.seed;
+    r.cut = cut_label(item.cuts[c]);
+    r.inputs = a.inputs;
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (size_t q = 0; q < object.meshes.size(); ++q) {
+      for (const glm::dvec3& p : object.shapes[q].position) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+      }
+      r.triangles += object.meshes[q].triangle.size();
+      r.volume_m3 += object.infos[q].volume_m3;
+      assets.instances.push_back({object.meshes[q].name, static_cast<int>(assets.meshes.size()),
+                                  {1, 0, 0, 0}, {0, 0, 0}, object.infos[q]});
+      assets.meshes.push_back(std::move(object.meshes[q]));
+    }
+    r.pieces = object.meshes.size();
+    assets.camera = frame_box(lo, hi, asset_view_direction(), 40, 4.0 / 3);
+    assets.lights = studio_lights(assets.camera);
+    std::string glb = scene_to_glb(assets, batch.export_options.gltf);
+    r.hash = fnv1a64(glb);
+    built.files.push_back({r.file, std::move(glb)});
+    if (batch.outputs.model) {
+      r.model = variant_stem + ".model.glb";
+      std::string model = model_to_glb(variant.model, GltfModelOptions{});
+      r.model_hash = fnv1a64(model);
+      if (c == 0) built.files.push_back({r.model, std::move(model)});
+    }
+    t.export_glb += seconds_since(t0);
+
+    if (a.thumbnail) {
+      if (!options.thumbnail)
+        throw std::invalid_argument("build_batch_unit: a thumbnail is due and no renderer given");
+      t0 = Clock::now();
+      const int w = batch.outputs.thumbnail_px;
+      const SceneAssets grid = grid_piece_assets(object.set, tmpl.name, tmpl.skin_material,
+                                                 tmpl.cut_material, PieceView::Up, w, w * 3 / 4);
+      std::string png = options.thumbnail(grid);
+      r.thumbnail = a.stem + ".png";
+      r.thumbnail_hash = fnv1a64(png);
+      built.files.push_back({r.thumbnail, std::move(png)});
+      t.thumbnail += seconds_since(t0);
+    }
+    out.push_back(std::move(built));
+  }
+  return out;
+}
+
+}  // namespace cutaway

@@ -1,0 +1,223 @@
+#include "batch/batch_manifest.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+namespace cutaway {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string hex64(uint64_t v) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
+  return text;
+}
+
+/// 16 hex digits as a number; none when the text is not that.
+std::optional<uint64_t> parse_hex64(const std::string& text) {
+  if (text.size() != 16 || text.find_first_not_of("0123456789abcdef") != std::string::npos)
+    return std::nullopt;
+  return std::stoull(text, nullptr, 16);
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// A plain file name (no folder, not hidden): what a record may name in the output folder.
+bool plain_file_name(const std::string& name) {
+  return !name.empty() && name[0] != '.' && name.find('/') == std::string::npos &&
+         name.find('\0') == std::string::npos;
+}
+
+}  // namespace
+
+std::string manifest_name(const std::optional<Shard>& shard) {
+  if (!shard) return "manifest.jsonl";
+  return "manifest-" + std::to_string(shard->k) + "-of-" + std::to_string(shard->m) + ".jsonl";
+}
+
+std::string manifest_line(const AssetRecord& r) {
+  nlohmann::ordered_json j = {{"file", r.file},
+                              {"template", r.template_name},
+                              {"seed", r.seed},
+                              {"cut", r.cut},
+                              {"pieces", r.pieces},
+                              {"triangles", r.triangles},
+                              {"volume_m3", r.volume_m3},
+                              {"fnv1a64", hex64(r.hash)}};
+  if (!r.model.empty()) {
+    j["model"] = r.model;
+    j["model_fnv1a64"] = hex64(r.model_hash);
+  }
+  if (!r.thumbnail.empty()) {
+    j["thumbnail"] = r.thumbnail;
+    j["thumbnail_fnv1a64"] = hex64(r.thumbnail_hash);
+  }
+  j["inputs"] = hex64(r.inputs);
+  return j.dump() + "\n";
+}
+
+Outcome<AssetRecord> parse_manifest_line(std::string_view line) {
+  const nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) return Outcome<AssetRecord>::none("not a JSON object");
+  AssetRecord r;
+  try {
+    r.file = j.at("file").get<std::string>();
+    r.template_name = j.at("template").get<std::string>();
+    r.seed = j.at("seed").get<uint64_t>();
+    r.cut = j.at("cut").get<std::string>();
+    r.pieces = j.at("pieces").get<size_t>();
+    r.triangles = j.at("triangles").get<size_t>();
+    r.volume_m3 = j.at("volume_m3").get<double>();
+    const auto hash = parse_hex64(j.at("fnv1a64").get<std::string>());
+    const auto inputs = parse_hex64(j.at("inputs").get<std::string>());
+    if (!hash || !inputs) return Outcome<AssetRecord>::none("a hash is not 16 hex digits");
+    r.hash = *hash;
+    r.inputs = *inputs;
+    if (j.contains("model")) {
+      r.model = j.at("model").get<std::string>();
+      const auto h = parse_hex64(j.at("model_fnv1a64").get<std::string>());
+      if (!h) return Outcome<AssetRecord>::none("model_fnv1a64 is not 16 hex digits");
+      r.model_hash = *h;
+    }
+    if (j.contains("thumbnail")) {
+      r.thumbnail = j.at("thumbnail").get<std::string>();
+      const auto h = parse_hex64(j.at("thumbnail_fnv1a64").get<std::string>());
+      if (!h) return Outcome<AssetRecord>::none("thumbnail_fnv1a64 is not 16 hex digits");
+      r.thumbnail_hash = *h;
+    }
+  } catch (const nlohmann::json::exception& e) {
+    return Outcome<AssetRecord>::none(std::string("a field is missing or of the wrong type: ") +
+                                      e.what());
+  }
+  for (const std::string* name : {&r.file, &r.model, &r.thumbnail})
+    if (!name->empty() && !plain_file_name(*name))
+      return Outcome<AssetRecord>::none("a file name is not a plain name in the folder");
+  if (r.file.empty()) return Outcome<AssetRecord>::none("the file name is empty");
+  return r;
+}
+
+std::vector<AssetRecord> read_manifest(const fs::path& path, size_t* bad_lines) {
+  std::vector<AssetRecord> out;
+  std::istringstream in(read_text(path));
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    Outcome<AssetRecord> r = parse_manifest_line(line);
+    if (r) {
+      out.push_back(std::move(*r));
+    } else if (bad_lines) {
+      ++*bad_lines;
+    }
+  }
+  return out;
+}
+
+bool record_files_intact(const AssetRecord& r, const fs::path& dir) {
+  const std::pair<const std::string*, uint64_t> files[] = {
+      {&r.file, r.hash}, {&r.model, r.model_hash}, {&r.thumbnail, r.thumbnail_hash}};
+  for (const auto& [name, hash] : files) {
+    if (name->empty()) continue;
+    std::error_code ec;
+    if (!fs::is_regular_file(dir / *name, ec)) return false;
+    if (fnv1a64(read_text(dir / *name)) != hash) return false;
+  }
+  return true;
+}
+
+std::string batch_index_text(const Batch& batch, const BatchPlan& plan) {
+  // One asset per line, so that the file reads and diffs well.
+  std::string text = "{\"format\":\"cutaway-batch-index/1\",\"batch\":" +
+                     nlohmann::json(batch.name).dump() +
+                     ",\"units\":" + std::to_string(plan.units.size()) + ",\"assets\":[\n";
+  for (size_t i = 0; i < plan.assets.size(); ++i) {
+    const BatchAsset& a = plan.assets[i];
+    const nlohmann::ordered_json j = {
+        {"stem", a.stem}, {"inputs", hex64(a.inputs)}, {"sample", a.sample}};
+    text += j.dump() + (i + 1 < plan.assets.size() ? ",\n" : "\n");
+  }
+  return text + "]}\n";
+}
+
+Outcome<BatchIndex> read_batch_index(const fs::path& dir) {
+  const fs::path path = dir / "batch.json";
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec))
+    return Outcome<BatchIndex>::none(path.string() + " is missing (not a batch output folder)");
+  const nlohmann::json j = nlohmann::json::parse(read_text(path), nullptr, false);
+  BatchIndex index;
+  try {
+    if (j.is_discarded() || j.at("format") != "cutaway-batch-index/1")
+      return Outcome<BatchIndex>::none(path.string() + " is not a cutaway-batch-index/1 file");
+    index.batch = j.at("batch").get<std::string>();
+    index.units = j.at("units").get<size_t>();
+    for (const auto& a : j.at("assets")) {
+      const auto inputs = parse_hex64(a.at("inputs").get<std::string>());
+      if (!inputs) return Outcome<BatchIndex>::none(path.string() + ": a bad inputs hash");
+      index.assets.push_back({a.at("stem").get<std::string>(), *inputs, a.at("sample").get<bool>()});
+    }
+  } catch (const nlohmann::json::exception& e) {
+    return Outcome<BatchIndex>::none(path.string() + ": " + e.what());
+  }
+  return index;
+}
+
+MergeReport merge_manifests(const BatchIndex& index, const fs::path& dir) {
+  MergeReport report;
+  static const std::regex shard_name(R"(manifest-[0-9]+-of-[0-9]+\.jsonl)");
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (e.is_regular_file() && std::regex_match(name, shard_name)) report.manifests.push_back(name);
+  }
+  if (report.manifests.empty() && fs::is_regular_file(dir / "manifest.jsonl", ec))
+    report.manifests.push_back("manifest.jsonl");
+  std::sort(report.manifests.begin(), report.manifests.end());
+  std::map<std::string, std::vector<AssetRecord>> by_file;
+  for (const std::string& name : report.manifests)
+    for (AssetRecord& r : read_manifest(dir / name, &report.bad_lines))
+      by_file[r.file].push_back(std::move(r));
+  for (const IndexedAsset& a : index.assets) {
+    const std::string file = a.stem + ".glb";
+    auto it = by_file.find(file);
+    if (it == by_file.end()) {
+      report.missing.push_back(a.stem);
+      continue;
+    }
+    std::vector<AssetRecord> listed = std::move(it->second);
+    by_file.erase(it);
+    std::erase_if(listed, [&](const AssetRecord& r) { return r.inputs != a.inputs; });
+    if (listed.empty()) {  // listed only by a run of other inputs (another batch file)
+      report.missing.push_back(a.stem);
+      continue;
+    }
+    const bool same = std::all_of(listed.begin(), listed.end(),
+                                  [&](const AssetRecord& r) { return r == listed.front(); });
+    if (!same) {
+      report.conflicting.push_back(a.stem);
+      continue;
+    }
+    if (listed.size() > 1) report.duplicated.push_back(a.stem);
+    if (!record_files_intact(listed.front(), dir)) {
+      report.damaged.push_back(a.stem);
+      continue;
+    }
+    report.records.push_back(std::move(listed.front()));
+  }
+  for (const auto& [file, records] : by_file) report.unknown.push_back(file);
+  return report;
+}
+
+}  // namespace cutaway

@@ -1,0 +1,172 @@
+#include "io/batch_parser.h"
+
+#include <filesystem>
+#include <algorithm>
+#include <optional>
+
+#include "io/format_fields.h"
+#include "io/text_rules.h"
+#include "io/yaml_reader.h"
+#include "variation/variant_batch.h"
+
+namespace cutaway {
+
+namespace {
+
+/// The largest seed a batch may name: integers above 2^53 do not survive a JSON reader that
+/// keeps numbers as doubles, and the manifest lists every seed.
+constexpr int64_t kMaxBatchSeed = int64_t{1} << 53;
+
+uint64_t parse_seed(const YamlField& f) {
+  const int64_t v = f.integer();
+  if (v < 0 || v > kMaxBatchSeed) f.fail("must be a whole number from 0 to 2^53");
+  return static_cast<uint64_t>(v);
+}
+
+/// The cut fields of every item, kept for the checks load_batch makes once templates are read.
+struct ParsedItem {
+  YamlField item;                                       ///< the item's mapping
+  std::vector<std::optional<YamlField>> length_fields;  ///< per cut
+  std::vector<YamlField> cut_fields;                    ///< per cut
+  std::optional<YamlField> seed_field;
+};
+
+Batch parse(std::string_view text, const std::string& file, std::vector<ParsedItem>* parsed) {
+  const YamlField root = parse_yaml(text, file);
+  Batch b;
+  b.file = file;
+  const YamlField format = root.require("format");
+  if (format.string() != "cutaway-batch/1") {
+    format.fail("unsupported format " + quoted(format.string()) +
+                " (this version of cutaway reads cutaway-batch/1)");
+  }
+  root.allow_only({"format", "name", "seed", "units", "items", "outputs", "export"});
+  const YamlField name = root.require("name");
+  b.name = name.string();
+  if (const std::string rule = name_rule(b.name); !rule.empty()) name.fail(rule);
+  uint64_t seed = 0;
+  if (auto x = root.get("seed")) seed = parse_seed(*x);
+  double m = 1e-3;
+  if (auto u = root.get("units")) {
+    const std::string v = u->string();
+    if (v == "mm") m = 1e-3;
+    else if (v == "cm") m = 1e-2;
+    else if (v == "m") m = 1.0;
+    else
+      u->fail("must be mm, cm or m, not " + quoted(v));
+  }
+  std::filesystem::path dir = std::filesystem::path(file).parent_path();
+  if (dir.empty()) dir = ".";
+  const YamlField items = root.require("items");
+  if (items.size() == 0) items.fail("a batch needs at least one item");
+  for (size_t i = 0; i < items.size(); ++i) {
+    const YamlField f = items[i];
+    f.allow_only({"template", "count", "seed", "variation", "cuts"});
+    BatchItem item;
+    ParsedItem p{f, {}, {}, {}};
+    item.loc = f.loc();
+    item.path = f.path();
+    const YamlField tmpl = f.require("template");
+    item.template_name = tmpl.string();
+    item.template_path = resolve_template(tmpl, dir, "batch");
+    if (auto x = f.get("count")) item.count = parse_int_in(*x, 1, 100000);
+    item.seed = seed;
+    if (auto x = f.get("seed")) {
+      item.seed = parse_seed(*x);
+      p.seed_field = *x;
+    }
+    if (item.seed + static_cast<uint64_t>(item.count) - 1 > static_cast<uint64_t>(kMaxBatchSeed))
+      (p.seed_field ? *p.seed_field : f)
+          .fail("the item's last seed (seed + count - 1) must be at most 2^53");
+    if (auto x = f.get("variation")) item.variation = x->number_in(0, 10);
+    if (auto x = f.get("cuts")) {
+      if (x->size() == 0) x->fail("an item needs at least one cut (or no cuts field: halves)");
+      if (x->size() > 16) x->fail("at most 16 cuts per item");
+      for (size_t c = 0; c < x->size(); ++c) {
+        std::optional<YamlField> length;
+        item.cuts.push_back(parse_cut((*x)[c], m, length));
+        p.length_fields.push_back(length);
+        p.cut_fields.push_back((*x)[c]);
+      }
+    } else {
+      CutSpec halves;
+      halves.type = CutType::Halves;
+      item.cuts.push_back(halves);
+      p.length_fields.emplace_back();
+      p.cut_fields.push_back(f);
+    }
+    b.items.push_back(std::move(item));
+    if (parsed) parsed->push_back(std::move(p));
+  }
+  if (auto o = root.get("outputs")) {
+    o->allow_only({"model", "thumbnails", "thumbnail_size", "sample"});
+    if (auto x = o->get("model")) b.outputs.model = x->boolean();
+    if (auto x = o->get("thumbnails")) b.outputs.thumbnails = x->boolean();
+    if (auto x = o->get("thumbnail_size")) b.outputs.thumbnail_px = parse_int_in(*x, 64, 1024);
+    if (auto x = o->get("sample")) b.outputs.sample = parse_int_in(*x, 0, 64);
+  }
+  if (auto e = root.get("export")) {
+    e->allow_only({"compress", "lods", "textures", "texels_per_mm", "perlin", "cube"});
+    if (auto x = e->get("compress")) {
+      const std::string v = x->string();
+      if (v != "none" && v != "quantize" && v != "meshopt")
+        x->fail("must be none, quantize or meshopt, not " + quoted(v));
+      b.export_options.gltf.compression = parse_gltf_compression(v);
+    }
+    if (auto x = e->get("lods")) b.export_options.gltf.lods = parse_int_in(*x, 0, 4);
+    if (auto x = e->get("textures")) {
+      const std::string v = x->string();
+      if (v != "jpeg" && v != "png") x->fail("must be jpeg or png, not " + quoted(v));
+      b.export_options.gltf.textures = v == "png" ? TextureFormat::Png : TextureFormat::Jpeg;
+    }
+    if (auto x = e->get("texels_per_mm")) b.export_options.texels_per_mm = x->number_in(0.1, 100);
+    if (auto x = e->get("perlin")) b.export_options.perlin = x->number_in(0, 10);
+    if (auto x = e->get("cube")) b.export_options.cube = parse_int_in(*x, 2, 256);
+  }
+  return b;
+}
+
+}  // namespace
+
+Batch parse_batch(std::string_view text, const std::string& file) {
+  return parse(text, file, nullptr);
+}
+
+Batch load_batch(const std::string& path) {
+  const std::string text = read_input_file(path);
+  std::vector<ParsedItem> parsed;
+  Batch b = parse(text, path, &parsed);
+  TemplateCheck templates;
+  // An asset is named by its template, seed and cut (batch_assets.h): no two may agree.
+  for (size_t i = 0; i < b.items.size(); ++i) {
+    BatchItem& item = b.items[i];
+    for (size_t c = 0; c < item.cuts.size(); ++c)
+      item.template_name =
+          templates.check(item.template_path, item.cuts[c], parsed[i].length_fields[c]);
+    item.template_hash = fnv1a64(read_input_file(item.template_path));
+    for (size_t c = 0; c < item.cuts.size(); ++c)
+      for (size_t d = 0; d < c; ++d)
+        if (cut_label(item.cuts[c]) == cut_label(item.cuts[d]))
+          parsed[i].cut_fields[c].fail("the same cut as cuts[" + std::to_string(d) + "] (" +
+                                       cut_label(item.cuts[c]) + ")");
+    for (size_t j = 0; j < i; ++j) {
+      const BatchItem& other = b.items[j];
+      if (other.template_name != item.template_name) continue;
+      const uint64_t lo = std::max(item.seed, other.seed);
+      const uint64_t hi = std::min(item.seed + item.count, other.seed + other.count);
+      if (lo >= hi) continue;
+      for (const CutSpec& cut : item.cuts)
+        for (const CutSpec& theirs : other.cuts)
+          if (cut_label(cut) == cut_label(theirs)) {
+            const std::string rule = "makes the assets of " + other.path + " again (template " +
+                                     quoted(item.template_name) + ", seed " +
+                                     std::to_string(lo) + ", cut " + cut_label(cut) +
+                                     "): give it other seeds";
+            (parsed[i].seed_field ? *parsed[i].seed_field : parsed[i].item).fail(rule);
+          }
+    }
+  }
+  return b;
+}
+
+}  // namespace cutaway
