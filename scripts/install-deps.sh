@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what cutaway needs on Debian 12: the Debian packages for building and running it,
-# and (with --test) the test tools: Chromium (Debian's package) and, from npm into node_modules/
+# and (with --test) the test tools: Chromium, slurm-wlm and munge (the one-node Slurm cluster
+# of the batch test) from Debian, and, from npm into node_modules/
 # (package-lock.json, exact versions), the Khronos glTF validator, three.js (its GLTFLoader is
 # the real glTF client of tests/tools/load_gltf_three.mjs) and playwright-core (drives Chromium).
 # A fast no-op when everything is already present.
@@ -16,7 +17,7 @@ packages=(
   povray
 )
 test_packages=(libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev nodejs npm
-               chromium)
+               chromium slurm-wlm munge)
 
 want=("${packages[@]}")
 with_tests=0
