@@ -1,0 +1,57 @@
+// `cutaway batch` and `cutaway batch merge` at the command line: bad input is exit code 2 with
+// the file, line, column and field, and writes nothing; an incomplete batch does not merge.
+// (The whole path, local and on Slurm, is the test SlurmBatchArrayMatchesLocalRun.)
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "test_support.h"
+
+namespace cutaway::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(BatchCommand, BadBatchFileIsExitCode2AndWritesNothing) {
+  const fs::path dir = fresh_dir("batch-cli");
+  const fs::path file = dir / "bad.yaml";
+  std::ofstream(file) << "format: cutaway-batch/1\nname: bad\nitems:\n  - template: tomato\n"
+                         "    count: many\n";
+  const RunResult r = run_cutaway({"batch", file.string(), "-o", (dir / "out").string()});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("bad.yaml:5:12: items[0].count: "), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+TEST(BatchCommand, MergeRefusesAFolderThatIsNoBatchAndAnIncompleteBatch) {
+  const fs::path dir = fresh_dir("batch-merge");
+  RunResult r = run_cutaway({"batch", "merge", dir.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("batch.json is missing"), std::string::npos) << r.err;
+  // A one-shard-of-four run of a batch: the other shards are reported missing.
+  r = run_cutaway({"-q", "batch", source_path("tests/data/batches/four-variants.yaml").string(),
+                   "-o", dir.string(), "--shard", "4/4", "--backend", "cpu"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_cutaway({"batch", "merge", dir.string()});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("5 assets missing (in no manifest): persimmon-7-wedges-4"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir / "manifest.jsonl"));
+}
+
+TEST(BatchCommand, SlurmDryRunWritesTheScriptOnly) {
+  const fs::path dir = fresh_dir("batch-slurm");
+  const RunResult r =
+      run_cutaway({"-q", "batch", source_path("tests/data/batches/four-variants.yaml").string(),
+                   "-o", dir.string(), "--slurm", "--array", "3", "--dry-run"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string script = read_file(dir / "batch.sbatch");
+  EXPECT_NE(script.find("#SBATCH --array=1-3"), std::string::npos) << script;
+  EXPECT_NE(script.find("--shard \"${SLURM_ARRAY_TASK_ID}/3\""), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "batch.json"));
+}
+
+}  // namespace
+}  // namespace cutaway::test
