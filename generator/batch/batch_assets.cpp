@@ -132,11 +132,13 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
     SceneStats st;
     CutObject object =
         cut_scene_object(assets, variant, u.seed, materials, asset_name(a.stem), cut, build, st);
-    t.cut += seconds_since(t0) - st.seconds_bake;
-    t.bake += st.seconds_bake;
+    BuiltAsset built;
+    UnitTimings& own = built.seconds;
+    own.variant = t.variant / static_cast<double>(item.cuts.size());
+    own.cut = seconds_since(t0) - st.seconds_bake;
+    own.bake = st.seconds_bake;
 
     t0 = Clock::now();
-    BuiltAsset built;
     AssetRecord& r = built.record;
     r.file = a.stem + ".glb";
     r.template_name = item.template_name;
@@ -167,7 +169,7 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
       r.model_hash = fnv1a64(model);
       if (c == 0) built.files.push_back({r.model, std::move(model)});
     }
-    t.export_glb += seconds_since(t0);
+    own.export_glb = seconds_since(t0);
 
     if (a.thumbnail) {
       if (!options.thumbnail)
@@ -180,8 +182,12 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
       r.thumbnail = a.stem + ".png";
       r.thumbnail_hash = fnv1a64(png);
       built.files.push_back({r.thumbnail, std::move(png)});
-      t.thumbnail += seconds_since(t0);
+      own.thumbnail = seconds_since(t0);
     }
+    t.cut += own.cut;
+    t.bake += own.bake;
+    t.export_glb += own.export_glb;
+    t.thumbnail += own.thumbnail;
     out.push_back(std::move(built));
   }
   return out;

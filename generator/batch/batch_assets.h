@@ -75,10 +75,16 @@ struct AssetRecord {
   friend bool operator==(const AssetRecord&, const AssetRecord&) = default;
 };
 
+/// Wall seconds of building assets, by stage.
+struct UnitTimings {
+  double variant = 0, cut = 0, bake = 0, export_glb = 0, thumbnail = 0;
+};
+
 /// One built asset: its record and its files (the model file with the unit's first asset only).
 struct BuiltAsset {
   AssetRecord record;
   std::vector<BatchFile> files;
+  UnitTimings seconds;  ///< what this asset took (the variant's time shared evenly by its cuts)
 };
 
 /// Renders a SceneAssets (a few pieces on the ground, grid_piece_assets) to PNG bytes.
@@ -89,11 +95,6 @@ struct BatchBuildOptions {
   DiffusionFactory diffusion;  ///< required
   CapSampling sampling = CapSampling::Adaptive;
   ThumbnailRenderer thumbnail;  ///< required when the unit has an asset with a thumbnail
-};
-
-/// Wall seconds of one build_batch_unit call, by stage.
-struct UnitTimings {
-  double variant = 0, cut = 0, bake = 0, export_glb = 0, thumbnail = 0;
 };
 
 /// Builds unit `unit` of `plan`: the variant (make_variant with the item's variation), then
