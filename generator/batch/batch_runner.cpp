@@ -133,6 +133,8 @@ BatchRunResult run_batch(const Batch& batch, const BatchPlan& plan, const fs::pa
     progress.assets_skipped = result.skipped;
     progress.variant = batch.items[unit.item].template_name + "-" + std::to_string(unit.seed);
     progress.skipped = all_there;
+    progress.assets.clear();
+    for (size_t c = 0; c < cuts; ++c) progress.assets.push_back(plan.assets[unit.first_asset + c].stem);
     progress.seconds = seconds_since(t0);
     const nlohmann::ordered_json timing = {
         {"variant", progress.variant},

@@ -9,6 +9,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "batch/batch_assets.h"
 #include "variation/variant_batch.h"
@@ -20,6 +21,7 @@ struct BatchProgress {
   size_t units_done = 0, units = 0;  ///< variants of the shard done (built or skipped), in all
   size_t assets_built = 0, assets_skipped = 0;  ///< so far
   std::string variant;  ///< the variant just done, TEMPLATE-SEED
+  std::vector<std::string> assets;  ///< its assets' stems, in order
   bool skipped = false; ///< its assets were all there already
   double seconds = 0;   ///< the wall time it took
 };

@@ -101,12 +101,17 @@ int run_batch_command(const BatchArgs& a, const Common& common, bool quiet) {
   const int units = s.end(static_cast<int>(plan.units.size())) -
                     s.begin(static_cast<int>(plan.units.size()));
   const ProgressBar bar("batch", units, !quiet && isatty(fileno(stderr)));
+  size_t assets = 0;  // of the shard
+  for (int u = s.begin(static_cast<int>(plan.units.size())); u < s.end(static_cast<int>(plan.units.size())); ++u)
+    assets += batch.items[plan.units[static_cast<size_t>(u)].item].cuts.size();
   bar.show(0);
   options.progress = [&](const BatchProgress& p) {
     bar.show(static_cast<int>(p.units_done));
-    if (!bar.enabled())
-      spdlog::info("[{}/{}] {}: {} ({:.1f} s)", p.units_done, p.units, p.variant,
-                   p.skipped ? "already there" : "built", p.seconds);
+    if (bar.enabled()) return;
+    const size_t done = p.assets_built + p.assets_skipped;
+    for (size_t i = 0; i < p.assets.size(); ++i)
+      spdlog::info("[{}/{}] {}: {}", done - p.assets.size() + i + 1, assets, p.assets[i],
+                   p.skipped ? "already there" : "built");
   };
   const BatchRunResult r = run_batch(batch, plan, a.output_dir, options);
   spdlog::info("{}{}: {} assets built, {} already there, {} in {}", batch.name,

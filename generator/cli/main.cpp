@@ -25,6 +25,7 @@
 #include "cli/progress_bar.h"
 #include "export/gltf_export.h"
 #include "export/ply_export.h"
+#include "io/batch_parser.h"
 #include "io/plane_spec.h"
 #include "io/scene_parser.h"
 #include "io/template_parser.h"
@@ -184,23 +185,46 @@ int run_section(const SectionArgs& a, const std::string& backend, int threads, b
   return 0;
 }
 
+/// Builds the model of each template in `paths` once, so that its geometric rules are checked
+/// too (a scene's or batch's templates).
+void check_models(const std::vector<std::string>& paths) {
+  for (const std::string& path : std::set<std::string>(paths.begin(), paths.end())) {
+    const cutaway::Template t = cutaway::load_template(path);
+    cutaway::check_grain_limits(t, cutaway::build_model(t));
+  }
+}
+
 int run_check(const std::vector<std::string>& files) {
   int failed = 0;
   for (const auto& f : files) {
     try {
-      // A scene says so in its `format` (cutaway-scene/...); anything else is a template.
+      // A scene or batch says so in its `format` (cutaway-scene/..., cutaway-batch/...);
+      // anything else is a template.
       const auto format = cutaway::load_yaml_file(f).get("format");
-      if (format && format->is_scalar() && format->string().rfind("cutaway-scene/", 0) == 0) {
+      const std::string kind = format && format->is_scalar() ? format->string() : "";
+      if (kind.rfind("cutaway-batch/", 0) == 0) {
+        const cutaway::Batch batch = cutaway::load_batch(f);
+        int variants = 0, assets = 0;
+        std::vector<std::string> templates;
+        for (const auto& item : batch.items) {
+          variants += item.count;
+          assets += item.count * static_cast<int>(item.cuts.size());
+          templates.push_back(item.template_path);
+        }
+        check_models(templates);
+        std::printf("%s: ok (batch '%s', %zu items, %d variants, %d assets)\n", f.c_str(),
+                    batch.name.c_str(), batch.items.size(), variants, assets);
+        continue;
+      }
+      if (kind.rfind("cutaway-scene/", 0) == 0) {
         const cutaway::Scene scene = cutaway::load_scene(f);
         int objects = 0;
-        std::set<std::string> built;  // each template's model once: its geometric rules too
+        std::vector<std::string> templates;
         for (const auto& item : scene.items) {
           objects += item.count;
-          if (built.insert(item.template_path).second) {
-            const cutaway::Template t = cutaway::load_template(item.template_path);
-            cutaway::check_grain_limits(t, cutaway::build_model(t));
-          }
+          templates.push_back(item.template_path);
         }
+        check_models(templates);
         std::printf("%s: ok (scene '%s', %zu items, %d objects)\n", f.c_str(),
                     scene.name.c_str(), scene.items.size(), objects);
         continue;
@@ -282,9 +306,8 @@ int run_variants(const VariantsArgs& a, const std::string& backend, int threads,
     const std::string glb = cutaway::model_to_glb(v.model, cutaway::GltfModelOptions{});
     const std::string file = tmpl.name + "-" + std::to_string(seed) + ".glb";
     cutaway::write_file_atomically(glb_files[static_cast<size_t>(i - first)], glb);
-    records.push_back({file, seed, cutaway::fnv1a64(glb), v.model.face_count(), v.tmpl.folds,
-                       seconds_since(t0)});
-    spdlog::debug("wrote {}", (dir / file).string());
+    records.push_back({file, seed, cutaway::fnv1a64(glb), v.model.face_count(), v.tmpl.folds});
+    spdlog::debug("wrote {} ({:.2f} s)", (dir / file).string(), seconds_since(t0));
     progress.show(i - first + 1);
   }
   cutaway::write_file_atomically(
@@ -526,8 +549,8 @@ int main(int argc, char** argv) {
 
   std::vector<std::string> check_files;
   CLI::App* check =
-      app.add_subcommand("check", "validate templates and scenes without writing anything");
-  check->add_option("FILE", check_files, "template and scene files")->required();
+      app.add_subcommand("check", "validate templates, scenes and batches without writing anything");
+  check->add_option("FILE", check_files, "template, scene and batch files")->required();
 
   auto logger = spdlog::stderr_color_st("cutaway");
   spdlog::set_default_logger(logger);

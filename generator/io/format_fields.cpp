@@ -1,5 +1,6 @@
 #include "io/format_fields.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -92,8 +93,12 @@ std::string resolve_template(const YamlField& f, const fs::path& scene_dir, cons
     f.fail("a template is a name or a path ending in .yaml; " + rule);
   }
   std::vector<fs::path> dirs{(scene_dir / ".." / "templates").lexically_normal()};
-  if (const char* env = std::getenv("CUTAWAY_TEMPLATES"); env && *env) dirs.emplace_back(env);
-  dirs.emplace_back(CUTAWAY_TEMPLATES_DIR);
+  const auto add = [&](const fs::path& d) {  // each folder once (messages list them)
+    if (std::find(dirs.begin(), dirs.end(), d.lexically_normal()) == dirs.end())
+      dirs.push_back(d.lexically_normal());
+  };
+  if (const char* env = std::getenv("CUTAWAY_TEMPLATES"); env && *env) add(env);
+  add(CUTAWAY_TEMPLATES_DIR);
   std::string looked;
   for (const auto& d : dirs) {
     const fs::path p = d / (v + ".yaml");

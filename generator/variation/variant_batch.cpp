@@ -36,13 +36,12 @@ std::string variant_manifest(const std::string& name, const std::optional<Shard>
   out += "\"variants\": [\n";
   for (size_t i = 0; i < records.size(); ++i) {
     const VariantRecord& r = records[i];
-    char hash[17], seconds[32];
+    char hash[17];
     std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(r.hash));
-    std::snprintf(seconds, sizeof seconds, "%.4f", r.seconds);
     out += "  {\"file\": \"" + r.file + "\", \"seed\": " + std::to_string(r.seed) +
            ", \"template\": \"" + name + "\", \"fnv1a64\": \"" + hash +
            "\", \"ds_faces\": " + std::to_string(r.ds_faces) +
-           ", \"folds\": " + std::to_string(r.folds) + ", \"seconds\": " + seconds + "}" +
+           ", \"folds\": " + std::to_string(r.folds) + "}" +
            (i + 1 < records.size() ? "," : "") + "\n";
   }
   out += "]}\n";
