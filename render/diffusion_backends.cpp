@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "base/error.h"
 #include "render/gl/gl_context.h"
 #include "render/gl/pmvc_gl.h"
 
@@ -11,7 +12,7 @@ DiffusionChoice parse_diffusion_choice(const std::string& name) {
   if (name == "auto") return DiffusionChoice::Auto;
   if (name == "cpu") return DiffusionChoice::Cpu;
   if (name == "gl") return DiffusionChoice::Gl;
-  throw std::invalid_argument("unknown diffusion backend '" + name + "' (auto, cpu or gl)");
+  throw InternalError("unknown diffusion backend '" + name + "' (auto, cpu or gl)");
 }
 
 std::unique_ptr<DiffusionBackend> make_diffusion(const DsModel& model,

@@ -18,7 +18,7 @@ enum class DiffusionChoice {
 };
 
 /// "auto", "cpu" or "gl" to a DiffusionChoice.
-/// @throws std::invalid_argument for any other text
+/// @throws InternalError for any other text
 DiffusionChoice parse_diffusion_choice(const std::string& name);
 
 /// The backend for `choice`. Both give the same colours within the tolerance the tests state.

@@ -15,6 +15,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "base/atomic_file.h"
+#include "base/error.h"
 #include "render/gl/gl_buffers.h"
 #include "render/gl/gl_context.h"
 #include "render/gl/gl_program.h"
@@ -44,7 +45,7 @@ struct PreviewGeometry {
 
 void check_options(const PreviewOptions& o) {
   auto fail = [](const std::string& what) {
-    throw std::invalid_argument("render_model_preview: " + what);
+    throw InternalError("render_model_preview: " + what);
   };
   if (o.width < 1 || o.height < 1 || o.width > kMaxImageSide || o.height > kMaxImageSide)
     fail("image size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
@@ -144,13 +145,13 @@ void sort_back_to_front(const glm::dmat4& view_from_object,
 Image render_model_preview(const DsModel& model, const PreviewOptions& options) {
   check_options(options);
   if (model.face_count() == 0)
-    throw std::invalid_argument("render_model_preview: model '" + model.name +
-                                "' has no triangles");
+    throw InternalError("render_model_preview: model '" + model.name +
+                        "' has no triangles");
   const glm::dvec3 centre = 0.5 * (model.bbox_min + model.bbox_max);
   const double diagonal_m = glm::length(model.bbox_max - model.bbox_min);
   if (!(diagonal_m > 0) || !std::isfinite(diagonal_m))
-    throw std::invalid_argument("render_model_preview: model '" + model.name +
-                                "' has an empty or non-finite bounding box (update_bounds()?)");
+    throw InternalError("render_model_preview: model '" + model.name +
+                        "' has an empty or non-finite bounding box (update_bounds()?)");
   PreviewGeometry geometry = build_geometry(model, options);
   // Bounding sphere about the bbox centre, through the farthest vertex (tighter than the bbox's
   // circumscribed sphere for round fruit).

@@ -41,7 +41,7 @@ struct PreviewOptions {
 ///                positive, finite diagonal
 /// @param options see PreviewOptions for ranges
 /// @returns an opaque image of options.width x options.height pixels
-/// @throws std::invalid_argument when the model or options break the preconditions
+/// @throws InternalError when the model or options break the preconditions
 /// @throws std::runtime_error when no OpenGL context can be created or rendering fails
 Image render_model_preview(const DsModel& model, const PreviewOptions& options);
 

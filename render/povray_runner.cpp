@@ -12,6 +12,7 @@
 
 #include "base/atomic_file.h"
 #include "base/child_process.h"
+#include "base/error.h"
 
 namespace cutaway {
 
@@ -74,15 +75,15 @@ std::string read_bytes(const fs::path& path) {
 void render_povray(const fs::path& pov_file, const fs::path& png_out, int width, int height,
                    const PovrayOptions& options) {
   if (width < 1 || width > 16384 || height < 1 || height > 16384) {
-    throw std::invalid_argument("render_povray: image size " + std::to_string(width) + "x" +
-                                std::to_string(height) + " outside 1..16384");
+    throw InternalError("render_povray: image size " + std::to_string(width) + "x" +
+                        std::to_string(height) + " outside 1..16384");
   }
   if (options.quality < 0 || options.quality > 11) {
-    throw std::invalid_argument("render_povray: quality " + std::to_string(options.quality) +
-                                " outside 0..11");
+    throw InternalError("render_povray: quality " + std::to_string(options.quality) +
+                        " outside 0..11");
   }
   if (options.threads < 0) {
-    throw std::invalid_argument("render_povray: threads must be >= 0");
+    throw InternalError("render_povray: threads must be >= 0");
   }
   const std::string exe =
       find_executable(options.executable, "install POV-Ray 3.7 (scripts/install-deps.sh "

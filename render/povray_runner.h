@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 
+
 namespace cutaway {
 
 /// How render_povray() runs POV-Ray.
@@ -40,7 +41,7 @@ struct PovrayOptions {
 /// @param png_out   where the PNG goes; missing parent directories are created
 /// @param width, height  image size in pixels, 1..16384 each
 /// @param options   quality in 0..11, threads >= 0
-/// @throws std::invalid_argument when the size or options are out of range
+/// @throws InternalError when the size or options are out of range
 /// @throws std::runtime_error when the scene cannot be read, `povray` cannot be started (not
 ///         installed), exits with an error or is killed, or writes no image; the message holds
 ///         the last lines POV-Ray printed

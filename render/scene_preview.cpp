@@ -16,6 +16,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat4x4.hpp>
 
+#include "base/error.h"
 #include "render/gl/gl_buffers.h"
 #include "render/gl/gl_context.h"
 #include "render/gl/gl_program.h"
@@ -56,7 +57,7 @@ struct MeshDraw {
 };
 
 [[noreturn]] void fail(const std::string& what) {
-  throw std::invalid_argument("render_scene_preview: " + what);
+  throw InternalError("render_scene_preview: " + what);
 }
 
 bool finite(const glm::dvec3& v) {
@@ -212,7 +213,7 @@ std::vector<MeshDraw> mesh_draws(const SceneAssets& a, const AssetMesh& mesh, si
 /// trilinearly, repeating in s where it wraps in u (else clamped) and clamped in t. Row 0 lies
 /// at t = 0, so glTF texture coordinates (v down from the top row) address it as they are. The
 /// texture belongs to the current context, which frees it.
-/// @throws std::invalid_argument when it is larger than GL_MAX_TEXTURE_SIZE
+/// @throws InternalError when it is larger than GL_MAX_TEXTURE_SIZE
 /// @throws std::runtime_error when OpenGL reports an error
 GLuint upload_base_colour(const AssetTexture& texture, size_t index, const GlContext& context) {
   const std::string name = "texture " + std::to_string(index) + " '" + texture.name + "'";

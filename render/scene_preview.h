@@ -73,7 +73,7 @@ struct ScenePreviewOptions {
 /// @param options see ScenePreviewOptions for ranges; the image size also comes from
 ///                `assets.width/height` when the options leave it 0
 /// @returns an opaque image of width x height pixels, sRGB8, rows top first
-/// @throws std::invalid_argument when the assets or options break the preconditions, or a
+/// @throws InternalError when the assets or options break the preconditions, or a
 ///         used texture is larger than GL_MAX_TEXTURE_SIZE
 /// @throws std::runtime_error when no OpenGL context can be created or rendering fails
 Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions& options = {});

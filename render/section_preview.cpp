@@ -12,6 +12,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "base/error.h"
 #include "render/gl/gl_buffers.h"
 #include "render/gl/gl_context.h"
 #include "render/gl/gl_program.h"
@@ -29,7 +30,7 @@ struct SectionVertex {
 };
 
 [[noreturn]] void fail(const std::string& what) {
-  throw std::invalid_argument("render_section_preview: " + what);
+  throw InternalError("render_section_preview: " + what);
 }
 
 void check_input(const CrossSection& s, const SectionPreviewOptions& o) {

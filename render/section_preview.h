@@ -43,7 +43,7 @@ struct SectionPreviewOptions {
 /// @param options see SectionPreviewOptions for ranges
 /// @returns an opaque image of options.width x (options.height, or the fitted height) pixels,
 ///          sRGB8, rows top first
-/// @throws std::invalid_argument when the section is empty or malformed, or the options are
+/// @throws InternalError when the section is empty or malformed, or the options are
 ///         out of range
 /// @throws std::runtime_error when no OpenGL context can be created or rendering fails
 Image render_section_preview(const CrossSection& section, const SectionPreviewOptions& options);

@@ -1,6 +1,8 @@
 // Two error channels (doc/architecture.md, Errors and Style): InputError for bad user input
-// (exit code 2, the message names file, line, column, field and rule) and CUTAWAY_CHECK for
-// broken internal invariants.
+// (exit code 2, the message names file, line, column, field and rule) and InternalError for
+// broken internal invariants (CUTAWAY_CHECK, and arguments that break a function's documented
+// preconditions). Expected outcomes are return values (outcome.h); failures of the environment
+// (files, OpenGL, child processes) are std::runtime_error.
 #pragma once
 
 #include <sstream>

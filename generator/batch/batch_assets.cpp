@@ -9,6 +9,7 @@
 #include <glm/trigonometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "base/error.h"
 #include "base/timer.h"
 #include "export/gltf_export.h"
 #include "io/template_parser.h"
@@ -99,7 +100,7 @@ BatchPlan plan_batch(const Batch& batch, const std::string& settings) {
 
 std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& plan, size_t unit,
                                          const BatchBuildOptions& options, UnitTimings* timings) {
-  if (!options.diffusion) throw std::invalid_argument("build_batch_unit: no diffusion backend");
+  if (!options.diffusion) throw InternalError("build_batch_unit: no diffusion backend");
   UnitTimings local;
   UnitTimings& t = timings ? *timings : local;
   t = UnitTimings{};
@@ -173,7 +174,7 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
 
     if (a.thumbnail) {
       if (!options.thumbnail)
-        throw std::invalid_argument("build_batch_unit: a thumbnail is due and no renderer given");
+        throw InternalError("build_batch_unit: a thumbnail is due and no renderer given");
       t0 = Clock::now();
       const int w = batch.outputs.thumbnail_px;
       const SceneAssets grid = grid_piece_assets(object.set, tmpl.name, tmpl.skin_material,

@@ -104,7 +104,7 @@ struct BatchBuildOptions {
 /// the studio lights; a thumbnail of the pieces laid cut face up when the asset has one; the DS
 /// model when outputs.model. Deterministic: the same batch, plan and options give the same
 /// bytes, whatever the thread count.
-/// @throws InputError when the template cannot be read; std::invalid_argument when
+/// @throws InputError when the template cannot be read; InternalError when
 ///         options.diffusion is empty, or a thumbnail is due and options.thumbnail is empty
 std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& plan, size_t unit,
                                          const BatchBuildOptions& options,

@@ -1,4 +1,5 @@
-// The `cutaway` subcommands that live outside main.cpp, and what they share with it.
+// The `cutaway` subcommands, one source file each (NAME_command.cpp), and what they share;
+// main.cpp parses the arguments and calls them.
 #pragma once
 
 #include <cstdint>
@@ -61,6 +62,49 @@ CutSpec checked_cut(const Template& tmpl, const std::string& text, const std::st
 PieceSet cut_object(const DsModel& model, const Template& tmpl, const CutSpec& cut, int cube,
                     const Common& common, double perlin, uint64_t seed, const std::string& what,
                     std::string* backend_name = nullptr);
+
+/// `cutaway model TEMPLATE [-o model.glb] [--png view.png] [--size PX] [--seed S]`
+/// (generator/cli/model_command.cpp).
+struct ModelArgs {
+  std::string template_path;
+  std::string output;
+  std::string png;
+  int width = 800;
+  int64_t seed = -1;  ///< >= 0: build the variant of this seed instead of the template
+};
+int run_model(const ModelArgs& args, const Common& common, OutputSet& outputs);
+
+/// `cutaway section TEMPLATE --plane SPEC [-o cut.glb|cut.ply] [--png cut.png] [--cube N]
+/// [--seed S]` (generator/cli/section_command.cpp).
+struct SectionArgs {
+  std::string template_path;
+  std::string plane;
+  std::string output;
+  std::string png;
+  int cube = 16;
+  int width = 800;
+  int64_t seed = -1;  ///< >= 0: cut the variant of this seed instead of the template
+};
+int run_section(const SectionArgs& args, const Common& common, OutputSet& outputs);
+
+/// `cutaway variants TEMPLATE --count N [--seed S] -o DIR [--shard K/M] [--sheet N] [--tile PX]`
+/// (generator/cli/variants_command.cpp).
+struct VariantsArgs {
+  std::string template_path;
+  std::string output_dir;
+  int count = 1;
+  uint64_t seed = 0;
+  std::string shard;  ///< "K/M" when shard_given
+  bool shard_given = false;
+  int sheet = 64;     ///< contact sheet: at most this many tiles (0: no sheet)
+  int tile = 256;     ///< contact-sheet tile size, pixels
+};
+int run_variants(const VariantsArgs& args, const Common& common, bool quiet, OutputSet& outputs);
+
+/// `cutaway check FILE...`: each template, scene or batch file read and checked (its templates'
+/// models built), "FILE: ok (...)" on stdout or the error on stderr; 2 when any failed
+/// (generator/cli/check_command.cpp).
+int run_check(const std::vector<std::string>& files);
 
 /// `cutaway piece TEMPLATE --cut SPEC [--seed S] [-o pieces.glb|.gltf|.pov] [--png p.png]`.
 struct PieceArgs {

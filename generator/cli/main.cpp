@@ -50,299 +50,9 @@ using cutaway::cli::print_stats;
 using cutaway::cli::require_extension;
 using cutaway::cli::UsageError;
 
-struct ModelArgs {
-  std::string template_path;
-  std::string output;
-  std::string png;
-  int width = 800;
-  int64_t seed = -1;  ///< >= 0: build the variant of this seed instead of the template
-};
-
-int run_model(const ModelArgs& a, bool stats, cutaway::OutputSet& outputs) {
-  const auto t0 = Clock::now();
-  const cutaway::Template tmpl = cutaway::load_template(a.template_path);
-  const std::string glb = a.output.empty() && a.png.empty() ? tmpl.name + ".glb" : a.output;
-  const std::filesystem::path glb_file = glb.empty() ? "" : outputs.add("-o", glb);
-  const std::filesystem::path png_file = a.png.empty() ? "" : outputs.add("--png", a.png);
-  const double t_parse = seconds_since(t0);
-  const auto t1 = Clock::now();
-  const cutaway::DsModel model =
-      a.seed >= 0 ? cutaway::make_variant(tmpl, static_cast<uint64_t>(a.seed)).model
-                  : cutaway::build_model(tmpl);
-  const double t_sweep = seconds_since(t1);
-  spdlog::info("{}: {} surfaces, {} vertices, {} faces", tmpl.name, model.surfaces.size(),
-               model.vertex_count(), model.face_count());
-
-  double t_render = 0, t_export = 0;
-  cutaway::Image image;
-  if (!a.png.empty()) {
-    const auto t2 = Clock::now();
-    cutaway::PreviewOptions opt;
-    opt.width = opt.height = a.width;
-    image = cutaway::render_model_preview(model, opt);
-    t_render = seconds_since(t2);
-  }
-  if (!glb.empty()) {
-    const auto t3 = Clock::now();
-    cutaway::write_model_glb(glb_file, model, cutaway::GltfModelOptions{});
-    t_export = seconds_since(t3);
-    spdlog::info("wrote {}", glb);
-  }
-  if (!a.png.empty()) {
-    cutaway::write_png(png_file, image);
-    spdlog::info("wrote {}", a.png);
-  }
-  if (stats) {
-    print_stats({{"template", tmpl.name},
-                 {"surfaces", model.surfaces.size()},
-                 {"vertices", model.vertex_count()},
-                 {"faces", model.face_count()},
-                 {"seconds",
-                  {{"parse", t_parse}, {"sweep", t_sweep}, {"render", t_render},
-                   {"export", t_export}}}});
-  }
-  return 0;
-}
-
-struct SectionArgs {
-  std::string template_path;
-  std::string plane;
-  std::string output;
-  std::string png;
-  int cube = 16;
-  int width = 800;
-  int64_t seed = -1;  ///< >= 0: cut the variant of this seed instead of the template
-};
-
 /// The --sampling value (checked by CLI11 to be "dense" or "adaptive").
 cutaway::CapSampling parse_sampling(const std::string& sampling) {
   return sampling == "adaptive" ? cutaway::CapSampling::Adaptive : cutaway::CapSampling::Dense;
-}
-
-int run_section(const SectionArgs& a, const std::string& backend, int threads, bool stats,
-                cutaway::CapSampling sampling, cutaway::OutputSet& outputs) {
-  const auto t0 = Clock::now();
-  const cutaway::Template tmpl = cutaway::load_template(a.template_path);
-  cutaway::Plane plane;
-  try {
-    plane = cutaway::parse_plane_spec(a.plane, tmpl.metres_per_unit);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--plane: ") + e.what());
-  }
-  const std::string out = a.output.empty() && a.png.empty() ? tmpl.name + "-section.glb" : a.output;
-  const std::filesystem::path out_file = out.empty() ? "" : outputs.add("-o", out);
-  const std::filesystem::path png_file = a.png.empty() ? "" : outputs.add("--png", a.png);
-  const cutaway::DsModel model =
-      a.seed >= 0 ? cutaway::make_variant(tmpl, static_cast<uint64_t>(a.seed)).model
-                  : cutaway::build_model(tmpl);
-  const double t_model = seconds_since(t0);
-  const auto t1 = Clock::now();
-  const auto diffusion = cutaway::make_diffusion(model, {a.cube, threads},
-                                                 cutaway::parse_diffusion_choice(backend));
-  const double t_backend = seconds_since(t1);
-  const auto t2 = Clock::now();
-  cutaway::CrossSectionOptions options{tmpl.edge_m};
-  options.sampling = sampling;
-  cutaway::Outcome<cutaway::CrossSection> made =
-      cutaway::make_cross_section(model, plane, *diffusion, options);
-  if (!made) throw UsageError("--plane " + cutaway::quoted(a.plane) + ": " + made.reason());
-  const cutaway::CrossSection section = std::move(*made);
-  const double t_section = seconds_since(t2);
-  spdlog::info("{}: cross-section with {} vertices ({} interior), {} triangles", tmpl.name,
-               section.position.size(), section.interior_vertices, section.triangle.size());
-  cutaway::Image image;
-  if (!a.png.empty()) {
-    cutaway::SectionPreviewOptions opt;
-    opt.width = a.width;
-    image = cutaway::render_section_preview(section, opt);
-  }
-  if (!out.empty()) {
-    const bool ply = std::filesystem::path(out).extension() == ".ply";
-    cutaway::write_file_atomically(
-        out_file, ply ? cutaway::section_to_ply(section) : cutaway::section_to_glb(section));
-    spdlog::info("wrote {}", out);
-  }
-  if (!a.png.empty()) {
-    cutaway::write_png(png_file, image);
-    spdlog::info("wrote {}", a.png);
-  }
-  if (stats) {
-    print_stats({{"template", tmpl.name},
-                 {"backend", diffusion->name()},
-                 {"ds_faces", model.face_count()},
-                 {"cut_segments", section.cut_segments},
-                 {"vertices", section.position.size()},
-                 {"interior_vertices", section.interior_vertices},
-                 {"diffused_points", section.diffused_points},
-                 {"rays", section.diffused_points * 6 * static_cast<size_t>(a.cube * a.cube)},
-                 {"seconds",
-                  {{"model", t_model},
-                   {"backend_setup", t_backend},
-                   {"section", t_section},
-                   {"triangulate", section.seconds_triangulate},
-                   {"diffuse", section.seconds_diffuse}}}});
-  }
-  return 0;
-}
-
-/// Builds the model of each template in `paths` once, so that its geometric rules are checked
-/// too (a scene's or batch's templates).
-void check_models(const std::vector<std::string>& paths) {
-  for (const std::string& path : std::set<std::string>(paths.begin(), paths.end())) {
-    const cutaway::Template t = cutaway::load_template(path);
-    cutaway::check_grain_limits(t, cutaway::build_model(t));
-  }
-}
-
-int run_check(const std::vector<std::string>& files) {
-  int failed = 0;
-  for (const auto& f : files) {
-    try {
-      // A scene or batch says so in its `format` (cutaway-scene/..., cutaway-batch/...);
-      // anything else is a template.
-      const auto format = cutaway::load_yaml_file(f).get("format");
-      const std::string kind = format && format->is_scalar() ? format->string() : "";
-      if (kind.rfind("cutaway-batch/", 0) == 0) {
-        const cutaway::Batch batch = cutaway::load_batch(f);
-        int variants = 0, assets = 0;
-        std::vector<std::string> templates;
-        for (const auto& item : batch.items) {
-          variants += item.count;
-          assets += item.count * static_cast<int>(item.cuts.size());
-          templates.push_back(item.template_path);
-        }
-        check_models(templates);
-        std::printf("%s: ok (batch '%s', %zu items, %d variants, %d assets)\n", f.c_str(),
-                    batch.name.c_str(), batch.items.size(), variants, assets);
-        continue;
-      }
-      if (kind.rfind("cutaway-scene/", 0) == 0) {
-        const cutaway::Scene scene = cutaway::load_scene(f);
-        int objects = 0;
-        std::vector<std::string> templates;
-        for (const auto& item : scene.items) {
-          objects += item.count;
-          templates.push_back(item.template_path);
-        }
-        check_models(templates);
-        std::printf("%s: ok (scene '%s', %zu items, %d objects)\n", f.c_str(),
-                    scene.name.c_str(), scene.items.size(), objects);
-        continue;
-      }
-      const cutaway::Template tmpl = cutaway::load_template(f);
-      const cutaway::DsModel model = cutaway::build_model(tmpl);
-      cutaway::check_grain_limits(tmpl, model);
-      std::printf("%s: ok (template '%s', %zu surfaces, %zu DS faces)\n", f.c_str(),
-                  tmpl.name.c_str(), model.surfaces.size(), model.face_count());
-    } catch (const cutaway::InputError& e) {
-      std::fprintf(stderr, "%s\n", e.what());
-      ++failed;
-    }
-  }
-  return failed ? 2 : 0;
-}
-
-struct VariantsArgs {
-  std::string template_path;
-  std::string output_dir;
-  int count = 1;
-  uint64_t seed = 0;
-  std::string shard;  ///< "K/M" when shard_given
-  bool shard_given = false;
-  int sheet = 64;     ///< contact sheet: at most this many tiles (0: no sheet)
-  int tile = 256;     ///< contact-sheet tile size, pixels
-};
-
-/// The horizontal cut of a variant for its contact-sheet tile: the plane y = mid-height of
-/// the skin's bounding box, coloured by PMVC with 8 x 8 texels per cube face (a quarter of
-/// the rays of `section`'s default 16: enough for a thumbnail); none when it misses the skin.
-cutaway::Outcome<cutaway::CrossSection> variant_section(const cutaway::Variant& v,
-                                                        const std::string& backend, int threads) {
-  const cutaway::DsMesh& skin = v.model.skin().mesh;
-  double lo = std::numeric_limits<double>::max(), hi = -lo;
-  for (const auto vh : skin.vertices()) {
-    lo = std::min(lo, skin.point(vh)[1]);
-    hi = std::max(hi, skin.point(vh)[1]);
-  }
-  cutaway::Plane plane;
-  plane.point = {0, 0.5 * (lo + hi), 0};
-  plane.normal = {0, 1, 0};
-  const auto diffusion = cutaway::make_diffusion(v.model, {8, threads},
-                                                 cutaway::parse_diffusion_choice(backend));
-  return cutaway::make_cross_section(v.model, plane, *diffusion, {v.tmpl.edge_m});
-}
-
-int run_variants(const VariantsArgs& a, const std::string& backend, int threads, bool quiet,
-                 cutaway::OutputSet& outputs) {
-  cutaway::Shard shard;
-  if (a.shard_given) {
-    const cutaway::Outcome<cutaway::Shard> parsed = cutaway::parse_shard(a.shard);
-    if (!parsed) throw UsageError("--shard: " + parsed.reason());
-    shard = *parsed;
-  }
-  const cutaway::Template tmpl = cutaway::load_template(a.template_path);
-  const std::filesystem::path dir(a.output_dir);
-  const int first = shard.begin(a.count), last = shard.end(a.count);
-  // Every file is registered (and DIR created) before the first variant is built.
-  std::vector<std::filesystem::path> glb_files;
-  for (int i = first; i < last; ++i) {
-    const uint64_t seed = a.seed + static_cast<uint64_t>(i);
-    glb_files.push_back(
-        outputs.add("-o", (dir / (tmpl.name + "-" + std::to_string(seed) + ".glb")).string()));
-  }
-  const std::filesystem::path manifest_file = outputs.add("-o", (dir / "manifest.json").string());
-  const std::filesystem::path sheet_file =
-      a.sheet > 0 ? outputs.add("-o", (dir / "contact-sheet.png").string())
-                  : std::filesystem::path();
-  std::vector<cutaway::VariantRecord> records;
-  const cutaway::cli::ProgressBar progress("variants", last - first, !quiet && isatty(fileno(stderr)));
-  progress.show(0);
-  std::vector<cutaway::CrossSection> sections;
-  std::vector<int> missing;  // sheet tiles whose plane gave no section
-  for (int i = first; i < last; ++i) {
-    const uint64_t seed = a.seed + static_cast<uint64_t>(i);
-    const auto t0 = Clock::now();
-    const cutaway::Variant v = cutaway::make_variant(tmpl, seed);
-    const std::string glb = cutaway::model_to_glb(v.model, cutaway::GltfModelOptions{});
-    const std::string file = tmpl.name + "-" + std::to_string(seed) + ".glb";
-    cutaway::write_file_atomically(glb_files[static_cast<size_t>(i - first)], glb);
-    records.push_back({file, seed, cutaway::fnv1a64(glb), v.model.face_count(), v.tmpl.folds});
-    spdlog::debug("wrote {} ({:.2f} s)", (dir / file).string(), seconds_since(t0));
-    progress.show(i - first + 1);
-  }
-  cutaway::write_file_atomically(
-      manifest_file, cutaway::variant_manifest(
-                         tmpl.name, a.shard_given ? std::optional(shard) : std::nullopt, records));
-  // The contact sheet comes last (all files are committed together, or none); its variants
-  // are built again (same seed, same model) rather than all kept.
-  for (int i = first; i < std::min(last, first + a.sheet); ++i) {
-    const uint64_t seed = a.seed + static_cast<uint64_t>(i);
-    cutaway::Outcome<cutaway::CrossSection> section =
-        variant_section(cutaway::make_variant(tmpl, seed), backend, threads);
-    if (section) {
-      sections.push_back(std::move(*section));
-    } else {
-      spdlog::warn("seed {}: no horizontal section at mid-height ({}); its tile stays empty",
-                   seed, section.reason());
-      missing.push_back(i - first);
-    }
-  }
-  if (!sections.empty()) {
-    cutaway::SectionTileOptions tile_options;
-    tile_options.tile_px = a.tile;
-    std::vector<cutaway::Image> tiles = cutaway::render_section_tiles(sections, tile_options);
-    for (int m : missing) {  // an empty tile of the same size where a section is missing
-      cutaway::Image blank = tiles.front();
-      std::fill(blank.rgba.begin(), blank.rgba.end(), uint8_t{255});
-      tiles.insert(tiles.begin() + m, std::move(blank));
-    }
-    const int columns =
-        static_cast<int>(std::ceil(std::sqrt(static_cast<double>(tiles.size()))));
-    cutaway::write_png(sheet_file, cutaway::compose_grid(tiles, columns));
-  }
-  spdlog::info("wrote {} variant(s) of {}, manifest.json{} to {}", last - first, tmpl.name,
-               sections.empty() ? "" : ", contact-sheet.png", dir.string());
-  return 0;
 }
 
 /// Refuses an output option given an empty path (`-o ""`), which would otherwise read as
@@ -406,7 +116,7 @@ int main(int argc, char** argv) {
                  "refined where a test point disagrees)")
       ->check(CLI::IsMember({"dense", "adaptive"}));
 
-  ModelArgs model_args;
+  cutaway::cli::ModelArgs model_args;
   CLI::App* model = app.add_subcommand("model", "build the DS model of a template (glb, PNG)");
   model->add_option("TEMPLATE", model_args.template_path, "template file (.yaml)")->required();
   model->add_option("-o,--output", model_args.output,
@@ -417,7 +127,7 @@ int main(int argc, char** argv) {
   model->add_option("--seed", model_args.seed, "build the random variant of this seed")
       ->check(CLI::NonNegativeNumber);
 
-  SectionArgs section_args;
+  cutaway::cli::SectionArgs section_args;
   CLI::App* section = app.add_subcommand("section", "one cross-section with diffused colours");
   section->add_option("TEMPLATE", section_args.template_path, "template file (.yaml)")->required();
   section->add_option("--plane", section_args.plane,
@@ -434,7 +144,7 @@ int main(int argc, char** argv) {
   section->add_option("--seed", section_args.seed, "cut the random variant of this seed")
       ->check(CLI::NonNegativeNumber);
 
-  VariantsArgs variants_args;
+  cutaway::cli::VariantsArgs variants_args;
   CLI::App* variants = app.add_subcommand(
       "variants", "random variants of a template (glb + manifest.json + contact-sheet.png)");
   variants->add_option("TEMPLATE", variants_args.template_path, "template file (.yaml)")->required();
@@ -568,10 +278,11 @@ int main(int argc, char** argv) {
   cutaway::OutputSet outputs;
   const auto run = [&]() -> int {
     for (const CLI::App* command : app.get_subcommands()) refuse_empty_output_paths(*command);
+    const cutaway::cli::Common common{backend, threads, stats, parse_sampling(sampling)};
     if (*model) {
       if (!model_args.output.empty()) require_extension("-o", model_args.output, ".glb");
       if (!model_args.png.empty()) require_extension("--png", model_args.png, ".png");
-      return run_model(model_args, stats, outputs);
+      return cutaway::cli::run_model(model_args, common, outputs);
     }
     if (*section) {
       if (!section_args.output.empty() &&
@@ -579,10 +290,9 @@ int main(int argc, char** argv) {
         require_extension("-o", section_args.output, ".glb");
       }
       if (!section_args.png.empty()) require_extension("--png", section_args.png, ".png");
-      return run_section(section_args, backend, threads, stats, parse_sampling(sampling), outputs);
+      return cutaway::cli::run_section(section_args, common, outputs);
     }
-    if (*check) return run_check(check_files);
-    const cutaway::cli::Common common{backend, threads, stats, parse_sampling(sampling)};
+    if (*check) return cutaway::cli::run_check(check_files);
     if (*piece) return cutaway::cli::run_piece(piece_args, common, outputs);
     if (*sheet) return cutaway::cli::run_sheet(sheet_args, common, outputs);
     if (*scene) return cutaway::cli::run_scene(scene_args, common, outputs);
@@ -590,7 +300,7 @@ int main(int argc, char** argv) {
     if (*batch) return cutaway::cli::run_batch_command(batch_args, common, quiet);
     if (*variants) {
       variants_args.shard_given = variants->count("--shard") > 0;
-      return run_variants(variants_args, backend, threads, quiet, outputs);
+      return cutaway::cli::run_variants(variants_args, common, quiet, outputs);
     }
     return 0;
   };

@@ -12,6 +12,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "base/error.h"
 #include "model/ds_model.h"
 
 namespace cutaway {
@@ -42,7 +43,7 @@ class DiffusionBackend {
   /// ray cast per direction. A point that sees no sheet in any direction (outside the object)
   /// gets zeros. Each point is summed in a fixed order: the result does not depend on the
   /// thread count.
-  /// @throws std::invalid_argument when colour (or a non-empty material) is not #P long
+  /// @throws InternalError when colour (or a non-empty material) is not #P long
   virtual void diffuse_channels(std::span<const glm::dvec3> points, std::span<glm::dvec3> colour,
                                 std::span<glm::dvec2> material) const = 0;
   /// Colours only (#P).
@@ -68,13 +69,13 @@ class DiffusionBackend {
   virtual std::string name() const = 0;
 };
 
-/// The sizes diffuse_channels needs: throws std::invalid_argument unless colour has one entry
+/// The sizes diffuse_channels needs: throws InternalError unless colour has one entry
 /// per point and material none or one per point.
 inline void check_channel_sizes(size_t points, size_t colour, size_t material) {
   if (colour != points || (material != 0 && material != points))
-    throw std::invalid_argument("diffusion: " + std::to_string(points) + " points but " +
-                                std::to_string(colour) + " colours and " +
-                                std::to_string(material) + " material channels");
+    throw InternalError("diffusion: " + std::to_string(points) + " points but " +
+                        std::to_string(colour) + " colours and " +
+                        std::to_string(material) + " material channels");
 }
 
 /// The CPU backend: Embree 3 ray casting, packets of 16 directions of one point, TBB over

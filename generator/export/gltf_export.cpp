@@ -22,6 +22,7 @@
 #include <unistd.h>
 
 #include "base/atomic_file.h"
+#include "base/error.h"
 #include "export/texture_image.h"
 #include "model/pbr_material.h"
 
@@ -134,7 +135,7 @@ std::vector<double> gltf_rotation(const glm::dquat& q) {
 std::vector<double> gltf_vec3(const glm::dvec3& v) { return {v.x + 0.0, v.y + 0.0, v.z + 0.0}; }
 
 [[noreturn]] void bad_assets(const std::string& what) {
-  throw std::invalid_argument("scene assets: " + what);
+  throw InternalError("scene assets: " + what);
 }
 
 /// Throws for primitives of `mesh` that break their rules (primitives_defect).
@@ -964,8 +965,8 @@ GltfCompression parse_gltf_compression(std::string_view name) {
   if (name == "none") return GltfCompression::None;
   if (name == "quantize") return GltfCompression::Quantize;
   if (name == "meshopt") return GltfCompression::Meshopt;
-  throw std::invalid_argument("unknown glTF compression '" + std::string(name) +
-                              "' (none, quantize or meshopt)");
+  throw InternalError("unknown glTF compression '" + std::string(name) +
+                      "' (none, quantize or meshopt)");
 }
 
 void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& assets,
@@ -975,8 +976,8 @@ void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& asse
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext != ".glb" && ext != ".gltf") {
-    throw std::invalid_argument("scene export: unknown extension '" + path.extension().string() +
-                                "' of " + path.string() + " (expected .glb or .gltf)");
+    throw InternalError("scene export: unknown extension '" + path.extension().string() +
+                        "' of " + path.string() + " (expected .glb or .gltf)");
   }
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
   std::error_code ec;

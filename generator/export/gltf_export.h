@@ -73,7 +73,7 @@ struct GltfSceneOptions {
 };
 
 /// "none", "quantize" or "meshopt" as a GltfCompression.
-/// @throws std::invalid_argument for any other name
+/// @throws InternalError for any other name
 GltfCompression parse_gltf_compression(std::string_view name);
 
 /// Encodes a scene as binary glTF (.glb), metres, +Y up:
@@ -100,7 +100,7 @@ GltfCompression parse_gltf_compression(std::string_view name);
 ///   lights (intensity in candela) translated to `position`, range infinite.
 /// Scene nodes in this order: instances, camera, lights. asset.generator is "cutaway".
 /// Deterministic: the same assets give the same bytes.
-/// @throws std::invalid_argument when the assets break their documented invariants: a mesh
+/// @throws InternalError when the assets break their documented invariants: a mesh
 ///   without triangles, with arrays of different lengths, an index out of range or a
 ///   non-finite position, primitives that do not cover its triangles in order or name a
 ///   material that does not exist, a material value outside 0..1; an instance whose mesh
@@ -117,7 +117,7 @@ std::string scene_to_glb(const SceneAssets& assets, const GltfSceneOptions& opti
 /// Files are written to temporaries in the target directory and renamed into place (the .bin
 /// first); a failure leaves neither file (should the last rename fail, the new .bin, which
 /// may have replaced an older one, is removed). The directory must exist (it is not created).
-/// @throws std::invalid_argument for any other extension and for invalid assets (see
+/// @throws InternalError for any other extension and for invalid assets (see
 ///   scene_to_glb); std::runtime_error when the directory is missing or a file cannot be
 ///   written.
 void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& assets,

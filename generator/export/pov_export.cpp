@@ -16,6 +16,7 @@
 
 #include "base/atomic_file.h"
 #include "base/constants.h"
+#include "base/error.h"
 #include "export/texture_image.h"
 
 namespace cutaway {
@@ -81,7 +82,7 @@ bool finite(const glm::dvec3& v) {
 }
 
 void require(bool ok, const std::string& what) {
-  if (!ok) throw std::invalid_argument("POV-Ray export: " + what);
+  if (!ok) throw InternalError("POV-Ray export: " + what);
 }
 
 void check_mesh(const AssetMesh& m, size_t k, size_t materials) {

@@ -80,7 +80,7 @@ namespace cutaway {
 ///   behind the eye or within 0.1 micrometre of the previous one are left out, and strokes left
 ///   with fewer than 2 points are skipped.
 ///
-/// @throws std::invalid_argument naming the mesh, instance or light that breaks a precondition
+/// @throws InternalError naming the mesh, instance or light that breaks a precondition
 /// - with `texture_files` (texture_file_names()): faces whose material has a base colour texture
 ///   (and whose mesh has uv) get one texture each, `uv_mapping` with `image_map { png NAME
 ///   interpolate 2 }` (`jpeg` for a NAME ending in .jpg) and the material's finish; such meshes add uv_vectors (v flipped: POV-Ray
@@ -92,7 +92,7 @@ std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* s
 
 /// Writes scene_to_pov(assets) to `path` atomically (write_file_atomically(): a temporary file,
 /// then rename; a failed run leaves no partial file).
-/// @throws std::invalid_argument as scene_to_pov
+/// @throws InternalError as scene_to_pov
 /// @throws std::runtime_error when the file cannot be written
 /// With `textures`, the textures are written first, as image files of that format beside it
 /// (texture_file_names(), each atomically), and the scene uses them.

@@ -1,4 +1,5 @@
 #include "export/texture_image.h"
+#include "base/error.h"
 
 #include <stdexcept>
 
@@ -9,8 +10,8 @@ namespace cutaway {
 TextureFormat parse_texture_format(std::string_view name) {
   if (name == "png") return TextureFormat::Png;
   if (name == "jpeg") return TextureFormat::Jpeg;
-  throw std::invalid_argument("texture format must be png or jpeg, not '" + std::string(name) +
-                              "'");
+  throw InternalError("texture format must be png or jpeg, not '" + std::string(name) +
+                      "'");
 }
 
 bool is_jpeg(const AssetTexture& texture, TextureFormat format) {
@@ -26,7 +27,7 @@ std::string encode_texture(const AssetTexture& texture, TextureFormat format) {
       (texture.channels != 3 && texture.channels != 4) ||
       texture.pixels.size() !=
           static_cast<size_t>(texture.width) * texture.height * texture.channels)
-    throw std::invalid_argument("texture '" + texture.name + "': size and pixels disagree");
+    throw InternalError("texture '" + texture.name + "': size and pixels disagree");
   std::string out;
   auto append = [](void* context, void* data, int size) {
     static_cast<std::string*>(context)->append(static_cast<const char*>(data),
@@ -38,7 +39,7 @@ std::string encode_texture(const AssetTexture& texture, TextureFormat format) {
                                    texture.pixels.data(), kJpegQuality)
           : stbi_write_png_to_func(append, &out, texture.width, texture.height, texture.channels,
                                    texture.pixels.data(), texture.width * texture.channels);
-  if (!ok) throw std::invalid_argument("texture '" + texture.name + "': image encoding failed");
+  if (!ok) throw InternalError("texture '" + texture.name + "': image encoding failed");
   return out;
 }
 

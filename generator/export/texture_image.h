@@ -24,7 +24,7 @@ enum class TextureFormat {
 inline constexpr int kJpegQuality = 90;
 
 /// "png" or "jpeg" as a TextureFormat.
-/// @throws std::invalid_argument for any other name
+/// @throws InternalError for any other name
 TextureFormat parse_texture_format(std::string_view name);
 
 /// Whether `texture` is written as JPEG under `format`: an RGB texture with format Jpeg.
@@ -35,7 +35,7 @@ const char* texture_mime_type(const AssetTexture& texture, TextureFormat format)
 
 /// `texture` as image bytes: JPEG (is_jpeg) or PNG (8-bit RGB or RGBA), by stb_image_write.
 /// Deterministic: the same texture and format give the same bytes.
-/// @throws std::invalid_argument when its size and pixel count disagree or it is empty
+/// @throws InternalError when its size and pixel count disagree or it is empty
 std::string encode_texture(const AssetTexture& texture, TextureFormat format);
 
 /// The file names, beside a scene file at `scene` (.pov, .gltf), of the assets' textures:

@@ -59,20 +59,20 @@ std::string name_rule(std::string_view s) {
   return "";
 }
 
-double parse_decimal(std::string_view s, const std::string& what) {
+Outcome<double> parse_decimal(std::string_view s, const std::string& what) {
   const std::string_view core = trim_blanks(s);
   if (core.size() > kMaxNumberLength) {
-    throw std::invalid_argument(what + " must be a number of at most " +
-                                std::to_string(kMaxNumberLength) + " characters, not " + quoted(s));
+    return Outcome<double>::none(what + " must be a number of at most " +
+                                 std::to_string(kMaxNumberLength) + " characters, not " +
+                                 quoted(s));
   }
-  if (!is_decimal_grammar(core)) {
-    throw std::invalid_argument(what + " must be a number, not " + quoted(s));
-  }
+  if (!is_decimal_grammar(core))
+    return Outcome<double>::none(what + " must be a number, not " + quoted(s));
   const std::string text(core);
   errno = 0;
   const double v = std::strtod(text.c_str(), nullptr);
   // ERANGE also reports underflow (a subnormal or 0 result), which is a fine value here.
-  if (!std::isfinite(v)) throw std::invalid_argument(what + " is too large: " + quoted(s));
+  if (!std::isfinite(v)) return Outcome<double>::none(what + " is too large: " + quoted(s));
   return v;
 }
 

@@ -7,6 +7,8 @@
 #include <string>
 #include <string_view>
 
+#include "base/outcome.h"
+
 namespace cutaway {
 
 /// The longest name a template or scene may have (it becomes part of output file names).
@@ -27,8 +29,9 @@ std::string name_rule(std::string_view s);
 /// point and digits), an optional exponent, optional blanks; nothing else (no hex, inf or nan).
 /// Values below the smallest double become 0 or a subnormal; they are accepted.
 /// @param what  names the value in the message, e.g. "the slice thickness"
-/// @throws std::invalid_argument "WHAT must be a number, not '...'" (malformed or longer than
-///         kMaxNumberLength characters) or "WHAT is too large: '...'" (beyond the double range)
-double parse_decimal(std::string_view s, const std::string& what);
+/// @returns the number, or none with "WHAT must be a number, not '...'" (malformed or longer
+///          than kMaxNumberLength characters) or "WHAT is too large: '...'" (beyond the double
+///          range)
+Outcome<double> parse_decimal(std::string_view s, const std::string& what);
 
 }  // namespace cutaway

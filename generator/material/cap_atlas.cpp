@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 #include <stb/stb_rect_pack.h>
 
+#include "base/error.h"
 #include "material/texel_bake.h"
 
 namespace cutaway {
@@ -98,7 +99,7 @@ CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
                         const ColourModulation* modulation, double strength,
                         const CapAtlasOptions& options) {
   if (!(options.texels_per_m > 0) || options.padding < 0 || options.max_size < 16)
-    throw std::invalid_argument("bake_cap_atlas: bad options");
+    throw InternalError("bake_cap_atlas: bad options");
   CapAtlas atlas;
   std::vector<CapPart> caps;
   for (size_t i = 0; i < pieces.size(); ++i) {
@@ -147,7 +148,7 @@ CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
     at = pack(sizes, width, options.max_size);
     if (!at.empty()) break;
   }
-  if (at.empty()) throw std::invalid_argument("bake_cap_atlas: the caps do not fit");
+  if (at.empty()) throw InternalError("bake_cap_atlas: the caps do not fit");
   int height = 1;
   for (size_t k = 0; k < islands.size(); ++k) height = std::max(height, at[k].y + sizes[k].y);
   height += height % 2;  // even, so that the half-size material map has the same layout

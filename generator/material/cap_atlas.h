@@ -60,7 +60,7 @@ struct CapAtlas {
 /// `modulation` at the texel's point in the object frame with `strength` (none when modulation
 /// is null), then encoded as sRGB (texel_bake.h); the islands are dilated by `padding` texels
 /// and the background filled by pull-push (fill_background). Deterministic.
-/// @throws std::invalid_argument when texels_per_m <= 0, padding < 0 or max_size < 16
+/// @throws InternalError when texels_per_m <= 0, padding < 0 or max_size < 16
 CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
                         const std::vector<CrossSection>& sections,
                         const ColourModulation* modulation, double strength,

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "base/error.h"
 #include "material/texel_bake.h"
 
 namespace cutaway {
@@ -72,7 +73,7 @@ std::array<glm::dvec2, 3> skin_corner_uv(const ShadedMesh& mesh, const glm::uvec
 
 std::vector<glm::dvec2> unwrap_skin(ShadedMesh& skin) {
   if (skin.param.size() != skin.position.size())
-    throw std::invalid_argument("unwrap_skin: the mesh has no sweep parameters");
+    throw InternalError("unwrap_skin: the mesh has no sweep parameters");
   std::vector<glm::dvec2> uv(skin.position.size());
   std::vector<uint8_t> assigned(skin.position.size(), 0);
   std::map<std::tuple<unsigned, double, double>, unsigned> copies;

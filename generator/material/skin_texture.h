@@ -41,7 +41,7 @@ std::array<glm::dvec2, 3> skin_corner_uv(const ShadedMesh& mesh, const glm::uvec
 /// triangles ask for (skin_corner_uv), appending a copy of a vertex wherever two of its
 /// triangles ask for different ones (along t_section = 0, at the poles) and re-indexing those
 /// triangles. Returns the coordinates, #V of the result.
-/// @throws std::invalid_argument when skin.param is not #V long
+/// @throws InternalError when skin.param is not #V long
 std::vector<glm::dvec2> unwrap_skin(ShadedMesh& skin);
 
 /// Bakes the skins `parts` (each a piece's skin part with its unwrap_skin coordinates `uv`)

@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "base/colour.h"
+#include "base/error.h"
 #include "base/random.h"
 
 namespace cutaway {
@@ -53,12 +54,12 @@ glm::dvec3 ColourModulation::operator()(const glm::dvec3& position_m,
 void modulate_colours(std::span<const glm::dvec3> position_m, std::span<glm::dvec3> colour,
                       const NprSettings& npr, double strength, uint64_t seed) {
   if (position_m.size() != colour.size()) {
-    throw std::invalid_argument("modulate_colours: " + std::to_string(position_m.size()) +
-                                " positions but " + std::to_string(colour.size()) + " colours");
+    throw InternalError("modulate_colours: " + std::to_string(position_m.size()) +
+                        " positions but " + std::to_string(colour.size()) + " colours");
   }
   if (!(strength >= 0.0) || !std::isfinite(strength)) {
-    throw std::invalid_argument("modulate_colours: the strength must be finite and >= 0, not " +
-                                std::to_string(strength));
+    throw InternalError("modulate_colours: the strength must be finite and >= 0, not " +
+                        std::to_string(strength));
   }
   if (strength == 0.0 || npr.perlin_bands.empty()) return;
   const ColourModulation modulation(npr, seed);

@@ -65,14 +65,14 @@ class ColourModulation {
 /// @param position_m #V points in the object frame, metres, finite
 /// @param colour     #V linear RGB colours, replaced by the modulated ones
 /// @param npr, seed  as ColourModulation; strength as its operator()
-/// @throws std::invalid_argument when the sizes differ or strength is negative or not finite
+/// @throws InternalError when the sizes differ or strength is negative or not finite
 void modulate_colours(std::span<const glm::dvec3> position_m, std::span<glm::dvec3> colour,
                       const NprSettings& npr, double strength, uint64_t seed);
 
 /// Modulates mesh.colour in place from mesh.position (object frame, metres): the pipeline's
 /// call, once per mesh of an object with the object's seed, before export (so glTF COLOR_0 and
 /// POV-Ray per-vertex colours carry it).
-/// @throws std::invalid_argument as above
+/// @throws InternalError as above
 void modulate_colours(ShadedMesh& mesh, const NprSettings& npr, double strength, uint64_t seed);
 
 }  // namespace cutaway

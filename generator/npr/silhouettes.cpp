@@ -16,6 +16,7 @@
 #include <glm/vec2.hpp>
 
 #include "base/constants.h"
+#include "base/error.h"
 
 namespace cutaway {
 namespace {
@@ -266,12 +267,12 @@ std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptio
   const int width = options.width != 0 ? options.width : assets.width;
   const int height = options.height != 0 ? options.height : assets.height;
   if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)
-    throw std::invalid_argument("extract_strokes: image size " + std::to_string(width) + "x" +
-                                std::to_string(height) + " is outside 1..16384");
+    throw InternalError("extract_strokes: image size " + std::to_string(width) + "x" +
+                        std::to_string(height) + " is outside 1..16384");
   for (const AssetInstance& inst : assets.instances)
     if (inst.mesh < 0 || static_cast<size_t>(inst.mesh) >= assets.meshes.size())
-      throw std::invalid_argument("extract_strokes: instance '" + inst.name +
-                                  "' has no valid mesh index");
+      throw InternalError("extract_strokes: instance '" + inst.name +
+                          "' has no valid mesh index");
   std::vector<Stroke> strokes;
   if (!(options.strength > 0)) return strokes;
 

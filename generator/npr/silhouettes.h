@@ -66,7 +66,7 @@ struct StrokeOptions {
 /// with W the width option and s = strength * min(1, sqrt(L / (30 W))) (short strokes thinner).
 /// Deterministic: the same assets and options give the same strokes, in instance order.
 /// @param assets as render_scene_preview requires (finite, valid indices, a valid camera)
-/// @throws std::invalid_argument on an image size outside 1..16384 or a bad instance mesh index
+/// @throws InternalError on an image size outside 1..16384 or a bad instance mesh index
 std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptions& options = {});
 
 }  // namespace cutaway

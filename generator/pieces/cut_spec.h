@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "base/outcome.h"
 #include "base/plane.h"
 
 namespace cutaway {
@@ -30,10 +31,10 @@ inline constexpr double kMinCutLength_m = 0.5e-3;
 /// `halves`, `slices:THICKNESS`, `wedges:COUNT`, `dice:SIZE` or `plane:SPEC` (SPEC as
 /// parse_plane_spec).
 /// Lengths are in template units and become metres with `metres_per_unit`.
-/// @throws std::invalid_argument naming the rule when `text` is not of these forms, a length is
-///         not positive and finite (or below kMinCutLength_m once in metres), or a count is not
-///         a whole number in 2..64
-CutSpec parse_cut_spec(const std::string& text, double metres_per_unit);
+/// @returns the cut, or none with the rule `text` breaks: not of these forms, a length not
+///          positive and finite (or below kMinCutLength_m once in metres), a count not a whole
+///          number in 2..64
+Outcome<CutSpec> parse_cut_spec(const std::string& text, double metres_per_unit);
 
 /// A short label of `cut` in millimetres: "whole", "halves", "slices:6mm", "wedges:8",
 /// "dice:12mm" or "plane" (lengths with up to 3 decimals, trailing zeros dropped).

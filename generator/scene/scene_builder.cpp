@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "base/error.h"
 #include "base/random.h"
 #include "base/timer.h"
 #include "io/template_parser.h"
@@ -288,7 +289,7 @@ CutObject cut_scene_object(SceneAssets& assets, const Variant& variant, uint64_t
                            const PieceMaterials& materials, const std::string& object,
                            const ObjectCutOptions& cut, const SceneBuildOptions& options,
                            SceneStats& st) {
-  if (!options.diffusion) throw std::invalid_argument("cut_scene_object: no diffusion backend");
+  if (!options.diffusion) throw InternalError("cut_scene_object: no diffusion backend");
   auto t0 = Clock::now();
   const auto diffusion = options.diffusion(variant.model);
   st.seconds_backend += seconds_since(t0);
@@ -356,7 +357,7 @@ CutObject cut_scene_object(SceneAssets& assets, const Variant& variant, uint64_t
 
 SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptions& options,
                         SceneStats* stats) {
-  if (!options.diffusion) throw std::invalid_argument("build_scene: no diffusion backend");
+  if (!options.diffusion) throw InternalError("build_scene: no diffusion backend");
   SceneStats local;
   SceneStats& st = stats ? *stats : local;
   st = SceneStats{};

@@ -182,7 +182,7 @@ struct CutObject {
 /// Perlin-modulated in the object frame. Adds its timings and counts to `st` (seconds_backend,
 /// sections, diffuse, clip, bake; diffused_points, recut_objects, defective_pieces).
 /// Deterministic, as build_scene.
-/// @throws std::invalid_argument when options.diffusion is empty
+/// @throws InternalError when options.diffusion is empty
 CutObject cut_scene_object(SceneAssets& assets, const Variant& variant, uint64_t variant_seed,
                            const PieceMaterials& materials, const std::string& object,
                            const ObjectCutOptions& cut, const SceneBuildOptions& options,

@@ -11,13 +11,14 @@
 #include <glm/geometric.hpp>
 
 #include "base/colour.h"
+#include "base/error.h"
 
 namespace cutaway {
 
 SegmentChains chain_segments(std::span<const std::array<glm::dvec2, 2>> segments,
                              std::span<const int> group) {
   const size_t n = segments.size();
-  if (group.size() != n) throw std::invalid_argument("chain_segments: one group per segment");
+  if (group.size() != n) throw InternalError("chain_segments: one group per segment");
   SegmentChains out;
   out.chain.assign(n, -1);
   out.offset.assign(n, 0.0);
@@ -79,7 +80,7 @@ void mark_irregular_band_points(std::span<BandPoint> points, const SegmentChains
   for (BandPoint& p : points) {
     const int chain = p.line / 3;
     if (chain < 0 || chain >= chains.chains)
-      throw std::invalid_argument("mark_irregular_band_points: a line of no chain");
+      throw InternalError("mark_irregular_band_points: a line of no chain");
     if (!chains.closed[chain] &&
         std::min(p.arc_length, chains.length[chain] - p.arc_length) < 2 * p.width) {
       p.exact = true;
@@ -110,8 +111,8 @@ BandSamplingCounts sample_bands(std::span<const BandPoint> points,
                                 std::span<glm::dvec2> material) {
   check_channel_sizes(points.size(), colour.size(), material.size());
   if (material.size() != points.size())
-    throw std::invalid_argument("sample_bands: one material entry per point");
-  if (!(options.spacing_m > 0)) throw std::invalid_argument("sample_bands: spacing must be > 0");
+    throw InternalError("sample_bands: one material entry per point");
+  if (!(options.spacing_m > 0)) throw InternalError("sample_bands: spacing must be > 0");
   BandSamplingCounts counts;
   counts.points = points.size();
   // Points by line, then arc length (then index: deterministic for equal arc lengths).

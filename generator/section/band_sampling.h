@@ -83,7 +83,7 @@ struct BandSamplingCounts {
 /// and where it differs from the linear interpolation (by arc length) of the gap's ends by
 /// more than `tolerance` both halves are tested again. All other points get the linear
 /// interpolation of the samples around them. Deterministic; each round is one diffusion batch.
-/// @throws std::invalid_argument when colour or material is not #P long, or spacing_m <= 0
+/// @throws InternalError when colour or material is not #P long, or spacing_m <= 0
 BandSamplingCounts sample_bands(std::span<const BandPoint> points,
                                 const DiffusionBackend& diffusion,
                                 const BandSamplingOptions& options, std::span<glm::dvec3> colour,

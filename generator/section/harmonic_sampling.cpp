@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "base/colour.h"
+#include "base/error.h"
 
 namespace cutaway {
 
@@ -70,9 +71,9 @@ HarmonicSamplingCounts sample_harmonically(
     const DiffusionBackend& diffusion, const HarmonicSamplingOptions& options) {
   const size_t n = position.size();
   if (free.size() != n || colour.size() != n || material.size() != n)
-    throw std::invalid_argument("sample_harmonically: one flag, colour and material per vertex");
+    throw InternalError("sample_harmonically: one flag, colour and material per vertex");
   if (!(options.spacing_m > 0))
-    throw std::invalid_argument("sample_harmonically: the spacing must be > 0");
+    throw InternalError("sample_harmonically: the spacing must be > 0");
   HarmonicSamplingCounts counts;
   std::vector<bool> unknown = free;  // free and not diffused yet
   for (bool f : free) counts.free += f;

@@ -52,7 +52,7 @@ struct HarmonicSamplingCounts {
 /// Deterministic (vertex order); every diffusion is one batch.
 /// Source: harmonic (Laplace) interpolation of scattered samples over a mesh, with a posteriori
 /// refinement; paper §3.2 diffuses every vertex instead.
-/// @throws std::invalid_argument when the sizes disagree or spacing_m <= 0
+/// @throws InternalError when the sizes disagree or spacing_m <= 0
 HarmonicSamplingCounts sample_harmonically(
     std::span<const glm::dvec3> position, std::span<const glm::uvec3> triangle,
     const std::vector<bool>& free, std::span<glm::dvec3> colour, std::span<glm::dvec2> material,

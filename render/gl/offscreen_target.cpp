@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "base/colour.h"
+#include "base/error.h"
 
 namespace cutaway {
 namespace {
@@ -50,9 +51,9 @@ OffscreenTarget::OffscreenTarget(const GlContext& context, int width, int height
   glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_side);
   glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
   if (width < 1 || height < 1 || width > max_side || height > max_side)
-    throw std::invalid_argument(caller_ + ": image size " + std::to_string(width) + "x" +
-                                std::to_string(height) + " exceeds the GL limit " +
-                                std::to_string(max_side) + " of " + context.description());
+    throw InternalError(caller_ + ": image size " + std::to_string(width) + "x" +
+                        std::to_string(height) + " exceeds the GL limit " +
+                        std::to_string(max_side) + " of " + context.description());
   if (!make_colour_framebuffer(width, height, 1, internal_format, resolved_, resolved_buffer_))
     throw std::runtime_error(caller_ + ": cannot create a floating-point framebuffer on " +
                              context.description());

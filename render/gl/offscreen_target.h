@@ -33,7 +33,7 @@ class OffscreenTarget {
   /// @param samples       MSAA samples requested, >= 1; clamped to GL_MAX_SAMPLES
   /// @param caller        prefix of error messages, e.g. "render_model_preview"
   /// @param internal_format GL_RGBA16F or GL_RGBA32F
-  /// @throws std::invalid_argument when width or height exceeds GL_MAX_RENDERBUFFER_SIZE
+  /// @throws InternalError when width or height exceeds GL_MAX_RENDERBUFFER_SIZE
   /// @throws std::runtime_error when not even the single-sample framebuffer can be created
   OffscreenTarget(const GlContext& context, int width, int height, int samples,
                   const std::string& caller, GLenum internal_format = GL_RGBA16F);

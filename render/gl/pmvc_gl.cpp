@@ -15,6 +15,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "base/error.h"
 #include "diffusion/cube_directions.h"
 #include "diffusion/diffusion_sheets.h"
 #include "diffusion/sheet_bvh.h"
@@ -76,8 +77,8 @@ class GlDiffusion final : public DiffusionBackend {
   GlDiffusion(const DsModel& model, const DiffusionOptions& options)
       : rotate_cubes_(options.rotate_cubes) {
     if (options.cube_size < 1)
-      throw std::invalid_argument("gl diffusion: cube_size must be >= 1, got " +
-                                  std::to_string(options.cube_size));
+      throw InternalError("gl diffusion: cube_size must be >= 1, got " +
+                          std::to_string(options.cube_size));
     context_ = create_offscreen_context();
     check_capabilities();
     trace_ = std::make_unique<GlProgram>("pmvc_trace.comp");

@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "base/error.h"
 #include "render/image/text_label.h"
 #include "render/section_preview.h"
 
@@ -20,7 +21,7 @@ namespace {
 
 constexpr int kMaxSheetSide = 16384;
 
-void fail(const std::string& what) { throw std::invalid_argument("contact sheet: " + what); }
+void fail(const std::string& what) { throw InternalError("contact sheet: " + what); }
 
 /// An opaque image of w x h pixels filled with `srgb` (0..1).
 Image filled(int w, int h, const glm::dvec3& srgb) {
@@ -127,7 +128,7 @@ Image labelled_tile(const Image& picture, const std::string& name, const std::st
                     int scale) {
   if (picture.width < 1 || picture.height < 1 ||
       picture.rgba.size() != static_cast<size_t>(picture.width) * picture.height * 4 || scale < 1)
-    throw std::invalid_argument("labelled_tile: a malformed picture or a scale below 1");
+    throw InternalError("labelled_tile: a malformed picture or a scale below 1");
   const LabelSize name_size = label_size(name, scale);
   const std::string detail_text = "  " + detail;
   const LabelSize detail_size = label_size(detail_text, scale);

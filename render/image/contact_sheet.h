@@ -30,14 +30,14 @@ struct GridOptions {
 /// @param tiles   at least one; each with width, height > 0 and rgba.size() == w * h * 4
 /// @param columns >= 1; more columns than tiles leaves the extra columns out (the sheet is
 ///                min(columns, tiles) cells wide)
-/// @throws std::invalid_argument when tiles is empty or a tile is malformed, columns < 1,
+/// @throws InternalError when tiles is empty or a tile is malformed, columns < 1,
 ///         margin < 0, or the sheet would exceed 16384 pixels on a side
 Image compose_grid(const std::vector<Image>& tiles, int columns, const GridOptions& options = {});
 
 /// `picture` with a white label strip below it: `name` in black followed by two spaces and
 /// `detail` in grey, centred, in the bitmap font of text_label.h at `scale` (>= 1) times its
 /// size. The tile is as wide as the picture and the strip as high as the text plus 4 * scale.
-/// @throws std::invalid_argument when the picture is malformed or scale < 1
+/// @throws InternalError when the picture is malformed or scale < 1
 Image labelled_tile(const Image& picture, const std::string& name, const std::string& detail,
                     int scale);
 
@@ -56,7 +56,7 @@ struct SectionTileOptions {
 /// shows twice as wide (to within one pixel of rounding). Feed the result to compose_grid().
 /// @param sections at least one, each as render_section_preview() requires
 /// @returns one opaque tile_px x tile_px image per section, in order
-/// @throws std::invalid_argument when sections is empty, a section is malformed or
+/// @throws InternalError when sections is empty, a section is malformed or
 ///         tile_px is outside 16..4096
 /// @throws std::runtime_error when rendering fails (see render_section_preview())
 std::vector<Image> render_section_tiles(const std::vector<CrossSection>& sections,

@@ -7,15 +7,16 @@
 #include <string>
 
 #include "base/atomic_file.h"
+#include "base/error.h"
 
 namespace cutaway {
 
 std::string encode_png(const Image& image) {
   if (image.width < 1 || image.height < 1 ||
       image.rgba.size() != static_cast<size_t>(image.width) * image.height * 4)
-    throw std::invalid_argument("encode_png: image of " + std::to_string(image.width) + "x" +
-                                std::to_string(image.height) + " pixels has " +
-                                std::to_string(image.rgba.size()) + " bytes, not w*h*4");
+    throw InternalError("encode_png: image of " + std::to_string(image.width) + "x" +
+                        std::to_string(image.height) + " pixels has " +
+                        std::to_string(image.rgba.size()) + " bytes, not w*h*4");
   std::string bytes;
   const auto append = [](void* context, void* data, int size) {
     static_cast<std::string*>(context)->append(static_cast<const char*>(data),

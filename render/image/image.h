@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+
 namespace cutaway {
 
 /// An 8-bit RGBA image: `rgba` holds width * height * 4 bytes, rows top first, pixels left to
@@ -19,7 +20,7 @@ struct Image {
 
 /// `image` encoded as PNG (8-bit RGBA, stb_image_write).
 /// @param image width, height > 0 and rgba.size() == width * height * 4
-/// @throws std::invalid_argument when the image's size does not match its bytes
+/// @throws InternalError when the image's size does not match its bytes
 /// @throws std::runtime_error when encoding fails
 std::string encode_png(const Image& image);
 
@@ -30,7 +31,7 @@ Image decode_png(std::string_view bytes);
 /// Encodes `image` as PNG (encode_png) and writes it atomically
 /// (write_file_atomically(): a failed write leaves no partial file).
 /// @param image width, height > 0 and rgba.size() == width * height * 4
-/// @throws std::invalid_argument when the image's size does not match its bytes
+/// @throws InternalError when the image's size does not match its bytes
 /// @throws std::runtime_error when encoding or writing fails
 void write_png(const std::filesystem::path& path, const Image& image);
 

@@ -1,4 +1,5 @@
 #include "render/image/text_label.h"
+#include "base/error.h"
 
 #include <algorithm>
 #include <cmath>
@@ -27,7 +28,7 @@ std::string printable(const std::string& text) {
 }  // namespace
 
 LabelSize label_size(const std::string& text, int scale) {
-  if (scale < 1) throw std::invalid_argument("label_size: scale must be >= 1");
+  if (scale < 1) throw InternalError("label_size: scale must be >= 1");
   std::string s = printable(text);
   if (s.empty()) return {};
   return {stb_easy_font_width(s.data()) * scale, stb_easy_font_height(s.data()) * scale};
@@ -35,10 +36,10 @@ LabelSize label_size(const std::string& text, int scale) {
 
 void draw_label(Image& image, const std::string& text, int x, int y, int scale,
                 const glm::dvec3& srgb) {
-  if (scale < 1) throw std::invalid_argument("draw_label: scale must be >= 1");
+  if (scale < 1) throw InternalError("draw_label: scale must be >= 1");
   if (image.width < 0 || image.height < 0 ||
       image.rgba.size() != static_cast<size_t>(image.width) * image.height * 4)
-    throw std::invalid_argument("draw_label: malformed image");
+    throw InternalError("draw_label: malformed image");
   std::string s = printable(text);
   if (s.empty()) return;
   // stb_easy_font: 4 vertices of 16 bytes per quad; about 270 bytes per character suffice.

@@ -22,7 +22,7 @@ LabelSize label_size(const std::string& text, int scale);
 /// with the opaque sRGB colour `srgb` (0..1 per component), each font unit `scale` x `scale`
 /// pixels. Pixels outside the image are skipped, so a label may be clipped but never writes
 /// out of bounds.
-/// @throws std::invalid_argument when scale < 1 or the image is malformed
+/// @throws InternalError when scale < 1 or the image is malformed
 void draw_label(Image& image, const std::string& text, int x, int y, int scale,
                 const glm::dvec3& srgb = glm::dvec3(0.0));
 

@@ -37,7 +37,7 @@ const Halves& tomato_halves() {
     out->diffusion = make_cpu_diffusion(out->model, {16, 0});
     PieceOptions options;
     options.section.edge_m = out->tmpl.edge_m;
-    out->set = *cut_pieces(out->model, parse_cut_spec("halves", 1e-3), *out->diffusion, options);
+    out->set = *cut_pieces(out->model, *parse_cut_spec("halves", 1e-3), *out->diffusion, options);
     return out;
   }();
   return *h;
@@ -238,7 +238,7 @@ TEST(CapAtlas, TheTwoCapsOfACutShareOneIsland) {
   // about four times the texels of one wedge (2 caps on 2 faces), not eight times.
   PieceOptions piece_options;
   piece_options.section.edge_m = h.tmpl.edge_m;
-  const PieceSet wedges = *cut_pieces(h.model, parse_cut_spec("wedges:8", 1e-3), *h.diffusion,
+  const PieceSet wedges = *cut_pieces(h.model, *parse_cut_spec("wedges:8", 1e-3), *h.diffusion,
                                      piece_options);
   ASSERT_EQ(wedges.pieces.size(), 8u);
   const CapAtlas eight = bake_cap_atlas(all_pieces(wedges), wedges.sections, nullptr, 0, options);
@@ -284,7 +284,7 @@ TEST(CapAtlas, IslandsAreDisjointDilatedAndDeterministic) {
   EXPECT_LT(small.texels_per_m, 1e6);
   options.texels_per_m = -1;
   EXPECT_THROW(bake_cap_atlas(all_pieces(h.set), h.set.sections, nullptr, 0, options),
-               std::invalid_argument);
+               InternalError);
 }
 
 }  // namespace

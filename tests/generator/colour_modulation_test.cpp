@@ -210,10 +210,10 @@ TEST(ColourModulation, StaysInRangeAndWithinTheDocumentedChange) {
 
 TEST(ColourModulation, RefusesBadArguments) {
   std::vector<glm::dvec3> pos(3), col(2);
-  EXPECT_THROW(modulate_colours(pos, col, tomato_like(), 1.0, 1), std::invalid_argument);
+  EXPECT_THROW(modulate_colours(pos, col, tomato_like(), 1.0, 1), InternalError);
   col.resize(3);
-  EXPECT_THROW(modulate_colours(pos, col, tomato_like(), -1.0, 1), std::invalid_argument);
-  EXPECT_THROW(modulate_colours(pos, col, tomato_like(), NAN, 1), std::invalid_argument);
+  EXPECT_THROW(modulate_colours(pos, col, tomato_like(), -1.0, 1), InternalError);
+  EXPECT_THROW(modulate_colours(pos, col, tomato_like(), NAN, 1), InternalError);
   EXPECT_NO_THROW(modulate_colours(pos, col, tomato_like(), 1.0, 1));
 }
 

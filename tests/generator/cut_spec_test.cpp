@@ -15,49 +15,46 @@
 namespace cutaway {
 namespace {
 
-/// The message of the std::invalid_argument parse_cut_spec throws (fails the test otherwise).
+/// The reason parse_cut_spec refuses `text` (fails the test when it is accepted).
 std::string error_of(const std::string& text, double metres_per_unit = 1e-3) {
-  try {
-    parse_cut_spec(text, metres_per_unit);
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
+  const Outcome<CutSpec> cut = parse_cut_spec(text, metres_per_unit);
+  if (!cut) return cut.reason();
   ADD_FAILURE() << "'" << text << "' was accepted";
   return "";
 }
 
 TEST(CutSpec, WholeAndHalves) {
-  EXPECT_EQ(parse_cut_spec("whole", 1e-3).type, CutType::Whole);
-  EXPECT_EQ(parse_cut_spec("halves", 1e-3).type, CutType::Halves);
+  EXPECT_EQ(parse_cut_spec("whole", 1e-3)->type, CutType::Whole);
+  EXPECT_EQ(parse_cut_spec("halves", 1e-3)->type, CutType::Halves);
 }
 
 TEST(CutSpec, SlicesAndDiceInMetres) {
-  const CutSpec s = parse_cut_spec("slices:5", 1e-3);
+  const CutSpec s = *parse_cut_spec("slices:5", 1e-3);
   EXPECT_EQ(s.type, CutType::Slices);
   EXPECT_DOUBLE_EQ(s.thickness_m, 0.005);
-  EXPECT_DOUBLE_EQ(parse_cut_spec("slices:0.5", 1e-2).thickness_m, 0.005);
-  EXPECT_DOUBLE_EQ(parse_cut_spec("slices:1.5e1", 1e-3).thickness_m, 0.015);
-  const CutSpec d = parse_cut_spec("dice:12.5", 1e-3);
+  EXPECT_DOUBLE_EQ(parse_cut_spec("slices:0.5", 1e-2)->thickness_m, 0.005);
+  EXPECT_DOUBLE_EQ(parse_cut_spec("slices:1.5e1", 1e-3)->thickness_m, 0.015);
+  const CutSpec d = *parse_cut_spec("dice:12.5", 1e-3);
   EXPECT_EQ(d.type, CutType::Dice);
   EXPECT_DOUBLE_EQ(d.size_m, 0.0125);
-  EXPECT_DOUBLE_EQ(parse_cut_spec("dice:0.5", 1e-3).size_m, kMinCutLength_m);
-  EXPECT_NEAR(parse_cut_spec("dice:0.05", 1e-2).size_m, kMinCutLength_m, 1e-15);
+  EXPECT_DOUBLE_EQ(parse_cut_spec("dice:0.5", 1e-3)->size_m, kMinCutLength_m);
+  EXPECT_NEAR(parse_cut_spec("dice:0.05", 1e-2)->size_m, kMinCutLength_m, 1e-15);
 }
 
 TEST(CutSpec, Wedges) {
-  const CutSpec w = parse_cut_spec("wedges:6", 1e-3);
+  const CutSpec w = *parse_cut_spec("wedges:6", 1e-3);
   EXPECT_EQ(w.type, CutType::Wedges);
   EXPECT_EQ(w.count, 6);
-  EXPECT_EQ(parse_cut_spec("wedges:2", 1e-3).count, 2);
-  EXPECT_EQ(parse_cut_spec("wedges:64", 1e-3).count, 64);
+  EXPECT_EQ(parse_cut_spec("wedges:2", 1e-3)->count, 2);
+  EXPECT_EQ(parse_cut_spec("wedges:64", 1e-3)->count, 64);
 }
 
 TEST(CutSpec, PlaneUsesThePlaneNotation) {
-  const CutSpec p = parse_cut_spec("plane:y=20", 1e-3);
+  const CutSpec p = *parse_cut_spec("plane:y=20", 1e-3);
   EXPECT_EQ(p.type, CutType::Plane);
   EXPECT_DOUBLE_EQ(p.plane.point.y, 0.020);
   EXPECT_DOUBLE_EQ(p.plane.normal.y, 1.0);
-  const CutSpec q = parse_cut_spec("plane:0,10,0/3,0,4", 1e-3);
+  const CutSpec q = *parse_cut_spec("plane:0,10,0/3,0,4", 1e-3);
   EXPECT_DOUBLE_EQ(q.plane.point.y, 0.010);
   EXPECT_NEAR(q.plane.normal.x, 0.6, 1e-12);
   EXPECT_NEAR(q.plane.normal.z, 0.8, 1e-12);
@@ -89,15 +86,15 @@ TEST(CutSpec, Rejections) {
 
 TEST(CutSpec, PieceCountEstimates) {
   const ObjectExtents e{0.02, 0.1};  // 40 mm across, 100 mm tall
-  EXPECT_EQ(estimate_piece_count(parse_cut_spec("whole", 1e-3), e), 1);
-  EXPECT_EQ(estimate_piece_count(parse_cut_spec("halves", 1e-3), e), 2);
-  EXPECT_EQ(estimate_piece_count(parse_cut_spec("plane:y=3", 1e-3), e), 2);
-  EXPECT_EQ(estimate_piece_count(parse_cut_spec("wedges:7", 1e-3), e), 7);
-  EXPECT_EQ(estimate_piece_count(parse_cut_spec("slices:10", 1e-3), e), 11);
-  EXPECT_EQ(estimate_piece_count(parse_cut_spec("slices:30", 1e-3), e), 5);
-  EXPECT_EQ(estimate_piece_count(parse_cut_spec("dice:10", 1e-3), e), 4 * 4 * 10);
+  EXPECT_EQ(estimate_piece_count(*parse_cut_spec("whole", 1e-3), e), 1);
+  EXPECT_EQ(estimate_piece_count(*parse_cut_spec("halves", 1e-3), e), 2);
+  EXPECT_EQ(estimate_piece_count(*parse_cut_spec("plane:y=3", 1e-3), e), 2);
+  EXPECT_EQ(estimate_piece_count(*parse_cut_spec("wedges:7", 1e-3), e), 7);
+  EXPECT_EQ(estimate_piece_count(*parse_cut_spec("slices:10", 1e-3), e), 11);
+  EXPECT_EQ(estimate_piece_count(*parse_cut_spec("slices:30", 1e-3), e), 5);
+  EXPECT_EQ(estimate_piece_count(*parse_cut_spec("dice:10", 1e-3), e), 4 * 4 * 10);
   // Huge objects saturate instead of overflowing.
-  EXPECT_EQ(estimate_piece_count(parse_cut_spec("dice:0.5", 1e-3), ObjectExtents{900, 900}),
+  EXPECT_EQ(estimate_piece_count(*parse_cut_spec("dice:0.5", 1e-3), ObjectExtents{900, 900}),
             1000000000);
 }
 

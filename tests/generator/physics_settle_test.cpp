@@ -30,7 +30,7 @@ std::vector<ShadedMesh> pieces_of(const std::string& name, const std::string& cu
   const auto diffusion = make_cpu_diffusion(model, {4, 0});
   PieceOptions options;
   options.section.edge_m = tmpl.edge_m;
-  const PieceSet set = *cut_pieces(model, parse_cut_spec(cut, 1e-3), *diffusion, options);
+  const PieceSet set = *cut_pieces(model, *parse_cut_spec(cut, 1e-3), *diffusion, options);
   std::vector<ShadedMesh> out;
   for (const Piece& p : set.pieces) out.push_back(merge_parts(p));
   return out;

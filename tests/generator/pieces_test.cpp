@@ -100,7 +100,7 @@ TEST_P(PiecesTest, ClosedManifoldsWhoseVolumesAddUp) {
   PieceOptions options;
   options.section.edge_m = tmpl.edge_m;
   const PieceSet set =
-      *cut_pieces(model, parse_cut_spec(GetParam().cut, tmpl.metres_per_unit), *diffusion, options);
+      *cut_pieces(model, *parse_cut_spec(GetParam().cut, tmpl.metres_per_unit), *diffusion, options);
   ASSERT_GE(set.pieces.size(), 2u);
   for (const CrossSection& cs : set.sections) EXPECT_FALSE(cs.refinement_capped);
   double volume = 0;
@@ -143,7 +143,7 @@ TEST(Pieces, ExportAsSkinAndCapPrimitivesWithTheTemplatesMaterials) {
   const auto diffusion = make_cpu_diffusion(model, {8, 0});
   PieceOptions options;
   options.section.edge_m = tmpl.edge_m;
-  const PieceSet set = *cut_pieces(model, parse_cut_spec("wedges:4", 1e-3), *diffusion, options);
+  const PieceSet set = *cut_pieces(model, *parse_cut_spec("wedges:4", 1e-3), *diffusion, options);
   const SceneAssets assets =
       piece_assets(set, tmpl.name, tmpl.skin_material, tmpl.cut_material, 0.3, 64, 48);
   ASSERT_EQ(assets.materials.size(), 3u);
@@ -191,7 +191,7 @@ TEST(Pieces, CoarseCapsKeepPiecesClosedWithTheSameArea) {
     const auto diffusion = make_cpu_diffusion(model, {4, 0});
     PieceOptions options;
     options.section.edge_m = tmpl.edge_m;
-    const PieceSet set = *cut_pieces(model, parse_cut_spec(cut, 1e-3), *diffusion, options);
+    const PieceSet set = *cut_pieces(model, *parse_cut_spec(cut, 1e-3), *diffusion, options);
     size_t fine = 0, coarse = 0;
     for (const Piece& piece : set.pieces) {
       ShadedMesh mesh = merge_parts(piece);
@@ -222,7 +222,7 @@ TEST(Pieces, CapsOnEitherSideOfACutAreMirrorImagesWithEqualColours) {
   const auto diffusion = make_cpu_diffusion(model, {8, 0});
   PieceOptions options;
   options.section.edge_m = tmpl.edge_m;
-  const PieceSet set = *cut_pieces(model, parse_cut_spec("slices:15", 1e-3), *diffusion, options);
+  const PieceSet set = *cut_pieces(model, *parse_cut_spec("slices:15", 1e-3), *diffusion, options);
   ASSERT_GE(set.pieces.size(), 3u);
   // Piece k's upper cap and piece k+1's lower cap lie on the same plane.
   for (size_t k = 0; k + 1 < set.pieces.size(); ++k) {
@@ -264,7 +264,7 @@ TEST(Pieces, CapsOnEitherSideOfACutAreMirrorImagesWithEqualColours) {
 }
 
 TEST(CutCells, SlicesAreCentredAndWedgesPartitionSpace) {
-  const CutCells slices = make_cut_cells(parse_cut_spec("slices:10", 1e-3), {-0.03, 0, -0.03},
+  const CutCells slices = make_cut_cells(*parse_cut_spec("slices:10", 1e-3), {-0.03, 0, -0.03},
                                          {0.03, 0.052, 0.03});
   // 52 mm in 10 mm slices: 4 planes, end pieces 11 mm thick.
   ASSERT_EQ(slices.planes.size(), 4u);
@@ -273,7 +273,7 @@ TEST(CutCells, SlicesAreCentredAndWedgesPartitionSpace) {
   EXPECT_EQ(slices.cells.size(), 5u);
   for (int n : {2, 3, 5, 6}) {
     const CutCells wedges =
-        make_cut_cells(parse_cut_spec("wedges:" + std::to_string(n), 1e-3), glm::dvec3(-1),
+        make_cut_cells(*parse_cut_spec("wedges:" + std::to_string(n), 1e-3), glm::dvec3(-1),
                        glm::dvec3(1));
     EXPECT_EQ(wedges.planes.size(), n % 2 ? size_t(n) : size_t(n / 2));
     ASSERT_EQ(wedges.cells.size(), size_t(n));

@@ -250,22 +250,22 @@ TEST(PovExport, RefusesBrokenAssets) {
   const SceneAssets good = test_scene();
   SceneAssets s = good;
   s.meshes[0].triangle[0].z = 24;
-  EXPECT_THROW(scene_to_pov(s), std::invalid_argument);
+  EXPECT_THROW(scene_to_pov(s), InternalError);
   s = good;
   s.meshes[1].colour.pop_back();
-  EXPECT_THROW(scene_to_pov(s), std::invalid_argument);
+  EXPECT_THROW(scene_to_pov(s), InternalError);
   s = good;
   s.instances[0].mesh = 2;
-  EXPECT_THROW(scene_to_pov(s), std::invalid_argument);
+  EXPECT_THROW(scene_to_pov(s), InternalError);
   s = good;
   s.camera.up = {0, 0, 1};  // parallel to the view direction
-  EXPECT_THROW(scene_to_pov(s), std::invalid_argument);
+  EXPECT_THROW(scene_to_pov(s), InternalError);
   s = good;
   s.meshes[0].position[3].x = std::nan("");
-  EXPECT_THROW(scene_to_pov(s), std::invalid_argument);
+  EXPECT_THROW(scene_to_pov(s), InternalError);
   s = good;
   s.lights[0].direction = {0, 0, 0};
-  EXPECT_THROW(scene_to_pov(s), std::invalid_argument);
+  EXPECT_THROW(scene_to_pov(s), InternalError);
 }
 
 // Pixel (column, row from the top) of scene point `p` under the OpenGL pinhole of `c`.
@@ -419,7 +419,7 @@ TEST(PovExport, AFinishPerMaterialOnTheFacesThatUseIt) {
   EXPECT_EQ(read_png(dir / "scene.png").width, s.width);
   // A material index out of range is refused.
   s.meshes[0].primitives[1].material = 2;
-  EXPECT_THROW(scene_to_pov(s), std::invalid_argument);
+  EXPECT_THROW(scene_to_pov(s), InternalError);
 }
 
 TEST(PovExport, TexturedFacesUseTheirImageBesideTheScene) {

@@ -358,7 +358,7 @@ TEST(SceneGltf, AnUnknownExtensionThrowsAndWritesNothing) {
   const auto dir = test::fresh_dir("scene-gltf");
   const SceneAssets s = small_scene();
   for (const char* name : {"scene.obj", "scene", "scene.glb.tmp", "scene.bin", "scene.pov"}) {
-    EXPECT_THROW(write_scene_gltf(dir / name, s), std::invalid_argument) << name;
+    EXPECT_THROW(write_scene_gltf(dir / name, s), InternalError) << name;
   }
   EXPECT_NO_THROW(write_scene_gltf(dir / "UPPER.GLB", s));  // the extension's case is free
   EXPECT_EQ(test::files_in(dir), (std::vector<std::string>{"UPPER.GLB"}));
@@ -386,7 +386,7 @@ TEST(SceneGltf, InvalidAssetsThrow) {
   auto expect_invalid = [](const std::function<void(SceneAssets&)>& edit, const char* what) {
     SceneAssets s = small_scene();
     edit(s);
-    EXPECT_THROW(scene_to_glb(s), std::invalid_argument) << what;
+    EXPECT_THROW(scene_to_glb(s), InternalError) << what;
   };
   expect_invalid([](SceneAssets& s) { s.instances[0].mesh = 2; }, "mesh index");
   expect_invalid([](SceneAssets& s) { s.instances[0].rotation = glm::dquat(0, 0, 0, 0); },
@@ -558,10 +558,10 @@ TEST(SceneGltf, TexturedPrimitivesUseTexcoordsAndNoVertexColours) {
   // A textured material on a mesh without uv, or a texture index out of range, is refused.
   SceneAssets bad = s;
   bad.meshes[0].uv.clear();
-  EXPECT_THROW(scene_to_glb(bad), std::invalid_argument);
+  EXPECT_THROW(scene_to_glb(bad), InternalError);
   bad = s;
   bad.materials[1].base_colour_texture = 1;
-  EXPECT_THROW(scene_to_glb(bad), std::invalid_argument);
+  EXPECT_THROW(scene_to_glb(bad), InternalError);
 }
 
 /// The float32 value of normalized component `k` of element `i` of accessor `a` (SHORT,

@@ -29,7 +29,7 @@ TEST_P(SeededDice, PiecesAreClosedWithoutSlivers) {
   const int seeds = env && *env ? std::atoi(env) : 1;
   const Template tmpl = load_template(GetParam().string());
   // 12 mm cubes, or larger ones for large objects: at most about 150 pieces.
-  CutSpec dice = parse_cut_spec("dice:12", 1e-3);
+  CutSpec dice = *parse_cut_spec("dice:12", 1e-3);
   while (estimate_piece_count(dice, template_extents(tmpl)) > 150) dice.size_m *= 1.25;
   for (int s = 0; s < seeds; ++s) {
     const uint64_t seed = 100 + static_cast<uint64_t>(s);

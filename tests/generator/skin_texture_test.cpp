@@ -47,7 +47,7 @@ const Cut& apple_halves() {
     const auto diffusion = make_cpu_diffusion(out->model, {8, 0});
     PieceOptions options;
     options.section.edge_m = out->tmpl.edge_m;
-    out->set = *cut_pieces(out->model, parse_cut_spec("plane:y=25", 1e-3), *diffusion, options);
+    out->set = *cut_pieces(out->model, *parse_cut_spec("plane:y=25", 1e-3), *diffusion, options);
     return out;
   }();
   return *c;

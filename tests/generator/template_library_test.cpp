@@ -94,7 +94,7 @@ TEST_P(TemplateLibrary, LoadsBuildsAndCutsIntoClosedPieces) {
   for (const std::string& cut : cuts) {
     SCOPED_TRACE(cut);
     const PieceSet set =
-        *cut_pieces(model, parse_cut_spec(cut, tmpl.metres_per_unit), *diffusion, options);
+        *cut_pieces(model, *parse_cut_spec(cut, tmpl.metres_per_unit), *diffusion, options);
     EXPECT_GE(set.pieces.size(), cut == "halves" ? 2u : 3u);
     for (const Piece& piece : set.pieces) {
       const ShadedMesh mesh = merge_parts(piece);

@@ -51,15 +51,15 @@ TEST(ComposeGrid, FewerTilesThanColumnsMakeOneRow) {
 }
 
 TEST(ComposeGrid, RefusesBadInput) {
-  EXPECT_THROW(compose_grid({}, 1), std::invalid_argument);
-  EXPECT_THROW(compose_grid({solid(2, 2, 0)}, 0), std::invalid_argument);
+  EXPECT_THROW(compose_grid({}, 1), InternalError);
+  EXPECT_THROW(compose_grid({solid(2, 2, 0)}, 0), InternalError);
   Image broken = solid(2, 2, 0);
   broken.rgba.pop_back();
-  EXPECT_THROW(compose_grid({broken}, 1), std::invalid_argument);
+  EXPECT_THROW(compose_grid({broken}, 1), InternalError);
   EXPECT_THROW(compose_grid({solid(2, 2, 0)}, 1, GridOptions{-1, {1, 1, 1}}),
-               std::invalid_argument);
+               InternalError);
   EXPECT_THROW(compose_grid({solid(9000, 10, 0), solid(9000, 10, 0)}, 2),
-               std::invalid_argument);
+               InternalError);
 }
 
 }  // namespace

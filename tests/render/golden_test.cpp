@@ -124,7 +124,7 @@ void section_case(const std::string& name, double perlin) {
   const DsModel model = build_model(tomato());
   const auto diffusion = cpu_diffusion(model);
   CrossSection section = *make_cross_section(
-      model, parse_plane_spec("y=26", tomato().metres_per_unit), *diffusion, {tomato().edge_m});
+      model, *parse_plane_spec("y=26", tomato().metres_per_unit), *diffusion, {tomato().edge_m});
   if (perlin > 0) modulate_colours(section.position, section.colour, tomato().npr, perlin, 0);
   SectionPreviewOptions o;
   o.width = kWidth;
@@ -141,7 +141,7 @@ void pieces_case(const std::string& name, double npr) {
   PieceOptions options;
   options.section.edge_m = tomato().edge_m;
   PieceSet set =
-      *cut_pieces(model, parse_cut_spec("halves", tomato().metres_per_unit), *diffusion, options);
+      *cut_pieces(model, *parse_cut_spec("halves", tomato().metres_per_unit), *diffusion, options);
   for (Piece& p : set.pieces)
     for (PiecePart& part : p.parts) modulate_colours(part.mesh, tomato().npr, npr, 0);
   const SceneAssets assets = piece_assets(set, tomato().name, tomato().skin_material,

@@ -150,7 +150,7 @@ TEST(PmvcGl, OutsidePointsAreBlackAndBadCubeSizesAreRefused) {
   const std::vector<glm::dvec3> outside = backend->diffuse(std::vector<glm::dvec3>{{1, 1, 1}});
   EXPECT_EQ(outside[0], glm::dvec3(0.0));
   EXPECT_TRUE(backend->diffuse({}).empty());
-  EXPECT_THROW(make_gl_diffusion(tomato(), DiffusionOptions{0, 0}), std::invalid_argument);
+  EXPECT_THROW(make_gl_diffusion(tomato(), DiffusionOptions{0, 0}), InternalError);
 }
 
 /// Throughput on templates/tomato.yaml, both backends, cube 32 and 16 (not part of the suite:

@@ -95,11 +95,11 @@ TEST(PovrayRunner, MissingExecutableOrSceneThrows) {
   EXPECT_THROW(render_povray(dir / "none.pov", dir / "a.png", 10, 10, PovrayOptions{}),
                std::runtime_error);
   EXPECT_THROW(render_povray(dir / "scene.pov", dir / "a.png", 0, 10, PovrayOptions{}),
-               std::invalid_argument);
+               InternalError);
   PovrayOptions bad_quality;
   bad_quality.quality = 12;
   EXPECT_THROW(render_povray(dir / "scene.pov", dir / "a.png", 10, 10, bad_quality),
-               std::invalid_argument);
+               InternalError);
   EXPECT_FALSE(fs::exists(dir / "a.png"));
 }
 

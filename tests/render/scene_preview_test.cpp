@@ -226,7 +226,7 @@ TEST(ScenePreview, RefusesBadInput) {
   const auto refused = [&](SceneAssets a, ScenePreviewOptions o) {
     try {
       render_scene_preview(a, o);
-    } catch (const std::invalid_argument&) {
+    } catch (const InternalError&) {
       return true;
     }
     return false;

@@ -155,7 +155,7 @@ surfaces:
   EXPECT_GT(material[1].y, 0.4);
   EXPECT_LT(material[1].y, 0.9);
   std::vector<glm::dvec2> short_material(1);
-  EXPECT_THROW(backend->diffuse_channels(pts, colour, short_material), std::invalid_argument);
+  EXPECT_THROW(backend->diffuse_channels(pts, colour, short_material), InternalError);
 }
 
 }  // namespace

@@ -1,0 +1,111 @@
+// `cutaway piece`: one object (or a seeded variant) cut into pieces, written as glTF or POV-Ray
+// and pictured pulled apart; and the cut helpers `sheet` shares. Argument checks and calls into
+// the libraries only.
+#include <chrono>
+#include <string>
+
+#include <spdlog/spdlog.h>
+
+#include "base/timer.h"
+#include "cli/commands.h"
+#include "cli/scene_outputs.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "npr/colour_modulation.h"
+#include "pieces/pieces.h"
+#include "render/diffusion_backends.h"
+#include "scene/piece_views.h"
+#include "variation/variation.h"
+
+namespace cutaway::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+}  // namespace
+
+CutSpec checked_cut(const Template& tmpl, const std::string& text, const std::string& what) {
+  const Outcome<CutSpec> parsed = parse_cut_spec(text, tmpl.metres_per_unit);
+  if (!parsed) throw UsageError(what + ": " + parsed.reason());
+  const CutSpec cut = *parsed;
+  const long long estimate = estimate_piece_count(cut, template_extents(tmpl));
+  if (estimate > kMaxPiecesPerCut)
+    throw UsageError(what + ": would make about " + std::to_string(estimate) +
+                     " pieces (at most " + std::to_string(kMaxPiecesPerCut) + ")");
+  return cut;
+}
+
+PieceSet cut_object(const DsModel& model, const Template& tmpl, const CutSpec& cut, int cube,
+                    const Common& common, double perlin, uint64_t seed, const std::string& what,
+                    std::string* backend_name) {
+  const auto diffusion =
+      make_diffusion(model, {cube, common.threads}, parse_diffusion_choice(common.backend));
+  if (backend_name) *backend_name = diffusion->name();
+  PieceOptions options;
+  options.section.edge_m = tmpl.edge_m;
+  options.section.sampling = common.sampling;
+  Outcome<PieceSet> made = cut_pieces(model, cut, *diffusion, options);
+  if (!made) throw UsageError(what + ": " + made.reason());
+  PieceSet set = std::move(*made);
+  for (Piece& p : set.pieces)
+    for (PiecePart& part : p.parts) modulate_colours(part.mesh, tmpl.npr, perlin, seed);
+  return set;
+}
+
+int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
+  if (a.output.empty() && a.png.empty()) throw UsageError("give -o and/or --png");
+  if (!a.output.empty()) output_format("-o", a.output);
+  if (!a.png.empty()) require_extension("--png", a.png, ".png");
+  std::vector<std::string> exports;
+  if (!a.output.empty()) exports.push_back(a.output);
+  const Targets targets = register_outputs(outputs, exports, a.png, "");
+  const auto t0 = Clock::now();
+  const Template tmpl = load_template(a.template_path);
+  const CutSpec cut = checked_cut(tmpl, a.cut, "--cut " + quoted(a.cut));
+  const DsModel model =
+      a.seed >= 0 ? make_variant(tmpl, static_cast<uint64_t>(a.seed)).model : build_model(tmpl);
+  const double t_model = seconds_since(t0);
+  const auto t1 = Clock::now();
+  // Perlin colour modulation in the object frame: the variant's seed, or 0 for the template.
+  std::string backend_name;
+  const PieceSet set = cut_object(model, tmpl, cut, a.cube, common, a.perlin,
+                                  a.seed >= 0 ? static_cast<uint64_t>(a.seed) : 0,
+                                  "--cut " + quoted(a.cut), &backend_name);
+  const double t_cut = seconds_since(t1);
+  size_t triangles = 0;
+  for (const Piece& p : set.pieces)
+    for (const PiecePart& part : p.parts) triangles += part.mesh.triangle.size();
+  spdlog::info("{}: {} pieces, {} triangles, {} cut planes", tmpl.name, set.pieces.size(),
+               triangles, set.cells.planes.size());
+  if (set.attempts > 1)
+    spdlog::info("the cut was redone {} times with its planes nudged (near-degenerate position)",
+                 set.attempts - 1);
+  if (set.defective_pieces > 0)
+    spdlog::warn("{} pieces are not closed 2-manifolds", set.defective_pieces);
+  const SceneAssets assets =
+      piece_assets(set, tmpl.name, tmpl.skin_material, tmpl.cut_material, 0.3, a.width, a.height);
+  const Written w =
+      write_outputs(assets, targets, common.threads, a.silhouettes,
+                    export_options(a.compress, a.lods, a.textures));
+  if (common.stats) {
+    print_stats({{"template", tmpl.name},
+                 {"backend", backend_name},
+                 {"pieces", set.pieces.size()},
+                 {"planes", set.cells.planes.size()},
+                 {"triangles", triangles},
+                 {"diffused_points", set.diffused_points},
+                 {"seconds",
+                  {{"model", t_model},
+                   {"cut", t_cut},
+                   {"sections", set.seconds_sections},
+                   {"diffuse", set.seconds_diffuse},
+                   {"clip", set.seconds_clip},
+                   {"strokes", w.strokes_s},
+                   {"export", w.export_s},
+                   {"png", w.preview_s}}}});
+  }
+  return 0;
+}
+
+}  // namespace cutaway::cli

@@ -1,0 +1,88 @@
+// `cutaway section`: one cross-section of a template (or of a seeded variant) with diffused
+// colours, as glTF or PLY and a PNG.
+#include <chrono>
+#include <filesystem>
+
+#include <spdlog/spdlog.h>
+
+#include "base/atomic_file.h"
+#include "base/timer.h"
+#include "cli/commands.h"
+#include "export/gltf_export.h"
+#include "export/ply_export.h"
+#include "io/plane_spec.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "render/diffusion_backends.h"
+#include "render/image/image.h"
+#include "render/section_preview.h"
+#include "section/cross_section.h"
+#include "variation/variation.h"
+
+namespace cutaway::cli {
+
+using Clock = std::chrono::steady_clock;
+
+int run_section(const SectionArgs& a, const Common& common, OutputSet& outputs) {
+  const auto t0 = Clock::now();
+  const cutaway::Template tmpl = cutaway::load_template(a.template_path);
+  const cutaway::Outcome<cutaway::Plane> parsed = cutaway::parse_plane_spec(a.plane, tmpl.metres_per_unit);
+  if (!parsed) throw UsageError("--plane: " + parsed.reason());
+  const cutaway::Plane plane = *parsed;
+  const std::string out = a.output.empty() && a.png.empty() ? tmpl.name + "-section.glb" : a.output;
+  const std::filesystem::path out_file = out.empty() ? "" : outputs.add("-o", out);
+  const std::filesystem::path png_file = a.png.empty() ? "" : outputs.add("--png", a.png);
+  const cutaway::DsModel model =
+      a.seed >= 0 ? cutaway::make_variant(tmpl, static_cast<uint64_t>(a.seed)).model
+                  : cutaway::build_model(tmpl);
+  const double t_model = seconds_since(t0);
+  const auto t1 = Clock::now();
+  const auto diffusion = cutaway::make_diffusion(model, {a.cube, common.threads},
+                                                 cutaway::parse_diffusion_choice(common.backend));
+  const double t_backend = seconds_since(t1);
+  const auto t2 = Clock::now();
+  cutaway::CrossSectionOptions options{tmpl.edge_m};
+  options.sampling = common.sampling;
+  cutaway::Outcome<cutaway::CrossSection> made =
+      cutaway::make_cross_section(model, plane, *diffusion, options);
+  if (!made) throw UsageError("--plane " + cutaway::quoted(a.plane) + ": " + made.reason());
+  const cutaway::CrossSection section = std::move(*made);
+  const double t_section = seconds_since(t2);
+  spdlog::info("{}: cross-section with {} vertices ({} interior), {} triangles", tmpl.name,
+               section.position.size(), section.interior_vertices, section.triangle.size());
+  cutaway::Image image;
+  if (!a.png.empty()) {
+    cutaway::SectionPreviewOptions opt;
+    opt.width = a.width;
+    image = cutaway::render_section_preview(section, opt);
+  }
+  if (!out.empty()) {
+    const bool ply = std::filesystem::path(out).extension() == ".ply";
+    cutaway::write_file_atomically(
+        out_file, ply ? cutaway::section_to_ply(section) : cutaway::section_to_glb(section));
+    spdlog::info("wrote {}", out);
+  }
+  if (!a.png.empty()) {
+    cutaway::write_png(png_file, image);
+    spdlog::info("wrote {}", a.png);
+  }
+  if (common.stats) {
+    print_stats({{"template", tmpl.name},
+                 {"backend", diffusion->name()},
+                 {"ds_faces", model.face_count()},
+                 {"cut_segments", section.cut_segments},
+                 {"vertices", section.position.size()},
+                 {"interior_vertices", section.interior_vertices},
+                 {"diffused_points", section.diffused_points},
+                 {"rays", section.diffused_points * 6 * static_cast<size_t>(a.cube * a.cube)},
+                 {"seconds",
+                  {{"model", t_model},
+                   {"backend_setup", t_backend},
+                   {"section", t_section},
+                   {"triangulate", section.seconds_triangulate},
+                   {"diffuse", section.seconds_diffuse}}}});
+  }
+  return 0;
+}
+
+}  // namespace cutaway::cli
