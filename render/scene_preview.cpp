@@ -121,18 +121,7 @@ void check_mesh(const AssetMesh& m, size_t index, size_t materials) {
 }
 
 void check_camera(const AssetCamera& c) {
-  if (!finite(c.eye) || !finite(c.target) || !finite(c.up))
-    fail("camera: eye, target and up must be finite");
-  const glm::dvec3 forward = c.target - c.eye;
-  if (!(glm::length(forward) > 0)) fail("camera: eye and target coincide");
-  if (!(glm::length(c.up) > 0) ||
-      !(glm::length(glm::cross(glm::normalize(forward), c.up)) > 1e-9 * glm::length(c.up)))
-    fail("camera: up is zero or parallel to the view direction");
-  if (!(c.fov_y_deg > 0 && c.fov_y_deg < 180))
-    fail("camera: fov_y_deg must be in (0, 180), got " + std::to_string(c.fov_y_deg));
-  if (!(c.znear > 0 && c.znear < c.zfar && std::isfinite(c.zfar)))
-    fail("camera: need 0 < znear < zfar (finite), got " + std::to_string(c.znear) + ", " +
-         std::to_string(c.zfar));
+  if (const std::string defect = camera_defect(c); !defect.empty()) fail("camera: " + defect);
 }
 
 void check_light(const AssetLight& l, size_t index) {

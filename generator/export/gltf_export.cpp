@@ -732,10 +732,8 @@ tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& o
   }
 
   const AssetCamera& cam = assets.camera;
-  if (!(glm::length(cam.target - cam.eye) > 0)) bad_assets("camera eye and target coincide");
-  if (!(cam.fov_y_deg > 0 && cam.fov_y_deg < 180)) bad_assets("camera fov_y_deg not in (0, 180)");
-  if (!(cam.aspect > 0)) bad_assets("camera aspect not positive");
-  if (!(cam.znear > 0 && cam.zfar > cam.znear)) bad_assets("camera needs 0 < znear < zfar");
+  if (const std::string defect = camera_defect(cam, false); !defect.empty())
+    bad_assets("camera: " + defect);
   tinygltf::Camera camera;
   camera.name = "camera";
   camera.type = "perspective";

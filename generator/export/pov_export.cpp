@@ -154,13 +154,8 @@ Bounds scene_bounds(const SceneAssets& a) {
 }
 
 void write_camera(std::string& out, const AssetCamera& c) {
-  require(finite(c.eye) && finite(c.target) && finite(c.up), "camera: non-finite vector");
-  require(c.fov_y_deg > 0 && c.fov_y_deg < 180, "camera: fov_y_deg outside (0, 180)");
-  require(c.aspect > 0 && std::isfinite(c.aspect), "camera: aspect must be positive");
-  require(glm::length(c.target - c.eye) > 0, "camera: eye equals target");
-  require(glm::length(glm::cross(glm::normalize(c.target - c.eye), c.up)) >
-              1e-12 * std::max(1.0, glm::length(c.up)),
-          "camera: up is parallel to the view direction");
+  const std::string defect = camera_defect(c);
+  require(defect.empty(), "camera: " + defect);
   const auto [forward, right, up] = camera_frame(c);
   const double tan_half = std::tan(c.fov_y_deg * kPi / 360.0);
 

@@ -8,6 +8,27 @@
 
 namespace cutaway {
 
+std::string camera_defect(const AssetCamera& c, bool needs_up) {
+  const auto finite = [](const glm::dvec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+  };
+  if (!finite(c.eye) || !finite(c.target) || !finite(c.up))
+    return "eye, target and up must be finite";
+  const glm::dvec3 forward = c.target - c.eye;
+  if (!(glm::length(forward) > 0)) return "eye and target coincide";
+  if (needs_up && (!(glm::length(c.up) > 0) ||
+                   !(glm::length(glm::cross(glm::normalize(forward), c.up)) >
+                     1e-9 * glm::length(c.up))))
+    return "up is zero or parallel to the view direction";
+  if (!(c.fov_y_deg > 0 && c.fov_y_deg < 180))
+    return "fov_y_deg must be in (0, 180), not " + std::to_string(c.fov_y_deg);
+  if (!(c.aspect > 0 && std::isfinite(c.aspect))) return "aspect must be positive and finite";
+  if (!(c.znear > 0 && c.znear < c.zfar && std::isfinite(c.zfar)))
+    return "need 0 < znear < zfar (finite), not " + std::to_string(c.znear) + ", " +
+           std::to_string(c.zfar);
+  return "";
+}
+
 CameraFrame camera_frame(const AssetCamera& camera) {
   CameraFrame f;
   f.forward = glm::normalize(camera.target - camera.eye);

@@ -116,6 +116,13 @@ struct AssetCamera {
   double znear = 0.01, zfar = 10;  ///< metres
 };
 
+/// What is wrong with `camera`, in words ("" when nothing): the one camera rule every exporter
+/// and renderer applies. Eye, target and up finite; eye != target; fov_y_deg in (0, 180);
+/// aspect positive and finite; 0 < znear < zfar, zfar finite; and, with `needs_up` (POV-Ray
+/// and OpenGL build their frame from it; glTF's look rotation does not), up not zero and not
+/// parallel to the view direction: |normalize(target - eye) x up| > 1e-9 |up|.
+std::string camera_defect(const AssetCamera& camera, bool needs_up = true);
+
 /// The camera's orthonormal frame, as glm::lookAt builds it: forward = normalize(target - eye),
 /// right = normalize(forward x up), up = right x forward (unit vectors, scene frame).
 /// @pre eye != target and `up` not parallel to the view direction
