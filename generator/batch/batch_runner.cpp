@@ -92,9 +92,12 @@ BatchRunResult run_batch(const Batch& batch, const BatchPlan& plan, const fs::pa
 
   // Per asset of the shard: its record, when already there.
   const std::multimap<std::string, AssetRecord> known = known_records(dir);
-  const size_t asset_begin = first < last ? plan.units[first].first_asset : 0;
-  const size_t asset_end = last < plan.units.size() ? plan.units[last].first_asset
-                                                    : (first < last ? plan.assets.size() : 0);
+  // The shard's assets: from its first variant's first asset to the next shard's (a shard of
+  // no variants, when there are more shards than variants, has none).
+  const auto first_asset_of = [&](size_t u) {
+    return u < plan.units.size() ? plan.units[u].first_asset : plan.assets.size();
+  };
+  const size_t asset_begin = first_asset_of(first), asset_end = first_asset_of(last);
   std::vector<std::optional<AssetRecord>> records(asset_end - asset_begin);
   std::string lines;
   for (size_t a = asset_begin; a < asset_end; ++a) {

@@ -203,6 +203,13 @@ TEST(BatchRun, ResumesWhereACrashLeftOffAndShardsMergeToTheSameManifest) {
     s.options.shard = Shard{k, 2};
     run_batch(s.batch, s.plan, sharded, s.options);
   }
+  // More shards than variants: shard 3 of 4 has none, and lists none.
+  s.options.shard = Shard{3, 4};
+  const BatchRunResult empty = run_batch(s.batch, s.plan, sharded, s.options);
+  EXPECT_EQ(empty.units, 0u);
+  EXPECT_EQ(empty.built + empty.skipped, 0u);
+  EXPECT_EQ(read_file(sharded / "manifest-3-of-4.jsonl"), "");
+  fs::remove(sharded / "manifest-3-of-4.jsonl");
   const Outcome<BatchIndex> index = read_batch_index(sharded);
   ASSERT_TRUE(index) << index.reason();
   MergeReport report = merge_manifests(*index, sharded);
