@@ -110,8 +110,12 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
   Template tmpl = load_template(item.template_path);
   tmpl.variation_amount *= item.variation;
   const Variant variant = make_variant(tmpl, u.seed);
+  // The DS model is one file per variant, shared by its cuts' records: encoded once (its time
+  // counts as the variant's).
+  const std::string model_file = item.template_name + "-" + std::to_string(u.seed) + ".model.glb";
+  std::string model = batch.outputs.model ? model_to_glb(variant.model, GltfModelOptions{}) : "";
+  const uint64_t model_hash = fnv1a64(model);
   t.variant = seconds_since(t0);
-  const std::string variant_stem = item.template_name + "-" + std::to_string(u.seed);
 
   SceneBuildOptions build;
   build.diffusion = options.diffusion;
@@ -165,9 +169,8 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
     r.hash = fnv1a64(glb);
     built.files.push_back({r.file, std::move(glb)});
     if (batch.outputs.model) {
-      r.model = variant_stem + ".model.glb";
-      std::string model = model_to_glb(variant.model, GltfModelOptions{});
-      r.model_hash = fnv1a64(model);
+      r.model = model_file;
+      r.model_hash = model_hash;
       if (c == 0) built.files.push_back({r.model, std::move(model)});
     }
     own.export_glb = seconds_since(t0);
