@@ -62,14 +62,6 @@ std::string last_lines(const std::string& text, int count) {
   return out;
 }
 
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + path.string());
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 }  // namespace
 
 void render_povray(const fs::path& pov_file, const fs::path& png_out, int width, int height,
@@ -88,7 +80,7 @@ void render_povray(const fs::path& pov_file, const fs::path& png_out, int width,
   const std::string exe =
       find_executable(options.executable, "install POV-Ray 3.7 (scripts/install-deps.sh "
                                           "installs the Debian package povray)");
-  const std::string scene = read_bytes(pov_file);
+  const std::string scene = read_file_bytes(pov_file);
 
   TempDir dir;
   {
@@ -126,7 +118,7 @@ void render_povray(const fs::path& pov_file, const fs::path& png_out, int width,
     throw std::runtime_error("POV-Ray failed on " + pov_file.string() + " (" + how + "):\n" +
                              last_lines(run.output, kTailLines));
   }
-  write_file_atomically(png_out, read_bytes(image));
+  write_file_atomically(png_out, read_file_bytes(image));
 }
 
 }  // namespace cutaway

@@ -8,7 +8,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <mutex>
+#include <sstream>
 #include <string>
 
 #include <fcntl.h>
@@ -252,6 +254,15 @@ fs::path create_watched(const std::string& prefix, RemoveOnSignal::Kind kind,
 }
 
 // ---------------------------------------------------------------------------------------------
+
+std::string read_file_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path.string() + ": " + std::strerror(errno));
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  if (in.bad()) throw std::runtime_error("cannot read " + path.string() + ": read error");
+  return bytes.str();
+}
 
 void write_file_atomically(const fs::path& given, std::string_view bytes) {
   std::string rule;

@@ -32,6 +32,11 @@ namespace cutaway {
 ///         temporary file is removed; an existing `path` is unchanged)
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
 
+/// The bytes of the file at `path` (what write_file_atomically wrote, or any file the program
+/// reads back: POV-Ray's image, manifests, thumbnails).
+/// @throws std::runtime_error "cannot read PATH: REASON" when it cannot be opened or read
+std::string read_file_bytes(const std::filesystem::path& path);
+
 /// Removes a temporary file, or a folder with the files directly in it, when the process is
 /// stopped by SIGTERM, SIGINT or SIGHUP while the guard lives; or stops a child process that
 /// writes into such a folder (SIGKILL, then reaped) before any file is removed, so that it

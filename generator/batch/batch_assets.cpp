@@ -23,12 +23,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::string hex64(uint64_t v) {
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
-  return text;
-}
-
 /// The text an asset's fingerprint hashes: everything its bytes depend on.
 std::string fingerprint_text(const Batch& b, const BatchItem& item, uint64_t seed,
                              const CutSpec& cut, bool thumbnail, const std::string& settings) {
@@ -66,6 +60,20 @@ std::string cut_file_label(const CutSpec& cut) {
   for (char& c : label)
     if (c == ':') c = '-';
   return label;
+}
+
+ShardRange shard_range(const BatchPlan& plan, const std::optional<Shard>& shard) {
+  const Shard s = shard.value_or(Shard{});
+  const int units = static_cast<int>(plan.units.size());
+  ShardRange r;
+  r.first_unit = static_cast<size_t>(s.begin(units));
+  r.last_unit = static_cast<size_t>(s.end(units));
+  const auto first_asset_of = [&](size_t u) {
+    return u < plan.units.size() ? plan.units[u].first_asset : plan.assets.size();
+  };
+  r.first_asset = first_asset_of(r.first_unit);
+  r.last_asset = first_asset_of(r.last_unit);
+  return r;
 }
 
 BatchPlan plan_batch(const Batch& batch, const std::string& settings) {

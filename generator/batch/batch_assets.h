@@ -5,11 +5,13 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "batch/batch.h"
 #include "scene/scene_builder.h"
+#include "variation/variant_batch.h"
 
 namespace cutaway {
 
@@ -39,6 +41,14 @@ struct BatchPlan {
   std::vector<BatchUnit> units;
   std::vector<BatchAsset> assets;
 };
+
+/// The variants and assets of shard `shard` of `plan` (none: the whole plan): units
+/// [first_unit, last_unit) and assets [first_asset, last_asset), contiguous (Shard over the
+/// unit count; a shard of no variants, when there are more shards than variants, has no assets).
+struct ShardRange {
+  size_t first_unit = 0, last_unit = 0, first_asset = 0, last_asset = 0;
+};
+ShardRange shard_range(const BatchPlan& plan, const std::optional<Shard>& shard);
 
 /// A cut as it appears in asset names: cut_label() with ':' turned into '-', e.g. "halves",
 /// "wedges-6", "slices-8mm", "dice-12.5mm".

@@ -1,13 +1,13 @@
 #include "batch/batch_manifest.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <fstream>
 #include <map>
 #include <regex>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
+
+#include "base/atomic_file.h"
 
 namespace cutaway {
 
@@ -15,24 +15,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string hex64(uint64_t v) {
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
-  return text;
-}
-
 /// 16 hex digits as a number; none when the text is not that.
 std::optional<uint64_t> parse_hex64(const std::string& text) {
   if (text.size() != 16 || text.find_first_not_of("0123456789abcdef") != std::string::npos)
     return std::nullopt;
   return std::stoull(text, nullptr, 16);
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 /// A plain file name (no folder, not hidden): what a record may name in the output folder.
@@ -43,9 +30,9 @@ bool plain_file_name(const std::string& name) {
 
 }  // namespace
 
-std::string manifest_name(const std::optional<Shard>& shard) {
-  if (!shard) return "manifest.jsonl";
-  return "manifest-" + std::to_string(shard->k) + "-of-" + std::to_string(shard->m) + ".jsonl";
+std::string shard_file_name(const std::string& stem, const std::optional<Shard>& shard) {
+  if (!shard) return stem + ".jsonl";
+  return stem + "-" + std::to_string(shard->k) + "-of-" + std::to_string(shard->m) + ".jsonl";
 }
 
 std::string manifest_line(const AssetRecord& r) {
@@ -111,7 +98,9 @@ Outcome<AssetRecord> parse_manifest_line(std::string_view line) {
 
 std::vector<AssetRecord> read_manifest(const fs::path& path, size_t* bad_lines) {
   std::vector<AssetRecord> out;
-  std::istringstream in(read_text(path));
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return out;
+  std::istringstream in(read_file_bytes(path));
   std::string line;
   while (std::getline(in, line)) {
     if (line.empty()) continue;
@@ -132,7 +121,7 @@ bool record_files_intact(const AssetRecord& r, const fs::path& dir) {
     if (name->empty()) continue;
     std::error_code ec;
     if (!fs::is_regular_file(dir / *name, ec)) return false;
-    if (fnv1a64(read_text(dir / *name)) != hash) return false;
+    if (fnv1a64(read_file_bytes(dir / *name)) != hash) return false;
   }
   return true;
 }
@@ -156,7 +145,7 @@ Outcome<BatchIndex> read_batch_index(const fs::path& dir) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
     return Outcome<BatchIndex>::none(path.string() + " is missing (not a batch output folder)");
-  const nlohmann::json j = nlohmann::json::parse(read_text(path), nullptr, false);
+  const nlohmann::json j = nlohmann::json::parse(read_file_bytes(path), nullptr, false);
   BatchIndex index;
   try {
     if (j.is_discarded() || j.at("format") != "cutaway-batch-index/1")

@@ -20,9 +20,14 @@
 
 namespace cutaway {
 
-/// The manifest file of a run: "manifest.jsonl" unsharded, "manifest-K-of-M.jsonl" for shard
-/// K/M.
-std::string manifest_name(const std::optional<Shard>& shard);
+/// The JSON Lines file `stem` of a run: "STEM.jsonl" unsharded, "STEM-K-of-M.jsonl" for shard
+/// K/M (the manifest: stem "manifest"; the timings log: "timings").
+std::string shard_file_name(const std::string& stem, const std::optional<Shard>& shard);
+
+/// The manifest file of a run: shard_file_name("manifest", shard).
+inline std::string manifest_name(const std::optional<Shard>& shard) {
+  return shard_file_name("manifest", shard);
+}
 
 /// `r` as one line of JSON ending in '\n', keys in this order: file, template, seed, cut,
 /// pieces, triangles, volume_m3, fnv1a64 (16 hex digits), model and model_fnv1a64 (when a

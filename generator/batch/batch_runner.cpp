@@ -70,11 +70,6 @@ std::optional<AssetRecord> intact_record(const BatchAsset& asset,
   return std::nullopt;
 }
 
-std::string timings_name(const std::optional<Shard>& shard) {
-  if (!shard) return "timings.jsonl";
-  return "timings-" + std::to_string(shard->k) + "-of-" + std::to_string(shard->m) + ".jsonl";
-}
-
 }  // namespace
 
 BatchRunResult run_batch(const Batch& batch, const BatchPlan& plan, const fs::path& dir,
@@ -83,21 +78,14 @@ BatchRunResult run_batch(const Batch& batch, const BatchPlan& plan, const fs::pa
   const std::string index = batch_index_text(batch, plan);
   write_file_atomically(dir / "batch.json", index);
 
-  const Shard shard = options.shard.value_or(Shard{});
-  const int unit_count = static_cast<int>(plan.units.size());
-  const size_t first = static_cast<size_t>(shard.begin(unit_count));
-  const size_t last = static_cast<size_t>(shard.end(unit_count));
+  const ShardRange range = shard_range(plan, options.shard);
+  const size_t first = range.first_unit, last = range.last_unit;
+  const size_t asset_begin = range.first_asset, asset_end = range.last_asset;
   const fs::path manifest = dir / manifest_name(options.shard);
-  const fs::path timings = dir / timings_name(options.shard);
+  const fs::path timings = dir / shard_file_name("timings", options.shard);
 
   // Per asset of the shard: its record, when already there.
   const std::multimap<std::string, AssetRecord> known = known_records(dir);
-  // The shard's assets: from its first variant's first asset to the next shard's (a shard of
-  // no variants, when there are more shards than variants, has none).
-  const auto first_asset_of = [&](size_t u) {
-    return u < plan.units.size() ? plan.units[u].first_asset : plan.assets.size();
-  };
-  const size_t asset_begin = first_asset_of(first), asset_end = first_asset_of(last);
   std::vector<std::optional<AssetRecord>> records(asset_end - asset_begin);
   std::string lines;
   for (size_t a = asset_begin; a < asset_end; ++a) {

@@ -4,14 +4,13 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 
 #include <unistd.h>
 
 #include <spdlog/spdlog.h>
 
 #include "base/atomic_file.h"
+#include "base/error.h"
 #include "batch/batch_manifest.h"
 #include "batch/batch_runner.h"
 #include "batch/slurm_job.h"
@@ -97,13 +96,10 @@ int run_batch_command(const BatchArgs& a, const Common& common, bool quiet) {
   options.build.thumbnail = [](const SceneAssets& assets) {
     return encode_png(render_scene_preview(assets));
   };
-  const Shard s = shard.value_or(Shard{});
-  const int units = s.end(static_cast<int>(plan.units.size())) -
-                    s.begin(static_cast<int>(plan.units.size()));
-  const ProgressBar bar("batch", units, !quiet && isatty(fileno(stderr)));
-  size_t assets = 0;  // of the shard
-  for (int u = s.begin(static_cast<int>(plan.units.size())); u < s.end(static_cast<int>(plan.units.size())); ++u)
-    assets += batch.items[plan.units[static_cast<size_t>(u)].item].cuts.size();
+  const ShardRange range = shard_range(plan, shard);
+  const ProgressBar bar("batch", static_cast<int>(range.last_unit - range.first_unit),
+                        !quiet && isatty(fileno(stderr)));
+  const size_t assets = range.last_asset - range.first_asset;
   bar.show(0);
   options.progress = [&](const BatchProgress& p) {
     bar.show(static_cast<int>(p.units_done));
@@ -150,16 +146,14 @@ int run_batch_merge(const std::string& dir) {
   std::string lines;
   for (const AssetRecord& r : report.records) lines += manifest_line(r);
   write_file_atomically(fs::path(dir) / "manifest.jsonl", lines);
-  // The contact sheet: the sample's thumbnails, labelled.
+  // The contact sheet: the sample's thumbnails, labelled. A complete report has one record per
+  // indexed asset, in the index's order.
+  CUTAWAY_CHECK(report.records.size() == index->assets.size());
   std::vector<Image> tiles;
-  for (const AssetRecord& r : report.records) {
-    if (r.thumbnail.empty()) continue;
-    const auto it = std::find_if(index->assets.begin(), index->assets.end(),
-                                 [&](const IndexedAsset& a) { return a.stem + ".glb" == r.file; });
-    if (it == index->assets.end() || !it->sample) continue;
-    std::ifstream in(fs::path(dir) / r.thumbnail, std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    const Image picture = decode_png(bytes);
+  for (size_t i = 0; i < report.records.size(); ++i) {
+    const AssetRecord& r = report.records[i];
+    if (!index->assets[i].sample || r.thumbnail.empty()) continue;
+    const Image picture = decode_png(read_file_bytes(fs::path(dir) / r.thumbnail));
     tiles.push_back(labelled_tile(picture, r.template_name + "-" + std::to_string(r.seed), r.cut,
                                   std::max(1, picture.width / 160)));
   }

@@ -28,6 +28,12 @@ uint64_t fnv1a64(std::string_view bytes) {
   return h;
 }
 
+std::string hex64(uint64_t hash) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  return text;
+}
+
 std::string variant_manifest(const std::string& name, const std::optional<Shard>& shard,
                              const std::vector<VariantRecord>& records) {
   std::string out = "{\"template\": \"" + name + "\", ";
@@ -36,10 +42,8 @@ std::string variant_manifest(const std::string& name, const std::optional<Shard>
   out += "\"variants\": [\n";
   for (size_t i = 0; i < records.size(); ++i) {
     const VariantRecord& r = records[i];
-    char hash[17];
-    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(r.hash));
     out += "  {\"file\": \"" + r.file + "\", \"seed\": " + std::to_string(r.seed) +
-           ", \"template\": \"" + name + "\", \"fnv1a64\": \"" + hash +
+           ", \"template\": \"" + name + "\", \"fnv1a64\": \"" + hex64(r.hash) +
            "\", \"ds_faces\": " + std::to_string(r.ds_faces) +
            ", \"folds\": " + std::to_string(r.folds) + "}" +
            (i + 1 < records.size() ? "," : "") + "\n";

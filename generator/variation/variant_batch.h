@@ -37,6 +37,9 @@ Outcome<Shard> parse_shard(std::string_view text);
 /// that a batch can be checked against another run without comparing the files themselves.
 uint64_t fnv1a64(std::string_view bytes);
 
+/// `hash` as manifests write it: 16 lower-case hex digits.
+std::string hex64(uint64_t hash);
+
 /// One written variant in the manifest.
 struct VariantRecord {
   std::string file;      ///< file name in the output folder, e.g. "tomato-7.glb"
