@@ -35,26 +35,13 @@ Batch parse(std::string_view text, const std::string& file, std::vector<ParsedIt
   const YamlField root = parse_yaml(text, file);
   Batch b;
   b.file = file;
-  const YamlField format = root.require("format");
-  if (format.string() != "cutaway-batch/1") {
-    format.fail("unsupported format " + quoted(format.string()) +
-                " (this version of cutaway reads cutaway-batch/1)");
-  }
+  require_format(root, "cutaway-batch/1");
   root.allow_only({"format", "name", "seed", "units", "items", "outputs", "export"});
-  const YamlField name = root.require("name");
-  b.name = name.string();
-  if (const std::string rule = name_rule(b.name); !rule.empty()) name.fail(rule);
+  b.name = parse_name(root);
   uint64_t seed = 0;
   if (auto x = root.get("seed")) seed = parse_seed(*x);
   double m = 1e-3;
-  if (auto u = root.get("units")) {
-    const std::string v = u->string();
-    if (v == "mm") m = 1e-3;
-    else if (v == "cm") m = 1e-2;
-    else if (v == "m") m = 1.0;
-    else
-      u->fail("must be mm, cm or m, not " + quoted(v));
-  }
+  if (auto u = root.get("units")) m = parse_units(*u);
   std::filesystem::path dir = std::filesystem::path(file).parent_path();
   if (dir.empty()) dir = ".";
   const YamlField items = root.require("items");

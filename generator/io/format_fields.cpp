@@ -18,6 +18,29 @@ namespace cutaway {
 
 namespace fs = std::filesystem;
 
+void require_format(const YamlField& root, const std::string& expected) {
+  const YamlField format = root.require("format");
+  if (format.string() != expected) {
+    format.fail("unsupported format " + quoted(format.string()) + " (this version of cutaway reads " +
+                expected + ")");
+  }
+}
+
+std::string parse_name(const YamlField& root) {
+  const YamlField name = root.require("name");
+  std::string value = name.string();
+  if (const std::string rule = name_rule(value); !rule.empty()) name.fail(rule);
+  return value;
+}
+
+double parse_units(const YamlField& f) {
+  const std::string v = f.string();
+  if (v == "mm") return 1e-3;
+  if (v == "cm") return 1e-2;
+  if (v == "m") return 1.0;
+  f.fail("must be mm, cm or m, not " + quoted(v));
+}
+
 double parse_coordinate(const YamlField& f, double metres_per_unit) {
   const double m = f.number() * metres_per_unit;
   if (std::fabs(m) > kMaxSceneMetres) f.fail("must be at most 1 km in size (|value| <= 1000 m)");

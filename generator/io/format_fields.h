@@ -1,6 +1,7 @@
-// Fields that the scene and batch formats share (doc/scene-format.md, doc/batch-format.md):
-// lengths in the file's units, whole numbers in a range, cuts and template references. Each
-// broken rule is an InputError at the field, as yaml_reader.h describes.
+// Fields that the template, scene and batch formats share (doc/template-format.md,
+// doc/scene-format.md, doc/batch-format.md): the format tag, the name and the units of every
+// file; lengths in the file's units, whole numbers in a range, cuts and template references.
+// Each broken rule is an InputError at the field, as yaml_reader.h describes.
 #pragma once
 
 #include <filesystem>
@@ -12,6 +13,16 @@
 #include "pieces/cut_spec.h"
 
 namespace cutaway {
+
+/// Fails at the root's `format` field (required) unless it is `expected`, e.g.
+/// "cutaway-scene/1": "unsupported format F (this version of cutaway reads EXPECTED)".
+void require_format(const YamlField& root, const std::string& expected);
+
+/// The root's `name` field (required): a plain name (name_rule), else fails there.
+std::string parse_name(const YamlField& root);
+
+/// A `units` value: mm, cm or m. Returns metres per unit; fails with "must be mm, cm or m".
+double parse_units(const YamlField& f);
 
 /// The largest length or coordinate a scene or batch may use, metres: far beyond any table top.
 inline constexpr double kMaxSceneMetres = 1000;

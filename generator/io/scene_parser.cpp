@@ -92,30 +92,17 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
   Scene s;
   s.file = file;
 
-  const YamlField format = root.require("format");
-  if (format.string() != "cutaway-scene/1") {
-    format.fail("unsupported format " + quoted(format.string()) +
-                " (this version of cutaway reads cutaway-scene/1)");
-  }
+  require_format(root, "cutaway-scene/1");
   root.allow_only(
       {"format", "name", "seed", "units", "container", "arrange", "items", "camera", "render"});
 
-  const YamlField name = root.require("name");
-  s.name = name.string();
-  if (const std::string rule = name_rule(s.name); !rule.empty()) name.fail(rule);
+  s.name = parse_name(root);
   if (auto seed = root.get("seed")) {
     const int64_t v = seed->integer();
     if (v < 0) seed->fail("must not be negative");
     s.seed = static_cast<uint64_t>(v);
   }
-  if (auto u = root.get("units")) {
-    const std::string v = u->string();
-    if (v == "mm") s.metres_per_unit = 1e-3;
-    else if (v == "cm") s.metres_per_unit = 1e-2;
-    else if (v == "m") s.metres_per_unit = 1.0;
-    else
-      u->fail("must be mm, cm or m, not " + quoted(v));
-  }
+  if (auto u = root.get("units")) s.metres_per_unit = parse_units(*u);
   const double m = s.metres_per_unit;
 
   if (auto c = root.get("container")) s.container = parse_container(*c, m);

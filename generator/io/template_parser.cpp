@@ -10,6 +10,7 @@
 #include "base/colour.h"
 #include "base/constants.h"
 #include "base/error.h"
+#include "io/format_fields.h"
 #include "io/text_rules.h"
 #include "io/yaml_reader.h"
 #include "model/mesh_import.h"
@@ -402,23 +403,10 @@ Template parse_template(std::string_view text, const std::string& file,
   Template t;
   t.file = file;
 
-  const YamlField format = root.require("format");
-  if (format.string() != "cutaway-template/1") {
-    format.fail("unsupported format " + quoted(format.string()) +
-                " (this version of cutaway reads cutaway-template/1)");
-  }
-  const YamlField name = root.require("name");
-  t.name = name.string();
-  if (const std::string rule = name_rule(t.name); !rule.empty()) name.fail(rule);
+  require_format(root, "cutaway-template/1");
+  t.name = parse_name(root);
   if (auto d = root.get("description")) t.description = d->string();
-  if (auto u = root.get("units")) {
-    const std::string v = u->string();
-    if (v == "mm") t.metres_per_unit = 1e-3;
-    else if (v == "cm") t.metres_per_unit = 1e-2;
-    else if (v == "m") t.metres_per_unit = 1.0;
-    else
-      u->fail("must be mm, cm or m, not " + quoted(v));
-  }
+  if (auto u = root.get("units")) t.metres_per_unit = parse_units(*u);
 
   const YamlField sym = root.require("symmetry");
   sym.allow_only({"type", "folds", "fold_angles"});
