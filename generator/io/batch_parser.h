@@ -17,8 +17,8 @@ namespace cutaway {
 /// [{type: halves}], variation 1; outputs model false, thumbnails false, thumbnail_size 256,
 /// sample 12; export compress quantize, lods 0, textures jpeg, texels_per_mm 8.6, perlin 1,
 /// cube 16.
-/// Refused besides types and ranges: two assets of one name (the same template, an overlapping
-/// seed range and the same cut), at the later item; seeds beyond 2^53.
+/// Refused besides types and ranges: seeds above 9e15 (YamlField::integer) and items whose
+/// last seed (seed + count - 1) is above 2^53.
 /// @param text  the file's bytes (YAML 1.2 or JSON, UTF-8)
 /// @param file  the batch's path (messages; templates are resolved from its folder)
 /// @throws InputError for any rule the text breaks, at the offending node
@@ -27,7 +27,9 @@ Batch parse_batch(std::string_view text, const std::string& file);
 /// Reads the batch file at `path`, parses it as parse_batch, and reads every template it names
 /// (load_template: a broken template is reported at its own file), filling each item's
 /// template_name and template_hash; refuses a cut that would make more than kMaxPiecesPerCut
-/// pieces of one object, at the cut's length.
+/// pieces of one object, at the cut's length, the same cut twice in one item, and two items
+/// that make assets of one name (the same template, an overlapping seed range and the same
+/// cut), at the later item's seed (or the item).
 /// @throws InputError as parse_batch, for the templates, and when a file cannot be read
 Batch load_batch(const std::string& path);
 

@@ -238,7 +238,10 @@ double YamlField::number() const {
 
 int64_t YamlField::integer() const {
   const double v = number();
-  if (v != std::floor(v) || std::fabs(v) > 9.0e15) fail("must be a whole number, not " + describe(node_));
+  if (v != std::floor(v)) fail("must be a whole number, not " + describe(node_));
+  // Beyond 9e15 a double no longer holds every whole number (2^53 is about 9.007e15).
+  if (std::fabs(v) > 9.0e15)
+    fail("must be a whole number of at most 9e15 in size, not " + describe(node_));
   return static_cast<int64_t>(v);
 }
 
