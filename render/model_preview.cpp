@@ -20,6 +20,7 @@
 #include "render/gl/gl_context.h"
 #include "render/gl/gl_program.h"
 #include "render/gl/offscreen_target.h"
+#include "scene/scene_assets.h"
 
 namespace cutaway {
 namespace {
@@ -168,8 +169,11 @@ Image render_model_preview(const DsModel& model, const PreviewOptions& options) 
   const double elevation = glm::radians(options.elevation_deg);
   const glm::dvec3 eye_dir(std::cos(elevation) * std::sin(azimuth), std::sin(elevation),
                            std::cos(elevation) * std::cos(azimuth));
-  const glm::dmat4 view_from_object =
-      glm::lookAt(centre + distance * eye_dir, centre, glm::dvec3(0, 1, 0));
+  AssetCamera camera;  // the model's frame is the scene frame here
+  camera.eye = centre + distance * eye_dir;
+  camera.target = centre;
+  camera.up = {0, 1, 0};
+  const glm::dmat4 view_from_object = view_from_scene(camera);
   const double near_m = std::max(distance - 1.5 * radius, 0.01 * distance);
   const double far_m = distance + 1.5 * radius;
   const glm::dmat4 clip_from_view = glm::perspective(2 * half_fov_y, aspect, near_m, far_m);

@@ -60,81 +60,6 @@ struct MeshDraw {
   throw InternalError("render_scene_preview: " + what);
 }
 
-bool finite(const glm::dvec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-void check_texture(const AssetTexture& t, size_t index) {
-  const std::string name = "texture " + std::to_string(index) + " '" + t.name + "'";
-  if (t.width < 1 || t.height < 1)
-    fail(name + " is " + std::to_string(t.width) + "x" + std::to_string(t.height) +
-         " (must be at least 1x1)");
-  if (t.channels != 3 && t.channels != 4)
-    fail(name + " has " + std::to_string(t.channels) + " channels (must be 3 or 4)");
-  const size_t bytes = static_cast<size_t>(t.width) * static_cast<size_t>(t.height) *
-                       static_cast<size_t>(t.channels);
-  if (t.pixels.size() != bytes)
-    fail(name + " has " + std::to_string(t.pixels.size()) + " bytes of pixels, not width * " +
-         "height * channels = " + std::to_string(bytes));
-}
-
-void check_material(const AssetMaterial& m, size_t index,
-                    const std::vector<AssetTexture>& textures) {
-  const std::string name = "material " + std::to_string(index) + " '" + m.name + "'";
-  if (!(m.pbr.roughness >= 0 && m.pbr.roughness <= 1))
-    fail(name + " has roughness " + std::to_string(m.pbr.roughness) + ", not in 0..1");
-  const auto check_index = [&](const char* field, int texture) {
-    if (texture < -1 || texture >= static_cast<int>(textures.size()))
-      fail(name + " has " + field + " " + std::to_string(texture) + ", neither -1 nor in 0.." +
-           std::to_string(static_cast<long>(textures.size()) - 1));
-  };
-  check_index("base_colour_texture", m.base_colour_texture);
-  check_index("material_texture", m.material_texture);
-  if (m.base_colour_texture >= 0 &&
-      textures[static_cast<size_t>(m.base_colour_texture)].channels != 3)
-    fail(name + ": its base colour texture " + std::to_string(m.base_colour_texture) +
-         " is not RGB (3 channels)");
-}
-
-void check_mesh(const AssetMesh& m, size_t index, size_t materials) {
-  const std::string name = "mesh " + std::to_string(index) + " '" + m.name + "'";
-  const size_t n = m.position.size();
-  if (m.normal.size() != n || m.colour.size() != n)
-    fail(name + " has " + std::to_string(n) + " positions, " + std::to_string(m.normal.size()) +
-         " normals and " + std::to_string(m.colour.size()) + " colours (must be equal)");
-  for (size_t v = 0; v < n; ++v)
-    if (!finite(m.position[v]) || !finite(m.normal[v]) || !finite(m.colour[v]))
-      fail(name + ": vertex " + std::to_string(v) + " has a non-finite position, normal or colour");
-  for (size_t t = 0; t < m.triangle.size(); ++t)
-    for (int i = 0; i < 3; ++i)
-      if (m.triangle[t][i] >= n)
-        fail(name + ": triangle " + std::to_string(t) + " has vertex index " +
-             std::to_string(m.triangle[t][i]) + ", not below " + std::to_string(n));
-  if (!m.uv.empty() && m.uv.size() != n)
-    fail(name + " has " + std::to_string(m.uv.size()) + " texture coordinates for " +
-         std::to_string(n) + " positions (must be equal, or none)");
-  for (size_t v = 0; v < m.uv.size(); ++v)
-    if (!std::isfinite(m.uv[v].x) || !std::isfinite(m.uv[v].y))
-      fail(name + ": vertex " + std::to_string(v) + " has non-finite texture coordinates");
-  const std::string defect = primitives_defect(m, materials);
-  if (!defect.empty()) fail(name + ": " + defect);
-}
-
-void check_camera(const AssetCamera& c) {
-  if (const std::string defect = camera_defect(c); !defect.empty()) fail("camera: " + defect);
-}
-
-void check_light(const AssetLight& l, size_t index) {
-  const std::string name = "light " + std::to_string(index) + " '" + l.name + "'";
-  if (!finite(l.position) || !finite(l.direction) || !finite(l.colour) ||
-      !std::isfinite(l.intensity))
-    fail(name + " has a non-finite field");
-  if (l.intensity < 0 || l.colour.r < 0 || l.colour.g < 0 || l.colour.b < 0)
-    fail(name + " has a negative intensity or colour");
-  if (l.type == LightType::Directional && !(glm::length(l.direction) > 0))
-    fail(name + " is directional with a zero direction");
-}
-
 /// Checks everything the render reads; returns the image size (width, height).
 glm::ivec2 check_input(const SceneAssets& a, const ScenePreviewOptions& o) {
   const int width = o.width != 0 ? o.width : a.width;
@@ -145,29 +70,9 @@ glm::ivec2 check_input(const SceneAssets& a, const ScenePreviewOptions& o) {
   if (o.samples < 1) fail("samples must be >= 1, got " + std::to_string(o.samples));
   if (!(o.exposure > 0 && std::isfinite(o.exposure)))
     fail("exposure must be positive and finite, got " + std::to_string(o.exposure));
-  check_camera(a.camera);
   if (a.lights.size() > kMaxLights)
     fail(std::to_string(a.lights.size()) + " lights, at most " + std::to_string(kMaxLights));
-  for (size_t i = 0; i < a.lights.size(); ++i) check_light(a.lights[i], i);
-  if (!finite(a.background) || a.background.r < 0 || a.background.g < 0 || a.background.b < 0)
-    fail("background must be finite and >= 0");
-  for (size_t i = 0; i < a.textures.size(); ++i) check_texture(a.textures[i], i);
-  for (size_t i = 0; i < a.materials.size(); ++i) check_material(a.materials[i], i, a.textures);
-  std::vector<bool> checked(a.meshes.size(), false);
-  for (size_t i = 0; i < a.instances.size(); ++i) {
-    const AssetInstance& inst = a.instances[i];
-    const std::string name = "instance " + std::to_string(i) + " '" + inst.name + "'";
-    if (inst.mesh < 0 || static_cast<size_t>(inst.mesh) >= a.meshes.size())
-      fail(name + " has mesh index " + std::to_string(inst.mesh) + ", not in 0.." +
-           std::to_string(static_cast<long>(a.meshes.size()) - 1));
-    const glm::dquat& q = inst.rotation;
-    if (!std::isfinite(q.w) || !std::isfinite(q.x) || !std::isfinite(q.y) ||
-        !std::isfinite(q.z) || !(glm::length(q) > 0) || !finite(inst.translation))
-      fail(name + " has a zero or non-finite rotation, or a non-finite translation");
-    const auto m = static_cast<size_t>(inst.mesh);
-    if (!checked[m]) check_mesh(a.meshes[m], m, a.materials.size());
-    checked[m] = true;
-  }
+  require_valid_assets(a, {}, "render_scene_preview");
   return {width, height};
 }
 

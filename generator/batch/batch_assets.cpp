@@ -125,9 +125,6 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
   const uint64_t model_hash = fnv1a64(model);
   t.variant = seconds_since(t0);
 
-  SceneBuildOptions build;
-  build.diffusion = options.diffusion;
-  build.sampling = options.sampling;
   std::vector<BuiltAsset> out;
   for (size_t c = 0; c < item.cuts.size(); ++c) {
     const BatchAsset& a = plan.assets[u.first_asset + c];
@@ -142,14 +139,26 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
     cut.modulation_seed = u.seed;
     cut.perlin = batch.export_options.perlin;
     cut.atlas.texels_per_m = 1000 * batch.export_options.texels_per_mm;
-    SceneStats st;
-    CutObject object =
-        cut_scene_object(assets, variant, u.seed, materials, asset_name(a.stem), cut, build, st);
+    cut.sampling = options.sampling;
+    ObjectCutStats st;
+    CutObject object = *cut_object(assets, variant, u.seed, materials, asset_name(a.stem),
+                                   options.diffusion, cut, st);
     BuiltAsset built;
     UnitTimings& own = built.seconds;
     own.variant = t.variant / static_cast<double>(item.cuts.size());
     own.cut = seconds_since(t0) - st.seconds_bake;
     own.bake = st.seconds_bake;
+
+    // The thumbnail first: it shows the meshes that the glTF scene then takes over.
+    std::string thumbnail;
+    if (a.thumbnail) {
+      if (!options.thumbnail)
+        throw InternalError("build_batch_unit: a thumbnail is due and no renderer given");
+      t0 = Clock::now();
+      const int w = batch.outputs.thumbnail_px;
+      thumbnail = options.thumbnail(grid_piece_assets(assets, object, PieceView::Up, w, w * 3 / 4));
+      own.thumbnail = seconds_since(t0);
+    }
 
     t0 = Clock::now();
     AssetRecord& r = built.record;
@@ -183,18 +192,10 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
     }
     own.export_glb = seconds_since(t0);
 
-    if (a.thumbnail) {
-      if (!options.thumbnail)
-        throw InternalError("build_batch_unit: a thumbnail is due and no renderer given");
-      t0 = Clock::now();
-      const int w = batch.outputs.thumbnail_px;
-      const SceneAssets grid = grid_piece_assets(object.set, tmpl.name, tmpl.skin_material,
-                                                 tmpl.cut_material, PieceView::Up, w, w * 3 / 4);
-      std::string png = options.thumbnail(grid);
+    if (!thumbnail.empty()) {
       r.thumbnail = a.stem + ".png";
-      r.thumbnail_hash = fnv1a64(png);
-      built.files.push_back({r.thumbnail, std::move(png)});
-      own.thumbnail = seconds_since(t0);
+      r.thumbnail_hash = fnv1a64(thumbnail);
+      built.files.push_back({r.thumbnail, std::move(thumbnail)});
     }
     t.cut += own.cut;
     t.bake += own.bake;

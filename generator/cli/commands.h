@@ -16,6 +16,8 @@
 #include "model/template.h"
 #include "pieces/cut_spec.h"
 #include "pieces/pieces.h"
+#include "scene/object_cut.h"
+#include "variation/variation.h"
 
 namespace cutaway::cli {
 
@@ -55,13 +57,17 @@ struct Common {
 /// @throws UsageError "WHAT: rule" (`what` names the cut for the user)
 CutSpec checked_cut(const Template& tmpl, const std::string& text, const std::string& what);
 
-/// `model` (of `tmpl`) cut into pieces with the chosen diffusion backend (cube-map size
-/// `cube`), their colours modulated by the template's Perlin bands with strength `perlin` and
-/// `seed` in the object frame. `backend_name`, when given, receives the backend's name.
-/// @throws UsageError "WHAT: rule" when the cut misses the object
-PieceSet cut_object(const DsModel& model, const Template& tmpl, const CutSpec& cut, int cube,
-                    const Common& common, double perlin, uint64_t seed, const std::string& what,
-                    std::string* backend_name = nullptr);
+/// The diffusion backend --backend chooses, with cube-map size `cube` and --threads.
+DiffusionFactory diffusion_factory(int cube, const Common& common);
+
+/// `variant` cut for a picture of its pieces (`piece`, `sheet`): every piece kept, vertex
+/// colours modulated by the template's Perlin bands with strength `perlin` and `seed` in the
+/// object frame, the template's materials added to `assets`, the backend --backend chooses
+/// with cube-map size `cube` (cut_object).
+/// @throws UsageError "WHAT: rule" when the cut misses the object (`what` names the cut)
+CutObject cut_for_view(SceneAssets& assets, const Variant& variant, const CutSpec& cut, int cube,
+                       const Common& common, double perlin, uint64_t seed,
+                       const std::string& what);
 
 /// `cutaway model TEMPLATE [-o model.glb] [--png view.png] [--size PX] [--seed S]`
 /// (generator/cli/model_command.cpp).

@@ -11,8 +11,6 @@
 #include "cli/scene_outputs.h"
 #include "io/template_parser.h"
 #include "model/model_builder.h"
-#include "npr/colour_modulation.h"
-#include "pieces/pieces.h"
 #include "render/diffusion_backends.h"
 #include "scene/piece_views.h"
 #include "variation/variation.h"
@@ -36,21 +34,32 @@ CutSpec checked_cut(const Template& tmpl, const std::string& text, const std::st
   return cut;
 }
 
-PieceSet cut_object(const DsModel& model, const Template& tmpl, const CutSpec& cut, int cube,
-                    const Common& common, double perlin, uint64_t seed, const std::string& what,
-                    std::string* backend_name) {
-  const auto diffusion =
-      make_diffusion(model, {cube, common.threads}, parse_diffusion_choice(common.backend));
-  if (backend_name) *backend_name = diffusion->name();
-  PieceOptions options;
-  options.section.edge_m = tmpl.edge_m;
-  options.section.sampling = common.sampling;
-  Outcome<PieceSet> made = cut_pieces(model, cut, *diffusion, options);
+DiffusionFactory diffusion_factory(int cube, const Common& common) {
+  const DiffusionChoice choice = parse_diffusion_choice(common.backend);
+  const int threads = common.threads;
+  return [cube, threads, choice](const DsModel& model) {
+    return make_diffusion(model, {cube, threads}, choice);
+  };
+}
+
+CutObject cut_for_view(SceneAssets& assets, const Variant& variant, const CutSpec& cut, int cube,
+                       const Common& common, double perlin, uint64_t seed,
+                       const std::string& what) {
+  const PieceMaterials materials = add_piece_materials(
+      assets, variant.tmpl.name, variant.tmpl.skin_material, variant.tmpl.cut_material);
+  ObjectCutOptions options;
+  options.cut = cut;
+  options.whole_when_missed = false;
+  options.modulation_seed = seed;
+  options.perlin = perlin;
+  options.sampling = common.sampling;
+  options.cap_colours = CapColours::Vertex;
+  ObjectCutStats stats;
+  Outcome<CutObject> made = cut_object(assets, variant, seed, materials,
+                                       asset_name(variant.tmpl.name),
+                                       diffusion_factory(cube, common), options, stats);
   if (!made) throw UsageError(what + ": " + made.reason());
-  PieceSet set = std::move(*made);
-  for (Piece& p : set.pieces)
-    for (PiecePart& part : p.parts) modulate_colours(part.mesh, tmpl.npr, perlin, seed);
-  return set;
+  return std::move(*made);
 }
 
 int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
@@ -63,19 +72,20 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
   const auto t0 = Clock::now();
   const Template tmpl = load_template(a.template_path);
   const CutSpec cut = checked_cut(tmpl, a.cut, "--cut " + quoted(a.cut));
-  const DsModel model =
-      a.seed >= 0 ? make_variant(tmpl, static_cast<uint64_t>(a.seed)).model : build_model(tmpl);
+  const Variant variant = a.seed >= 0 ? make_variant(tmpl, static_cast<uint64_t>(a.seed))
+                                      : Variant{tmpl, build_model(tmpl)};
   const double t_model = seconds_since(t0);
   const auto t1 = Clock::now();
   // Perlin colour modulation in the object frame: the variant's seed, or 0 for the template.
-  std::string backend_name;
-  const PieceSet set = cut_object(model, tmpl, cut, a.cube, common, a.perlin,
-                                  a.seed >= 0 ? static_cast<uint64_t>(a.seed) : 0,
-                                  "--cut " + quoted(a.cut), &backend_name);
+  SceneAssets assets;
+  assets.name = tmpl.name;
+  const CutObject object =
+      cut_for_view(assets, variant, cut, a.cube, common, a.perlin,
+                   a.seed >= 0 ? static_cast<uint64_t>(a.seed) : 0, "--cut " + quoted(a.cut));
+  const PieceSet& set = object.set;
   const double t_cut = seconds_since(t1);
   size_t triangles = 0;
-  for (const Piece& p : set.pieces)
-    for (const PiecePart& part : p.parts) triangles += part.mesh.triangle.size();
+  for (const AssetMesh& mesh : object.meshes) triangles += mesh.triangle.size();
   spdlog::info("{}: {} pieces, {} triangles, {} cut planes", tmpl.name, set.pieces.size(),
                triangles, set.cells.planes.size());
   if (set.attempts > 1)
@@ -83,14 +93,13 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
                  set.attempts - 1);
   if (set.defective_pieces > 0)
     spdlog::warn("{} pieces are not closed 2-manifolds", set.defective_pieces);
-  const SceneAssets assets =
-      piece_assets(set, tmpl.name, tmpl.skin_material, tmpl.cut_material, 0.3, a.width, a.height);
+  assets = piece_assets(std::move(assets), object, 0.3, a.width, a.height);
   const Written w =
       write_outputs(assets, targets, common.threads, a.silhouettes,
                     export_options(a.compress, a.lods, a.textures));
   if (common.stats) {
     print_stats({{"template", tmpl.name},
-                 {"backend", backend_name},
+                 {"backend", object.backend},
                  {"pieces", set.pieces.size()},
                  {"planes", set.cells.planes.size()},
                  {"triangles", triangles},

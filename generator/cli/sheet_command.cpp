@@ -18,15 +18,10 @@
 #include "cli/commands.h"
 #include "io/template_parser.h"
 #include "model/model_builder.h"
-#include "npr/colour_modulation.h"
 #include "npr/silhouettes.h"
-#include "pieces/cut_spec.h"
-#include "pieces/pieces.h"
-#include "render/diffusion_backends.h"
 #include "render/image/contact_sheet.h"
 #include "render/scene_preview.h"
 #include "scene/piece_views.h"
-#include "scene/scene_builder.h"
 
 namespace cutaway::cli {
 
@@ -82,13 +77,15 @@ Image sheet_tile(const LoadedItem& item, const SheetArgs& a, const Common& commo
   const auto t0 = Clock::now();
   const Template& tmpl = item.tmpl;
   CutSpec cut = item.cut;
-  const DsModel model = build_model(tmpl);
+  const Variant variant{tmpl, build_model(tmpl)};
+  const DsModel& model = variant.model;
   if (item.across) cut.plane = {{0, 0.5 * (model.bbox_min.y + model.bbox_max.y), 0}, {0, 1, 0}};
-  const PieceSet set = cut_object(model, tmpl, cut, a.cube, common, 1.0, 0,
-                                  tmpl.name + ": cut '" + item.text + "'");
+  SceneAssets assets;
+  assets.name = tmpl.name;
+  const CutObject object = cut_for_view(assets, variant, cut, a.cube, common, 1.0, 0,
+                                        tmpl.name + ": cut '" + item.text + "'");
   const int picture_h = a.tile * 3 / 4;
-  const SceneAssets assets = grid_piece_assets(set, tmpl.name, tmpl.skin_material,
-                                               tmpl.cut_material, item.view, a.tile, picture_h);
+  assets = grid_piece_assets(std::move(assets), object, item.view, a.tile, picture_h);
   std::vector<Stroke> strokes;  // silhouettes as `cutaway piece --png` draws them
   if (a.silhouettes > 0) {
     StrokeOptions so;
@@ -100,7 +97,7 @@ Image sheet_tile(const LoadedItem& item, const SheetArgs& a, const Common& commo
   const Image picture = render_scene_preview(assets, preview);
   // The label strip below the picture: the name, and the cut in grey.
   const Image tile = labelled_tile(picture, tmpl.name, item.text, std::max(1, a.tile / 160));
-  spdlog::info("{} ({}): {} pieces, {:.1f} s", tmpl.name, item.text, set.pieces.size(),
+  spdlog::info("{} ({}): {} pieces, {:.1f} s", tmpl.name, item.text, object.set.pieces.size(),
                seconds_since(t0));
   return tile;
 }

@@ -134,15 +134,13 @@ std::vector<double> gltf_rotation(const glm::dquat& q) {
 
 std::vector<double> gltf_vec3(const glm::dvec3& v) { return {v.x + 0.0, v.y + 0.0, v.z + 0.0}; }
 
-[[noreturn]] void bad_assets(const std::string& what) {
-  throw InternalError("scene assets: " + what);
-}
-
-/// Throws for primitives of `mesh` that break their rules (primitives_defect).
-void check_primitives(const AssetMesh& mesh, size_t materials) {
-  const std::string defect = primitives_defect(mesh, materials);
-  if (!defect.empty()) bad_assets("mesh '" + mesh.name + "': " + defect);
-}
+/// What glTF tolerates beyond the rules of assets_defect: zero normals (written as +Y), a
+/// camera without `up` (its look rotation does not use it); and what it needs: triangles in
+/// every mesh, uv wherever a material is textured.
+constexpr AssetRules kGltfRules{.camera_needs_up = false,
+                                .normals_repaired = true,
+                                .meshes_need_triangles = true,
+                                .textures_need_uv = true};
 
 /// How a quantized mesh's positions map back to metres: p = offset + scale * q, where q is the
 /// stored normalized value (each component in -1..1). Identity for float positions.
@@ -380,13 +378,6 @@ AddedMesh add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
                          const std::vector<int>& gltf_material, int lods) {
   tinygltf::Model& m = out.model();
   const size_t n = mesh.position.size();
-  if (n == 0 || mesh.triangle.empty()) bad_assets("mesh '" + mesh.name + "' has no triangles");
-  if (mesh.normal.size() != n || mesh.colour.size() != n) {
-    bad_assets("mesh '" + mesh.name + "': position, normal and colour counts differ");
-  }
-  if (!mesh.uv.empty() && mesh.uv.size() != n)
-    bad_assets("mesh '" + mesh.name + "': uv count differs from positions");
-  check_primitives(mesh, gltf_material.size());
   const std::vector<AssetPrimitive> plain{{0, mesh.triangle.size(), 0, {}}};
   const std::vector<AssetPrimitive>& primitives = mesh.primitives.empty() ? plain : mesh.primitives;
   // Per primitive: textured or not, and its triangles (the coarse ones of a textured primitive
@@ -398,12 +389,7 @@ AddedMesh add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
     textured.push_back(
         m.materials[static_cast<size_t>(material)].pbrMetallicRoughness.baseColorTexture.index >=
         0);
-    if (textured.back() && mesh.uv.empty())
-      bad_assets("mesh '" + mesh.name + "': a textured material needs uv");
     lists.push_back(primitive_triangles(mesh, p, textured.back()));
-    for (const glm::uvec3& t : lists.back())
-      if (t.x >= n || t.y >= n || t.z >= n)
-        bad_assets("mesh '" + mesh.name + "': a triangle index is out of range");
   }
   // Only the vertices some triangle uses, each written once (ordered for fetching below): a vertex
   // whose written attributes (float position, normal, colour, uv) equal an earlier one's is welded
@@ -419,9 +405,6 @@ AddedMesh add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
   for (size_t i = 0; i < n; ++i) {
     if (!needed[i]) continue;
     const glm::dvec3& p = mesh.position[i];
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-      bad_assets("mesh '" + mesh.name + "': a position is not finite");
-    }
     const double len = glm::length(mesh.normal[i]);
     const glm::dvec3 nrm =
         len > 0 && std::isfinite(len) ? mesh.normal[i] / len : glm::dvec3(0, 1, 0);
@@ -434,8 +417,6 @@ AddedMesh add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
     }
     if (!mesh.uv.empty()) {
       const glm::dvec2 q = mesh.uv[i];
-      if (!std::isfinite(q.x) || !std::isfinite(q.y))
-        bad_assets("mesh '" + mesh.name + "': a uv is not finite");
       vertex[9] = static_cast<float>(q.x);
       vertex[10] = static_cast<float>(q.y);
     }
@@ -539,22 +520,16 @@ std::string uri_encode(const std::string& name) {
 void add_pbr_material(tinygltf::Model& m, const AssetMaterial& material,
                       const std::vector<int>& textures) {
   const PbrMaterial& pbr = material.pbr;
-  if (const std::string_view field = out_of_range_field(pbr); !field.empty())
-    bad_assets("material '" + material.name + "': " + std::string(field) + " not in 0..1");
   const int index = add_material(m, material.name, 1.0, false, pbr.roughness);
   tinygltf::Material& mat = m.materials[static_cast<size_t>(index)];
   if (material.base_colour_texture >= 0) {
-    if (static_cast<size_t>(material.base_colour_texture) >= textures.size())
-      bad_assets("material '" + material.name + "': texture index out of range");
     mat.pbrMetallicRoughness.baseColorTexture.index =
         textures[static_cast<size_t>(material.base_colour_texture)];
     mat.pbrMetallicRoughness.baseColorTexture.texCoord = 0;
   }
-  const int material_map = material.material_texture < 0 ? -1 : [&] {
-    if (static_cast<size_t>(material.material_texture) >= textures.size())
-      bad_assets("material '" + material.name + "': material texture index out of range");
-    return textures[static_cast<size_t>(material.material_texture)];
-  }();
+  const int material_map = material.material_texture < 0
+                               ? -1
+                               : textures[static_cast<size_t>(material.material_texture)];
   if (material_map >= 0) {  // the map holds the values: factors 1
     mat.pbrMetallicRoughness.roughnessFactor = 1.0;
     mat.pbrMetallicRoughness.metallicRoughnessTexture.index = material_map;
@@ -598,12 +573,12 @@ tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& o
                             std::vector<std::pair<int, nlohmann::json>>& view_extensions,
                             const std::vector<std::string>* image_files = nullptr,
                             std::vector<std::pair<std::string, std::string>>* images = nullptr) {
+  require_valid_assets(assets, kGltfRules, "scene assets");
   tinygltf::Model m = new_model();
   if (options.compression == GltfCompression::Meshopt) m.buffers.emplace_back();
   // Only the materials some mesh uses (an unused one is a validator notice), in their order.
   std::vector<int> gltf_material(assets.materials.size(), -1);
   for (const AssetMesh& mesh : assets.meshes) {
-    check_primitives(mesh, assets.materials.size());
     if (mesh.primitives.empty()) gltf_material[0] = 0;
     for (const AssetPrimitive& p : mesh.primitives)
       gltf_material[static_cast<size_t>(p.material)] = 0;
@@ -614,7 +589,7 @@ tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& o
   for (size_t k = 0; k < assets.materials.size(); ++k) {
     for (const int t :
          {assets.materials[k].base_colour_texture, assets.materials[k].material_texture})
-      if (gltf_material[k] >= 0 && t >= 0 && static_cast<size_t>(t) < assets.textures.size())
+      if (gltf_material[k] >= 0 && t >= 0)
         gltf_texture[static_cast<size_t>(t)] = 0;
   }
   for (size_t t = 0; t < assets.textures.size(); ++t) {
@@ -679,13 +654,7 @@ tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& o
   const size_t scene_nodes = assets.instances.size() + 1 + assets.lights.size();
   std::vector<tinygltf::Node> lod_nodes;  // after the scene's nodes
   for (const AssetInstance& inst : assets.instances) {
-    if (inst.mesh < 0 || inst.mesh >= static_cast<int>(assets.meshes.size())) {
-      bad_assets("instance '" + inst.name + "': mesh index out of range");
-    }
     const double qlen = glm::length(inst.rotation);
-    if (!(qlen > 0) || !std::isfinite(qlen)) {
-      bad_assets("instance '" + inst.name + "': zero rotation");
-    }
     glm::dquat q = inst.rotation / qlen;
     if (q.w < 0) q = -q;
     tinygltf::Node node;
@@ -732,8 +701,6 @@ tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& o
   }
 
   const AssetCamera& cam = assets.camera;
-  if (const std::string defect = camera_defect(cam, false); !defect.empty())
-    bad_assets("camera: " + defect);
   tinygltf::Camera camera;
   camera.name = "camera";
   camera.type = "perspective";
@@ -757,9 +724,6 @@ tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& o
     tinygltf::Node node;
     node.name = light.name;
     if (light.type == LightType::Directional) {
-      if (!(glm::length(light.direction) > 0)) {
-        bad_assets("light '" + light.name + "': zero direction");
-      }
       gl.type = "directional";
       node.rotation = gltf_rotation(look_rotation(light.direction, glm::dvec3(0, 1, 0)));
     } else {

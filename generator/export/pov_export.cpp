@@ -85,20 +85,6 @@ void require(bool ok, const std::string& what) {
   if (!ok) throw InternalError("POV-Ray export: " + what);
 }
 
-void check_mesh(const AssetMesh& m, size_t k, size_t materials) {
-  const std::string who = "mesh " + std::to_string(k) + " '" + asset_name(m.name) + "'";
-  const size_t n = m.position.size();
-  require(m.normal.empty() || m.normal.size() == n, who + ": normal count differs from positions");
-  require(m.colour.size() == n, who + ": colour count differs from positions");
-  for (const auto& p : m.position) require(finite(p), who + ": non-finite position");
-  for (const auto& c : m.colour) require(finite(c), who + ": non-finite colour");
-  for (const auto& t : m.triangle) {
-    require(t.x < n && t.y < n && t.z < n, who + ": triangle index out of range");
-  }
-  const std::string defect = primitives_defect(m, materials);
-  require(defect.empty(), who + ": " + defect);
-}
-
 // Shading normals that POV-Ray accepts: a zero or non-finite normal becomes the area-weighted
 // normal of the vertex's triangles, or +Y when those have no area either.
 std::vector<glm::dvec3> usable_normals(const AssetMesh& m) {
@@ -154,8 +140,6 @@ Bounds scene_bounds(const SceneAssets& a) {
 }
 
 void write_camera(std::string& out, const AssetCamera& c) {
-  const std::string defect = camera_defect(c);
-  require(defect.empty(), "camera: " + defect);
   const auto [forward, right, up] = camera_frame(c);
   const double tan_half = std::tan(c.fov_y_deg * kPi / 360.0);
 
@@ -191,13 +175,8 @@ void write_lights(std::string& out, const SceneAssets& a) {
     if (a.lights[i].intensity > a.lights[shadow_caster].intensity) shadow_caster = i;
   for (size_t i = 0; i < a.lights.size(); ++i) {
     const AssetLight& l = a.lights[i];
-    const std::string who = "light " + std::to_string(i) + " '" + asset_name(l.name) + "'";
-    require(finite(l.colour) && std::isfinite(l.intensity) && l.intensity >= 0,
-            who + ": colour and intensity must be finite, intensity >= 0");
     out += "// Light " + std::to_string(i) + ": " + asset_name(l.name);
     if (l.type == LightType::Directional) {
-      require(finite(l.direction) && glm::length(l.direction) > 0,
-              who + ": direction must be finite and non-zero");
       const glm::dvec3 dir = glm::normalize(l.direction);
       const double far_m = 10 * b.radius + 10;
       out += ", directional, ";
@@ -211,7 +190,6 @@ void write_lights(std::string& out, const SceneAssets& a) {
       if (i != shadow_caster) out += "\n  shadowless";
       out += "\n}\n\n";
     } else {
-      require(finite(l.position), who + ": non-finite position");
       out += ", point, ";
       append_number(out, l.intensity);
       out += " cd\nlight_source {\n  ";
@@ -363,16 +341,6 @@ void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, cons
   out += "\n  }\n}\n\n";
 }
 
-void check_instance(const AssetInstance& inst, size_t i, size_t mesh_count) {
-  const std::string who = "instance " + std::to_string(i) + " '" + asset_name(inst.name) + "'";
-  require(inst.mesh >= 0 && static_cast<size_t>(inst.mesh) < mesh_count,
-          who + ": mesh index out of range");
-  const glm::dquat q = inst.rotation;
-  const double qlen = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
-  require(std::isfinite(qlen) && qlen > 0, who + ": rotation is not a finite non-zero quaternion");
-  require(finite(inst.translation), who + ": non-finite translation");
-}
-
 void write_instance(std::string& out, const AssetInstance& inst, const std::string& id,
                     size_t i) {
   const glm::dquat q = inst.rotation;
@@ -462,18 +430,8 @@ void write_strokes(std::string& out, const SceneAssets& a, const std::vector<Str
 
 std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* strokes,
                          const std::vector<std::string>& texture_files) {
-  require(!assets.materials.empty(), "no materials");
-  for (const AssetMaterial& material : assets.materials) {
-    const std::string_view field = out_of_range_field(material.pbr);
-    require(field.empty(),
-            "material '" + asset_name(material.name) + "': " + std::string(field) + " not in 0..1");
-  }
-  for (size_t k = 0; k < assets.meshes.size(); ++k)
-    check_mesh(assets.meshes[k], k, assets.materials.size());
-  for (size_t i = 0; i < assets.instances.size(); ++i) {
-    check_instance(assets.instances[i], i, assets.meshes.size());
-  }
-  require(finite(assets.background), "non-finite background colour");
+  // POV-Ray replaces zero shading normals (usable_normals).
+  require_valid_assets(assets, {.normals_repaired = true}, "POV-Ray export");
 
   std::string out;
   out += "// " + asset_name(assets.name) + ": a scene written by cutaway (POV-Ray 3.7).\n";

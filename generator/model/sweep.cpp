@@ -141,6 +141,159 @@ struct Rail {
   }
 };
 
+/// The closed 'within' profile split at its lowest and highest points into two rails, both
+/// running upward: the inner one (smaller mean radius) and the outer one, their y made
+/// monotonic and their arc length normalised to 0..1.
+struct WithinRails {
+  Polyline2 profile;          ///< counter-clockwise in (r, y), from its lowest point
+  std::vector<double> tprof;  ///< arc-length parameter of each profile point
+  size_t top = 0;             ///< index of the highest profile point
+  Rail inner, outer;
+  double mean_length = 0;     ///< the rails' mean length, metres
+};
+
+WithinRails within_rails(const SurfaceSpec& spec) {
+  WithinRails w;
+  Polyline2& prof = w.profile;
+  prof = fit_curve(spec.profile, true, spec.smooth);
+  if (signed_area(prof) < 0) std::reverse(prof.begin(), prof.end());
+  size_t lo = 0;
+  for (size_t i = 0; i < prof.size(); ++i)
+    if (prof[i].y < prof[lo].y) lo = i;
+  std::rotate(prof.begin(), prof.begin() + static_cast<long>(lo), prof.end());
+  w.tprof = arc_length_parameters(prof, true);
+  size_t& hi = w.top;
+  for (size_t i = 0; i < prof.size(); ++i)
+    if (prof[i].y > prof[hi].y) hi = i;
+
+  // Rail A: lowest -> highest going forward (counter-clockwise: the outer side first);
+  // rail B: lowest -> highest going backward.
+  Rail ra, rb;
+  for (size_t i = 0; i <= hi; ++i) {
+    ra.y.push_back(prof[i].y);
+    ra.r.push_back(prof[i].x);
+    ra.t.push_back(w.tprof[i]);
+  }
+  for (size_t k = 0; k + hi <= prof.size(); ++k) {
+    const size_t i = k == 0 ? 0 : prof.size() - k;
+    rb.y.push_back(prof[i].y);
+    rb.r.push_back(prof[i].x);
+    rb.t.push_back(k == 0 ? 1.0 : w.tprof[i]);
+  }
+  for (Rail* rail : {&ra, &rb}) {
+    // Enforce monotonic y (plateaus from the checks' tolerance) and arc length per rail.
+    for (size_t i = 1; i < rail->y.size(); ++i) rail->y[i] = std::max(rail->y[i], rail->y[i - 1]);
+    rail->s.assign(rail->y.size(), 0.0);
+    for (size_t i = 1; i < rail->y.size(); ++i) {
+      rail->s[i] = rail->s[i - 1] + std::hypot(rail->y[i] - rail->y[i - 1],
+                                               rail->r[i] - rail->r[i - 1]);
+    }
+  }
+  const double len_a = ra.s.back(), len_b = rb.s.back();
+  for (auto& v : ra.s) v /= len_a;
+  for (auto& v : rb.s) v /= len_b;
+  double mean_a = 0, mean_b = 0;
+  for (double r : ra.r) mean_a += r / ra.r.size();
+  for (double r : rb.r) mean_b += r / rb.r.size();
+  w.mean_length = 0.5 * (len_a + len_b);
+  w.inner = mean_a < mean_b ? ra : rb;
+  w.outer = mean_a < mean_b ? rb : ra;
+  return w;
+}
+
+/// n + 1 heights from the lowest to the highest profile point, spaced by the mean of both
+/// rails' normalised arc length (bisection per height).
+std::vector<double> within_heights(const WithinRails& w, int n) {
+  const double y_lo = w.profile[0].y, y_hi = w.profile[w.top].y;
+  std::vector<double> heights(n + 1);
+  heights[0] = y_lo;
+  heights[n] = y_hi;
+  for (int i = 1; i < n; ++i) {
+    const double target = static_cast<double>(i) / n;
+    double a = y_lo, b = y_hi;
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (a + b);
+      const double sm = 0.5 * (w.inner.at(w.inner.s, mid) + w.outer.at(w.outer.s, mid));
+      (sm < target ? a : b) = mid;
+    }
+    heights[i] = 0.5 * (a + b);
+  }
+  return heights;
+}
+
+/// The smallest and largest u (x) of a loop.
+std::pair<double, double> u_range(const Polyline2& loop) {
+  double umin = loop[0].x, umax = loop[0].x;
+  for (const auto& p : loop) {
+    umin = std::min(umin, p.x);
+    umax = std::max(umax, p.x);
+  }
+  return {umin, umax};
+}
+
+/// Section loop `k` of a 'within' surface in its fold frame (u along the fold centre, w towards
+/// increasing angle), counter-clockwise in (u, w), started at the largest u.
+Polyline2 fold_frame_loop(const SurfaceSpec& spec, const Template& t, size_t k) {
+  const double centre = t.fold_angles[k];
+  Polyline2 uw;
+  for (const auto& p : fit_curve(spec.section.loops[k], true, spec.smooth)) {
+    const double rel = horizontal_angle(p) - centre, rho = glm::length(p);
+    uw.push_back({rho * std::cos(rel), rho * std::sin(rel)});
+  }
+  if (signed_area(uw) < 0) std::reverse(uw.begin(), uw.end());
+  const auto start = std::max_element(uw.begin(), uw.end(), [](auto& a, auto& b) {
+    return a.x < b.x;
+  });
+  std::rotate(uw.begin(), start, uw.end());
+  return uw;
+}
+
+/// The sweep grid of fold `fold`: at each height, `loop` (m points, fold frame) stretched in u
+/// from the inner to the outer rail and scaled alike in w, rotated to the fold's centre angle;
+/// a single point on the inner rail at the lowest and highest height.
+/// @throws InputError when a point leaves the fold's angular span
+SweepGrid within_fold_grid(const SurfaceSpec& spec, const Template& t, const WithinRails& w,
+                           const std::vector<double>& heights, const Polyline2& loop, int fold) {
+  const int n = static_cast<int>(heights.size()) - 1, m = static_cast<int>(loop.size());
+  const auto [umin, umax] = u_range(loop);
+  const double theta = t.fold_angles[fold];
+  const glm::dvec3 centre_dir(std::cos(theta), 0, -std::sin(theta));
+  const glm::dvec3 across_dir(-std::sin(theta), 0, -std::cos(theta));
+  const auto [span_lo, span_hi] = fold_span(t, fold);
+  const std::string field = spec.path + ".section";
+  SweepGrid g;
+  for (int i = 0; i <= n; ++i) {
+    const double y = heights[i];
+    const double rin = w.inner.at(w.inner.r, y), rout = w.outer.at(w.outer.r, y);
+    const double tin = w.inner.at(w.inner.t, y), tout = w.outer.at(w.outer.t, y);
+    std::vector<glm::dvec3> row;
+    std::vector<glm::dvec2> par;
+    if (i == 0 || i == n) {
+      row.push_back(centre_dir * rin + glm::dvec3(0, y, 0));
+      par.push_back({i == 0 ? 0.0 : w.tprof[w.top], 0});
+    } else {
+      const double k = (rout - rin) / (umax - umin);
+      for (int j = 0; j < m; ++j) {
+        const double u = rin + (loop[j].x - umin) * k, wv = loop[j].y * k;
+        const glm::dvec3 p = centre_dir * u + across_dir * wv + glm::dvec3(0, y, 0);
+        const double rel = std::atan2(wv, u);
+        if (rel <= span_lo - theta || rel >= span_hi - theta) {
+          throw InputError(spec.section.loc, field,
+                           "the swept 'within' surface leaves fold " + std::to_string(fold) +
+                               " at height " + std::to_string(y / t.metres_per_unit) +
+                               ": make the loop narrower across the fold");
+        }
+        const double a = (loop[j].x - umin) / (umax - umin);
+        row.push_back(p);
+        par.push_back({tin + (tout - tin) * a, static_cast<double>(j) / m});
+      }
+    }
+    g.rows.push_back(std::move(row));
+    g.params.push_back(std::move(par));
+  }
+  return g;
+}
+
 }  // namespace
 
 DsSurface sweep_around(const SurfaceSpec& spec, const Template& t) {
@@ -208,96 +361,26 @@ DsSurface sweep_within(const SurfaceSpec& spec, const Template& t) {
   CUTAWAY_CHECK(spec.kind == SurfaceKind::Within);
   CUTAWAY_CHECK(t.symmetry == Symmetry::NFold);
   const double edge = t.edge_m;
-
-  // The closed profile, counter-clockwise in the (r, y) plane, from its lowest point.
-  Polyline2 prof = fit_curve(spec.profile, true, spec.smooth);
-  if (signed_area(prof) < 0) std::reverse(prof.begin(), prof.end());
-  size_t lo = 0;
-  for (size_t i = 0; i < prof.size(); ++i)
-    if (prof[i].y < prof[lo].y) lo = i;
-  std::rotate(prof.begin(), prof.begin() + static_cast<long>(lo), prof.end());
-  const std::vector<double> tprof = arc_length_parameters(prof, true);
-  size_t hi = 0;
-  for (size_t i = 0; i < prof.size(); ++i)
-    if (prof[i].y > prof[hi].y) hi = i;
-
-  // Rail A: lowest -> highest going forward (counter-clockwise: the outer side first);
-  // rail B: lowest -> highest going backward.
-  Rail ra, rb;
-  for (size_t i = 0; i <= hi; ++i) {
-    ra.y.push_back(prof[i].y);
-    ra.r.push_back(prof[i].x);
-    ra.t.push_back(tprof[i]);
-  }
-  for (size_t k = 0; k + hi <= prof.size(); ++k) {
-    const size_t i = k == 0 ? 0 : prof.size() - k;
-    rb.y.push_back(prof[i].y);
-    rb.r.push_back(prof[i].x);
-    rb.t.push_back(k == 0 ? 1.0 : tprof[i]);
-  }
-  for (Rail* rail : {&ra, &rb}) {
-    // Enforce monotonic y (plateaus from the checks' tolerance) and arc length per rail.
-    for (size_t i = 1; i < rail->y.size(); ++i) rail->y[i] = std::max(rail->y[i], rail->y[i - 1]);
-    rail->s.assign(rail->y.size(), 0.0);
-    for (size_t i = 1; i < rail->y.size(); ++i) {
-      rail->s[i] = rail->s[i - 1] + std::hypot(rail->y[i] - rail->y[i - 1],
-                                               rail->r[i] - rail->r[i - 1]);
-    }
-  }
-  const double len_a = ra.s.back(), len_b = rb.s.back();
-  for (auto& v : ra.s) v /= len_a;
-  for (auto& v : rb.s) v /= len_b;
-  double mean_a = 0, mean_b = 0;
-  for (double r : ra.r) mean_a += r / ra.r.size();
-  for (double r : rb.r) mean_b += r / rb.r.size();
-  const Rail& inner = mean_a < mean_b ? ra : rb;
-  const Rail& outer = mean_a < mean_b ? rb : ra;
-  const double y_lo = prof[0].y, y_hi = prof[hi].y;
+  const WithinRails rails = within_rails(spec);
 
   // Heights spaced by the mean normalised arc length of both rails.
-  const int n = segments_for(0.5 * (len_a + len_b), edge, 2);
+  const int n = segments_for(rails.mean_length, edge, 2);
   // Every ring has at least 8 vertices: refuse before placing the heights.
   check_vertex_budget(static_cast<size_t>(n + 1) * t.folds, 8, spec, t);
-  std::vector<double> heights(n + 1);
-  heights[0] = y_lo;
-  heights[n] = y_hi;
-  for (int i = 1; i < n; ++i) {
-    const double target = static_cast<double>(i) / n;
-    double a = y_lo, b = y_hi;
-    for (int it = 0; it < 60; ++it) {
-      const double mid = 0.5 * (a + b);
-      const double sm = 0.5 * (ra.at(ra.s, mid) + rb.at(rb.s, mid));
-      (sm < target ? a : b) = mid;
-    }
-    heights[i] = 0.5 * (a + b);
-  }
+  const std::vector<double> heights = within_heights(rails, n);
 
-  // Section loops in their fold frames (u along the fold centre, w towards increasing angle),
-  // counter-clockwise in (u, w), started at the largest u.
+  // The section loops in their fold frames; the points per ring from the longest loop once
+  // stretched to the widest span between the rails.
   const size_t nloops = spec.section.loops.size();
   std::vector<Polyline2> frame_loops;
+  double max_width = 0;
+  for (int i = 0; i <= n; ++i)
+    max_width = std::max(max_width, rails.outer.at(rails.outer.r, heights[i]) -
+                                        rails.inner.at(rails.inner.r, heights[i]));
   double max_scaled_perimeter = 0;
   for (size_t k = 0; k < nloops; ++k) {
-    const double centre = t.fold_angles[k];
-    Polyline2 uw;
-    for (const auto& p : fit_curve(spec.section.loops[k], true, spec.smooth)) {
-      const double rel = horizontal_angle(p) - centre, rho = glm::length(p);
-      uw.push_back({rho * std::cos(rel), rho * std::sin(rel)});
-    }
-    if (signed_area(uw) < 0) std::reverse(uw.begin(), uw.end());
-    const auto start = std::max_element(uw.begin(), uw.end(), [](auto& a, auto& b) {
-      return a.x < b.x;
-    });
-    std::rotate(uw.begin(), start, uw.end());
-    double umin = uw[0].x, umax = uw[0].x;
-    for (const auto& p : uw) {
-      umin = std::min(umin, p.x);
-      umax = std::max(umax, p.x);
-    }
-    double max_width = 0;
-    for (int i = 0; i <= n; ++i) {
-      max_width = std::max(max_width, outer.at(outer.r, heights[i]) - inner.at(inner.r, heights[i]));
-    }
+    Polyline2 uw = fold_frame_loop(spec, t, k);
+    const auto [umin, umax] = u_range(uw);
     max_scaled_perimeter =
         std::max(max_scaled_perimeter, curve_length(uw, true) * max_width / (umax - umin));
     frame_loops.push_back(std::move(uw));
@@ -310,48 +393,9 @@ DsSurface sweep_within(const SurfaceSpec& spec, const Template& t) {
   s.role = spec.is_skin ? SurfaceRole::Skin : SurfaceRole::Structure;
   s.visible_front = spec.visible_front;
   s.visible_back = spec.visible_back;
-  const std::string field = spec.path + ".section";
   for (int fold = 0; fold < t.folds; ++fold) {
     const Polyline2 loop = resample_uniform(frame_loops[nloops == 1 ? 0 : fold], true, m);
-    double umin = loop[0].x, umax = loop[0].x;
-    for (const auto& p : loop) {
-      umin = std::min(umin, p.x);
-      umax = std::max(umax, p.x);
-    }
-    const double theta = t.fold_angles[fold];
-    const glm::dvec3 centre_dir(std::cos(theta), 0, -std::sin(theta));
-    const glm::dvec3 across_dir(-std::sin(theta), 0, -std::cos(theta));
-    const auto [span_lo, span_hi] = fold_span(t, fold);
-    SweepGrid g;
-    for (int i = 0; i <= n; ++i) {
-      const double y = heights[i];
-      const double rin = inner.at(inner.r, y), rout = outer.at(outer.r, y);
-      const double tin = inner.at(inner.t, y), tout = outer.at(outer.t, y);
-      std::vector<glm::dvec3> row;
-      std::vector<glm::dvec2> par;
-      if (i == 0 || i == n) {
-        row.push_back(centre_dir * rin + glm::dvec3(0, y, 0));
-        par.push_back({i == 0 ? 0.0 : tprof[hi], 0});
-      } else {
-        const double k = (rout - rin) / (umax - umin);
-        for (int j = 0; j < m; ++j) {
-          const double u = rin + (loop[j].x - umin) * k, w = loop[j].y * k;
-          const glm::dvec3 p = centre_dir * u + across_dir * w + glm::dvec3(0, y, 0);
-          const double rel = std::atan2(w, u);
-          if (rel <= span_lo - theta || rel >= span_hi - theta) {
-            throw InputError(spec.section.loc, field,
-                             "the swept 'within' surface leaves fold " + std::to_string(fold) +
-                                 " at height " + std::to_string(y / t.metres_per_unit) +
-                                 ": make the loop narrower across the fold");
-          }
-          const double a = (loop[j].x - umin) / (umax - umin);
-          row.push_back(p);
-          par.push_back({tin + (tout - tin) * a, static_cast<double>(j) / m});
-        }
-      }
-      g.rows.push_back(std::move(row));
-      g.params.push_back(std::move(par));
-    }
+    const SweepGrid g = within_fold_grid(spec, t, rails, heights, loop, fold);
     add_grid(g, spec, grid_volume(g) < 0, s.mesh);
   }
   return s;

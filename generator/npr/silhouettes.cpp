@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -261,6 +262,206 @@ std::vector<std::pair<std::vector<uint32_t>, glm::dvec3>> link_edges(
   return lines;
 }
 
+/// Scene-frame placement of an instance.
+glm::dmat4 placement(const AssetInstance& inst) {
+  return glm::translate(glm::dmat4(1.0), inst.translation) *
+         glm::mat4_cast(glm::normalize(inst.rotation));
+}
+
+/// Step 1: the depth buffer of every instance's triangles, and each instance's vertices in
+/// pixels (x, y, depth; depth -1 behind the near plane) in `pixels`.
+DepthBuffer scene_depth(const SceneAssets& assets, const Projection& proj, int width, int height,
+                        std::vector<std::vector<glm::dvec3>>& pixels) {
+  DepthBuffer depth(width, height);
+  pixels.assign(assets.instances.size(), {});
+  for (size_t i = 0; i < assets.instances.size(); ++i) {
+    const AssetInstance& inst = assets.instances[i];
+    const AssetMesh& mesh = assets.meshes[static_cast<size_t>(inst.mesh)];
+    const glm::dmat4 view_from_object = proj.view_from_scene * placement(inst);
+    std::vector<glm::dvec3>& px = pixels[i];
+    px.resize(mesh.position.size());
+    for (size_t v = 0; v < mesh.position.size(); ++v) {
+      const glm::dvec3 p(view_from_object * glm::dvec4(mesh.position[v], 1.0));
+      px[v] = -p.z > proj.znear ? proj.pixel(p) : glm::dvec3(0, 0, -1);
+    }
+    for (const glm::uvec3& t : mesh.triangle) {
+      if (px[t.x].z <= 0 || px[t.y].z <= 0 || px[t.z].z <= 0) continue;  // crosses znear
+      depth.triangle(px[t.x], px[t.y], px[t.z]);
+    }
+  }
+  return depth;
+}
+
+/// The points strokes run through, by id: a mesh's welded vertices, then points where a long
+/// edge goes in or out of sight; in the object frame and in pixels with depth.
+struct StrokePoints {
+  std::vector<glm::dvec3> point, screen;
+
+  /// The id of the point at screen parameter t of edge a-b (perspective-correct), added.
+  uint32_t add_on(uint32_t a, uint32_t b, double t) {
+    const double inv_d = (1 - t) / screen[a].z + t / screen[b].z;
+    const double s = (t / screen[b].z) / inv_d;  // the object-space parameter
+    point.push_back(glm::mix(point[a], point[b], s));
+    screen.push_back(glm::dvec3(glm::mix(xy(screen[a]), xy(screen[b]), t), 1 / inv_d));
+    return static_cast<uint32_t>(point.size() - 1);
+  }
+};
+
+/// One instance's mesh as steps 2 and 3 see it.
+struct InstanceView {
+  const AssetMesh& mesh;
+  const Topology& topo;
+  const std::vector<glm::dvec3>& px;  ///< its vertices in pixels
+  std::vector<int8_t> facing;         ///< per triangle: +1 toward the eye, -1 away, 0 degenerate
+};
+
+/// Steps 2 and 3 for one instance: its feature edges (borders, silhouettes between front- and
+/// back-facing triangles, creases sharper than crease_deg) in sight, into `outlines`, and
+/// with options.structure_width the seams inside smooth surfaces (structure lines inside cut
+/// faces) in sight, into `structure`. An edge is in sight by the majority of its samples
+/// against `depth`; a long edge partly hidden is split into its runs in sight.
+void visible_feature_edges(const InstanceView& in, const DepthBuffer& depth,
+                           const Projection& proj, const StrokeOptions& options,
+                           StrokePoints& points, std::vector<FeatureEdge>& outlines,
+                           std::vector<FeatureEdge>& structure) {
+  const AssetMesh& mesh = in.mesh;
+  const Topology& topo = in.topo;
+  const double crease_cos = std::cos(glm::radians(options.crease_deg));
+  // The mesh vertex of triangle f that welds to `w`.
+  const auto corner = [&](uint32_t f, uint32_t w) {
+    const glm::uvec3& tri = mesh.triangle[f];
+    for (int k = 0; k < 3; ++k)
+      if (topo.weld[tri[k]] == w) return tri[k];
+    return tri[0];
+  };
+  // Two copies of a vertex that differ only in texture coordinates (made for a texture's
+  // seam: a skin's t_section = 0, its poles) are one vertex of the surface.
+  const auto same_copy = [&](uint32_t u, uint32_t v) {
+    return u == v || (!mesh.uv.empty() && mesh.uv[u] != mesh.uv[v] &&
+                      mesh.colour[u] == mesh.colour[v] && mesh.normal[u] == mesh.normal[v]);
+  };
+  for (const Topology::Edge& e : topo.edges) {
+    const uint32_t* faces = &topo.edge_faces[e.first_face];
+    bool feature = false, seam = false;
+    int front_face = -1;
+    for (uint32_t k = 0; k < e.face_count; ++k)
+      if (in.facing[faces[k]] > 0) front_face = static_cast<int>(faces[k]);
+    if (e.face_count != 2) {
+      feature = true;
+    } else {
+      const uint32_t f0 = faces[0], f1 = faces[1];
+      if (in.facing[f0] != in.facing[f1]) {
+        feature = true;
+      } else if (front_face >= 0) {
+        const glm::dvec3 &n0 = topo.face_normal[f0], &n1 = topo.face_normal[f1];
+        feature = glm::dot(n0, n1) < crease_cos * glm::length(n0) * glm::length(n1);
+        // A seam inside a smooth surface: the two faces use different copies of the edge's
+        // vertices. Cross-sections split their vertices exactly along the cut segments, so
+        // these are the outlines of the structures inside a cut face.
+        seam = !feature && options.structure_width > 0 &&
+               glm::dot(n0, n1) > kCoplanarCos * glm::length(n0) * glm::length(n1) &&
+               (!same_copy(corner(f0, e.a), corner(f1, e.a)) ||
+                !same_copy(corner(f0, e.b), corner(f1, e.b)));
+      }
+    }
+    if (!feature && !seam) continue;
+    const uint32_t va = topo.representative[e.a], vb = topo.representative[e.b];
+    const glm::dvec3 &pa = in.px[va], &pb = in.px[vb];
+    if (pa.z <= 0 || pb.z <= 0) continue;
+    const double length = glm::length(glm::dvec2(pb - pa));
+    const int n = std::clamp(static_cast<int>(std::ceil(length)), 3, 512);
+    std::vector<bool> sample_seen(static_cast<size_t>(n));
+    int seen = 0;
+    for (int k = 0; k < n; ++k) {
+      const double t = (k + 0.5) / n;
+      // Perspective-correct depth along the projected edge.
+      const double inv_d = (1 - t) / pa.z + t / pb.z;
+      const double d = 1 / inv_d;
+      const glm::dvec2 s = glm::mix(glm::dvec2(pa), glm::dvec2(pb), t);
+      const double tolerance = 1e-3 * d + 2.5 * d / proj.pixel_per_depth;
+      sample_seen[static_cast<size_t>(k)] = depth.visible(s.x, s.y, d, tolerance);
+      seen += sample_seen[static_cast<size_t>(k)];
+    }
+    const int cf = front_face >= 0 ? front_face : static_cast<int>(faces[0]);
+    const glm::uvec3& tri = mesh.triangle[static_cast<size_t>(cf)];
+    const glm::dvec3 colour = (mesh.colour[tri.x] + mesh.colour[tri.y] + mesh.colour[tri.z]) / 3.0;
+    std::vector<FeatureEdge>& out = seam ? structure : outlines;
+    if (length < kSplitEdge_px || seen == n) {  // short, or all in sight: by majority
+      if (2 * seen >= n) out.push_back({e.a, e.b, colour});
+      continue;
+    }
+    // A long edge partly hidden (a board's edge behind a piece): its runs in sight of at
+    // least kMinRun_px samples, each a stroke edge of its own.
+    for (int k = 0; k < n;) {
+      if (!sample_seen[static_cast<size_t>(k)]) {
+        ++k;
+        continue;
+      }
+      int end = k;
+      while (end < n && sample_seen[static_cast<size_t>(end)]) ++end;
+      if (end - k >= kMinRun_px) {
+        const uint32_t from = k == 0 ? e.a : points.add_on(e.a, e.b, static_cast<double>(k) / n);
+        const uint32_t to = end == n ? e.b : points.add_on(e.a, e.b, static_cast<double>(end) / n);
+        out.push_back({from, to, colour});
+      }
+      k = end;
+    }
+  }
+}
+
+/// Step 5 for one linked line (point ids `ids`, object frame): placed by `scene_from_object`,
+/// smoothed (options.smoothing passes, each point moved at most smoothing_shift_px), tapered
+/// along its projected arc length (closed lines keep 60 % of the width at least); none when
+/// shorter than options.min_length_px.
+std::optional<Stroke> taper_stroke(const std::vector<uint32_t>& ids, bool closed,
+                                   const glm::dvec3& colour, double line_width,
+                                   const glm::dmat4& scene_from_object,
+                                   const std::vector<glm::dvec3>& point, const Projection& proj,
+                                   const StrokeOptions& options) {
+  if (ids.size() < 2) return std::nullopt;
+  Stroke s;
+  s.closed = closed;
+  for (uint32_t w : ids) s.points.emplace_back(scene_from_object * glm::dvec4(point[w], 1.0));
+  const size_t n = s.points.size();
+  for (int pass = 0; pass < options.smoothing && n > 2; ++pass) {
+    std::vector<glm::dvec3> q = s.points;
+    for (size_t k = 0; k < n; ++k) {
+      if (!s.closed && (k == 0 || k + 1 == n)) continue;
+      const glm::dvec3& prev = s.points[(k + n - 1) % n];
+      const glm::dvec3& next = s.points[(k + 1) % n];
+      const glm::dvec3 shift = 0.25 * (prev + next) - 0.5 * s.points[k];
+      const double limit =
+          options.smoothing_shift_px * -proj.view(s.points[k]).z / proj.pixel_per_depth;
+      const double length = glm::length(shift);
+      q[k] = s.points[k] + (length > limit ? shift * (limit / length) : shift);
+    }
+    s.points = std::move(q);
+  }
+  // Projected arc length.
+  std::vector<double> arc(n + 1, 0.0);
+  std::vector<glm::dvec2> sp;
+  for (const glm::dvec3& p : s.points) sp.emplace_back(proj.pixel(proj.view(p)));
+  for (size_t k = 1; k <= n; ++k) {
+    if (k == n && !s.closed) {
+      arc[n] = arc[n - 1];
+      break;
+    }
+    arc[k] = arc[k - 1] + glm::length(sp[k % n] - sp[k - 1]);
+  }
+  const double total = s.closed ? arc[n] : arc[n - 1];
+  if (!(total >= options.min_length_px)) return std::nullopt;
+  const double scale = options.strength * std::min(1.0, std::sqrt(total / (30 * line_width)));
+  s.width_px.resize(n);
+  for (size_t k = 0; k < n; ++k) {
+    const double t = arc[k] / total;
+    const double profile = s.closed ? 0.8 + 0.2 * std::cos(2 * kPi * t)
+                                    : 0.15 + 0.85 * std::pow(std::sin(kPi * t), 0.6);
+    s.width_px[k] = line_width * scale * profile;
+  }
+  s.colour = options.darkening * colour;
+  return s;
+}
+
 }  // namespace
 
 std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptions& options) {
@@ -277,34 +478,8 @@ std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptio
   if (!(options.strength > 0)) return strokes;
 
   const Projection proj = make_projection(assets.camera, width, height);
-  const glm::dvec3 eye = assets.camera.eye;
-
-  // Scene-frame placement of each instance, and its vertices in pixels (x, y, depth).
-  const auto placement = [](const AssetInstance& inst) {
-    return glm::translate(glm::dmat4(1.0), inst.translation) *
-           glm::mat4_cast(glm::normalize(inst.rotation));
-  };
-
-  // 1. Depth buffer of everything.
-  DepthBuffer depth(width, height);
-  std::vector<std::vector<glm::dvec3>> pixels(assets.instances.size());
-  for (size_t i = 0; i < assets.instances.size(); ++i) {
-    const AssetInstance& inst = assets.instances[i];
-    const AssetMesh& mesh = assets.meshes[static_cast<size_t>(inst.mesh)];
-    const glm::dmat4 view_from_object = proj.view_from_scene * placement(inst);
-    std::vector<glm::dvec3>& px = pixels[i];
-    px.resize(mesh.position.size());
-    for (size_t v = 0; v < mesh.position.size(); ++v) {
-      const glm::dvec3 p(view_from_object * glm::dvec4(mesh.position[v], 1.0));
-      px[v] = -p.z > proj.znear ? proj.pixel(p) : glm::dvec3(0, 0, -1);
-    }
-    for (const glm::uvec3& t : mesh.triangle) {
-      if (px[t.x].z <= 0 || px[t.y].z <= 0 || px[t.z].z <= 0) continue;  // crosses znear
-      depth.triangle(px[t.x], px[t.y], px[t.z]);
-    }
-  }
-
-  const double crease_cos = std::cos(glm::radians(options.crease_deg));
+  std::vector<std::vector<glm::dvec3>> pixels;
+  const DepthBuffer depth = scene_depth(assets, proj, width, height, pixels);
   const double base_width =
       options.width_px > 0 ? options.width_px : std::max(1.5, height / 320.0);
   std::unordered_map<int, Topology> topologies;  // per mesh index, built once
@@ -317,174 +492,44 @@ std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptio
     if (found == topologies.end())
       found = topologies.emplace(inst.mesh, make_topology(mesh)).first;
     const Topology& topo = found->second;
-    const std::vector<glm::dvec3>& px = pixels[i];
-    const glm::dmat4 scene_from_object = placement(inst);
-    // The eye in the mesh frame, for facing tests there.
+    // 2. Which triangles face the eye (in the mesh frame).
+    InstanceView view{mesh, topo, pixels[i], std::vector<int8_t>(mesh.triangle.size(), 0)};
     const glm::dvec3 eye_object =
-        glm::conjugate(glm::normalize(inst.rotation)) * (eye - inst.translation);
-    std::vector<int8_t> facing(mesh.triangle.size(), 0);  // +1 toward the eye, -1 away
+        glm::conjugate(glm::normalize(inst.rotation)) * (assets.camera.eye - inst.translation);
     for (size_t f = 0; f < mesh.triangle.size(); ++f) {
       const glm::dvec3& n = topo.face_normal[f];
       if (n == glm::dvec3(0.0)) continue;
-      facing[f] = glm::dot(n, eye_object - mesh.position[mesh.triangle[f].x]) > 0 ? 1 : -1;
+      view.facing[f] = glm::dot(n, eye_object - mesh.position[mesh.triangle[f].x]) > 0 ? 1 : -1;
     }
-
-    // The mesh vertex of triangle f that welds to `w`.
-    const auto corner = [&](uint32_t f, uint32_t w) {
-      const glm::uvec3& tri = mesh.triangle[f];
-      for (int k = 0; k < 3; ++k)
-        if (topo.weld[tri[k]] == w) return tri[k];
-      return tri[0];
-    };
-    // Two copies of a vertex that differ only in texture coordinates (made for a texture's
-    // seam: a skin's t_section = 0, its poles) are one vertex of the surface.
-    const auto same_copy = [&](uint32_t u, uint32_t v) {
-      return u == v || (!mesh.uv.empty() && mesh.uv[u] != mesh.uv[v] &&
-                        mesh.colour[u] == mesh.colour[v] && mesh.normal[u] == mesh.normal[v]);
-    };
-    // Stroke points by id: the welded vertices, then points where a long edge goes in or out
-    // of sight (object frame, and pixels with depth).
-    std::vector<glm::dvec3> point(topo.representative.size()), screen(point.size());
+    // 3. Feature edges in sight: outlines, and structure lines inside cut faces.
+    StrokePoints points;
+    points.point.resize(topo.representative.size());
+    points.screen.resize(topo.representative.size());
     for (size_t w = 0; w < topo.representative.size(); ++w) {
-      point[w] = mesh.position[topo.representative[w]];
-      screen[w] = px[topo.representative[w]];
+      points.point[w] = mesh.position[topo.representative[w]];
+      points.screen[w] = pixels[i][topo.representative[w]];
     }
-    // The id of the point at screen parameter t of edge a-b (perspective-correct), added.
-    const auto point_on = [&](uint32_t a, uint32_t b, double t) {
-      const double inv_d = (1 - t) / screen[a].z + t / screen[b].z;
-      const double s = (t / screen[b].z) / inv_d;  // the object-space parameter
-      point.push_back(glm::mix(point[a], point[b], s));
-      screen.push_back(glm::dvec3(glm::mix(xy(screen[a]), xy(screen[b]), t), 1 / inv_d));
-      return static_cast<uint32_t>(point.size() - 1);
-    };
-    // 2. Feature edges, 3. visible ones: outlines, and structure lines inside cut faces.
     std::vector<FeatureEdge> visible, structure;
-    for (const Topology::Edge& e : topo.edges) {
-      const uint32_t* faces = &topo.edge_faces[e.first_face];
-      bool feature = false, seam = false;
-      int front_face = -1;
-      for (uint32_t k = 0; k < e.face_count; ++k)
-        if (facing[faces[k]] > 0) front_face = static_cast<int>(faces[k]);
-      if (e.face_count != 2) {
-        feature = true;
-      } else {
-        const uint32_t f0 = faces[0], f1 = faces[1];
-        if (facing[f0] != facing[f1]) {
-          feature = true;
-        } else if (front_face >= 0) {
-          const glm::dvec3 &n0 = topo.face_normal[f0], &n1 = topo.face_normal[f1];
-          feature = glm::dot(n0, n1) < crease_cos * glm::length(n0) * glm::length(n1);
-          // A seam inside a smooth surface: the two faces use different copies of the edge's
-          // vertices. Cross-sections split their vertices exactly along the cut segments, so
-          // these are the outlines of the structures inside a cut face.
-          seam = !feature && options.structure_width > 0 &&
-                 glm::dot(n0, n1) > kCoplanarCos * glm::length(n0) * glm::length(n1) &&
-                 (!same_copy(corner(f0, e.a), corner(f1, e.a)) ||
-                  !same_copy(corner(f0, e.b), corner(f1, e.b)));
-        }
-      }
-      if (!feature && !seam) continue;
-      const uint32_t va = topo.representative[e.a], vb = topo.representative[e.b];
-      const glm::dvec3 &pa = px[va], &pb = px[vb];
-      if (pa.z <= 0 || pb.z <= 0) continue;
-      const double length = glm::length(glm::dvec2(pb - pa));
-      const int n = std::clamp(static_cast<int>(std::ceil(length)), 3, 512);
-      std::vector<bool> sample_seen(static_cast<size_t>(n));
-      int seen = 0;
-      for (int k = 0; k < n; ++k) {
-        const double t = (k + 0.5) / n;
-        // Perspective-correct depth along the projected edge.
-        const double inv_d = (1 - t) / pa.z + t / pb.z;
-        const double d = 1 / inv_d;
-        const glm::dvec2 s = glm::mix(glm::dvec2(pa), glm::dvec2(pb), t);
-        const double tolerance = 1e-3 * d + 2.5 * d / proj.pixel_per_depth;
-        sample_seen[static_cast<size_t>(k)] = depth.visible(s.x, s.y, d, tolerance);
-        seen += sample_seen[static_cast<size_t>(k)];
-      }
-      glm::dvec3 colour;
-      const int cf = front_face >= 0 ? front_face : static_cast<int>(faces[0]);
-      const glm::uvec3& tri = mesh.triangle[static_cast<size_t>(cf)];
-      colour = (mesh.colour[tri.x] + mesh.colour[tri.y] + mesh.colour[tri.z]) / 3.0;
-      std::vector<FeatureEdge>& out = seam ? structure : visible;
-      if (length < kSplitEdge_px || seen == n) {  // short, or all in sight: by majority
-        if (2 * seen >= n) out.push_back({e.a, e.b, colour});
-        continue;
-      }
-      // A long edge partly hidden (a board's edge behind a piece): its runs in sight of at
-      // least kMinRun_px samples, each a stroke edge of its own.
-      for (int k = 0; k < n;) {
-        if (!sample_seen[static_cast<size_t>(k)]) {
-          ++k;
-          continue;
-        }
-        int end = k;
-        while (end < n && sample_seen[static_cast<size_t>(end)]) ++end;
-        if (end - k >= kMinRun_px) {
-          const uint32_t from = k == 0 ? e.a : point_on(e.a, e.b, static_cast<double>(k) / n);
-          const uint32_t to = end == n ? e.b : point_on(e.a, e.b, static_cast<double>(end) / n);
-          out.push_back({from, to, colour});
-        }
-        k = end;
-      }
-    }
+    visible_feature_edges(view, depth, proj, options, points, visible, structure);
     if (visible.empty() && structure.empty()) continue;
 
     // 4. Linking, outlines and structure lines apart.
     std::vector<bool> closed, structure_closed;
-    auto lines = link_edges(visible, screen, options.max_turn_deg, &closed);
+    auto lines = link_edges(visible, points.screen, options.max_turn_deg, &closed);
     const size_t outlines = lines.size();
     const auto structure_lines =
-        link_edges(structure, screen, options.max_turn_deg, &structure_closed);
+        link_edges(structure, points.screen, options.max_turn_deg, &structure_closed);
     lines.insert(lines.end(), structure_lines.begin(), structure_lines.end());
     closed.insert(closed.end(), structure_closed.begin(), structure_closed.end());
 
     // 5. Strokes: smoothed, filtered by length, tapered.
+    const glm::dmat4 scene_from_object = placement(inst);
     for (size_t l = 0; l < lines.size(); ++l) {
       const double line_width = l < outlines ? base_width : base_width * options.structure_width;
-      const std::vector<uint32_t>& ids = lines[l].first;
-      Stroke s;
-      s.closed = closed[l];
-      for (uint32_t w : ids) s.points.emplace_back(scene_from_object * glm::dvec4(point[w], 1.0));
-      const size_t n = s.points.size();
-      for (int pass = 0; pass < options.smoothing && n > 2; ++pass) {
-        std::vector<glm::dvec3> q = s.points;
-        for (size_t k = 0; k < n; ++k) {
-          if (!s.closed && (k == 0 || k + 1 == n)) continue;
-          const glm::dvec3& prev = s.points[(k + n - 1) % n];
-          const glm::dvec3& next = s.points[(k + 1) % n];
-          const glm::dvec3 shift = 0.25 * (prev + next) - 0.5 * s.points[k];
-          const double limit =
-              options.smoothing_shift_px * -proj.view(s.points[k]).z / proj.pixel_per_depth;
-          const double length = glm::length(shift);
-          q[k] = s.points[k] + (length > limit ? shift * (limit / length) : shift);
-        }
-        s.points = std::move(q);
-      }
-      // Projected arc length.
-      std::vector<double> arc(n + 1, 0.0);
-      std::vector<glm::dvec2> sp(n);
-      for (size_t k = 0; k < n; ++k) sp[k] = glm::dvec2(proj.pixel(proj.view(s.points[k])));
-      for (size_t k = 1; k <= n; ++k) {
-        if (k == n && !s.closed) {
-          arc[n] = arc[n - 1];
-          break;
-        }
-        arc[k] = arc[k - 1] + glm::length(sp[k % n] - sp[k - 1]);
-      }
-      const double total = s.closed ? arc[n] : arc[n - 1];
-      if (!(total >= options.min_length_px) || n < 2) continue;
-      const double scale =
-          options.strength * std::min(1.0, std::sqrt(total / (30 * line_width)));
-      s.width_px.resize(n);
-      for (size_t k = 0; k < n; ++k) {
-        const double t = arc[k] / total;
-        const double profile = s.closed
-                                   ? 0.8 + 0.2 * std::cos(2 * kPi * t)
-                                   : 0.15 + 0.85 * std::pow(std::sin(kPi * t), 0.6);
-        s.width_px[k] = line_width * scale * profile;
-      }
-      s.colour = options.darkening * lines[l].second;
-      strokes.push_back(std::move(s));
+      if (std::optional<Stroke> s =
+              taper_stroke(lines[l].first, closed[l], lines[l].second, line_width,
+                           scene_from_object, points.point, proj, options))
+        strokes.push_back(std::move(*s));
     }
   }
   return strokes;

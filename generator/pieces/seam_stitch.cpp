@@ -72,93 +72,148 @@ struct BoundaryVertex {
   unsigned vertex;
 };
 
-}  // namespace
-
-StitchStats stitch_seams(std::vector<ShadedMesh*>& parts, double tolerance_m) {
-  StitchStats stats;
-  // 1. Snap boundary vertices onto earlier parts' boundary vertices.
+/// The boundary edges of every part and their vertices, sorted by part and vertex, and a grid
+/// cell as large as the longest boundary edge (at least the tolerance): an edge query then
+/// visits a few cells.
+struct Boundaries {
+  std::vector<std::vector<BoundaryEdge>> edges;  // per part
   std::vector<BoundaryVertex> all;
-  // Boundary edges per part: snapping moves vertices but keeps every part's triangles, so they
-  // serve step 2 too.
-  std::vector<std::vector<BoundaryEdge>> edges(parts.size());
-  // Grid cells as large as the longest boundary edge: an edge query then visits a few cells.
-  double cell = tolerance_m;
-  {
-    for (size_t p = 0; p < parts.size(); ++p) {
-      std::set<unsigned> seen;
-      edges[p] = boundary_edges(*parts[p]);
-      for (const BoundaryEdge& e : edges[p]) {
-        cell = std::max(cell, glm::distance(parts[p]->position[e.a], parts[p]->position[e.b]));
-        for (unsigned v : {e.a, e.b})
-          if (seen.insert(v).second) all.push_back({p, v});
-      }
-    }
-    std::sort(all.begin(), all.end(), [](const BoundaryVertex& x, const BoundaryVertex& y) {
-      return x.part != y.part ? x.part < y.part : x.vertex < y.vertex;
-    });
-    // Where the vertices were before snapping: a vertex only snaps onto a target that has no
-    // nearer boundary vertex in the snapping vertex's own part (mutual nearest; vertices that
-    // share a position tie), so that of two vertices of one part closer than the tolerance (a
-    // Steiner point beside a corner) only the one that matches moves, and the other is inserted
-    // into the seam in step 2.
-    std::vector<glm::dvec3> original(all.size());
-    PointGrid originals(cell);
-    for (size_t i = 0; i < all.size(); ++i) {
-      original[i] = parts[all[i].part]->position[all[i].vertex];
-      originals.add(original[i], i);
-    }
-    const glm::dvec3 r(tolerance_m);
-    // The distance from q to the nearest boundary vertex of `part` (before snapping).
-    auto nearest_in_part = [&](const glm::dvec3& q, size_t part) {
-      double best_d = 2 * tolerance_m;
-      originals.for_box(q - 2.0 * r, q + 2.0 * r, [&](size_t k) {
-        if (all[k].part == part) best_d = std::min(best_d, glm::distance(original[k], q));
-      });
-      return best_d;
-    };
-    PointGrid grid(cell);
-    std::set<std::pair<size_t, size_t>> taken;  // (target, part): one vertex per part each
-    for (size_t i = 0; i < all.size(); ++i) {
-      glm::dvec3& p = parts[all[i].part]->position[all[i].vertex];
-      size_t best = all.size();
-      double best_d = tolerance_m;
-      grid.for_box(p - r, p + r, [&](size_t j) {
-        if (all[j].part == all[i].part || taken.count({j, all[i].part})) return;
-        const double d = glm::distance(parts[all[j].part]->position[all[j].vertex], p);
-        if (d < best_d || (d == best_d && j < best)) {
-          best_d = d;
-          best = j;
-        }
-      });
-      if (best < all.size() &&
-          glm::distance(original[i], original[best]) > nearest_in_part(original[best], all[i].part))
-        best = all.size();
-      if (best < all.size()) {
-        taken.insert({best, all[i].part});
-        const glm::dvec3 q = parts[all[best].part]->position[all[best].vertex];
-        if (q != p) ++stats.snapped;
-        p = q;
-      }
-      grid.add(p, i);
+  double cell = 0;
+};
+
+Boundaries collect_boundaries(const std::vector<ShadedMesh*>& parts, double tolerance_m) {
+  Boundaries b;
+  b.edges.resize(parts.size());
+  b.cell = tolerance_m;
+  for (size_t p = 0; p < parts.size(); ++p) {
+    std::set<unsigned> seen;
+    b.edges[p] = boundary_edges(*parts[p]);
+    for (const BoundaryEdge& e : b.edges[p]) {
+      b.cell = std::max(b.cell, glm::distance(parts[p]->position[e.a], parts[p]->position[e.b]));
+      for (unsigned v : {e.a, e.b})
+        if (seen.insert(v).second) b.all.push_back({p, v});
     }
   }
-  // 2. Insert other parts' boundary vertices into boundary edges they lie on.
-  PointGrid grid(cell);
+  std::sort(b.all.begin(), b.all.end(), [](const BoundaryVertex& x, const BoundaryVertex& y) {
+    return x.part != y.part ? x.part < y.part : x.vertex < y.vertex;
+  });
+  return b;
+}
+
+/// Step 1: snaps boundary vertices onto earlier parts' boundary vertices within the tolerance.
+/// A vertex only snaps onto a target that has no nearer boundary vertex in the snapping
+/// vertex's own part (mutual nearest, positions before snapping; vertices that share a
+/// position tie), so that of two vertices of one part closer than the tolerance (a Steiner
+/// point beside a corner) only the one that matches moves, and the other is inserted into the
+/// seam in step 2. Each target takes one vertex per part.
+void snap_boundary_vertices(std::vector<ShadedMesh*>& parts, double tolerance_m,
+                            const Boundaries& b, StitchStats& stats) {
+  const std::vector<BoundaryVertex>& all = b.all;
+  std::vector<glm::dvec3> original(all.size());
+  PointGrid originals(b.cell);
+  for (size_t i = 0; i < all.size(); ++i) {
+    original[i] = parts[all[i].part]->position[all[i].vertex];
+    originals.add(original[i], i);
+  }
+  const glm::dvec3 r(tolerance_m);
+  // The distance from q to the nearest boundary vertex of `part` (before snapping).
+  auto nearest_in_part = [&](const glm::dvec3& q, size_t part) {
+    double best_d = 2 * tolerance_m;
+    originals.for_box(q - 2.0 * r, q + 2.0 * r, [&](size_t k) {
+      if (all[k].part == part) best_d = std::min(best_d, glm::distance(original[k], q));
+    });
+    return best_d;
+  };
+  PointGrid grid(b.cell);
+  std::set<std::pair<size_t, size_t>> taken;  // (target, part): one vertex per part each
+  for (size_t i = 0; i < all.size(); ++i) {
+    glm::dvec3& p = parts[all[i].part]->position[all[i].vertex];
+    size_t best = all.size();
+    double best_d = tolerance_m;
+    grid.for_box(p - r, p + r, [&](size_t j) {
+      if (all[j].part == all[i].part || taken.count({j, all[i].part})) return;
+      const double d = glm::distance(parts[all[j].part]->position[all[j].vertex], p);
+      if (d < best_d || (d == best_d && j < best)) {
+        best_d = d;
+        best = j;
+      }
+    });
+    if (best < all.size() &&
+        glm::distance(original[i], original[best]) > nearest_in_part(original[best], all[i].part))
+      best = all.size();
+    if (best < all.size()) {
+      taken.insert({best, all[i].part});
+      const glm::dvec3 q = parts[all[best].part]->position[all[best].vertex];
+      if (q != p) ++stats.snapped;
+      p = q;
+    }
+    grid.add(p, i);
+  }
+}
+
+/// Points to insert on each edge of a triangle (the edge starting at corner k), by parameter.
+using EdgeInserts = std::array<std::vector<std::pair<double, glm::dvec3>>, 3>;
+
+/// Replaces triangle f of `mesh` by triangles over its outline with the vertices of `edges`
+/// inserted (each exactly at its point): a fan from the opposite corner when one edge is
+/// split, else a fan from a new vertex inside the triangle.
+void split_triangle(ShadedMesh& mesh, size_t f, const EdgeInserts& edges, StitchStats& stats) {
+  const glm::uvec3 t = mesh.triangle[f];
+  // The triangle's outline with the inserted vertices, counter-clockwise.
+  std::vector<unsigned> outline;
+  int split_edges = 0, only = -1;
+  for (int k = 0; k < 3; ++k) {
+    outline.push_back(t[k]);
+    if (!edges[k].empty()) {
+      ++split_edges;
+      only = k;
+    }
+    for (const auto& [s, q] : edges[k]) {
+      const unsigned v = add_interpolated_vertex(mesh, t[k], t[(k + 1) % 3], s);
+      mesh.position[v] = q;  // exactly the other part's vertex
+      outline.push_back(v);
+      ++stats.inserted;
+    }
+  }
+  std::vector<glm::uvec3> fan;
+  if (split_edges == 1) {
+    // Fan from the corner opposite the split edge, which starts at outline index `apex`.
+    const unsigned apex_vertex = t[(only + 2) % 3];
+    size_t apex = 0;
+    while (outline[apex] != apex_vertex) ++apex;
+    for (size_t k = 1; k + 1 < outline.size(); ++k)
+      fan.push_back({apex_vertex, outline[(apex + k) % outline.size()],
+                     outline[(apex + k + 1) % outline.size()]});
+  } else {
+    const unsigned c0 = add_interpolated_vertex(mesh, t[0], t[1], 0.5);
+    const unsigned c = add_interpolated_vertex(mesh, c0, t[2], 1.0 / 3);
+    for (size_t k = 0; k < outline.size(); ++k)
+      fan.push_back({c, outline[k], outline[(k + 1) % outline.size()]});
+  }
+  mesh.triangle[f] = fan.front();
+  mesh.triangle.insert(mesh.triangle.end(), fan.begin() + 1, fan.end());
+}
+
+/// Step 2: inserts other parts' boundary vertices into the boundary edges they lie on (within
+/// the tolerance, strictly inside the edge), splitting those edges' triangles.
+void insert_seam_vertices(std::vector<ShadedMesh*>& parts, double tolerance_m,
+                          const Boundaries& b, StitchStats& stats) {
+  const std::vector<BoundaryVertex>& all = b.all;
+  PointGrid grid(b.cell);
   for (size_t i = 0; i < all.size(); ++i) grid.add(parts[all[i].part]->position[all[i].vertex], i);
   for (size_t p = 0; p < parts.size(); ++p) {
     ShadedMesh& mesh = *parts[p];
-    // Per triangle and corner: the points to insert on the edge starting there, by parameter.
-    std::map<size_t, std::array<std::vector<std::pair<double, glm::dvec3>>, 3>> inserts;
-    for (const BoundaryEdge& e : edges[p]) {
-      const glm::dvec3 a = mesh.position[e.a], b = mesh.position[e.b], ab = b - a;
+    std::map<size_t, EdgeInserts> inserts;  // per triangle
+    for (const BoundaryEdge& e : b.edges[p]) {
+      const glm::dvec3 a = mesh.position[e.a], bq = mesh.position[e.b], ab = bq - a;
       const double len2 = glm::dot(ab, ab);
       if (len2 == 0) continue;
       const glm::dvec3 r(tolerance_m);
       std::vector<std::pair<double, glm::dvec3>> found;
-      grid.for_box(glm::min(a, b) - r, glm::max(a, b) + r, [&](size_t j) {
+      grid.for_box(glm::min(a, bq) - r, glm::max(a, bq) + r, [&](size_t j) {
         if (all[j].part == p) return;
         const glm::dvec3 q = parts[all[j].part]->position[all[j].vertex];
-        if (q == a || q == b) return;
+        if (q == a || q == bq) return;
         const double t = glm::dot(q - a, ab) / len2;
         if (t <= 0 || t >= 1) return;
         if (glm::distance(a + ab * t, q) > tolerance_m) return;
@@ -176,44 +231,20 @@ StitchStats stitch_seams(std::vector<ShadedMesh*>& parts, double tolerance_m) {
         if (unique.empty() || unique.back().second != f.second) unique.push_back(f);
       inserts[e.triangle][e.corner] = std::move(unique);
     }
-    for (auto& [f, edges] : inserts) {
-      const glm::uvec3 t = mesh.triangle[f];
-      // The triangle's outline with the inserted vertices, counter-clockwise.
-      std::vector<unsigned> outline;
-      int split_edges = 0, only = -1;
-      for (int k = 0; k < 3; ++k) {
-        outline.push_back(t[k]);
-        if (!edges[k].empty()) {
-          ++split_edges;
-          only = k;
-        }
-        for (const auto& [s, q] : edges[k]) {
-          const unsigned v = add_interpolated_vertex(mesh, t[k], t[(k + 1) % 3], s);
-          mesh.position[v] = q;  // exactly the other part's vertex
-          outline.push_back(v);
-          ++stats.inserted;
-        }
-      }
-      std::vector<glm::uvec3> fan;
-      if (split_edges == 1) {
-        // Fan from the corner opposite the split edge, which starts at outline index `apex`.
-        const unsigned apex_vertex = t[(only + 2) % 3];
-        size_t apex = 0;
-        while (outline[apex] != apex_vertex) ++apex;
-        for (size_t k = 1; k + 1 < outline.size(); ++k)
-          fan.push_back({apex_vertex, outline[(apex + k) % outline.size()],
-                         outline[(apex + k + 1) % outline.size()]});
-      } else {
-        const unsigned c0 = add_interpolated_vertex(mesh, t[0], t[1], 0.5);
-        const unsigned c = add_interpolated_vertex(mesh, c0, t[2], 1.0 / 3);
-        for (size_t k = 0; k < outline.size(); ++k)
-          fan.push_back({c, outline[k], outline[(k + 1) % outline.size()]});
-      }
-      mesh.triangle[f] = fan.front();
-      mesh.triangle.insert(mesh.triangle.end(), fan.begin() + 1, fan.end());
-    }
+    for (const auto& [f, edges] : inserts) split_triangle(mesh, f, edges, stats);
     if (!inserts.empty()) remove_unused_vertices(mesh);
   }
+}
+
+}  // namespace
+
+StitchStats stitch_seams(std::vector<ShadedMesh*>& parts, double tolerance_m) {
+  StitchStats stats;
+  // Boundary edges per part: snapping moves vertices but keeps every part's triangles, so they
+  // serve step 2 too.
+  const Boundaries boundaries = collect_boundaries(parts, tolerance_m);
+  snap_boundary_vertices(parts, tolerance_m, boundaries, stats);
+  insert_seam_vertices(parts, tolerance_m, boundaries, stats);
   return stats;
 }
 

@@ -6,18 +6,16 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "base/coloured_mesh.h"
+
 namespace cutaway {
 
-/// Plain data: all per-vertex arrays have the same length #V.
-struct ShadedMesh {
-  std::vector<glm::dvec3> position;  ///< #V, metres
-  std::vector<glm::dvec3> normal;    ///< #V, unit shading normals (outward)
-  std::vector<glm::dvec3> colour;    ///< #V, linear RGB
+/// Plain data: all per-vertex arrays have the same length #V (param: #V or empty).
+struct ShadedMesh : ColouredMesh {
   std::vector<glm::dvec2> material;  ///< #V, material channels (roughness, translucency) 0..1
   /// #V or empty: the sweep parameters (t_profile, t_section) of the DS surface a vertex lies
   /// on (ds_model.h), t_section cyclic (0 and 1 are one); (0, 0) off swept surfaces.
   std::vector<glm::dvec2> param;
-  std::vector<glm::uvec3> triangle;  ///< #F, counter-clockwise seen from outside
 };
 
 /// Appends vertex i of `from` to `to`, returns its index in `to`.

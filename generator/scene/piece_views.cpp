@@ -38,20 +38,14 @@ glm::dquat view_rotation(const glm::dvec3& normal, PieceView view) {
 
 }  // namespace
 
-SceneAssets piece_assets(const PieceSet& set, const std::string& name,
-                         const PbrMaterial& skin_material, const PbrMaterial& cut_material,
-                         double explode, int width, int height) {
-  SceneAssets assets;
-  const PieceMaterials materials = add_piece_materials(assets, name, skin_material, cut_material);
-  assets.name = name;
+SceneAssets piece_assets(SceneAssets assets, const CutObject& object, double explode, int width,
+                         int height) {
   assets.width = width;
   assets.height = height;
   assets.background = {1, 1, 1};
-  std::vector<ShadedMesh> meshes;
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-lo);
-  for (const Piece& piece : set.pieces) {
-    meshes.push_back(merge_parts(piece));
-    for (const glm::dvec3& p : meshes.back().position) {
+  for (const ShadedMesh& shape : object.shapes) {
+    for (const glm::dvec3& p : shape.position) {
       lo = glm::min(lo, p);
       hi = glm::max(hi, p);
     }
@@ -59,22 +53,23 @@ SceneAssets piece_assets(const PieceSet& set, const std::string& name,
   const glm::dvec3 centre = 0.5 * (lo + hi);
   const double size = glm::distance(lo, hi);
   glm::dvec3 elo(std::numeric_limits<double>::max()), ehi(-elo);
-  for (size_t k = 0; k < meshes.size(); ++k) {
+  for (size_t k = 0; k < object.shapes.size(); ++k) {
+    const ShadedMesh& shape = object.shapes[k];
     glm::dvec3 c(0.0);
-    for (const glm::dvec3& p : meshes[k].position) c += p;
-    c /= static_cast<double>(meshes[k].position.size());
+    for (const glm::dvec3& p : shape.position) c += p;
+    c /= static_cast<double>(shape.position.size());
     const glm::dvec3 d = c - centre;
     // Apart by a share of the piece's own offset (slices spread evenly) plus a fixed gap.
     const glm::dvec3 offset = glm::length(d) > 1e-9 * size
                                   ? explode * (2.0 * d + 0.25 * size * glm::normalize(d))
                                   : glm::dvec3(0.0);
-    for (const glm::dvec3& p : meshes[k].position) {
+    for (const glm::dvec3& p : shape.position) {
       elo = glm::min(elo, p + offset);
       ehi = glm::max(ehi, p + offset);
     }
-    const std::string piece_name = asset_name(name) + "_piece" + std::to_string(set.pieces[k].cell);
-    assets.instances.push_back({piece_name, static_cast<int>(k), {1, 0, 0, 0}, offset, {}});
-    assets.meshes.push_back(piece_mesh(meshes[k], set.pieces[k], materials, piece_name));
+    assets.instances.push_back({object.meshes[k].name, static_cast<int>(assets.meshes.size()),
+                                {1, 0, 0, 0}, offset, {}});
+    assets.meshes.push_back(object.meshes[k]);
   }
   const double az = glm::radians(20.0), el = glm::radians(50.0);
   assets.camera = frame_box(elo, ehi,
@@ -84,29 +79,22 @@ SceneAssets piece_assets(const PieceSet& set, const std::string& name,
   return assets;
 }
 
-SceneAssets grid_piece_assets(const PieceSet& set, const std::string& name,
-                              const PbrMaterial& skin_material, const PbrMaterial& cut_material,
-                              PieceView view, int width, int height) {
+SceneAssets grid_piece_assets(SceneAssets assets, const CutObject& object, PieceView view,
+                              int width, int height) {
   const double el = glm::radians(view == PieceView::Up ? 55.0 : 25.0);
   const glm::dvec3 to_camera(0, std::sin(el), std::cos(el));
-  SceneAssets assets;
-  assets.name = name;
   assets.width = width;
   assets.height = height;
   assets.background = {1, 1, 1};
-  const PieceMaterials materials = add_piece_materials(assets, name, skin_material, cut_material);
-  const size_t n = set.pieces.size();
+  const size_t n = object.kept.size(), first_mesh = assets.meshes.size();
   std::vector<glm::dquat> rotation(n);
   std::vector<glm::dvec3> lo(n), hi(n);
   glm::dvec3 cell(0.0);
   for (size_t k = 0; k < n; ++k) {
-    const Piece& piece = set.pieces[k];
-    rotation[k] = view_rotation(largest_cap_normal(piece), view);
-    const ShadedMesh mesh = merge_parts(piece);
-    rotated_bounds(mesh, rotation[k], lo[k], hi[k]);
+    rotation[k] = view_rotation(largest_cap_normal(object.set.pieces[object.kept[k]]), view);
+    rotated_bounds(object.shapes[k], rotation[k], lo[k], hi[k]);
     cell = glm::max(cell, hi[k] - lo[k]);
-    const std::string piece_name = name + "_piece" + std::to_string(piece.cell);
-    assets.meshes.push_back(piece_mesh(mesh, piece, materials, piece_name));
+    assets.meshes.push_back(object.meshes[k]);
   }
   // Columns: the grid whose projected width / height is nearest the image's aspect. Rows are
   // far enough apart that a front row hides at most the bottom of the row behind it.
@@ -134,8 +122,8 @@ SceneAssets grid_piece_assets(const PieceSet& set, const std::string& name,
     const glm::dvec3 offset = centre - glm::dvec3(mid.x, lo[k].y, mid.z);
     all_lo = glm::min(all_lo, lo[k] + offset);
     all_hi = glm::max(all_hi, hi[k] + offset);
-    assets.instances.push_back(
-        {assets.meshes[k].name, static_cast<int>(k), rotation[k], offset, {}});
+    assets.instances.push_back({object.meshes[k].name, static_cast<int>(first_mesh + k),
+                                rotation[k], offset, {}});
   }
   assets.camera = frame_box(all_lo, all_hi, to_camera, 30, aspect);
   assets.lights = studio_lights(assets.camera);

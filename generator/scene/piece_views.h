@@ -5,19 +5,18 @@
 
 #include <string>
 
-#include "pieces/pieces.h"
+#include "scene/object_cut.h"
 #include "scene/scene_assets.h"
 
 namespace cutaway {
 
-/// The pieces of one object for `cutaway piece`: each pulled away from the object's centre
-/// along the direction d to its own centroid by explode * (2 |d| + size / 4) (size: the
-/// object's bounding-box diagonal), so slices spread evenly, framed from the front-right 50
-/// degrees up, studio lights, white background. Skin and caps carry the template's materials
-/// (add_piece_materials, piece_mesh).
-SceneAssets piece_assets(const PieceSet& set, const std::string& name,
-                         const PbrMaterial& skin_material, const PbrMaterial& cut_material,
-                         double explode, int width, int height);
+/// The kept pieces of one object (cut_object) for `cutaway piece`: each pulled away from the
+/// object's centre along the direction d to its own centroid by explode * (2 |d| + size / 4)
+/// (size: the object's bounding-box diagonal), so slices spread evenly, framed from the
+/// front-right 50 degrees up, studio lights, white background. `assets` holds the materials
+/// and textures cut_object() added and its name; the pieces' meshes and instances are added.
+SceneAssets piece_assets(SceneAssets assets, const CutObject& object, double explode, int width,
+                         int height);
 
 /// How grid_piece_assets() turns each piece.
 enum class PieceView {
@@ -26,12 +25,12 @@ enum class PieceView {
             ///< largest cut face looks at the camera, seen from 25 degrees above
 };
 
-/// The pieces of one object laid out as a little scene: each piece turned as `view` asks (a piece
-/// without caps keeps its pose), standing on y = 0, in a grid of cells of the largest piece's
-/// footprint whose column count makes the view closest to the tile's aspect; seen from the
-/// front (+Z) and above, with the studio lights. Materials as piece_assets.
-SceneAssets grid_piece_assets(const PieceSet& set, const std::string& name,
-                              const PbrMaterial& skin_material, const PbrMaterial& cut_material,
-                              PieceView view, int width, int height);
+/// The kept pieces of one object (cut_object) laid out as a little scene: each piece turned as
+/// `view` asks (a piece without caps keeps its pose), standing on y = 0, in a grid of cells of
+/// the largest piece's footprint whose column count makes the view closest to the tile's
+/// aspect; seen from the front (+Z) and above, with the studio lights, white background.
+/// `assets` as for piece_assets().
+SceneAssets grid_piece_assets(SceneAssets assets, const CutObject& object, PieceView view,
+                              int width, int height);
 
 }  // namespace cutaway

@@ -14,6 +14,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "base/coloured_mesh.h"
 #include "model/pbr_material.h"
 
 namespace cutaway {
@@ -63,16 +64,12 @@ struct AssetPrimitive {
   std::vector<glm::uvec3> coarse;
 };
 
-/// One triangle mesh in its own frame (metres). Triangles are counter-clockwise seen from
-/// outside (the normal side).
-struct AssetMesh {
+/// One triangle mesh in its own frame (ColouredMesh: metres, linear colours, triangles
+/// counter-clockwise seen from outside), named, with texture coordinates and materials.
+struct AssetMesh : ColouredMesh {
   std::string name;                   ///< unique in the scene, [A-Za-z0-9_]+
-  std::vector<glm::dvec3> position;   ///< #V, metres
-  std::vector<glm::dvec3> normal;     ///< #V, unit length (shading normals)
-  std::vector<glm::dvec3> colour;     ///< #V, linear RGB 0..1
   std::vector<glm::dvec2> uv;         ///< #V texture coordinates 0..1 (glTF: v down from the
                                       ///< top row), or empty: no textured material
-  std::vector<glm::uvec3> triangle;   ///< #F, indices into the vertex arrays
   /// The triangles by material, in order, covering all of them without gaps (a piece: skin
   /// and walls, then caps). Empty: one primitive of material 0.
   std::vector<AssetPrimitive> primitives;
@@ -166,5 +163,33 @@ struct SceneAssets {
   glm::dvec3 background{1, 1, 1};  ///< linear RGB
   int width = 1280, height = 960;  ///< pixels of renders
 };
+
+/// What an exporter or renderer tolerates beyond the rules every one of them applies.
+struct AssetRules {
+  bool camera_needs_up = true;  ///< camera_defect's needs_up (glTF: false)
+  /// Zero or non-finite shading normals are accepted: the consumer replaces them (glTF,
+  /// POV-Ray). Otherwise every normal must be finite.
+  bool normals_repaired = false;
+  bool meshes_need_triangles = false;  ///< every mesh has a vertex and a triangle (glTF)
+  /// Every primitive of a textured material has uv (glTF). Otherwise a mesh without uv
+  /// shows its vertex colours whatever its material (the previews).
+  bool textures_need_uv = false;
+};
+
+/// What is wrong with `assets`, in words naming the element ("" when nothing): the one
+/// validation of SceneAssets every exporter and renderer applies, with `rules` for what each
+/// tolerates. At least one material (material 0). Textures: at least 1 x 1, 3 or 4 channels, width * height * channels bytes.
+/// Materials: PbrMaterial fields in range, texture indices -1 or valid, base colour textures
+/// RGB. Meshes (all, instanced or not): #V normals and colours, positions and colours finite,
+/// uv #V or empty and finite, triangle and coarse indices below #V, primitives_defect.
+/// Instances: an existing mesh, a finite non-zero
+/// rotation, a finite translation. The camera (camera_defect). Lights: finite, intensity and
+/// colour >= 0, directional ones with a non-zero direction. The background finite and >= 0.
+std::string assets_defect(const SceneAssets& assets, const AssetRules& rules = {});
+
+/// Throws InternalError("WHO: defect") when assets_defect(assets, rules) finds one: the
+/// precondition check at the top of every exporter and renderer.
+void require_valid_assets(const SceneAssets& assets, const AssetRules& rules,
+                          const std::string& who);
 
 }  // namespace cutaway

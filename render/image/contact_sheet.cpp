@@ -145,4 +145,19 @@ Image labelled_tile(const Image& picture, const std::string& name, const std::st
   return tile;
 }
 
+Image section_sheet(std::vector<Outcome<CrossSection>> sections,
+                    const SectionTileOptions& options) {
+  std::vector<CrossSection> present;
+  for (Outcome<CrossSection>& s : sections)
+    if (s) present.push_back(std::move(*s));
+  std::vector<Image> drawn = render_section_tiles(present, options);
+  std::vector<Image> tiles;
+  size_t next = 0;
+  for (const Outcome<CrossSection>& s : sections)
+    tiles.push_back(s ? std::move(drawn[next++])
+                      : filled(options.tile_px, options.tile_px, options.background_srgb));
+  const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(tiles.size()))));
+  return compose_grid(tiles, columns);
+}
+
 }  // namespace cutaway

@@ -8,6 +8,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "base/outcome.h"
 #include "render/image/image.h"
 #include "section/cross_section.h"
 
@@ -61,5 +62,13 @@ struct SectionTileOptions {
 /// @throws std::runtime_error when rendering fails (see render_section_preview())
 std::vector<Image> render_section_tiles(const std::vector<CrossSection>& sections,
                                         const SectionTileOptions& options = {});
+
+/// A contact sheet of cross-sections (`cutaway variants`): render_section_tiles() of those
+/// present, a tile of the background where one is missing (its reason is the caller's to
+/// report), laid out by compose_grid() in ceil(sqrt(n)) columns, in order.
+/// @pre at least one section is present
+/// @throws as render_section_tiles()
+Image section_sheet(std::vector<Outcome<CrossSection>> sections,
+                    const SectionTileOptions& options = {});
 
 }  // namespace cutaway

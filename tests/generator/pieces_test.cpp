@@ -136,16 +136,31 @@ INSTANTIATE_TEST_SUITE_P(
       return name;
     });
 
+namespace {
+
+/// `tmpl` cut as `cut` for a picture (piece_assets), vertex colours, the cpu backend.
+SceneAssets exploded(const Template& tmpl, const std::string& cut, CutObject& object) {
+  SceneAssets assets;
+  const PieceMaterials materials =
+      add_piece_materials(assets, tmpl.name, tmpl.skin_material, tmpl.cut_material);
+  ObjectCutOptions options;
+  options.cut = *parse_cut_spec(cut, tmpl.metres_per_unit);
+  options.cap_colours = CapColours::Vertex;
+  ObjectCutStats stats;
+  object = *cut_object(assets, Variant{tmpl, build_model(tmpl)}, 0, materials, tmpl.name,
+                       [](const DsModel& model) { return make_cpu_diffusion(model, {8, 0}); },
+                       options, stats);
+  return piece_assets(std::move(assets), object, 0.3, 64, 48);
+}
+
+}  // namespace
+
 TEST(Pieces, ExportAsSkinAndCapPrimitivesWithTheTemplatesMaterials) {
   const Template tmpl = load_template(test::source_path("templates/tomato.yaml").string());
   ASSERT_NE(tmpl.skin_material, tmpl.cut_material);
-  const DsModel model = build_model(tmpl);
-  const auto diffusion = make_cpu_diffusion(model, {8, 0});
-  PieceOptions options;
-  options.section.edge_m = tmpl.edge_m;
-  const PieceSet set = *cut_pieces(model, *parse_cut_spec("wedges:4", 1e-3), *diffusion, options);
-  const SceneAssets assets =
-      piece_assets(set, tmpl.name, tmpl.skin_material, tmpl.cut_material, 0.3, 64, 48);
+  CutObject object;
+  const SceneAssets assets = exploded(tmpl, "wedges:4", object);
+  const PieceSet& set = object.set;
   ASSERT_EQ(assets.materials.size(), 3u);
   EXPECT_EQ(assets.materials[1].name, "tomato_skin");
   EXPECT_EQ(assets.materials[1].pbr, tmpl.skin_material);
@@ -174,12 +189,42 @@ TEST(Pieces, ExportAsSkinAndCapPrimitivesWithTheTemplatesMaterials) {
       }
   }
   // A template without materials: one primitive of the plain material, as before them.
-  const Template plain = load_template(test::source_path("templates/spheres.yaml").string());
-  ASSERT_EQ(plain.skin_material, PbrMaterial{});
-  const SceneAssets plain_assets =
-      piece_assets(set, plain.name, plain.skin_material, plain.cut_material, 0.3, 64, 48);
+  Template plain = tmpl;
+  plain.skin_material = plain.cut_material = PbrMaterial{};
+  CutObject plain_object;
+  const SceneAssets plain_assets = exploded(plain, "wedges:4", plain_object);
   EXPECT_EQ(plain_assets.materials.size(), 1u);
   for (const AssetMesh& mesh : plain_assets.meshes) EXPECT_TRUE(mesh.primitives.empty());
+}
+
+// A cut whose planes all miss: scenes keep the object whole, `piece` hears why.
+TEST(Pieces, ACutThatMissesKeepsTheObjectWholeOrSaysWhy) {
+  const Template tmpl = load_template(test::source_path("templates/tomato.yaml").string());
+  const Variant whole{tmpl, build_model(tmpl)};
+  SceneAssets assets;
+  const PieceMaterials materials =
+      add_piece_materials(assets, tmpl.name, tmpl.skin_material, tmpl.cut_material);
+  ObjectCutOptions options;
+  options.cut = *parse_cut_spec("plane:y=5000", tmpl.metres_per_unit);  // far above
+  options.cap_colours = CapColours::Vertex;
+  const DiffusionFactory cpu = [](const DsModel& model) {
+    return make_cpu_diffusion(model, {4, 0});
+  };
+  ObjectCutStats stats;
+  const Outcome<CutObject> kept =
+      cut_object(assets, whole, 0, materials, "tomato", cpu, options, stats);
+  ASSERT_TRUE(kept);
+  EXPECT_EQ(kept->set.pieces.size(), 1u);
+  EXPECT_EQ(kept->meshes.size(), 1u);
+  EXPECT_FALSE(kept->backend.empty());
+  options.whole_when_missed = false;
+  const Outcome<CutObject> refused =
+      cut_object(assets, whole, 0, materials, "tomato", cpu, options, stats);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.reason(), "");
+  EXPECT_THROW(cut_object(assets, whole, 0, materials, "tomato", DiffusionFactory{}, options,
+                          stats),
+               InternalError);
 }
 
 TEST(Pieces, CoarseCapsKeepPiecesClosedWithTheSameArea) {

@@ -233,7 +233,9 @@ TEST(PovExport, NumbersAndEdgeCases) {
   SceneAssets s = test_scene();
   s.meshes[0].position[4] = {-0.0, 1e-7, 123456789.0};  // not on the +X face
   s.meshes[0].normal[1] = {0, 0, 0};  // on the +X face: becomes +X, its face normal
-  s.meshes.push_back(AssetMesh{"empty", {}, {}, {}, {}});
+  AssetMesh empty;
+  empty.name = "empty";
+  s.meshes.push_back(empty);
   s.instances.push_back({"nothing", 2, glm::dquat(1, 0, 0, 0), {0, 0, 0}});
   const std::string text = scene_to_pov(s);
   EXPECT_NE(text.find("\n<0,1e-07,1.23457e+08>,\n"), std::string::npos);

@@ -4,7 +4,11 @@
 
 #include <stdexcept>
 
+#include "batch/variant_set.h"
+#include "io/template_parser.h"
 #include "render/image/contact_sheet.h"
+#include "test_support.h"
+#include "variation/variation.h"
 
 namespace cutaway {
 namespace {
@@ -60,6 +64,34 @@ TEST(ComposeGrid, RefusesBadInput) {
                InternalError);
   EXPECT_THROW(compose_grid({solid(9000, 10, 0), solid(9000, 10, 0)}, 2),
                InternalError);
+}
+
+// A missing section keeps its place as a tile of the background; the present ones are drawn
+// as render_section_tiles draws them, in ceil(sqrt(n)) columns.
+TEST(SectionSheet, AMissingSectionLeavesABlankTileInItsPlace) {
+  const Template kiwi = load_template(test::source_path("templates/kiwi.yaml").string());
+  const DiffusionFactory cpu = [](const DsModel& model) {
+    return make_cpu_diffusion(model, {4, 0});
+  };
+  Outcome<CrossSection> a = variant_section(make_variant(kiwi, 1), cpu);
+  ASSERT_TRUE(a) << a.reason();
+  SectionTileOptions o;
+  o.tile_px = 32;
+  std::vector<Outcome<CrossSection>> sections;
+  sections.push_back(*a);
+  sections.push_back(Outcome<CrossSection>::none("the plane misses"));
+  sections.push_back(*a);
+  const Image sheet = section_sheet(sections, o);
+  const std::vector<Image> drawn = render_section_tiles({*a, *a}, o);
+  Image blank = drawn[0];
+  std::fill(blank.rgba.begin(), blank.rgba.end(), uint8_t{255});
+  const Image expected = compose_grid({drawn[0], blank, drawn[1]}, 2);
+  EXPECT_EQ(sheet.width, expected.width);
+  EXPECT_EQ(sheet.height, expected.height);
+  EXPECT_TRUE(sheet.rgba == expected.rgba);
+  std::vector<Outcome<CrossSection>> none;
+  none.push_back(Outcome<CrossSection>::none("the plane misses"));
+  EXPECT_THROW(section_sheet(none, o), InternalError);
 }
 
 }  // namespace

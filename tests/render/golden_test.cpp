@@ -136,16 +136,18 @@ TEST(Golden, Section) { section_case("section-tomato", 0); }
 TEST(Golden, SectionNpr) { section_case("section-tomato-npr", 1); }
 
 void pieces_case(const std::string& name, double npr) {
-  const DsModel model = build_model(tomato());
-  const auto diffusion = cpu_diffusion(model);
-  PieceOptions options;
-  options.section.edge_m = tomato().edge_m;
-  PieceSet set =
-      *cut_pieces(model, *parse_cut_spec("halves", tomato().metres_per_unit), *diffusion, options);
-  for (Piece& p : set.pieces)
-    for (PiecePart& part : p.parts) modulate_colours(part.mesh, tomato().npr, npr, 0);
-  const SceneAssets assets = piece_assets(set, tomato().name, tomato().skin_material,
-                                          tomato().cut_material, 0.3, kWidth, kHeight);
+  SceneAssets assets;
+  assets.name = tomato().name;
+  const PieceMaterials materials = add_piece_materials(
+      assets, tomato().name, tomato().skin_material, tomato().cut_material);
+  ObjectCutOptions cut;
+  cut.cut = *parse_cut_spec("halves", tomato().metres_per_unit);
+  cut.perlin = npr;
+  cut.cap_colours = CapColours::Vertex;
+  ObjectCutStats stats;
+  const CutObject object = *cut_object(assets, Variant{tomato(), build_model(tomato())}, 0,
+                                       materials, tomato().name, cpu_diffusion, cut, stats);
+  assets = piece_assets(std::move(assets), object, 0.3, kWidth, kHeight);
   StrokeOptions so;
   so.strength = npr;
   const std::vector<Stroke> strokes = extract_strokes(assets, so);
