@@ -29,6 +29,7 @@
 #include "io/plane_spec.h"
 #include "io/scene_parser.h"
 #include "io/template_parser.h"
+#include "io/text_rules.h"
 #include "io/yaml_reader.h"
 #include "model/model_builder.h"
 #include "render/diffusion_backends.h"
@@ -49,6 +50,15 @@ using cutaway::seconds_since;
 using cutaway::cli::print_stats;
 using cutaway::cli::require_extension;
 using cutaway::cli::UsageError;
+
+/// --seed's rule (parse_seed), checked on the text before CLI11 converts it, which would
+/// saturate a seed beyond 2^63 - 1 silently.
+const CLI::Validator kSeedRule(
+    [](std::string& text) {
+      const cutaway::Outcome<uint64_t> seed = cutaway::parse_seed(text);
+      return seed ? std::string() : seed.reason();
+    },
+    "SEED");
 
 /// The --sampling value (checked by CLI11 to be "dense" or "adaptive").
 cutaway::CapSampling parse_sampling(const std::string& sampling) {
@@ -125,7 +135,7 @@ int main(int argc, char** argv) {
   model->add_option("--size", model_args.width, "PNG width and height in pixels")
       ->check(CLI::Range(16, 8192));
   model->add_option("--seed", model_args.seed, "build the random variant of this seed")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kSeedRule);
 
   cutaway::cli::SectionArgs section_args;
   CLI::App* section = app.add_subcommand("section", "one cross-section with diffused colours");
@@ -142,7 +152,7 @@ int main(int argc, char** argv) {
   section->add_option("--cube", section_args.cube, "cube-map texels per face edge for PMVC")
       ->check(CLI::Range(2, 256));
   section->add_option("--seed", section_args.seed, "cut the random variant of this seed")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kSeedRule);
 
   cutaway::cli::VariantsArgs variants_args;
   CLI::App* variants = app.add_subcommand(
@@ -150,7 +160,8 @@ int main(int argc, char** argv) {
   variants->add_option("TEMPLATE", variants_args.template_path, "template file (.yaml)")->required();
   variants->add_option("--count", variants_args.count, "number of variants")
       ->check(CLI::Range(1, 100000));
-  variants->add_option("--seed", variants_args.seed, "seed of the first variant (then seed + 1, ...)");
+  variants->add_option("--seed", variants_args.seed, "seed of the first variant (then seed + 1, ...)")
+      ->check(kSeedRule);
   variants->add_option("-o,--output", variants_args.output_dir, "output folder")->required();
   variants->add_option("--shard", variants_args.shard,
                        "K/M: write only the K-th of M contiguous shares of the variants (seeds "
@@ -172,7 +183,7 @@ int main(int argc, char** argv) {
                     "(template units)")
       ->required();
   piece->add_option("--seed", piece_args.seed, "cut the random variant of this seed")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kSeedRule);
   piece->add_option("-o,--output", piece_args.output, "pieces to write: .glb, .gltf or .pov");
   piece->add_option("--png", piece_args.png, "PNG of the pieces pulled slightly apart");
   piece->add_option("--cube", piece_args.cube, "cube-map texels per face edge for PMVC")
@@ -211,7 +222,7 @@ int main(int argc, char** argv) {
       "scene", "the main job: a scene of cut objects as glTF or POV-Ray, and pictures of it");
   scene->add_option("SCENE", scene_args.scene_path, "scene file (.yaml)")->required();
   scene->add_option("--seed", scene_args.seed, "seed (default: the scene file's)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kSeedRule);
   scene->add_option("-o,--output", scene_args.outputs,
                     "scene to write: .glb, .gltf or .pov; repeat for several formats")
       ->required()

@@ -76,4 +76,19 @@ Outcome<double> parse_decimal(std::string_view s, const std::string& what) {
   return v;
 }
 
+Outcome<uint64_t> parse_seed(std::string_view s) {
+  const auto refuse = [s] {
+    return Outcome<uint64_t>::none("must be a whole number from 0 to " +
+                                   std::to_string(kMaxSeed) + ", not " + quoted(s));
+  };
+  if (s.empty() || s.size() > 19) return refuse();
+  uint64_t value = 0;
+  for (const char c : s) {
+    if (c < '0' || c > '9') return refuse();
+    value = value * 10 + static_cast<uint64_t>(c - '0');  // 19 digits fit in 64 bits
+  }
+  if (value > kMaxSeed) return refuse();
+  return value;
+}
+
 }  // namespace cutaway

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -33,5 +34,14 @@ std::string name_rule(std::string_view s);
 ///          than kMaxNumberLength characters) or "WHAT is too large: '...'" (beyond the double
 ///          range)
 Outcome<double> parse_decimal(std::string_view s, const std::string& what);
+
+/// The largest seed the command line accepts (--seed): 2^63 - 1.
+inline constexpr uint64_t kMaxSeed = 9223372036854775807ULL;
+
+/// Parses a seed as the command line writes it: 1 to 19 decimal digits, nothing else (no sign,
+/// blanks or exponent), at most kMaxSeed.
+/// @returns the seed, or none with "must be a whole number from 0 to 9223372036854775807, not
+///          '...'"
+Outcome<uint64_t> parse_seed(std::string_view s);
 
 }  // namespace cutaway
