@@ -112,6 +112,14 @@ int run_variants(const VariantsArgs& args, const Common& common, bool quiet, Out
 /// (generator/cli/check_command.cpp).
 int run_check(const std::vector<std::string>& files);
 
+/// `cutaway edit TEMPLATE [--port N]` (generator/cli/edit_command.cpp): serves the template
+/// editor on 127.0.0.1 until interrupted. TEMPLATE need not exist yet (a new template).
+struct EditArgs {
+  std::string template_path;
+  int port = 8765;
+};
+int run_edit(const EditArgs& args);
+
 /// `cutaway piece TEMPLATE --cut SPEC [--seed S] [-o pieces.glb|.gltf|.pov] [--png p.png]`.
 struct PieceArgs {
   std::string template_path, cut, output, png;

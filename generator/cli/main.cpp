@@ -273,6 +273,14 @@ int main(int argc, char** argv) {
       app.add_subcommand("check", "validate templates, scenes and batches without writing anything");
   check->add_option("FILE", check_files, "template, scene and batch files")->required();
 
+  cutaway::cli::EditArgs edit_args;
+  CLI::App* edit = app.add_subcommand(
+      "edit", "the template editor in the browser: a local server on 127.0.0.1 (doc/editor.md)");
+  edit->add_option("TEMPLATE", edit_args.template_path, "template file (.yaml); may be new")
+      ->required();
+  edit->add_option("--port", edit_args.port, "port on 127.0.0.1 (default 8765)")
+      ->check(CLI::Range(1, 65535));
+
   auto logger = spdlog::stderr_color_st("cutaway");
   spdlog::set_default_logger(logger);
   spdlog::set_pattern("%v");
@@ -304,6 +312,7 @@ int main(int argc, char** argv) {
       return cutaway::cli::run_section(section_args, common, outputs);
     }
     if (*check) return cutaway::cli::run_check(check_files);
+    if (*edit) return cutaway::cli::run_edit(edit_args);
     if (*piece) return cutaway::cli::run_piece(piece_args, common, outputs);
     if (*sheet) return cutaway::cli::run_sheet(sheet_args, common, outputs);
     if (*scene) return cutaway::cli::run_scene(scene_args, common, outputs);

@@ -1,5 +1,5 @@
 // The GLSL sources of shaders/, embedded into the binary at build time by
-// render/embed_shaders.cmake, so the executable runs from anywhere.
+// cmake/embed_files.cmake, so the executable runs from anywhere.
 #pragma once
 
 #include <string_view>

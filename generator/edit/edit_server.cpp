@@ -1,0 +1,224 @@
+#include "edit/edit_server.h"
+
+#include <cmath>
+#include <chrono>
+#include <mutex>
+#include <thread>
+#include <stdexcept>
+#include <utility>
+
+#include <httplib.h>
+#include <sys/socket.h>
+
+#include "base/atomic_file.h"
+#include "base/error.h"
+#include "diffusion/diffusion.h"
+#include "edit/web_files.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "variation/grains.h"
+
+namespace cutaway {
+
+namespace {
+
+/// A parsed template and its DS model, or the InputError that stopped them.
+struct Built {
+  Template tmpl;
+  DsModel model;
+};
+
+Built build(std::string_view text, const std::filesystem::path& template_path) {
+  Template tmpl = parse_template(text, template_path.filename().string(),
+                                 template_path.parent_path().string());
+  DsModel model = build_model(tmpl);
+  check_grain_limits(tmpl, model);  // as `cutaway check` does
+  return {std::move(tmpl), std::move(model)};
+}
+
+nlohmann::json verdict_of(const InputError& e) {
+  return {{"ok", false},          {"file", e.loc().file}, {"line", e.loc().line},
+          {"column", e.loc().column}, {"field", e.field()},  {"rule", e.rule()},
+          {"message", e.what()}};
+}
+
+nlohmann::json vec3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+void reply_json(httplib::Response& res, int status, const nlohmann::json& body) {
+  res.status = status;
+  res.set_content(body.dump(), "application/json");
+}
+
+}  // namespace
+
+nlohmann::json check_template_text(std::string_view text,
+                                   const std::filesystem::path& template_path) {
+  try {
+    const Built b = build(text, template_path);
+    const double units = b.tmpl.metres_per_unit;
+    return {{"ok", true},
+            {"surfaces", b.model.surfaces.size()},
+            {"bbox_min", vec3(b.model.bbox_min / units)},
+            {"bbox_max", vec3(b.model.bbox_max / units)}};
+  } catch (const InputError& e) {
+    return verdict_of(e);
+  }
+}
+
+std::string request_refusal(std::string_view host, std::string_view origin, int port) {
+  const std::string p = std::to_string(port);
+  if (host != "127.0.0.1:" + p && host != "localhost:" + p)
+    return "the Host header must be 127.0.0.1:" + p + " or localhost:" + p + ", not " +
+           quoted(host);
+  if (!origin.empty() && origin != "http://127.0.0.1:" + p && origin != "http://localhost:" + p)
+    return "requests from other sites are refused (Origin " + quoted(origin) + ")";
+  return "";
+}
+
+struct EditServer::Impl {
+  EditServerOptions options;
+  EditRenderers renderers;
+  httplib::Server server;
+  int port = 0;
+  std::mutex work;  // one request at a time touches the library and OpenGL
+  std::mutex state;  // guards the two flags below
+  bool stop_requested = false;
+  bool serving = false;  // run() is in httplib's listen loop, or about to enter it
+
+  /// Runs `answer` for a request about the template text in its body; an InputError becomes
+  /// 422 with the verdict, any other error 500 with its message.
+  void handle(const httplib::Request& req, httplib::Response& res,
+              const std::function<void(const Built&)>& answer) {
+    const std::lock_guard<std::mutex> lock(work);
+    try {
+      answer(build(req.body, options.template_path));
+    } catch (const InputError& e) {
+      reply_json(res, 422, verdict_of(e));
+    } catch (const std::exception& e) {
+      reply_json(res, 500, {{"ok", false}, {"message", e.what()}});
+    }
+  }
+};
+
+EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& s = *impl_;
+  s.options = std::move(options);
+  s.renderers = std::move(renderers);
+  s.server.set_payload_max_length(s.options.max_body_bytes);
+  // httplib's default socket options add SO_REUSEPORT, with which a second process could bind
+  // the same port and take the editor's requests; SO_REUSEADDR alone lets a restarted editor
+  // take its port back from connections still closing, and a taken port fails to bind.
+  s.server.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+  });
+  s.server.set_pre_routing_handler([&s](const httplib::Request& req, httplib::Response& res) {
+    const std::string why =
+        request_refusal(req.get_header_value("Host"), req.get_header_value("Origin"), s.port);
+    if (why.empty()) return httplib::Server::HandlerResponse::Unhandled;
+    reply_json(res, 403, {{"ok", false}, {"message", why}});
+    return httplib::Server::HandlerResponse::Handled;
+  });
+  // The page: a fixed set of embedded files; no request names a file on disk.
+  const auto page = [&s](const char* route, const char* file, const char* type) {
+    s.server.Get(route, [file, type](const httplib::Request&, httplib::Response& res) {
+      res.set_content(std::string(editor_web_file(file)), type);
+    });
+  };
+  page("/", "index.html", "text/html; charset=utf-8");
+  page("/editor.js", "editor.js", "text/javascript; charset=utf-8");
+  page("/editor.css", "editor.css", "text/css; charset=utf-8");
+
+  s.server.Get("/api/template", [&s](const httplib::Request&, httplib::Response& res) {
+    const std::lock_guard<std::mutex> lock(s.work);
+    const std::filesystem::path& path = s.options.template_path;
+    std::error_code ec;
+    const bool exists = std::filesystem::exists(path, ec);
+    reply_json(res, 200,
+               {{"file", path.filename().string()},
+                {"exists", exists},
+                {"text", exists ? read_file_bytes(path) : std::string()}});
+  });
+  s.server.Post("/api/check", [&s](const httplib::Request& req, httplib::Response& res) {
+    const std::lock_guard<std::mutex> lock(s.work);
+    reply_json(res, 200, check_template_text(req.body, s.options.template_path));
+  });
+  s.server.Post("/api/model.png", [&s](const httplib::Request& req, httplib::Response& res) {
+    s.handle(req, res, [&](const Built& b) {
+      res.set_content(s.renderers.model_png(b.model), "image/png");
+    });
+  });
+  s.server.Post("/api/section.png", [&s](const httplib::Request& req, httplib::Response& res) {
+    s.handle(req, res, [&](const Built& b) {
+      const std::string y_text = req.get_param_value("y");
+      char* end = nullptr;
+      const double y = std::strtod(y_text.c_str(), &end);
+      if (y_text.empty() || *end != '\0' || !std::isfinite(y)) {
+        reply_json(res, 400, {{"ok", false}, {"message", "y must be a number (template units)"}});
+        return;
+      }
+      Plane plane;
+      plane.point = {0, y * b.tmpl.metres_per_unit, 0};
+      plane.normal = {0, 1, 0};
+      const auto diffusion = make_cpu_diffusion(b.model, {s.options.section_cube, 0});
+      CrossSectionOptions o;
+      o.edge_m = b.tmpl.edge_m;
+      const Outcome<CrossSection> section = make_cross_section(b.model, plane, *diffusion, o);
+      if (!section) {
+        reply_json(res, 422, {{"ok", false}, {"message", section.reason()}});
+        return;
+      }
+      res.set_content(s.renderers.section_png(*section), "image/png");
+    });
+  });
+  s.server.Post("/api/save", [&s](const httplib::Request& req, httplib::Response& res) {
+    s.handle(req, res, [&](const Built&) {
+      write_file_atomically(s.options.template_path, req.body);
+      reply_json(res, 200, {{"ok", true}, {"file", s.options.template_path.filename().string()}});
+    });
+  });
+
+  if (s.options.port == 0) {
+    s.port = s.server.bind_to_any_port("127.0.0.1");
+  } else if (s.server.bind_to_port("127.0.0.1", s.options.port)) {
+    s.port = s.options.port;
+  }
+  if (s.port <= 0)
+    throw std::runtime_error("port " + std::to_string(s.options.port) +
+                             " on 127.0.0.1 is taken; pass another with --port");
+}
+
+EditServer::~EditServer() = default;
+
+int EditServer::port() const { return impl_->port; }
+
+void EditServer::run() {
+  Impl& s = *impl_;
+  {
+    const std::lock_guard<std::mutex> lock(s.state);
+    if (s.stop_requested) return;
+    s.serving = true;
+  }
+  s.server.listen_after_bind();
+  const std::lock_guard<std::mutex> lock(s.state);
+  s.serving = false;
+}
+
+void EditServer::stop() {
+  Impl& s = *impl_;
+  // httplib's stop() does nothing before its loop runs: wait for the loop (or for run() to
+  // return) so that a stop() right after run() started is not lost.
+  for (;;) {
+    {
+      const std::lock_guard<std::mutex> lock(s.state);
+      s.stop_requested = true;
+      if (!s.serving) return;
+    }
+    if (s.server.is_running()) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  s.server.stop();
+}
+
+}  // namespace cutaway

@@ -1,0 +1,78 @@
+// `cutaway edit`: a local web server for the template editor (doc/editor.md). The browser page
+// sends the template's text; the server answers with what the same library the command line
+// uses makes of it: the parser's and checks' verdict (file, line, column, field, rule), a
+// picture of the see-through DS model, a cross-section at a height, and the saved file.
+//
+// Security, as for any local server: it listens on 127.0.0.1 only; requests whose Host or
+// Origin is not the server's own are refused (DNS rebinding, cross-site pages); it serves a
+// fixed set of embedded files and reads and writes only the one template file it was started
+// on (no path comes from a request); request bodies are limited in size.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "base/plane.h"
+#include "model/ds_model.h"
+#include "section/cross_section.h"
+
+namespace cutaway {
+
+/// What the editor asks of the library for one version of the template text, without HTTP.
+/// `template_path` is the file being edited: messages name it and `mesh` surfaces' files are
+/// relative to its folder.
+///
+/// The verdict on `text`: {"ok": true, "surfaces": N, "bbox_min": [x, y, z], "bbox_max":
+/// [...]} (template units) when it parses and its model builds, else {"ok": false, "file",
+/// "line", "column", "field", "rule", "message"} (InputError's parts; line and column 1-based).
+/// @throws nothing for bad text; std::bad_alloc and InternalError pass through
+nlohmann::json check_template_text(std::string_view text,
+                                   const std::filesystem::path& template_path);
+
+/// Pictures the editor shows, rendered by the caller's renderers (the OpenGL previews live in
+/// render/, which the library does not include): PNG bytes.
+struct EditRenderers {
+  std::function<std::string(const DsModel&)> model_png;        ///< the see-through model
+  std::function<std::string(const CrossSection&)> section_png;  ///< one cut face, head-on
+};
+
+/// How run_edit_server() listens.
+struct EditServerOptions {
+  std::filesystem::path template_path;  ///< the file edited and saved; its folder must exist
+  int port = 8765;                      ///< on 127.0.0.1; 0: any free port
+  size_t max_body_bytes = 4u << 20;     ///< larger request bodies are refused (413)
+  int section_cube = 8;                 ///< PMVC cube-map size of the live cross-section
+};
+
+/// Why a request may not be served (403), or "" when it may: its Host header must name this
+/// server (127.0.0.1:PORT or localhost:PORT), and its Origin header, when present, must be
+/// http://127.0.0.1:PORT or http://localhost:PORT.
+std::string request_refusal(std::string_view host, std::string_view origin, int port);
+
+/// The editor's server: binds at construction, serves in run(), stops from any thread.
+class EditServer {
+ public:
+  /// Binds 127.0.0.1:options.port.
+  /// @throws std::runtime_error "port N on 127.0.0.1 is taken; pass another with --port" when
+  ///         it cannot bind
+  EditServer(EditServerOptions options, EditRenderers renderers);
+  ~EditServer();
+  EditServer(const EditServer&) = delete;
+  EditServer& operator=(const EditServer&) = delete;
+
+  int port() const;  ///< the bound port
+  void run();        ///< serves until stop(); blocks; returns at once after a stop()
+  void stop();       ///< makes run() return (waiting until its loop runs); from any thread
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace cutaway
