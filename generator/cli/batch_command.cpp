@@ -17,7 +17,6 @@
 #include "cli/commands.h"
 #include "cli/progress_bar.h"
 #include "io/batch_parser.h"
-#include "render/diffusion_backends.h"
 #include "render/image/contact_sheet.h"
 #include "render/image/image.h"
 #include "render/scene_preview.h"
@@ -86,13 +85,10 @@ int run_batch_command(const BatchArgs& a, const Common& common, bool quiet) {
   if (a.slurm) return submit_slurm(a, batch, common);
 
   const BatchPlan plan = plan_batch(batch, build_settings(common));
-  const DiffusionChoice choice = parse_diffusion_choice(common.backend);
   BatchRunOptions options;
   options.shard = shard;
   options.build.sampling = common.sampling;
-  options.build.diffusion = [&](const DsModel& model) {
-    return make_diffusion(model, {batch.export_options.cube, common.threads}, choice);
-  };
+  options.build.diffusion = diffusion_factory(batch.export_options.cube, common);
   options.build.thumbnail = [](const SceneAssets& assets) {
     return encode_png(render_scene_preview(assets));
   };

@@ -13,7 +13,6 @@
 #include "cli/scene_outputs.h"
 #include "export/texture_image.h"
 #include "io/scene_parser.h"
-#include "render/diffusion_backends.h"
 #include "scene/scene_builder.h"
 
 namespace cutaway::cli {
@@ -34,14 +33,14 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
   const Scene scene = load_scene(a.scene_path);
   const double t_parse = seconds_since(t0);
   const uint64_t seed = a.seed >= 0 ? static_cast<uint64_t>(a.seed) : scene.seed;
-  const DiffusionChoice choice = parse_diffusion_choice(common.backend);
+  const DiffusionFactory diffusion = diffusion_factory(a.cube, common);
   std::string backend_name;
   SceneBuildOptions options;
   options.sampling = common.sampling;
   options.cap_colours = a.colours == "vertex" ? CapColours::Vertex : CapColours::Texture;
   options.atlas.texels_per_m = 1000 * a.texels_per_mm;  // 0: the scene's
   options.diffusion = [&](const DsModel& model) {
-    auto backend = make_diffusion(model, {a.cube, common.threads}, choice);
+    auto backend = diffusion(model);
     backend_name = backend->name();
     return backend;
   };

@@ -13,7 +13,6 @@
 #include "io/plane_spec.h"
 #include "io/template_parser.h"
 #include "model/model_builder.h"
-#include "render/diffusion_backends.h"
 #include "render/image/image.h"
 #include "render/section_preview.h"
 #include "section/cross_section.h"
@@ -37,8 +36,7 @@ int run_section(const SectionArgs& a, const Common& common, OutputSet& outputs) 
                   : cutaway::build_model(tmpl);
   const double t_model = seconds_since(t0);
   const auto t1 = Clock::now();
-  const auto diffusion = cutaway::make_diffusion(model, {a.cube, common.threads},
-                                                 cutaway::parse_diffusion_choice(common.backend));
+  const auto diffusion = diffusion_factory(a.cube, common)(model);
   const double t_backend = seconds_since(t1);
   const auto t2 = Clock::now();
   cutaway::CrossSectionOptions options{tmpl.edge_m};

@@ -58,9 +58,10 @@ int run_variants(const VariantsArgs& a, const Common& common, bool quiet, Output
   // are built again (same seed, same model) rather than all kept.
   std::vector<Outcome<CrossSection>> sections;
   bool any = false;
+  const DiffusionFactory sheet_diffusion = diffusion_factory(8, common);
   for (int i = first; i < std::min(last, first + a.sheet); ++i) {
     const uint64_t seed = a.seed + static_cast<uint64_t>(i);
-    sections.push_back(variant_section(make_variant(tmpl, seed), diffusion_factory(8, common)));
+    sections.push_back(variant_section(make_variant(tmpl, seed), sheet_diffusion));
     if (sections.back())
       any = true;
     else

@@ -1,8 +1,8 @@
 #include "edit/edit_server.h"
 
-#include <cmath>
 #include <chrono>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <stdexcept>
 #include <utility>
@@ -15,6 +15,7 @@
 #include "diffusion/diffusion.h"
 #include "edit/web_files.h"
 #include "io/template_parser.h"
+#include "io/text_rules.h"
 #include "model/model_builder.h"
 #include "variation/grains.h"
 
@@ -22,7 +23,7 @@ namespace cutaway {
 
 namespace {
 
-/// A parsed template and its DS model, or the InputError that stopped them.
+/// A parsed template and its DS model.
 struct Built {
   Template tmpl;
   DsModel model;
@@ -44,6 +45,15 @@ nlohmann::json verdict_of(const InputError& e) {
 
 nlohmann::json vec3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
+/// The verdict on a template that parsed and built.
+nlohmann::json verdict_of(const Built& b) {
+  const double units = b.tmpl.metres_per_unit;
+  return {{"ok", true},
+          {"surfaces", b.model.surfaces.size()},
+          {"bbox_min", vec3(b.model.bbox_min / units)},
+          {"bbox_max", vec3(b.model.bbox_max / units)}};
+}
+
 void reply_json(httplib::Response& res, int status, const nlohmann::json& body) {
   res.status = status;
   res.set_content(body.dump(), "application/json");
@@ -54,12 +64,7 @@ void reply_json(httplib::Response& res, int status, const nlohmann::json& body) 
 nlohmann::json check_template_text(std::string_view text,
                                    const std::filesystem::path& template_path) {
   try {
-    const Built b = build(text, template_path);
-    const double units = b.tmpl.metres_per_unit;
-    return {{"ok", true},
-            {"surfaces", b.model.surfaces.size()},
-            {"bbox_min", vec3(b.model.bbox_min / units)},
-            {"bbox_max", vec3(b.model.bbox_max / units)}};
+    return verdict_of(build(text, template_path));
   } catch (const InputError& e) {
     return verdict_of(e);
   }
@@ -84,6 +89,24 @@ struct EditServer::Impl {
   std::mutex state;  // guards the two flags below
   bool stop_requested = false;
   bool serving = false;  // run() is in httplib's listen loop, or about to enter it
+  // The last text that built, with its template and model, and the cpu backend of its cuts
+  // (made at the first cut): the page asks for the verdict, the model picture and cuts at
+  // several heights of one text, which are built once. Guarded by `work`.
+  std::string built_text;
+  std::optional<Built> built;
+  std::unique_ptr<DiffusionBackend> section_backend;
+
+  /// The template and model of `text`, from the last request when it sent the same text.
+  /// @throws InputError as build()
+  const Built& built_for(const std::string& text) {
+    if (!built || text != built_text) {
+      built.reset();
+      section_backend.reset();
+      built = build(text, options.template_path);
+      built_text = text;
+    }
+    return *built;
+  }
 
   /// Runs `answer` for a request about the template text in its body; an InputError becomes
   /// 422 with the verdict, any other error 500 with its message.
@@ -91,7 +114,7 @@ struct EditServer::Impl {
               const std::function<void(const Built&)>& answer) {
     const std::lock_guard<std::mutex> lock(work);
     try {
-      answer(build(req.body, options.template_path));
+      answer(built_for(req.body));
     } catch (const InputError& e) {
       reply_json(res, 422, verdict_of(e));
     } catch (const std::exception& e) {
@@ -142,7 +165,11 @@ EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
   });
   s.server.Post("/api/check", [&s](const httplib::Request& req, httplib::Response& res) {
     const std::lock_guard<std::mutex> lock(s.work);
-    reply_json(res, 200, check_template_text(req.body, s.options.template_path));
+    try {
+      reply_json(res, 200, verdict_of(s.built_for(req.body)));
+    } catch (const InputError& e) {
+      reply_json(res, 200, verdict_of(e));
+    }
   });
   s.server.Post("/api/model.png", [&s](const httplib::Request& req, httplib::Response& res) {
     s.handle(req, res, [&](const Built& b) {
@@ -151,20 +178,20 @@ EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
   });
   s.server.Post("/api/section.png", [&s](const httplib::Request& req, httplib::Response& res) {
     s.handle(req, res, [&](const Built& b) {
-      const std::string y_text = req.get_param_value("y");
-      char* end = nullptr;
-      const double y = std::strtod(y_text.c_str(), &end);
-      if (y_text.empty() || *end != '\0' || !std::isfinite(y)) {
-        reply_json(res, 400, {{"ok", false}, {"message", "y must be a number (template units)"}});
+      const Outcome<double> y = parse_decimal(req.get_param_value("y"), "y");
+      if (!y) {
+        reply_json(res, 400, {{"ok", false}, {"message", y.reason() + " (template units)"}});
         return;
       }
       Plane plane;
-      plane.point = {0, y * b.tmpl.metres_per_unit, 0};
+      plane.point = {0, *y * b.tmpl.metres_per_unit, 0};
       plane.normal = {0, 1, 0};
-      const auto diffusion = make_cpu_diffusion(b.model, {s.options.section_cube, 0});
+      if (!s.section_backend)
+        s.section_backend = make_cpu_diffusion(b.model, {s.options.section_cube, 0});
       CrossSectionOptions o;
       o.edge_m = b.tmpl.edge_m;
-      const Outcome<CrossSection> section = make_cross_section(b.model, plane, *diffusion, o);
+      const Outcome<CrossSection> section =
+          make_cross_section(b.model, plane, *s.section_backend, o);
       if (!section) {
         reply_json(res, 422, {{"ok", false}, {"message", section.reason()}});
         return;

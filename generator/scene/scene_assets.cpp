@@ -11,10 +11,15 @@
 
 namespace cutaway {
 
+namespace {
+
+bool finite(const glm::dvec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+}  // namespace
+
 std::string camera_defect(const AssetCamera& c, bool needs_up) {
-  const auto finite = [](const glm::dvec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-  };
   if (!finite(c.eye) || !finite(c.target) || !finite(c.up))
     return "eye, target and up must be finite";
   const glm::dvec3 forward = c.target - c.eye;
@@ -69,10 +74,6 @@ std::string primitives_defect(const AssetMesh& mesh, size_t materials) {
 }
 
 namespace {
-
-bool finite(const glm::dvec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
 
 std::string texture_defect(const AssetTexture& t) {
   if (t.width < 1 || t.height < 1)
