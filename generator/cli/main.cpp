@@ -278,8 +278,8 @@ int main(int argc, char** argv) {
       "edit", "the template editor in the browser: a local server on 127.0.0.1 (doc/editor.md)");
   edit->add_option("TEMPLATE", edit_args.template_path, "template file (.yaml); may be new")
       ->required();
-  edit->add_option("--port", edit_args.port, "port on 127.0.0.1 (default 8765)")
-      ->check(CLI::Range(1, 65535));
+  edit->add_option("--port", edit_args.port, "port on 127.0.0.1 (default 8765; 0: any free port, printed)")
+      ->check(CLI::Range(0, 65535));
 
   auto logger = spdlog::stderr_color_st("cutaway");
   spdlog::set_default_logger(logger);

@@ -14,8 +14,10 @@
 #include "base/error.h"
 #include "diffusion/diffusion.h"
 #include "edit/web_files.h"
+#include "export/gltf_export.h"
 #include "io/template_parser.h"
 #include "io/text_rules.h"
+#include "model/curves.h"
 #include "model/model_builder.h"
 #include "variation/grains.h"
 
@@ -45,13 +47,36 @@ nlohmann::json verdict_of(const InputError& e) {
 
 nlohmann::json vec3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
+/// `points` (metres) fitted as the template means them, in template units.
+nlohmann::json fitted(const Polyline2& points, bool closed, bool smooth, double units) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const glm::dvec2& p : fit_curve(points, closed, smooth)) out.push_back({p.x / units, p.y / units});
+  return out;
+}
+
+/// The fitted profile and section loops of every surface (check_template_text's "curves").
+nlohmann::json fitted_curves(const Template& t) {
+  nlohmann::json curves = nlohmann::json::array();
+  for (const SurfaceSpec& s : t.surfaces) {
+    nlohmann::json c = {{"profile", nlohmann::json::array()}, {"sections", nlohmann::json::array()}};
+    if (s.kind != SurfaceKind::Mesh) {
+      c["profile"] = fitted(s.profile, s.kind == SurfaceKind::Within, s.smooth, t.metres_per_unit);
+      for (const auto& loop : s.section.loops)
+        c["sections"].push_back(fitted(loop, true, s.smooth, t.metres_per_unit));
+    }
+    curves.push_back(std::move(c));
+  }
+  return curves;
+}
+
 /// The verdict on a template that parsed and built.
 nlohmann::json verdict_of(const Built& b) {
   const double units = b.tmpl.metres_per_unit;
   return {{"ok", true},
           {"surfaces", b.model.surfaces.size()},
           {"bbox_min", vec3(b.model.bbox_min / units)},
-          {"bbox_max", vec3(b.model.bbox_max / units)}};
+          {"bbox_max", vec3(b.model.bbox_max / units)},
+          {"curves", fitted_curves(b.tmpl)}};
 }
 
 void reply_json(httplib::Response& res, int status, const nlohmann::json& body) {
@@ -94,7 +119,7 @@ struct EditServer::Impl {
   // several heights of one text, which are built once. Guarded by `work`.
   std::string built_text;
   std::optional<Built> built;
-  std::unique_ptr<DiffusionBackend> section_backend;
+  std::unique_ptr<DiffusionBackend> section_backend, coarse_section_backend;
 
   /// The template and model of `text`, from the last request when it sent the same text.
   /// @throws InputError as build()
@@ -102,6 +127,7 @@ struct EditServer::Impl {
     if (!built || text != built_text) {
       built.reset();
       section_backend.reset();
+      coarse_section_backend.reset();
       built = build(text, options.template_path);
       built_text = text;
     }
@@ -143,15 +169,30 @@ EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
     reply_json(res, 403, {{"ok", false}, {"message", why}});
     return httplib::Server::HandlerResponse::Handled;
   });
-  // The page: a fixed set of embedded files; no request names a file on disk.
-  const auto page = [&s](const char* route, const char* file, const char* type) {
-    s.server.Get(route, [file, type](const httplib::Request&, httplib::Response& res) {
-      res.set_content(std::string(editor_web_file(file)), type);
-    });
-  };
-  page("/", "index.html", "text/html; charset=utf-8");
-  page("/editor.js", "editor.js", "text/javascript; charset=utf-8");
-  page("/editor.css", "editor.css", "text/css; charset=utf-8");
+  // The page: embedded files (no request names a file on disk), and the libraries it
+  // imports, each from its own folder (library_file keeps requests inside it).
+  s.server.Get("/", [](const httplib::Request&, httplib::Response& res) {
+    res.set_content(std::string(editor_web_file("index.html")), "text/html; charset=utf-8");
+  });
+  s.server.Get(R"(/([a-z_]+)\.(js|css))", [](const httplib::Request& req, httplib::Response& res) {
+    const std::string type = req.matches[2] == "js" ? "text/javascript" : "text/css";
+    try {
+      const std::string file = req.matches[1].str() + "." + req.matches[2].str();
+      res.set_content(std::string(editor_web_file(file)), type + "; charset=utf-8");
+    } catch (const std::runtime_error&) {
+      reply_json(res, 404, {{"ok", false}, {"message", "no such file"}});
+    }
+  });
+  s.server.Get(R"(/lib/([a-z]+)/(.+))", [&s](const httplib::Request& req, httplib::Response& res) {
+    for (const WebLibrary& lib : s.options.libraries) {
+      if (lib.name != req.matches[1]) continue;
+      if (const auto file = library_file(lib.folder, req.matches[2].str())) {
+        res.set_content(read_file_bytes(*file), "text/javascript; charset=utf-8");
+        return;
+      }
+    }
+    reply_json(res, 404, {{"ok", false}, {"message", "no such library file"}});
+  });
 
   s.server.Get("/api/template", [&s](const httplib::Request&, httplib::Response& res) {
     const std::lock_guard<std::mutex> lock(s.work);
@@ -176,6 +217,11 @@ EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
       res.set_content(s.renderers.model_png(b.model), "image/png");
     });
   });
+  s.server.Post("/api/model.glb", [&s](const httplib::Request& req, httplib::Response& res) {
+    s.handle(req, res, [&](const Built& b) {
+      res.set_content(model_to_glb(b.model, GltfModelOptions{}), "model/gltf-binary");
+    });
+  });
   s.server.Post("/api/section.png", [&s](const httplib::Request& req, httplib::Response& res) {
     s.handle(req, res, [&](const Built& b) {
       const Outcome<double> y = parse_decimal(req.get_param_value("y"), "y");
@@ -186,12 +232,17 @@ EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
       Plane plane;
       plane.point = {0, *y * b.tmpl.metres_per_unit, 0};
       plane.normal = {0, 1, 0};
-      if (!s.section_backend)
-        s.section_backend = make_cpu_diffusion(b.model, {s.options.section_cube, 0});
+      // While the plane is dragged the page asks for coarse cuts, then a full one.
+      const bool coarse = req.get_param_value("coarse") == "1";
+      std::unique_ptr<DiffusionBackend>& backend =
+          coarse ? s.coarse_section_backend : s.section_backend;
+      if (!backend)
+        backend = make_cpu_diffusion(
+            b.model, {coarse ? s.options.coarse_section_cube : s.options.section_cube, 0});
       CrossSectionOptions o;
       o.edge_m = b.tmpl.edge_m;
       const Outcome<CrossSection> section =
-          make_cross_section(b.model, plane, *s.section_backend, o);
+          make_cross_section(b.model, plane, *backend, o);
       if (!section) {
         reply_json(res, 422, {{"ok", false}, {"message", section.reason()}});
         return;

@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/plane.h"
+#include "edit/web_libraries.h"
 #include "model/ds_model.h"
 #include "section/cross_section.h"
 
@@ -29,8 +30,12 @@ namespace cutaway {
 /// relative to its folder.
 ///
 /// The verdict on `text`: {"ok": true, "surfaces": N, "bbox_min": [x, y, z], "bbox_max":
-/// [...]} (template units) when it parses and its model builds, else {"ok": false, "file",
-/// "line", "column", "field", "rule", "message"} (InputError's parts; line and column 1-based).
+/// [...], "curves": [...]} (template units) when it parses and its model builds, else {"ok":
+/// false, "file", "line", "column", "field", "rule", "message"} (InputError's parts; line and
+/// column 1-based). "curves" has one entry per surface, {"profile": [[r, y], ...], "sections":
+/// [[[x, z], ...], ...]}: the curves as the library fits them (curves.h fit_curve), which the
+/// page draws over the points the user sketched; a `circle` section and a mesh surface give
+/// no sections, a mesh no profile.
 /// @throws nothing for bad text; std::bad_alloc and InternalError pass through
 nlohmann::json check_template_text(std::string_view text,
                                    const std::filesystem::path& template_path);
@@ -48,6 +53,8 @@ struct EditServerOptions {
   int port = 8765;                      ///< on 127.0.0.1; 0: any free port
   size_t max_body_bytes = 4u << 20;     ///< larger request bodies are refused (413)
   int section_cube = 8;                 ///< PMVC cube-map size of the live cross-section
+  int coarse_section_cube = 3;          ///< the same while the user drags the plane
+  std::vector<WebLibrary> libraries = editor_libraries();  ///< served at /lib/NAME/
 };
 
 /// Why a request may not be served (403), or "" when it may: its Host header must name this

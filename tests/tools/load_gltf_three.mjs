@@ -13,15 +13,12 @@
 // Exit code 0 when the file loaded, 1 otherwise.
 //
 // Network: a node http server on 127.0.0.1 (ephemeral port) serves the page, node_modules/three
-// and the file's folder; Chromium (/usr/bin/chromium through playwright-core) runs with a fresh
-// profile, no proxy, every host name but 127.0.0.1 unresolvable, and every request that is not
-// to that server aborted.
+// and the file's folder; Chromium is shut off from everything else (chromium.mjs).
 import fs from 'node:fs';
 import http from 'node:http';
-import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { openPage } from './chromium.mjs';
 
 const started = Date.now();
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
@@ -155,10 +152,6 @@ async function main() {
   if (!fs.existsSync(path.join(threeDir, 'examples', 'jsm', 'loaders', 'GLTFLoader.js'))) {
     return report({ error: `three.js missing in ${threeDir} (scripts/install-deps.sh --test)` });
   }
-  const exe = '/usr/bin/chromium';
-  if (!fs.existsSync(exe)) {
-    return report({ error: `${exe} missing (Debian chromium; scripts/install-deps.sh --test)` });
-  }
 
   const server = serve(path.dirname(abs));
   await new Promise((resolve, reject) => {
@@ -166,37 +159,14 @@ async function main() {
     server.listen(0, '127.0.0.1', resolve);
   });
   const origin = `http://127.0.0.1:${server.address().port}`;
-  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'cutaway-chromium-'));
-  let context = null;
+  let session = null;
   const warnings = [];
   const timer = setTimeout(() => {
-    fs.rmSync(profile, { recursive: true, force: true });
     process.exit(report({ error: `timed out after ${TIMEOUT_MS / 1000} s`, warnings }));
   }, TIMEOUT_MS);
   try {
-    // A persistent context is how playwright takes an explicit (here fresh) --user-data-dir.
-    context = await chromium.launchPersistentContext(profile, {
-      executablePath: exe,
-      headless: true,
-      timeout: TIMEOUT_MS,
-      args: [
-        '--headless', '--no-sandbox', '--disable-quic', '--no-first-run',
-        ...(shot ? ['--use-angle=swiftshader', '--enable-unsafe-swiftshader'] : ['--disable-gpu']),
-        '--disable-background-networking', '--disable-component-update', '--disable-sync',
-        '--no-proxy-server', '--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE 127.0.0.1',
-        '--disable-features=Translate,OptimizationHints,MediaRouter,DialMediaRouteProvider',
-        '--disable-domain-reliability', '--no-pings', '--metrics-recording-only',
-      ],
-      env: { ...process.env, GOOGLE_API_KEY: 'no', GOOGLE_DEFAULT_CLIENT_ID: 'no',
-             GOOGLE_DEFAULT_CLIENT_SECRET: 'no' },
-    });
-    await context.route('**/*', (route) =>
-      route.request().url().startsWith(origin + '/') ? route.continue() : route.abort());
-    const page = context.pages()[0] ?? (await context.newPage());
-    page.on('console', (m) => {
-      if (m.type() === 'warning' || m.type() === 'error') warnings.push(`${m.type()}: ${m.text()}`);
-    });
-    page.on('pageerror', (e) => warnings.push(`pageerror: ${e.message}`));
+    session = await openPage(origin, { webgl: !!shot, timeoutMs: TIMEOUT_MS, warnings });
+    const { page } = session;
     await page.goto(origin + '/', { timeout: TIMEOUT_MS });
     await page.waitForFunction(() => window.pageReady === true, null, { timeout: TIMEOUT_MS });
     const url = '/file/' + encodeURIComponent(path.basename(abs));
@@ -211,9 +181,8 @@ async function main() {
     return report({ error: String(e?.message ?? e).split('\n')[0], warnings });
   } finally {
     clearTimeout(timer);
-    if (context) await context.close().catch(() => {});
+    if (session) await session.close();
     server.close();
-    fs.rmSync(profile, { recursive: true, force: true });
   }
 }
 

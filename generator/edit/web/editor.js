@@ -1,44 +1,530 @@
-// The template editor's page: the template's text, checked by the server as it is typed (the
-// same parser and checks as `cutaway check`), with the model and a cross-section the server
-// renders, and Save. Every answer comes from the server; nothing is computed here.
-const text = document.getElementById('template');
-const verdict = document.getElementById('verdict');
-const save = document.getElementById('save');
-const statusLine = document.getElementById('status');
-const model = document.getElementById('model');
-const section = document.getElementById('section');
-const plane = document.getElementById('plane');
-const height = document.getElementById('height');
+// The template editor's page (the paper's §4 sketching interface): profiles are sketched in the
+// side view and sections in the top view, over photos of the real object; colours come from
+// pickers or from the photos; every change edits the template's YAML (template_doc.js) and is
+// sent to the server, whose library answers with the verdict (the same parser and checks as
+// `cutaway check`), the curves as it fits them, the model in 3D and a cross-section. Nothing
+// about the model is computed here.
+import { TemplateDoc, starterText } from '/template_doc.js';
+import { fitStroke } from '/stroke_fit.js';
+import { SketchView } from '/sketch_view.js';
+import { ModelView } from '/model_view.js';
 
-let bbox = null;       // of the last model that built, template units
-let version = 0;       // of the text; older answers are dropped
-let saved = '';        // the text on disk
+const $ = (id) => document.getElementById(id);
+const text = $('template');
+const verdictLine = $('verdict');
+const statusLine = $('status');
+
+let doc = new TemplateDoc('');
+let saved = '';                 // the text on disk
+const past = [], future = [];   // undo history: texts
+let selected = 0;               // the selected surface
+let verdict = null;             // the last answer of /api/check
+let version = 0;                // of the text sent; older answers are dropped
+let framed = false;             // the 3D view is framed on the first model
+
+// ---- reading the template -------------------------------------------------------------------
+
+const surfaces = () => doc.get(['surfaces']) ?? [];
+const isNfold = () => doc.get(['symmetry', 'type']) === 'nfold';
+const folds = () => (isNfold() ? Number(doc.get(['symmetry', 'folds'])) || 1 : 1);
+const isLoopList = (s) => Array.isArray(s) && Array.isArray(s[0]) && Array.isArray(s[0][0]);
+const sectionPath = (i) => ['surfaces', i, 'section'];
+
+/// A section as loops of view points (top view: [x, -z]); polar points become [x, -z] too.
+function sectionLoops(section) {
+  if (!section || section === 'circle') return [];
+  if (section.polar) {
+    return [section.polar.map(([deg, r]) => [r * Math.cos(deg * Math.PI / 180),
+                                               r * Math.sin(deg * Math.PI / 180)])];
+  }
+  const loops = isLoopList(section) ? section : [section];
+  return loops.map((loop) => loop.map(([x, z]) => [x, -z]));
+}
+
+function circle(radius) {
+  return Array.from({ length: 64 }, (_, k) => [radius * Math.cos(k * Math.PI / 32),
+                                               radius * Math.sin(k * Math.PI / 32)]);
+}
+
+function maxRadius(profile) {
+  return Math.max(1e-9, ...(profile ?? []).map((p) => Math.abs(p[0])));
+}
+
+function hex(colour) {
+  if (typeof colour === 'string') return colour;
+  if (Array.isArray(colour)) {
+    return '#' + colour.map((c) => Math.round(255 * Math.min(1, Math.max(0, c)))
+      .toString(16).padStart(2, '0')).join('');
+  }
+  return '#808080';
+}
+
+/// Which surface and which of its fields the verdict's field path names, if any.
+function errorPlace() {
+  if (!verdict || verdict.ok) return null;
+  const m = /^surfaces\[(\d+)\](?:\.(\w+))?/.exec(verdict.field ?? '');
+  return m ? { surface: Number(m[1]), field: m[2] ?? '' } : null;
+}
+
+// ---- the sketch views ------------------------------------------------------------------------
+
+const side = new SketchView($('side'), {
+  stroke: (points) => sideStroke(points),
+  movePoint: (curve, index, point, done) => movePoint('side', curve, index, point, done),
+  scale: askLength,
+  pick: (c) => pickColour(c),
+});
+const top = new SketchView($('top'), {
+  stroke: (points) => topStroke(points),
+  movePoint: (curve, index, point, done) => movePoint('top', curve, index, point, done),
+  scale: askLength,
+  pick: (c) => pickColour(c),
+});
+let sideCurves = [], topCurves = [];   // which surface (and loop) each drawn curve is
+
+function askLength(worldLength) {
+  const answer = prompt(`Length of this line in ${doc.get(['units']) ?? 'mm'}?`,
+                        worldLength.toFixed(1));
+  return Number(answer);
+}
+
+function layoutCurves() {
+  const list = surfaces();
+  const place = errorPlace();
+  const fitted = verdict && verdict.ok ? verdict.curves : null;
+  side.curves = [];
+  sideCurves = [];
+  top.curves = [];
+  topCurves = [];
+  list.forEach((s, i) => {
+    if (!Array.isArray(s.profile)) return;
+    const colour = s.role === 'skin' ? '#b02a1a' : s.kind === 'within' ? '#b07a10' : '#2a6ab0';
+    const chosen = i === selected;
+    const bad = place && place.surface === i;
+    side.curves.push({ points: s.profile.map((p) => [...p]), closed: s.kind === 'within',
+                       fitted: fitted?.[i]?.profile, mirror: s.kind !== 'within', colour,
+                       selected: chosen, error: bad && place.field !== 'section' });
+    sideCurves.push({ surface: i });
+    let loops = sectionLoops(s.section);
+    let fittedLoops = fitted?.[i]?.sections?.map((l) => l.map(([x, z]) => [x, -z]));
+    if (!loops.length && s.kind === 'around') loops = [circle(maxRadius(s.profile))];
+    loops.forEach((loop, k) => {
+      top.curves.push({ points: loop, closed: true, fitted: fittedLoops?.[k], colour,
+                        selected: chosen && !(s.section === 'circle' || !s.section),
+                        error: bad && place.field === 'section' });
+      topCurves.push({ surface: i, loop: k });
+    });
+    // A within surface drawn once is repeated in every fold: show the copies.
+    if (s.kind === 'within' && loops.length === 1 && folds() > 1) {
+      for (let f = 1; f < folds(); ++f) {
+        const a = 2 * Math.PI * f / folds();
+        const turned = (fittedLoops?.[0] ?? loops[0]).map(([u, v]) =>
+          [u * Math.cos(a) - v * Math.sin(a), u * Math.sin(a) + v * Math.cos(a)]);
+        top.curves.push({ points: [], fitted: turned, closed: true, colour, selected: false });
+        topCurves.push({ surface: i, ghost: true });
+      }
+    }
+  });
+  side.guides = [{ angle: Math.PI / 2, dashed: true }];
+  top.guides = [];
+  for (let f = 0; f < folds() && folds() > 1; ++f) {
+    top.guides.push({ angle: (f + 0.5) * 2 * Math.PI / folds(), dashed: true, ray: true });
+  }
+  side.draw();
+  top.draw();
+}
+
+/// Frames both views on the model (or on a default 100 x 100 box for an empty template).
+function frameViews() {
+  if (verdict && verdict.ok) {
+    const lo = verdict.bbox_min, hi = verdict.bbox_max;
+    const r = 1.15 * Math.max(Math.abs(lo[0]), hi[0], Math.abs(lo[2]), hi[2]);
+    const pad = 0.08 * (hi[1] - lo[1]);
+    side.frame(-r, r, lo[1] - pad, hi[1] + pad);
+    top.frame(-r, r, -r, r);
+  } else {
+    side.frame(-50, 50, -10, 90);
+    top.frame(-50, 50, -50, 50);
+  }
+}
+
+function sideStroke(stroke) {
+  const list = surfaces();
+  if (!list.length) {
+    const profile = axisProfile(stroke, true);
+    commit(doc.set(['surfaces'], [{ name: 'skin', kind: 'around', role: 'skin', profile,
+                                    front: '#c03020', back: '#e06040', blur: 0.5 }]));
+    return;
+  }
+  const s = list[selected];
+  if (!s || s.kind === 'mesh') return;
+  const profile = s.kind === 'within'
+    ? fitStroke(stroke.map(([u, v]) => [Math.abs(u), v]), { closed: true, minPoints: 6 })
+    : axisProfile(stroke, s.role === 'skin');
+  commit(doc.set(['surfaces', selected, 'profile'], profile));
+}
+
+/// A profile around the axis from a stroke drawn on either side of it: r = |u|, ordered bottom
+/// to top; ends near the axis (or any end, for the skin, which must be closed) are put on it.
+function axisProfile(stroke, closeBothEnds) {
+  let pts = fitStroke(stroke.map(([u, v]) => [Math.abs(u), v]), { minPoints: 4 });
+  if (pts[0][1] > pts[pts.length - 1][1]) pts = pts.reverse();
+  const r = maxRadius(pts);
+  for (const k of [0, pts.length - 1]) {
+    if (closeBothEnds || pts[k][0] < 0.12 * r) pts[k] = [0, pts[k][1]];
+  }
+  return pts;
+}
+
+function topStroke(stroke) {
+  const s = surfaces()[selected];
+  if (!s || s.kind === 'mesh') return;
+  const loop = fitStroke(stroke, { closed: true, minPoints: 6 }).map(([u, v]) => [u, -v]);
+  if (s.kind === 'within' && isLoopList(s.section)) {
+    // Replace the loop of the fold the stroke was drawn in.
+    const cx = stroke.reduce((a, p) => a + p[0], 0), cy = stroke.reduce((a, p) => a + p[1], 0);
+    const angle = (Math.atan2(cy, cx) + 2 * Math.PI) % (2 * Math.PI);
+    const fold = Math.round(angle / (2 * Math.PI / folds())) % folds();
+    commit(doc.set([...sectionPath(selected), fold], loop));
+  } else {
+    commit(doc.set(sectionPath(selected), loop));
+  }
+}
+
+function movePoint(view, curve, index, point, done) {
+  if (!done) return;  // the view moves the point on screen; the file changes on release
+  if (view === 'side') {
+    const i = sideCurves[curve].surface;
+    const [u, v] = point;
+    commit(doc.set(['surfaces', i, 'profile', index], [Math.round(Math.abs(u) * 100) / 100,
+                                                       Math.round(v * 100) / 100]));
+    return;
+  }
+  const { surface, loop } = topCurves[curve];
+  const section = surfaces()[surface].section;
+  const [u, v] = point.map((c) => Math.round(c * 100) / 100);
+  if (section.polar) {
+    const deg = Math.round(((Math.atan2(v, u) * 180 / Math.PI + 360) % 360) * 100) / 100;
+    commit(doc.set([...sectionPath(surface), 'polar', index], [deg, Math.round(Math.hypot(u, v) * 100) / 100]));
+  } else {
+    const path = isLoopList(section) ? [...sectionPath(surface), loop, index] : [...sectionPath(surface), index];
+    commit(doc.set(path, [u, -v]));
+  }
+}
+
+for (const radio of document.querySelectorAll('input[name=tool]')) {
+  radio.addEventListener('change', () => { side.tool = top.tool = radio.value; hint(); });
+}
+
+function hint() {
+  const tips = {
+    draw: 'Draw a profile in the side view and a section in the top view; they replace the selected surface\'s curves.',
+    edit: 'Drag a point of the selected surface.',
+    scale: 'Draw a line over something of known length in the photo.',
+    'move-photo': 'Drag the photo so that the object\'s axis lies on the dashed line.',
+    eyedropper: 'Click the photo to take its colour.',
+  };
+  $('hint').textContent = tips[side.tool] ?? '';
+}
+
+function openPhoto(view, file) {
+  if (!file || !file.type.startsWith('image/')) return;
+  const image = new Image();
+  image.onload = () => view.setPhoto(image);
+  image.src = URL.createObjectURL(file);
+}
+for (const [view, input] of [[side, $('side-photo')], [top, $('top-photo')]]) {
+  input.addEventListener('change', () => openPhoto(view, input.files[0]));
+  view.canvas.addEventListener('dragover', (e) => e.preventDefault());
+  view.canvas.addEventListener('drop', (e) => {
+    e.preventDefault();
+    openPhoto(view, e.dataTransfer.files[0]);
+  });
+}
+
+// ---- the panel -------------------------------------------------------------------------------
+
+function fillPanel() {
+  const list = surfaces();
+  selected = Math.min(selected, Math.max(0, list.length - 1));
+  $('symmetry').value = isNfold() ? 'nfold' : 'cylindrical';
+  $('folds').value = folds() > 1 ? folds() : 5;
+  $('folds').disabled = !isNfold();
+  $('add-within').disabled = !isNfold() || !list.length;
+  $('add-around').disabled = !list.length;
+  $('remove-surface').disabled = list.length < 2;
+  const ul = $('surfaces');
+  ul.replaceChildren(...list.map((s, i) => {
+    const li = document.createElement('li');
+    li.textContent = `${s.name ?? '?'} (${s.kind ?? '?'}${s.role === 'skin' ? ', skin' : ''})`;
+    li.className = i === selected ? 'selected' : '';
+    li.addEventListener('click', () => { selected = i; refresh(); });
+    return li;
+  }));
+  const s = list[selected];
+  $('surface').disabled = !s;
+  if (!s) return;
+  $('name').value = s.name ?? '';
+  $('skin').checked = s.role === 'skin';
+  $('smooth').checked = s.smooth !== false;
+  for (const div of document.querySelectorAll('#surface .side')) {
+    const which = div.dataset.side;
+    const value = s[which];
+    const gradient = value && typeof value === 'object' && !Array.isArray(value);
+    const stops = gradient ? value.stops ?? [] : null;
+    div.querySelector('[data-stop=first]').value = hex(gradient ? stops[0]?.[1] : value);
+    const last = div.querySelector('[data-stop=last]');
+    last.value = hex(gradient ? stops[stops.length - 1]?.[1] : value);
+    last.hidden = !gradient;
+    div.querySelector('[data-gradient]').checked = gradient;
+    div.querySelector('[data-visible]').checked = s.visible?.[which] !== false;
+  }
+  const blur = s.blur;
+  $('blur').disabled = blur !== undefined && typeof blur !== 'number';
+  $('blur').value = typeof blur === 'number' ? blur : '';
+  const grain = (doc.get(['grains']) ?? []).findIndex((g) => g.on === s.name);
+  $('grains').checked = grain >= 0;
+  $('grain-spacing').value = grain >= 0 ? doc.get(['grains', grain, 'spacing']) : '';
+  const place = errorPlace();
+  for (const input of document.querySelectorAll('#surface [data-field]')) {
+    input.classList.toggle('bad', !!place && place.surface === selected &&
+                                  place.field === input.dataset.field);
+  }
+}
+
+const setSurface = (field, value) => commit(doc.set(['surfaces', selected, field], value));
+
+$('name').addEventListener('change', () => {
+  const old = surfaces()[selected].name;
+  let next = doc.set(['surfaces', selected, 'name'], $('name').value);
+  // grains follow their surface's new name
+  (doc.get(['grains']) ?? []).forEach((g, k) => {
+    if (g.on === old) next = next.set(['grains', k, 'on'], $('name').value);
+  });
+  commit(next);
+});
+$('skin').addEventListener('change', () => {
+  let next = doc;
+  surfaces().forEach((s, i) => {
+    if (i !== selected && s.role === 'skin') next = next.remove(['surfaces', i, 'role']);
+  });
+  commit($('skin').checked ? next.set(['surfaces', selected, 'role'], 'skin')
+                           : next.remove(['surfaces', selected, 'role']));
+});
+$('smooth').addEventListener('change', () => {
+  commit($('smooth').checked ? doc.remove(['surfaces', selected, 'smooth'])
+                             : doc.set(['surfaces', selected, 'smooth'], false));
+});
+$('blur').addEventListener('change', () => setSurface('blur', Number($('blur').value)));
+
+let pickTarget = null;  // [side, stop] the eyedropper fills
+function pickColour(colour) {
+  if (!pickTarget) return;
+  const [which, stop] = pickTarget;
+  pickTarget = null;
+  side.tool = top.tool = document.querySelector('input[name=tool]:checked').value;
+  hint();
+  setColour(which, stop, colour);
+}
+
+function setColour(which, stop, colour) {
+  const value = surfaces()[selected][which];
+  if (value && typeof value === 'object' && !Array.isArray(value)) {
+    const k = stop === 'first' ? 0 : value.stops.length - 1;
+    commit(doc.set(['surfaces', selected, which, 'stops', k, 1], colour));
+  } else {
+    setSurface(which, colour);
+  }
+}
+
+for (const div of document.querySelectorAll('#surface .side')) {
+  const which = div.dataset.side;
+  for (const input of div.querySelectorAll('input[type=color]')) {
+    input.addEventListener('change', () => setColour(which, input.dataset.stop, input.value));
+  }
+  div.querySelector('[data-gradient]').addEventListener('change', (e) => {
+    const value = surfaces()[selected][which];
+    const first = div.querySelector('[data-stop=first]').value;
+    setSurface(which, e.target.checked
+      ? { along: 'profile', stops: [[0, first], [1, hex(value)]] }
+      : hex(value?.stops?.[0]?.[1]));
+  });
+  div.querySelector('[data-eyedropper]').addEventListener('click', () => {
+    pickTarget = [which, 'first'];
+    side.tool = top.tool = 'eyedropper';
+    hint();
+  });
+  div.querySelector('[data-visible]').addEventListener('change', () => {
+    const v = { front: true, back: true, ...surfaces()[selected].visible };
+    v[which] = div.querySelector('[data-visible]').checked;
+    commit(v.front && v.back ? doc.remove(['surfaces', selected, 'visible'])
+                             : doc.set(['surfaces', selected, 'visible'], v));
+  });
+}
+
+function grainIndex() {
+  const name = surfaces()[selected].name;
+  return (doc.get(['grains']) ?? []).findIndex((g) => g.on === name);
+}
+$('grains').addEventListener('change', () => {
+  const s = surfaces()[selected];
+  const k = grainIndex();
+  if (!$('grains').checked) {
+    if (k >= 0) commit(doc.remove(['grains', k]));
+    return;
+  }
+  const r = maxRadius(s.profile);
+  const size = Math.round(r * 4) / 100;  // semi-axes a few percent of the surface's radius
+  const grains = doc.get(['grains']) ?? [];
+  commit(doc.set(['grains', grains.length], {
+    name: `${s.name}-grains`, on: s.name, spacing: Math.round(r * 25) / 100, side: 'back',
+    shape: { ellipsoid: [size * 1.5, size, size * 0.5] }, front: '#e8d8a0', back: '#c8b070',
+  }));
+});
+$('grain-spacing').addEventListener('change', () => {
+  const k = grainIndex();
+  if (k >= 0) commit(doc.set(['grains', k, 'spacing'], Number($('grain-spacing').value)));
+});
+
+function setSymmetry() {
+  commit(doc.set(['symmetry'], $('symmetry').value === 'nfold'
+    ? { type: 'nfold', folds: Number($('folds').value) || 5 } : { type: 'cylindrical' }));
+}
+$('symmetry').addEventListener('change', setSymmetry);
+$('folds').addEventListener('change', setSymmetry);
+
+function uniqueName(base) {
+  const names = new Set(surfaces().map((s) => s.name));
+  for (let k = 1; ; ++k) if (!names.has(`${base}-${k}`)) return `${base}-${k}`;
+}
+
+$('add-around').addEventListener('click', () => {
+  const skin = surfaces().find((s) => s.role === 'skin') ?? surfaces()[0];
+  const ys = skin.profile.map((p) => p[1]);
+  const mid = (Math.min(...ys) + Math.max(...ys)) / 2;
+  const profile = skin.profile.map(([r, y]) => [Math.round(r * 70) / 100,
+                                                Math.round((mid + (y - mid) * 0.8) * 100) / 100]);
+  const n = surfaces().length;
+  commit(doc.set(['surfaces', n], { name: uniqueName('layer'), kind: 'around', profile,
+                                    front: '#e0a060', back: '#f0d0a0', blur: 1 }));
+  selected = n;
+  refresh();
+});
+$('add-within').addEventListener('click', () => {
+  const skin = surfaces().find((s) => s.role === 'skin') ?? surfaces()[0];
+  const ys = skin.profile.map((p) => p[1]);
+  const mid = (Math.min(...ys) + Math.max(...ys)) / 2, h = Math.max(...ys) - Math.min(...ys);
+  const R = maxRadius(skin.profile);
+  const ring = (cx, cy, rx, ry) => Array.from({ length: 8 }, (_, k) =>
+    [Math.round((cx + rx * Math.cos(k * Math.PI / 4)) * 100) / 100,
+     Math.round((cy + ry * Math.sin(k * Math.PI / 4)) * 100) / 100]);
+  const across = Math.min(0.2 * R, 0.45 * R * Math.sin(Math.PI / folds()));
+  const n = surfaces().length;
+  commit(doc.set(['surfaces', n], {
+    name: uniqueName('chambers'), kind: 'within', profile: ring(0.5 * R, mid, 0.2 * R, 0.25 * h),
+    section: ring(0.5 * R, 0, 0.2 * R, across), front: '#f06040', back: '#f0c060', blur: 1,
+  }));
+  selected = n;
+  refresh();
+});
+$('remove-surface').addEventListener('click', () => {
+  const name = surfaces()[selected].name;
+  let next = doc.remove(['surfaces', selected]);
+  for (let k = (next.get(['grains']) ?? []).length - 1; k >= 0; --k) {
+    if (next.get(['grains', k, 'on']) === name) next = next.remove(['grains', k]);
+  }
+  selected = 0;
+  commit(next);
+});
+
+// ---- history, text and the server ------------------------------------------------------------
+
+function commit(next) {
+  if (next.text === doc.text) return;
+  past.push(doc.text);
+  future.length = 0;
+  doc = next;
+  text.value = doc.text;
+  refresh();
+}
+
+function restore(from, to) {
+  if (!from.length) return;
+  to.push(doc.text);
+  doc = new TemplateDoc(from.pop());
+  text.value = doc.text;
+  refresh();
+}
+$('undo').addEventListener('click', () => restore(past, future));
+$('redo').addEventListener('click', () => restore(future, past));
+document.addEventListener('keydown', (e) => {
+  if (!(e.ctrlKey || e.metaKey) || e.key.toLowerCase() !== 'z') return;
+  if (e.target === text || e.target.tagName === 'INPUT') return;
+  e.preventDefault();
+  if (e.shiftKey) restore(future, past); else restore(past, future);
+});
+
+let typing = 0;
+text.addEventListener('input', () => {
+  clearTimeout(typing);
+  typing = setTimeout(() => {
+    const next = new TemplateDoc(text.value);
+    if (next.text !== doc.text) {
+      past.push(doc.text);
+      future.length = 0;
+      doc = next;
+      refresh();
+    }
+  }, 300);
+});
+
+/// Redraws everything from `doc` and asks the server about it.
+function refresh() {
+  $('undo').disabled = !past.length;
+  $('redo').disabled = !future.length;
+  if (!doc.error) fillPanel();
+  layoutCurves();
+  check();
+}
 
 async function post(path, body) {
   return fetch(path, { method: 'POST', body, headers: { 'Content-Type': 'text/plain' } });
 }
 
-/// The line of a 1-based line number selected in the text area.
-function selectLine(line) {
-  const lines = text.value.split('\n');
-  let start = 0;
-  for (let i = 0; i < line - 1 && i < lines.length; ++i) start += lines[i].length + 1;
-  text.setSelectionRange(start, start + (lines[line - 1] || '').length);
-}
-
-function showVerdict(v) {
-  if (v.ok) {
-    verdict.className = '';
-    verdict.textContent = `ok: ${v.surfaces} surfaces`;
+function showVerdict() {
+  for (const id of ['side-error', 'top-error']) $(id).textContent = '';
+  if (doc.error) {
+    verdictLine.className = 'bad';
+    verdictLine.textContent = `YAML: ${doc.error}`;
     return;
   }
-  verdict.className = 'bad';
-  verdict.textContent = `line ${v.line}, column ${v.column}: ${v.field}: ${v.rule}`;
-  verdict.onclick = () => { text.focus(); selectLine(v.line); };
+  if (verdict.ok) {
+    verdictLine.className = '';
+    verdictLine.textContent = `ok: ${verdict.surfaces} surfaces`;
+    return;
+  }
+  verdictLine.className = 'bad';
+  verdictLine.textContent = `line ${verdict.line}, column ${verdict.column}: ${verdict.field}: ${verdict.rule}`;
+  const place = errorPlace();
+  if (place && (place.field === 'profile' || place.field === 'section')) {
+    $(place.field === 'profile' ? 'side-error' : 'top-error').textContent =
+      `${surfaces()[place.surface]?.name}: ${verdict.rule}`;
+  }
 }
 
-async function picture(img, path) {
-  const answer = await post(path, text.value);
+let sectionBusy = false, sectionAgain = null;
+/// Cuts at the slider's height: coarse (a small PMVC cube) while the slider moves, full when
+/// it stops; at most one request at a time, the latest one waiting.
+async function cut(coarse) {
+  if (!verdict || !verdict.ok) return;
+  if (sectionBusy) { sectionAgain = coarse; return; }
+  sectionBusy = true;
+  const lo = verdict.bbox_min[1], hi = verdict.bbox_max[1];
+  const y = lo + (hi - lo) * Number($('plane').value);
+  $('height').textContent = y.toFixed(2);
+  const t0 = performance.now();
+  const answer = await post(`/api/section.png?y=${y}${coarse ? '&coarse=1' : ''}`, doc.text);
+  const img = $('section');
   if (answer.ok) {
     URL.revokeObjectURL(img.src);
     img.src = URL.createObjectURL(await answer.blob());
@@ -46,53 +532,83 @@ async function picture(img, path) {
     img.removeAttribute('src');
     img.alt = (await answer.json()).message;
   }
+  $('cut-time').textContent = `${((performance.now() - t0) / 1000).toFixed(2)} s${coarse ? ' (coarse)' : ''}`;
+  sectionBusy = false;
+  if (sectionAgain !== null) {
+    const again = sectionAgain;
+    sectionAgain = null;
+    await cut(again);
+  }
 }
+$('plane').addEventListener('input', () => cut(true));
+$('plane').addEventListener('change', () => cut(false));
 
-function planeHeight() {
-  return bbox ? bbox.lo + (bbox.hi - bbox.lo) * Number(plane.value) : 0;
-}
-
-async function refreshSection() {
-  if (!bbox) return;
-  const y = planeHeight();
-  height.textContent = y.toFixed(2);
-  await picture(section, `/api/section.png?y=${y}`);
-}
-
-async function check() {
+let checking = Promise.resolve();
+let checkTimer = 0;
+function check() {
+  clearTimeout(checkTimer);
   const mine = ++version;
-  const answer = await (await post('/api/check', text.value)).json();
-  if (mine !== version) return;
-  showVerdict(answer);
-  save.disabled = !answer.ok || text.value === saved;
-  if (!answer.ok) return;
-  bbox = { lo: answer.bbox_min[1], hi: answer.bbox_max[1] };
-  statusLine.textContent = text.value === saved ? 'saved' : 'edited';
-  await picture(model, '/api/model.png');
-  await refreshSection();
+  window.editorBusy = true;
+  checkTimer = setTimeout(() => {
+    checking = runCheck(mine).finally(() => { if (mine === version) window.editorBusy = false; });
+  }, 200);
 }
 
-let timer = 0;
-text.addEventListener('input', () => {
-  clearTimeout(timer);
-  timer = setTimeout(check, 300);
-});
-plane.addEventListener('change', refreshSection);
-plane.addEventListener('input', () => { height.textContent = planeHeight().toFixed(2); });
-save.addEventListener('click', async () => {
-  const body = text.value;
+async function runCheck(mine) {
+  const body = doc.text;
+  $('save').disabled = true;
+  if (doc.error) { showVerdict(); return; }
+  const answer = await (await post('/api/check', body)).json();
+  if (mine !== version) return;
+  const firstGood = answer.ok && !(verdict && verdict.ok);
+  verdict = answer;
+  showVerdict();
+  fillPanel();
+  layoutCurves();
+  $('save').disabled = !verdict.ok || body === saved;
+  statusLine.textContent = body === saved ? 'saved' : 'edited';
+  if (!verdict.ok) return;
+  if (firstGood) frameViews();
+  const glb = await post('/api/model.glb', body);
+  if (mine !== version || !glb.ok) return;
+  await model.show(await glb.arrayBuffer(), !framed);
+  framed = true;
+  await cut(false);
+}
+
+$('save').addEventListener('click', async () => {
+  const body = doc.text;
   const answer = await (await post('/api/save', body)).json();
   if (answer.ok) {
     saved = body;
-    save.disabled = true;
+    $('save').disabled = true;
     statusLine.textContent = `saved ${answer.file}`;
   } else {
-    showVerdict(answer);
+    verdict = answer;
+    showVerdict();
   }
 });
 
+const model = new ModelView($('model3d'));
 const start = await (await fetch('/api/template')).json();
-document.getElementById('file').textContent = start.file;
-text.value = start.text;
+$('file').textContent = start.file;
 saved = start.exists ? start.text : '';
-await check();
+const stem = start.file.replace(/\.yaml$/, '').toLowerCase().replace(/[^a-z0-9_-]/g, '-').slice(0, 64);
+doc = new TemplateDoc(start.exists ? start.text : starterText(stem || 'new-fruit'));
+text.value = doc.text;
+hint();
+frameViews();
+refresh();
+// For tests and tools: the views (their toCanvas() places pointer strokes), and a rewrite of
+// every curve with the values it already has, which must leave the model as it was.
+window.editorViews = { side, top };
+window.editorRewriteCurves = () => {
+  let next = doc;
+  surfaces().forEach((s, i) => {
+    for (const field of ['profile', 'section']) {
+      if (s[field] !== undefined) next = next.set(['surfaces', i, field], s[field]);
+    }
+  });
+  commit(next);
+};
+window.editorReady = true;

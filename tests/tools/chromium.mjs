@@ -1,0 +1,56 @@
+// Headless Chromium for the page tests (/usr/bin/chromium through npm playwright-core), shut
+// off from the network: a fresh profile, no proxy, every host name but 127.0.0.1 unresolvable,
+// and every request that does not go to `origin` aborted.
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { chromium } from 'playwright-core';
+
+export const CHROMIUM = '/usr/bin/chromium';
+
+/// Opens a page that may only talk to `origin` (http://127.0.0.1:PORT). `webgl`: WebGL in
+/// software (SwiftShader) instead of no GPU at all. Console warnings and errors of the page
+/// are appended to `warnings`. Returns {page, close}; close() removes the profile.
+/// @throws Error when Chromium is missing or does not start within `timeoutMs`
+export async function openPage(origin, { webgl = false, timeoutMs = 60000, warnings = [],
+                                         viewport = null } = {}) {
+  if (!fs.existsSync(CHROMIUM)) {
+    throw new Error(`${CHROMIUM} missing (Debian chromium; scripts/install-deps.sh --test)`);
+  }
+  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'cutaway-chromium-'));
+  let context = null;
+  const close = async () => {
+    if (context) await context.close().catch(() => {});
+    fs.rmSync(profile, { recursive: true, force: true });
+  };
+  try {
+    // A persistent context is how playwright takes an explicit (here fresh) --user-data-dir.
+    context = await chromium.launchPersistentContext(profile, {
+      executablePath: CHROMIUM,
+      headless: true,
+      timeout: timeoutMs,
+      ...(viewport ? { viewport } : {}),
+      args: [
+        '--headless', '--no-sandbox', '--disable-quic', '--no-first-run',
+        ...(webgl ? ['--use-angle=swiftshader', '--enable-unsafe-swiftshader'] : ['--disable-gpu']),
+        '--disable-background-networking', '--disable-component-update', '--disable-sync',
+        '--no-proxy-server', '--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE 127.0.0.1',
+        '--disable-features=Translate,OptimizationHints,MediaRouter,DialMediaRouteProvider',
+        '--disable-domain-reliability', '--no-pings', '--metrics-recording-only',
+      ],
+      env: { ...process.env, GOOGLE_API_KEY: 'no', GOOGLE_DEFAULT_CLIENT_ID: 'no',
+             GOOGLE_DEFAULT_CLIENT_SECRET: 'no' },
+    });
+    await context.route('**/*', (route) =>
+      route.request().url().startsWith(origin + '/') ? route.continue() : route.abort());
+    const page = context.pages()[0] ?? (await context.newPage());
+    page.on('console', (m) => {
+      if (m.type() === 'warning' || m.type() === 'error') warnings.push(`${m.type()}: ${m.text()}`);
+    });
+    page.on('pageerror', (e) => warnings.push(`pageerror: ${e.message}`));
+    return { page, close };
+  } catch (e) {
+    await close();
+    throw e;
+  }
+}
