@@ -6,6 +6,7 @@
 #include "pieces/manifold_check.h"
 
 #include <algorithm>
+#include <thread>
 #include <tuple>
 #include <map>
 #include <array>
@@ -126,31 +127,40 @@ GltfReport validate_gltf(const std::filesystem::path& file) {
   return r;
 }
 
-ThreeLoadReport load_gltf_three(const std::filesystem::path& file,
-                                const std::filesystem::path& screenshot, int width, int height) {
+NodeToolRun run_node_tool(const std::string& script, const std::vector<std::string>& args) {
   const auto log = std::filesystem::path(CUTAWAY_TEST_TMP) /
-                   ("three-" + std::to_string(::getpid()) + ".log");
+                   ("node-" + std::to_string(::getpid()) + "-" +
+                    std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id())) + ".log");
   std::filesystem::create_directories(log.parent_path());
-  const std::string cmd =
-      "cd " + shell_quote(CUTAWAY_SOURCE_DIR) + " && node tests/tools/load_gltf_three.mjs " +
-      shell_quote(std::filesystem::absolute(file).string()) +
-      (screenshot.empty()
-           ? std::string()
-           : " --screenshot " + shell_quote(std::filesystem::absolute(screenshot).string()) + " " +
-                 std::to_string(width) + " " + std::to_string(height)) +
-      " >" + shell_quote(log.string()) + " 2>&1";
-  const int code = system_exit_code(std::system(cmd.c_str()));
-  ThreeLoadReport r;
-  r.output = slurp(log);
+  std::string cmd = "cd " + shell_quote(CUTAWAY_SOURCE_DIR) + " && node " +
+                    shell_quote("tests/tools/" + script);
+  for (const auto& a : args) cmd += " " + shell_quote(a);
+  cmd += " >" + shell_quote(log.string()) + " 2>&1";
+  NodeToolRun run;
+  run.exit_code = system_exit_code(std::system(cmd.c_str()));
+  run.output = slurp(log);
   std::filesystem::remove(log);
-  // The report is the last line that parses as a JSON object.
-  std::istringstream lines(r.output);
-  nlohmann::json j;
+  std::istringstream lines(run.output);
   for (std::string line; std::getline(lines, line);) {
     if (line.empty() || line[0] != '{') continue;
     auto parsed = nlohmann::json::parse(line, nullptr, false);
-    if (!parsed.is_discarded() && parsed.is_object()) j = std::move(parsed);
+    if (!parsed.is_discarded() && parsed.is_object()) run.report = std::move(parsed);
   }
+  return run;
+}
+
+ThreeLoadReport load_gltf_three(const std::filesystem::path& file,
+                                const std::filesystem::path& screenshot, int width, int height) {
+  std::vector<std::string> args = {std::filesystem::absolute(file).string()};
+  if (!screenshot.empty()) {
+    args.insert(args.end(), {"--screenshot", std::filesystem::absolute(screenshot).string(),
+                             std::to_string(width), std::to_string(height)});
+  }
+  const NodeToolRun run = run_node_tool("load_gltf_three.mjs", args);
+  const int code = run.exit_code;
+  const nlohmann::json& j = run.report;
+  ThreeLoadReport r;
+  r.output = run.output;
   if (!j.is_object()) {
     r.error = "no report from tests/tools/load_gltf_three.mjs (exit " + std::to_string(code) +
               "): " + r.output;

@@ -4,6 +4,8 @@
 #include <array>
 #include <filesystem>
 #include <string>
+
+#include <nlohmann/json.hpp>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -51,6 +53,17 @@ std::string read_file(const std::filesystem::path& path);
 
 /// Every regular file below `dir` (recursively), relative paths, sorted.
 std::vector<std::string> files_in(const std::filesystem::path& dir);
+
+/// What one run of a node script of tests/tools printed.
+struct NodeToolRun {
+  nlohmann::json report;  ///< its last line that parses as a JSON object (null when none)
+  int exit_code = -1;
+  std::string output;     ///< everything it printed (stdout and stderr)
+};
+
+/// Runs `node tests/tools/SCRIPT ARGS...` in the source directory (no shell interpretation of
+/// the arguments).
+NodeToolRun run_node_tool(const std::string& script, const std::vector<std::string>& args);
 
 /// Result of the Khronos glTF validator on one file.
 struct GltfReport {

@@ -8,6 +8,7 @@
 
 #include "cli/commands.h"
 #include "edit/edit_server.h"
+#include "render/image/contact_sheet.h"
 #include "render/image/image.h"
 #include "render/model_preview.h"
 #include "render/section_preview.h"
@@ -30,6 +31,11 @@ int run_edit(const EditArgs& a) {
     SectionPreviewOptions o;
     o.width = o.height = 480;
     return encode_png(render_section_preview(section, o));
+  };
+  renderers.variants_png = [](std::vector<Outcome<CrossSection>> sections) {
+    SectionTileOptions o;
+    o.tile_px = 160;
+    return encode_png(section_sheet(std::move(sections), o));
   };
   EditServerOptions options;
   options.template_path = path;

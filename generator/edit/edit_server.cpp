@@ -1,5 +1,6 @@
 #include "edit/edit_server.h"
 
+#include <algorithm>
 #include <chrono>
 #include <mutex>
 #include <optional>
@@ -19,7 +20,9 @@
 #include "io/text_rules.h"
 #include "model/curves.h"
 #include "model/model_builder.h"
+#include "batch/variant_set.h"
 #include "variation/grains.h"
+#include "variation/variation.h"
 
 namespace cutaway {
 
@@ -249,6 +252,40 @@ EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
       }
       res.set_content(s.renderers.section_png(*section), "image/png");
     });
+  });
+  // A strip of seeded variants (seeds 1..count, count 1..8, default 4): their mid-height cuts,
+  // as `cutaway variants` draws its contact sheet. It takes seconds, so it holds the library
+  // only to get the template and to draw: checks and cuts of newer text go on meanwhile.
+  s.server.Post("/api/variants.png", [&s](const httplib::Request& req, httplib::Response& res) {
+    const std::string given = req.has_param("count") ? req.get_param_value("count") : "4";
+    const int count = given.size() == 1 && given[0] >= '1' && given[0] <= '8' ? given[0] - '0' : 0;
+    if (count == 0) {
+      reply_json(res, 400, {{"ok", false}, {"message", "count must be a whole number from 1 to 8"}});
+      return;
+    }
+    std::optional<Template> tmpl;
+    s.handle(req, res, [&](const Built& b) { tmpl = b.tmpl; });
+    if (!tmpl) return;  // handle() answered with the verdict
+    const int cube = s.options.variant_cube;
+    const DiffusionFactory diffusion = [cube](const DsModel& m) {
+      return make_cpu_diffusion(m, {cube, 0});
+    };
+    try {
+      std::vector<Outcome<CrossSection>> sections;
+      for (int seed = 1; seed <= count; ++seed)
+        sections.push_back(variant_section(make_variant(*tmpl, seed), diffusion));
+      if (std::none_of(sections.begin(), sections.end(), [](const auto& c) { return bool(c); })) {
+        reply_json(res, 422, {{"ok", false},
+                              {"message", "no variant has a cut at mid-height: " + sections[0].reason()}});
+        return;
+      }
+      const std::lock_guard<std::mutex> lock(s.work);  // the renderers are one at a time
+      res.set_content(s.renderers.variants_png(std::move(sections)), "image/png");
+    } catch (const InputError& e) {
+      reply_json(res, 422, verdict_of(e));
+    } catch (const std::exception& e) {
+      reply_json(res, 500, {{"ok", false}, {"message", e.what()}});
+    }
   });
   s.server.Post("/api/save", [&s](const httplib::Request& req, httplib::Response& res) {
     s.handle(req, res, [&](const Built&) {

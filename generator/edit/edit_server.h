@@ -20,6 +20,7 @@
 
 #include "base/plane.h"
 #include "edit/web_libraries.h"
+#include "base/outcome.h"
 #include "model/ds_model.h"
 #include "section/cross_section.h"
 
@@ -45,6 +46,8 @@ nlohmann::json check_template_text(std::string_view text,
 struct EditRenderers {
   std::function<std::string(const DsModel&)> model_png;        ///< the see-through model
   std::function<std::string(const CrossSection&)> section_png;  ///< one cut face, head-on
+  /// The mid-height cuts of seeded variants side by side (a missing one: an empty tile).
+  std::function<std::string(std::vector<Outcome<CrossSection>>)> variants_png;
 };
 
 /// How run_edit_server() listens.
@@ -54,6 +57,7 @@ struct EditServerOptions {
   size_t max_body_bytes = 4u << 20;     ///< larger request bodies are refused (413)
   int section_cube = 8;                 ///< PMVC cube-map size of the live cross-section
   int coarse_section_cube = 3;          ///< the same while the user drags the plane
+  int variant_cube = 8;                 ///< PMVC cube-map size of the variants' cuts
   std::vector<WebLibrary> libraries = editor_libraries();  ///< served at /lib/NAME/
 };
 

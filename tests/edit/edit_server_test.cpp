@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <thread>
 
@@ -37,6 +38,11 @@ class RunningServer {
     r.model_png = [](const DsModel& m) { return "model:" + std::to_string(m.surfaces.size()); };
     r.section_png = [](const CrossSection& s) {
       return "section:" + std::to_string(s.position.size());
+    };
+    r.variants_png = [](std::vector<Outcome<CrossSection>> cuts) {
+      std::string out = "variants:";
+      for (const auto& c : cuts) out += c ? std::to_string(c->position.size()) + "," : "-,";
+      return out;
     };
     server_ = std::make_unique<EditServer>(o, r);
     thread_ = std::thread([this] { server_->run(); });
@@ -116,6 +122,44 @@ TEST(EditServer, ServesOnlyItsOwnPageAndTemplate) {
   EXPECT_EQ(nlohmann::json::parse(t->body)["file"], "tomato.yaml");
 }
 
+// The page's libraries come from their own folders, and no request reaches past them.
+TEST(EditServer, ServesLibrariesOnlyFromTheirFolders) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path lib = dir / "lib" / "dist";
+  fs::create_directories(lib / "sub");
+  std::ofstream(lib / "index.js") << "export const x = 1;";
+  std::ofstream(lib / "sub" / "part.js") << "export const y = 2;";
+  std::ofstream(lib / ".hidden.js") << "secret";
+  std::ofstream(lib / "notes.txt") << "secret";
+  std::ofstream(dir / "lib" / "outside.js") << "secret";
+  fs::create_symlink(dir / "lib" / "outside.js", lib / "link.js");  // leads out of the folder
+  EXPECT_EQ(library_file(lib, "index.js"), fs::canonical(lib / "index.js"));
+  EXPECT_EQ(library_file(lib, "sub/part.js"), fs::canonical(lib / "sub" / "part.js"));
+  for (const char* bad : {"../outside.js", "sub/../../outside.js", "./index.js", ".hidden.js",
+                          "notes.txt", "link.js", "sub//part.js", "/etc/passwd.js", "sub",
+                          "missing.js", "a b.js", "sub/", ""})
+    EXPECT_FALSE(library_file(lib, bad)) << bad;
+
+  const fs::path file = copy_template("tomato", dir);
+  EditServerOptions o;
+  o.template_path = file;
+  o.port = 0;
+  o.libraries = {{"yaml", lib}};
+  EditServer server(o, EditRenderers{});
+  std::thread serving([&] { server.run(); });
+  httplib::Client c("127.0.0.1", server.port());
+  const auto got = c.Get("/lib/yaml/sub/part.js");
+  ASSERT_TRUE(got);
+  EXPECT_EQ(got->status, 200);
+  EXPECT_EQ(got->body, "export const y = 2;");
+  for (const char* path : {"/lib/yaml/../outside.js", "/lib/yaml/%2e%2e/outside.js",
+                           "/lib/yaml/link.js", "/lib/yaml/notes.txt", "/lib/three/index.js",
+                           "/lib/yaml/..%2foutside.js"})
+    EXPECT_EQ(status_of(c.Get(path)), 404) << path;
+  server.stop();
+  serving.join();
+}
+
 TEST(EditServer, RefusesOversizedBodies) {
   const fs::path dir = test::fresh_dir("edit");
   const fs::path file = copy_template("tomato", dir);
@@ -133,6 +177,17 @@ TEST(EditServer, SaysWhereTheTextBreaksARule) {
   ASSERT_TRUE(good["ok"]) << good.dump();
   EXPECT_EQ(good["surfaces"], build_model(load_template(file.string())).surfaces.size());
   EXPECT_LT(good["bbox_min"][1].get<double>(), good["bbox_max"][1].get<double>());
+  // The curves as fitted, in template units: the skin's profile runs from its first point
+  // (0, 3) to its last (0, 50) through more samples than points; the core's section is a circle
+  // (none given), the chambers have one loop per fold.
+  const nlohmann::json& curves = good["curves"];
+  ASSERT_EQ(curves.size(), 4u);
+  const nlohmann::json& skin = curves[0]["profile"];
+  EXPECT_GT(skin.size(), 10u);
+  EXPECT_NEAR(skin.front()[1].get<double>(), 3.0, 1e-9);
+  EXPECT_NEAR(skin.back()[1].get<double>(), 50.0, 1e-9);
+  EXPECT_EQ(curves[2]["sections"].size(), 5u);
+  EXPECT_TRUE(curves[3]["sections"].empty());
   const size_t at = text.find("units: mm");
   ASSERT_NE(at, std::string::npos);
   text.replace(at, 9, "units: furlongs");
@@ -175,8 +230,24 @@ TEST(EditServer, DrawsTheModelAndACutAtAHeight) {
   EXPECT_EQ(cut->status, 200);
   EXPECT_EQ(cut->body.rfind("section:", 0), 0u);
   EXPECT_NE(cut->body, "section:0");
+  const auto coarse = c.Post("/api/section.png?y=26&coarse=1", text, "text/plain");
+  ASSERT_TRUE(coarse);
+  EXPECT_EQ(coarse->status, 200);
+  EXPECT_NE(coarse->body, "section:0");
   EXPECT_EQ(status_of(c.Post("/api/section.png?y=5000", text, "text/plain")), 422);  // misses
   EXPECT_EQ(status_of(c.Post("/api/section.png?y=up", text, "text/plain")), 400);
+  // The variants' strip: four cuts (seeds 1..4), each a real section; a bad count is refused.
+  const auto variants = c.Post("/api/variants.png", text, "text/plain");
+  ASSERT_TRUE(variants);
+  EXPECT_EQ(variants->status, 200);
+  EXPECT_EQ(std::count(variants->body.begin(), variants->body.end(), ','), 4);
+  EXPECT_EQ(variants->body.find("-,"), std::string::npos) << variants->body;
+  EXPECT_EQ(status_of(c.Post("/api/variants.png?count=9", text, "text/plain")), 400);
+  // The 3D view's model: the same bytes as `cutaway model` writes.
+  const auto glb = c.Post("/api/model.glb", text, "text/plain");
+  ASSERT_TRUE(glb);
+  EXPECT_EQ(glb->status, 200);
+  EXPECT_EQ(glb->body, model_to_glb(build_model(load_template(file.string())), GltfModelOptions{}));
 }
 
 // Every shipped template, opened and saved unchanged through the server, builds the same model

@@ -6,9 +6,9 @@
 //     section, makes the object 5-fold, adds Type II chambers and redraws their section, sets
 //     colours (a picker, and the eyedropper on DIR/photo.png when that file exists), undoes and
 //     redoes, then saves; screenshots DIR/editor-*.png along the way.
-//   node tests/tools/edit_in_chromium.mjs CUTAWAY rewrite FILE.yaml
-//     opens FILE.yaml, sets every surface's profile and section to the values they already
-//     have (so their text is rewritten by the page), and saves.
+//   node tests/tools/edit_in_chromium.mjs CUTAWAY rewrite FILE.yaml...
+//     opens each file in turn, sets every surface's profile and section to the values they
+//     already have (so their text is rewritten by the page), and saves.
 // Prints one JSON line {ok, steps: [{what, verdict}], cut_seconds, coarse_cut_seconds,
 // warnings, error}; exit code 0 when every step went as expected.
 import { spawn } from 'node:child_process';
@@ -106,6 +106,9 @@ async function sketch(page, dir) {
     await step(page, 'picked the skin colour from the photo');
     picked = await page.locator('#surface .side[data-side=front] input[data-stop=first]').inputValue();
   }
+  // The variants' strip follows the last good text after a moment.
+  await page.waitForFunction(() => document.getElementById('variants').naturalWidth > 0, null,
+                             { timeout: TIMEOUT_MS });
   await shot('sketched');
   const before = await page.locator('#template').inputValue();
   await page.click('#undo');
@@ -114,6 +117,30 @@ async function sketch(page, dir) {
   await page.click('#redo');
   await step(page, 'redid');
   const redone = await page.locator('#template').inputValue();
+  // A point dragged: the skin's widest point moved 4 units outwards.
+  await page.click('#surfaces li:first-child');
+  await page.check('input[name=tool][value=edit]');
+  const widest = await page.evaluate(() => {
+    const pts = window.editorViews.side.curves[0].points;
+    return pts.reduce((a, p) => (p[0] > a[0] ? p : a));
+  });
+  const box = await page.locator('#side').boundingBox();
+  const [from, to] = await page.evaluate(([p]) =>
+    [window.editorViews.side.toCanvas(p), window.editorViews.side.toCanvas([p[0] + 4, p[1]])], [widest]);
+  await page.mouse.move(box.x + from[0], box.y + from[1]);
+  await page.mouse.down();
+  await page.mouse.move(box.x + to[0], box.y + to[1], { steps: 5 });
+  await page.mouse.up();
+  await step(page, 'dragged the skin\'s widest point outwards');
+  const dragged = await page.evaluate(() => Math.max(...window.editorViews.side.curves[0].points.map((p) => p[0])));
+  // A profile that crosses itself: the error is shown at the curve; undo takes it back.
+  await page.check('input[name=tool][value=draw]');
+  await stroke(page, 'side', [[0, 2], [30, 10], [5, 40], [30, 40], [5, 10], [0, 60]]);
+  const refused = await step(page, 'drew a profile that crosses itself');
+  const atCurve = await page.locator('#side-error').textContent();
+  await shot('error');
+  await page.click('#undo');
+  const restored = await step(page, 'undid the bad profile');
   // The cut plane dragged: coarse cuts while it moves, a full one when it stops.
   await page.locator('#plane').fill('0.4');
   await step(page, 'moved the cut plane');
@@ -126,46 +153,71 @@ async function sketch(page, dir) {
   await step(page, 'saved');
   await shot('saved');
   return {
-    ok: /^ok/.test(skin) && before !== undone && redone === before,
+    ok: /^ok/.test(skin) && before !== undone && redone === before && !/^ok/.test(refused) &&
+        /^skin: /.test(atCurve) && /^ok/.test(restored) && Math.abs(dragged - widest[0] - 4) < 0.5,
+    dragged_from: widest[0], dragged_to: dragged, error_at_curve: atCurve,
     picked, cut_seconds: parseFloat(full), coarse_cut_seconds: parseFloat(coarse),
   };
 }
 
-async function rewrite(page) {
-  await step(page, 'opened');
+async function rewrite(page, file) {
+  await step(page, `opened ${path.basename(file)}`);
   await page.evaluate(() => window.editorRewriteCurves());
-  const verdict = await step(page, 'rewrote every curve');
+  const verdict = await step(page, `rewrote every curve of ${path.basename(file)}`);
+  // A file already written as the page writes it stays the same: nothing to save.
+  if (await page.locator('#save').isDisabled()) return /^ok/.test(verdict);
   await page.click('#save');
   await page.waitForFunction(() => /saved/.test(document.getElementById('status').textContent));
-  return { ok: /^ok/.test(verdict) };
+  return /^ok/.test(verdict);
+}
+
+/// Runs `work(page)` on the editor of `file`, in the browser of `session` (opened on first use
+/// with the editor's origin; every editor gets a new page).
+async function withEditor(cutaway, file, session, work, webgl) {
+  const editor = await startEditor(cutaway, file);
+  try {
+    if (!session.open) {
+      Object.assign(session, await openPage(editor.origin, {
+        webgl, timeoutMs: TIMEOUT_MS, warnings: result.warnings,
+        viewport: { width: 1400, height: 900 } }), { open: true });
+    }
+    const page = session.page;
+    // Each editor has its own port: let the page reach this one.
+    await page.context().unroute('**/*');
+    await page.context().route('**/*', (route) =>
+      route.request().url().startsWith(editor.origin + '/') ? route.continue() : route.abort());
+    await page.goto(editor.origin + '/', { timeout: TIMEOUT_MS });
+    return await work(page);
+  } finally {
+    editor.child.kill('SIGTERM');
+  }
 }
 
 async function main() {
-  const [cutaway, mode, target] = process.argv.slice(2);
-  if (!cutaway || !['sketch', 'rewrite'].includes(mode) || !target) {
-    return report({ error: 'usage: node tests/tools/edit_in_chromium.mjs CUTAWAY sketch DIR | rewrite FILE.yaml' });
+  const [cutaway, mode, ...targets] = process.argv.slice(2);
+  if (!cutaway || !['sketch', 'rewrite'].includes(mode) || !targets.length) {
+    return report({ error: 'usage: node tests/tools/edit_in_chromium.mjs CUTAWAY sketch DIR | rewrite FILE.yaml...' });
   }
-  const file = mode === 'sketch' ? path.join(path.resolve(target), 'new-fruit.yaml') : path.resolve(target);
-  let editor = null, session = null;
+  const session = { open: false };
   const timer = setTimeout(() => {
-    editor?.child.kill();
     process.exit(report({ error: `timed out after ${TIMEOUT_MS / 1000} s` }));
   }, TIMEOUT_MS);
   try {
-    editor = await startEditor(cutaway, file);
-    session = await openPage(editor.origin, { webgl: true, timeoutMs: TIMEOUT_MS,
-                                              warnings: result.warnings,
-                                              viewport: { width: 1400, height: 900 } });
-    await session.page.goto(editor.origin + '/', { timeout: TIMEOUT_MS });
-    const outcome = mode === 'sketch' ? await sketch(session.page, path.resolve(target))
-                                      : await rewrite(session.page);
-    return report(outcome);
+    if (mode === 'sketch') {
+      const dir = path.resolve(targets[0]);
+      return report(await withEditor(cutaway, path.join(dir, 'new-fruit.yaml'), session,
+                                     (page) => sketch(page, dir), true));
+    }
+    let ok = true;
+    for (const file of targets) {
+      ok = (await withEditor(cutaway, path.resolve(file), session, (page) => rewrite(page, file), false)) && ok;
+    }
+    return report({ ok });
   } catch (e) {
     return report({ error: String(e?.message ?? e).split('\n')[0] });
   } finally {
     clearTimeout(timer);
-    if (session) await session.close();
-    if (editor) editor.child.kill('SIGTERM');
+    if (session.open) await session.close();
   }
 }
 

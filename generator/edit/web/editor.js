@@ -571,9 +571,32 @@ async function runCheck(mine) {
   if (firstGood) frameViews();
   const glb = await post('/api/model.glb', body);
   if (mine !== version || !glb.ok) return;
-  await model.show(await glb.arrayBuffer(), !framed);
-  framed = true;
+  if (model) {
+    await model.show(await glb.arrayBuffer(), !framed);
+    framed = true;
+  }
   await cut(false);
+  clearTimeout(variantsTimer);
+  variantsTimer = setTimeout(() => showVariants(mine, body), 800);
+}
+
+let variantsTimer = 0;
+/// The variants' strip, once the text has rested for a moment (it takes seconds; the server
+/// answers checks and cuts of newer text meanwhile, and an answer for older text is dropped).
+async function showVariants(mine, body) {
+  if (mine !== version) return;
+  const t0 = performance.now();
+  const answer = await post('/api/variants.png?count=4', body);
+  if (mine !== version) return;
+  const img = $('variants');
+  if (answer.ok) {
+    URL.revokeObjectURL(img.src);
+    img.src = URL.createObjectURL(await answer.blob());
+    $('variants-time').textContent = `${((performance.now() - t0) / 1000).toFixed(1)} s`;
+  } else {
+    img.removeAttribute('src');
+    img.alt = (await answer.json()).message;
+  }
 }
 
 $('save').addEventListener('click', async () => {
@@ -589,7 +612,17 @@ $('save').addEventListener('click', async () => {
   }
 });
 
-const model = new ModelView($('model3d'));
+/// The 3D view, or null where the browser has no WebGL (the page works without it).
+function makeModelView() {
+  try {
+    return new ModelView($('model3d'));
+  } catch (e) {
+    $('model3d').replaceWith(Object.assign(document.createElement('p'),
+      { textContent: `No 3D view: ${e.message}` }));
+    return null;
+  }
+}
+const model = makeModelView();
 const start = await (await fetch('/api/template')).json();
 $('file').textContent = start.file;
 saved = start.exists ? start.text : '';

@@ -75,8 +75,15 @@ export class TemplateDoc {
     if (this.error) throw new Error(`the text does not parse: ${this.error}`);
     const node = this.node(path);
     if (node && node.range) {
-      return this.splice(node.range[0], node.range[1], YAML.isCollection(node) && !node.flow
-        ? renderValue(value, this.column(node.range[0]) - 2).trimStart() : renderFlow(value));
+      // A block collection's range runs on to the next line: keep the line break.
+      const start = node.range[0], end = this.trimmedEnd(node.range[1]);
+      if (!YAML.isCollection(node) || node.flow) return this.splice(start, end, renderFlow(value));
+      const indent = this.column(start);
+      if (YAML.isSeq(node) && Array.isArray(value)) {  // stays a block list of flow items
+        return this.splice(start, end, value.map((item) => `- ${renderFlow(item)}`)
+          .join(`\n${' '.repeat(indent)}`));
+      }
+      return this.splice(start, end, renderValue(value, indent - 2).trimStart());
     }
     const parentPath = path.slice(0, -1);
     const key = path[path.length - 1];
@@ -94,8 +101,7 @@ export class TemplateDoc {
       return this.splice(parent.range[0], parent.range[1], renderFlow(changed));
     }
     const last = parent.items[parent.items.length - 1];
-    const lastEnd = (YAML.isPair(last) ? (last.value ?? last.key) : last).range[1];
-    const end = this.text.slice(0, lastEnd).replace(/\s+$/, '').length;
+    const end = this.trimmedEnd((YAML.isPair(last) ? (last.value ?? last.key) : last).range[1]);
     if (YAML.isMap(parent)) {
       const indent = this.column(parent.items[0].key.range[0]);
       return this.splice(end, end, `\n${' '.repeat(indent)}${renderScalar(key)}:${renderValue(value, indent)}`);
@@ -120,11 +126,16 @@ export class TemplateDoc {
     const item = parent.items[index];
     if (!item) return this;
     const start = (YAML.isPair(item) ? item.key : item).range[0];
-    const valueEnd = (YAML.isPair(item) ? (item.value ?? item.key) : item).range[1];
-    const end = this.text.slice(0, valueEnd).replace(/\s+$/, '').length;
+    const end = this.trimmedEnd((YAML.isPair(item) ? (item.value ?? item.key) : item).range[1]);
     const lineStart = this.text.lastIndexOf('\n', start - 1) + 1;
     const lineEnd = this.text.indexOf('\n', end);
     return this.splice(lineStart, lineEnd < 0 ? this.text.length : lineEnd + 1, '');
+  }
+
+  /// `at` moved back over white space (and line breaks).
+  trimmedEnd(at) {
+    while (at > 0 && /\s/.test(this.text[at - 1])) --at;
+    return at;
   }
 
   splice(from, to, replacement) {

@@ -1,0 +1,93 @@
+// The template editor's page in headless Chromium (tests/tools/edit_in_chromium.mjs), used as a
+// person would: a new fruit sketched over a photo and saved, and every shipped template opened,
+// its curves rewritten by the page with the values they have, and saved.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <iostream>
+#include <string>
+
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "test_support.h"
+
+namespace cutaway {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(EditPage, SketchANewFruitOverAPhotoAndSaveIt) {
+  const fs::path dir = test::fresh_dir("edit-page");
+  // The photo: a picture of cut tomato halves (a golden image) stands in for a camera's.
+  fs::copy_file(test::source_path("tests/golden/pieces-tomato-halves.png"), dir / "photo.png");
+  const test::NodeToolRun run =
+      test::run_node_tool("edit_in_chromium.mjs", {CUTAWAY_BINARY, "sketch", dir.string()});
+  ASSERT_TRUE(run.report.is_object()) << run.output;
+  const nlohmann::json& r = run.report;
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  ASSERT_TRUE(r.value("ok", false)) << run.output;
+  EXPECT_TRUE(r["warnings"].empty()) << r["warnings"].dump();
+  // After the first stroke, every step leaves a template that builds, except the profile drawn
+  // crossing itself, which is refused with the rule at the curve.
+  for (const auto& s : r["steps"]) {
+    const bool refused = s["what"] == "opened an empty template" ||
+                         s["what"] == "drew a profile that crosses itself";
+    EXPECT_EQ(s["verdict"].get<std::string>().substr(0, 2) == "ok", !refused) << s.dump();
+  }
+  EXPECT_NE(r.value("error_at_curve", "").find("intersects itself"), std::string::npos);
+  EXPECT_NEAR(r.value("dragged_to", 0.0) - r.value("dragged_from", 0.0), 4.0, 0.5);
+  // The eyedropper took the photo's red, not the default skin colour.
+  const std::string picked = r.value("picked", "");
+  ASSERT_EQ(picked.size(), 7u);
+  EXPECT_NE(picked, "#c03020");
+  EXPECT_GT(std::stoi(picked.substr(1, 2), nullptr, 16), 150);  // a red photo gives a red skin
+
+  // The saved file passes `cutaway check` and builds a 5-fold model with chambers.
+  const fs::path saved = dir / "new-fruit.yaml";
+  const test::RunResult check = test::run_cutaway({"check", saved.string()});
+  EXPECT_EQ(check.exit_code, 0) << check.out << check.err;
+  const Template t = load_template(saved.string());
+  EXPECT_EQ(t.symmetry, Symmetry::NFold);
+  EXPECT_EQ(t.folds, 5);
+  ASSERT_EQ(t.surfaces.size(), 2u);
+  EXPECT_EQ(t.surfaces[1].kind, SurfaceKind::Within);
+  EXPECT_FALSE(build_model(t).surfaces.empty());
+
+  for (const char* shot : {"editor-sketched.png", "editor-error.png", "editor-saved.png"}) {
+    const test::PngInfo png = test::png_info(dir / shot);
+    EXPECT_GT(png.width, 1000) << shot;
+    EXPECT_GT(png.not_background, 100000u) << shot;
+  }
+  std::cout << "screenshots: " << (dir / "editor-sketched.png").string() << ", "
+            << (dir / "editor-saved.png").string() << "; cut " << r.value("cut_seconds", -1.0)
+            << " s, coarse cut " << r.value("coarse_cut_seconds", -1.0) << " s\n";
+}
+
+TEST(EditPage, EveryShippedTemplateKeepsItsBytesThroughThePage) {
+  const fs::path dir = test::fresh_dir("edit-page");
+  std::vector<std::string> args = {CUTAWAY_BINARY, "rewrite"};
+  std::vector<fs::path> copies;
+  for (const auto& e : fs::directory_iterator(test::source_path("templates"))) {
+    fs::copy_file(e.path(), dir / e.path().filename());
+    if (e.path().extension() == ".yaml") {
+      copies.push_back(dir / e.path().filename());
+      args.push_back(copies.back().string());
+    }
+  }
+  ASSERT_GE(copies.size(), 13u);
+  const test::NodeToolRun run = test::run_node_tool("edit_in_chromium.mjs", args);
+  ASSERT_TRUE(run.report.is_object()) << run.output;
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(run.report.value("ok", false)) << run.output;
+  EXPECT_EQ(run.report["steps"].size(), 2 * copies.size()) << run.output;
+  // Setting every curve to the value it has changes no byte of any shipped template, so each
+  // builds the same model.
+  for (const fs::path& copy : copies) {
+    EXPECT_EQ(test::read_file(copy), test::read_file(test::source_path("templates/" +
+                                                                       copy.filename().string())))
+        << copy.filename();
+  }
+}
+
+}  // namespace
+}  // namespace cutaway
