@@ -115,7 +115,7 @@ int run_check(const std::vector<std::string>& files);
 /// `cutaway edit TEMPLATE [--port N]` (generator/cli/edit_command.cpp): serves the template
 /// editor on 127.0.0.1 until interrupted. TEMPLATE need not exist yet (a new template).
 struct EditArgs {
-  std::string template_path;
+  std::string template_path = "new-template.yaml";  ///< opened, or made on the first Save
   int port = 8765;
 };
 int run_edit(const EditArgs& args);

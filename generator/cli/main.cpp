@@ -276,8 +276,8 @@ int main(int argc, char** argv) {
   cutaway::cli::EditArgs edit_args;
   CLI::App* edit = app.add_subcommand(
       "edit", "the template editor in the browser: a local server on 127.0.0.1 (doc/editor.md)");
-  edit->add_option("TEMPLATE", edit_args.template_path, "template file (.yaml); may be new")
-      ->required();
+  edit->add_option("TEMPLATE", edit_args.template_path,
+                   "template file (.yaml); may be new (default new-template.yaml here)");
   edit->add_option("--port", edit_args.port, "port on 127.0.0.1 (default 8765; 0: any free port, printed)")
       ->check(CLI::Range(0, 65535));
 

@@ -7,8 +7,10 @@
 //     colours (a picker, and the eyedropper on DIR/photo.png when that file exists), undoes and
 //     redoes, then saves; screenshots DIR/editor-*.png along the way.
 //   node tests/tools/edit_in_chromium.mjs CUTAWAY rewrite FILE.yaml...
-//     opens each file in turn, sets every surface's profile and section to the values they
-//     already have (so their text is rewritten by the page), and saves.
+//     opens the first file, sets every surface's profile and section to the values they
+//     already have (so their text is rewritten by the page), and saves; then has the page
+//     rewrite the text of every file the same way, reporting the files whose text changed
+//     ("changed").
 // Prints one JSON line {ok, steps: [{what, verdict}], cut_seconds, coarse_cut_seconds,
 // warnings, error}; exit code 0 when every step went as expected.
 import { spawn } from 'node:child_process';
@@ -94,10 +96,26 @@ async function sketch(page, dir) {
   await page.locator('#surface .side[data-side=back] input[data-stop=first]').fill('#f0c040');
   await step(page, 'set the chambers\' back colour');
   const photo = path.join(dir, 'photo.png');
-  let picked = null;
+  let picked = null, photoScale = null;
   if (fs.existsSync(photo)) {
     await page.locator('#side-photo').setInputFiles(photo);
     await page.waitForFunction(() => window.editorViews.side.photo !== null);
+    // The photo's scale: a line across it said to be 70 units long; then moved 5 units right.
+    const photoBefore = await page.evaluate(() => {
+      const p = window.editorViews.side.photo;
+      return { unitsPerPixel: p.unitsPerPixel, centre: p.centre };
+    });
+    page.once('dialog', (d) => d.accept('70'));
+    await page.check('input[name=tool][value=scale]');
+    await stroke(page, 'side', [[-30, 30], [0, 30], [30, 30]]);
+    await page.check('input[name=tool][value=move-photo]');
+    await stroke(page, 'side', [[0, 30], [2.5, 30], [5, 30]]);
+    await page.check('input[name=tool][value=draw]');
+    photoScale = await page.evaluate(() => {
+      const p = window.editorViews.side.photo;
+      return { unitsPerPixel: p.unitsPerPixel, centre: p.centre };
+    });
+    photoScale = { before: photoBefore, after: photoScale };
     await page.click('#surfaces li:first-child');
     await step(page, 'selected the skin');
     await page.click('#surface .side[data-side=front] [data-eyedropper]');
@@ -141,6 +159,19 @@ async function sketch(page, dir) {
   await shot('error');
   await page.click('#undo');
   const restored = await step(page, 'undid the bad profile');
+  // Text typed into the YAML box that is not YAML, then YAML of the wrong shape: the page says
+  // why and keeps working (the test fails on any page error); undo brings the fruit back.
+  const good = await page.locator('#template').inputValue();
+  await page.evaluate(() => { document.querySelector('details').open = true; });
+  await page.locator('#template').fill('surfaces: [unclosed');
+  const notYaml = await step(page, 'typed text that is not YAML');
+  await page.locator('#template').fill('format: cutaway-template/1\nsurfaces: [1, null, {profile: [3, [a, b], [1, 2, 3]]}, {section: {polar: 5}}]\n');
+  const wrongShape = await step(page, 'typed YAML of the wrong shape');
+  await page.click('#undo');
+  await page.click('#undo');
+  await step(page, 'undid the typing');
+  const back = await page.locator('#template').inputValue();
+  await page.evaluate(() => { document.querySelector('details').open = false; });
   // The cut plane dragged: coarse cuts while it moves, a full one when it stops.
   await page.locator('#plane').fill('0.4');
   await step(page, 'moved the cut plane');
@@ -154,8 +185,9 @@ async function sketch(page, dir) {
   await shot('saved');
   return {
     ok: /^ok/.test(skin) && before !== undone && redone === before && !/^ok/.test(refused) &&
-        /^skin: /.test(atCurve) && /^ok/.test(restored) && Math.abs(dragged - widest[0] - 4) < 0.5,
-    dragged_from: widest[0], dragged_to: dragged, error_at_curve: atCurve,
+        /^skin: /.test(atCurve) && /^ok/.test(restored) && /^YAML: /.test(notYaml) &&
+        /^line /.test(wrongShape) && back === good && Math.abs(dragged - widest[0] - 4) < 0.5,
+    photo: photoScale, dragged_from: widest[0], dragged_to: dragged, error_at_curve: atCurve,
     picked, cut_seconds: parseFloat(full), coarse_cut_seconds: parseFloat(coarse),
   };
 }
@@ -208,11 +240,17 @@ async function main() {
       return report(await withEditor(cutaway, path.join(dir, 'new-fruit.yaml'), session,
                                      (page) => sketch(page, dir), true));
     }
-    let ok = true;
-    for (const file of targets) {
-      ok = (await withEditor(cutaway, path.resolve(file), session, (page) => rewrite(page, file), false)) && ok;
-    }
-    return report({ ok });
+    let changed = [];
+    const ok = await withEditor(cutaway, path.resolve(targets[0]), session, async (page) => {
+      const saved = await rewrite(page, targets[0]);
+      for (const file of targets) {
+        const text = fs.readFileSync(file, 'utf8');
+        if (await page.evaluate((t) => window.editorRewriteText(t), text) !== text) changed.push(file);
+      }
+      return saved;
+    }, false);
+    result.changed = changed;
+    return report({ ok: ok && !changed.length });
   } catch (e) {
     return report({ error: String(e?.message ?? e).split('\n')[0] });
   } finally {

@@ -24,9 +24,17 @@ let framed = false;             // the 3D view is framed on the first model
 
 // ---- reading the template -------------------------------------------------------------------
 
-const surfaces = () => doc.get(['surfaces']) ?? [];
+/// The surfaces as written; an item that is not a mapping reads as {} (the verdict says why).
+const surfaces = () => {
+  const list = doc.get(['surfaces']);
+  return Array.isArray(list) ? list.map((s) => (s && typeof s === 'object' ? s : {})) : [];
+};
 const isNfold = () => doc.get(['symmetry', 'type']) === 'nfold';
 const folds = () => (isNfold() ? Number(doc.get(['symmetry', 'folds'])) || 1 : 1);
+/// The [a, b] points of a curve as written, leaving out what is not a pair of numbers (the
+/// verdict says what is wrong with them).
+const pairs = (list) => (Array.isArray(list) ? list : []).filter((p) =>
+  Array.isArray(p) && p.length === 2 && p.every((c) => typeof c === 'number'));
 const isLoopList = (s) => Array.isArray(s) && Array.isArray(s[0]) && Array.isArray(s[0][0]);
 const sectionPath = (i) => ['surfaces', i, 'section'];
 
@@ -34,11 +42,11 @@ const sectionPath = (i) => ['surfaces', i, 'section'];
 function sectionLoops(section) {
   if (!section || section === 'circle') return [];
   if (section.polar) {
-    return [section.polar.map(([deg, r]) => [r * Math.cos(deg * Math.PI / 180),
+    return [pairs(section.polar).map(([deg, r]) => [r * Math.cos(deg * Math.PI / 180),
                                                r * Math.sin(deg * Math.PI / 180)])];
   }
   const loops = isLoopList(section) ? section : [section];
-  return loops.map((loop) => loop.map(([x, z]) => [x, -z]));
+  return loops.map((loop) => pairs(loop).map(([x, z]) => [x, -z]));
 }
 
 function circle(radius) {
@@ -47,7 +55,7 @@ function circle(radius) {
 }
 
 function maxRadius(profile) {
-  return Math.max(1e-9, ...(profile ?? []).map((p) => Math.abs(p[0])));
+  return Math.max(1e-9, ...pairs(profile).map((p) => Math.abs(p[0])));
 }
 
 function hex(colour) {
@@ -97,17 +105,18 @@ function layoutCurves() {
   top.curves = [];
   topCurves = [];
   list.forEach((s, i) => {
-    if (!Array.isArray(s.profile)) return;
+    const profile = pairs(s.profile);
+    if (!profile.length) return;
     const colour = s.role === 'skin' ? '#b02a1a' : s.kind === 'within' ? '#b07a10' : '#2a6ab0';
     const chosen = i === selected;
     const bad = place && place.surface === i;
-    side.curves.push({ points: s.profile.map((p) => [...p]), closed: s.kind === 'within',
+    side.curves.push({ points: profile, closed: s.kind === 'within',
                        fitted: fitted?.[i]?.profile, mirror: s.kind !== 'within', colour,
                        selected: chosen, error: bad && place.field !== 'section' });
     sideCurves.push({ surface: i });
     let loops = sectionLoops(s.section);
     let fittedLoops = fitted?.[i]?.sections?.map((l) => l.map(([x, z]) => [x, -z]));
-    if (!loops.length && s.kind === 'around') loops = [circle(maxRadius(s.profile))];
+    if (!loops.length && s.kind === 'around') loops = [circle(maxRadius(profile))];
     loops.forEach((loop, k) => {
       top.curves.push({ points: loop, closed: true, fitted: fittedLoops?.[k], colour,
                         selected: chosen && !(s.section === 'circle' || !s.section),
@@ -467,14 +476,15 @@ document.addEventListener('keydown', (e) => {
 let typing = 0;
 text.addEventListener('input', () => {
   clearTimeout(typing);
+  window.editorBusy = true;  // until the text is checked
   typing = setTimeout(() => {
     const next = new TemplateDoc(text.value);
     if (next.text !== doc.text) {
       past.push(doc.text);
       future.length = 0;
       doc = next;
-      refresh();
     }
+    refresh();
   }, 300);
 });
 
@@ -632,16 +642,20 @@ text.value = doc.text;
 hint();
 frameViews();
 refresh();
-// For tests and tools: the views (their toCanvas() places pointer strokes), and a rewrite of
-// every curve with the values it already has, which must leave the model as it was.
-window.editorViews = { side, top };
-window.editorRewriteCurves = () => {
-  let next = doc;
-  surfaces().forEach((s, i) => {
+/// `d` with every surface's profile and section set to the values they have.
+function rewriteCurves(d) {
+  (d.get(['surfaces']) ?? []).forEach((s, i) => {
     for (const field of ['profile', 'section']) {
-      if (s[field] !== undefined) next = next.set(['surfaces', i, field], s[field]);
+      if (s && s[field] !== undefined) d = d.set(['surfaces', i, field], s[field]);
     }
   });
-  commit(next);
-};
+  return d;
+}
+
+// For tests and tools: the views (their toCanvas() places pointer strokes), and the rewrite of
+// every curve with the values it already has, which must leave the text as it was: of the
+// open template (as an edit) and of any template text.
+window.editorViews = { side, top };
+window.editorRewriteCurves = () => commit(rewriteCurves(doc));
+window.editorRewriteText = (text) => rewriteCurves(new TemplateDoc(text)).text;
 window.editorReady = true;
