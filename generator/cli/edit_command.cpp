@@ -35,7 +35,8 @@ int run_edit(const EditArgs& a) {
   renderers.variants_png = [](std::vector<Outcome<CrossSection>> sections) {
     SectionTileOptions o;
     o.tile_px = 160;
-    return encode_png(section_sheet(std::move(sections), o));
+    const int columns = static_cast<int>(sections.size());  // one row: a strip
+    return encode_png(section_sheet(std::move(sections), o, columns));
   };
   EditServerOptions options;
   options.template_path = path;

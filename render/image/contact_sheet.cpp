@@ -146,7 +146,7 @@ Image labelled_tile(const Image& picture, const std::string& name, const std::st
 }
 
 Image section_sheet(std::vector<Outcome<CrossSection>> sections,
-                    const SectionTileOptions& options) {
+                    const SectionTileOptions& options, int columns) {
   std::vector<CrossSection> present;
   for (Outcome<CrossSection>& s : sections)
     if (s) present.push_back(std::move(*s));
@@ -156,7 +156,8 @@ Image section_sheet(std::vector<Outcome<CrossSection>> sections,
   for (const Outcome<CrossSection>& s : sections)
     tiles.push_back(s ? std::move(drawn[next++])
                       : filled(options.tile_px, options.tile_px, options.background_srgb));
-  const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(tiles.size()))));
+  if (columns <= 0)
+    columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(tiles.size()))));
   return compose_grid(tiles, columns);
 }
 

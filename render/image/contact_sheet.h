@@ -65,10 +65,10 @@ std::vector<Image> render_section_tiles(const std::vector<CrossSection>& section
 
 /// A contact sheet of cross-sections (`cutaway variants`): render_section_tiles() of those
 /// present, a tile of the background where one is missing (its reason is the caller's to
-/// report), laid out by compose_grid() in ceil(sqrt(n)) columns, in order.
+/// report), laid out by compose_grid() in `columns` columns (0: ceil(sqrt(n))), in order.
 /// @pre at least one section is present
 /// @throws as render_section_tiles()
 Image section_sheet(std::vector<Outcome<CrossSection>> sections,
-                    const SectionTileOptions& options = {});
+                    const SectionTileOptions& options = {}, int columns = 0);
 
 }  // namespace cutaway

@@ -3,6 +3,7 @@
 // its curves rewritten by the page with the values they have, and saved.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -45,7 +46,7 @@ TEST(EditPage, SketchANewFruitOverAPhotoAndSaveIt) {
   EXPECT_GT(std::stoi(picked.substr(1, 2), nullptr, 16), 150);  // a red photo gives a red skin
 
   // The photo's scale line: 60 units drawn, said to be 70, keeping the line's middle (0, 30) in
-  // place; then the photo moved 5 units to the right.
+  // place; then the photo moved 5 units to the right, and turned.
   const nlohmann::json& photo = r["photo"];
   ASSERT_TRUE(photo.is_object()) << run.output;
   const double before = photo["before"]["unitsPerPixel"], after = photo["after"]["unitsPerPixel"];
@@ -53,6 +54,9 @@ TEST(EditPage, SketchANewFruitOverAPhotoAndSaveIt) {
   const double cx = photo["before"]["centre"][0], cy = photo["before"]["centre"][1];
   EXPECT_NEAR(photo["after"]["centre"][0].get<double>(), cx * 70 / 60 + 5, 0.5);
   EXPECT_NEAR(photo["after"]["centre"][1].get<double>(), 30 + (cy - 30) * 70 / 60, 0.5);
+  // Turned a quarter turn by a drag round its centre, and back.
+  EXPECT_NEAR(photo["turned"].get<double>(), M_PI / 2, 0.05);
+  EXPECT_NEAR(photo["after"]["angle"].get<double>(), 0.0, 0.05);
 
   // The saved file passes `cutaway check` and builds a 5-fold model with chambers.
   const fs::path saved = dir / "new-fruit.yaml";

@@ -67,7 +67,7 @@ TEST(ComposeGrid, RefusesBadInput) {
 }
 
 // A missing section keeps its place as a tile of the background; the present ones are drawn
-// as render_section_tiles draws them, in ceil(sqrt(n)) columns.
+// as render_section_tiles draws them, in ceil(sqrt(n)) columns or the columns asked for.
 TEST(SectionSheet, AMissingSectionLeavesABlankTileInItsPlace) {
   const Template kiwi = load_template(test::source_path("templates/kiwi.yaml").string());
   const DiffusionFactory cpu = [](const DsModel& model) {
@@ -89,6 +89,10 @@ TEST(SectionSheet, AMissingSectionLeavesABlankTileInItsPlace) {
   EXPECT_EQ(sheet.width, expected.width);
   EXPECT_EQ(sheet.height, expected.height);
   EXPECT_TRUE(sheet.rgba == expected.rgba);
+  // Asked for a strip (the editor's variants): one row.
+  const Image strip = section_sheet(sections, o, 3);
+  EXPECT_TRUE(strip.rgba == compose_grid({drawn[0], blank, drawn[1]}, 3).rgba);
+  EXPECT_GT(strip.width, 2 * strip.height);
   std::vector<Outcome<CrossSection>> none;
   none.push_back(Outcome<CrossSection>::none("the plane misses"));
   EXPECT_THROW(section_sheet(none, o), InternalError);

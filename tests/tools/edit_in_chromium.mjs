@@ -110,12 +110,22 @@ async function sketch(page, dir) {
     await stroke(page, 'side', [[-30, 30], [0, 30], [30, 30]]);
     await page.check('input[name=tool][value=move-photo]');
     await stroke(page, 'side', [[0, 30], [2.5, 30], [5, 30]]);
+    // Turned by a quarter turn round its centre, and back.
+    await page.check('input[name=tool][value=turn-photo]');
+    const c = await page.evaluate(() => window.editorViews.side.photo.centre);
+    const arc = (from, to) => range(12, (t) => {
+      const a = from + (to - from) * t;
+      return [c[0] + 25 * Math.cos(a), c[1] + 25 * Math.sin(a)];
+    });
+    await stroke(page, 'side', arc(0, Math.PI / 2));
+    const turned = await page.evaluate(() => window.editorViews.side.photo.angle);
+    await stroke(page, 'side', arc(Math.PI / 2, 0));
     await page.check('input[name=tool][value=draw]');
     photoScale = await page.evaluate(() => {
       const p = window.editorViews.side.photo;
-      return { unitsPerPixel: p.unitsPerPixel, centre: p.centre };
+      return { unitsPerPixel: p.unitsPerPixel, centre: p.centre, angle: p.angle };
     });
-    photoScale = { before: photoBefore, after: photoScale };
+    photoScale = { before: photoBefore, after: photoScale, turned };
     await page.click('#surfaces li:first-child');
     await step(page, 'selected the skin');
     await page.click('#surface .side[data-side=front] [data-eyedropper]');

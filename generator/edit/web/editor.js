@@ -231,6 +231,7 @@ function hint() {
     edit: 'Drag a point of the selected surface.',
     scale: 'Draw a line over something of known length in the photo.',
     'move-photo': 'Drag the photo so that the object\'s axis lies on the dashed line.',
+    'turn-photo': 'Drag round the photo\'s centre to turn it upright.',
     eyedropper: 'Click the photo to take its colour.',
   };
   $('hint').textContent = tips[side.tool] ?? '';
@@ -503,6 +504,8 @@ async function post(path, body) {
 
 function showVerdict() {
   for (const id of ['side-error', 'top-error']) $(id).textContent = '';
+  // While the text is wrong, the pictures are of the last good one: say so by fading them.
+  document.querySelector('.views').classList.toggle('stale', !!doc.error || !verdict?.ok);
   if (doc.error) {
     verdictLine.className = 'bad';
     verdictLine.textContent = `YAML: ${doc.error}`;

@@ -1,8 +1,9 @@
 // One sketching canvas of the editor: the side view (profiles: u = r, v = y) or the top view
 // (sections: u = x, v = -z, so polar angles turn counter-clockwise), both in template units
 // with v up. Under the curves lies an optional reference photo, scaled by a line of known
-// length and moved by dragging (the paper's §4: sketching over a photo of the real object).
-// Tools: draw (a stroke becomes a curve), edit (drag a point), scale, move photo, eyedropper.
+// length, moved and turned by dragging (the paper's §4: sketching over a photo of the real
+// object). Tools: draw (a stroke becomes a curve), edit (drag a point), scale, move photo,
+// turn photo, eyedropper.
 // The view only draws and reports; the editor decides what a stroke or a drag changes.
 
 const HIT_PIXELS = 9;
@@ -18,7 +19,8 @@ export class SketchView {
     this.tool = 'draw';
     this.curves = [];      // {points, fitted, closed, mirror, colour, selected, error}
     this.guides = [];      // through the origin: {angle (radians), dashed, ray}
-    this.photo = null;     // {image, pixels (canvas with its bytes), unitsPerPixel, centre: [u, v]}
+    this.photo = null;     // {image, pixels (canvas with its bytes), unitsPerPixel,
+                           //  centre: [u, v], angle (radians, counter-clockwise)}
     this.frame(-50, 50, -10, 90);
     this.gesture = null;
     canvas.addEventListener('pointerdown', (e) => this.down(e));
@@ -61,7 +63,7 @@ export class SketchView {
     pixels.getContext('2d').drawImage(image, 0, 0);
     const { u0, u1, v0, v1 } = this.view;
     this.photo = { image, pixels, unitsPerPixel: 0.9 * (v1 - v0) / image.naturalHeight,
-                   centre: [(u0 + u1) / 2, (v0 + v1) / 2] };
+                   centre: [(u0 + u1) / 2, (v0 + v1) / 2], angle: 0 };
     this.draw();
   }
 
@@ -80,8 +82,10 @@ export class SketchView {
   photoColour(w) {
     const p = this.photo;
     if (!p) return null;
-    const x = Math.floor((w[0] - p.centre[0]) / p.unitsPerPixel + p.pixels.width / 2);
-    const y = Math.floor(-(w[1] - p.centre[1]) / p.unitsPerPixel + p.pixels.height / 2);
+    const du = w[0] - p.centre[0], dv = w[1] - p.centre[1];
+    const c = Math.cos(p.angle), s = Math.sin(p.angle);  // turn back by the photo's angle
+    const x = Math.floor((c * du + s * dv) / p.unitsPerPixel + p.pixels.width / 2);
+    const y = Math.floor(-(-s * du + c * dv) / p.unitsPerPixel + p.pixels.height / 2);
     if (x < 0 || y < 0 || x >= p.pixels.width || y >= p.pixels.height) return null;
     const d = p.pixels.getContext('2d').getImageData(x, y, 1, 1).data;
     return '#' + [d[0], d[1], d[2]].map((c) => c.toString(16).padStart(2, '0')).join('');
@@ -119,7 +123,7 @@ export class SketchView {
       this.gesture = h ? { kind: 'drag', curve: h[0], index: h[1] } : null;
       return;
     }
-    if ((this.tool === 'scale' || this.tool === 'move-photo') && !this.photo) return;
+    if (['scale', 'move-photo', 'turn-photo'].includes(this.tool) && !this.photo) return;
     this.gesture = { kind: this.tool, stroke: [w], start: w };
   }
 
@@ -133,6 +137,11 @@ export class SketchView {
     } else if (g.kind === 'move-photo') {
       const last = g.stroke[g.stroke.length - 1];
       this.photo.centre = [this.photo.centre[0] + w[0] - last[0], this.photo.centre[1] + w[1] - last[1]];
+      g.stroke.push(w);
+    } else if (g.kind === 'turn-photo') {
+      const last = g.stroke[g.stroke.length - 1], c = this.photo.centre;
+      this.photo.angle += Math.atan2(w[1] - c[1], w[0] - c[0]) -
+                          Math.atan2(last[1] - c[1], last[0] - c[0]);
       g.stroke.push(w);
     } else {
       g.stroke.push(w);
@@ -194,9 +203,12 @@ export class SketchView {
       const s = this.scale();
       const [cx, cy] = this.toCanvas(p.centre);
       const pw = p.pixels.width * p.unitsPerPixel * s, ph = p.pixels.height * p.unitsPerPixel * s;
+      ctx.save();
       ctx.globalAlpha = 0.75;
-      ctx.drawImage(p.image, cx - pw / 2, cy - ph / 2, pw, ph);
-      ctx.globalAlpha = 1;
+      ctx.translate(cx, cy);
+      ctx.rotate(-p.angle);  // the canvas's y points down
+      ctx.drawImage(p.image, -pw / 2, -ph / 2, pw, ph);
+      ctx.restore();
     }
     const r = Math.hypot(w, h) / this.scale();
     for (const g of this.guides) {
