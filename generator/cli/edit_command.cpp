@@ -8,10 +8,7 @@
 
 #include "cli/commands.h"
 #include "edit/edit_server.h"
-#include "render/image/contact_sheet.h"
-#include "render/image/image.h"
-#include "render/model_preview.h"
-#include "render/section_preview.h"
+#include "render/edit_pictures.h"
 
 namespace cutaway::cli {
 
@@ -21,27 +18,10 @@ int run_edit(const EditArgs& a) {
   if (!std::filesystem::is_directory(path.parent_path()))
     throw UsageError("TEMPLATE: the folder " + quoted(path.parent_path().string()) +
                      " does not exist");
-  EditRenderers renderers;
-  renderers.model_png = [](const DsModel& model) {
-    PreviewOptions o;
-    o.width = o.height = 640;
-    return encode_png(render_model_preview(model, o));
-  };
-  renderers.section_png = [](const CrossSection& section) {
-    SectionPreviewOptions o;
-    o.width = o.height = 480;
-    return encode_png(render_section_preview(section, o));
-  };
-  renderers.variants_png = [](std::vector<Outcome<CrossSection>> sections) {
-    SectionTileOptions o;
-    o.tile_px = 160;
-    const int columns = static_cast<int>(sections.size());  // one row: a strip
-    return encode_png(section_sheet(std::move(sections), o, columns));
-  };
   EditServerOptions options;
   options.template_path = path;
   options.port = a.port;
-  EditServer server(options, renderers);
+  EditServer server(options, opengl_edit_pictures());
   spdlog::info("cutaway edit: {} at http://127.0.0.1:{}/ (Ctrl-C stops)", path.string(),
                server.port());
   // Ctrl-C or SIGTERM stops the server from a thread that waits for the signal; saves are
