@@ -109,20 +109,13 @@ std::vector<std::string> files_in(const std::filesystem::path& dir) {
 }
 
 GltfReport validate_gltf(const std::filesystem::path& file) {
-  const auto log = std::filesystem::path(CUTAWAY_TEST_TMP) /
-                   ("validator-" + std::to_string(::getpid()) + ".log");
-  std::filesystem::create_directories(log.parent_path());
-  const std::string cmd = "cd " + shell_quote(CUTAWAY_SOURCE_DIR) +
-                          " && node tests/tools/validate_gltf.mjs " +
-                          shell_quote(std::filesystem::absolute(file).string()) + " >" +
-                          shell_quote(log.string()) + " 2>&1";
-  const int code = system_exit_code(std::system(cmd.c_str()));
+  const NodeToolRun run =
+      run_node_tool("validate_gltf.mjs", {std::filesystem::absolute(file).string()});
   GltfReport r;
-  r.output = slurp(log);
-  std::filesystem::remove(log);
-  const auto pos = r.output.find("\"errors\":");
-  if (pos != std::string::npos && (code == 0 || code == 1)) {
-    r.errors = std::atoi(r.output.c_str() + pos + 9);
+  r.output = run.output;
+  if (run.report.is_object() && run.report.contains("errors") &&
+      (run.exit_code == 0 || run.exit_code == 1)) {
+    r.errors = run.report["errors"].get<int>();
   }
   return r;
 }

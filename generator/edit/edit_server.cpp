@@ -87,6 +87,18 @@ void reply_json(httplib::Response& res, int status, const nlohmann::json& body) 
   res.set_content(body.dump(), "application/json");
 }
 
+/// Runs `answer`; an InputError becomes 422 with the verdict, any other error 500 with its
+/// message.
+void answer_or_refuse(httplib::Response& res, const std::function<void()>& answer) {
+  try {
+    answer();
+  } catch (const InputError& e) {
+    reply_json(res, 422, verdict_of(e));
+  } catch (const std::exception& e) {
+    reply_json(res, 500, {{"ok", false}, {"message", e.what()}});
+  }
+}
+
 }  // namespace
 
 nlohmann::json check_template_text(std::string_view text,
@@ -137,18 +149,11 @@ struct EditServer::Impl {
     return *built;
   }
 
-  /// Runs `answer` for a request about the template text in its body; an InputError becomes
-  /// 422 with the verdict, any other error 500 with its message.
+  /// Runs `answer` for a request about the template text in its body, as answer_or_refuse().
   void handle(const httplib::Request& req, httplib::Response& res,
               const std::function<void(const Built&)>& answer) {
     const std::lock_guard<std::mutex> lock(work);
-    try {
-      answer(built_for(req.body));
-    } catch (const InputError& e) {
-      reply_json(res, 422, verdict_of(e));
-    } catch (const std::exception& e) {
-      reply_json(res, 500, {{"ok", false}, {"message", e.what()}});
-    }
+    answer_or_refuse(res, [&] { answer(built_for(req.body)); });
   }
 };
 
@@ -270,7 +275,7 @@ EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
     const DiffusionFactory diffusion = [cube](const DsModel& m) {
       return make_cpu_diffusion(m, {cube, 0});
     };
-    try {
+    answer_or_refuse(res, [&] {
       std::vector<Outcome<CrossSection>> sections;
       for (int seed = 1; seed <= count; ++seed)
         sections.push_back(variant_section(make_variant(*tmpl, seed), diffusion));
@@ -281,11 +286,7 @@ EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
       }
       const std::lock_guard<std::mutex> lock(s.work);  // the renderers are one at a time
       res.set_content(s.renderers.variants_png(std::move(sections)), "image/png");
-    } catch (const InputError& e) {
-      reply_json(res, 422, verdict_of(e));
-    } catch (const std::exception& e) {
-      reply_json(res, 500, {{"ok", false}, {"message", e.what()}});
-    }
+    });
   });
   s.server.Post("/api/save", [&s](const httplib::Request& req, httplib::Response& res) {
     s.handle(req, res, [&](const Built&) {

@@ -69,6 +69,12 @@ async function stroke(page, id, points) {
   await page.mouse.up();
 }
 
+/// Where the side view's photo lies: its scale, centre and angle.
+const photoPlacement = (page) => page.evaluate(() => {
+  const p = window.editorViews.side.photo;
+  return { unitsPerPixel: p.unitsPerPixel, centre: p.centre, angle: p.angle };
+});
+
 const range = (n, f) => Array.from({ length: n }, (_, k) => f(k / (n - 1)));
 
 async function sketch(page, dir) {
@@ -101,10 +107,7 @@ async function sketch(page, dir) {
     await page.locator('#side-photo').setInputFiles(photo);
     await page.waitForFunction(() => window.editorViews.side.photo !== null);
     // The photo's scale: a line across it said to be 70 units long; then moved 5 units right.
-    const photoBefore = await page.evaluate(() => {
-      const p = window.editorViews.side.photo;
-      return { unitsPerPixel: p.unitsPerPixel, centre: p.centre };
-    });
+    const photoBefore = await photoPlacement(page);
     page.once('dialog', (d) => d.accept('70'));
     await page.check('input[name=tool][value=scale]');
     await stroke(page, 'side', [[-30, 30], [0, 30], [30, 30]]);
@@ -121,11 +124,7 @@ async function sketch(page, dir) {
     const turned = await page.evaluate(() => window.editorViews.side.photo.angle);
     await stroke(page, 'side', arc(Math.PI / 2, 0));
     await page.check('input[name=tool][value=draw]');
-    photoScale = await page.evaluate(() => {
-      const p = window.editorViews.side.photo;
-      return { unitsPerPixel: p.unitsPerPixel, centre: p.centre, angle: p.angle };
-    });
-    photoScale = { before: photoBefore, after: photoScale, turned };
+    photoScale = { before: photoBefore, after: await photoPlacement(page), turned };
     await page.click('#surfaces li:first-child');
     await step(page, 'selected the skin');
     await page.click('#surface .side[data-side=front] [data-eyedropper]');

@@ -292,7 +292,7 @@ function fillPanel() {
   const blur = s.blur;
   $('blur').disabled = blur !== undefined && typeof blur !== 'number';
   $('blur').value = typeof blur === 'number' ? blur : '';
-  const grain = (doc.get(['grains']) ?? []).findIndex((g) => g.on === s.name);
+  const grain = grainIndex();
   $('grains').checked = grain >= 0;
   $('grain-spacing').value = grain >= 0 ? doc.get(['grains', grain, 'spacing']) : '';
   const place = errorPlace();
@@ -349,6 +349,7 @@ function setColour(which, stop, colour) {
 
 for (const div of document.querySelectorAll('#surface .side')) {
   const which = div.dataset.side;
+  div.innerHTML = $('side-controls').innerHTML.replaceAll('SIDE', which);
   for (const input of div.querySelectorAll('input[type=color]')) {
     input.addEventListener('change', () => setColour(which, input.dataset.stop, input.value));
   }
@@ -408,11 +409,19 @@ function uniqueName(base) {
   for (let k = 1; ; ++k) if (!names.has(`${base}-${k}`)) return `${base}-${k}`;
 }
 
-$('add-around').addEventListener('click', () => {
+/// The skin (or the first surface): its profile's points, the middle and the height of its y
+/// range, its largest radius; new surfaces are placed inside it.
+function skinShape() {
   const skin = surfaces().find((s) => s.role === 'skin') ?? surfaces()[0];
-  const ys = skin.profile.map((p) => p[1]);
-  const mid = (Math.min(...ys) + Math.max(...ys)) / 2;
-  const profile = skin.profile.map(([r, y]) => [Math.round(r * 70) / 100,
+  const profile = pairs(skin.profile);
+  const ys = profile.map((p) => p[1]);
+  return { profile, mid: (Math.min(...ys) + Math.max(...ys)) / 2,
+           height: Math.max(...ys) - Math.min(...ys), radius: maxRadius(profile) };
+}
+
+$('add-around').addEventListener('click', () => {
+  const { profile: outer, mid } = skinShape();
+  const profile = outer.map(([r, y]) => [Math.round(r * 70) / 100,
                                                 Math.round((mid + (y - mid) * 0.8) * 100) / 100]);
   const n = surfaces().length;
   commit(doc.set(['surfaces', n], { name: uniqueName('layer'), kind: 'around', profile,
@@ -421,10 +430,7 @@ $('add-around').addEventListener('click', () => {
   refresh();
 });
 $('add-within').addEventListener('click', () => {
-  const skin = surfaces().find((s) => s.role === 'skin') ?? surfaces()[0];
-  const ys = skin.profile.map((p) => p[1]);
-  const mid = (Math.min(...ys) + Math.max(...ys)) / 2, h = Math.max(...ys) - Math.min(...ys);
-  const R = maxRadius(skin.profile);
+  const { mid, height: h, radius: R } = skinShape();
   const ring = (cx, cy, rx, ry) => Array.from({ length: 8 }, (_, k) =>
     [Math.round((cx + rx * Math.cos(k * Math.PI / 4)) * 100) / 100,
      Math.round((cy + ry * Math.sin(k * Math.PI / 4)) * 100) / 100]);
@@ -525,6 +531,19 @@ function showVerdict() {
   }
 }
 
+/// Shows the PNG of a server's answer in `img`, or its refusal as the image's text; returns
+/// whether there was a picture.
+async function showPicture(img, answer) {
+  if (!answer.ok) {
+    img.removeAttribute('src');
+    img.alt = (await answer.json()).message;
+    return false;
+  }
+  URL.revokeObjectURL(img.src);
+  img.src = URL.createObjectURL(await answer.blob());
+  return true;
+}
+
 let sectionBusy = false, sectionAgain = null;
 /// Cuts at the slider's height: coarse (a small PMVC cube) while the slider moves, full when
 /// it stops; at most one request at a time, the latest one waiting.
@@ -536,15 +555,8 @@ async function cut(coarse) {
   const y = lo + (hi - lo) * Number($('plane').value);
   $('height').textContent = y.toFixed(2);
   const t0 = performance.now();
-  const answer = await post(`/api/section.png?y=${y}${coarse ? '&coarse=1' : ''}`, doc.text);
-  const img = $('section');
-  if (answer.ok) {
-    URL.revokeObjectURL(img.src);
-    img.src = URL.createObjectURL(await answer.blob());
-  } else {
-    img.removeAttribute('src');
-    img.alt = (await answer.json()).message;
-  }
+  await showPicture($('section'),
+                    await post(`/api/section.png?y=${y}${coarse ? '&coarse=1' : ''}`, doc.text));
   $('cut-time').textContent = `${((performance.now() - t0) / 1000).toFixed(2)} s${coarse ? ' (coarse)' : ''}`;
   sectionBusy = false;
   if (sectionAgain !== null) {
@@ -556,14 +568,13 @@ async function cut(coarse) {
 $('plane').addEventListener('input', () => cut(true));
 $('plane').addEventListener('change', () => cut(false));
 
-let checking = Promise.resolve();
 let checkTimer = 0;
 function check() {
   clearTimeout(checkTimer);
   const mine = ++version;
   window.editorBusy = true;
   checkTimer = setTimeout(() => {
-    checking = runCheck(mine).finally(() => { if (mine === version) window.editorBusy = false; });
+    runCheck(mine).finally(() => { if (mine === version) window.editorBusy = false; });
   }, 200);
 }
 
@@ -601,14 +612,8 @@ async function showVariants(mine, body) {
   const t0 = performance.now();
   const answer = await post('/api/variants.png?count=4', body);
   if (mine !== version) return;
-  const img = $('variants');
-  if (answer.ok) {
-    URL.revokeObjectURL(img.src);
-    img.src = URL.createObjectURL(await answer.blob());
+  if (await showPicture($('variants'), answer)) {
     $('variants-time').textContent = `${((performance.now() - t0) / 1000).toFixed(1)} s`;
-  } else {
-    img.removeAttribute('src');
-    img.alt = (await answer.json()).message;
   }
 }
 
