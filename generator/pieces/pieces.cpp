@@ -135,6 +135,7 @@ PieceSet pieces_in_cells(const DsModel& model, const CutCells& cells,
         make_cross_section(model, cells.planes[i], diffusion, section_options, restriction);
     if (section) {
       set.diffused_points += section->diffused_points;
+      set.band_diffused_points += section->band_diffused_points;
       set.seconds_diffuse += section->seconds_diffuse;
       set.sections.push_back(std::move(*section));
     } else {
@@ -213,6 +214,7 @@ Outcome<PieceSet> cut_pieces(const DsModel& model, const CutSpec& cut,
     next.seconds_diffuse += set.seconds_diffuse;
     next.seconds_clip += set.seconds_clip;
     next.diffused_points += set.diffused_points;
+    next.band_diffused_points += set.band_diffused_points;
     next.stitched_vertices += set.stitched_vertices;
     next.attempts = attempt + 1;
     set = std::move(next);

@@ -65,6 +65,7 @@ struct PieceSet {
   std::vector<Piece> pieces;           ///< in cell order; cells the object misses give none
   std::vector<CrossSection> sections;  ///< one per plane of `cells` (empty where it misses)
   size_t diffused_points = 0;          ///< PMVC evaluations over all caps
+  size_t band_diffused_points = 0;     ///< of which on blur bands' lines (adaptive sampling)
   size_t stitched_vertices = 0;        ///< seam vertices snapped or inserted
   double seconds_sections = 0;         ///< cross-sections: triangulation and diffusion
   double seconds_diffuse = 0;          ///< of which PMVC diffusion

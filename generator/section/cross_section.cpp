@@ -458,6 +458,7 @@ void SectionMesher::sample_band_lines(const DiffusionBackend& diffusion) {
     for (size_t i = 0; i < band_vertices.size(); ++i)
       samples_.emplace(band_vertices[i], std::make_pair(colours[i], materials[i]));
     cs_.diffused_points = band.diffused;
+    cs_.band_diffused_points = band.diffused;
   }
   seconds_sampling_ = seconds_since(meshed);
 }

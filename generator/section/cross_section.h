@@ -78,6 +78,8 @@ struct CrossSection {
   size_t diffused_points = 0;    ///< PMVC evaluations: interior vertices and the locations of
                                  ///< blurred cut vertices (their duplicates share one); adaptive
                                  ///< sampling: the samples and test points only
+  size_t band_diffused_points = 0;  ///< adaptive: of diffused_points, those on blur bands'
+                                    ///< lines (band_sampling.h; the rest are interior)
   size_t cut_segments = 0;       ///< input cut segments
   bool refinement_capped = false;  ///< Delaunay refinement ran out of its step budget or
                                    ///< failed CGAL's checks (rounding near a degenerate input),

@@ -237,9 +237,11 @@ int main(int argc, char** argv) {
     }
     std::printf(
         "%-12s sampling dense %7zu points %7.2f s PMVC | adaptive %7zu points %7.2f s "
-        "PMVC | %.2fx fewer points, %.2fx less PMVC time  [target 4x, 3x]\n",
+        "PMVC (%zu on blur bands, %zu interior) | %.2fx fewer points, %.2fx less PMVC time  "
+        "[target 4x, 3x]\n",
         path.stem().c_str(), stats[0].diffused_points, stats[0].seconds_diffuse,
-        stats[1].diffused_points, stats[1].seconds_diffuse,
+        stats[1].diffused_points, stats[1].seconds_diffuse, stats[1].band_diffused_points,
+        stats[1].diffused_points - stats[1].band_diffused_points,
         static_cast<double>(stats[0].diffused_points) / stats[1].diffused_points,
         stats[0].seconds_diffuse / stats[1].seconds_diffuse);
   }
