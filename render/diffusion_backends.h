@@ -13,8 +13,9 @@ namespace cutaway {
 enum class DiffusionChoice {
   Auto,  ///< gl where a GPU is reachable through EGL, cpu otherwise (llvmpipe is far slower
          ///< than Embree: it is never chosen automatically)
-  Cpu,   ///< Embree ray casting (make_cpu_diffusion)
-  Gl,    ///< cube maps with OpenGL (make_gl_diffusion): on a GPU, or OSMesa without one
+  Cpu,   ///< each point's cube-map texels cast as rays with Embree (make_cpu_diffusion)
+  Gl,    ///< the same rays cast in an OpenGL compute shader (make_gl_diffusion): on a GPU,
+         ///< or OSMesa without one
 };
 
 /// "auto", "cpu" or "gl" to a DiffusionChoice.

@@ -196,7 +196,7 @@ std::vector<std::filesystem::path> shipped_templates() {
 MidHeightCut mid_height_cut(const std::filesystem::path& path) {
   MidHeightCut cut{load_template(path.string()), {}, {}};
   cut.model = build_model(cut.tmpl);
-  cut.plane = {{0, 0.5 * (cut.model.bbox_min.y + cut.model.bbox_max.y), 0}, {0, 1, 0}};
+  cut.plane = mid_height_plane(cut.model);
   return cut;
 }
 

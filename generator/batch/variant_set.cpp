@@ -1,8 +1,5 @@
 #include "batch/variant_set.h"
 
-#include <algorithm>
-#include <limits>
-
 #include "base/error.h"
 #include "export/gltf_export.h"
 #include "variation/variation.h"
@@ -35,17 +32,8 @@ std::vector<VariantRecord> build_variant_models(
 
 Outcome<CrossSection> variant_section(const Variant& variant, const DiffusionFactory& diffusion) {
   if (!diffusion) throw InternalError("variant_section: no diffusion backend");
-  const DsMesh& skin = variant.model.skin().mesh;
-  double lo = std::numeric_limits<double>::max(), hi = -lo;
-  for (const auto vh : skin.vertices()) {
-    lo = std::min(lo, skin.point(vh)[1]);
-    hi = std::max(hi, skin.point(vh)[1]);
-  }
-  Plane plane;
-  plane.point = {0, 0.5 * (lo + hi), 0};
-  plane.normal = {0, 1, 0};
-  return make_cross_section(variant.model, plane, *diffusion(variant.model),
-                            {variant.tmpl.edge_m});
+  return make_cross_section(variant.model, mid_height_plane(variant.model),
+                            *diffusion(variant.model), {variant.tmpl.edge_m});
 }
 
 }  // namespace cutaway

@@ -79,7 +79,7 @@ Image sheet_tile(const LoadedItem& item, const SheetArgs& a, const Common& commo
   CutSpec cut = item.cut;
   const Variant variant{tmpl, build_model(tmpl)};
   const DsModel& model = variant.model;
-  if (item.across) cut.plane = {{0, 0.5 * (model.bbox_min.y + model.bbox_max.y), 0}, {0, 1, 0}};
+  if (item.across) cut.plane = mid_height_plane(model);
   SceneAssets assets;
   assets.name = tmpl.name;
   const CutObject object = cut_for_view(assets, variant, cut, a.cube, common, 1.0, 0,

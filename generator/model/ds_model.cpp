@@ -42,6 +42,16 @@ void update_bounds(DsModel& model) {
   model.bbox_max = hi;
 }
 
+Plane mid_height_plane(const DsModel& model) {
+  const DsMesh& skin = model.skin().mesh;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const auto vh : skin.vertices()) {
+    lo = std::min(lo, skin.point(vh)[1]);
+    hi = std::max(hi, skin.point(vh)[1]);
+  }
+  return {{0, 0.5 * (lo + hi), 0}, {0, 1, 0}};
+}
+
 std::vector<glm::dvec3> vertex_normals(const DsMesh& mesh) {
   std::vector<glm::dvec3> n(mesh.n_vertices(), glm::dvec3(0.0));
   for (auto fh : mesh.faces()) {

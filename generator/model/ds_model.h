@@ -9,6 +9,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "base/plane.h"
+
 namespace cutaway {
 
 /// OpenMesh traits of a DS mesh: double-precision points (metres, object frame, axis +Y) and
@@ -77,6 +79,12 @@ void set_material(DsMesh& mesh, const glm::dvec2& front, const glm::dvec2& back)
 
 /// Recomputes `model.bbox_min/max` from the surfaces' vertices.
 void update_bounds(DsModel& model);
+
+/// The horizontal plane (normal +Y) halfway between the lowest and the highest vertex of the
+/// skin, metres: the mid-height cut of the contact sheets, the variants strip and the tests.
+/// The skin's range, not the model's bounds, so that grains standing proud of the skin do not
+/// move it. @pre the model has a skin with vertices
+Plane mid_height_plane(const DsModel& model);
 
 /// Unit vertex normals of `mesh` (#V): the area-weighted sum of the incident faces' normals
 /// (counter-clockwise winding = front side); zero where that sum vanishes.
