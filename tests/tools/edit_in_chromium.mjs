@@ -80,6 +80,8 @@ const range = (n, f) => Array.from({ length: n }, (_, k) => f(k / (n - 1)));
 async function sketch(page, dir) {
   const shot = (name) => page.screenshot({ path: path.join(dir, `editor-${name}.png`) });
   await step(page, 'opened an empty template');
+  // The variants' strip off while sketching (seconds of CPU after every step), on again below.
+  await page.uncheck('#show-variants');
   // A round fruit 60 units tall, drawn on the left of the axis from top to bottom.
   await stroke(page, 'side', range(40, (t) => [-(3 + 32 * Math.sin(Math.PI * t)), 62 - 60 * t]));
   const skin = await step(page, 'drew the skin profile');
@@ -133,7 +135,12 @@ async function sketch(page, dir) {
     await step(page, 'picked the skin colour from the photo');
     picked = await page.locator('#surface .side[data-side=front] input[data-stop=first]').inputValue();
   }
-  // The variants' strip follows the last good text after a moment.
+  // The variants' strip, switched on again, follows the last good text after a moment; while
+  // it was off, none was asked for.
+  if (await page.evaluate(() => document.getElementById('variants').naturalWidth > 0)) {
+    throw new Error('the variants strip was drawn while switched off');
+  }
+  await page.check('#show-variants');
   await page.waitForFunction(() => document.getElementById('variants').naturalWidth > 0, null,
                              { timeout: TIMEOUT_MS });
   await shot('sketched');

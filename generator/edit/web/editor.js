@@ -600,15 +600,25 @@ async function runCheck(mine) {
     framed = true;
   }
   await cut(false);
-  clearTimeout(variantsTimer);
-  variantsTimer = setTimeout(() => showVariants(mine, body), 800);
+  askVariants(mine, body);
 }
 
 let variantsTimer = 0;
-/// The variants' strip, once the text has rested for a moment (it takes seconds; the server
-/// answers checks and cuts of newer text meanwhile, and an answer for older text is dropped).
+/// Asks for the variants' strip once the text has rested for a moment, unless the strip is
+/// switched off (it takes seconds of CPU: on a slow machine it competes with the cuts).
+function askVariants(mine, body) {
+  clearTimeout(variantsTimer);
+  if ($('show-variants').checked) variantsTimer = setTimeout(() => showVariants(mine, body), 800);
+}
+$('show-variants').addEventListener('change', () => {
+  $('variants').hidden = !$('show-variants').checked;
+  if (verdict?.ok) askVariants(version, doc.text);
+});
+
+/// The variants' strip (the server answers checks and cuts of newer text meanwhile, and an
+/// answer for older text is dropped).
 async function showVariants(mine, body) {
-  if (mine !== version) return;
+  if (mine !== version || !$('show-variants').checked) return;
   const t0 = performance.now();
   const answer = await post('/api/variants.png?count=4', body);
   if (mine !== version) return;
