@@ -35,10 +35,10 @@ struct Errors {
   double mean = 0, max = 0;
 };
 
-Errors errors_against_cube32(const DsModel& model, const std::vector<glm::dvec3>& where,
-                             const std::vector<glm::dvec3>& colour) {
-  const std::vector<glm::dvec3> reference =
-      make_cpu_diffusion(model, DiffusionOptions{32, 0})->diffuse(where);
+/// The errors of `colour` (linear RGB) against a cube-32 backend's diffusion at `where`.
+Errors errors_against(const DiffusionBackend& cube32, const std::vector<glm::dvec3>& where,
+                      const std::vector<glm::dvec3>& colour) {
+  const std::vector<glm::dvec3> reference = cube32.diffuse(where);
   Errors errors;
   for (size_t i = 0; i < where.size(); ++i) {
     const double e = srgb_error(colour[i], reference[i]);
@@ -49,18 +49,18 @@ Errors errors_against_cube32(const DsModel& model, const std::vector<glm::dvec3>
 }
 
 /// At up to `count` of the cap's vertices off the cut segments, evenly through the list.
-Errors vertex_errors(const DsModel& model, const CrossSection& cap, size_t count) {
+Errors vertex_errors(const DiffusionBackend& cube32, const CrossSection& cap, size_t count) {
   std::vector<glm::dvec3> where, colour;
   for (size_t v : test::interior_vertices(cap, count)) {
     where.push_back(cap.position[v]);
     colour.push_back(cap.colour[v]);
   }
-  return errors_against_cube32(model, where, colour);
+  return errors_against(cube32, where, colour);
 }
 
 /// The cap as a picture shows it: `count` points uniform over its area (seeded; a triangle by
 /// area, then uniform barycentrics), each coloured linearly across its triangle.
-Errors area_errors(const DsModel& model, const CrossSection& cap, size_t count) {
+Errors area_errors(const DiffusionBackend& cube32, const CrossSection& cap, size_t count) {
   std::vector<double> cumulative;
   double total = 0;
   for (const glm::uvec3& t : cap.triangle) {
@@ -85,7 +85,7 @@ Errors area_errors(const DsModel& model, const CrossSection& cap, size_t count) 
     where.push_back(at(cap.position));
     colour.push_back(at(cap.colour));
   }
-  return errors_against_cube32(model, where, colour);
+  return errors_against(cube32, where, colour);
 }
 
 TEST(AdaptiveSampling, MatchesDenseCube32ReferenceOnEveryTemplatesMidHeightCut) {
@@ -105,9 +105,10 @@ TEST(AdaptiveSampling, MatchesDenseCube32ReferenceOnEveryTemplatesMidHeightCut) 
     adaptive_points += adaptive.diffused_points;
     // At the cap's vertices (dense sampling diffuses them all, so only adaptive sampling's are
     // checked) and over each cap's area.
-    const Errors adaptive_at = vertex_errors(model, adaptive, 300);
-    const Errors dense_area = area_errors(model, dense, 400);
-    const Errors adaptive_area = area_errors(model, adaptive, 400);
+    const auto cube32 = make_cpu_diffusion(model, DiffusionOptions{32, 0});
+    const Errors adaptive_at = vertex_errors(*cube32, adaptive, 300);
+    const Errors dense_area = area_errors(*cube32, dense, 400);
+    const Errors adaptive_area = area_errors(*cube32, adaptive, 400);
     std::printf(
         "%-10s %5zu -> %5zu points (%4.1fx); error vs cube 32 at the vertices: adaptive mean "
         "%.2f max %.2f; over the area: dense mean %.2f max %.2f, adaptive mean %.2f max %.2f "
