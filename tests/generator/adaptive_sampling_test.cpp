@@ -30,9 +30,10 @@ double srgb_error(const glm::dvec3& a, const glm::dvec3& b) {
   return visible_difference(a, glm::dvec2(0), b, glm::dvec2(0));
 }
 
-/// Mean and largest sRGB error (of 255) against a cube-32 diffusion.
+/// Mean and largest sRGB error (of 255) against a cube-32 diffusion, over `points` points.
 struct Errors {
   double mean = 0, max = 0;
+  size_t points = 0;
 };
 
 /// The errors of `colour` (linear RGB) against a cube-32 backend's diffusion at `where`.
@@ -40,6 +41,7 @@ Errors errors_against(const DiffusionBackend& cube32, const std::vector<glm::dve
                       const std::vector<glm::dvec3>& colour) {
   const std::vector<glm::dvec3> reference = cube32.diffuse(where);
   Errors errors;
+  errors.points = where.size();
   for (size_t i = 0; i < where.size(); ++i) {
     const double e = srgb_error(colour[i], reference[i]);
     errors.mean += e / static_cast<double>(where.size());
@@ -107,6 +109,7 @@ TEST(AdaptiveSampling, MatchesDenseCube32ReferenceOnEveryTemplatesMidHeightCut) 
     // checked) and over each cap's area.
     const auto cube32 = make_cpu_diffusion(model, DiffusionOptions{32, 0});
     const Errors adaptive_at = vertex_errors(*cube32, adaptive, 300);
+    ASSERT_GT(adaptive_at.points, 10u) << t.name;
     const Errors dense_area = area_errors(*cube32, dense, 400);
     const Errors adaptive_area = area_errors(*cube32, adaptive, 400);
     std::printf(
