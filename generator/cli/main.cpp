@@ -116,8 +116,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 1024));
   std::string backend = "auto";
   app.add_option("--backend", backend,
-                 "colour diffusion: cpu (Embree), gl (OpenGL cube maps), auto (gl on a GPU, "
-                 "else cpu)")
+                 "colour diffusion: cpu (Embree ray casting), gl (the same rays in an OpenGL "
+                 "compute shader), auto (gl on a GPU, else cpu)")
       ->check(CLI::IsMember({"auto", "cpu", "gl"}));
   std::string sampling = "adaptive";  // dense: every vertex, for comparison
   app.add_option("--sampling", sampling,
