@@ -1,11 +1,15 @@
 #version 430 core
-// PMVC by ray casting on the GPU (render/gl/pmvc_gl.cpp): work group p casts the 6 n^2 cube-map
+// PMVC by ray casting on the GPU (render/gl/pmvc_gl.cpp): work group p casts the cube-map
 // texel rays of batch point p (make_cube_directions, turned by the point's cube_rotation)
 // through a BVH of every sheet triangle (build_sheet_bvh), and sums the colour and material
 // channels of each ray's nearest hit weighted by the texel's solid angle / hit distance, in
-// double precision. Fixed order: thread t takes directions t, t + 256, ... in turn, then a fixed
-// pairwise tree over the 256 threads; no atomics, so the result does not depend on scheduling or
-// on the batch. Semantics are those of the cpu backend (pmvc_cpu.cpp).
+// double precision. With adaptive directions (adaptive_directions.h) the coarse texels are cast
+// first, the pairs of neighbouring coarse texels that see different sheets or sides mark both
+// refined, and a refined texel is summed from its four fine texels instead. Fixed order: thread
+// t takes texels t, t + 256, ... in turn (a refined one's fine texels in their order), then a
+// fixed pairwise tree over the 256 threads; the only atomics set refinement bits, so the result
+// does not depend on scheduling or on the batch. Semantics are those of the cpu backend
+// (pmvc_cpu.cpp).
 
 // 256 threads a point: a round of the adaptive sampler diffuses only tens of points, and its
 // latency is that of one work group's rays (6 a thread at cube 16).
@@ -23,7 +27,7 @@ struct Triangle {
   vec4 e1;       // xyz: second vertex - first
   vec4 e2;       // xyz: third vertex - first
   vec4 normal;   // xyz: unit normal of the front face
-  uvec4 vertex;  // xyz: its vertices in `vertices`
+  uvec4 vertex;  // xyz: its vertices in `vertices`; w: 2 sheet + (1 if the sheet is two-faced)
 };
 struct Vertex {
   vec4 colour_front;  // rgb: linear
@@ -43,13 +47,28 @@ layout(std430, binding = 4) readonly buffer SolidAngles { double solid_angle[]; 
 layout(std430, binding = 5) readonly buffer Points { BatchPoint batch[]; };
 layout(std430, binding = 6) writeonly buffer Sums {
   dvec4 sums[];  // per point p: sums[2p] = (sum colour w, sum w), w = solid angle / r;
-                 // sums[2p + 1] = (sum material w, 0, 0)
+                 // sums[2p + 1] = (sum material w, rays cast, 0)
 };
 
-uniform int direction_count;  // 6 n^2
+// Adaptive directions only: the fine level (n x n) and the coarse pairs compared.
+layout(std430, binding = 7) readonly buffer FineDirections { vec4 fine_direction[]; };
+layout(std430, binding = 8) readonly buffer FineSolidAngles { double fine_solid_angle[]; };
+layout(std430, binding = 9) readonly buffer Pairs { uvec2 pairs[]; };
+
+uniform int direction_count;  // texels of the first level: 6 n^2, or 6 (n/2)^2 when adaptive
+uniform int adaptive;         // 1: adaptive directions
+uniform int fine_n;           // adaptive: n
+uniform int pair_count;       // adaptive: coarse pairs
+
+// Adaptive: at most kMaxCoarse coarse texels (cube 32, uses_adaptive_directions), kPerThread
+// each; shared memory stays under the 32 KiB every OpenGL 4.3 implementation has.
+const int kMaxCoarse = 1536;
+const int kPerThread = kMaxCoarse / kThreads;
+shared int seen[kMaxCoarse];                // what each coarse texel's ray hit
+shared uint refined[kMaxCoarse / 32];       // bit per coarse texel
 
 shared dvec4 partial[kThreads];
-shared dvec2 partial_material[kThreads];
+shared dvec3 partial_material[kThreads];  // xy: material, z: rays cast
 
 /// Entry distance of the ray into node `i`'s box, or +inf when it misses or enters at or beyond
 /// `best` (slab test; inv = 1 / direction with no zero components).
@@ -136,36 +155,94 @@ int trace(vec3 origin, vec3 d, out float best, out vec2 uv) {
   }
 }
 
+/// One ray of the point: its contribution (colour w, w) and (material w) with w = solid angle /
+/// distance, zero when it misses, and what it saw: 2 sheet + (1 on a two-faced sheet's back),
+/// -1 for nothing.
+int cast_ray(int point, vec3 c, double solid_angle, out dvec4 sum, out dvec2 sum_material) {
+  const vec3 origin = batch[point].eye.xyz;
+  const vec3 d = c.x * batch[point].to_world[0].xyz + c.y * batch[point].to_world[1].xyz +
+                 c.z * batch[point].to_world[2].xyz;
+  sum = dvec4(0.0);
+  sum_material = dvec2(0.0);
+  float r;
+  vec2 uv;
+  const int k = trace(origin, d, r, uv);
+  if (k < 0) return -1;
+  const uvec4 v = triangles[k].vertex;
+  const float w0 = 1.0 - uv.x - uv.y;
+  const bool front = dot(d, triangles[k].normal.xyz) < 0.0;
+  const vec3 colour =
+      front ? w0 * vertices[v.x].colour_front.rgb + uv.x * vertices[v.y].colour_front.rgb +
+                  uv.y * vertices[v.z].colour_front.rgb
+            : w0 * vertices[v.x].colour_back.rgb + uv.x * vertices[v.y].colour_back.rgb +
+                  uv.y * vertices[v.z].colour_back.rgb;
+  const vec4 m = w0 * vertices[v.x].material + uv.x * vertices[v.y].material +
+                 uv.y * vertices[v.z].material;
+  const double weight = solid_angle / max(double(r), 1e-9);
+  sum = dvec4(dvec3(colour), 1.0) * weight;
+  sum_material = dvec2(front ? m.xy : m.zw) * weight;
+  const bool two_faced = (v.w & 1u) != 0u;
+  return int(v.w & ~1u) + (two_faced && !front ? 1 : 0);
+}
+
 void main() {
   const int point = int(gl_WorkGroupID.x);
   const int t = int(gl_LocalInvocationID.x);
-  const vec3 origin = batch[point].eye.xyz;
   dvec4 sum = dvec4(0.0);
   dvec2 sum_material = dvec2(0.0);
-  for (int i = t; i < direction_count; i += kThreads) {
-    const vec3 c = direction[i].xyz;
-    const vec3 d = c.x * batch[point].to_world[0].xyz + c.y * batch[point].to_world[1].xyz +
-                   c.z * batch[point].to_world[2].xyz;
-    float r;
-    vec2 uv;
-    const int k = trace(origin, d, r, uv);
-    if (k < 0) continue;
-    const uvec3 v = triangles[k].vertex.xyz;
-    const float w0 = 1.0 - uv.x - uv.y;
-    const bool front = dot(d, triangles[k].normal.xyz) < 0.0;
-    const vec3 colour =
-        front ? w0 * vertices[v.x].colour_front.rgb + uv.x * vertices[v.y].colour_front.rgb +
-                    uv.y * vertices[v.z].colour_front.rgb
-              : w0 * vertices[v.x].colour_back.rgb + uv.x * vertices[v.y].colour_back.rgb +
-                    uv.y * vertices[v.z].colour_back.rgb;
-    const vec4 m = w0 * vertices[v.x].material + uv.x * vertices[v.y].material +
-                   uv.y * vertices[v.z].material;
-    const double weight = solid_angle[i] / max(double(r), 1e-9);
-    sum += dvec4(dvec3(colour), 1.0) * weight;
-    sum_material += dvec2(front ? m.xy : m.zw) * weight;
+  int rays = 0;
+  dvec4 ray_sum;
+  dvec2 ray_material;
+  if (adaptive == 0) {
+    for (int i = t; i < direction_count; i += kThreads) {
+      cast_ray(point, direction[i].xyz, solid_angle[i], ray_sum, ray_material);
+      ++rays;
+      sum += ray_sum;
+      sum_material += ray_material;
+    }
+  } else {
+    // Coarse rays, kept per thread until the refinement is known.
+    dvec4 coarse_sum[kPerThread];
+    dvec2 coarse_material[kPerThread];
+    for (int i = t; i < kMaxCoarse / 32; i += kThreads) refined[i] = 0u;
+    for (int i = t, j = 0; i < direction_count; i += kThreads, ++j) {
+      seen[i] = cast_ray(point, direction[i].xyz, solid_angle[i], coarse_sum[j],
+                         coarse_material[j]);
+      ++rays;
+    }
+    memoryBarrierShared();
+    barrier();
+    for (int i = t; i < pair_count; i += kThreads) {
+      const uvec2 p = pairs[i];
+      if (seen[p.x] != seen[p.y]) {
+        atomicOr(refined[p.x / 32u], 1u << (p.x % 32u));
+        atomicOr(refined[p.y / 32u], 1u << (p.y % 32u));
+      }
+    }
+    memoryBarrierShared();
+    barrier();
+    const int m = fine_n / 2;
+    for (int i = t, j = 0; i < direction_count; i += kThreads, ++j) {
+      if ((refined[i / 32] & (1u << (i % 32))) == 0u) {
+        sum += coarse_sum[j];
+        sum_material += coarse_material[j];
+        continue;
+      }
+      // The four fine texels tiling coarse texel i (AdaptiveDirections::children).
+      const int face = i / (m * m), row = (i / m) % m, column = i % m;
+      const int first = face * fine_n * fine_n + 2 * row * fine_n + 2 * column;
+      const int fine[4] = int[4](first, first + 1, first + fine_n, first + fine_n + 1);
+      for (int f = 0; f < 4; ++f) {
+        cast_ray(point, fine_direction[fine[f]].xyz, fine_solid_angle[fine[f]], ray_sum,
+                 ray_material);
+        ++rays;
+        sum += ray_sum;
+        sum_material += ray_material;
+      }
+    }
   }
   partial[t] = sum;
-  partial_material[t] = sum_material;
+  partial_material[t] = dvec3(sum_material, double(rays));
   barrier();
   for (int s = kThreads / 2; s > 0; s >>= 1) {
     if (t < s) {
@@ -176,6 +253,6 @@ void main() {
   }
   if (t == 0) {
     sums[2 * point] = partial[0];
-    sums[2 * point + 1] = dvec4(partial_material[0], 0.0, 0.0);
+    sums[2 * point + 1] = dvec4(partial_material[0], 0.0);
   }
 }

@@ -27,16 +27,20 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// What else changes an asset's bytes besides the batch file: the backend and sampling.
+/// What else changes an asset's bytes besides the batch file: the backend, sampling and
+/// directions.
 std::string build_settings(const Common& common) {
   return "backend=" + common.backend +
-         " sampling=" + (common.sampling == CapSampling::Dense ? "dense" : "adaptive");
+         " sampling=" + (common.sampling == CapSampling::Dense ? "dense" : "adaptive") +
+         " directions=" + (common.adaptive_directions ? "adaptive" : "every");
 }
 
 /// The command line options every array task passes on (those that change the output).
 std::vector<std::string> passed_on(const Common& common) {
-  return {"--backend", common.backend, "--sampling",
-          common.sampling == CapSampling::Dense ? "dense" : "adaptive", "-q"};
+  return {"--backend",    common.backend,
+          "--sampling",   common.sampling == CapSampling::Dense ? "dense" : "adaptive",
+          "--directions", common.adaptive_directions ? "adaptive" : "every",
+          "-q"};
 }
 
 /// Writes the sbatch script of the batch into DIR and submits it (unless --dry-run).

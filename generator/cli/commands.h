@@ -50,6 +50,7 @@ struct Common {
   int threads = 0;               ///< 0: all cores
   bool stats = false;            ///< JSON timings and counts on stderr
   CapSampling sampling = CapSampling::Adaptive;  ///< --sampling: which cap points are diffused
+  bool adaptive_directions = true;  ///< --directions adaptive (true) or every (false)
 };
 
 /// `text` (the `--cut` notation) for `tmpl`, refused when it is malformed or would make more
@@ -57,7 +58,8 @@ struct Common {
 /// @throws UsageError "WHAT: rule" (`what` names the cut for the user)
 CutSpec checked_cut(const Template& tmpl, const std::string& text, const std::string& what);
 
-/// The diffusion backend --backend chooses, with cube-map size `cube` and --threads.
+/// The diffusion backend --backend chooses, with cube-map size `cube`, --threads and
+/// --directions.
 DiffusionFactory diffusion_factory(int cube, const Common& common);
 
 /// `variant` cut for a picture of its pieces (`piece`, `sheet`): every piece kept, vertex

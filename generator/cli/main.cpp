@@ -125,6 +125,12 @@ int main(int argc, char** argv) {
                  "(sparse samples along blur bands and in the interior, interpolated and "
                  "refined where a test point disagrees)")
       ->check(CLI::IsMember({"dense", "adaptive"}));
+  std::string directions = "adaptive";  // every: every cube texel, for comparison
+  app.add_option("--directions", directions,
+                 "which PMVC rays a point casts: adaptive (its cube at half resolution, again at "
+                 "full resolution where neighbouring rays see different sheets) or every (every "
+                 "texel of the cube)")
+      ->check(CLI::IsMember({"adaptive", "every"}));
 
   cutaway::cli::ModelArgs model_args;
   CLI::App* model = app.add_subcommand("model", "build the DS model of a template (glb, PNG)");
@@ -297,7 +303,8 @@ int main(int argc, char** argv) {
   cutaway::OutputSet outputs;
   const auto run = [&]() -> int {
     for (const CLI::App* command : app.get_subcommands()) refuse_empty_output_paths(*command);
-    const cutaway::cli::Common common{backend, threads, stats, parse_sampling(sampling)};
+    const cutaway::cli::Common common{backend, threads, stats, parse_sampling(sampling),
+                                      directions == "adaptive"};
     if (*model) {
       if (!model_args.output.empty()) require_extension("-o", model_args.output, ".glb");
       if (!model_args.png.empty()) require_extension("--png", model_args.png, ".png");

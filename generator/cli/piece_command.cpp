@@ -36,9 +36,9 @@ CutSpec checked_cut(const Template& tmpl, const std::string& text, const std::st
 
 DiffusionFactory diffusion_factory(int cube, const Common& common) {
   const DiffusionChoice choice = parse_diffusion_choice(common.backend);
-  const int threads = common.threads;
-  return [cube, threads, choice](const DsModel& model) {
-    return make_diffusion(model, {cube, threads}, choice);
+  const DiffusionOptions options{cube, common.threads, true, common.adaptive_directions};
+  return [options, choice](const DsModel& model) {
+    return make_diffusion(model, options, choice);
   };
 }
 

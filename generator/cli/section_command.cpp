@@ -72,7 +72,7 @@ int run_section(const SectionArgs& a, const Common& common, OutputSet& outputs) 
                  {"vertices", section.position.size()},
                  {"interior_vertices", section.interior_vertices},
                  {"diffused_points", section.diffused_points},
-                 {"rays", section.diffused_points * 6 * static_cast<size_t>(a.cube * a.cube)},
+                 {"rays", diffusion->rays_cast()},
                  {"seconds",
                   {{"model", t_model},
                    {"backend_setup", t_backend},

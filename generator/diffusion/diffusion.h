@@ -3,6 +3,7 @@
 // colours of the DS sheets it sees first in every direction, weighted by solid angle / distance.
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <span>
 #include <stdexcept>
@@ -28,10 +29,25 @@ struct DiffusionOptions {
   /// Each point's cube map turned by its own seeded rotation (cube_rotation): texel errors
   /// cancel instead of adding up where the cube's grid lines up with an object's symmetry.
   bool rotate_cubes = true;
+  /// Silhouette-adaptive directions (adaptive_directions.h): each point's cube is cast at
+  /// half the resolution first, and only the texels where the sheet seen changes between
+  /// neighbours are cast again at full resolution. On the shipped templates' mid-height cuts
+  /// about 730 rays a point instead of 1,536 at cube 16, with the same error against cube 32
+  /// (doc/algorithms.md §2). Needs an even cube size up to 32 (the GPU keeps a work group's
+  /// coarse texels in shared memory); other sizes cast every texel.
+  bool adaptive_directions = true;
 };
 
+/// Whether a backend with these options casts adaptive directions: requested, and an even
+/// cube size from 2 to 32.
+inline bool uses_adaptive_directions(const DiffusionOptions& options) {
+  return options.adaptive_directions && options.cube_size >= 2 && options.cube_size <= 32 &&
+         options.cube_size % 2 == 0;
+}
+
 /// colour(x) = sum_w c(w) dOmega(w) / r(w)  /  sum_w dOmega(w) / r(w) over the cube-map texel
-/// directions w that hit a sheet; r(w) is the Euclidean distance to the first hit and c(w) the
+/// directions w that hit a sheet (with adaptive directions: the coarse texels where the sheet
+/// seen does not change and the fine texels of the others); r(w) is the Euclidean distance to the first hit and c(w) the
 /// colour the hit sheet shows there (make_diffusion_sheets). The material channels (roughness,
 /// translucency) are diffused the same way, from the same rays (paper §6: material information
 /// on DSs besides colours).
@@ -67,6 +83,8 @@ class DiffusionBackend {
   }
   /// "cpu" or "gl".
   virtual std::string name() const = 0;
+  /// Rays cast so far by this backend, over all calls (0 for a backend that casts none).
+  virtual size_t rays_cast() const { return 0; }
 };
 
 /// The sizes diffuse_channels needs: throws InternalError unless colour has one entry

@@ -16,6 +16,7 @@
 #include <glm/vec4.hpp>
 
 #include "base/error.h"
+#include "diffusion/adaptive_directions.h"
 #include "diffusion/cube_directions.h"
 #include "diffusion/diffusion_sheets.h"
 #include "diffusion/sheet_bvh.h"
@@ -41,7 +42,7 @@ struct BatchPoint {
 struct GpuTriangle {
   glm::vec4 v0, e1, e2;  // xyz: first vertex and the edges to the second and third, metres
   glm::vec4 normal;      // xyz: unit normal of the front face
-  glm::uvec4 vertex;     // xyz: indices into the vertex attributes
+  glm::uvec4 vertex;     // xyz: indices into the vertex attributes; w: 2 sheet + two-faced
 };
 
 /// One sheet vertex's attributes as the shader reads them.
@@ -83,8 +84,20 @@ class GlDiffusion final : public DiffusionBackend {
     check_capabilities();
     trace_ = std::make_unique<GlProgram>("pmvc_trace.comp");
     direction_count_location_ = trace_->uniform("direction_count");
+    adaptive_location_ = trace_->uniform("adaptive");
+    fine_n_location_ = trace_->uniform("fine_n");
+    pair_count_location_ = trace_->uniform("pair_count");
     upload_sheets(model);
-    upload_directions(make_cube_directions(options.cube_size));
+    if (uses_adaptive_directions(options)) {
+      const AdaptiveDirections adaptive = make_adaptive_directions(options.cube_size);
+      upload_directions(adaptive.coarse);
+      upload_fine_level(adaptive);
+    } else {
+      upload_directions(make_cube_directions(options.cube_size));
+      fine_directions_buffer_ = storage_buffer(std::vector<glm::vec4>{});
+      fine_solid_angle_buffer_ = storage_buffer(std::vector<double>{});
+      pairs_buffer_ = storage_buffer(std::vector<glm::uvec2>{});
+    }
     points_buffer_ = storage_buffer(std::vector<BatchPoint>{}, kBatchPoints * sizeof(BatchPoint),
                                     GL_DYNAMIC_DRAW);
     sums_buffer_ = storage_buffer(std::vector<glm::dvec4>{},
@@ -102,6 +115,11 @@ class GlDiffusion final : public DiffusionBackend {
   }
 
   std::string name() const override { return "gl"; }
+
+  size_t rays_cast() const override {
+    const std::lock_guard lock(mutex_);
+    return rays_;
+  }
 
   void diffuse_channels(std::span<const glm::dvec3> points, std::span<glm::dvec3> colour,
                         std::span<glm::dvec2> material) const override {
@@ -126,6 +144,7 @@ class GlDiffusion final : public DiffusionBackend {
       }
       trace(batch, sums);
       for (size_t i = 0; i < count; ++i) {
+        rays_ += static_cast<size_t>(sums[2 * i + 1].z);
         const double w = sums[2 * i].w;
         if (w <= 0) continue;
         colour[base + i] = glm::dvec3(sums[2 * i]) / w;
@@ -140,12 +159,16 @@ class GlDiffusion final : public DiffusionBackend {
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, points_buffer_);
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
                     static_cast<GLsizeiptr>(batch.size() * sizeof(BatchPoint)), batch.data());
-    const GLuint bindings[] = {nodes_buffer_,      triangles_buffer_, vertices_buffer_,
-                               directions_buffer_, solid_angle_buffer_, points_buffer_,
-                               sums_buffer_};
-    for (GLuint i = 0; i < 7; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, bindings[i]);
+    const GLuint bindings[] = {nodes_buffer_,          triangles_buffer_,       vertices_buffer_,
+                               directions_buffer_,     solid_angle_buffer_,     points_buffer_,
+                               sums_buffer_,           fine_directions_buffer_, fine_solid_angle_buffer_,
+                               pairs_buffer_};
+    for (GLuint i = 0; i < 10; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, bindings[i]);
     glUseProgram(trace_->id());
     glUniform1i(direction_count_location_, direction_count_);
+    glUniform1i(adaptive_location_, fine_n_ > 0 ? 1 : 0);
+    glUniform1i(fine_n_location_, fine_n_);
+    glUniform1i(pair_count_location_, pair_count_);
     glDispatchCompute(static_cast<GLuint>(batch.size()), 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     sums.resize(2 * batch.size());
@@ -192,7 +215,8 @@ class GlDiffusion final : public DiffusionBackend {
       const uint32_t base = first_vertex[ref.sheet];
       triangles.push_back({glm::vec4(a, 0.0f), glm::vec4(b - a, 0.0f), glm::vec4(c - a, 0.0f),
                            glm::vec4(s.face_normal[ref.triangle], 0.0f),
-                           glm::uvec4(base + t[0], base + t[1], base + t[2], 0)});
+                           glm::uvec4(base + t[0], base + t[1], base + t[2],
+                                      2 * ref.sheet + (s.two_faced ? 1 : 0))});
     }
     has_triangles_ = !triangles.empty();
     static_assert(sizeof(SheetBvh::Node) == 32, "std430 Node is 32 bytes");
@@ -209,16 +233,32 @@ class GlDiffusion final : public DiffusionBackend {
     solid_angle_buffer_ = storage_buffer(directions.solid_angle);
   }
 
+  /// Adaptive directions: the fine level and the coarse pairs (the coarse level is the first).
+  void upload_fine_level(const AdaptiveDirections& adaptive) {
+    std::vector<glm::vec4> direction;
+    for (const glm::vec3& d : adaptive.fine.direction) direction.emplace_back(d, 0.0f);
+    fine_directions_buffer_ = storage_buffer(direction);
+    fine_solid_angle_buffer_ = storage_buffer(adaptive.fine.solid_angle);
+    pairs_buffer_ = storage_buffer(adaptive.pairs);
+    fine_n_ = adaptive.fine.n;
+    pair_count_ = static_cast<int>(adaptive.pairs.size());
+  }
+
   bool rotate_cubes_ = true;
   std::unique_ptr<GlContext> context_;
   // GL objects below belong to context_ and are freed with it.
   std::unique_ptr<GlProgram> trace_;
-  GLint direction_count_location_ = -1;
+  GLint direction_count_location_ = -1, adaptive_location_ = -1, fine_n_location_ = -1,
+        pair_count_location_ = -1;
   int direction_count_ = 0;
+  int fine_n_ = 0;  ///< adaptive directions: the fine level's n; 0: every texel is cast
+  int pair_count_ = 0;
   bool has_triangles_ = false;
   GLuint nodes_buffer_ = 0, triangles_buffer_ = 0, vertices_buffer_ = 0;
   GLuint directions_buffer_ = 0, solid_angle_buffer_ = 0, points_buffer_ = 0, sums_buffer_ = 0;
+  GLuint fine_directions_buffer_ = 0, fine_solid_angle_buffer_ = 0, pairs_buffer_ = 0;
   mutable std::mutex mutex_;
+  mutable size_t rays_ = 0;  ///< guarded by mutex_
 };
 
 }  // namespace

@@ -26,9 +26,11 @@ namespace cutaway {
 /// How: the sheets' triangles are put into a BVH once (build_sheet_bvh) and uploaded with the
 /// vertices' colours and material channels. Points go in batches of up to 16,384, one compute
 /// dispatch each (shaders/pmvc_trace.comp): a work group of 256 threads per point casts its
-/// 6 n^2 rays through the BVH and sums colour / r, 1 / r and material / r, times the solid
-/// angles, in double precision in a fixed order; one buffer read returns the batch. Results
-/// are bit-identical for a point whatever the batch it is in or its position there.
+/// 6 n^2 rays through the BVH (with adaptive directions, the coarse rays and the fine rays of
+/// the texels adaptive_directions.h refines, by the cpu backend's rule) and sums colour / r,
+/// 1 / r and material / r, times the solid angles, in double precision in a fixed order; one
+/// buffer read returns the batch. Results are bit-identical for a point whatever the batch it
+/// is in or its position there.
 ///
 /// The backend owns its own offscreen context (create_offscreen_context(): EGL on a GPU, else
 /// OSMesa) and makes it current at the start of every diffuse() call, on the calling thread;

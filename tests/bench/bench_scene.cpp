@@ -8,8 +8,9 @@
 // stage of the default salad, the scene's file sizes
 // (.glb in each --compress mode, .pov), the checks of its outputs (validator, three.js, POV-Ray)
 // and its peak memory (each scene runs in a child process);
-// then per scene the cap sampling compared: dense against adaptive (PMVC points and diffusion
-// seconds, and ratios).
+// then per scene the PMVC work compared: dense sampling casting every cube texel (the paper's
+// way) against adaptive sampling, with every texel and with adaptive directions (the default):
+// diffused points, diffusion seconds and ratios.
 // `--only NAME` runs one scene.
 #include <algorithm>
 #include <chrono>
@@ -221,29 +222,41 @@ int main(int argc, char** argv) {
     std::printf("  %s peak memory (RSS) %.2f GB  [target < 2 GB]\n", path.stem().c_str(),
                 usage.ru_maxrss / 1e6);  // kilobytes
   }
-  // Cap sampling: the same build with dense and with adaptive sampling.
+  // PMVC work: the same build dense, adaptively sampled, and with adaptive directions too.
   for (const fs::path& path : scenes) {
     const cutaway::Scene scene = cutaway::load_scene(path.string());
-    cutaway::SceneStats stats[2];
-    const cutaway::CapSampling modes[2] = {cutaway::CapSampling::Dense,
-                                           cutaway::CapSampling::Adaptive};
-    for (int m = 0; m < 2; ++m) {
+    // Dense sampling casting every texel (the paper's way), adaptive sampling casting every
+    // texel, and the default: adaptive sampling with adaptive directions.
+    struct Run {
+      cutaway::CapSampling sampling;
+      bool adaptive_directions;
+      cutaway::SceneStats stats;
+    } runs[3] = {{cutaway::CapSampling::Dense, false, {}},
+                 {cutaway::CapSampling::Adaptive, false, {}},
+                 {cutaway::CapSampling::Adaptive, true, {}}};
+    for (Run& run : runs) {
       cutaway::SceneBuildOptions options;
-      options.sampling = modes[m];
-      options.diffusion = [threads](const cutaway::DsModel& model) {
-        return cutaway::make_cpu_diffusion(model, {16, threads});
+      options.sampling = run.sampling;
+      options.diffusion = [threads, &run](const cutaway::DsModel& model) {
+        return cutaway::make_cpu_diffusion(model, {16, threads, true, run.adaptive_directions});
       };
-      cutaway::build_scene(scene, scene.seed, options, &stats[m]);
+      cutaway::build_scene(scene, scene.seed, options, &run.stats);
     }
+    const cutaway::SceneStats &dense = runs[0].stats, &sampled = runs[1].stats,
+                              &both = runs[2].stats;
     std::printf(
-        "%-12s sampling dense %7zu points %7.2f s PMVC | adaptive %7zu points %7.2f s "
-        "PMVC (%zu on blur bands, %zu interior) | %.2fx fewer points, %.2fx less PMVC time  "
+        "%-12s dense, every texel %7zu points %7.2f s PMVC | adaptive sampling %7zu points "
+        "(%zu on blur bands, %zu interior) %7.2f s, with adaptive directions %7.2f s | %.2fx "
+        "fewer points, %.2fx less PMVC time (sampling %.2fx, directions %.2fx)  "
         "[target 4x, 3x]\n",
-        path.stem().c_str(), stats[0].diffused_points, stats[0].seconds_diffuse,
-        stats[1].diffused_points, stats[1].seconds_diffuse, stats[1].band_diffused_points,
-        stats[1].diffused_points - stats[1].band_diffused_points,
-        static_cast<double>(stats[0].diffused_points) / stats[1].diffused_points,
-        stats[0].seconds_diffuse / stats[1].seconds_diffuse);
+        path.stem().c_str(), dense.diffused_points, dense.seconds_diffuse,
+        sampled.diffused_points, sampled.band_diffused_points,
+        sampled.diffused_points - sampled.band_diffused_points, sampled.seconds_diffuse,
+        both.seconds_diffuse,
+        static_cast<double>(dense.diffused_points) / both.diffused_points,
+        dense.seconds_diffuse / both.seconds_diffuse,
+        dense.seconds_diffuse / sampled.seconds_diffuse,
+        sampled.seconds_diffuse / both.seconds_diffuse);
   }
   return 0;
 }

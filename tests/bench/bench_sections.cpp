@@ -1,8 +1,10 @@
 // Cross-section benchmark: for every shipped template, a horizontal cut at mid-height and a
 // vertical cut through the axis, meshed and coloured as `cutaway section` does (cpu backend,
-// cube 16, size bound 3 x the template edge), next to the paper's Table 1 and to Embree's raw
-// closest-hit throughput on the same sheets for the same rays (no colour work; also without
-// RTC_SCENE_FLAG_ROBUST and with medium build quality, to show the headroom).
+// cube 16 with adaptive directions, size bound 3 x the template edge), next to the paper's
+// Table 1, to the same points with every texel of the cube cast, and to Embree's raw
+// closest-hit throughput on the same sheets for every texel's ray (no colour work; also without
+// RTC_SCENE_FLAG_ROBUST and with medium build quality, to show the headroom): pmvc/embree
+// compares rays per second.
 //
 // Run:   make bench                       (builds and runs the `benchmarks` target)
 //   or:  cmake --build build --target bench_sections && ./build/bench_sections
@@ -63,6 +65,7 @@ class TimedBackend final : public cutaway::DiffusionBackend {
     last_points.assign(points.begin(), points.end());
   }
   std::string name() const override { return inner_.name(); }
+  size_t rays_cast() const override { return inner_.rays_cast(); }
   mutable double seconds = 0;
   mutable std::vector<glm::dvec3> last_points;
 
@@ -211,9 +214,11 @@ int main(int argc, char** argv) {
     const cutaway::DsModel model = cutaway::build_model(tmpl);
     const auto t_bvh = Clock::now();
     // As `cutaway section` (generator/cli/main.cpp run_section): DiffusionOptions{cube,
-    // threads} and CrossSectionOptions{template edge} (size bound 3 x the edge).
+    // threads} and CrossSectionOptions{template edge} (size bound 3 x the edge). `every_texel`
+    // casts every texel of the cube, the rays of Embree's raw loop, on the same points.
     const auto cpu = cutaway::make_cpu_diffusion(model, {cube, threads});
     const double bvh_s = seconds_since(t_bvh);
+    const auto every_texel = cutaway::make_cpu_diffusion(model, {cube, threads, true, false});
     RawEmbree raw(model, threads), raw_fast(model, threads, false);
     std::unique_ptr<cutaway::DiffusionBackend> gl_backend;
     if (gl) gl_backend = cutaway::make_gl_diffusion(model, {cube, threads});
@@ -228,21 +233,34 @@ int main(int argc, char** argv) {
     } cuts[] = {{"horizontal", {{0, mid, 0}, {0, 1, 0}}}, {"vertical", {{0, 0, 0}, {1, 0, 0}}}};
     for (const auto& cut : cuts) {
       double cut_s = 1e300, diffuse_s = 1e300, raw_s = 1e300, fast_s = 1e300;
+      size_t cut_rays = 0;
       cutaway::CrossSection cs;
       std::vector<glm::dvec3> points;
       for (int r = 0; r < repeat; ++r) {
         TimedBackend timed(*cpu);
+        const size_t rays_before = cpu->rays_cast();
         const auto t0 = Clock::now();
         cs = *cutaway::make_cross_section(model, cut.plane, timed,
                                          cutaway::CrossSectionOptions{tmpl.edge_m});
         cut_s = std::min(cut_s, seconds_since(t0));
+        cut_rays = cpu->rays_cast() - rays_before;
         diffuse_s = std::min(diffuse_s, timed.seconds);
         points = timed.last_points;
         raw_s = std::min(raw_s, raw.trace(points, dirs));
         fast_s = std::min(fast_s, raw_fast.trace(points, dirs));
       }
-      const double rays = static_cast<double>(points.size()) * dirs.direction.size();
+      // Rays of the last cut's diffusion; Embree's raw loop casts every texel.
+      const double rays = static_cast<double>(cut_rays);
+      const double every_rays = static_cast<double>(points.size()) * dirs.direction.size();
       const auto [colour_s, material_s] = colour_and_material_seconds(*cpu, points, repeat);
+      const auto [every_colour_s, every_s] =
+          colour_and_material_seconds(*every_texel, points, repeat);
+      const Agreement vs_every = agreement(*cpu, *every_texel, points);
+      std::printf(
+          "%-9s %-10s cpu adaptive directions: rays_per_point=%.0f of %zu pmvc_s=%.3f, every "
+          "texel %.3f: %.2fx less; vs_every_texel_mean=%.3f/255 max=%.2f/255\n",
+          tmpl.name.c_str(), cut.name, rays / points.size(), dirs.direction.size(), material_s,
+          every_s, every_s / material_s, vs_every.mean, vs_every.max);
       std::printf(
           "%-9s %-10s cpu colour_s=%.3f colour_and_material_s=%.3f material_cost=%+.1f%% "
           "(target <= +15%%)\n",
@@ -254,7 +272,8 @@ int main(int argc, char** argv) {
                   tmpl.name.c_str(), cut.name, model.vertex_count(), model.face_count(),
                   paper[1].c_str(), paper[2].c_str(), paper[0].c_str(), bvh_s, cut_s,
                   cut_s - diffuse_s, diffuse_s, cs.position.size(), points.size(), rays,
-                  rays / diffuse_s, rays / raw_s, raw_s / diffuse_s, rays / fast_s);
+                  rays / diffuse_s, every_rays / raw_s, (rays / diffuse_s) / (every_rays / raw_s),
+                  every_rays / fast_s);
       if (gl_backend) {
         const auto [gl_colour_s, gl_s] = colour_and_material_seconds(*gl_backend, points, repeat);
         const Agreement agree = agreement(*gl_backend, *cpu, points);

@@ -125,14 +125,16 @@ TEST(SectionCommand, PlaneMissingOrTouchingTheObjectExitsTwo) {
 }
 
 TEST(SectionCommand, ByteIdenticalAcrossRunsAndThreadCounts) {
-  std::string glb[5];
+  std::string glb[7];
   const std::vector<std::vector<std::string>> extra = {
       {"--sampling", "dense"},
       {"--sampling", "dense", "--threads", "1"},
       {"--sampling", "dense", "--threads", "2"},
       {"--threads", "1"},  // adaptive, the default
-      {"--threads", "2"}};
-  for (int run = 0; run < 5; ++run) {
+      {"--threads", "2"},
+      {"--directions", "every", "--threads", "1"},
+      {"--directions", "every", "--threads", "2"}};
+  for (int run = 0; run < 7; ++run) {
     const fs::path dir = test::fresh_dir("cli_section_det_" + std::to_string(run));
     std::vector<std::string> args = {"section", "templates/tomato.yaml", "--plane",
                                      "3,25,-2/0.3,0.2,1", "--cube", "8", "-o",
@@ -147,6 +149,27 @@ TEST(SectionCommand, ByteIdenticalAcrossRunsAndThreadCounts) {
   EXPECT_TRUE(glb[1] == glb[2]) << "the glb differs between --threads 1 and 2";
   EXPECT_TRUE(glb[3] == glb[4]) << "adaptive sampling: the glb differs between --threads 1 and 2";
   EXPECT_FALSE(glb[0] == glb[3]) << "--sampling dense changed nothing";
+  EXPECT_TRUE(glb[5] == glb[6]) << "every texel: the glb differs between --threads 1 and 2";
+  EXPECT_FALSE(glb[3] == glb[5]) << "--directions every changed nothing";
+}
+
+TEST(SectionCommand, AdaptiveDirectionsCastFewerRaysThanEveryTexel) {
+  long rays[2] = {0, 0}, points[2] = {0, 0};
+  const char* directions[2] = {"every", "adaptive"};
+  for (int d = 0; d < 2; ++d) {
+    const fs::path dir = test::fresh_dir(std::string("cli_section_directions_") + directions[d]);
+    const test::RunResult r = test::run_cutaway(
+        {"--sampling", "dense", "--directions", directions[d], "section", "templates/tomato.yaml",
+         "--plane", "y=30", "--cube", "8", "-q", "--stats", "-o", (dir / "x.glb").string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.err);
+    rays[d] = j.at("rays").get<long>();
+    points[d] = j.at("diffused_points").get<long>();
+  }
+  EXPECT_EQ(points[0], points[1]);  // dense: the same mesh, every vertex
+  EXPECT_EQ(rays[0], points[0] * 6 * 8 * 8);
+  EXPECT_LT(rays[1], rays[0] * 3 / 4);
+  EXPECT_GE(rays[1], points[1] * 6 * 4 * 4);
 }
 
 TEST(SectionCommand, AdaptiveSamplingDiffusesFewerPointsOnTheSameMesh) {

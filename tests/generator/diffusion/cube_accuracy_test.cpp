@@ -1,7 +1,7 @@
 // The accuracy of the default cube size on real cut faces (the reference that adaptive
 // sampling will be held to): on every shipped template's mid-height cut, the colours of the cap's
-// diffused vertices at cube 16 (cubes turned per point, the default) against a cube-32
-// diffusion at the same points.
+// diffused vertices at cube 16 (cubes turned per point and adaptive directions, the defaults)
+// against a cube-32 diffusion casting every texel at the same points.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -31,7 +31,7 @@ TEST(CubeAccuracy, Cube16AgreesWithCube32OnEveryTemplatesMidHeightCut) {
     for (size_t v : picked) points.push_back(cs.position[v]);
     ASSERT_GT(points.size(), 10u) << t.name;
     const std::vector<glm::dvec3> reference =
-        make_cpu_diffusion(model, DiffusionOptions{32, 0})->diffuse(points);
+        make_cpu_diffusion(model, DiffusionOptions{32, 0, true, false})->diffuse(points);
     double sum = 0, max = 0;
     for (size_t i = 0; i < points.size(); ++i) {
       const double e =
