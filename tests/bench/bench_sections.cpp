@@ -53,7 +53,8 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-/// Forwards to a backend and remembers the points and the time of the last diffusion.
+/// Forwards to a backend and adds up the points and the time of its diffusions (adaptive
+/// sampling diffuses a cut in several batches).
 class TimedBackend final : public cutaway::DiffusionBackend {
  public:
   explicit TimedBackend(const cutaway::DiffusionBackend& inner) : inner_(inner) {}
@@ -61,13 +62,13 @@ class TimedBackend final : public cutaway::DiffusionBackend {
                         std::span<glm::dvec2> material) const override {
     const auto t0 = Clock::now();
     inner_.diffuse_channels(points, colour, material);
-    seconds = seconds_since(t0);
-    last_points.assign(points.begin(), points.end());
+    seconds += seconds_since(t0);
+    all_points.insert(all_points.end(), points.begin(), points.end());
   }
   std::string name() const override { return inner_.name(); }
   size_t rays_cast() const override { return inner_.rays_cast(); }
   mutable double seconds = 0;
-  mutable std::vector<glm::dvec3> last_points;
+  mutable std::vector<glm::dvec3> all_points;
 
  private:
   const cutaway::DiffusionBackend& inner_;
@@ -245,7 +246,7 @@ int main(int argc, char** argv) {
         cut_s = std::min(cut_s, seconds_since(t0));
         cut_rays = cpu->rays_cast() - rays_before;
         diffuse_s = std::min(diffuse_s, timed.seconds);
-        points = timed.last_points;
+        points = timed.all_points;
         raw_s = std::min(raw_s, raw.trace(points, dirs));
         fast_s = std::min(fast_s, raw_fast.trace(points, dirs));
       }
