@@ -26,7 +26,8 @@ class CpuDiffusion final : public DiffusionBackend {
  public:
   CpuDiffusion(const DsModel& model, const DiffusionOptions& options)
       : options_(options),
-        directions_(make_cube_directions(options.cube_size)),
+        directions_(uses_adaptive_directions(options) ? CubeDirections{}
+                                                      : make_cube_directions(options.cube_size)),
         sheets_(make_diffusion_sheets(model)) {
     const std::string config = "threads=" + std::to_string(std::max(options.threads, 0));
     device_ = rtcNewDevice(config.c_str());
@@ -171,7 +172,7 @@ class CpuDiffusion final : public DiffusionBackend {
   }
 
   DiffusionOptions options_;
-  CubeDirections directions_;
+  CubeDirections directions_;  ///< every texel of the cube; empty with adaptive directions
   /// With adaptive directions (an even cube size): the coarse and fine levels.
   std::optional<AdaptiveDirections> adaptive_;
   mutable std::atomic<size_t> rays_{0};

@@ -73,6 +73,14 @@ GLuint storage_buffer(const std::vector<T>& data, size_t bytes = 0, GLenum usage
   return buffer;
 }
 
+/// Directions as the shader reads them: std430 pads a vec3 array to vec4s.
+std::vector<glm::vec4> padded(const std::vector<glm::vec3>& directions) {
+  std::vector<glm::vec4> out;
+  out.reserve(directions.size());
+  for (const glm::vec3& d : directions) out.emplace_back(d, 0.0f);
+  return out;
+}
+
 class GlDiffusion final : public DiffusionBackend {
  public:
   GlDiffusion(const DsModel& model, const DiffusionOptions& options)
@@ -159,10 +167,11 @@ class GlDiffusion final : public DiffusionBackend {
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, points_buffer_);
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
                     static_cast<GLsizeiptr>(batch.size() * sizeof(BatchPoint)), batch.data());
-    const GLuint bindings[] = {nodes_buffer_,          triangles_buffer_,       vertices_buffer_,
-                               directions_buffer_,     solid_angle_buffer_,     points_buffer_,
-                               sums_buffer_,           fine_directions_buffer_, fine_solid_angle_buffer_,
-                               pairs_buffer_};
+    const GLuint bindings[] = {nodes_buffer_,           triangles_buffer_,
+                               vertices_buffer_,        directions_buffer_,
+                               solid_angle_buffer_,     points_buffer_,
+                               sums_buffer_,            fine_directions_buffer_,
+                               fine_solid_angle_buffer_, pairs_buffer_};
     for (GLuint i = 0; i < 10; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, bindings[i]);
     glUseProgram(trace_->id());
     glUniform1i(direction_count_location_, direction_count_);
@@ -226,18 +235,14 @@ class GlDiffusion final : public DiffusionBackend {
   }
 
   void upload_directions(const CubeDirections& directions) {
-    std::vector<glm::vec4> direction;
-    for (const glm::vec3& d : directions.direction) direction.emplace_back(d, 0.0f);
-    direction_count_ = static_cast<int>(direction.size());
-    directions_buffer_ = storage_buffer(direction);
+    direction_count_ = static_cast<int>(directions.direction.size());
+    directions_buffer_ = storage_buffer(padded(directions.direction));
     solid_angle_buffer_ = storage_buffer(directions.solid_angle);
   }
 
   /// Adaptive directions: the fine level and the coarse pairs (the coarse level is the first).
   void upload_fine_level(const AdaptiveDirections& adaptive) {
-    std::vector<glm::vec4> direction;
-    for (const glm::vec3& d : adaptive.fine.direction) direction.emplace_back(d, 0.0f);
-    fine_directions_buffer_ = storage_buffer(direction);
+    fine_directions_buffer_ = storage_buffer(padded(adaptive.fine.direction));
     fine_solid_angle_buffer_ = storage_buffer(adaptive.fine.solid_angle);
     pairs_buffer_ = storage_buffer(adaptive.pairs);
     fine_n_ = adaptive.fine.n;
