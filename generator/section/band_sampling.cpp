@@ -5,7 +5,9 @@
 #include <map>
 #include <numeric>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
+#include <vector>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -14,6 +16,25 @@
 #include "base/error.h"
 
 namespace cutaway {
+
+namespace {
+
+/// Cosine of the largest angle between two lines that run alongside each other (25 degrees).
+constexpr double kAlongside = 0.9;
+
+/// Indices of `points` by line, then arc length (then index: deterministic for equal arc
+/// lengths).
+std::vector<size_t> points_along_lines(std::span<const BandPoint> points) {
+  std::vector<size_t> order(points.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return std::tie(points[a].line, points[a].arc_length, a) <
+           std::tie(points[b].line, points[b].arc_length, b);
+  });
+  return order;
+}
+
+}  // namespace
 
 SegmentChains chain_segments(std::span<const std::array<glm::dvec2, 2>> segments,
                              std::span<const int> group) {
@@ -77,12 +98,27 @@ void mark_irregular_band_points(std::span<BandPoint> points, const SegmentChains
   };
   std::map<std::tuple<long, long, long>, std::vector<size_t>> grid;
   for (size_t i = 0; i < points.size(); ++i) grid[key(points[i].position)].push_back(i);
-  for (BandPoint& p : points) {
+  auto near_open_end = [&](const BandPoint& p) {
     const int chain = p.line / 3;
     if (chain < 0 || chain >= chains.chains)
       throw InternalError("mark_irregular_band_points: a line of no chain");
-    if (!chains.closed[chain] &&
-        std::min(p.arc_length, chains.length[chain] - p.arc_length) < 2 * p.width) {
+    return !chains.closed[chain] &&
+           std::min(p.arc_length, chains.length[chain] - p.arc_length) < 2 * p.width;
+  };
+  // Each point's direction along its line, from its neighbours on the line (0: a line of one
+  // point).
+  const std::vector<size_t> order = points_along_lines(points);
+  std::vector<glm::dvec3> along(points.size(), glm::dvec3(0.0));
+  for (size_t k = 0; k < order.size(); ++k) {
+    auto on_line = [&](size_t j) { return points[order[j]].line == points[order[k]].line; };
+    const size_t before = k > 0 && on_line(k - 1) ? order[k - 1] : order[k];
+    const size_t after = k + 1 < order.size() && on_line(k + 1) ? order[k + 1] : order[k];
+    const glm::dvec3 d = points[after].position - points[before].position;
+    if (glm::length(d) > 0) along[order[k]] = glm::normalize(d);
+  }
+  for (size_t i = 0; i < points.size(); ++i) {
+    BandPoint& p = points[i];
+    if (near_open_end(p)) {
       p.exact = true;
       continue;
     }
@@ -95,7 +131,12 @@ void mark_irregular_band_points(std::span<BandPoint> points, const SegmentChains
           for (size_t j : found->second) {
             const BandPoint& q = points[j];
             const double d = glm::distance(p.position, q.position);
-            if (d >= 0.9 * p.width || &q == &p) continue;
+            if (d >= 0.9 * p.width || j == i) continue;
+            // Another band running alongside, at least half a width away: a strip beside a
+            // strip (a sheet just under the skin), still interpolable along the line.
+            if (q.line / 3 != p.line / 3 && d >= 0.5 * p.width && !near_open_end(q) &&
+                std::fabs(glm::dot(along[i], along[j])) > kAlongside)
+              continue;
             if (q.line != p.line || std::fabs(q.arc_length - p.arc_length) > 1.5 * d + p.width) {
               p.exact = true;
               break;
@@ -115,13 +156,7 @@ BandSamplingCounts sample_bands(std::span<const BandPoint> points,
   if (!(options.spacing_m > 0)) throw InternalError("sample_bands: spacing must be > 0");
   BandSamplingCounts counts;
   counts.points = points.size();
-  // Points by line, then arc length (then index: deterministic for equal arc lengths).
-  std::vector<size_t> order(points.size());
-  std::iota(order.begin(), order.end(), size_t{0});
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return std::tie(points[a].line, points[a].arc_length, a) <
-           std::tie(points[b].line, points[b].arc_length, b);
-  });
+  const std::vector<size_t> order = points_along_lines(points);
   std::vector<bool> sampled(points.size(), false);
   auto diffuse = [&](const std::vector<size_t>& which) {
     std::vector<glm::dvec3> where;

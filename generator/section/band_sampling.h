@@ -58,7 +58,9 @@ struct BandPoint {
 /// of its chain (the band turns round the end), and where a point of another line, or of the
 /// same line further than 1.5 times their distance plus a width away along it, lies within 0.9
 /// of the point's width (a narrow loop's inner trace meets its cut or crosses itself, or another
-/// band runs into this one).
+/// band runs into this one). A line of another chain that runs alongside (within 25 degrees,
+/// at least half the point's width away, and not near its own chain's open end) does not count:
+/// two strips side by side, such as a sheet just under the skin, interpolate along their lines.
 void mark_irregular_band_points(std::span<BandPoint> points, const SegmentChains& chains);
 
 /// How sparsely the lines are sampled.

@@ -597,7 +597,8 @@ CrossSection SectionMesher::diffuse_rest(const DiffusionBackend& diffusion) {
     for (unsigned id : interpolated_) free[id] = true;
     const HarmonicSamplingCounts counts = sample_harmonically(
         cs_.position, cs_.triangle, free, cs_.colour, cs_.material, diffusion,
-        {options_.harmonic_spacing * options_.edge_m, 0.5 * options_.edge_m, options_.tolerance});
+        {options_.harmonic_spacing * options_.edge_m,
+         options_.harmonic_min_spacing * options_.edge_m, options_.tolerance});
     cs_.diffused_points += counts.diffused;
     cs_.seconds_diffuse += seconds_since(interior);
   }

@@ -41,6 +41,8 @@ struct CrossSectionOptions {
                            ///< in steps of 1/255 (visible_difference: sRGB, material channels)
   double harmonic_spacing = 6.0;  ///< adaptive: Poisson-disc radius of the first interior
                                   ///< samples, in edge_m (harmonic_sampling.h)
+  double harmonic_min_spacing = 0.25;  ///< adaptive: the interior's test radius is halved down
+                                       ///< to this, in edge_m (harmonic_sampling.h)
   double band_spacing = 16.0;     ///< adaptive: largest arc length between the first samples
                                   ///< along a blur band's lines, in edge_m (band_sampling.h)
   double merge_tolerance = 0.01;  ///< nearly collinear cut segments are merged up to edge_m
