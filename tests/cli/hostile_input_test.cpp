@@ -19,6 +19,7 @@
 #include <fstream>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "test_support.h"
@@ -181,9 +182,13 @@ std::string edited_base(const std::string& from, const std::string& to) {
   return t;
 }
 
+/// Stands for 10 MiB of 'x' in a LongValue's `to`, filled in when the test runs: parameters are
+/// built and copied when every test process starts, so they stay small.
+constexpr std::string_view k10MB = "<10 MiB of x>";
+
 struct LongValue {
   std::string name;
-  std::string from, to;  ///< the edit of the valid base
+  std::string from, to;  ///< the edit of the valid base (k10MB in `to`: 10 MiB of 'x')
   std::string field;
   std::string rule;
 };
@@ -192,12 +197,12 @@ std::ostream& operator<<(std::ostream& os, const LongValue& c) { return os << c.
 
 class HostileLongValue : public ::testing::TestWithParam<LongValue> {};
 
-const std::string k10MB(10u << 20, 'x');
-
 TEST_P(HostileLongValue, MessageStaysShort) {
   const LongValue& c = GetParam();
+  std::string to = c.to;
+  to.replace(to.find(k10MB), k10MB.size(), std::string(10u << 20, 'x'));
   const fs::path file = test::fresh_dir("hostile_long_value") / (c.name + ".yaml");
-  std::ofstream(file, std::ios::binary) << edited_base(c.from, c.to);
+  std::ofstream(file, std::ios::binary) << edited_base(c.from, to);
   const LimitedRun r = run_limited({"check", file.string()});
   expect_refusal(r, file.string(), c.field, c.rule);
   std::printf("%s: %zu bytes of message in %.2f s\n", c.name.c_str(), r.err.size(), r.seconds);
@@ -206,17 +211,17 @@ TEST_P(HostileLongValue, MessageStaysShort) {
 INSTANTIATE_TEST_SUITE_P(
     TenMegabytes, HostileLongValue,
     ::testing::Values(
-        LongValue{"number", "edge: 2", "edge: " + k10MB, "resolution.edge: ",
+        LongValue{"number", "edge: 2", "edge: " + std::string(k10MB), "resolution.edge: ",
                   "must be a number, not \"xxx"},
-        LongValue{"colour", "front: \"#c8281e\"", "front: \"#" + k10MB + "\"",
+        LongValue{"colour", "front: \"#c8281e\"", "front: \"#" + std::string(k10MB) + "\"",
                   "surfaces[0].front: ", "…(10485761 bytes)…xxx"},
         LongValue{"mesh_file", "    kind: around\n    role: skin\n    profile",
-                  "    kind: around\n    role: skin\n    file: " + k10MB + "\n    profile",
+                  "    kind: around\n    role: skin\n    file: " + std::string(k10MB) + "\n    profile",
                   "surfaces[0].file: ", "only a 'mesh' surface has a file"},
         LongValue{"key", "    section: circle",
-                  "    ? " + k10MB + "\n    : 1\n    section: circle",
+                  "    ? " + std::string(k10MB) + "\n    : 1\n    section: circle",
                   "surfaces[0][\"xxx", "unknown field \"xxx"},
-        LongValue{"escaped_value", "edge: 2", "edge: \"\\t\\e" + k10MB + "\\u0085\"",
+        LongValue{"escaped_value", "edge: 2", "edge: \"\\t\\e" + std::string(k10MB) + "\\u0085\"",
                   "resolution.edge: ", "must be a number, not \"\\t\\x1bxxx"}),
     [](const auto& info) { return info.param.name; });
 
