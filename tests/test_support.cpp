@@ -41,6 +41,23 @@ std::string slurp(const std::filesystem::path& p) {
 
 int system_exit_code(int status) { return WIFEXITED(status) ? WEXITSTATUS(status) : 128; }
 
+/// Appends a blank and `word` quoted for the shell to `cmd`. (Appended piece by piece: GCC 12
+/// warns falsely about overlapping memcpy in `" " + std::string&&`.)
+void add_word(std::string& cmd, const std::string& word) {
+  cmd += ' ';
+  cmd += shell_quote(word);
+}
+
+/// A shell command run from the source tree: "cd SOURCE_DIR && PROGRAM ARGS..." (quoted).
+std::string in_source_dir(const std::string& program, const std::vector<std::string>& args) {
+  std::string cmd = "cd";
+  add_word(cmd, CUTAWAY_SOURCE_DIR);
+  cmd += " &&";
+  add_word(cmd, program);
+  for (const std::string& a : args) add_word(cmd, a);
+  return cmd;
+}
+
 }  // namespace
 
 RunResult run_cutaway(const std::vector<std::string>& args) {
@@ -49,9 +66,11 @@ RunResult run_cutaway(const std::vector<std::string>& args) {
   std::filesystem::create_directories(dir);
   const std::string tag = std::to_string(::getpid()) + "-" + std::to_string(counter++);
   const auto out = dir / (tag + ".out"), err = dir / (tag + ".err");
-  std::string cmd = "cd " + shell_quote(CUTAWAY_SOURCE_DIR) + " && " + shell_quote(CUTAWAY_BINARY);
-  for (const auto& a : args) cmd += " " + shell_quote(a);
-  cmd += " </dev/null >" + shell_quote(out.string()) + " 2>" + shell_quote(err.string());
+  std::string cmd = in_source_dir(CUTAWAY_BINARY, args);
+  cmd += " </dev/null >";
+  cmd += shell_quote(out.string());
+  cmd += " 2>";
+  cmd += shell_quote(err.string());
   RunResult r;
   r.exit_code = system_exit_code(std::system(cmd.c_str()));
   r.out = slurp(out);
@@ -125,10 +144,12 @@ NodeToolRun run_node_tool(const std::string& script, const std::vector<std::stri
                    ("node-" + std::to_string(::getpid()) + "-" +
                     std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id())) + ".log");
   std::filesystem::create_directories(log.parent_path());
-  std::string cmd = "cd " + shell_quote(CUTAWAY_SOURCE_DIR) + " && node " +
-                    shell_quote("tests/tools/" + script);
-  for (const auto& a : args) cmd += " " + shell_quote(a);
-  cmd += " >" + shell_quote(log.string()) + " 2>&1";
+  std::vector<std::string> words{"tests/tools/" + script};
+  words.insert(words.end(), args.begin(), args.end());
+  std::string cmd = in_source_dir("node", words);
+  cmd += " >";
+  cmd += shell_quote(log.string());
+  cmd += " 2>&1";
   NodeToolRun run;
   run.exit_code = system_exit_code(std::system(cmd.c_str()));
   run.output = slurp(log);
