@@ -17,6 +17,7 @@
 #include "base/atomic_file.h"
 #include "base/constants.h"
 #include "base/error.h"
+#include "base/finite.h"
 #include "export/texture_image.h"
 
 namespace cutaway {
@@ -77,10 +78,6 @@ std::string mesh_identifier(size_t k, const std::string& name) {
   return id;
 }
 
-bool finite(const glm::dvec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 void require(bool ok, const std::string& what) {
   if (!ok) throw InternalError("POV-Ray export: " + what);
 }
@@ -92,7 +89,7 @@ std::vector<glm::dvec3> usable_normals(const AssetMesh& m) {
   std::vector<glm::dvec3> face_sum;  // computed only when needed
   for (size_t i = 0; i < n.size(); ++i) {
     const glm::dvec3 v = m.normal[i];
-    const double len = finite(v) ? glm::length(v) : 0.0;
+    const double len = all_finite(v) ? glm::length(v) : 0.0;
     if (len > 1e-12 && std::isfinite(len)) {
       n[i] = v / len;
       continue;
@@ -386,7 +383,7 @@ void write_strokes(std::string& out, const SceneAssets& a, const std::vector<Str
     for (size_t k = 0; k <= n; ++k) {
       if (k == n && !stroke.closed) break;
       const glm::dvec3& p = stroke.points[k % n];
-      require(finite(p) && std::isfinite(stroke.width_px[k % n]),
+      require(all_finite(p) && std::isfinite(stroke.width_px[k % n]),
               "stroke " + std::to_string(s) + ": non-finite point or width");
       const double depth = glm::dot(p - c.eye, forward);
       if (!(depth > 0)) continue;

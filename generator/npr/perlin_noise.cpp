@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "base/error.h"
+#include "base/finite.h"
 #include "base/random.h"
 
 namespace cutaway {
@@ -42,7 +43,7 @@ PerlinNoise::PerlinNoise(uint64_t seed) {
 }
 
 double PerlinNoise::operator()(const glm::dvec3& p) const {
-  CUTAWAY_CHECK(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+  CUTAWAY_CHECK(all_finite(p));
   const double fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
   // Lattice cell, wrapped to 0..255 (the table's period); floor first, so negatives wrap too.
   const auto wrap = [](double f) {

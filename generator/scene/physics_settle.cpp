@@ -8,6 +8,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "base/error.h"
+#include "base/finite.h"
 #include "scene/container_mesh.h"
 
 namespace cutaway {
@@ -261,7 +262,7 @@ double largest_motion(const std::vector<SettleBody>& bodies, const std::vector<P
 /// the table and below `ceiling` (higher, a failed simulation step has thrown it).
 bool inside(const Container& container, const glm::dvec3& c, double ceiling,
             double none_radius_m) {
-  return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) && c.y > 0 &&
+  return all_finite(c) && c.y > 0 &&
          c.y < ceiling && rest_height(container, c.x, c.z, none_radius_m).has_value();
 }
 

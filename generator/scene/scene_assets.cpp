@@ -8,19 +8,13 @@
 #include <glm/trigonometric.hpp>
 
 #include "base/error.h"
+#include "base/finite.h"
 
 namespace cutaway {
 
-namespace {
-
-bool finite(const glm::dvec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-}  // namespace
 
 std::string camera_defect(const AssetCamera& c, bool needs_up) {
-  if (!finite(c.eye) || !finite(c.target) || !finite(c.up))
+  if (!all_finite(c.eye) || !all_finite(c.target) || !all_finite(c.up))
     return "eye, target and up must be finite";
   const glm::dvec3 forward = c.target - c.eye;
   if (!(glm::length(forward) > 0)) return "eye and target coincide";
@@ -111,14 +105,14 @@ std::string mesh_defect(const AssetMesh& m, const std::vector<AssetMaterial>& ma
     return "has " + std::to_string(n) + " positions, " + std::to_string(m.normal.size()) +
            " normals and " + std::to_string(m.colour.size()) + " colours (must be equal)";
   for (size_t v = 0; v < n; ++v)
-    if (!finite(m.position[v]) || !finite(m.colour[v]) ||
-        (!rules.normals_repaired && !finite(m.normal[v])))
+    if (!all_finite(m.position[v]) || !all_finite(m.colour[v]) ||
+        (!rules.normals_repaired && !all_finite(m.normal[v])))
       return "vertex " + std::to_string(v) + " has a non-finite position, normal or colour";
   if (!m.uv.empty() && m.uv.size() != n)
     return "has " + std::to_string(m.uv.size()) + " texture coordinates for " +
            std::to_string(n) + " positions (must be equal, or none)";
   for (size_t v = 0; v < m.uv.size(); ++v)
-    if (!std::isfinite(m.uv[v].x) || !std::isfinite(m.uv[v].y))
+    if (!all_finite(m.uv[v]))
       return "vertex " + std::to_string(v) + " has non-finite texture coordinates";
   const auto out_of_range = [n](const std::vector<glm::uvec3>& triangles) {
     for (size_t t = 0; t < triangles.size(); ++t)
@@ -139,7 +133,7 @@ std::string mesh_defect(const AssetMesh& m, const std::vector<AssetMaterial>& ma
 }
 
 std::string light_defect(const AssetLight& l) {
-  if (!finite(l.position) || !finite(l.direction) || !finite(l.colour) ||
+  if (!all_finite(l.position) || !all_finite(l.direction) || !all_finite(l.colour) ||
       !std::isfinite(l.intensity))
     return "has a non-finite field";
   if (l.intensity < 0 || l.colour.r < 0 || l.colour.g < 0 || l.colour.b < 0)
@@ -182,7 +176,7 @@ std::string assets_defect(const SceneAssets& a, const AssetRules& rules) {
       defect = "has mesh index " + std::to_string(inst.mesh) + ", not in 0.." +
                std::to_string(static_cast<long>(a.meshes.size()) - 1);
     else if (!std::isfinite(q.w) || !std::isfinite(q.x) || !std::isfinite(q.y) ||
-             !std::isfinite(q.z) || !(glm::length(q) > 0) || !finite(inst.translation))
+             !std::isfinite(q.z) || !(glm::length(q) > 0) || !all_finite(inst.translation))
       defect = "has a zero or non-finite rotation, or a non-finite translation";
     if (auto d = named("instance", i, inst.name, defect); !d.empty()) return d;
   }
@@ -191,7 +185,7 @@ std::string assets_defect(const SceneAssets& a, const AssetRules& rules) {
   for (size_t i = 0; i < a.lights.size(); ++i)
     if (auto d = named("light", i, a.lights[i].name, light_defect(a.lights[i])); !d.empty())
       return d;
-  if (!finite(a.background) || a.background.r < 0 || a.background.g < 0 || a.background.b < 0)
+  if (!all_finite(a.background) || a.background.r < 0 || a.background.g < 0 || a.background.b < 0)
     return "the background must be finite and >= 0";
   return "";
 }

@@ -28,6 +28,7 @@
 #include <glm/geometric.hpp>
 
 #include "base/error.h"
+#include "base/finite.h"
 #include "base/timer.h"
 #include "section/band_sampling.h"
 #include "section/harmonic_sampling.h"
@@ -576,7 +577,7 @@ void SectionMesher::split_vertex(Vertex v) {
 CrossSection SectionMesher::diffuse_rest(const DiffusionBackend& diffusion) {
   // Every point left (dense), or the cut vertices off the bands and then the interior by
   // harmonic sampling (adaptive).
-  for (const glm::dvec3& p : to_diffuse_) CUTAWAY_CHECK(std::isfinite(p.x + p.y + p.z));
+  for (const glm::dvec3& p : to_diffuse_) CUTAWAY_CHECK(all_finite(p));
   cs_.diffused_points += to_diffuse_.size();
   const auto triangulated = std::chrono::steady_clock::now();
   cs_.seconds_triangulate =
