@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "base/area_sampling.h"
 #include "base/constants.h"
 #include "base/error.h"
 
@@ -44,13 +45,11 @@ struct HashGrid {
 /// The triangles of `on` whose three vertices' params lie in the grain's region.
 struct RegionTriangles {
   std::vector<std::array<int, 3>> vertices;
-  std::vector<double> cumulative_area;  ///< m^2, running sum in triangle order
-  double area() const { return cumulative_area.empty() ? 0.0 : cumulative_area.back(); }
+  std::vector<double> area;  ///< m^2, per triangle
 };
 
 RegionTriangles region_triangles(const GrainSpec& spec, const DsMesh& m) {
   RegionTriangles r;
-  double total = 0;
   for (auto fh : m.faces()) {
     std::array<int, 3> t;
     int k = 0;
@@ -65,9 +64,8 @@ RegionTriangles region_triangles(const GrainSpec& spec, const DsMesh& m) {
                      c = point(m, m.vertex_handle(t[2]));
     const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
     if (!(area > 0)) continue;
-    total += area;
     r.vertices.push_back(t);
-    r.cumulative_area.push_back(total);
+    r.area.push_back(area);
   }
   return r;
 }
@@ -91,7 +89,8 @@ void check_grain_limits(const Template& tmpl, const DsModel& model) {
   }
   const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
   for (const GrainSpec& spec : tmpl.grains) {
-    const double area = region_triangles(spec, grain_support(spec, model).mesh).area();
+    const double area = AreaSampler(region_triangles(spec, grain_support(spec, model).mesh).area)
+                            .total();
     const double most = area / (0.5 * std::sqrt(3.0) * spec.spacing * spec.spacing);
     if (most > kMaxGrainsPerSet) {
       std::ostringstream s;
@@ -122,25 +121,16 @@ std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface&
   const std::vector<glm::dvec3> normals = vertex_normals(m);
   const RegionTriangles region = region_triangles(spec, m);
   const auto& tris = region.vertices;
-  const auto& cumulative = region.cumulative_area;
-  const double total = region.area();
+  const AreaSampler sampler(region.area);
   std::vector<GrainPlacement> out;
   if (tris.empty()) return out;
   HashGrid grid{spec.spacing, {}};
   const double side = spec.on_front ? 1.0 : -1.0;
   int failures = 0;
   while (failures < opt.max_consecutive_failures && out.size() < opt.max_grains) {
-    const double r = rng.uniform(0.0, total);
-    const size_t ti = std::min(
-        tris.size() - 1,
-        static_cast<size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), r) -
-                            cumulative.begin()));
-    double u = rng.uniform(), v = rng.uniform();
-    if (u + v > 1) {
-      u = 1 - u;
-      v = 1 - v;
-    }
-    const double w[3] = {1 - u - v, u, v};
+    const AreaSample drawn = sampler.draw(rng);
+    const size_t ti = drawn.triangle;
+    const glm::dvec3& w = drawn.weights;
     glm::dvec3 p(0.0), n(0.0);
     glm::dvec3 pos[3];
     double tp[3];

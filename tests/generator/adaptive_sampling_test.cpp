@@ -8,11 +8,11 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
-#include <tuple>
 #include <utility>
 
 #include <gtest/gtest.h>
 
+#include "base/area_sampling.h"
 #include "base/colour.h"
 #include "base/random.h"
 #include "io/template_parser.h"
@@ -63,24 +63,18 @@ Errors vertex_errors(const DiffusionBackend& cube32, const CrossSection& cap, si
 /// The cap as a picture shows it: `count` points uniform over its area (seeded; a triangle by
 /// area, then uniform barycentrics), each coloured linearly across its triangle.
 Errors area_errors(const DiffusionBackend& cube32, const CrossSection& cap, size_t count) {
-  std::vector<double> cumulative;
-  double total = 0;
+  std::vector<double> areas;
   for (const glm::uvec3& t : cap.triangle) {
     const glm::dvec3 a = cap.position[t.x], b = cap.position[t.y], c = cap.position[t.z];
-    total += 0.5 * glm::length(glm::cross(b - a, c - a));
-    cumulative.push_back(total);
+    areas.push_back(0.5 * glm::length(glm::cross(b - a, c - a)));
   }
+  const AreaSampler sampler(areas);
   Rng rng(derive_seed(19, {count}));
   std::vector<glm::dvec3> where, colour;
   for (size_t k = 0; k < count; ++k) {
-    const size_t f = std::min<size_t>(
-        std::lower_bound(cumulative.begin(), cumulative.end(), rng.uniform() * total) -
-            cumulative.begin(),
-        cumulative.size() - 1);
-    double u = rng.uniform(), v = rng.uniform();
-    if (u + v > 1) std::tie(u, v) = std::make_pair(1 - u, 1 - v);
-    const glm::uvec3 t = cap.triangle[f];
-    const glm::dvec3 w(1 - u - v, u, v);
+    const AreaSample drawn = sampler.draw(rng);
+    const glm::uvec3 t = cap.triangle[drawn.triangle];
+    const glm::dvec3& w = drawn.weights;
     auto at = [&](const std::vector<glm::dvec3>& value) {
       return w.x * value[t.x] + w.y * value[t.y] + w.z * value[t.z];
     };
