@@ -24,11 +24,20 @@ glm::dvec3 linear_to_srgb(const glm::dvec3& c) {
   return {linear_to_srgb(c.x), linear_to_srgb(c.y), linear_to_srgb(c.z)};
 }
 
+double colour_difference(const glm::dvec3& colour, const glm::dvec3& colour_ref) {
+  const glm::dvec3 d = glm::abs(linear_to_srgb(colour) - linear_to_srgb(colour_ref));
+  return 255.0 * std::max({d.x, d.y, d.z});
+}
+
+double material_difference(const glm::dvec2& material, const glm::dvec2& material_ref) {
+  const glm::dvec2 d = glm::abs(material - material_ref);
+  return 255.0 * std::max(d.x, d.y);
+}
+
 double visible_difference(const glm::dvec3& colour, const glm::dvec2& material,
                           const glm::dvec3& colour_ref, const glm::dvec2& material_ref) {
-  const glm::dvec3 dc = glm::abs(linear_to_srgb(colour) - linear_to_srgb(colour_ref));
-  const glm::dvec2 dm = glm::abs(material - material_ref);
-  return 255.0 * std::max({dc.x, dc.y, dc.z, dm.x, dm.y});
+  return std::max(colour_difference(colour, colour_ref),
+                  material_difference(material, material_ref));
 }
 
 }  // namespace cutaway

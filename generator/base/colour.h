@@ -19,12 +19,31 @@ glm::dvec3 srgb_to_linear(const glm::dvec3& c);
 /// Component-wise linear_to_srgb.
 glm::dvec3 linear_to_srgb(const glm::dvec3& c);
 
-/// How far apart two samples of a cap's field look, in steps of 1/255: the largest difference
-/// over the sRGB-encoded colour channels (`colour`, linear RGB in) and the material channels
-/// (`material`, 0..1 as they are). Adaptive sampling's tests use it, so that a tolerance is the
-/// same visible step in dark and light flesh (in linear RGB, 0.02 is 17/255 near black and
-/// 3/255 near white).
+/// How far apart two colours look, in steps of 1/255: the largest difference over the
+/// sRGB-encoded channels (linear RGB in). A tolerance in these steps is the same visible step in
+/// dark and light flesh (in linear RGB, 0.02 is 17/255 near black and 3/255 near white).
+double colour_difference(const glm::dvec3& colour, const glm::dvec3& colour_ref);
+
+/// How far apart two samples of the material channels (roughness, translucency; 0..1, stored
+/// linearly in 8-bit maps) lie, in steps of 1/255: the larger channel difference.
+double material_difference(const glm::dvec2& material, const glm::dvec2& material_ref);
+
+/// How far apart two samples of a cap's field look, in steps of 1/255: the larger of
+/// colour_difference and material_difference.
 double visible_difference(const glm::dvec3& colour, const glm::dvec2& material,
                           const glm::dvec3& colour_ref, const glm::dvec2& material_ref);
+
+/// The largest differences between a diffused sample and its interpolation that adaptive cap
+/// sampling accepts, in steps of 1/255.
+struct VisibleTolerance {
+  double colour = 0;    ///< colour_difference
+  double material = 0;  ///< material_difference
+  /// Whether (colour, material) lies within both tolerances of (colour_ref, material_ref).
+  bool accepts(const glm::dvec3& colour, const glm::dvec2& material,
+               const glm::dvec3& colour_ref, const glm::dvec2& material_ref) const {
+    return colour_difference(colour, colour_ref) <= this->colour &&
+           material_difference(material, material_ref) <= this->material;
+  }
+};
 
 }  // namespace cutaway

@@ -219,8 +219,7 @@ BandSamplingCounts sample_bands(std::span<const BandPoint> points,
     std::vector<std::pair<size_t, size_t>> next;
     for (size_t g = 0; g < gaps.size(); ++g) {
       const size_t t = tests[g];
-      if (visible_difference(colour[t], material[t], c_interp[g], m_interp[g]) <= options.tolerance)
-        continue;
+      if (options.tolerance.accepts(colour[t], material[t], c_interp[g], m_interp[g])) continue;
       ++counts.failed;
       const auto [lo, hi] = gaps[g];
       if (middle[g] > lo + 1) next.emplace_back(lo, middle[g]);

@@ -13,6 +13,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "base/colour.h"
 #include "diffusion/diffusion.h"
 
 namespace cutaway {
@@ -67,8 +68,8 @@ void mark_irregular_band_points(std::span<BandPoint> points, const SegmentChains
 struct BandSamplingOptions {
   double spacing_m = 0;  ///< largest arc length between the first samples of a line (its
                          ///< two ends are always samples)
-  double tolerance = 0;  ///< largest accepted visible_difference (colour.h, of 255) between
-                         ///< a test point's diffused and interpolated values
+  VisibleTolerance tolerance;  ///< largest accepted differences (colour.h) between a test
+                               ///< point's diffused and interpolated values
 };
 
 /// Counts of one band sampling.

@@ -454,7 +454,7 @@ void SectionMesher::sample_band_lines(const DiffusionBackend& diffusion) {
     std::vector<glm::dvec3> colours(band_points.size());
     std::vector<glm::dvec2> materials(band_points.size());
     const BandSamplingCounts band = sample_bands(
-        band_points, diffusion, {options_.band_spacing * options_.edge_m, options_.tolerance},
+        band_points, diffusion, {options_.band_spacing * options_.edge_m, {options_.tolerance, options_.material_tolerance}},
         colours, materials);
     for (size_t i = 0; i < band_vertices.size(); ++i)
       samples_.emplace(band_vertices[i], std::make_pair(colours[i], materials[i]));
@@ -599,7 +599,8 @@ CrossSection SectionMesher::diffuse_rest(const DiffusionBackend& diffusion) {
     const HarmonicSamplingCounts counts = sample_harmonically(
         cs_.position, cs_.triangle, free, cs_.colour, cs_.material, diffusion,
         {options_.harmonic_spacing * options_.edge_m,
-         options_.harmonic_min_spacing * options_.edge_m, options_.tolerance});
+         options_.harmonic_min_spacing * options_.edge_m,
+         {options_.tolerance, options_.material_tolerance}});
     cs_.diffused_points += counts.diffused;
     cs_.seconds_diffuse += seconds_since(interior);
   }

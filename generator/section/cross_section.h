@@ -25,7 +25,7 @@ enum class CapSampling {
   /// (band_sampling.h) except where a band is not a strip along one line, its other interior
   /// vertices sparsely by Poisson-disc and harmonic interpolation (harmonic_sampling.h), both
   /// refined where a test point's diffused colour or material channels differ visibly from the
-  /// interpolation (by more than `tolerance`, colour.h visible_difference). The default: on
+  /// interpolation (by more than `tolerance` or `material_tolerance`, colour.h). The default: on
   /// the default salad it diffuses 1.9x fewer points in 1.7-1.9x less PMVC time, and its picture
   /// differs from the dense one by 0.05/255 on average.
   Adaptive,
@@ -37,8 +37,10 @@ struct CrossSectionOptions {
   double interior_edge = 3.0;  ///< largest triangle edge, in edge_m: the cut segments are
                                ///< finer, and refinement grades from them into the interior
   CapSampling sampling = CapSampling::Adaptive;
-  double tolerance = 2.0;  ///< adaptive: largest interpolation error left at a test point,
-                           ///< in steps of 1/255 (visible_difference: sRGB, material channels)
+  double tolerance = 2.0;  ///< adaptive: largest colour interpolation error left at a test
+                           ///< point, in steps of 1/255 (colour_difference: sRGB)
+  double material_tolerance = 4.0;  ///< adaptive: the same for the material channels
+                                    ///< (material_difference: 8-bit roughness, translucency)
   double harmonic_spacing = 6.0;  ///< adaptive: Poisson-disc radius of the first interior
                                   ///< samples, in edge_m (harmonic_sampling.h)
   double harmonic_min_spacing = 0.25;  ///< adaptive: the interior's test radius is halved down

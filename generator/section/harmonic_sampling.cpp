@@ -205,8 +205,7 @@ HarmonicSamplingCounts sample_harmonically(
     bool any_failed = false;
     for (size_t k = 0; k < tests.size(); ++k) {
       const size_t i = tests[k];
-      if (visible_difference(colour[i], material[i], c_interp[k], m_interp[k]) <= options.tolerance)
-        continue;
+      if (options.tolerance.accepts(colour[i], material[i], c_interp[k], m_interp[k])) continue;
       ++counts.failed;
       failures.add(position[i]);
       any_failed = true;

@@ -11,6 +11,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "base/colour.h"
 #include "diffusion/diffusion.h"
 
 namespace cutaway {
@@ -20,8 +21,8 @@ struct HarmonicSamplingOptions {
   double spacing_m = 0;      ///< Poisson-disc radius of the first samples
   double min_spacing_m = 0;  ///< refinement halves the radius down to this; a region still
                              ///< failing below it has every vertex diffused
-  double tolerance = 0;      ///< largest accepted visible_difference (colour.h, of 255)
-                             ///< between a test point's diffused and interpolated values
+  VisibleTolerance tolerance;  ///< largest accepted differences (colour.h) between a test
+                               ///< point's diffused and interpolated values
 };
 
 /// Counts of one sampling.
@@ -42,11 +43,10 @@ struct HarmonicSamplingCounts {
 ///    solved by sparse LDLT (Eigen);
 /// 3. round by round with the radius halved, a Poisson-disc set of test points is diffused
 ///    among the vertices still interpolated near last round's failures (the diffused free
-///    vertices count as disc centres) (everywhere in the
-///    first round); a test point whose diffused value differs from its interpolation by more
-///    than `tolerance` marks its neighbourhood (1.5 radii) for the next round; once the radius
-///    is below min_spacing_m every remaining vertex near a failure is diffused. Then step 2
-///    again.
+///    vertices count as disc centres) (everywhere in the first round); a test point whose
+///    diffused value differs from its interpolation by more than `tolerance` allows marks its
+///    neighbourhood (1.5 radii) for the next round; once the radius is below min_spacing_m
+///    every remaining vertex near a failure is diffused. Then step 2 again.
 /// A connected set of free vertices with no known neighbour gets its first vertex diffused;
 /// should the solve fail all the same, every vertex still interpolated is diffused.
 /// Deterministic (vertex order); every diffusion is one batch.
