@@ -26,7 +26,7 @@ enum class CapSampling {
   /// vertices sparsely by Poisson-disc and harmonic interpolation (harmonic_sampling.h), both
   /// refined where a test point's diffused colour or material channels differ visibly from the
   /// interpolation (by more than `tolerance` or `material_tolerance`, colour.h). The default: on
-  /// the default salad it diffuses 1.9x fewer points in 1.7-1.9x less PMVC time, and its picture
+  /// the default salad it diffuses 2.2x fewer points in 2x less PMVC time, and its picture
   /// differs from the dense one by 0.05/255 on average.
   Adaptive,
 };

@@ -31,42 +31,43 @@ struct Errors {
   size_t points = 0;
 };
 
+/// The mean and largest of `errors`.
+Errors summary(const std::vector<double>& errors) {
+  Errors out;
+  out.points = errors.size();
+  for (double e : errors) {
+    out.mean += e / static_cast<double>(errors.size());
+    out.max = std::max(out.max, e);
+  }
+  return out;
+}
+
 /// The errors of `colour` (linear RGB) against a cube-32 backend's diffusion at `where`.
 Errors errors_against(const DiffusionBackend& cube32, const std::vector<glm::dvec3>& where,
                       const std::vector<glm::dvec3>& colour) {
   const std::vector<glm::dvec3> reference = cube32.diffuse(where);
-  Errors errors;
-  errors.points = where.size();
-  for (size_t i = 0; i < where.size(); ++i) {
-    const double e = colour_difference(colour[i], reference[i]);
-    errors.mean += e / static_cast<double>(where.size());
-    errors.max = std::max(errors.max, e);
-  }
-  return errors;
+  std::vector<double> errors;
+  for (size_t i = 0; i < where.size(); ++i)
+    errors.push_back(colour_difference(colour[i], reference[i]));
+  return summary(errors);
 }
 
 /// At up to `count` of the cap's vertices off the cut segments, evenly through the list: the
 /// colour's errors and the material channels' (material_difference, 8-bit steps).
 std::pair<Errors, Errors> vertex_errors(const DiffusionBackend& cube32, const CrossSection& cap,
                                         size_t count) {
-  std::vector<glm::dvec3> where, colour;
-  std::vector<glm::dvec2> material;
-  for (size_t v : test::interior_vertices(cap, count)) {
-    where.push_back(cap.position[v]);
-    colour.push_back(cap.colour[v]);
-    material.push_back(cap.material[v]);
+  const std::vector<size_t> picked = test::interior_vertices(cap, count);
+  std::vector<glm::dvec3> where;
+  for (size_t v : picked) where.push_back(cap.position[v]);
+  std::vector<glm::dvec3> colour(where.size());
+  std::vector<glm::dvec2> material(where.size());
+  cube32.diffuse_channels(where, colour, material);
+  std::vector<double> colour_errors, material_errors;
+  for (size_t i = 0; i < picked.size(); ++i) {
+    colour_errors.push_back(colour_difference(cap.colour[picked[i]], colour[i]));
+    material_errors.push_back(material_difference(cap.material[picked[i]], material[i]));
   }
-  std::vector<glm::dvec3> unused(where.size());
-  std::vector<glm::dvec2> reference(where.size());
-  cube32.diffuse_channels(where, unused, reference);
-  Errors materials;
-  materials.points = where.size();
-  for (size_t i = 0; i < where.size(); ++i) {
-    const double e = material_difference(material[i], reference[i]);
-    materials.mean += e / static_cast<double>(where.size());
-    materials.max = std::max(materials.max, e);
-  }
-  return {errors_against(cube32, where, colour), materials};
+  return {summary(colour_errors), summary(material_errors)};
 }
 
 /// The cap as a picture shows it: `count` points uniform over its area (seeded; a triangle by
