@@ -27,20 +27,25 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// The --sampling and --directions values of `common`, as the command line spells them.
+std::string sampling_value(const Common& common) {
+  return common.sampling == CapSampling::Dense ? "dense" : "adaptive";
+}
+std::string directions_value(const Common& common) {
+  return common.adaptive_directions ? "adaptive" : "every";
+}
+
 /// What else changes an asset's bytes besides the batch file: the backend, sampling and
 /// directions.
 std::string build_settings(const Common& common) {
-  return "backend=" + common.backend +
-         " sampling=" + (common.sampling == CapSampling::Dense ? "dense" : "adaptive") +
-         " directions=" + (common.adaptive_directions ? "adaptive" : "every");
+  return "backend=" + common.backend + " sampling=" + sampling_value(common) +
+         " directions=" + directions_value(common);
 }
 
 /// The command line options every array task passes on (those that change the output).
 std::vector<std::string> passed_on(const Common& common) {
-  return {"--backend",    common.backend,
-          "--sampling",   common.sampling == CapSampling::Dense ? "dense" : "adaptive",
-          "--directions", common.adaptive_directions ? "adaptive" : "every",
-          "-q"};
+  return {"--backend",    common.backend,           "--sampling", sampling_value(common),
+          "--directions", directions_value(common), "-q"};
 }
 
 /// Writes the sbatch script of the batch into DIR and submits it (unless --dry-run).

@@ -262,8 +262,8 @@ double largest_motion(const std::vector<SettleBody>& bodies, const std::vector<P
 /// the table and below `ceiling` (higher, a failed simulation step has thrown it).
 bool inside(const Container& container, const glm::dvec3& c, double ceiling,
             double none_radius_m) {
-  return all_finite(c) && c.y > 0 &&
-         c.y < ceiling && rest_height(container, c.x, c.z, none_radius_m).has_value();
+  return all_finite(c) && c.y > 0 && c.y < ceiling &&
+         rest_height(container, c.x, c.z, none_radius_m).has_value();
 }
 
 /// Steps `world` until it rests (no corner moved more than rest_motion_m in a quarter second,

@@ -12,7 +12,6 @@
 
 namespace cutaway {
 
-
 std::string camera_defect(const AssetCamera& c, bool needs_up) {
   if (!all_finite(c.eye) || !all_finite(c.target) || !all_finite(c.up))
     return "eye, target and up must be finite";

@@ -454,7 +454,9 @@ void SectionMesher::sample_band_lines(const DiffusionBackend& diffusion) {
     std::vector<glm::dvec3> colours(band_points.size());
     std::vector<glm::dvec2> materials(band_points.size());
     const BandSamplingCounts band = sample_bands(
-        band_points, diffusion, {options_.band_spacing * options_.edge_m, {options_.tolerance, options_.material_tolerance}},
+        band_points, diffusion,
+        {options_.band_spacing * options_.edge_m,
+         {options_.tolerance, options_.material_tolerance}},
         colours, materials);
     for (size_t i = 0; i < band_vertices.size(); ++i)
       samples_.emplace(band_vertices[i], std::make_pair(colours[i], materials[i]));
