@@ -20,8 +20,8 @@ struct AdaptiveDirections {
   CubeDirections coarse;  ///< n/2 x n/2 per face: cast for every point
   CubeDirections fine;    ///< n x n per face: four per coarse texel, cast where it is refined
   /// Pairs (i < j) of neighbouring coarse texels, compared after the coarse rays: each texel
-  /// with its 8 nearest other texel centres (by angle), so that neighbours across a cube edge
-  /// are compared as well; sorted, no duplicates.
+  /// with its 4 nearest other texel centres (by angle: the texels sharing an edge with it,
+  /// across a cube edge as well); sorted, no duplicates.
   std::vector<glm::uvec2> pairs;
 
   /// The fine texels (indices into `fine`) that tile coarse texel `k`: rows 2r, 2r + 1 and

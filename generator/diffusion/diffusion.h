@@ -32,7 +32,7 @@ struct DiffusionOptions {
   /// Silhouette-adaptive directions (adaptive_directions.h): each point's cube is cast at
   /// half the resolution first, and only the texels where the sheet seen changes between
   /// neighbours are cast again at full resolution. On the shipped templates' mid-height cuts
-  /// about 730 rays a point instead of 1,536 at cube 16, with the same error against cube 32
+  /// about 650 rays a point instead of 1,536 at cube 16, with the same error against cube 32
   /// (doc/algorithms.md §2). Needs an even cube size up to 32 (the GPU keeps a work group's
   /// coarse texels in shared memory); other sizes cast every texel.
   bool adaptive_directions = true;

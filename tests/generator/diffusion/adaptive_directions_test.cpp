@@ -65,10 +65,10 @@ TEST(AdaptiveDirections, NeighbourPairsJoinNearTexelsAlsoAcrossCubeEdges) {
     ++degree[p.x];
     ++degree[p.y];
     across_faces += p.x / per_face != p.y / per_face;
-    // Neighbours: at most a texel diagonal apart (a coarse texel spans at most 90/8 degrees).
-    EXPECT_GT(glm::dot(d.coarse.direction[p.x], d.coarse.direction[p.y]), std::cos(0.45f));
+    // Neighbours: at most a texel apart (a coarse texel spans at most 90/8 degrees).
+    EXPECT_GT(glm::dot(d.coarse.direction[p.x], d.coarse.direction[p.y]), std::cos(0.3f));
   }
-  for (size_t k = 0; k < count; ++k) EXPECT_GE(degree[k], 8) << "texel " << k;
+  for (size_t k = 0; k < count; ++k) EXPECT_GE(degree[k], 4) << "texel " << k;
   // Each of the 12 cube edges has 8 texels on either side.
   EXPECT_GE(across_faces, 12 * 8);
 }
@@ -95,7 +95,7 @@ TEST(AdaptiveDirections, TexelsAreRefinedWhereWhatIsSeenChanges) {
       EXPECT_GT(height, 0.02f) << "texel " << k << " on the circle";
     }
   }
-  EXPECT_GT(refined, 2 * 4 * 8);  // a ring at least two texels wide round the sphere
+  EXPECT_GE(refined, 2 * 4 * 8);  // a ring at least two texels wide round the sphere
   EXPECT_LT(refined, static_cast<int>(count) / 2);
 }
 
