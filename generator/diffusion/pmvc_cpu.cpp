@@ -67,6 +67,7 @@ class CpuDiffusion final : public DiffusionBackend {
   }
 
   size_t rays_cast() const override { return rays_; }
+  int threads() const override { return options_.threads; }
 
  private:
   /// A ray's nearest hit, as the sums need it.

@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <utility>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
 #include "base/timer.h"
+#include "diffusion/shared_batches.h"
 #include "pieces/clip_mesh.h"
 #include "pieces/manifold_check.h"
 #include "pieces/seam_stitch.h"
@@ -120,9 +123,11 @@ PieceSet pieces_in_cells(const DsModel& model, const CutCells& cells,
   const auto sections_start = std::chrono::steady_clock::now();
   CrossSectionOptions section_options = options.section;
   section_options.merge_boundary = false;
-  for (size_t i = 0; i < cells.planes.size(); ++i) {
+  const size_t planes = cells.planes.size();
+  std::vector<std::optional<Outcome<CrossSection>>> made(planes);
+  auto make_section = [&](size_t i, const DiffusionBackend& backend) {
     CapRestriction restriction;
-    for (size_t j = 0; j < cells.planes.size(); ++j)
+    for (size_t j = 0; j < planes; ++j)
       if (j != i) restriction.split_planes.push_back(cells.planes[j]);
     const int plane = static_cast<int>(i);
     restriction.keep = [&cells, plane](const glm::dvec3& c) {
@@ -131,12 +136,20 @@ PieceSet pieces_in_cells(const DsModel& model, const CutCells& cells,
           if (f.plane == plane && in_cell(cells, cell, c, plane)) return true;
       return false;
     };
-    Outcome<CrossSection> section =
-        make_cross_section(model, cells.planes[i], diffusion, section_options, restriction);
+    made[i] = make_cross_section(model, cells.planes[i], backend, section_options, restriction);
+  };
+  // Every cap at once, their diffusions in shared batches, unless one thread is all we have.
+  const bool at_once = planes > 1 && diffusion.threads() != 1;
+  if (at_once)
+    set.seconds_diffuse = run_with_shared_batches(diffusion, planes, make_section).seconds_diffuse;
+  else
+    for (size_t i = 0; i < planes; ++i) make_section(i, diffusion);
+  for (size_t i = 0; i < planes; ++i) {
+    Outcome<CrossSection>& section = *made[i];
     if (section) {
       set.diffused_points += section->diffused_points;
       set.band_diffused_points += section->band_diffused_points;
-      set.seconds_diffuse += section->seconds_diffuse;
+      if (!at_once) set.seconds_diffuse += section->seconds_diffuse;
       set.sections.push_back(std::move(*section));
     } else {
       set.sections.push_back(CrossSection{});  // the plane misses the object: no caps on it

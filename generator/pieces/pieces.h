@@ -67,8 +67,11 @@ struct PieceSet {
   size_t diffused_points = 0;          ///< PMVC evaluations over all caps
   size_t band_diffused_points = 0;     ///< of which on blur bands' lines (adaptive sampling)
   size_t stitched_vertices = 0;        ///< seam vertices snapped or inserted
-  double seconds_sections = 0;         ///< cross-sections: triangulation and diffusion
-  double seconds_diffuse = 0;          ///< of which PMVC diffusion
+  double seconds_sections = 0;         ///< cross-sections: triangulation and diffusion (wall)
+  /// Of which PMVC diffusion: with the caps made at once (run_with_shared_batches), the wall
+  /// time of the backend's calls; one cap at a time, the caps' own seconds_diffuse, which
+  /// include adaptive sampling's interpolation.
+  double seconds_diffuse = 0;
   double seconds_clip = 0;             ///< clipping, stitching and checking
   // Counts and times are totals over all attempts.
   int attempts = 1;             ///< cuts made (1 unless the first was near-degenerate)
@@ -87,7 +90,10 @@ struct PieceSet {
 /// with manifold_defect (kMinVertexSeparation_m); when one fails (a near-degenerate configuration:
 /// a surface edge passing nanometres from the line where two cutting planes meet, so that the two
 /// caps' seams cannot agree), the whole cut is redone with its planes nudged (kMaxCutAttempts; in
-/// the spirit of symbolic perturbation, but with real sub-micrometre moves). Deterministic.
+/// the spirit of symbolic perturbation, but with real sub-micrometre moves). The caps of all
+/// planes are made at once, each on its own thread, their diffusions in shared batches
+/// (shared_batches.h), unless diffusion.threads() is 1. Deterministic: the result does not
+/// depend on the thread count.
 /// @param model  its skin (surfaces[0]) closed and outward
 /// @returns the pieces, or none (an expected outcome): kCutMisses when the cut misses the
 ///          object entirely (no piece), kPlaneMisses (cross_section.h) when a `plane` cut leaves

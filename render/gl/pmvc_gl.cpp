@@ -84,7 +84,7 @@ std::vector<glm::vec4> padded(const std::vector<glm::vec3>& directions) {
 class GlDiffusion final : public DiffusionBackend {
  public:
   GlDiffusion(const DsModel& model, const DiffusionOptions& options)
-      : rotate_cubes_(options.rotate_cubes) {
+      : rotate_cubes_(options.rotate_cubes), threads_(options.threads) {
     if (options.cube_size < 1)
       throw InternalError("gl diffusion: cube_size must be >= 1, got " +
                           std::to_string(options.cube_size));
@@ -123,6 +123,7 @@ class GlDiffusion final : public DiffusionBackend {
   }
 
   std::string name() const override { return "gl"; }
+  int threads() const override { return threads_; }
 
   size_t rays_cast() const override {
     const std::lock_guard lock(mutex_);
@@ -250,6 +251,7 @@ class GlDiffusion final : public DiffusionBackend {
   }
 
   bool rotate_cubes_ = true;
+  int threads_ = 0;  ///< DiffusionOptions::threads, for the work around the backend
   std::unique_ptr<GlContext> context_;
   // GL objects below belong to context_ and are freed with it.
   std::unique_ptr<GlProgram> trace_;

@@ -10,7 +10,7 @@
 // and its peak memory (each scene runs in a child process);
 // then per scene the PMVC work compared: dense sampling casting every cube texel (the paper's
 // way) against adaptive sampling, with every texel and with adaptive directions (the default):
-// diffused points, diffusion seconds and ratios.
+// diffused points, the cap stage's wall time and of it the time in PMVC calls, and ratios.
 // `--only NAME` runs one scene.
 #include <algorithm>
 #include <chrono>
@@ -244,19 +244,23 @@ int main(int argc, char** argv) {
     }
     const cutaway::SceneStats &dense = runs[0].stats, &sampled = runs[1].stats,
                               &both = runs[2].stats;
+    // Times: the cap stage's wall time (meshing, sampling, interpolation and PMVC; the caps of
+    // an object are made at once, their diffusions in shared batches), and of it the time in
+    // the backend's calls.
     std::printf(
-        "%-12s dense, every texel %7zu points %7.2f s PMVC | adaptive sampling %7zu points "
-        "(%zu on blur bands, %zu interior) %7.2f s, with adaptive directions %7.2f s | %.2fx "
-        "fewer points, %.2fx less PMVC time (sampling %.2fx, directions %.2fx)  "
-        "[target 4x, 3x]\n",
-        path.stem().c_str(), dense.diffused_points, dense.seconds_diffuse,
-        sampled.diffused_points, sampled.band_diffused_points,
-        sampled.diffused_points - sampled.band_diffused_points, sampled.seconds_diffuse,
-        both.seconds_diffuse,
+        "%-12s dense, every texel %7zu points %7.2f s caps (PMVC calls %.2f s) | adaptive "
+        "sampling %7zu points (%zu on blur bands, %zu interior) %7.2f s (%.2f s), with adaptive "
+        "directions %7.2f s (%.2f s) | %.2fx fewer points, %.2fx less cap time, %.2fx less in "
+        "PMVC calls (sampling %.2fx, directions %.2fx)  [target 4x, 3x]\n",
+        path.stem().c_str(), dense.diffused_points, dense.seconds_sections,
+        dense.seconds_diffuse, sampled.diffused_points, sampled.band_diffused_points,
+        sampled.diffused_points - sampled.band_diffused_points, sampled.seconds_sections,
+        sampled.seconds_diffuse, both.seconds_sections, both.seconds_diffuse,
         static_cast<double>(dense.diffused_points) / both.diffused_points,
+        dense.seconds_sections / both.seconds_sections,
         dense.seconds_diffuse / both.seconds_diffuse,
-        dense.seconds_diffuse / sampled.seconds_diffuse,
-        sampled.seconds_diffuse / both.seconds_diffuse);
+        dense.seconds_sections / sampled.seconds_sections,
+        sampled.seconds_sections / both.seconds_sections);
   }
   return 0;
 }

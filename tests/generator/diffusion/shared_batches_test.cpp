@@ -1,0 +1,135 @@
+// Shared diffusion batches (diffusion/shared_batches.h): tasks running at once get what the
+// backend gives each point, their rounds are served together on the calling thread, and errors
+// reach the caller without leaving a thread waiting.
+#include <algorithm>
+#include <atomic>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "base/error.h"
+#include "diffusion/shared_batches.h"
+
+namespace cutaway {
+namespace {
+
+/// A backend whose colour is a function of the point alone, recording its calls.
+class RecordingBackend final : public DiffusionBackend {
+ public:
+  void diffuse_channels(std::span<const glm::dvec3> points, std::span<glm::dvec3> colour,
+                        std::span<glm::dvec2> material) const override {
+    check_channel_sizes(points.size(), colour.size(), material.size());
+    const std::lock_guard lock(mutex_);
+    if (fail_after >= 0 && static_cast<int>(batch_sizes.size()) >= fail_after)
+      throw std::runtime_error("backend gave up");
+    batch_sizes.push_back(points.size());
+    threads.push_back(std::this_thread::get_id());
+    for (size_t i = 0; i < points.size(); ++i) {
+      colour[i] = glm::dvec3(points[i].x * 2, points[i].y + 1, points[i].z);
+      if (!material.empty()) material[i] = glm::dvec2(points[i].x, -points[i].y);
+    }
+  }
+  std::string name() const override { return "recording"; }
+
+  int fail_after = -1;  ///< throw from this call on (-1: never)
+  mutable std::vector<size_t> batch_sizes;
+  mutable std::vector<std::thread::id> threads;
+
+ private:
+  mutable std::mutex mutex_;
+};
+
+/// Task i's round r: i + 1 points, with material channels on even rounds.
+std::vector<glm::dvec3> round_points(size_t task, int round) {
+  std::vector<glm::dvec3> p;
+  for (size_t k = 0; k <= task; ++k)
+    p.emplace_back(static_cast<double>(task), round, static_cast<double>(k));
+  return p;
+}
+
+TEST(SharedBatches, TasksGetTheBackendsValuesInFewerCallsOnTheCallingThread) {
+  RecordingBackend backend;
+  constexpr size_t kTasks = 6;
+  std::vector<int> wrong(kTasks, 0);
+  const SharedBatchStats stats = run_with_shared_batches(
+      backend, kTasks, [&](size_t task, const DiffusionBackend& diffusion) {
+        // Task i makes i + 1 rounds, so tasks drop out one by one.
+        for (int round = 0; round <= static_cast<int>(task); ++round) {
+          const std::vector<glm::dvec3> points = round_points(task, round);
+          std::vector<glm::dvec3> colour(points.size());
+          std::vector<glm::dvec2> material(round % 2 == 0 ? points.size() : 0);
+          diffusion.diffuse_channels(points, colour, material);
+          for (size_t k = 0; k < points.size(); ++k) {
+            wrong[task] += colour[k] != glm::dvec3(points[k].x * 2, points[k].y + 1, points[k].z);
+            if (!material.empty())
+              wrong[task] += material[k] != glm::dvec2(points[k].x, -points[k].y);
+          }
+        }
+      });
+  for (size_t i = 0; i < kTasks; ++i) EXPECT_EQ(wrong[i], 0) << "task " << i;
+  // Round r is one batch of the tasks still running: rounds 0..5, one call each.
+  ASSERT_EQ(backend.batch_sizes.size(), kTasks);
+  for (size_t r = 0; r < kTasks; ++r) {
+    size_t expected = 0;
+    for (size_t i = r; i < kTasks; ++i) expected += i + 1;
+    EXPECT_EQ(backend.batch_sizes[r], expected) << "round " << r;
+  }
+  EXPECT_EQ(stats.batches, kTasks);
+  EXPECT_EQ(stats.points, 21u + 20 + 18 + 15 + 11 + 6);
+  for (std::thread::id id : backend.threads) EXPECT_EQ(id, std::this_thread::get_id());
+}
+
+TEST(SharedBatches, ATasksExceptionReachesTheCallerAndTheOthersFinish) {
+  RecordingBackend backend;
+  std::atomic<int> finished{0};
+  auto run = [&] {
+    run_with_shared_batches(backend, 4, [&](size_t task, const DiffusionBackend& diffusion) {
+      const std::vector<glm::dvec3> points = round_points(task, 0);
+      std::vector<glm::dvec3> colour(points.size());
+      diffusion.diffuse_channels(points, colour, {});
+      if (task == 2) throw std::invalid_argument("task 2 failed");
+      diffusion.diffuse_channels(points, colour, {});
+      ++finished;
+    });
+  };
+  EXPECT_THROW(run(), std::invalid_argument);
+  EXPECT_EQ(finished.load(), 3);
+}
+
+TEST(SharedBatches, ABackendErrorReachesTheCallerWithoutALeftWaitingTask) {
+  RecordingBackend backend;
+  backend.fail_after = 1;  // the second batch throws
+  std::atomic<int> finished{0};
+  auto run = [&] {
+    run_with_shared_batches(backend, 3, [&](size_t task, const DiffusionBackend& diffusion) {
+      for (int round = 0; round < 3; ++round) {
+        const std::vector<glm::dvec3> points = round_points(task, round);
+        std::vector<glm::dvec3> colour(points.size());
+        diffusion.diffuse_channels(points, colour, {});
+      }
+      ++finished;
+    });
+  };
+  EXPECT_THROW(run(), std::runtime_error);
+  EXPECT_EQ(finished.load(), 0);
+  EXPECT_EQ(backend.batch_sizes.size(), 1u);
+}
+
+TEST(SharedBatches, WrongChannelSizesAreRefusedInTheTask) {
+  RecordingBackend backend;
+  auto run = [&] {
+    run_with_shared_batches(backend, 2, [&](size_t, const DiffusionBackend& diffusion) {
+      const std::vector<glm::dvec3> points(3, glm::dvec3(1.0));
+      std::vector<glm::dvec3> colour(2);
+      diffusion.diffuse_channels(points, colour, {});
+    });
+  };
+  EXPECT_THROW(run(), InternalError);
+  EXPECT_TRUE(backend.batch_sizes.empty());
+}
+
+}  // namespace
+}  // namespace cutaway
