@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/error.h"
+#include "base/source_fingerprint.h"
 #include "base/timer.h"
 #include "export/gltf_export.h"
 #include "io/template_parser.h"
@@ -31,6 +32,7 @@ std::string fingerprint_text(const Batch& b, const BatchItem& item, uint64_t see
                 cut.count);
   const nlohmann::ordered_json j = {
       {"cutaway", CUTAWAY_VERSION},
+      {"sources", source_fingerprint()},
       {"template", hex64(item.template_hash)},
       {"seed", seed},
       {"variation", item.variation},
