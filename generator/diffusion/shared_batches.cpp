@@ -4,6 +4,7 @@
 #include <condition_variable>
 #include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -70,16 +71,23 @@ SharedBatchStats run_with_shared_batches(
   std::vector<std::exception_ptr> errors(count);
   std::vector<std::thread> threads;
   threads.reserve(count);
-  for (size_t i = 0; i < count; ++i) {
-    threads.emplace_back([&, i] {
-      try {
-        task(i, TaskDiffusion(backend, exchange, i));
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
-      std::lock_guard lock(exchange.mutex);
-      if (--exchange.running == 0) exchange.idle.notify_one();
-    });
+  size_t started = 0;
+  try {
+    for (; started < count; ++started) {
+      threads.emplace_back([&, i = started] {
+        try {
+          task(i, TaskDiffusion(backend, exchange, i));
+        } catch (...) {
+          errors[i] = std::current_exception();
+        }
+        std::lock_guard lock(exchange.mutex);
+        if (--exchange.running == 0) exchange.idle.notify_one();
+      });
+    }
+  } catch (const std::system_error&) {
+    // No more threads to be had: the tasks not started run afterwards, one at a time.
+    std::lock_guard lock(exchange.mutex);
+    exchange.running -= count - started;
   }
   std::exception_ptr backend_error;
   {
@@ -137,6 +145,13 @@ SharedBatchStats run_with_shared_batches(
   }
   for (std::thread& t : threads) t.join();
   if (backend_error) std::rethrow_exception(backend_error);
+  for (size_t i = started; i < count; ++i) {
+    try {
+      task(i, backend);
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  }
   for (const std::exception_ptr& e : errors)
     if (e) std::rethrow_exception(e);
   return stats;

@@ -25,7 +25,8 @@ struct SharedBatchStats {
 /// waits for one too (or has finished), and then the points of all waiting calls, in task
 /// order, are diffused in one call of `backend` on the thread that called this function (an
 /// OpenGL backend's context stays on its thread). Material channels are computed for the whole
-/// batch when any call asks for them. Returns when every task has finished.
+/// batch when any call asks for them. Should no more threads be had, the tasks not started
+/// run afterwards, one at a time, on the calling thread. Returns when every task has finished.
 /// @throws the exception of the lowest-numbered task that threw; an exception of `backend`
 ///         (the tasks still waiting then throw InternalError and are not reported)
 SharedBatchStats run_with_shared_batches(

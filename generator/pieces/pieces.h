@@ -90,8 +90,8 @@ struct PieceSet {
 /// with manifold_defect (kMinVertexSeparation_m); when one fails (a near-degenerate configuration:
 /// a surface edge passing nanometres from the line where two cutting planes meet, so that the two
 /// caps' seams cannot agree), the whole cut is redone with its planes nudged (kMaxCutAttempts; in
-/// the spirit of symbolic perturbation, but with real sub-micrometre moves). The caps of all
-/// planes are made at once, each on its own thread, their diffusions in shared batches
+/// the spirit of symbolic perturbation, but with real sub-micrometre moves). The caps of the
+/// planes are made at once (up to 32), each on its own thread, their diffusions in shared batches
 /// (shared_batches.h), unless diffusion.threads() is 1. Deterministic: the result does not
 /// depend on the thread count.
 /// @param model  its skin (surfaces[0]) closed and outward
