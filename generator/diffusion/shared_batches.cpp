@@ -1,5 +1,7 @@
 #include "diffusion/shared_batches.h"
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <exception>
@@ -63,31 +65,33 @@ class TaskDiffusion final : public DiffusionBackend {
 
 SharedBatchStats run_with_shared_batches(
     const DiffusionBackend& backend, size_t count,
-    const std::function<void(size_t, const DiffusionBackend&)>& task) {
+    const std::function<void(size_t, const DiffusionBackend&)>& task, size_t max_threads) {
   SharedBatchStats stats;
   Exchange exchange;
   exchange.calls.resize(count);
-  exchange.running = count;
   std::vector<std::exception_ptr> errors(count);
-  std::vector<std::thread> threads;
-  threads.reserve(count);
-  size_t started = 0;
-  try {
-    for (; started < count; ++started) {
-      threads.emplace_back([&, i = started] {
-        try {
-          task(i, TaskDiffusion(backend, exchange, i));
-        } catch (...) {
-          errors[i] = std::current_exception();
-        }
-        std::lock_guard lock(exchange.mutex);
-        if (--exchange.running == 0) exchange.idle.notify_one();
-      });
+  std::atomic<size_t> next{0};  // the next task a worker takes
+  auto run_tasks = [&] {
+    for (size_t i = next++; i < count; i = next++) {
+      try {
+        task(i, TaskDiffusion(backend, exchange, i));
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
     }
-  } catch (const std::system_error&) {
-    // No more threads to be had: the tasks not started run afterwards, one at a time.
     std::lock_guard lock(exchange.mutex);
-    exchange.running -= count - started;
+    if (--exchange.running == 0) exchange.idle.notify_one();
+  };
+  const size_t workers = std::min(count, max_threads);
+  exchange.running = workers;
+  std::vector<std::thread> threads;
+  threads.reserve(workers);
+  try {
+    while (threads.size() < workers) threads.emplace_back(run_tasks);
+  } catch (const std::system_error&) {
+    // No more threads to be had: the workers started take every task.
+    std::lock_guard lock(exchange.mutex);
+    exchange.running -= workers - threads.size();
   }
   std::exception_ptr backend_error;
   {
@@ -145,7 +149,8 @@ SharedBatchStats run_with_shared_batches(
   }
   for (std::thread& t : threads) t.join();
   if (backend_error) std::rethrow_exception(backend_error);
-  for (size_t i = started; i < count; ++i) {
+  // Without a worker, the tasks run here, one at a time, calling the backend directly.
+  for (size_t i = next++; i < count; i = next++) {
     try {
       task(i, backend);
     } catch (...) {

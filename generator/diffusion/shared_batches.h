@@ -20,17 +20,19 @@ struct SharedBatchStats {
   double seconds_diffuse = 0;  ///< wall time spent in the backend's calls
 };
 
-/// Runs task(i, diffusion) for every i in [0, count), each on its own thread, where `diffusion`
-/// stands for `backend`: a task's diffuse_channels call waits until every task still running
-/// waits for one too (or has finished), and then the points of all waiting calls, in task
-/// order, are diffused in one call of `backend` on the thread that called this function (an
-/// OpenGL backend's context stays on its thread). Material channels are computed for the whole
-/// batch when any call asks for them. Should no more threads be had, the tasks not started
-/// run afterwards, one at a time, on the calling thread. Returns when every task has finished.
+/// Runs task(i, diffusion) for every i in [0, count) on up to `max_threads` worker threads
+/// (each takes the next task when it finishes one), where `diffusion` stands for `backend`: a
+/// task's diffuse_channels call waits until every task still running waits for one too (or its
+/// worker has run out of tasks), and then the points of all waiting calls, in task order, are
+/// diffused in one call of `backend` on the thread that called this function (an OpenGL
+/// backend's context stays on its thread). Material channels are computed for the whole batch
+/// when any call asks for them. With no worker thread (max_threads 0, or none to be had) the
+/// tasks run on the calling thread, one at a time, with `backend` itself. Returns when every
+/// task has finished.
 /// @throws the exception of the lowest-numbered task that threw; an exception of `backend`
 ///         (the tasks still waiting then throw InternalError and are not reported)
 SharedBatchStats run_with_shared_batches(
     const DiffusionBackend& backend, size_t count,
-    const std::function<void(size_t, const DiffusionBackend&)>& task);
+    const std::function<void(size_t, const DiffusionBackend&)>& task, size_t max_threads);
 
 }  // namespace cutaway

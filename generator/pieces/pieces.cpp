@@ -113,8 +113,8 @@ CutCells general_position(const CutCells& cells, const DsModel& model, int attem
   return out;
 }
 
-/// Caps made at once at most, each on its own thread (a cut of hundreds of slices makes them
-/// in groups).
+/// Caps made at once at most, each on its own thread (the threads of a cut of hundreds of
+/// slices take the next cap when they finish one).
 constexpr size_t kCapsAtOnce = 32;
 
 /// The pieces of `model` in `cells` (steps 1-3 of cut_pieces).
@@ -142,17 +142,12 @@ PieceSet pieces_in_cells(const DsModel& model, const CutCells& cells,
     };
     made[i] = make_cross_section(model, cells.planes[i], backend, section_options, restriction);
   };
-  // The caps at once (up to kCapsAtOnce), their diffusions in shared batches, unless one
+  // The caps at once (kCapsAtOnce threads), their diffusions in shared batches, unless one
   // thread is all we have.
   const bool at_once = planes > 1 && diffusion.threads() != 1;
   if (at_once)
-    for (size_t first = 0; first < planes; first += kCapsAtOnce) {
-      const size_t count = std::min(kCapsAtOnce, planes - first);
-      set.seconds_diffuse +=
-          run_with_shared_batches(diffusion, count, [&](size_t i, const DiffusionBackend& d) {
-            make_section(first + i, d);
-          }).seconds_diffuse;
-    }
+    set.seconds_diffuse =
+        run_with_shared_batches(diffusion, planes, make_section, kCapsAtOnce).seconds_diffuse;
   else
     for (size_t i = 0; i < planes; ++i) make_section(i, diffusion);
   for (size_t i = 0; i < planes; ++i) {

@@ -68,7 +68,8 @@ TEST(SharedBatches, TasksGetTheBackendsValuesInFewerCallsOnTheCallingThread) {
               wrong[task] += material[k] != glm::dvec2(points[k].x, -points[k].y);
           }
         }
-      });
+      },
+      16);
   for (size_t i = 0; i < kTasks; ++i) EXPECT_EQ(wrong[i], 0) << "task " << i;
   // Round r is one batch of the tasks still running: rounds 0..5, one call each.
   ASSERT_EQ(backend.batch_sizes.size(), kTasks);
@@ -82,6 +83,43 @@ TEST(SharedBatches, TasksGetTheBackendsValuesInFewerCallsOnTheCallingThread) {
   for (std::thread::id id : backend.threads) EXPECT_EQ(id, std::this_thread::get_id());
 }
 
+TEST(SharedBatches, FewerThreadsThanTasksTakeTasksInTurnAndNoneRunsThemOnTheCaller) {
+  for (size_t max_threads : {size_t{0}, size_t{1}, size_t{2}}) {
+    RecordingBackend backend;
+    constexpr size_t kTasks = 5;
+    std::vector<int> wrong(kTasks, 0), calls(kTasks, 0);
+    std::vector<std::thread::id> ran_on(kTasks);
+    const SharedBatchStats stats = run_with_shared_batches(
+        backend, kTasks,
+        [&](size_t task, const DiffusionBackend& diffusion) {
+          ran_on[task] = std::this_thread::get_id();
+          for (int round = 0; round < 3; ++round) {
+            const std::vector<glm::dvec3> points = round_points(task, round);
+            std::vector<glm::dvec3> colour(points.size());
+            diffusion.diffuse_channels(points, colour, {});
+            ++calls[task];
+            for (size_t k = 0; k < points.size(); ++k)
+              wrong[task] += colour[k] != glm::dvec3(points[k].x * 2, points[k].y + 1, points[k].z);
+          }
+        },
+        max_threads);
+    for (size_t i = 0; i < kTasks; ++i) {
+      EXPECT_EQ(wrong[i], 0) << "task " << i << ", " << max_threads << " threads";
+      EXPECT_EQ(calls[i], 3);
+      EXPECT_EQ(ran_on[i] == std::this_thread::get_id(), max_threads == 0);
+    }
+    // Batches hold at most max_threads tasks' calls; with none, each call is its own.
+    EXPECT_EQ(backend.batch_sizes.size(), max_threads == 0 ? 3 * kTasks : stats.batches);
+    if (max_threads > 0) {
+      EXPECT_GE(stats.batches, 3 * kTasks / max_threads);
+      // Task i has i + 1 points: a batch of m calls has at most the m largest.
+      const size_t largest = max_threads * kTasks - max_threads * (max_threads - 1) / 2;
+      for (size_t b : backend.batch_sizes) EXPECT_LE(b, largest);
+    }
+    for (std::thread::id id : backend.threads) EXPECT_EQ(id, std::this_thread::get_id());
+  }
+}
+
 TEST(SharedBatches, ATasksExceptionReachesTheCallerAndTheOthersFinish) {
   RecordingBackend backend;
   std::atomic<int> finished{0};
@@ -93,7 +131,7 @@ TEST(SharedBatches, ATasksExceptionReachesTheCallerAndTheOthersFinish) {
       if (task == 2) throw std::invalid_argument("task 2 failed");
       diffusion.diffuse_channels(points, colour, {});
       ++finished;
-    });
+    }, 4);
   };
   EXPECT_THROW(run(), std::invalid_argument);
   EXPECT_EQ(finished.load(), 3);
@@ -111,7 +149,7 @@ TEST(SharedBatches, ABackendErrorReachesTheCallerWithoutALeftWaitingTask) {
         diffusion.diffuse_channels(points, colour, {});
       }
       ++finished;
-    });
+    }, 3);
   };
   EXPECT_THROW(run(), std::runtime_error);
   EXPECT_EQ(finished.load(), 0);
@@ -125,7 +163,7 @@ TEST(SharedBatches, WrongChannelSizesAreRefusedInTheTask) {
       const std::vector<glm::dvec3> points(3, glm::dvec3(1.0));
       std::vector<glm::dvec3> colour(2);
       diffusion.diffuse_channels(points, colour, {});
-    });
+    }, 2);
   };
   EXPECT_THROW(run(), InternalError);
   EXPECT_TRUE(backend.batch_sizes.empty());
