@@ -86,7 +86,8 @@ class DiffusionBackend {
   /// Rays cast so far by this backend, over all calls (0 for a backend that casts none).
   virtual size_t rays_cast() const { return 0; }
   /// The worker threads it was made with (DiffusionOptions::threads; 0: all cores). Work
-  /// around it honours the same budget: cut_pieces makes its caps one at a time when it is 1.
+  /// around it honours the same budget: cut_pieces makes that many caps at once (one at a
+  /// time when it is 1).
   virtual int threads() const { return 0; }
 };
 

@@ -113,8 +113,8 @@ CutCells general_position(const CutCells& cells, const DsModel& model, int attem
   return out;
 }
 
-/// Caps made at once at most, each on its own thread (the threads of a cut of hundreds of
-/// slices take the next cap when they finish one).
+/// Caps made at once at most, each on its own thread, when the thread count is left to us
+/// (the threads of a cut of hundreds of slices take the next cap when they finish one).
 constexpr size_t kCapsAtOnce = 32;
 
 /// The pieces of `model` in `cells` (steps 1-3 of cut_pieces).
@@ -142,12 +142,15 @@ PieceSet pieces_in_cells(const DsModel& model, const CutCells& cells,
     };
     made[i] = make_cross_section(model, cells.planes[i], backend, section_options, restriction);
   };
-  // The caps at once (kCapsAtOnce threads), their diffusions in shared batches, unless one
-  // thread is all we have.
-  const bool at_once = planes > 1 && diffusion.threads() != 1;
+  // The caps at once, on as many threads as the user gave (kCapsAtOnce when left to us),
+  // their diffusions in shared batches, unless one thread is all we have.
+  const int threads = diffusion.threads();
+  const bool at_once = planes > 1 && threads != 1;
   if (at_once)
     set.seconds_diffuse =
-        run_with_shared_batches(diffusion, planes, make_section, kCapsAtOnce).seconds_diffuse;
+        run_with_shared_batches(diffusion, planes, make_section,
+                                threads > 0 ? static_cast<size_t>(threads) : kCapsAtOnce)
+            .seconds_diffuse;
   else
     for (size_t i = 0; i < planes; ++i) make_section(i, diffusion);
   for (size_t i = 0; i < planes; ++i) {

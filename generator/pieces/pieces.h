@@ -91,9 +91,9 @@ struct PieceSet {
 /// a surface edge passing nanometres from the line where two cutting planes meet, so that the two
 /// caps' seams cannot agree), the whole cut is redone with its planes nudged (kMaxCutAttempts; in
 /// the spirit of symbolic perturbation, but with real sub-micrometre moves). The caps of the
-/// planes are made at once, on up to 32 threads that take them in turn, their diffusions in
-/// shared batches (shared_batches.h), unless diffusion.threads() is 1. Deterministic: the
-/// result does not depend on the thread count.
+/// planes are made at once, on diffusion.threads() threads (up to 32 when it is 0) that take
+/// them in turn, their diffusions in shared batches (shared_batches.h); one at a time when it
+/// is 1. Deterministic: the result does not depend on the thread count.
 /// @param model  its skin (surfaces[0]) closed and outward
 /// @returns the pieces, or none (an expected outcome): kCutMisses when the cut misses the
 ///          object entirely (no piece), kPlaneMisses (cross_section.h) when a `plane` cut leaves
