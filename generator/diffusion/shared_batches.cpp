@@ -30,7 +30,7 @@ struct Exchange {
   std::condition_variable served;  ///< a batch was diffused (or failed)
   std::condition_variable idle;    ///< no task is running: all wait or have finished
   std::vector<Call> calls;         ///< per task
-  size_t running = 0;              ///< tasks neither waiting nor finished
+  size_t running = 0;              ///< workers neither waiting nor out of tasks
   bool failed = false;             ///< the backend threw: waiting calls throw too
 };
 
