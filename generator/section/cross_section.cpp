@@ -31,6 +31,7 @@
 #include "base/finite.h"
 #include "base/timer.h"
 #include "section/band_sampling.h"
+#include "section/grain_neighbourhood.h"
 #include "section/harmonic_sampling.h"
 #include "section/split_lines.h"
 
@@ -127,7 +128,8 @@ class SectionMesher {
   SectionMesher(const DsModel& model, const Plane& plane, const CrossSectionOptions& options,
                 const CapRestriction& restriction)
       : model_(model), plane_(plane), options_(options), restriction_(restriction),
-        adaptive_(options.sampling == CapSampling::Adaptive) {
+        adaptive_(options.sampling == CapSampling::Adaptive),
+        near_grains_(adaptive_ ? GrainNeighbourhood(model, plane) : GrainNeighbourhood()) {
     cs_.plane = plane;
     plane_frame(plane, cs_.u_axis, cs_.v_axis);
   }
@@ -181,6 +183,7 @@ class SectionMesher {
   const CrossSectionOptions& options_;
   const CapRestriction& restriction_;
   const bool adaptive_;
+  const GrainNeighbourhood near_grains_;  ///< adaptive: points near them are diffused
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   double seconds_sampling_ = 0;
   CrossSection cs_;
@@ -451,6 +454,7 @@ void SectionMesher::sample_band_lines(const DiffusionBackend& diffusion) {
       } while (++e != last);
     }
     mark_irregular_band_points(band_points, chains_);
+    for (BandPoint& b : band_points) b.exact = b.exact || near_grains_.near(b.position);
     std::vector<glm::dvec3> colours(band_points.size());
     std::vector<glm::dvec2> materials(band_points.size());
     const BandSamplingCounts band = sample_bands(
@@ -512,7 +516,7 @@ void SectionMesher::split_vertex(Vertex v) {
     ++cs_.interior_vertices;
     if (const auto sampled = samples_.find(v); sampled != samples_.end()) {
       std::tie(cs_.colour[id], cs_.material[id]) = sampled->second;
-    } else if (adaptive_) {
+    } else if (adaptive_ && !near_grains_.near(cs_.position[id])) {
       interpolated_.push_back(id);
     } else {
       to_diffuse_.push_back(cs_.position[id]);
