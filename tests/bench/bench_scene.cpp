@@ -198,8 +198,12 @@ struct CapErrors {
 };
 CapErrors cap_vertex_errors(const cutaway::SceneAssets& reference,
                             const cutaway::SceneAssets& assets) {
+  if (assets.meshes.size() != reference.meshes.size()) {
+    std::fprintf(stderr, "the two builds have different meshes\n");
+    std::exit(1);
+  }
   std::vector<double> errors;
-  for (size_t m = 0; m < assets.meshes.size() && m < reference.meshes.size(); ++m) {
+  for (size_t m = 0; m < assets.meshes.size(); ++m) {
     const cutaway::AssetMesh &a = assets.meshes[m], &r = reference.meshes[m];
     if (a.colour.size() != r.colour.size()) {
       std::fprintf(stderr, "%s: the two builds' meshes differ\n", a.name.c_str());
