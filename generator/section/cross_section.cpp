@@ -129,7 +129,7 @@ class SectionMesher {
                 const CapRestriction& restriction)
       : model_(model), plane_(plane), options_(options), restriction_(restriction),
         adaptive_(options.sampling == CapSampling::Adaptive),
-        near_grains_(adaptive_ ? GrainNeighbourhood(model, plane) : GrainNeighbourhood()) {
+        near_grains_(model, plane) {
     cs_.plane = plane;
     plane_frame(plane, cs_.u_axis, cs_.v_axis);
   }
@@ -154,6 +154,8 @@ class SectionMesher {
   /// Step 6: PMVC colours of the points not sampled yet; adaptive, the interior by harmonic
   /// sampling. @returns the cross-section
   CrossSection diffuse_rest(const DiffusionBackend& diffusion);
+  /// The grains near the plane.
+  const GrainNeighbourhood& grains() const { return near_grains_; }
 
  private:
   /// Ladder points (plane coordinates) -> band line, arc length and the band's half width.
@@ -183,7 +185,8 @@ class SectionMesher {
   const CrossSectionOptions& options_;
   const CapRestriction& restriction_;
   const bool adaptive_;
-  const GrainNeighbourhood near_grains_;  ///< adaptive: points near them are diffused
+  const GrainNeighbourhood near_grains_;  ///< adaptive: points near them are diffused; both:
+                                          ///< they are counted
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   double seconds_sampling_ = 0;
   CrossSection cs_;
@@ -613,6 +616,28 @@ CrossSection SectionMesher::diffuse_rest(const DiffusionBackend& diffusion) {
   return std::move(cs_);
 }
 
+/// A backend passed through that counts the points it is asked for near grains
+/// (CrossSection::near_grain_points).
+class GrainCountingDiffusion final : public DiffusionBackend {
+ public:
+  GrainCountingDiffusion(const DiffusionBackend& backend, const GrainNeighbourhood& grains)
+      : backend_(backend), grains_(grains) {}
+  void diffuse_channels(std::span<const glm::dvec3> points, std::span<glm::dvec3> colour,
+                        std::span<glm::dvec2> material) const override {
+    for (const glm::dvec3& p : points) near_ += grains_.near(p);
+    backend_.diffuse_channels(points, colour, material);
+  }
+  std::string name() const override { return backend_.name(); }
+  size_t rays_cast() const override { return backend_.rays_cast(); }
+  int threads() const override { return backend_.threads(); }
+  size_t near() const { return near_; }
+
+ private:
+  const DiffusionBackend& backend_;
+  const GrainNeighbourhood& grains_;
+  mutable size_t near_ = 0;
+};
+
 }  // namespace
 
 Outcome<CrossSection> make_cross_section(const DsModel& model, const Plane& plane,
@@ -624,9 +649,12 @@ Outcome<CrossSection> make_cross_section(const DsModel& model, const Plane& plan
   mesher.arrange_constraints();
   if (!mesher.triangulate_domain()) return Outcome<CrossSection>::none(kPlaneOnlyTouches);
   mesher.refine();
-  mesher.sample_band_lines(diffusion);
+  const GrainCountingDiffusion counted(diffusion, mesher.grains());
+  mesher.sample_band_lines(counted);
   if (!mesher.split_vertices()) return Outcome<CrossSection>::none(kPlaneOnlyTouches);
-  return mesher.diffuse_rest(diffusion);
+  CrossSection section = mesher.diffuse_rest(counted);
+  section.near_grain_points = counted.near();
+  return section;
 }
 
 }  // namespace cutaway

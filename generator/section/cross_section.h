@@ -85,6 +85,9 @@ struct CrossSection {
                                  ///< sampling: the samples and test points only
   size_t band_diffused_points = 0;  ///< adaptive: of diffused_points, those on blur bands'
                                     ///< lines (band_sampling.h; the rest are interior)
+  size_t near_grain_points = 0;  ///< of diffused_points, those near a grain (within
+                                 ///< kNearGrainRadii of one, grain_neighbourhood.h), which
+                                 ///< adaptive sampling diffuses all
   size_t cut_segments = 0;       ///< input cut segments
   bool refinement_capped = false;  ///< Delaunay refinement ran out of its step budget or
                                    ///< failed CGAL's checks (rounding near a degenerate input),

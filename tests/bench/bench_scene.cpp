@@ -305,6 +305,19 @@ int main(int argc, char** argv) {
         dense.seconds_diffuse / both.seconds_diffuse,
         dense.seconds_sections / sampled.seconds_sections,
         sampled.seconds_sections / both.seconds_sections);
+    // Where the points are: near grains adaptive sampling diffuses every point (the colour
+    // there does not interpolate, grain_neighbourhood.h), so the ratio elsewhere is sampling's
+    // own and the share near grains bounds the ratio over all points.
+    const size_t dense_else = dense.diffused_points - dense.near_grain_points;
+    const size_t both_else = both.diffused_points - both.near_grain_points;
+    std::printf(
+        "%-12s points near grains: dense %zu (%.0f %%), default %zu | elsewhere: dense %zu, "
+        "default %zu, %.2fx fewer | with every point near grains diffused the ratio is at most "
+        "%.2fx\n",
+        path.stem().c_str(), dense.near_grain_points,
+        100.0 * dense.near_grain_points / dense.diffused_points, both.near_grain_points,
+        dense_else, both_else, static_cast<double>(dense_else) / both_else,
+        static_cast<double>(dense.diffused_points) / dense.near_grain_points);
     // Accuracy: the default's cap vertices against dense sampling casting every texel.
     const CapErrors errors = cap_vertex_errors(runs[0].assets, runs[2].assets);
     std::printf(

@@ -158,7 +158,7 @@ TEST(AdaptiveSampling, MatchesDenseNearTheGrainsOfSeededVariants) {
   // around a grain the colour changes over a fraction of the cap's edge length. Every
   // interior vertex of the adaptive cap against the dense cap's (the same vertices, the same
   // backend): sampling's own error, where grains are.
-  size_t templates = 0, dense_points = 0, adaptive_points = 0;
+  size_t templates = 0, dense_points = 0, adaptive_points = 0, near_grain_points = 0;
   double worst_mean = 0, worst_max = 0;
   for (const std::filesystem::path& path : test::shipped_templates()) {
     const Template t = load_template(path.string());
@@ -167,6 +167,9 @@ TEST(AdaptiveSampling, MatchesDenseNearTheGrainsOfSeededVariants) {
     const DsModel model = make_variant(t, 5).model;
     const auto [dense, adaptive] = dense_and_adaptive(model, mid_height_plane(model), t.edge_m);
     ASSERT_EQ(dense.position.size(), adaptive.position.size()) << t.name;
+    // Both count the points near grains, and adaptive sampling diffuses every one of them.
+    near_grain_points += dense.near_grain_points;
+    EXPECT_EQ(adaptive.near_grain_points, dense.near_grain_points) << t.name;
     dense_points += dense.diffused_points;
     adaptive_points += adaptive.diffused_points;
     std::vector<double> errors;
@@ -187,6 +190,7 @@ TEST(AdaptiveSampling, MatchesDenseNearTheGrainsOfSeededVariants) {
     EXPECT_LE(e.max, 80.0) << t.name;
   }
   EXPECT_GE(templates, 4u);
+  EXPECT_GT(near_grain_points, 0u);  // the pepper's seeds are far from its mid-height cut
   std::printf("seeded variants: %zu -> %zu points (%.1fx); worst mean %.2f, worst max %.1f\n",
               dense_points, adaptive_points,
               static_cast<double>(dense_points) / adaptive_points, worst_mean, worst_max);
