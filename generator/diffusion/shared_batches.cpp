@@ -93,6 +93,7 @@ SharedBatchStats run_with_shared_batches(
     std::lock_guard lock(exchange.mutex);
     exchange.running -= workers - threads.size();
   }
+  stats.workers = threads.size();
   std::exception_ptr backend_error;
   {
     std::unique_lock lock(exchange.mutex);

@@ -18,6 +18,8 @@ struct SharedBatchStats {
   size_t batches = 0;        ///< calls of the backend
   size_t points = 0;         ///< points diffused in them
   double seconds_diffuse = 0;  ///< wall time spent in the backend's calls
+  size_t workers = 0;  ///< worker threads started (fewer than asked for when the system has
+                       ///< no more to give)
 };
 
 /// Runs task(i, diffusion) for every i in [0, count) on up to `max_threads` worker threads
