@@ -22,6 +22,10 @@
 namespace cutaway {
 namespace {
 
+/// The colour and material channels RecordingBackend gives point p.
+glm::dvec3 recorded_colour(const glm::dvec3& p) { return {p.x * 2, p.y + 1, p.z}; }
+glm::dvec2 recorded_material(const glm::dvec3& p) { return {p.x, -p.y}; }
+
 /// A backend whose colour is a function of the point alone, recording its calls.
 class RecordingBackend final : public DiffusionBackend {
  public:
@@ -34,8 +38,8 @@ class RecordingBackend final : public DiffusionBackend {
     batch_sizes.push_back(points.size());
     threads.push_back(std::this_thread::get_id());
     for (size_t i = 0; i < points.size(); ++i) {
-      colour[i] = glm::dvec3(points[i].x * 2, points[i].y + 1, points[i].z);
-      if (!material.empty()) material[i] = glm::dvec2(points[i].x, -points[i].y);
+      colour[i] = recorded_colour(points[i]);
+      if (!material.empty()) material[i] = recorded_material(points[i]);
     }
   }
   std::string name() const override { return "recording"; }
@@ -69,9 +73,9 @@ TEST(SharedBatches, TasksGetTheBackendsValuesInFewerCallsOnTheCallingThread) {
           std::vector<glm::dvec2> material(round % 2 == 0 ? points.size() : 0);
           diffusion.diffuse_channels(points, colour, material);
           for (size_t k = 0; k < points.size(); ++k) {
-            wrong[task] += colour[k] != glm::dvec3(points[k].x * 2, points[k].y + 1, points[k].z);
+            wrong[task] += colour[k] != recorded_colour(points[k]);
             if (!material.empty())
-              wrong[task] += material[k] != glm::dvec2(points[k].x, -points[k].y);
+              wrong[task] += material[k] != recorded_material(points[k]);
           }
         }
       },
@@ -105,7 +109,7 @@ TEST(SharedBatches, FewerThreadsThanTasksTakeTasksInTurnAndNoneRunsThemOnTheCall
             diffusion.diffuse_channels(points, colour, {});
             ++calls[task];
             for (size_t k = 0; k < points.size(); ++k)
-              wrong[task] += colour[k] != glm::dvec3(points[k].x * 2, points[k].y + 1, points[k].z);
+              wrong[task] += colour[k] != recorded_colour(points[k]);
           }
         },
         max_threads);
@@ -200,8 +204,7 @@ TEST(SharedBatches, WhenThreadsRunOutTheWorkersStartedOrTheCallerRunEveryTask) {
               diffusion.diffuse_channels(points, colour, {});
               ++calls[task];
               for (size_t k = 0; k < points.size(); ++k)
-                wrong[task] +=
-                    colour[k] != glm::dvec3(points[k].x * 2, points[k].y + 1, points[k].z);
+                wrong[task] += colour[k] != recorded_colour(points[k]);
             }
           },
           kTasks);
