@@ -310,14 +310,18 @@ int main(int argc, char** argv) {
     // own and the share near grains bounds the ratio over all points.
     const size_t dense_else = dense.diffused_points - dense.near_grain_points;
     const size_t both_else = both.diffused_points - both.near_grain_points;
+    // A scene without grains near its cuts has no ceiling to print.
+    char ceiling[96] = "no point is near a grain";
+    if (dense.near_grain_points > 0)
+      std::snprintf(ceiling, sizeof ceiling,
+                    "with every point near grains diffused the ratio is at most %.2fx",
+                    static_cast<double>(dense.diffused_points) / dense.near_grain_points);
     std::printf(
         "%-12s points near grains: dense %zu (%.0f %%), default %zu | elsewhere: dense %zu, "
-        "default %zu, %.2fx fewer | with every point near grains diffused the ratio is at most "
-        "%.2fx\n",
+        "default %zu, %.2fx fewer | %s\n",
         path.stem().c_str(), dense.near_grain_points,
         100.0 * dense.near_grain_points / dense.diffused_points, both.near_grain_points,
-        dense_else, both_else, static_cast<double>(dense_else) / both_else,
-        static_cast<double>(dense.diffused_points) / dense.near_grain_points);
+        dense_else, both_else, static_cast<double>(dense_else) / both_else, ceiling);
     // Accuracy: the default's cap vertices against dense sampling casting every texel.
     const CapErrors errors = cap_vertex_errors(runs[0].assets, runs[2].assets);
     std::printf(
