@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <atomic>
 #include <fstream>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <stdexcept>
@@ -60,6 +61,30 @@ std::vector<glm::dvec3> round_points(size_t task, int round) {
   return p;
 }
 
+/// What each task of a run did: the thread it ran on, its diffusion calls and the values it
+/// got wrong.
+struct TaskLog {
+  explicit TaskLog(size_t tasks) : wrong(tasks, 0), calls(tasks, 0), ran_on(tasks) {}
+  std::vector<int> wrong, calls;
+  std::vector<std::thread::id> ran_on;
+
+  /// A task that diffuses the colours of round_points(task % sizes, r) for r < rounds, one
+  /// call per round, and checks them against recorded_colour.
+  std::function<void(size_t, const DiffusionBackend&)> task(int rounds, size_t sizes) {
+    return [this, rounds, sizes](size_t task, const DiffusionBackend& diffusion) {
+      ran_on[task] = std::this_thread::get_id();
+      for (int round = 0; round < rounds; ++round) {
+        const std::vector<glm::dvec3> points = round_points(task % sizes, round);
+        std::vector<glm::dvec3> colour(points.size());
+        diffusion.diffuse_channels(points, colour, {});
+        ++calls[task];
+        for (size_t k = 0; k < points.size(); ++k)
+          wrong[task] += colour[k] != recorded_colour(points[k]);
+      }
+    };
+  }
+};
+
 TEST(SharedBatches, TasksGetTheBackendsValuesInFewerCallsOnTheCallingThread) {
   RecordingBackend backend;
   constexpr size_t kTasks = 6;
@@ -97,26 +122,13 @@ TEST(SharedBatches, FewerThreadsThanTasksTakeTasksInTurnAndNoneRunsThemOnTheCall
   for (size_t max_threads : {size_t{0}, size_t{1}, size_t{2}}) {
     RecordingBackend backend;
     constexpr size_t kTasks = 5;
-    std::vector<int> wrong(kTasks, 0), calls(kTasks, 0);
-    std::vector<std::thread::id> ran_on(kTasks);
-    const SharedBatchStats stats = run_with_shared_batches(
-        backend, kTasks,
-        [&](size_t task, const DiffusionBackend& diffusion) {
-          ran_on[task] = std::this_thread::get_id();
-          for (int round = 0; round < 3; ++round) {
-            const std::vector<glm::dvec3> points = round_points(task, round);
-            std::vector<glm::dvec3> colour(points.size());
-            diffusion.diffuse_channels(points, colour, {});
-            ++calls[task];
-            for (size_t k = 0; k < points.size(); ++k)
-              wrong[task] += colour[k] != recorded_colour(points[k]);
-          }
-        },
-        max_threads);
+    TaskLog log(kTasks);
+    const SharedBatchStats stats =
+        run_with_shared_batches(backend, kTasks, log.task(3, kTasks), max_threads);
     for (size_t i = 0; i < kTasks; ++i) {
-      EXPECT_EQ(wrong[i], 0) << "task " << i << ", " << max_threads << " threads";
-      EXPECT_EQ(calls[i], 3);
-      EXPECT_EQ(ran_on[i] == std::this_thread::get_id(), max_threads == 0);
+      EXPECT_EQ(log.wrong[i], 0) << "task " << i << ", " << max_threads << " threads";
+      EXPECT_EQ(log.calls[i], 3);
+      EXPECT_EQ(log.ran_on[i] == std::this_thread::get_id(), max_threads == 0);
     }
     // Batches hold at most max_threads tasks' calls; with none, each call is its own.
     EXPECT_EQ(backend.batch_sizes.size(), max_threads == 0 ? 3 * kTasks : stats.batches);
@@ -187,34 +199,20 @@ TEST(SharedBatches, WhenThreadsRunOutTheWorkersStartedOrTheCallerRunEveryTask) {
   if (child == 0) {
     RecordingBackend backend;
     constexpr size_t kTasks = 64;
-    std::vector<int> wrong(kTasks, 0), calls(kTasks, 0);
-    std::vector<std::thread::id> ran_on(kTasks);
+    TaskLog log(kTasks);
     const size_t used = address_space_bytes();
     const rlimit limit{used + (1u << 20), used + (1u << 20)};
     if (used == 0 || setrlimit(RLIMIT_AS, &limit) != 0) _exit(3);
     SharedBatchStats stats;
     try {
-      stats = run_with_shared_batches(
-          backend, kTasks,
-          [&](size_t task, const DiffusionBackend& diffusion) {
-            ran_on[task] = std::this_thread::get_id();
-            for (int round = 0; round < 2; ++round) {
-              const std::vector<glm::dvec3> points = round_points(task % 4, round);
-              std::vector<glm::dvec3> colour(points.size());
-              diffusion.diffuse_channels(points, colour, {});
-              ++calls[task];
-              for (size_t k = 0; k < points.size(); ++k)
-                wrong[task] += colour[k] != recorded_colour(points[k]);
-            }
-          },
-          kTasks);
+      stats = run_with_shared_batches(backend, kTasks, log.task(2, 4), kTasks);
     } catch (...) {
       _exit(4);
     }
     if (stats.workers >= kTasks) _exit(5);
     for (size_t i = 0; i < kTasks; ++i) {
-      if (wrong[i] != 0 || calls[i] != 2) _exit(6);
-      if ((ran_on[i] == std::this_thread::get_id()) != (stats.workers == 0)) _exit(7);
+      if (log.wrong[i] != 0 || log.calls[i] != 2) _exit(6);
+      if ((log.ran_on[i] == std::this_thread::get_id()) != (stats.workers == 0)) _exit(7);
     }
     _exit(0);
   }
