@@ -103,7 +103,7 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
                  {"pieces", set.pieces.size()},
                  {"planes", set.cells.planes.size()},
                  {"triangles", triangles},
-                 {"diffused_points", set.diffused_points},
+                 {"diffused_points", set.diffused.all},
                  {"seconds",
                   {{"model", t_model},
                    {"cut", t_cut},

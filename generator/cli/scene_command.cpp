@@ -96,7 +96,7 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
         {"pieces", st.pieces},
         {"placed", st.placed},
         {"triangles", st.triangles},
-        {"diffused_points", st.diffused_points},
+        {"diffused_points", st.diffused.all},
         {"physics",
          {{"simulated_seconds", st.simulated_seconds},
           {"settled", st.settled},

@@ -71,7 +71,7 @@ int run_section(const SectionArgs& a, const Common& common, OutputSet& outputs) 
                  {"cut_segments", section.cut_segments},
                  {"vertices", section.position.size()},
                  {"interior_vertices", section.interior_vertices},
-                 {"diffused_points", section.diffused_points},
+                 {"diffused_points", section.diffused.all},
                  {"rays", diffusion->rays_cast()},
                  {"seconds",
                   {{"model", t_model},

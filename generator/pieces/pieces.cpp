@@ -156,9 +156,7 @@ PieceSet pieces_in_cells(const DsModel& model, const CutCells& cells,
   for (size_t i = 0; i < planes; ++i) {
     Outcome<CrossSection>& section = *made[i];
     if (section) {
-      set.diffused_points += section->diffused_points;
-      set.band_diffused_points += section->band_diffused_points;
-      set.near_grain_points += section->near_grain_points;
+      set.diffused += section->diffused;
       if (!at_once) set.seconds_diffuse += section->seconds_diffuse;
       set.sections.push_back(std::move(*section));
     } else {
@@ -236,9 +234,7 @@ Outcome<PieceSet> cut_pieces(const DsModel& model, const CutSpec& cut,
     next.seconds_sections += set.seconds_sections;
     next.seconds_diffuse += set.seconds_diffuse;
     next.seconds_clip += set.seconds_clip;
-    next.diffused_points += set.diffused_points;
-    next.band_diffused_points += set.band_diffused_points;
-    next.near_grain_points += set.near_grain_points;
+    next.diffused += set.diffused;
     next.stitched_vertices += set.stitched_vertices;
     next.attempts = attempt + 1;
     set = std::move(next);

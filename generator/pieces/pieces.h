@@ -64,9 +64,7 @@ struct PieceSet {
   CutCells cells;                      ///< as cut: the planes moved by the last attempt's nudge
   std::vector<Piece> pieces;           ///< in cell order; cells the object misses give none
   std::vector<CrossSection> sections;  ///< one per plane of `cells` (empty where it misses)
-  size_t diffused_points = 0;          ///< PMVC evaluations over all caps
-  size_t band_diffused_points = 0;     ///< of which on blur bands' lines (adaptive sampling)
-  size_t near_grain_points = 0;        ///< of which near grains (CrossSection)
+  DiffusedPoints diffused;             ///< PMVC evaluations over all caps
   size_t stitched_vertices = 0;        ///< seam vertices snapped or inserted
   double seconds_sections = 0;         ///< cross-sections: triangulation and diffusion (wall)
   /// Of which PMVC diffusion: with the caps made at once (run_with_shared_batches), the wall

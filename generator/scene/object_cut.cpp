@@ -244,9 +244,7 @@ Outcome<CutObject> cut_object(SceneAssets& assets, const Variant& variant, uint6
   stats.seconds_sections += set.seconds_sections;
   stats.seconds_diffuse += set.seconds_diffuse;
   stats.seconds_clip += set.seconds_clip;
-  stats.diffused_points += set.diffused_points;
-  stats.band_diffused_points += set.band_diffused_points;
-  stats.near_grain_points += set.near_grain_points;
+  stats.diffused += set.diffused;
   stats.recut_objects += set.attempts > 1;
   stats.defective_pieces += set.defective_pieces;
   const size_t n = set.pieces.size();

@@ -61,9 +61,7 @@ struct ObjectCutOptions {
 
 /// Counts and timings (wall seconds) of cut_object() calls, added up.
 struct ObjectCutStats {
-  size_t diffused_points = 0;
-  size_t band_diffused_points = 0;  ///< of diffused_points, on blur bands' lines (adaptive)
-  size_t near_grain_points = 0;     ///< of diffused_points, near grains (CrossSection)
+  DiffusedPoints diffused;      ///< PMVC evaluations of the caps
   int recut_objects = 0;        ///< objects whose cut was redone with nudged planes
   size_t defective_pieces = 0;  ///< pieces left with a manifold defect after every attempt
   double seconds_backend = 0;   ///< building the diffusion backends (BVH or GL setup)

@@ -467,8 +467,8 @@ void SectionMesher::sample_band_lines(const DiffusionBackend& diffusion) {
         colours, materials);
     for (size_t i = 0; i < band_vertices.size(); ++i)
       samples_.emplace(band_vertices[i], std::make_pair(colours[i], materials[i]));
-    cs_.diffused_points = band.diffused;
-    cs_.band_diffused_points = band.diffused;
+    cs_.diffused.all = band.diffused;
+    cs_.diffused.on_bands = band.diffused;
   }
   seconds_sampling_ = seconds_since(meshed);
 }
@@ -587,7 +587,7 @@ CrossSection SectionMesher::diffuse_rest(const DiffusionBackend& diffusion) {
   // Every point left (dense), or the cut vertices off the bands and then the interior by
   // harmonic sampling (adaptive).
   for (const glm::dvec3& p : to_diffuse_) CUTAWAY_CHECK(all_finite(p));
-  cs_.diffused_points += to_diffuse_.size();
+  cs_.diffused.all += to_diffuse_.size();
   const auto triangulated = std::chrono::steady_clock::now();
   cs_.seconds_triangulate =
       std::chrono::duration<double>(triangulated - start_).count() - seconds_sampling_;
@@ -610,14 +610,14 @@ CrossSection SectionMesher::diffuse_rest(const DiffusionBackend& diffusion) {
         {options_.harmonic_spacing * options_.edge_m,
          options_.harmonic_min_spacing * options_.edge_m,
          {options_.tolerance, options_.material_tolerance}});
-    cs_.diffused_points += counts.diffused;
+    cs_.diffused.all += counts.diffused;
     cs_.seconds_diffuse += seconds_since(interior);
   }
   return std::move(cs_);
 }
 
 /// A backend passed through that counts the points it is asked for near grains
-/// (CrossSection::near_grain_points).
+/// (DiffusedPoints::near_grains).
 class GrainCountingDiffusion final : public DiffusionBackend {
  public:
   GrainCountingDiffusion(const DiffusionBackend& backend, const GrainNeighbourhood& grains)
@@ -653,7 +653,7 @@ Outcome<CrossSection> make_cross_section(const DsModel& model, const Plane& plan
   mesher.sample_band_lines(counted);
   if (!mesher.split_vertices()) return Outcome<CrossSection>::none(kPlaneOnlyTouches);
   CrossSection section = mesher.diffuse_rest(counted);
-  section.near_grain_points = counted.near();
+  section.diffused.near_grains = counted.near();
   return section;
 }
 

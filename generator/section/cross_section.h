@@ -68,6 +68,24 @@ struct CapRestriction {
   std::function<bool(const glm::dvec3&)> keep;  ///< centroid (metres) -> keep; empty: all
 };
 
+/// PMVC evaluations of cross-sections, added up over caps, pieces and objects with +=.
+struct DiffusedPoints {
+  size_t all = 0;          ///< interior vertices and the locations of blurred cut vertices
+                           ///< (their duplicates share one); adaptive sampling: the samples and
+                           ///< test points only
+  size_t on_bands = 0;     ///< adaptive: of `all`, those on blur bands' lines (band_sampling.h;
+                           ///< the rest are interior)
+  size_t near_grains = 0;  ///< of `all`, those near a grain (within kNearGrainRadii of one,
+                           ///< grain_neighbourhood.h), which adaptive sampling diffuses all
+
+  DiffusedPoints& operator+=(const DiffusedPoints& other) {
+    all += other.all;
+    on_bands += other.on_bands;
+    near_grains += other.near_grains;
+    return *this;
+  }
+};
+
 /// The triangulated, coloured cut face on one plane.
 struct CrossSection {
   Plane plane;
@@ -80,14 +98,7 @@ struct CrossSection {
   /// interior vertex.
   std::vector<int> cut_surface;
   size_t interior_vertices = 0;  ///< vertices off the cut segments
-  size_t diffused_points = 0;    ///< PMVC evaluations: interior vertices and the locations of
-                                 ///< blurred cut vertices (their duplicates share one); adaptive
-                                 ///< sampling: the samples and test points only
-  size_t band_diffused_points = 0;  ///< adaptive: of diffused_points, those on blur bands'
-                                    ///< lines (band_sampling.h; the rest are interior)
-  size_t near_grain_points = 0;  ///< of diffused_points, those near a grain (within
-                                 ///< kNearGrainRadii of one, grain_neighbourhood.h), which
-                                 ///< adaptive sampling diffuses all
+  DiffusedPoints diffused;       ///< PMVC evaluations
   size_t cut_segments = 0;       ///< input cut segments
   bool refinement_capped = false;  ///< Delaunay refinement ran out of its step budget or
                                    ///< failed CGAL's checks (rounding near a degenerate input),

@@ -136,7 +136,7 @@ void bench_scene(const fs::path& path, int repeat, int threads, double target_s)
       "%-12s %2d objects %3d pieces %7zu triangles %6zu PMVC points => %.2f s "
       "(glb %.1f MB)%s\n",
       path.stem().c_str(), best_stats.objects, best_stats.placed, best_stats.triangles,
-      best_stats.diffused_points, best, bytes / 1e6,
+      best_stats.diffused.all, best, bytes / 1e6,
       path.stem() == "salad"
           ? (best <= target_s ? "  [target <= 30 s: met]" : "  [target <= 30 s: MISSED]")
           : "");
@@ -296,11 +296,11 @@ int main(int argc, char** argv) {
         "sampling %7zu points (%zu on blur bands, %zu interior) %7.2f s (%.2f s), with adaptive "
         "directions %7.2f s (%.2f s) | %.2fx fewer points, %.2fx less cap time, %.2fx less in "
         "PMVC calls (sampling %.2fx, directions %.2fx)  [target 4x, 3x]\n",
-        path.stem().c_str(), dense.diffused_points, dense.seconds_sections,
-        dense.seconds_diffuse, sampled.diffused_points, sampled.band_diffused_points,
-        sampled.diffused_points - sampled.band_diffused_points, sampled.seconds_sections,
+        path.stem().c_str(), dense.diffused.all, dense.seconds_sections,
+        dense.seconds_diffuse, sampled.diffused.all, sampled.diffused.on_bands,
+        sampled.diffused.all - sampled.diffused.on_bands, sampled.seconds_sections,
         sampled.seconds_diffuse, both.seconds_sections, both.seconds_diffuse,
-        static_cast<double>(dense.diffused_points) / both.diffused_points,
+        static_cast<double>(dense.diffused.all) / both.diffused.all,
         dense.seconds_sections / both.seconds_sections,
         dense.seconds_diffuse / both.seconds_diffuse,
         dense.seconds_sections / sampled.seconds_sections,
@@ -308,19 +308,19 @@ int main(int argc, char** argv) {
     // Where the points are: near grains adaptive sampling diffuses every point (the colour
     // there does not interpolate, grain_neighbourhood.h), so the ratio elsewhere is sampling's
     // own and the share near grains bounds the ratio over all points.
-    const size_t dense_else = dense.diffused_points - dense.near_grain_points;
-    const size_t both_else = both.diffused_points - both.near_grain_points;
+    const size_t dense_else = dense.diffused.all - dense.diffused.near_grains;
+    const size_t both_else = both.diffused.all - both.diffused.near_grains;
     // A scene without grains near its cuts has no ceiling to print.
     char ceiling[96] = "no point is near a grain";
-    if (dense.near_grain_points > 0)
+    if (dense.diffused.near_grains > 0)
       std::snprintf(ceiling, sizeof ceiling,
                     "with every point near grains diffused the ratio is at most %.2fx",
-                    static_cast<double>(dense.diffused_points) / dense.near_grain_points);
+                    static_cast<double>(dense.diffused.all) / dense.diffused.near_grains);
     std::printf(
         "%-12s points near grains: dense %zu (%.0f %%), default %zu | elsewhere: dense %zu, "
         "default %zu, %.2fx fewer | %s\n",
-        path.stem().c_str(), dense.near_grain_points,
-        100.0 * dense.near_grain_points / dense.diffused_points, both.near_grain_points,
+        path.stem().c_str(), dense.diffused.near_grains,
+        100.0 * dense.diffused.near_grains / dense.diffused.all, both.diffused.near_grains,
         dense_else, both_else, static_cast<double>(dense_else) / both_else, ceiling);
     // Accuracy: the default's cap vertices against dense sampling casting every texel.
     const CapErrors errors = cap_vertex_errors(runs[0].assets, runs[2].assets);

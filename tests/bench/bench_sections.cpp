@@ -295,7 +295,7 @@ int main(int argc, char** argv) {
                 *cutaway::make_cross_section(model, cut.plane, *gl_backend, options);
             gl_cut_s = std::min(gl_cut_s, seconds_since(t0));
             gl_pmvc_s = std::min(gl_pmvc_s, gl_cs.seconds_diffuse);
-            diffused = gl_cs.diffused_points;
+            diffused = gl_cs.diffused.all;
           }
           std::printf("%-9s %-10s gl %s cut_s=%.4f pmvc_s=%.4f diffused_points=%zu\n",
                       tmpl.name.c_str(), cut.name,

@@ -117,8 +117,8 @@ TEST(AdaptiveSampling, MatchesDenseCube32ReferenceOnEveryTemplatesMidHeightCut) 
     const Template& t = cut.tmpl;
     const DsModel& model = cut.model;
     const auto [dense, adaptive] = dense_and_adaptive(model, cut.plane, t.edge_m);
-    dense_points += dense.diffused_points;
-    adaptive_points += adaptive.diffused_points;
+    dense_points += dense.diffused.all;
+    adaptive_points += adaptive.diffused.all;
     // At the cap's vertices (dense sampling diffuses them all, so only adaptive sampling's are
     // checked) and over each cap's area.
     // The reference casts every texel of its cube (no adaptive directions).
@@ -131,8 +131,8 @@ TEST(AdaptiveSampling, MatchesDenseCube32ReferenceOnEveryTemplatesMidHeightCut) 
         "%-10s %5zu -> %5zu points (%4.1fx); error vs cube 32 at the vertices: adaptive mean "
         "%.2f max %.2f; over the area: dense mean %.2f max %.2f, adaptive mean %.2f max %.2f "
         "(sRGB of 255); material channels at the vertices: mean %.2f max %.2f (of 255)\n",
-        t.name.c_str(), dense.diffused_points, adaptive.diffused_points,
-        static_cast<double>(dense.diffused_points) / adaptive.diffused_points, adaptive_at.mean,
+        t.name.c_str(), dense.diffused.all, adaptive.diffused.all,
+        static_cast<double>(dense.diffused.all) / adaptive.diffused.all, adaptive_at.mean,
         adaptive_at.max, dense_area.mean, dense_area.max, adaptive_area.mean, adaptive_area.max,
         materials_at.mean, materials_at.max);
     // The bound at the vertices: mean error at most 1 of 255 (measured: at most 0.88, star
@@ -168,10 +168,10 @@ TEST(AdaptiveSampling, MatchesDenseNearTheGrainsOfSeededVariants) {
     const auto [dense, adaptive] = dense_and_adaptive(model, mid_height_plane(model), t.edge_m);
     ASSERT_EQ(dense.position.size(), adaptive.position.size()) << t.name;
     // Both count the points near grains, and adaptive sampling diffuses every one of them.
-    near_grain_points += dense.near_grain_points;
-    EXPECT_EQ(adaptive.near_grain_points, dense.near_grain_points) << t.name;
-    dense_points += dense.diffused_points;
-    adaptive_points += adaptive.diffused_points;
+    near_grain_points += dense.diffused.near_grains;
+    EXPECT_EQ(adaptive.diffused.near_grains, dense.diffused.near_grains) << t.name;
+    dense_points += dense.diffused.all;
+    adaptive_points += adaptive.diffused.all;
     std::vector<double> errors;
     for (size_t v = 0; v < adaptive.position.size(); ++v)
       if (adaptive.cut_surface[v] < 0)
@@ -179,7 +179,7 @@ TEST(AdaptiveSampling, MatchesDenseNearTheGrainsOfSeededVariants) {
     const Errors e = summary(errors);
     std::printf("%-10s seed 5: %5zu -> %5zu points; %zu interior vertices against dense: mean "
                 "%.2f max %.1f (sRGB of 255)\n",
-                t.name.c_str(), dense.diffused_points, adaptive.diffused_points, e.points,
+                t.name.c_str(), dense.diffused.all, adaptive.diffused.all, e.points,
                 e.mean, e.max);
     worst_mean = std::max(worst_mean, e.mean);
     worst_max = std::max(worst_max, e.max);
