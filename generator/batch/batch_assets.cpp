@@ -124,6 +124,8 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
   // counts as the variant's).
   const std::string model_file = item.template_name + "-" + std::to_string(u.seed) + ".model.glb";
   std::string model = batch.outputs.model ? model_to_glb(variant.model, GltfModelOptions{}) : "";
+  // One diffusion backend (its BVH) serves every cut of the variant.
+  const std::unique_ptr<DiffusionBackend> diffusion = options.diffusion(variant.model);
   const uint64_t model_hash = fnv1a64(model);
   t.variant = seconds_since(t0);
 
@@ -144,7 +146,7 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
     cut.sampling = options.sampling;
     ObjectCutStats st;
     CutObject object = *cut_object(assets, variant, u.seed, materials, asset_name(a.stem),
-                                   options.diffusion, cut, st);
+                                   *diffusion, cut, st);
     BuiltAsset built;
     UnitTimings& own = built.seconds;
     own.variant = t.variant / static_cast<double>(item.cuts.size());

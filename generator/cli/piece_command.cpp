@@ -57,7 +57,8 @@ CutObject cut_for_view(SceneAssets& assets, const Variant& variant, const CutSpe
   ObjectCutStats stats;
   Outcome<CutObject> made = cut_object(assets, variant, seed, materials,
                                        asset_name(variant.tmpl.name),
-                                       diffusion_factory(cube, common), options, stats);
+                                       *diffusion_factory(cube, common)(variant.model), options,
+                                       stats);
   if (!made) throw UsageError(what + ": " + made.reason());
   return std::move(*made);
 }

@@ -224,22 +224,18 @@ glm::dvec3 largest_cap_normal(const Piece& piece) {
 
 Outcome<CutObject> cut_object(SceneAssets& assets, const Variant& variant, uint64_t variant_seed,
                               const PieceMaterials& materials, const std::string& object,
-                              const DiffusionFactory& diffusion, const ObjectCutOptions& options,
+                              const DiffusionBackend& diffusion, const ObjectCutOptions& options,
                               ObjectCutStats& stats) {
-  if (!diffusion) throw InternalError("cut_object: no diffusion backend");
-  auto t0 = Clock::now();
-  const std::unique_ptr<DiffusionBackend> backend = diffusion(variant.model);
-  stats.seconds_backend += seconds_since(t0);
   PieceOptions piece_options;
   piece_options.section.edge_m = variant.tmpl.edge_m;
   piece_options.section.sampling = options.sampling;
-  Outcome<PieceSet> made = cut_pieces(variant.model, options.cut, *backend, piece_options);
+  Outcome<PieceSet> made = cut_pieces(variant.model, options.cut, diffusion, piece_options);
   if (!made && !options.whole_when_missed) return Outcome<CutObject>::none(made.reason());
   if (!made)  // every plane misses this variant: keep it whole
-    made = cut_pieces(variant.model, CutSpec{}, *backend, piece_options);
+    made = cut_pieces(variant.model, CutSpec{}, diffusion, piece_options);
   CutObject out;
   out.set = std::move(*made);
-  out.backend = backend->name();
+  out.backend = diffusion.name();
   PieceSet& set = out.set;
   stats.seconds_sections += set.seconds_sections;
   stats.seconds_diffuse += set.seconds_diffuse;

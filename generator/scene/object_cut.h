@@ -64,7 +64,6 @@ struct ObjectCutStats {
   DiffusedPoints diffused;      ///< PMVC evaluations of the caps
   int recut_objects = 0;        ///< objects whose cut was redone with nudged planes
   size_t defective_pieces = 0;  ///< pieces left with a manifold defect after every attempt
-  double seconds_backend = 0;   ///< building the diffusion backends (BVH or GL setup)
   double seconds_sections = 0;  ///< cap cross-sections (triangulation + PMVC)
   double seconds_diffuse = 0;   ///< of which PMVC
   double seconds_clip = 0;      ///< clipping the skin and walls, stitching
@@ -83,18 +82,18 @@ struct CutObject {
   std::vector<PieceInfo> infos;    ///< per kept piece: its glTF node extras
 };
 
-/// Cuts `variant` (built from seed `variant_seed`) as options.cut says with a backend from
-/// `diffusion`, keeps a seeded share of the pieces and makes them exportable: with
+/// Cuts `variant` (built from seed `variant_seed`) as options.cut says, its caps coloured by
+/// `diffusion` (a backend built for variant.model; one backend serves any number of cuts of
+/// it), keeps a seeded share of the pieces and makes them exportable: with
 /// CapColours::Texture the caps and swept skins baked into textures added to `assets` (named
 /// after `object`), with materials derived from `materials` (add_piece_materials); colours
 /// Perlin-modulated in the object frame. Adds its timings and counts to `stats`.
 /// Deterministic: the same variant and options give the same pieces, whatever the thread count
 /// of the backend.
 /// @return the reason when every plane misses the object and !options.whole_when_missed
-/// @throws InternalError when `diffusion` is empty
 Outcome<CutObject> cut_object(SceneAssets& assets, const Variant& variant, uint64_t variant_seed,
                               const PieceMaterials& materials, const std::string& object,
-                              const DiffusionFactory& diffusion, const ObjectCutOptions& options,
+                              const DiffusionBackend& diffusion, const ObjectCutOptions& options,
                               ObjectCutStats& stats);
 
 /// The caps of `piece` re-triangulated from their outlines (coarse_cap_triangles in the plane

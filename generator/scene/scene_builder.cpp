@@ -142,8 +142,11 @@ ScenePieces cut_scene_objects(const Scene& scene, uint64_t seed, const SceneBuil
       cut.skin = options.skin;
       const std::string object =
           "i" + std::to_string(i) + "_" + asset_name(tmpl.name) + "_" + std::to_string(j);
+      const auto t_backend = Clock::now();
+      const std::unique_ptr<DiffusionBackend> diffusion = options.diffusion(variant.model);
+      st.seconds_backend += seconds_since(t_backend);
       CutObject made = *cut_object(assets, variant, variant_seed, item_materials, object,
-                                   options.diffusion, cut, st);
+                                   *diffusion, cut, st);
       for (size_t q = 0; q < made.kept.size(); ++q) {
         const Piece& piece = made.set.pieces[made.kept[q]];
         out.meshes.push_back(std::move(made.meshes[q]));

@@ -42,6 +42,7 @@ struct SceneStats : ObjectCutStats {
   int objects = 0, pieces = 0, placed = 0;  ///< pieces: kept after `keep`; placed: of those
   size_t triangles = 0;
   double seconds_variants = 0;  ///< make_variant (sweep, synthesis, grains, checks)
+  double seconds_backend = 0;   ///< building the diffusion backends (BVH or GL setup)
   double seconds_layout = 0;    ///< drop poses (the height-field layout)
   double seconds_physics = 0;   ///< collision shapes and settling
   double simulated_seconds = 0;     ///< simulated time of the settling

@@ -147,9 +147,9 @@ SceneAssets exploded(const Template& tmpl, const std::string& cut, CutObject& ob
   options.cut = *parse_cut_spec(cut, tmpl.metres_per_unit);
   options.cap_colours = CapColours::Vertex;
   ObjectCutStats stats;
-  object = *cut_object(assets, Variant{tmpl, build_model(tmpl)}, 0, materials, tmpl.name,
-                       [](const DsModel& model) { return make_cpu_diffusion(model, {8, 0}); },
-                       options, stats);
+  const Variant variant{tmpl, build_model(tmpl)};
+  object = *cut_object(assets, variant, 0, materials, tmpl.name,
+                       *make_cpu_diffusion(variant.model, {8, 0}), options, stats);
   return piece_assets(std::move(assets), object, 0.3, 64, 48);
 }
 
@@ -207,24 +207,19 @@ TEST(Pieces, ACutThatMissesKeepsTheObjectWholeOrSaysWhy) {
   ObjectCutOptions options;
   options.cut = *parse_cut_spec("plane:y=5000", tmpl.metres_per_unit);  // far above
   options.cap_colours = CapColours::Vertex;
-  const DiffusionFactory cpu = [](const DsModel& model) {
-    return make_cpu_diffusion(model, {4, 0});
-  };
+  const std::unique_ptr<DiffusionBackend> cpu = make_cpu_diffusion(whole.model, {4, 0});
   ObjectCutStats stats;
   const Outcome<CutObject> kept =
-      cut_object(assets, whole, 0, materials, "tomato", cpu, options, stats);
+      cut_object(assets, whole, 0, materials, "tomato", *cpu, options, stats);
   ASSERT_TRUE(kept);
   EXPECT_EQ(kept->set.pieces.size(), 1u);
   EXPECT_EQ(kept->meshes.size(), 1u);
   EXPECT_FALSE(kept->backend.empty());
   options.whole_when_missed = false;
   const Outcome<CutObject> refused =
-      cut_object(assets, whole, 0, materials, "tomato", cpu, options, stats);
+      cut_object(assets, whole, 0, materials, "tomato", *cpu, options, stats);
   ASSERT_FALSE(refused);
   EXPECT_NE(refused.reason(), "");
-  EXPECT_THROW(cut_object(assets, whole, 0, materials, "tomato", DiffusionFactory{}, options,
-                          stats),
-               InternalError);
 }
 
 TEST(Pieces, CoarseCapsKeepPiecesClosedWithTheSameArea) {

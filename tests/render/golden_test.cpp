@@ -145,8 +145,9 @@ void pieces_case(const std::string& name, double npr) {
   cut.perlin = npr;
   cut.cap_colours = CapColours::Vertex;
   ObjectCutStats stats;
-  const CutObject object = *cut_object(assets, Variant{tomato(), build_model(tomato())}, 0,
-                                       materials, tomato().name, cpu_diffusion, cut, stats);
+  const Variant variant{tomato(), build_model(tomato())};
+  const CutObject object = *cut_object(assets, variant, 0, materials, tomato().name,
+                                       *cpu_diffusion(variant.model), cut, stats);
   assets = piece_assets(std::move(assets), object, 0.3, kWidth, kHeight);
   StrokeOptions so;
   so.strength = npr;
