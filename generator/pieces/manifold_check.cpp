@@ -1,10 +1,11 @@
 #include "pieces/manifold_check.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <map>
-#include <tuple>
+#include <numeric>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -13,72 +14,121 @@ namespace cutaway {
 namespace {
 
 /// The first pair of distinct positions closer than `d` (uniform grid of cell d), as a message.
+/// Cells are visited in lexicographic order and the points of a cell in their order in `points`.
 std::string near_duplicates(const std::vector<glm::dvec3>& points, double d) {
-  using Cell = std::tuple<int64_t, int64_t, int64_t>;
-  std::map<Cell, std::vector<glm::dvec3>> grid;
+  using Cell = std::array<int64_t, 3>;
   auto cell_of = [d](const glm::dvec3& p) {
     return Cell{static_cast<int64_t>(std::floor(p.x / d)),
                 static_cast<int64_t>(std::floor(p.y / d)),
                 static_cast<int64_t>(std::floor(p.z / d))};
   };
-  for (const glm::dvec3& p : points) grid[cell_of(p)].push_back(p);
-  for (const auto& [c, here] : grid)
+  std::vector<std::pair<Cell, unsigned>> grid(points.size());
+  for (size_t i = 0; i < points.size(); ++i)
+    grid[i] = {cell_of(points[i]), static_cast<unsigned>(i)};
+  std::sort(grid.begin(), grid.end());
+  auto cell_less = [](const std::pair<Cell, unsigned>& a, const Cell& c) { return a.first < c; };
+  for (size_t begin = 0, end = 0; begin < grid.size(); begin = end) {
+    const Cell c = grid[begin].first;
+    while (end < grid.size() && grid[end].first == c) ++end;
     for (int64_t dx = -1; dx <= 1; ++dx)
       for (int64_t dy = -1; dy <= 1; ++dy)
         for (int64_t dz = -1; dz <= 1; ++dz) {
-          const auto it =
-              grid.find({std::get<0>(c) + dx, std::get<1>(c) + dy, std::get<2>(c) + dz});
-          if (it == grid.end()) continue;
-          for (const glm::dvec3& p : here)
-            for (const glm::dvec3& q : it->second)
-              if (p != q && glm::distance(p, q) < d)
-                return "two vertices " + std::to_string(glm::distance(p, q)) + " m apart";
+          const Cell n{c[0] + dx, c[1] + dy, c[2] + dz};
+          auto it = std::lower_bound(grid.begin(), grid.end(), n, cell_less);
+          for (size_t i = begin; i < end; ++i)
+            for (auto q = it; q != grid.end() && q->first == n; ++q) {
+              const glm::dvec3& p = points[grid[i].second];
+              const glm::dvec3& r = points[q->second];
+              if (p != r && glm::distance(p, r) < d)
+                return "two vertices " + std::to_string(glm::distance(p, r)) + " m apart";
+            }
         }
+  }
   return "";
+}
+
+/// Welds the corners of `mesh` by exact position: #F welded triangles, and in `welded` the
+/// distinct positions in the order of their first corner.
+std::vector<std::array<unsigned, 3>> weld(const ShadedMesh& mesh, std::vector<glm::dvec3>& welded) {
+  const size_t corners = 3 * mesh.triangle.size();
+  auto at = [&mesh](size_t c) -> const glm::dvec3& {
+    return mesh.position[mesh.triangle[c / 3][static_cast<int>(c % 3)]];
+  };
+  auto less = [](const glm::dvec3& a, const glm::dvec3& b) {
+    return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z;
+  };
+  // Corners sorted by position, ties by corner: each run of equal positions starts with the
+  // position's first corner.
+  std::vector<size_t> order(corners);
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return less(at(a), at(b)); });
+  std::vector<size_t> first(corners);  // corner -> the first corner at its position
+  std::vector<size_t> firsts;
+  for (size_t i = 0; i < corners; ++i) {
+    const bool same = i > 0 && !less(at(order[i - 1]), at(order[i]));
+    if (!same) firsts.push_back(order[i]);
+    first[order[i]] = same ? first[order[i - 1]] : order[i];
+  }
+  std::sort(firsts.begin(), firsts.end());
+  std::vector<unsigned> id(corners, 0);
+  welded.clear();
+  for (size_t c : firsts) {
+    id[c] = static_cast<unsigned>(welded.size());
+    welded.push_back(at(c));
+  }
+  std::vector<std::array<unsigned, 3>> tris(mesh.triangle.size());
+  for (size_t c = 0; c < corners; ++c) tris[c / 3][c % 3] = id[first[c]];
+  return tris;
 }
 
 }  // namespace
 
 std::string manifold_defect(const ShadedMesh& mesh, double min_separation_m) {
-  std::map<std::tuple<double, double, double>, unsigned> id;
   std::vector<glm::dvec3> welded;
-  std::vector<std::array<unsigned, 3>> tris;
-  tris.reserve(mesh.triangle.size());
-  for (const glm::uvec3& t : mesh.triangle) {
-    std::array<unsigned, 3> w{};
-    for (int k = 0; k < 3; ++k) {
-      const glm::dvec3& p = mesh.position[t[k]];
-      const auto [it, added] =
-          id.emplace(std::make_tuple(p.x, p.y, p.z), static_cast<unsigned>(welded.size()));
-      if (added) welded.push_back(p);
-      w[k] = it->second;
-    }
+  const std::vector<std::array<unsigned, 3>> tris = weld(mesh, welded);
+  for (const auto& w : tris) {
     if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0])
       return "a triangle with two corners at one point";
     if (!(glm::length(glm::cross(welded[w[1]] - welded[w[0]], welded[w[2]] - welded[w[0]])) > 0))
       return "a triangle of zero area";
-    tris.push_back(w);
   }
-  std::map<std::pair<unsigned, unsigned>, int> directed;
+  // Directed edges, sorted: each must occur once, and its twin too.
+  std::vector<std::pair<unsigned, unsigned>> directed;
+  directed.reserve(3 * tris.size());
   for (const auto& t : tris)
-    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
-  for (const auto& [e, n] : directed) {
-    if (n != 1) return "an edge used " + std::to_string(n) + " times one way";
-    if (!directed.count({e.second, e.first})) return "an open edge";
+    for (int k = 0; k < 3; ++k) directed.emplace_back(t[k], t[(k + 1) % 3]);
+  std::sort(directed.begin(), directed.end());
+  for (size_t begin = 0, end = 0; begin < directed.size(); begin = end) {
+    while (end < directed.size() && directed[end] == directed[begin]) ++end;
+    if (end - begin != 1) return "an edge used " + std::to_string(end - begin) + " times one way";
+    const std::pair<unsigned, unsigned> twin{directed[begin].second, directed[begin].first};
+    if (!std::binary_search(directed.begin(), directed.end(), twin)) return "an open edge";
   }
-  // Around each vertex v, triangle (v, a, b) links a to b: one cycle through all of them.
-  std::vector<std::map<unsigned, unsigned>> fan(welded.size());
+  // Around each vertex v, triangle (v, a, b) links a to b: one cycle through all of them. Every
+  // (v, a) occurs once (directed edge v -> a, checked above).
+  std::vector<std::array<unsigned, 3>> fan;  // (v, a, b), sorted
+  fan.reserve(3 * tris.size());
   for (const auto& t : tris)
-    for (int k = 0; k < 3; ++k) fan[t[k]][t[(k + 1) % 3]] = t[(k + 2) % 3];
-  for (const auto& next : fan) {
-    if (next.empty()) continue;
+    for (int k = 0; k < 3; ++k) fan.push_back({t[k], t[(k + 1) % 3], t[(k + 2) % 3]});
+  std::sort(fan.begin(), fan.end());
+  for (size_t begin = 0, end = 0; begin < fan.size(); begin = end) {
+    while (end < fan.size() && fan[end][0] == fan[begin][0]) ++end;
+    const auto first = fan.begin() + static_cast<long>(begin);
+    const auto last = fan.begin() + static_cast<long>(end);
+    const size_t links = end - begin;
     size_t steps = 0;
-    const unsigned start = next.begin()->first;
+    bool broken = false;  // a link to no link of v (not after the twin check above)
+    const unsigned start = fan[begin][1];
     unsigned a = start;
     do {
-      a = next.at(a);
-    } while (++steps <= next.size() && a != start);
-    if (steps != next.size()) return "a vertex with more than one fan of triangles";
+      const auto it = std::lower_bound(
+          first, last, a, [](const std::array<unsigned, 3>& f, unsigned key) { return f[1] < key; });
+      broken = it == last || (*it)[1] != a;
+      if (broken) break;
+      a = (*it)[2];
+    } while (++steps <= links && a != start);
+    if (broken || steps != links) return "a vertex with more than one fan of triangles";
   }
   return min_separation_m > 0 ? near_duplicates(welded, min_separation_m) : "";
 }
