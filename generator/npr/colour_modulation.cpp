@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -14,13 +15,27 @@
 
 namespace cutaway {
 
-double band_weight(const PerlinBand& band, const glm::dvec3& colour_linear) {
-  if (!band.tinted) return band.amplitude;
-  const glm::dvec3 c = linear_to_srgb(glm::clamp(colour_linear, 0.0, 1.0));
-  const double d = glm::distance(c, linear_to_srgb(band.tint));
+namespace {
+
+/// The colour clamped to 0..1 and encoded as sRGB, as band_weight compares it.
+glm::dvec3 clamped_srgb(const glm::dvec3& colour_linear) {
+  return linear_to_srgb(glm::clamp(colour_linear, 0.0, 1.0));
+}
+
+/// band_weight of a tinted band, from the colour and the tint already encoded as sRGB.
+double tinted_weight(const PerlinBand& band, const glm::dvec3& colour_srgb,
+                     const glm::dvec3& tint_srgb) {
+  const double d = glm::distance(colour_srgb, tint_srgb);
   if (!(d < band.reach)) return 0.0;
   const double q = 1.0 - (d / band.reach) * (d / band.reach);
   return band.amplitude * q * q;
+}
+
+}  // namespace
+
+double band_weight(const PerlinBand& band, const glm::dvec3& colour_linear) {
+  if (!band.tinted) return band.amplitude;
+  return tinted_weight(band, clamped_srgb(colour_linear), linear_to_srgb(band.tint));
 }
 
 ColourModulation::ColourModulation(const NprSettings& npr, uint64_t seed) {
@@ -29,15 +44,23 @@ ColourModulation::ColourModulation(const NprSettings& npr, uint64_t seed) {
     const uint64_t band_seed = derive_seed(seed, {b});
     Rng rng(derive_seed(band_seed, {1}));  // the offset; the permutation uses band_seed itself
     const glm::dvec3 offset{rng.uniform(0, 256), rng.uniform(0, 256), rng.uniform(0, 256)};
-    bands_.push_back(Band{npr.perlin_bands[b], PerlinNoise(band_seed), offset});
+    bands_.push_back(Band{npr.perlin_bands[b], PerlinNoise(band_seed), offset,
+                          linear_to_srgb(npr.perlin_bands[b].tint)});
   }
 }
 
 double ColourModulation::relative_change(const glm::dvec3& position_m,
                                          const glm::dvec3& colour_linear) const {
   double sum = 0.0;
+  // band_weight for each band, the colour encoded once (3 powers per texel instead of 6 per
+  // tinted band: this runs for every texel of the baked textures).
+  std::optional<glm::dvec3> colour_srgb;
   for (const Band& b : bands_) {
-    const double w = band_weight(b.params, colour_linear);
+    double w = b.params.amplitude;
+    if (b.params.tinted) {
+      if (!colour_srgb) colour_srgb = clamped_srgb(colour_linear);
+      w = tinted_weight(b.params, *colour_srgb, b.tint_srgb);
+    }
     if (w == 0.0) continue;
     sum += w * b.noise(position_m * b.params.frequency_per_m + b.offset);
   }

@@ -55,6 +55,7 @@ class ColourModulation {
     PerlinBand params;
     PerlinNoise noise;
     glm::dvec3 offset;  ///< lattice units
+    glm::dvec3 tint_srgb;  ///< params.tint encoded as sRGB (band_weight compares in sRGB)
   };
   std::vector<Band> bands_;
 };
