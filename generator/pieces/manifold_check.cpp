@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <numeric>
+#include <tuple>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -54,21 +54,25 @@ std::vector<std::array<unsigned, 3>> weld(const ShadedMesh& mesh, std::vector<gl
   auto at = [&mesh](size_t c) -> const glm::dvec3& {
     return mesh.position[mesh.triangle[c / 3][static_cast<int>(c % 3)]];
   };
-  auto less = [](const glm::dvec3& a, const glm::dvec3& b) {
-    return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z;
-  };
   // Corners sorted by position, ties by corner: each run of equal positions starts with the
   // position's first corner.
-  std::vector<size_t> order(corners);
-  std::iota(order.begin(), order.end(), size_t{0});
-  std::stable_sort(order.begin(), order.end(),
-                   [&](size_t a, size_t b) { return less(at(a), at(b)); });
+  struct Corner {
+    double x, y, z;
+    size_t corner;
+    bool operator<(const Corner& o) const {
+      return std::tie(x, y, z, corner) < std::tie(o.x, o.y, o.z, o.corner);
+    }
+    bool same_place(const Corner& o) const { return x == o.x && y == o.y && z == o.z; }
+  };
+  std::vector<Corner> order(corners);
+  for (size_t c = 0; c < corners; ++c) order[c] = {at(c).x, at(c).y, at(c).z, c};
+  std::sort(order.begin(), order.end());
   std::vector<size_t> first(corners);  // corner -> the first corner at its position
   std::vector<size_t> firsts;
   for (size_t i = 0; i < corners; ++i) {
-    const bool same = i > 0 && !less(at(order[i - 1]), at(order[i]));
-    if (!same) firsts.push_back(order[i]);
-    first[order[i]] = same ? first[order[i - 1]] : order[i];
+    const bool same = i > 0 && order[i - 1].same_place(order[i]);
+    if (!same) firsts.push_back(order[i].corner);
+    first[order[i].corner] = same ? first[order[i - 1].corner] : order[i].corner;
   }
   std::sort(firsts.begin(), firsts.end());
   std::vector<unsigned> id(corners, 0);
