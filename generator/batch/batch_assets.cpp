@@ -124,7 +124,8 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
   // counts as the variant's).
   const std::string model_file = item.template_name + "-" + std::to_string(u.seed) + ".model.glb";
   std::string model = batch.outputs.model ? model_to_glb(variant.model, GltfModelOptions{}) : "";
-  // One diffusion backend (its BVH) serves every cut of the variant.
+  // One diffusion backend (its BVH) serves every cut of the variant; its time counts as the
+  // variant's too.
   const std::unique_ptr<DiffusionBackend> diffusion = options.diffusion(variant.model);
   const uint64_t model_hash = fnv1a64(model);
   t.variant = seconds_since(t0);

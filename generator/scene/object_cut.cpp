@@ -7,7 +7,6 @@
 
 #include <glm/geometric.hpp>
 
-#include "base/error.h"
 #include "base/random.h"
 #include "base/timer.h"
 #include "npr/colour_modulation.h"
