@@ -116,12 +116,26 @@ Facets hull_facets(const std::vector<glm::dvec3>& points) {
     return Kernel::Point_3(out.corners[k].x, out.corners[k].y, out.corners[k].z);
   };
   for (const std::vector<unsigned>& g : sets) {
-    // The plane through the facet's first two corners and the first not in line with them.
-    size_t third = 2;
-    while (third < g.size() && CGAL::collinear(point(g[0]), point(g[1]), point(g[third])))
-      ++third;
-    if (third == g.size()) continue;  // degenerate
-    const glm::dvec3 a = out.corners[g[0]], u = out.corners[g[1]] - a;
+    // The plane through a well-shaped triangle of canonical corners: the facet's first corner
+    // a, the corner b farthest from it and the corner farthest from the line ab (the first
+    // of equals). The first three corners in order can be in line to 1e-15 without being
+    // collinear (a cut face's outline), and their cross product then points anywhere.
+    const glm::dvec3 a = out.corners[g[0]];
+    size_t second = 1, third = 0;
+    for (size_t k = 2; k < g.size(); ++k)
+      if (glm::distance(out.corners[g[k]], a) > glm::distance(out.corners[g[second]], a))
+        second = k;
+    const glm::dvec3 u = out.corners[g[second]] - a;
+    double widest = 0;
+    for (size_t k = 1; k < g.size(); ++k) {
+      const double width = glm::length(glm::cross(u, out.corners[g[k]] - a));
+      if (width > widest) {
+        widest = width;
+        third = k;
+      }
+    }
+    if (third == 0 || CGAL::collinear(point(g[0]), point(g[second]), point(g[third])))
+      continue;  // degenerate
     glm::dvec3 n = glm::normalize(glm::cross(u, out.corners[g[third]] - a));
     if (glm::dot(n, inside - a) > 0) n = -n;
     Facets::Facet facet{g, n, glm::dot(n, a)};
