@@ -68,21 +68,21 @@ std::vector<std::array<unsigned, 3>> weld(const ShadedMesh& mesh, std::vector<gl
   for (size_t c = 0; c < corners; ++c) order[c] = {at(c).x, at(c).y, at(c).z, c};
   std::sort(order.begin(), order.end());
   std::vector<size_t> first(corners);  // corner -> the first corner at its position
-  std::vector<size_t> firsts;
-  for (size_t i = 0; i < corners; ++i) {
-    const bool same = i > 0 && order[i - 1].same_place(order[i]);
-    if (!same) firsts.push_back(order[i].corner);
-    first[order[i].corner] = same ? first[order[i - 1].corner] : order[i].corner;
-  }
-  std::sort(firsts.begin(), firsts.end());
+  for (size_t i = 0; i < corners; ++i)
+    first[order[i].corner] = i > 0 && order[i - 1].same_place(order[i])
+                                 ? first[order[i - 1].corner]
+                                 : order[i].corner;
+  // Ids in the order of the first corners; a corner's first corner comes no later than itself.
   std::vector<unsigned> id(corners, 0);
-  welded.clear();
-  for (size_t c : firsts) {
-    id[c] = static_cast<unsigned>(welded.size());
-    welded.push_back(at(c));
-  }
   std::vector<std::array<unsigned, 3>> tris(mesh.triangle.size());
-  for (size_t c = 0; c < corners; ++c) tris[c / 3][c % 3] = id[first[c]];
+  welded.clear();
+  for (size_t c = 0; c < corners; ++c) {
+    if (first[c] == c) {
+      id[c] = static_cast<unsigned>(welded.size());
+      welded.push_back(at(c));
+    }
+    tris[c / 3][c % 3] = id[first[c]];
+  }
   return tris;
 }
 

@@ -122,9 +122,14 @@ Facets hull_facets(const std::vector<glm::dvec3>& points) {
     // collinear (a cut face's outline), and their cross product then points anywhere.
     const glm::dvec3 a = out.corners[g[0]];
     size_t second = 1, third = 0;
-    for (size_t k = 2; k < g.size(); ++k)
-      if (glm::distance(out.corners[g[k]], a) > glm::distance(out.corners[g[second]], a))
+    double farthest = glm::distance(out.corners[g[1]], a);
+    for (size_t k = 2; k < g.size(); ++k) {
+      const double distance = glm::distance(out.corners[g[k]], a);
+      if (distance > farthest) {
+        farthest = distance;
         second = k;
+      }
+    }
     const glm::dvec3 u = out.corners[g[second]] - a;
     double widest = 0;
     for (size_t k = 1; k < g.size(); ++k) {
