@@ -4,10 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <stdexcept>
 #include <vector>
 
-#include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
@@ -16,7 +14,7 @@
 #include "diffusion/cube_directions.h"
 #include "diffusion/diffusion.h"
 #include "diffusion/diffusion_sheets.h"
-#include "diffusion/embree_sheets.h"
+#include "diffusion/sheet_rays.h"
 
 namespace cutaway {
 
@@ -28,20 +26,9 @@ class CpuDiffusion final : public DiffusionBackend {
       : options_(options),
         directions_(uses_adaptive_directions(options) ? CubeDirections{}
                                                       : make_cube_directions(options.cube_size)),
-        sheets_(make_diffusion_sheets(model)) {
-    const std::string config = "threads=" + std::to_string(std::max(options.threads, 0));
-    device_ = rtcNewDevice(config.c_str());
-    if (!device_) throw std::runtime_error("cannot initialise Embree (rtcNewDevice failed)");
-    scene_ = rtcNewScene(device_);
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-    commit_sheet_scene(device_, scene_, sheets_);
+        sheets_(make_diffusion_sheets(model)),
+        caster_(sheets_, options.threads) {
     if (uses_adaptive_directions(options)) adaptive_ = make_adaptive_directions(options.cube_size);
-  }
-
-  ~CpuDiffusion() override {
-    rtcReleaseScene(scene_);
-    rtcReleaseDevice(device_);
   }
 
   std::string name() const override { return "cpu"; }
@@ -74,38 +61,32 @@ class CpuDiffusion final : public DiffusionBackend {
   struct Hit {
     int seen = -1;  ///< 2 sheet + (1 on the back side), -1: no hit
     double distance = 0;
-    glm::vec3 colour{0.0f};
-    glm::vec2 material{0.0f};
+    glm::dvec3 colour{0.0};
+    glm::dvec2 material{0.0};
   };
 
-  /// Casts rays from x along `rays` (#R unit directions) in packets of 16 and writes their
-  /// hits (#R).
+  /// Casts rays from x along `rays` (#R unit directions) and writes their hits (#R), colours
+  /// interpolated in double precision from the crossing's barycentric weights.
   void cast(const glm::dvec3& x, std::span<const glm::vec3> rays, std::span<Hit> hits) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    alignas(64) RTCRayHit16 rh;
-    alignas(64) int valid[16];
-    for (size_t base = 0; base < rays.size(); base += 16) {
-      const int lanes = fill_ray_packet(rays, base, x, rh, valid);
-      rtcIntersect16(valid, scene_, &context, &rh);
-      for (int l = 0; l < lanes; ++l) {
-        Hit& hit = hits[base + static_cast<size_t>(l)];
-        hit = Hit{};
-        if (rh.hit.geomID[l] == RTC_INVALID_GEOMETRY_ID) continue;
-        const DiffusionSheet& s = sheets_[rh.hit.geomID[l]];
-        const unsigned prim = rh.hit.primID[l];
-        const glm::uvec3 t = s.triangle[prim];
-        const float u = rh.hit.u[l], v = rh.hit.v[l], w0 = 1.0f - u - v;
-        const bool front =
-            !s.two_faced || glm::dot(rays[base + static_cast<size_t>(l)], s.face_normal[prim]) < 0;
-        const auto& c = front ? s.colour_front : s.colour_back;
-        const auto& m = front ? s.material_front : s.material_back;
-        hit.seen = 2 * static_cast<int>(rh.hit.geomID[l]) + (front ? 0 : 1);
-        hit.distance = std::max(static_cast<double>(rh.ray.tfar[l]), 1e-9);
-        hit.colour = w0 * c[t[0]] + u * c[t[1]] + v * c[t[2]];
-        hit.material = w0 * m[t[0]] + u * m[t[1]] + v * m[t[2]];
-      }
+    thread_local std::vector<SheetHit> first;
+    first.resize(rays.size());
+    caster_.cast(x, rays, first);
+    for (size_t r = 0; r < rays.size(); ++r) {
+      Hit& hit = hits[r];
+      hit = Hit{};
+      const SheetHit& h = first[r];
+      if (h.sheet < 0) continue;
+      const DiffusionSheet& s = sheets_[static_cast<size_t>(h.sheet)];
+      const glm::uvec3 t = s.triangle[h.triangle];
+      const double u = h.at.u, v = h.at.v, w0 = 1.0 - u - v;
+      const bool front =
+          !s.two_faced || glm::dot(glm::dvec3(rays[r]), glm::dvec3(s.face_normal[h.triangle])) < 0;
+      const auto& c = front ? s.colour_front : s.colour_back;
+      const auto& m = front ? s.material_front : s.material_back;
+      hit.seen = 2 * h.sheet + (front ? 0 : 1);
+      hit.distance = std::max(h.at.t, 1e-9);
+      hit.colour = w0 * glm::dvec3(c[t[0]]) + u * glm::dvec3(c[t[1]]) + v * glm::dvec3(c[t[2]]);
+      hit.material = w0 * glm::dvec2(m[t[0]]) + u * glm::dvec2(m[t[1]]) + v * glm::dvec2(m[t[2]]);
     }
   }
 
@@ -118,8 +99,8 @@ class CpuDiffusion final : public DiffusionBackend {
     void add(const Hit& hit, double solid_angle) {
       if (hit.seen < 0) return;
       const double w = solid_angle / hit.distance;
-      colour += glm::dvec3(hit.colour) * w;
-      material += glm::dvec2(hit.material) * w;
+      colour += hit.colour * w;
+      material += hit.material * w;
       weight += w;
     }
   };
@@ -178,8 +159,7 @@ class CpuDiffusion final : public DiffusionBackend {
   std::optional<AdaptiveDirections> adaptive_;
   mutable std::atomic<size_t> rays_{0};
   std::vector<DiffusionSheet> sheets_;
-  RTCDevice device_ = nullptr;
-  RTCScene scene_ = nullptr;
+  SheetRayCaster caster_;  ///< over sheets_
 };
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <sstream>
 #include <string>
@@ -36,7 +37,7 @@
 #include "diffusion/cube_directions.h"
 #include "diffusion/diffusion.h"
 #include "diffusion/diffusion_sheets.h"
-#include "diffusion/embree_sheets.h"
+#include "diffusion/sheet_rays.h"
 #include "io/template_parser.h"
 #include "model/model_builder.h"
 #include "paper_table1.h"
@@ -74,24 +75,79 @@ class TimedBackend final : public cutaway::DiffusionBackend {
   const cutaway::DiffusionBackend& inner_;
 };
 
-/// Embree's closest hit alone: the scene and ray packets of the cpu backend (same sheets, same
-/// scene flags and build quality, packets of 16 directions of one point, TBB over points with
-/// the same grain), summing only the hit distances.
+// Plain Embree over the sheets, for the raw rows: no grown triangles, no filter.
+/// Adds every sheet to `scene` as triangle geometry whose geometry ID is the sheet's index
+/// (positions in metres), then commits the scene.
+void commit_sheet_scene(RTCDevice device, RTCScene scene,
+                               const std::vector<cutaway::DiffusionSheet>& sheets) {
+  for (size_t i = 0; i < sheets.size(); ++i) {
+    const cutaway::DiffusionSheet& s = sheets[i];
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), s.position.size()));
+    for (size_t v = 0; v < s.position.size(); ++v)
+      for (int k = 0; k < 3; ++k) vb[3 * v + k] = s.position[v][k];
+    auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), s.triangle.size()));
+    for (size_t t = 0; t < s.triangle.size(); ++t)
+      for (int k = 0; k < 3; ++k) ib[3 * t + k] = s.triangle[t][k];
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(scene, g, static_cast<unsigned>(i));
+    rtcReleaseGeometry(g);
+  }
+  rtcCommitScene(scene);
+}
+
+/// Sets `rh` to the rays from `origin` (metres) along directions[base .. base + 16) (fewer at
+/// the end: the unused lanes repeat the last direction and are invalid) and `valid` to the
+/// Embree mask. Returns the number of valid lanes.
+int fill_ray_packet(std::span<const glm::vec3> directions, size_t base,
+                           const glm::dvec3& origin, RTCRayHit16& rh, int (&valid)[16]) {
+  const int lanes = static_cast<int>(std::min<size_t>(16, directions.size() - base));
+  for (int l = 0; l < 16; ++l) {
+    valid[l] = l < lanes ? -1 : 0;
+    const glm::vec3 d = directions[base + std::min(l, lanes - 1)];
+    rh.ray.org_x[l] = static_cast<float>(origin.x);
+    rh.ray.org_y[l] = static_cast<float>(origin.y);
+    rh.ray.org_z[l] = static_cast<float>(origin.z);
+    rh.ray.dir_x[l] = d.x;
+    rh.ray.dir_y[l] = d.y;
+    rh.ray.dir_z[l] = d.z;
+    rh.ray.tnear[l] = 0.0f;
+    rh.ray.tfar[l] = std::numeric_limits<float>::infinity();
+    rh.ray.mask[l] = 0xFFFFFFFFu;
+    rh.ray.time[l] = 0.0f;
+    rh.ray.flags[l] = 0;
+    rh.hit.geomID[l] = RTC_INVALID_GEOMETRY_ID;
+  }
+  return lanes;
+}
+
+/// Embree's closest hit alone: the sheets of the cpu backend, packets of 16 directions of one
+/// point, TBB over points with the same grain, summing only the hit distances. `Decided` is the
+/// backend's own ray casting (SheetRayCaster: grown triangles, every proposal decided in
+/// double precision); `Robust` plain Embree with the same scene flags and build quality;
+/// `Fast` plain Embree with default flags and medium build quality (headroom).
 class RawEmbree {
  public:
-  /// robust = false: default scene flags and medium build quality (headroom, not what the
-  /// backend uses).
-  RawEmbree(const cutaway::DsModel& model, int threads, bool robust = true) : threads_(threads) {
+  enum class Mode { Decided, Robust, Fast };
+  RawEmbree(const cutaway::DsModel& model, int threads, Mode mode)
+      : threads_(threads), sheets_(cutaway::make_diffusion_sheets(model)) {
+    if (mode == Mode::Decided) {
+      caster_ = std::make_unique<cutaway::SheetRayCaster>(sheets_, threads);
+      return;
+    }
     const std::string config = "threads=" + std::to_string(std::max(threads, 0));
     device_ = rtcNewDevice(config.c_str());
     scene_ = rtcNewScene(device_);
+    const bool robust = mode == Mode::Robust;
     rtcSetSceneFlags(scene_, robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
     rtcSetSceneBuildQuality(scene_, robust ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
-    cutaway::commit_sheet_scene(device_, scene_, cutaway::make_diffusion_sheets(model));
+    commit_sheet_scene(device_, scene_, sheets_);
   }
   ~RawEmbree() {
-    rtcReleaseScene(scene_);
-    rtcReleaseDevice(device_);
+    if (scene_) rtcReleaseScene(scene_);
+    if (device_) rtcReleaseDevice(device_);
   }
 
   /// Seconds to trace every direction of `dirs` from every point.
@@ -119,15 +175,23 @@ class RawEmbree {
 
  private:
   double trace_point(const glm::dvec3& x, const cutaway::CubeDirections& dirs) const {
-    const size_t count = dirs.direction.size();
     double sum = 0;
+    if (caster_) {
+      thread_local std::vector<cutaway::SheetHit> hits;
+      hits.resize(dirs.direction.size());
+      caster_->cast(x, dirs.direction, hits);
+      for (const cutaway::SheetHit& h : hits)
+        if (h.sheet >= 0) sum += h.at.t;
+      return sum;
+    }
+    const size_t count = dirs.direction.size();
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     alignas(64) RTCRayHit16 rh;
     alignas(64) int valid[16];
     for (size_t base = 0; base < count; base += 16) {
-      const int lanes = cutaway::fill_ray_packet(dirs.direction, base, x, rh, valid);
+      const int lanes = fill_ray_packet(dirs.direction, base, x, rh, valid);
       rtcIntersect16(valid, scene_, &context, &rh);
       for (int l = 0; l < lanes; ++l)
         if (rh.hit.geomID[l] != RTC_INVALID_GEOMETRY_ID) sum += rh.ray.tfar[l];
@@ -136,6 +200,8 @@ class RawEmbree {
   }
 
   int threads_;
+  std::vector<cutaway::DiffusionSheet> sheets_;
+  std::unique_ptr<cutaway::SheetRayCaster> caster_;
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   double checksum_ = 0;
@@ -220,7 +286,8 @@ int main(int argc, char** argv) {
     const auto cpu = cutaway::make_cpu_diffusion(model, {cube, threads});
     const double bvh_s = seconds_since(t_bvh);
     const auto every_texel = cutaway::make_cpu_diffusion(model, {cube, threads, true, false});
-    RawEmbree raw(model, threads), raw_fast(model, threads, false);
+    RawEmbree decided(model, threads, RawEmbree::Mode::Decided),
+        raw(model, threads, RawEmbree::Mode::Robust), raw_fast(model, threads, RawEmbree::Mode::Fast);
     std::unique_ptr<cutaway::DiffusionBackend> gl_backend;
     if (gl) gl_backend = cutaway::make_gl_diffusion(model, {cube, threads});
     const PaperRow* row = find_row(table1, tmpl.name);
@@ -233,7 +300,7 @@ int main(int argc, char** argv) {
       cutaway::Plane plane;
     } cuts[] = {{"horizontal", {{0, mid, 0}, {0, 1, 0}}}, {"vertical", {{0, 0, 0}, {1, 0, 0}}}};
     for (const auto& cut : cuts) {
-      double cut_s = 1e300, diffuse_s = 1e300, raw_s = 1e300, fast_s = 1e300;
+      double cut_s = 1e300, diffuse_s = 1e300, raw_s = 1e300, fast_s = 1e300, decided_s = 1e300;
       size_t cut_rays = 0;
       cutaway::CrossSection cs;
       std::vector<glm::dvec3> points;
@@ -248,6 +315,7 @@ int main(int argc, char** argv) {
         diffuse_s = std::min(diffuse_s, timed.seconds);
         points = timed.all_points;
         raw_s = std::min(raw_s, raw.trace(points, dirs));
+        decided_s = std::min(decided_s, decided.trace(points, dirs));
         fast_s = std::min(fast_s, raw_fast.trace(points, dirs));
       }
       // Rays of the last cut's diffusion; Embree's raw loop casts every texel.
@@ -269,12 +337,13 @@ int main(int argc, char** argv) {
       std::printf("%-9s %-10s ds_vertices=%zu ds_faces=%zu paper_vertices=%s paper_faces=%s "
                   "paper_cut_s=%s bvh_s=%.3f cut_s=%.3f triangulate_s=%.3f pmvc_s=%.3f "
                   "section_vertices=%zu pmvc_points=%zu rays=%.3g pmvc_rays_per_s=%.3g "
-                  "embree_rays_per_s=%.3g pmvc/embree=%.2f embree_not_robust_rays_per_s=%.3g\n",
+                  "embree_rays_per_s=%.3g pmvc/embree=%.2f embree_not_robust_rays_per_s=%.3g "
+                  "decided_rays_per_s=%.3g decided/embree=%.2f\n",
                   tmpl.name.c_str(), cut.name, model.vertex_count(), model.face_count(),
                   paper[1].c_str(), paper[2].c_str(), paper[0].c_str(), bvh_s, cut_s,
                   cut_s - diffuse_s, diffuse_s, cs.position.size(), points.size(), rays,
                   rays / diffuse_s, every_rays / raw_s, (rays / diffuse_s) / (every_rays / raw_s),
-                  every_rays / fast_s);
+                  every_rays / fast_s, every_rays / decided_s, raw_s / decided_s);
       if (gl_backend) {
         const auto [gl_colour_s, gl_s] = colour_and_material_seconds(*gl_backend, points, repeat);
         const Agreement agree = agreement(*gl_backend, *cpu, points);
@@ -306,7 +375,7 @@ int main(int argc, char** argv) {
       if (tmpl.name == "tomato") tomato_cut = std::max(tomato_cut, cut_s);
       std::fflush(stdout);
     }
-    checksum += raw.checksum() + raw_fast.checksum();
+    checksum += raw.checksum() + raw_fast.checksum() + decided.checksum();
   }
   if (tomato_cut >= 0) {
     std::printf("target: tomato cut <= 0.6 s on 2 cores: slowest tomato cut %.3f s on %d "
