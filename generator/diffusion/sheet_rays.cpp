@@ -79,33 +79,53 @@ struct Query {
   unsigned lanes;  ///< lanes in use in this packet: ids 0 .. lanes - 1
 };
 
+/// Collects the (sheet, triangle) of every grown triangle whose bounds reach the point
+/// query's sphere.
+bool collect_near(RTCPointQueryFunctionArguments* args) {
+  static_cast<std::vector<std::pair<unsigned, unsigned>>*>(args->userPtr)
+      ->emplace_back(args->geomID, args->primID);
+  return false;
+}
+
 /// Embree's intersection filter: decides each proposed triangle by cross_triangle on the
 /// original, keeps the best crossing per ray in Query::best, and lets Embree cut the ray short
 /// only beyond that crossing plus the slack (accepting the proposal with a longer tfar).
+/// Whether `crossing` of (sheet, triangle) comes before `best`: nearer, or as near and of a
+/// lower (sheet, triangle).
+bool comes_before(const TriangleCrossing& crossing, int sheet, unsigned triangle,
+                  const SheetHit& best) {
+  return best.sheet < 0 || crossing.t < best.at.t ||
+         (crossing.t == best.at.t &&
+          (sheet < best.sheet || (sheet == best.sheet && triangle < best.triangle)));
+}
+
+/// cross_triangle on triangle `triangle` of `sheet` from `origin` along `d`.
+std::optional<TriangleCrossing> cross_sheet_triangle(const DiffusionSheet& sheet, unsigned triangle,
+                                                     const glm::dvec3& origin, const glm::dvec3& d) {
+  const glm::uvec3 corners = sheet.triangle[triangle];
+  return cross_triangle(origin, d, glm::dvec3(sheet.position[corners[0]]),
+                        glm::dvec3(sheet.position[corners[1]]),
+                        glm::dvec3(sheet.position[corners[2]]));
+}
+
 void decide_proposal(const RTCFilterFunctionNArguments* args) {
   const Query& query = *reinterpret_cast<const Query*>(args->context);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] == 0) continue;
     const unsigned sheet_index = RTCHitN_geomID(args->hit, args->N, i);
     const unsigned triangle = RTCHitN_primID(args->hit, args->N, i);
-    const DiffusionSheet& sheet = (*query.sheets)[sheet_index];
-    const glm::uvec3 corners = sheet.triangle[triangle];
-    const glm::dvec3 d(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
-                       RTCRayN_dir_z(args->ray, args->N, i));
-    const auto crossing =
-        cross_triangle(query.origin, d, glm::dvec3(sheet.position[corners[0]]),
-                       glm::dvec3(sheet.position[corners[1]]), glm::dvec3(sheet.position[corners[2]]));
     const unsigned lane = RTCRayN_id(args->ray, args->N, i);
     if (lane >= query.lanes) {  // an unused lane, traced anyway by a fallback that skips `valid`
       args->valid[i] = 0;
       continue;
     }
+    const glm::dvec3 d(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+                       RTCRayN_dir_z(args->ray, args->N, i));
+    const auto crossing =
+        cross_sheet_triangle((*query.sheets)[sheet_index], triangle, query.origin, d);
     SheetHit& best = query.best[lane];
     const int s = static_cast<int>(sheet_index);
-    const bool better =
-        crossing && (best.sheet < 0 || crossing->t < best.at.t ||
-                     (crossing->t == best.at.t &&
-                      (s < best.sheet || (s == best.sheet && triangle < best.triangle))));
+    const bool better = crossing && comes_before(*crossing, s, triangle, best);
     if (!better) {
       args->valid[i] = 0;  // Embree goes on with the tfar it had
       continue;
@@ -129,6 +149,8 @@ SheetRayCaster::SheetRayCaster(const std::vector<DiffusionSheet>& sheets, int th
     }
   const double diagonal = hi.x >= lo.x ? glm::length(hi - lo) : 0.0;
   margin_ = std::max(1e-6 * diagonal, 1e-9);
+  back_ = 100 * margin_;
+  near_radius_ = 4 * margin_;
 
   std::string config = "threads=" + std::to_string(std::max(threads, 0));
   if (const char* isa = std::getenv("CUTAWAY_EMBREE_ISA"); isa && *isa)
@@ -180,8 +202,21 @@ void SheetRayCaster::cast(const glm::dvec3& origin, std::span<const glm::vec3> d
   query.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   query.sheets = &sheets_;
   query.origin = origin;
-  query.back = margin_;
+  query.back = back_;
   query.margin = margin_;
+  // The triangles next to the origin, tested for every ray: from an origin within rounding
+  // distance of a triangle's plane, Embree's t of a grazing ray may come out negative.
+  thread_local std::vector<std::pair<unsigned, unsigned>> near;
+  near.clear();
+  RTCPointQuery point;
+  point.x = static_cast<float>(origin.x);
+  point.y = static_cast<float>(origin.y);
+  point.z = static_cast<float>(origin.z);
+  point.time = 0.0f;
+  point.radius = float_at_least(near_radius_);
+  RTCPointQueryContext point_context;
+  rtcInitPointQueryContext(&point_context);
+  rtcPointQuery(embree_->scene, &point, &point_context, collect_near, &near);
   alignas(64) RTCRayHit16 rh;
   alignas(64) int valid[16];
   for (size_t base = 0; base < directions.size(); base += 16) {
@@ -210,6 +245,15 @@ void SheetRayCaster::cast(const glm::dvec3& origin, std::span<const glm::vec3> d
       if (l < lanes) hits[base + static_cast<size_t>(l)] = SheetHit{};
     }
     rtcIntersect16(valid, embree_->scene, &query.embree, &rh);
+    for (int l = 0; l < lanes; ++l) {
+      SheetHit& best = hits[base + static_cast<size_t>(l)];
+      const glm::dvec3 d(directions[base + static_cast<size_t>(l)]);
+      for (const auto& [sheet, triangle] : near) {
+        const auto crossing = cross_sheet_triangle(sheets_[sheet], triangle, origin, d);
+        if (crossing && comes_before(*crossing, static_cast<int>(sheet), triangle, best))
+          best = SheetHit{static_cast<int>(sheet), triangle, *crossing};
+      }
+    }
   }
 }
 

@@ -6,7 +6,8 @@
 // another, and two sheets a hair apart swap places. Here Embree only proposes: it traces a copy
 // of the sheets whose triangles are grown by a margin well above its rounding error, from an
 // origin moved back along the ray by another margin, and hands every triangle it meets to a
-// filter. The filter decides in double precision, by one fixed formula (cross_triangle), on the
+// filter; so are the triangles next to the ray's origin, where a grazing ray's t may come out
+// with the wrong sign. The filter decides in double precision, by one fixed formula (cross_triangle), on the
 // original triangle: whether the ray crosses it, where, and whether that is nearer than the
 // best crossing so far (ties go to the lower sheet, then triangle, index). Every triangle the
 // exact test would accept is among the proposals whatever the kernel, so the answer is the
@@ -67,15 +68,18 @@ class SheetRayCaster {
 
   const std::vector<DiffusionSheet>& sheets() const { return sheets_; }
 
-  /// How far each triangle's edges are moved out in the copy Embree traces, and how far back
-  /// the ray origin is moved (metres): both 1e-6 of the sheets' bounding-box diagonal, at
-  /// least 1e-9 m (doc/algorithms.md §2 has the measurement behind it).
+  /// How far each triangle's edges are moved out in the copy Embree traces (metres): 1e-6
+  /// of the sheets' bounding-box diagonal, at least 1e-9 m, over ten times the float rounding
+  /// of the positions. Embree's ray starts 100 margins behind the origin, and the triangles
+  /// within 4 margins of the origin are tested for every ray (doc/algorithms.md §2).
   double margin() const { return margin_; }
 
  private:
   struct Embree;
   const std::vector<DiffusionSheet>& sheets_;
   double margin_ = 0;
+  double back_ = 0;         ///< metres Embree's ray origin lies behind the true one
+  double near_radius_ = 0;  ///< triangles this near the origin are tested for every ray
   Embree* embree_ = nullptr;
 };
 
