@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what cutaway needs on Debian 12: the Debian packages for building and running it,
-# and (with --test) the test tools: Chromium, slurm-wlm and munge (the one-node Slurm cluster
+# (with --cpus) qemu-user for `make test-cpus`, and (with --test) the test tools: Chromium, slurm-wlm and munge (the one-node Slurm cluster
 # of the batch test) from Debian, and, from npm into node_modules/
 # (package-lock.json, exact versions), the Khronos glTF validator, three.js (its GLTFLoader is
 # the real glTF client of tests/tools/load_gltf_three.mjs) and playwright-core (drives Chromium).
@@ -20,9 +20,13 @@ packages=(
 test_packages=(libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev nodejs npm
                chromium slurm-wlm munge)
 
+# make test-cpus: qemu-user emulates an older CPU (tests/cli/emulated_cpu_test.sh).
+cpus_packages=(qemu-user)
+
 want=("${packages[@]}")
 with_tests=0
 if [[ "${1:-}" == "--test" ]]; then with_tests=1; want+=("${test_packages[@]}"); fi
+if [[ "${1:-}" == "--cpus" ]]; then want+=("${cpus_packages[@]}"); fi
 
 missing=()
 for p in "${want[@]}"; do
