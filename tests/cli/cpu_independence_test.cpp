@@ -15,7 +15,6 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
-#include "variation/variant_batch.h"
 
 namespace cutaway {
 namespace {
@@ -119,23 +118,3 @@ TEST(CpuIndependence, VariantSet) {
 }  // namespace
 }  // namespace cutaway
 
-namespace cutaway {
-namespace {
-
-TEST(CpuIndependence, StatsGiveEveryWrittenFilesContentHash) {
-  const std::filesystem::path dir = test::fresh_dir("stats-hashes");
-  const test::RunResult r = test::run_cutaway(
-      {"piece", "templates/persimmon.yaml", "--cut", "halves", "--cube", "4", "-o",
-       (dir / "p.pov").string(), "--stats"});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto last = r.err.rfind("{\"outputs_fnv1a64\"");
-  ASSERT_NE(last, std::string::npos) << r.err;
-  const auto j = nlohmann::json::parse(r.err.substr(last, r.err.find('\n', last) - last));
-  const auto& files = j.at("outputs_fnv1a64");
-  EXPECT_EQ(files.size(), 1u);
-  for (const auto& [path, hash] : files.items())
-    EXPECT_EQ(hash.get<std::string>(), hex64(fnv1a64(test::read_file(path)))) << path;
-}
-
-}  // namespace
-}  // namespace cutaway
