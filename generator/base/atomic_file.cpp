@@ -436,6 +436,7 @@ void OutputSet::commit() {
   end_commit();
   std::vector<fs::path> synced;
   for (const Move& m : moves) {
+    committed_.push_back(m.to);
     const fs::path d = m.to.parent_path();
     if (std::find(synced.begin(), synced.end(), d) != synced.end()) continue;
     synced.push_back(d);

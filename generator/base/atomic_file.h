@@ -138,6 +138,10 @@ class OutputSet {
   ///         or another non-regular file since add(), or a rename fails
   void commit();
 
+  /// The files commit() renamed into place (registered outputs and their companion files,
+  /// such as a .gltf's .bin or a .pov's textures), absolute, in rename order; empty before.
+  const std::vector<std::filesystem::path>& committed() const { return committed_; }
+
   /// Removes everything staged and the directories add() created (those still empty). Safe to
   /// call more than once, and after commit() (then it does nothing).
   void abort() noexcept;
@@ -164,6 +168,7 @@ class OutputSet {
   std::vector<Stage> stages_;
   std::map<std::filesystem::path, std::string> given_;   ///< target -> "OPTION PATH"
   std::vector<std::filesystem::path> created_dirs_;      ///< by add(), in creation order
+  std::vector<std::filesystem::path> committed_;         ///< by commit(), in rename order
   bool done_ = false;
 };
 

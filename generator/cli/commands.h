@@ -34,12 +34,6 @@ inline void require_extension(const std::string& option, const std::string& path
   }
 }
 
-/// Prints a subcommand's `--stats`: one line of JSON on stderr (its counts, then "seconds" per
-/// stage), keys in the order given.
-inline void print_stats(const nlohmann::ordered_json& stats) {
-  std::fprintf(stderr, "%s\n", stats.dump().c_str());
-}
-
 // Outputs: every subcommand registers each file it will write in the OutputSet main() owns,
 // before any work, writes to the path add() returns, and main() commits the set when the
 // subcommand returns 0 (atomic_file.h; a refused path is OutputPathError, exit code 2).
@@ -48,7 +42,10 @@ inline void print_stats(const nlohmann::ordered_json& stats) {
 struct Common {
   std::string backend = "auto";  ///< auto | cpu | gl
   int threads = 0;               ///< 0: all cores
-  bool stats = false;            ///< JSON timings and counts on stderr
+  /// `--stats`: where a subcommand puts its JSON counts and "seconds" per stage (keys in the
+  /// order given); null without --stats. main() prints it as one line on stderr once the
+  /// outputs are committed, with "outputs_fnv1a64" added (each written file's content hash).
+  nlohmann::ordered_json* stats = nullptr;
   CapSampling sampling = CapSampling::Adaptive;  ///< --sampling: which cap points are diffused
   bool adaptive_directions = true;  ///< --directions adaptive (true) or every (false)
 };

@@ -47,7 +47,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 using cutaway::seconds_since;
-using cutaway::cli::print_stats;
 using cutaway::cli::require_extension;
 using cutaway::cli::UsageError;
 
@@ -63,6 +62,22 @@ const CLI::Validator kSeedRule(
 /// The --sampling value (checked by CLI11 to be "dense" or "adaptive").
 cutaway::CapSampling parse_sampling(const std::string& sampling) {
   return sampling == "adaptive" ? cutaway::CapSampling::Adaptive : cutaway::CapSampling::Dense;
+}
+
+/// Prints `--stats`: the subcommand's `stats` (empty for those without counts of their own) and
+/// "outputs_fnv1a64", each file in `written` (paths relative to the working directory) with
+/// the FNV-1a 64-bit hash of its bytes as 16 hex digits: what a golden test compares across
+/// machines. One line of JSON on stderr.
+void print_stats_line(nlohmann::ordered_json stats,
+                      const std::vector<std::filesystem::path>& written) {
+  nlohmann::ordered_json files = nlohmann::ordered_json::object();
+  const std::filesystem::path here = std::filesystem::current_path();
+  for (const std::filesystem::path& f : written) {
+    files[f.lexically_proximate(here).string()] =
+        cutaway::hex64(cutaway::fnv1a64(cutaway::read_file_bytes(f)));
+  }
+  stats["outputs_fnv1a64"] = std::move(files);
+  std::fprintf(stderr, "%s\n", stats.dump().c_str());
 }
 
 /// Refuses an output option given an empty path (`-o ""`), which would otherwise read as
@@ -108,7 +123,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "cutaway " CUTAWAY_VERSION);
   app.fallthrough();  // common options may follow the subcommand
   bool stats = false, quiet = false, verbose = false;
-  app.add_flag("--stats", stats, "print JSON timings and counts on stderr");
+  app.add_flag("--stats", stats, "print JSON counts, timings and output file hashes on stderr");
   app.add_flag("-q,--quiet", quiet, "print errors only");
   app.add_flag("-v,--verbose", verbose, "print progress and details");
   int threads = 0;
@@ -301,9 +316,11 @@ int main(int argc, char** argv) {
   // Every file a command writes goes through `outputs`: registered and checked before any
   // work, committed (renamed into place together) only when the command succeeds.
   cutaway::OutputSet outputs;
+  nlohmann::ordered_json stats_json = nlohmann::ordered_json::object();
   const auto run = [&]() -> int {
     for (const CLI::App* command : app.get_subcommands()) refuse_empty_output_paths(*command);
-    const cutaway::cli::Common common{backend, threads, stats, parse_sampling(sampling),
+    const cutaway::cli::Common common{backend, threads, stats ? &stats_json : nullptr,
+                                      parse_sampling(sampling),
                                       directions == "adaptive"};
     if (*model) {
       if (!model_args.output.empty()) require_extension("-o", model_args.output, ".glb");
@@ -333,7 +350,10 @@ int main(int argc, char** argv) {
   };
   try {
     const int code = run();
-    if (code == 0) outputs.commit();
+    if (code == 0) {
+      outputs.commit();
+      if (stats) print_stats_line(stats_json, outputs.committed());
+    }
     return code;
   } catch (const cutaway::InputError& e) {
     std::fprintf(stderr, "%s\n", e.what());

@@ -99,21 +99,21 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
       write_outputs(assets, targets, common.threads, a.silhouettes,
                     export_options(a.compress, a.lods, a.textures));
   if (common.stats) {
-    print_stats({{"template", tmpl.name},
-                 {"backend", object.backend},
-                 {"pieces", set.pieces.size()},
-                 {"planes", set.cells.planes.size()},
-                 {"triangles", triangles},
-                 {"diffused_points", set.diffused.all},
-                 {"seconds",
-                  {{"model", t_model},
-                   {"cut", t_cut},
-                   {"sections", set.seconds_sections},
-                   {"diffuse", set.seconds_diffuse},
-                   {"clip", set.seconds_clip},
-                   {"strokes", w.strokes_s},
-                   {"export", w.export_s},
-                   {"png", w.preview_s}}}});
+    *common.stats = {{"template", tmpl.name},
+                     {"backend", object.backend},
+                     {"pieces", set.pieces.size()},
+                     {"planes", set.cells.planes.size()},
+                     {"triangles", triangles},
+                     {"diffused_points", set.diffused.all},
+                     {"seconds",
+                      {{"model", t_model},
+                       {"cut", t_cut},
+                       {"sections", set.seconds_sections},
+                       {"diffuse", set.seconds_diffuse},
+                       {"clip", set.seconds_clip},
+                       {"strokes", w.strokes_s},
+                       {"export", w.export_s},
+                       {"png", w.preview_s}}}};
   }
   return 0;
 }

@@ -88,7 +88,7 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
       write_outputs(assets, targets, common.threads, scene.render.silhouettes,
                     export_options(a.compress, a.lods, a.textures));
   if (common.stats) {
-    const nlohmann::ordered_json j = {
+    nlohmann::ordered_json j = {
         {"scene", scene.name},
         {"seed", seed},
         {"backend", backend_name},
@@ -120,7 +120,7 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
           {"export", w.export_s},
           {"png", w.preview_s},
           {"povray", w.povray_s}}}};
-    print_stats(j);
+    *common.stats = std::move(j);
   }
   return 0;
 }

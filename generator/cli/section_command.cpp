@@ -65,20 +65,20 @@ int run_section(const SectionArgs& a, const Common& common, OutputSet& outputs) 
     spdlog::info("wrote {}", a.png);
   }
   if (common.stats) {
-    print_stats({{"template", tmpl.name},
-                 {"backend", diffusion->name()},
-                 {"ds_faces", model.face_count()},
-                 {"cut_segments", section.cut_segments},
-                 {"vertices", section.position.size()},
-                 {"interior_vertices", section.interior_vertices},
-                 {"diffused_points", section.diffused.all},
-                 {"rays", diffusion->rays_cast()},
-                 {"seconds",
-                  {{"model", t_model},
-                   {"backend_setup", t_backend},
-                   {"section", t_section},
-                   {"triangulate", section.seconds_triangulate},
-                   {"diffuse", section.seconds_diffuse}}}});
+    *common.stats = {{"template", tmpl.name},
+                     {"backend", diffusion->name()},
+                     {"ds_faces", model.face_count()},
+                     {"cut_segments", section.cut_segments},
+                     {"vertices", section.position.size()},
+                     {"interior_vertices", section.interior_vertices},
+                     {"diffused_points", section.diffused.all},
+                     {"rays", diffusion->rays_cast()},
+                     {"seconds",
+                      {{"model", t_model},
+                       {"backend_setup", t_backend},
+                       {"section", t_section},
+                       {"triangulate", section.seconds_triangulate},
+                       {"diffuse", section.seconds_diffuse}}}};
   }
   return 0;
 }

@@ -1,6 +1,6 @@
-// `cutaway section` end to end: glb (Khronos validator), PLY and PNG output, --stats, bad planes
-// and planes that miss or only touch the object (exit 2, nothing written), and byte-identical
-// output across runs and thread counts, with either --sampling.
+// `cutaway section` end to end: glb (Khronos validator), PLY and PNG output, --stats (with the
+// output hashes), bad planes and planes that miss or only touch the object (exit 2, nothing
+// written), and byte-identical output across runs and thread counts, with either --sampling.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "test_support.h"
+#include "variation/variant_batch.h"
 
 namespace cutaway {
 namespace {
@@ -85,7 +86,12 @@ TEST(SectionCommand, WritesAPngAndStats) {
        (dir / "q.glb").string()});
   ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
   EXPECT_EQ(std::count(quiet.err.begin(), quiet.err.end(), '\n'), 1) << quiet.err;
-  EXPECT_TRUE(nlohmann::json::accept(quiet.err)) << quiet.err;
+  ASSERT_TRUE(nlohmann::json::accept(quiet.err)) << quiet.err;
+  // The same line ends with the written file's content hash.
+  const nlohmann::json hashes = nlohmann::json::parse(quiet.err).at("outputs_fnv1a64");
+  ASSERT_EQ(hashes.size(), 1u) << quiet.err;
+  EXPECT_EQ(fs::path(hashes.begin().key()).filename(), "q.glb") << quiet.err;
+  EXPECT_EQ(hashes.begin().value(), hex64(fnv1a64(test::read_file(dir / "q.glb"))));
 }
 
 TEST(SectionCommand, BadPlanesExitTwoAndWriteNothing) {
