@@ -1,7 +1,10 @@
 #include "base/colour.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include <glm/common.hpp>
 
@@ -14,6 +17,36 @@ double srgb_to_linear(double c) {
 double linear_to_srgb(double c) {
   c = std::clamp(c, 0.0, 1.0);
   return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+}
+
+namespace {
+
+/// The 8-bit code of linear_to_srgb(c), by the formula.
+uint8_t srgb8_by_formula(double c) {
+  return static_cast<uint8_t>(std::lround(255.0 * linear_to_srgb(c)));
+}
+
+/// step[k - 1]: the smallest double c with srgb8_by_formula(c) >= k, k = 1..255. Non-negative
+/// doubles order as their bit patterns, so bisection on the bits finds the exact step.
+std::array<double, 255> srgb8_steps() {
+  std::array<double, 255> step{};
+  for (int k = 1; k <= 255; ++k) {
+    uint64_t lo = std::bit_cast<uint64_t>(0.0), hi = std::bit_cast<uint64_t>(1.0);  // f(lo) < k <= f(hi)
+    while (hi - lo > 1) {
+      const uint64_t mid = lo + (hi - lo) / 2;
+      (srgb8_by_formula(std::bit_cast<double>(mid)) >= k ? hi : lo) = mid;
+    }
+    step[static_cast<size_t>(k - 1)] = std::bit_cast<double>(hi);
+  }
+  return step;
+}
+
+}  // namespace
+
+uint8_t linear_to_srgb8(double c) {
+  static const std::array<double, 255> step = srgb8_steps();
+  if (!(c > 0)) return 0;  // and NaN
+  return static_cast<uint8_t>(std::upper_bound(step.begin(), step.end(), c) - step.begin());
 }
 
 glm::dvec3 srgb_to_linear(const glm::dvec3& c) {

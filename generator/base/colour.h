@@ -2,6 +2,8 @@
 // is linear RGB (doc/algorithms.md §7).
 #pragma once
 
+#include <cstdint>
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -12,6 +14,12 @@ double srgb_to_linear(double c);
 
 /// One linear component in 0..1 to sRGB 0..1; input is clamped to 0..1.
 double linear_to_srgb(double c);
+
+/// One linear component to an 8-bit sRGB code: lround(255 * linear_to_srgb(c)) (clamped to
+/// 0..1; NaN gives 0), the same bits as that formula, found by binary search in the table of
+/// the 255 linear values where the code steps up (made once, by bisection on that formula):
+/// eight comparisons instead of a pow() per texel.
+uint8_t linear_to_srgb8(double c);
 
 /// Component-wise srgb_to_linear.
 glm::dvec3 srgb_to_linear(const glm::dvec3& c);

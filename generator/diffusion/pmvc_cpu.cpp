@@ -27,7 +27,7 @@ class CpuDiffusion final : public DiffusionBackend {
         directions_(uses_adaptive_directions(options) ? CubeDirections{}
                                                       : make_cube_directions(options.cube_size)),
         sheets_(make_diffusion_sheets(model)),
-        caster_(sheets_, options.threads) {
+        caster_(sheets_, options.threads, sheet_hits_from_environment()) {
     if (uses_adaptive_directions(options)) adaptive_ = make_adaptive_directions(options.cube_size);
   }
 

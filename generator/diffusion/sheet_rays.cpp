@@ -9,6 +9,7 @@
 
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 
 namespace cutaway {
 
@@ -65,25 +66,58 @@ struct SheetRayCaster::Embree {
   RTCScene scene = nullptr;
 };
 
-namespace {
-
-/// What the filter needs: Embree hands this back as the query's context (the standard way to
-/// pass data to a filter: Embree's context is the first member).
-struct Query {
+/// What the filter and the point query need: Embree hands Query back as the query's context
+/// (the standard way to pass data to a filter: Embree's context is the first member).
+struct SheetRayCaster::Query {
   RTCIntersectContext embree;
-  const std::vector<DiffusionSheet>* sheets;
+  const std::vector<const float*>* corners;
   glm::dvec3 origin;  ///< the true origin (Embree's is moved back by `back`)
   double back;        ///< metres Embree's origin lies behind the true one
   double margin;
+  double near_radius;
   SheetHit* best;  ///< per lane, indexed by the ray's id
   unsigned lanes;  ///< lanes in use in this packet: ids 0 .. lanes - 1
+  std::vector<std::pair<unsigned, unsigned>>* near;  ///< the point query's triangles
 };
 
-/// Collects the (sheet, triangle) of every grown triangle whose bounds reach the point
-/// query's sphere.
+namespace {
+
+using Query = SheetRayCaster::Query;
+/// Floats per corner in Embree's vertex buffer: the grown corner, then the sheet's own. The
+/// filter's exact test reads the cache lines Embree's traversal has just read (the scene is
+/// compact: Embree's leaves point into this buffer instead of copying the corners).
+constexpr size_t kVertexFloats = 6;
+
+/// Corner k of triangle t of a sheet, as the sheet has it, from its Embree vertex buffer.
+glm::dvec3 own_corner(const float* vertices, size_t t, int k) {
+  const float* v = vertices + kVertexFloats * (3 * t + static_cast<size_t>(k)) + 3;
+  return {v[0], v[1], v[2]};
+}
+
+/// cross_triangle on triangle t of the sheet with Embree vertex buffer `vertices`.
+std::optional<TriangleCrossing> cross_corners(const float* vertices, size_t t,
+                                              const glm::dvec3& origin, const glm::dvec3& d) {
+  return cross_triangle(origin, d, own_corner(vertices, t, 0), own_corner(vertices, t, 1),
+                        own_corner(vertices, t, 2));
+}
+
+/// Collects the (sheet, triangle) of every triangle Embree finds near the point query's sphere
+/// that may lie within `radius` of the origin: within it of the triangle's plane and of its
+/// bounding box (in double; a superset of the triangles that near, so the decided hit is the
+/// same whichever kernel found them). Embree hands over whole leaves, most of them far.
 bool collect_near(RTCPointQueryFunctionArguments* args) {
-  static_cast<std::vector<std::pair<unsigned, unsigned>>*>(args->userPtr)
-      ->emplace_back(args->geomID, args->primID);
+  const Query& q = *static_cast<const Query*>(args->userPtr);
+  const float* vertices = (*q.corners)[args->geomID];
+  const glm::dvec3 a = own_corner(vertices, args->primID, 0), b = own_corner(vertices, args->primID, 1),
+                   c = own_corner(vertices, args->primID, 2);
+  const glm::dvec3 lo = glm::min(a, glm::min(b, c)) - q.near_radius;
+  const glm::dvec3 hi = glm::max(a, glm::max(b, c)) + q.near_radius;
+  if (glm::any(glm::lessThan(q.origin, lo)) || glm::any(glm::greaterThan(q.origin, hi)))
+    return false;
+  const glm::dvec3 n = glm::cross(b - a, c - a);
+  const double area2 = glm::length(n);
+  if (area2 > 0 && std::abs(glm::dot(n, q.origin - a)) > q.near_radius * area2) return false;
+  q.near->emplace_back(args->geomID, args->primID);
   return false;
 }
 
@@ -97,15 +131,6 @@ bool comes_before(const TriangleCrossing& crossing, int sheet, unsigned triangle
   return best.sheet < 0 || crossing.t < best.at.t ||
          (crossing.t == best.at.t &&
           (sheet < best.sheet || (sheet == best.sheet && triangle < best.triangle)));
-}
-
-/// cross_triangle on triangle `triangle` of `sheet` from `origin` along `d`.
-std::optional<TriangleCrossing> cross_sheet_triangle(const DiffusionSheet& sheet, unsigned triangle,
-                                                     const glm::dvec3& origin, const glm::dvec3& d) {
-  const glm::uvec3 corners = sheet.triangle[triangle];
-  return cross_triangle(origin, d, glm::dvec3(sheet.position[corners[0]]),
-                        glm::dvec3(sheet.position[corners[1]]),
-                        glm::dvec3(sheet.position[corners[2]]));
 }
 
 void decide_proposal(const RTCFilterFunctionNArguments* args) {
@@ -122,7 +147,7 @@ void decide_proposal(const RTCFilterFunctionNArguments* args) {
     const glm::dvec3 d(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
                        RTCRayN_dir_z(args->ray, args->N, i));
     const auto crossing =
-        cross_sheet_triangle((*query.sheets)[sheet_index], triangle, query.origin, d);
+        cross_corners((*query.corners)[sheet_index], triangle, query.origin, d);
     SheetHit& best = query.best[lane];
     const int s = static_cast<int>(sheet_index);
     const bool better = crossing && comes_before(*crossing, s, triangle, best);
@@ -139,8 +164,14 @@ void decide_proposal(const RTCFilterFunctionNArguments* args) {
 
 }  // namespace
 
-SheetRayCaster::SheetRayCaster(const std::vector<DiffusionSheet>& sheets, int threads)
-    : sheets_(sheets), embree_(new Embree) {
+SheetHits sheet_hits_from_environment() {
+  const char* hits = std::getenv("CUTAWAY_PMVC_HITS");
+  return hits && std::string(hits) == "embree" ? SheetHits::EmbreeFloat : SheetHits::Decided;
+}
+
+SheetRayCaster::SheetRayCaster(const std::vector<DiffusionSheet>& sheets, int threads,
+                               SheetHits hits)
+    : sheets_(sheets), mode_(hits), embree_(new Embree) {
   glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
   for (const DiffusionSheet& s : sheets)
     for (const glm::vec3& p : s.position) {
@@ -148,7 +179,7 @@ SheetRayCaster::SheetRayCaster(const std::vector<DiffusionSheet>& sheets, int th
       hi = glm::max(hi, glm::dvec3(p));
     }
   const double diagonal = hi.x >= lo.x ? glm::length(hi - lo) : 0.0;
-  margin_ = std::max(1e-6 * diagonal, 1e-9);
+  margin_ = mode_ == SheetHits::Decided ? std::max(1e-6 * diagonal, 1e-9) : 0.0;
   back_ = 100 * margin_;
   near_radius_ = 4 * margin_;
 
@@ -161,27 +192,47 @@ SheetRayCaster::SheetRayCaster(const std::vector<DiffusionSheet>& sheets, int th
     throw std::runtime_error("cannot initialise Embree (rtcNewDevice(\"" + config + "\") failed)");
   }
   embree_->scene = rtcNewScene(embree_->device);
-  rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneFlags(embree_->scene,
+                   mode_ == SheetHits::Decided ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT
+                                               : RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(embree_->scene, RTC_BUILD_QUALITY_HIGH);
-  // Each sheet as its own geometry (ID = sheet index), each triangle with its own three
-  // grown corners.
+  // Each sheet as its own geometry (ID = sheet index); decided: each triangle with its own
+  // three grown corners, and the filter.
   for (size_t i = 0; i < sheets.size(); ++i) {
     const DiffusionSheet& s = sheets[i];
     RTCGeometry g = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * s.triangle.size()));
-    auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), s.triangle.size()));
-    for (size_t t = 0; t < s.triangle.size(); ++t) {
-      glm::dvec3 corner[3];
-      for (int k = 0; k < 3; ++k) corner[k] = glm::dvec3(s.position[s.triangle[t][k]]);
-      grow_triangle(corner[0], corner[1], corner[2], margin_);
-      for (int k = 0; k < 3; ++k) {
-        for (int axis = 0; axis < 3; ++axis) vb[9 * t + 3 * k + axis] = static_cast<float>(corner[k][axis]);
-        ib[3 * t + k] = static_cast<unsigned>(3 * t + k);
+    if (mode_ == SheetHits::Decided) {
+      auto* vb = static_cast<float*>(
+          rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                  kVertexFloats * sizeof(float), 3 * s.triangle.size()));
+      corners_.push_back(vb);
+      auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+          g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), s.triangle.size()));
+      for (size_t t = 0; t < s.triangle.size(); ++t) {
+        glm::dvec3 corner[3];
+        for (int k = 0; k < 3; ++k) corner[k] = glm::dvec3(s.position[s.triangle[t][k]]);
+        grow_triangle(corner[0], corner[1], corner[2], margin_);
+        for (int k = 0; k < 3; ++k) {
+          float* v = vb + kVertexFloats * (3 * t + static_cast<size_t>(k));
+          const glm::vec3& own = s.position[s.triangle[t][k]];
+          for (int axis = 0; axis < 3; ++axis) {
+            v[axis] = static_cast<float>(corner[k][axis]);
+            v[3 + axis] = own[axis];
+          }
+          ib[3 * t + k] = static_cast<unsigned>(3 * t + k);
+        }
       }
+      rtcSetGeometryIntersectFilterFunction(g, decide_proposal);
+    } else {
+      auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
+          g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), s.position.size()));
+      for (size_t v = 0; v < s.position.size(); ++v)
+        for (int k = 0; k < 3; ++k) vb[3 * v + k] = s.position[v][k];
+      auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+          g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), s.triangle.size()));
+      for (size_t t = 0; t < s.triangle.size(); ++t)
+        for (int k = 0; k < 3; ++k) ib[3 * t + k] = s.triangle[t][k];
     }
-    rtcSetGeometryIntersectFilterFunction(g, decide_proposal);
     rtcCommitGeometry(g);
     rtcAttachGeometryByID(embree_->scene, g, static_cast<unsigned>(i));
     rtcReleaseGeometry(g);
@@ -197,26 +248,30 @@ SheetRayCaster::~SheetRayCaster() {
 
 void SheetRayCaster::cast(const glm::dvec3& origin, std::span<const glm::vec3> directions,
                           std::span<SheetHit> hits) const {
+  thread_local std::vector<std::pair<unsigned, unsigned>> near;
   Query query;
   rtcInitIntersectContext(&query.embree);
   query.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  query.sheets = &sheets_;
+  query.corners = &corners_;
   query.origin = origin;
   query.back = back_;
   query.margin = margin_;
+  query.near_radius = near_radius_;
+  query.near = &near;
   // The triangles next to the origin, tested for every ray: from an origin within rounding
   // distance of a triangle's plane, Embree's t of a grazing ray may come out negative.
-  thread_local std::vector<std::pair<unsigned, unsigned>> near;
   near.clear();
-  RTCPointQuery point;
-  point.x = static_cast<float>(origin.x);
-  point.y = static_cast<float>(origin.y);
-  point.z = static_cast<float>(origin.z);
-  point.time = 0.0f;
-  point.radius = float_at_least(near_radius_);
-  RTCPointQueryContext point_context;
-  rtcInitPointQueryContext(&point_context);
-  rtcPointQuery(embree_->scene, &point, &point_context, collect_near, &near);
+  if (mode_ == SheetHits::Decided) {
+    RTCPointQuery point;
+    point.x = static_cast<float>(origin.x);
+    point.y = static_cast<float>(origin.y);
+    point.z = static_cast<float>(origin.z);
+    point.time = 0.0f;
+    point.radius = float_at_least(near_radius_);
+    RTCPointQueryContext point_context;
+    rtcInitPointQueryContext(&point_context);
+    rtcPointQuery(embree_->scene, &point, &point_context, collect_near, &query);
+  }
   alignas(64) RTCRayHit16 rh;
   alignas(64) int valid[16];
   for (size_t base = 0; base < directions.size(); base += 16) {
@@ -245,11 +300,20 @@ void SheetRayCaster::cast(const glm::dvec3& origin, std::span<const glm::vec3> d
       if (l < lanes) hits[base + static_cast<size_t>(l)] = SheetHit{};
     }
     rtcIntersect16(valid, embree_->scene, &query.embree, &rh);
+    if (mode_ == SheetHits::EmbreeFloat) {
+      for (int l = 0; l < lanes; ++l) {
+        if (rh.hit.geomID[l] == RTC_INVALID_GEOMETRY_ID) continue;
+        hits[base + static_cast<size_t>(l)] =
+            SheetHit{static_cast<int>(rh.hit.geomID[l]), rh.hit.primID[l],
+                     TriangleCrossing{rh.ray.tfar[l], rh.hit.u[l], rh.hit.v[l]}};
+      }
+      continue;
+    }
     for (int l = 0; l < lanes; ++l) {
       SheetHit& best = hits[base + static_cast<size_t>(l)];
       const glm::dvec3 d(directions[base + static_cast<size_t>(l)]);
       for (const auto& [sheet, triangle] : near) {
-        const auto crossing = cross_sheet_triangle(sheets_[sheet], triangle, origin, d);
+        const auto crossing = cross_corners(corners_[sheet], triangle, origin, d);
         if (crossing && comes_before(*crossing, static_cast<int>(sheet), triangle, best))
           best = SheetHit{static_cast<int>(sheet), triangle, *crossing};
       }

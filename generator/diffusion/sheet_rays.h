@@ -46,23 +46,41 @@ struct SheetHit {
   TriangleCrossing at;    ///< where (t in metres for a unit direction)
 };
 
+/// How a SheetRayCaster finds hits.
+enum class SheetHits {
+  /// Decided in double precision on every triangle Embree proposes (the same bits on every
+  /// CPU): what cutaway uses.
+  Decided,
+  /// Embree's own single-precision hits on the sheets as they are (cutaway 0.1's way): about
+  /// a third cheaper, but which triangle a grazing ray hits, and the last bits of t, u and v,
+  /// depend on the kernel Embree picked for the CPU. Kept to measure what Decided costs.
+  EmbreeFloat,
+};
+
+/// The hits the environment asks for: SheetHits::EmbreeFloat when CUTAWAY_PMVC_HITS is
+/// "embree", else Decided. Meant for benchmarks (tests/bench/bench_portability.cpp).
+SheetHits sheet_hits_from_environment();
+
 /// Casts rays against a fixed set of sheets (positions in metres). Thread-safe: cast may run
 /// on many threads at once.
 class SheetRayCaster {
  public:
-  /// Builds Embree's BVH over the grown copy of `sheets`, which must outlive the caster.
-  /// `threads`: Embree's build threads (0: all cores). The environment variable
-  /// CUTAWAY_EMBREE_ISA (sse2, sse4.2, avx, avx2, avx512), meant for tests, makes Embree use
-  /// that instruction set's kernels instead of the best the CPU has; hits do not change.
+  /// Builds Embree's BVH over `sheets` (the grown copy for SheetHits::Decided), which must
+  /// outlive the caster. `threads`: Embree's build threads (0: all cores). The environment
+  /// variable CUTAWAY_EMBREE_ISA (sse2, sse4.2, avx, avx2, avx512), meant for tests, makes
+  /// Embree use that instruction set's kernels instead of the best the CPU has; decided hits
+  /// do not change.
   /// @throws std::runtime_error when Embree cannot be initialised
-  SheetRayCaster(const std::vector<DiffusionSheet>& sheets, int threads);
+  SheetRayCaster(const std::vector<DiffusionSheet>& sheets, int threads,
+                 SheetHits hits = SheetHits::Decided);
   ~SheetRayCaster();
   SheetRayCaster(const SheetRayCaster&) = delete;
   SheetRayCaster& operator=(const SheetRayCaster&) = delete;
 
   /// The first hit (t > 0) of the ray from `origin` along each of `directions` (#R, unit
   /// vectors) into `hits` (#R): the nearest crossing of cross_triangle over every triangle of
-  /// every sheet, ties to the lower (sheet, triangle). Rays go in packets of 16.
+  /// every sheet, ties to the lower (sheet, triangle) (with SheetHits::EmbreeFloat: Embree's
+  /// nearest hit). Rays go in packets of 16.
   void cast(const glm::dvec3& origin, std::span<const glm::vec3> directions,
             std::span<SheetHit> hits) const;
 
@@ -74,9 +92,16 @@ class SheetRayCaster {
   /// within 4 margins of the origin are tested for every ray (doc/algorithms.md §2).
   double margin() const { return margin_; }
 
+  /// One cast's data, for Embree's filter and point query (sheet_rays.cpp).
+  struct Query;
+
  private:
   struct Embree;
   const std::vector<DiffusionSheet>& sheets_;
+  /// SheetHits::Decided: per sheet, Embree's vertex buffer, kVertexFloats floats per corner
+  /// of each triangle (3 t + k): the grown corner Embree traces, then the sheet's own.
+  std::vector<const float*> corners_;
+  SheetHits mode_;
   double margin_ = 0;
   double back_ = 0;         ///< metres Embree's ray origin lies behind the true one
   double near_radius_ = 0;  ///< triangles this near the origin are tested for every ray

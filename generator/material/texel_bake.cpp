@@ -192,8 +192,7 @@ uint8_t byte_of(double v) {
 std::vector<uint8_t> srgb_pixels(const TexelCanvas& canvas) {
   std::vector<uint8_t> out(canvas.colour.size() * 3);
   for (size_t i = 0; i < canvas.colour.size(); ++i) {
-    const glm::dvec3 s = linear_to_srgb(glm::clamp(canvas.colour[i], 0.0, 1.0));
-    for (int k = 0; k < 3; ++k) out[3 * i + k] = byte_of(s[k]);
+    for (int k = 0; k < 3; ++k) out[3 * i + k] = linear_to_srgb8(canvas.colour[i][k]);
   }
   return out;
 }

@@ -39,11 +39,6 @@ bool make_colour_framebuffer(int width, int height, int samples, GLenum internal
 
 }  // namespace
 
-uint8_t linear_to_srgb8(double linear) {
-  const double c = linear_to_srgb(linear);  // clamps to 0..1
-  return static_cast<uint8_t>(std::lround(c * 255.0));
-}
-
 OffscreenTarget::OffscreenTarget(const GlContext& context, int width, int height, int samples,
                                  const std::string& caller, GLenum internal_format)
     : context_(context), caller_(caller), width_(width), height_(height) {

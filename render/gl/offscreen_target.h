@@ -15,10 +15,6 @@
 
 namespace cutaway {
 
-/// One linear RGB component to an 8-bit sRGB code (IEC 61966-2-1, colour.h): clamped to 0..1,
-/// encoded, rounded to nearest.
-uint8_t linear_to_srgb8(double linear);
-
 /// A width x height colour target on the current GL context: a framebuffer with one linear-RGB
 /// floating-point renderbuffer (`internal_format`, GL_RGBA16F or GL_RGBA32F) of `samples`
 /// samples, plus a single-sample framebuffer of the same format that the samples are resolved

@@ -1,10 +1,10 @@
 // Cross-section benchmark: for every shipped template, a horizontal cut at mid-height and a
 // vertical cut through the axis, meshed and coloured as `cutaway section` does (cpu backend,
 // cube 16 with adaptive directions, size bound 3 x the template edge), next to the paper's
-// Table 1, to the same points with every texel of the cube cast, and to Embree's raw
-// closest-hit throughput on the same sheets for every texel's ray (no colour work; also without
-// RTC_SCENE_FLAG_ROBUST and with medium build quality, to show the headroom): pmvc/embree
-// compares rays per second.
+// Table 1, to the same points with every texel of the cube cast, and to the sheet ray casting
+// alone for every texel's ray (no colour work), with Embree's own float hits (embree_rays_per_s,
+// cutaway 0.1's) and with the decided hits the backend uses (decided_rays_per_s): pmvc/embree
+// compares rays per second, decided/embree what deciding hits on every CPU alike costs.
 //
 // Run:   make bench                       (builds and runs the `benchmarks` target)
 //   or:  cmake --build build --target bench_sections && ./build/bench_sections
@@ -29,7 +29,6 @@
 #include <utility>
 #include <vector>
 
-#include <embree3/rtcore.h>
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
 
@@ -75,80 +74,16 @@ class TimedBackend final : public cutaway::DiffusionBackend {
   const cutaway::DiffusionBackend& inner_;
 };
 
-// Plain Embree over the sheets, for the raw rows: no grown triangles, no filter.
-/// Adds every sheet to `scene` as triangle geometry whose geometry ID is the sheet's index
-/// (positions in metres), then commits the scene.
-void commit_sheet_scene(RTCDevice device, RTCScene scene,
-                               const std::vector<cutaway::DiffusionSheet>& sheets) {
-  for (size_t i = 0; i < sheets.size(); ++i) {
-    const cutaway::DiffusionSheet& s = sheets[i];
-    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), s.position.size()));
-    for (size_t v = 0; v < s.position.size(); ++v)
-      for (int k = 0; k < 3; ++k) vb[3 * v + k] = s.position[v][k];
-    auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), s.triangle.size()));
-    for (size_t t = 0; t < s.triangle.size(); ++t)
-      for (int k = 0; k < 3; ++k) ib[3 * t + k] = s.triangle[t][k];
-    rtcCommitGeometry(g);
-    rtcAttachGeometryByID(scene, g, static_cast<unsigned>(i));
-    rtcReleaseGeometry(g);
-  }
-  rtcCommitScene(scene);
-}
-
-/// Sets `rh` to the rays from `origin` (metres) along directions[base .. base + 16) (fewer at
-/// the end: the unused lanes repeat the last direction and are invalid) and `valid` to the
-/// Embree mask. Returns the number of valid lanes.
-int fill_ray_packet(std::span<const glm::vec3> directions, size_t base,
-                           const glm::dvec3& origin, RTCRayHit16& rh, int (&valid)[16]) {
-  const int lanes = static_cast<int>(std::min<size_t>(16, directions.size() - base));
-  for (int l = 0; l < 16; ++l) {
-    valid[l] = l < lanes ? -1 : 0;
-    const glm::vec3 d = directions[base + std::min(l, lanes - 1)];
-    rh.ray.org_x[l] = static_cast<float>(origin.x);
-    rh.ray.org_y[l] = static_cast<float>(origin.y);
-    rh.ray.org_z[l] = static_cast<float>(origin.z);
-    rh.ray.dir_x[l] = d.x;
-    rh.ray.dir_y[l] = d.y;
-    rh.ray.dir_z[l] = d.z;
-    rh.ray.tnear[l] = 0.0f;
-    rh.ray.tfar[l] = std::numeric_limits<float>::infinity();
-    rh.ray.mask[l] = 0xFFFFFFFFu;
-    rh.ray.time[l] = 0.0f;
-    rh.ray.flags[l] = 0;
-    rh.hit.geomID[l] = RTC_INVALID_GEOMETRY_ID;
-  }
-  return lanes;
-}
-
-/// Embree's closest hit alone: the sheets of the cpu backend, packets of 16 directions of one
+/// The sheet ray casting alone: the sheets of the cpu backend, packets of 16 directions of one
 /// point, TBB over points with the same grain, summing only the hit distances. `Decided` is the
-/// backend's own ray casting (SheetRayCaster: grown triangles, every proposal decided in
-/// double precision); `Robust` plain Embree with the same scene flags and build quality;
-/// `Fast` plain Embree with default flags and medium build quality (headroom).
+/// backend's own (SheetRayCaster: grown triangles, every proposal decided in double
+/// precision), `EmbreeFloat` Embree's own hits on the same BVH settings (cutaway 0.1's).
 class RawEmbree {
  public:
-  enum class Mode { Decided, Robust, Fast };
-  RawEmbree(const cutaway::DsModel& model, int threads, Mode mode)
-      : threads_(threads), sheets_(cutaway::make_diffusion_sheets(model)) {
-    if (mode == Mode::Decided) {
-      caster_ = std::make_unique<cutaway::SheetRayCaster>(sheets_, threads);
-      return;
-    }
-    const std::string config = "threads=" + std::to_string(std::max(threads, 0));
-    device_ = rtcNewDevice(config.c_str());
-    scene_ = rtcNewScene(device_);
-    const bool robust = mode == Mode::Robust;
-    rtcSetSceneFlags(scene_, robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
-    rtcSetSceneBuildQuality(scene_, robust ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
-    commit_sheet_scene(device_, scene_, sheets_);
-  }
-  ~RawEmbree() {
-    if (scene_) rtcReleaseScene(scene_);
-    if (device_) rtcReleaseDevice(device_);
-  }
+  RawEmbree(const cutaway::DsModel& model, int threads, cutaway::SheetHits hits)
+      : threads_(threads),
+        sheets_(cutaway::make_diffusion_sheets(model)),
+        caster_(sheets_, threads, hits) {}
 
   /// Seconds to trace every direction of `dirs` from every point.
   double trace(const std::vector<glm::dvec3>& points, const cutaway::CubeDirections& dirs) {
@@ -175,35 +110,18 @@ class RawEmbree {
 
  private:
   double trace_point(const glm::dvec3& x, const cutaway::CubeDirections& dirs) const {
+    thread_local std::vector<cutaway::SheetHit> hits;
+    hits.resize(dirs.direction.size());
+    caster_.cast(x, dirs.direction, hits);
     double sum = 0;
-    if (caster_) {
-      thread_local std::vector<cutaway::SheetHit> hits;
-      hits.resize(dirs.direction.size());
-      caster_->cast(x, dirs.direction, hits);
-      for (const cutaway::SheetHit& h : hits)
-        if (h.sheet >= 0) sum += h.at.t;
-      return sum;
-    }
-    const size_t count = dirs.direction.size();
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    alignas(64) RTCRayHit16 rh;
-    alignas(64) int valid[16];
-    for (size_t base = 0; base < count; base += 16) {
-      const int lanes = fill_ray_packet(dirs.direction, base, x, rh, valid);
-      rtcIntersect16(valid, scene_, &context, &rh);
-      for (int l = 0; l < lanes; ++l)
-        if (rh.hit.geomID[l] != RTC_INVALID_GEOMETRY_ID) sum += rh.ray.tfar[l];
-    }
+    for (const cutaway::SheetHit& h : hits)
+      if (h.sheet >= 0) sum += h.at.t;
     return sum;
   }
 
   int threads_;
   std::vector<cutaway::DiffusionSheet> sheets_;
-  std::unique_ptr<cutaway::SheetRayCaster> caster_;
-  RTCDevice device_ = nullptr;
-  RTCScene scene_ = nullptr;
+  cutaway::SheetRayCaster caster_;
   double checksum_ = 0;
 };
 
@@ -286,8 +204,8 @@ int main(int argc, char** argv) {
     const auto cpu = cutaway::make_cpu_diffusion(model, {cube, threads});
     const double bvh_s = seconds_since(t_bvh);
     const auto every_texel = cutaway::make_cpu_diffusion(model, {cube, threads, true, false});
-    RawEmbree decided(model, threads, RawEmbree::Mode::Decided),
-        raw(model, threads, RawEmbree::Mode::Robust), raw_fast(model, threads, RawEmbree::Mode::Fast);
+    RawEmbree decided(model, threads, cutaway::SheetHits::Decided),
+        raw(model, threads, cutaway::SheetHits::EmbreeFloat);
     std::unique_ptr<cutaway::DiffusionBackend> gl_backend;
     if (gl) gl_backend = cutaway::make_gl_diffusion(model, {cube, threads});
     const PaperRow* row = find_row(table1, tmpl.name);
@@ -300,7 +218,7 @@ int main(int argc, char** argv) {
       cutaway::Plane plane;
     } cuts[] = {{"horizontal", {{0, mid, 0}, {0, 1, 0}}}, {"vertical", {{0, 0, 0}, {1, 0, 0}}}};
     for (const auto& cut : cuts) {
-      double cut_s = 1e300, diffuse_s = 1e300, raw_s = 1e300, fast_s = 1e300, decided_s = 1e300;
+      double cut_s = 1e300, diffuse_s = 1e300, raw_s = 1e300, decided_s = 1e300;
       size_t cut_rays = 0;
       cutaway::CrossSection cs;
       std::vector<glm::dvec3> points;
@@ -316,7 +234,6 @@ int main(int argc, char** argv) {
         points = timed.all_points;
         raw_s = std::min(raw_s, raw.trace(points, dirs));
         decided_s = std::min(decided_s, decided.trace(points, dirs));
-        fast_s = std::min(fast_s, raw_fast.trace(points, dirs));
       }
       // Rays of the last cut's diffusion; Embree's raw loop casts every texel.
       const double rays = static_cast<double>(cut_rays);
@@ -337,13 +254,13 @@ int main(int argc, char** argv) {
       std::printf("%-9s %-10s ds_vertices=%zu ds_faces=%zu paper_vertices=%s paper_faces=%s "
                   "paper_cut_s=%s bvh_s=%.3f cut_s=%.3f triangulate_s=%.3f pmvc_s=%.3f "
                   "section_vertices=%zu pmvc_points=%zu rays=%.3g pmvc_rays_per_s=%.3g "
-                  "embree_rays_per_s=%.3g pmvc/embree=%.2f embree_not_robust_rays_per_s=%.3g "
-                  "decided_rays_per_s=%.3g decided/embree=%.2f\n",
+                  "embree_rays_per_s=%.3g pmvc/embree=%.2f decided_rays_per_s=%.3g "
+                  "decided/embree=%.2f\n",
                   tmpl.name.c_str(), cut.name, model.vertex_count(), model.face_count(),
                   paper[1].c_str(), paper[2].c_str(), paper[0].c_str(), bvh_s, cut_s,
                   cut_s - diffuse_s, diffuse_s, cs.position.size(), points.size(), rays,
                   rays / diffuse_s, every_rays / raw_s, (rays / diffuse_s) / (every_rays / raw_s),
-                  every_rays / fast_s, every_rays / decided_s, raw_s / decided_s);
+                  every_rays / decided_s, raw_s / decided_s);
       if (gl_backend) {
         const auto [gl_colour_s, gl_s] = colour_and_material_seconds(*gl_backend, points, repeat);
         const Agreement agree = agreement(*gl_backend, *cpu, points);
@@ -375,7 +292,7 @@ int main(int argc, char** argv) {
       if (tmpl.name == "tomato") tomato_cut = std::max(tomato_cut, cut_s);
       std::fflush(stdout);
     }
-    checksum += raw.checksum() + raw_fast.checksum() + decided.checksum();
+    checksum += raw.checksum() + decided.checksum();
   }
   if (tomato_cut >= 0) {
     std::printf("target: tomato cut <= 0.6 s on 2 cores: slowest tomato cut %.3f s on %d "

@@ -2,6 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "base/random.h"
+
 namespace cutaway {
 namespace {
 
@@ -10,6 +17,33 @@ TEST(Colour, SrgbRoundTripAndKnownValues) {
   EXPECT_DOUBLE_EQ(srgb_to_linear(1.0), 1.0);
   EXPECT_NEAR(srgb_to_linear(0.5), 0.2140, 1e-4);  // IEC 61966-2-1
   for (double c = 0; c <= 1.0; c += 0.01) EXPECT_NEAR(linear_to_srgb(srgb_to_linear(c)), c, 1e-12);
+}
+
+/// What linear_to_srgb8 must equal: the formula itself.
+int srgb8_by_formula(double c) { return static_cast<int>(std::lround(255.0 * linear_to_srgb(c))); }
+
+// The table gives the formula's bits: everywhere a code can change (4,000 doubles around every
+// step, where an error of the last bit of pow() could matter), at the ends, and at random.
+TEST(Colour, Srgb8TableEqualsTheFormula) {
+  for (int k = 1; k <= 255; ++k) {
+    // The linear value half a code below step k, by the inverse transfer function.
+    const double near = srgb_to_linear((k - 0.5) / 255.0);
+    const uint64_t bits = std::bit_cast<uint64_t>(near);
+    for (uint64_t b = bits - 2000; b <= bits + 2000; ++b) {
+      const double c = std::bit_cast<double>(b);
+      ASSERT_EQ(linear_to_srgb8(c), srgb8_by_formula(c)) << "code " << k << ", c = " << c;
+    }
+    EXPECT_EQ(linear_to_srgb8(near * (1 + 1e-9)), k);
+  }
+  for (double c : {-1.0, -0.0, 0.0, 1e-300, 0.0031308, 0.5, 1.0, 2.0, 1e300,
+                   std::numeric_limits<double>::infinity()})
+    EXPECT_EQ(linear_to_srgb8(c), srgb8_by_formula(c)) << c;
+  EXPECT_EQ(linear_to_srgb8(std::numeric_limits<double>::quiet_NaN()), 0);
+  Rng rng(7);
+  for (int i = 0; i < 200000; ++i) {
+    const double c = rng.uniform(-0.1, 1.1);
+    ASSERT_EQ(linear_to_srgb8(c), srgb8_by_formula(c)) << c;
+  }
 }
 
 }  // namespace
