@@ -178,7 +178,6 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
         lo = glm::min(lo, p);
         hi = glm::max(hi, p);
       }
-      r.triangles += object.meshes[q].triangle.size();
       r.volume_m3 += object.infos[q].volume_m3;
       assets.instances.push_back({object.meshes[q].name, static_cast<int>(assets.meshes.size()),
                                   {1, 0, 0, 0}, {0, 0, 0}, object.infos[q]});
@@ -189,6 +188,9 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
     assets.lights = studio_lights(assets.camera);
     std::string glb = scene_to_glb(assets, batch.export_options.gltf);
     r.hash = fnv1a64(glb);
+    const GltfGeometryCounts counts = count_glb_geometry(glb);
+    r.triangles = counts.triangles;
+    r.vertices = counts.vertices;
     built.files.push_back({r.file, std::move(glb)});
     if (batch.outputs.model) {
       r.model = model_file;

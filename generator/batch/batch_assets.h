@@ -74,7 +74,8 @@ struct AssetRecord {
   std::string template_name;
   uint64_t seed = 0;
   std::string cut;            ///< cut_label()
-  size_t pieces = 0, triangles = 0;
+  size_t pieces = 0;
+  size_t triangles = 0, vertices = 0;  ///< in `file`, as count_glb_geometry reads them
   double volume_m3 = 0;       ///< the pieces' volumes summed, cubic metres
   uint64_t hash = 0;          ///< of `file`
   std::string model;          ///< TEMPLATE-SEED.model.glb, or empty

@@ -42,6 +42,7 @@ std::string manifest_line(const AssetRecord& r) {
                               {"cut", r.cut},
                               {"pieces", r.pieces},
                               {"triangles", r.triangles},
+                              {"vertices", r.vertices},
                               {"volume_m3", r.volume_m3},
                               {"fnv1a64", hex64(r.hash)}};
   if (!r.model.empty()) {
@@ -67,6 +68,7 @@ Outcome<AssetRecord> parse_manifest_line(std::string_view line) {
     r.cut = j.at("cut").get<std::string>();
     r.pieces = j.at("pieces").get<size_t>();
     r.triangles = j.at("triangles").get<size_t>();
+    r.vertices = j.at("vertices").get<size_t>();
     r.volume_m3 = j.at("volume_m3").get<double>();
     const auto hash = parse_hex64(j.at("fnv1a64").get<std::string>());
     const auto inputs = parse_hex64(j.at("inputs").get<std::string>());

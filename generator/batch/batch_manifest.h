@@ -30,7 +30,7 @@ inline std::string manifest_name(const std::optional<Shard>& shard) {
 }
 
 /// `r` as one line of JSON ending in '\n', keys in this order: file, template, seed, cut,
-/// pieces, triangles, volume_m3, fnv1a64 (16 hex digits), model and model_fnv1a64 (when a
+/// pieces, triangles, vertices, volume_m3, fnv1a64 (16 hex digits), model and model_fnv1a64 (when a
 /// model is written), thumbnail and thumbnail_fnv1a64 (when a thumbnail is), inputs.
 std::string manifest_line(const AssetRecord& r);
 

@@ -858,6 +858,48 @@ std::string model_to_glb(const DsModel& model, const GltfModelOptions& options) 
   return to_glb(m);
 }
 
+GltfGeometryCounts count_glb_geometry(std::string_view glb) {
+  const auto refuse = [](const std::string& why) {
+    return std::runtime_error("not a binary glTF file: " + why);
+  };
+  const auto u32 = [&glb](size_t at) {
+    uint32_t v = 0;
+    std::memcpy(&v, glb.data() + at, 4);
+    return v;
+  };
+  if (glb.size() < 20 || glb.substr(0, 4) != "glTF") throw refuse("no glTF header");
+  const size_t json_bytes = u32(12);
+  if (u32(16) != 0x4E4F534Au || json_bytes > glb.size() - 20) throw refuse("no JSON chunk");
+  const nlohmann::json doc =
+      nlohmann::json::parse(glb.substr(20, json_bytes), nullptr, /*allow_exceptions=*/false);
+  if (!doc.is_object()) throw refuse("its JSON chunk does not parse");
+  GltfGeometryCounts counts;
+  try {
+    const nlohmann::json& nodes = doc.at("nodes");
+    std::vector<size_t> todo;
+    for (const auto& n : doc.at("scenes").at(doc.value("scene", 0)).at("nodes"))
+      todo.push_back(n.get<size_t>());
+    while (!todo.empty()) {
+      const nlohmann::json& node = nodes.at(todo.back());
+      todo.pop_back();
+      for (const auto& child : node.value("children", nlohmann::json::array()))
+        todo.push_back(child.get<size_t>());
+      if (!node.contains("mesh")) continue;
+      for (const auto& p : doc.at("meshes").at(node.at("mesh").get<size_t>()).at("primitives")) {
+        counts.triangles +=
+            doc.at("accessors").at(p.at("indices").get<size_t>()).at("count").get<size_t>() / 3;
+        counts.vertices += doc.at("accessors")
+                               .at(p.at("attributes").at("POSITION").get<size_t>())
+                               .at("count")
+                               .get<size_t>();
+      }
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw refuse(e.what());
+  }
+  return counts;
+}
+
 std::string section_to_glb(const CrossSection& section) {
   tinygltf::Model m = new_model();
   std::vector<float> pos, normal, colour;

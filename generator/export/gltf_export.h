@@ -109,6 +109,19 @@ GltfCompression parse_gltf_compression(std::string_view name);
 ///   zero light direction.
 std::string scene_to_glb(const SceneAssets& assets, const GltfSceneOptions& options = {});
 
+/// What a viewer draws of a binary glTF file: the triangles (index count / 3) and vertices
+/// (POSITION count) of every primitive of the meshes of its default scene's nodes, children
+/// included. The coarser MSFT_lod levels are not counted: they stand in for the full meshes.
+struct GltfGeometryCounts {
+  size_t triangles = 0, vertices = 0;
+};
+
+/// GltfGeometryCounts of `glb` (the bytes of a .glb file, such as scene_to_glb's), read from
+/// its JSON chunk.
+/// @throws std::runtime_error "not a binary glTF file: REASON" when the bytes are not one
+///         with indexed triangle primitives
+GltfGeometryCounts count_glb_geometry(std::string_view glb);
+
 /// Writes the scene as glTF, the format chosen by the extension of `path` (case-insensitive):
 /// ".glb": binary glTF, one file (the bytes of scene_to_glb);
 /// ".gltf": JSON, 2-space indented, with its binary buffer in a file beside it with the same

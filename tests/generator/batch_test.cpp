@@ -8,12 +8,17 @@
 #include <fstream>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
+
+#include <tiny_gltf.h>
 
 #include "base/error.h"
 #include "batch/batch_manifest.h"
 #include "batch/batch_runner.h"
 #include "batch/slurm_job.h"
 #include "diffusion/diffusion.h"
+#include "export/texture_image.h"
 #include "io/batch_parser.h"
 #include "test_support.h"
 
@@ -144,6 +149,7 @@ TEST(BatchManifest, LinesRoundTripAndRefuseDamage) {
   r.cut = "halves";
   r.pieces = 2;
   r.triangles = 1234;
+  r.vertices = 777;
   r.volume_m3 = 1.25e-4;
   r.hash = 0x0123456789abcdefULL;
   r.thumbnail = "tomato-3-halves.png";
@@ -227,6 +233,51 @@ TEST(BatchRun, ResumesWhereACrashLeftOffAndShardsMergeToTheSameManifest) {
   std::ofstream(sharded / "persimmon-7-halves.glb", std::ios::app) << "x";
   report = merge_manifests(*index, sharded);
   EXPECT_EQ(report.damaged, (std::vector<std::string>{"persimmon-7-halves"}));
+}
+
+/// Triangles and vertices a viewer draws of `file`, read with tinygltf: the meshes of the
+/// default scene's nodes and their children (MSFT_lod's coarser levels are not in the scene).
+std::pair<size_t, size_t> drawn_geometry(const fs::path& file) {
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model m;
+  std::string err, warn;
+  EXPECT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, file.string())) << err << warn;
+  size_t triangles = 0, vertices = 0;
+  std::vector<int> todo = m.scenes.at(static_cast<size_t>(std::max(m.defaultScene, 0))).nodes;
+  while (!todo.empty()) {
+    const tinygltf::Node& node = m.nodes.at(static_cast<size_t>(todo.back()));
+    todo.pop_back();
+    todo.insert(todo.end(), node.children.begin(), node.children.end());
+    if (node.mesh < 0) continue;
+    for (const tinygltf::Primitive& p : m.meshes.at(static_cast<size_t>(node.mesh)).primitives) {
+      triangles += m.accessors.at(static_cast<size_t>(p.indices)).count / 3;
+      vertices += m.accessors.at(static_cast<size_t>(p.attributes.at("POSITION"))).count;
+    }
+  }
+  return {triangles, vertices};
+}
+
+// The manifest's counts are the files' (with textures, whose caps are coarse meshes, and with
+// levels of detail, which are not drawn at once): read back with another glTF reader.
+TEST(BatchRun, ManifestCountsAreWhatTheFilesDraw) {
+  SmallBatch s = small_batch();
+  s.batch.items.at(0).count = 1;
+  s.batch.outputs.model = false;
+  s.batch.export_options.gltf.textures = TextureFormat::Jpeg;
+  s.batch.export_options.gltf.lods = 2;
+  s.plan = plan_batch(s.batch, "test");
+  const fs::path dir = fresh_dir("counts");
+  run_batch(s.batch, s.plan, dir, s.options);
+  const Outcome<BatchIndex> index = read_batch_index(dir);
+  ASSERT_TRUE(index) << index.reason();
+  const MergeReport report = merge_manifests(*index, dir);
+  ASSERT_EQ(report.records.size(), 2u);
+  for (const AssetRecord& r : report.records) {
+    const auto [triangles, vertices] = drawn_geometry(dir / r.file);
+    EXPECT_EQ(r.triangles, triangles) << r.file;
+    EXPECT_EQ(r.vertices, vertices) << r.file;
+    EXPECT_GT(triangles, 1000u) << r.file;
+  }
 }
 
 TEST(SlurmJob, WritesAnArrayScriptAndRefusesUnquotablePaths) {
