@@ -42,6 +42,7 @@ std::string fingerprint_text(const Batch& b, const BatchItem& item, uint64_t see
       {"compress", static_cast<int>(b.export_options.gltf.compression)},
       {"lods", b.export_options.gltf.lods},
       {"textures", static_cast<int>(b.export_options.gltf.textures)},
+      {"camera_and_lights", b.export_options.gltf.camera_and_lights},
       {"texels_per_mm", b.export_options.texels_per_mm},
       {"perlin", b.export_options.perlin},
       {"cube", b.export_options.cube},

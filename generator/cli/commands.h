@@ -130,6 +130,7 @@ struct PieceArgs {
   std::string compress = "quantize";  ///< glTF vertex data: none, quantize or meshopt
   int lods = 0;                       ///< glTF levels of detail per mesh (GltfSceneOptions)
   std::string textures = "jpeg";      ///< base-colour texture images: jpeg or png (TextureFormat)
+  bool camera_and_lights = false;     ///< --camera-and-lights: write them into the glTF
 };
 int run_piece(const PieceArgs& args, const Common& common, OutputSet& outputs);
 

@@ -216,6 +216,9 @@ int main(int argc, char** argv) {
                     "silhouette stroke strength over the PNG and in .pov (0: off; default 1)")
       ->check(CLI::Range(0.0, 10.0));
   add_export_options(piece, piece_args.compress, piece_args.lods, piece_args.textures);
+  piece->add_flag("--camera-and-lights", piece_args.camera_and_lights,
+                  "write the preview's camera and studio lights into the glTF file (an asset "
+                  "leaves them out by default: it goes into someone else's scene)");
 
   cutaway::cli::SheetArgs sheet_args;
   CLI::App* sheet = app.add_subcommand(

@@ -95,9 +95,9 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
   if (set.defective_pieces > 0)
     spdlog::warn("{} pieces are not closed 2-manifolds", set.defective_pieces);
   assets = piece_assets(std::move(assets), object, 0.3, a.width, a.height);
-  const Written w =
-      write_outputs(assets, targets, common.threads, a.silhouettes,
-                    export_options(a.compress, a.lods, a.textures));
+  GltfSceneOptions gltf = export_options(a.compress, a.lods, a.textures);
+  gltf.camera_and_lights = a.camera_and_lights;  // an asset leaves them out unless asked
+  const Written w = write_outputs(assets, targets, common.threads, a.silhouettes, gltf);
   if (common.stats) {
     *common.stats = {{"template", tmpl.name},
                      {"backend", object.backend},

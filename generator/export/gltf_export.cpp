@@ -647,42 +647,58 @@ tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& o
 
   tinygltf::Scene scene;
   scene.name = assets.name;
+  // Node order: the root, each instance's node followed by its mesh node, the camera, the
+  // lights (those in the scene's list: the root, the camera, the lights); then the level
+  // nodes, outside the scene's list.
+  const bool camera_and_lights = options.camera_and_lights;
+  const size_t main_nodes =
+      1 + 2 * assets.instances.size() + (camera_and_lights ? 1 + assets.lights.size() : 0);
+  tinygltf::Node root;
+  root.name = assets.name;
+  m.nodes.push_back(root);
+  scene.nodes.push_back(0);
   auto add_node = [&](tinygltf::Node node) {
     m.nodes.push_back(std::move(node));
     scene.nodes.push_back(static_cast<int>(m.nodes.size()) - 1);
   };
-  const size_t scene_nodes = assets.instances.size() + 1 + assets.lights.size();
-  std::vector<tinygltf::Node> lod_nodes;  // after the scene's nodes
+  std::vector<tinygltf::Node> lod_nodes;  // after the others
   for (const AssetInstance& inst : assets.instances) {
     const double qlen = glm::length(inst.rotation);
     glm::dquat q = inst.rotation / qlen;
     if (q.w < 0) q = -q;
     tinygltf::Node node;
     node.name = inst.name;
-    const AddedMesh& mesh = added[static_cast<size_t>(inst.mesh)];
-    node.mesh = mesh.index;
     node.rotation = gltf_rotation(q);
-    // The mesh's frame folded into the node: R (offset + scale q) + t.
-    node.translation = gltf_vec3(inst.translation + q * mesh.frame.offset);
+    node.translation = gltf_vec3(inst.translation);
+    // The mesh below the instance, with the mesh's frame (quantized positions back to metres:
+    // offset + scale q) as its own transform: the instance's transform is the same whatever
+    // the compression.
+    const AddedMesh& mesh = added[static_cast<size_t>(inst.mesh)];
+    tinygltf::Node mesh_node;
+    mesh_node.name = inst.name + "_mesh";
+    mesh_node.mesh = mesh.index;
+    if (mesh.frame.offset != glm::dvec3(0.0)) mesh_node.translation = gltf_vec3(mesh.frame.offset);
     if (mesh.frame.scale != 1.0)
-      node.scale = {mesh.frame.scale, mesh.frame.scale, mesh.frame.scale};
+      mesh_node.scale = {mesh.frame.scale, mesh.frame.scale, mesh.frame.scale};
     tinygltf::Value::Object extras;
-    // Levels of detail (MSFT_lod): a node per level, placed alike, outside the scene's list;
-    // level l is shown down to 0.2 * 4^-l of the screen's height, the last one always.
+    // Levels of detail (MSFT_lod): a node per level, placed as the mesh node, outside the
+    // scene's list; level l is shown down to 0.2 * 4^-l of the screen's height, the last one
+    // always.
     if (!mesh.lods.empty()) {
       tinygltf::Value::Array ids, coverage;
       for (size_t l = 0; l < mesh.lods.size(); ++l) {
-        tinygltf::Node level = node;
+        tinygltf::Node level = mesh_node;
         level.name = inst.name + "_LOD" + std::to_string(l + 1);
         level.mesh = mesh.lods[l];
-        ids.emplace_back(static_cast<int>(scene_nodes + lod_nodes.size()));
+        ids.emplace_back(static_cast<int>(main_nodes + lod_nodes.size()));
         lod_nodes.push_back(std::move(level));
         coverage.emplace_back(0.2 * std::ldexp(1.0, -2 * static_cast<int>(l)));
       }
       coverage.emplace_back(0.0);
-      node.extensions["MSFT_lod"] =
+      mesh_node.extensions["MSFT_lod"] =
           tinygltf::Value(tinygltf::Value::Object{{"ids", tinygltf::Value(ids)}});
-      extras["MSFT_screencoverage"] = tinygltf::Value(coverage);
+      mesh_node.extras =
+          tinygltf::Value(tinygltf::Value::Object{{"MSFT_screencoverage", tinygltf::Value(coverage)}});
     }
     if (!inst.piece.template_name.empty()) {
       const PieceInfo& info = inst.piece;
@@ -697,44 +713,50 @@ tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& o
       extras["volume_m3"] = tinygltf::Value(info.volume_m3);
     }
     if (!extras.empty()) node.extras = tinygltf::Value(std::move(extras));
-    add_node(node);
+    const int index = static_cast<int>(m.nodes.size());
+    node.children = {index + 1};
+    m.nodes.push_back(std::move(node));
+    m.nodes.push_back(std::move(mesh_node));
+    m.nodes[0].children.push_back(index);
   }
 
-  const AssetCamera& cam = assets.camera;
-  tinygltf::Camera camera;
-  camera.name = "camera";
-  camera.type = "perspective";
-  camera.perspective.yfov = glm::radians(cam.fov_y_deg);
-  camera.perspective.aspectRatio = cam.aspect;
-  camera.perspective.znear = cam.znear;
-  camera.perspective.zfar = cam.zfar;
-  m.cameras.push_back(camera);
-  tinygltf::Node camera_node;
-  camera_node.name = "camera";
-  camera_node.camera = 0;
-  camera_node.rotation = gltf_rotation(look_rotation(cam.target - cam.eye, cam.up));
-  camera_node.translation = gltf_vec3(cam.eye);
-  add_node(camera_node);
+  if (camera_and_lights) {
+    const AssetCamera& cam = assets.camera;
+    tinygltf::Camera camera;
+    camera.name = "camera";
+    camera.type = "perspective";
+    camera.perspective.yfov = glm::radians(cam.fov_y_deg);
+    camera.perspective.aspectRatio = cam.aspect;
+    camera.perspective.znear = cam.znear;
+    camera.perspective.zfar = cam.zfar;
+    m.cameras.push_back(camera);
+    tinygltf::Node camera_node;
+    camera_node.name = "camera";
+    camera_node.camera = 0;
+    camera_node.rotation = gltf_rotation(look_rotation(cam.target - cam.eye, cam.up));
+    camera_node.translation = gltf_vec3(cam.eye);
+    add_node(camera_node);
 
-  for (const AssetLight& light : assets.lights) {
-    tinygltf::Light gl;
-    gl.name = light.name;
-    gl.color = gltf_vec3(light.colour);
-    gl.intensity = light.intensity;
-    tinygltf::Node node;
-    node.name = light.name;
-    if (light.type == LightType::Directional) {
-      gl.type = "directional";
-      node.rotation = gltf_rotation(look_rotation(light.direction, glm::dvec3(0, 1, 0)));
-    } else {
-      gl.type = "point";
-      node.translation = gltf_vec3(light.position);
+    for (const AssetLight& light : assets.lights) {
+      tinygltf::Light gl;
+      gl.name = light.name;
+      gl.color = gltf_vec3(light.colour);
+      gl.intensity = light.intensity;
+      tinygltf::Node node;
+      node.name = light.name;
+      if (light.type == LightType::Directional) {
+        gl.type = "directional";
+        node.rotation = gltf_rotation(look_rotation(light.direction, glm::dvec3(0, 1, 0)));
+      } else {
+        gl.type = "point";
+        node.translation = gltf_vec3(light.position);
+      }
+      m.lights.push_back(gl);
+      tinygltf::Value::Object ref;
+      ref["light"] = tinygltf::Value(static_cast<int>(m.lights.size()) - 1);
+      node.extensions["KHR_lights_punctual"] = tinygltf::Value(ref);
+      add_node(node);
     }
-    m.lights.push_back(gl);
-    tinygltf::Value::Object ref;
-    ref["light"] = tinygltf::Value(static_cast<int>(m.lights.size()) - 1);
-    node.extensions["KHR_lights_punctual"] = tinygltf::Value(ref);
-    add_node(node);
   }
   if (!m.lights.empty()) m.extensionsUsed.push_back("KHR_lights_punctual");
   for (tinygltf::Node& node : lod_nodes) m.nodes.push_back(std::move(node));

@@ -70,6 +70,10 @@ struct GltfSceneOptions {
   int lods = 0;
   /// How base-colour textures are stored (texture_image.h); material maps are always PNG.
   TextureFormat textures = TextureFormat::Jpeg;
+  /// Whether the camera and the lights are written: for scenes made to be rendered, not for
+  /// assets to be placed in someone else's scene (`piece` and batches leave them out unless
+  /// asked).
+  bool camera_and_lights = true;
 };
 
 /// "none", "quantize" or "meshopt" as a GltfCompression.
@@ -89,16 +93,23 @@ GltfCompression parse_gltf_compression(std::string_view name);
 ///   KHR_materials_clearcoat (clearcoat > 0), KHR_materials_sheen (sheen not black) and
 ///   KHR_materials_diffuse_transmission (translucency > 0), each listed in extensionsUsed;
 ///   material 0 by default is "vertex colour", roughness 0.6, no extension;
-/// - one node per AssetInstance (same order and name): rotation [x, y, z, w] (normalised,
-///   w >= 0) and translation; a piece's node (PieceInfo with a template) has extras
-///   {template, seed (decimal string), cut, piece (its cell), parts, volume_m3};
+/// - a root node named after the scene (SceneAssets::name), at the origin: the asset's pivot;
+/// - under it, one node per AssetInstance (same order and name): rotation [x, y, z, w]
+///   (normalised, w >= 0) and translation, the same whatever the compression; a piece's node
+///   (PieceInfo with a template) has extras {template, seed (decimal string), cut, piece (its
+///   cell), parts, volume_m3}; its one child "<name>_mesh" holds the mesh, with the mesh's
+///   quantization frame (translation and uniform scale, none without compression) as its
+///   transform, and with levels of detail the MSFT_lod extension;
+/// with options.camera_and_lights:
 /// - a node "camera" at `camera.eye` rotated so that its -Z looks at `camera.target` with +Y
 ///   towards `camera.up` (when `up` is parallel to the view: +Y of the scene, else -Z),
 ///   holding a perspective camera (yfov in radians, aspectRatio, znear, zfar);
 /// - one node per AssetLight with a KHR_lights_punctual light (listed in extensionsUsed):
 ///   directional lights (intensity in lux) rotated so that their -Z is `direction`; point
 ///   lights (intensity in candela) translated to `position`, range infinite.
-/// Scene nodes in this order: instances, camera, lights. asset.generator is "cutaway".
+/// Node order: the root, each instance's node then its mesh node, the camera, the lights, the
+/// level nodes; the scene lists the root, the camera and the lights. asset.generator is
+/// "cutaway".
 /// Deterministic: the same assets give the same bytes.
 /// @throws InternalError when the assets break their documented invariants: a mesh
 ///   without triangles, with arrays of different lengths, an index out of range or a

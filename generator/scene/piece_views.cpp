@@ -68,7 +68,7 @@ SceneAssets piece_assets(SceneAssets assets, const CutObject& object, double exp
       ehi = glm::max(ehi, p + offset);
     }
     assets.instances.push_back({object.meshes[k].name, static_cast<int>(assets.meshes.size()),
-                                {1, 0, 0, 0}, offset, {}});
+                                {1, 0, 0, 0}, offset, object.infos[k]});
     assets.meshes.push_back(object.meshes[k]);
   }
   const double az = glm::radians(20.0), el = glm::radians(50.0);

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstring>
+#include <map>
 #include <set>
 
 #include <stb/stb_image.h>
@@ -60,8 +61,13 @@ TEST(SceneCommand, ExportsValidGltfAndPovRayAndPictures) {
   // Every piece's node says what it is; the bowl's has no extras.
   const auto gltf = nlohmann::json::parse(test::read_file(dir / "tiny.gltf"));
   int pieces = 0;
-  for (const auto& node : gltf["nodes"]) {
-    if (!node.contains("mesh")) continue;
+  // The scene's root holds one node per instance; each holds its mesh in one child.
+  const auto& root = gltf["nodes"][gltf["scenes"][0]["nodes"][0].get<size_t>()];
+  EXPECT_EQ(root["name"], gltf["scenes"][0]["name"]);
+  for (const auto& index : root["children"]) {
+    const auto& node = gltf["nodes"][index.get<size_t>()];
+    ASSERT_EQ(node["children"].size(), 1u) << node.dump();
+    EXPECT_TRUE(gltf["nodes"][node["children"][0].get<size_t>()].contains("mesh")) << node.dump();
     if (!node.contains("extras")) {
       EXPECT_EQ(node["name"], "bowl");
       continue;
@@ -185,6 +191,57 @@ TEST(PieceCommand, HalvesGiveTwoValidMeshesAndAPicture) {
   EXPECT_GT(plain.triangles, 10000);
 }
 
+/// The JSON chunk of a .glb file.
+nlohmann::json glb_json(const fs::path& file) {
+  const std::string glb = test::read_file(file);
+  uint32_t length = 0;
+  std::memcpy(&length, glb.data() + 12, 4);
+  return nlohmann::json::parse(glb.substr(20, length));
+}
+
+// A piece asset drops into another scene: one root named after it at the origin, no camera,
+// no lights unless asked; its pieces' nodes placed alike whatever the compression (the
+// quantization's scale and offset sit on the mesh nodes below them).
+TEST(PieceCommand, AssetsHaveOneRootNoCameraOrLightsAndTheSameTransformsWhateverTheCompression) {
+  const fs::path dir = test::fresh_dir("piece-engine");
+  std::map<std::string, nlohmann::json> files;
+  for (const char* compress : {"none", "quantize", "meshopt"}) {
+    const fs::path file = dir / (std::string(compress) + ".glb");
+    const test::RunResult r = test::run_cutaway(
+        {"piece", "templates/tomato.yaml", "--cut", "wedges:3", "--backend", "cpu", "--cube", "4",
+         "-q", "-o", file.string(), "--compress", compress});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(test::validate_gltf(file).errors, 0) << compress;
+    files[compress] = glb_json(file);
+  }
+  for (const auto& [compress, j] : files) {
+    EXPECT_FALSE(j.contains("cameras")) << compress;
+    EXPECT_FALSE(j.contains("extensions") && j["extensions"].contains("KHR_lights_punctual"))
+        << compress;
+    ASSERT_EQ(j.at("scenes").at(0).at("nodes").size(), 1u) << compress;
+    const auto& root = j["nodes"][j.at("scenes").at(0).at("nodes").at(0).get<size_t>()];
+    EXPECT_EQ(root["name"], j.at("scenes").at(0).at("name")) << compress;
+    EXPECT_FALSE(root.contains("translation") || root.contains("rotation") || root.contains("scale"));
+    ASSERT_EQ(root["children"].size(), 3u) << compress;
+    for (size_t k = 0; k < 3; ++k) {
+      const auto& piece = j["nodes"][root["children"][k].get<size_t>()];
+      const auto& reference = files["none"]["nodes"][root["children"][k].get<size_t>()];
+      EXPECT_EQ(piece.value("translation", nlohmann::json()), reference.value("translation", nlohmann::json()));
+      EXPECT_EQ(piece.value("rotation", nlohmann::json()), reference.value("rotation", nlohmann::json()));
+      EXPECT_FALSE(piece.contains("scale")) << compress;
+      EXPECT_EQ(piece["extras"]["piece"], static_cast<int>(k)) << compress;
+    }
+  }
+  // Asked for, the preview's camera and lights come along.
+  const test::RunResult r = test::run_cutaway(
+      {"piece", "templates/tomato.yaml", "--cut", "halves", "--backend", "cpu", "--cube", "4", "-q",
+       "-o", (dir / "lit.glb").string(), "--camera-and-lights"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json lit = glb_json(dir / "lit.glb");
+  EXPECT_EQ(lit["cameras"].size(), 1u);
+  EXPECT_EQ(lit["extensions"]["KHR_lights_punctual"]["lights"].size(), 3u);
+}
+
 TEST(PieceCommand, LevelsOfDetailHalveTheTrianglesAndLeaveNoHoles) {
   const fs::path dir = test::fresh_dir("piece-lods");
   const test::RunResult r = test::run_cutaway(
@@ -215,15 +272,17 @@ TEST(PieceCommand, LevelsOfDetailHalveTheTrianglesAndLeaveNoHoles) {
     EXPECT_NEAR(triangles(lod1) / triangles(full), 0.5, 0.1) << lod1.name;
     EXPECT_NEAR(triangles(lod2) / triangles(full), 0.25, 0.1) << lod2.name;
     // The full node names its levels' nodes, which draw the level meshes where it stands.
-    const tinygltf::Node& node = m.nodes[piece];
+    const tinygltf::Node& piece_node = m.nodes[1 + 2 * piece];
+    const tinygltf::Node& node = m.nodes.at(static_cast<size_t>(piece_node.children.at(0)));
     ASSERT_TRUE(node.extensions.count("MSFT_lod")) << node.name;
     const tinygltf::Value& ids = node.extensions.at("MSFT_lod").Get("ids");
     ASSERT_EQ(ids.ArrayLen(), 2u);
     for (int l = 0; l < 2; ++l) {
       const tinygltf::Node& level = m.nodes.at(static_cast<size_t>(ids.Get(l).GetNumberAsInt()));
-      EXPECT_EQ(level.name, node.name + "_LOD" + std::to_string(l + 1));
+      EXPECT_EQ(level.name, piece_node.name + "_LOD" + std::to_string(l + 1));
       EXPECT_EQ(level.mesh, 3 * static_cast<int>(piece) + 1 + l);
       EXPECT_EQ(level.translation, node.translation);
+      EXPECT_EQ(level.scale, node.scale);
       EXPECT_EQ(level.rotation, node.rotation);
     }
   }

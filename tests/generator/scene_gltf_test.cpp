@@ -97,7 +97,8 @@ SceneAssets small_scene() {
   return s;
 }
 
-constexpr int kNodes = 3 + 1 + 2;  // instances, camera, lights
+constexpr int kNodes = 1 + 2 * 3 + 1 + 2;  // root, instances and their meshes, camera, lights
+constexpr int kCameraNode = 7;                 // then the two lights
 
 long instanced_triangles(const SceneAssets& s) {
   long n = 0;
@@ -205,12 +206,21 @@ TEST(SceneGltf, StructureReadsBackWithTinygltf) {
   ASSERT_EQ(m.scenes.size(), 1u);
   EXPECT_EQ(m.scenes[0].name, "test_salad");
   ASSERT_EQ(m.nodes.size(), static_cast<size_t>(kNodes));
-  EXPECT_EQ(m.scenes[0].nodes, (std::vector<int>{0, 1, 2, 3, 4, 5}));
+  EXPECT_EQ(m.scenes[0].nodes, (std::vector<int>{0, kCameraNode, kCameraNode + 1, kCameraNode + 2}));
+  // One root named after the scene, at the origin, over every instance.
+  EXPECT_EQ(m.nodes[0].name, "test_salad");
+  EXPECT_TRUE(m.nodes[0].translation.empty() && m.nodes[0].rotation.empty());
+  EXPECT_EQ(m.nodes[0].children, (std::vector<int>{1, 3, 5}));
   for (size_t i = 0; i < s.instances.size(); ++i) {
-    const auto& node = m.nodes[i];
+    const auto& node = m.nodes[1 + 2 * i];
     const auto& inst = s.instances[i];
     EXPECT_EQ(node.name, inst.name);
-    EXPECT_EQ(node.mesh, inst.mesh);
+    EXPECT_EQ(node.mesh, -1);
+    ASSERT_EQ(node.children, (std::vector<int>{static_cast<int>(2 + 2 * i)}));
+    const auto& mesh_node = m.nodes[2 + 2 * i];
+    EXPECT_EQ(mesh_node.name, inst.name + "_mesh");
+    EXPECT_EQ(mesh_node.mesh, inst.mesh);
+    EXPECT_TRUE(mesh_node.translation.empty() && mesh_node.scale.empty());  // no compression
     ASSERT_EQ(node.rotation.size(), 4u);
     EXPECT_NEAR(node.rotation[0], inst.rotation.x, 1e-12);
     EXPECT_NEAR(node.rotation[1], inst.rotation.y, 1e-12);
@@ -227,7 +237,7 @@ TEST(SceneGltf, StructureReadsBackWithTinygltf) {
   EXPECT_NEAR(m.cameras[0].perspective.aspectRatio, 4.0 / 3, 1e-12);
   EXPECT_DOUBLE_EQ(m.cameras[0].perspective.znear, 0.01);
   EXPECT_DOUBLE_EQ(m.cameras[0].perspective.zfar, 5);
-  const auto& cam_node = m.nodes[3];
+  const auto& cam_node = m.nodes[kCameraNode];
   EXPECT_EQ(cam_node.camera, 0);
   EXPECT_EQ(cam_node.translation, (std::vector<double>{0.25, 0.3, 0.35}));
   const glm::dvec3 look = minus_z(cam_node.rotation);
@@ -248,12 +258,13 @@ TEST(SceneGltf, StructureReadsBackWithTinygltf) {
   EXPECT_EQ(m.lights[1].intensity, 15);
   EXPECT_EQ(m.lights[1].color, (std::vector<double>{1, 0.9, 0.8}));
   for (int l = 0; l < 2; ++l) {
-    const auto& node = m.nodes[4 + l];
+    const auto& node = m.nodes[kCameraNode + 1 + l];
     ASSERT_TRUE(node.extensions.count("KHR_lights_punctual")) << l;
     EXPECT_EQ(node.extensions.at("KHR_lights_punctual").Get("light").GetNumberAsInt(), l);
   }
-  EXPECT_NEAR(glm::length(minus_z(m.nodes[4].rotation) - s.lights[0].direction), 0, 1e-12);
-  EXPECT_EQ(m.nodes[5].translation, (std::vector<double>{0.1, 0.4, 0.2}));
+  EXPECT_NEAR(glm::length(minus_z(m.nodes[kCameraNode + 1].rotation) - s.lights[0].direction), 0,
+              1e-12);
+  EXPECT_EQ(m.nodes[kCameraNode + 2].translation, (std::vector<double>{0.1, 0.4, 0.2}));
 }
 
 TEST(SceneGltf, VerticesThatWriteAlikeAreWeldedAndOthersKept) {
@@ -298,8 +309,10 @@ TEST(SceneGltf, LookRotationsHandleAViewAlongTheUpVector) {
                                           reinterpret_cast<const unsigned char*>(glb.data()),
                                           static_cast<unsigned>(glb.size())))
       << err;
-  EXPECT_NEAR(glm::length(minus_z(m.nodes[3].rotation) - glm::dvec3(0, -1, 0)), 0, 1e-12);
-  EXPECT_NEAR(glm::length(minus_z(m.nodes[4].rotation) - glm::dvec3(0, -1, 0)), 0, 1e-12);
+  EXPECT_NEAR(glm::length(minus_z(m.nodes[kCameraNode].rotation) - glm::dvec3(0, -1, 0)), 0,
+              1e-12);
+  EXPECT_NEAR(glm::length(minus_z(m.nodes[kCameraNode + 1].rotation) - glm::dvec3(0, -1, 0)), 0,
+              1e-12);
 }
 
 TEST(SceneGltf, LargeMeshesUse32BitIndices) {
@@ -606,12 +619,21 @@ TEST(SceneGltf, QuantizedVerticesLandWhereTheAssetsPutThemWithinTheirStep) {
   for (size_t i = 0; i < s.instances.size(); ++i) {
     const AssetInstance& inst = s.instances[i];
     const AssetMesh& mesh = s.meshes[static_cast<size_t>(inst.mesh)];
-    const tinygltf::Node& node = m.nodes[i];
-    ASSERT_EQ(node.scale.size(), 3u);
-    const double scale = node.scale[0];
+    // The instance's node is placed as without compression; its mesh node dequantizes.
+    const tinygltf::Node& node = m.nodes[1 + 2 * i];
+    EXPECT_TRUE(node.scale.empty());
+    EXPECT_EQ(node.translation,
+              (std::vector<double>{inst.translation.x, inst.translation.y, inst.translation.z}));
+    const tinygltf::Node& mesh_node = m.nodes[2 + 2 * i];
+    ASSERT_EQ(mesh_node.scale.size(), 3u);
+    const double scale = mesh_node.scale[0];
+    const glm::dvec3 offset =
+        mesh_node.translation.empty()
+            ? glm::dvec3(0.0)
+            : glm::dvec3(mesh_node.translation[0], mesh_node.translation[1], mesh_node.translation[2]);
     const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
     const glm::dvec3 t(node.translation[0], node.translation[1], node.translation[2]);
-    const auto& prim = m.meshes[static_cast<size_t>(node.mesh)].primitives[0];
+    const auto& prim = m.meshes[static_cast<size_t>(mesh_node.mesh)].primitives[0];
     const tinygltf::Accessor& pos = m.accessors.at(prim.attributes.at("POSITION"));
     const tinygltf::Accessor& nrm = m.accessors.at(prim.attributes.at("NORMAL"));
     EXPECT_EQ(pos.componentType, TINYGLTF_COMPONENT_TYPE_SHORT);
@@ -623,7 +645,7 @@ TEST(SceneGltf, QuantizedVerticesLandWhereTheAssetsPutThemWithinTheirStep) {
     for (size_t v = 0; v < pos.count; ++v) {
       const glm::dvec3 local(component(m, pos, v, 0), component(m, pos, v, 1),
                              component(m, pos, v, 2));
-      const glm::dvec3 world = q * (scale * local) + t;
+      const glm::dvec3 world = q * (offset + scale * local) + t;
       const glm::dvec3 normal =
           q * glm::dvec3(component(m, nrm, v, 0), component(m, nrm, v, 1), component(m, nrm, v, 2));
       double nearest = 1e9, normal_error = 1e9;
@@ -737,9 +759,9 @@ TEST(SceneGltf, LevelsOfDetailKeepBordersSoClosedMeshesStayClosed) {
   EXPECT_LT(triangles(1), triangles(0));
   EXPECT_LT(triangles(2), triangles(1));
   EXPECT_EQ(m.extensionsUsed.back(), "MSFT_lod");
-  // Scene nodes first as without levels; the level nodes after them, outside the scene's list.
+  // The nodes first as without levels; the level nodes after them, outside the scene's list.
   EXPECT_EQ(m.nodes.size(), static_cast<size_t>(kNodes) + 2 * 3);
-  EXPECT_EQ(m.scenes[0].nodes.size(), static_cast<size_t>(kNodes));
+  EXPECT_EQ(m.scenes[0].nodes, (std::vector<int>{0, kCameraNode, kCameraNode + 1, kCameraNode + 2}));
 }
 
 TEST(SceneGltf, ThreeJsRendersTheTexture) {
