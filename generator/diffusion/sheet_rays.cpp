@@ -201,13 +201,13 @@ SheetRayCaster::SheetRayCaster(const std::vector<DiffusionSheet>& sheets, int th
   for (size_t i = 0; i < sheets.size(); ++i) {
     const DiffusionSheet& s = sheets[i];
     RTCGeometry g = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), s.triangle.size()));
     if (mode_ == SheetHits::Decided) {
       auto* vb = static_cast<float*>(
           rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                   kVertexFloats * sizeof(float), 3 * s.triangle.size()));
       corners_.push_back(vb);
-      auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-          g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), s.triangle.size()));
       for (size_t t = 0; t < s.triangle.size(); ++t) {
         glm::dvec3 corner[3];
         for (int k = 0; k < 3; ++k) corner[k] = glm::dvec3(s.position[s.triangle[t][k]]);
@@ -228,8 +228,6 @@ SheetRayCaster::SheetRayCaster(const std::vector<DiffusionSheet>& sheets, int th
           g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), s.position.size()));
       for (size_t v = 0; v < s.position.size(); ++v)
         for (int k = 0; k < 3; ++k) vb[3 * v + k] = s.position[v][k];
-      auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-          g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), s.triangle.size()));
       for (size_t t = 0; t < s.triangle.size(); ++t)
         for (int k = 0; k < 3; ++k) ib[3 * t + k] = s.triangle[t][k];
     }
