@@ -28,7 +28,7 @@ namespace {
 
 constexpr int kMaxImageSide = 16384;
 constexpr int kMaxLights = 16;          // shaders/scene.frag: kMaxLights
-constexpr double kReferenceLux = 3.0;   // AssetLight's default intensity shows at scale 1
+constexpr double kReferenceLux = 3 * kLumensPerWatt;  // AssetLight's default shows at scale 1
 constexpr double kShininess = 48;       // Blinn-Phong exponent at the default roughness
 constexpr double kSpecular = 0.15;      // highlight weight at the default roughness
 constexpr double kMaxShininess = 1024;  // the largest exponent (roughness near 0)
@@ -216,7 +216,7 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
       if (textures[t] == 0) textures[t] = upload_base_colour(assets.textures[t], t, *context);
     }
 
-  // Lights in the view frame; the documented mapping: scale = colour * (lux / 3) * exposure.
+  // Lights in the view frame; the documented mapping: scale = colour * (lux / 2049) * exposure.
   glUseProgram(program.id());
   std::vector<float> light_vector(4 * kMaxLights, 0.0f), light_scale(3 * kMaxLights, 0.0f);
   for (size_t i = 0; i < assets.lights.size(); ++i) {

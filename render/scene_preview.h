@@ -45,10 +45,10 @@ struct ScenePreviewOptions {
 /// and weight w = 0.15 * (p + 8) / 56, so the default r = 0.6 gives p = 48 and w = 0.15, and a
 /// rougher material a broader, weaker highlight. Other material channels (the material map,
 /// clearcoat, sheen, translucency) are not shown. Per light i, c_i is its linear colour, l_i the
-/// unit direction toward it, h_i the Blinn-Phong half vector, and s_i = E_i / 3 lux the illuminance
-/// it gives relative to the AssetLight default: E_i is `intensity` in lux for a directional light
+/// unit direction toward it, h_i the Blinn-Phong half vector, and s_i = E_i / 2049 lux the
+/// illuminance it gives relative to the AssetLight default (3 kLumensPerWatt): E_i is `intensity` in lux for a directional light
 /// and `intensity` / d^2 (candela over squared metres to the light) for a point light. So one
-/// default directional light (3 lux) falling head-on shows 0.75 * a plus the ambient.
+/// default directional light (2049 lux) falling head-on shows 0.75 * a plus the ambient.
 /// H(n) is a hemisphere ambient of 0.25 from the sky (+Y) down to 0.10 from the ground,
 /// blended by n.y, so faces turned away from every light are darker but never black. There are
 /// no shadows. The result is written to a 16-bit float framebuffer, multisampled edges are

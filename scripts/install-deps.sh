@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what cutaway needs on Debian 12: the Debian packages for building and running it,
 # (with --cpus) qemu-user for `make test-cpus`, and (with --test) the test tools: Chromium, slurm-wlm and munge (the one-node Slurm cluster
-# of the batch test) from Debian, and, from npm into node_modules/
+# of the batch test), Blender and python3-numpy (its glTF importer needs numpy; the add-on's
+# tests run it headless) from Debian, and, from npm into node_modules/
 # (package-lock.json, exact versions), the Khronos glTF validator, three.js (its GLTFLoader is
 # the real glTF client of tests/tools/load_gltf_three.mjs) and playwright-core (drives Chromium).
 # A fast no-op when everything is already present.
@@ -18,7 +19,7 @@ packages=(
   povray
 )
 test_packages=(libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev nodejs npm
-               chromium slurm-wlm munge)
+               chromium slurm-wlm munge blender python3-numpy)
 
 # make test-cpus: qemu-user emulates an older CPU (tests/cli/emulated_cpu_test.sh).
 cpus_packages=(qemu-user)

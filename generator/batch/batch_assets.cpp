@@ -14,6 +14,7 @@
 #include "base/timer.h"
 #include "export/gltf_export.h"
 #include "io/template_parser.h"
+#include "scene/collision_shape.h"
 #include "scene/piece_views.h"
 #include "variation/variant_batch.h"
 #include "variation/variation.h"
@@ -43,6 +44,7 @@ std::string fingerprint_text(const Batch& b, const BatchItem& item, uint64_t see
       {"lods", b.export_options.gltf.lods},
       {"textures", static_cast<int>(b.export_options.gltf.textures)},
       {"camera_and_lights", b.export_options.gltf.camera_and_lights},
+      {"collision", static_cast<int>(b.export_options.gltf.collision)},
       {"texels_per_mm", b.export_options.texels_per_mm},
       {"perlin", b.export_options.perlin},
       {"cube", b.export_options.cube},
@@ -182,11 +184,13 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
       r.volume_m3 += object.infos[q].volume_m3;
       assets.instances.push_back({object.meshes[q].name, static_cast<int>(assets.meshes.size()),
                                   {1, 0, 0, 0}, {0, 0, 0}, object.infos[q]});
+      if (batch.export_options.gltf.collision != GltfCollision::None)
+        assets.instances.back().collision = collision_hulls(object.shapes[q]);
       assets.meshes.push_back(std::move(object.meshes[q]));
     }
     r.pieces = object.meshes.size();
     assets.camera = frame_box(lo, hi, asset_view_direction(), 40, 4.0 / 3);
-    assets.lights = studio_lights(assets.camera);
+    light_like_studio(assets);
     std::string glb = scene_to_glb(assets, batch.export_options.gltf);
     r.hash = fnv1a64(glb);
     const GltfGeometryCounts counts = count_glb_geometry(glb);

@@ -131,6 +131,7 @@ struct PieceArgs {
   int lods = 0;                       ///< glTF levels of detail per mesh (GltfSceneOptions)
   std::string textures = "jpeg";      ///< base-colour texture images: jpeg or png (TextureFormat)
   bool camera_and_lights = false;     ///< --camera-and-lights: write them into the glTF
+  std::string collision = "godot";    ///< --collision: none, godot or unreal hull names
 };
 int run_piece(const PieceArgs& args, const Common& common, OutputSet& outputs);
 

@@ -219,6 +219,10 @@ int main(int argc, char** argv) {
   piece->add_flag("--camera-and-lights", piece_args.camera_and_lights,
                   "write the preview's camera and studio lights into the glTF file (an asset "
                   "leaves them out by default: it goes into someone else's scene)");
+  piece->add_option("--collision", piece_args.collision,
+                    "convex collision hulls of each piece in the glTF file, named for godot "
+                    "(NAME_collisionK-convcolonly, the default), unreal (UCX_MESH_KK) or none")
+      ->check(CLI::IsMember({"none", "godot", "unreal"}));
 
   cutaway::cli::SheetArgs sheet_args;
   CLI::App* sheet = app.add_subcommand(

@@ -6,12 +6,14 @@
 
 #include <spdlog/spdlog.h>
 
+#include "base/error.h"
 #include "base/timer.h"
 #include "cli/commands.h"
 #include "cli/scene_outputs.h"
 #include "io/template_parser.h"
 #include "model/model_builder.h"
 #include "render/diffusion_backends.h"
+#include "scene/collision_shape.h"
 #include "scene/piece_views.h"
 #include "variation/variation.h"
 
@@ -97,6 +99,11 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
   assets = piece_assets(std::move(assets), object, 0.3, a.width, a.height);
   GltfSceneOptions gltf = export_options(a.compress, a.lods, a.textures);
   gltf.camera_and_lights = a.camera_and_lights;  // an asset leaves them out unless asked
+  gltf.collision = parse_gltf_collision(a.collision);
+  CUTAWAY_CHECK(assets.instances.size() == object.shapes.size());  // piece k is instance k
+  if (gltf.collision != GltfCollision::None)
+    for (size_t k = 0; k < object.shapes.size(); ++k)
+      assets.instances[k].collision = collision_hulls(object.shapes[k]);
   const Written w = write_outputs(assets, targets, common.threads, a.silhouettes, gltf);
   if (common.stats) {
     *common.stats = {{"template", tmpl.name},

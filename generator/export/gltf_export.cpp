@@ -647,12 +647,15 @@ tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& o
 
   tinygltf::Scene scene;
   scene.name = assets.name;
-  // Node order: the root, each instance's node followed by its mesh node, the camera, the
-  // lights (those in the scene's list: the root, the camera, the lights); then the level
-  // nodes, outside the scene's list.
+  // Node order: the root, each instance's node followed by its mesh node and hull nodes, the
+  // camera, the lights (those in the scene's list: the root, the camera, the lights); then the
+  // level nodes, outside the scene's list.
   const bool camera_and_lights = options.camera_and_lights;
-  const size_t main_nodes =
+  const bool collision = options.collision != GltfCollision::None;
+  size_t main_nodes =
       1 + 2 * assets.instances.size() + (camera_and_lights ? 1 + assets.lights.size() : 0);
+  if (collision)
+    for (const AssetInstance& inst : assets.instances) main_nodes += inst.collision.size();
   tinygltf::Node root;
   root.name = assets.name;
   m.nodes.push_back(root);
@@ -662,6 +665,7 @@ tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& o
     scene.nodes.push_back(static_cast<int>(m.nodes.size()) - 1);
   };
   std::vector<tinygltf::Node> lod_nodes;  // after the others
+  int hull_material = -1;                 // the collision hulls' one material, once needed
   for (const AssetInstance& inst : assets.instances) {
     const double qlen = glm::length(inst.rotation);
     glm::dquat q = inst.rotation / qlen;
@@ -715,12 +719,53 @@ tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& o
     if (!extras.empty()) node.extras = tinygltf::Value(std::move(extras));
     const int index = static_cast<int>(m.nodes.size());
     node.children = {index + 1};
+    const std::string& mesh_name = assets.meshes[static_cast<size_t>(inst.mesh)].name;
+    std::vector<tinygltf::Node> hull_nodes;
+    // Hulls are see-through (alpha 0, blended) where a viewer does not read their names as
+    // collision: Blender, three.js and model viewers draw nothing over the piece.
+    if (collision && !inst.collision.empty() && hull_material < 0)
+      hull_material = add_material(m, "collision", 0.0);
+    for (size_t k = 0; collision && k < inst.collision.size(); ++k) {
+      const AssetHull& hull = inst.collision[k];
+      char number[8];
+      std::snprintf(number, sizeof number, "%02zu", k);
+      tinygltf::Mesh hull_mesh;
+      hull_mesh.name = options.collision == GltfCollision::Godot
+                           ? inst.name + "_collision" + std::to_string(k) + "-convcolonly"
+                           : "UCX_" + mesh_name + "_" + number;
+      std::vector<float> xyz;
+      for (const glm::dvec3& p : hull.position)
+        for (int c = 0; c < 3; ++c) xyz.push_back(static_cast<float>(p[c]) + 0.0f);
+      std::vector<uint32_t> idx;
+      for (const glm::uvec3& t : hull.triangle) idx.insert(idx.end(), {t.x, t.y, t.z});
+      tinygltf::Primitive prim;
+      prim.mode = TINYGLTF_MODE_TRIANGLES;
+      prim.attributes["POSITION"] = add_vec3_accessor(m, xyz, true);
+      prim.indices = add_index_accessor(m, idx);
+      prim.material = hull_material;
+      hull_mesh.primitives.push_back(prim);
+      m.meshes.push_back(hull_mesh);
+      tinygltf::Node hull_node;
+      hull_node.name = hull_mesh.name;
+      hull_node.mesh = static_cast<int>(m.meshes.size()) - 1;
+      hull_node.extras =
+          tinygltf::Value(tinygltf::Value::Object{{"collision", tinygltf::Value(std::string("convex"))}});
+      node.children.push_back(index + 2 + static_cast<int>(hull_nodes.size()));
+      hull_nodes.push_back(std::move(hull_node));
+    }
     m.nodes.push_back(std::move(node));
     m.nodes.push_back(std::move(mesh_node));
+    for (tinygltf::Node& hull_node : hull_nodes) m.nodes.push_back(std::move(hull_node));
     m.nodes[0].children.push_back(index);
   }
 
   if (camera_and_lights) {
+    // How to show the lights' physical units (doc/lighting.md): three.js's
+    // toneMappingExposure, and the sky a viewer adds as its world or ambient light.
+    tinygltf::Value::Object view;
+    view["exposure"] = tinygltf::Value(1 / kLumensPerWatt);
+    if (assets.ambient_lux > 0) view["ambient_lux"] = tinygltf::Value(assets.ambient_lux);
+    scene.extras = tinygltf::Value(std::move(view));
     const AssetCamera& cam = assets.camera;
     tinygltf::Camera camera;
     camera.name = "camera";
@@ -906,7 +951,10 @@ GltfGeometryCounts count_glb_geometry(std::string_view glb) {
       todo.pop_back();
       for (const auto& child : node.value("children", nlohmann::json::array()))
         todo.push_back(child.get<size_t>());
-      if (!node.contains("mesh")) continue;
+      // Collision hulls are not drawn.
+      if (!node.contains("mesh") ||
+          node.value("extras", nlohmann::json::object()).contains("collision"))
+        continue;
       for (const auto& p : doc.at("meshes").at(node.at("mesh").get<size_t>()).at("primitives")) {
         counts.triangles +=
             doc.at("accessors").at(p.at("indices").get<size_t>()).at("count").get<size_t>() / 3;
@@ -985,6 +1033,14 @@ std::string scene_to_glb(const SceneAssets& assets, const GltfSceneOptions& opti
     glb.resize(glb.size() + bin_bytes - scene.bin.size(), '\0');
   }
   return glb;
+}
+
+GltfCollision parse_gltf_collision(std::string_view name) {
+  if (name == "none") return GltfCollision::None;
+  if (name == "godot") return GltfCollision::Godot;
+  if (name == "unreal") return GltfCollision::Unreal;
+  throw InternalError("unknown collision naming '" + std::string(name) +
+                      "' (none, godot or unreal)");
 }
 
 GltfCompression parse_gltf_compression(std::string_view name) {

@@ -56,6 +56,14 @@ enum class GltfCompression {
   Meshopt,
 };
 
+/// How the instances' collision hulls (AssetInstance::collision) are written: as extra mesh
+/// nodes under each piece's node, named as an engine's importer reads collision geometry.
+enum class GltfCollision {
+  None,    ///< not written
+  Godot,   ///< "<piece>_collision<k>-convcolonly": Godot's convex-collision-only suffix
+  Unreal,  ///< "UCX_<mesh>_<kk>": Unreal's convex collision prefix, after the render mesh
+};
+
 /// Options of the scene glTF export.
 struct GltfSceneOptions {
   GltfCompression compression = GltfCompression::Quantize;
@@ -74,11 +82,17 @@ struct GltfSceneOptions {
   /// assets to be placed in someone else's scene (`piece` and batches leave them out unless
   /// asked).
   bool camera_and_lights = true;
+  /// Collision hulls of the pieces (scenes leave them out: their pieces have settled).
+  GltfCollision collision = GltfCollision::None;
 };
 
 /// "none", "quantize" or "meshopt" as a GltfCompression.
 /// @throws InternalError for any other name
 GltfCompression parse_gltf_compression(std::string_view name);
+
+/// "none", "godot" or "unreal" as a GltfCollision.
+/// @throws InternalError for any other name
+GltfCollision parse_gltf_collision(std::string_view name);
 
 /// Encodes a scene as binary glTF (.glb), metres, +Y up:
 /// - one mesh per AssetMesh (same order and name), one opaque single-sided primitive per
@@ -99,16 +113,24 @@ GltfCompression parse_gltf_compression(std::string_view name);
 ///   (PieceInfo with a template) has extras {template, seed (decimal string), cut, piece (its
 ///   cell), parts, volume_m3}; its one child "<name>_mesh" holds the mesh, with the mesh's
 ///   quantization frame (translation and uniform scale, none without compression) as its
-///   transform, and with levels of detail the MSFT_lod extension;
+///   transform, and with levels of detail the MSFT_lod extension; with options.collision,
+///   then one node per collision hull (AssetInstance::collision), named as GltfCollision says,
+///   with extras {"collision": "convex"} and a mesh of float32 POSITION (with min/max) and
+///   uint32 indices, no normals, and one shared material "collision" of alpha 0, blended
+///   (engines take the node as collision only and drop its mesh; viewers that do not read the
+///   names show nothing; the manifest's counts leave it out);
 /// with options.camera_and_lights:
 /// - a node "camera" at `camera.eye` rotated so that its -Z looks at `camera.target` with +Y
 ///   towards `camera.up` (when `up` is parallel to the view: +Y of the scene, else -Z),
 ///   holding a perspective camera (yfov in radians, aspectRatio, znear, zfar);
 /// - one node per AssetLight with a KHR_lights_punctual light (listed in extensionsUsed):
 ///   directional lights (intensity in lux) rotated so that their -Z is `direction`; point
-///   lights (intensity in candela) translated to `position`, range infinite.
-/// Node order: the root, each instance's node then its mesh node, the camera, the lights, the
-/// level nodes; the scene lists the root, the camera and the lights. asset.generator is
+///   lights (intensity in candela) translated to `position`, range infinite;
+/// - the scene's extras: `exposure` = 1 / kLumensPerWatt (the display value per unit of the
+///   lights' radiance: three.js's toneMappingExposure under LinearToneMapping, Blender's
+///   exposure 0 under its Standard view) and `ambient_lux` = `assets.ambient_lux` when > 0.
+/// Node order: the root, each instance's node then its mesh node and hull nodes, the camera,
+/// the lights, the level nodes; the scene lists the root, the camera and the lights. asset.generator is
 /// "cutaway".
 /// Deterministic: the same assets give the same bytes.
 /// @throws InternalError when the assets break their documented invariants: a mesh

@@ -181,7 +181,7 @@ void write_lights(std::string& out, const SceneAssets& a) {
       out += " lux\nlight_source {\n  ";
       append_vector(out, b.centre - dir * far_m);
       out += "\n  color rgb ";
-      append_vector(out, l.colour * (l.intensity / kPi));
+      append_vector(out, l.colour * (l.intensity / kLumensPerWatt / kPi));
       out += "\n  parallel\n  point_at ";
       append_vector(out, b.centre);
       if (i != shadow_caster) out += "\n  shadowless";
@@ -192,7 +192,7 @@ void write_lights(std::string& out, const SceneAssets& a) {
       out += " cd\nlight_source {\n  ";
       append_vector(out, l.position);
       out += "\n  color rgb ";
-      append_vector(out, l.colour * (l.intensity /
+      append_vector(out, l.colour * (l.intensity / kLumensPerWatt /
                                      (2 * kPi * kPointFadeDistance_m * kPointFadeDistance_m)));
       out += "\n  fade_distance ";
       append_number(out, kPointFadeDistance_m);

@@ -29,14 +29,16 @@ namespace cutaway {
 ///   camera (not mirrored). The image is stretched when the render's width/height differs
 ///   from `camera.aspect`; znear/zfar are not used.
 /// - one `light_source` per light, with this brightness mapping (a white surface with diffuse 1,
-///   lit head-on by E lux, shows E / pi, the Lambertian radiance under unit exposure; this is
-///   also what a physically based glTF viewer such as three.js shows):
+///   lit head-on by E lux, shows E / 683 / pi, the Lambertian radiance in W/m^2/sr under
+///   exposure 1 / kLumensPerWatt; this is what Blender's Standard view and three.js with
+///   toneMappingExposure 1 / 683 show):
 ///   - directional: a `parallel` light at scene centre - direction * (10 r + 10 m), where r is
 ///     the radius of the instances' bounding sphere, pointing at the centre, with colour
-///     `colour * intensity / pi`;
+///     `colour * intensity / 683 / pi`;
 ///   - point: at `position`, with `fade_distance 0.01 fade_power 2` and colour
-///     `colour * intensity / (2 pi 0.01^2)`, so that at a distance d >> 1 cm the brightness is
-///     colour * intensity / (pi d^2), the inverse-square law of `intensity` candela (POV-Ray's
+///     `colour * intensity / 683 / (2 pi 0.01^2)`, so that at a distance d >> 1 cm the
+///     brightness is colour * intensity / 683 / (pi d^2), the inverse-square law of `intensity`
+///     candela (POV-Ray's
 ///     attenuation is 2 / (1 + (d / fade_distance)^fade_power); it stays finite within 1 cm);
 ///   only the brightest light casts shadows (the others are `shadowless`, so shadows are
 ///   filled in rather than black);

@@ -94,8 +94,8 @@ Batch parse(std::string_view text, const std::string& file, std::vector<ParsedIt
     if (auto x = o->get("sample")) b.outputs.sample = parse_int_in(*x, 0, 64);
   }
   if (auto e = root.get("export")) {
-    e->allow_only({"compress", "lods", "textures", "camera_and_lights", "texels_per_mm", "perlin",
-                   "cube"});
+    e->allow_only({"compress", "lods", "textures", "camera_and_lights", "collision",
+                   "texels_per_mm", "perlin", "cube"});
     if (auto x = e->get("compress")) {
       const std::string v = x->string();
       if (v != "none" && v != "quantize" && v != "meshopt")
@@ -110,6 +110,12 @@ Batch parse(std::string_view text, const std::string& file, std::vector<ParsedIt
     }
     if (auto x = e->get("camera_and_lights"))
       b.export_options.gltf.camera_and_lights = x->boolean();
+    if (auto x = e->get("collision")) {
+      const std::string v = x->string();
+      if (v != "none" && v != "godot" && v != "unreal")
+        x->fail("must be none, godot or unreal, not " + quoted(v));
+      b.export_options.gltf.collision = parse_gltf_collision(v);
+    }
     if (auto x = e->get("texels_per_mm")) b.export_options.texels_per_mm = x->number_in(0.1, 100);
     if (auto x = e->get("perlin")) b.export_options.perlin = x->number_in(0, 10);
     if (auto x = e->get("cube")) b.export_options.cube = parse_int_in(*x, 2, 256);

@@ -443,4 +443,19 @@ CollisionShape collision_shape(const ShadedMesh& mesh, const CollisionShapeOptio
   return s;
 }
 
+std::vector<AssetHull> collision_hulls(const ShadedMesh& mesh,
+                                       const CollisionShapeOptions& options) {
+  std::vector<AssetHull> hulls;
+  for (const ConvexPart& part : collision_shape(mesh, options).parts) {
+    const Facets h = hull_facets(part.corners);
+    AssetHull hull;
+    hull.position = h.corners;
+    for (const Facets::Facet& f : h.facets)
+      for (size_t k = 1; k + 1 < f.loop.size(); ++k)
+        hull.triangle.emplace_back(f.loop[0], f.loop[k], f.loop[k + 1]);
+    hulls.push_back(std::move(hull));
+  }
+  return hulls;
+}
+
 }  // namespace cutaway

@@ -9,6 +9,7 @@
 #include <glm/vec3.hpp>
 
 #include "pieces/shaded_mesh.h"
+#include "scene/scene_assets.h"
 
 namespace cutaway {
 
@@ -54,5 +55,12 @@ struct CollisionShape {
 /// (#V >= 4 not all coplanar; vertices are welded by exact position). Deterministic.
 /// Errors: CUTAWAY_CHECK on an empty or flat mesh.
 CollisionShape collision_shape(const ShadedMesh& mesh, const CollisionShapeOptions& options = {});
+
+/// The convex parts of `mesh`'s collision shape (collision_shape, same preconditions) as closed
+/// meshes for export, in the piece's frame (metres): each part's hull corners, its facets
+/// fanned into triangles wound counter-clockwise seen from outside. A part does not grow by
+/// its `outside_m`: engines add their own collision margin. Deterministic.
+std::vector<AssetHull> collision_hulls(const ShadedMesh& mesh,
+                                       const CollisionShapeOptions& options = {});
 
 }  // namespace cutaway

@@ -75,7 +75,7 @@ SceneAssets piece_assets(SceneAssets assets, const CutObject& object, double exp
   assets.camera = frame_box(elo, ehi,
                             {std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el)},
                             30, static_cast<double>(width) / height);
-  assets.lights = studio_lights(assets.camera);
+  light_like_studio(assets);
   return assets;
 }
 
@@ -126,7 +126,7 @@ SceneAssets grid_piece_assets(SceneAssets assets, const CutObject& object, Piece
                                 rotation[k], offset, {}});
   }
   assets.camera = frame_box(all_lo, all_hi, to_camera, 30, aspect);
-  assets.lights = studio_lights(assets.camera);
+  light_like_studio(assets);
   return assets;
 }
 

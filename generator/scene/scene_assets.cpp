@@ -1,5 +1,6 @@
 #include "scene/scene_assets.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -177,6 +178,15 @@ std::string assets_defect(const SceneAssets& a, const AssetRules& rules) {
     else if (!std::isfinite(q.w) || !std::isfinite(q.x) || !std::isfinite(q.y) ||
              !std::isfinite(q.z) || !(glm::length(q) > 0) || !all_finite(inst.translation))
       defect = "has a zero or non-finite rotation, or a non-finite translation";
+    for (const AssetHull& hull : inst.collision) {
+      bool bad = hull.position.size() < 4 || hull.triangle.size() < 4;
+      for (const glm::dvec3& p : hull.position) bad = bad || !all_finite(p);
+      for (const glm::uvec3& t : hull.triangle)
+        bad = bad || std::max({t.x, t.y, t.z}) >= hull.position.size();
+      if (bad && defect.empty())
+        defect = "has a collision hull with under 4 corners or 4 triangles, a non-finite corner "
+                 "or an index out of range";
+    }
     if (auto d = named("instance", i, inst.name, defect); !d.empty()) return d;
   }
   if (const std::string d = camera_defect(a.camera, rules.camera_needs_up); !d.empty())

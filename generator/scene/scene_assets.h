@@ -13,6 +13,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/ext/vector_uint3.hpp>
 
 #include "base/coloured_mesh.h"
 #include "model/pbr_material.h"
@@ -96,6 +97,13 @@ struct PieceInfo {
   double volume_m3 = 0;            ///< enclosed volume, cubic metres
 };
 
+/// A convex collision part of an instance: a closed convex triangle mesh in the instance's
+/// frame (metres), triangles counter-clockwise seen from outside.
+struct AssetHull {
+  std::vector<glm::dvec3> position;  ///< #corners >= 4
+  std::vector<glm::uvec3> triangle;  ///< indices below #corners
+};
+
 /// One placed copy of a mesh: scene point = translation + rotation * (mesh point).
 struct AssetInstance {
   std::string name;          ///< unique in the scene
@@ -103,6 +111,8 @@ struct AssetInstance {
   glm::dquat rotation{1, 0, 0, 0};  ///< unit quaternion (w, x, y, z)
   glm::dvec3 translation{0.0};      ///< metres
   PieceInfo piece;                  ///< for pieces
+  /// The convex parts a physics engine collides it as (empty: none written).
+  std::vector<AssetHull> collision{};
 };
 
 /// A pinhole camera in the scene frame (+Y up, metres).
@@ -139,6 +149,13 @@ double focal_length_px(const AssetCamera& camera, int height_px);
 
 enum class LightType { Directional, Point };
 
+/// Lumens per watt of light at 555 nm, the factor between photometric and radiometric units:
+/// glTF importers such as Blender's turn a directional light's lux into W/m^2 (a sun's
+/// strength) by dividing by it, and our renderers (the OpenGL preview, POV-Ray) show a
+/// Lambertian surface lit head-on by E lux at the radiance E / kLumensPerWatt / pi times its
+/// albedo, as Blender's Standard view does.
+constexpr double kLumensPerWatt = 683.0;
+
 /// A light (the glTF KHR_lights_punctual model): directional lights shine along `direction`
 /// with `intensity` in lux; point lights sit at `position` with `intensity` in candela.
 struct AssetLight {
@@ -147,7 +164,7 @@ struct AssetLight {
   glm::dvec3 position{0.0};              ///< point: metres
   glm::dvec3 direction{0, -1, 0};        ///< directional: unit, the way the light travels
   glm::dvec3 colour{1, 1, 1};            ///< linear RGB
-  double intensity = 3;                  ///< lux (directional) or candela (point)
+  double intensity = 3 * kLumensPerWatt;  ///< lux (directional) or candela (point)
 };
 
 /// A whole scene ready for export: meshes (pieces, container), their instances, camera, lights.
@@ -160,6 +177,9 @@ struct SceneAssets {
   std::vector<AssetInstance> instances;
   AssetCamera camera;
   std::vector<AssetLight> lights;
+  /// Illuminance (lux) of the uniform sky the lights were chosen with: what a renderer adds
+  /// as a world or ambient light (Blender: world strength ambient_lux / (683 pi)); 0: none.
+  double ambient_lux = 0;
   glm::dvec3 background{1, 1, 1};  ///< linear RGB
   int width = 1280, height = 960;  ///< pixels of renders
 };
@@ -183,7 +203,8 @@ struct AssetRules {
 /// RGB. Meshes (all, instanced or not): #V normals and colours, positions and colours finite,
 /// uv #V or empty and finite, triangle and coarse indices below #V, primitives_defect.
 /// Instances: an existing mesh, a finite non-zero
-/// rotation, a finite translation. The camera (camera_defect). Lights: finite, intensity and
+/// rotation, a finite translation, collision hulls with >= 4 finite corners, >= 4 triangles
+/// and indices in range. The camera (camera_defect). Lights: finite, intensity and
 /// colour >= 0, directional ones with a non-zero direction. The background finite and >= 0.
 std::string assets_defect(const SceneAssets& assets, const AssetRules& rules = {});
 

@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "base/constants.h"
 #include "base/error.h"
 #include "base/random.h"
 #include "base/timer.h"
@@ -79,24 +80,28 @@ AssetCamera scene_camera(const Scene& scene, const glm::dvec3& pile_min,
   return cam;
 }
 
-std::vector<AssetLight> studio_lights(const AssetCamera& camera) {
+void light_like_studio(SceneAssets& assets) {
+  const AssetCamera& camera = assets.camera;
   const glm::dvec3 f = glm::normalize(camera.target - camera.eye);
   glm::dvec3 r = glm::cross(f, camera.up);
   r = glm::length(r) > 1e-9 ? glm::normalize(r) : glm::dvec3(1, 0, 0);
   const glm::dvec3 u = glm::normalize(glm::cross(r, f));
   // Directions towards each light; the light travels the other way.
-  auto light = [&](const char* name, glm::dvec3 towards, double lux, glm::dvec3 colour) {
+  // Strengths in W/m^2 as Blender shows them, times lumens per watt: lux.
+  auto light = [&](const char* name, glm::dvec3 towards, double watts, glm::dvec3 colour) {
     AssetLight l;
     l.name = name;
     l.type = LightType::Directional;
     l.direction = -glm::normalize(towards);
-    l.intensity = lux;
+    l.intensity = watts * kLumensPerWatt;
     l.colour = colour;
     return l;
   };
-  return {light("key", -0.5 * r + 1.0 * u - 0.6 * f, 3.0, {1.0, 0.97, 0.92}),
-          light("fill", 0.8 * r + 0.3 * u - 0.5 * f, 1.2, {0.92, 0.95, 1.0}),
-          light("rim", 0.2 * r + 0.8 * u + 0.9 * f, 1.0, {1.0, 1.0, 1.0})};
+  assets.lights = {light("key", -0.5 * r + 1.0 * u - 0.6 * f, 3.0, {1.0, 0.97, 0.92}),
+                   light("fill", 0.8 * r + 0.3 * u - 0.5 * f, 1.2, {0.92, 0.95, 1.0}),
+                   light("rim", 0.2 * r + 0.8 * u + 0.9 * f, 1.0, {1.0, 1.0, 1.0})};
+  // A sky of radiance 0.15 W/m^2/sr (POV-Ray's ambient 0.15): pi * 0.15 W/m^2 on an open face.
+  assets.ambient_lux = 0.15 * kPi * kLumensPerWatt;
 }
 
 namespace {
@@ -251,7 +256,7 @@ void add_placed_pieces(SceneAssets& assets, const Scene& scene, ScenePieces& pie
   }
   if (assets.instances.empty()) lo = hi = glm::dvec3(0.0);
   assets.camera = scene_camera(scene, lo, hi);
-  assets.lights = studio_lights(assets.camera);
+  light_like_studio(assets);
 }
 
 }  // namespace

@@ -71,9 +71,13 @@ AssetCamera scene_camera(const Scene& scene, const glm::dvec3& pile_min,
 AssetCamera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3& to_camera,
                       double fov_deg, double aspect);
 
-/// The studio lights of every scene: a key light from above left of the camera (3 lux), a
-/// fill from the right (1.2 lux) and a rim light from behind (1 lux); directional.
-std::vector<AssetLight> studio_lights(const AssetCamera& camera);
+/// Lights `assets` as every scene and asset view is lit, around `assets.camera` (set it first):
+/// three directional lights, a key from above left of the camera (2049 lux, a sun of strength
+/// 3 W/m^2 in Blender), a fill from the right (819.6 lux) and a rim light from behind (683
+/// lux), and a uniform sky of 322 lux (`ambient_lux`: Blender world strength 0.15). Indoor
+/// studio levels: with exposure 1 / kLumensPerWatt (Blender's Standard view; three.js's
+/// toneMappingExposure) a white face turned to the key shows about 0.95.
+void light_like_studio(SceneAssets& assets);
 
 /// Builds the whole scene with `seed` (the file's seed unless the command line gives one).
 /// Deterministic: the same scene, templates and seed give the same assets, whatever the

@@ -230,7 +230,32 @@ TEST(PieceCommand, AssetsHaveOneRootNoCameraOrLightsAndTheSameTransformsWhatever
       EXPECT_EQ(piece.value("rotation", nlohmann::json()), reference.value("rotation", nlohmann::json()));
       EXPECT_FALSE(piece.contains("scale")) << compress;
       EXPECT_EQ(piece["extras"]["piece"], static_cast<int>(k)) << compress;
+      // Below the piece: its mesh node, then its convex collision hulls, named for Godot.
+      ASSERT_GE(piece["children"].size(), 2u) << compress;
+      for (size_t c = 1; c < piece["children"].size(); ++c) {
+        const auto& hull = j["nodes"][piece["children"][c].get<size_t>()];
+        EXPECT_EQ(hull["name"].get<std::string>(),
+                  piece["name"].get<std::string>() + "_collision" + std::to_string(c - 1) +
+                      "-convcolonly");
+        EXPECT_EQ(hull["extras"]["collision"], "convex");
+      }
     }
+  }
+  // Unreal's naming: UCX_ and the render mesh's name; none: no hulls.
+  for (const char* naming : {"unreal", "none"}) {
+    const fs::path file = dir / (std::string(naming) + "-hulls.glb");
+    const test::RunResult r = test::run_cutaway(
+        {"piece", "templates/tomato.yaml", "--cut", "halves", "--backend", "cpu", "--cube", "4",
+         "-q", "-o", file.string(), "--collision", naming});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json j = glb_json(file);
+    size_t hulls = 0;
+    for (const auto& node : j["nodes"])
+      if (node.contains("extras") && node["extras"].contains("collision")) {
+        ++hulls;
+        EXPECT_EQ(node["name"].get<std::string>().rfind("UCX_", 0), 0u) << node["name"];
+      }
+    EXPECT_EQ(hulls > 0, std::string(naming) == "unreal") << naming;
   }
   // Asked for, the preview's camera and lights come along.
   const test::RunResult r = test::run_cutaway(
@@ -246,7 +271,8 @@ TEST(PieceCommand, LevelsOfDetailHalveTheTrianglesAndLeaveNoHoles) {
   const fs::path dir = test::fresh_dir("piece-lods");
   const test::RunResult r = test::run_cutaway(
       {"piece", "templates/tomato.yaml", "--cut", "wedges:4", "--backend", "cpu", "--cube", "4",
-       "-q", "-o", (dir / "lods.glb").string(), "--lods", "2", "--compress", "none"});
+       "-q", "-o", (dir / "lods.glb").string(), "--lods", "2", "--compress", "none",
+       "--collision", "none"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const test::GltfReport report = test::validate_gltf(dir / "lods.glb");
   EXPECT_EQ(report.errors, 0) << report.output;

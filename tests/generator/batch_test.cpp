@@ -64,6 +64,8 @@ TEST(BatchFormat, ReadsItemsCutsAndDefaults) {
   EXPECT_FALSE(b.outputs.model);
   EXPECT_EQ(b.outputs.sample, 12);
   EXPECT_EQ(b.export_options.cube, 16);
+  EXPECT_EQ(b.export_options.gltf.collision, GltfCollision::Godot);  // engine-ready by default
+  EXPECT_FALSE(b.export_options.gltf.camera_and_lights);
 }
 
 TEST(BatchFormat, RefusesBrokenRulesAtTheField) {
@@ -83,6 +85,9 @@ TEST(BatchFormat, RefusesBrokenRulesAtTheField) {
             std::string::npos);
   EXPECT_NE(error_of(std::string(kHeader) + items + "export: {compress: zip}\n")
                 .find("export.compress: must be none, quantize or meshopt"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kHeader) + items + "export: {collision: havok}\n")
+                .find("export.collision: must be none, godot or unreal"),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kHeader) + "items: []\n").find("at least one item"),
             std::string::npos);
@@ -235,20 +240,26 @@ TEST(BatchRun, ResumesWhereACrashLeftOffAndShardsMergeToTheSameManifest) {
   EXPECT_EQ(report.damaged, (std::vector<std::string>{"persimmon-7-halves"}));
 }
 
-/// Triangles and vertices a viewer draws of `file`, read with tinygltf: the meshes of the
-/// default scene's nodes and their children (MSFT_lod's coarser levels are not in the scene).
-std::pair<size_t, size_t> drawn_geometry(const fs::path& file) {
+/// A .glb read with tinygltf.
+tinygltf::Model load_glb(const fs::path& file) {
   tinygltf::TinyGLTF loader;
   tinygltf::Model m;
   std::string err, warn;
   EXPECT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, file.string())) << err << warn;
+  return m;
+}
+
+/// Triangles and vertices a viewer draws of a glTF model: the meshes of the
+/// default scene's nodes and their children (MSFT_lod's coarser levels are not in the scene),
+/// but not the collision hulls (nodes whose extras say "collision"), which engines do not draw.
+std::pair<size_t, size_t> drawn_geometry(const tinygltf::Model& m) {
   size_t triangles = 0, vertices = 0;
   std::vector<int> todo = m.scenes.at(static_cast<size_t>(std::max(m.defaultScene, 0))).nodes;
   while (!todo.empty()) {
     const tinygltf::Node& node = m.nodes.at(static_cast<size_t>(todo.back()));
     todo.pop_back();
     todo.insert(todo.end(), node.children.begin(), node.children.end());
-    if (node.mesh < 0) continue;
+    if (node.mesh < 0 || (node.extras.IsObject() && node.extras.Has("collision"))) continue;
     for (const tinygltf::Primitive& p : m.meshes.at(static_cast<size_t>(node.mesh)).primitives) {
       triangles += m.accessors.at(static_cast<size_t>(p.indices)).count / 3;
       vertices += m.accessors.at(static_cast<size_t>(p.attributes.at("POSITION"))).count;
@@ -257,8 +268,9 @@ std::pair<size_t, size_t> drawn_geometry(const fs::path& file) {
   return {triangles, vertices};
 }
 
-// The manifest's counts are the files' (with textures, whose caps are coarse meshes, and with
-// levels of detail, which are not drawn at once): read back with another glTF reader.
+// The manifest's counts are the files' (with textures, whose caps are coarse meshes, with
+// levels of detail, which are not drawn at once, and with collision hulls, which are not
+// drawn): read back with another glTF reader.
 TEST(BatchRun, ManifestCountsAreWhatTheFilesDraw) {
   SmallBatch s = small_batch();
   s.batch.items.at(0).count = 1;
@@ -273,10 +285,15 @@ TEST(BatchRun, ManifestCountsAreWhatTheFilesDraw) {
   const MergeReport report = merge_manifests(*index, dir);
   ASSERT_EQ(report.records.size(), 2u);
   for (const AssetRecord& r : report.records) {
-    const auto [triangles, vertices] = drawn_geometry(dir / r.file);
+    const tinygltf::Model m = load_glb(dir / r.file);
+    const auto [triangles, vertices] = drawn_geometry(m);
     EXPECT_EQ(r.triangles, triangles) << r.file;
     EXPECT_EQ(r.vertices, vertices) << r.file;
     EXPECT_GT(triangles, 1000u) << r.file;
+    // The hulls are there (batches write them for Godot by default).
+    EXPECT_TRUE(std::any_of(m.nodes.begin(), m.nodes.end(), [](const tinygltf::Node& n) {
+      return n.name.size() > 12 && n.name.substr(n.name.size() - 12) == "-convcolonly";
+    })) << r.file;
   }
 }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -86,6 +87,46 @@ TEST(CollisionShape, AHollowPepperHalfIsDecomposedAndItsPartsCoverIt) {
   const CollisionShape again = collision_shape(halves[0]);
   ASSERT_EQ(again.parts.size(), s.parts.size());
   for (size_t k = 0; k < s.parts.size(); ++k) EXPECT_EQ(again.parts[k].corners, s.parts[k].corners);
+}
+
+// The hulls written for engines (collision_hulls): one closed, outward-wound convex mesh per
+// part, over the part's own corners, holding every vertex of the piece between them.
+TEST(CollisionShape, ExportedHullsAreClosedConvexMeshesWoundOutward) {
+  const std::vector<ShadedMesh> halves = pieces_of("pepper", "halves");
+  ASSERT_FALSE(halves.empty());
+  const CollisionShape shape = collision_shape(halves[0]);
+  const std::vector<AssetHull> hulls = collision_hulls(halves[0]);
+  ASSERT_EQ(hulls.size(), shape.parts.size());
+  ASSERT_GE(hulls.size(), 2u);
+  for (size_t k = 0; k < hulls.size(); ++k) {
+    const AssetHull& h = hulls[k];
+    ASSERT_GE(h.triangle.size(), 4u) << "hull " << k;
+    // Closed and consistently wound: each directed edge once, its reverse once.
+    std::map<std::pair<unsigned, unsigned>, int> edges;
+    for (const glm::uvec3& t : h.triangle)
+      for (int e = 0; e < 3; ++e) ++edges[{t[e], t[(e + 1) % 3]}];
+    for (const auto& [edge, n] : edges) {
+      EXPECT_EQ(n, 1) << "hull " << k;
+      EXPECT_EQ(edges.count({edge.second, edge.first}), 1u) << "hull " << k;
+    }
+    // Outward and convex: every corner on or behind every triangle's plane, and a positive
+    // volume (the divergence theorem over the triangles).
+    double volume = 0;
+    for (const glm::uvec3& t : h.triangle) {
+      const glm::dvec3 a = h.position[t.x], b = h.position[t.y], c = h.position[t.z];
+      const glm::dvec3 n = glm::cross(b - a, c - a);
+      volume += glm::dot(a, glm::cross(b, c)) / 6;
+      for (const glm::dvec3& p : h.position)
+        EXPECT_LE(glm::dot(p - a, n) / glm::length(n), 1e-9) << "hull " << k;  // metres
+    }
+    EXPECT_GT(volume, 0) << "hull " << k;
+    // The part's corners, no others.
+    std::set<std::tuple<double, double, double>> corners, used;
+    for (const glm::dvec3& c : shape.parts[k].corners) corners.insert({c.x, c.y, c.z});
+    for (const glm::dvec3& p : h.position) used.insert({p.x, p.y, p.z});
+    EXPECT_TRUE(std::includes(corners.begin(), corners.end(), used.begin(), used.end()))
+        << "hull " << k;
+  }
 }
 
 /// A bowl, a piece dropped into it from `drop` and settled.

@@ -110,12 +110,12 @@ SceneAssets test_scene() {
   sun.name = "sun";
   sun.type = LightType::Directional;
   sun.direction = glm::normalize(glm::dvec3(-0.5, -0.5, -1));
-  sun.intensity = kPi;  // POV-Ray brightness 1
+  sun.intensity = kPi * kLumensPerWatt;  // POV-Ray brightness 1
   AssetLight lamp;
   lamp.name = "lamp";
   lamp.type = LightType::Point;
   lamp.position = {0, 2, -1};
-  lamp.intensity = 10;
+  lamp.intensity = 10 * kLumensPerWatt;
   s.lights = {sun, lamp};
   s.background = kBackground;
   s.width = 120;

@@ -86,13 +86,13 @@ SceneAssets small_scene() {
   sun.name = "sun";
   sun.type = LightType::Directional;
   sun.direction = glm::normalize(glm::dvec3(-0.3, -1, -0.2));
-  sun.intensity = 3;
+  sun.intensity = 3 * kLumensPerWatt;  // lux
   AssetLight bulb;
   bulb.name = "bulb";
   bulb.type = LightType::Point;
   bulb.position = {0.1, 0.4, 0.2};
   bulb.colour = {1, 0.9, 0.8};
-  bulb.intensity = 15;
+  bulb.intensity = 15 * kLumensPerWatt;  // candela
   s.lights = {sun, bulb};
   return s;
 }
@@ -129,6 +129,13 @@ tinygltf::Model load(const fs::path& file) {
                       : loader.LoadASCIIFromFile(&m, &err, &warn, file.string());
   EXPECT_TRUE(ok) << err << warn;
   return m;
+}
+
+/// A GLB's JSON chunk (glTF 2.0 §4.4: it follows the 12-byte header and its own 8-byte header).
+nlohmann::json glb_json(const std::string& glb) {
+  uint32_t json_bytes = 0;
+  std::memcpy(&json_bytes, glb.data() + 12, 4);
+  return nlohmann::json::parse(glb.substr(20, json_bytes));
 }
 
 TEST(SceneGltf, GlbAndGltfWithBinPassTheKhronosValidator) {
@@ -253,9 +260,9 @@ TEST(SceneGltf, StructureReadsBackWithTinygltf) {
   EXPECT_TRUE(m.extensionsRequired.empty());
   ASSERT_EQ(m.lights.size(), 2u);
   EXPECT_EQ(m.lights[0].type, "directional");
-  EXPECT_EQ(m.lights[0].intensity, 3);
+  EXPECT_EQ(m.lights[0].intensity, 3 * kLumensPerWatt);
   EXPECT_EQ(m.lights[1].type, "point");
-  EXPECT_EQ(m.lights[1].intensity, 15);
+  EXPECT_EQ(m.lights[1].intensity, 15 * kLumensPerWatt);
   EXPECT_EQ(m.lights[1].color, (std::vector<double>{1, 0.9, 0.8}));
   for (int l = 0; l < 2; ++l) {
     const auto& node = m.nodes[kCameraNode + 1 + l];
@@ -265,6 +272,94 @@ TEST(SceneGltf, StructureReadsBackWithTinygltf) {
   EXPECT_NEAR(glm::length(minus_z(m.nodes[kCameraNode + 1].rotation) - s.lights[0].direction), 0,
               1e-12);
   EXPECT_EQ(m.nodes[kCameraNode + 2].translation, (std::vector<double>{0.1, 0.4, 0.2}));
+  // The view that shows lights in lux as meant: three.js's toneMappingExposure; no sky named.
+  ASSERT_TRUE(m.scenes[0].extras.IsObject());
+  EXPECT_DOUBLE_EQ(m.scenes[0].extras.Get("exposure").GetNumberAsDouble(), 1 / kLumensPerWatt);
+  EXPECT_FALSE(m.scenes[0].extras.Has("ambient_lux"));
+}
+
+/// A tetrahedron around `centre` (metres), wound outward.
+AssetHull tetrahedron(glm::dvec3 centre, double size) {
+  AssetHull h;
+  h.position = {centre + glm::dvec3(size, size, size), centre + glm::dvec3(size, -size, -size),
+                centre + glm::dvec3(-size, size, -size), centre + glm::dvec3(-size, -size, size)};
+  h.triangle = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  return h;
+}
+
+// Collision hulls as engines read them (Godot's -convcolonly suffix, Unreal's UCX_ prefix before
+// the render mesh's name), see-through where a viewer does not, not counted as drawn geometry,
+// and below the piece's node so that its transform is the same in every compression.
+TEST(SceneGltf, CollisionHullsAreNamedForEnginesSeeThroughAndNotCounted) {
+  const auto dir = test::fresh_dir("scene-gltf-collision");
+  SceneAssets s = small_scene();
+  s.instances[0].collision = {tetrahedron({0, 0, 0}, 0.02), tetrahedron({0, 0.01, 0}, 0.01)};
+  s.instances[2].collision = {tetrahedron({0, 0, 0}, 0.1)};
+  const GltfGeometryCounts drawn = count_glb_geometry(scene_to_glb(s, {GltfCompression::None}));
+  for (const GltfCollision naming : {GltfCollision::Godot, GltfCollision::Unreal}) {
+    std::vector<nlohmann::json> piece_transforms;
+    for (const GltfCompression mode :
+         {GltfCompression::None, GltfCompression::Quantize, GltfCompression::Meshopt}) {
+      GltfSceneOptions options{mode};
+      options.collision = naming;
+      const fs::path file = dir / "hulls.glb";
+      write_scene_gltf(file, s, options);
+      const auto report = test::validate_gltf(file);
+      EXPECT_EQ(report.errors, 0) << report.output;
+      EXPECT_EQ(validator_warnings(report), 0) << report.output;
+      const GltfGeometryCounts counts = count_glb_geometry(test::read_file(file));
+      EXPECT_EQ(counts.triangles, drawn.triangles);
+      EXPECT_EQ(counts.vertices, drawn.vertices);
+      // The JSON chunk itself: tinygltf cannot open a meshopt file (its fallback buffer).
+      const nlohmann::json j = glb_json(test::read_file(file));
+      const nlohmann::json& nodes = j["nodes"];
+      // piece_0: its mesh node, then its two hulls; piece_1: its mesh node; plate_0: mesh, hull.
+      ASSERT_EQ(nodes.size(), static_cast<size_t>(kNodes + 3));
+      EXPECT_EQ(nodes[0]["children"], nlohmann::json({1, 5, 7}));
+      EXPECT_EQ(nodes[1]["children"], nlohmann::json({2, 3, 4}));
+      EXPECT_EQ(nodes[7]["children"], nlohmann::json({8, 9}));
+      const std::vector<std::string> names =
+          naming == GltfCollision::Godot
+              ? std::vector<std::string>{"piece_0_collision0-convcolonly",
+                                         "piece_0_collision1-convcolonly",
+                                         "plate_0_collision0-convcolonly"}
+              : std::vector<std::string>{"UCX_tomato_piece_00", "UCX_tomato_piece_01",
+                                         "UCX_plate_00"};
+      const std::vector<std::pair<int, const AssetHull*>> hulls = {
+          {3, &s.instances[0].collision[0]}, {4, &s.instances[0].collision[1]},
+          {9, &s.instances[2].collision[0]}};
+      for (size_t k = 0; k < hulls.size(); ++k) {
+        const nlohmann::json& node = nodes[static_cast<size_t>(hulls[k].first)];
+        EXPECT_EQ(node.value("name", ""), names[k]);
+        EXPECT_FALSE(node.contains("translation") || node.contains("rotation") ||
+                     node.contains("scale"));
+        EXPECT_EQ(node["extras"].value("collision", ""), "convex");
+        const nlohmann::json& mesh = j["meshes"][node["mesh"].get<size_t>()];
+        EXPECT_EQ(mesh.value("name", ""), names[k]);
+        ASSERT_EQ(mesh["primitives"].size(), 1u);
+        const nlohmann::json& prim = mesh["primitives"][0];
+        EXPECT_EQ(prim["attributes"].size(), 1u);  // POSITION only
+        const nlohmann::json& pos = j["accessors"][prim["attributes"]["POSITION"].get<size_t>()];
+        EXPECT_EQ(pos["componentType"], TINYGLTF_COMPONENT_TYPE_FLOAT);
+        EXPECT_EQ(pos["count"], hulls[k].second->position.size());
+        EXPECT_EQ(j["accessors"][prim["indices"].get<size_t>()]["count"],
+                  3 * hulls[k].second->triangle.size());
+        const nlohmann::json& mat = j["materials"][prim["material"].get<size_t>()];
+        EXPECT_EQ(mat.value("name", ""), "collision");
+        EXPECT_EQ(mat["pbrMetallicRoughness"]["baseColorFactor"][3], 0.0);
+        EXPECT_EQ(mat.value("alphaMode", ""), "BLEND");
+      }
+      nlohmann::json transforms = nlohmann::json::array();
+      for (const int piece : {1, 5, 7})
+        transforms.push_back({nodes[piece]["translation"], nodes[piece]["rotation"]});
+      piece_transforms.push_back(transforms);
+    }
+    EXPECT_EQ(piece_transforms[1], piece_transforms[0]);
+    EXPECT_EQ(piece_transforms[2], piece_transforms[0]);
+  }
+  // Without collision naming the hulls are not written.
+  EXPECT_EQ(glb_json(scene_to_glb(s, {GltfCompression::None}))["nodes"].size(),
+            static_cast<size_t>(kNodes));
 }
 
 TEST(SceneGltf, VerticesThatWriteAlikeAreWeldedAndOthersKept) {
@@ -693,10 +788,7 @@ TEST(SceneGltf, EveryCompressionPassesTheValidatorAndRendersTheSameInThreeJs) {
   EXPECT_LT(bytes("meshopt.glb"), bytes("quantize.glb"));
   // meshopt: normals through the OCTAHEDRAL filter (their views say so, the picture above
   // shows them decoded), positions as SHORT on 14-bit steps (|q| <= 8191 in min and max).
-  const std::string glb = test::read_file(dir / "meshopt.glb");
-  uint32_t json_bytes = 0;
-  std::memcpy(&json_bytes, glb.data() + 12, 4);
-  const auto j = nlohmann::json::parse(glb.substr(20, json_bytes));
+  const auto j = glb_json(test::read_file(dir / "meshopt.glb"));
   size_t filtered = 0;
   for (const auto& mesh : j["meshes"])
     for (const auto& prim : mesh["primitives"]) {

@@ -78,7 +78,7 @@ SceneAssets two_cubes() {
   AssetLight sun;
   sun.name = "sun";
   sun.direction = glm::normalize(glm::dvec3(0, -0.6, 0.8));  // travels down and toward +Z
-  sun.intensity = 3;
+  sun.intensity = 3 * kLumensPerWatt;  // the reference light: scale 1
   a.lights.push_back(sun);
   a.background = {0.25, 0.5, 0.75};  // exact in half floats
   a.width = kWidth;

@@ -2,7 +2,9 @@
 // headless Chromium: a real glTF client, not a schema check.
 // Usage: node tests/tools/load_gltf_three.mjs FILE.glb|FILE.gltf [--screenshot OUT.png [W H]]
 // With --screenshot it also renders the file with its camera and lights (WebGL through
-// SwiftShader) to OUT.png, W x H pixels (800 x 600 by default).
+// SwiftShader) to OUT.png, W x H pixels (800 x 600 by default), and reports object_luminance
+// (mean Rec. 709 luma of the 8-bit sRGB pixels that are not background, 0..255) and
+// object_fraction (their share of the frame).
 // Prints one JSON line:
 //   {ok, meshes, nodes, cameras, lights, triangles, mesh_objects, camera_position,
 //    camera_direction, light_directions, warnings, seconds, error}
@@ -79,22 +81,46 @@ window.loadGltf = async (url) => {
   });
   return r;
 };
-// Renders the file with its first camera and lights over a grey background, as PNG data URL.
+// Renders the file with its first camera and lights over a grey background, as PNG data URL,
+// the way doc/lighting.md tells a three.js user to: the scene's extras give the exposure
+// (toneMappingExposure under linear tone mapping) for its lights in lux, and the sky
+// illuminance in lux (ambient_lux) that a hemisphere light supplies. Without ambient_lux the
+// hemisphere light gives 0.6 after exposure; without exposure, the exposure is 1.
 window.renderGltf = async (url, width, height) => {
   const gltf = await newLoader().loadAsync(url);
+  const view = gltf.scene.userData ?? {};
   const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
   renderer.setSize(width, height);
   renderer.outputColorSpace = THREE.SRGBColorSpace;
+  renderer.toneMapping = THREE.LinearToneMapping;
+  renderer.toneMappingExposure = view.exposure ?? 1;
   document.body.appendChild(renderer.domElement);
   const scene = new THREE.Scene();
-  scene.background = new THREE.Color(0.72, 0.72, 0.74);
+  scene.background = new THREE.Color(0.72, 0.72, 0.74);  // the clear colour: not tone mapped
   scene.add(gltf.scene);
-  scene.add(new THREE.HemisphereLight(0xffffff, 0x808080, 0.6));
+  scene.add(new THREE.HemisphereLight(0xffffff, 0x808080,
+                                       view.ambient_lux ?? 0.6 / renderer.toneMappingExposure));
   const camera = gltf.cameras[0];
   camera.aspect = width / height;
   camera.updateProjectionMatrix();
   renderer.render(scene, camera);
-  return renderer.domElement.toDataURL('image/png');
+  // Mean Rec. 709 luminance of the 8-bit sRGB values (0..255) over the pixels that are not
+  // the background's colour: the objects' exposure.
+  const flat = document.createElement('canvas');
+  flat.width = width;
+  flat.height = height;
+  const context = flat.getContext('2d');
+  context.drawImage(renderer.domElement, 0, 0);
+  const px = context.getImageData(0, 0, width, height).data;
+  const bg = [px[0], px[1], px[2]];  // a corner: the background in every cutaway view
+  let sum = 0, count = 0;
+  for (let i = 0; i < px.length; i += 4) {
+    if (px[i] === bg[0] && px[i + 1] === bg[1] && px[i + 2] === bg[2]) continue;
+    sum += 0.2126 * px[i] + 0.7152 * px[i + 1] + 0.0722 * px[i + 2];
+    count += 1;
+  }
+  return { png: renderer.domElement.toDataURL('image/png'),
+           object_luminance: count ? sum / count : 0, object_fraction: count / (width * height) };
 };
 window.pageReady = true;
 </script></body></html>`;
@@ -172,9 +198,11 @@ async function main() {
     const url = '/file/' + encodeURIComponent(path.basename(abs));
     const result = await page.evaluate((u) => window.loadGltf(u), url);
     if (shot) {
-      const data = await page.evaluate(([u, w, h]) => window.renderGltf(u, w, h),
-                                       [url, shotWidth, shotHeight]);
-      fs.writeFileSync(shot, Buffer.from(data.split(',')[1], 'base64'));
+      const frame = await page.evaluate(([u, w, h]) => window.renderGltf(u, w, h),
+                                        [url, shotWidth, shotHeight]);
+      fs.writeFileSync(shot, Buffer.from(frame.png.split(',')[1], 'base64'));
+      result.object_luminance = frame.object_luminance;
+      result.object_fraction = frame.object_fraction;
     }
     return report({ ok: true, ...result, warnings });
   } catch (e) {

@@ -1,0 +1,131 @@
+"""The add-on's operators and their menu entries: File > Import > Cutaway Scene and
+Add > Cut Fruit."""
+
+import os
+import tempfile
+
+import bpy
+from bpy.props import BoolProperty, IntProperty, StringProperty
+from bpy_extras.io_utils import ImportHelper
+
+from . import generator, importer, preferences
+
+_READ_ERRORS = (OSError, ValueError, RuntimeError)
+
+
+class IMPORT_SCENE_OT_cutaway(bpy.types.Operator, ImportHelper):
+    """Import a glTF file written by cutaway: its pieces, camera, lights and sky, with
+    translucent cut faces and levels of detail hidden"""
+
+    bl_idname = "import_scene.cutaway"
+    bl_label = "Import Cutaway Scene"
+    bl_options = {'REGISTER', 'UNDO', 'PRESET'}
+
+    filename_ext = ".glb"
+    filter_glob: StringProperty(default="*.glb;*.gltf", options={'HIDDEN'})
+    use_camera: BoolProperty(
+        name="Scene Camera",
+        description="Make the file's camera, if it has one, the scene's camera and fit the "
+                    "render's aspect ratio to it",
+        default=True,
+    )
+    use_sky: BoolProperty(
+        name="World Light",
+        description="Light the world with the uniform sky the file expects (ambient_lux)",
+        default=True,
+    )
+    use_exposure: BoolProperty(
+        name="Exposure",
+        description="Show the scene at the file's exposure under the Standard view",
+        default=True,
+    )
+
+    def execute(self, context):
+        try:
+            imported = importer.import_file(context, self.filepath, use_camera=self.use_camera,
+                                            use_sky=self.use_sky, use_exposure=self.use_exposure)
+        except _READ_ERRORS as error:
+            self.report({'ERROR'}, str(error))
+            return {'CANCELLED'}
+        self.report({'INFO'}, f"Imported {len(imported.pieces)} pieces into "
+                              f"'{imported.collection.name}'")
+        return {'FINISHED'}
+
+
+def _search_templates(self, context, edit_text):
+    """The template names the Template field suggests."""
+    executable, folder = preferences.paths(context)
+    if not folder:
+        try:
+            folder = generator.templates_dir("", generator.find_executable(executable))
+        except generator.GeneratorError:
+            return []
+    return [name for name in generator.template_names(folder) if edit_text in name]
+
+
+class OBJECT_OT_cutaway_add_cut_fruit(bpy.types.Operator):
+    """Cut a fruit from a cutaway template and add its pieces at the 3D cursor"""
+
+    bl_idname = "object.cutaway_add_cut_fruit"
+    bl_label = "Cut Fruit"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    template: StringProperty(
+        name="Template",
+        description="A template's name in the templates folder, or the path of a .yaml file",
+        default="tomato",
+        search=_search_templates,
+    )
+    cut: StringProperty(
+        name="Cut",
+        description="halves, slices:THICKNESS, wedges:COUNT, dice:SIZE, plane:SPEC or whole "
+                    "(template units)",
+        default="wedges:4",
+    )
+    seed: IntProperty(
+        name="Seed",
+        description="The random variant of the template to cut",
+        default=1,
+        min=0,
+    )
+
+    def invoke(self, context, event):
+        return context.window_manager.invoke_props_dialog(self)
+
+    def execute(self, context):
+        executable, folder = preferences.paths(context)
+        try:
+            executable = generator.find_executable(executable)
+            template = generator.resolve_template(
+                self.template, generator.templates_dir(folder, executable))
+            with tempfile.TemporaryDirectory(prefix="cutaway-") as scratch:
+                output = os.path.join(scratch, "piece.glb")
+                generator.cut_piece(executable, template, self.cut, self.seed, output)
+                imported = importer.import_file(context, output)
+        except _READ_ERRORS as error:
+            self.report({'ERROR'}, str(error))
+            return {'CANCELLED'}
+        root = imported.root
+        if root is None:
+            self.report({'ERROR'}, "cutaway wrote a file without pieces")
+            return {'CANCELLED'}
+        root.location = context.scene.cursor.location
+        for obj in context.selected_objects:
+            obj.select_set(False)
+        root.select_set(True)
+        context.view_layer.objects.active = root
+        return {'FINISHED'}
+
+
+def menu_import(self, context):
+    """File > Import entry."""
+    self.layout.operator(IMPORT_SCENE_OT_cutaway.bl_idname, text="Cutaway Scene (.glb/.gltf)")
+
+
+def menu_add(self, context):
+    """Add menu entry."""
+    self.layout.operator(OBJECT_OT_cutaway_add_cut_fruit.bl_idname, text="Cut Fruit",
+                         icon='MESH_UVSPHERE')
+
+
+classes = (IMPORT_SCENE_OT_cutaway, OBJECT_OT_cutaway_add_cut_fruit)
