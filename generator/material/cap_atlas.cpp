@@ -92,13 +92,48 @@ std::vector<glm::ivec2> pack(const std::vector<glm::ivec2>& sizes, int width, in
   return at;
 }
 
+/// A multiple of kAtlasStep at or above `n`.
+int round_up_to_step(int n) { return (n + kAtlasStep - 1) / kAtlasStep * kAtlasStep; }
+
+struct Packing {
+  int width = 0, height = 0;    ///< multiples of kAtlasStep; 0 x 0 when nothing fits
+  std::vector<glm::ivec2> at;   ///< per rectangle, its lowest corner
+};
+
+/// The packing of `sizes` (their total area `area`, the widest `widest` texels across) whose
+/// atlas, both sides multiples of kAtlasStep and at most max_size, has the fewest texels: the
+/// widths from the square root of the area (or the widest) up to twice that, in steps of an
+/// eighth, are tried; the first of equal areas wins. Nothing fits: an empty packing.
+Packing smallest_packing(const std::vector<glm::ivec2>& sizes, int widest, double area,
+                         int max_size) {
+  Packing best;
+  const int start = round_up_to_step(std::max(widest, static_cast<int>(std::ceil(std::sqrt(area)))));
+  long best_texels = 0;
+  for (int width = start; width <= max_size && width <= 2 * start;
+       width = round_up_to_step(width + std::max(kAtlasStep, width / 8))) {
+    std::vector<glm::ivec2> at = pack(sizes, width, max_size);
+    if (at.empty()) continue;
+    int height = 0;
+    for (size_t k = 0; k < sizes.size(); ++k) height = std::max(height, at[k].y + sizes[k].y);
+    height = round_up_to_step(height);
+    if (height > max_size) continue;
+    const long texels = static_cast<long>(width) * height;
+    if (best.at.empty() || texels < best_texels) {
+      best = {width, height, std::move(at)};
+      best_texels = texels;
+    }
+  }
+  return best;
+}
+
 }  // namespace
 
 CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
                         const std::vector<CrossSection>& sections,
                         const ColourModulation* modulation, double strength,
                         const CapAtlasOptions& options) {
-  if (!(options.texels_per_m > 0) || options.padding < 0 || options.max_size < 16)
+  if (!(options.texels_per_m > 0) || options.padding < 0 || options.max_size < 16 ||
+      options.max_size % kAtlasStep != 0)
     throw InternalError("bake_cap_atlas: bad options");
   CapAtlas atlas;
   std::vector<CapPart> caps;
@@ -128,7 +163,7 @@ CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
   const int pad = options.padding;
   double density = options.texels_per_m;
   std::vector<glm::ivec2> sizes, at;
-  int width = 0;
+  int width = 0, height = 0;
   for (int attempt = 0; attempt < 64; ++attempt, density *= 0.8) {
     sizes.clear();
     double area = 0;
@@ -141,17 +176,13 @@ CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
       area += static_cast<double>(size.x) * size.y;
       widest = std::max(widest, size.x);
     }
-    width = 16;
-    while (width < options.max_size && (width < widest || width * width < 1.3 * area)) width *= 2;
-    width = std::min(width, options.max_size);
-    if (widest > width) continue;
-    at = pack(sizes, width, options.max_size);
+    const auto [w, h, placed] = smallest_packing(sizes, widest, area, options.max_size);
+    width = w;
+    height = h;
+    at = placed;
     if (!at.empty()) break;
   }
   if (at.empty()) throw InternalError("bake_cap_atlas: the caps do not fit");
-  int height = 1;
-  for (size_t k = 0; k < islands.size(); ++k) height = std::max(height, at[k].y + sizes[k].y);
-  height += height % 2;  // even, so that the half-size material map has the same layout
   atlas.width = width;
   atlas.height = height;
   atlas.texels_per_m = density;

@@ -20,8 +20,13 @@ struct CapAtlasOptions {
   double texels_per_m = 8600;  ///< texel density on the cut plane (a 60 mm cap: 516 texels)
   int padding = 4;             ///< texels around each island, filled by dilation so that
                                ///< mip-mapping does not bleed the background into its edges
-  int max_size = 4096;         ///< largest atlas side; denser islands are scaled down to fit
+  int max_size = 4096;         ///< largest atlas side, a multiple of kAtlasStep; denser
+                               ///< islands are scaled down to fit
 };
+
+/// Sides of cap atlases are multiples of this: their half-size material maps' are then
+/// multiples of 4, the block size of GPU texture compression (BCn, ETC, ASTC 4x4).
+inline constexpr int kAtlasStep = 8;
 
 /// Material channels varying less than this over an object's caps (half an 8-bit step) make no
 /// material map: the cut material's factors carry their mean.
@@ -29,7 +34,7 @@ inline constexpr double kMaterialMapSpread = 0.5 / 255;
 
 /// One object's cap atlas.
 struct CapAtlas {
-  int width = 0, height = 0;  ///< texels (0 x 0: no caps); both even
+  int width = 0, height = 0;  ///< texels (0 x 0: no caps); both multiples of kAtlasStep
   std::vector<uint8_t> srgb;  ///< width * height * 3, row 0 at the top (v = 0), sRGB 8-bit
   /// width * height: 1 on the islands and their padding, 0 on the background (which holds a
   /// smooth extension of the islands, fill_background).
@@ -54,13 +59,16 @@ struct CapAtlas {
 /// (u_axis, v_axis) at texels_per_m. Caps of one plane whose bounding rectangles overlap share
 /// one island: the two caps of a cut cover the same region and carry the same field there, so
 /// they address the same texels and the plane is baked once, not once per side. Islands are
-/// packed with stb_rect_pack in the order of their first cap (piece and part order).
+/// packed with stb_rect_pack in the order of their first cap (piece and part order), into the
+/// atlas of fewest texels among widths from the square root of their area to twice that (sides
+/// multiples of kAtlasStep, not powers of two: the salad's caps take 5.6 M texels, not 7.1 M).
 /// Every texel whose centre lies in a cap triangle gets the barycentric interpolation of the
 /// triangle's vertex colours (linear RGB) and material channels, the colour modulated by
 /// `modulation` at the texel's point in the object frame with `strength` (none when modulation
 /// is null), then encoded as sRGB (texel_bake.h); the islands are dilated by `padding` texels
 /// and the background filled by pull-push (fill_background). Deterministic.
-/// @throws InternalError when texels_per_m <= 0, padding < 0 or max_size < 16
+/// @throws InternalError when texels_per_m <= 0, padding < 0, max_size < 16 or max_size is no
+///         multiple of kAtlasStep
 CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
                         const std::vector<CrossSection>& sections,
                         const ColourModulation* modulation, double strength,

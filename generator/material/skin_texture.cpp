@@ -33,9 +33,11 @@ glm::ivec2 skin_texture_size(const DsSurface& skin, const SkinTextureOptions& op
   double around = 0, along = 0;
   for (const auto& [t, length] : ring) around = std::max(around, length);
   for (const auto& [t, length] : line) along = std::max(along, length);
+  // Multiples of 4, the block size of GPU texture compression (the texture repeats in u and
+  // spans the skin in v whatever its size: the coordinates do not change).
   auto texels = [&](double metres) {
-    return std::clamp(static_cast<int>(std::ceil(metres * options.texels_per_m)), 16,
-                      options.max_size);
+    const int n = static_cast<int>(std::ceil(metres * options.texels_per_m));
+    return std::clamp((n + 3) / 4 * 4, 16, options.max_size / 4 * 4);
   };
   return {texels(around), texels(along)};
 }

@@ -19,15 +19,15 @@ namespace cutaway {
 
 /// How skins are baked.
 struct SkinTextureOptions {
-  double texels_per_m = 2150;  ///< texel density on the skin (a 70 mm tomato: 473 x 236);
+  double texels_per_m = 2150;  ///< texel density on the skin (a 70 mm tomato: 476 x 236);
                                ///< a quarter of the caps': the skin's colour is smoother
   int padding = 4;             ///< rows of dilation around the baked texels
   int max_size = 2048;         ///< largest side
 };
 
 /// The texture size of `skin` (a swept DS surface) at `options.texels_per_m`: width from its
-/// longest section ring, height from its longest profile line (metres), each at least 16 and at
-/// most max_size.
+/// longest section ring, height from its longest profile line (metres), each rounded up to a
+/// multiple of 4 (GPU block compression's block), at least 16 and at most max_size.
 glm::ivec2 skin_texture_size(const DsSurface& skin, const SkinTextureOptions& options);
 
 /// The texture coordinates of the corners of triangle `t` of `mesh` (whose `param` holds sweep

@@ -16,7 +16,8 @@ CASE is one of
               numpy alias, without which Debian 12's Blender imports no mesh);
   cut-fruit   Add > Cut Fruit once (the tomato in halves, seed 1) with the add-on's preferences
               pointing at the executable: one root at the 3D cursor, its pieces and their convex
-              collision shapes (hidden from renders), no camera, no lights;
+              collision shapes (hidden from renders), no camera, no lights; then a
+              `--compress meshopt` piece, which the import refuses naming the way out;
   batch       a one-item batch made by `cutaway batch` and imported: one root with its pieces,
               collision shapes present, no camera or lights, extras as custom properties.
 The frames stay in DIR to be looked at. Exits non-zero (through --python-exit-code) on the first
@@ -212,6 +213,16 @@ def case_cut_fruit(args):
     check(len(pieces) == 2, f"Cut Fruit: {len(pieces)} halves")
     check({p["cut"] for p in pieces} == {"halves"}, "Cut Fruit: pieces name another cut")
     print(f"Cut Fruit: root {root.name}, pieces {[p.name for p in pieces]}", flush=True)
+    # A --compress meshopt file: Blender cannot decode it, and the import says so plainly.
+    meshopt = os.path.join(args.out, "meshopt.glb")
+    subprocess.run([args.cutaway, "piece", os.path.join(args.source, "templates", "tomato.yaml"),
+                    "--cut", "halves", "--compress", "meshopt", "-q", "-o", meshopt], check=True)
+    try:
+        result, message = bpy.ops.import_scene.cutaway(filepath=meshopt), ""
+    except RuntimeError as error:  # an operator's error report, raised in background mode
+        result, message = {'CANCELLED'}, str(error)
+    check(result == {'CANCELLED'} and "--compress quantize" in message,
+          f"meshopt file: {result}, {message!r}")
 
 
 def case_batch(args):

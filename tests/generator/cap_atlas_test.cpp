@@ -285,6 +285,40 @@ TEST(CapAtlas, IslandsAreDisjointDilatedAndDeterministic) {
   options.texels_per_m = -1;
   EXPECT_THROW(bake_cap_atlas(all_pieces(h.set), h.set.sections, nullptr, 0, options),
                InternalError);
+  options.texels_per_m = 3000;
+  options.max_size = 260;  // no multiple of kAtlasStep
+  EXPECT_THROW(bake_cap_atlas(all_pieces(h.set), h.set.sections, nullptr, 0, options),
+               InternalError);
+}
+
+// Sizes GPUs compress (sides multiples of 8, the material map's of 4) and no larger than the
+// islands need: the halves' one island (both caps) fills most of the atlas, at any density.
+TEST(CapAtlas, SidesAreMultiplesOfEightAndTheIslandsFillTheAtlas) {
+  const Halves& h = tomato_halves();
+  for (const double density : {1000.0, 3000.0, 8600.0}) {
+    CapAtlasOptions options;
+    options.texels_per_m = density;
+    const CapAtlas a = bake_cap_atlas(all_pieces(h.set), h.set.sections, nullptr, 0, options);
+    EXPECT_EQ(a.width % kAtlasStep, 0) << density;
+    EXPECT_EQ(a.height % kAtlasStep, 0) << density;
+    EXPECT_EQ(a.texels_per_m, density);
+    // One island: its rectangle (the cap's extent, one texel and the padding around it) within
+    // a step of the atlas's sides.
+    glm::dvec2 lo(1e9), hi(-1e9);
+    for (const glm::dvec2& uv : a.uv[0])
+      if (uv != glm::dvec2(0.0)) {
+        lo = glm::min(lo, uv * glm::dvec2(a.width, a.height));
+        hi = glm::max(hi, uv * glm::dvec2(a.width, a.height));
+      }
+    const glm::dvec2 island = hi - lo + 1.0 + 2.0 * options.padding;
+    EXPECT_LE(a.width, island.x + kAtlasStep + 1) << density;
+    EXPECT_LE(a.height, island.y + kAtlasStep + 1) << density;
+    if (!a.material.empty()) {
+      EXPECT_EQ(a.material_width * 2, a.width);
+      EXPECT_EQ(a.material_height * 2, a.height);
+      EXPECT_EQ(a.material_width % 4, 0);
+    }
+  }
 }
 
 }  // namespace

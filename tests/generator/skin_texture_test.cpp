@@ -102,6 +102,8 @@ TEST(SkinTexture, TheTextureShowsTheSkinColourWhereItsVerticesMap) {
   EXPECT_GT(size.x, 400);
   EXPECT_LT(size.x, 600);
   EXPECT_GT(size.y, 120);
+  EXPECT_EQ(size.x % 4, 0);  // GPU block compression's block
+  EXPECT_EQ(size.y % 4, 0);
   const std::vector<uint8_t> a = bake_skin_texture(parts, part_uv, size, nullptr, 0, options);
   const std::vector<uint8_t> b = bake_skin_texture(parts, part_uv, size, nullptr, 0, options);
   ASSERT_EQ(a.size(), static_cast<size_t>(size.x) * size.y * 3);

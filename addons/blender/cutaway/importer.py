@@ -42,10 +42,16 @@ def import_file(context, filepath, *, use_camera=True, use_sky=True, use_exposur
     use_camera: the file's camera, if it has one, becomes the scene's camera.
     use_sky: a file that expects a sky (ambient_lux) gets it as the world's light.
     use_exposure: a file that gives its exposure is shown at it under the Standard view.
-    Raises OSError or ValueError for a file it cannot read, RuntimeError when Blender's
-    importer fails.
+    Raises OSError or ValueError for a file it cannot read (ValueError too for a
+    `--compress meshopt` file, whose EXT_meshopt_compression Blender does not decode),
+    RuntimeError when Blender's importer fails.
     """
     gltf = GltfFile.load(filepath)
+    if "EXT_meshopt_compression" in gltf.json.get("extensionsRequired", []):
+        # Blender's glTF importer (3.4 to 4.x) has no meshopt decoder; say so plainly.
+        raise ValueError(f"{os.path.basename(filepath)} was written with --compress meshopt, "
+                         "which Blender cannot read: write it again with --compress quantize "
+                         "(the default) or none")
     before_objects = {o.as_pointer() for o in bpy.data.objects}
     before_materials = {m.as_pointer() for m in bpy.data.materials}
     before_images = {i.as_pointer() for i in bpy.data.images}
