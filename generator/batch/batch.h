@@ -44,6 +44,7 @@ struct BatchExport {
   double texels_per_mm = 8.6; ///< baked cut-face texture density, 0.1..100
   double perlin = 1.0;        ///< Perlin colour modulation strength, 0..10
   int cube = 16;              ///< PMVC cube-map texels per face edge, 2..256
+  bool power_of_two = false;  ///< baked textures' sides powers of two, not multiples of 4
 };
 
 /// A whole parsed, validated batch.

@@ -48,6 +48,7 @@ std::string fingerprint_text(const Batch& b, const BatchItem& item, uint64_t see
       {"texels_per_mm", b.export_options.texels_per_mm},
       {"perlin", b.export_options.perlin},
       {"cube", b.export_options.cube},
+      {"power_of_two", b.export_options.power_of_two},
       {"settings", settings}};
   return j.dump();
 }
@@ -147,6 +148,7 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
     cut.modulation_seed = u.seed;
     cut.perlin = batch.export_options.perlin;
     cut.atlas.texels_per_m = 1000 * batch.export_options.texels_per_mm;
+    cut.atlas.power_of_two = cut.skin.power_of_two = batch.export_options.power_of_two;
     cut.sampling = options.sampling;
     ObjectCutStats st;
     CutObject object = *cut_object(assets, variant, u.seed, materials, asset_name(a.stem),

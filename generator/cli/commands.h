@@ -144,6 +144,7 @@ struct SceneArgs {
   int cube = 16;
   std::string colours = "texture";  ///< "texture" or "vertex" (CapColours)
   double texels_per_mm = 0;         ///< CapAtlasOptions::texels_per_m / 1000; 0: the scene's
+  bool power_of_two = false;        ///< --power-of-two: texture sides powers of two
   std::string compress = "quantize";  ///< glTF vertex data: none, quantize or meshopt
   int lods = 0;                       ///< glTF levels of detail per mesh (GltfSceneOptions)
   std::string textures = "jpeg";      ///< base-colour texture images: jpeg or png (TextureFormat)

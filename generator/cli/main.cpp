@@ -269,6 +269,9 @@ int main(int argc, char** argv) {
                    "texel density of baked cut-face textures (default: the scene's "
                    "render.texels_per_mm, else 8.6: a 60 mm cut face 516 texels across)")
       ->check(CLI::Range(0.1, 100.0));
+  scene->add_flag("--power-of-two", scene_args.power_of_two,
+                  "baked textures with sides powers of two (default: multiples of 4, fewer "
+                  "texels)");
   add_export_options(scene, scene_args.compress, scene_args.lods, scene_args.textures);
 
   cutaway::cli::BatchArgs batch_args;

@@ -39,6 +39,7 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
   options.sampling = common.sampling;
   options.cap_colours = a.colours == "vertex" ? CapColours::Vertex : CapColours::Texture;
   options.atlas.texels_per_m = 1000 * a.texels_per_mm;  // 0: the scene's
+  options.atlas.power_of_two = options.skin.power_of_two = a.power_of_two;
   options.diffusion = [&](const DsModel& model) {
     auto backend = diffusion(model);
     backend_name = backend->name();

@@ -95,7 +95,7 @@ Batch parse(std::string_view text, const std::string& file, std::vector<ParsedIt
   }
   if (auto e = root.get("export")) {
     e->allow_only({"compress", "lods", "textures", "camera_and_lights", "collision",
-                   "texels_per_mm", "perlin", "cube"});
+                   "texels_per_mm", "perlin", "cube", "power_of_two"});
     if (auto x = e->get("compress")) {
       const std::string v = x->string();
       if (v != "none" && v != "quantize" && v != "meshopt")
@@ -119,6 +119,7 @@ Batch parse(std::string_view text, const std::string& file, std::vector<ParsedIt
     if (auto x = e->get("texels_per_mm")) b.export_options.texels_per_mm = x->number_in(0.1, 100);
     if (auto x = e->get("perlin")) b.export_options.perlin = x->number_in(0, 10);
     if (auto x = e->get("cube")) b.export_options.cube = parse_int_in(*x, 2, 256);
+    if (auto x = e->get("power_of_two")) b.export_options.power_of_two = x->boolean();
   }
   return b;
 }

@@ -92,30 +92,39 @@ std::vector<glm::ivec2> pack(const std::vector<glm::ivec2>& sizes, int width, in
   return at;
 }
 
-/// A multiple of kAtlasStep at or above `n`.
-int round_up_to_step(int n) { return (n + kAtlasStep - 1) / kAtlasStep * kAtlasStep; }
+/// The side at or above `n` texels an atlas may have: a multiple of kAtlasStep, or with
+/// `power_of_two` a power of two (at least kAtlasStep).
+int round_up_side(int n, bool power_of_two) {
+  if (!power_of_two) return (n + kAtlasStep - 1) / kAtlasStep * kAtlasStep;
+  int side = kAtlasStep;
+  while (side < n) side *= 2;
+  return side;
+}
 
 struct Packing {
-  int width = 0, height = 0;    ///< multiples of kAtlasStep; 0 x 0 when nothing fits
+  int width = 0, height = 0;    ///< round_up_side's sides; 0 x 0 when nothing fits
   std::vector<glm::ivec2> at;   ///< per rectangle, its lowest corner
 };
 
 /// The packing of `sizes` (their total area `area`, the widest `widest` texels across) whose
-/// atlas, both sides multiples of kAtlasStep and at most max_size, has the fewest texels: the
-/// widths from the square root of the area (or the widest) up to twice that, in steps of an
-/// eighth, are tried; the first of equal areas wins. Nothing fits: an empty packing.
+/// atlas, both sides round_up_side's and at most max_size, has the fewest texels: the widths
+/// from the square root of the area (or the widest) up to twice that, in steps of an eighth (or
+/// doubling, for powers of two), are tried; the first of equal areas wins. Nothing fits: an
+/// empty packing.
 Packing smallest_packing(const std::vector<glm::ivec2>& sizes, int widest, double area,
-                         int max_size) {
+                         int max_size, bool power_of_two) {
   Packing best;
-  const int start = round_up_to_step(std::max(widest, static_cast<int>(std::ceil(std::sqrt(area)))));
+  const int start = round_up_side(
+      std::max(widest, static_cast<int>(std::ceil(std::sqrt(area)))), power_of_two);
   long best_texels = 0;
   for (int width = start; width <= max_size && width <= 2 * start;
-       width = round_up_to_step(width + std::max(kAtlasStep, width / 8))) {
+       width = power_of_two ? 2 * width
+                            : round_up_side(width + std::max(kAtlasStep, width / 8), false)) {
     std::vector<glm::ivec2> at = pack(sizes, width, max_size);
     if (at.empty()) continue;
     int height = 0;
     for (size_t k = 0; k < sizes.size(); ++k) height = std::max(height, at[k].y + sizes[k].y);
-    height = round_up_to_step(height);
+    height = round_up_side(height, power_of_two);
     if (height > max_size) continue;
     const long texels = static_cast<long>(width) * height;
     if (best.at.empty() || texels < best_texels) {
@@ -133,7 +142,8 @@ CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
                         const ColourModulation* modulation, double strength,
                         const CapAtlasOptions& options) {
   if (!(options.texels_per_m > 0) || options.padding < 0 || options.max_size < 16 ||
-      options.max_size % kAtlasStep != 0)
+      options.max_size % kAtlasStep != 0 ||
+      (options.power_of_two && round_up_side(options.max_size, true) != options.max_size))
     throw InternalError("bake_cap_atlas: bad options");
   CapAtlas atlas;
   std::vector<CapPart> caps;
@@ -176,7 +186,8 @@ CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
       area += static_cast<double>(size.x) * size.y;
       widest = std::max(widest, size.x);
     }
-    const auto [w, h, placed] = smallest_packing(sizes, widest, area, options.max_size);
+    const auto [w, h, placed] = smallest_packing(sizes, widest, area, options.max_size,
+                                                 options.power_of_two);
     width = w;
     height = h;
     at = placed;

@@ -22,6 +22,8 @@ struct CapAtlasOptions {
                                ///< mip-mapping does not bleed the background into its edges
   int max_size = 4096;         ///< largest atlas side, a multiple of kAtlasStep; denser
                                ///< islands are scaled down to fit
+  bool power_of_two = false;   ///< sides powers of two (for engines that ask for them), not
+                               ///< multiples of kAtlasStep; max_size must be one too
 };
 
 /// Sides of cap atlases are multiples of this: their half-size material maps' are then
@@ -67,8 +69,9 @@ struct CapAtlas {
 /// `modulation` at the texel's point in the object frame with `strength` (none when modulation
 /// is null), then encoded as sRGB (texel_bake.h); the islands are dilated by `padding` texels
 /// and the background filled by pull-push (fill_background). Deterministic.
+/// With options.power_of_two the sides are powers of two, the widths tried doubling.
 /// @throws InternalError when texels_per_m <= 0, padding < 0, max_size < 16 or max_size is no
-///         multiple of kAtlasStep
+///         multiple of kAtlasStep (with power_of_two: no power of two)
 CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
                         const std::vector<CrossSection>& sections,
                         const ColourModulation* modulation, double strength,

@@ -37,7 +37,12 @@ glm::ivec2 skin_texture_size(const DsSurface& skin, const SkinTextureOptions& op
   // spans the skin in v whatever its size: the coordinates do not change).
   auto texels = [&](double metres) {
     const int n = static_cast<int>(std::ceil(metres * options.texels_per_m));
-    return std::clamp((n + 3) / 4 * 4, 16, options.max_size / 4 * 4);
+    int side = (n + 3) / 4 * 4;
+    if (options.power_of_two) {
+      side = 16;
+      while (side < n && 2 * side <= options.max_size) side *= 2;
+    }
+    return std::clamp(side, 16, options.max_size / 4 * 4);
   };
   return {texels(around), texels(along)};
 }

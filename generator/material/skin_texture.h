@@ -23,11 +23,13 @@ struct SkinTextureOptions {
                                ///< a quarter of the caps': the skin's colour is smoother
   int padding = 4;             ///< rows of dilation around the baked texels
   int max_size = 2048;         ///< largest side
+  bool power_of_two = false;   ///< sides powers of two (for engines that ask), not multiples of 4
 };
 
 /// The texture size of `skin` (a swept DS surface) at `options.texels_per_m`: width from its
 /// longest section ring, height from its longest profile line (metres), each rounded up to a
-/// multiple of 4 (GPU block compression's block), at least 16 and at most max_size.
+/// multiple of 4 (GPU block compression's block; with options.power_of_two to a power of two),
+/// at least 16 and at most max_size.
 glm::ivec2 skin_texture_size(const DsSurface& skin, const SkinTextureOptions& options);
 
 /// The texture coordinates of the corners of triangle `t` of `mesh` (whose `param` holds sweep

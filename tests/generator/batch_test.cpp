@@ -66,6 +66,10 @@ TEST(BatchFormat, ReadsItemsCutsAndDefaults) {
   EXPECT_EQ(b.export_options.cube, 16);
   EXPECT_EQ(b.export_options.gltf.collision, GltfCollision::Godot);  // engine-ready by default
   EXPECT_FALSE(b.export_options.gltf.camera_and_lights);
+  EXPECT_FALSE(b.export_options.power_of_two);
+  EXPECT_TRUE(parse_text(std::string(kHeader) + "items:\n  - template: tomato\n" +
+                         "export: {power_of_two: true}\n")
+                  .export_options.power_of_two);
 }
 
 TEST(BatchFormat, RefusesBrokenRulesAtTheField) {

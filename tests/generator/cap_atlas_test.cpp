@@ -321,5 +321,24 @@ TEST(CapAtlas, SidesAreMultiplesOfEightAndTheIslandsFillTheAtlas) {
   }
 }
 
+// On request, powers of two: the same island, a power-of-two atlas at least as large.
+TEST(CapAtlas, PowersOfTwoOnRequest) {
+  const Halves& h = tomato_halves();
+  CapAtlasOptions options;
+  options.texels_per_m = 3000;
+  const CapAtlas tight = bake_cap_atlas(all_pieces(h.set), h.set.sections, nullptr, 0, options);
+  options.power_of_two = true;
+  const CapAtlas a = bake_cap_atlas(all_pieces(h.set), h.set.sections, nullptr, 0, options);
+  const auto power_of_two = [](int n) { return n > 0 && (n & (n - 1)) == 0; };
+  EXPECT_TRUE(power_of_two(a.width)) << a.width;
+  EXPECT_TRUE(power_of_two(a.height)) << a.height;
+  EXPECT_GE(a.width * a.height, tight.width * tight.height);
+  EXPECT_LT(a.width * a.height, 4 * tight.width * tight.height);
+  EXPECT_EQ(a.texels_per_m, 3000);
+  options.max_size = 1000;  // no power of two
+  EXPECT_THROW(bake_cap_atlas(all_pieces(h.set), h.set.sections, nullptr, 0, options),
+               InternalError);
+}
+
 }  // namespace
 }  // namespace cutaway

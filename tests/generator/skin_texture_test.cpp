@@ -104,6 +104,13 @@ TEST(SkinTexture, TheTextureShowsTheSkinColourWhereItsVerticesMap) {
   EXPECT_GT(size.y, 120);
   EXPECT_EQ(size.x % 4, 0);  // GPU block compression's block
   EXPECT_EQ(size.y % 4, 0);
+  SkinTextureOptions powers = options;
+  powers.power_of_two = true;
+  const glm::ivec2 p2 = skin_texture_size(c.model.skin(), powers);
+  EXPECT_EQ(p2.x & (p2.x - 1), 0) << p2.x;  // 512: the next power of two
+  EXPECT_EQ(p2.y & (p2.y - 1), 0) << p2.y;
+  EXPECT_GE(p2.x, size.x);
+  EXPECT_LT(p2.x, 2 * size.x);
   const std::vector<uint8_t> a = bake_skin_texture(parts, part_uv, size, nullptr, 0, options);
   const std::vector<uint8_t> b = bake_skin_texture(parts, part_uv, size, nullptr, 0, options);
   ASSERT_EQ(a.size(), static_cast<size_t>(size.x) * size.y * 3);
