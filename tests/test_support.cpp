@@ -12,6 +12,7 @@
 #include <array>
 #include <cctype>
 #include <cstdlib>
+#include <chrono>
 #include <fstream>
 #include <cstring>
 #include <sstream>
@@ -19,6 +20,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <stb/stb_image.h>
+#include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -332,5 +335,51 @@ void texture_with_halves(SceneAssets& assets, size_t mesh, int size) {
   if (defect.empty()) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure() << defect;
 }
+
+LimitedRun run_cutaway_limited(const std::vector<std::string>& args, uint64_t address_space,
+                               int cpu_seconds) {
+  const std::filesystem::path err_file = fresh_dir("limited_run") / "stderr.txt";
+  std::vector<std::string> words{CUTAWAY_BINARY};
+  words.insert(words.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  const std::string err_path = err_file.string();
+  const auto t0 = std::chrono::steady_clock::now();
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    // Only async-signal-safe calls between fork and exec.
+    const rlimit as{address_space, address_space},
+        cpu{static_cast<rlim_t>(cpu_seconds), static_cast<rlim_t>(cpu_seconds)};
+#ifndef __SANITIZE_ADDRESS__  // AddressSanitizer reserves terabytes of shadow address space
+    ::setrlimit(RLIMIT_AS, &as);
+#else
+    (void)as;
+#endif
+    ::setrlimit(RLIMIT_CPU, &cpu);
+    if (::chdir(CUTAWAY_SOURCE_DIR) != 0) ::_exit(126);
+    const int null = ::open("/dev/null", O_RDWR);
+    const int err = ::open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(null, 0);
+    ::dup2(null, 1);
+    ::dup2(err, 2);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  LimitedRun r;
+  int status = 0;
+  rusage usage{};
+  if (pid < 0 || ::wait4(pid, &status, 0, &usage) != pid) {
+    ADD_FAILURE() << "cannot run " << CUTAWAY_BINARY;
+    return r;
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
+  r.peak_rss_bytes = static_cast<uint64_t>(usage.ru_maxrss) * 1024;
+  r.err = read_file(err_file);
+  return r;
+}
+
 
 }  // namespace cutaway::test

@@ -32,6 +32,22 @@ struct RunResult {
 /// directory, and captures exit code, stdout and stderr.
 RunResult run_cutaway(const std::vector<std::string>& args);
 
+/// What one run of build/cutaway under limits did.
+struct LimitedRun {
+  int exit_code = -1;  ///< -1: killed by a signal
+  int signal = 0;
+  std::string err;     ///< stderr
+  double seconds = 0;  ///< wall time
+  uint64_t peak_rss_bytes = 0;  ///< the child's peak resident memory
+};
+
+/// Runs build/cutaway with `args` in the source directory, with at most `address_space` bytes of
+/// address space (an allocation beyond it fails: std::bad_alloc, exit code 1; not under AddressSanitizer,
+/// which needs far more address space, and reports huge allocations itself) and `cpu_seconds`
+/// of CPU time (a regression fails the test instead of taking the machine).
+LimitedRun run_cutaway_limited(const std::vector<std::string>& args, uint64_t address_space,
+                               int cpu_seconds);
+
 /// A fresh, empty directory under the build tree, named after `name`, the running test and
 /// the process (parallel test processes never share one).
 std::filesystem::path fresh_dir(const std::string& name);

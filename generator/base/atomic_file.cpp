@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <mutex>
 #include <sstream>
 #include <string>
@@ -19,6 +18,8 @@
 #include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include "base/file_read.h"
 
 namespace cutaway {
 
@@ -256,12 +257,7 @@ fs::path create_watched(const std::string& prefix, RemoveOnSignal::Kind kind,
 // ---------------------------------------------------------------------------------------------
 
 std::string read_file_bytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + path.string() + ": " + std::strerror(errno));
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  if (in.bad()) throw std::runtime_error("cannot read " + path.string() + ": read error");
-  return bytes.str();
+  return read_regular_file(path, kMaxReadBackBytes);
 }
 
 void write_file_atomically(const fs::path& given, std::string_view bytes) {

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <stdexcept>
@@ -32,9 +33,14 @@ namespace cutaway {
 ///         temporary file is removed; an existing `path` is unchanged)
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
 
+/// The largest file the program reads back (a glTF binary's own limit, 4 GiB).
+inline constexpr uint64_t kMaxReadBackBytes = uint64_t{4} << 30;
+
 /// The bytes of the file at `path` (what write_file_atomically wrote, or any file the program
-/// reads back: POV-Ray's image, manifests, thumbnails).
-/// @throws std::runtime_error "cannot read PATH: REASON" when it cannot be opened or read
+/// reads back: POV-Ray's image, manifests, thumbnails), through read_regular_file (file_read.h)
+/// with the limit kMaxReadBackBytes.
+/// @throws FileReadError (a std::runtime_error) "cannot read PATH: REASON" when it is not a
+///         regular file, is larger than the limit, or cannot be opened or read
 std::string read_file_bytes(const std::filesystem::path& path);
 
 /// Removes a temporary file, or a folder with the files directly in it, when the process is

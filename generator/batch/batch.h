@@ -47,6 +47,10 @@ struct BatchExport {
   bool power_of_two = false;  ///< baked textures' sides powers of two, not multiples of 4
 };
 
+/// The most assets (items' count x cuts, over all items) one batch may make: its plan holds
+/// every asset's name and inputs (about 130 bytes each) before the first is built.
+inline constexpr long long kMaxBatchAssets = 1'000'000;
+
 /// A whole parsed, validated batch.
 struct Batch {
   std::string name;  ///< [a-z0-9_-]+

@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 
 #include "base/child_process.h"
+#include "base/error.h"
 #include "variation/variant_batch.h"
 
 namespace cutaway {
@@ -26,14 +27,33 @@ bool plain_value(const std::string& text) {
   });
 }
 
+/// Whether `path` can stand unquoted in an #SBATCH line: valid UTF-8 with no white space of
+/// any kind (sbatch splits its lines on space, tab, vertical tab, form feed, CR and LF), no
+/// other control character (C0, DEL, C1), no quote, backslash or '%' (a filename pattern).
+bool sbatch_safe_path(const std::string& path) {
+  for (size_t i = 0; i < path.size();) {
+    const size_t n = utf8_length(path, i);
+    if (n == 0) return false;
+    const unsigned char c = static_cast<unsigned char>(path[i]);
+    if (n == 1 && (c <= 0x20 || c == 0x7f || c == '\'' || c == '"' || c == '%' || c == '\\'))
+      return false;
+    // C1 controls U+0080..U+009F are 0xC2 0x80..0x9F; U+0085 (NEL) and U+00A0 are white space
+    // to some splitters too.
+    if (n == 2 && c == 0xc2 && static_cast<unsigned char>(path[i + 1]) <= 0xa0) return false;
+    i += n;
+  }
+  return true;
+}
+
 }  // namespace
 
 std::string slurm_job_rule(const SlurmJob& job) {
   for (const std::string* path : {&job.cutaway, &job.batch_file, &job.dir}) {
-    if (path->find_first_of(" \t\n\r'\"%\\") != std::string::npos)
-      return "the path " + *path +
-             " holds white space, a quote, a backslash or '%' (sbatch's #SBATCH lines cannot "
-             "quote them): choose another folder";
+    if (!sbatch_safe_path(*path))
+      return "the path " + quoted(*path) +
+             " holds white space, a control character, a quote, a backslash, '%' or bytes "
+             "that are not UTF-8 (sbatch splits and expands #SBATCH lines on them): choose "
+             "another folder";
   }
   if (!plain_value(job.partition)) return "--partition must hold only A-Z a-z 0-9 _ . , : -";
   if (!plain_value(job.time)) return "--time must hold only A-Z a-z 0-9 _ . , : -";

@@ -148,20 +148,28 @@ int run_batch_merge(const std::string& dir) {
                  "(they skip what is done), then merge\n");
     return 1;
   }
-  std::string lines;
-  for (const AssetRecord& r : report.records) lines += manifest_line(r);
-  write_file_atomically(fs::path(dir) / "manifest.jsonl", lines);
   // The contact sheet: the sample's thumbnails, labelled. A complete report has one record per
-  // indexed asset, in the index's order.
+  // indexed asset, in the index's order. They are read before anything is written, so that a
+  // damaged one leaves the folder as it was.
   CUTAWAY_CHECK(report.records.size() == index->assets.size());
   std::vector<Image> tiles;
   for (size_t i = 0; i < report.records.size(); ++i) {
     const AssetRecord& r = report.records[i];
     if (!index->assets[i].sample || r.thumbnail.empty()) continue;
-    const Image picture = decode_png(read_file_bytes(fs::path(dir) / r.thumbnail));
+    const fs::path thumbnail = fs::path(dir) / r.thumbnail;
+    Image picture;
+    try {
+      picture = decode_png(read_file_bytes(thumbnail));
+    } catch (const std::runtime_error& e) {
+      throw UsageError("batch merge: the thumbnail " + thumbnail.string() + " cannot be used (" +
+                       e.what() + "); remove it and its asset and run that shard again");
+    }
     tiles.push_back(labelled_tile(picture, r.template_name + "-" + std::to_string(r.seed), r.cut,
                                   std::max(1, picture.width / 160)));
   }
+  std::string lines;
+  for (const AssetRecord& r : report.records) lines += manifest_line(r);
+  write_file_atomically(fs::path(dir) / "manifest.jsonl", lines);
   if (!tiles.empty()) {
     const int columns = static_cast<int>(std::ceil(std::sqrt(4.0 / 3.0 * tiles.size())));
     write_png(fs::path(dir) / "contact-sheet.png", compose_grid(tiles, columns));

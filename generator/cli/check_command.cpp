@@ -59,8 +59,9 @@ int run_check(const std::vector<std::string>& files) {
           templates.push_back(item.template_path);
         }
         check_models(templates);
-        std::printf("%s: ok (scene '%s', %zu items, %d objects)\n", f.c_str(),
-                    scene.name.c_str(), scene.items.size(), objects);
+        std::printf("%s: ok (scene '%s', %zu items, %d objects, at most %.1f M cap texels)\n",
+                    f.c_str(), scene.name.c_str(), scene.items.size(), objects,
+                    cutaway::estimate_cap_texels(scene, scene.render.texels_per_mm) / 1e6);
         continue;
       }
       const cutaway::Template tmpl = cutaway::load_template(f);

@@ -59,6 +59,15 @@ const CLI::Validator kSeedRule(
     },
     "SEED");
 
+/// --shard's rule (parse_shard), so that an empty value is refused rather than read as "not
+/// given" (which would build the whole batch).
+const CLI::Validator kShardRule(
+    [](std::string& text) {
+      const cutaway::Outcome<cutaway::Shard> shard = cutaway::parse_shard(text);
+      return shard ? std::string() : shard.reason();
+    },
+    "K/M");
+
 /// The --sampling value (checked by CLI11 to be "dense" or "adaptive").
 cutaway::CapSampling parse_sampling(const std::string& sampling) {
   return sampling == "adaptive" ? cutaway::CapSampling::Adaptive : cutaway::CapSampling::Dense;
@@ -154,7 +163,7 @@ int main(int argc, char** argv) {
                     "glTF binary to write (.glb); default NAME.glb when no --png is given");
   model->add_option("--png", model_args.png, "PNG picture of the see-through model");
   model->add_option("--size", model_args.width, "PNG width and height in pixels")
-      ->check(CLI::Range(16, 8192));
+      ->check(CLI::Range(16, 4096));
   model->add_option("--seed", model_args.seed, "build the random variant of this seed")
       ->check(kSeedRule);
 
@@ -169,7 +178,7 @@ int main(int argc, char** argv) {
                       "default NAME-section.glb when no --png is given");
   section->add_option("--png", section_args.png, "PNG of the cut face seen head-on (sRGB)");
   section->add_option("--size", section_args.width, "PNG width in pixels")
-      ->check(CLI::Range(16, 8192));
+      ->check(CLI::Range(16, 4096));
   section->add_option("--cube", section_args.cube, "cube-map texels per face edge for PMVC")
       ->check(CLI::Range(2, 256));
   section->add_option("--seed", section_args.seed, "cut the random variant of this seed")
@@ -186,7 +195,8 @@ int main(int argc, char** argv) {
   variants->add_option("-o,--output", variants_args.output_dir, "output folder")->required();
   variants->add_option("--shard", variants_args.shard,
                        "K/M: write only the K-th of M contiguous shares of the variants (seeds "
-                       "unchanged, so the shards together make one unsharded run)");
+                       "unchanged, so the shards together make one unsharded run)")
+      ->check(kShardRule);
   variants->add_option("--sheet", variants_args.sheet,
                        "contact-sheet.png: the mid-height horizontal cuts of the first N "
                        "variants (of the shard) at one scale; 0: none")
@@ -282,7 +292,8 @@ int main(int argc, char** argv) {
   batch->add_option("BATCH", batch_args.batch_path, "batch file (.yaml)");
   batch->add_option("-o,--output", batch_args.output_dir, "output folder");
   batch->add_option("--shard", batch_args.shard,
-                    "K/M: build only the K-th of M contiguous shares of the variants");
+                    "K/M: build only the K-th of M contiguous shares of the variants")
+      ->check(kShardRule);
   batch->add_flag("--slurm", batch_args.slurm,
                   "write DIR/batch.sbatch, an sbatch array job of --array shards, and submit it");
   batch->add_option("--array", batch_args.array, "with --slurm: array tasks (shards; default 4)")

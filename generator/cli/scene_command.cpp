@@ -31,6 +31,10 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
   const Targets targets = register_outputs(outputs, a.outputs, a.png, a.render);
   const auto t0 = Clock::now();
   const Scene scene = load_scene(a.scene_path);
+  if (a.texels_per_mm > 0) {
+    if (const std::string why = cap_texels_rule(scene, a.texels_per_mm); !why.empty())
+      throw UsageError("--texels-per-mm: " + why);
+  }
   const double t_parse = seconds_since(t0);
   const uint64_t seed = a.seed >= 0 ? static_cast<uint64_t>(a.seed) : scene.seed;
   const DiffusionFactory diffusion = diffusion_factory(a.cube, common);

@@ -17,6 +17,7 @@
 #include "io/template_parser.h"
 #include "render/image/contact_sheet.h"
 #include "render/image/image.h"
+#include "io/text_rules.h"
 #include "variation/variant_batch.h"
 #include "variation/variation.h"
 
@@ -28,6 +29,13 @@ int run_variants(const VariantsArgs& a, const Common& common, bool quiet, Output
     const Outcome<Shard> parsed = parse_shard(a.shard);
     if (!parsed) throw UsageError("--shard: " + parsed.reason());
     shard = *parsed;
+  }
+  // The last seed must be one --seed accepts, so that every file's seed can be given again.
+  if (a.seed > kMaxSeed - static_cast<uint64_t>(a.count - 1)) {
+    throw UsageError("--seed " + std::to_string(a.seed) + " with --count " +
+                     std::to_string(a.count) + " goes beyond the largest seed, " +
+                     std::to_string(kMaxSeed) + ": give --seed at most " +
+                     std::to_string(kMaxSeed - static_cast<uint64_t>(a.count - 1)));
   }
   const Template tmpl = load_template(a.template_path);
   const std::filesystem::path dir(a.output_dir);

@@ -47,6 +47,7 @@ Batch parse(std::string_view text, const std::string& file, std::vector<ParsedIt
   if (dir.empty()) dir = ".";
   const YamlField items = root.require("items");
   if (items.size() == 0) items.fail("a batch needs at least one item");
+  long long assets = 0;  // count x cuts of the items so far
   for (size_t i = 0; i < items.size(); ++i) {
     const YamlField f = items[i];
     f.allow_only({"template", "count", "seed", "variation", "cuts"});
@@ -83,6 +84,11 @@ Batch parse(std::string_view text, const std::string& file, std::vector<ParsedIt
       p.length_fields.emplace_back();
       p.cut_fields.push_back(f);
     }
+    assets += static_cast<long long>(item.count) * static_cast<long long>(item.cuts.size());
+    if (assets > kMaxBatchAssets)
+      f.get("count").value_or(f).fail(
+          "the items up to here make " + std::to_string(assets) + " assets (at most " +
+          std::to_string(kMaxBatchAssets) + " in a batch: split it into several batches)");
     b.items.push_back(std::move(item));
     if (parsed) parsed->push_back(std::move(p));
   }

@@ -64,6 +64,12 @@ class TemplateCheck {
   const std::string& check(const std::string& template_path, const CutSpec& cut,
                            const std::optional<YamlField>& length_field);
 
+  /// The extents (template_extents) of a template check() has loaded.
+  /// @pre check() was called with `template_path`
+  const ObjectExtents& extents(const std::string& template_path) const {
+    return extents_.at(template_path).extents;
+  }
+
  private:
   struct Entry {
     std::string name;

@@ -115,6 +115,8 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
   fs::path scene_dir = fs::path(file).parent_path();
   if (scene_dir.empty()) scene_dir = ".";
   TemplateCheck templates;
+  long long objects = 0, pieces = 0;    // totals of the items so far
+  std::vector<YamlField> item_fields;   // where each item's totals are blamed
   const YamlField items = root.require("items");
   if (items.size() == 0) items.fail("a scene needs at least one item");
   for (size_t i = 0; i < items.size(); ++i) {
@@ -138,7 +140,21 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
     if (auto x = f.get("variation")) item.variation = x->number_in(0, 10);
     item.arrange = arrange;
     if (auto x = f.get("arrange")) item.arrange = parse_arrangement(*x);
-    if (load_templates) templates.check(item.template_path, item.cut, length_field);
+    const YamlField count_field = f.get("count").value_or(f);
+    objects += item.count;
+    if (objects > kMaxSceneObjects)
+      count_field.fail("the items up to here make " + std::to_string(objects) +
+                       " objects (at most " + std::to_string(kMaxSceneObjects) + " in a scene)");
+    if (load_templates) {
+      templates.check(item.template_path, item.cut, length_field);
+      const ObjectExtents& extents = templates.extents(item.template_path);
+      pieces += item.count * estimate_piece_count(item.cut, extents);
+      if (pieces > kMaxScenePieces)
+        count_field.fail("the items up to here make about " + std::to_string(pieces) +
+                         " pieces (at most " + std::to_string(kMaxScenePieces) + " in a scene)");
+      item.cut_area_m2 = estimate_cut_area(item.cut, extents);
+    }
+    item_fields.push_back(count_field);
     s.items.push_back(std::move(item));
   }
 
@@ -160,11 +176,37 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
     if (auto x = r->get("perlin")) s.render.perlin = x->number_in(0, 10);
     if (auto x = r->get("silhouettes")) s.render.silhouettes = x->number_in(0, 10);
     if (auto x = r->get("texels_per_mm")) s.render.texels_per_mm = x->number_in(0.1, 100);
+    if (static_cast<long long>(s.render.width) * s.render.height > kMaxRenderPixels)
+      r->fail("width x height is " + std::to_string(s.render.width * s.render.height) +
+              " pixels (at most " + std::to_string(kMaxRenderPixels) + ", e.g. 4096 x 4096)");
+  }
+  if (const std::string why = cap_texels_rule(s, s.render.texels_per_mm); !why.empty()) {
+    const auto density = root.get("render") ? root.get("render")->get("texels_per_mm")
+                                            : std::optional<YamlField>();
+    (density ? *density : item_fields.back()).fail(why);
   }
   return s;
 }
 
 }  // namespace
+
+double estimate_cap_texels(const Scene& scene, double texels_per_mm) {
+  const double per_m2 = (1000 * texels_per_mm) * (1000 * texels_per_mm);
+  double texels = 0;
+  for (const SceneItem& item : scene.items) texels += item.count * item.cut_area_m2 * per_m2;
+  return texels;
+}
+
+std::string cap_texels_rule(const Scene& scene, double texels_per_mm) {
+  const double texels = estimate_cap_texels(scene, texels_per_mm);
+  if (texels <= kMaxSceneCapTexels) return "";
+  std::ostringstream s;
+  s.precision(3);
+  s << "at " << texels_per_mm << " texels per mm the cut faces would need about "
+    << texels / 1e6 << " M texels (at most " << kMaxSceneCapTexels / 1e6
+    << " M in a scene): lower texels_per_mm or cut fewer objects";
+  return s.str();
+}
 
 Scene parse_scene(std::string_view text, const std::string& file) {
   return parse(text, file, false);

@@ -27,6 +27,9 @@ constexpr double kMaxMetres = 1e6;
 /// The most edges the skin's height may span (resolution.edge >= height / this): keeps the
 /// surface meshes within memory (the default is 64).
 constexpr double kMaxEdgesPerHeight = 4096;
+/// The fewest edges the skin's height must span (resolution.edge <= height / this): coarser
+/// meshes no longer follow the curves well enough for the cut's caps and walls to meet.
+constexpr double kMinEdgesPerHeight = 8;
 
 /// `v` (in units of `scale` metres) when |v * scale| <= kMaxMetres; fails at `f` otherwise.
 double within_limit(const YamlField& f, double v, double scale) {
@@ -517,6 +520,12 @@ Template parse_template(std::string_view text, const std::string& file,
     rule << "the edge length must be at least 1/" << kMaxEdgesPerHeight
          << " of the skin's height (" << h / t.metres_per_unit << " " << units_name(t)
          << "): the meshes would not fit in memory";
+    throw InputError(t.edge_loc, "resolution.edge", rule.str());
+  } else if (h / t.edge_m < kMinEdgesPerHeight) {
+    std::ostringstream rule;
+    rule << "the edge length must be at most 1/" << kMinEdgesPerHeight << " of the skin's height ("
+         << h / t.metres_per_unit << " " << units_name(t)
+         << "): coarser meshes do not follow the curves closely enough to cut";
     throw InputError(t.edge_loc, "resolution.edge", rule.str());
   }
   if (!t.npr.perlin_from_file) t.npr.perlin_bands = default_perlin_bands(h);

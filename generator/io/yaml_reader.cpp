@@ -2,12 +2,12 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <regex>
 #include <set>
 #include <sstream>
 
 #include "base/colour.h"
+#include "base/file_read.h"
 
 namespace cutaway {
 
@@ -257,7 +257,10 @@ double YamlField::number_in(double lo, double hi) const {
   const double v = number();
   if (v < lo || v > hi) {
     std::ostringstream s;
-    s << "must be between " << lo << " and " << hi << ", not " << v;
+    // The value as written (printed, 10.000001 would read as 10); quoted when long.
+    const std::string& written = node_.Scalar();
+    s << "must be between " << lo << " and " << hi << ", not "
+      << (written.size() <= 32 ? written : quoted(written));
     fail(s.str());
   }
   return v;
@@ -265,7 +268,8 @@ double YamlField::number_in(double lo, double hi) const {
 
 YamlField parse_yaml(std::string_view text, const std::string& file) {
   if (text.size() > kMaxBytes) {
-    throw InputError(FileLoc{file, 1, 1}, "(file)", "the file is larger than 16 MiB");
+    throw InputError(FileLoc{file, 1, 1}, "(file)",
+                     "the file is larger than " + byte_size_words(kMaxBytes));
   }
   if (const size_t bad = find_invalid_utf8(text); bad != std::string_view::npos) {
     throw InputError(loc_of_offset(text, bad, file), "(file)",
@@ -277,7 +281,13 @@ YamlField parse_yaml(std::string_view text, const std::string& file) {
   }
   YAML::Node root;
   try {
-    root = YAML::Load(std::string(text));
+    // Every document is parsed, so that a second one (after "---") is refused, not ignored.
+    std::vector<YAML::Node> documents = YAML::LoadAll(std::string(text));
+    if (documents.size() > 1) {
+      throw InputError(loc_of(documents[1].Mark(), file), "(file)",
+                       "a second YAML document (after \"---\"): a file holds one document");
+    }
+    if (!documents.empty()) root = documents[0];
   } catch (const YAML::Exception& e) {
     // yaml-cpp appends some of the input to a few messages (an escape character, a version):
     // written as quoted() writes it when it holds anything to escape.
@@ -294,15 +304,11 @@ YamlField parse_yaml(std::string_view text, const std::string& file) {
 }
 
 std::string read_input_file(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(FileLoc{path, 1, 1}, "(file)", "is a directory, not a file");
+  try {
+    return read_regular_file(path, kMaxBytes);
+  } catch (const FileReadError& e) {
+    throw InputError(FileLoc{path, 1, 1}, "(file)", "the file " + e.rule());
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(FileLoc{path, 1, 1}, "(file)", "cannot open the file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 YamlField load_yaml_file(const std::string& path) { return parse_yaml(read_input_file(path), path); }

@@ -98,8 +98,11 @@ glm::dvec3 parse_colour(const YamlField& f);
 /// @return the root field (path "(root)")
 YamlField parse_yaml(std::string_view text, const std::string& file);
 
-/// The bytes of the input file at `path`.
-/// @throws InputError "PATH:1:1: (file): cannot open the file" when it cannot be read
+/// The bytes of the input file at `path`, read through read_regular_file (base/file_read.h):
+/// a FIFO, device or directory is refused without reading from it, and a file larger than
+/// 16 MiB before it is read.
+/// @throws InputError "PATH:1:1: (file): the file RULE", RULE as FileReadError's (e.g. "does
+///         not exist", "is larger than 16 MiB")
 std::string read_input_file(const std::string& path);
 
 /// Reads `path` and parses it with parse_yaml.

@@ -43,6 +43,13 @@ inline glm::dvec3 to_glm(const OpenMesh::Vec3d& v) { return {v[0], v[1], v[2]}; 
 /// or placed as distinct points of a cut's triangulation (a blur of 1e-300 m made both loop).
 inline constexpr double kMinBlur_m = 1e-6;
 
+/// The most vertices a template's DS model may have over all its surfaces (sweeps and meshes;
+/// grains have a budget of their own, kMaxGrains in grains.h): each surface is refused before
+/// it is sampled or read when it would take the total beyond it. About 650 bytes of memory per
+/// vertex while the model is built and checked, about 1.2 kB while it is cut (a model of 1.87 M
+/// vertices took 2.19 GB to cut in halves).
+inline constexpr size_t kMaxModelVertices = 1'000'000;
+
 /// `blur_m` as a DS vertex carries it: values below kMinBlur_m are sharp (0).
 inline double vertex_blur(double blur_m) { return blur_m < kMinBlur_m ? 0.0 : blur_m; }
 

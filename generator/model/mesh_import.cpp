@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <vector>
 
@@ -17,6 +16,7 @@
 #include <glm/common.hpp>
 
 #include "base/colour.h"
+#include "base/file_read.h"
 #include "model/sweep.h"
 
 namespace cutaway {
@@ -26,7 +26,6 @@ namespace {
 /// The mesh type OpenMesh reads PLY into (custom properties are attached by name).
 using PlyMesh = OpenMesh::TriMesh_ArrayKernelT<OpenMesh::DefaultTraitsDouble>;
 
-static_assert(kMaxMeshVertices == kMaxSweepVertices, "one vertex budget for every surface");
 
 /// The header must end within this many bytes.
 constexpr size_t kMaxPlyHeaderBytes = 64 << 10;
@@ -629,33 +628,32 @@ std::string prepare_ply(std::string ply, bool binary, size_t header_end) {
   return text;
 }
 
-/// The bytes of a mesh file, refused when missing, not .ply or larger than kMaxMeshFileBytes.
+/// The bytes of a mesh file, refused when it is not a .ply path, not a regular file or larger
+/// than kMaxMeshFileBytes (read_regular_file: nothing is read from a FIFO or device).
 std::string read_mesh_file(const std::string& file, const FileLoc& loc, const std::string& field) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) {
-    throw InputError(loc, field, "the mesh file " + quoted(file) + " does not exist");
-  }
   if (std::filesystem::path(file).extension() != ".ply") {
     throw InputError(loc, field, "a mesh surface's file must be a PLY file (.ply)");
   }
-  const auto size = std::filesystem::file_size(file, ec);
-  if (ec) throw InputError(loc, field, "cannot read the mesh file " + quoted(file));
-  if (size > kMaxMeshFileBytes) {
-    throw InputError(loc, field, "the mesh file is larger than " +
-                                     std::to_string(kMaxMeshFileBytes >> 20) + " MiB");
+  try {
+    return read_regular_file(file, kMaxMeshFileBytes);
+  } catch (const FileReadError& e) {
+    throw InputError(loc, field, "the mesh file " + quoted(file) + " " + e.rule());
   }
-  std::string bytes(static_cast<size_t>(size), '\0');
-  std::ifstream in(file, std::ios::binary);
-  if (!in || !in.read(bytes.data(), static_cast<std::streamsize>(size)) ||
-      in.peek() != std::char_traits<char>::eof()) {
-    throw InputError(loc, field, "cannot read the mesh file " + quoted(file));
-  }
-  return bytes;
 }
 
-PlyMesh read_ply(const std::string& file, const FileLoc& loc, const std::string& field) {
+/// The mesh of a PLY file that passed check_ply and declares at most `max_vertices` vertices.
+PlyMesh read_ply(const std::string& file, const FileLoc& loc, const std::string& field,
+                 size_t max_vertices = kMaxMeshVertices) {
   std::string bytes = read_mesh_file(file, loc, field);
   const PlyCheck check = check_ply(bytes, loc, field);
+  if (check.vertices > max_vertices) {
+    throw InputError(loc, field,
+                     "the mesh has " + std::to_string(check.vertices) +
+                         " vertices, and the model may have at most " +
+                         std::to_string(kMaxModelVertices) + " over all surfaces (" +
+                         std::to_string(kMaxModelVertices - max_vertices) +
+                         " taken by the surfaces before it)");
+  }
   std::istringstream ply(prepare_ply(std::move(bytes), check.binary, check.header_end));
   PlyMesh mesh;
   OpenMesh::IO::Options opt = OpenMesh::IO::Options::Custom;
@@ -736,9 +734,10 @@ MeshBounds read_mesh_bounds(const std::string& file, double metres_per_unit, con
   return b;
 }
 
-DsSurface import_mesh_surface(const SurfaceSpec& spec, const Template& tmpl) {
+DsSurface import_mesh_surface(const SurfaceSpec& spec, const Template& tmpl,
+                              size_t max_vertices) {
   const std::string field = spec.path + ".file";
-  PlyMesh ply = read_ply(spec.mesh_file, spec.mesh_loc, field);
+  PlyMesh ply = read_ply(spec.mesh_file, spec.mesh_loc, field, max_vertices);
   const auto front = vertex_colours(ply, "front_red", "front_green", "front_blue");
   const auto back = vertex_colours(ply, "back_red", "back_green", "back_blue");
   bool blur_integer;

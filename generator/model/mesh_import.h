@@ -14,9 +14,9 @@
 
 namespace cutaway {
 
-/// Most vertices a `mesh` surface's PLY file may declare: the budget of one swept surface
-/// (kMaxSweepVertices in sweep.h, which bounds `resolution.edge`).
-inline constexpr size_t kMaxMeshVertices = 2'000'000;
+/// Most vertices a `mesh` surface's PLY file may declare: the model's whole budget
+/// (kMaxModelVertices in ds_model.h; import_mesh_surface gets what the surfaces before it left).
+inline constexpr size_t kMaxMeshVertices = kMaxModelVertices;
 /// Most faces a `mesh` surface's PLY file may declare, and most triangles its polygons may make:
 /// a closed triangle mesh has about twice as many faces as vertices.
 inline constexpr size_t kMaxMeshFaces = 2 * kMaxMeshVertices;
@@ -82,8 +82,12 @@ MeshBounds read_mesh_bounds(const std::string& file, double metres_per_unit, con
 /// Polygons are triangulated. A closed mesh wound inwards is turned so that its normals point
 /// outwards (its front is its outside); an open mesh keeps the file's winding. Vertices no face
 /// uses are left out. A skin must be closed.
+/// @param max_vertices the vertices left of the model's budget (kMaxModelVertices): a file
+///        declaring more is refused after its header is checked, before its body is read
 /// @throws InputError when the file is unreadable (as in read_mesh_bounds), non-manifold (a
-///         complex edge or vertex, or a face flipping orientation), or (skin) not closed
-DsSurface import_mesh_surface(const SurfaceSpec& spec, const Template& tmpl);
+///         complex edge or vertex, or a face flipping orientation), (skin) not closed, or
+///         declares more than max_vertices vertices
+DsSurface import_mesh_surface(const SurfaceSpec& spec, const Template& tmpl,
+                              size_t max_vertices = kMaxModelVertices);
 
 }  // namespace cutaway

@@ -1,5 +1,7 @@
 #include "model/model_builder.h"
 
+#include <algorithm>
+
 #include "model/mesh_import.h"
 #include "model/model_checks.h"
 #include "model/sweep.h"
@@ -12,13 +14,18 @@ DsModel build_model(const Template& t) {
   std::vector<int> order{t.skin};
   for (int i = 0; i < static_cast<int>(t.surfaces.size()); ++i)
     if (i != t.skin) order.push_back(i);
+  size_t vertices = 0;  // so far, over all surfaces: each gets what is left of the budget
   for (int i : order) {
     const SurfaceSpec& spec = t.surfaces[i];
+    const size_t left = kMaxModelVertices - std::min(vertices, kMaxModelVertices);
     switch (spec.kind) {
-      case SurfaceKind::Around: model.surfaces.push_back(sweep_around(spec, t)); break;
-      case SurfaceKind::Within: model.surfaces.push_back(sweep_within(spec, t)); break;
-      case SurfaceKind::Mesh: model.surfaces.push_back(import_mesh_surface(spec, t)); break;
+      case SurfaceKind::Around: model.surfaces.push_back(sweep_around(spec, t, left)); break;
+      case SurfaceKind::Within: model.surfaces.push_back(sweep_within(spec, t, left)); break;
+      case SurfaceKind::Mesh:
+        model.surfaces.push_back(import_mesh_surface(spec, t, left));
+        break;
     }
+    vertices += model.surfaces.back().mesh.n_vertices();
     set_material(model.surfaces.back().mesh, spec.material_front, spec.material_back);
   }
   update_bounds(model);

@@ -20,12 +20,20 @@ struct SweepGrid {
   std::vector<std::vector<glm::dvec2>> params;  // (t_profile, t_section) per vertex
 };
 
-void check_vertex_budget(size_t rows, size_t cols, const SurfaceSpec& spec, const Template& t) {
-  if (rows * cols > kMaxSweepVertices) {
+/// Refuses a surface of rows x cols vertices (at least) beyond the `max_vertices` left of the
+/// model's budget, before it is sampled.
+void check_vertex_budget(size_t rows, size_t cols, const SurfaceSpec& spec, const Template& t,
+                         size_t max_vertices) {
+  if (rows * cols > max_vertices) {
+    const size_t taken = kMaxModelVertices - std::min(max_vertices, kMaxModelVertices);
     throw InputError(t.edge_loc, "resolution.edge",
                      "the edge length is too small: surface " + quoted(spec.name) +
                          " would get at least " + std::to_string(rows * cols) +
-                         " vertices (at most " + std::to_string(kMaxSweepVertices) + ")");
+                         " vertices, and the model may have at most " +
+                         std::to_string(kMaxModelVertices) + " over all surfaces" +
+                         (taken > 0 ? " (" + std::to_string(taken) +
+                                          " taken by the surfaces before it)"
+                                    : ""));
   }
 }
 
@@ -296,13 +304,13 @@ SweepGrid within_fold_grid(const SurfaceSpec& spec, const Template& t, const Wit
 
 }  // namespace
 
-DsSurface sweep_around(const SurfaceSpec& spec, const Template& t) {
+DsSurface sweep_around(const SurfaceSpec& spec, const Template& t, size_t max_vertices) {
   CUTAWAY_CHECK(spec.kind == SurfaceKind::Around);
   const double edge = t.edge_m;
   const Polyline2 prof_fit = fit_curve(spec.profile, false, spec.smooth);
   const int n = segments_for(curve_length(prof_fit, false), edge, 2);
   // Every ring has at least 8 vertices: refuse before sampling the profile finely.
-  check_vertex_budget(static_cast<size_t>(n) + 1, 8, spec, t);
+  check_vertex_budget(static_cast<size_t>(n) + 1, 8, spec, t, max_vertices);
   const Polyline2 prof = resample_uniform(prof_fit, false, n + 1);
   double max_r = 0;
   for (const auto& p : prof) max_r = std::max(max_r, p.x);
@@ -321,7 +329,7 @@ DsSurface sweep_around(const SurfaceSpec& spec, const Template& t) {
   // An N-fold object maps onto itself under a turn by 2 pi / N only if every fold gets the same
   // samples: a multiple of N, so that sample k m / N lies where sample 0 turned by k folds lies.
   if (t.symmetry == Symmetry::NFold && t.folds > 1) m = (m + t.folds - 1) / t.folds * t.folds;
-  check_vertex_budget(static_cast<size_t>(n) + 1, static_cast<size_t>(m), spec, t);
+  check_vertex_budget(static_cast<size_t>(n) + 1, static_cast<size_t>(m), spec, t, max_vertices);
   if (spec.section.circle) {
     for (int j = 0; j < m; ++j) {
       const double phi = 2 * kPi * j / m;
@@ -357,7 +365,7 @@ DsSurface sweep_around(const SurfaceSpec& spec, const Template& t) {
   return s;
 }
 
-DsSurface sweep_within(const SurfaceSpec& spec, const Template& t) {
+DsSurface sweep_within(const SurfaceSpec& spec, const Template& t, size_t max_vertices) {
   CUTAWAY_CHECK(spec.kind == SurfaceKind::Within);
   CUTAWAY_CHECK(t.symmetry == Symmetry::NFold);
   const double edge = t.edge_m;
@@ -366,7 +374,7 @@ DsSurface sweep_within(const SurfaceSpec& spec, const Template& t) {
   // Heights spaced by the mean normalised arc length of both rails.
   const int n = segments_for(rails.mean_length, edge, 2);
   // Every ring has at least 8 vertices: refuse before placing the heights.
-  check_vertex_budget(static_cast<size_t>(n + 1) * t.folds, 8, spec, t);
+  check_vertex_budget(static_cast<size_t>(n + 1) * t.folds, 8, spec, t, max_vertices);
   const std::vector<double> heights = within_heights(rails, n);
 
   // The section loops in their fold frames; the points per ring from the longest loop once
@@ -386,7 +394,7 @@ DsSurface sweep_within(const SurfaceSpec& spec, const Template& t) {
     frame_loops.push_back(std::move(uw));
   }
   const int m = segments_for(max_scaled_perimeter, edge, 8);
-  check_vertex_budget(static_cast<size_t>(n + 1) * t.folds, static_cast<size_t>(m), spec, t);
+  check_vertex_budget(static_cast<size_t>(n + 1) * t.folds, static_cast<size_t>(m), spec, t, max_vertices);
 
   DsSurface s;
   s.name = spec.name;

@@ -7,9 +7,6 @@
 
 namespace cutaway {
 
-/// Largest vertex count one swept surface may have; a finer `resolution.edge` is refused.
-inline constexpr size_t kMaxSweepVertices = 2'000'000;
-
 /// Type I sweep (`around`): the section loop, scaled about the axis so that its radius at angle
 /// 0 equals the profile's r(t), at every profile height (Snyder and Kajiya 1992).
 /// Point (t, s) = (r(t) rho(s)/rho0 cos phi(s), y(t), -r(t) rho(s)/rho0 sin phi(s)).
@@ -19,8 +16,10 @@ inline constexpr size_t kMaxSweepVertices = 2'000'000;
 /// multiple of N, so identical folds get identical samples. Vertex params: (t_profile,
 /// t_section), both normalised arc length (section from angle 0, counter-clockwise seen from +Y).
 /// @pre spec.kind == Around and the spec passed check_template_curves
-/// @throws InputError at resolution.edge when the surface would exceed kMaxSweepVertices
-DsSurface sweep_around(const SurfaceSpec& spec, const Template& tmpl);
+/// @param max_vertices the vertices left of the model's budget (kMaxModelVertices)
+/// @throws InputError at resolution.edge when the surface would exceed max_vertices
+DsSurface sweep_around(const SurfaceSpec& spec, const Template& tmpl,
+                       size_t max_vertices = kMaxModelVertices);
 
 /// Type II sweep (`within`), one closed component per fold: the closed profile is split at its
 /// lowest and highest points into inner and outer rails r_in(y), r_out(y); at each height the
@@ -32,7 +31,8 @@ DsSurface sweep_around(const SurfaceSpec& spec, const Template& tmpl);
 /// profile's parameter runs from its lowest point, counter-clockwise in the profile plane).
 /// @pre spec.kind == Within, tmpl.symmetry == NFold, the spec passed check_template_curves
 /// @throws InputError at the section when a placed loop leaves its fold, or at resolution.edge
-///         when the surface would exceed kMaxSweepVertices
-DsSurface sweep_within(const SurfaceSpec& spec, const Template& tmpl);
+///         when the surface would exceed max_vertices (the vertices left of kMaxModelVertices)
+DsSurface sweep_within(const SurfaceSpec& spec, const Template& tmpl,
+                       size_t max_vertices = kMaxModelVertices);
 
 }  // namespace cutaway

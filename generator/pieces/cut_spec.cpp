@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "base/constants.h"
 #include "base/error.h"
 #include "io/plane_spec.h"
 #include "io/text_rules.h"
@@ -176,6 +177,27 @@ ObjectExtents template_extents(const Template& t) {
   }
   e.height_m = hi > lo ? hi - lo : 0;
   return e;
+}
+
+double estimate_cut_area(const CutSpec& cut, const ObjectExtents& extents) {
+  const double r = extents.radius_m, h = extents.height_m;
+  const double any_plane = 2 * r * std::sqrt(h * h + 4 * r * r);
+  const double across = kPi * r * r;  // a plane across the axis
+  double area = 0;
+  switch (cut.type) {
+    case CutType::Whole: break;
+    case CutType::Halves:
+    case CutType::Plane: area = 2 * any_plane; break;
+    case CutType::Wedges: area = 2 * cut.count * r * h; break;
+    case CutType::Slices: area = 2 * (estimate_piece_count(cut, extents) - 1) * across; break;
+    case CutType::Dice: {
+      const double sides = static_cast<double>(ceil_count(2 * r, cut.size_m)) - 1;
+      const double layers = static_cast<double>(ceil_count(h, cut.size_m)) - 1;
+      area = 2 * (2 * sides * 2 * r * h + layers * across);
+      break;
+    }
+  }
+  return std::min(area, 1e12);
 }
 
 long long estimate_piece_count(const CutSpec& cut, const ObjectExtents& extents) {

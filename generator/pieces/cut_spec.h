@@ -61,4 +61,10 @@ ObjectExtents template_extents(const Template& t);
 /// 1e9 (tiny lengths do not overflow).
 long long estimate_piece_count(const CutSpec& cut, const ObjectExtents& extents);
 
+/// An upper bound of the area of the cut faces `cut` makes of an object within `extents`, both
+/// sides of every plane, m^2 (what the cap textures cover). A plane meets the bounding cylinder
+/// (radius r, height h) in at most 2 r sqrt(h^2 + 4 r^2); a wedge's half-plane in r h; a
+/// slice or dice plane across the axis in pi r^2. Saturates at 1e12 m^2.
+double estimate_cut_area(const CutSpec& cut, const ObjectExtents& extents);
+
 }  // namespace cutaway

@@ -21,6 +21,15 @@ enum class Arrangement {
   Scatter,  ///< spread apart over the container, none resting on another
 };
 
+/// The totals a scene is held to, over all its items (doc/scene-format.md, Totals), so that
+/// what check accepts stays within memory: objects, pieces (as estimate_piece_count counts
+/// them, before `keep`), the cap textures' texels (estimate_cut_area at the texel density)
+/// and the pixels of a render.
+inline constexpr long long kMaxSceneObjects = 1024;
+inline constexpr long long kMaxScenePieces = 8192;
+inline constexpr double kMaxSceneCapTexels = 64e6;
+inline constexpr long long kMaxRenderPixels = 4096LL * 4096;
+
 /// One entry of `items`: `count` seeded variants of one template, each cut the same way.
 struct SceneItem {
   std::string template_name;  ///< as written (a name from templates/ or a relative path)
@@ -32,6 +41,9 @@ struct SceneItem {
   /// Its `arrange`, else the scene's, else the container's default (scatter on a board or on
   /// the floor, pile in a bowl or on a plate).
   Arrangement arrange = Arrangement::Pile;
+  /// Upper bound of one object's cut-face area, m^2 (estimate_cut_area; set by load_scene,
+  /// 0 when the templates were not read)
+  double cut_area_m2 = 0;
   FileLoc loc;                ///< where the item is written
   std::string path;           ///< field path prefix for errors, e.g. "items[2]"
 };

@@ -31,6 +31,11 @@ std::string camera_defect(const AssetCamera& c, bool needs_up) {
   return "";
 }
 
+glm::dvec3 stable_camera_up(const glm::dvec3& forward) {
+  const glm::dvec3 f = glm::normalize(forward);
+  return std::abs(f.y) > std::cos(glm::radians(0.5)) ? glm::dvec3(0, 0, -1) : glm::dvec3(0, 1, 0);
+}
+
 CameraFrame camera_frame(const AssetCamera& camera) {
   CameraFrame f;
   f.forward = glm::normalize(camera.target - camera.eye);

@@ -130,6 +130,11 @@ struct AssetCamera {
 /// parallel to the view direction: |normalize(target - eye) x up| > 1e-9 |up|.
 std::string camera_defect(const AssetCamera& camera, bool needs_up = true);
 
+/// An up vector for a camera looking along `forward` (non-zero) that is never parallel to it:
+/// +Y of the scene, or -Z of the scene when `forward` is within 0.5 degrees of straight up or
+/// down (a top-down picture then has -Z, away from the default camera side, at its top).
+glm::dvec3 stable_camera_up(const glm::dvec3& forward);
+
 /// The camera's orthonormal frame, as glm::lookAt builds it: forward = normalize(target - eye),
 /// right = normalize(forward x up), up = right x forward (unit vectors, scene frame).
 /// @pre eye != target and `up` not parallel to the view direction

@@ -71,6 +71,7 @@ AssetCamera scene_camera(const Scene& scene, const glm::dvec3& pile_min,
   AssetCamera cam;
   cam.eye = scene.camera->eye;
   cam.target = scene.camera->target;
+  cam.up = stable_camera_up(cam.target - cam.eye);
   cam.fov_y_deg = scene.camera->fov_deg;
   cam.aspect = aspect;
   const double distance = glm::distance(cam.eye, cam.target);

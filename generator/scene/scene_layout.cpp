@@ -394,12 +394,21 @@ void place_fan_rows(const std::vector<LayoutPiece>& pieces, const std::vector<si
 }  // namespace
 
 std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
-                                     const Container& container, const LayoutOptions& options,
+                                     const Container& container, const LayoutOptions& given,
                                      uint64_t seed) {
+  // Scale-aware: a container too wide for cells of cell_m gets larger cells, so that the
+  // height field keeps at most kMaxLayoutCells cells a side (a 100 m bowl would need 10^10).
+  LayoutOptions options = given;
+  options.cell_m = std::max(given.cell_m, 2 * rest_radius(container, given.none_radius_m) /
+                                              (kMaxLayoutCells - 1));
   HeightField field(container, options);
   const int n = field.cells();
   const glm::dvec3 up(0, 1, 0);
-  const glm::dvec3 facing = glm::normalize(up + glm::normalize(options.to_camera));
+  // Halfway between up and the camera, the camera taken no lower than the horizon: one below
+  // the container would turn the caps down into it, one straight below leave no direction.
+  glm::dvec3 to_camera = glm::normalize(options.to_camera);
+  to_camera.y = std::max(0.0, to_camera.y);
+  const glm::dvec3 facing = glm::normalize(up + to_camera);
   std::vector<Placement> out(pieces.size());
 
   // Fan rows first, by group, each in rank order between the object's ends.

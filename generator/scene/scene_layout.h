@@ -31,9 +31,13 @@ struct LayoutPiece {
   int cut_faces = 2;
 };
 
+/// The most height-field cells along one side of the layout grid: a wider container gets cells
+/// larger than cell_m (layout_pieces), 4 M cells (32 MB) at most.
+inline constexpr int kMaxLayoutCells = 2048;
+
 /// Options of layout_pieces.
 struct LayoutOptions {
-  double cell_m = 0.001;           ///< height-field cell edge, metres
+  double cell_m = 0.001;           ///< height-field cell edge, metres (at least; see kMaxLayoutCells)
   int candidates = 64;             ///< random positions tried per piece
   double clearance_m = 0.001;      ///< gap left under each drop pose (clear of the bodies' margins), m
   double centre_weight = 0.25;     ///< score = rest height + centre_weight * distance to the axis
@@ -61,7 +65,8 @@ struct Placement {
 /// surfaces) and its footprint (per cell: its lowest and highest surface points over the cell)
 /// clears the height field of the pieces before it by clearance_m; the height field then rises
 /// to the piece's top.
-/// - pile: the largest cap faces halfway between up and `to_camera` (a whole object stands
+/// - pile: the largest cap faces halfway between up and `to_camera` (taken no lower than the
+///   horizon, so a camera below the container gives caps facing up; a whole object stands
 ///   upright), tilted by up to tilt_deg and spun at random; of `candidates` random positions
 ///   (every vertex over the resting area) the lowest by score is taken;
 /// - fan: a row, each piece's cap up and leaning fan_tilt_deg along the row (the first flat),

@@ -88,16 +88,20 @@ void check_grain_limits(const Template& tmpl, const DsModel& model) {
     hi = glm::max(hi, point(skin, vh));
   }
   const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  double before = 0;  // the most grains of the sets before this one
   for (const GrainSpec& spec : tmpl.grains) {
     const double area = AreaSampler(region_triangles(spec, grain_support(spec, model).mesh).area)
                             .total();
     const double most = area / (0.5 * std::sqrt(3.0) * spec.spacing * spec.spacing);
-    if (most > kMaxGrainsPerSet) {
+    if (before + most > kMaxGrains) {
       std::ostringstream s;
       s << "the spacing is too small for the region: up to " << static_cast<long long>(most)
-        << " grains could fit (at most " << kMaxGrainsPerSet << " per grain set)";
+        << " grains could fit";
+      if (before > 0) s << ", " << static_cast<long long>(before) << " in the sets before it";
+      s << " (at most " << kMaxGrains << " over all grain sets)";
       throw InputError(spec.spacing_loc, spec.path + ".spacing", s.str());
     }
+    before += most;
     const double largest = std::max({spec.semi_axes.x, spec.semi_axes.y, spec.semi_axes.z});
     if (largest > extent) {
       std::ostringstream s;

@@ -52,14 +52,15 @@ void add_ellipsoids(const std::vector<GrainPlacement>& grains, const glm::dvec3&
                     const glm::dvec3& back, double blur, const GrainOptions& options,
                     DsMesh& mesh);
 
-/// The most grains one grain set may ask for: the region's area over the area a grain's
-/// Poisson disc claims in the densest packing (sqrt(3)/2 spacing^2). Each grain is a mesh of
-/// 50 vertices, so this bounds a set at 1M vertices.
-inline constexpr double kMaxGrainsPerSet = 20000;
+/// The most grains a template's grain sets may ask for together, each set counted as its
+/// region's area over the area a grain's Poisson disc claims in the densest packing
+/// (sqrt(3)/2 spacing^2). Each grain is a mesh of 50 vertices, so this bounds the grains of a
+/// variant at 500,000 vertices.
+inline constexpr double kMaxGrains = 10000;
 
 /// Refuses grain sets of `tmpl` that would take unbounded work or make no sense on `model`
-/// (built from tmpl), before any dart is thrown: more than kMaxGrainsPerSet grains for the
-/// region's area (a spacing far too small), or an ellipsoid semi-axis or a depth larger than
+/// (built from tmpl), before any dart is thrown: more than kMaxGrains grains for the regions'
+/// areas over all sets (a spacing far too small), or an ellipsoid semi-axis or a depth larger than
 /// the skin's bounding box. A region with no area is allowed (it gets no grains).
 /// @throws InputError at the grain's `spacing`, `shape` or item, naming the rule
 void check_grain_limits(const Template& tmpl, const DsModel& model);

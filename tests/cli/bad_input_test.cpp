@@ -88,7 +88,7 @@ std::vector<BadCase> bad_cases() {
                 [] { return with_byte(kHead + "name: ", "\xC0\xAF", "\n"); }),
       generated("huge_file", 1, 1, "(file)", "larger than 16 MiB", huge_file),
       at_path("directory", "tests/bad_input", "(file)", "is a directory"),
-      at_path("nonexistent", "tests/bad_input/no_such_file.yaml", "(file)", "cannot open the file"),
+      at_path("nonexistent", "tests/bad_input/no_such_file.yaml", "(file)", "does not exist"),
       fixture("syntax_error", 12, 5, "(file)", "YAML syntax error"),
       fixture("deep_nesting", 4, 75, "(file)", "nesting is deeper than 64 levels"),
       generated("deep_block_nesting", 1, 1000, "(file)", "YAML syntax error",

@@ -29,58 +29,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// What one run of build/cutaway under limits did.
-struct LimitedRun {
-  int exit_code = -1;  ///< -1: killed by a signal
-  int signal = 0;
-  std::string err;     ///< stderr
-  double seconds = 0;  ///< wall time
-};
-
-/// Runs build/cutaway with `args` in the source directory, with at most 1 GiB of address space
-/// (an allocation beyond it fails: std::bad_alloc, exit code 1; not under AddressSanitizer,
-/// which needs far more address space, and reports huge allocations itself) and 60 s of CPU
-/// time (a
-/// regression fails the test instead of taking the machine).
-LimitedRun run_limited(const std::vector<std::string>& args) {
-  const fs::path err_file = test::fresh_dir("hostile_run") / "stderr.txt";
-  std::vector<std::string> words{CUTAWAY_BINARY};
-  words.insert(words.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& w : words) argv.push_back(w.data());
-  argv.push_back(nullptr);
-  const std::string err_path = err_file.string();
-  const auto t0 = std::chrono::steady_clock::now();
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    // Only async-signal-safe calls between fork and exec.
-    const rlimit as{rlim_t{1} << 30, rlim_t{1} << 30}, cpu{60, 60};
-#ifndef __SANITIZE_ADDRESS__  // AddressSanitizer reserves terabytes of shadow address space
-    ::setrlimit(RLIMIT_AS, &as);
-#else
-    (void)as;
-#endif
-    ::setrlimit(RLIMIT_CPU, &cpu);
-    if (::chdir(CUTAWAY_SOURCE_DIR) != 0) ::_exit(126);
-    const int null = ::open("/dev/null", O_RDWR);
-    const int err = ::open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    ::dup2(null, 0);
-    ::dup2(null, 1);
-    ::dup2(err, 2);
-    ::execv(argv[0], argv.data());
-    ::_exit(127);
-  }
-  LimitedRun r;
-  int status = 0;
-  if (pid < 0 || ::waitpid(pid, &status, 0) != pid) {
-    ADD_FAILURE() << "cannot run " << CUTAWAY_BINARY;
-    return r;
-  }
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
-  if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
-  r.err = test::read_file(err_file);
-  return r;
+/// run_cutaway_limited with 1 GiB of address space and 60 s of CPU time.
+test::LimitedRun run_limited(const std::vector<std::string>& args) {
+  return test::run_cutaway_limited(args, uint64_t{1} << 30, 60);
 }
 
 /// Whether `s` has a raw control character other than its final line break.
@@ -94,7 +45,7 @@ bool has_raw_control(const std::string& s) {
 
 /// Checks a refusal: exit code 2, one short line of text starting "INPUT:L:C: " that names the
 /// field (`field` is the path or its beginning) and contains `rule`.
-void expect_refusal(const LimitedRun& r, const std::string& input, const std::string& field,
+void expect_refusal(const test::LimitedRun& r, const std::string& input, const std::string& field,
                     const std::string& rule) {
   EXPECT_EQ(r.signal, 0) << r.err;
   EXPECT_EQ(r.exit_code, 2) << r.err;
@@ -121,7 +72,7 @@ class HostilePly : public ::testing::TestWithParam<HostileMesh> {};
 TEST_P(HostilePly, RefusedFastInLittleMemory) {
   const HostileMesh& c = GetParam();
   const std::string input = "tests/data/reliability/" + c.name + ".yaml";
-  const LimitedRun r = run_limited({"check", input});
+  const test::LimitedRun r = run_limited({"check", input});
   expect_refusal(r, input, c.field + ": ", c.rule);
   std::printf("%s: exit %d in %.3f s\n", c.name.c_str(), r.exit_code, r.seconds);
   // About 0.05 s; a loaded machine gets some slack.
@@ -150,7 +101,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 /// The shipped kidney passes under the same limits: they do not refuse honest meshes.
 TEST(HostilePlyControl, TheShippedKidneyPassesUnderTheSameLimits) {
-  const LimitedRun r = run_limited({"check", "templates/kidney.yaml"});
+  const test::LimitedRun r = run_limited({"check", "templates/kidney.yaml"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
 }
@@ -168,7 +119,7 @@ TEST(HostileKeys, KeyWithATrailingBlankIsQuotedInThePath) {
 
 TEST(HostileKeys, ControlCharacterInAKeyIsEscaped) {
   const std::string input = "tests/data/reliability/key-control-char.yaml";
-  const LimitedRun r = run_limited({"check", input});
+  const test::LimitedRun r = run_limited({"check", input});
   expect_refusal(r, input, "(root)[\"f\\x7frmat\"]: ", "unknown field \"f\\x7frmat\"");
   EXPECT_EQ(r.err.find('\x7f'), std::string::npos);
 }
@@ -203,7 +154,7 @@ TEST_P(HostileLongValue, MessageStaysShort) {
   to.replace(to.find(k10MB), k10MB.size(), std::string(10u << 20, 'x'));
   const fs::path file = test::fresh_dir("hostile_long_value") / (c.name + ".yaml");
   std::ofstream(file, std::ios::binary) << edited_base(c.from, to);
-  const LimitedRun r = run_limited({"check", file.string()});
+  const test::LimitedRun r = run_limited({"check", file.string()});
   expect_refusal(r, file.string(), c.field, c.rule);
   std::printf("%s: %zu bytes of message in %.2f s\n", c.name.c_str(), r.err.size(), r.seconds);
 }

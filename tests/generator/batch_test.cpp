@@ -321,5 +321,26 @@ TEST(SlurmJob, WritesAnArrayScriptAndRefusesUnquotablePaths) {
   EXPECT_NE(slurm_job_rule(job), "");
 }
 
+// sbatch splits #SBATCH lines on every white-space byte, vertical tab and form feed included:
+// "out\f--chdir=/srv" would become an option of its own. Each separator, control character,
+// quote, pattern character and a byte that is not UTF-8 is refused, in each of the three paths.
+TEST(SlurmJob, RefusesEveryByteSbatchSplitsOnOrCannotPrint) {
+  std::vector<std::string> bad = {" ", "\t", "\n", "\v", "\f", "\r", "'", "\"", "%", "\\",
+                                  "\x7f", "\xc2\x85", "\xc2\xa0", "\xff", "\xc3"};
+  for (int c = 1; c < 0x20; ++c) bad.push_back(std::string(1, static_cast<char>(c)));
+  for (const std::string& b : bad) {
+    for (int which = 0; which < 3; ++which) {
+      SlurmJob job{"/opt/cutaway", "/data/b.yaml", "/data/out", "fruit", 4, 2, "", "", {}};
+      std::string& path = which == 0 ? job.cutaway : which == 1 ? job.batch_file : job.dir;
+      path += b + "--chdir=/srv";
+      EXPECT_NE(slurm_job_rule(job).find("sbatch splits"), std::string::npos)
+          << "byte " << static_cast<int>(static_cast<unsigned char>(b[0])) << " in path " << which;
+    }
+  }
+  // Printable UTF-8 beyond ASCII is kept.
+  SlurmJob job{"/opt/cutaway", "/data/b.yaml", "/data/frühstück-ø", "fruit", 4, 2, "", "", {}};
+  EXPECT_EQ(slurm_job_rule(job), "");
+}
+
 }  // namespace
 }  // namespace cutaway

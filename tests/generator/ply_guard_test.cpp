@@ -138,13 +138,15 @@ TEST(PlyGuard, CountsBeyondTheTemplateLimitsAreRefused) {
   std::string big = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(nv) +
                     "\n" + kXyz + "element face 0\n" + kIndices + "end_header\n";
   big.resize(big.size() + nv * 12, '\0');
-  EXPECT_REFUSED(big, "declares 2000001 vertices; a template mesh may have at most 2000000");
+  EXPECT_REFUSED(big, "declares " + std::to_string(nv) + " vertices; a template mesh may have at most " +
+                          std::to_string(kMaxMeshVertices));
   const size_t nf = kMaxMeshFaces + 1;
   std::string many = "ply\nformat binary_little_endian 1.0\nelement vertex 3\n" + kXyz +
                      "element face " + std::to_string(nf) +
                      "\nproperty list uchar uchar vertex_indices\nend_header\n";
   many.resize(many.size() + 36 + nf * 4, '\0');
-  EXPECT_REFUSED(many, "declares 4000001 faces; a template mesh may have at most 4000000");
+  EXPECT_REFUSED(many, "declares " + std::to_string(nf) + " faces; a template mesh may have at most " +
+                           std::to_string(kMaxMeshFaces));
 }
 
 TEST(PlyGuard, TruncatedBodiesAreRefused) {

@@ -1,0 +1,80 @@
+#include "base/file_read.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace cutaway {
+
+FileReadError::FileReadError(const std::filesystem::path& path, std::string rule)
+    : std::runtime_error("cannot read " + path.string() + ": " + rule), rule_(std::move(rule)) {}
+
+std::string byte_size_words(uint64_t bytes) {
+  if (bytes != 0 && bytes % (uint64_t{1} << 30) == 0) return std::to_string(bytes >> 30) + " GiB";
+  if (bytes != 0 && bytes % (uint64_t{1} << 20) == 0) return std::to_string(bytes >> 20) + " MiB";
+  if (bytes != 0 && bytes % (uint64_t{1} << 10) == 0) return std::to_string(bytes >> 10) + " KiB";
+  return std::to_string(bytes) + " bytes";
+}
+
+namespace {
+
+/// The rule a file of this type breaks, or "" for a regular file.
+std::string type_rule(mode_t mode) {
+  if (S_ISREG(mode)) return "";
+  if (S_ISDIR(mode)) return "is a directory";
+  return "is not a regular file (a FIFO, socket or device)";
+}
+
+/// The rule for a failed system call: "cannot be read: REASON" (errno's).
+std::string system_rule() { return std::string("cannot be read: ") + std::strerror(errno); }
+
+/// Closes a descriptor when it goes out of scope.
+struct FdCloser {
+  int fd;
+  ~FdCloser() { ::close(fd); }
+};
+
+}  // namespace
+
+std::string read_regular_file(const std::filesystem::path& path, uint64_t max_bytes) {
+  const std::string too_large = "is larger than " + byte_size_words(max_bytes);
+  // The path is checked before it is opened (opening some devices has effects of its own),
+  // then the descriptor, in case the path was replaced in between.
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) {
+    throw FileReadError(path, errno == ENOENT ? "does not exist" : system_rule());
+  }
+  if (std::string rule = type_rule(st.st_mode); !rule.empty()) throw FileReadError(path, rule);
+  if (static_cast<uint64_t>(st.st_size) > max_bytes) throw FileReadError(path, too_large);
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) throw FileReadError(path, system_rule());
+  const FdCloser closer{fd};
+  if (::fstat(fd, &st) != 0) throw FileReadError(path, system_rule());
+  if (std::string rule = type_rule(st.st_mode); !rule.empty()) throw FileReadError(path, rule);
+  if (static_cast<uint64_t>(st.st_size) > max_bytes) throw FileReadError(path, too_large);
+
+  std::string bytes(static_cast<size_t>(st.st_size), '\0');
+  size_t got = 0;
+  for (;;) {
+    if (got == bytes.size()) {
+      if (got > max_bytes) throw FileReadError(path, too_large);
+      // The file may have grown since fstat: read on, one more than the limit at most.
+      bytes.resize(static_cast<size_t>(std::min<uint64_t>(max_bytes + 1, got + 65536)));
+    }
+    const ssize_t n = ::read(fd, bytes.data() + got, bytes.size() - got);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw FileReadError(path, system_rule());
+    }
+    if (n == 0) break;
+    got += static_cast<size_t>(n);
+  }
+  bytes.resize(got);
+  return bytes;
+}
+
+}  // namespace cutaway

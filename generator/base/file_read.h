@@ -1,0 +1,40 @@
+// Reading a file without trusting it: the one way cutaway reads any file (inputs, mesh files,
+// manifests, thumbnails, files it wrote). A path that names a FIFO, a device or a socket is
+// refused before anything is read from it (a FIFO would block, /dev/zero never ends), the
+// size is checked before reading, and no more than the limit is ever read, even from a file
+// that grows meanwhile.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+namespace cutaway {
+
+/// A file that could not be read. what() is "cannot read PATH: RULE"; rule() is the rule alone
+/// (e.g. "is larger than 16 MiB"), to follow the file's name in messages that name it their way.
+class FileReadError : public std::runtime_error {
+ public:
+  FileReadError(const std::filesystem::path& path, std::string rule);
+  const std::string& rule() const { return rule_; }
+
+ private:
+  std::string rule_;
+};
+
+/// The bytes of the regular file at `path` (symbolic links followed), at most `max_bytes`.
+/// The file is opened without blocking and checked on its open descriptor: a directory, FIFO,
+/// socket or device is refused, and so is a file whose size is over `max_bytes`, before any
+/// byte is read; at most max_bytes + 1 bytes are read, so a file that grows past the limit
+/// while it is read is refused too. Memory: the file's size, never more than `max_bytes`.
+/// @throws FileReadError whose rule, to follow the file's name, is "does not exist", "is a
+///         directory", "is not a regular file (a FIFO, socket or device)", "is larger than N MiB"
+///         (KiB, bytes: the largest whole unit of max_bytes) or "cannot be read: REASON"
+std::string read_regular_file(const std::filesystem::path& path, uint64_t max_bytes);
+
+/// `bytes` in words as size rules state it: "16 MiB", "64 KiB", "1000 bytes" (the largest
+/// binary unit that divides it).
+std::string byte_size_words(uint64_t bytes);
+
+}  // namespace cutaway
