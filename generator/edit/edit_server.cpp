@@ -601,6 +601,10 @@ EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
   Impl& s = *impl_;
   s.options = std::move(options);
   s.renderers = std::move(renderers);
+  // What the answers' Keep-Alive header says (serve_connection() does it).
+  s.router.set_keep_alive_max_count(kRequestsPerConnection);
+  s.router.set_keep_alive_timeout(
+      std::chrono::ceil<std::chrono::seconds>(s.options.idle_timeout).count());
   s.router.set_exception_handler(
       [](const httplib::Request&, httplib::Response& res, std::exception_ptr error) {
         std::string why = "unknown error";
