@@ -1,7 +1,11 @@
 // `cutaway edit`: the template editor's server (edit/edit_server.h), with the OpenGL previews
 // as its pictures, until Ctrl-C.
+#include <chrono>
+#include <condition_variable>
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
+#include <mutex>
 #include <thread>
 
 #include <spdlog/spdlog.h>
@@ -11,6 +15,9 @@
 #include "render/edit_pictures.h"
 
 namespace cutaway::cli {
+
+/// How long a stop waits for requests still being computed before the process ends anyway.
+constexpr std::chrono::seconds kStopGrace{2};
 
 int run_edit(const EditArgs& a) {
   const std::filesystem::path path = std::filesystem::absolute(a.template_path);
@@ -24,23 +31,36 @@ int run_edit(const EditArgs& a) {
   EditServer server(options, opengl_edit_pictures());
   spdlog::info("cutaway edit: {} at http://127.0.0.1:{}/ (Ctrl-C stops)", path.string(),
                server.port());
-  // Ctrl-C or SIGTERM stops the server from a thread that waits for the signal; saves are
-  // atomic, so stopping never leaves a half-written template.
+  // Ctrl-C or SIGTERM stops the server from a thread that waits for the signal. The server
+  // ends its connections at once, but a request being computed (a check of a huge template)
+  // would keep run() waiting: after kStopGrace the process ends without it. Saves are atomic,
+  // so stopping never leaves a half-written template.
   sigset_t signals;
   sigemptyset(&signals);
   sigaddset(&signals, SIGINT);
   sigaddset(&signals, SIGTERM);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  std::mutex stopped_mutex;
+  std::condition_variable stopped_changed;
+  bool stopped = false;
   std::thread waiter([&] {
     int received = 0;
     sigwait(&signals, &received);
     server.stop();
+    std::unique_lock<std::mutex> lock(stopped_mutex);
+    if (!stopped_changed.wait_for(lock, kStopGrace, [&] { return stopped; })) {
+      spdlog::warn("cutaway edit: stopped without waiting for a request still being computed");
+      std::_Exit(0);
+    }
   });
   server.run();
-  if (waiter.joinable()) {
-    pthread_kill(waiter.native_handle(), SIGTERM);
-    waiter.join();
+  {
+    const std::lock_guard<std::mutex> lock(stopped_mutex);
+    stopped = true;
   }
+  stopped_changed.notify_all();
+  pthread_kill(waiter.native_handle(), SIGTERM);  // wakes it if run() ended without a signal
+  waiter.join();
   return 0;
 }
 

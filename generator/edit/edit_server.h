@@ -6,9 +6,16 @@
 // Security, as for any local server: it listens on 127.0.0.1 only; requests whose Host or
 // Origin is not the server's own are refused (DNS rebinding, cross-site pages); it serves a
 // fixed set of embedded files and reads and writes only the one template file it was started
-// on (no path comes from a request); request bodies are limited in size.
+// on (no path comes from a request), and only while it is a regular file.
+//
+// Bounds, so that no client, however slow or large its requests, stops the others being
+// answered: request bodies are limited in size whatever their transfer encoding (compressed
+// ones are refused); a request must arrive within a time limit of its first byte; connections
+// are served each on its own thread, up to a bound; variant strips are made one at a time (a
+// newer request replaces an older one) and without the lock the other requests take.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <filesystem>
 #include <functional>
@@ -50,11 +57,28 @@ struct EditRenderers {
   std::function<std::string(std::vector<Outcome<CrossSection>>)> variants_png;
 };
 
-/// How run_edit_server() listens.
+/// The most bytes of a request's line and headers (above that: 400, and the connection is closed).
+inline constexpr size_t kMaxRequestHeadBytes = 64u << 10;
+/// The most requests served on one connection before it is closed (the client opens another).
+inline constexpr int kRequestsPerConnection = 100;
+/// The largest template file /api/template reads, as the template parser's own limit.
+inline constexpr size_t kMaxTemplateFileBytes = 16u << 20;
+
+/// How EditServer listens and what it bounds.
 struct EditServerOptions {
   std::filesystem::path template_path;  ///< the file edited and saved; its folder must exist
   int port = 8765;                      ///< on 127.0.0.1; 0: any free port
-  size_t max_body_bytes = 4u << 20;     ///< larger request bodies are refused (413)
+  /// Larger request bodies are refused (413), chunked ones as soon as they pass it; their chunk
+  /// framing may add at most kMaxRequestHeadBytes.
+  size_t max_body_bytes = 4u << 20;
+  /// Connections served at once; one more is answered 503 and closed.
+  int max_connections = 256;
+  /// A request, head and body, must arrive within this of its first byte (else the connection
+  /// is closed, after a 400, or 408 when the head had arrived); it is also how long each write
+  /// of an answer may wait for the client to take it.
+  std::chrono::milliseconds request_timeout{5000};
+  /// How long a connection may wait for its next request (keep-alive) or its first one.
+  std::chrono::milliseconds idle_timeout{5000};
   int section_cube = 8;                 ///< PMVC cube-map size of the live cross-section
   int coarse_section_cube = 3;          ///< the same while the user drags the plane
   int variant_cube = 8;                 ///< PMVC cube-map size of the variants' cuts
@@ -67,19 +91,30 @@ struct EditServerOptions {
 std::string request_refusal(std::string_view host, std::string_view origin, int port);
 
 /// The editor's server: binds at construction, serves in run(), stops from any thread.
+/// HTTP is cpp-httplib's (its routing and request parsing); the connections are this class's:
+/// it accepts them (listen backlog 512) and serves each on a thread of its own, with the
+/// bounds of EditServerOptions.
 class EditServer {
  public:
-  /// Binds 127.0.0.1:options.port.
+  /// Binds 127.0.0.1:options.port and listens.
+  /// @pre options.max_connections >= 1, the timeouts > 0
   /// @throws std::runtime_error "port N on 127.0.0.1 is taken; pass another with --port" when
   ///         it cannot bind
   EditServer(EditServerOptions options, EditRenderers renderers);
+  /// @pre run() has returned, or was never called
   ~EditServer();
   EditServer(const EditServer&) = delete;
   EditServer& operator=(const EditServer&) = delete;
 
   int port() const;  ///< the bound port
-  void run();        ///< serves until stop(); blocks; returns at once after a stop()
-  void stop();       ///< makes run() return (waiting until its loop runs); from any thread
+  /// Serves until stop(); blocks; returns at once after a stop(). Before returning it closes
+  /// the listening socket and waits for the connections' threads: requests being read or
+  /// written end at once (their sockets are shut down), a variants strip being made stops
+  /// after the variant it is on, and any other request being computed is finished (its answer
+  /// then goes nowhere).
+  void run();
+  /// Makes run() return (or a later run() return at once); from any thread, any number of times.
+  void stop();
 
  private:
   struct Impl;

@@ -1,13 +1,33 @@
 // The template editor's server (edit/edit_server.h): its security rules, each with a request
 // that breaks it; the parser's verdict with line, column, field and rule; the pictures; and
-// saving: every shipped template opened and saved unchanged keeps its model bytes.
+// saving: every shipped template opened and saved unchanged keeps its model bytes. Its bounds,
+// each with the request or load that broke them before: bodies too large whatever their
+// encoding, slow clients by the hundred beside variant strips, a FIFO in place of the
+// template, a file name that is not UTF-8.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <regex>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <httplib.h>
 #include <nlohmann/json.hpp>
@@ -23,17 +43,22 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// A server on a free port for `template_path`, running on its own thread while in scope.
-/// Its pictures are stand-ins that say what they were given (the OpenGL previews have tests
-/// of their own).
+using Clock = std::chrono::steady_clock;
+using namespace std::chrono_literals;
+
+/// A server on a free port for `template_path`, running on its own thread while in scope, with
+/// options as `adjust` makes them. Its pictures are stand-ins that say what they were given
+/// (the OpenGL previews have tests of their own).
 class RunningServer {
  public:
-  explicit RunningServer(const fs::path& template_path, size_t max_body = 1u << 20) {
+  explicit RunningServer(const fs::path& template_path,
+                         const std::function<void(EditServerOptions&)>& adjust = nullptr) {
     EditServerOptions o;
     o.template_path = template_path;
     o.port = 0;
-    o.max_body_bytes = max_body;
+    o.max_body_bytes = 1u << 20;
     o.section_cube = 4;
+    if (adjust) adjust(o);
     EditRenderers r;
     r.model_png = [](const DsModel& m) { return "model:" + std::to_string(m.surfaces.size()); };
     r.section_png = [](const CrossSection& s) {
@@ -77,6 +102,70 @@ bool untouched(const fs::path& file) {
 
 /// The HTTP status of a request's answer, or -1 when no answer came.
 int status_of(const httplib::Result& r) { return r ? r->status : -1; }
+
+/// A TCP connection to the server made by hand, for requests no HTTP client sends: slow,
+/// chunked, compressed. Closed when it goes out of scope.
+class RawConnection {
+ public:
+  /// Connects to 127.0.0.1:`port`; reads and writes wait at most `timeout`.
+  explicit RawConnection(int port, std::chrono::milliseconds timeout = 10s)
+      : fd_(::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0)) {
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(static_cast<uint16_t>(port));
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (fd_ < 0 || ::connect(fd_, reinterpret_cast<const sockaddr*>(&a), sizeof a) != 0)
+      ADD_FAILURE() << "cannot connect to port " << port << ": " << std::strerror(errno);
+    const timeval tv{static_cast<time_t>(timeout.count() / 1000),
+                     static_cast<suseconds_t>(timeout.count() % 1000 * 1000)};
+    ::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+    ::setsockopt(fd_, SOL_SOCKET, SO_SNDTIMEO, &tv, sizeof tv);
+  }
+  RawConnection(RawConnection&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
+  RawConnection(const RawConnection&) = delete;
+  RawConnection& operator=(const RawConnection&) = delete;
+  ~RawConnection() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+
+  /// Sends all of `bytes`; false when the server closed the connection or stopped reading.
+  bool send(std::string_view bytes) {
+    while (!bytes.empty()) {
+      const ssize_t n = ::send(fd_, bytes.data(), bytes.size(), MSG_NOSIGNAL);
+      if (n <= 0) return false;
+      bytes.remove_prefix(static_cast<size_t>(n));
+    }
+    return true;
+  }
+  /// What the server sends until it closes the connection; "...<still open>" when the read
+  /// timeout passed first.
+  std::string read_to_close() {
+    std::string got;
+    std::array<char, 4096> buffer;
+    for (;;) {
+      const ssize_t n = ::recv(fd_, buffer.data(), buffer.size(), 0);
+      if (n > 0) {
+        got.append(buffer.data(), static_cast<size_t>(n));
+        continue;
+      }
+      if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) got += "<still open>";
+      return got;
+    }
+  }
+
+ private:
+  int fd_;
+};
+
+/// The status of an HTTP answer read raw, or -1 when there is none.
+int raw_status(const std::string& answer) {
+  return answer.rfind("HTTP/1.1 ", 0) == 0 ? std::atoi(answer.c_str() + 9) : -1;
+}
+
+/// A request head for the server on `port`, with `headers` (each ending in CRLF) added.
+std::string request_head(int port, const std::string& line, const std::string& headers) {
+  return line + "\r\nHost: 127.0.0.1:" + std::to_string(port) + "\r\n" + headers + "\r\n";
+}
 
 TEST(EditServer, RefusesForeignHostsAndOrigins) {
   EXPECT_EQ(request_refusal("127.0.0.1:8765", "", 8765), "");
@@ -163,7 +252,7 @@ TEST(EditServer, ServesLibrariesOnlyFromTheirFolders) {
 TEST(EditServer, RefusesOversizedBodies) {
   const fs::path dir = test::fresh_dir("edit");
   const fs::path file = copy_template("tomato", dir);
-  RunningServer server(file, 1000);
+  RunningServer server(file, [](EditServerOptions& o) { o.max_body_bytes = 1000; });
   httplib::Client c = server.client();
   EXPECT_EQ(status_of(c.Post("/api/save", std::string(5000, '#'), "text/plain")), 413);
   EXPECT_TRUE(untouched(file));
@@ -301,6 +390,304 @@ TEST(EditServer, ATakenPortIsAClearError) {
     EXPECT_NE(std::string(e.what()).find("is taken; pass another with --port"), std::string::npos)
         << e.what();
   }
+}
+
+
+// A chunked body is bounded as one with a Content-Length: past the limit the server answers 413
+// and stops reading (600 MB were once taken in); a small chunked body is served.
+TEST(EditServer, BoundsChunkedBodies) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  constexpr size_t kLimit = 64u << 10;
+  RunningServer server(file, [](EditServerOptions& o) { o.max_body_bytes = kLimit; });
+  RawConnection big(server.port());
+  ASSERT_TRUE(big.send(request_head(server.port(), "POST /api/check HTTP/1.1",
+                                    "Transfer-Encoding: chunked\r\n")));
+  // A sender offers 256 MiB in 64 KiB chunks; the server's answer must come long before.
+  std::atomic<size_t> sent{0};
+  std::thread sender([&] {
+    const std::string chunk = "10000\r\n" + std::string(0x10000, 'a') + "\r\n";
+    for (int k = 0; k < 4096 && big.send(chunk); ++k) sent += chunk.size();
+  });
+  const std::string answer = big.read_to_close();
+  sender.join();
+  EXPECT_EQ(raw_status(answer), 413) << answer.substr(0, 300);
+  EXPECT_NE(answer.find("limited to 65536 bytes"), std::string::npos) << answer.substr(0, 300);
+  EXPECT_LT(sent.load(), size_t{64} << 20);  // the server stopped reading near the limit
+
+  const std::string text = "format: cutaway-template/1\nname: x\n";
+  RawConnection small(server.port());
+  ASSERT_TRUE(small.send(request_head(server.port(), "POST /api/check HTTP/1.1",
+                                      "Transfer-Encoding: chunked\r\nConnection: close\r\n")));
+  char size[16];
+  std::snprintf(size, sizeof size, "%zx\r\n", text.size());
+  ASSERT_TRUE(small.send(size + text + "\r\n0\r\n\r\n"));
+  const std::string verdict = small.read_to_close();
+  EXPECT_EQ(raw_status(verdict), 200) << verdict;
+  EXPECT_NE(verdict.find("\"ok\":false"), std::string::npos) << verdict;  // read, then checked
+}
+
+// Bodies the page never sends are refused from their head, before any of them is read:
+// compressed ones (a 305 KB gzip body once inflated to 300 MiB), POSTs without a length, other
+// methods; the connection closes after the answer.
+TEST(EditServer, RefusesBodiesItCannotBound) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  RunningServer server(file);
+  const auto answer = [&](const std::string& line, const std::string& headers,
+                          const std::string& body) {
+    RawConnection c(server.port());
+    c.send(request_head(server.port(), line, headers) + body);
+    return c.read_to_close();
+  };
+  const std::string gzip_bytes("\x1f\x8b\x08\x00\x00\x00\x00\x00\x00\x03", 10);
+  EXPECT_EQ(raw_status(answer("POST /api/check HTTP/1.1",
+                              "Content-Encoding: gzip\r\nContent-Length: 10\r\n", gzip_bytes)),
+            415);
+  EXPECT_EQ(raw_status(answer("POST /api/save HTTP/1.1", "Content-Encoding: br\r\nContent-Length: 10\r\n",
+                              gzip_bytes)),
+            415);
+  EXPECT_EQ(raw_status(answer("POST /api/check HTTP/1.1",
+                              "Transfer-Encoding: gzip, chunked\r\n", "a\r\n" + gzip_bytes)),
+            415);
+  EXPECT_EQ(raw_status(answer("POST /api/check HTTP/1.1", "", "name: x")), 411);
+  EXPECT_EQ(raw_status(answer("POST /api/check HTTP/1.1", "Content-Length: 12x\r\n", "")), 400);
+  EXPECT_EQ(raw_status(answer("PUT /api/save HTTP/1.1", "Content-Length: 7\r\n", "name: x")), 405);
+  EXPECT_EQ(raw_status(answer("GET / HTTP/1.1", "Content-Length: 7\r\n", "name: x")), 400);
+  const std::string over = answer("POST /api/save HTTP/1.1", "Content-Length: 999999999999\r\n", "");
+  EXPECT_EQ(raw_status(over), 413) << over;
+  EXPECT_TRUE(untouched(file));
+}
+
+// 200 clients that send their heads a line at a time (slowloris) and eight strips of variants
+// at once do not delay checks: each is answered in under a second, the slow connections are
+// closed at the request timeout, and only one strip is made at a time (the older requests are
+// answered 503).
+TEST(EditServer, AnswersChecksBesideSlowClientsAndVariants) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  const std::string text = test::read_file(file);
+  constexpr auto kTimeout = 4s;
+  RunningServer server(file, [&](EditServerOptions& o) {
+    o.request_timeout = kTimeout;
+    o.variant_cube = 4;
+  });
+  const int port = server.port();
+
+  const Clock::time_point opened = Clock::now();
+  std::vector<RawConnection> slow;
+  for (int k = 0; k < 200; ++k) {
+    slow.emplace_back(port, 3s);
+    ASSERT_TRUE(slow.back().send("GET / HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) +
+                                 "\r\n"));
+  }
+  std::vector<int> variants_status(8, 0);
+  std::vector<Clock::time_point> variants_answered(8);
+  std::vector<std::thread> variants;
+  for (size_t k = 0; k < variants_status.size(); ++k) {
+    variants.emplace_back([&, k] {
+      httplib::Client c = server.client();
+      variants_status[k] = status_of(c.Post("/api/variants.png?count=8", text, "text/plain"));
+      variants_answered[k] = Clock::now();
+    });
+  }
+  httplib::Client c = server.client();
+  const Clock::time_point first_check = Clock::now() + 300ms;
+  for (int k = 0; k < 5; ++k) {
+    std::this_thread::sleep_for(300ms);
+    for (RawConnection& s : slow) s.send("X-Slow: " + std::to_string(k) + "\r\n");
+    // New text each time, as the page sends: each check builds its model.
+    const std::string edited = text + "# edit " + std::to_string(k) + "\n";
+    const Clock::time_point t0 = Clock::now();
+    const auto checked = c.Post("/api/check", edited, "text/plain");
+    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    ASSERT_TRUE(checked) << "check " << k;
+    EXPECT_EQ(checked->status, 200);
+    EXPECT_TRUE(nlohmann::json::parse(checked->body)["ok"]) << checked->body;
+    EXPECT_LT(seconds, 1.0) << "check " << k;
+  }
+  // The checks ran while the slow connections were held; then the server closes each of them
+  // at its request timeout.
+  EXPECT_LT(Clock::now(), opened + kTimeout);
+  for (RawConnection& s : slow) {
+    const std::string got = s.read_to_close();
+    if (got.find("<still open>") != std::string::npos) {
+      ADD_FAILURE() << "a slow connection is still open: " << got;
+      break;
+    }
+  }
+  EXPECT_LT(Clock::now(), opened + kTimeout + 3s);
+  for (std::thread& t : variants) t.join();
+  // A strip was being made while the checks were answered.
+  EXPECT_GT(*std::max_element(variants_answered.begin(), variants_answered.end()), first_check);
+  EXPECT_GE(std::count(variants_status.begin(), variants_status.end(), 200), 1);
+  for (const int status : variants_status) EXPECT_TRUE(status == 200 || status == 503) << status;
+}
+
+// Connections over the bound are answered 503 at once; once one closes, another is served.
+TEST(EditServer, TurnsAwayConnectionsOverTheBound) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  RunningServer server(file, [](EditServerOptions& o) { o.max_connections = 3; });
+  std::vector<RawConnection> held;
+  for (int k = 0; k < 3; ++k) held.emplace_back(server.port());
+  RawConnection over(server.port());
+  over.send(request_head(server.port(), "GET /api/template HTTP/1.1", ""));
+  const std::string refused = over.read_to_close();
+  EXPECT_EQ(raw_status(refused), 503) << refused;
+  held.pop_back();
+  int status = -1;
+  for (const Clock::time_point until = Clock::now() + 3s; status != 200 && Clock::now() < until;) {
+    std::this_thread::sleep_for(50ms);
+    status = status_of(server.client().Get("/api/template"));
+  }
+  EXPECT_EQ(status, 200);
+}
+
+// A FIFO in place of the template is refused at once, without opening it for a blocking read
+// (it once hung every request behind it); other requests go on, and saving does not write
+// through it.
+TEST(EditServer, RefusesATemplateThatIsNotARegularFile) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path fifo = dir / "fifo.yaml";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string text = test::read_file(test::source_path("templates/tomato.yaml"));
+  RunningServer server(fifo);
+  httplib::Client c = server.client();
+  c.set_read_timeout(1, 0);
+  const auto opened = c.Get("/api/template");
+  ASSERT_TRUE(opened);
+  EXPECT_EQ(opened->status, 500);
+  const nlohmann::json refusal = nlohmann::json::parse(opened->body);
+  EXPECT_NE(refusal["message"].get<std::string>().find("not a regular file"), std::string::npos)
+      << opened->body;
+  EXPECT_EQ(status_of(c.Post("/api/check", text, "text/plain")), 200);
+  const auto saved = c.Post("/api/save", text, "text/plain");
+  ASSERT_TRUE(saved);
+  EXPECT_EQ(saved->status, 500) << saved->body;
+  EXPECT_NE(saved->body.find("not a regular file"), std::string::npos) << saved->body;
+  EXPECT_TRUE(fs::is_fifo(fifo));
+}
+
+/// `cutaway edit TEMPLATE --port 0` started in the background, its output in `log`.
+pid_t start_editor(const fs::path& template_path, const fs::path& log) {
+  std::vector<std::string> words{CUTAWAY_BINARY, "edit", template_path.string(), "--port", "0"};
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  const std::string log_path = log.string();
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    // Only async-signal-safe calls between fork and exec.
+    sigset_t none;
+    sigemptyset(&none);
+    ::sigprocmask(SIG_SETMASK, &none, nullptr);
+    const int out = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int null = ::open("/dev/null", O_RDONLY);
+    ::dup2(null, 0);
+    ::dup2(out, 1);
+    ::dup2(out, 2);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+/// The port the editor printed in `log`, waiting for it up to 10 s; 0 when none came.
+int printed_port(const fs::path& log) {
+  const std::regex address(R"(127\.0\.0\.1:(\d+)/)");
+  for (const Clock::time_point until = Clock::now() + 10s; Clock::now() < until;) {
+    std::smatch m;
+    const std::string text = test::read_file(log);
+    if (std::regex_search(text, m, address)) return std::stoi(m[1]);
+    std::this_thread::sleep_for(20ms);
+  }
+  return 0;
+}
+
+/// Whether the child `pid` ended within `limit`, its wait status in *status (reaped).
+bool ends_within(pid_t pid, std::chrono::milliseconds limit, int* status) {
+  for (const Clock::time_point until = Clock::now() + limit; Clock::now() < until;) {
+    if (::waitpid(pid, status, WNOHANG) == pid) return true;
+    std::this_thread::sleep_for(20ms);
+  }
+  return false;
+}
+
+// The command with a FIFO for its template: the page's first request is answered (an error)
+// within a second, and SIGTERM stops the process (once it could not), even while a slow
+// client holds a connection.
+TEST(EditServer, StopsOnSigtermWithAFifoTemplate) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path fifo = dir / "fifo.yaml";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const fs::path log = dir / "edit.log";
+  const pid_t pid = start_editor(fifo, log);
+  ASSERT_GT(pid, 0);
+  const int port = printed_port(log);
+  int status = 0;
+  if (port == 0) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+    FAIL() << "no address printed:\n" << test::read_file(log);
+  }
+  httplib::Client c("127.0.0.1", port);
+  c.set_read_timeout(1, 0);
+  EXPECT_EQ(status_of(c.Get("/api/template")), 500);
+  RawConnection slow(port);
+  slow.send("GET / HTTP/1.1\r\n");
+  ASSERT_EQ(::kill(pid, SIGTERM), 0);
+  const bool ended = ends_within(pid, 5s, &status);
+  if (!ended) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+  }
+  EXPECT_TRUE(ended) << test::read_file(log);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status << test::read_file(log);
+}
+
+// A template file whose name is not UTF-8: every answer is JSON (the byte becomes U+FFFD),
+// where it once was a 500 with an empty body; saving answers 200 and writes the text once.
+TEST(EditServer, ServesAFileNameThatIsNotUtf8) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = dir / "tom\xff" "ato.yaml";
+  fs::copy_file(test::source_path("templates/tomato.yaml"), file);
+  RunningServer server(file);
+  httplib::Client c = server.client();
+  const auto opened = c.Get("/api/template");
+  ASSERT_TRUE(opened);
+  ASSERT_EQ(opened->status, 200) << opened->body;
+  const nlohmann::json doc = nlohmann::json::parse(opened->body);
+  EXPECT_EQ(doc["file"], "tom\xef\xbf\xbd" "ato.yaml");
+  std::string text = doc["text"].get<std::string>();
+  const auto bad = c.Post("/api/check", "units: furlongs\n", "text/plain");
+  ASSERT_TRUE(bad);
+  EXPECT_EQ(bad->status, 200);
+  EXPECT_EQ(nlohmann::json::parse(bad->body)["file"], "tom\xef\xbf\xbd" "ato.yaml");
+  text += "# saved\n";
+  const auto saved = c.Post("/api/save", text, "text/plain");
+  ASSERT_TRUE(saved);
+  EXPECT_EQ(saved->status, 200) << saved->body;
+  EXPECT_TRUE(nlohmann::json::parse(saved->body)["ok"]);
+  EXPECT_EQ(test::read_file(file), text);
+}
+
+// A save that cannot be written answers an error and leaves what was there.
+TEST(EditServer, ASaveThatFailsWritesNothing) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path folder = dir / "folder.yaml";  // a folder where the template should be
+  fs::create_directory(folder);
+  const std::string text = test::read_file(test::source_path("templates/tomato.yaml"));
+  RunningServer server(folder);
+  const auto saved = server.client().Post("/api/save", text, "text/plain");
+  ASSERT_TRUE(saved);
+  EXPECT_EQ(saved->status, 500);
+  EXPECT_NE(nlohmann::json::parse(saved->body)["message"].get<std::string>().find("is a directory"),
+            std::string::npos)
+      << saved->body;
+  EXPECT_TRUE(fs::is_directory(folder));
+  EXPECT_TRUE(fs::is_empty(folder));
+  EXPECT_EQ(test::files_in(dir), std::vector<std::string>{});
 }
 
 }  // namespace
