@@ -6,6 +6,9 @@
 #include <set>
 #include <sstream>
 
+#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/parser.h>
+
 #include "base/colour.h"
 #include "base/file_read.h"
 
@@ -130,6 +133,23 @@ std::string describe(const YAML::Node& n) {
     default: return "nothing";
   }
 }
+
+/// Parser events of one document, all ignored but where it starts.
+struct DocumentStart : YAML::EventHandler {
+  YAML::Mark mark;
+  void OnDocumentStart(const YAML::Mark& m) override { mark = m; }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
 
 }  // namespace
 
@@ -281,13 +301,16 @@ YamlField parse_yaml(std::string_view text, const std::string& file) {
   }
   YAML::Node root;
   try {
-    // Every document is parsed, so that a second one (after "---") is refused, not ignored.
-    std::vector<YAML::Node> documents = YAML::LoadAll(std::string(text));
-    if (documents.size() > 1) {
-      throw InputError(loc_of(documents[1].Mark(), file), "(file)",
+    root = YAML::Load(std::string(text));
+    // A second document (after "---") is refused, not ignored: the events of the first two
+    // are read (never more, however many documents follow).
+    std::istringstream in{std::string(text)};
+    YAML::Parser parser(in);
+    DocumentStart first, second;
+    if (parser.HandleNextDocument(first) && parser.HandleNextDocument(second)) {
+      throw InputError(loc_of(second.mark, file), "(file)",
                        "a second YAML document (after \"---\"): a file holds one document");
     }
-    if (!documents.empty()) root = documents[0];
   } catch (const YAML::Exception& e) {
     // yaml-cpp appends some of the input to a few messages (an escape character, a version):
     // written as quoted() writes it when it holds anything to escape.
