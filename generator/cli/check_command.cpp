@@ -61,7 +61,9 @@ int run_check(const std::vector<std::string>& files) {
         check_models(templates);
         std::printf("%s: ok (scene '%s', %zu items, %d objects, at most %.1f M cap texels)\n",
                     f.c_str(), scene.name.c_str(), scene.items.size(), objects,
-                    cutaway::estimate_cap_texels(scene, scene.render.texels_per_mm) / 1e6);
+                    // m^2 x (texels per mm)^2 = millions of texels
+                    cutaway::scene_cut_area(scene) * scene.render.texels_per_mm *
+                        scene.render.texels_per_mm);
         continue;
       }
       const cutaway::Template tmpl = cutaway::load_template(f);

@@ -32,7 +32,8 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
   const auto t0 = Clock::now();
   const Scene scene = load_scene(a.scene_path);
   if (a.texels_per_mm > 0) {
-    if (const std::string why = cap_texels_rule(scene, a.texels_per_mm); !why.empty())
+    if (const std::string why = cap_texels_rule(scene_cut_area(scene), a.texels_per_mm);
+        !why.empty())
       throw UsageError("--texels-per-mm: " + why);
   }
   const double t_parse = seconds_since(t0);

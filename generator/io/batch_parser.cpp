@@ -144,9 +144,15 @@ Batch load_batch(const std::string& path) {
   // An asset is named by its template, seed and cut (batch_assets.h): no two may agree.
   for (size_t i = 0; i < b.items.size(); ++i) {
     BatchItem& item = b.items[i];
-    for (size_t c = 0; c < item.cuts.size(); ++c)
+    for (size_t c = 0; c < item.cuts.size(); ++c) {
       item.template_name =
           templates.check(item.template_path, item.cuts[c], parsed[i].length_fields[c]);
+      // Each asset bakes its own caps: one object's cut faces at the batch's density.
+      const double area = estimate_cut_area(item.cuts[c], templates.extents(item.template_path));
+      if (const std::string why = cap_texels_rule(area, b.export_options.texels_per_mm);
+          !why.empty())
+        parsed[i].cut_fields[c].fail(why);
+    }
     item.template_hash = fnv1a64(read_input_file(item.template_path));
     for (size_t c = 0; c < item.cuts.size(); ++c)
       for (size_t d = 0; d < c; ++d)

@@ -180,7 +180,8 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
       r->fail("width x height is " + std::to_string(s.render.width * s.render.height) +
               " pixels (at most " + std::to_string(kMaxRenderPixels) + ", e.g. 4096 x 4096)");
   }
-  if (const std::string why = cap_texels_rule(s, s.render.texels_per_mm); !why.empty()) {
+  if (const std::string why = cap_texels_rule(scene_cut_area(s), s.render.texels_per_mm);
+      !why.empty()) {
     const auto density = root.get("render") ? root.get("render")->get("texels_per_mm")
                                             : std::optional<YamlField>();
     (density ? *density : item_fields.back()).fail(why);
@@ -190,22 +191,10 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
 
 }  // namespace
 
-double estimate_cap_texels(const Scene& scene, double texels_per_mm) {
-  const double per_m2 = (1000 * texels_per_mm) * (1000 * texels_per_mm);
-  double texels = 0;
-  for (const SceneItem& item : scene.items) texels += item.count * item.cut_area_m2 * per_m2;
-  return texels;
-}
-
-std::string cap_texels_rule(const Scene& scene, double texels_per_mm) {
-  const double texels = estimate_cap_texels(scene, texels_per_mm);
-  if (texels <= kMaxSceneCapTexels) return "";
-  std::ostringstream s;
-  s.precision(3);
-  s << "at " << texels_per_mm << " texels per mm the cut faces would need about "
-    << texels / 1e6 << " M texels (at most " << kMaxSceneCapTexels / 1e6
-    << " M in a scene): lower texels_per_mm or cut fewer objects";
-  return s.str();
+double scene_cut_area(const Scene& scene) {
+  double area = 0;
+  for (const SceneItem& item : scene.items) area += item.count * item.cut_area_m2;
+  return area;
 }
 
 Scene parse_scene(std::string_view text, const std::string& file) {

@@ -41,17 +41,12 @@ Scene parse_scene(std::string_view text, const std::string& file);
 /// @throws InputError as parse_scene, for the templates as load_template, and when the file
 ///         cannot be read
 /// Also holds the scene to the totals of scene.h (kMaxSceneObjects, kMaxScenePieces at the
-/// item's count that passes them; kMaxSceneCapTexels at render.texels_per_mm or the last item;
-/// kMaxRenderPixels at render).
+/// item's count that passes them; kMaxRenderPixels at render) and its cut faces to
+/// kMaxCapTexels (cap_texels_rule of scene_cut_area, at render.texels_per_mm or the last item).
 Scene load_scene(const std::string& path);
 
-/// The texels the cap textures of `scene`'s objects would take at `texels_per_mm`, estimated
-/// from each item's cut_area_m2 (an upper bound; 0 for a scene whose templates were not read).
-double estimate_cap_texels(const Scene& scene, double texels_per_mm);
-
-/// "" when estimate_cap_texels(scene, texels_per_mm) is within kMaxSceneCapTexels, else the
-/// rule in words (naming the density and the estimate), for a message at the field that set
-/// the density (render.texels_per_mm, or --texels-per-mm).
-std::string cap_texels_rule(const Scene& scene, double texels_per_mm);
+/// An upper bound of the cut-face area of all `scene`'s objects, m^2: each item's count times
+/// its cut_area_m2 (0 for a scene whose templates were not read).
+double scene_cut_area(const Scene& scene);
 
 }  // namespace cutaway

@@ -179,6 +179,17 @@ ObjectExtents template_extents(const Template& t) {
   return e;
 }
 
+std::string cap_texels_rule(double cut_area_m2, double texels_per_mm) {
+  const double texels = cut_area_m2 * (1000 * texels_per_mm) * (1000 * texels_per_mm);
+  if (texels <= kMaxCapTexels) return "";
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "at %g texels per mm the cut faces would need about %.3g M texels (at most %g M): "
+                "lower texels_per_mm or cut fewer or smaller objects",
+                texels_per_mm, texels / 1e6, kMaxCapTexels / 1e6);
+  return text;
+}
+
 double estimate_cut_area(const CutSpec& cut, const ObjectExtents& extents) {
   const double r = extents.radius_m, h = extents.height_m;
   const double any_plane = 2 * r * std::sqrt(h * h + 4 * r * r);

@@ -67,4 +67,14 @@ long long estimate_piece_count(const CutSpec& cut, const ObjectExtents& extents)
 /// slice or dice plane across the axis in pi r^2. Saturates at 1e12 m^2.
 double estimate_cut_area(const CutSpec& cut, const ObjectExtents& extents);
 
+/// The most cap-texture texels the objects of one scene, or one batch asset, may need, as
+/// estimated from their cut-face area (estimate_cut_area) at the texel density: 64 M, about
+/// 340 MB of RGBA with mipmaps.
+inline constexpr double kMaxCapTexels = 64e6;
+
+/// "" when `cut_area_m2` of cut faces baked at `texels_per_mm` stays within kMaxCapTexels, else
+/// the rule in words, naming the density and the estimate (for a message at the field that set
+/// the density or made the area).
+std::string cap_texels_rule(double cut_area_m2, double texels_per_mm);
+
 }  // namespace cutaway

@@ -23,11 +23,10 @@ enum class Arrangement {
 
 /// The totals a scene is held to, over all its items (doc/scene-format.md, Totals), so that
 /// what check accepts stays within memory: objects, pieces (as estimate_piece_count counts
-/// them, before `keep`), the cap textures' texels (estimate_cut_area at the texel density)
-/// and the pixels of a render.
+/// them, before `keep`) and the pixels of a render; its cap textures are held to kMaxCapTexels
+/// (cut_spec.h).
 inline constexpr long long kMaxSceneObjects = 1024;
 inline constexpr long long kMaxScenePieces = 8192;
-inline constexpr double kMaxSceneCapTexels = 64e6;
 inline constexpr long long kMaxRenderPixels = 4096LL * 4096;
 
 /// One entry of `items`: `count` seeded variants of one template, each cut the same way.

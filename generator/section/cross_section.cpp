@@ -170,6 +170,9 @@ class SectionMesher {
   glm::dvec3 lift(const glm::dvec2& q) const;
   /// Whether p is within a quarter edge of a split line.
   bool near_split_line(const glm::dvec2& p) const;
+  /// Whether p lies on a cut segment other than seg2_[own], up to rounding (a millionth of an
+  /// edge).
+  bool on_other_segment(const glm::dvec2& p, size_t own) const;
   /// Inserts the ladder points of the blur bands (step 1).
   void insert_blur_bands();
   /// Marks the faces of each region bounded by cut segments in or out of the domain (step 2).
@@ -296,6 +299,18 @@ bool SectionMesher::near_split_line(const glm::dvec2& p) const {
   return false;
 }
 
+bool SectionMesher::on_other_segment(const glm::dvec2& p, size_t own) const {
+  const double reach = 1e-6 * options_.edge_m;
+  for (size_t k = 0; k < seg2_.size(); ++k) {
+    if (k == own) continue;
+    const glm::dvec2 d = seg2_[k].b - seg2_[k].a;
+    const double len2 = glm::dot(d, d);
+    const double t = len2 > 0 ? std::clamp(glm::dot(p - seg2_[k].a, d) / len2, 0.0, 1.0) : 0.0;
+    if (glm::distance(p, seg2_[k].a + t * d) < reach) return true;
+  }
+  return false;
+}
+
 bool SectionMesher::triangulate_domain() {
   for (const Constraint2& c : constraints_) {
     const Vertex va = cdt_.insert(Point2(c.a.x, c.a.y));
@@ -316,8 +331,11 @@ void SectionMesher::insert_blur_bands() {
   // the steep transition across the band is sampled as a ladder parallel to the cut line
   // (sparser pairs leave line vertices of the refinement without partners, and the colour
   // across the band zigzags). Not near a split line: a point a hair's breadth off a constraint
-  // makes refinement split it endlessly.
-  for (const Segment2& s : seg2_) {
+  // makes refinement split it endlessly. Not on another cut segment (a blur as wide as the gap
+  // to a parallel surface): it would split that constraint where the clipped surfaces have no
+  // seam vertex, and the pieces would not close.
+  for (size_t i = 0; i < seg2_.size(); ++i) {
+    const Segment2& s = seg2_[i];
     const CutSegment& cut = segments_[s.index];
     const double front_len = glm::length(s.front);
     const double blur = 0.5 * (cut.at_a.blur + cut.at_b.blur);
@@ -331,7 +349,7 @@ void SectionMesher::insert_blur_bands() {
       const double b = cut.at_a.blur + (cut.at_b.blur - cut.at_a.blur) * t;
       for (const int side : {1, -1}) {
         const glm::dvec2 q = p + across * (side * b);
-        if (near_split_line(q)) continue;
+        if (near_split_line(q) || on_other_segment(q, i)) continue;
         cdt_.insert(Point2(q.x, q.y));
         if (adaptive_ && chains_.chain[s.index] >= 0)
           ladder_.emplace(std::make_pair(q.x, q.y),

@@ -85,6 +85,17 @@ TEST(Bounds, TemplateTotalsAreCheckedBeforeTheWork) {
                  "resolution.edge: the edge length must be at most 1/8");
 }
 
+TEST(Bounds, ABlurAsWideAsTheGapToTheNextLayerStillGivesClosedPieces) {
+  // The shipped volcano with one layer blurred by 10 mm: its ladder points fell exactly on the
+  // next layer's cut segment.
+  const fs::path dir = test::fresh_dir("bounds");
+  const test::LimitedRun r =
+      run_bounded({"piece", kDir + "volcano_blur_10.yaml", "--cut", "halves", "-o",
+                   (dir / "v.glb").string()});
+  expect_made(r);
+  EXPECT_EQ(r.err.find("not closed"), std::string::npos) << r.err;
+}
+
 TEST(Bounds, SceneAndBatchTotalsAreChecked) {
   const fs::path dir = test::fresh_dir("bounds");
   // 2,000 items of 64 okra diced: 128,000 objects and millions of pieces.
@@ -118,6 +129,15 @@ TEST(Bounds, SceneAndBatchTotalsAreChecked) {
   }
   expect_refused(run_bounded({"check", (dir / "pixels.yaml").string()}),
                  "render: width x height is 67108864 pixels");
+  // One asset bakes its own caps: 1 mm slices of a tomato at 100 texels per mm.
+  {
+    std::ofstream f(dir / "dense.yaml");
+    f << "format: cutaway-batch/1\nname: dense\nitems:\n"
+         "  - {template: tomato, cuts: [{type: slices, thickness: 1}]}\n"
+         "export: {texels_per_mm: 100}\n";
+  }
+  expect_refused(run_bounded({"check", (dir / "dense.yaml").string()}),
+                 "items[0].cuts[0]: at 100 texels per mm the cut faces would need about");
   // 20 items of 100,000 strawberries with 16 cuts each: 32 M assets.
   {
     std::ofstream f(dir / "batch.yaml");
