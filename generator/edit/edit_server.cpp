@@ -24,11 +24,11 @@
 #include <strings.h>
 #include <sys/eventfd.h>
 #include <sys/socket.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/file_read.h"
 #include "diffusion/diffusion.h"
 #include "edit/web_files.h"
 #include "export/gltf_export.h"
@@ -121,41 +121,19 @@ void answer_or_refuse(httplib::Response& res, const std::function<void()>& answe
   }
 }
 
-/// The bytes of the template file at `path`, or nullopt when there is none yet. It is opened
-/// without blocking (a FIFO put in its place would block an open, and then every request
-/// behind it) and read only when it is a regular file of at most kMaxTemplateFileBytes.
-/// @throws std::runtime_error "cannot read PATH: REASON" (not a regular file, too large, or
-///         the system's reason)
+/// The bytes of the template file at `path`, or nullopt when there is none yet. Read with
+/// read_regular_file: opened without blocking (a FIFO put in its place would block an open, and
+/// every request behind it), and read only when it is a regular file of at most
+/// kMaxTemplateFileBytes.
+/// @throws FileReadError "cannot read PATH: RULE" (not a regular file, too large, or the
+///         system's reason)
 std::optional<std::string> read_template_file(const std::filesystem::path& path) {
-  const auto fail = [&](const std::string& why) {
-    return std::runtime_error("cannot read " + path.string() + ": " + why);
-  };
-  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
-  if (fd < 0) {
-    if (errno == ENOENT) return std::nullopt;
-    throw fail(std::strerror(errno));
+  try {
+    return read_regular_file(path, kMaxTemplateFileBytes);
+  } catch (const FileReadError& e) {
+    if (e.rule() == "does not exist") return std::nullopt;
+    throw;
   }
-  const std::unique_ptr<const int, void (*)(const int*)> closer(&fd, [](const int* f) { ::close(*f); });
-  struct stat st {};
-  if (::fstat(fd, &st) != 0) throw fail(std::strerror(errno));
-  if (!S_ISREG(st.st_mode))
-    throw fail("it is not a regular file (a directory, FIFO, socket or device)");
-  // At most one byte more than the limit is read, so that a file growing meanwhile is refused
-  // too.
-  std::string bytes;
-  bytes.reserve(std::min<size_t>(static_cast<size_t>(st.st_size), kMaxTemplateFileBytes));
-  std::array<char, 1 << 16> chunk;
-  while (bytes.size() <= kMaxTemplateFileBytes) {
-    const ssize_t n =
-        ::read(fd, chunk.data(), std::min(chunk.size(), kMaxTemplateFileBytes + 1 - bytes.size()));
-    if (n == 0) return bytes;
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      throw fail(std::strerror(errno));
-    }
-    bytes.append(chunk.data(), static_cast<size_t>(n));
-  }
-  throw fail("it is larger than " + std::to_string(kMaxTemplateFileBytes >> 20) + " MiB");
 }
 
 using Clock = std::chrono::steady_clock;

@@ -467,7 +467,7 @@ TEST(EditServer, AnswersChecksBesideSlowClientsAndVariants) {
   const fs::path dir = test::fresh_dir("edit");
   const fs::path file = copy_template("tomato", dir);
   const std::string text = test::read_file(file);
-  constexpr auto kTimeout = 4s;
+  constexpr auto kTimeout = 6s;  // time enough for the checks under load, and not much more
   RunningServer server(file, [&](EditServerOptions& o) {
     o.request_timeout = kTimeout;
     o.variant_cube = 4;
@@ -477,7 +477,7 @@ TEST(EditServer, AnswersChecksBesideSlowClientsAndVariants) {
   const Clock::time_point opened = Clock::now();
   std::vector<RawConnection> slow;
   for (int k = 0; k < 200; ++k) {
-    slow.emplace_back(port, 3s);
+    slow.emplace_back(port, kTimeout + 3s);
     ASSERT_TRUE(slow.back().send("GET / HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) +
                                  "\r\n"));
   }
