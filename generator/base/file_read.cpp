@@ -10,8 +10,10 @@
 
 namespace cutaway {
 
-FileReadError::FileReadError(const std::filesystem::path& path, std::string rule)
-    : std::runtime_error("cannot read " + path.string() + ": " + rule), rule_(std::move(rule)) {}
+FileReadError::FileReadError(const std::filesystem::path& path, std::string rule, bool missing)
+    : std::runtime_error("cannot read " + path.string() + ": " + rule),
+      rule_(std::move(rule)),
+      missing_(missing) {}
 
 std::string byte_size_words(uint64_t bytes) {
   if (bytes != 0 && bytes % (uint64_t{1} << 30) == 0) return std::to_string(bytes >> 30) + " GiB";
@@ -46,7 +48,8 @@ std::string read_regular_file(const std::filesystem::path& path, uint64_t max_by
   // then the descriptor, in case the path was replaced in between.
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) {
-    throw FileReadError(path, errno == ENOENT ? "does not exist" : system_rule());
+    if (errno == ENOENT) throw FileReadError(path, "does not exist", true);
+    throw FileReadError(path, system_rule());
   }
   if (std::string rule = type_rule(st.st_mode); !rule.empty()) throw FileReadError(path, rule);
   if (static_cast<uint64_t>(st.st_size) > max_bytes) throw FileReadError(path, too_large);

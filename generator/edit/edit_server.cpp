@@ -34,6 +34,7 @@
 #include "export/gltf_export.h"
 #include "io/template_parser.h"
 #include "io/text_rules.h"
+#include "io/yaml_reader.h"
 #include "model/curves.h"
 #include "model/model_builder.h"
 #include "batch/variant_set.h"
@@ -124,14 +125,14 @@ void answer_or_refuse(httplib::Response& res, const std::function<void()>& answe
 /// The bytes of the template file at `path`, or nullopt when there is none yet. Read with
 /// read_regular_file: opened without blocking (a FIFO put in its place would block an open, and
 /// every request behind it), and read only when it is a regular file of at most
-/// kMaxTemplateFileBytes.
+/// kMaxInputFileBytes (the template parser's own limit).
 /// @throws FileReadError "cannot read PATH: RULE" (not a regular file, too large, or the
 ///         system's reason)
 std::optional<std::string> read_template_file(const std::filesystem::path& path) {
   try {
-    return read_regular_file(path, kMaxTemplateFileBytes);
+    return read_regular_file(path, kMaxInputFileBytes);
   } catch (const FileReadError& e) {
-    if (e.rule() == "does not exist") return std::nullopt;
+    if (e.missing()) return std::nullopt;
     throw;
   }
 }

@@ -61,8 +61,6 @@ struct EditRenderers {
 inline constexpr size_t kMaxRequestHeadBytes = 64u << 10;
 /// The most requests served on one connection before it is closed (the client opens another).
 inline constexpr int kRequestsPerConnection = 100;
-/// The largest template file /api/template reads, as the template parser's own limit.
-inline constexpr size_t kMaxTemplateFileBytes = 16u << 20;
 
 /// How EditServer listens and what it bounds.
 struct EditServerOptions {

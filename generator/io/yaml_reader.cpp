@@ -17,7 +17,6 @@ namespace cutaway {
 namespace {
 
 constexpr int kMaxDepth = 64;
-constexpr size_t kMaxBytes = 16u << 20;
 
 FileLoc loc_of(const YAML::Mark& mark, const std::string& file) {
   if (mark.is_null()) return FileLoc{file, 1, 1};
@@ -287,9 +286,9 @@ double YamlField::number_in(double lo, double hi) const {
 }
 
 YamlField parse_yaml(std::string_view text, const std::string& file) {
-  if (text.size() > kMaxBytes) {
+  if (text.size() > kMaxInputFileBytes) {
     throw InputError(FileLoc{file, 1, 1}, "(file)",
-                     "the file is larger than " + byte_size_words(kMaxBytes));
+                     "the file is larger than " + byte_size_words(kMaxInputFileBytes));
   }
   if (const size_t bad = find_invalid_utf8(text); bad != std::string_view::npos) {
     throw InputError(loc_of_offset(text, bad, file), "(file)",
@@ -328,7 +327,7 @@ YamlField parse_yaml(std::string_view text, const std::string& file) {
 
 std::string read_input_file(const std::string& path) {
   try {
-    return read_regular_file(path, kMaxBytes);
+    return read_regular_file(path, kMaxInputFileBytes);
   } catch (const FileReadError& e) {
     throw InputError(FileLoc{path, 1, 1}, "(file)", "the file " + e.rule());
   }

@@ -98,6 +98,9 @@ glm::dvec3 parse_colour(const YamlField& f);
 /// @return the root field (path "(root)")
 YamlField parse_yaml(std::string_view text, const std::string& file);
 
+/// The largest template, scene or batch file (bytes): 16 MiB.
+inline constexpr size_t kMaxInputFileBytes = size_t{16} << 20;
+
 /// The bytes of the input file at `path`, read through read_regular_file (base/file_read.h):
 /// a FIFO, device or directory is refused without reading from it, and a file larger than
 /// 16 MiB before it is read.
