@@ -11,6 +11,7 @@
 #include "io/template_parser.h"
 #include "io/yaml_reader.h"
 #include "model/model_builder.h"
+#include "scene/scene_budget.h"
 #include "variation/grains.h"
 
 namespace cutaway::cli {
@@ -52,6 +53,7 @@ int run_check(const std::vector<std::string>& files) {
       }
       if (kind.rfind("cutaway-scene/", 0) == 0) {
         const cutaway::Scene scene = cutaway::load_scene(f);
+        const long long vertices = cutaway::check_scene_model_vertices(scene);
         int objects = 0;
         std::vector<std::string> templates;
         for (const auto& item : scene.items) {
@@ -59,8 +61,9 @@ int run_check(const std::vector<std::string>& files) {
           templates.push_back(item.template_path);
         }
         check_models(templates);
-        std::printf("%s: ok (scene '%s', %zu items, %d objects, at most %.1f M cap texels)\n",
-                    f.c_str(), scene.name.c_str(), scene.items.size(), objects,
+        std::printf("%s: ok (scene '%s', %zu items, %d objects, %.2f M model vertices, at most "
+                    "%.1f M cap texels)\n",
+                    f.c_str(), scene.name.c_str(), scene.items.size(), objects, vertices / 1e6,
                     // m^2 x (texels per mm)^2 = millions of texels
                     cutaway::scene_cut_area(scene) * scene.render.texels_per_mm *
                         scene.render.texels_per_mm);

@@ -13,6 +13,7 @@
 #include "cli/scene_outputs.h"
 #include "export/texture_image.h"
 #include "io/scene_parser.h"
+#include "scene/scene_budget.h"
 #include "scene/scene_builder.h"
 
 namespace cutaway::cli {
@@ -31,6 +32,7 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
   const Targets targets = register_outputs(outputs, a.outputs, a.png, a.render);
   const auto t0 = Clock::now();
   const Scene scene = load_scene(a.scene_path);
+  check_scene_model_vertices(scene);
   if (a.texels_per_mm > 0) {
     if (const std::string why = cap_texels_rule(scene_cut_area(scene), a.texels_per_mm);
         !why.empty())

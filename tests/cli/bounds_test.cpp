@@ -114,6 +114,18 @@ TEST(Bounds, SceneAndBatchTotalsAreChecked) {
   }
   expect_refused(run_bounded({"check", (dir / "objects.yaml").string()}),
                  "items[16].count: the items up to here make 1088 objects (at most 1024");
+  // 256 whole tomatoes of about 16,600 model vertices each: the third item passes 3 M.
+  {
+    std::ofstream f(dir / "vertices.yaml");
+    f << "format: cutaway-scene/1\nname: vertices\nitems:\n";
+    for (int i = 0; i < 4; ++i) f << "  - {template: tomato, count: 64}\n";
+  }
+  expect_refused(run_bounded({"check", (dir / "vertices.yaml").string()}),
+                 "items[2].count: the objects up to here have");
+  expect_refused(run_bounded({"scene", (dir / "vertices.yaml").string(), "-o",
+                              (dir / "vertices.glb").string()}),
+                 "DS-model vertices (at most 3000000 in a scene)");
+  EXPECT_FALSE(fs::exists(dir / "vertices.glb"));
   {
     std::ofstream f(dir / "texels.yaml");
     f << "format: cutaway-scene/1\nname: texels\nitems:\n"
