@@ -22,6 +22,7 @@
 #include "render/image/contact_sheet.h"
 #include "render/scene_preview.h"
 #include "scene/piece_views.h"
+#include "scene/scene.h"
 
 namespace cutaway::cli {
 
@@ -108,6 +109,13 @@ int run_sheet(const SheetArgs& a, const Common& common, OutputSet& outputs) {
   if (a.items.empty()) throw UsageError("give at least one template");
   require_extension("-o", a.output, ".png");
   if (a.tile < 64 || a.tile > 2048) throw UsageError("--tile must be in 64..2048");
+  // The sheet's pixels, at most: one tile-wide square per template.
+  const long long pixels = static_cast<long long>(a.items.size()) * a.tile * a.tile;
+  if (pixels > kMaxRenderPixels)
+    throw UsageError("--tile " + std::to_string(a.tile) + " with " +
+                     std::to_string(a.items.size()) + " templates makes a sheet of up to " +
+                     std::to_string(pixels) + " pixels (at most " +
+                     std::to_string(kMaxRenderPixels) + "): a smaller --tile");
   const std::filesystem::path file = outputs.add("-o", a.output);
   // Every template and cut is checked before anything is rendered.
   std::vector<LoadedItem> items;

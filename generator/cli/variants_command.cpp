@@ -15,9 +15,10 @@
 #include "cli/commands.h"
 #include "cli/progress_bar.h"
 #include "io/template_parser.h"
+#include "io/text_rules.h"
 #include "render/image/contact_sheet.h"
 #include "render/image/image.h"
-#include "io/text_rules.h"
+#include "scene/scene.h"
 #include "variation/variant_batch.h"
 #include "variation/variation.h"
 
@@ -37,6 +38,13 @@ int run_variants(const VariantsArgs& a, const Common& common, bool quiet, Output
                      std::to_string(kMaxSeed) + ": give --seed at most " +
                      std::to_string(kMaxSeed - static_cast<uint64_t>(a.count - 1)));
   }
+  // The contact sheet's pixels, at most: one tile-wide square per variant on it.
+  const long long sheet_pixels = static_cast<long long>(std::min(a.sheet, a.count)) * a.tile * a.tile;
+  if (sheet_pixels > kMaxRenderPixels)
+    throw UsageError("--sheet " + std::to_string(a.sheet) + " with --tile " +
+                     std::to_string(a.tile) + " makes a contact sheet of up to " +
+                     std::to_string(sheet_pixels) + " pixels (at most " +
+                     std::to_string(kMaxRenderPixels) + "): fewer tiles or a smaller --tile");
   const Template tmpl = load_template(a.template_path);
   const std::filesystem::path dir(a.output_dir);
   const int first = shard.begin(a.count), last = shard.end(a.count);

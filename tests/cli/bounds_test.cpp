@@ -198,6 +198,15 @@ TEST(Bounds, SmallerHolesAreClosed) {
                               (dir / "v").string()}),
                  "give --seed at most 9223372036854775805");
   EXPECT_FALSE(fs::exists(dir / "v"));
+  // Contact sheets are held to a render's pixels before any variant or tile is made.
+  expect_refused(run_bounded({"variants", "templates/tomato.yaml", "--count", "256", "--sheet",
+                              "256", "--tile", "4096", "-o", (dir / "sheet").string()}),
+                 "makes a contact sheet of up to 4294967296 pixels (at most 16777216)");
+  expect_refused(run_bounded({"sheet", "templates/tomato.yaml", "templates/kiwi.yaml",
+                              "templates/okra.yaml", "templates/onion.yaml", "templates/apple.yaml",
+                              "--tile", "2048", "-o", (dir / "sheet.png").string()}),
+                 "makes a sheet of up to 20971520 pixels");
+  EXPECT_FALSE(fs::exists(dir / "sheet") || fs::exists(dir / "sheet.png"));
   // An empty --shard is refused, not read as the whole batch.
   expect_refused(run_bounded({"batch", "batches/fruit-assets.yaml", "-o", (dir / "b").string(),
                               "--shard", ""}),
