@@ -163,7 +163,7 @@ int main(int argc, char** argv) {
                     "glTF binary to write (.glb); default NAME.glb when no --png is given");
   model->add_option("--png", model_args.png, "PNG picture of the see-through model");
   model->add_option("--size", model_args.width, "PNG width and height in pixels")
-      ->check(CLI::Range(16, 4096));
+      ->check(CLI::Range(16, 2880));
   model->add_option("--seed", model_args.seed, "build the random variant of this seed")
       ->check(kSeedRule);
 
@@ -178,7 +178,7 @@ int main(int argc, char** argv) {
                       "default NAME-section.glb when no --png is given");
   section->add_option("--png", section_args.png, "PNG of the cut face seen head-on (sRGB)");
   section->add_option("--size", section_args.width, "PNG width in pixels")
-      ->check(CLI::Range(16, 4096));
+      ->check(CLI::Range(16, 2880));
   section->add_option("--cube", section_args.cube, "cube-map texels per face edge for PMVC")
       ->check(CLI::Range(2, 256));
   section->add_option("--seed", section_args.seed, "cut the random variant of this seed")

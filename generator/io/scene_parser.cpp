@@ -178,7 +178,7 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
     if (auto x = r->get("texels_per_mm")) s.render.texels_per_mm = x->number_in(0.1, 100);
     if (static_cast<long long>(s.render.width) * s.render.height > kMaxRenderPixels)
       r->fail("width x height is " + std::to_string(s.render.width * s.render.height) +
-              " pixels (at most " + std::to_string(kMaxRenderPixels) + ", e.g. 4096 x 4096)");
+              " pixels (at most " + std::to_string(kMaxRenderPixels) + ", e.g. 3840 x 2160)");
   }
   if (const std::string why = cap_texels_rule(scene_cut_area(s), s.render.texels_per_mm);
       !why.empty()) {

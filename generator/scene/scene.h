@@ -23,11 +23,12 @@ enum class Arrangement {
 
 /// The totals a scene is held to, over all its items (doc/scene-format.md, Totals), so that
 /// what check accepts stays within memory: objects, pieces (as estimate_piece_count counts
-/// them, before `keep`) and the pixels of a render; its cap textures are held to kMaxCapTexels
-/// (cut_spec.h).
+/// them, before `keep`) and the pixels of a render (4K UHD: the preview takes about 80 bytes a
+/// pixel, and the market at 4096 x 4096 took 2.46 GB); its cap textures are held to
+/// kMaxCapTexels (cut_spec.h).
 inline constexpr long long kMaxSceneObjects = 1024;
 inline constexpr long long kMaxScenePieces = 8192;
-inline constexpr long long kMaxRenderPixels = 4096LL * 4096;
+inline constexpr long long kMaxRenderPixels = 3840LL * 2160;
 
 /// One entry of `items`: `count` seeded variants of one template, each cut the same way.
 struct SceneItem {

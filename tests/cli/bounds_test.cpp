@@ -201,7 +201,7 @@ TEST(Bounds, SmallerHolesAreClosed) {
   // Contact sheets are held to a render's pixels before any variant or tile is made.
   expect_refused(run_bounded({"variants", "templates/tomato.yaml", "--count", "256", "--sheet",
                               "256", "--tile", "4096", "-o", (dir / "sheet").string()}),
-                 "makes a contact sheet of up to 4294967296 pixels (at most 16777216)");
+                 "makes a contact sheet of up to 4294967296 pixels (at most 8294400)");
   expect_refused(run_bounded({"sheet", "templates/tomato.yaml", "templates/kiwi.yaml",
                               "templates/okra.yaml", "templates/onion.yaml", "templates/apple.yaml",
                               "--tile", "2048", "-o", (dir / "sheet.png").string()}),
