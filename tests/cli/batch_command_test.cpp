@@ -3,6 +3,8 @@
 // (The whole path, local and on Slurm, is the test SlurmBatchArrayMatchesLocalRun.)
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -39,6 +41,43 @@ TEST(BatchCommand, MergeRefusesAFolderThatIsNoBatchAndAnIncompleteBatch) {
             std::string::npos)
       << r.err;
   EXPECT_FALSE(fs::exists(dir / "manifest.jsonl"));
+}
+
+// A sampled thumbnail whose recorded hash matches but which is not a PNG (damaged where the
+// hash was taken): merge refuses the batch with exit code 2 and writes nothing, not even the
+// manifest it used to rewrite before it read the thumbnails.
+TEST(BatchCommand, MergeReadsEveryThumbnailBeforeWritingAnything) {
+  const fs::path dir = fresh_dir("batch-merge-thumbnail");
+  RunResult r = run_cutaway({"-q", "batch", source_path("tests/data/batches/four-variants.yaml").string(),
+                             "-o", dir.string(), "--shard", "1/1", "--backend", "cpu"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const fs::path manifest = dir / "manifest-1-of-1.jsonl";
+  std::string lines = read_file(manifest);
+  ASSERT_FALSE(lines.empty());
+  // Damage every thumbnail the manifest names, with a hash that matches the new bytes.
+  const std::string damaged = "not a PNG image";
+  char hash[17];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>([&] {
+                  uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64
+                  for (const unsigned char c : damaged) h = (h ^ c) * 0x100000001b3ULL;
+                  return h;
+                }()));
+  int thumbnails = 0;
+  for (size_t at = lines.find("\"thumbnail\":\""); at != std::string::npos;
+       at = lines.find("\"thumbnail\":\"", at + 1)) {
+    const size_t start = at + 13, end = lines.find('"', start);
+    std::ofstream(dir / lines.substr(start, end - start), std::ios::binary) << damaged;
+    const size_t h = lines.find("\"thumbnail_fnv1a64\":\"", end) + 21;
+    lines.replace(h, 16, hash);
+    ++thumbnails;
+  }
+  ASSERT_GT(thumbnails, 0) << lines;
+  std::ofstream(manifest, std::ios::binary) << lines;
+  r = run_cutaway({"batch", "merge", dir.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("cannot be used"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "manifest.jsonl"));
+  EXPECT_FALSE(fs::exists(dir / "contact-sheet.png"));
 }
 
 TEST(BatchCommand, SlurmDryRunWritesTheScriptOnly) {
