@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the README's pictures in doc/ with the cutaway binary (`make gallery`): models,
+# Regenerates the pictures in doc/ with the cutaway binary (`make gallery`): models,
 # cuts, variants, pieces, the default salad (OpenGL preview and POV-Ray render), the board
 # and plate scenes and the contact sheet of all templates. Seeded and deterministic: the same program
 # gives the same pictures.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The contact sheet of the template library (README, Templates): all thirteen templates of the
+# The contact sheet of the template library (doc/templates.md): all thirteen templates of the
 # paper's Table 1, each cut the way that shows its inside best, pieces laid out cut face up
 # (the volcano standing, its cut faces toward the camera), labelled, in one PNG.
 #
