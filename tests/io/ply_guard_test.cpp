@@ -1,4 +1,4 @@
-// check_ply (generator/model/mesh_import.h), the guard in front of OpenMesh's PLY reader, on crafted
+// check_ply (generator/io/ply_guard.h), the guard in front of OpenMesh's PLY reader, on crafted
 // files: valid ASCII and binary files pass with their counts; broken headers, counts the file
 // cannot hold, truncated bodies and bad face indices are refused with the rule, quickly and
 // without allocating for the declared counts.
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "model/mesh_import.h"
+#include "io/ply_guard.h"
 
 namespace cutaway {
 namespace {
