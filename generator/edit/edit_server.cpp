@@ -285,11 +285,13 @@ class Connection final : public httplib::Stream {
 /// on which the HTTP library calls the handlers).
 thread_local Connection* this_connection = nullptr;
 
-/// Answers `status` with `message` and closes the connection afterwards: for refusals made
-/// before the request's body was read.
-void refuse_and_close(httplib::Response& res, int status, const std::string& message) {
+/// Answers `status` with `message` to `req` and closes the connection afterwards: for refusals
+/// made before the request's body was read. The answer says "Connection: close" once (the HTTP
+/// library adds it itself when the client asked for it).
+void refuse_and_close(const httplib::Request& req, httplib::Response& res, int status,
+                      const std::string& message) {
   reply_json(res, status, {{"ok", false}, {"message", message}});
-  res.set_header("Connection", "close");
+  if (req.get_header_value("Connection") != "close") res.set_header("Connection", "close");
   this_connection->close_after_answer();
 }
 
@@ -501,7 +503,8 @@ struct EditServer::Impl {
   /// The body of a POST, read within the bounds (max_body_bytes; the connection's allowance
   /// and deadline); nullopt after answering 413, 408 or 400 (and closing the connection after
   /// the answer) when it is too large, late or cut short.
-  std::optional<std::string> read_body(const httplib::ContentReader& reader,
+  std::optional<std::string> read_body(const httplib::Request& req,
+                                       const httplib::ContentReader& reader,
                                        httplib::Response& res) {
     std::string body;
     bool too_large = false;
@@ -513,13 +516,13 @@ struct EditServer::Impl {
     if (read) return body;
     Connection& c = *this_connection;
     if (too_large || c.overran())
-      refuse_and_close(res, 413, "request bodies are limited to " +
+      refuse_and_close(req, res, 413, "request bodies are limited to " +
                                      std::to_string(options.max_body_bytes) + " bytes");
     else if (c.timed_out())
-      refuse_and_close(res, 408, "the request did not arrive within " +
+      refuse_and_close(req, res, 408, "the request did not arrive within " +
                                      std::to_string(options.request_timeout.count()) + " ms");
     else
-      refuse_and_close(res, 400, "the request's body is cut short or badly chunked");
+      refuse_and_close(req, res, 400, "the request's body is cut short or badly chunked");
     return std::nullopt;
   }
 
@@ -530,7 +533,8 @@ struct EditServer::Impl {
     router.Post(pattern, [this, handler = std::move(handler)](const httplib::Request& req,
                                                               httplib::Response& res,
                                                               const httplib::ContentReader& reader) {
-      if (const std::optional<std::string> body = read_body(reader, res)) handler(req, res, *body);
+      if (const std::optional<std::string> body = read_body(req, reader, res))
+        handler(req, res, *body);
     });
   }
 
@@ -600,11 +604,11 @@ EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
     const std::string why =
         request_refusal(req.get_header_value("Host"), req.get_header_value("Origin"), s.port);
     if (!why.empty()) {
-      refuse_and_close(res, 403, why);
+      refuse_and_close(req, res, 403, why);
       return httplib::Server::HandlerResponse::Handled;
     }
     if (const auto refusal = head_refusal(req, s.options.max_body_bytes)) {
-      refuse_and_close(res, refusal->first, refusal->second);
+      refuse_and_close(req, res, refusal->first, refusal->second);
       return httplib::Server::HandlerResponse::Handled;
     }
     // A chunked body's framing may take up to a head's worth of bytes more than its content.

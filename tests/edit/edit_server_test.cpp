@@ -456,6 +456,21 @@ TEST(EditServer, RefusesBodiesItCannotBound) {
   EXPECT_EQ(raw_status(answer("GET / HTTP/1.1", "Content-Length: 7\r\n", "name: x")), 400);
   const std::string over = answer("POST /api/save HTTP/1.1", "Content-Length: 999999999999\r\n", "");
   EXPECT_EQ(raw_status(over), 413) << over;
+  // The answer says it closes the connection, once, whether or not the client asked to.
+  const auto closes = [](const std::string& a) {
+    const std::string head = a.substr(0, a.find("\r\n\r\n"));
+    size_t n = 0;
+    for (size_t at = head.find("Connection: close"); at != std::string::npos;
+         at = head.find("Connection: close", at + 1))
+      ++n;
+    return n;
+  };
+  EXPECT_EQ(closes(over), 1u) << over;
+  const std::string asked =
+      answer("POST /api/check HTTP/1.1",
+             "Content-Encoding: gzip\r\nContent-Length: 10\r\nConnection: close\r\n", gzip_bytes);
+  EXPECT_EQ(raw_status(asked), 415) << asked;
+  EXPECT_EQ(closes(asked), 1u) << asked;
   EXPECT_TRUE(untouched(file));
 }
 
