@@ -146,7 +146,7 @@ int run_batch_merge(const std::string& dir) {
     std::fprintf(stderr,
                  "cutaway: batch merge: the batch is incomplete; run the missing shards again "
                  "(they skip what is done), then merge\n");
-    return 1;
+    return kExitBatchIncomplete;
   }
   // The contact sheet: the sample's thumbnails, labelled. A complete report has one record per
   // indexed asset, in the index's order. They are read before anything is written, so that a

@@ -178,9 +178,13 @@ struct BatchArgs {
 };
 int run_batch_command(const BatchArgs& args, const Common& common, bool quiet);
 
+/// The exit code of `batch merge` when shards are still missing: not bad input (2) nor a
+/// failure (1), but more work due.
+inline constexpr int kExitBatchIncomplete = 3;
+
 /// `cutaway batch merge DIR`: checks the shards' manifests against batch.json, writes
 /// manifest.jsonl and contact-sheet.png (the sample's thumbnails, labelled) when every asset is
-/// there; returns 1 when the batch is incomplete.
+/// there; returns kExitBatchIncomplete when the batch is incomplete.
 int run_batch_merge(const std::string& dir);
 
 }  // namespace cutaway::cli
