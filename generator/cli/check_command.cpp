@@ -53,14 +53,13 @@ int run_check(const std::vector<std::string>& files) {
       }
       if (kind.rfind("cutaway-scene/", 0) == 0) {
         const cutaway::Scene scene = cutaway::load_scene(f);
-        const long long vertices = cutaway::check_scene_model_vertices(scene);
+        // Each template's model is built once: for the scene's total and its grain limits.
+        const long long vertices = cutaway::check_scene_model_vertices(
+            scene, [](const cutaway::Template& t, const cutaway::DsModel& m) {
+              cutaway::check_grain_limits(t, m);
+            });
         int objects = 0;
-        std::vector<std::string> templates;
-        for (const auto& item : scene.items) {
-          objects += item.count;
-          templates.push_back(item.template_path);
-        }
-        check_models(templates);
+        for (const auto& item : scene.items) objects += item.count;
         std::printf("%s: ok (scene '%s', %zu items, %d objects, %.2f M model vertices, at most "
                     "%.1f M cap texels)\n",
                     f.c_str(), scene.name.c_str(), scene.items.size(), objects, vertices / 1e6,

@@ -302,13 +302,19 @@ YamlField parse_yaml(std::string_view text, const std::string& file) {
   try {
     root = YAML::Load(std::string(text));
     // A second document (after "---") is refused, not ignored: the events of the first two
-    // are read (never more, however many documents follow).
-    std::istringstream in{std::string(text)};
-    YAML::Parser parser(in);
-    DocumentStart first, second;
-    if (parser.HandleNextDocument(first) && parser.HandleNextDocument(second)) {
-      throw InputError(loc_of(second.mark, file), "(file)",
-                       "a second YAML document (after \"---\"): a file holds one document");
+    // are read (never more, however many documents follow). Only a line that starts with
+    // "---" or "..." can begin a second document, so a file without one is not parsed twice.
+    const auto marker = [&](std::string_view m) {
+      return text.starts_with(m) || text.find("\n" + std::string(m)) != std::string_view::npos;
+    };
+    if (marker("---") || marker("...")) {
+      std::istringstream in{std::string(text)};
+      YAML::Parser parser(in);
+      DocumentStart first, second;
+      if (parser.HandleNextDocument(first) && parser.HandleNextDocument(second)) {
+        throw InputError(loc_of(second.mark, file), "(file)",
+                         "a second YAML document (after \"---\"): a file holds one document");
+      }
     }
   } catch (const YAML::Exception& e) {
     // yaml-cpp appends some of the input to a few messages (an escape character, a version):

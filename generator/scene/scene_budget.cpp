@@ -9,16 +9,17 @@
 
 namespace cutaway {
 
-long long check_scene_model_vertices(const Scene& scene) {
+long long check_scene_model_vertices(const Scene& scene, const ModelVisitor& each_model) {
   std::map<std::string, long long> vertices_of;  // per template file
   long long total = 0;
   for (const SceneItem& item : scene.items) {
     auto it = vertices_of.find(item.template_path);
     if (it == vertices_of.end()) {
-      const DsModel model = build_model(load_template(item.template_path));
-      long long vertices = 0;
-      for (const DsSurface& s : model.surfaces) vertices += static_cast<long long>(s.mesh.n_vertices());
-      it = vertices_of.emplace(item.template_path, vertices).first;
+      const Template tmpl = load_template(item.template_path);
+      const DsModel model = build_model(tmpl);
+      if (each_model) each_model(tmpl, model);
+      it = vertices_of.emplace(item.template_path, static_cast<long long>(model.vertex_count()))
+               .first;
     }
     total += item.count * it->second;
     if (total > kMaxSceneModelVertices) {

@@ -2,6 +2,10 @@
 // its pieces until the scene is laid out, so their sum, not one object, decides the memory.
 #pragma once
 
+#include <functional>
+
+#include "model/ds_model.h"
+#include "model/template.h"
 #include "scene/scene.h"
 
 namespace cutaway {
@@ -12,12 +16,18 @@ namespace cutaway {
 /// 390 bytes each; 3 M keep a scene near 1.2 GB, leaving room for its cap textures.
 inline constexpr long long kMaxSceneModelVertices = 3'000'000;
 
+/// Called with a template and the DS model built from it.
+using ModelVisitor = std::function<void(const Template&, const DsModel&)>;
+
 /// Builds the DS model of each template `scene` names, once per template, and refuses the
 /// scene when its objects' model vertices (count x the template model's vertices, over the
 /// items in order) pass kMaxSceneModelVertices.
+/// `each_model`, when given, is called with each template and its model as they are built
+/// (`cutaway check` checks their grain limits there instead of building them again).
 /// @pre the scene was read with load_scene (its templates exist and parse)
 /// @returns the total (within the limit)
-/// @throws InputError at the item that passes the total ("items[i].count"), or as build_model
-long long check_scene_model_vertices(const Scene& scene);
+/// @throws InputError at the item that passes the total ("items[i].count"), as build_model,
+///         or as each_model
+long long check_scene_model_vertices(const Scene& scene, const ModelVisitor& each_model = {});
 
 }  // namespace cutaway
