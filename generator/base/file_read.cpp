@@ -24,11 +24,19 @@ std::string byte_size_words(uint64_t bytes) {
 
 namespace {
 
-/// The rule a file of this type breaks, or "" for a regular file.
-std::string type_rule(mode_t mode) {
-  if (S_ISREG(mode)) return "";
-  if (S_ISDIR(mode)) return "is a directory";
-  return "is not a regular file (a FIFO, socket or device)";
+/// The rule of a file over the limit: "is larger than 16 MiB".
+std::string larger_than(uint64_t max_bytes) {
+  return "is larger than " + byte_size_words(max_bytes);
+}
+
+/// Refuses what `st` describes unless it is a regular file of at most max_bytes.
+void require_readable(const std::filesystem::path& path, const struct stat& st,
+                      uint64_t max_bytes) {
+  if (S_ISDIR(st.st_mode)) throw FileReadError(path, "is a directory");
+  if (!S_ISREG(st.st_mode))
+    throw FileReadError(path, "is not a regular file (a FIFO, socket or device)");
+  if (static_cast<uint64_t>(st.st_size) > max_bytes)
+    throw FileReadError(path, larger_than(max_bytes));
 }
 
 /// The rule for a failed system call: "cannot be read: REASON" (errno's).
@@ -43,7 +51,6 @@ struct FdCloser {
 }  // namespace
 
 std::string read_regular_file(const std::filesystem::path& path, uint64_t max_bytes) {
-  const std::string too_large = "is larger than " + byte_size_words(max_bytes);
   // The path is checked before it is opened (opening some devices has effects of its own),
   // then the descriptor, in case the path was replaced in between.
   struct stat st {};
@@ -51,20 +58,18 @@ std::string read_regular_file(const std::filesystem::path& path, uint64_t max_by
     if (errno == ENOENT) throw FileReadError(path, "does not exist", true);
     throw FileReadError(path, system_rule());
   }
-  if (std::string rule = type_rule(st.st_mode); !rule.empty()) throw FileReadError(path, rule);
-  if (static_cast<uint64_t>(st.st_size) > max_bytes) throw FileReadError(path, too_large);
+  require_readable(path, st, max_bytes);
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
   if (fd < 0) throw FileReadError(path, system_rule());
   const FdCloser closer{fd};
   if (::fstat(fd, &st) != 0) throw FileReadError(path, system_rule());
-  if (std::string rule = type_rule(st.st_mode); !rule.empty()) throw FileReadError(path, rule);
-  if (static_cast<uint64_t>(st.st_size) > max_bytes) throw FileReadError(path, too_large);
+  require_readable(path, st, max_bytes);
 
   std::string bytes(static_cast<size_t>(st.st_size), '\0');
   size_t got = 0;
   for (;;) {
     if (got == bytes.size()) {
-      if (got > max_bytes) throw FileReadError(path, too_large);
+      if (got > max_bytes) throw FileReadError(path, larger_than(max_bytes));
       // The file may have grown since fstat: read on, one more than the limit at most.
       bytes.resize(static_cast<size_t>(std::min<uint64_t>(max_bytes + 1, got + 65536)));
     }

@@ -115,8 +115,7 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
   fs::path scene_dir = fs::path(file).parent_path();
   if (scene_dir.empty()) scene_dir = ".";
   TemplateCheck templates;
-  long long objects = 0, pieces = 0;    // totals of the items so far
-  std::vector<YamlField> item_fields;   // where each item's totals are blamed
+  long long objects = 0, pieces = 0;  // totals of the items so far
   const YamlField items = root.require("items");
   if (items.size() == 0) items.fail("a scene needs at least one item");
   for (size_t i = 0; i < items.size(); ++i) {
@@ -154,7 +153,6 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
                          " pieces (at most " + std::to_string(kMaxScenePieces) + " in a scene)");
       item.cut_area_m2 = estimate_cut_area(item.cut, extents);
     }
-    item_fields.push_back(count_field);
     s.items.push_back(std::move(item));
   }
 
@@ -184,7 +182,8 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
       !why.empty()) {
     const auto density = root.get("render") ? root.get("render")->get("texels_per_mm")
                                             : std::optional<YamlField>();
-    (density ? *density : item_fields.back()).fail(why);
+    const YamlField last = items[items.size() - 1];
+    (density ? *density : last.get("count").value_or(last)).fail(why);
   }
   return s;
 }
