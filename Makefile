@@ -39,7 +39,7 @@ test: deps-test
 # of `make test`).
 test-cpus: build
 	@bash scripts/install-deps.sh --cpus
-	bash tests/cli/emulated_cpu_test.sh ./$(BUILD)/cutaway $(BUILD)/test-tmp/emulated-cpu
+	bash tests/app/cli/emulated_cpu_test.sh ./$(BUILD)/cutaway $(BUILD)/test-tmp/emulated-cpu
 
 gallery: build
 	bash scripts/make-gallery.sh

@@ -3,7 +3,7 @@
 # (declared in HEADER) over the files in FILES (a ;-list of paths), each embedded as a byte
 # array keyed by its bare file name; an unknown name throws std::runtime_error naming WHAT.
 # Bytes (not raw string literals) so no file's text can break the generated C++. Used for the
-# shaders (render/gl/shader_sources.h) and the editor's page (generator/edit/web_files.h).
+# shaders (render/gl/shader_sources.h) and the editor's page (app/edit/web_files.h).
 set(table "")
 set(arrays "")
 set(index 0)

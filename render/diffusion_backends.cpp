@@ -22,7 +22,7 @@ std::unique_ptr<DiffusionBackend> make_diffusion(const DsModel& model,
     bool gpu = false;
     try {
       gpu = create_gpu_context()->hardware();
-    } catch (const std::runtime_error&) {
+    } catch (const EnvironmentError&) {
       gpu = false;
     }
     choice = gpu ? DiffusionChoice::Gl : DiffusionChoice::Cpu;

@@ -23,7 +23,7 @@ enum class DiffusionChoice {
 DiffusionChoice parse_diffusion_choice(const std::string& name);
 
 /// The backend for `choice`. Both give the same colours within the tolerance the tests state.
-/// @throws std::runtime_error when the chosen backend cannot start (see make_cpu_diffusion,
+/// @throws EnvironmentError when the chosen backend cannot start (see make_cpu_diffusion,
 ///         make_gl_diffusion)
 std::unique_ptr<DiffusionBackend> make_diffusion(const DsModel& model,
                                                  const DiffusionOptions& options,

@@ -14,13 +14,13 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat4x4.hpp>
 
+#include "assets/scene_assets.h"
 #include "base/atomic_file.h"
 #include "base/error.h"
 #include "render/gl/gl_buffers.h"
 #include "render/gl/gl_context.h"
 #include "render/gl/gl_program.h"
 #include "render/gl/offscreen_target.h"
-#include "scene/scene_assets.h"
 
 namespace cutaway {
 namespace {

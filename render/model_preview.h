@@ -42,7 +42,7 @@ struct PreviewOptions {
 /// @param options see PreviewOptions for ranges
 /// @returns an opaque image of options.width x options.height pixels
 /// @throws InternalError when the model or options break the preconditions
-/// @throws std::runtime_error when no OpenGL context can be created or rendering fails
+/// @throws EnvironmentError when no OpenGL context can be created or rendering fails
 Image render_model_preview(const DsModel& model, const PreviewOptions& options);
 
 }  // namespace cutaway

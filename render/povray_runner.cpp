@@ -30,7 +30,7 @@ class TempDir {
     path_ = create_watched((fs::temp_directory_path() / "cutaway-povray-").string(),
                            RemoveOnSignal::Kind::Folder, guard_);
     if (path_.empty()) {
-      throw std::runtime_error("cannot create a temporary directory for POV-Ray: " +
+      throw EnvironmentError("cannot create a temporary directory for POV-Ray: " +
                                std::string(std::strerror(errno)));
     }
   }
@@ -87,7 +87,7 @@ void render_povray(const fs::path& pov_file, const fs::path& png_out, int width,
     std::ofstream out(dir.path() / "scene.pov", std::ios::binary);
     out << scene;
     if (!out.flush()) {
-      throw std::runtime_error("cannot write the scene into " + dir.path().string());
+      throw EnvironmentError("cannot write the scene into " + dir.path().string());
     }
   }
 
@@ -115,7 +115,7 @@ void render_povray(const fs::path& pov_file, const fs::path& png_out, int width,
       how = "was killed by signal " + std::to_string(WTERMSIG(run.status));
     }
     if (exited_ok) how = "wrote no image";
-    throw std::runtime_error("POV-Ray failed on " + pov_file.string() + " (" + how + "):\n" +
+    throw EnvironmentError("POV-Ray failed on " + pov_file.string() + " (" + how + "):\n" +
                              last_lines(run.output, kTailLines));
   }
   write_file_atomically(png_out, read_file_bytes(image));

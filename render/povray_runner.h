@@ -42,7 +42,7 @@ struct PovrayOptions {
 /// @param width, height  image size in pixels, 1..16384 each
 /// @param options   quality in 0..11, threads >= 0
 /// @throws InternalError when the size or options are out of range
-/// @throws std::runtime_error when the scene cannot be read, `povray` cannot be started (not
+/// @throws EnvironmentError when the scene cannot be read, `povray` cannot be started (not
 ///         installed), exits with an error or is killed, or writes no image; the message holds
 ///         the last lines POV-Ray printed
 void render_povray(const std::filesystem::path& pov_file, const std::filesystem::path& png_out,

@@ -3,9 +3,9 @@
 // its lights, rendered offscreen (render/gl/gl_context.h).
 #pragma once
 
+#include "assets/scene_assets.h"
 #include "npr/silhouettes.h"  // Stroke
 #include "render/image/image.h"
-#include "scene/scene_assets.h"
 
 namespace cutaway {
 
@@ -61,7 +61,7 @@ struct ScenePreviewOptions {
 /// @param assets  every instance's `mesh` indexes `meshes`; an instanced mesh has as many
 ///                normals and colours as positions (and as many finite `uv`, or none),
 ///                triangle indices below that count, finite positions (metres) and valid
-///                primitives (primitives_defect()); every texture is at least 1x1 with 3 or 4
+///                primitives (check_primitives()); every texture is at least 1x1 with 3 or 4
 ///                channels and width * height * channels bytes of pixels; every material has
 ///                roughness in 0..1 and texture indices -1 or in range, its base colour
 ///                texture having 3 channels; rotations non-zero and finite; camera: eye, target,
@@ -75,7 +75,7 @@ struct ScenePreviewOptions {
 /// @returns an opaque image of width x height pixels, sRGB8, rows top first
 /// @throws InternalError when the assets or options break the preconditions, or a
 ///         used texture is larger than GL_MAX_TEXTURE_SIZE
-/// @throws std::runtime_error when no OpenGL context can be created or rendering fails
+/// @throws EnvironmentError when no OpenGL context can be created or rendering fails
 Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions& options = {});
 
 }  // namespace cutaway

@@ -45,7 +45,7 @@ struct SectionPreviewOptions {
 ///          sRGB8, rows top first
 /// @throws InternalError when the section is empty or malformed, or the options are
 ///         out of range
-/// @throws std::runtime_error when no OpenGL context can be created or rendering fails
+/// @throws EnvironmentError when no OpenGL context can be created or rendering fails
 Image render_section_preview(const CrossSection& section, const SectionPreviewOptions& options);
 
 }  // namespace cutaway

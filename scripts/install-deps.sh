@@ -21,7 +21,7 @@ packages=(
 test_packages=(libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev nodejs npm
                chromium slurm-wlm munge blender python3-numpy)
 
-# make test-cpus: qemu-user emulates an older CPU (tests/cli/emulated_cpu_test.sh).
+# make test-cpus: qemu-user emulates an older CPU (tests/app/cli/emulated_cpu_test.sh).
 cpus_packages=(qemu-user)
 
 want=("${packages[@]}")

@@ -331,9 +331,9 @@ void texture_with_halves(SceneAssets& assets, size_t mesh, int size) {
 }
 
 ::testing::AssertionResult closed_and_oriented(const ShadedMesh& mesh) {
-  const std::string defect = manifold_defect(mesh, 0);
-  if (defect.empty()) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << defect;
+  const Check manifold = check_manifold(mesh, 0);
+  if (manifold) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << manifold.reason();
 }
 
 LimitedRun run_cutaway_limited(const std::vector<std::string>& args, uint64_t address_space,

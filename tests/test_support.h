@@ -12,10 +12,10 @@
 
 #include <tiny_gltf.h>
 
+#include "assets/scene_assets.h"
 #include "model/ds_model.h"
 #include "model/template.h"
 #include "pieces/shaded_mesh.h"
-#include "scene/scene_assets.h"
 #include "scene/scene_builder.h"
 #include "section/cross_section.h"
 

@@ -19,6 +19,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "base/error.h"
 #include "base/file_read.h"
 
 namespace cutaway {
@@ -265,7 +266,7 @@ void write_file_atomically(const fs::path& given, std::string_view bytes) {
   fs::path path = resolve_links(given, rule);
   if (path.empty()) path = given;  // let the write below report the problem
   rule = target_rule(path);
-  if (!rule.empty()) throw std::runtime_error("cannot write " + given.string() + ": " + rule);
+  if (!rule.empty()) throw EnvironmentError("cannot write " + given.string() + ": " + rule);
   const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
   std::error_code ec;
   fs::create_directories(parent, ec);
@@ -276,13 +277,13 @@ void write_file_atomically(const fs::path& given, std::string_view bytes) {
                      RemoveOnSignal::Kind::File, guard, &fd)
           .string();
   if (tmpl.empty()) {
-    throw std::runtime_error("cannot write " + given.string() + ": cannot create a file in " +
+    throw EnvironmentError("cannot write " + given.string() + ": cannot create a file in " +
                              parent.string() + ": " + errno_text(errno));
   }
   auto fail = [&](int e) {
     ::close(fd);
     ::unlink(tmpl.c_str());
-    throw std::runtime_error("cannot write " + given.string() + ": " + errno_text(e));
+    throw EnvironmentError("cannot write " + given.string() + ": " + errno_text(e));
   };
   size_t done = 0;
   while (done < bytes.size()) {
@@ -297,12 +298,12 @@ void write_file_atomically(const fs::path& given, std::string_view bytes) {
   if (::close(fd) != 0) {
     const int e = errno;
     ::unlink(tmpl.c_str());
-    throw std::runtime_error("cannot write " + given.string() + ": " + errno_text(e));
+    throw EnvironmentError("cannot write " + given.string() + ": " + errno_text(e));
   }
   if (std::rename(tmpl.c_str(), path.c_str()) != 0) {
     const int e = errno;
     ::unlink(tmpl.c_str());
-    throw std::runtime_error("cannot write " + given.string() + ": " + errno_text(e));
+    throw EnvironmentError("cannot write " + given.string() + ": " + errno_text(e));
   }
 }
 
@@ -311,7 +312,7 @@ void write_file_atomically(const fs::path& given, std::string_view bytes) {
 OutputSet::~OutputSet() { abort(); }
 
 fs::path OutputSet::add(const std::string& option, const std::string& path) {
-  if (done_) throw std::logic_error("OutputSet::add after commit() or abort()");
+  if (done_) throw InternalError("OutputSet::add after commit() or abort()");
   if (path.empty()) throw OutputPathError(option + ": the path is empty");
   const std::string what = option + " " + path;
   const auto refuse = [&](const std::string& rule) { return OutputPathError(what + ": " + rule); };
@@ -379,7 +380,7 @@ OutputSet::Stage& OutputSet::stage_for(const std::string& what, const fs::path& 
 }
 
 void OutputSet::commit() {
-  if (done_) throw std::logic_error("OutputSet::commit called twice or after abort()");
+  if (done_) throw InternalError("OutputSet::commit called twice or after abort()");
   struct Move {
     fs::path from, to;
   };
@@ -393,15 +394,15 @@ void OutputSet::commit() {
         fs::path to = it != s.targets.end() ? it->second.path : s.dir / name;  // a companion file
         std::string rule;
         const fs::path resolved = resolve_links(to, rule);
-        if (resolved.empty()) throw std::runtime_error("cannot write " + to.string() + ": " + rule);
+        if (resolved.empty()) throw EnvironmentError("cannot write " + to.string() + ": " + rule);
         rule = target_rule(resolved);
-        if (!rule.empty()) throw std::runtime_error("cannot write " + to.string() + ": " + rule);
+        if (!rule.empty()) throw EnvironmentError("cannot write " + to.string() + ": " + rule);
         moves.push_back({entry.path(), resolved});
       }
     }
   } catch (const fs::filesystem_error& e) {
     abort();
-    throw std::runtime_error(std::string("cannot commit the outputs: ") + e.what());
+    throw EnvironmentError(std::string("cannot commit the outputs: ") + e.what());
   } catch (...) {
     abort();
     throw;
@@ -426,7 +427,7 @@ void OutputSet::commit() {
       }
       end_commit();
       abort();
-      throw std::runtime_error(msg);
+      throw EnvironmentError(msg);
     }
   }
   end_commit();

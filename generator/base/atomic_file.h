@@ -29,7 +29,7 @@ namespace cutaway {
 /// The temporary file is removed when the write fails, and by RemoveOnSignal's handlers when
 /// SIGTERM, SIGINT or SIGHUP stops the process during the write; after a SIGKILL it stays
 /// behind, while `path` keeps its old bytes.
-/// @throws std::runtime_error "cannot write PATH: REASON" when the file cannot be written (the
+/// @throws EnvironmentError "cannot write PATH: REASON" when the file cannot be written (the
 ///         temporary file is removed; an existing `path` is unchanged)
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
 
@@ -39,7 +39,7 @@ inline constexpr uint64_t kMaxReadBackBytes = uint64_t{4} << 30;
 /// The bytes of the file at `path` (what write_file_atomically wrote, or any file the program
 /// reads back: POV-Ray's image, manifests, thumbnails), through read_regular_file (file_read.h)
 /// with the limit kMaxReadBackBytes.
-/// @throws FileReadError (a std::runtime_error) "cannot read PATH: REASON" when it is not a
+/// @throws FileReadError (an EnvironmentError) "cannot read PATH: REASON" when it is not a
 ///         regular file, is larger than the limit, or cannot be opened or read
 std::string read_file_bytes(const std::filesystem::path& path);
 
@@ -140,7 +140,7 @@ class OutputSet {
   /// Renames every staged file onto its target (a registered output that was never written
   /// stays as it was), syncs the directories and removes the staging folders. Call once, after
   /// all writes succeeded. On failure everything not yet renamed is removed.
-  /// @throws std::runtime_error "cannot write TARGET: REASON" when a target became a directory
+  /// @throws EnvironmentError "cannot write TARGET: REASON" when a target became a directory
   ///         or another non-regular file since add(), or a rename fails
   void commit();
 

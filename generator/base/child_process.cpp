@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "base/atomic_file.h"
+#include "base/error.h"
 
 namespace cutaway {
 
@@ -43,7 +44,7 @@ std::string find_executable(const std::string& name, const std::string& hint) {
     const std::string candidate = (dir.empty() ? std::string(".") : dir) + "/" + name;
     if (::access(candidate.c_str(), X_OK) == 0 && !fs::is_directory(candidate)) return candidate;
   }
-  throw std::runtime_error("'" + name + "' was not found in PATH; " + hint);
+  throw EnvironmentError("'" + name + "' was not found in PATH; " + hint);
 }
 
 
@@ -56,17 +57,17 @@ ChildResult run_child(const fs::path& dir, const std::string& exe,
 
   int out_pipe[2], err_pipe[2];
   if (::pipe2(out_pipe, O_CLOEXEC) != 0) {
-    throw std::runtime_error(std::string("cannot create a pipe: ") + std::strerror(errno));
+    throw EnvironmentError(std::string("cannot create a pipe: ") + std::strerror(errno));
   }
   Fd out_read{out_pipe[0]}, out_write{out_pipe[1]};
   if (::pipe2(err_pipe, O_CLOEXEC) != 0) {
-    throw std::runtime_error(std::string("cannot create a pipe: ") + std::strerror(errno));
+    throw EnvironmentError(std::string("cannot create a pipe: ") + std::strerror(errno));
   }
   Fd exec_read{err_pipe[0]}, exec_write{err_pipe[1]};
 
   const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
-  if (pid < 0) throw std::runtime_error(std::string("cannot fork: ") + std::strerror(errno));
+  if (pid < 0) throw EnvironmentError(std::string("cannot fork: ") + std::strerror(errno));
   if (pid == 0) {
     // Child: async-signal-safe calls only. On failure the errno goes to the parent through the
     // close-on-exec pipe (which exec closes on success). The child gets SIGTERM when the thread
@@ -114,11 +115,11 @@ ChildResult run_child(const fs::path& dir, const std::string& exe,
   stop_child.release();
   while (::waitpid(pid, &result.status, 0) < 0) {
     if (errno != EINTR) {
-      throw std::runtime_error(std::string("waitpid failed: ") + std::strerror(errno));
+      throw EnvironmentError(std::string("waitpid failed: ") + std::strerror(errno));
     }
   }
   if (got == static_cast<ssize_t>(sizeof child_errno)) {
-    throw std::runtime_error("cannot start " + exe + ": " + std::strerror(child_errno));
+    throw EnvironmentError("cannot start " + exe + ": " + std::strerror(child_errno));
   }
   return result;
 }

@@ -10,7 +10,7 @@ namespace cutaway {
 
 /// The executable `name` names: `name` itself when it holds a '/', else the first executable
 /// file of that name in the folders of $PATH (/usr/local/bin:/usr/bin:/bin when unset).
-/// @throws std::runtime_error "'NAME' was not found in PATH; HINT" when there is none
+/// @throws EnvironmentError "'NAME' was not found in PATH; HINT" when there is none
 std::string find_executable(const std::string& name, const std::string& hint);
 
 /// How a child process ended, and what it printed.
@@ -24,7 +24,7 @@ struct ChildResult {
 /// /dev/null, stdout and stderr captured into one pipe. The child gets SIGTERM when the calling
 /// thread ends (PR_SET_PDEATHSIG: call it from a thread that outlives the child, e.g. the main
 /// thread), and SIGKILL when SIGTERM, SIGINT or SIGHUP stops this process (RemoveOnSignal).
-/// @throws std::runtime_error "cannot start EXE: REASON" when it cannot be started, and when a
+/// @throws EnvironmentError "cannot start EXE: REASON" when it cannot be started, and when a
 ///         pipe or the fork fails
 ChildResult run_child(const std::filesystem::path& dir, const std::string& exe,
                       const std::vector<std::string>& args);

@@ -1,5 +1,5 @@
 // The vertex data every coloured triangle mesh of the pipeline shares: pieces as cut
-// (ShadedMesh, pieces/shaded_mesh.h) and meshes as exported (AssetMesh, scene/scene_assets.h)
+// (ShadedMesh, pieces/shaded_mesh.h) and meshes as exported (AssetMesh, assets/scene_assets.h)
 // both extend it, so that a piece becomes an asset by copying this part, not field by field.
 #pragma once
 

@@ -1,8 +1,8 @@
-// Two error channels (doc/architecture.md, Errors and Style): InputError for bad user input
-// (exit code 2, the message names file, line, column, field and rule) and InternalError for
-// broken internal invariants (CUTAWAY_CHECK, and arguments that break a function's documented
-// preconditions). Expected outcomes are return values (outcome.h); failures of the environment
-// (files, OpenGL, child processes) are std::runtime_error.
+// The error types (doc/architecture.md, Errors and Style): InputError for bad user input (exit
+// code 2, the message names file, line, column, field and rule), InternalError for broken
+// internal invariants (CUTAWAY_CHECK, and arguments that break a function's documented
+// preconditions; exit code 1) and EnvironmentError for failures of the environment (files,
+// OpenGL, child processes; exit code 1). Expected outcomes are return values (outcome.h).
 #pragma once
 
 #include <sstream>
@@ -42,6 +42,14 @@ class InputError : public std::runtime_error {
 class InternalError : public std::logic_error {
  public:
   using std::logic_error::logic_error;
+};
+
+/// A failure of the environment, neither bad input nor a bug: a file that cannot be written,
+/// no OpenGL context, POV-Ray or sbatch missing or failing (exit code 1). The message names the
+/// file or program and the system's reason.
+class EnvironmentError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 /// Length of the valid UTF-8 character at s[i] (1..4), or 0 when s[i] does not start one

@@ -11,7 +11,7 @@
 namespace cutaway {
 
 FileReadError::FileReadError(const std::filesystem::path& path, std::string rule, bool missing)
-    : std::runtime_error("cannot read " + path.string() + ": " + rule),
+    : EnvironmentError("cannot read " + path.string() + ": " + rule),
       rule_(std::move(rule)),
       missing_(missing) {}
 

@@ -10,11 +10,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/error.h"
+
 namespace cutaway {
 
 /// A file that could not be read. what() is "cannot read PATH: RULE"; rule() is the rule alone
 /// (e.g. "is larger than 16 MiB"), to follow the file's name in messages that name it their way.
-class FileReadError : public std::runtime_error {
+class FileReadError : public EnvironmentError {
  public:
   FileReadError(const std::filesystem::path& path, std::string rule, bool missing = false);
   const std::string& rule() const { return rule_; }

@@ -1,6 +1,8 @@
 // The result of a step for which "nothing to make" is an expected outcome, not an error: a
-// value, or the reason there is none in words ("the plane misses the object"). Errors keep their
-// two channels (error.h): InputError for bad input, CUTAWAY_CHECK for broken invariants.
+// value, or the reason there is none in words ("the plane misses the object"); and of a check
+// that passes or says which rule is broken (Check). Errors are exceptions (error.h): InputError
+// for bad input, InternalError (CUTAWAY_CHECK) for broken invariants, EnvironmentError for a
+// failing environment.
 #pragma once
 
 #include <optional>
@@ -56,5 +58,38 @@ class Outcome {
   std::optional<T> value_;
   std::string reason_;
 };
+
+/// The outcome of a check: it passes, or the reason it does not (the rule broken, in words).
+/// Checks return it instead of an empty string for "fine".
+template <>
+class Outcome<void> {
+ public:
+  /// A check that passes.
+  Outcome() = default;
+
+  /// A check that does not pass, for `reason`, a phrase a user understands (no final period).
+  static Outcome none(std::string reason) {
+    Outcome out;
+    out.passed_ = false;
+    out.reason_ = std::move(reason);
+    return out;
+  }
+
+  bool has_value() const { return passed_; }
+  explicit operator bool() const { return passed_; }
+
+  /// Why the check does not pass. @pre !has_value()
+  const std::string& reason() const {
+    CUTAWAY_CHECK(!passed_);
+    return reason_;
+  }
+
+ private:
+  bool passed_ = true;
+  std::string reason_;
+};
+
+/// The outcome of a check (Outcome<void>): passes, or says why not.
+using Check = Outcome<void>;
 
 }  // namespace cutaway

@@ -3,6 +3,8 @@
 #include <dlfcn.h>
 #include <sleef.h>
 
+#include <string>
+
 // The definitions are plain C functions with the C library's names and signatures (noexcept,
 // as glibc declares them for C++). Each forwards to SLEEF's pure-C scalar version with a 1.0
 // ULP bound: "purec" is compiled without FMA and is never swapped for another variant at run
@@ -93,9 +95,10 @@ const char* const kPortableLibmFunctions[] = {
 const int kPortableLibmFunctionCount =
     static_cast<int>(sizeof(kPortableLibmFunctions) / sizeof(kPortableLibmFunctions[0]));
 
-std::string portable_libm_misses() {
+Check check_portable_libm() {
   Dl_info self{};
-  if (dladdr(reinterpret_cast<void*>(&portable_libm_misses), &self) == 0) return "(dladdr failed)";
+  if (dladdr(reinterpret_cast<void*>(&check_portable_libm), &self) == 0)
+    return Check::none("dladdr failed");
   std::string misses;
   for (const char* name : kPortableLibmFunctions) {
     Dl_info found{};
@@ -103,7 +106,8 @@ std::string portable_libm_misses() {
     if (!address || dladdr(address, &found) == 0 || found.dli_fbase != self.dli_fbase)
       misses += (misses.empty() ? "" : ", ") + std::string(name);
   }
-  return misses;
+  if (misses.empty()) return {};
+  return Check::none("not this program's: " + misses);
 }
 
 }  // namespace cutaway

@@ -11,7 +11,7 @@
 // the C library: they give the same bits everywhere already.
 #pragma once
 
-#include <string>
+#include "base/outcome.h"
 
 namespace cutaway {
 
@@ -21,9 +21,9 @@ extern const char* const kPortableLibmFunctions[];
 /// The number of names in kPortableLibmFunctions.
 extern const int kPortableLibmFunctionCount;
 
-/// Empty when every name of kPortableLibmFunctions resolves, process-wide (as a shared
-/// library's call would), to this program's definition; otherwise the names that do not,
-/// comma-separated: then some library's calls still reach the C library's per-CPU versions.
-std::string portable_libm_misses();
+/// Passes when every name of kPortableLibmFunctions resolves, process-wide (as a shared
+/// library's call would), to this program's definition; otherwise fails naming those that do
+/// not, comma-separated: then some library's calls still reach the C library's per-CPU versions.
+Check check_portable_libm();
 
 }  // namespace cutaway

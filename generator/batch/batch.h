@@ -4,11 +4,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "base/error.h"
 #include "export/gltf_export.h"
+#include "model/template.h"
 #include "pieces/cut_spec.h"
 
 namespace cutaway {
@@ -18,6 +20,9 @@ namespace cutaway {
 struct BatchItem {
   std::string template_name;  ///< the template's own name (its `name` field)
   std::string template_path;  ///< the resolved template file
+  /// The parsed template (load_batch reads each file once; items naming it share it), null
+  /// after parse_batch alone
+  std::shared_ptr<const Template> tmpl;
   uint64_t template_hash = 0; ///< fnv1a64 of the template file's bytes (asset fingerprints)
   int count = 1;              ///< variants, 1..100000
   uint64_t seed = 0;          ///< the first variant's seed

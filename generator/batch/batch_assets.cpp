@@ -9,14 +9,14 @@
 #include <glm/trigonometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "assets/asset_camera.h"
 #include "base/error.h"
 #include "base/source_fingerprint.h"
 #include "base/timer.h"
+#include "batch/variant_batch.h"
+#include "cut/piece_views.h"
 #include "export/gltf_export.h"
-#include "io/template_parser.h"
-#include "scene/collision_shape.h"
-#include "scene/piece_views.h"
-#include "variation/variant_batch.h"
+#include "placement/collision_shape.h"
 #include "variation/variation.h"
 
 namespace cutaway {
@@ -112,6 +112,58 @@ BatchPlan plan_batch(const Batch& batch, const std::string& settings) {
   return plan;
 }
 
+namespace {
+
+/// One asset's pieces: `variant` cut by `cut_spec` into a new SceneAssets named `stem` (its
+/// materials and baked textures), every piece kept, Perlin modulation seeded by `seed`.
+CutObject cut_asset(SceneAssets& assets, const Batch& batch, const Variant& variant, uint64_t seed,
+                    const CutSpec& cut_spec, const std::string& stem,
+                    const DiffusionBackend& diffusion, CapSampling sampling, ObjectCutStats& st) {
+  assets.name = stem;
+  assets.background = {1, 1, 1};
+  const Template& tmpl = variant.tmpl;
+  const PieceMaterials materials =
+      add_piece_materials(assets, tmpl.name, tmpl.skin_material, tmpl.cut_material);
+  ObjectCutOptions cut;
+  cut.cut = cut_spec;
+  cut.modulation_seed = seed;
+  cut.perlin = batch.export_options.perlin;
+  cut.atlas.texels_per_m = 1000 * batch.export_options.texels_per_mm;
+  cut.atlas.power_of_two = cut.skin.power_of_two = batch.export_options.power_of_two;
+  cut.sampling = sampling;
+  return *cut_object(assets, variant, seed, materials, asset_name(stem), diffusion, cut, st);
+}
+
+/// The asset's glTF binary: `object`'s pieces placed in `assets` as they lie in the object frame
+/// (with their collision hulls when the batch exports them), a camera framing them and the
+/// studio lights. Fills the record's pieces, volume, hash and geometry counts.
+std::string asset_glb(SceneAssets& assets, CutObject& object, const Batch& batch, AssetRecord& r) {
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  for (size_t q = 0; q < object.meshes.size(); ++q) {
+    for (const glm::dvec3& p : object.shapes[q].position) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    r.volume_m3 += object.infos[q].volume_m3;
+    assets.instances.push_back({object.meshes[q].name, static_cast<int>(assets.meshes.size()),
+                                {1, 0, 0, 0}, {0, 0, 0}, object.infos[q]});
+    if (batch.export_options.gltf.collision != GltfCollision::None)
+      assets.instances.back().collision = collision_hulls(object.shapes[q]);
+    assets.meshes.push_back(std::move(object.meshes[q]));
+  }
+  r.pieces = object.meshes.size();
+  assets.camera = frame_box(lo, hi, asset_view_direction(), 40, 4.0 / 3);
+  light_like_studio(assets);
+  std::string glb = scene_to_glb(assets, batch.export_options.gltf);
+  r.hash = fnv1a64(glb);
+  const GltfGeometryCounts counts = count_glb_geometry(glb);
+  r.triangles = counts.triangles;
+  r.vertices = counts.vertices;
+  return glb;
+}
+
+}  // namespace
+
 std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& plan, size_t unit,
                                          const BatchBuildOptions& options, UnitTimings* timings) {
   if (!options.diffusion) throw InternalError("build_batch_unit: no diffusion backend");
@@ -121,7 +173,8 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
   const BatchUnit& u = plan.units.at(unit);
   const BatchItem& item = batch.items[u.item];
   auto t0 = Clock::now();
-  Template tmpl = load_template(item.template_path);
+  CUTAWAY_CHECK(item.tmpl);  // load_batch read it
+  Template tmpl = *item.tmpl;
   tmpl.variation_amount *= item.variation;
   const Variant variant = make_variant(tmpl, u.seed);
   // The DS model is one file per variant, shared by its cuts' records: encoded once (its time
@@ -139,20 +192,9 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
     const BatchAsset& a = plan.assets[u.first_asset + c];
     t0 = Clock::now();
     SceneAssets assets;
-    assets.name = a.stem;
-    assets.background = {1, 1, 1};
-    const PieceMaterials materials =
-        add_piece_materials(assets, tmpl.name, tmpl.skin_material, tmpl.cut_material);
-    ObjectCutOptions cut;
-    cut.cut = item.cuts[c];
-    cut.modulation_seed = u.seed;
-    cut.perlin = batch.export_options.perlin;
-    cut.atlas.texels_per_m = 1000 * batch.export_options.texels_per_mm;
-    cut.atlas.power_of_two = cut.skin.power_of_two = batch.export_options.power_of_two;
-    cut.sampling = options.sampling;
     ObjectCutStats st;
-    CutObject object = *cut_object(assets, variant, u.seed, materials, asset_name(a.stem),
-                                   *diffusion, cut, st);
+    CutObject object = cut_asset(assets, batch, variant, u.seed, item.cuts[c], a.stem, *diffusion,
+                                 options.sampling, st);
     BuiltAsset built;
     UnitTimings& own = built.seconds;
     own.variant = t.variant / static_cast<double>(item.cuts.size());
@@ -177,27 +219,7 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
     r.seed = u.seed;
     r.cut = cut_label(item.cuts[c]);
     r.inputs = a.inputs;
-    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-    for (size_t q = 0; q < object.meshes.size(); ++q) {
-      for (const glm::dvec3& p : object.shapes[q].position) {
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-      }
-      r.volume_m3 += object.infos[q].volume_m3;
-      assets.instances.push_back({object.meshes[q].name, static_cast<int>(assets.meshes.size()),
-                                  {1, 0, 0, 0}, {0, 0, 0}, object.infos[q]});
-      if (batch.export_options.gltf.collision != GltfCollision::None)
-        assets.instances.back().collision = collision_hulls(object.shapes[q]);
-      assets.meshes.push_back(std::move(object.meshes[q]));
-    }
-    r.pieces = object.meshes.size();
-    assets.camera = frame_box(lo, hi, asset_view_direction(), 40, 4.0 / 3);
-    light_like_studio(assets);
-    std::string glb = scene_to_glb(assets, batch.export_options.gltf);
-    r.hash = fnv1a64(glb);
-    const GltfGeometryCounts counts = count_glb_geometry(glb);
-    r.triangles = counts.triangles;
-    r.vertices = counts.vertices;
+    std::string glb = asset_glb(assets, object, batch, r);
     built.files.push_back({r.file, std::move(glb)});
     if (batch.outputs.model) {
       r.model = model_file;

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "batch/batch.h"
+#include "batch/variant_batch.h"
 #include "scene/scene_builder.h"
-#include "variation/variant_batch.h"
 
 namespace cutaway {
 

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/atomic_file.h"
+#include "base/error.h"
 
 namespace cutaway {
 
@@ -209,6 +210,13 @@ MergeReport merge_manifests(const BatchIndex& index, const fs::path& dir) {
   }
   for (const auto& [file, records] : by_file) report.unknown.push_back(file);
   return report;
+}
+
+std::string merged_manifest(const MergeReport& report) {
+  CUTAWAY_CHECK(report.complete());
+  std::string lines;
+  for (const AssetRecord& r : report.records) lines += manifest_line(r);
+  return lines;
 }
 
 }  // namespace cutaway

@@ -16,7 +16,7 @@
 
 #include "base/outcome.h"
 #include "batch/batch_assets.h"
-#include "variation/variant_batch.h"
+#include "batch/variant_batch.h"
 
 namespace cutaway {
 
@@ -89,5 +89,9 @@ struct MergeReport {
 /// inputs, and its files intact (record_files_intact). Identical lines in several manifests
 /// (a shard run twice, or under another shard count) count as duplicated, not as errors.
 MergeReport merge_manifests(const BatchIndex& index, const std::filesystem::path& dir);
+
+/// The merged manifest.jsonl of a complete batch: one manifest_line per record, in batch order.
+/// @pre report.complete()
+std::string merged_manifest(const MergeReport& report);
 
 }  // namespace cutaway

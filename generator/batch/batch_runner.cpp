@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/atomic_file.h"
+#include "base/error.h"
 #include "base/timer.h"
 #include "batch/batch_manifest.h"
 
@@ -26,7 +27,7 @@ using Clock = std::chrono::steady_clock;
 void append_durably(const fs::path& path, const std::string& text) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
   if (fd < 0)
-    throw std::runtime_error("cannot write " + path.string() + ": " + std::strerror(errno));
+    throw EnvironmentError("cannot write " + path.string() + ": " + std::strerror(errno));
   size_t written = 0;
   while (written < text.size()) {
     const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
@@ -34,7 +35,7 @@ void append_durably(const fs::path& path, const std::string& text) {
     if (n <= 0) {
       const int err = errno;
       ::close(fd);
-      throw std::runtime_error("cannot write " + path.string() + ": " + std::strerror(err));
+      throw EnvironmentError("cannot write " + path.string() + ": " + std::strerror(err));
     }
     written += static_cast<size_t>(n);
   }
@@ -42,7 +43,7 @@ void append_durably(const fs::path& path, const std::string& text) {
   const int err = errno;
   ::close(fd);
   if (!synced)
-    throw std::runtime_error("cannot write " + path.string() + ": " + std::strerror(err));
+    throw EnvironmentError("cannot write " + path.string() + ": " + std::strerror(err));
 }
 
 /// The records of every manifest in `dir`, by file name.

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "batch/batch_assets.h"
-#include "variation/variant_batch.h"
+#include "batch/variant_batch.h"
 
 namespace cutaway {
 
@@ -52,7 +52,7 @@ struct BatchRunResult {
 ///  4. rewrites the manifest in batch order, so that it depends only on the batch.
 /// A crash at any point loses at most the variant in progress: what is on disk is complete
 /// files and manifest lines (a line cut short is ignored when read).
-/// @throws std::runtime_error when a file cannot be written; InputError when a template
+/// @throws EnvironmentError when a file cannot be written; InputError when a template
 ///         cannot be read
 BatchRunResult run_batch(const Batch& batch, const BatchPlan& plan,
                          const std::filesystem::path& dir, const BatchRunOptions& options);

@@ -8,7 +8,7 @@
 
 #include "base/child_process.h"
 #include "base/error.h"
-#include "variation/variant_batch.h"
+#include "batch/variant_batch.h"
 
 namespace cutaway {
 
@@ -47,21 +47,22 @@ bool sbatch_safe_path(const std::string& path) {
 
 }  // namespace
 
-std::string slurm_job_rule(const SlurmJob& job) {
+Check check_slurm_job(const SlurmJob& job) {
   for (const std::string* path : {&job.cutaway, &job.batch_file, &job.dir}) {
     if (!sbatch_safe_path(*path))
-      return "the path " + quoted(*path) +
+      return Check::none("the path " + quoted(*path) +
              " holds white space, a control character, a quote, a backslash, '%' or bytes "
              "that are not UTF-8 (sbatch splits and expands #SBATCH lines on them): choose "
-             "another folder";
+             "another folder");
   }
-  if (!plain_value(job.partition)) return "--partition must hold only A-Z a-z 0-9 _ . , : -";
-  if (!plain_value(job.time)) return "--time must hold only A-Z a-z 0-9 _ . , : -";
+  if (!plain_value(job.partition))
+    return Check::none("--partition must hold only A-Z a-z 0-9 _ . , : -");
+  if (!plain_value(job.time)) return Check::none("--time must hold only A-Z a-z 0-9 _ . , : -");
   if (job.array < 1 || job.array > kMaxShards)
-    return "--array must be from 1 to " + std::to_string(kMaxShards);
+    return Check::none("--array must be from 1 to " + std::to_string(kMaxShards));
   if (job.cpus_per_task < 1 || job.cpus_per_task > 1024)
-    return "the CPUs per task must be from 1 to 1024";
-  return "";
+    return Check::none("the CPUs per task must be from 1 to 1024");
+  return {};
 }
 
 std::string sbatch_script(const SlurmJob& job) {
@@ -94,7 +95,7 @@ std::string submit_sbatch(const std::filesystem::path& script) {
   const ChildResult run = run_child(std::filesystem::current_path(), exe,
                                     {"sbatch", "--parsable", script.string()});
   if (!WIFEXITED(run.status) || WEXITSTATUS(run.status) != 0)
-    throw std::runtime_error("sbatch failed on " + script.string() + ": " + run.output);
+    throw EnvironmentError("sbatch failed on " + script.string() + ": " + run.output);
   // --parsable prints "JOBID" or "JOBID;CLUSTER" on its last line (warnings may come first).
   std::istringstream in(run.output);
   std::string line, id;
@@ -102,7 +103,7 @@ std::string submit_sbatch(const std::filesystem::path& script) {
     const std::string first = line.substr(0, line.find(';'));
     if (!first.empty() && std::all_of(first.begin(), first.end(), ::isdigit)) id = first;
   }
-  if (id.empty()) throw std::runtime_error("sbatch printed no job id: " + run.output);
+  if (id.empty()) throw EnvironmentError("sbatch printed no job id: " + run.output);
   return id;
 }
 

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "base/outcome.h"
+
 namespace cutaway {
 
 /// One array job of a batch.
@@ -21,20 +23,20 @@ struct SlurmJob {
   std::vector<std::string> extra_args;  ///< passed on to every task (e.g. --backend cpu)
 };
 
-/// Why `job` cannot become a script: a path with white space, a quote, '%' or a newline
-/// (sbatch's #SBATCH lines take no quoting), a partition or time outside [A-Za-z0-9_.,:-],
-/// array outside 1..100000, cpus_per_task outside 1..1024. Empty when it can.
-std::string slurm_job_rule(const SlurmJob& job);
+/// Passes when `job` can become a script; else fails with why not: a path with white space, a
+/// quote, '%' or a newline (sbatch's #SBATCH lines take no quoting), a partition or time
+/// outside [A-Za-z0-9_.,:-], array outside 1..100000, cpus_per_task outside 1..1024.
+Check check_slurm_job(const SlurmJob& job);
 
 /// The sbatch script of `job`: #SBATCH lines (job name, --array=1-M, --cpus-per-task, task
 /// output to DIR/slurm/%A_%a.out, partition and time when given), then `exec` of cutaway
 /// with every argument single-quoted and --shard "$SLURM_ARRAY_TASK_ID/M".
-/// @pre slurm_job_rule(job) is empty
+/// @pre check_slurm_job(job) passes
 std::string sbatch_script(const SlurmJob& job);
 
 /// Submits the script at `script` with `sbatch --parsable` (found in PATH) and returns the job
 /// id it prints.
-/// @throws std::runtime_error when sbatch is missing, fails (its message quoted) or prints no
+/// @throws EnvironmentError when sbatch is missing, fails (its message quoted) or prints no
 ///         job id
 std::string submit_sbatch(const std::filesystem::path& script);
 

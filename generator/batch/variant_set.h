@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "base/outcome.h"
+#include "batch/variant_batch.h"
+#include "cut/object_cut.h"
 #include "model/template.h"
-#include "scene/object_cut.h"
 #include "section/cross_section.h"
-#include "variation/variant_batch.h"
 
 namespace cutaway {
 

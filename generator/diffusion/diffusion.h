@@ -102,7 +102,7 @@ inline void check_channel_sizes(size_t points, size_t colour, size_t material) {
 
 /// The CPU backend: Embree 3 ray casting, packets of 16 directions of one point, TBB over
 /// points. Builds the BVH of all sheets once.
-/// @throws std::runtime_error when Embree cannot be initialised
+/// @throws EnvironmentError when Embree cannot be initialised
 std::unique_ptr<DiffusionBackend> make_cpu_diffusion(const DsModel& model,
                                                      const DiffusionOptions& options);
 

@@ -11,6 +11,8 @@
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
 
+#include "base/error.h"
+
 namespace cutaway {
 
 std::optional<TriangleCrossing> cross_triangle(const glm::dvec3& o, const glm::dvec3& d,
@@ -189,7 +191,7 @@ SheetRayCaster::SheetRayCaster(const std::vector<DiffusionSheet>& sheets, int th
   embree_->device = rtcNewDevice(config.c_str());
   if (!embree_->device) {
     delete embree_;
-    throw std::runtime_error("cannot initialise Embree (rtcNewDevice(\"" + config + "\") failed)");
+    throw EnvironmentError("cannot initialise Embree (rtcNewDevice(\"" + config + "\") failed)");
   }
   embree_->scene = rtcNewScene(embree_->device);
   rtcSetSceneFlags(embree_->scene,

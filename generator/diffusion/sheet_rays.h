@@ -70,7 +70,7 @@ class SheetRayCaster {
   /// variable CUTAWAY_EMBREE_ISA (sse2, sse4.2, avx, avx2, avx512), meant for tests, makes
   /// Embree use that instruction set's kernels instead of the best the CPU has; decided hits
   /// do not change.
-  /// @throws std::runtime_error when Embree cannot be initialised
+  /// @throws EnvironmentError when Embree cannot be initialised
   SheetRayCaster(const std::vector<DiffusionSheet>& sheets, int threads,
                  SheetHits hits = SheetHits::Decided);
   ~SheetRayCaster();

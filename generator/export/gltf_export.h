@@ -6,9 +6,9 @@
 #include <string>
 #include <string_view>
 
+#include "assets/scene_assets.h"
 #include "export/texture_image.h"
 #include "model/ds_model.h"
-#include "scene/scene_assets.h"
 #include "section/cross_section.h"
 
 namespace cutaway {
@@ -28,7 +28,7 @@ struct GltfModelOptions {
 std::string model_to_glb(const DsModel& model, const GltfModelOptions& options);
 
 /// Writes model_to_glb to `path` atomically (temporary file, then rename).
-/// @throws std::runtime_error when the file cannot be written
+/// @throws EnvironmentError when the file cannot be written
 void write_model_glb(const std::filesystem::path& path, const DsModel& model,
                      const GltfModelOptions& options);
 
@@ -151,7 +151,7 @@ struct GltfGeometryCounts {
 
 /// GltfGeometryCounts of `glb` (the bytes of a .glb file, such as scene_to_glb's), read from
 /// its JSON chunk.
-/// @throws std::runtime_error "not a binary glTF file: REASON" when the bytes are not one
+/// @throws EnvironmentError "not a binary glTF file: REASON" when the bytes are not one
 ///         with indexed triangle primitives
 GltfGeometryCounts count_glb_geometry(std::string_view glb);
 
@@ -164,7 +164,7 @@ GltfGeometryCounts count_glb_geometry(std::string_view glb);
 /// first); a failure leaves neither file (should the last rename fail, the new .bin, which
 /// may have replaced an older one, is removed). The directory must exist (it is not created).
 /// @throws InternalError for any other extension and for invalid assets (see
-///   scene_to_glb); std::runtime_error when the directory is missing or a file cannot be
+///   scene_to_glb); EnvironmentError when the directory is missing or a file cannot be
 ///   written.
 void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& assets,
                       const GltfSceneOptions& options = {});

@@ -8,6 +8,7 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include "base/colour.h"
+#include "base/error.h"
 
 namespace cutaway {
 
@@ -28,14 +29,14 @@ std::string section_to_ply(const CrossSection& section) {
   }
   for (const glm::uvec3& t : section.triangle) {
     if (!mesh.add_face(vh[t.x], vh[t.y], vh[t.z]).is_valid()) {
-      throw std::runtime_error("the cross-section is not a manifold triangle mesh");
+      throw InternalError("the cross-section is not a manifold triangle mesh");
     }
   }
   std::ostringstream out;
   const OpenMesh::IO::Options options =
       OpenMesh::IO::Options::Binary | OpenMesh::IO::Options::VertexColor;
   if (!OpenMesh::IO::write_mesh(mesh, out, ".ply", options)) {
-    throw std::runtime_error("cannot encode the cross-section as PLY");
+    throw EnvironmentError("cannot encode the cross-section as PLY");
   }
   return out.str();
 }

@@ -7,9 +7,9 @@
 #include <optional>
 #include <string>
 
+#include "assets/scene_assets.h"
 #include "export/texture_image.h"
 #include "npr/silhouettes.h"  // Stroke
-#include "scene/scene_assets.h"
 
 namespace cutaway {
 
@@ -95,7 +95,7 @@ std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* s
 /// Writes scene_to_pov(assets) to `path` atomically (write_file_atomically(): a temporary file,
 /// then rename; a failed run leaves no partial file).
 /// @throws InternalError as scene_to_pov
-/// @throws std::runtime_error when the file cannot be written
+/// @throws EnvironmentError when the file cannot be written
 /// With `textures`, the textures are written first, as image files of that format beside it
 /// (texture_file_names(), each atomically), and the scene uses them.
 void write_scene_pov(const std::filesystem::path& path, const SceneAssets& assets,

@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "scene/scene_assets.h"
+#include "assets/scene_assets.h"
 
 namespace cutaway {
 

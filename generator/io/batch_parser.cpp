@@ -7,7 +7,6 @@
 #include "io/format_fields.h"
 #include "io/text_rules.h"
 #include "io/yaml_reader.h"
-#include "variation/variant_batch.h"
 
 namespace cutaway {
 
@@ -145,15 +144,16 @@ Batch load_batch(const std::string& path) {
   for (size_t i = 0; i < b.items.size(); ++i) {
     BatchItem& item = b.items[i];
     for (size_t c = 0; c < item.cuts.size(); ++c) {
-      item.template_name =
+      const LoadedTemplate& loaded =
           templates.check(item.template_path, item.cuts[c], parsed[i].length_fields[c]);
+      item.tmpl = loaded.tmpl;
+      item.template_name = loaded.tmpl->name;
+      item.template_hash = loaded.file_hash;
       // Each asset bakes its own caps: one object's cut faces at the batch's density.
-      const double area = estimate_cut_area(item.cuts[c], templates.extents(item.template_path));
-      if (const std::string why = cap_texels_rule(area, b.export_options.texels_per_mm);
-          !why.empty())
-        parsed[i].cut_fields[c].fail(why);
+      const double area = estimate_cut_area(item.cuts[c], loaded.extents);
+      if (const Check texels = check_cap_texels(area, b.export_options.texels_per_mm); !texels)
+        parsed[i].cut_fields[c].fail(texels.reason());
     }
-    item.template_hash = fnv1a64(read_input_file(item.template_path));
     for (size_t c = 0; c < item.cuts.size(); ++c)
       for (size_t d = 0; d < c; ++d)
         if (cut_label(item.cuts[c]) == cut_label(item.cuts[d]))

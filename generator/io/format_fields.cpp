@@ -6,6 +6,7 @@
 #include <sstream>
 #include <vector>
 
+#include "base/hash.h"
 #include "io/template_parser.h"
 #include "io/text_rules.h"
 #include "model/template.h"
@@ -29,7 +30,7 @@ void require_format(const YamlField& root, const std::string& expected) {
 std::string parse_name(const YamlField& root) {
   const YamlField name = root.require("name");
   std::string value = name.string();
-  if (const std::string rule = name_rule(value); !rule.empty()) name.fail(rule);
+  if (const Check plain = check_name(value); !plain) name.fail(plain.reason());
   return value;
 }
 
@@ -112,8 +113,8 @@ std::string resolve_template(const YamlField& f, const fs::path& scene_dir, cons
     }
     return p.string();
   }
-  if (const std::string rule = name_rule(v); !rule.empty()) {
-    f.fail("a template is a name or a path ending in .yaml; " + rule);
+  if (const Check plain = check_name(v); !plain) {
+    f.fail("a template is a name or a path ending in .yaml; " + plain.reason());
   }
   std::vector<fs::path> dirs{(scene_dir / ".." / "templates").lexically_normal()};
   const auto add = [&](const fs::path& d) {  // each folder once (messages list them)
@@ -132,21 +133,25 @@ std::string resolve_template(const YamlField& f, const fs::path& scene_dir, cons
 }
 
 
-const std::string& TemplateCheck::check(const std::string& template_path, const CutSpec& cut,
-                                         const std::optional<YamlField>& length_field) {
-  auto it = extents_.find(template_path);
-  if (it == extents_.end()) {
-    const Template t = load_template(template_path);
-    it = extents_.emplace(template_path, Entry{t.name, template_extents(t)}).first;
+const LoadedTemplate& TemplateCheck::check(const std::string& template_path, const CutSpec& cut,
+                                           const std::optional<YamlField>& length_field) {
+  auto it = loaded_.find(template_path);
+  if (it == loaded_.end()) {
+    std::string text;
+    auto t = std::make_shared<const Template>(load_template(template_path, &text));
+    const ObjectExtents extents = template_extents(*t);
+    it = loaded_.emplace(template_path, LoadedTemplate{std::move(t), extents, fnv1a64(text)})
+             .first;
   }
-  const long long n = estimate_piece_count(cut, it->second.extents);
+  const LoadedTemplate& loaded = it->second;
+  const long long n = estimate_piece_count(cut, loaded.extents);
   if (n > kMaxPiecesPerCut && length_field) {
     std::ostringstream s;
-    s << "too small: would make " << n << " pieces of template " << quoted(it->second.name)
+    s << "too small: would make " << n << " pieces of template " << quoted(loaded.tmpl->name)
       << " (at most " << kMaxPiecesPerCut << " per object)";
     length_field->fail(s.str());
   }
-  return it->second.name;
+  return loaded;
 }
 
 }  // namespace cutaway

@@ -5,11 +5,14 @@
 #pragma once
 
 #include <filesystem>
+#include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "io/yaml_reader.h"
+#include "model/template.h"
 #include "pieces/cut_spec.h"
 
 namespace cutaway {
@@ -18,7 +21,7 @@ namespace cutaway {
 /// "cutaway-scene/1": "unsupported format F (this version of cutaway reads EXPECTED)".
 void require_format(const YamlField& root, const std::string& expected);
 
-/// The root's `name` field (required): a plain name (name_rule), else fails there.
+/// The root's `name` field (required): a plain name (check_name), else fails there.
 std::string parse_name(const YamlField& root);
 
 /// A `units` value: mm, cm or m. Returns metres per unit; fails with "must be mm, cm or m".
@@ -52,30 +55,27 @@ CutSpec parse_cut(const YamlField& f, double metres_per_unit,
 std::string resolve_template(const YamlField& f, const std::filesystem::path& dir,
                              const char* kind);
 
+/// A template file read and parsed once for all the items that name it.
+struct LoadedTemplate {
+  std::shared_ptr<const Template> tmpl;  ///< as load_template returns it
+  ObjectExtents extents;                 ///< template_extents of it
+  uint64_t file_hash = 0;                ///< fnv1a64 of the file's bytes
+};
+
 /// Reads each template of a file's items once (load_template: a broken template is reported at
 /// its own file), and refuses cuts that would make too many pieces of it.
 class TemplateCheck {
  public:
   /// Loads the template at `template_path` (once per path) and fails at `length_field` when
   /// `cut` would make more than kMaxPiecesPerCut pieces of it (estimate_piece_count).
-  /// @returns the template's name
+  /// @returns the loaded template, valid as long as this TemplateCheck
   /// @throws InputError from load_template, or at `length_field` "too small: would make N
   ///         pieces of template NAME (at most M per object)"
-  const std::string& check(const std::string& template_path, const CutSpec& cut,
-                           const std::optional<YamlField>& length_field);
-
-  /// The extents (template_extents) of a template check() has loaded.
-  /// @pre check() was called with `template_path`
-  const ObjectExtents& extents(const std::string& template_path) const {
-    return extents_.at(template_path).extents;
-  }
+  const LoadedTemplate& check(const std::string& template_path, const CutSpec& cut,
+                              const std::optional<YamlField>& length_field);
 
  private:
-  struct Entry {
-    std::string name;
-    ObjectExtents extents;
-  };
-  std::map<std::string, Entry> extents_;
+  std::map<std::string, LoadedTemplate> loaded_;
 };
 
 }  // namespace cutaway

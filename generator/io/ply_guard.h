@@ -11,8 +11,8 @@
 namespace cutaway {
 
 /// Most vertices a `mesh` surface's PLY file may declare: the DS model's whole budget
-/// (kMaxModelVertices in model/ds_model.h, checked equal there; import_mesh_surface gets what
-/// the surfaces before it left).
+/// (kMaxModelVertices in model/ds_model.h, checked equal in io/mesh_file.cpp; mesh_surface gets
+/// what the surfaces before it left).
 inline constexpr size_t kMaxMeshVertices = 1'000'000;
 /// Most faces a `mesh` surface's PLY file may declare, and most triangles its polygons may make:
 /// a closed triangle mesh has about twice as many faces as vertices.

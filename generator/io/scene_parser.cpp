@@ -145,8 +145,9 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
       count_field.fail("the items up to here make " + std::to_string(objects) +
                        " objects (at most " + std::to_string(kMaxSceneObjects) + " in a scene)");
     if (load_templates) {
-      templates.check(item.template_path, item.cut, length_field);
-      const ObjectExtents& extents = templates.extents(item.template_path);
+      const LoadedTemplate& loaded = templates.check(item.template_path, item.cut, length_field);
+      item.tmpl = loaded.tmpl;
+      const ObjectExtents& extents = loaded.extents;
       pieces += item.count * estimate_piece_count(item.cut, extents);
       if (pieces > kMaxScenePieces)
         count_field.fail("the items up to here make about " + std::to_string(pieces) +
@@ -178,12 +179,11 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
       r->fail("width x height is " + std::to_string(s.render.width * s.render.height) +
               " pixels (at most " + std::to_string(kMaxRenderPixels) + ", e.g. 3840 x 2160)");
   }
-  if (const std::string why = cap_texels_rule(scene_cut_area(s), s.render.texels_per_mm);
-      !why.empty()) {
+  if (const Check texels = check_cap_texels(scene_cut_area(s), s.render.texels_per_mm); !texels) {
     const auto density = root.get("render") ? root.get("render")->get("texels_per_mm")
                                             : std::optional<YamlField>();
     const YamlField last = items[items.size() - 1];
-    (density ? *density : last.get("count").value_or(last)).fail(why);
+    (density ? *density : last.get("count").value_or(last)).fail(texels.reason());
   }
   return s;
 }
@@ -198,6 +198,10 @@ double scene_cut_area(const Scene& scene) {
 
 Scene parse_scene(std::string_view text, const std::string& file) {
   return parse(text, file, false);
+}
+
+Scene parse_scene_and_templates(std::string_view text, const std::string& file) {
+  return parse(text, file, true);
 }
 
 Scene load_scene(const std::string& path) { return parse(read_input_file(path), path, true); }

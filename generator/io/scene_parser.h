@@ -34,6 +34,11 @@ namespace cutaway {
 ///         fields, types, ranges, a template that cannot be found), at the offending node
 Scene parse_scene(std::string_view text, const std::string& file);
 
+/// Parses `text` as parse_scene and reads every template it names, as load_scene does for the
+/// text of a file (templates resolved from `file`'s directory).
+/// @throws InputError as load_scene
+Scene parse_scene_and_templates(std::string_view text, const std::string& file);
+
 /// Reads the scene file at `path`, parses it as parse_scene, and reads every template it names
 /// with load_template, so that a broken template is reported (at its own file, line and column).
 /// Also refuses a cut that would make more than kMaxPiecesPerCut pieces of one object, estimated
@@ -42,7 +47,7 @@ Scene parse_scene(std::string_view text, const std::string& file);
 ///         cannot be read
 /// Also holds the scene to the totals of scene.h (kMaxSceneObjects, kMaxScenePieces at the
 /// item's count that passes them; kMaxRenderPixels at render) and its cut faces to
-/// kMaxCapTexels (cap_texels_rule of scene_cut_area, at render.texels_per_mm or the last item).
+/// kMaxCapTexels (check_cap_texels of scene_cut_area, at render.texels_per_mm or the last item).
 Scene load_scene(const std::string& path);
 
 /// An upper bound of the cut-face area of all `scene`'s objects, m^2: each item's count times

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <set>
 #include <sstream>
 
@@ -11,9 +12,10 @@
 #include "base/constants.h"
 #include "base/error.h"
 #include "io/format_fields.h"
+#include "io/mesh_file.h"
 #include "io/text_rules.h"
 #include "io/yaml_reader.h"
-#include "model/mesh_import.h"
+#include "model/mesh_surface.h"
 #include "model/template_checks.h"
 
 namespace cutaway {
@@ -380,12 +382,20 @@ const char* units_name(const Template& t) {
   return t.metres_per_unit == 1.0 ? "m" : (t.metres_per_unit == 1e-2 ? "cm" : "mm");
 }
 
-/// Skin height (metres) for the default edge length: the y range of the skin's profile or mesh.
-double skin_height(const Template& t) {
-  const SurfaceSpec& skin = t.surfaces[t.skin];
+/// Reads the PLY file of a `mesh` surface into it (read_mesh_file), once.
+void read_surface_mesh(SurfaceSpec& s) {
+  if (s.kind != SurfaceKind::Mesh || s.mesh) return;
+  s.mesh = std::make_shared<const MeshData>(read_mesh_file(s.mesh_file, s.mesh_loc,
+                                                           s.path + ".file"));
+}
+
+/// Skin height (metres) for the default edge length: the y range of the skin's profile or mesh
+/// (whose file is read here).
+double skin_height(Template& t) {
+  SurfaceSpec& skin = t.surfaces[t.skin];
   if (skin.kind == SurfaceKind::Mesh) {
-    const MeshBounds b = read_mesh_bounds(skin.mesh_file, t.metres_per_unit, skin.mesh_loc,
-                                          skin.path + ".file");
+    read_surface_mesh(skin);
+    const MeshBounds b = mesh_bounds(*skin.mesh, t.metres_per_unit);
     return b.max.y - b.min.y;
   }
   double lo = skin.profile.front().y, hi = lo;
@@ -396,21 +406,9 @@ double skin_height(const Template& t) {
   return hi - lo;
 }
 
-}  // namespace
-
-Template parse_template(std::string_view text, const std::string& file,
-                        const std::string& base_dir) {
-  const YamlField root = parse_yaml(text, file);
-  root.allow_only({"format", "name", "description", "units", "symmetry", "resolution", "variation",
-                   "surfaces", "grains", "npr", "materials", "density"});
-  Template t;
-  t.file = file;
-
-  require_format(root, "cutaway-template/1");
-  t.name = parse_name(root);
-  if (auto d = root.get("description")) t.description = d->string();
-  if (auto u = root.get("units")) t.metres_per_unit = parse_units(*u);
-
+/// `symmetry`: the type, and for nfold the folds and their angles (radians); the variation's
+/// fold range starts at the fold count.
+void parse_symmetry(const YamlField& root, Template& t) {
   const YamlField sym = root.require("symmetry");
   sym.allow_only({"type", "folds", "fold_angles"});
   const YamlField type = sym.require("type");
@@ -447,31 +445,29 @@ Template parse_template(std::string_view text, const std::string& file,
     }
   }
   t.variation_folds_min = t.variation_folds_max = t.folds;
+}
 
-  if (auto var = root.get("variation")) {
-    var->allow_only({"amount", "folds"});
-    if (auto a = var->get("amount")) {
-      t.variation_amount = a->number();
-      if (t.variation_amount < 0) a->fail("must not be negative");
-    }
-    if (auto vf = var->get("folds")) {
-      if (t.symmetry != Symmetry::NFold) vf->fail("variation.folds is only for symmetry nfold");
-      if (!vf->is_sequence() || vf->size() != 2) vf->fail("must be [min, max] fold counts");
-      const int64_t lo = (*vf)[0].integer(), hi = (*vf)[1].integer();
-      if (lo < 2 || hi > 64 || lo > hi) vf->fail("needs 2 <= min <= max <= 64");
-      t.variation_folds_min = static_cast<int>(lo);
-      t.variation_folds_max = static_cast<int>(hi);
-    }
+/// `variation`: its amount (>= 0) and, for nfold, the range of fold counts variants draw.
+void parse_variation(const YamlField& root, Template& t) {
+  const auto var = root.get("variation");
+  if (!var) return;
+  var->allow_only({"amount", "folds"});
+  if (auto a = var->get("amount")) {
+    t.variation_amount = a->number();
+    if (t.variation_amount < 0) a->fail("must not be negative");
   }
-
-  // Materials first: the cut material is the default of every surface's material channels.
-  if (auto d = root.get("density")) t.density_kg_m3 = d->number_in(50, 5000);
-  if (auto materials = root.get("materials")) {
-    materials->allow_only({"skin", "cut"});
-    if (auto skin = materials->get("skin")) t.skin_material = parse_material(*skin);
-    if (auto cut = materials->get("cut")) t.cut_material = parse_material(*cut);
+  if (auto vf = var->get("folds")) {
+    if (t.symmetry != Symmetry::NFold) vf->fail("variation.folds is only for symmetry nfold");
+    if (!vf->is_sequence() || vf->size() != 2) vf->fail("must be [min, max] fold counts");
+    const int64_t lo = (*vf)[0].integer(), hi = (*vf)[1].integer();
+    if (lo < 2 || hi > 64 || lo > hi) vf->fail("needs 2 <= min <= max <= 64");
+    t.variation_folds_min = static_cast<int>(lo);
+    t.variation_folds_max = static_cast<int>(hi);
   }
+}
 
+/// `surfaces`: each surface (parse_surface), names unique, exactly one of role skin.
+void parse_surfaces(const YamlField& root, Template& t, const std::string& base_dir) {
   const YamlField surfaces = root.require("surfaces");
   if (surfaces.size() == 0) surfaces.fail("a template needs at least one surface");
   std::set<std::string> names;
@@ -494,13 +490,11 @@ Template parse_template(std::string_view text, const std::string& file,
     surfaces.fail("no surface has role skin: exactly one surface must be the object's closed "
                   "outer boundary");
   }
-  if (auto grains = root.get("grains")) {
-    for (size_t i = 0; i < grains->size(); ++i) t.grains.push_back(parse_grain((*grains)[i], t));
-  }
+}
 
-  if (auto npr = root.get("npr")) t.npr = parse_npr(*npr, t.metres_per_unit);
-
-  t.edge_loc = FileLoc{file, 1, 1};
+/// `resolution.edge`, metres (0 when not given), and where it is written.
+void parse_edge(const YamlField& root, Template& t) {
+  t.edge_loc = FileLoc{t.file, 1, 1};
   if (auto res = root.get("resolution")) {
     res->allow_only({"edge"});
     t.edge_loc = res->loc();
@@ -510,8 +504,11 @@ Template parse_template(std::string_view text, const std::string& file,
       if (t.edge_m <= 0) e->fail("the edge length must be positive");
     }
   }
-  check_template_curves(t);
-  const double h = skin_height(t);
+}
+
+/// The edge length for the skin's height `h` (metres): 1/64 of it when not given, else held
+/// between 1/kMaxEdgesPerHeight and 1/kMinEdgesPerHeight of it.
+void resolve_edge(const YamlField& root, Template& t, double h) {
   if (!(h > 0)) root.require("surfaces").fail("the skin has no height");
   if (t.edge_m == 0) {
     t.edge_m = h / 64;
@@ -528,14 +525,55 @@ Template parse_template(std::string_view text, const std::string& file,
          << "): coarser meshes do not follow the curves closely enough to cut";
     throw InputError(t.edge_loc, "resolution.edge", rule.str());
   }
+}
+
+}  // namespace
+
+Template parse_template(std::string_view text, const std::string& file,
+                        const std::string& base_dir) {
+  const YamlField root = parse_yaml(text, file);
+  root.allow_only({"format", "name", "description", "units", "symmetry", "resolution", "variation",
+                   "surfaces", "grains", "npr", "materials", "density"});
+  Template t;
+  t.file = file;
+
+  require_format(root, "cutaway-template/1");
+  t.name = parse_name(root);
+  if (auto d = root.get("description")) t.description = d->string();
+  if (auto u = root.get("units")) t.metres_per_unit = parse_units(*u);
+
+  parse_symmetry(root, t);
+  parse_variation(root, t);
+
+  // Materials first: the cut material is the default of every surface's material channels.
+  if (auto d = root.get("density")) t.density_kg_m3 = d->number_in(50, 5000);
+  if (auto materials = root.get("materials")) {
+    materials->allow_only({"skin", "cut"});
+    if (auto skin = materials->get("skin")) t.skin_material = parse_material(*skin);
+    if (auto cut = materials->get("cut")) t.cut_material = parse_material(*cut);
+  }
+
+  parse_surfaces(root, t, base_dir);
+  if (auto grains = root.get("grains")) {
+    for (size_t i = 0; i < grains->size(); ++i) t.grains.push_back(parse_grain((*grains)[i], t));
+  }
+
+  if (auto npr = root.get("npr")) t.npr = parse_npr(*npr, t.metres_per_unit);
+
+  parse_edge(root, t);
+  check_template_curves(t);
+  const double h = skin_height(t);
+  resolve_edge(root, t, h);
   if (!t.npr.perlin_from_file) t.npr.perlin_bands = default_perlin_bands(h);
+  for (SurfaceSpec& s : t.surfaces) read_surface_mesh(s);
   return t;
 }
 
-Template load_template(const std::string& path) {
+Template load_template(const std::string& path, std::string* text) {
   const std::filesystem::path p(path);
-  return parse_template(read_input_file(path), path,
-                        p.has_parent_path() ? p.parent_path().string() : ".");
+  const std::string bytes = read_input_file(path);
+  if (text) *text = bytes;
+  return parse_template(bytes, path, p.has_parent_path() ? p.parent_path().string() : ".");
 }
 
 }  // namespace cutaway

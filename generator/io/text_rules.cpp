@@ -43,20 +43,20 @@ std::string_view trim_blanks(std::string_view s) {
   return s;
 }
 
-bool is_plain_name(std::string_view s) { return name_rule(s).empty(); }
+bool is_plain_name(std::string_view s) { return check_name(s).has_value(); }
 
-std::string name_rule(std::string_view s) {
-  if (s.empty()) return "a name must not be empty";
+Check check_name(std::string_view s) {
+  if (s.empty()) return Check::none("a name must not be empty");
   if (s.size() > kMaxNameLength) {
-    return "a name has at most " + std::to_string(kMaxNameLength) + " characters, not " +
-           std::to_string(s.size());
+    return Check::none("a name has at most " + std::to_string(kMaxNameLength) +
+                       " characters, not " + std::to_string(s.size()));
   }
   for (char c : s) {
     if (!((c >= 'a' && c <= 'z') || is_digit(c) || c == '_' || c == '-')) {
-      return "a name uses only a-z, 0-9, '_' and '-', not " + quoted(s);
+      return Check::none("a name uses only a-z, 0-9, '_' and '-', not " + quoted(s));
     }
   }
-  return "";
+  return {};
 }
 
 Outcome<double> parse_decimal(std::string_view s, const std::string& what) {

@@ -23,8 +23,8 @@ std::string_view trim_blanks(std::string_view s);
 /// Whether `s` is a plain name: 1..kMaxNameLength characters of a-z, 0-9, '_' and '-'.
 bool is_plain_name(std::string_view s);
 
-/// The rule a name breaks, in words ("" when `s` is a plain name).
-std::string name_rule(std::string_view s);
+/// Passes when `s` is a plain name, else fails with the rule it breaks, in words.
+Check check_name(std::string_view s);
 
 /// Parses a decimal number: optional blanks, optional sign, digits with an optional point (or a
 /// point and digits), an optional exponent, optional blanks; nothing else (no hex, inf or nan).

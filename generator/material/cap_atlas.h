@@ -10,7 +10,7 @@
 
 #include <glm/vec2.hpp>
 
-#include "npr/colour_modulation.h"
+#include "material/colour_modulation.h"
 #include "pieces/pieces.h"
 
 namespace cutaway {

@@ -11,8 +11,8 @@
 
 #include <glm/vec2.hpp>
 
+#include "material/colour_modulation.h"
 #include "model/ds_model.h"
-#include "npr/colour_modulation.h"
 #include "pieces/shaded_mesh.h"
 
 namespace cutaway {

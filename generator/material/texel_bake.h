@@ -12,7 +12,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "npr/colour_modulation.h"
+#include "material/colour_modulation.h"
 #include "pieces/shaded_mesh.h"
 
 namespace cutaway {

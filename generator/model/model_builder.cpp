@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "model/mesh_import.h"
+#include "model/mesh_surface.h"
 #include "model/model_checks.h"
 #include "model/sweep.h"
 
@@ -21,9 +21,7 @@ DsModel build_model(const Template& t) {
     switch (spec.kind) {
       case SurfaceKind::Around: model.surfaces.push_back(sweep_around(spec, t, left)); break;
       case SurfaceKind::Within: model.surfaces.push_back(sweep_within(spec, t, left)); break;
-      case SurfaceKind::Mesh:
-        model.surfaces.push_back(import_mesh_surface(spec, t, left));
-        break;
+      case SurfaceKind::Mesh: model.surfaces.push_back(mesh_surface(spec, t, left)); break;
     }
     vertices += model.surfaces.back().mesh.n_vertices();
     set_material(model.surfaces.back().mesh, spec.material_front, spec.material_back);

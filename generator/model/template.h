@@ -3,6 +3,8 @@
 // YAML.
 #pragma once
 
+#include <array>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -63,6 +65,20 @@ struct SectionSpec {
   FileLoc loc;
 };
 
+/// A `mesh` surface's triangle mesh as its PLY file holds it (read by io/mesh_file.h; turned
+/// into a DS surface by model/mesh_surface.h). Lengths in the template's units.
+struct MeshData {
+  /// #V points, every vertex the file declares (those no triangle uses too), template units
+  std::vector<glm::dvec3> points;
+  /// #F by 3 vertex indices, each triangle's corners in the order OpenMesh walks them
+  std::vector<std::array<int, 3>> triangles;
+  /// #V per-vertex colours, linear RGB (the file's front_* and back_* properties), or empty
+  std::vector<glm::dvec3> front, back;
+  std::vector<double> blur;  ///< #V per-vertex blur, template units (`blur`), or empty
+  bool closed = false;       ///< no edge has a triangle on one side only
+  double signed_volume6 = 0; ///< six times the signed volume: negative when wound inwards
+};
+
 /// One diffusion surface of the template (doc/template-format.md, Surfaces).
 struct SurfaceSpec {
   std::string name;
@@ -81,8 +97,10 @@ struct SurfaceSpec {
   glm::dvec2 material_front{0.6, 0.0}, material_back{0.6, 0.0};
   bool visible_front = true;
   bool visible_back = true;
-  /// mesh: the PLY file, resolved relative to the template's directory.
+  /// mesh: the PLY file, resolved relative to the template's directory, and what it holds
+  /// (shared by the copies of the template, e.g. its variants)
   std::string mesh_file;
+  std::shared_ptr<const MeshData> mesh;
   /// Where the surface, its profile and its section are written (for geometric errors).
   FileLoc loc, profile_loc, mesh_loc;
   /// Field path prefix for errors, e.g. "surfaces[2]".

@@ -9,7 +9,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "scene/scene_assets.h"
+#include "assets/scene_assets.h"
 
 namespace cutaway {
 

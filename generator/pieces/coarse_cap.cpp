@@ -1,10 +1,13 @@
 #include "pieces/coarse_cap.h"
 
+#include <algorithm>
+#include <exception>
 #include <list>
 #include <map>
+#include <set>
 #include <tuple>
-#include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Constrained_triangulation_face_base_2.h>
@@ -76,14 +79,20 @@ std::vector<glm::uvec3> coarse_cap_triangles(const ShadedMesh& cap, const glm::d
     return K::Point_2(glm::dot(cap.position[i], u), glm::dot(cap.position[i], v));
   };
   for (const glm::uvec3& t : cap.triangle) area += CGAL::area(plane(t.x), plane(t.y), plane(t.z));
+  // Two outline vertices at one point of the plane would become one vertex of the
+  // triangulation, which then has no triangles of the outline's own: keep the cap as it is.
+  std::set<unsigned> corners;
+  for (const auto& [a, b] : outline) corners.insert({a, b});
+  std::vector<K::Point_2> points;
+  for (unsigned i : corners) points.push_back(plane(i));
+  std::sort(points.begin(), points.end());
+  if (std::adjacent_find(points.begin(), points.end()) != points.end()) return cap.triangle;
   try {
     Cdt cdt;
     std::map<unsigned, Cdt::Vertex_handle> handle;
-    std::map<Cdt::Vertex_handle, unsigned> owner;
     auto insert = [&](unsigned i) {
       if (auto it = handle.find(i); it != handle.end()) return it->second;
       Cdt::Vertex_handle h = cdt.insert(plane(i));
-      if (!owner.emplace(h, i).second) throw std::runtime_error("two outline vertices at a point");
       h->info() = i;
       handle.emplace(i, h);
       return h;
@@ -100,6 +109,7 @@ std::vector<glm::uvec3> coarse_cap_triangles(const ShadedMesh& cap, const glm::d
     }
     return out.empty() ? cap.triangle : out;
   } catch (const std::exception&) {
+    // CGAL's way of saying that the outline's edges cross (its constraints intersect).
     return cap.triangle;
   }
 }

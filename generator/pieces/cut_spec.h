@@ -27,15 +27,6 @@ inline constexpr int kMaxPiecesPerCut = 512;
 /// The thinnest slice and the smallest dice a cut may use, metres (0.5 mm).
 inline constexpr double kMinCutLength_m = 0.5e-3;
 
-/// Parses the command line's `--cut` notation (doc/architecture.md, Command line): `whole`,
-/// `halves`, `slices:THICKNESS`, `wedges:COUNT`, `dice:SIZE` or `plane:SPEC` (SPEC as
-/// parse_plane_spec).
-/// Lengths are in template units and become metres with `metres_per_unit`.
-/// @returns the cut, or none with the rule `text` breaks: not of these forms, a length not
-///          positive and finite (or below kMinCutLength_m once in metres), a count not a whole
-///          number in 2..64
-Outcome<CutSpec> parse_cut_spec(const std::string& text, double metres_per_unit);
-
 /// A short label of `cut` in millimetres: "whole", "halves", "slices:6mm", "wedges:8",
 /// "dice:12mm" or "plane" (lengths with up to 3 decimals, trailing zeros dropped).
 std::string cut_label(const CutSpec& cut);
@@ -51,8 +42,8 @@ struct Template;
 /// The extents of a template's skin, estimated from its curves without sweeping: the profile's
 /// largest r times the section loop's largest radius relative to its radius at angle 0 (the loop
 /// is scaled so that this radius equals r), and the profile's y range. A template without an
-/// `around` skin uses the bounds of its mesh surfaces (read from their PLY files).
-/// @throws InputError when a mesh file cannot be read
+/// `around` skin uses the bounds of its mesh surfaces (MeshData::points).
+/// @pre `t` came from parse_template (its mesh surfaces' meshes are read)
 ObjectExtents template_extents(const Template& t);
 
 /// Estimated number of pieces `cut` makes of an object within `extents`: whole 1, halves and
@@ -72,9 +63,9 @@ double estimate_cut_area(const CutSpec& cut, const ObjectExtents& extents);
 /// 340 MB of RGBA with mipmaps.
 inline constexpr double kMaxCapTexels = 64e6;
 
-/// "" when `cut_area_m2` of cut faces baked at `texels_per_mm` stays within kMaxCapTexels, else
-/// the rule in words, naming the density and the estimate (for a message at the field that set
-/// the density or made the area).
-std::string cap_texels_rule(double cut_area_m2, double texels_per_mm);
+/// Passes when `cut_area_m2` of cut faces baked at `texels_per_mm` stays within kMaxCapTexels,
+/// else fails with the rule in words, naming the density and the estimate (for a message at
+/// the field that set the density or made the area).
+Check check_cap_texels(double cut_area_m2, double texels_per_mm);
 
 }  // namespace cutaway

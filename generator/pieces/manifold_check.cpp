@@ -13,9 +13,9 @@ namespace cutaway {
 
 namespace {
 
-/// The first pair of distinct positions closer than `d` (uniform grid of cell d), as a message.
+/// Fails at the first pair of distinct positions closer than `d` (uniform grid of cell d).
 /// Cells are visited in lexicographic order and the points of a cell in their order in `points`.
-std::string near_duplicates(const std::vector<glm::dvec3>& points, double d) {
+Check near_duplicates(const std::vector<glm::dvec3>& points, double d) {
   using Cell = std::array<int64_t, 3>;
   auto cell_of = [d](const glm::dvec3& p) {
     return Cell{static_cast<int64_t>(std::floor(p.x / d)),
@@ -40,11 +40,12 @@ std::string near_duplicates(const std::vector<glm::dvec3>& points, double d) {
               const glm::dvec3& p = points[grid[i].second];
               const glm::dvec3& r = points[q->second];
               if (p != r && glm::distance(p, r) < d)
-                return "two vertices " + std::to_string(glm::distance(p, r)) + " m apart";
+                return Check::none("two vertices " + std::to_string(glm::distance(p, r)) +
+                                   " m apart");
             }
         }
   }
-  return "";
+  return {};
 }
 
 /// Welds the corners of `mesh` by exact position: #F welded triangles, and in `welded` the
@@ -88,14 +89,14 @@ std::vector<std::array<unsigned, 3>> weld(const ShadedMesh& mesh, std::vector<gl
 
 }  // namespace
 
-std::string manifold_defect(const ShadedMesh& mesh, double min_separation_m) {
+Check check_manifold(const ShadedMesh& mesh, double min_separation_m) {
   std::vector<glm::dvec3> welded;
   const std::vector<std::array<unsigned, 3>> tris = weld(mesh, welded);
   for (const auto& w : tris) {
     if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0])
-      return "a triangle with two corners at one point";
+      return Check::none("a triangle with two corners at one point");
     if (!(glm::length(glm::cross(welded[w[1]] - welded[w[0]], welded[w[2]] - welded[w[0]])) > 0))
-      return "a triangle of zero area";
+      return Check::none("a triangle of zero area");
   }
   // Directed edges, sorted: each must occur once, and its twin too.
   std::vector<std::pair<unsigned, unsigned>> directed;
@@ -105,9 +106,11 @@ std::string manifold_defect(const ShadedMesh& mesh, double min_separation_m) {
   std::sort(directed.begin(), directed.end());
   for (size_t begin = 0, end = 0; begin < directed.size(); begin = end) {
     while (end < directed.size() && directed[end] == directed[begin]) ++end;
-    if (end - begin != 1) return "an edge used " + std::to_string(end - begin) + " times one way";
+    if (end - begin != 1)
+      return Check::none("an edge used " + std::to_string(end - begin) + " times one way");
     const std::pair<unsigned, unsigned> twin{directed[begin].second, directed[begin].first};
-    if (!std::binary_search(directed.begin(), directed.end(), twin)) return "an open edge";
+    if (!std::binary_search(directed.begin(), directed.end(), twin))
+      return Check::none("an open edge");
   }
   // Around each vertex v, triangle (v, a, b) links a to b: one cycle through all of them. Every
   // (v, a) occurs once (directed edge v -> a, checked above).
@@ -132,9 +135,10 @@ std::string manifold_defect(const ShadedMesh& mesh, double min_separation_m) {
       if (broken) break;
       a = (*it)[2];
     } while (++steps <= links && a != start);
-    if (broken || steps != links) return "a vertex with more than one fan of triangles";
+    if (broken || steps != links)
+      return Check::none("a vertex with more than one fan of triangles");
   }
-  return min_separation_m > 0 ? near_duplicates(welded, min_separation_m) : "";
+  return min_separation_m > 0 ? near_duplicates(welded, min_separation_m) : Check{};
 }
 
 }  // namespace cutaway

@@ -3,14 +3,13 @@
 // cut so that a near-degenerate configuration is redone rather than exported.
 #pragma once
 
-#include <string>
-
+#include "base/outcome.h"
 #include "pieces/shaded_mesh.h"
 
 namespace cutaway {
 
-/// Describes the first defect of `mesh` (vertices welded by exact position), or returns "" when
-/// there is none. Defects, in the order checked:
+/// Passes when `mesh` (vertices welded by exact position) has no defect, else fails with the
+/// first one in words. Defects, in the order checked:
 /// - a triangle with two corners at one point, or of zero area;
 /// - a directed edge used more than once, or without a twin running the other way (an open or
 ///   inconsistently oriented surface);
@@ -18,6 +17,6 @@ namespace cutaway {
 /// - two distinct vertices closer than `min_separation_m` (metres; near-duplicates that only
 ///   close after a weld). 0 skips this check.
 /// Deterministic; O(#F log #F).
-std::string manifold_defect(const ShadedMesh& mesh, double min_separation_m);
+Check check_manifold(const ShadedMesh& mesh, double min_separation_m);
 
 }  // namespace cutaway

@@ -220,14 +220,14 @@ Outcome<PieceSet> cut_pieces(const DsModel& model, const CutSpec& cut,
   // Nudging helps only where there are planes to move and the uncut skin is itself sound.
   const bool may_retry =
       !cells.planes.empty() &&
-      manifold_defect(shaded_surface(model.skin(), true, false), kMinVertexSeparation_m).empty();
+      check_manifold(shaded_surface(model.skin(), true, false), kMinVertexSeparation_m).has_value();
   PieceSet set;
   for (int attempt = 0;; ++attempt) {
     const CutCells moved = general_position(cells, model, attempt, options.section.edge_m);
     PieceSet next = pieces_in_cells(model, moved, diffusion, options);
     const auto check_start = std::chrono::steady_clock::now();
     for (const Piece& piece : next.pieces)
-      if (!manifold_defect(merge_parts(piece), kMinVertexSeparation_m).empty())
+      if (!check_manifold(merge_parts(piece), kMinVertexSeparation_m))
         ++next.defective_pieces;
     next.seconds_clip += seconds_since(check_start);
     // Totals over all attempts.

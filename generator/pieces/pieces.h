@@ -74,9 +74,9 @@ struct PieceSet {
   double seconds_clip = 0;             ///< clipping, stitching and checking
   // Counts and times are totals over all attempts.
   int attempts = 1;             ///< cuts made (1 unless the first was near-degenerate)
-  size_t defective_pieces = 0;  ///< pieces of the last attempt that manifold_defect finds
-                                ///< fault with (0 for a closed skin but in rare
-                                ///< configurations that kMaxCutAttempts do not escape)
+  size_t defective_pieces = 0;  ///< pieces of the last attempt that fail check_manifold (0
+                                ///< for a closed skin but in rare configurations that
+                                ///< kMaxCutAttempts do not escape)
 };
 
 /// Cuts `model` into pieces along `cut` (make_cut_cells with the model's bounds). Every plane is
@@ -86,7 +86,7 @@ struct PieceSet {
 /// false, not the skin) are the walls of hollow regions: clipped and shown with the colour of
 /// their other side, facing the hollow. Grains and other structure surfaces only colour the
 /// caps. The planes are first put in general position (kVertexClearance). Every piece is checked
-/// with manifold_defect (kMinVertexSeparation_m); when one fails (a near-degenerate configuration:
+/// with check_manifold (kMinVertexSeparation_m); when one fails (a near-degenerate configuration:
 /// a surface edge passing nanometres from the line where two cutting planes meet, so that the two
 /// caps' seams cannot agree), the whole cut is redone with its planes nudged (kMaxCutAttempts; in
 /// the spirit of symbolic perturbation, but with real sub-micrometre moves). The caps of the

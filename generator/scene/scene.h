@@ -1,8 +1,10 @@
 // The parsed scene (doc/scene-format.md): plain data, lengths in metres, colours linear RGB.
-// Parsing and validation live in scene_parser.h; layout and export never see YAML.
+// Parsing and validation live in io/scene_parser.h; layout and export never see YAML, and
+// nothing after load_scene reads a file.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -10,16 +12,11 @@
 #include <glm/vec3.hpp>
 
 #include "base/error.h"
+#include "model/template.h"
 #include "pieces/cut_spec.h"
+#include "placement/container.h"
 
 namespace cutaway {
-
-/// How an item's pieces are arranged in the container (doc/scene-format.md, `arrange`).
-enum class Arrangement {
-  Pile,     ///< dropped onto the container and the pieces before them, then settled
-  Fan,      ///< each object's pieces in a fanned row, each overlapping the one before
-  Scatter,  ///< spread apart over the container, none resting on another
-};
 
 /// The totals a scene is held to, over all its items (doc/scene-format.md, Totals), so that
 /// what check accepts stays within memory: objects, pieces (as estimate_piece_count counts
@@ -34,6 +31,9 @@ inline constexpr long long kMaxRenderPixels = 3840LL * 2160;
 struct SceneItem {
   std::string template_name;  ///< as written (a name from templates/ or a relative path)
   std::string template_path;  ///< the resolved template file
+  /// The parsed template (load_scene reads each file once; items naming it share it), null
+  /// after parse_scene alone
+  std::shared_ptr<const Template> tmpl;
   int count = 1;              ///< whole objects, >= 1
   CutSpec cut;                ///< lengths already in metres
   double keep = 1.0;          ///< fraction of the pieces placed, in (0, 1]
@@ -46,19 +46,6 @@ struct SceneItem {
   double cut_area_m2 = 0;
   FileLoc loc;                ///< where the item is written
   std::string path;           ///< field path prefix for errors, e.g. "items[2]"
-};
-
-enum class ContainerType { Bowl, Plate, Board, None };
-
-/// What the pieces rest in or on. Bowl and plate are round (diameter, height); the board is a
-/// box (width along X, depth along Z, height). Metres.
-struct Container {
-  ContainerType type = ContainerType::None;
-  double diameter_m = 0;  ///< bowl, plate: outer rim diameter
-  double width_m = 0;     ///< board: along X
-  double depth_m = 0;     ///< board: along Z
-  double height_m = 0;    ///< bowl, plate, board: total height
-  glm::dvec3 colour{0.9, 0.9, 0.9};  ///< linear RGB
 };
 
 /// A camera given in the scene file (metres, scene frame: +Y up, the container's base at y = 0).

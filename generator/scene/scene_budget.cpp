@@ -4,7 +4,6 @@
 #include <string>
 
 #include "base/error.h"
-#include "io/template_parser.h"
 #include "model/model_builder.h"
 
 namespace cutaway {
@@ -15,9 +14,9 @@ long long check_scene_model_vertices(const Scene& scene, const ModelVisitor& eac
   for (const SceneItem& item : scene.items) {
     auto it = vertices_of.find(item.template_path);
     if (it == vertices_of.end()) {
-      const Template tmpl = load_template(item.template_path);
-      const DsModel model = build_model(tmpl);
-      if (each_model) each_model(tmpl, model);
+      CUTAWAY_CHECK(item.tmpl);  // load_scene read it
+      const DsModel model = build_model(*item.tmpl);
+      if (each_model) each_model(*item.tmpl, model);
       it = vertices_of.emplace(item.template_path, static_cast<long long>(model.vertex_count()))
                .first;
     }

@@ -9,14 +9,14 @@
 
 #include <glm/geometric.hpp>
 
+#include "assets/asset_camera.h"
 #include "base/constants.h"
 #include "base/error.h"
 #include "base/random.h"
 #include "base/timer.h"
-#include "io/template_parser.h"
-#include "scene/collision_shape.h"
-#include "scene/container_mesh.h"
-#include "scene/physics_settle.h"
+#include "placement/collision_shape.h"
+#include "placement/container_mesh.h"
+#include "placement/physics_settle.h"
 #include "variation/variation.h"
 
 namespace cutaway {
@@ -35,35 +35,6 @@ uint64_t object_seed(uint64_t scene_seed, int item, int object, int purpose) {
                                   static_cast<uint64_t>(purpose)});
 }
 
-AssetCamera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3& to_camera,
-                      double fov_deg, double aspect) {
-  AssetCamera cam;
-  const glm::dvec3 centre = 0.5 * (lo + hi);
-  const glm::dvec3 back = glm::normalize(to_camera);
-  glm::dvec3 right = glm::cross(-back, cam.up);
-  right = glm::length(right) > 1e-9 ? glm::normalize(right) : glm::dvec3(1, 0, 0);
-  const glm::dvec3 up = glm::cross(right, -back);
-  const double tan_v = std::tan(0.5 * glm::radians(fov_deg)), tan_h = aspect * tan_v;
-  // The distance from the centre at which every corner of the box is in view, with 4 % margin.
-  double distance = 1e-3;
-  for (int k = 0; k < 8; ++k) {
-    const glm::dvec3 c((k & 1 ? hi.x : lo.x) - centre.x, (k & 2 ? hi.y : lo.y) - centre.y,
-                       (k & 4 ? hi.z : lo.z) - centre.z);
-    const double towards = glm::dot(c, back);
-    distance = std::max({distance, towards + std::fabs(glm::dot(c, right)) / tan_h,
-                         towards + std::fabs(glm::dot(c, up)) / tan_v});
-  }
-  distance *= 1.04;
-  const double radius = std::max(1e-3, 0.5 * glm::distance(lo, hi));
-  cam.target = centre;
-  cam.eye = centre + back * distance;
-  cam.fov_y_deg = fov_deg;
-  cam.aspect = aspect;
-  cam.znear = std::max(1e-3, 0.25 * (distance - radius));
-  cam.zfar = distance + 4 * radius;
-  return cam;
-}
-
 AssetCamera scene_camera(const Scene& scene, const glm::dvec3& pile_min,
                          const glm::dvec3& pile_max) {
   const double aspect = static_cast<double>(scene.render.width) / scene.render.height;
@@ -79,30 +50,6 @@ AssetCamera scene_camera(const Scene& scene, const glm::dvec3& pile_min,
   cam.znear = std::max(1e-4, 0.02 * distance);
   cam.zfar = distance + 4 * extent + 1;
   return cam;
-}
-
-void light_like_studio(SceneAssets& assets) {
-  const AssetCamera& camera = assets.camera;
-  const glm::dvec3 f = glm::normalize(camera.target - camera.eye);
-  glm::dvec3 r = glm::cross(f, camera.up);
-  r = glm::length(r) > 1e-9 ? glm::normalize(r) : glm::dvec3(1, 0, 0);
-  const glm::dvec3 u = glm::normalize(glm::cross(r, f));
-  // Directions towards each light; the light travels the other way.
-  // Strengths in W/m^2 as Blender shows them, times lumens per watt: lux.
-  auto light = [&](const char* name, glm::dvec3 towards, double watts, glm::dvec3 colour) {
-    AssetLight l;
-    l.name = name;
-    l.type = LightType::Directional;
-    l.direction = -glm::normalize(towards);
-    l.intensity = watts * kLumensPerWatt;
-    l.colour = colour;
-    return l;
-  };
-  assets.lights = {light("key", -0.5 * r + 1.0 * u - 0.6 * f, 3.0, {1.0, 0.97, 0.92}),
-                   light("fill", 0.8 * r + 0.3 * u - 0.5 * f, 1.2, {0.92, 0.95, 1.0}),
-                   light("rim", 0.2 * r + 0.8 * u + 0.9 * f, 1.0, {1.0, 1.0, 1.0})};
-  // A sky of radiance 0.15 W/m^2/sr (POV-Ray's ambient 0.15): pi * 0.15 W/m^2 on an open face.
-  assets.ambient_lux = 0.15 * kPi * kLumensPerWatt;
 }
 
 namespace {
@@ -125,7 +72,8 @@ ScenePieces cut_scene_objects(const Scene& scene, uint64_t seed, const SceneBuil
   ScenePieces out;
   for (size_t i = 0; i < scene.items.size(); ++i) {
     const SceneItem& item = scene.items[i];
-    Template tmpl = load_template(item.template_path);
+    CUTAWAY_CHECK(item.tmpl);  // load_scene read it
+    Template tmpl = *item.tmpl;
     tmpl.variation_amount *= item.variation;
     const PieceMaterials item_materials =
         add_piece_materials(assets, tmpl.name, tmpl.skin_material, tmpl.cut_material);

@@ -11,11 +11,11 @@
 #include <memory>
 #include <string>
 
-#include "scene/object_cut.h"
-#include "scene/physics_settle.h"
+#include "assets/scene_assets.h"
+#include "cut/object_cut.h"
+#include "placement/physics_settle.h"
+#include "placement/scene_layout.h"
 #include "scene/scene.h"
-#include "scene/scene_assets.h"
-#include "scene/scene_layout.h"
 #include "variation/variation.h"
 
 namespace cutaway {
@@ -64,20 +64,6 @@ uint64_t object_seed(uint64_t scene_seed, int item, int object, int purpose);
 /// front, 50 degrees above the horizon), aspect from render width / height.
 AssetCamera scene_camera(const Scene& scene, const glm::dvec3& pile_min,
                          const glm::dvec3& pile_max);
-
-/// A camera looking at the centre of the box lo..hi from direction `to_camera`, as close as
-/// lets all eight corners of the box into the view (vertical field of view `fov_deg`, `aspect`
-/// = width / height) with a 4 % margin.
-AssetCamera frame_box(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3& to_camera,
-                      double fov_deg, double aspect);
-
-/// Lights `assets` as every scene and asset view is lit, around `assets.camera` (set it first):
-/// three directional lights, a key from above left of the camera (2049 lux, a sun of strength
-/// 3 W/m^2 in Blender), a fill from the right (819.6 lux) and a rim light from behind (683
-/// lux), and a uniform sky of 322 lux (`ambient_lux`: Blender world strength 0.15). Indoor
-/// studio levels: with exposure 1 / kLumensPerWatt (Blender's Standard view; three.js's
-/// toneMappingExposure) a white face turned to the key shows about 0.95.
-void light_like_studio(SceneAssets& assets);
 
 /// Builds the whole scene with `seed` (the file's seed unless the command line gives one).
 /// Deterministic: the same scene, templates and seed give the same assets, whatever the

@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "base/error.h"
+
 namespace cutaway {
 namespace {
 
@@ -51,14 +53,14 @@ class OsMesaContext final : public GlContext {
       if (context_) break;
     }
     if (!context_)
-      throw std::runtime_error(
+      throw EnvironmentError(
           "OSMesa: cannot create an OpenGL 4.5 or 3.3 core context (is Mesa's OSMesa with "
           "llvmpipe installed?)");
     make_current();
     const int version = gladLoadGL(reinterpret_cast<GLADloadfunc>(OSMesaGetProcAddress));
     if (version == 0) {
       OSMesaDestroyContext(context_);
-      throw std::runtime_error("OSMesa: cannot load the OpenGL entry points (glad)");
+      throw EnvironmentError("OSMesa: cannot load the OpenGL entry points (glad)");
     }
   }
 
@@ -66,7 +68,7 @@ class OsMesaContext final : public GlContext {
 
   void make_current() override {
     if (!OSMesaMakeCurrent(context_, dummy_.data(), GL_UNSIGNED_BYTE, 1, 1))
-      throw std::runtime_error("OSMesa: cannot make the context current");
+      throw EnvironmentError("OSMesa: cannot make the context current");
   }
 
   std::string description() const override {
@@ -92,11 +94,11 @@ class EglContext final : public GlContext {
     auto platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
         eglGetProcAddress("eglGetPlatformDisplayEXT"));
     if (!query_devices || !query_device_string || !platform_display)
-      throw std::runtime_error("EGL: no device enumeration (EGL_EXT_device_enumeration)");
+      throw EnvironmentError("EGL: no device enumeration (EGL_EXT_device_enumeration)");
     std::array<EGLDeviceEXT, 16> devices{};
     EGLint count = 0;
     if (!query_devices(static_cast<EGLint>(devices.size()), devices.data(), &count) || count == 0)
-      throw std::runtime_error("EGL: no devices (eglQueryDevicesEXT: " + egl_error() + ")");
+      throw EnvironmentError("EGL: no devices (eglQueryDevicesEXT: " + egl_error() + ")");
     std::string reasons;  // why each device was passed over
     for (EGLint i = 0; i < count && context_ == EGL_NO_CONTEXT; ++i) {
       const char* ext = query_device_string(devices[i], EGL_EXTENSIONS);
@@ -119,12 +121,12 @@ class EglContext final : public GlContext {
       }
     }
     if (context_ == EGL_NO_CONTEXT)
-      throw std::runtime_error("EGL: no GPU device gives an OpenGL 4.5 core context" + reasons);
+      throw EnvironmentError("EGL: no GPU device gives an OpenGL 4.5 core context" + reasons);
     make_current();
     if (gladLoadGL(reinterpret_cast<GLADloadfunc>(eglGetProcAddress)) == 0) {
       eglDestroyContext(display_, context_);
       eglTerminate(display_);
-      throw std::runtime_error("EGL: cannot load the OpenGL entry points (glad)");
+      throw EnvironmentError("EGL: cannot load the OpenGL entry points (glad)");
     }
   }
   ~EglContext() override {
@@ -134,7 +136,7 @@ class EglContext final : public GlContext {
   }
   void make_current() override {
     if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
-      throw std::runtime_error("EGL: cannot make the context current");
+      throw EnvironmentError("EGL: cannot make the context current");
   }
   std::string description() const override {
     return std::string("EGL: ") + gl_string(GL_RENDERER) + ", " + gl_string(GL_VERSION);
@@ -171,7 +173,7 @@ class EglContext final : public GlContext {
 std::unique_ptr<GlContext> create_gpu_context() {
   const char* choice = std::getenv("CUTAWAY_GL");
   if (choice && std::string(choice) == "osmesa") {
-    throw std::runtime_error("EGL: not tried (CUTAWAY_GL=osmesa)");
+    throw EnvironmentError("EGL: not tried (CUTAWAY_GL=osmesa)");
   }
   return std::make_unique<EglContext>();
 }
@@ -180,13 +182,13 @@ std::unique_ptr<GlContext> create_offscreen_context() {
   std::string gpu_error;
   try {
     return create_gpu_context();
-  } catch (const std::runtime_error& e) {
+  } catch (const EnvironmentError& e) {
     gpu_error = e.what();  // no GPU reachable through EGL: software
   }
   try {
     return std::make_unique<OsMesaContext>();
-  } catch (const std::runtime_error& e) {
-    throw std::runtime_error(std::string(e.what()) + "; and no GPU: " + gpu_error);
+  } catch (const EnvironmentError& e) {
+    throw EnvironmentError(std::string(e.what()) + "; and no GPU: " + gpu_error);
   }
 }
 

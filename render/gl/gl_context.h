@@ -20,7 +20,7 @@ class GlContext {
   virtual ~GlContext() = default;
 
   /// Makes this context current on the calling thread (contexts are per thread).
-  /// @throws std::runtime_error when the backend refuses
+  /// @throws EnvironmentError when the backend refuses
   virtual void make_current() = 0;
 
   /// Human-readable description for logs: backend, GL_RENDERER and GL_VERSION, e.g.
@@ -34,12 +34,12 @@ class GlContext {
 /// gives an OpenGL 4.5 core context, OSMesa otherwise. The environment variable
 /// CUTAWAY_GL=osmesa forces OSMesa.
 /// @returns a context that is current on the calling thread
-/// @throws std::runtime_error with both reasons (OSMesa's and EGL's) when no OpenGL 3.3+ core
+/// @throws EnvironmentError with both reasons (OSMesa's and EGL's) when no OpenGL 3.3+ core
 ///         context can be created or its entry points cannot be loaded
 std::unique_ptr<GlContext> create_offscreen_context();
 
 /// Creates an offscreen context on a GPU through EGL only (what `--backend auto` asks for).
-/// @throws std::runtime_error when no GPU device gives an OpenGL 4.5 core context, or when
+/// @throws EnvironmentError when no GPU device gives an OpenGL 4.5 core context, or when
 ///         CUTAWAY_GL=osmesa
 std::unique_ptr<GlContext> create_gpu_context();
 

@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/error.h"
 #include "render/gl/shader_sources.h"
 
 namespace cutaway {
@@ -38,7 +39,7 @@ GLuint compile(GLenum stage, std::string_view file) {
   if (!ok) {
     const std::string log = shader_log(shader);
     glDeleteShader(shader);
-    throw std::runtime_error("shaders/" + std::string(file) + ": compile error:\n" + log);
+    throw EnvironmentError("shaders/" + std::string(file) + ": compile error:\n" + log);
   }
   return shader;
 }
@@ -72,7 +73,7 @@ void GlProgram::link(std::initializer_list<GLuint> shaders, const std::string& f
     const std::string log = program_log(id_);
     glDeleteProgram(id_);
     id_ = 0;
-    throw std::runtime_error(files + ": link error:\n" + log);
+    throw EnvironmentError(files + ": link error:\n" + log);
   }
 }
 
@@ -83,7 +84,7 @@ GlProgram::~GlProgram() {
 GLint GlProgram::uniform(const char* name) const {
   const GLint location = glGetUniformLocation(id_, name);
   if (location < 0)
-    throw std::runtime_error(std::string("shader program has no active uniform '") + name + "'");
+    throw InternalError(std::string("shader program has no active uniform '") + name + "'");
   return location;
 }
 

@@ -17,11 +17,11 @@ class GlProgram {
   /// Compiles shaders/VERTEX_FILE and shaders/FRAGMENT_FILE (embedded at build time) and links
   /// them.
   /// @param vertex_file, fragment_file bare file names, e.g. "preview.vert"
-  /// @throws std::runtime_error naming the file, with the driver's info log, on a compile or
+  /// @throws EnvironmentError naming the file, with the driver's info log, on a compile or
   ///         link error, or when a file was not embedded
   GlProgram(std::string_view vertex_file, std::string_view fragment_file);
   /// Compiles shaders/COMPUTE_FILE (e.g. "pmvc_reduce.comp") and links it alone.
-  /// @throws std::runtime_error as the two-stage constructor
+  /// @throws EnvironmentError as the two-stage constructor
   explicit GlProgram(std::string_view compute_file);
   GlProgram(const GlProgram&) = delete;
   GlProgram& operator=(const GlProgram&) = delete;
@@ -31,7 +31,7 @@ class GlProgram {
   GLuint id() const { return id_; }
 
   /// The location of a uniform that the program must use.
-  /// @throws std::runtime_error when the linked program has no active uniform of that name
+  /// @throws InternalError when the linked program has no active uniform of that name
   GLint uniform(const char* name) const;
 
  private:

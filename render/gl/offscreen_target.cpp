@@ -50,7 +50,7 @@ OffscreenTarget::OffscreenTarget(const GlContext& context, int width, int height
                         std::to_string(height) + " exceeds the GL limit " +
                         std::to_string(max_side) + " of " + context.description());
   if (!make_colour_framebuffer(width, height, 1, internal_format, resolved_, resolved_buffer_))
-    throw std::runtime_error(caller_ + ": cannot create a floating-point framebuffer on " +
+    throw EnvironmentError(caller_ + ": cannot create a floating-point framebuffer on " +
                              context.description());
   // Try the requested count, clamped to the driver's maximum, then fewer until one is accepted.
   for (int s = std::min(samples, std::max(max_samples, 1)); s > 1; s /= 2) {
@@ -98,7 +98,7 @@ Image OffscreenTarget::resolve_and_read() const {
   if (const GLenum error = glGetError(); error != GL_NO_ERROR) {
     char code[16];
     std::snprintf(code, sizeof code, "0x%04x", error);
-    throw std::runtime_error(caller_ + ": OpenGL error " + code + " on " +
+    throw EnvironmentError(caller_ + ": OpenGL error " + code + " on " +
                              context_.description());
   }
 

@@ -30,7 +30,7 @@ class OffscreenTarget {
   /// @param caller        prefix of error messages, e.g. "render_model_preview"
   /// @param internal_format GL_RGBA16F or GL_RGBA32F
   /// @throws InternalError when width or height exceeds GL_MAX_RENDERBUFFER_SIZE
-  /// @throws std::runtime_error when not even the single-sample framebuffer can be created
+  /// @throws EnvironmentError when not even the single-sample framebuffer can be created
   OffscreenTarget(const GlContext& context, int width, int height, int samples,
                   const std::string& caller, GLenum internal_format = GL_RGBA16F);
   OffscreenTarget(const OffscreenTarget&) = delete;
@@ -45,7 +45,7 @@ class OffscreenTarget {
 
   /// Resolves the samples, reads the pixels back and converts them: rows top first, linear RGB
   /// -> sRGB8 (linear_to_srgb8), alpha 255 (the targets are drawn opaque).
-  /// @throws std::runtime_error when OpenGL reports an error
+  /// @throws EnvironmentError when OpenGL reports an error
   Image resolve_and_read() const;
 
   int width() const { return width_; }

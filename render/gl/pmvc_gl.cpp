@@ -57,7 +57,7 @@ void check_gl(const char* what) {
   if (error != GL_NO_ERROR) {
     char code[16];
     std::snprintf(code, sizeof code, "%04x", error);
-    throw std::runtime_error(std::string("gl diffusion: OpenGL error 0x") + code + " " + what);
+    throw EnvironmentError(std::string("gl diffusion: OpenGL error 0x") + code + " " + what);
   }
 }
 
@@ -193,7 +193,7 @@ class GlDiffusion final : public DiffusionBackend {
     glGetIntegerv(GL_MAJOR_VERSION, &major);
     glGetIntegerv(GL_MINOR_VERSION, &minor);
     if (major < 4 || (major == 4 && minor < 3))
-      throw std::runtime_error("gl diffusion: the OpenGL context (" + context_->description() +
+      throw EnvironmentError("gl diffusion: the OpenGL context (" + context_->description() +
                                ") lacks OpenGL 4.3 (compute shaders)");
   }
 
@@ -202,7 +202,7 @@ class GlDiffusion final : public DiffusionBackend {
     const std::vector<DiffusionSheet> sheets = make_diffusion_sheets(model);
     const SheetBvh bvh = build_sheet_bvh(sheets);
     if (bvh.depth > kMaxBvhDepth)
-      throw std::runtime_error("gl diffusion: the sheets' BVH is " + std::to_string(bvh.depth) +
+      throw EnvironmentError("gl diffusion: the sheets' BVH is " + std::to_string(bvh.depth) +
                                " levels deep; the GPU traversal walks at most " +
                                std::to_string(kMaxBvhDepth));
     std::vector<GpuVertex> vertices;

@@ -41,7 +41,7 @@ namespace cutaway {
 /// @param model   the DS model; only its sheets are kept (the model may be destroyed after)
 /// @param options cube_size >= 1 texels per cube face edge
 /// @throws InternalError when options.cube_size < 1
-/// @throws std::runtime_error when no offscreen OpenGL context can be created, when it lacks
+/// @throws EnvironmentError when no offscreen OpenGL context can be created, when it lacks
 ///         OpenGL 4.3 (compute shaders), when the shader fails to compile, or when the sheets'
 ///         BVH is deeper than the shader's traversal stack (64)
 std::unique_ptr<DiffusionBackend> make_gl_diffusion(const DsModel& model,

@@ -11,6 +11,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 
+#include "base/error.h"
 #include "render/gl/gl_buffers.h"
 #include "render/gl/gl_program.h"
 
@@ -122,7 +123,7 @@ void draw_strokes(const std::vector<Stroke>& strokes, const AssetCamera& camera,
   glUseProgram(0);
   glBindVertexArray(0);
   if (error != GL_NO_ERROR)
-    throw std::runtime_error("draw_strokes: OpenGL error " + std::to_string(error));
+    throw EnvironmentError("draw_strokes: OpenGL error " + std::to_string(error));
 }
 
 }  // namespace cutaway

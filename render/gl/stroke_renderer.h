@@ -4,8 +4,8 @@
 
 #include <vector>
 
+#include "assets/scene_assets.h"
 #include "npr/silhouettes.h"
-#include "scene/scene_assets.h"
 
 namespace cutaway {
 
@@ -16,7 +16,7 @@ namespace cutaway {
 /// each point is `width_px` times `width_scale`; joints are mitred (a miter at most twice the
 /// half width), and points behind the near plane are skipped. Anti-aliasing comes from the
 /// multisampled target. Leaves the program, vertex array and buffers it used deleted.
-/// @throws std::runtime_error when OpenGL reports an error
+/// @throws EnvironmentError when OpenGL reports an error
 void draw_strokes(const std::vector<Stroke>& strokes, const AssetCamera& camera, int width,
                   int height, double width_scale = 1.0);
 

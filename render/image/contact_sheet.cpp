@@ -48,6 +48,10 @@ void blit(Image& sheet, const Image& tile, int x, int y) {
 
 }  // namespace
 
+int sheet_columns(size_t tiles) {
+  return static_cast<int>(std::ceil(std::sqrt(4.0 / 3.0 * static_cast<double>(tiles))));
+}
+
 Image compose_grid(const std::vector<Image>& tiles, int columns, const GridOptions& options) {
   if (tiles.empty()) fail("no tiles");
   if (columns < 1) fail("columns must be >= 1, got " + std::to_string(columns));

@@ -14,6 +14,9 @@
 
 namespace cutaway {
 
+/// The columns of a sheet of `tiles` tiles (>= 1) in about 4:3: ceil(sqrt(4/3 tiles)).
+int sheet_columns(size_t tiles);
+
 /// How compose_grid() lays the tiles out.
 struct GridOptions {
   int margin = 16;  ///< empty pixels around the sheet and between neighbouring cells, >= 0
@@ -59,7 +62,7 @@ struct SectionTileOptions {
 /// @returns one opaque tile_px x tile_px image per section, in order
 /// @throws InternalError when sections is empty, a section is malformed or
 ///         tile_px is outside 16..4096
-/// @throws std::runtime_error when rendering fails (see render_section_preview())
+/// @throws EnvironmentError when rendering fails (see render_section_preview())
 std::vector<Image> render_section_tiles(const std::vector<CrossSection>& sections,
                                         const SectionTileOptions& options = {});
 

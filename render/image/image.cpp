@@ -24,7 +24,7 @@ std::string encode_png(const Image& image) {
   };
   if (!stbi_write_png_to_func(append, &bytes, image.width, image.height, 4, image.rgba.data(),
                               image.width * 4))
-    throw std::runtime_error("encode_png: cannot encode the image as PNG");
+    throw EnvironmentError("encode_png: cannot encode the image as PNG");
   return bytes;
 }
 
@@ -34,7 +34,7 @@ Image decode_png(std::string_view bytes) {
       stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()),
                             static_cast<int>(bytes.size()), &w, &h, &channels, 4);
   if (pixels == nullptr)
-    throw std::runtime_error(std::string("not a PNG image: ") + stbi_failure_reason());
+    throw EnvironmentError(std::string("not a PNG image: ") + stbi_failure_reason());
   Image image;
   image.width = w;
   image.height = h;

@@ -21,18 +21,18 @@ struct Image {
 /// `image` encoded as PNG (8-bit RGBA, stb_image_write).
 /// @param image width, height > 0 and rgba.size() == width * height * 4
 /// @throws InternalError when the image's size does not match its bytes
-/// @throws std::runtime_error when encoding fails
+/// @throws EnvironmentError when encoding fails
 std::string encode_png(const Image& image);
 
 /// The image a PNG holds (any bit depth and colour type, converted to 8-bit RGBA; stb_image).
-/// @throws std::runtime_error "not a PNG image: REASON" when `bytes` cannot be decoded
+/// @throws EnvironmentError "not a PNG image: REASON" when `bytes` cannot be decoded
 Image decode_png(std::string_view bytes);
 
 /// Encodes `image` as PNG (encode_png) and writes it atomically
 /// (write_file_atomically(): a failed write leaves no partial file).
 /// @param image width, height > 0 and rgba.size() == width * height * 4
 /// @throws InternalError when the image's size does not match its bytes
-/// @throws std::runtime_error when encoding or writing fails
+/// @throws EnvironmentError when encoding or writing fails
 void write_png(const std::filesystem::path& path, const Image& image);
 
 }  // namespace cutaway

@@ -1,4 +1,4 @@
-// Editor benchmark: the live feedback of `cutaway edit` (generator/edit/edit_server.h) as the
+// Editor benchmark: the live feedback of `cutaway edit` (app/edit/edit_server.h) as the
 // page asks for it, timed through HTTP on 127.0.0.1 with the OpenGL pictures: the verdict, the
 // model's glTF, the cut at five new heights with the full cube and with the coarse cube the
 // page uses while the plane is dragged, and the strip of four variants. The target is
@@ -18,10 +18,10 @@
 
 #include <httplib.h>
 
+#include "app/edit/edit_pictures.h"
+#include "app/edit/edit_server.h"
 #include "base/atomic_file.h"
-#include "edit/edit_server.h"
 #include "paper_table1.h"
-#include "render/edit_pictures.h"
 
 namespace {
 

@@ -30,7 +30,7 @@
 #include "base/atomic_file.h"
 #include "base/child_process.h"
 #include "base/timer.h"
-#include "variation/variant_batch.h"
+#include "batch/variant_batch.h"
 
 namespace {
 

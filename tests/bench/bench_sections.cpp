@@ -198,7 +198,7 @@ int main(int argc, char** argv) {
     const cutaway::Template tmpl = cutaway::load_template(path.string());
     const cutaway::DsModel model = cutaway::build_model(tmpl);
     const auto t_bvh = Clock::now();
-    // As `cutaway section` (generator/cli/main.cpp run_section): DiffusionOptions{cube,
+    // As `cutaway section` (app/cli/main.cpp run_section): DiffusionOptions{cube,
     // threads} and CrossSectionOptions{template edge} (size bound 3 x the edge). `every_texel`
     // casts every texel of the cube, the rays of Embree's raw loop, on the same points.
     const auto cpu = cutaway::make_cpu_diffusion(model, {cube, threads});

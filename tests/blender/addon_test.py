@@ -33,7 +33,7 @@ import bpy
 import numpy
 
 # Mean Rec. 709 luma (0..255, of the 8-bit sRGB frame) of the pixels the objects cover: neither
-# dark nor blown out. The same range as the three.js check (tests/cli/three_exposure_test.sh).
+# dark nor blown out. The same range as the three.js check (tests/app/cli/three_exposure_test.sh).
 LUMA_RANGE = (90.0, 225.0)
 SCENES = ("salad", "plate", "market")
 FRAME = (200, 150)

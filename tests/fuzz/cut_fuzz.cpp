@@ -11,6 +11,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "io/cut_notation.h"
 #include "pieces/cut_spec.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

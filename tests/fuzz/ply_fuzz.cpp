@@ -1,7 +1,7 @@
 // libFuzzer target: any bytes given as a `mesh` surface's PLY file are either imported or refused
 // with an InputError, quickly and in little memory: check_ply (the guard in front of OpenMesh),
-// then OpenMesh's reader, then the DS surface (import_mesh_surface). Anything else (a crash,
-// another exception, a sanitizer report, a hang, a large allocation) is a finding. Built by
+// then OpenMesh's reader (read_mesh_file), then the DS surface (mesh_surface). Anything else (a
+// crash, another exception, a sanitizer report, a hang, a large allocation) is a finding. Built by
 // tests/fuzz/CMakeLists.txt with clang -fsanitize=fuzzer,address,undefined.
 #include <unistd.h>
 
@@ -9,11 +9,14 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <string_view>
 
 #include "base/error.h"
-#include "model/mesh_import.h"
+#include "io/mesh_file.h"
+#include "io/ply_guard.h"
+#include "model/mesh_surface.h"
 #include "model/template.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -37,7 +40,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   spec.path = "surfaces[0]";
   try {
     cutaway::check_ply(bytes, spec.mesh_loc, "surfaces[0].file");
-    cutaway::import_mesh_surface(spec, tmpl);
+    spec.mesh = std::make_shared<const cutaway::MeshData>(
+        cutaway::read_mesh_file(file, spec.mesh_loc, "surfaces[0].file"));
+    cutaway::mesh_surface(spec, tmpl);
   } catch (const cutaway::InputError&) {
     // Refused input: the expected outcome for most mutations.
   }

@@ -17,11 +17,13 @@
 #include <string>
 #include <vector>
 
+#include "cut/piece_views.h"
+#include "io/cut_notation.h"
 #include "io/plane_spec.h"
 #include "io/scene_parser.h"
 #include "io/template_parser.h"
+#include "material/colour_modulation.h"
 #include "model/model_builder.h"
-#include "npr/colour_modulation.h"
 #include "npr/silhouettes.h"
 #include "pieces/cut_spec.h"
 #include "pieces/pieces.h"
@@ -29,7 +31,6 @@
 #include "render/model_preview.h"
 #include "render/scene_preview.h"
 #include "render/section_preview.h"
-#include "scene/piece_views.h"
 #include "scene/scene_builder.h"
 #include "section/cross_section.h"
 #include "test_support.h"

@@ -1,0 +1,45 @@
+// The `cutaway` command line: registers the subcommands (one NAME_command.cpp each), parses the
+// arguments and runs the chosen one; nothing else lives here (doc/architecture.md, Style).
+// Exit codes: 0 success, 2 bad input, 1 internal failure, 3 an incomplete batch.
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include "app/cli/commands.h"
+
+int main(int argc, char** argv) {
+  using namespace cutaway::cli;
+  CLI::App app{"cutaway: cut objects with a consistent interior, from diffusion surfaces "
+               "(Takayama et al. 2010)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "cutaway " CUTAWAY_VERSION);
+  app.fallthrough();  // common options may follow the subcommand
+  CommonOptions options;
+  add_common_options(app, options);
+  const std::vector<Command> commands{
+      add_model_command(app), add_section_command(app), add_variants_command(app),
+      add_piece_command(app), add_sheet_command(app),   add_scene_command(app),
+      add_batch_command(app), add_check_command(app),   add_edit_command(app)};
+
+  spdlog::set_default_logger(spdlog::stderr_color_st("cutaway"));
+  spdlog::set_pattern("%v");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  spdlog::set_level(options.quiet ? spdlog::level::err
+                                  : (options.verbose ? spdlog::level::debug : spdlog::level::info));
+  const Common common{options.backend,
+                      options.threads,
+                      nullptr,
+                      options.sampling == "adaptive" ? cutaway::CapSampling::Adaptive
+                                                     : cutaway::CapSampling::Dense,
+                      options.directions == "adaptive",
+                      options.quiet};
+  for (const Command& command : commands)
+    if (*command.app) return run_command(command, common, options.stats);
+  return 0;
+}

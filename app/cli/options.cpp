@@ -1,0 +1,84 @@
+#include "app/cli/options.h"
+
+#include <filesystem>
+
+#include "batch/variant_batch.h"
+#include "io/text_rules.h"
+
+namespace cutaway::cli {
+
+void require_extension(const std::string& option, const std::string& path, const char* ext) {
+  if (std::filesystem::path(path).extension() != ext) {
+    throw UsageError(option + ": '" + path + "' must end in " + ext);
+  }
+}
+
+namespace {
+
+/// The CLI11 rule of a notation: the text passes when `parse` gives a value, else the rule in
+/// words is CLI11's message.
+template <class Parse>
+CLI::Validator notation_rule(Parse parse, const char* name) {
+  return CLI::Validator(
+      [parse](std::string& text) {
+        const auto value = parse(text);
+        return value ? std::string() : value.reason();
+      },
+      name);
+}
+
+}  // namespace
+
+const CLI::Validator& seed_rule() {
+  static const CLI::Validator rule = notation_rule(parse_seed, "SEED");
+  return rule;
+}
+
+const CLI::Validator& shard_rule() {
+  static const CLI::Validator rule = notation_rule(parse_shard, "K/M");
+  return rule;
+}
+
+void add_export_options(CLI::App* command, std::string& compress, int& lods,
+                        std::string& textures) {
+  command
+      ->add_option("--compress", compress,
+                   "glTF vertex data: quantize (KHR_mesh_quantization, the default; three.js, "
+                   "Blender 3.4+), meshopt (quantize + EXT_meshopt_compression; three.js with "
+                   "MeshoptDecoder) or none (float32)")
+      ->check(CLI::IsMember({"none", "quantize", "meshopt"}));
+  command
+      ->add_option("--lods", lods,
+                   "glTF levels of detail per mesh (MSFT_lod, nodes NAME_LOD1...): level L has "
+                   "about 2^-L of the triangles, outlines and seams kept (default 0)")
+      ->check(CLI::Range(0, 4));
+  command
+      ->add_option("--textures", textures,
+                   "base-colour texture images in .glb, .gltf and .pov: jpeg (the default, about "
+                   "a tenth of png's bytes) or png (lossless); material maps are always png")
+      ->check(CLI::IsMember({"jpeg", "png"}));
+}
+
+void add_common_options(CLI::App& app, CommonOptions& o) {
+  app.add_flag("--stats", o.stats, "print JSON counts, timings and output file hashes on stderr");
+  app.add_flag("-q,--quiet", o.quiet, "print errors only");
+  app.add_flag("-v,--verbose", o.verbose, "print progress and details");
+  app.add_option("--threads", o.threads, "worker threads (0: all cores); results do not depend on it")
+      ->check(CLI::Range(0, 1024));
+  app.add_option("--backend", o.backend,
+                 "colour diffusion: cpu (Embree ray casting), gl (the same rays in an OpenGL "
+                 "compute shader), auto (gl on a GPU, else cpu)")
+      ->check(CLI::IsMember({"auto", "cpu", "gl"}));
+  app.add_option("--sampling", o.sampling,
+                 "which points of a cut face are diffused: dense (every vertex) or adaptive "
+                 "(sparse samples along blur bands and in the interior, interpolated and "
+                 "refined where a test point disagrees)")
+      ->check(CLI::IsMember({"dense", "adaptive"}));
+  app.add_option("--directions", o.directions,
+                 "which PMVC rays a point casts: adaptive (its cube at half resolution, again at "
+                 "full resolution where neighbouring rays see different sheets) or every (every "
+                 "texel of the cube)")
+      ->check(CLI::IsMember({"adaptive", "every"}));
+}
+
+}  // namespace cutaway::cli

@@ -1,0 +1,46 @@
+// What the subcommands' options share: the usage error, the rules CLI11 checks values with,
+// the export options of the commands that write scenes, and the options common to all.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace cutaway::cli {
+
+/// A bad command-line argument: reported like InputError, exit code 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Throws UsageError "OPTION: 'PATH' must end in EXT" unless `path` ends in `ext` (".glb").
+void require_extension(const std::string& option, const std::string& path, const char* ext);
+
+/// --seed's rule (parse_seed), checked on the text before CLI11 converts it, which would
+/// saturate a seed beyond 2^63 - 1 silently.
+const CLI::Validator& seed_rule();
+
+/// --shard's rule (parse_shard), so that an empty value is refused rather than read as "not
+/// given" (which would build the whole batch).
+const CLI::Validator& shard_rule();
+
+/// `--compress none|quantize|meshopt`, `--lods N` and `--textures jpeg|png` of the commands
+/// that write glTF and POV-Ray scenes, into the given variables.
+void add_export_options(CLI::App* command, std::string& compress, int& lods,
+                        std::string& textures);
+
+/// The options every subcommand takes, before or after its name (`cutaway --stats scene ...`
+/// or `cutaway scene ... --stats`).
+struct CommonOptions {
+  bool stats = false, quiet = false, verbose = false;
+  int threads = 0;                     ///< 0: all cores
+  std::string backend = "auto";        ///< auto | cpu | gl
+  std::string sampling = "adaptive";   ///< dense: every vertex, for comparison
+  std::string directions = "adaptive"; ///< every: every cube texel, for comparison
+};
+
+/// Adds the common options to `app`, stored into `options` when parsed.
+void add_common_options(CLI::App& app, CommonOptions& options);
+
+}  // namespace cutaway::cli

@@ -1,0 +1,291 @@
+#include "cut/object_cut.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+#include <glm/geometric.hpp>
+
+#include "base/random.h"
+#include "base/timer.h"
+#include "material/colour_modulation.h"
+#include "pieces/coarse_cap.h"
+
+namespace cutaway {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// A seeded choice of `keep` of n indices, in increasing order (partial Fisher-Yates).
+std::vector<size_t> choose(size_t n, size_t keep, uint64_t seed) {
+  std::vector<size_t> all(n);
+  std::iota(all.begin(), all.end(), size_t{0});
+  Rng rng(seed);
+  for (size_t k = 0; k < keep && k + 1 < n; ++k) {
+    const size_t j = k + rng.below(static_cast<uint32_t>(n - k));
+    std::swap(all[k], all[j]);
+  }
+  all.resize(keep);
+  std::sort(all.begin(), all.end());
+  return all;
+}
+
+/// `piece` as an exportable mesh named `name`: `merged` is merge_parts of it (possibly
+/// recoloured), its triangles those of the skin, the walls and the caps in turn; one primitive
+/// per run of parts of one material (skin, walls, caps; none when all are material 0).
+/// `uv`: #V texture coordinates (CapAtlas::uv and the skin's) or empty; `coarse_caps`: the
+/// caps' coarse triangles (coarse_caps()) for the cap primitive, or empty.
+AssetMesh piece_mesh(const ShadedMesh& merged, const Piece& piece, PieceMaterials materials,
+                     const std::string& name, const std::vector<glm::dvec2>& uv,
+                     const std::vector<glm::uvec3>& coarse_caps) {
+  AssetMesh out;
+  static_cast<ColouredMesh&>(out) = merged;
+  out.name = name;
+  out.uv = uv;
+  const size_t n = merged.triangle.size();
+  const size_t surface = surface_triangle_count(piece);
+  const PiecePart* skin_surface = skin_part(piece);
+  const size_t skin = skin_surface ? skin_surface->mesh.triangle.size() : 0;
+  const struct {
+    size_t first, count;
+    int material;
+  } runs[3] = {{0, skin, materials.skin},
+               {skin, surface - skin, materials.wall},
+               {surface, n - surface, materials.cut}};
+  for (const auto& run : runs) {
+    if (run.count == 0) continue;
+    if (!out.primitives.empty() && out.primitives.back().material == run.material)
+      out.primitives.back().count += run.count;
+    else
+      out.primitives.push_back({run.first, run.count, run.material, {}});
+  }
+  if (surface < n && out.primitives.back().first == surface)  // the caps alone
+    out.primitives.back().coarse = coarse_caps;
+  if (out.primitives.size() == 1 && out.primitives[0].material == 0) out.primitives.clear();
+  return out;
+}
+
+/// What `piece` is (its glTF node extras): template, variant seed, cut_label(cut), its cell,
+/// the kinds of its parts and the volume of `merged` (merge_parts of it).
+PieceInfo piece_info(const Piece& piece, const ShadedMesh& merged, const std::string& template_name,
+                     uint64_t seed, const CutSpec& cut) {
+  PieceInfo info{template_name, seed, cut_label(cut), piece.cell, {}, signed_volume(merged)};
+  for (const PiecePart& part : piece.parts) {
+    const std::string kind = part.kind == PartKind::Skin   ? "skin"
+                             : part.kind == PartKind::Wall ? "wall"
+                                                           : "cap";
+    if (std::find(info.parts.begin(), info.parts.end(), kind) == info.parts.end())
+      info.parts.push_back(kind);
+  }
+  return info;
+}
+
+/// Bakes the caps of `pieces` (of one object, cut into `set`) into a texture added to
+/// `assets`, adds a copy of material `materials.cut` textured with it, named "<object>_cut",
+/// its roughness and translucency the means of the diffused material channels and, where
+/// those vary, a material map "<object>_cut_material" (cap_atlas.h), and returns the object's
+/// materials with it, and per piece the texture coordinates of its merge_parts vertices in `uv`.
+/// Pieces without caps: `materials` and empty uv.
+PieceMaterials add_cap_texture(SceneAssets& assets, const PieceSet& set,
+                               const std::vector<const Piece*>& pieces, PieceMaterials materials,
+                               const std::string& object, const ColourModulation* modulation,
+                               double strength, const CapAtlasOptions& options,
+                               std::vector<std::vector<glm::dvec2>>& uv) {
+  CapAtlas atlas = bake_cap_atlas(pieces, set.sections, modulation, strength, options);
+  if (atlas.width == 0) {
+    uv.assign(pieces.size(), {});
+    return materials;
+  }
+  uv = std::move(atlas.uv);
+  AssetMaterial cut = assets.materials[static_cast<size_t>(materials.cut)];
+  cut.name = object + "_cut";
+  // The diffused material channels: their mean as factors, and a map where they vary.
+  cut.pbr.roughness = atlas.material_mean.x;
+  cut.pbr.translucency = atlas.material_mean.y;
+  if (!atlas.material.empty()) {
+    assets.textures.push_back(
+        {object + "_cut_material", atlas.material_width, atlas.material_height, 4,
+         std::move(atlas.material)});
+    cut.material_texture = static_cast<int>(assets.textures.size()) - 1;
+  }
+  assets.textures.push_back({object + "_cut", atlas.width, atlas.height, 3, std::move(atlas.srgb)});
+  cut.base_colour_texture = static_cast<int>(assets.textures.size()) - 1;
+  assets.materials.push_back(cut);
+  materials.cut = static_cast<int>(assets.materials.size()) - 1;
+  return materials;
+}
+
+/// Unwraps the skin part of each kept piece of `set` (unwrap_skin: adds vertices along the
+/// seam and at the poles) and returns per kept piece its coordinates, or nothing for a piece
+/// without skin.
+std::vector<std::vector<glm::dvec2>> unwrap_skins(PieceSet& set, const std::vector<size_t>& kept) {
+  std::vector<std::vector<glm::dvec2>> uv;
+  for (size_t k : kept) {
+    Piece& piece = set.pieces[k];
+    uv.push_back(skin_part(piece) ? unwrap_skin(piece.parts[0].mesh) : std::vector<glm::dvec2>{});
+  }
+  return uv;
+}
+
+/// Bakes the unwrapped skins of the kept pieces of `set` (one object whose DS skin is `skin`)
+/// into a texture "<object>_skin" repeating in u (skin_texture.h), adds a copy of material
+/// `materials.skin` textured with it and returns the object's materials with it as the skin's;
+/// writes each kept piece's skin coordinates into the first entries of uv[q] (sized to the
+/// piece's merge_parts vertices). No skins: `materials` unchanged.
+PieceMaterials add_skin_texture(SceneAssets& assets, const DsSurface& skin, const PieceSet& set,
+                                const std::vector<size_t>& kept,
+                                const std::vector<std::vector<glm::dvec2>>& skin_uv,
+                                PieceMaterials materials, const std::string& object,
+                                const ColourModulation* modulation, double strength,
+                                const SkinTextureOptions& options,
+                                std::vector<std::vector<glm::dvec2>>& uv) {
+  std::vector<const ShadedMesh*> parts;
+  std::vector<const std::vector<glm::dvec2>*> part_uv;
+  for (size_t q = 0; q < kept.size(); ++q) {
+    if (skin_uv[q].empty()) continue;
+    const Piece& piece = set.pieces[kept[q]];
+    parts.push_back(&skin_part(piece)->mesh);
+    part_uv.push_back(&skin_uv[q]);
+    uv[q].resize(part_vertex_offsets(piece).back(), glm::dvec2(0.0));
+    std::copy(skin_uv[q].begin(), skin_uv[q].end(), uv[q].begin());  // the skin comes first
+  }
+  if (parts.empty()) return materials;
+  const glm::ivec2 size = skin_texture_size(skin, options);
+  assets.textures.push_back({object + "_skin", size.x, size.y, 3,
+                             bake_skin_texture(parts, part_uv, size, modulation, strength, options),
+                             true});
+  AssetMaterial textured = assets.materials[static_cast<size_t>(materials.skin)];
+  textured.name = object + "_skin";
+  textured.base_colour_texture = static_cast<int>(assets.textures.size()) - 1;
+  assets.materials.push_back(textured);
+  materials.skin = static_cast<int>(assets.materials.size()) - 1;
+  return materials;
+}
+
+}  // namespace
+
+PieceMaterials add_piece_materials(SceneAssets& assets, const std::string& name,
+                                   const PbrMaterial& skin, const PbrMaterial& cut) {
+  auto index = [&assets](const std::string& material_name, const PbrMaterial& pbr) {
+    if (pbr == PbrMaterial{}) return 0;
+    for (size_t k = 0; k < assets.materials.size(); ++k)
+      if (assets.materials[k].name == material_name) return static_cast<int>(k);
+    assets.materials.push_back({material_name, pbr});
+    return static_cast<int>(assets.materials.size()) - 1;
+  };
+  const std::string base = asset_name(name);
+  const int skin_id = index(base + "_skin", skin);
+  return {skin_id, skin_id, skin == cut ? skin_id : index(base + "_cut", cut)};
+}
+
+std::vector<glm::uvec3> coarse_caps(const Piece& piece, const std::vector<CrossSection>& sections) {
+  std::vector<glm::uvec3> out;
+  const std::vector<unsigned> offsets = part_vertex_offsets(piece);
+  for (size_t k = 0; k < piece.parts.size(); ++k) {
+    const PiecePart& part = piece.parts[k];
+    if (part.kind != PartKind::Cap) continue;
+    const CrossSection& section = sections.at(static_cast<size_t>(part.plane));
+    for (const glm::uvec3& t : coarse_cap_triangles(part.mesh, section.u_axis, section.v_axis))
+      out.push_back(t + offsets[k]);
+  }
+  return out;
+}
+
+int cut_faces(const Piece& piece) {
+  std::vector<glm::dvec3> normals;
+  for (const PiecePart& part : piece.parts) {
+    if (part.kind != PartKind::Cap || part.mesh.normal.empty()) continue;
+    bool seen = false;
+    for (const glm::dvec3& n : normals) seen = seen || glm::dot(n, part.mesh.normal[0]) > 0.999;
+    if (!seen) normals.push_back(part.mesh.normal[0]);
+  }
+  return static_cast<int>(normals.size());
+}
+
+glm::dvec3 largest_cap_normal(const Piece& piece) {
+  double best = 0;
+  glm::dvec3 normal(0.0);
+  for (const PiecePart& part : piece.parts) {
+    if (part.kind != PartKind::Cap || part.mesh.normal.empty()) continue;
+    double area = 0;
+    for (const glm::uvec3& t : part.mesh.triangle)
+      area += 0.5 * glm::length(glm::cross(part.mesh.position[t[1]] - part.mesh.position[t[0]],
+                                           part.mesh.position[t[2]] - part.mesh.position[t[0]]));
+    if (area > best) {
+      best = area;
+      normal = part.mesh.normal[0];
+    }
+  }
+  return normal;
+}
+
+Outcome<CutObject> cut_object(SceneAssets& assets, const Variant& variant, uint64_t variant_seed,
+                              const PieceMaterials& materials, const std::string& object,
+                              const DiffusionBackend& diffusion, const ObjectCutOptions& options,
+                              ObjectCutStats& stats) {
+  PieceOptions piece_options;
+  piece_options.section.edge_m = variant.tmpl.edge_m;
+  piece_options.section.sampling = options.sampling;
+  Outcome<PieceSet> made = cut_pieces(variant.model, options.cut, diffusion, piece_options);
+  if (!made && !options.whole_when_missed) return Outcome<CutObject>::none(made.reason());
+  if (!made)  // every plane misses this variant: keep it whole
+    made = cut_pieces(variant.model, CutSpec{}, diffusion, piece_options);
+  CutObject out;
+  out.set = std::move(*made);
+  out.backend = diffusion.name();
+  PieceSet& set = out.set;
+  stats.seconds_sections += set.seconds_sections;
+  stats.seconds_diffuse += set.seconds_diffuse;
+  stats.seconds_clip += set.seconds_clip;
+  stats.diffused += set.diffused;
+  stats.recut_objects += set.attempts > 1;
+  stats.defective_pieces += set.defective_pieces;
+  const size_t n = set.pieces.size();
+  const size_t keep = std::clamp<size_t>(
+      static_cast<size_t>(std::llround(options.keep * static_cast<double>(n))), 1, n);
+  out.kept = choose(n, keep, options.keep_seed);
+  const std::vector<size_t>& kept = out.kept;
+  PieceMaterials object_materials = materials;
+  std::vector<std::vector<glm::dvec2>> uv(kept.size());
+  // The kept pieces merged before their skins were unwrapped: the layout and the node extras
+  // see the pieces as cut (the unwrapped skins only add copies of vertices, which would
+  // change nothing but the order in which the layout meets them).
+  std::vector<ShadedMesh> as_cut;
+  const bool textured = options.cap_colours == CapColours::Texture;
+  if (textured) {
+    const auto t_bake = Clock::now();
+    // Swept skins first: unwrapping adds vertices to the skin parts, which come first.
+    const bool swept = variant.tmpl.surfaces[static_cast<size_t>(variant.tmpl.skin)].kind ==
+                       SurfaceKind::Around;
+    if (swept)
+      for (size_t k : kept) as_cut.push_back(merge_parts(set.pieces[k]));
+    const std::vector<std::vector<glm::dvec2>> skin_uv =
+        swept ? unwrap_skins(set, kept) : std::vector<std::vector<glm::dvec2>>(kept.size());
+    std::vector<const Piece*> kept_pieces;
+    for (size_t k : kept) kept_pieces.push_back(&set.pieces[k]);
+    const ColourModulation modulation(variant.tmpl.npr, options.modulation_seed);
+    object_materials = add_cap_texture(assets, set, kept_pieces, materials, object, &modulation,
+                                       options.perlin, options.atlas, uv);
+    object_materials =
+        add_skin_texture(assets, variant.model.skin(), set, kept, skin_uv, object_materials,
+                         object, &modulation, options.perlin, options.skin, uv);
+    stats.seconds_bake += seconds_since(t_bake);
+  }
+  for (size_t q = 0; q < kept.size(); ++q) {
+    const Piece& piece = set.pieces[kept[q]];
+    ShadedMesh merged = merge_parts(piece);
+    // Perlin colour modulation in the object frame: every piece of one object agrees.
+    modulate_colours(merged, variant.tmpl.npr, options.perlin, options.modulation_seed);
+    out.meshes.push_back(piece_mesh(
+        merged, piece, object_materials, object + "_piece" + std::to_string(piece.cell), uv[q],
+        textured ? coarse_caps(piece, set.sections) : std::vector<glm::uvec3>{}));
+    out.shapes.push_back(as_cut.empty() ? std::move(merged) : std::move(as_cut[q]));
+    out.infos.push_back(
+        piece_info(piece, out.shapes.back(), variant.tmpl.name, variant_seed, options.cut));
+  }
+  return out;
+}
+
+}  // namespace cutaway

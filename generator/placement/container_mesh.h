@@ -1,0 +1,40 @@
+// The containers of scenes (doc/scene-format.md: bowl, plate, board, none): their meshes for
+// export, and the surface pieces rest on, as a height above the floor for the layout.
+// Scene frame: +Y up, metres, the container standing on y = 0 centred on the Y axis.
+#pragma once
+
+#include <optional>
+
+#include "assets/scene_assets.h"
+#include "placement/container.h"
+
+namespace cutaway {
+
+/// The bowl and plate profiles, the board's box (choices of this code; the scene format fixes
+/// only the sizes):
+/// - bowl: inner surface an ellipse from the well bottom (y = 0.08 H, floor thickness) up to the
+///   rim (y = H) at inner radius R - wall (wall = 0.03 D); outer surface an ellipse down to a
+///   foot ring of radius 0.45 R at y = 0;
+/// - plate: a flat well of radius 0.62 R at y = 0.3 H, rising to the rim at y = H (power 1.6);
+/// - board: a box W x D x H;
+/// - none: the floor y = 0.
+/// `segments` (>= 3): the bowl's and plate's segments around the axis; `profile_samples` (>= 2):
+/// segments along each curve of their profiles. Every vertex lies on the surfaces above, so a
+/// coarser mesh's inner surface lies inside the bowl or above the plate, never below the finer
+/// one's (the physics collides with a coarse one: fewer triangles).
+/// @return the container's mesh (linear colour `container.colour`, outward normals, closed),
+///         or nothing for type none
+std::optional<AssetMesh> container_mesh(const Container& container, int segments = 96,
+                                        int profile_samples = 40);
+
+/// The height (metres) of the surface that pieces rest on at (x, z), or nothing where pieces
+/// may not rest (outside the bowl's or plate's inner rim, off the board, beyond `none_radius_m`
+/// for type none).
+std::optional<double> rest_height(const Container& container, double x, double z,
+                                  double none_radius_m);
+
+/// The radius (metres) about the Y axis within which pieces can rest (the inner rim, half the
+/// board's diagonal, `none_radius_m` for type none).
+double rest_radius(const Container& container, double none_radius_m);
+
+}  // namespace cutaway

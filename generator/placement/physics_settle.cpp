@@ -1,0 +1,388 @@
+#include "placement/physics_settle.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <btBulletDynamicsCommon.h>
+#include <glm/gtc/quaternion.hpp>
+
+#include "base/error.h"
+#include "base/finite.h"
+#include "placement/container_mesh.h"
+
+namespace cutaway {
+
+namespace {
+
+/// Bullet works best with bodies of about one unit: the simulation runs in centimetres.
+constexpr double kUnitsPerMetre = 100;
+
+btVector3 to_bt(const glm::dvec3& p) {
+  return btVector3(static_cast<btScalar>(p.x * kUnitsPerMetre),
+                   static_cast<btScalar>(p.y * kUnitsPerMetre),
+                   static_cast<btScalar>(p.z * kUnitsPerMetre));
+}
+
+glm::dvec3 from_bt(const btVector3& v) {
+  return glm::dvec3(v.x(), v.y(), v.z()) / kUnitsPerMetre;
+}
+
+/// The centre of mass of body `b` placed at the object-frame pose `pose` (metres).
+glm::dvec3 centre_of_mass(const SettleBody& b, const Placement& pose) {
+  return pose.translation + pose.rotation * b.shape->centroid;
+}
+
+/// Steps between two looks at whether the bodies rest: a quarter second.
+int steps_per_rest_check(const SettleOptions& o) {
+  return std::max(1, static_cast<int>(std::lround(0.25 / o.time_step_s)));
+}
+
+/// A Bullet world holding the table, the container and the bodies, in input order.
+class World {
+ public:
+  World(const Container& container, const SettleOptions& o) : container_(container), options_(o) {
+    world_ = std::make_unique<btDiscreteDynamicsWorld>(&dispatcher_, &broadphase_, &solver_,
+                                                       &configuration_);
+    world_->setGravity(btVector3(0, static_cast<btScalar>(-9.81 * kUnitsPerMetre), 0));
+    world_->getSolverInfo().m_numIterations = o.solver_iterations;
+    // Two friction directions per contact, kept from step to step: with one, resting pieces
+    // crept 0.3-1 mm every quarter second and a bowl of nine never came to rest.
+    world_->getSolverInfo().m_solverMode |=
+        SOLVER_USE_2_FRICTION_DIRECTIONS | SOLVER_ENABLE_FRICTION_DIRECTION_CACHING;
+    // The table the container stands on (and that catches pieces falling out of it).
+    add_static(std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), 0), btVector3(0, 0, 0));
+    if (container.type == ContainerType::Board) {
+      const glm::dvec3 half(0.5 * container.width_m, 0.5 * container.height_m,
+                            0.5 * container.depth_m);
+      add_static(std::make_unique<btBoxShape>(to_bt(half)), to_bt({0, half.y, 0}));
+    } else if (auto mesh =
+                   container_mesh(container, o.container_segments, o.container_profile_samples)) {
+      // The bowl and plate as a compound of convex tiles: each triangle of a coarse mesh of the
+      // container, thickened 3 mm into the solid. (Against a triangle mesh, even with Bullet's
+      // internal-edge correction, a tomato half on the bowl's floor never came to rest: it
+      // moved 1-3 mm every quarter second for 8 s; on tiles it rests after 1 s.)
+      auto compound = std::make_unique<btCompoundShape>();
+      btTransform identity;
+      identity.setIdentity();
+      for (const glm::uvec3& t : mesh->triangle) {
+        const glm::dvec3 a = mesh->position[t[0]], b = mesh->position[t[1]],
+                         c = mesh->position[t[2]];
+        const glm::dvec3 cross = glm::cross(b - a, c - a);
+        if (glm::length(cross) == 0) continue;
+        const glm::dvec3 n = glm::normalize(cross), m = (a + b + c) / 3.0;
+        // Only the surfaces pieces can rest on: the inside (facing the axis) and the rim (up).
+        if (!(n.y > 0.05 || n.x * m.x + n.z * m.z < 0)) continue;
+        auto tile = std::make_unique<btConvexHullShape>();
+        for (const glm::dvec3& p : {a, b, c}) {
+          tile->addPoint(to_bt(p), false);
+          tile->addPoint(to_bt(p - 0.003 * n), false);
+        }
+        tile->recalcLocalAabb();
+        tile->initializePolyhedralFeatures();
+        tile->setMargin(static_cast<btScalar>(o.margin_m * kUnitsPerMetre));
+        compound->addChildShape(identity, tile.get());
+        children_.push_back(std::move(tile));
+      }
+      add_static(std::move(compound), btVector3(0, 0, 0));
+    }
+  }
+
+  ~World() {
+    for (int i = world_->getNumCollisionObjects() - 1; i >= 0; --i) {
+      btCollisionObject* obj = world_->getCollisionObjectArray()[i];
+      world_->removeCollisionObject(obj);
+    }
+  }
+
+  /// Adds a body at `pose` (object frame placed by it), at rest; returns its index.
+  size_t add_body(const SettleBody& b, const Placement& pose) {
+    const CollisionShape& s = *b.shape;
+    const btScalar margin = static_cast<btScalar>(options_.margin_m * kUnitsPerMetre);
+    std::unique_ptr<btCollisionShape> shape;
+    auto hull_of = [&](const ConvexPart& part) {
+      auto hull = std::make_unique<btConvexHullShape>();
+      for (const glm::dvec3& p : part.corners) hull->addPoint(to_bt(p - s.centroid), false);
+      hull->recalcLocalAabb();
+      // Polyhedral contact clipping: a resting face touches with all its contact points in one
+      // step, where GJK finds one point a step. Without it a settled salad simulated again
+      // from rest sagged 5-12 mm while its contacts were found again.
+      hull->initializePolyhedralFeatures();
+      hull->setMargin(std::max(margin, static_cast<btScalar>(part.outside_m * kUnitsPerMetre)));
+      return hull;
+    };
+    if (s.parts.size() == 1) {
+      shape = hull_of(s.parts[0]);
+    } else {
+      auto compound = std::make_unique<btCompoundShape>();
+      btTransform identity;
+      identity.setIdentity();
+      for (const auto& part : s.parts) {
+        children_.push_back(hull_of(part));
+        compound->addChildShape(identity, children_.back().get());
+      }
+      shape = std::move(compound);
+    }
+    const btScalar mass = static_cast<btScalar>(b.density_kg_m3 * s.volume_m3);
+    btVector3 inertia(0, 0, 0);
+    shape->calculateLocalInertia(mass, inertia);
+    btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape.get(), inertia);
+    info.m_friction = static_cast<btScalar>(options_.friction);
+    info.m_restitution = 0;
+    // Rolling and spinning resistance: a torque up to rolling_friction_m x the normal force.
+    info.m_rollingFriction = info.m_spinningFriction =
+        static_cast<btScalar>(options_.rolling_friction_m * kUnitsPerMetre);
+    info.m_linearDamping = static_cast<btScalar>(options_.linear_damping);
+    info.m_angularDamping = static_cast<btScalar>(options_.angular_damping);
+    info.m_linearSleepingThreshold =
+        static_cast<btScalar>(options_.sleep_speed_m_s * kUnitsPerMetre);
+    info.m_angularSleepingThreshold = static_cast<btScalar>(options_.sleep_spin_rad_s);
+    auto body = std::make_unique<btRigidBody>(info);
+    // Friction anchors: a contact point that sticks keeps its place on both bodies instead of
+    // being found again every step.
+    body->setCollisionFlags(body->getCollisionFlags() |
+                            btCollisionObject::CF_HAS_FRICTION_ANCHOR);
+    body->setWorldTransform(transform(b, pose));
+    shapes_.push_back(std::move(shape));
+    world_->addRigidBody(body.get());
+    bodies_.push_back(std::move(body));
+    return bodies_.size() - 1;
+  }
+
+  /// The Bullet transform of the body's centre of mass for an object-frame pose.
+  static btTransform transform(const SettleBody& b, const Placement& pose) {
+    const glm::dquat& q = pose.rotation;
+    return btTransform(btQuaternion(static_cast<btScalar>(q.x), static_cast<btScalar>(q.y),
+                                    static_cast<btScalar>(q.z), static_cast<btScalar>(q.w)),
+                       to_bt(centre_of_mass(b, pose)));
+  }
+
+  /// The object-frame pose of body k.
+  Placement pose(size_t k, const SettleBody& b) const {
+    const btTransform& t = bodies_[k]->getWorldTransform();
+    const btQuaternion r = t.getRotation();
+    Placement p;
+    p.placed = true;
+    p.rotation = glm::normalize(glm::dquat(r.w(), r.x(), r.y(), r.z()));
+    p.translation = from_bt(t.getOrigin()) - p.rotation * b.shape->centroid;
+    return p;
+  }
+
+  /// Places body k at `pose`, at rest, awake.
+  void reset(size_t k, const SettleBody& b, const Placement& pose) {
+    btRigidBody& body = *bodies_[k];
+    body.setWorldTransform(transform(b, pose));
+    body.setLinearVelocity(btVector3(0, 0, 0));
+    body.setAngularVelocity(btVector3(0, 0, 0));
+    body.activate(true);
+    world_->updateSingleAabb(&body);
+  }
+
+  const Container& container() const { return container_; }
+
+  void remove(size_t k) { world_->removeRigidBody(bodies_[k].get()); }
+
+  /// The highest point of any body in the world (metres).
+  double top() const {
+    double y = 0;
+    for (const auto& b : bodies_) {
+      if (!b->isInWorld()) continue;
+      btVector3 lo, hi;
+      b->getAabb(lo, hi);
+      y = std::max(y, static_cast<double>(hi.y()) / kUnitsPerMetre);
+    }
+    return y;
+  }
+
+  /// The object-frame poses of the bodies (index id[k] of body k; SIZE_MAX: not placed).
+  std::vector<Placement> poses(const std::vector<SettleBody>& b,
+                               const std::vector<size_t>& id) const {
+    std::vector<Placement> out(b.size());
+    for (size_t k = 0; k < b.size(); ++k) {
+      if (id[k] != SIZE_MAX && bodies_[id[k]]->isInWorld()) out[k] = pose(id[k], b[k]);
+    }
+    return out;
+  }
+
+  bool asleep() const {
+    for (const auto& b : bodies_) {
+      if (b->isInWorld() && b->getActivationState() != ISLAND_SLEEPING) return false;
+    }
+    return true;
+  }
+
+  void step() {
+    const btScalar dt = static_cast<btScalar>(options_.time_step_s);
+    world_->stepSimulation(dt, 1, dt);
+  }
+
+ private:
+  btRigidBody* add_static(std::unique_ptr<btCollisionShape> shape, const btVector3& origin) {
+    btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, shape.get());
+    info.m_friction = static_cast<btScalar>(options_.friction);
+    info.m_startWorldTransform.setOrigin(origin);
+    auto body = std::make_unique<btRigidBody>(info);
+    body->setCollisionFlags(body->getCollisionFlags() |
+                            btCollisionObject::CF_HAS_FRICTION_ANCHOR);
+    world_->addRigidBody(body.get());
+    shapes_.push_back(std::move(shape));
+    statics_.push_back(std::move(body));
+    return statics_.back().get();
+  }
+
+  Container container_;
+  SettleOptions options_;
+  btDefaultCollisionConfiguration configuration_;
+  btCollisionDispatcher dispatcher_{&configuration_};
+  btDbvtBroadphase broadphase_;
+  btSequentialImpulseConstraintSolver solver_;
+  std::unique_ptr<btDiscreteDynamicsWorld> world_;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes_, children_;
+  std::vector<std::unique_ptr<btRigidBody>> statics_, bodies_;
+};
+
+/// How far the farthest corner of any body's collision shape lies between poses a and b
+/// (metres); bodies not placed in both are skipped.
+double largest_motion(const std::vector<SettleBody>& bodies, const std::vector<Placement>& a,
+                      const std::vector<Placement>& b) {
+  double moved = 0;
+  for (size_t k = 0; k < bodies.size(); ++k) {
+    if (!a[k].placed || !b[k].placed) continue;
+    for (const ConvexPart& part : bodies[k].shape->parts) {
+      for (const glm::dvec3& p : part.corners) {
+        moved = std::max(moved, glm::length((a[k].translation + a[k].rotation * p) -
+                                            (b[k].translation + b[k].rotation * p)));
+      }
+    }
+  }
+  return moved;
+}
+
+/// Whether a piece with centre of mass `c` lies in the container: over its resting area, above
+/// the table and below `ceiling` (higher, a failed simulation step has thrown it).
+bool inside(const Container& container, const glm::dvec3& c, double ceiling,
+            double none_radius_m) {
+  return all_finite(c) && c.y > 0 && c.y < ceiling &&
+         rest_height(container, c.x, c.z, none_radius_m).has_value();
+}
+
+/// Steps `world` until it rests (no corner moved more than rest_motion_m in a quarter second,
+/// or every body sleeps) or max_seconds pass. Pieces that left the container are then dropped
+/// again from above the pile and the world runs on; after max_redrops a piece is removed and
+/// counted lost (its id becomes SIZE_MAX). Adds to r.steps, r.redrops and r.lost; sets
+/// r.all_asleep.
+void run_to_rest(World& world, const std::vector<SettleBody>& bodies, std::vector<size_t>& id,
+                 std::vector<int>& drops, double ceiling, const SettleOptions& options,
+                 SettleResult& r) {
+  const int max_steps = static_cast<int>(std::ceil(options.max_seconds / options.time_step_s));
+  const int check_every = steps_per_rest_check(options);
+  for (;;) {
+    int steps = 0;
+    bool at_rest = false;
+    std::vector<Placement> before = world.poses(bodies, id);
+    for (; steps < max_steps && !at_rest; ++steps) {
+      world.step();
+      if ((steps + 1) % check_every != 0) continue;
+      std::vector<Placement> now = world.poses(bodies, id);
+      at_rest = world.asleep() || largest_motion(bodies, before, now) < options.rest_motion_m;
+      before = std::move(now);
+    }
+    r.steps += steps;
+    r.all_asleep = at_rest;
+    // Pieces that left the container are dropped again from above the pile.
+    bool dropped = false;
+    const double top = world.top();
+    for (size_t k = 0; k < bodies.size(); ++k) {
+      if (id[k] == SIZE_MAX) continue;
+      const glm::dvec3 c = centre_of_mass(bodies[k], world.pose(id[k], bodies[k]));
+      if (inside(world.container(), c, ceiling, options.none_radius_m)) continue;
+      if (drops[k] == options.max_redrops) {
+        world.remove(id[k]);
+        id[k] = SIZE_MAX;
+        ++r.lost;
+        continue;
+      }
+      ++drops[k];
+      ++r.redrops;
+      // Each drop again nearer the container's axis (a quarter of the way per drop): a piece
+      // that left the container from its drop pose near an edge would leave it again there.
+      Placement again = bodies[k].drop;
+      const double pull = static_cast<double>(drops[k]) / (options.max_redrops + 1);
+      const glm::dvec3 drop_centre = centre_of_mass(bodies[k], again);
+      again.translation -= pull * glm::dvec3(drop_centre.x, 0, drop_centre.z);
+      double low = 0;
+      for (const auto& part : bodies[k].shape->parts) {
+        for (const glm::dvec3& p : part.corners) low = std::min(low, (again.rotation * p).y);
+      }
+      again.translation.y = top + 0.005 - low;
+      world.reset(id[k], bodies[k], again);
+      dropped = true;
+    }
+    if (!dropped) break;
+  }
+}
+
+/// A world holding the bodies at `poses` (those placed), at rest; their ids in `id`.
+std::unique_ptr<World> world_at(const std::vector<SettleBody>& bodies,
+                                const std::vector<Placement>& poses, const Container& container,
+                                const SettleOptions& options, std::vector<size_t>& id) {
+  auto world = std::make_unique<World>(container, options);
+  id.assign(bodies.size(), SIZE_MAX);
+  for (size_t k = 0; k < bodies.size(); ++k) {
+    if (poses[k].placed) id[k] = world->add_body(bodies[k], poses[k]);
+  }
+  return world;
+}
+
+}  // namespace
+
+SettleResult settle_pieces(const std::vector<SettleBody>& bodies, const Container& container,
+                           const SettleOptions& options) {
+  SettleResult r;
+  std::vector<Placement> drop_poses(bodies.size());
+  double ceiling = 0.1;
+  for (size_t k = 0; k < bodies.size(); ++k) {
+    drop_poses[k] = bodies[k].drop;
+    if (!bodies[k].drop.placed) continue;
+    CUTAWAY_CHECK(bodies[k].shape != nullptr && bodies[k].density_kg_m3 > 0);
+    ceiling = std::max(ceiling, 2 * centre_of_mass(bodies[k], bodies[k].drop).y + 0.1);
+  }
+  std::vector<size_t> id;
+  std::vector<int> drops(bodies.size(), 0);
+  auto world = world_at(bodies, drop_poses, container, options, id);
+  run_to_rest(*world, bodies, id, drops, ceiling, options, r);
+  r.placements = world->poses(bodies, id);
+  // The stability check: the layout in a new world, at rest, run for verify_seconds. If a piece
+  // moves more than check_motion_m the layout is not at rest without the contact impulses that
+  // settling built up step after step (a settled salad sagged 6.7 mm when they were lost); it
+  // settles on in that world, from where the check stopped, and is checked again. Stable:
+  // the last check moved no corner more than stable_motion_m.
+  const int verify_steps =
+      static_cast<int>(std::ceil(options.verify_seconds / options.time_step_s));
+  const int check_every = steps_per_rest_check(options);
+  SettleOptions verify = options;
+  verify.solver_iterations = options.check_solver_iterations;
+  for (int round = 1;; ++round) {
+    world = world_at(bodies, r.placements, container, verify, id);
+    r.verify_rounds = round;
+    r.stability_motion_m = 0;
+    // Stopped early once the check has failed: the last one only over the limit itself.
+    const double give_up =
+        round < options.max_verify_rounds ? options.check_motion_m : options.stable_motion_m;
+    for (int s = 1; s <= verify_steps && r.stability_motion_m <= give_up; ++s) {
+      world->step();
+      ++r.steps;
+      if (s % check_every == 0 || s == verify_steps)
+        r.stability_motion_m = largest_motion(bodies, r.placements, world->poses(bodies, id));
+    }
+    if (r.stability_motion_m <= options.check_motion_m || round == options.max_verify_rounds)
+      break;
+    run_to_rest(*world, bodies, id, drops, ceiling, verify, r);
+    r.placements = world->poses(bodies, id);
+  }
+  r.stable = r.stability_motion_m <= options.stable_motion_m;
+  r.simulated_s = r.steps * options.time_step_s;
+  return r;
+}
+
+}  // namespace cutaway

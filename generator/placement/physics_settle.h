@@ -1,0 +1,89 @@
+// Rigid-body settling of placed pieces with Bullet (doc/algorithms.md §4, Settling): every
+// piece a rigid body (its collision_shape, mass = density x volume), the container static
+// convex tiles (a box for the board) on a table at y = 0, stepped single-threaded with a fixed
+// time step, bodies added in input order, until the layout rests or a time cap is reached.
+// A piece that ends outside the container is dropped again from above the pile; after
+// `max_redrops` it is reported as not placed, never silently lost. Settling ends with the
+// stability check: the layout, in a new world at rest, may move at most `stable_motion_m` in
+// `verify_seconds`; if it moves more it settles on from there and is checked again.
+#pragma once
+
+#include <vector>
+
+#include "placement/collision_shape.h"
+#include "placement/container.h"
+#include "placement/scene_layout.h"
+
+namespace cutaway {
+
+/// One piece to settle: its collision shape (object frame) and its drop pose.
+struct SettleBody {
+  const CollisionShape* shape = nullptr;  ///< required
+  double density_kg_m3 = 1000;            ///< > 0
+  Placement drop;  ///< where it starts, at rest; not placed: the piece is left out
+};
+
+/// Options of settle_pieces. Lengths in metres, times in seconds.
+struct SettleOptions {
+  double time_step_s = 1.0 / 240;  ///< fixed step
+  double max_seconds = 8;          ///< simulated time cap per round of drops
+  double margin_m = 0.00025;       ///< collision margin around each convex part
+  /// Bullet's sequential impulse iterations per step (with 20, a bowl of 64 slices did not
+  /// come to rest in 8 s; with 40 it rested after 1.75 s).
+  int solver_iterations = 40;
+  /// The same for the stability check and the settling after a failed one: a new world starts
+  /// without the contact impulses that settling built up step after step, and with 40
+  /// iterations a settled salad sagged 6.7 mm while they built up again; with 100, 1.7 mm.
+  int check_solver_iterations = 100;
+  double verify_seconds = 1.0;     ///< simulated time of the stability check
+  double stable_motion_m = 0.001;  ///< the most any corner may move in the check (metres)
+  /// A check passes (no more settling) when no corner moves more than this, half the limit:
+  /// with the limit itself, 64 slices in a bowl ended at 0.997 mm, a hair inside it.
+  double check_motion_m = 0.0005;
+  int max_verify_rounds = 3;       ///< stability checks, each after a round of settling
+                                   ///< (the last one's motion is reported, limit or not)
+  double friction = 0.8;           ///< Coulomb friction (piece on piece and on the container)
+  /// Rolling (and spinning) resistance, metres: soft produce flattens where it rests, and the
+  /// contact patch resists rolling with a torque up to this x the normal force. Without it a
+  /// rounded avocado half rolled 0.5 mm a second on the flat board for three stability checks;
+  /// with 0.5 mm it rests after one.
+  double rolling_friction_m = 0.0005;
+  double linear_damping = 0.2;     ///< fraction of velocity lost per second
+  double angular_damping = 0.5;
+  double sleep_speed_m_s = 0.005;      ///< a body below this speed ...
+  double sleep_spin_rad_s = 0.15;      ///< ... and this spin for 2 s sleeps (Bullet's rule)
+  /// The layout is at rest when every body sleeps or no corner of any body's collision shape
+  /// moved more than this in the last quarter second (checked every quarter second), metres.
+  double rest_motion_m = 0.00015;
+  /// The bowl's and plate's collision mesh (container_mesh): segments around the axis and
+  /// along each profile curve (the exported mesh has 96 and 40). Its chords lie on the open
+  /// side of the exported surface: on a 26 cm bowl at most 0.6 mm above it.
+  int container_segments = 32, container_profile_samples = 12;
+  int max_redrops = 3;             ///< drops again of a piece that left the container
+  double none_radius_m = 0.2;      ///< resting radius on the floor (container type none)
+};
+
+/// What settle_pieces did.
+struct SettleResult {
+  std::vector<Placement> placements;  ///< one per body, input order; placed false: lost
+  double simulated_s = 0;             ///< simulated seconds, all rounds
+  int steps = 0;
+  bool all_asleep = false;  ///< the last round of settling came to rest (rest_motion_m) before
+                            ///< the time cap
+  /// The stability check of `placements`: how far the farthest corner of any body's collision
+  /// shape moved in verify_seconds simulated from rest in a new world (metres).
+  double stability_motion_m = 0;
+  bool stable = false;      ///< stability_motion_m <= stable_motion_m
+  int verify_rounds = 0;    ///< stability checks run (a failed one is followed by settling)
+  int redrops = 0;          ///< drops again of pieces that had left the container
+  int lost = 0;             ///< pieces still outside after max_redrops drops again
+};
+
+/// Settles `bodies` from their drop poses in `container` and checks that the result is at rest
+/// (see the file comment). Deterministic: the same bodies and options give the same placements
+/// (single-threaded Bullet, fixed order and step). Errors: a placed body without a shape or
+/// with a density <= 0 is a programming error (CUTAWAY_CHECK).
+SettleResult settle_pieces(const std::vector<SettleBody>& bodies, const Container& container,
+                           const SettleOptions& options);
+
+}  // namespace cutaway

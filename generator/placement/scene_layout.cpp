@@ -1,0 +1,490 @@
+#include "placement/scene_layout.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <tuple>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/gtx/quaternion.hpp>
+
+#include "base/constants.h"
+#include "base/random.h"
+#include "placement/container_mesh.h"
+
+namespace cutaway {
+
+namespace {
+
+constexpr double kBlocked = std::numeric_limits<double>::infinity();
+
+/// A piece's footprint: per cell of a grid anchored at the origin, the lowest and highest
+/// points of the piece's surface over that cell (metres), over cells [a0, a0 + na) x [b0, ...).
+/// Exact (up to rounding) since every triangle is clipped to every cell it overlaps.
+struct Footprint {
+  int a0 = 0, b0 = 0, na = 0, nb = 0;
+  std::vector<double> bottom, top;  // na * nb; bottom = +inf where the piece is absent
+};
+
+Footprint footprint(const std::vector<glm::dvec3>& p, const std::vector<glm::uvec3>& triangles,
+                    double cs) {
+  Footprint f;
+  glm::dvec3 lo(kBlocked), hi(-kBlocked);
+  for (const glm::dvec3& q : p) {
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+  }
+  f.a0 = static_cast<int>(std::floor(lo.x / cs));
+  f.b0 = static_cast<int>(std::floor(lo.z / cs));
+  f.na = static_cast<int>(std::floor(hi.x / cs)) - f.a0 + 1;
+  f.nb = static_cast<int>(std::floor(hi.z / cs)) - f.b0 + 1;
+  f.bottom.assign(static_cast<size_t>(f.na) * f.nb, kBlocked);
+  f.top.assign(f.bottom.size(), -kBlocked);
+  std::vector<glm::dvec3> poly, next;
+  for (const glm::uvec3& t : triangles) {
+    const glm::dvec3 a = p[t[0]], b = p[t[1]], c = p[t[2]];
+    const int a_lo = static_cast<int>(std::floor(std::min({a.x, b.x, c.x}) / cs));
+    const int a_hi = static_cast<int>(std::floor(std::max({a.x, b.x, c.x}) / cs));
+    const int b_lo = static_cast<int>(std::floor(std::min({a.z, b.z, c.z}) / cs));
+    const int b_hi = static_cast<int>(std::floor(std::max({a.z, b.z, c.z}) / cs));
+    if (a_lo == a_hi && b_lo == b_hi) {  // within one cell (most triangles): nothing to clip
+      const size_t k = static_cast<size_t>(a_lo - f.a0) * f.nb + (b_lo - f.b0);
+      f.bottom[k] = std::min({f.bottom[k], a.y, b.y, c.y});
+      f.top[k] = std::max({f.top[k], a.y, b.y, c.y});
+      continue;
+    }
+    for (int i = a_lo; i <= a_hi; ++i) {
+      for (int j = b_lo; j <= b_hi; ++j) {
+        // The part of the triangle over the cell (clipped by its four sides in x and z, y
+        // interpolated): its lowest and highest points are among the clipped vertices.
+        poly = {a, b, c};
+        const double bounds[4] = {i * cs, (i + 1) * cs, j * cs, (j + 1) * cs};
+        for (int side = 0; side < 4 && !poly.empty(); ++side) {
+          const int axis = side < 2 ? 0 : 2;
+          const double sign = side % 2 == 0 ? 1 : -1, limit = bounds[side];
+          next.clear();
+          for (size_t k = 0; k < poly.size(); ++k) {
+            const glm::dvec3& u = poly[k];
+            const glm::dvec3& v = poly[(k + 1) % poly.size()];
+            const double du = sign * (u[axis] - limit), dv = sign * (v[axis] - limit);
+            if (du >= 0) next.push_back(u);
+            if ((du >= 0) != (dv >= 0)) next.push_back(u + (v - u) * (du / (du - dv)));
+          }
+          std::swap(poly, next);
+        }
+        if (poly.empty()) continue;
+        const size_t k = static_cast<size_t>(i - f.a0) * f.nb + (j - f.b0);
+        for (const glm::dvec3& q : poly) {
+          f.bottom[k] = std::min(f.bottom[k], q.y);
+          f.top[k] = std::max(f.top[k], q.y);
+        }
+      }
+    }
+  }
+  return f;
+}
+
+/// A unit vector perpendicular to d.
+glm::dvec3 perpendicular(const glm::dvec3& d) {
+  const glm::dvec3 a = std::fabs(d.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  return glm::normalize(glm::cross(d, a));
+}
+
+/// A piece turned into its placing orientation, centred over the origin in x and z.
+struct Turned {
+  glm::dquat rotation{1, 0, 0, 0};
+  glm::dvec3 centre{0.0};       ///< subtracted from the turned vertices
+  std::vector<glm::dvec3> q;    ///< the turned, centred vertices
+  Footprint f;
+};
+
+Turned turn(const LayoutPiece& piece, const glm::dquat& rotation, double cs) {
+  Turned t;
+  t.rotation = glm::normalize(rotation);
+  t.q.resize(piece.mesh->position.size());
+  for (size_t v = 0; v < t.q.size(); ++v) {
+    t.q[v] = t.rotation * piece.mesh->position[v];
+    t.centre += t.q[v];
+  }
+  t.centre /= static_cast<double>(t.q.size());
+  t.centre.y = 0;
+  for (glm::dvec3& v : t.q) v -= t.centre;
+  t.f = footprint(t.q, piece.mesh->triangle, cs);
+  return t;
+}
+
+/// The height field of the pile over the container: cell (i, j) covers
+/// [x0 + i cs, x0 + (i + 1) cs] x [x0 + j cs, ...]; the piece's local cell (a, b) lands on
+/// (i + a, j + b).
+class HeightField {
+ public:
+  HeightField(const Container& container, const LayoutOptions& o)
+      : container_(&container), options_(&o), cs_(o.cell_m) {
+    const double radius = rest_radius(container, o.none_radius_m);
+    n_ = static_cast<int>(std::ceil(2 * radius / cs_)) + 1;
+    x0_ = -0.5 * (n_ - 1) * cs_;
+    surface_.assign(static_cast<size_t>(n_) * n_, -kBlocked);
+  }
+
+  int cells() const { return n_; }
+  /// The centre of the piece placed at cell (i, j), x and z.
+  glm::dvec2 at(int i, int j) const { return {x0_ + i * cs_, x0_ + j * cs_}; }
+  /// The cell of a point, rounded.
+  glm::ivec2 cell(double x, double z) const {
+    return {static_cast<int>(std::lround((x - x0_) / cs_)),
+            static_cast<int>(std::lround((z - x0_) / cs_))};
+  }
+
+  /// The lowest height at which piece t placed at (i, j) is above the container and the pile,
+  /// or kBlocked where a vertex is outside the resting area.
+  double rest(const Turned& t, int i, int j) const {
+    double y = -kBlocked;
+    const glm::dvec2 o = at(i, j);
+    for (const glm::dvec3& v : t.q) {
+      const auto h = rest_height(*container_, v.x + o.x, v.z + o.y, options_->none_radius_m);
+      if (!h) return kBlocked;
+      y = std::max(y, *h - v.y);
+    }
+    for (int a = 0; a < t.f.na; ++a) {
+      for (int b = 0; b < t.f.nb; ++b) {
+        const size_t k = static_cast<size_t>(a) * t.f.nb + b;
+        if (t.f.bottom[k] == kBlocked) continue;
+        const int gi = i + t.f.a0 + a, gj = j + t.f.b0 + b;
+        if (gi < 0 || gj < 0 || gi >= n_ || gj >= n_) return kBlocked;
+        y = std::max(y, surface_[static_cast<size_t>(gi) * n_ + gj] - t.f.bottom[k]);
+      }
+    }
+    return y;
+  }
+
+  /// Whether no piece lies within `gap` cells of t's footprint placed at (i, j): no cell of
+  /// the footprint's rectangle grown by `gap` is occupied (a summed-area table makes it one
+  /// lookup of four corners).
+  bool free(const Turned& t, int i, int j, int gap) {
+    if (occupied_dirty_) {
+      // occupied_[(a) * (n + 1) + b]: the occupied cells in [0, a) x [0, b).
+      occupied_.assign(static_cast<size_t>(n_ + 1) * (n_ + 1), 0);
+      for (int a = 0; a < n_; ++a) {
+        for (int b = 0; b < n_; ++b) {
+          occupied_[static_cast<size_t>(a + 1) * (n_ + 1) + b + 1] =
+              (surface_[static_cast<size_t>(a) * n_ + b] != -kBlocked) +
+              occupied_[static_cast<size_t>(a) * (n_ + 1) + b + 1] +
+              occupied_[static_cast<size_t>(a + 1) * (n_ + 1) + b] -
+              occupied_[static_cast<size_t>(a) * (n_ + 1) + b];
+        }
+      }
+      occupied_dirty_ = false;
+    }
+    const int a0 = std::clamp(i + t.f.a0 - gap, 0, n_), a1 = std::clamp(i + t.f.a0 + t.f.na + gap, 0, n_);
+    const int b0 = std::clamp(j + t.f.b0 - gap, 0, n_), b1 = std::clamp(j + t.f.b0 + t.f.nb + gap, 0, n_);
+    if (a0 >= a1 || b0 >= b1) return true;
+    const auto at = [&](int a, int b) { return occupied_[static_cast<size_t>(a) * (n_ + 1) + b]; };
+    return at(a1, b1) - at(a0, b1) - at(a1, b0) + at(a0, b0) == 0;
+  }
+
+  /// Raises the field to the top of t placed at (i, j) with its origin at height y.
+  void raise(const Turned& t, int i, int j, double y) {
+    occupied_dirty_ = true;
+    for (int a = 0; a < t.f.na; ++a) {
+      for (int b = 0; b < t.f.nb; ++b) {
+        const size_t k = static_cast<size_t>(a) * t.f.nb + b;
+        if (t.f.bottom[k] == kBlocked) continue;
+        double& s = surface_[static_cast<size_t>(i + t.f.a0 + a) * n_ + (j + t.f.b0 + b)];
+        s = std::max(s, y + t.f.top[k]);
+      }
+    }
+  }
+
+  /// Sets the cells under t placed at (i, j) back to their heights in `from` (a field of the
+  /// same container and options).
+  void restore(const HeightField& from, const Turned& t, int i, int j) {
+    occupied_dirty_ = true;
+    for (int a = 0; a < t.f.na; ++a) {
+      for (int b = 0; b < t.f.nb; ++b) {
+        const size_t k = static_cast<size_t>(a) * t.f.nb + b;
+        if (t.f.bottom[k] == kBlocked) continue;
+        const size_t c = static_cast<size_t>(i + t.f.a0 + a) * n_ + (j + t.f.b0 + b);
+        surface_[c] = from.surface_[c];
+      }
+    }
+  }
+
+  Placement placement(const Turned& t, int i, int j, double y) const {
+    const glm::dvec2 o = at(i, j);
+    return {true, t.rotation, glm::dvec3(o.x, y, o.y) - t.centre};
+  }
+
+ private:
+  const Container* container_;
+  const LayoutOptions* options_;
+  double cs_, x0_;
+  int n_;
+  std::vector<double> surface_;
+  std::vector<int32_t> occupied_;  ///< summed-area table of the occupied cells, for free()
+  bool occupied_dirty_ = true;     ///< surface_ changed since occupied_ was summed
+};
+
+/// The pile's and scatter's orientation: the largest cap towards `facing` (tilted), spun about
+/// it; a whole object upright, tilted and spun.
+glm::dquat facing_rotation(const LayoutPiece& piece, const glm::dvec3& facing,
+                           const LayoutOptions& options, Rng& rng) {
+  const glm::dvec3 up(0, 1, 0);
+  const glm::dvec3 tilt_axis =
+      glm::angleAxis(rng.uniform(0, 2 * kPi), facing) * perpendicular(facing);
+  const double tilt = glm::radians(options.tilt_deg) * rng.uniform();
+  const double spin = rng.uniform(0, 2 * kPi);
+  if (glm::length(piece.cap_normal) > 0) {
+    const glm::dvec3 target = glm::angleAxis(tilt, tilt_axis) * facing;
+    return glm::angleAxis(spin, target) * glm::rotation(glm::normalize(piece.cap_normal), target);
+  }
+  return glm::angleAxis(tilt, tilt_axis) * glm::angleAxis(spin, up);
+}
+
+/// One object's fan pieces turned for each of `headings` row directions (evenly spaced from
+/// `heading0`, radians), each turn computed once per piece, direction and pose: a row split in
+/// two reuses them.
+class FanTurns {
+ public:
+  FanTurns(const std::vector<LayoutPiece>& pieces, const LayoutOptions& options, int headings,
+           double heading0)
+      : pieces_(&pieces), options_(&options), headings_(headings), heading0_(heading0) {}
+
+  int headings() const { return headings_; }
+  /// The row direction of heading h, a horizontal unit vector.
+  glm::dvec3 direction(int h) const {
+    const double a = heading0_ + 2 * kPi * h / headings_;
+    return {std::cos(a), 0, std::sin(a)};
+  }
+  /// Piece p with its cap up (`flat`) or leaning fan_tilt_deg along direction h; a whole
+  /// object upright.
+  const Turned& get(size_t p, int h, bool flat) {
+    auto [it, added] = cache_.try_emplace({p, h, flat});
+    if (!added) return it->second;
+    const glm::dvec3 up(0, 1, 0), d = direction(h);
+    const glm::dvec3 lean =  // tilted from up towards +d
+        glm::angleAxis(glm::radians(options_->fan_tilt_deg), glm::cross(d, up)) * up;
+    const LayoutPiece& piece = (*pieces_)[p];
+    const glm::dquat r = glm::length(piece.cap_normal) > 0
+                             ? glm::rotation(glm::normalize(piece.cap_normal), flat ? up : lean)
+                             : glm::dquat(1, 0, 0, 0);
+    it->second = turn(piece, r, options_->cell_m);
+    return it->second;
+  }
+
+ private:
+  const std::vector<LayoutPiece>* pieces_;
+  const LayoutOptions* options_;
+  int headings_;
+  double heading0_;
+  std::map<std::tuple<size_t, int, bool>, Turned> cache_;
+};
+
+/// A fan row laid out in one direction: each piece turned and its centre's distance along the
+/// row from the row's middle.
+struct FanRow {
+  glm::dvec3 d{1, 0, 0};  ///< the row's direction, horizontal unit
+  std::vector<const Turned*> turned;
+  std::vector<double> along;
+};
+
+FanRow fan_row(const std::vector<LayoutPiece>& pieces, const std::vector<size_t>& row, int h,
+               const LayoutOptions& options, FanTurns& turns) {
+  FanRow f;
+  f.d = turns.direction(h);
+  for (size_t k = 0; k < row.size(); ++k) {
+    // The first piece, with none under it, lies flat: dropped leaning, it tipped over and slid
+    // away from the second. So does an end closing the row: leaning, the lowest point of its
+    // rounded side lay under the slice before it, and it rolled off the row.
+    const bool flat = k == 0 || pieces[row[k]].cut_faces < 2;
+    f.turned.push_back(&turns.get(row[k], h, flat));
+    double lo = kBlocked, hi = -kBlocked;
+    for (const glm::dvec3& v : f.turned.back()->q) {
+      lo = std::min(lo, glm::dot(v, f.d));
+      hi = std::max(hi, glm::dot(v, f.d));
+    }
+    f.along.push_back(k == 0 ? 0 : f.along.back() + options.fan_step * (hi - lo));
+  }
+  const double middle = 0.5 * f.along.back();
+  for (double& a : f.along) a -= middle;
+  return f;
+}
+
+/// Places one fan row: the pieces `row` (indices into pieces, in row order). Candidates are
+/// a random heading (one of fan_headings) and a random centre; a row keeps a gap of free
+/// ground to the rows and pieces before it, relaxed like scatter's down to none, and, where
+/// `may_overlap`, may then lie over them. Returns false (nothing placed) where no candidate fits.
+bool place_fan(const std::vector<LayoutPiece>& pieces, const std::vector<size_t>& row,
+               bool may_overlap, const LayoutOptions& options, FanTurns& turns, Rng& rng,
+               HeightField& field, std::vector<Placement>& out) {
+  std::vector<FanRow> headings(static_cast<size_t>(turns.headings()));
+  const int n = field.cells();
+  const int gap = static_cast<int>(std::ceil(options.scatter_gap_m / options.cell_m));
+  // Each candidate is tried on `trial` (the row's own pieces rest on each other), which is
+  // restored where the candidate raised it; the best one is then raised on the field.
+  struct Drop {
+    glm::ivec2 ij;
+    double y;
+  };
+  double best_score = kBlocked;
+  size_t best_heading = 0;
+  std::vector<Drop> best, drops;
+  HeightField trial = field;
+  // Gap g in cells, halving to 0; then -1: the row may lie over earlier pieces.
+  for (int g = gap; best.empty(); g = g > 0 ? g / 2 : g - 1) {
+    if (g < (may_overlap ? -1 : 0)) return false;
+    for (int attempt = 0; attempt < 4 * options.candidates; ++attempt) {
+      if (attempt >= options.candidates && !best.empty()) break;  // more only while none fits
+      const size_t h = rng.below(static_cast<uint32_t>(headings.size()));
+      if (headings[h].turned.empty())
+        headings[h] = fan_row(pieces, row, static_cast<int>(h), options, turns);
+      const FanRow& f = headings[h];
+      const glm::dvec2 c = field.at(static_cast<int>(rng.below(static_cast<uint32_t>(n))),
+                                    static_cast<int>(rng.below(static_cast<uint32_t>(n))));
+      drops.clear();
+      double score = options.centre_weight * glm::length(c) * static_cast<double>(row.size());
+      for (size_t k = 0; k < row.size(); ++k) {
+        const glm::ivec2 ij = field.cell(c.x + f.along[k] * f.d.x, c.y + f.along[k] * f.d.z);
+        // Free of the pieces before this row (the row's own pieces overlap by design).
+        const Turned& t = *f.turned[k];
+        const double y =
+            g >= 0 && !field.free(t, ij.x, ij.y, g) ? kBlocked : trial.rest(t, ij.x, ij.y);
+        if (y == kBlocked) {
+          score = kBlocked;
+          break;
+        }
+        score += y;
+        drops.push_back({ij, y + options.clearance_m});
+        trial.raise(t, ij.x, ij.y, drops.back().y);
+      }
+      for (size_t k = 0; k < drops.size(); ++k)
+        trial.restore(field, *f.turned[k], drops[k].ij.x, drops[k].ij.y);
+      if (score < best_score) {
+        best_score = score;
+        best_heading = h;
+        std::swap(best, drops);
+      }
+    }
+  }
+  const FanRow& f = headings[best_heading];
+  for (size_t k = 0; k < row.size(); ++k) {
+    field.raise(*f.turned[k], best[k].ij.x, best[k].ij.y, best[k].y);
+    out[row[k]] = field.placement(*f.turned[k], best[k].ij.x, best[k].ij.y, best[k].y);
+  }
+  return true;
+}
+
+/// Places a fan row on free ground; a row that fits nowhere (longer than the plate, or the
+/// plate crowded) is split in two shorter rows while each keeps fan_min_row pieces, and only
+/// a row that cannot be split may lie over the pieces before it. Pieces of a row that fits
+/// nowhere at all are left unplaced.
+void place_fan_rows(const std::vector<LayoutPiece>& pieces, const std::vector<size_t>& row,
+                    const LayoutOptions& options, FanTurns& turns, Rng& rng, HeightField& field,
+                    std::vector<Placement>& out) {
+  const size_t min_row = static_cast<size_t>(std::max(1, options.fan_min_row));
+  const bool splits = row.size() >= 2 * min_row;
+  if (place_fan(pieces, row, !splits, options, turns, rng, field, out) || !splits) return;
+  const auto half = row.begin() + static_cast<std::ptrdiff_t>(row.size() / 2);
+  for (const std::vector<size_t>& part :
+       {std::vector<size_t>(row.begin(), half), std::vector<size_t>(half, row.end())})
+    place_fan_rows(pieces, part, options, turns, rng, field, out);
+}
+
+}  // namespace
+
+std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
+                                     const Container& container, const LayoutOptions& given,
+                                     uint64_t seed) {
+  // Scale-aware: a container too wide for cells of cell_m gets larger cells, so that the
+  // height field keeps at most kMaxLayoutCells cells a side (a 100 m bowl would need 10^10).
+  LayoutOptions options = given;
+  options.cell_m = std::max(given.cell_m, 2 * rest_radius(container, given.none_radius_m) /
+                                              (kMaxLayoutCells - 1));
+  HeightField field(container, options);
+  const int n = field.cells();
+  const glm::dvec3 up(0, 1, 0);
+  // Halfway between up and the camera, the camera taken no lower than the horizon: one below
+  // the container would turn the caps down into it, one straight below leave no direction.
+  glm::dvec3 to_camera = glm::normalize(options.to_camera);
+  to_camera.y = std::max(0.0, to_camera.y);
+  const glm::dvec3 facing = glm::normalize(up + to_camera);
+  std::vector<Placement> out(pieces.size());
+
+  // Fan rows first, by group, each in rank order between the object's ends.
+  std::map<int, std::vector<size_t>> rows;
+  for (size_t p = 0; p < pieces.size(); ++p) {
+    if (pieces[p].arrange == Arrangement::Fan) rows[pieces[p].group].push_back(p);
+  }
+  for (auto& [group, row] : rows) {
+    std::stable_sort(row.begin(), row.end(),
+                     [&](size_t a, size_t b) { return pieces[a].rank < pieces[b].rank; });
+    // The first end starts the row (its cap a flat rest for the next slice), the other ends it.
+    std::vector<size_t> ends, slices;
+    for (size_t p : row) (pieces[p].cut_faces < 2 ? ends : slices).push_back(p);
+    row.clear();
+    if (!ends.empty()) row.push_back(ends[0]);
+    row.insert(row.end(), slices.begin(), slices.end());
+    row.insert(row.end(), ends.begin() + std::min<size_t>(1, ends.size()), ends.end());
+    Rng rng(derive_seed(seed, {~0ull, static_cast<uint64_t>(group)}));
+    FanTurns turns(pieces, options, options.fan_headings, rng.uniform(0, 2 * kPi));
+    place_fan_rows(pieces, row, options, turns, rng, field, out);
+  }
+
+  std::vector<glm::dvec2> scattered;  // where the scattered pieces went
+  const int gap = static_cast<int>(std::ceil(options.scatter_gap_m / options.cell_m));
+  for (size_t p = 0; p < pieces.size(); ++p) {
+    const LayoutPiece& piece = pieces[p];
+    if (piece.arrange == Arrangement::Fan) continue;
+    Rng rng(derive_seed(seed, {p}));
+    const Turned t = turn(piece, facing_rotation(piece, facing, options, rng), options.cell_m);
+    const bool scatter = piece.arrange == Arrangement::Scatter;
+    double best_score = kBlocked, best_y = 0;
+    int best_i = -1, best_j = -1;
+    // A position for the piece at cell (i, j), scored: pile, the lowest near the axis; scatter,
+    // with its footprint grown by `gap_cells` free, the farthest from the scattered pieces.
+    const auto consider = [&](int i, int j, int gap_cells) {
+      if (scatter && !field.free(t, i, j, gap_cells)) return;
+      const double y = field.rest(t, i, j);
+      if (y == kBlocked) return;
+      const glm::dvec2 at = field.at(i, j);
+      double score = y + options.centre_weight * glm::length(at);
+      if (scatter && !scattered.empty()) {
+        double nearest = kBlocked;
+        for (const glm::dvec2& o : scattered) nearest = std::min(nearest, glm::length(at - o));
+        score = -nearest;
+      }
+      if (score < best_score) {
+        best_score = score;
+        best_y = y;
+        best_i = i;
+        best_j = j;
+      }
+    };
+    // Scatter on a crowded board: the gap halves, then goes, before a piece is left out; with
+    // no gap, every cell on a grid of a scan step is tried after the random ones.
+    for (int g = scatter ? gap : 0; best_i < 0; g /= 2) {
+      for (int attempt = 0; attempt < 4 * options.candidates; ++attempt) {
+        if (attempt >= options.candidates && best_i >= 0) break;  // more only while none fits
+        const int i = static_cast<int>(rng.below(static_cast<uint32_t>(n)));
+        const int j = static_cast<int>(rng.below(static_cast<uint32_t>(n)));
+        consider(i, j, g);
+      }
+      if (g == 0) {
+        const int step = std::max(1, static_cast<int>(std::lround(options.scan_step_m /
+                                                                   options.cell_m)));
+        for (int i = 0; scatter && best_i < 0 && i < n; i += step)
+          for (int j = 0; j < n; j += step) consider(i, j, 0);
+        break;
+      }
+    }
+    if (best_i < 0) continue;  // not placed: the container is full
+    const double y = best_y + options.clearance_m;
+    field.raise(t, best_i, best_j, y);
+    out[p] = field.placement(t, best_i, best_j, y);
+    if (scatter) scattered.push_back(field.at(best_i, best_j));
+  }
+  return out;
+}
+
+}  // namespace cutaway

@@ -1,0 +1,709 @@
+// The template editor's server (app/edit/edit_server.h): its security rules, each with a request
+// that breaks it; the parser's verdict with line, column, field and rule; the pictures; and
+// saving: every shipped template opened and saved unchanged keeps its model bytes. Its bounds,
+// each with the request or load that broke them before: bodies too large whatever their
+// encoding, slow clients by the hundred beside variant strips, a FIFO in place of the
+// template, a file name that is not UTF-8.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <regex>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <httplib.h>
+#include <nlohmann/json.hpp>
+
+#include "app/edit/edit_server.h"
+#include "export/gltf_export.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "test_support.h"
+
+namespace cutaway {
+namespace {
+
+namespace fs = std::filesystem;
+
+using Clock = std::chrono::steady_clock;
+using namespace std::chrono_literals;
+
+/// A server on a free port for `template_path`, running on its own thread while in scope, with
+/// options as `adjust` makes them. Its pictures are stand-ins that say what they were given
+/// (the OpenGL previews have tests of their own).
+class RunningServer {
+ public:
+  explicit RunningServer(const fs::path& template_path,
+                         const std::function<void(EditServerOptions&)>& adjust = nullptr) {
+    EditServerOptions o;
+    o.template_path = template_path;
+    o.port = 0;
+    o.max_body_bytes = 1u << 20;
+    o.section_cube = 4;
+    if (adjust) adjust(o);
+    EditRenderers r;
+    r.model_png = [](const DsModel& m) { return "model:" + std::to_string(m.surfaces.size()); };
+    r.section_png = [](const CrossSection& s) {
+      return "section:" + std::to_string(s.position.size());
+    };
+    r.variants_png = [](std::vector<Outcome<CrossSection>> cuts) {
+      std::string out = "variants:";
+      for (const auto& c : cuts) out += c ? std::to_string(c->position.size()) + "," : "-,";
+      return out;
+    };
+    server_ = std::make_unique<EditServer>(o, r);
+    thread_ = std::thread([this] { server_->run(); });
+  }
+  ~RunningServer() {
+    server_->stop();
+    thread_.join();
+  }
+  int port() const { return server_->port(); }
+  /// A client that sends the server's own Host header.
+  httplib::Client client() const {
+    httplib::Client c("127.0.0.1", port());
+    c.set_read_timeout(60, 0);
+    return c;
+  }
+
+ private:
+  std::unique_ptr<EditServer> server_;
+  std::thread thread_;
+};
+
+fs::path copy_template(const std::string& name, const fs::path& dir) {
+  const fs::path to = dir / (name + ".yaml");
+  fs::copy_file(test::source_path("templates/" + name + ".yaml"), to);
+  return to;
+}
+
+/// Whether `file` (a copy of the shipped tomato) still holds the shipped bytes.
+bool untouched(const fs::path& file) {
+  return test::read_file(file) == test::read_file(test::source_path("templates/tomato.yaml"));
+}
+
+/// The HTTP status of a request's answer, or -1 when no answer came.
+int status_of(const httplib::Result& r) { return r ? r->status : -1; }
+
+/// A TCP connection to the server made by hand, for requests no HTTP client sends: slow,
+/// chunked, compressed. Closed when it goes out of scope.
+class RawConnection {
+ public:
+  /// Connects to 127.0.0.1:`port`; reads and writes wait at most `timeout`.
+  explicit RawConnection(int port, std::chrono::milliseconds timeout = 10s)
+      : fd_(::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0)) {
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(static_cast<uint16_t>(port));
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (fd_ < 0 || ::connect(fd_, reinterpret_cast<const sockaddr*>(&a), sizeof a) != 0)
+      ADD_FAILURE() << "cannot connect to port " << port << ": " << std::strerror(errno);
+    const timeval tv{static_cast<time_t>(timeout.count() / 1000),
+                     static_cast<suseconds_t>(timeout.count() % 1000 * 1000)};
+    ::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+    ::setsockopt(fd_, SOL_SOCKET, SO_SNDTIMEO, &tv, sizeof tv);
+  }
+  RawConnection(RawConnection&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
+  RawConnection(const RawConnection&) = delete;
+  RawConnection& operator=(const RawConnection&) = delete;
+  ~RawConnection() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+
+  /// Sends all of `bytes`; false when the server closed the connection or stopped reading.
+  bool send(std::string_view bytes) {
+    while (!bytes.empty()) {
+      const ssize_t n = ::send(fd_, bytes.data(), bytes.size(), MSG_NOSIGNAL);
+      if (n <= 0) return false;
+      bytes.remove_prefix(static_cast<size_t>(n));
+    }
+    return true;
+  }
+  /// What the server sends until it closes the connection; "...<still open>" when the read
+  /// timeout passed first.
+  std::string read_to_close() {
+    std::string got;
+    std::array<char, 4096> buffer;
+    for (;;) {
+      const ssize_t n = ::recv(fd_, buffer.data(), buffer.size(), 0);
+      if (n > 0) {
+        got.append(buffer.data(), static_cast<size_t>(n));
+        continue;
+      }
+      if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) got += "<still open>";
+      return got;
+    }
+  }
+
+ private:
+  int fd_;
+};
+
+/// The status of an HTTP answer read raw, or -1 when there is none.
+int raw_status(const std::string& answer) {
+  return answer.rfind("HTTP/1.1 ", 0) == 0 ? std::atoi(answer.c_str() + 9) : -1;
+}
+
+/// A request head for the server on `port`, with `headers` (each ending in CRLF) added.
+std::string request_head(int port, const std::string& line, const std::string& headers) {
+  return line + "\r\nHost: 127.0.0.1:" + std::to_string(port) + "\r\n" + headers + "\r\n";
+}
+
+TEST(EditServer, RefusesForeignHostsAndOrigins) {
+  EXPECT_EQ(request_refusal("127.0.0.1:8765", "", 8765), "");
+  EXPECT_EQ(request_refusal("localhost:8765", "http://localhost:8765", 8765), "");
+  EXPECT_NE(request_refusal("evil.example:8765", "", 8765), "");     // DNS rebinding
+  EXPECT_NE(request_refusal("127.0.0.1:9999", "", 8765), "");        // another port
+  EXPECT_NE(request_refusal("", "", 8765), "");                      // no Host at all
+  EXPECT_NE(request_refusal("127.0.0.1:8765", "http://evil.example", 8765), "");
+  EXPECT_NE(request_refusal("127.0.0.1:8765", "https://127.0.0.1:8765", 8765), "");
+
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  RunningServer server(file);
+  httplib::Client c = server.client();
+  EXPECT_EQ(status_of(c.Get("/api/template")), 200);
+  const auto rebound =
+      c.Get("/api/template", {{"Host", "evil.example:" + std::to_string(server.port())}});
+  EXPECT_EQ(status_of(rebound), 403);
+  ASSERT_TRUE(rebound);
+  EXPECT_EQ(rebound->body.find("tomato"), std::string::npos);  // nothing of the template leaks
+  EXPECT_EQ(status_of(c.Post("/api/save", {{"Origin", "http://evil.example"}}, "name: x",
+                             "text/plain")),
+            403);
+  EXPECT_TRUE(untouched(file));
+}
+
+TEST(EditServer, ServesOnlyItsOwnPageAndTemplate) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  RunningServer server(file);
+  httplib::Client c = server.client();
+  const auto page = c.Get("/");
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_NE(page->body.find("editor.js"), std::string::npos);
+  for (const char* path : {"/editor.js", "/editor.css"})
+    EXPECT_EQ(status_of(c.Get(path)), 200) << path;
+  for (const char* path : {"/../tomato.yaml", "/tomato.yaml", "/%2e%2e/%2e%2e/etc/passwd",
+                           "/api/template/../../etc/passwd", "/index.html/..", "/web/editor.js"})
+    EXPECT_EQ(status_of(c.Get(path)), 404) << path;
+  const auto t = c.Get("/api/template?file=../../etc/passwd");  // parameters name nothing
+  ASSERT_TRUE(t);
+  EXPECT_EQ(nlohmann::json::parse(t->body)["file"], "tomato.yaml");
+}
+
+// The page's libraries come from their own folders, and no request reaches past them.
+TEST(EditServer, ServesLibrariesOnlyFromTheirFolders) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path lib = dir / "lib" / "dist";
+  fs::create_directories(lib / "sub");
+  std::ofstream(lib / "index.js") << "export const x = 1;";
+  std::ofstream(lib / "sub" / "part.js") << "export const y = 2;";
+  std::ofstream(lib / ".hidden.js") << "secret";
+  std::ofstream(lib / "notes.txt") << "secret";
+  std::ofstream(dir / "lib" / "outside.js") << "secret";
+  fs::create_symlink(dir / "lib" / "outside.js", lib / "link.js");  // leads out of the folder
+  EXPECT_EQ(library_file(lib, "index.js"), fs::canonical(lib / "index.js"));
+  EXPECT_EQ(library_file(lib, "sub/part.js"), fs::canonical(lib / "sub" / "part.js"));
+  for (const char* bad : {"../outside.js", "sub/../../outside.js", "./index.js", ".hidden.js",
+                          "notes.txt", "link.js", "sub//part.js", "/etc/passwd.js", "sub",
+                          "missing.js", "a b.js", "sub/", ""})
+    EXPECT_FALSE(library_file(lib, bad)) << bad;
+
+  const fs::path file = copy_template("tomato", dir);
+  EditServerOptions o;
+  o.template_path = file;
+  o.port = 0;
+  o.libraries = {{"yaml", lib}};
+  EditServer server(o, EditRenderers{});
+  std::thread serving([&] { server.run(); });
+  httplib::Client c("127.0.0.1", server.port());
+  const auto got = c.Get("/lib/yaml/sub/part.js");
+  ASSERT_TRUE(got);
+  EXPECT_EQ(got->status, 200);
+  EXPECT_EQ(got->body, "export const y = 2;");
+  for (const char* path : {"/lib/yaml/../outside.js", "/lib/yaml/%2e%2e/outside.js",
+                           "/lib/yaml/link.js", "/lib/yaml/notes.txt", "/lib/three/index.js",
+                           "/lib/yaml/..%2foutside.js"})
+    EXPECT_EQ(status_of(c.Get(path)), 404) << path;
+  server.stop();
+  serving.join();
+}
+
+TEST(EditServer, RefusesOversizedBodies) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  RunningServer server(file, [](EditServerOptions& o) { o.max_body_bytes = 1000; });
+  httplib::Client c = server.client();
+  EXPECT_EQ(status_of(c.Post("/api/save", std::string(5000, '#'), "text/plain")), 413);
+  EXPECT_TRUE(untouched(file));
+}
+
+TEST(EditServer, SaysWhereTheTextBreaksARule) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  std::string text = test::read_file(file);
+  const nlohmann::json good = check_template_text(text, file);
+  ASSERT_TRUE(good["ok"]) << good.dump();
+  EXPECT_EQ(good["surfaces"], build_model(load_template(file.string())).surfaces.size());
+  EXPECT_LT(good["bbox_min"][1].get<double>(), good["bbox_max"][1].get<double>());
+  // The curves as fitted, in template units: the skin's profile runs from its first point
+  // (0, 3) to its last (0, 50) through more samples than points; the core's section is a circle
+  // (none given), the chambers have one loop per fold.
+  const nlohmann::json& curves = good["curves"];
+  ASSERT_EQ(curves.size(), 4u);
+  const nlohmann::json& skin = curves[0]["profile"];
+  EXPECT_GT(skin.size(), 10u);
+  EXPECT_NEAR(skin.front()[1].get<double>(), 3.0, 1e-9);
+  EXPECT_NEAR(skin.back()[1].get<double>(), 50.0, 1e-9);
+  EXPECT_EQ(curves[2]["sections"].size(), 5u);
+  EXPECT_TRUE(curves[3]["sections"].empty());
+  const size_t at = text.find("units: mm");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 9, "units: furlongs");
+  const nlohmann::json bad = check_template_text(text, file);
+  EXPECT_FALSE(bad["ok"]);
+  EXPECT_EQ(bad["file"], "tomato.yaml");
+  EXPECT_EQ(bad["field"], "units");
+  EXPECT_EQ(bad["line"].get<int>(), 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n')));
+  EXPECT_GE(bad["column"].get<int>(), 1);
+  EXPECT_NE(bad["rule"].get<std::string>(), "");
+  // Over HTTP: the same verdict; pictures and saving refuse the text with it (422), and the
+  // file on disk stays as it was.
+  RunningServer server(file);
+  httplib::Client c = server.client();
+  const auto checked = c.Post("/api/check", text, "text/plain");
+  ASSERT_TRUE(checked);
+  EXPECT_EQ(nlohmann::json::parse(checked->body), bad);
+  for (const char* path : {"/api/model.png", "/api/section.png?y=30", "/api/save"}) {
+    const auto r = c.Post(path, text, "text/plain");
+    ASSERT_TRUE(r) << path;
+    EXPECT_EQ(r->status, 422) << path;
+    EXPECT_EQ(nlohmann::json::parse(r->body)["field"], "units") << path;
+  }
+  EXPECT_TRUE(untouched(file));
+}
+
+TEST(EditServer, DrawsTheModelAndACutAtAHeight) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  const std::string text = test::read_file(file);
+  RunningServer server(file);
+  httplib::Client c = server.client();
+  const auto model = c.Post("/api/model.png", text, "text/plain");
+  ASSERT_TRUE(model);
+  EXPECT_EQ(model->status, 200);
+  EXPECT_EQ(model->body,
+            "model:" + std::to_string(build_model(load_template(file.string())).surfaces.size()));
+  const auto cut = c.Post("/api/section.png?y=26", text, "text/plain");
+  ASSERT_TRUE(cut);
+  EXPECT_EQ(cut->status, 200);
+  EXPECT_EQ(cut->body.rfind("section:", 0), 0u);
+  EXPECT_NE(cut->body, "section:0");
+  const auto coarse = c.Post("/api/section.png?y=26&coarse=1", text, "text/plain");
+  ASSERT_TRUE(coarse);
+  EXPECT_EQ(coarse->status, 200);
+  EXPECT_NE(coarse->body, "section:0");
+  EXPECT_EQ(status_of(c.Post("/api/section.png?y=5000", text, "text/plain")), 422);  // misses
+  EXPECT_EQ(status_of(c.Post("/api/section.png?y=up", text, "text/plain")), 400);
+  // The variants' strip: four cuts (seeds 1..4), each a real section; a bad count is refused.
+  const auto variants = c.Post("/api/variants.png", text, "text/plain");
+  ASSERT_TRUE(variants);
+  EXPECT_EQ(variants->status, 200);
+  EXPECT_EQ(std::count(variants->body.begin(), variants->body.end(), ','), 4);
+  EXPECT_EQ(variants->body.find("-,"), std::string::npos) << variants->body;
+  EXPECT_EQ(status_of(c.Post("/api/variants.png?count=9", text, "text/plain")), 400);
+  // The 3D view's model: the same bytes as `cutaway model` writes.
+  const auto glb = c.Post("/api/model.glb", text, "text/plain");
+  ASSERT_TRUE(glb);
+  EXPECT_EQ(glb->status, 200);
+  EXPECT_EQ(glb->body, model_to_glb(build_model(load_template(file.string())), GltfModelOptions{}));
+}
+
+// Every shipped template, opened and saved unchanged through the server, builds the same model
+// bytes; a new template (no file yet) can be saved, and a saved edit is what is on disk.
+TEST(EditServer, OpeningAndSavingEveryShippedTemplateKeepsItsModel) {
+  const fs::path dir = test::fresh_dir("edit");
+  // The whole folder: `mesh` surfaces name their PLY files beside the template.
+  fs::copy(test::source_path("templates"), dir);
+  for (const auto& entry : fs::directory_iterator(test::source_path("templates"))) {
+    if (entry.path().extension() != ".yaml") continue;
+    SCOPED_TRACE(entry.path().filename().string());
+    const fs::path file = dir / entry.path().filename();
+    const std::string before = model_to_glb(build_model(load_template(file.string())), {});
+    RunningServer server(file);
+    httplib::Client c = server.client();
+    const auto opened = c.Get("/api/template");
+    ASSERT_TRUE(opened);
+    const nlohmann::json doc = nlohmann::json::parse(opened->body);
+    ASSERT_TRUE(doc["exists"]);
+    const auto saved = c.Post("/api/save", doc["text"].get<std::string>(), "text/plain");
+    ASSERT_TRUE(saved);
+    ASSERT_EQ(saved->status, 200) << saved->body;
+    EXPECT_EQ(test::read_file(file), test::read_file(entry.path()));
+    EXPECT_EQ(model_to_glb(build_model(load_template(file.string())), {}), before);
+  }
+  const fs::path fresh = dir / "new-fruit.yaml";
+  RunningServer server(fresh);
+  httplib::Client c = server.client();
+  const auto opened = c.Get("/api/template");
+  ASSERT_TRUE(opened);
+  EXPECT_FALSE(nlohmann::json::parse(opened->body)["exists"]);
+  std::string text = test::read_file(test::source_path("templates/tomato.yaml"));
+  text.replace(text.find("name: tomato"), 12, "name: new-fruit");
+  const auto saved = c.Post("/api/save", text, "text/plain");
+  ASSERT_TRUE(saved);
+  EXPECT_EQ(saved->status, 200) << saved->body;
+  EXPECT_EQ(test::read_file(fresh), text);
+}
+
+TEST(EditServer, ATakenPortIsAClearError) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  RunningServer first(file);
+  EditServerOptions o;
+  o.template_path = file;
+  o.port = first.port();
+  try {
+    EditServer second(o, EditRenderers{});
+    ADD_FAILURE() << "a second server bound the same port";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("is taken; pass another with --port"), std::string::npos)
+        << e.what();
+  }
+}
+
+
+// A chunked body is bounded as one with a Content-Length: past the limit the server answers 413
+// and stops reading (600 MB were once taken in); a small chunked body is served.
+TEST(EditServer, BoundsChunkedBodies) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  constexpr size_t kLimit = 64u << 10;
+  RunningServer server(file, [](EditServerOptions& o) { o.max_body_bytes = kLimit; });
+  RawConnection big(server.port());
+  ASSERT_TRUE(big.send(request_head(server.port(), "POST /api/check HTTP/1.1",
+                                    "Transfer-Encoding: chunked\r\n")));
+  // A sender offers 256 MiB in 64 KiB chunks; the server's answer must come long before.
+  std::atomic<size_t> sent{0};
+  std::thread sender([&] {
+    const std::string chunk = "10000\r\n" + std::string(0x10000, 'a') + "\r\n";
+    for (int k = 0; k < 4096 && big.send(chunk); ++k) sent += chunk.size();
+  });
+  const std::string answer = big.read_to_close();
+  sender.join();
+  EXPECT_EQ(raw_status(answer), 413) << answer.substr(0, 300);
+  EXPECT_NE(answer.find("limited to 65536 bytes"), std::string::npos) << answer.substr(0, 300);
+  EXPECT_LT(sent.load(), size_t{64} << 20);  // the server stopped reading near the limit
+
+  const std::string text = "format: cutaway-template/1\nname: x\n";
+  RawConnection small(server.port());
+  ASSERT_TRUE(small.send(request_head(server.port(), "POST /api/check HTTP/1.1",
+                                      "Transfer-Encoding: chunked\r\nConnection: close\r\n")));
+  char size[16];
+  std::snprintf(size, sizeof size, "%zx\r\n", text.size());
+  ASSERT_TRUE(small.send(size + text + "\r\n0\r\n\r\n"));
+  const std::string verdict = small.read_to_close();
+  EXPECT_EQ(raw_status(verdict), 200) << verdict;
+  EXPECT_NE(verdict.find("\"ok\":false"), std::string::npos) << verdict;  // read, then checked
+}
+
+// Bodies the page never sends are refused from their head, before any of them is read:
+// compressed ones (a 305 KB gzip body once inflated to 300 MiB), POSTs without a length, other
+// methods; the connection closes after the answer.
+TEST(EditServer, RefusesBodiesItCannotBound) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  RunningServer server(file);
+  const auto answer = [&](const std::string& line, const std::string& headers,
+                          const std::string& body) {
+    RawConnection c(server.port());
+    c.send(request_head(server.port(), line, headers) + body);
+    return c.read_to_close();
+  };
+  const std::string gzip_bytes("\x1f\x8b\x08\x00\x00\x00\x00\x00\x00\x03", 10);
+  EXPECT_EQ(raw_status(answer("POST /api/check HTTP/1.1",
+                              "Content-Encoding: gzip\r\nContent-Length: 10\r\n", gzip_bytes)),
+            415);
+  EXPECT_EQ(raw_status(answer("POST /api/save HTTP/1.1", "Content-Encoding: br\r\nContent-Length: 10\r\n",
+                              gzip_bytes)),
+            415);
+  EXPECT_EQ(raw_status(answer("POST /api/check HTTP/1.1",
+                              "Transfer-Encoding: gzip, chunked\r\n", "a\r\n" + gzip_bytes)),
+            415);
+  EXPECT_EQ(raw_status(answer("POST /api/check HTTP/1.1", "", "name: x")), 411);
+  EXPECT_EQ(raw_status(answer("POST /api/check HTTP/1.1", "Content-Length: 12x\r\n", "")), 400);
+  EXPECT_EQ(raw_status(answer("PUT /api/save HTTP/1.1", "Content-Length: 7\r\n", "name: x")), 405);
+  EXPECT_EQ(raw_status(answer("GET / HTTP/1.1", "Content-Length: 7\r\n", "name: x")), 400);
+  const std::string over = answer("POST /api/save HTTP/1.1", "Content-Length: 999999999999\r\n", "");
+  EXPECT_EQ(raw_status(over), 413) << over;
+  // The answer says it closes the connection, once, whether or not the client asked to.
+  const auto closes = [](const std::string& a) {
+    const std::string head = a.substr(0, a.find("\r\n\r\n"));
+    size_t n = 0;
+    for (size_t at = head.find("Connection: close"); at != std::string::npos;
+         at = head.find("Connection: close", at + 1))
+      ++n;
+    return n;
+  };
+  EXPECT_EQ(closes(over), 1u) << over;
+  const std::string asked =
+      answer("POST /api/check HTTP/1.1",
+             "Content-Encoding: gzip\r\nContent-Length: 10\r\nConnection: close\r\n", gzip_bytes);
+  EXPECT_EQ(raw_status(asked), 415) << asked;
+  EXPECT_EQ(closes(asked), 1u) << asked;
+  EXPECT_TRUE(untouched(file));
+}
+
+// 200 clients that send their heads a line at a time (slowloris) and eight strips of variants
+// at once do not delay checks: each is answered in under a second, the slow connections are
+// closed at the request timeout, and only one strip is made at a time (the older requests are
+// answered 503).
+TEST(EditServer, AnswersChecksBesideSlowClientsAndVariants) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  const std::string text = test::read_file(file);
+  constexpr auto kTimeout = 6s;  // time enough for the checks under load, and not much more
+  RunningServer server(file, [&](EditServerOptions& o) {
+    o.request_timeout = kTimeout;
+    o.variant_cube = 4;
+  });
+  const int port = server.port();
+
+  const Clock::time_point opened = Clock::now();
+  std::vector<RawConnection> slow;
+  for (int k = 0; k < 200; ++k) {
+    slow.emplace_back(port, kTimeout + 3s);
+    ASSERT_TRUE(slow.back().send("GET / HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) +
+                                 "\r\n"));
+  }
+  std::vector<int> variants_status(8, 0);
+  std::vector<Clock::time_point> variants_answered(8);
+  std::vector<std::thread> variants;
+  for (size_t k = 0; k < variants_status.size(); ++k) {
+    variants.emplace_back([&, k] {
+      httplib::Client c = server.client();
+      variants_status[k] = status_of(c.Post("/api/variants.png?count=8", text, "text/plain"));
+      variants_answered[k] = Clock::now();
+    });
+  }
+  httplib::Client c = server.client();
+  const Clock::time_point first_check = Clock::now() + 300ms;
+  for (int k = 0; k < 5; ++k) {
+    std::this_thread::sleep_for(300ms);
+    for (RawConnection& s : slow) s.send("X-Slow: " + std::to_string(k) + "\r\n");
+    // New text each time, as the page sends: each check builds its model.
+    const std::string edited = text + "# edit " + std::to_string(k) + "\n";
+    const Clock::time_point t0 = Clock::now();
+    const auto checked = c.Post("/api/check", edited, "text/plain");
+    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    ASSERT_TRUE(checked) << "check " << k;
+    EXPECT_EQ(checked->status, 200);
+    EXPECT_TRUE(nlohmann::json::parse(checked->body)["ok"]) << checked->body;
+    EXPECT_LT(seconds, 1.0) << "check " << k;
+  }
+  // The checks ran while the slow connections were held; then the server closes each of them
+  // at its request timeout.
+  EXPECT_LT(Clock::now(), opened + kTimeout);
+  for (RawConnection& s : slow) {
+    const std::string got = s.read_to_close();
+    if (got.find("<still open>") != std::string::npos) {
+      ADD_FAILURE() << "a slow connection is still open: " << got;
+      break;
+    }
+  }
+  EXPECT_LT(Clock::now(), opened + kTimeout + 3s);
+  for (std::thread& t : variants) t.join();
+  // A strip was being made while the checks were answered.
+  EXPECT_GT(*std::max_element(variants_answered.begin(), variants_answered.end()), first_check);
+  EXPECT_GE(std::count(variants_status.begin(), variants_status.end(), 200), 1);
+  for (const int status : variants_status) EXPECT_TRUE(status == 200 || status == 503) << status;
+}
+
+// Connections over the bound are answered 503 at once; once one closes, another is served.
+TEST(EditServer, TurnsAwayConnectionsOverTheBound) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  RunningServer server(file, [](EditServerOptions& o) { o.max_connections = 3; });
+  std::vector<RawConnection> held;
+  for (int k = 0; k < 3; ++k) held.emplace_back(server.port());
+  RawConnection over(server.port());
+  over.send(request_head(server.port(), "GET /api/template HTTP/1.1", ""));
+  const std::string refused = over.read_to_close();
+  EXPECT_EQ(raw_status(refused), 503) << refused;
+  held.pop_back();
+  int status = -1;
+  for (const Clock::time_point until = Clock::now() + 3s; status != 200 && Clock::now() < until;) {
+    std::this_thread::sleep_for(50ms);
+    status = status_of(server.client().Get("/api/template"));
+  }
+  EXPECT_EQ(status, 200);
+}
+
+// A FIFO in place of the template is refused at once, without opening it for a blocking read
+// (it once hung every request behind it); other requests go on, and saving does not write
+// through it.
+TEST(EditServer, RefusesATemplateThatIsNotARegularFile) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path fifo = dir / "fifo.yaml";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string text = test::read_file(test::source_path("templates/tomato.yaml"));
+  RunningServer server(fifo);
+  httplib::Client c = server.client();
+  c.set_read_timeout(1, 0);
+  const auto opened = c.Get("/api/template");
+  ASSERT_TRUE(opened);
+  EXPECT_EQ(opened->status, 500);
+  const nlohmann::json refusal = nlohmann::json::parse(opened->body);
+  EXPECT_NE(refusal["message"].get<std::string>().find("not a regular file"), std::string::npos)
+      << opened->body;
+  EXPECT_EQ(status_of(c.Post("/api/check", text, "text/plain")), 200);
+  const auto saved = c.Post("/api/save", text, "text/plain");
+  ASSERT_TRUE(saved);
+  EXPECT_EQ(saved->status, 500) << saved->body;
+  EXPECT_NE(saved->body.find("not a regular file"), std::string::npos) << saved->body;
+  EXPECT_TRUE(fs::is_fifo(fifo));
+}
+
+/// `cutaway edit TEMPLATE --port 0` started in the background, its output in `log`.
+pid_t start_editor(const fs::path& template_path, const fs::path& log) {
+  std::vector<std::string> words{CUTAWAY_BINARY, "edit", template_path.string(), "--port", "0"};
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  const std::string log_path = log.string();
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    // Only async-signal-safe calls between fork and exec.
+    sigset_t none;
+    sigemptyset(&none);
+    ::sigprocmask(SIG_SETMASK, &none, nullptr);
+    const int out = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int null = ::open("/dev/null", O_RDONLY);
+    ::dup2(null, 0);
+    ::dup2(out, 1);
+    ::dup2(out, 2);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+/// The port the editor printed in `log`, waiting for it up to 10 s; 0 when none came.
+int printed_port(const fs::path& log) {
+  const std::regex address(R"(127\.0\.0\.1:(\d+)/)");
+  for (const Clock::time_point until = Clock::now() + 10s; Clock::now() < until;) {
+    std::smatch m;
+    const std::string text = test::read_file(log);
+    if (std::regex_search(text, m, address)) return std::stoi(m[1]);
+    std::this_thread::sleep_for(20ms);
+  }
+  return 0;
+}
+
+/// Whether the child `pid` ended within `limit`, its wait status in *status (reaped).
+bool ends_within(pid_t pid, std::chrono::milliseconds limit, int* status) {
+  for (const Clock::time_point until = Clock::now() + limit; Clock::now() < until;) {
+    if (::waitpid(pid, status, WNOHANG) == pid) return true;
+    std::this_thread::sleep_for(20ms);
+  }
+  return false;
+}
+
+// The command with a FIFO for its template: the page's first request is answered (an error)
+// within a second, and SIGTERM stops the process (once it could not), even while a slow
+// client holds a connection.
+TEST(EditServer, StopsOnSigtermWithAFifoTemplate) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path fifo = dir / "fifo.yaml";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const fs::path log = dir / "edit.log";
+  const pid_t pid = start_editor(fifo, log);
+  ASSERT_GT(pid, 0);
+  const int port = printed_port(log);
+  int status = 0;
+  if (port == 0) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+    FAIL() << "no address printed:\n" << test::read_file(log);
+  }
+  httplib::Client c("127.0.0.1", port);
+  c.set_read_timeout(1, 0);
+  EXPECT_EQ(status_of(c.Get("/api/template")), 500);
+  RawConnection slow(port);
+  slow.send("GET / HTTP/1.1\r\n");
+  ASSERT_EQ(::kill(pid, SIGTERM), 0);
+  const bool ended = ends_within(pid, 5s, &status);
+  if (!ended) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+  }
+  EXPECT_TRUE(ended) << test::read_file(log);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status << test::read_file(log);
+}
+
+// A template file whose name is not UTF-8: every answer is JSON (the byte becomes U+FFFD),
+// where it once was a 500 with an empty body; saving answers 200 and writes the text once.
+TEST(EditServer, ServesAFileNameThatIsNotUtf8) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = dir / "tom\xff" "ato.yaml";
+  fs::copy_file(test::source_path("templates/tomato.yaml"), file);
+  RunningServer server(file);
+  httplib::Client c = server.client();
+  const auto opened = c.Get("/api/template");
+  ASSERT_TRUE(opened);
+  ASSERT_EQ(opened->status, 200) << opened->body;
+  const nlohmann::json doc = nlohmann::json::parse(opened->body);
+  EXPECT_EQ(doc["file"], "tom\xef\xbf\xbd" "ato.yaml");
+  std::string text = doc["text"].get<std::string>();
+  const auto bad = c.Post("/api/check", "units: furlongs\n", "text/plain");
+  ASSERT_TRUE(bad);
+  EXPECT_EQ(bad->status, 200);
+  EXPECT_EQ(nlohmann::json::parse(bad->body)["file"], "tom\xef\xbf\xbd" "ato.yaml");
+  text += "# saved\n";
+  const auto saved = c.Post("/api/save", text, "text/plain");
+  ASSERT_TRUE(saved);
+  EXPECT_EQ(saved->status, 200) << saved->body;
+  EXPECT_TRUE(nlohmann::json::parse(saved->body)["ok"]);
+  EXPECT_EQ(test::read_file(file), text);
+}
+
+// A save that cannot be written answers an error and leaves what was there.
+TEST(EditServer, ASaveThatFailsWritesNothing) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path folder = dir / "folder.yaml";  // a folder where the template should be
+  fs::create_directory(folder);
+  const std::string text = test::read_file(test::source_path("templates/tomato.yaml"));
+  RunningServer server(folder);
+  const auto saved = server.client().Post("/api/save", text, "text/plain");
+  ASSERT_TRUE(saved);
+  EXPECT_EQ(saved->status, 500);
+  EXPECT_NE(nlohmann::json::parse(saved->body)["message"].get<std::string>().find("is a directory"),
+            std::string::npos)
+      << saved->body;
+  EXPECT_TRUE(fs::is_directory(folder));
+  EXPECT_TRUE(fs::is_empty(folder));
+  EXPECT_EQ(test::files_in(dir), std::vector<std::string>{});
+}
+
+}  // namespace
+}  // namespace cutaway

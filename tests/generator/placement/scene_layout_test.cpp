@@ -1,0 +1,196 @@
+// Settled scenes (doc/algorithms.md §4) checked independently of the physics that makes them:
+// no piece cuts into another or into the container deeper than the stated tolerance (CGAL:
+// surface intersection, then the depth of each vertex of one inside the other), every piece
+// rests on something (moved 4 mm straight down it would hit the container or another piece),
+// and a bowl of 60 pieces forms a pile that stays put when simulated again.
+#include <limits>
+#include <map>
+#include <tuple>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Polygon_mesh_processing/intersection.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/Surface_mesh.h>
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "io/scene_parser.h"
+#include "placement/container_mesh.h"
+#include "scene/scene_builder.h"
+#include "test_support.h"
+
+namespace cutaway {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Mesh = CGAL::Surface_mesh<K::Point_3>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+/// The instance's mesh in the scene frame, vertices welded by exact position, moved by `shift`.
+Mesh placed_mesh(const SceneAssets& assets, const AssetInstance& inst,
+                 glm::dvec3 shift = glm::dvec3(0.0)) {
+  const AssetMesh& m = assets.meshes[inst.mesh];
+  Mesh out;
+  std::map<std::tuple<double, double, double>, Mesh::Vertex_index> welded;
+  std::vector<Mesh::Vertex_index> id(m.position.size());
+  for (size_t i = 0; i < m.position.size(); ++i) {
+    const glm::dvec3 p = inst.translation + inst.rotation * m.position[i] + shift;
+    auto [it, added] = welded.emplace(std::make_tuple(p.x, p.y, p.z), Mesh::Vertex_index());
+    if (added) it->second = out.add_vertex(K::Point_3(p.x, p.y, p.z));
+    id[i] = it->second;
+  }
+  for (const glm::uvec3& t : m.triangle) {
+    if (id[t[0]] == id[t[1]] || id[t[1]] == id[t[2]] || id[t[0]] == id[t[2]]) continue;
+    out.add_face(id[t[0]], id[t[1]], id[t[2]]);
+  }
+  return out;
+}
+
+/// Pieces may touch within this: Bullet keeps bodies apart up to its solver's slop, and a
+/// collision hull encloses its piece only to within its margin (physics_settle.h).
+constexpr double kPenetrationTolerance_m = 0.0005;
+
+/// How deep `a` reaches into the closed mesh `b`: the largest distance to b's surface of a
+/// vertex of a inside b (0 if none). Metres.
+double depth_inside(const Mesh& a, const Mesh& b) {
+  using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+  Tree tree(faces(b).first, faces(b).second, b);
+  tree.accelerate_distance_queries();
+  const CGAL::Side_of_triangle_mesh<Mesh, K> side(tree);
+  double deepest = 0;
+  for (const auto v : a.vertices()) {
+    if (side(a.point(v)) != CGAL::ON_BOUNDED_SIDE) continue;
+    deepest = std::max(deepest, std::sqrt(CGAL::to_double(tree.squared_distance(a.point(v)))));
+  }
+  return deepest;
+}
+
+/// Whether piece `a` (pieces[a], instance a + 1 of `assets`), moved by `offset` (metres),
+/// intersects the container or another piece.
+bool touches(const SceneAssets& assets, size_t a, const glm::dvec3& offset, const Mesh& container,
+             const std::vector<Mesh>& pieces) {
+  const Mesh moved = placed_mesh(assets, assets.instances[a + 1], offset);
+  if (PMP::do_intersect(moved, container)) return true;
+  for (size_t b = 0; b < pieces.size(); ++b)
+    if (b != a && PMP::do_intersect(moved, pieces[b],
+                                    CGAL::parameters::do_overlap_test_of_bounded_sides(true),
+                                    CGAL::parameters::do_overlap_test_of_bounded_sides(true)))
+      return true;
+  return false;
+}
+
+/// The unit direction from piece `a`'s vertex nearest to another piece or the container to
+/// that nearest point, when it points down (zero otherwise, or when nothing is near).
+glm::dvec3 nearest_support_below(const std::vector<Mesh>& pieces, size_t a, const Mesh& container) {
+  using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+  double nearest = std::numeric_limits<double>::infinity();
+  glm::dvec3 direction(0.0);
+  for (size_t b = 0; b <= pieces.size(); ++b) {
+    if (b == a) continue;
+    const Mesh& other = b < pieces.size() ? pieces[b] : container;
+    Tree tree(faces(other).first, faces(other).second, other);
+    tree.accelerate_distance_queries();
+    for (const auto v : pieces[a].vertices()) {
+      const K::Point_3 p = pieces[a].point(v), q = tree.closest_point(p);
+      const double d = std::sqrt(CGAL::to_double(CGAL::squared_distance(p, q)));
+      if (d < nearest && d > 0) {
+        nearest = d;
+        direction = glm::dvec3(CGAL::to_double(q.x() - p.x()), CGAL::to_double(q.y() - p.y()),
+                               CGAL::to_double(q.z() - p.z())) / d;
+      }
+    }
+  }
+  return direction.y < 0 ? direction : glm::dvec3(0.0);
+}
+
+/// The placed pieces of `assets` (its first instance the container), checked: closed; no
+/// two pieces, and no piece and the container, overlap deeper than kPenetrationTolerance_m;
+/// each piece, 4 mm lower, would hit the container or another piece.
+std::vector<Mesh> check_resting_pieces(const SceneAssets& assets) {
+  const Mesh container = placed_mesh(assets, assets.instances.front());
+  std::vector<Mesh> pieces;
+  for (size_t k = 1; k < assets.instances.size(); ++k) {
+    pieces.push_back(placed_mesh(assets, assets.instances[k]));
+    EXPECT_TRUE(CGAL::is_closed(pieces.back())) << assets.instances[k].name;
+  }
+  for (size_t a = 0; a < pieces.size(); ++a) {
+    const std::string& name_a = assets.instances[a + 1].name;
+    if (PMP::do_intersect(pieces[a], container)) {
+      EXPECT_LE(depth_inside(pieces[a], container), kPenetrationTolerance_m)
+          << name_a << " cuts into the container";
+    }
+    for (size_t b = a + 1; b < pieces.size(); ++b) {
+      if (!PMP::do_intersect(pieces[a], pieces[b],
+                             CGAL::parameters::do_overlap_test_of_bounded_sides(true),
+                             CGAL::parameters::do_overlap_test_of_bounded_sides(true)))
+        continue;
+      EXPECT_LE(std::max(depth_inside(pieces[a], pieces[b]), depth_inside(pieces[b], pieces[a])),
+                kPenetrationTolerance_m)
+          << name_a << " and " << assets.instances[b + 1].name;
+    }
+  }
+  for (size_t a = 0; a < pieces.size(); ++a) {
+    // Resting: 4 mm lower it would hit the container or another piece; or, leaning on a
+    // slope (where a vertical drop slides past the hull standing proud of the mesh), 4 mm
+    // towards the nearest point of what lies below it.
+    bool hits = touches(assets, a, glm::dvec3(0, -0.004, 0), container, pieces);
+    if (!hits) {
+      const glm::dvec3 towards = nearest_support_below(pieces, a, container);
+      hits = glm::length(towards) > 0 && touches(assets, a, 0.004 * towards, container, pieces);
+    }
+    EXPECT_TRUE(hits) << assets.instances[a + 1].name << " floats";
+  }
+  return pieces;
+}
+
+TEST(SceneLayout, PiecesRestWithoutInterpenetrating) {
+  const Scene scene = load_scene(test::source_path("tests/data/scenes/tiny.yaml").string());
+  SceneStats stats;
+  const SceneAssets assets = test::build_settled_scene(scene, CapColours::Texture, &stats);
+  ASSERT_GE(stats.placed, 7);
+  ASSERT_EQ(assets.instances.front().name, "bowl");
+  check_resting_pieces(assets);
+}
+
+TEST(SceneLayout, SixtyPiecesInABowlFormAStablePile) {
+  // 4 cucumbers in 10 mm slices: 64 pieces, each 10 mm thick, in a 200 mm bowl.
+  const Scene scene = parse_scene_and_templates(R"(format: cutaway-scene/1
+name: pile
+seed: 3
+container: {type: bowl, diameter: 200, height: 70}
+items:
+  - template: cucumber
+    count: 4
+    cut: {type: slices, thickness: 10}
+)", test::source_path("scenes/pile.yaml").string());
+  // Every piece placed, none lost, and the stability check: re-simulated for 1 s in a new
+  // world, no corner moves 1 mm.
+  SceneStats stats;
+  const SceneAssets assets = test::build_settled_scene(scene, CapColours::Vertex, &stats);
+  ASSERT_GE(stats.pieces, 60);
+  const std::vector<Mesh> pieces = check_resting_pieces(assets);
+  // Resting on others: the lowest point well above the bowl's surface under it. The pile: its
+  // top at least two slice thicknesses above the bowl's floor.
+  const double floor = *rest_height(scene.container, 0, 0, 0);
+  int on_others = 0;
+  double top = floor;
+  for (const Mesh& m : pieces) {
+    K::Point_3 low = m.point(*m.vertices().begin());
+    for (const auto v : m.vertices()) {
+      if (m.point(v).y() < low.y()) low = m.point(v);
+      top = std::max(top, m.point(v).y());
+    }
+    const auto under = rest_height(scene.container, low.x(), low.z(), 0);
+    if (under && low.y() > *under + 0.003) ++on_others;
+  }
+  EXPECT_GE(on_others, 10);
+  EXPECT_GE(top - floor, 2 * 0.010);
+}
+
+}  // namespace
+}  // namespace cutaway
