@@ -155,22 +155,24 @@ void attach_depth_buffer(const OffscreenTarget& target, const GlContext& context
                              context.description());
 }
 
-}  // namespace
-
-Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions& options) {
-  const glm::ivec2 size = check_input(assets, options);
-
-  // Every instanced mesh once, in one vertex and one index buffer (indices already offset),
-  // and the draws of its primitives.
+/// Every instanced mesh once, in one vertex and one index buffer (indices already offset), and
+/// the draws of its primitives.
+struct SceneGeometry {
   std::vector<SceneVertex> vertices;
   std::vector<uint32_t> indices;
-  std::vector<std::vector<MeshDraw>> draws(assets.meshes.size());  // empty: not uploaded
+  std::vector<std::vector<MeshDraw>> draws;  // per mesh; empty: not uploaded
+};
+
+/// The geometry of the meshes that some instance of `assets` shows and that have triangles.
+SceneGeometry scene_geometry(const SceneAssets& assets) {
+  SceneGeometry g;
+  g.draws.resize(assets.meshes.size());
   std::vector<bool> used(assets.meshes.size(), false);
   for (const AssetInstance& inst : assets.instances) used[static_cast<size_t>(inst.mesh)] = true;
   for (size_t m = 0; m < assets.meshes.size(); ++m) {
     const AssetMesh& mesh = assets.meshes[m];
     if (!used[m] || mesh.triangle.empty()) continue;
-    const auto base = static_cast<uint32_t>(vertices.size());
+    const auto base = static_cast<uint32_t>(g.vertices.size());
     for (size_t v = 0; v < mesh.position.size(); ++v) {
       SceneVertex sv{};
       for (int i = 0; i < 3; ++i) {
@@ -180,19 +182,120 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
       }
       if (!mesh.uv.empty())
         for (int i = 0; i < 2; ++i) sv.uv[i] = static_cast<float>(mesh.uv[v][i]);
-      vertices.push_back(sv);
+      g.vertices.push_back(sv);
     }
-    draws[m] = mesh_draws(assets, mesh, indices.size());
+    g.draws[m] = mesh_draws(assets, mesh, g.indices.size());
     for (const glm::uvec3& t : mesh.triangle)
-      indices.insert(indices.end(), {base + t.x, base + t.y, base + t.z});
+      g.indices.insert(g.indices.end(), {base + t.x, base + t.y, base + t.z});
   }
+  return g;
+}
+
+/// Each base colour texture that some draw of `draws` samples, uploaded once
+/// (upload_base_colour()); per texture of `assets`, its id (0: not uploaded).
+std::vector<GLuint> upload_base_colours(const SceneAssets& assets,
+                                        const std::vector<std::vector<MeshDraw>>& draws,
+                                        const GlContext& context) {
+  std::vector<GLuint> textures(assets.textures.size(), 0);
+  for (const std::vector<MeshDraw>& list : draws)
+    for (const MeshDraw& draw : list) {
+      if (draw.texture < 0) continue;
+      const auto t = static_cast<size_t>(draw.texture);
+      if (textures[t] == 0) textures[t] = upload_base_colour(assets.textures[t], t, context);
+    }
+  return textures;
+}
+
+/// Sets the uniforms of `program` (in use) that hold for the whole scene: the lights in the
+/// view frame (the documented mapping: scale = colour * (lux / 2049) * exposure), the view's up,
+/// the ambient scale and the projection.
+void set_scene_uniforms(const GlProgram& program, const SceneAssets& assets,
+                        const glm::dmat4& view, const glm::mat4& clip_from_view,
+                        double exposure) {
+  const glm::dmat3 view_rotation(view);
+  std::vector<float> light_vector(4 * kMaxLights, 0.0f), light_scale(3 * kMaxLights, 0.0f);
+  for (size_t i = 0; i < assets.lights.size(); ++i) {
+    const AssetLight& light = assets.lights[i];
+    glm::dvec4 v;
+    if (light.type == LightType::Directional)
+      v = glm::dvec4(view_rotation * -glm::normalize(light.direction), 0.0);
+    else
+      v = glm::dvec4(glm::dvec3(view * glm::dvec4(light.position, 1.0)), 1.0);
+    const glm::dvec3 scale = light.colour * (light.intensity / kReferenceLux * exposure);
+    for (int k = 0; k < 4; ++k) light_vector[4 * i + k] = static_cast<float>(v[k]);
+    for (int k = 0; k < 3; ++k) light_scale[3 * i + k] = static_cast<float>(scale[k]);
+  }
+  glUniform1i(program.uniform("light_count"), static_cast<GLint>(assets.lights.size()));
+  glUniform4fv(program.uniform("light_vector"), kMaxLights, light_vector.data());
+  glUniform3fv(program.uniform("light_scale"), kMaxLights, light_scale.data());
+  const glm::vec3 up_view(view_rotation * glm::dvec3(0, 1, 0));
+  glUniform3fv(program.uniform("up_view"), 1, glm::value_ptr(up_view));
+  glUniform1f(program.uniform("ambient_scale"), static_cast<float>(exposure));
+  glUniformMatrix4fv(program.uniform("clip_from_view"), 1, GL_FALSE,
+                     glm::value_ptr(clip_from_view));
+}
+
+/// The locations of the uniforms set per instance and per draw (shaders/scene.vert,
+/// shaders/scene.frag).
+struct DrawUniforms {
+  explicit DrawUniforms(const GlProgram& program)
+      : view_from_object(program.uniform("view_from_object")),
+        textured(program.uniform("textured")),
+        shininess(program.uniform("shininess")),
+        specular_weight(program.uniform("specular_weight")) {}
+  GLint view_from_object, textured, shininess, specular_weight;
+};
+
+/// Binds `target` and clears it to `background` and the far depth, with the depth test on,
+/// no culling and no blending.
+void clear_target(const OffscreenTarget& target, const glm::dvec3& background) {
+  target.bind();
+  glClearColor(static_cast<float>(background.r), static_cast<float>(background.g),
+               static_cast<float>(background.b), 1.0f);
+  glClearDepth(1.0);
+  glDepthMask(GL_TRUE);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);  // two-sided: open or flipped triangles still show
+  glDisable(GL_BLEND);
+}
+
+/// Draws every instance of `assets` whose mesh has draws, with the texture ids `textures`
+/// (bound to the active texture unit).
+void draw_instances(const SceneAssets& assets, const std::vector<std::vector<MeshDraw>>& draws,
+                    const std::vector<GLuint>& textures, const glm::dmat4& view,
+                    const DrawUniforms& uniforms) {
+  for (const AssetInstance& inst : assets.instances) {
+    const std::vector<MeshDraw>& list = draws[static_cast<size_t>(inst.mesh)];
+    if (list.empty()) continue;
+    const glm::dmat4 scene_from_object = glm::translate(glm::dmat4(1.0), inst.translation) *
+                                         glm::mat4_cast(glm::normalize(inst.rotation));
+    const glm::mat4 view_from_object(view * scene_from_object);
+    glUniformMatrix4fv(uniforms.view_from_object, 1, GL_FALSE, glm::value_ptr(view_from_object));
+    for (const MeshDraw& draw : list) {
+      glUniform1i(uniforms.textured, draw.texture >= 0 ? 1 : 0);
+      if (draw.texture >= 0)
+        glBindTexture(GL_TEXTURE_2D, textures[static_cast<size_t>(draw.texture)]);
+      glUniform1f(uniforms.shininess, draw.highlight.shininess);
+      glUniform1f(uniforms.specular_weight, draw.highlight.weight);
+      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(draw.index_count), GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(draw.first_index * sizeof(uint32_t)));
+    }
+  }
+}
+
+}  // namespace
+
+Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions& options) {
+  const glm::ivec2 size = check_input(assets, options);
+  const SceneGeometry geometry = scene_geometry(assets);
 
   const AssetCamera& camera = assets.camera;
   const glm::dmat4 view = view_from_scene(camera);
   const double aspect = static_cast<double>(size.x) / size.y;
   const glm::mat4 clip_from_view(
       glm::perspective(glm::radians(camera.fov_y_deg), aspect, camera.znear, camera.zfar));
-  const glm::dmat3 view_rotation(view);
 
   const std::unique_ptr<GlContext> context = create_offscreen_context();
   // The vertex array, buffers and depth renderbuffer below are not deleted one by one: they
@@ -202,77 +305,21 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
                                "render_scene_preview");
   attach_depth_buffer(target, *context);
 
-  make_vertex_array(vertices, indices,
+  make_vertex_array(geometry.vertices, geometry.indices,
                     {{0, 3, offsetof(SceneVertex, position)},
                      {1, 3, offsetof(SceneVertex, normal)},
                      {2, 3, offsetof(SceneVertex, colour)},
                      {3, 2, offsetof(SceneVertex, uv)}});
-  // Each base colour texture that some draw samples, once (0: not uploaded).
-  std::vector<GLuint> textures(assets.textures.size(), 0);
-  for (const std::vector<MeshDraw>& list : draws)
-    for (const MeshDraw& draw : list) {
-      if (draw.texture < 0) continue;
-      const auto t = static_cast<size_t>(draw.texture);
-      if (textures[t] == 0) textures[t] = upload_base_colour(assets.textures[t], t, *context);
-    }
+  const std::vector<GLuint> textures = upload_base_colours(assets, geometry.draws, *context);
 
-  // Lights in the view frame; the documented mapping: scale = colour * (lux / 2049) * exposure.
   glUseProgram(program.id());
-  std::vector<float> light_vector(4 * kMaxLights, 0.0f), light_scale(3 * kMaxLights, 0.0f);
-  for (size_t i = 0; i < assets.lights.size(); ++i) {
-    const AssetLight& light = assets.lights[i];
-    glm::dvec4 v;
-    if (light.type == LightType::Directional)
-      v = glm::dvec4(view_rotation * -glm::normalize(light.direction), 0.0);
-    else
-      v = glm::dvec4(glm::dvec3(view * glm::dvec4(light.position, 1.0)), 1.0);
-    const glm::dvec3 scale = light.colour * (light.intensity / kReferenceLux * options.exposure);
-    for (int k = 0; k < 4; ++k) light_vector[4 * i + k] = static_cast<float>(v[k]);
-    for (int k = 0; k < 3; ++k) light_scale[3 * i + k] = static_cast<float>(scale[k]);
-  }
-  glUniform1i(program.uniform("light_count"), static_cast<GLint>(assets.lights.size()));
-  glUniform4fv(program.uniform("light_vector"), kMaxLights, light_vector.data());
-  glUniform3fv(program.uniform("light_scale"), kMaxLights, light_scale.data());
-  const glm::vec3 up_view(view_rotation * glm::dvec3(0, 1, 0));
-  glUniform3fv(program.uniform("up_view"), 1, glm::value_ptr(up_view));
-  glUniform1f(program.uniform("ambient_scale"), static_cast<float>(options.exposure));
-  glUniformMatrix4fv(program.uniform("clip_from_view"), 1, GL_FALSE,
-                     glm::value_ptr(clip_from_view));
-  const GLint view_from_object_location = program.uniform("view_from_object");
-  const GLint textured_location = program.uniform("textured");
-  const GLint shininess_location = program.uniform("shininess");
-  const GLint specular_weight_location = program.uniform("specular_weight");
+  set_scene_uniforms(program, assets, view, clip_from_view, options.exposure);
+  const DrawUniforms uniforms(program);
   glUniform1i(program.uniform("base_colour"), 0);  // texture unit 0
   glActiveTexture(GL_TEXTURE0);
 
-  target.bind();
-  glClearColor(static_cast<float>(assets.background.r), static_cast<float>(assets.background.g),
-               static_cast<float>(assets.background.b), 1.0f);
-  glClearDepth(1.0);
-  glDepthMask(GL_TRUE);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDisable(GL_CULL_FACE);  // two-sided: open or flipped triangles still show
-  glDisable(GL_BLEND);
-
-  for (const AssetInstance& inst : assets.instances) {
-    const std::vector<MeshDraw>& list = draws[static_cast<size_t>(inst.mesh)];
-    if (list.empty()) continue;
-    const glm::dmat4 scene_from_object = glm::translate(glm::dmat4(1.0), inst.translation) *
-                                         glm::mat4_cast(glm::normalize(inst.rotation));
-    const glm::mat4 view_from_object(view * scene_from_object);
-    glUniformMatrix4fv(view_from_object_location, 1, GL_FALSE, glm::value_ptr(view_from_object));
-    for (const MeshDraw& draw : list) {
-      glUniform1i(textured_location, draw.texture >= 0 ? 1 : 0);
-      if (draw.texture >= 0)
-        glBindTexture(GL_TEXTURE_2D, textures[static_cast<size_t>(draw.texture)]);
-      glUniform1f(shininess_location, draw.highlight.shininess);
-      glUniform1f(specular_weight_location, draw.highlight.weight);
-      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(draw.index_count), GL_UNSIGNED_INT,
-                     reinterpret_cast<const void*>(draw.first_index * sizeof(uint32_t)));
-    }
-  }
+  clear_target(target, assets.background);
+  draw_instances(assets, geometry.draws, textures, view, uniforms);
   if (options.strokes != nullptr) draw_strokes(*options.strokes, camera, size.x, size.y);
 
   return target.resolve_and_read();

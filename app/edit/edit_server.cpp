@@ -8,6 +8,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstring>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <set>
@@ -432,6 +433,34 @@ void turn_away(int fd, int max_connections) {
   ::close(fd);
 }
 
+/// The router's exception handler: 500 with the error's message.
+void answer_exception(const httplib::Request&, httplib::Response& res, std::exception_ptr error) {
+  std::string why = "unknown error";
+  try {
+    std::rethrow_exception(error);
+  } catch (const std::exception& e) {
+    why = e.what();
+  } catch (...) {
+  }
+  reply_json(res, 500, {{"ok", false}, {"message", why}});
+}
+
+/// GET /: the page, an embedded file.
+void get_page(const httplib::Request&, httplib::Response& res) {
+  res.set_content(std::string(editor_web_file("index.html")), "text/html; charset=utf-8");
+}
+
+/// GET /NAME.js and /NAME.css: the page's embedded scripts and style sheets.
+void get_web_file(const httplib::Request& req, httplib::Response& res) {
+  const std::string type = req.matches[2] == "js" ? "text/javascript" : "text/css";
+  try {
+    const std::string file = req.matches[1].str() + "." + req.matches[2].str();
+    res.set_content(std::string(editor_web_file(file)), type + "; charset=utf-8");
+  } catch (const std::runtime_error&) {
+    reply_json(res, 404, {{"ok", false}, {"message", "no such file"}});
+  }
+}
+
 }  // namespace
 
 nlohmann::json check_template_text(std::string_view text,
@@ -577,7 +606,188 @@ struct EditServer::Impl {
     lock.unlock();
     turn_away(fd, options.max_connections);
   }
+
+  /// The pre-routing handler: before a request's body is read, who may ask (403 otherwise),
+  /// and whether its head bars the body (head_refusal()); a request that passes may send a
+  /// body of max_body_bytes.
+  httplib::Server::HandlerResponse screen_request(const httplib::Request& req,
+                                                  httplib::Response& res);
+  /// GET /lib/NAME/PATH: a file of the library NAME the page imports, from its own folder
+  /// (library_file keeps requests inside it).
+  void get_library_file(const httplib::Request& req, httplib::Response& res);
+  /// GET /api/template: the file as it is on disk; no work lock (saves rename a whole file
+  /// into place).
+  void get_template(const httplib::Request& req, httplib::Response& res);
+  /// POST /api/check: the verdict on the text, as check_template_text() gives it (200 either
+  /// way).
+  void post_check(const httplib::Request& req, httplib::Response& res, const std::string& body);
+  /// POST /api/model.png: the see-through model of the text.
+  void post_model_png(const httplib::Request& req, httplib::Response& res,
+                      const std::string& body);
+  /// POST /api/model.glb: the model of the text as binary glTF.
+  void post_model_glb(const httplib::Request& req, httplib::Response& res,
+                      const std::string& body);
+  /// POST /api/section.png?y=Y[&coarse=1]: the text's cut at height Y (template units).
+  void post_section_png(const httplib::Request& req, httplib::Response& res,
+                        const std::string& body);
+  /// POST /api/variants.png[?count=N]: a strip of seeded variants (seeds 1..count, count 1..8,
+  /// default 4): their mid-height cuts, as `cutaway variants` draws its contact sheet. It takes
+  /// seconds, so it holds the library only to get the template and to draw: checks and cuts of
+  /// newer text go on meanwhile. One strip is made at a time, and only the newest request's:
+  /// an older one still waiting, or being made, is answered 503 (the page wants the strip of
+  /// its latest text); one whose client left is dropped after the variant it is on.
+  void post_variants_png(const httplib::Request& req, httplib::Response& res,
+                         const std::string& body);
+  /// POST /api/save: writes the text to the template file. The text is checked and the answer
+  /// made before the file is written, so that an answer is never an error about a file that
+  /// was written; the write itself is outside the work lock (it renames a whole file into
+  /// place).
+  void post_save(const httplib::Request& req, httplib::Response& res, const std::string& body);
 };
+
+httplib::Server::HandlerResponse EditServer::Impl::screen_request(const httplib::Request& req,
+                                                                  httplib::Response& res) {
+  const std::string why =
+      request_refusal(req.get_header_value("Host"), req.get_header_value("Origin"), port);
+  if (!why.empty()) {
+    refuse_and_close(req, res, 403, why);
+    return httplib::Server::HandlerResponse::Handled;
+  }
+  if (const auto refusal = head_refusal(req, options.max_body_bytes)) {
+    refuse_and_close(req, res, refusal->first, refusal->second);
+    return httplib::Server::HandlerResponse::Handled;
+  }
+  // A chunked body's framing may take up to a head's worth of bytes more than its content.
+  this_connection->allow_body(options.max_body_bytes + kMaxRequestHeadBytes);
+  return httplib::Server::HandlerResponse::Unhandled;
+}
+
+void EditServer::Impl::get_library_file(const httplib::Request& req, httplib::Response& res) {
+  for (const WebLibrary& lib : options.libraries) {
+    if (lib.name != req.matches[1]) continue;
+    if (const auto file = library_file(lib.folder, req.matches[2].str())) {
+      res.set_content(read_file_bytes(*file), "text/javascript; charset=utf-8");
+      return;
+    }
+  }
+  reply_json(res, 404, {{"ok", false}, {"message", "no such library file"}});
+}
+
+void EditServer::Impl::get_template(const httplib::Request&, httplib::Response& res) {
+  const std::string file = options.template_path.filename().string();
+  try {
+    const std::optional<std::string> text = read_template_file(options.template_path);
+    reply_json(res, 200,
+               {{"file", file}, {"exists", text.has_value()}, {"text", text.value_or("")}});
+  } catch (const std::runtime_error& e) {
+    reply_json(res, 500, {{"ok", false}, {"file", file}, {"message", e.what()}});
+  }
+}
+
+void EditServer::Impl::post_check(const httplib::Request&, httplib::Response& res,
+                                  const std::string& body) {
+  const std::lock_guard<std::mutex> lock(work);
+  try {
+    reply_json(res, 200, verdict_of(built_for(body)));
+  } catch (const InputError& e) {
+    reply_json(res, 200, verdict_of(e));
+  }
+}
+
+void EditServer::Impl::post_model_png(const httplib::Request&, httplib::Response& res,
+                                      const std::string& body) {
+  handle(body, res, [&](const Built& b) {
+    res.set_content(renderers.model_png(b.model), "image/png");
+  });
+}
+
+void EditServer::Impl::post_model_glb(const httplib::Request&, httplib::Response& res,
+                                      const std::string& body) {
+  handle(body, res, [&](const Built& b) {
+    res.set_content(model_to_glb(b.model, GltfModelOptions{}), "model/gltf-binary");
+  });
+}
+
+void EditServer::Impl::post_section_png(const httplib::Request& req, httplib::Response& res,
+                                        const std::string& body) {
+  handle(body, res, [&](const Built& b) {
+    const Outcome<double> y = parse_decimal(req.get_param_value("y"), "y");
+    if (!y) {
+      reply_json(res, 400, {{"ok", false}, {"message", y.reason() + " (template units)"}});
+      return;
+    }
+    Plane plane;
+    plane.point = {0, *y * b.tmpl.metres_per_unit, 0};
+    plane.normal = {0, 1, 0};
+    // While the plane is dragged the page asks for coarse cuts, then a full one.
+    const bool coarse = req.get_param_value("coarse") == "1";
+    std::unique_ptr<DiffusionBackend>& backend =
+        coarse ? coarse_section_backend : section_backend;
+    if (!backend)
+      backend = make_cpu_diffusion(
+          b.model, {coarse ? options.coarse_section_cube : options.section_cube, 0});
+    CrossSectionOptions o;
+    o.edge_m = b.tmpl.edge_m;
+    const Outcome<CrossSection> section =
+        make_cross_section(b.model, plane, *backend, o);
+    if (!section) {
+      reply_json(res, 422, {{"ok", false}, {"message", section.reason()}});
+      return;
+    }
+    res.set_content(renderers.section_png(*section), "image/png");
+  });
+}
+
+void EditServer::Impl::post_variants_png(const httplib::Request& req, httplib::Response& res,
+                                         const std::string& body) {
+  const std::string given = req.has_param("count") ? req.get_param_value("count") : "4";
+  const int count = given.size() == 1 && given[0] >= '1' && given[0] <= '8' ? given[0] - '0' : 0;
+  if (count == 0) {
+    reply_json(res, 400, {{"ok", false}, {"message", "count must be a whole number from 1 to 8"}});
+    return;
+  }
+  std::optional<Template> tmpl;
+  handle(body, res, [&](const Built& b) { tmpl = b.tmpl; });
+  if (!tmpl) return;  // handle() answered with the verdict
+  const int cube = options.variant_cube;
+  const DiffusionFactory diffusion = [cube](const DsModel& m) {
+    return make_cpu_diffusion(m, {cube, 0});
+  };
+  const auto replaced = [&res] {
+    reply_json(res, 503, {{"ok", false}, {"message", "a newer variants request replaced this one"}});
+  };
+  const bool ran = variants.run([&](const std::function<bool()>& superseded) {
+    answer_or_refuse(res, [&] {
+      std::vector<Outcome<CrossSection>> sections;
+      for (int seed = 1; seed <= count; ++seed) {
+        if (superseded()) return replaced();
+        if (this_connection->client_gone()) return;  // no one to answer
+        sections.push_back(variant_section(make_variant(*tmpl, seed), diffusion));
+      }
+      if (std::none_of(sections.begin(), sections.end(), [](const auto& c) { return bool(c); })) {
+        reply_json(res, 422, {{"ok", false},
+                              {"message", "no variant has a cut at mid-height: " + sections[0].reason()}});
+        return;
+      }
+      const std::lock_guard<std::mutex> lock(work);  // the renderers are one at a time
+      res.set_content(renderers.variants_png(std::move(sections)), "image/png");
+    });
+  });
+  if (!ran) replaced();
+}
+
+void EditServer::Impl::post_save(const httplib::Request&, httplib::Response& res,
+                                 const std::string& body) {
+  bool valid = false;
+  handle(body, res, [&](const Built&) { valid = true; });
+  if (!valid) return;  // handle() answered with the verdict
+  answer_or_refuse(res, [&] {
+    const std::string answer =
+        json_text({{"ok", true}, {"file", options.template_path.filename().string()}});
+    write_file_atomically(options.template_path, body);
+    res.set_content(answer, "application/json");
+  });
+}
 
 EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
     : impl_(std::make_unique<Impl>()) {
@@ -588,173 +798,20 @@ EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
   s.router.set_keep_alive_max_count(kRequestsPerConnection);
   s.router.set_keep_alive_timeout(
       std::chrono::ceil<std::chrono::seconds>(s.options.idle_timeout).count());
-  s.router.set_exception_handler(
-      [](const httplib::Request&, httplib::Response& res, std::exception_ptr error) {
-        std::string why = "unknown error";
-        try {
-          std::rethrow_exception(error);
-        } catch (const std::exception& e) {
-          why = e.what();
-        } catch (...) {
-        }
-        reply_json(res, 500, {{"ok", false}, {"message", why}});
-      });
-  // Before a request's body is read: who may ask, and whether its head bars the body.
-  s.router.set_pre_routing_handler([&s](const httplib::Request& req, httplib::Response& res) {
-    const std::string why =
-        request_refusal(req.get_header_value("Host"), req.get_header_value("Origin"), s.port);
-    if (!why.empty()) {
-      refuse_and_close(req, res, 403, why);
-      return httplib::Server::HandlerResponse::Handled;
-    }
-    if (const auto refusal = head_refusal(req, s.options.max_body_bytes)) {
-      refuse_and_close(req, res, refusal->first, refusal->second);
-      return httplib::Server::HandlerResponse::Handled;
-    }
-    // A chunked body's framing may take up to a head's worth of bytes more than its content.
-    this_connection->allow_body(s.options.max_body_bytes + kMaxRequestHeadBytes);
-    return httplib::Server::HandlerResponse::Unhandled;
-  });
+  s.router.set_exception_handler(answer_exception);
+  s.router.set_pre_routing_handler(std::bind_front(&Impl::screen_request, &s));
   // The page: embedded files (no request names a file on disk), and the libraries it
-  // imports, each from its own folder (library_file keeps requests inside it).
-  s.router.Get("/", [](const httplib::Request&, httplib::Response& res) {
-    res.set_content(std::string(editor_web_file("index.html")), "text/html; charset=utf-8");
-  });
-  s.router.Get(R"(/([a-z_]+)\.(js|css))", [](const httplib::Request& req, httplib::Response& res) {
-    const std::string type = req.matches[2] == "js" ? "text/javascript" : "text/css";
-    try {
-      const std::string file = req.matches[1].str() + "." + req.matches[2].str();
-      res.set_content(std::string(editor_web_file(file)), type + "; charset=utf-8");
-    } catch (const std::runtime_error&) {
-      reply_json(res, 404, {{"ok", false}, {"message", "no such file"}});
-    }
-  });
-  s.router.Get(R"(/lib/([a-z]+)/(.+))", [&s](const httplib::Request& req, httplib::Response& res) {
-    for (const WebLibrary& lib : s.options.libraries) {
-      if (lib.name != req.matches[1]) continue;
-      if (const auto file = library_file(lib.folder, req.matches[2].str())) {
-        res.set_content(read_file_bytes(*file), "text/javascript; charset=utf-8");
-        return;
-      }
-    }
-    reply_json(res, 404, {{"ok", false}, {"message", "no such library file"}});
-  });
-
-  // The file as it is on disk; no work lock (saves rename a whole file into place).
-  s.router.Get("/api/template", [&s](const httplib::Request&, httplib::Response& res) {
-    const std::string file = s.options.template_path.filename().string();
-    try {
-      const std::optional<std::string> text = read_template_file(s.options.template_path);
-      reply_json(res, 200,
-                 {{"file", file}, {"exists", text.has_value()}, {"text", text.value_or("")}});
-    } catch (const std::runtime_error& e) {
-      reply_json(res, 500, {{"ok", false}, {"file", file}, {"message", e.what()}});
-    }
-  });
-  s.post("/api/check", [&s](const httplib::Request&, httplib::Response& res, const std::string& body) {
-    const std::lock_guard<std::mutex> lock(s.work);
-    try {
-      reply_json(res, 200, verdict_of(s.built_for(body)));
-    } catch (const InputError& e) {
-      reply_json(res, 200, verdict_of(e));
-    }
-  });
-  s.post("/api/model.png", [&s](const httplib::Request&, httplib::Response& res, const std::string& body) {
-    s.handle(body, res, [&](const Built& b) {
-      res.set_content(s.renderers.model_png(b.model), "image/png");
-    });
-  });
-  s.post("/api/model.glb", [&s](const httplib::Request&, httplib::Response& res, const std::string& body) {
-    s.handle(body, res, [&](const Built& b) {
-      res.set_content(model_to_glb(b.model, GltfModelOptions{}), "model/gltf-binary");
-    });
-  });
-  s.post("/api/section.png", [&s](const httplib::Request& req, httplib::Response& res,
-                                  const std::string& body) {
-    s.handle(body, res, [&](const Built& b) {
-      const Outcome<double> y = parse_decimal(req.get_param_value("y"), "y");
-      if (!y) {
-        reply_json(res, 400, {{"ok", false}, {"message", y.reason() + " (template units)"}});
-        return;
-      }
-      Plane plane;
-      plane.point = {0, *y * b.tmpl.metres_per_unit, 0};
-      plane.normal = {0, 1, 0};
-      // While the plane is dragged the page asks for coarse cuts, then a full one.
-      const bool coarse = req.get_param_value("coarse") == "1";
-      std::unique_ptr<DiffusionBackend>& backend =
-          coarse ? s.coarse_section_backend : s.section_backend;
-      if (!backend)
-        backend = make_cpu_diffusion(
-            b.model, {coarse ? s.options.coarse_section_cube : s.options.section_cube, 0});
-      CrossSectionOptions o;
-      o.edge_m = b.tmpl.edge_m;
-      const Outcome<CrossSection> section =
-          make_cross_section(b.model, plane, *backend, o);
-      if (!section) {
-        reply_json(res, 422, {{"ok", false}, {"message", section.reason()}});
-        return;
-      }
-      res.set_content(s.renderers.section_png(*section), "image/png");
-    });
-  });
-  // A strip of seeded variants (seeds 1..count, count 1..8, default 4): their mid-height cuts,
-  // as `cutaway variants` draws its contact sheet. It takes seconds, so it holds the library
-  // only to get the template and to draw: checks and cuts of newer text go on meanwhile. One
-  // strip is made at a time, and only the newest request's: an older one still waiting, or
-  // being made, is answered 503 (the page wants the strip of its latest text); one whose
-  // client left is dropped after the variant it is on.
-  s.post("/api/variants.png", [&s](const httplib::Request& req, httplib::Response& res,
-                                   const std::string& body) {
-    const std::string given = req.has_param("count") ? req.get_param_value("count") : "4";
-    const int count = given.size() == 1 && given[0] >= '1' && given[0] <= '8' ? given[0] - '0' : 0;
-    if (count == 0) {
-      reply_json(res, 400, {{"ok", false}, {"message", "count must be a whole number from 1 to 8"}});
-      return;
-    }
-    std::optional<Template> tmpl;
-    s.handle(body, res, [&](const Built& b) { tmpl = b.tmpl; });
-    if (!tmpl) return;  // handle() answered with the verdict
-    const int cube = s.options.variant_cube;
-    const DiffusionFactory diffusion = [cube](const DsModel& m) {
-      return make_cpu_diffusion(m, {cube, 0});
-    };
-    const auto replaced = [&res] {
-      reply_json(res, 503, {{"ok", false}, {"message", "a newer variants request replaced this one"}});
-    };
-    const bool ran = s.variants.run([&](const std::function<bool()>& superseded) {
-      answer_or_refuse(res, [&] {
-        std::vector<Outcome<CrossSection>> sections;
-        for (int seed = 1; seed <= count; ++seed) {
-          if (superseded()) return replaced();
-          if (this_connection->client_gone()) return;  // no one to answer
-          sections.push_back(variant_section(make_variant(*tmpl, seed), diffusion));
-        }
-        if (std::none_of(sections.begin(), sections.end(), [](const auto& c) { return bool(c); })) {
-          reply_json(res, 422, {{"ok", false},
-                                {"message", "no variant has a cut at mid-height: " + sections[0].reason()}});
-          return;
-        }
-        const std::lock_guard<std::mutex> lock(s.work);  // the renderers are one at a time
-        res.set_content(s.renderers.variants_png(std::move(sections)), "image/png");
-      });
-    });
-    if (!ran) replaced();
-  });
-  // Saving: the text is checked and the answer made before the file is written, so that an
-  // answer is never an error about a file that was written; the write itself is outside the
-  // work lock (it renames a whole file into place).
-  s.post("/api/save", [&s](const httplib::Request&, httplib::Response& res, const std::string& body) {
-    bool valid = false;
-    s.handle(body, res, [&](const Built&) { valid = true; });
-    if (!valid) return;  // handle() answered with the verdict
-    answer_or_refuse(res, [&] {
-      const std::string answer =
-          json_text({{"ok", true}, {"file", s.options.template_path.filename().string()}});
-      write_file_atomically(s.options.template_path, body);
-      res.set_content(answer, "application/json");
-    });
-  });
+  // imports, each from its own folder.
+  s.router.Get("/", get_page);
+  s.router.Get(R"(/([a-z_]+)\.(js|css))", get_web_file);
+  s.router.Get(R"(/lib/([a-z]+)/(.+))", std::bind_front(&Impl::get_library_file, &s));
+  s.router.Get("/api/template", std::bind_front(&Impl::get_template, &s));
+  s.post("/api/check", std::bind_front(&Impl::post_check, &s));
+  s.post("/api/model.png", std::bind_front(&Impl::post_model_png, &s));
+  s.post("/api/model.glb", std::bind_front(&Impl::post_model_glb, &s));
+  s.post("/api/section.png", std::bind_front(&Impl::post_section_png, &s));
+  s.post("/api/variants.png", std::bind_front(&Impl::post_variants_png, &s));
+  s.post("/api/save", std::bind_front(&Impl::post_save, &s));
 
   s.listen_fd = listen_on_loopback(s.options.port);
   if (s.listen_fd < 0)

@@ -370,38 +370,28 @@ struct AddedMesh {
   std::vector<int> lods;  ///< glTF meshes of levels 1, 2, ... (names ending _LOD1, _LOD2, ...)
 };
 
-/// Adds mesh `mesh` through `out` (one primitive per AssetPrimitive, sharing the vertex
-/// attributes; material k of the assets is glTF material gltf_material[k]), and `lods` coarser
-/// levels over the same vertices: level l has about 2^-l of each primitive's triangles
-/// (simplified(), error at most 2^(l-1) % of the mesh's extent, so a level may keep more).
-AddedMesh add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
-                         const std::vector<int>& gltf_material, int lods) {
-  tinygltf::Model& m = out.model();
+/// The vertices of a scene mesh as written: float32 attributes (#V x 3; uv #V x 2, empty when
+/// the mesh has none) and where each of the mesh's vertices went.
+struct WrittenVertices {
+  std::vector<unsigned> remap;  ///< per mesh vertex, its written index (~0u: not written)
+  unsigned count = 0;           ///< #V
+  std::vector<float> position, normal, colour, uv;
+};
+
+/// Only the vertices of `mesh` some triangle of `lists` uses, each written once (ordered for
+/// fetching by cache_ordered_triangles()): a vertex whose written attributes (float position,
+/// normal, colour, uv) equal an earlier one's is welded to it (the copies of cut vertices on both
+/// sides of a seam that show the same colour).
+WrittenVertices welded_vertices(const AssetMesh& mesh,
+                                const std::vector<std::span<const glm::uvec3>>& lists) {
   const size_t n = mesh.position.size();
-  const std::vector<AssetPrimitive> plain{{0, mesh.triangle.size(), 0, {}}};
-  const std::vector<AssetPrimitive>& primitives = mesh.primitives.empty() ? plain : mesh.primitives;
-  // Per primitive: textured or not, and its triangles (the coarse ones of a textured primitive
-  // that has them: its colour is in the texture).
-  std::vector<bool> textured;
-  std::vector<std::span<const glm::uvec3>> lists;
-  for (const AssetPrimitive& p : primitives) {
-    const int material = gltf_material[static_cast<size_t>(p.material)];
-    textured.push_back(
-        m.materials[static_cast<size_t>(material)].pbrMetallicRoughness.baseColorTexture.index >=
-        0);
-    lists.push_back(primitive_triangles(mesh, p, textured.back()));
-  }
-  // Only the vertices some triangle uses, each written once (ordered for fetching below): a vertex
-  // whose written attributes (float position, normal, colour, uv) equal an earlier one's is welded
-  // to it (the copies of cut vertices on both sides of a seam that show the same colour).
   std::vector<bool> needed(n, false);
   for (const auto& list : lists)
     for (const glm::uvec3& t : list)
       for (int k = 0; k < 3; ++k) needed[t[k]] = true;
-  std::vector<unsigned> remap(n, ~0u);
+  WrittenVertices out;
+  out.remap.assign(n, ~0u);
   std::unordered_map<std::string, unsigned> written;
-  unsigned used = 0;
-  std::vector<float> pos, normal, colour, xy;
   for (size_t i = 0; i < n; ++i) {
     if (!needed[i]) continue;
     const glm::dvec3& p = mesh.position[i];
@@ -421,22 +411,30 @@ AddedMesh add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
       vertex[10] = static_cast<float>(q.y);
     }
     for (float& v : vertex) v += 0.0f;  // -0 and +0 write alike
-    const auto [it, added] =
-        written.emplace(std::string(reinterpret_cast<const char*>(vertex), sizeof vertex), used);
-    remap[i] = it->second;
+    const auto [it, added] = written.emplace(
+        std::string(reinterpret_cast<const char*>(vertex), sizeof vertex), out.count);
+    out.remap[i] = it->second;
     if (!added) continue;
-    ++used;
-    pos.insert(pos.end(), vertex, vertex + 3);
-    normal.insert(normal.end(), vertex + 3, vertex + 6);
-    colour.insert(colour.end(), vertex + 6, vertex + 9);
-    if (!mesh.uv.empty()) xy.insert(xy.end(), vertex + 9, vertex + 11);
+    ++out.count;
+    out.position.insert(out.position.end(), vertex, vertex + 3);
+    out.normal.insert(out.normal.end(), vertex + 3, vertex + 6);
+    out.colour.insert(out.colour.end(), vertex + 6, vertex + 9);
+    if (!mesh.uv.empty()) out.uv.insert(out.uv.end(), vertex + 9, vertex + 11);
   }
-  // Per primitive, its triangles in written vertex indices, reordered for the GPU's post-transform
-  // vertex cache (meshoptimizer: Forsyth-style greedy order); then the vertices renumbered in
-  // the order the primitives first use them (fewer cache misses when vertices are fetched).
-  std::vector<std::vector<uint32_t>> idx(primitives.size());
+  return out;
+}
+
+/// Per primitive, its triangles (`lists`) in written vertex indices, reordered for the GPU's
+/// post-transform vertex cache (meshoptimizer: Forsyth-style greedy order); then the vertices
+/// renumbered in the order the primitives first use them (fewer cache misses when vertices are
+/// fetched): `vertices`' attributes are reordered to match.
+std::vector<std::vector<uint32_t>> cache_ordered_triangles(
+    const std::vector<std::span<const glm::uvec3>>& lists, WrittenVertices& vertices) {
+  const std::vector<unsigned>& remap = vertices.remap;
+  const unsigned used = vertices.count;
+  std::vector<std::vector<uint32_t>> idx(lists.size());
   std::vector<uint32_t> all;
-  for (size_t k = 0; k < primitives.size(); ++k) {
+  for (size_t k = 0; k < lists.size(); ++k) {
     for (const glm::uvec3& t : lists[k])
       idx[k].insert(idx[k].end(), {remap[t.x], remap[t.y], remap[t.z]});
     const std::vector<uint32_t> input = idx[k];
@@ -448,51 +446,100 @@ AddedMesh add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
   for (std::vector<uint32_t>& list : idx)
     meshopt_remapIndexBuffer(list.data(), std::vector<uint32_t>(list).data(), list.size(),
                              fetch.data());
-  for (std::vector<float>* stream : {&pos, &normal, &colour, &xy}) {
+  for (std::vector<float>* stream :
+       {&vertices.position, &vertices.normal, &vertices.colour, &vertices.uv}) {
     if (stream->empty()) continue;
     const std::vector<float> input = *stream;
     meshopt_remapVertexBuffer(stream->data(), input.data(), used,
                               input.size() / used * sizeof(float), fetch.data());
   }
+  return idx;
+}
 
-  MeshFrame frame;
-  const int positions = out.positions(pos, frame);
-  const int normals = out.normals(normal);
-  int colours = -1, uvs = -1;  // added when some primitive uses them
-  // One glTF mesh per level of detail, all over the same vertex accessors.
-  auto add_level = [&](const std::string& name, const std::vector<std::vector<uint32_t>>& lists) {
+/// The levels of detail of one scene mesh, each one glTF mesh, all over the same vertex
+/// accessors: positions and normals are added at construction, colours and texture coordinates
+/// when some primitive first uses them.
+class MeshLevels {
+ public:
+  /// `primitives` of the mesh, `textured` per primitive, `vertices` as written; `frame`
+  /// receives the frame of the positions.
+  MeshLevels(SceneBuffers& out, const std::vector<AssetPrimitive>& primitives,
+             const std::vector<int>& gltf_material, const std::vector<bool>& textured,
+             const WrittenVertices& vertices, MeshFrame& frame)
+      : out_(out), primitives_(primitives), gltf_material_(gltf_material), textured_(textured),
+        vertices_(vertices), positions_(out.positions(vertices.position, frame)),
+        normals_(out.normals(vertices.normal)) {}
+
+  /// Adds the glTF mesh `name` with `lists` (per primitive, its triangles' indices); returns
+  /// its index.
+  int add(const std::string& name, const std::vector<std::vector<uint32_t>>& lists) {
+    tinygltf::Model& m = out_.model();
     tinygltf::Mesh gm;
     gm.name = name;
-    for (size_t k = 0; k < primitives.size(); ++k) {
+    for (size_t k = 0; k < primitives_.size(); ++k) {
       tinygltf::Primitive prim;
       prim.mode = TINYGLTF_MODE_TRIANGLES;
-      prim.material = gltf_material[static_cast<size_t>(primitives[k].material)];
-      prim.attributes["POSITION"] = positions;
-      prim.attributes["NORMAL"] = normals;
+      prim.material = gltf_material_[static_cast<size_t>(primitives_[k].material)];
+      prim.attributes["POSITION"] = positions_;
+      prim.attributes["NORMAL"] = normals_;
       // A textured material takes its colour from TEXCOORD_0, never also from COLOR_0 (glTF
       // would multiply the two).
-      if (textured[k]) {
-        if (uvs < 0) uvs = out.uvs(xy);
-        prim.attributes["TEXCOORD_0"] = uvs;
+      if (textured_[k]) {
+        if (uvs_ < 0) uvs_ = out_.uvs(vertices_.uv);
+        prim.attributes["TEXCOORD_0"] = uvs_;
       } else {
-        if (colours < 0) colours = out.colours(colour);
-        prim.attributes["COLOR_0"] = colours;
+        if (colours_ < 0) colours_ = out_.colours(vertices_.colour);
+        prim.attributes["COLOR_0"] = colours_;
       }
-      prim.indices = out.indices(lists[k], used);
+      prim.indices = out_.indices(lists[k], vertices_.count);
       gm.primitives.push_back(prim);
     }
     m.meshes.push_back(gm);
     return static_cast<int>(m.meshes.size()) - 1;
-  };
+  }
+
+ private:
+  SceneBuffers& out_;
+  const std::vector<AssetPrimitive>& primitives_;
+  const std::vector<int>& gltf_material_;
+  const std::vector<bool>& textured_;
+  const WrittenVertices& vertices_;
+  const int positions_, normals_;
+  int colours_ = -1, uvs_ = -1;  // added when some primitive uses them
+};
+
+/// Adds mesh `mesh` through `out` (one primitive per AssetPrimitive, sharing the vertex
+/// attributes; material k of the assets is glTF material gltf_material[k]), and `lods` coarser
+/// levels over the same vertices: level l has about 2^-l of each primitive's triangles
+/// (simplified(), error at most 2^(l-1) % of the mesh's extent, so a level may keep more).
+AddedMesh add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
+                         const std::vector<int>& gltf_material, int lods) {
+  const tinygltf::Model& m = out.model();
+  const std::vector<AssetPrimitive> plain{{0, mesh.triangle.size(), 0, {}}};
+  const std::vector<AssetPrimitive>& primitives = mesh.primitives.empty() ? plain : mesh.primitives;
+  // Per primitive: textured or not, and its triangles (the coarse ones of a textured primitive
+  // that has them: its colour is in the texture).
+  std::vector<bool> textured;
+  std::vector<std::span<const glm::uvec3>> lists;
+  for (const AssetPrimitive& p : primitives) {
+    const int material = gltf_material[static_cast<size_t>(p.material)];
+    textured.push_back(
+        m.materials[static_cast<size_t>(material)].pbrMetallicRoughness.baseColorTexture.index >=
+        0);
+    lists.push_back(primitive_triangles(mesh, p, textured.back()));
+  }
+  WrittenVertices vertices = welded_vertices(mesh, lists);
+  const std::vector<std::vector<uint32_t>> idx = cache_ordered_triangles(lists, vertices);
+
   AddedMesh added;
-  added.frame = frame;
-  added.index = add_level(mesh.name, idx);
+  MeshLevels levels(out, primitives, gltf_material, textured, vertices, added.frame);
+  added.index = levels.add(mesh.name, idx);
   for (int level = 1; level <= lods; ++level) {
     std::vector<std::vector<uint32_t>> coarser(idx.size());
     for (size_t k = 0; k < idx.size(); ++k)
-      coarser[k] =
-          simplified(idx[k], pos, std::ldexp(1.0, -level), 0.01 * std::ldexp(1.0, level - 1));
-    added.lods.push_back(add_level(mesh.name + "_LOD" + std::to_string(level), coarser));
+      coarser[k] = simplified(idx[k], vertices.position, std::ldexp(1.0, -level),
+                              0.01 * std::ldexp(1.0, level - 1));
+    added.lods.push_back(levels.add(mesh.name + "_LOD" + std::to_string(level), coarser));
   }
   return added;
 }
@@ -563,279 +610,378 @@ void add_pbr_material(tinygltf::Model& m, const AssetMaterial& material,
   }
 }
 
-/// The scene as a tinygltf model with all binary data in buffer 0 (no URI; with Meshopt
-/// compression, buffer 1 is the fallback, whose byteLength `fallback_bytes` receives, and
-/// `view_extensions` the extensions of the encoded buffer views). With
-/// `image_files` (texture_file_names(), one per texture), each used texture's image refers to
-/// its file instead and `images` receives (file name, image bytes) for each.
-tinygltf::Model scene_model(const SceneAssets& assets, const GltfSceneOptions& options,
-                            size_t& fallback_bytes,
-                            std::vector<std::pair<int, nlohmann::json>>& view_extensions,
-                            const std::vector<std::string>* image_files = nullptr,
-                            std::vector<std::pair<std::string, std::string>>* images = nullptr) {
-  require_valid_assets(assets, kGltfRules, "scene assets");
-  tinygltf::Model m = new_model();
-  if (options.compression == GltfCompression::Meshopt) m.buffers.emplace_back();
-  // Only the materials some mesh uses (an unused one is a validator notice), in their order.
+/// A scene as a tinygltf model (scene_model()) and what tinygltf does not write itself.
+struct SceneModel {
+  tinygltf::Model model;  ///< all binary data in buffer 0 (no URI)
+  /// With Meshopt compression, buffer 1 is the fallback: its byteLength.
+  size_t fallback_bytes = 0;
+  /// (buffer view, its "extensions" object) of each encoded view (SceneBuffers).
+  std::vector<std::pair<int, nlohmann::json>> view_extensions;
+  /// With image files: (file name, image bytes) of each used texture.
+  std::vector<std::pair<std::string, std::string>> images;
+};
+
+/// The steps of scene_model over the state they share: the model and scene being filled and
+/// which glTF material, texture and mesh each of the assets' became. Each step is one method,
+/// run once, in order (scene_model).
+class SceneModelBuilder {
+ public:
+  /// `assets` are valid (kGltfRules); `image_files` as scene_model's.
+  SceneModelBuilder(const SceneAssets& assets, const GltfSceneOptions& options,
+                    const std::vector<std::string>* image_files)
+      : assets_(assets), options_(options), image_files_(image_files), m_(new_model()),
+        gltf_material_(used_materials(assets)) {
+    if (options.compression == GltfCompression::Meshopt) m_.buffers.emplace_back();
+    scene_.name = assets.name;
+  }
+
+  /// The textures of the used materials, as images in the buffer (JPEG or PNG,
+  /// texture_image.h) or image files, in the assets' order.
+  void add_textures();
+  /// The used materials, in their order.
+  void add_materials();
+  /// The meshes (add_asset_mesh()) and the extensions their compression requires.
+  void add_meshes();
+  /// The root node and each instance's nodes.
+  void add_instances();
+  /// The camera and the lights, and how a viewer shows the lights' units.
+  void add_camera_and_lights();
+  /// The model, once every step has run.
+  SceneModel finish();
+
+ private:
+  /// Which materials some mesh uses (an unused one is a validator notice): 0 for those, -1
+  /// for the others.
+  static std::vector<int> used_materials(const SceneAssets& assets);
+  /// The sampler of a texture: clamped, or repeating in u where it wraps in u (a texture
+  /// that runs around, the skin's); each added once.
+  int sampler_index(bool wrap_u);
+  /// Adds texture `t` of the assets with its image; returns the glTF texture.
+  int add_texture(size_t t);
+  /// Adds `node` and lists it in the scene.
+  void add_node(tinygltf::Node node);
+  /// Adds the node of `inst`, its mesh node and its hull nodes, in this order.
+  void add_instance(const AssetInstance& inst);
+  /// The node of `inst`'s mesh; its levels of detail go to lod_nodes_.
+  tinygltf::Node mesh_node(const AssetInstance& inst);
+  /// The collision hull nodes of `inst` (none without collision), their meshes added.
+  std::vector<tinygltf::Node> hull_nodes(const AssetInstance& inst);
+
+  const SceneAssets& assets_;
+  const GltfSceneOptions& options_;
+  const std::vector<std::string>* image_files_;
+  tinygltf::Model m_;
+  tinygltf::Scene scene_;
+  size_t fallback_bytes_ = 0;
+  std::vector<std::pair<int, nlohmann::json>> view_extensions_;
+  std::vector<std::pair<std::string, std::string>> images_;
+  std::vector<int> gltf_material_;  // per material of the assets; -1: unused
+  std::vector<int> gltf_texture_;   // per texture of the assets; -1: unused
+  std::vector<AddedMesh> added_;    // per mesh of the assets
+  size_t main_nodes_ = 0;           // the nodes in the scene's list
+  std::vector<tinygltf::Node> lod_nodes_;  // after the others
+  int hull_material_ = -1;  // the collision hulls' one material, once needed
+};
+
+std::vector<int> SceneModelBuilder::used_materials(const SceneAssets& assets) {
   std::vector<int> gltf_material(assets.materials.size(), -1);
   for (const AssetMesh& mesh : assets.meshes) {
     if (mesh.primitives.empty()) gltf_material[0] = 0;
     for (const AssetPrimitive& p : mesh.primitives)
       gltf_material[static_cast<size_t>(p.material)] = 0;
   }
-  // The textures of those materials, as images in the buffer (JPEG or PNG, texture_image.h),
-  // in the assets' order.
-  std::vector<int> gltf_texture(assets.textures.size(), -1);
-  for (size_t k = 0; k < assets.materials.size(); ++k) {
-    for (const int t :
-         {assets.materials[k].base_colour_texture, assets.materials[k].material_texture})
-      if (gltf_material[k] >= 0 && t >= 0)
-        gltf_texture[static_cast<size_t>(t)] = 0;
-  }
-  for (size_t t = 0; t < assets.textures.size(); ++t) {
-    if (gltf_texture[t] < 0) continue;
-    // Samplers: clamped, or repeating in u (a texture that runs around, the skin's).
-    const int wrap_s = assets.textures[t].wrap_u ? TINYGLTF_TEXTURE_WRAP_REPEAT
-                                                 : TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
-    int sampler_index = -1;
-    for (size_t k = 0; k < m.samplers.size(); ++k)
-      if (m.samplers[k].wrapS == wrap_s) sampler_index = static_cast<int>(k);
-    if (sampler_index < 0) {
-      tinygltf::Sampler sampler;
-      sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
-      sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
-      sampler.wrapS = wrap_s;
-      sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
-      m.samplers.push_back(sampler);
-      sampler_index = static_cast<int>(m.samplers.size()) - 1;
-    }
-    std::string bytes = encode_texture(assets.textures[t], options.textures);
-    tinygltf::Image image;
-    image.name = assets.textures[t].name;
-    image.mimeType = texture_mime_type(assets.textures[t], options.textures);
-    if (image_files) {
-      image.uri = uri_encode(image_files->at(t));
-      images->emplace_back(image_files->at(t), std::move(bytes));
-    } else {
-      image.bufferView = add_view(m, bytes.data(), bytes.size(), 0);
-    }
-    m.images.push_back(image);
-    tinygltf::Texture texture;
-    texture.name = assets.textures[t].name;
-    texture.sampler = sampler_index;
-    texture.source = static_cast<int>(m.images.size()) - 1;
-    m.textures.push_back(texture);
-    gltf_texture[t] = static_cast<int>(m.textures.size()) - 1;
-  }
-  for (size_t k = 0; k < assets.materials.size(); ++k) {
-    if (gltf_material[k] < 0) continue;
-    gltf_material[k] = static_cast<int>(m.materials.size());
-    add_pbr_material(m, assets.materials[k], gltf_texture);
-  }
-  SceneBuffers out(m, options.compression);
-  std::vector<AddedMesh> added;
-  for (const AssetMesh& mesh : assets.meshes)
-    added.push_back(add_asset_mesh(out, mesh, gltf_material, options.lods));
-  fallback_bytes = out.fallback_bytes();
-  view_extensions = out.view_extensions();
-  auto require = [&m](const std::string& extension) {
-    m.extensionsUsed.push_back(extension);
-    m.extensionsRequired.push_back(extension);
-  };
-  if (options.compression != GltfCompression::None) require("KHR_mesh_quantization");
-  if (options.compression == GltfCompression::Meshopt) require("EXT_meshopt_compression");
+  return gltf_material;
+}
 
-  tinygltf::Scene scene;
-  scene.name = assets.name;
+void SceneModelBuilder::add_textures() {
+  gltf_texture_.assign(assets_.textures.size(), -1);
+  for (size_t k = 0; k < assets_.materials.size(); ++k) {
+    for (const int t :
+         {assets_.materials[k].base_colour_texture, assets_.materials[k].material_texture})
+      if (gltf_material_[k] >= 0 && t >= 0)
+        gltf_texture_[static_cast<size_t>(t)] = 0;
+  }
+  for (size_t t = 0; t < assets_.textures.size(); ++t)
+    if (gltf_texture_[t] >= 0) gltf_texture_[t] = add_texture(t);
+}
+
+int SceneModelBuilder::sampler_index(bool wrap_u) {
+  const int wrap_s = wrap_u ? TINYGLTF_TEXTURE_WRAP_REPEAT : TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+  for (size_t k = 0; k < m_.samplers.size(); ++k)
+    if (m_.samplers[k].wrapS == wrap_s) return static_cast<int>(k);
+  tinygltf::Sampler sampler;
+  sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+  sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+  sampler.wrapS = wrap_s;
+  sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+  m_.samplers.push_back(sampler);
+  return static_cast<int>(m_.samplers.size()) - 1;
+}
+
+int SceneModelBuilder::add_texture(size_t t) {
+  const AssetTexture& asset = assets_.textures[t];
+  const int sampler = sampler_index(asset.wrap_u);
+  std::string bytes = encode_texture(asset, options_.textures);
+  tinygltf::Image image;
+  image.name = asset.name;
+  image.mimeType = texture_mime_type(asset, options_.textures);
+  if (image_files_) {
+    image.uri = uri_encode(image_files_->at(t));
+    images_.emplace_back(image_files_->at(t), std::move(bytes));
+  } else {
+    image.bufferView = add_view(m_, bytes.data(), bytes.size(), 0);
+  }
+  m_.images.push_back(image);
+  tinygltf::Texture texture;
+  texture.name = asset.name;
+  texture.sampler = sampler;
+  texture.source = static_cast<int>(m_.images.size()) - 1;
+  m_.textures.push_back(texture);
+  return static_cast<int>(m_.textures.size()) - 1;
+}
+
+void SceneModelBuilder::add_materials() {
+  for (size_t k = 0; k < assets_.materials.size(); ++k) {
+    if (gltf_material_[k] < 0) continue;
+    gltf_material_[k] = static_cast<int>(m_.materials.size());
+    add_pbr_material(m_, assets_.materials[k], gltf_texture_);
+  }
+}
+
+void SceneModelBuilder::add_meshes() {
+  SceneBuffers out(m_, options_.compression);
+  for (const AssetMesh& mesh : assets_.meshes)
+    added_.push_back(add_asset_mesh(out, mesh, gltf_material_, options_.lods));
+  fallback_bytes_ = out.fallback_bytes();
+  view_extensions_ = out.view_extensions();
+  auto require = [this](const std::string& extension) {
+    m_.extensionsUsed.push_back(extension);
+    m_.extensionsRequired.push_back(extension);
+  };
+  if (options_.compression != GltfCompression::None) require("KHR_mesh_quantization");
+  if (options_.compression == GltfCompression::Meshopt) require("EXT_meshopt_compression");
+}
+
+void SceneModelBuilder::add_node(tinygltf::Node node) {
+  m_.nodes.push_back(std::move(node));
+  scene_.nodes.push_back(static_cast<int>(m_.nodes.size()) - 1);
+}
+
+void SceneModelBuilder::add_instances() {
   // Node order: the root, each instance's node followed by its mesh node and hull nodes, the
   // camera, the lights (those in the scene's list: the root, the camera, the lights); then the
   // level nodes, outside the scene's list.
-  const bool camera_and_lights = options.camera_and_lights;
-  const bool collision = options.collision != GltfCollision::None;
-  size_t main_nodes =
-      1 + 2 * assets.instances.size() + (camera_and_lights ? 1 + assets.lights.size() : 0);
-  if (collision)
-    for (const AssetInstance& inst : assets.instances) main_nodes += inst.collision.size();
+  main_nodes_ = 1 + 2 * assets_.instances.size() +
+                (options_.camera_and_lights ? 1 + assets_.lights.size() : 0);
+  if (options_.collision != GltfCollision::None)
+    for (const AssetInstance& inst : assets_.instances) main_nodes_ += inst.collision.size();
   tinygltf::Node root;
-  root.name = assets.name;
-  m.nodes.push_back(root);
-  scene.nodes.push_back(0);
-  auto add_node = [&](tinygltf::Node node) {
-    m.nodes.push_back(std::move(node));
-    scene.nodes.push_back(static_cast<int>(m.nodes.size()) - 1);
-  };
-  std::vector<tinygltf::Node> lod_nodes;  // after the others
-  int hull_material = -1;                 // the collision hulls' one material, once needed
-  for (const AssetInstance& inst : assets.instances) {
-    const double qlen = glm::length(inst.rotation);
-    glm::dquat q = inst.rotation / qlen;
-    if (q.w < 0) q = -q;
-    tinygltf::Node node;
-    node.name = inst.name;
-    node.rotation = gltf_rotation(q);
-    node.translation = gltf_vec3(inst.translation);
-    // The mesh below the instance, with the mesh's frame (quantized positions back to metres:
-    // offset + scale q) as its own transform: the instance's transform is the same whatever
-    // the compression.
-    const AddedMesh& mesh = added[static_cast<size_t>(inst.mesh)];
-    tinygltf::Node mesh_node;
-    mesh_node.name = inst.name + "_mesh";
-    mesh_node.mesh = mesh.index;
-    if (mesh.frame.offset != glm::dvec3(0.0)) mesh_node.translation = gltf_vec3(mesh.frame.offset);
-    if (mesh.frame.scale != 1.0)
-      mesh_node.scale = {mesh.frame.scale, mesh.frame.scale, mesh.frame.scale};
-    tinygltf::Value::Object extras;
-    // Levels of detail (MSFT_lod): a node per level, placed as the mesh node, outside the
-    // scene's list; level l is shown down to 0.2 * 4^-l of the screen's height, the last one
-    // always.
-    if (!mesh.lods.empty()) {
-      tinygltf::Value::Array ids, coverage;
-      for (size_t l = 0; l < mesh.lods.size(); ++l) {
-        tinygltf::Node level = mesh_node;
-        level.name = inst.name + "_LOD" + std::to_string(l + 1);
-        level.mesh = mesh.lods[l];
-        ids.emplace_back(static_cast<int>(main_nodes + lod_nodes.size()));
-        lod_nodes.push_back(std::move(level));
-        coverage.emplace_back(0.2 * std::ldexp(1.0, -2 * static_cast<int>(l)));
-      }
-      coverage.emplace_back(0.0);
-      mesh_node.extensions["MSFT_lod"] =
-          tinygltf::Value(tinygltf::Value::Object{{"ids", tinygltf::Value(ids)}});
-      mesh_node.extras =
-          tinygltf::Value(tinygltf::Value::Object{{"MSFT_screencoverage", tinygltf::Value(coverage)}});
-    }
-    if (!inst.piece.template_name.empty()) {
-      const PieceInfo& info = inst.piece;
-      tinygltf::Value::Array parts;
-      for (const std::string& kind : info.parts) parts.emplace_back(kind);
-      extras["template"] = tinygltf::Value(info.template_name);
-      // A decimal string: a 64-bit seed does not fit a JSON number exactly.
-      extras["seed"] = tinygltf::Value(std::to_string(info.seed));
-      extras["cut"] = tinygltf::Value(info.cut);
-      extras["piece"] = tinygltf::Value(info.cell);
-      extras["parts"] = tinygltf::Value(parts);
-      extras["volume_m3"] = tinygltf::Value(info.volume_m3);
-    }
-    if (!extras.empty()) node.extras = tinygltf::Value(std::move(extras));
-    const int index = static_cast<int>(m.nodes.size());
-    node.children = {index + 1};
-    const std::string& mesh_name = assets.meshes[static_cast<size_t>(inst.mesh)].name;
-    std::vector<tinygltf::Node> hull_nodes;
-    // Hulls are see-through (alpha 0, blended) where a viewer does not read their names as
-    // collision: Blender, three.js and model viewers draw nothing over the piece.
-    if (collision && !inst.collision.empty() && hull_material < 0)
-      hull_material = add_material(m, "collision", 0.0);
-    for (size_t k = 0; collision && k < inst.collision.size(); ++k) {
-      const AssetHull& hull = inst.collision[k];
-      char number[8];
-      std::snprintf(number, sizeof number, "%02zu", k);
-      tinygltf::Mesh hull_mesh;
-      hull_mesh.name = options.collision == GltfCollision::Godot
-                           ? inst.name + "_collision" + std::to_string(k) + "-convcolonly"
-                           : "UCX_" + mesh_name + "_" + number;
-      std::vector<float> xyz;
-      for (const glm::dvec3& p : hull.position)
-        for (int c = 0; c < 3; ++c) xyz.push_back(static_cast<float>(p[c]) + 0.0f);
-      std::vector<uint32_t> idx;
-      for (const glm::uvec3& t : hull.triangle) idx.insert(idx.end(), {t.x, t.y, t.z});
-      tinygltf::Primitive prim;
-      prim.mode = TINYGLTF_MODE_TRIANGLES;
-      prim.attributes["POSITION"] = add_vec3_accessor(m, xyz, true);
-      prim.indices = add_index_accessor(m, idx);
-      prim.material = hull_material;
-      hull_mesh.primitives.push_back(prim);
-      m.meshes.push_back(hull_mesh);
-      tinygltf::Node hull_node;
-      hull_node.name = hull_mesh.name;
-      hull_node.mesh = static_cast<int>(m.meshes.size()) - 1;
-      hull_node.extras =
-          tinygltf::Value(tinygltf::Value::Object{{"collision", tinygltf::Value(std::string("convex"))}});
-      node.children.push_back(index + 2 + static_cast<int>(hull_nodes.size()));
-      hull_nodes.push_back(std::move(hull_node));
-    }
-    m.nodes.push_back(std::move(node));
-    m.nodes.push_back(std::move(mesh_node));
-    for (tinygltf::Node& hull_node : hull_nodes) m.nodes.push_back(std::move(hull_node));
-    m.nodes[0].children.push_back(index);
-  }
-
-  if (camera_and_lights) {
-    // How to show the lights' physical units (doc/lighting.md): three.js's
-    // toneMappingExposure, and the sky a viewer adds as its world or ambient light.
-    tinygltf::Value::Object view;
-    view["exposure"] = tinygltf::Value(1 / kLumensPerWatt);
-    if (assets.ambient_lux > 0) view["ambient_lux"] = tinygltf::Value(assets.ambient_lux);
-    scene.extras = tinygltf::Value(std::move(view));
-    const AssetCamera& cam = assets.camera;
-    tinygltf::Camera camera;
-    camera.name = "camera";
-    camera.type = "perspective";
-    camera.perspective.yfov = glm::radians(cam.fov_y_deg);
-    camera.perspective.aspectRatio = cam.aspect;
-    camera.perspective.znear = cam.znear;
-    camera.perspective.zfar = cam.zfar;
-    m.cameras.push_back(camera);
-    tinygltf::Node camera_node;
-    camera_node.name = "camera";
-    camera_node.camera = 0;
-    camera_node.rotation = gltf_rotation(look_rotation(cam.target - cam.eye, cam.up));
-    camera_node.translation = gltf_vec3(cam.eye);
-    add_node(camera_node);
-
-    for (const AssetLight& light : assets.lights) {
-      tinygltf::Light gl;
-      gl.name = light.name;
-      gl.color = gltf_vec3(light.colour);
-      gl.intensity = light.intensity;
-      tinygltf::Node node;
-      node.name = light.name;
-      if (light.type == LightType::Directional) {
-        gl.type = "directional";
-        node.rotation = gltf_rotation(look_rotation(light.direction, glm::dvec3(0, 1, 0)));
-      } else {
-        gl.type = "point";
-        node.translation = gltf_vec3(light.position);
-      }
-      m.lights.push_back(gl);
-      tinygltf::Value::Object ref;
-      ref["light"] = tinygltf::Value(static_cast<int>(m.lights.size()) - 1);
-      node.extensions["KHR_lights_punctual"] = tinygltf::Value(ref);
-      add_node(node);
-    }
-  }
-  if (!m.lights.empty()) m.extensionsUsed.push_back("KHR_lights_punctual");
-  for (tinygltf::Node& node : lod_nodes) m.nodes.push_back(std::move(node));
-  if (options.lods > 0) m.extensionsUsed.push_back("MSFT_lod");
-  m.scenes.push_back(scene);
-  return m;
+  root.name = assets_.name;
+  m_.nodes.push_back(root);
+  scene_.nodes.push_back(0);
+  for (const AssetInstance& inst : assets_.instances) add_instance(inst);
 }
 
-/// A scene's glTF JSON (buffers without URIs) and the bytes of buffer 0.
+void SceneModelBuilder::add_instance(const AssetInstance& inst) {
+  const double qlen = glm::length(inst.rotation);
+  glm::dquat q = inst.rotation / qlen;
+  if (q.w < 0) q = -q;
+  tinygltf::Node node;
+  node.name = inst.name;
+  node.rotation = gltf_rotation(q);
+  node.translation = gltf_vec3(inst.translation);
+  tinygltf::Node mesh = mesh_node(inst);
+  if (!inst.piece.template_name.empty()) {
+    const PieceInfo& info = inst.piece;
+    tinygltf::Value::Array parts;
+    for (const std::string& kind : info.parts) parts.emplace_back(kind);
+    tinygltf::Value::Object extras;
+    extras["template"] = tinygltf::Value(info.template_name);
+    // A decimal string: a 64-bit seed does not fit a JSON number exactly.
+    extras["seed"] = tinygltf::Value(std::to_string(info.seed));
+    extras["cut"] = tinygltf::Value(info.cut);
+    extras["piece"] = tinygltf::Value(info.cell);
+    extras["parts"] = tinygltf::Value(parts);
+    extras["volume_m3"] = tinygltf::Value(info.volume_m3);
+    node.extras = tinygltf::Value(std::move(extras));
+  }
+  const int index = static_cast<int>(m_.nodes.size());
+  node.children = {index + 1};
+  std::vector<tinygltf::Node> hulls = hull_nodes(inst);
+  for (size_t k = 0; k < hulls.size(); ++k)
+    node.children.push_back(index + 2 + static_cast<int>(k));
+  m_.nodes.push_back(std::move(node));
+  m_.nodes.push_back(std::move(mesh));
+  for (tinygltf::Node& hull_node : hulls) m_.nodes.push_back(std::move(hull_node));
+  m_.nodes[0].children.push_back(index);
+}
+
+tinygltf::Node SceneModelBuilder::mesh_node(const AssetInstance& inst) {
+  // The mesh below the instance, with the mesh's frame (quantized positions back to metres:
+  // offset + scale q) as its own transform: the instance's transform is the same whatever
+  // the compression.
+  const AddedMesh& mesh = added_[static_cast<size_t>(inst.mesh)];
+  tinygltf::Node node;
+  node.name = inst.name + "_mesh";
+  node.mesh = mesh.index;
+  if (mesh.frame.offset != glm::dvec3(0.0)) node.translation = gltf_vec3(mesh.frame.offset);
+  if (mesh.frame.scale != 1.0)
+    node.scale = {mesh.frame.scale, mesh.frame.scale, mesh.frame.scale};
+  // Levels of detail (MSFT_lod): a node per level, placed as the mesh node, outside the
+  // scene's list; level l is shown down to 0.2 * 4^-l of the screen's height, the last one
+  // always.
+  if (!mesh.lods.empty()) {
+    tinygltf::Value::Array ids, coverage;
+    for (size_t l = 0; l < mesh.lods.size(); ++l) {
+      tinygltf::Node level = node;
+      level.name = inst.name + "_LOD" + std::to_string(l + 1);
+      level.mesh = mesh.lods[l];
+      ids.emplace_back(static_cast<int>(main_nodes_ + lod_nodes_.size()));
+      lod_nodes_.push_back(std::move(level));
+      coverage.emplace_back(0.2 * std::ldexp(1.0, -2 * static_cast<int>(l)));
+    }
+    coverage.emplace_back(0.0);
+    node.extensions["MSFT_lod"] =
+        tinygltf::Value(tinygltf::Value::Object{{"ids", tinygltf::Value(ids)}});
+    node.extras =
+        tinygltf::Value(tinygltf::Value::Object{{"MSFT_screencoverage", tinygltf::Value(coverage)}});
+  }
+  return node;
+}
+
+std::vector<tinygltf::Node> SceneModelBuilder::hull_nodes(const AssetInstance& inst) {
+  std::vector<tinygltf::Node> nodes;
+  if (options_.collision == GltfCollision::None) return nodes;
+  const std::string& mesh_name = assets_.meshes[static_cast<size_t>(inst.mesh)].name;
+  // Hulls are see-through (alpha 0, blended) where a viewer does not read their names as
+  // collision: Blender, three.js and model viewers draw nothing over the piece.
+  if (!inst.collision.empty() && hull_material_ < 0)
+    hull_material_ = add_material(m_, "collision", 0.0);
+  for (size_t k = 0; k < inst.collision.size(); ++k) {
+    const AssetHull& hull = inst.collision[k];
+    char number[8];
+    std::snprintf(number, sizeof number, "%02zu", k);
+    tinygltf::Mesh hull_mesh;
+    hull_mesh.name = options_.collision == GltfCollision::Godot
+                         ? inst.name + "_collision" + std::to_string(k) + "-convcolonly"
+                         : "UCX_" + mesh_name + "_" + number;
+    std::vector<float> xyz;
+    for (const glm::dvec3& p : hull.position)
+      for (int c = 0; c < 3; ++c) xyz.push_back(static_cast<float>(p[c]) + 0.0f);
+    std::vector<uint32_t> idx;
+    for (const glm::uvec3& t : hull.triangle) idx.insert(idx.end(), {t.x, t.y, t.z});
+    tinygltf::Primitive prim;
+    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    prim.attributes["POSITION"] = add_vec3_accessor(m_, xyz, true);
+    prim.indices = add_index_accessor(m_, idx);
+    prim.material = hull_material_;
+    hull_mesh.primitives.push_back(prim);
+    m_.meshes.push_back(hull_mesh);
+    tinygltf::Node hull_node;
+    hull_node.name = hull_mesh.name;
+    hull_node.mesh = static_cast<int>(m_.meshes.size()) - 1;
+    hull_node.extras =
+        tinygltf::Value(tinygltf::Value::Object{{"collision", tinygltf::Value(std::string("convex"))}});
+    nodes.push_back(std::move(hull_node));
+  }
+  return nodes;
+}
+
+void SceneModelBuilder::add_camera_and_lights() {
+  // How to show the lights' physical units (doc/lighting.md): three.js's
+  // toneMappingExposure, and the sky a viewer adds as its world or ambient light.
+  tinygltf::Value::Object view;
+  view["exposure"] = tinygltf::Value(1 / kLumensPerWatt);
+  if (assets_.ambient_lux > 0) view["ambient_lux"] = tinygltf::Value(assets_.ambient_lux);
+  scene_.extras = tinygltf::Value(std::move(view));
+  const AssetCamera& cam = assets_.camera;
+  tinygltf::Camera camera;
+  camera.name = "camera";
+  camera.type = "perspective";
+  camera.perspective.yfov = glm::radians(cam.fov_y_deg);
+  camera.perspective.aspectRatio = cam.aspect;
+  camera.perspective.znear = cam.znear;
+  camera.perspective.zfar = cam.zfar;
+  m_.cameras.push_back(camera);
+  tinygltf::Node camera_node;
+  camera_node.name = "camera";
+  camera_node.camera = 0;
+  camera_node.rotation = gltf_rotation(look_rotation(cam.target - cam.eye, cam.up));
+  camera_node.translation = gltf_vec3(cam.eye);
+  add_node(camera_node);
+
+  for (const AssetLight& light : assets_.lights) {
+    tinygltf::Light gl;
+    gl.name = light.name;
+    gl.color = gltf_vec3(light.colour);
+    gl.intensity = light.intensity;
+    tinygltf::Node node;
+    node.name = light.name;
+    if (light.type == LightType::Directional) {
+      gl.type = "directional";
+      node.rotation = gltf_rotation(look_rotation(light.direction, glm::dvec3(0, 1, 0)));
+    } else {
+      gl.type = "point";
+      node.translation = gltf_vec3(light.position);
+    }
+    m_.lights.push_back(gl);
+    tinygltf::Value::Object ref;
+    ref["light"] = tinygltf::Value(static_cast<int>(m_.lights.size()) - 1);
+    node.extensions["KHR_lights_punctual"] = tinygltf::Value(ref);
+    add_node(node);
+  }
+}
+
+SceneModel SceneModelBuilder::finish() {
+  if (!m_.lights.empty()) m_.extensionsUsed.push_back("KHR_lights_punctual");
+  for (tinygltf::Node& node : lod_nodes_) m_.nodes.push_back(std::move(node));
+  if (options_.lods > 0) m_.extensionsUsed.push_back("MSFT_lod");
+  m_.scenes.push_back(scene_);
+  return {std::move(m_), fallback_bytes_, std::move(view_extensions_), std::move(images_)};
+}
+
+/// The scene as a tinygltf model with all binary data in buffer 0 (no URI; with Meshopt
+/// compression, buffer 1 is the fallback) and the extensions of the encoded buffer views. With
+/// `image_files` (texture_file_names(), one per texture), each used texture's image refers to
+/// its file instead and the images are returned with their file names.
+SceneModel scene_model(const SceneAssets& assets, const GltfSceneOptions& options,
+                       const std::vector<std::string>* image_files = nullptr) {
+  require_valid_assets(assets, kGltfRules, "scene assets");
+  SceneModelBuilder builder(assets, options, image_files);
+  builder.add_textures();
+  builder.add_materials();
+  builder.add_meshes();
+  builder.add_instances();
+  if (options.camera_and_lights) builder.add_camera_and_lights();
+  return builder.finish();
+}
+
+/// A scene's glTF JSON (buffers without URIs), the bytes of buffer 0 and, with image files,
+/// the images.
 struct EncodedScene {
   nlohmann::json doc;
   std::vector<unsigned char> bin;
+  std::vector<std::pair<std::string, std::string>> images;  ///< (file name, image bytes)
 };
 
 /// scene_model() serialised: buffer 0 holds `bin`; with Meshopt compression buffer 1 is the
 /// EXT_meshopt_compression fallback, which holds no bytes.
 EncodedScene encode_scene(const SceneAssets& assets, const GltfSceneOptions& options,
-                          const std::vector<std::string>* image_files = nullptr,
-                          std::vector<std::pair<std::string, std::string>>* images = nullptr) {
-  size_t fallback_bytes = 0;
-  std::vector<std::pair<int, nlohmann::json>> view_extensions;
-  tinygltf::Model m =
-      scene_model(assets, options, fallback_bytes, view_extensions, image_files, images);
+                          const std::vector<std::string>* image_files = nullptr) {
+  SceneModel model = scene_model(assets, options, image_files);
+  tinygltf::Model& m = model.model;
   EncodedScene scene;
   scene.bin.swap(m.buffers[0].data);
+  scene.images = std::move(model.images);
   std::ostringstream out;
   tinygltf::TinyGLTF writer;
   writer.WriteGltfSceneToStream(&m, out, false, false);
   scene.doc = nlohmann::json::parse(out.str());
   scene.doc["buffers"][0] = {{"byteLength", scene.bin.size()}};
   if (options.compression == GltfCompression::Meshopt) {
-    scene.doc["buffers"][1] = {{"byteLength", fallback_bytes},
+    scene.doc["buffers"][1] = {{"byteLength", model.fallback_bytes},
                                {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}};
-    for (const auto& [view, extensions] : view_extensions)
+    for (const auto& [view, extensions] : model.view_extensions)
       scene.doc["bufferViews"][static_cast<size_t>(view)]["extensions"] = extensions;
   }
   return scene;
@@ -1072,9 +1218,8 @@ void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& asse
   }
   // .gltf: the textures as image files beside it, written first (each atomically).
   const std::vector<std::string> image_files = texture_file_names(path, assets, options.textures);
-  std::vector<std::pair<std::string, std::string>> images;
-  EncodedScene scene = encode_scene(assets, options, &image_files, &images);
-  for (const auto& [name, bytes] : images) write_file_atomically(dir / name, bytes);
+  EncodedScene scene = encode_scene(assets, options, &image_files);
+  for (const auto& [name, bytes] : scene.images) write_file_atomically(dir / name, bytes);
   // .gltf: buffer 0 is the .bin beside it.
   fs::path bin_path = path;
   bin_path.replace_extension(".bin");

@@ -171,8 +171,27 @@ class PlyGuard {
     fail("PLY header line " + std::to_string(line) + ": " + rule);
   }
 
+  /// What parse_header() carries from one header line to the next.
+  struct HeaderScan {
+    bool seen_face = false, seen_vertex = false;
+    std::vector<PlyElement> after_face;  // parsed for their syntax only
+    size_t last_item_end = 0;  // where OpenMesh's header tokenizer stops before end_header
+    bool last_item_comment = false;
+  };
+
   void parse_header();
+  /// Parses header line `line_no` (`line`, its words `w`) that starts with obj_info, element,
+  /// property or an unknown keyword.
+  void parse_item(int line_no, std::string_view line, const std::vector<std::string_view>& w,
+                  HeaderScan& scan);
+  /// Parses an element line: kept in elements_ up to and including `face`, in
+  /// scan.after_face after it.
+  void parse_element(int line_no, std::string_view line, const std::vector<std::string_view>& w,
+                     HeaderScan& scan);
   void parse_property(int line, const std::vector<std::string_view>& w);
+  /// Checks that the header declares the vertex element (with x, y and z) and the face element
+  /// (its first property the list vertex_indices), and takes their counts.
+  void check_vertex_and_face(const HeaderScan& scan);
   void check_binary_start(size_t end_header, size_t last_item_end, bool last_item_comment);
   void check_sizes();
   void walk_binary();
@@ -198,10 +217,7 @@ class PlyGuard {
 void PlyGuard::parse_header() {
   size_t pos = 0;
   int line_no = 0;
-  bool seen_face = false, seen_vertex = false;
-  std::vector<PlyElement> after_face;  // parsed for their syntax only
-  size_t last_item_end = 0;            // where OpenMesh's header tokenizer stops before end_header
-  bool last_item_comment = false;
+  HeaderScan scan;
   while (true) {
     const size_t nl = bytes_.find('\n', pos);
     if (nl == std::string_view::npos || nl >= kMaxPlyHeaderBytes) {
@@ -231,86 +247,101 @@ void PlyGuard::parse_header() {
       }
       out_.binary = w[1] != "ascii";
       big_endian_ = w[1] == "binary_big_endian";
-      last_item_end = line_start + (w[2].data() + w[2].size() - line.data());
+      scan.last_item_end = line_start + (w[2].data() + w[2].size() - line.data());
       continue;
     }
     if (w.empty()) continue;
     const std::string_view key = w[0];
     if (key == "comment") {
-      last_item_end = pos;  // OpenMesh reads a comment to its line's end
-      last_item_comment = true;
+      scan.last_item_end = pos;  // OpenMesh reads a comment to its line's end
+      scan.last_item_comment = true;
       continue;
     }
     if (key == "end_header") {
       if (w.size() != 1) fail_line(line_no, "'end_header' must stand alone on its line");
       out_.header_end = line_start;
       body_ = pos;
-      check_binary_start(line_start, last_item_end, last_item_comment);
+      check_binary_start(line_start, scan.last_item_end, scan.last_item_comment);
       break;
     }
-    last_item_end = line_start + (w.back().data() + w.back().size() - line.data());
-    last_item_comment = false;
-    if (key == "obj_info") {
-      // OpenMesh reads an obj_info line word by word, as keywords.
-      for (size_t k = 1; k < w.size(); ++k) {
-        if (w[k] == "element" || w[k] == "property" || w[k] == "comment" ||
-            w[k] == "end_header" || w[k] == "obj_info" || w[k] == "format") {
-          fail_line(line_no, "an obj_info line must not contain the keyword " + quoted(w[k]));
-        }
-      }
-    } else if (key == "element") {
-      if (w.size() != 3) fail_line(line_no, "write 'element NAME COUNT', not " + quoted(line));
-      PlyElement e;
-      e.name = std::string(w[1]);
-      e.line = line_no;
-      const std::string what = e.is_vertex() ? "vertex" : e.is_face() ? "face" : quoted(w[1], 24);
-      const std::string_view count = w[2];
-      bool digits = !count.empty();
-      for (char c : count) digits = digits && c >= '0' && c <= '9';
-      if (!digits) {
-        fail_line(line_no, "the " + what + " count must be a whole number >= 0, not " +
-                               quoted(count, 24));
-      }
-      size_t first = 0;
-      while (first + 1 < count.size() && count[first] == '0') ++first;
-      if (count.size() - first > 18) {
-        fail_line(line_no, "the " + what + " count " + quoted(count, 48) +
-                               " is too large (a template mesh has at most " +
-                               std::to_string(kMaxMeshVertices) + " vertices and " +
-                               std::to_string(kMaxMeshFaces) + " faces)");
-      }
-      e.count = std::stoull(std::string(count.substr(first)));
-      if (seen_face) {
-        after_face.push_back(std::move(e));
-        continue;
-      }
-      if (e.is_vertex()) {
-        if (seen_vertex) fail_line(line_no, "a second 'vertex' element");
-        seen_vertex = true;
-      }
-      if (e.is_face()) {
-        if (!seen_vertex) fail_line(line_no, "the 'vertex' element must come before 'face'");
-        seen_face = true;
-      }
-      elements_.push_back(std::move(e));
-    } else if (key == "property") {
-      if (elements_.empty() && after_face.empty()) {
-        fail_line(line_no, "a property before any element");
-      }
-      if (after_face.empty()) {
-        parse_property(line_no, w);
-      } else if (!(w.size() == 3 && ply_type(w[1])) &&
-                 !(w.size() == 5 && w[1] == "list" && ply_type(w[2]) && ply_type(w[3]))) {
-        fail_line(line_no, "write 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME' "
-                           "with PLY types, not " + quoted(line));
-      }
-    } else {
-      fail_line(line_no, "unknown keyword " + quoted(key, 24) +
-                             " (expected comment, obj_info, element, property or end_header)");
-    }
+    scan.last_item_end = line_start + (w.back().data() + w.back().size() - line.data());
+    scan.last_item_comment = false;
+    parse_item(line_no, line, w, scan);
   }
-  if (!seen_vertex) fail("the PLY header declares no 'vertex' element");
-  if (!seen_face) fail("the PLY header declares no 'face' element");
+  check_vertex_and_face(scan);
+}
+
+void PlyGuard::parse_item(int line_no, std::string_view line,
+                          const std::vector<std::string_view>& w, HeaderScan& scan) {
+  const std::string_view key = w[0];
+  if (key == "obj_info") {
+    // OpenMesh reads an obj_info line word by word, as keywords.
+    for (size_t k = 1; k < w.size(); ++k) {
+      if (w[k] == "element" || w[k] == "property" || w[k] == "comment" ||
+          w[k] == "end_header" || w[k] == "obj_info" || w[k] == "format") {
+        fail_line(line_no, "an obj_info line must not contain the keyword " + quoted(w[k]));
+      }
+    }
+  } else if (key == "element") {
+    parse_element(line_no, line, w, scan);
+  } else if (key == "property") {
+    if (elements_.empty() && scan.after_face.empty()) {
+      fail_line(line_no, "a property before any element");
+    }
+    if (scan.after_face.empty()) {
+      parse_property(line_no, w);
+    } else if (!(w.size() == 3 && ply_type(w[1])) &&
+               !(w.size() == 5 && w[1] == "list" && ply_type(w[2]) && ply_type(w[3]))) {
+      fail_line(line_no, "write 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME' "
+                         "with PLY types, not " + quoted(line));
+    }
+  } else {
+    fail_line(line_no, "unknown keyword " + quoted(key, 24) +
+                           " (expected comment, obj_info, element, property or end_header)");
+  }
+}
+
+void PlyGuard::parse_element(int line_no, std::string_view line,
+                             const std::vector<std::string_view>& w, HeaderScan& scan) {
+  if (w.size() != 3) fail_line(line_no, "write 'element NAME COUNT', not " + quoted(line));
+  PlyElement e;
+  e.name = std::string(w[1]);
+  e.line = line_no;
+  const std::string what = e.is_vertex() ? "vertex" : e.is_face() ? "face" : quoted(w[1], 24);
+  const std::string_view count = w[2];
+  bool digits = !count.empty();
+  for (char c : count) digits = digits && c >= '0' && c <= '9';
+  if (!digits) {
+    fail_line(line_no, "the " + what + " count must be a whole number >= 0, not " +
+                           quoted(count, 24));
+  }
+  size_t first = 0;
+  while (first + 1 < count.size() && count[first] == '0') ++first;
+  if (count.size() - first > 18) {
+    fail_line(line_no, "the " + what + " count " + quoted(count, 48) +
+                           " is too large (a template mesh has at most " +
+                           std::to_string(kMaxMeshVertices) + " vertices and " +
+                           std::to_string(kMaxMeshFaces) + " faces)");
+  }
+  e.count = std::stoull(std::string(count.substr(first)));
+  if (scan.seen_face) {
+    scan.after_face.push_back(std::move(e));
+    return;
+  }
+  if (e.is_vertex()) {
+    if (scan.seen_vertex) fail_line(line_no, "a second 'vertex' element");
+    scan.seen_vertex = true;
+  }
+  if (e.is_face()) {
+    if (!scan.seen_vertex) fail_line(line_no, "the 'vertex' element must come before 'face'");
+    scan.seen_face = true;
+  }
+  elements_.push_back(std::move(e));
+}
+
+void PlyGuard::check_vertex_and_face(const HeaderScan& scan) {
+  if (!scan.seen_vertex) fail("the PLY header declares no 'vertex' element");
+  if (!scan.seen_face) fail("the PLY header declares no 'face' element");
   for (const PlyElement& e : elements_) {
     if (e.is_vertex()) {
       for (const char* axis : {"x", "y", "z"}) {
