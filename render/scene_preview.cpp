@@ -108,7 +108,7 @@ std::vector<MeshDraw> mesh_draws(const SceneAssets& a, const AssetMesh& mesh, si
 /// at t = 0, so glTF texture coordinates (v down from the top row) address it as they are. The
 /// texture belongs to the current context, which frees it.
 /// @throws InternalError when it is larger than GL_MAX_TEXTURE_SIZE
-/// @throws std::runtime_error when OpenGL reports an error
+/// @throws EnvironmentError when OpenGL reports an error
 GLuint upload_base_colour(const AssetTexture& texture, size_t index, const GlContext& context) {
   const std::string name = "texture " + std::to_string(index) + " '" + texture.name + "'";
   GLint max_side = 0;
@@ -129,7 +129,7 @@ GLuint upload_base_colour(const AssetTexture& texture, size_t index, const GlCon
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, texture.wrap_u ? GL_REPEAT : GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   if (glGetError() != GL_NO_ERROR)
-    throw std::runtime_error("render_scene_preview: cannot upload " + name + " on " +
+    throw EnvironmentError("render_scene_preview: cannot upload " + name + " on " +
                              context.description());
   return id;
 }
@@ -150,7 +150,7 @@ void attach_depth_buffer(const OffscreenTarget& target, const GlContext& context
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE ||
       glGetError() != GL_NO_ERROR)
-    throw std::runtime_error("render_scene_preview: cannot attach a depth buffer with " +
+    throw EnvironmentError("render_scene_preview: cannot attach a depth buffer with " +
                              std::to_string(target.samples()) + " samples on " +
                              context.description());
 }

@@ -130,12 +130,9 @@ void answer_or_refuse(httplib::Response& res, const std::function<void()>& answe
 /// @throws FileReadError "cannot read PATH: RULE" (not a regular file, too large, or the
 ///         system's reason)
 std::optional<std::string> read_template_file(const std::filesystem::path& path) {
-  try {
-    return read_regular_file(path, kMaxInputFileBytes);
-  } catch (const FileReadError& e) {
-    if (e.missing()) return std::nullopt;
-    throw;
-  }
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec) && !ec) return std::nullopt;  // a new template
+  return read_regular_file(path, kMaxInputFileBytes);
 }
 
 using Clock = std::chrono::steady_clock;
@@ -447,18 +444,20 @@ void answer_exception(const httplib::Request&, httplib::Response& res, std::exce
 
 /// GET /: the page, an embedded file.
 void get_page(const httplib::Request&, httplib::Response& res) {
-  res.set_content(std::string(editor_web_file("index.html")), "text/html; charset=utf-8");
+  const std::optional<std::string_view> page = editor_web_file("index.html");
+  CUTAWAY_CHECK(page.has_value());
+  res.set_content(std::string(*page), "text/html; charset=utf-8");
 }
 
 /// GET /NAME.js and /NAME.css: the page's embedded scripts and style sheets.
 void get_web_file(const httplib::Request& req, httplib::Response& res) {
   const std::string type = req.matches[2] == "js" ? "text/javascript" : "text/css";
-  try {
-    const std::string file = req.matches[1].str() + "." + req.matches[2].str();
-    res.set_content(std::string(editor_web_file(file)), type + "; charset=utf-8");
-  } catch (const std::runtime_error&) {
+  const std::optional<std::string_view> text =
+      editor_web_file(req.matches[1].str() + "." + req.matches[2].str());
+  if (text)
+    res.set_content(std::string(*text), type + "; charset=utf-8");
+  else
     reply_json(res, 404, {{"ok", false}, {"message", "no such file"}});
-  }
 }
 
 }  // namespace
@@ -472,14 +471,14 @@ nlohmann::json check_template_text(std::string_view text,
   }
 }
 
-std::string request_refusal(std::string_view host, std::string_view origin, int port) {
+Check check_request(std::string_view host, std::string_view origin, int port) {
   const std::string p = std::to_string(port);
   if (host != "127.0.0.1:" + p && host != "localhost:" + p)
-    return "the Host header must be 127.0.0.1:" + p + " or localhost:" + p + ", not " +
-           quoted(host);
+    return Check::none("the Host header must be 127.0.0.1:" + p + " or localhost:" + p +
+                       ", not " + quoted(host));
   if (!origin.empty() && origin != "http://127.0.0.1:" + p && origin != "http://localhost:" + p)
-    return "requests from other sites are refused (Origin " + quoted(origin) + ")";
-  return "";
+    return Check::none("requests from other sites are refused (Origin " + quoted(origin) + ")");
+  return {};
 }
 
 struct EditServer::Impl {
@@ -647,10 +646,10 @@ struct EditServer::Impl {
 
 httplib::Server::HandlerResponse EditServer::Impl::screen_request(const httplib::Request& req,
                                                                   httplib::Response& res) {
-  const std::string why =
-      request_refusal(req.get_header_value("Host"), req.get_header_value("Origin"), port);
-  if (!why.empty()) {
-    refuse_and_close(req, res, 403, why);
+  const Check allowed =
+      check_request(req.get_header_value("Host"), req.get_header_value("Origin"), port);
+  if (!allowed) {
+    refuse_and_close(req, res, 403, allowed.reason());
     return httplib::Server::HandlerResponse::Handled;
   }
   if (const auto refusal = head_refusal(req, options.max_body_bytes)) {
@@ -679,7 +678,7 @@ void EditServer::Impl::get_template(const httplib::Request&, httplib::Response& 
     const std::optional<std::string> text = read_template_file(options.template_path);
     reply_json(res, 200,
                {{"file", file}, {"exists", text.has_value()}, {"text", text.value_or("")}});
-  } catch (const std::runtime_error& e) {
+  } catch (const EnvironmentError& e) {
     reply_json(res, 500, {{"ok", false}, {"file", file}, {"message", e.what()}});
   }
 }
@@ -815,7 +814,7 @@ EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
 
   s.listen_fd = listen_on_loopback(s.options.port);
   if (s.listen_fd < 0)
-    throw std::runtime_error("port " + std::to_string(s.options.port) +
+    throw EnvironmentError("port " + std::to_string(s.options.port) +
                              " on 127.0.0.1 is taken; pass another with --port");
   s.port = bound_port(s.listen_fd);
   s.wake_fd = ::eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);

@@ -83,10 +83,10 @@ struct EditServerOptions {
   std::vector<WebLibrary> libraries = editor_libraries();  ///< served at /lib/NAME/
 };
 
-/// Why a request may not be served (403), or "" when it may: its Host header must name this
-/// server (127.0.0.1:PORT or localhost:PORT), and its Origin header, when present, must be
-/// http://127.0.0.1:PORT or http://localhost:PORT.
-std::string request_refusal(std::string_view host, std::string_view origin, int port);
+/// Passes when a request may be served, else fails with why not (403): its Host header must
+/// name this server (127.0.0.1:PORT or localhost:PORT), and its Origin header, when present,
+/// must be http://127.0.0.1:PORT or http://localhost:PORT.
+Check check_request(std::string_view host, std::string_view origin, int port);
 
 /// The editor's server: binds at construction, serves in run(), stops from any thread.
 /// HTTP is cpp-httplib's (its routing and request parsing); the connections are this class's:

@@ -10,10 +10,9 @@
 
 namespace cutaway {
 
-FileReadError::FileReadError(const std::filesystem::path& path, std::string rule, bool missing)
+FileReadError::FileReadError(const std::filesystem::path& path, std::string rule)
     : EnvironmentError("cannot read " + path.string() + ": " + rule),
-      rule_(std::move(rule)),
-      missing_(missing) {}
+      rule_(std::move(rule)) {}
 
 std::string byte_size_words(uint64_t bytes) {
   if (bytes != 0 && bytes % (uint64_t{1} << 30) == 0) return std::to_string(bytes >> 30) + " GiB";
@@ -55,7 +54,7 @@ std::string read_regular_file(const std::filesystem::path& path, uint64_t max_by
   // then the descriptor, in case the path was replaced in between.
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) {
-    if (errno == ENOENT) throw FileReadError(path, "does not exist", true);
+    if (errno == ENOENT) throw FileReadError(path, "does not exist");
     throw FileReadError(path, system_rule());
   }
   require_readable(path, st, max_bytes);

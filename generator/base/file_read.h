@@ -18,14 +18,11 @@ namespace cutaway {
 /// (e.g. "is larger than 16 MiB"), to follow the file's name in messages that name it their way.
 class FileReadError : public EnvironmentError {
  public:
-  FileReadError(const std::filesystem::path& path, std::string rule, bool missing = false);
+  FileReadError(const std::filesystem::path& path, std::string rule);
   const std::string& rule() const { return rule_; }
-  /// Whether the file does not exist (rule "does not exist").
-  bool missing() const { return missing_; }
 
  private:
   std::string rule_;
-  bool missing_;
 };
 
 /// The bytes of the regular file at `path` (symbolic links followed), at most `max_bytes`.

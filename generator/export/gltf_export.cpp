@@ -134,7 +134,7 @@ std::vector<double> gltf_rotation(const glm::dquat& q) {
 
 std::vector<double> gltf_vec3(const glm::dvec3& v) { return {v.x + 0.0, v.y + 0.0, v.z + 0.0}; }
 
-/// What glTF tolerates beyond the rules of assets_defect: zero normals (written as +Y), a
+/// What glTF tolerates beyond the rules of check_assets: zero normals (written as +Y), a
 /// camera without `up` (its look rotation does not use it); and what it needs: triangles in
 /// every mesh, uv wherever a material is textured.
 constexpr AssetRules kGltfRules{.camera_needs_up = false,
@@ -992,7 +992,7 @@ std::filesystem::path stage_file(const std::filesystem::path& target, std::strin
   std::string tmp = target.string() + ".tmp-XXXXXX";
   const int fd = mkstemp(tmp.data());
   if (fd < 0) {
-    throw std::runtime_error("cannot write " + target.string() + ": " + std::strerror(errno));
+    throw EnvironmentError("cannot write " + target.string() + ": " + std::strerror(errno));
   }
   ::close(fd);
   try {
@@ -1006,7 +1006,7 @@ std::filesystem::path stage_file(const std::filesystem::path& target, std::strin
 
 void rename_or_throw(const std::filesystem::path& from, const std::filesystem::path& to) {
   if (std::rename(from.c_str(), to.c_str()) != 0) {
-    throw std::runtime_error("cannot write " + to.string() + ": " + std::strerror(errno));
+    throw EnvironmentError("cannot write " + to.string() + ": " + std::strerror(errno));
   }
 }
 
@@ -1073,7 +1073,7 @@ std::string model_to_glb(const DsModel& model, const GltfModelOptions& options) 
 
 GltfGeometryCounts count_glb_geometry(std::string_view glb) {
   const auto refuse = [](const std::string& why) {
-    return std::runtime_error("not a binary glTF file: " + why);
+    return EnvironmentError("not a binary glTF file: " + why);
   };
   const auto u32 = [&glb](size_t at) {
     uint32_t v = 0;
@@ -1210,7 +1210,7 @@ void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& asse
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) {
-    throw std::runtime_error("cannot write " + path.string() + ": no directory " + dir.string());
+    throw EnvironmentError("cannot write " + path.string() + ": no directory " + dir.string());
   }
   if (ext == ".glb") {
     write_file_atomically(path, scene_to_glb(assets, options));

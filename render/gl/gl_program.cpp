@@ -1,7 +1,8 @@
 #include "render/gl/gl_program.h"
 
-#include <stdexcept>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "base/error.h"
 #include "render/gl/shader_sources.h"
@@ -28,7 +29,9 @@ std::string program_log(GLuint program) {
 }
 
 GLuint compile(GLenum stage, std::string_view file) {
-  const std::string_view text = shader_source(file);
+  const std::optional<std::string_view> source = shader_source(file);
+  if (!source) throw InternalError("no embedded shader named '" + std::string(file) + "'");
+  const std::string_view text = *source;
   const GLchar* data = text.data();
   const GLint length = static_cast<GLint>(text.size());
   const GLuint shader = glCreateShader(stage);
