@@ -433,23 +433,28 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
 
   std::vector<glm::dvec2> scattered;  // where the scattered pieces went
   const int gap = static_cast<int>(std::ceil(options.scatter_gap_m / options.cell_m));
+  const int step =
+      std::max(1, static_cast<int>(std::lround(options.scan_step_m / options.cell_m)));
   for (size_t p = 0; p < pieces.size(); ++p) {
     const LayoutPiece& piece = pieces[p];
-    if (piece.arrange == Arrangement::Fan) continue;
+    if (piece.arrange == Arrangement::Fan && out[p].placed) continue;
     Rng rng(derive_seed(seed, {p}));
     const Turned t = turn(piece, facing_rotation(piece, facing, options, rng), options.cell_m);
-    const bool scatter = piece.arrange == Arrangement::Scatter;
+    // Pile pieces heap from the start; scattered ones once no free ground is left, and the
+    // pieces of a fan row that fitted nowhere, as a real board or plate heaps up.
+    bool heap = piece.arrange != Arrangement::Scatter;
     double best_score = kBlocked, best_y = 0;
     int best_i = -1, best_j = -1;
-    // A position for the piece at cell (i, j), scored: pile, the lowest near the axis; scatter,
-    // with its footprint grown by `gap_cells` free, the farthest from the scattered pieces.
+    // A position for the piece at cell (i, j), scored: heaped, the lowest near the axis;
+    // scattered, with its footprint grown by `gap_cells` free, the farthest from the
+    // scattered pieces.
     const auto consider = [&](int i, int j, int gap_cells) {
-      if (scatter && !field.free(t, i, j, gap_cells)) return;
+      if (!heap && !field.free(t, i, j, gap_cells)) return;
       const double y = field.rest(t, i, j);
       if (y == kBlocked) return;
       const glm::dvec2 at = field.at(i, j);
       double score = y + options.centre_weight * glm::length(at);
-      if (scatter && !scattered.empty()) {
+      if (!heap && !scattered.empty()) {
         double nearest = kBlocked;
         for (const glm::dvec2& o : scattered) nearest = std::min(nearest, glm::length(at - o));
         score = -nearest;
@@ -461,28 +466,33 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
         best_j = j;
       }
     };
-    // Scatter on a crowded board: the gap halves, then goes, before a piece is left out; with
-    // no gap, every cell on a grid of a scan step is tried after the random ones.
-    for (int g = scatter ? gap : 0; best_i < 0; g /= 2) {
+    // Random positions, more only while none fits; then every position on a grid of a scan
+    // step. Scatter on a crowded board: the gap halves, then goes, before the piece heaps.
+    const auto search = [&](int gap_cells) {
       for (int attempt = 0; attempt < 4 * options.candidates; ++attempt) {
-        if (attempt >= options.candidates && best_i >= 0) break;  // more only while none fits
+        if (attempt >= options.candidates && best_i >= 0) break;
         const int i = static_cast<int>(rng.below(static_cast<uint32_t>(n)));
         const int j = static_cast<int>(rng.below(static_cast<uint32_t>(n)));
-        consider(i, j, g);
+        consider(i, j, gap_cells);
       }
-      if (g == 0) {
-        const int step = std::max(1, static_cast<int>(std::lround(options.scan_step_m /
-                                                                   options.cell_m)));
-        for (int i = 0; scatter && best_i < 0 && i < n; i += step)
-          for (int j = 0; j < n; j += step) consider(i, j, 0);
-        break;
-      }
+    };
+    const auto scan = [&] {
+      for (int i = 0; best_i < 0 && i < n; i += step)
+        for (int j = 0; j < n; j += step) consider(i, j, 0);
+    };
+    if (!heap) {
+      for (int g = gap; best_i < 0 && g > 0; g /= 2) search(g);
+      if (best_i < 0) search(0);
+      if (best_i < 0) scan();
+      if (best_i < 0) heap = true;
     }
-    if (best_i < 0) continue;  // not placed: the container is full
+    if (heap && best_i < 0) search(0);
+    if (heap && best_i < 0 && piece.arrange != Arrangement::Pile) scan();
+    if (best_i < 0) continue;  // not placed: the piece is larger than the container
     const double y = best_y + options.clearance_m;
     field.raise(t, best_i, best_j, y);
     out[p] = field.placement(t, best_i, best_j, y);
-    if (scatter) scattered.push_back(field.at(best_i, best_j));
+    if (!heap) scattered.push_back(field.at(best_i, best_j));
   }
   return out;
 }

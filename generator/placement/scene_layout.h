@@ -74,13 +74,16 @@ struct Placement {
 ///   fan_headings directions, whose pieces keep scatter_gap_m of free ground to the pieces
 ///   before the row, the lowest by score; the gap relaxes as for scatter; a row that fits
 ///   nowhere even without a gap is split into two rows while each keeps fan_min_row pieces,
-///   and one that cannot be split may lie over the pieces before it;
+///   and one that cannot be split may lie over the pieces before it; the pieces of a row that
+///   fits nowhere at all heap as pile pieces do;
 /// - scatter: turned as for pile; of `candidates` positions whose footprint, grown by
 ///   scatter_gap_m, is free of pieces, the farthest from the pieces placed (best candidate);
 ///   where none is found the gap halves until it is 0, and then every position on a grid of
-///   scan_step_m is tried, before the piece is left out.
+///   scan_step_m is tried; with no free ground left the piece heaps as a pile piece does (on a
+///   crowded board or plate pieces stack, as they would on a real one).
 /// Deterministic in `seed`.
-/// @returns one placement per piece, in input order (placed false: no room was found)
+/// @returns one placement per piece, in input order (placed false: no position keeps every
+///          vertex over the container's resting area, a piece larger than the container)
 std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
                                      const Container& container, const LayoutOptions& options,
                                      uint64_t seed);
