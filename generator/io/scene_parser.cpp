@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -15,6 +16,8 @@
 #include "io/template_parser.h"
 #include "io/text_rules.h"
 #include "io/yaml_reader.h"
+#include "placement/container_mesh.h"
+#include "placement/scene_layout.h"
 
 namespace cutaway {
 
@@ -87,6 +90,22 @@ Arrangement parse_arrangement(const YamlField& f) {
   f.fail("must be pile, fan or scatter, not " + quoted(v));
 }
 
+/// The rule a scene breaks whose pieces, heaped, fill `heap_m3` where the container holds
+/// `holds_m3` (heap_capacity), with both volumes in litres.
+std::string volume_rule(double heap_m3, double holds_m3, ContainerType type) {
+  const char* what = type == ContainerType::Bowl    ? "the bowl"
+                     : type == ContainerType::Plate ? "the plate"
+                     : type == ContainerType::Board ? "the board"
+                                                    : "the floor (no container)";
+  char text[300];
+  std::snprintf(text, sizeof text,
+                "the items up to here make a heap of about %.3g litres (the objects' volume over "
+                "%.2f packing) and %s holds about %.3g litres heaped: fewer or smaller objects, "
+                "a lower keep, or a larger container",
+                1000 * heap_m3, kHeapPacking, what, 1000 * holds_m3);
+  return text;
+}
+
 Scene parse(std::string_view text, const std::string& file, bool load_templates) {
   const YamlField root = parse_yaml(text, file);
   Scene s;
@@ -116,6 +135,7 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
   if (scene_dir.empty()) scene_dir = ".";
   TemplateCheck templates;
   long long objects = 0, pieces = 0;  // totals of the items so far
+  double heap_m3 = 0;  // the heap the pieces kept so far make (kHeapPacking)
   const YamlField items = root.require("items");
   if (items.size() == 0) items.fail("a scene needs at least one item");
   for (size_t i = 0; i < items.size(); ++i) {
@@ -153,6 +173,10 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
         count_field.fail("the items up to here make about " + std::to_string(pieces) +
                          " pieces (at most " + std::to_string(kMaxScenePieces) + " in a scene)");
       item.cut_area_m2 = estimate_cut_area(item.cut, extents);
+      heap_m3 += item.count * item.keep * estimate_object_volume(extents) / kHeapPacking;
+      if (const double holds = heap_capacity(s.container, LayoutOptions{}.none_radius_m);
+          heap_m3 > holds)
+        count_field.fail(volume_rule(heap_m3, holds, s.container.type));
     }
     s.items.push_back(std::move(item));
   }

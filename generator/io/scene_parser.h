@@ -48,6 +48,9 @@ Scene parse_scene_and_templates(std::string_view text, const std::string& file);
 /// Also holds the scene to the totals of scene.h (kMaxSceneObjects, kMaxScenePieces at the
 /// item's count that passes them; kMaxRenderPixels at render) and its cut faces to
 /// kMaxCapTexels (check_cap_texels of scene_cut_area, at render.texels_per_mm or the last item).
+/// Refuses, at the count of the item that passes it, pieces whose heap (estimate_object_volume
+/// x count x keep over kHeapPacking) is larger than the container holds (heap_capacity): every
+/// piece asked for is placed, so a request the container cannot hold is refused before work.
 Scene load_scene(const std::string& path);
 
 /// An upper bound of the cut-face area of all `scene`'s objects, m^2: each item's count times

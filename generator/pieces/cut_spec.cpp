@@ -118,6 +118,10 @@ Check check_cap_texels(double cut_area_m2, double texels_per_mm) {
   return Check::none(text);
 }
 
+double estimate_object_volume(const ObjectExtents& extents) {
+  return 2.0 / 3.0 * kPi * extents.radius_m * extents.radius_m * extents.height_m;
+}
+
 double estimate_cut_area(const CutSpec& cut, const ObjectExtents& extents) {
   const double r = extents.radius_m, h = extents.height_m;
   const double any_plane = 2 * r * std::sqrt(h * h + 4 * r * r);

@@ -58,6 +58,10 @@ long long estimate_piece_count(const CutSpec& cut, const ObjectExtents& extents)
 /// slice or dice plane across the axis in pi r^2. Saturates at 1e12 m^2.
 double estimate_cut_area(const CutSpec& cut, const ObjectExtents& extents);
 
+/// An estimate of an object's volume within `extents`, m^3: the ellipsoid of revolution in its
+/// bounding cylinder, 2/3 pi r^2 h (a fruit fills about that much of it).
+double estimate_object_volume(const ObjectExtents& extents);
+
 /// The most cap-texture texels the objects of one scene, or one batch asset, may need, as
 /// estimated from their cut-face area (estimate_cut_area) at the texel density: 64 M, about
 /// 340 MB of RGBA with mipmaps.

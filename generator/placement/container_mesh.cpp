@@ -1,5 +1,6 @@
 #include "placement/container_mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -196,6 +197,27 @@ std::optional<double> rest_height(const Container& c, double x, double z, double
       return plate_inner(c, r);
   }
   return std::nullopt;
+}
+
+double heap_capacity(const Container& c, double none_radius_m) {
+  // A cone of slope kHeapSlope over a disc of radius r.
+  const auto cone = [](double r) { return kPi * r * r * (kHeapSlope * r) / 3; };
+  switch (c.type) {
+    case ContainerType::None:
+      return cone(none_radius_m);
+    case ContainerType::Board: {
+      // A hip roof over W x D (W >= D): ridge height h = D/2 slope, volume h D (3 W - D) / 6.
+      const double w = std::max(c.width_m, c.depth_m), d = std::min(c.width_m, c.depth_m);
+      return kHeapSlope * 0.5 * d * d * (3 * w - d) / 6;
+    }
+    case ContainerType::Bowl: {
+      const double a = 0.5 * c.diameter_m - bowl_wall(c);
+      return 2.0 / 3.0 * kPi * a * a * (c.height_m - bowl_floor(c)) + cone(a);
+    }
+    case ContainerType::Plate:
+      return cone(0.5 * c.diameter_m);
+  }
+  return cone(none_radius_m);
 }
 
 double rest_radius(const Container& c, double none_radius_m) {

@@ -33,6 +33,19 @@ std::optional<AssetMesh> container_mesh(const Container& container, int segments
 std::optional<double> rest_height(const Container& container, double x, double z,
                                   double none_radius_m);
 
+/// The steepest slope (rise over run) a heap of pieces keeps: its angle of repose, whose tangent
+/// is about the pieces' friction coefficient (SettleOptions::friction, 0.8).
+inline constexpr double kHeapSlope = 0.8;
+/// The fraction of a heap's volume its pieces fill: random close packing (0.64), the densest
+/// a heap of loose pieces reaches.
+inline constexpr double kHeapPacking = 0.64;
+
+/// How much the container holds, m^3 of heap (pieces and the gaps between them): a bowl's
+/// inside below its rim (the half ellipsoid of its inner surface) and a cone over its rim; a
+/// plate, a cone over its rim; a board, a hip roof over its top; the floor (type none), a cone
+/// of radius `none_radius_m`. Heaps slope at kHeapSlope.
+double heap_capacity(const Container& container, double none_radius_m);
+
 /// The radius (metres) about the Y axis within which pieces can rest (the inner rim, half the
 /// board's diagonal, `none_radius_m` for type none).
 double rest_radius(const Container& container, double none_radius_m);

@@ -453,7 +453,9 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
       const double y = field.rest(t, i, j);
       if (y == kBlocked) return;
       const glm::dvec2 at = field.at(i, j);
-      double score = y + options.centre_weight * glm::length(at);
+      const bool piled = piece.arrange == Arrangement::Pile;
+      double score =
+          y + (piled ? options.centre_weight : options.heap_centre_weight) * glm::length(at);
       if (!heap && !scattered.empty()) {
         double nearest = kBlocked;
         for (const glm::dvec2& o : scattered) nearest = std::min(nearest, glm::length(at - o));

@@ -41,6 +41,9 @@ struct LayoutOptions {
   int candidates = 64;             ///< random positions tried per piece
   double clearance_m = 0.001;      ///< gap left under each drop pose (clear of the bodies' margins), m
   double centre_weight = 0.25;     ///< score = rest height + centre_weight * distance to the axis
+  /// The same for scattered and fanned pieces that heap (no free ground left): nearly the
+  /// lowest anywhere, so that a crowded board fills its low gaps before a heap rises
+  double heap_centre_weight = 0.02;
   glm::dvec3 to_camera{0, 0.7, 0.7};  ///< direction from the scene towards the camera
   double none_radius_m = 0.2;      ///< resting radius on the floor (container type none)
   double tilt_deg = 12;            ///< random tilt of each piece's facing direction, degrees
@@ -54,7 +57,7 @@ struct LayoutOptions {
 
 /// Where one piece goes: scene point = translation + rotation * (object-frame point).
 struct Placement {
-  bool placed = false;  ///< false: no position was found (the container is full)
+  bool placed = false;  ///< false: no position keeps it over the resting area (too large)
   glm::dquat rotation{1, 0, 0, 0};
   glm::dvec3 translation{0.0};
 };
@@ -79,8 +82,9 @@ struct Placement {
 /// - scatter: turned as for pile; of `candidates` positions whose footprint, grown by
 ///   scatter_gap_m, is free of pieces, the farthest from the pieces placed (best candidate);
 ///   where none is found the gap halves until it is 0, and then every position on a grid of
-///   scan_step_m is tried; with no free ground left the piece heaps as a pile piece does (on a
-///   crowded board or plate pieces stack, as they would on a real one).
+///   scan_step_m is tried; with no free ground left the piece heaps as a pile piece does, the
+///   lowest scored with heap_centre_weight (on a crowded board or plate pieces fill the low
+///   gaps, then stack, as they would on a real one).
 /// Deterministic in `seed`.
 /// @returns one placement per piece, in input order (placed false: no position keeps every
 ///          vertex over the container's resting area, a piece larger than the container)

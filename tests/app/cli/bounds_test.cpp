@@ -17,6 +17,10 @@
 namespace cutaway {
 namespace {
 
+/// A container large enough for any heap the other totals allow (scene-format.md, Totals).
+const char* const kLargeBoard =
+    "container: {type: board, width: 20000, depth: 20000, height: 20}\n";
+
 namespace fs = std::filesystem;
 
 const std::string kDir = "tests/data/bounds/";
@@ -109,7 +113,8 @@ TEST(Bounds, SceneAndBatchTotalsAreChecked) {
   expect_refused(many, "items[0].count: the items up to here make about");
   {
     std::ofstream f(dir / "objects.yaml");
-    f << "format: cutaway-scene/1\nname: objects\nitems:\n";
+    // On a 20 m board, which holds their heap: the object total is what refuses them.
+    f << "format: cutaway-scene/1\nname: objects\n" << kLargeBoard << "items:\n";
     for (int i = 0; i < 17; ++i) f << "  - {template: tomato, count: 64}\n";
   }
   expect_refused(run_bounded({"check", (dir / "objects.yaml").string()}),
@@ -117,7 +122,7 @@ TEST(Bounds, SceneAndBatchTotalsAreChecked) {
   // 256 whole tomatoes of about 16,600 model vertices each: the third item passes 3 M.
   {
     std::ofstream f(dir / "vertices.yaml");
-    f << "format: cutaway-scene/1\nname: vertices\nitems:\n";
+    f << "format: cutaway-scene/1\nname: vertices\n" << kLargeBoard << "items:\n";
     for (int i = 0; i < 4; ++i) f << "  - {template: tomato, count: 64}\n";
   }
   expect_refused(run_bounded({"check", (dir / "vertices.yaml").string()}),

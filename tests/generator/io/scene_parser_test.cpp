@@ -357,13 +357,33 @@ TEST(SceneParser, LoadSceneRefusesTooManyPieces) {
             std::string::npos)
       << e.rule();
 
-  // 2 mm slices make 401: fine (at a texel density that keeps their caps within the total).
-  std::ofstream(dir / "ok.yaml") << kHead + R"(items:
+  // 2 mm slices make 401: fine (at a texel density that keeps their caps within the total, on
+  // a board large enough to hold their heap).
+  std::ofstream(dir / "ok.yaml") << kHead + R"(container: {type: board, width: 4000, depth: 4000, height: 20}
+items:
   - template: big.yaml
     cut: {type: slices, thickness: 2}
 render: {texels_per_mm: 0.1}
 )";
   EXPECT_NO_THROW(load_scene((dir / "ok.yaml").string()));
+}
+
+TEST(SceneParser, LoadSceneRefusesMorePiecesThanTheContainerHolds) {
+  // 40 tomatoes heap to about 8 litres (0.2 litre each: their volume over 0.64 packing); a
+  // 26 cm plate holds a cone of about 1.8 litres, a 60 x 40 cm board a heap of about 15 litres.
+  const fs::path dir = test::fresh_dir("scene_heap");
+  const std::string items = R"(items:
+  - template: tomato
+    count: 40
+    cut: {type: halves}
+)";
+  std::ofstream(dir / "plate.yaml") << kHead + "container: {type: plate}\n" + items;
+  const InputError e = load_error_of((dir / "plate.yaml").string());
+  EXPECT_EQ(e.field(), "items[0].count");
+  EXPECT_NE(e.rule().find("and the plate holds about"), std::string::npos) << e.rule();
+  std::ofstream(dir / "board.yaml")
+      << kHead + "container: {type: board, width: 600, depth: 400, height: 20}\n" + items;
+  EXPECT_NO_THROW(load_scene((dir / "board.yaml").string()));
 }
 
 TEST(SceneParser, LoadSceneMissingFile) {

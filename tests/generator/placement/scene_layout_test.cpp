@@ -2,7 +2,8 @@
 // no piece cuts into another or into the container deeper than the stated tolerance (CGAL:
 // surface intersection, then the depth of each vertex of one inside the other), every piece
 // rests on something (moved 4 mm straight down it would hit the container or another piece),
-// and a bowl of 60 pieces forms a pile that stays put when simulated again.
+// a bowl of 60 pieces forms a pile that stays put when simulated again, and a board with more
+// pieces than free ground heaps them instead of leaving any out.
 #include <limits>
 #include <map>
 #include <tuple>
@@ -19,6 +20,7 @@
 
 #include "io/scene_parser.h"
 #include "placement/container_mesh.h"
+#include "placement/scene_layout.h"
 #include "scene/scene_builder.h"
 #include "test_support.h"
 
@@ -190,6 +192,44 @@ items:
   }
   EXPECT_GE(on_others, 10);
   EXPECT_GE(top - floor, 2 * 0.010);
+}
+
+/// A closed box of `size` (metres) centred on the origin, as a piece's mesh.
+ShadedMesh box(const glm::dvec3& size) {
+  ShadedMesh m;
+  for (int k = 0; k < 8; ++k) {
+    m.position.push_back(0.5 * size * glm::dvec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1));
+    m.normal.push_back(glm::normalize(m.position.back()));
+    m.colour.push_back(glm::dvec3(0.5));
+  }
+  m.triangle = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  return m;
+}
+
+TEST(SceneLayout, ACrowdedBoardHeapsEveryPieceInsteadOfLeavingOut) {
+  // 60 blocks of 30 x 20 x 30 mm, scattered and fanned, on a board of 120 x 120 mm: about 16
+  // fit side by side; the others must heap on them, none left out.
+  const ShadedMesh block = box({0.03, 0.02, 0.03});
+  std::vector<LayoutPiece> pieces(60);
+  for (size_t p = 0; p < pieces.size(); ++p) {
+    pieces[p].mesh = &block;
+    pieces[p].cap_normal = {0, 1, 0};
+    pieces[p].arrange = p % 3 == 0 ? Arrangement::Fan : Arrangement::Scatter;
+    pieces[p].group = static_cast<int>(p % 2);
+    pieces[p].rank = static_cast<int>(p);
+  }
+  Container board;
+  board.type = ContainerType::Board;
+  board.width_m = board.depth_m = 0.12;
+  board.height_m = 0.02;
+  const std::vector<Placement> out = layout_pieces(pieces, board, LayoutOptions{}, 7);
+  int heaped = 0;
+  for (const Placement& p : out) {
+    ASSERT_TRUE(p.placed);
+    if (p.translation.y > board.height_m + 0.025) ++heaped;  // over another block
+  }
+  EXPECT_GE(heaped, 20);
 }
 
 }  // namespace
