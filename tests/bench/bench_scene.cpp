@@ -134,9 +134,10 @@ void bench_scene(const fs::path& path, int repeat, int threads, double target_s)
     }
   }
   std::printf(
-      "%-12s %2d objects %3d pieces %7zu triangles %6zu PMVC points => %.2f s "
+      "%-12s %2d objects %3d of %3d pieces placed %7zu triangles %6zu PMVC points => %.2f s "
       "(glb %.1f MB)%s\n",
-      path.stem().c_str(), best_stats.objects, best_stats.placed, best_stats.triangles,
+      path.stem().c_str(), best_stats.objects, best_stats.placed, best_stats.pieces,
+      best_stats.triangles,
       best_stats.diffused.all, best, bytes / 1e6,
       path.stem() == "salad"
           ? (best <= target_s ? "  [target <= 30 s: met]" : "  [target <= 30 s: MISSED]")
