@@ -33,12 +33,14 @@ std::optional<AssetMesh> container_mesh(const Container& container, int segments
 std::optional<double> rest_height(const Container& container, double x, double z,
                                   double none_radius_m);
 
-/// The steepest slope (rise over run) a heap of pieces keeps: its angle of repose, whose tangent
-/// is about the pieces' friction coefficient (SettleOptions::friction, 0.8).
-inline constexpr double kHeapSlope = 0.8;
-/// The fraction of a heap's volume its pieces fill: random close packing (0.64), the densest
-/// a heap of loose pieces reaches.
-inline constexpr double kHeapPacking = 0.64;
+/// The steepest slope (rise over run) a heap of pieces keeps, 45 degrees: steeper than the
+/// angle of repose of loose pieces (whose tangent is about their friction coefficient,
+/// SettleOptions::friction, 0.8), as slices stack steeper than a heap of round pieces; the
+/// bound refuses only what cannot fit.
+inline constexpr double kHeapSlope = 1.0;
+/// The fraction of a heap's volume its pieces fill, at most: the densest packing of equal
+/// spheres (0.74); loose pieces fill less (random close packing, 0.64).
+inline constexpr double kHeapPacking = 0.74;
 
 /// How much the container holds, m^3 of heap (pieces and the gaps between them): a bowl's
 /// inside below its rim (the half ellipsoid of its inner surface) and a cone over its rim; a

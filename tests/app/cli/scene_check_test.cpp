@@ -70,8 +70,8 @@ std::vector<BadSceneCase> bad_scenes() {
       bad("variation_too_large", 13, 16, "items[1].variation", "must be between 0 and 10, not 12"),
       bad("keep_zero", 13, 11, "items[1].keep", "must be more than 0 and at most 1"),
       bad("heap_too_large", 9, 12, "items[0].count",
-          "make a heap of about 13.1 litres (the objects' volume over 0.64 packing) and the bowl "
-          "holds about 3.16 litres heaped"),
+          "make a heap of about 11.4 litres (the objects' volume over 0.74 packing) and the bowl "
+          "holds about 3.46 litres heaped"),
       // Cuts.
       bad("cut_type", 10, 17, "items[0].cut.type",
           "must be whole, halves, slices, wedges or dice, not \"quarters\""),

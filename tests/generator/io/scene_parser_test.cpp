@@ -369,8 +369,8 @@ render: {texels_per_mm: 0.1}
 }
 
 TEST(SceneParser, LoadSceneRefusesMorePiecesThanTheContainerHolds) {
-  // 40 tomatoes heap to about 8 litres (0.2 litre each: their volume over 0.64 packing); a
-  // 26 cm plate holds a cone of about 1.8 litres, a 60 x 40 cm board a heap of about 15 litres.
+  // 40 tomatoes heap to about 7 litres (0.18 litre each: their volume over 0.74 packing); a
+  // 26 cm plate holds a cone of about 2.3 litres, a 60 x 40 cm board a heap of about 19 litres.
   const fs::path dir = test::fresh_dir("scene_heap");
   const std::string items = R"(items:
   - template: tomato
