@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the pictures in doc/ with the cutaway binary (`make gallery`): models,
 # cuts, variants, pieces, the default salad (OpenGL preview and POV-Ray render), the board
-# and plate scenes and the contact sheet of all templates. Seeded and deterministic: the same program
+# plate and market scenes and the contact sheet of all templates. Seeded and deterministic: the same program
 # gives the same pictures.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -21,5 +21,6 @@ run piece templates/cucumber.yaml --cut slices:20 --png doc/cucumber-slices.png
 run scene scenes/salad.yaml -o "$tmp/salad.pov" --png doc/salad.png --render doc/salad-povray.png
 run scene scenes/board.yaml -o "$tmp/board.glb" --png doc/board.png
 run scene scenes/plate.yaml -o "$tmp/plate.glb" --png doc/plate.png
+run scene scenes/market.yaml -o "$tmp/market.glb" --png doc/market.png  # about 4 minutes
 CUTAWAY="$cutaway" bash scripts/template-sheet.sh doc/templates-sheet.png
 echo "gallery: wrote doc/*.png" >&2
