@@ -90,6 +90,35 @@ Arrangement parse_arrangement(const YamlField& f) {
   f.fail("must be pile, fan or scatter, not " + quoted(v));
 }
 
+/// `camera`: eye and target (different points, in the file's units, `metres_per_unit` metres
+/// each) and the vertical field of view, 1..170 degrees.
+SceneCamera parse_camera(const YamlField& c, double metres_per_unit) {
+  c.allow_only({"eye", "target", "fov"});
+  SceneCamera cam;
+  cam.eye = parse_point(c.require("eye"), metres_per_unit);
+  const YamlField target = c.require("target");
+  cam.target = parse_point(target, metres_per_unit);
+  if (cam.eye == cam.target) target.fail("the camera's target must differ from its eye");
+  if (auto x = c.get("fov")) cam.fov_deg = x->number_in(1, 170);
+  return cam;
+}
+
+/// `render`: the picture's size (at most kMaxRenderPixels), the NPR strengths and the texel
+/// density of the baked cut faces.
+RenderSettings parse_render(const YamlField& r) {
+  RenderSettings out;
+  r.allow_only({"width", "height", "perlin", "silhouettes", "texels_per_mm"});
+  if (auto x = r.get("width")) out.width = parse_int_in(*x, 16, 8192);
+  if (auto x = r.get("height")) out.height = parse_int_in(*x, 16, 8192);
+  if (auto x = r.get("perlin")) out.perlin = x->number_in(0, 10);
+  if (auto x = r.get("silhouettes")) out.silhouettes = x->number_in(0, 10);
+  if (auto x = r.get("texels_per_mm")) out.texels_per_mm = x->number_in(0.1, 100);
+  if (static_cast<long long>(out.width) * out.height > kMaxRenderPixels)
+    r.fail("width x height is " + std::to_string(out.width * out.height) +
+           " pixels (at most " + std::to_string(kMaxRenderPixels) + ", e.g. 3840 x 2160)");
+  return out;
+}
+
 /// The rule a scene breaks whose pieces, heaped, fill `heap_m3` where the container holds
 /// `holds_m3` (heap_capacity), with both volumes in litres.
 std::string volume_rule(double heap_m3, double holds_m3, ContainerType type) {
@@ -181,28 +210,8 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
     s.items.push_back(std::move(item));
   }
 
-  if (auto c = root.get("camera")) {
-    c->allow_only({"eye", "target", "fov"});
-    SceneCamera cam;
-    cam.eye = parse_point(c->require("eye"), m);
-    const YamlField target = c->require("target");
-    cam.target = parse_point(target, m);
-    if (cam.eye == cam.target) target.fail("the camera's target must differ from its eye");
-    if (auto x = c->get("fov")) cam.fov_deg = x->number_in(1, 170);
-    s.camera = cam;
-  }
-
-  if (auto r = root.get("render")) {
-    r->allow_only({"width", "height", "perlin", "silhouettes", "texels_per_mm"});
-    if (auto x = r->get("width")) s.render.width = parse_int_in(*x, 16, 8192);
-    if (auto x = r->get("height")) s.render.height = parse_int_in(*x, 16, 8192);
-    if (auto x = r->get("perlin")) s.render.perlin = x->number_in(0, 10);
-    if (auto x = r->get("silhouettes")) s.render.silhouettes = x->number_in(0, 10);
-    if (auto x = r->get("texels_per_mm")) s.render.texels_per_mm = x->number_in(0.1, 100);
-    if (static_cast<long long>(s.render.width) * s.render.height > kMaxRenderPixels)
-      r->fail("width x height is " + std::to_string(s.render.width * s.render.height) +
-              " pixels (at most " + std::to_string(kMaxRenderPixels) + ", e.g. 3840 x 2160)");
-  }
+  if (auto c = root.get("camera")) s.camera = parse_camera(*c, m);
+  if (auto r = root.get("render")) s.render = parse_render(*r);
   if (const Check texels = check_cap_texels(scene_cut_area(s), s.render.texels_per_mm); !texels) {
     const auto density = root.get("render") ? root.get("render")->get("texels_per_mm")
                                             : std::optional<YamlField>();

@@ -391,6 +391,30 @@ void place_fan_rows(const std::vector<LayoutPiece>& pieces, const std::vector<si
     place_fan_rows(pieces, part, options, turns, rng, field, out);
 }
 
+/// Places the fan pieces, a row per group, each in rank order between the object's ends: the
+/// first end starts the row (its cap a flat rest for the next slice), the other ends it.
+void place_fan_groups(const std::vector<LayoutPiece>& pieces, const LayoutOptions& options,
+                      uint64_t seed, HeightField& field, std::vector<Placement>& out) {
+  std::map<int, std::vector<size_t>> rows;
+  for (size_t p = 0; p < pieces.size(); ++p) {
+    if (pieces[p].arrange == Arrangement::Fan) rows[pieces[p].group].push_back(p);
+  }
+  for (auto& [group, row] : rows) {
+    std::stable_sort(row.begin(), row.end(),
+                     [&](size_t a, size_t b) { return pieces[a].rank < pieces[b].rank; });
+    // The first end starts the row (its cap a flat rest for the next slice), the other ends it.
+    std::vector<size_t> ends, slices;
+    for (size_t p : row) (pieces[p].cut_faces < 2 ? ends : slices).push_back(p);
+    row.clear();
+    if (!ends.empty()) row.push_back(ends[0]);
+    row.insert(row.end(), slices.begin(), slices.end());
+    row.insert(row.end(), ends.begin() + std::min<size_t>(1, ends.size()), ends.end());
+    Rng rng(derive_seed(seed, {~0ull, static_cast<uint64_t>(group)}));
+    FanTurns turns(pieces, options, options.fan_headings, rng.uniform(0, 2 * kPi));
+    place_fan_rows(pieces, row, options, turns, rng, field, out);
+  }
+}
+
 }  // namespace
 
 std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
@@ -411,25 +435,7 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
   const glm::dvec3 facing = glm::normalize(up + to_camera);
   std::vector<Placement> out(pieces.size());
 
-  // Fan rows first, by group, each in rank order between the object's ends.
-  std::map<int, std::vector<size_t>> rows;
-  for (size_t p = 0; p < pieces.size(); ++p) {
-    if (pieces[p].arrange == Arrangement::Fan) rows[pieces[p].group].push_back(p);
-  }
-  for (auto& [group, row] : rows) {
-    std::stable_sort(row.begin(), row.end(),
-                     [&](size_t a, size_t b) { return pieces[a].rank < pieces[b].rank; });
-    // The first end starts the row (its cap a flat rest for the next slice), the other ends it.
-    std::vector<size_t> ends, slices;
-    for (size_t p : row) (pieces[p].cut_faces < 2 ? ends : slices).push_back(p);
-    row.clear();
-    if (!ends.empty()) row.push_back(ends[0]);
-    row.insert(row.end(), slices.begin(), slices.end());
-    row.insert(row.end(), ends.begin() + std::min<size_t>(1, ends.size()), ends.end());
-    Rng rng(derive_seed(seed, {~0ull, static_cast<uint64_t>(group)}));
-    FanTurns turns(pieces, options, options.fan_headings, rng.uniform(0, 2 * kPi));
-    place_fan_rows(pieces, row, options, turns, rng, field, out);
-  }
+  place_fan_groups(pieces, options, seed, field, out);
 
   std::vector<glm::dvec2> scattered;  // where the scattered pieces went
   const int gap = static_cast<int>(std::ceil(options.scatter_gap_m / options.cell_m));
