@@ -165,6 +165,7 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
   TemplateCheck templates;
   long long objects = 0, pieces = 0;  // totals of the items so far
   double heap_m3 = 0;  // the heap the pieces kept so far make (kHeapPacking)
+  const double holds_m3 = heap_capacity(s.container, LayoutOptions{}.none_radius_m);
   const YamlField items = root.require("items");
   if (items.size() == 0) items.fail("a scene needs at least one item");
   for (size_t i = 0; i < items.size(); ++i) {
@@ -203,9 +204,7 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
                          " pieces (at most " + std::to_string(kMaxScenePieces) + " in a scene)");
       item.cut_area_m2 = estimate_cut_area(item.cut, extents);
       heap_m3 += item.count * item.keep * estimate_object_volume(extents) / kHeapPacking;
-      if (const double holds = heap_capacity(s.container, LayoutOptions{}.none_radius_m);
-          heap_m3 > holds)
-        count_field.fail(volume_rule(heap_m3, holds, s.container.type));
+      if (heap_m3 > holds_m3) count_field.fail(volume_rule(heap_m3, holds_m3, s.container.type));
     }
     s.items.push_back(std::move(item));
   }

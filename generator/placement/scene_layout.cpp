@@ -449,6 +449,8 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
     // Pile pieces heap from the start; scattered ones once no free ground is left, and the
     // pieces of a fan row that fitted nowhere, as a real board or plate heaps up.
     bool heap = piece.arrange != Arrangement::Scatter;
+    const double centre_weight = piece.arrange == Arrangement::Pile ? options.centre_weight
+                                                                    : options.heap_centre_weight;
     double best_score = kBlocked, best_y = 0;
     int best_i = -1, best_j = -1;
     // A position for the piece at cell (i, j), scored: heaped, the lowest near the axis;
@@ -459,9 +461,7 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
       const double y = field.rest(t, i, j);
       if (y == kBlocked) return;
       const glm::dvec2 at = field.at(i, j);
-      const bool piled = piece.arrange == Arrangement::Pile;
-      double score =
-          y + (piled ? options.centre_weight : options.heap_centre_weight) * glm::length(at);
+      double score = y + centre_weight * glm::length(at);
       if (!heap && !scattered.empty()) {
         double nearest = kBlocked;
         for (const glm::dvec2& o : scattered) nearest = std::min(nearest, glm::length(at - o));
