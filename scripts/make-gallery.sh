@@ -21,6 +21,6 @@ run piece templates/cucumber.yaml --cut slices:20 --png doc/cucumber-slices.png
 run scene scenes/salad.yaml -o "$tmp/salad.pov" --png doc/salad.png --render doc/salad-povray.png
 run scene scenes/board.yaml -o "$tmp/board.glb" --png doc/board.png
 run scene scenes/plate.yaml -o "$tmp/plate.glb" --png doc/plate.png
-run scene scenes/market.yaml -o "$tmp/market.glb" --png doc/market.png  # about 4 minutes
+run scene scenes/market.yaml -o "$tmp/market.glb" --png doc/market.png  # about 80 s
 CUTAWAY="$cutaway" bash scripts/template-sheet.sh doc/templates-sheet.png
 echo "gallery: wrote doc/*.png" >&2

@@ -146,7 +146,32 @@ class World {
     shapes_.push_back(std::move(shape));
     world_->addRigidBody(body.get());
     bodies_.push_back(std::move(body));
+    mass_.push_back({mass, inertia});
+    frozen_.push_back(false);
     return bodies_.size() - 1;
+  }
+
+  /// Makes body k static where it is: it no longer moves, costs no solver work, and the
+  /// bodies on it rest on it as on the container.
+  void freeze(size_t k) {
+    if (frozen_[k]) return;
+    btRigidBody& body = *bodies_[k];
+    world_->removeRigidBody(&body);
+    body.setLinearVelocity(btVector3(0, 0, 0));
+    body.setAngularVelocity(btVector3(0, 0, 0));
+    body.setMassProps(0, btVector3(0, 0, 0));
+    body.setCollisionFlags(body.getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT);
+    world_->addRigidBody(&body);
+    frozen_[k] = true;
+  }
+
+  bool frozen(size_t k) const { return frozen_[k]; }
+
+  /// The bodies in the world that are not frozen.
+  size_t moving() const {
+    size_t n = 0;
+    for (size_t k = 0; k < bodies_.size(); ++k) n += bodies_[k]->isInWorld() && !frozen_[k];
+    return n;
   }
 
   /// The Bullet transform of the body's centre of mass for an object-frame pose.
@@ -168,9 +193,16 @@ class World {
     return p;
   }
 
-  /// Places body k at `pose`, at rest, awake.
+  /// Places body k at `pose`, at rest, awake (and no longer frozen).
   void reset(size_t k, const SettleBody& b, const Placement& pose) {
     btRigidBody& body = *bodies_[k];
+    if (frozen_[k]) {
+      world_->removeRigidBody(&body);
+      body.setCollisionFlags(body.getCollisionFlags() & ~btCollisionObject::CF_STATIC_OBJECT);
+      body.setMassProps(mass_[k].first, mass_[k].second);
+      world_->addRigidBody(&body);
+      frozen_[k] = false;
+    }
     body.setWorldTransform(transform(b, pose));
     body.setLinearVelocity(btVector3(0, 0, 0));
     body.setAngularVelocity(btVector3(0, 0, 0));
@@ -239,22 +271,30 @@ class World {
   std::unique_ptr<btDiscreteDynamicsWorld> world_;
   std::vector<std::unique_ptr<btCollisionShape>> shapes_, children_;
   std::vector<std::unique_ptr<btRigidBody>> statics_, bodies_;
+  std::vector<std::pair<btScalar, btVector3>> mass_;  // per body: its mass and inertia
+  std::vector<bool> frozen_;                          // per body: made static (freeze)
 };
 
-/// How far the farthest corner of any body's collision shape lies between poses a and b
-/// (metres); bodies not placed in both are skipped.
+/// How far the farthest corner of the body's collision shape lies between poses a and b (metres);
+/// 0 unless placed in both.
+double body_motion(const SettleBody& body, const Placement& a, const Placement& b) {
+  double moved = 0;
+  if (!a.placed || !b.placed) return moved;
+  for (const ConvexPart& part : body.shape->parts) {
+    for (const glm::dvec3& p : part.corners) {
+      moved = std::max(moved, glm::length((a.translation + a.rotation * p) -
+                                          (b.translation + b.rotation * p)));
+    }
+  }
+  return moved;
+}
+
+/// The largest body_motion of any body between poses a and b (metres).
 double largest_motion(const std::vector<SettleBody>& bodies, const std::vector<Placement>& a,
                       const std::vector<Placement>& b) {
   double moved = 0;
-  for (size_t k = 0; k < bodies.size(); ++k) {
-    if (!a[k].placed || !b[k].placed) continue;
-    for (const ConvexPart& part : bodies[k].shape->parts) {
-      for (const glm::dvec3& p : part.corners) {
-        moved = std::max(moved, glm::length((a[k].translation + a[k].rotation * p) -
-                                            (b[k].translation + b[k].rotation * p)));
-      }
-    }
-  }
+  for (size_t k = 0; k < bodies.size(); ++k)
+    moved = std::max(moved, body_motion(bodies[k], a[k], b[k]));
   return moved;
 }
 
@@ -276,15 +316,28 @@ void run_to_rest(World& world, const std::vector<SettleBody>& bodies, std::vecto
                  SettleResult& r) {
   const int max_steps = static_cast<int>(std::ceil(options.max_seconds / options.time_step_s));
   const int check_every = steps_per_rest_check(options);
+  // A body that has rested for still_checks looks in a row is frozen.
+  const int still_checks = std::max(
+      1, static_cast<int>(std::lround(options.freeze_after_s / (check_every * options.time_step_s))));
+  std::vector<int> still(bodies.size(), 0);
   for (;;) {
     int steps = 0;
     bool at_rest = false;
     std::vector<Placement> before = world.poses(bodies, id);
     for (; steps < max_steps && !at_rest; ++steps) {
+      r.body_steps += world.moving();
       world.step();
       if ((steps + 1) % check_every != 0) continue;
       std::vector<Placement> now = world.poses(bodies, id);
-      at_rest = world.asleep() || largest_motion(bodies, before, now) < options.rest_motion_m;
+      double moved = 0;
+      for (size_t k = 0; k < bodies.size(); ++k) {
+        if (id[k] == SIZE_MAX || world.frozen(id[k])) continue;
+        const double m = body_motion(bodies[k], before[k], now[k]);
+        moved = std::max(moved, m);
+        still[k] = m < options.rest_motion_m ? still[k] + 1 : 0;
+        if (options.freeze_after_s > 0 && still[k] >= still_checks) world.freeze(id[k]);
+      }
+      at_rest = world.asleep() || world.moving() == 0 || moved < options.rest_motion_m;
       before = std::move(now);
     }
     r.steps += steps;
@@ -316,6 +369,7 @@ void run_to_rest(World& world, const std::vector<SettleBody>& bodies, std::vecto
       }
       again.translation.y = top + 0.005 - low;
       world.reset(id[k], bodies[k], again);
+      still[k] = 0;
       dropped = true;
     }
     if (!dropped) break;
