@@ -167,6 +167,12 @@ class World {
 
   bool frozen(size_t k) const { return frozen_[k]; }
 
+  /// Makes every frozen body dynamic again, at rest where it lies.
+  void thaw_all() {
+    for (size_t k = 0; k < bodies_.size(); ++k)
+      if (frozen_[k] && bodies_[k]->isInWorld()) thaw(k);
+  }
+
   /// The bodies in the world that are not frozen.
   size_t moving() const {
     size_t n = 0;
@@ -195,14 +201,8 @@ class World {
 
   /// Places body k at `pose`, at rest, awake (and no longer frozen).
   void reset(size_t k, const SettleBody& b, const Placement& pose) {
+    if (frozen_[k]) thaw(k);
     btRigidBody& body = *bodies_[k];
-    if (frozen_[k]) {
-      world_->removeRigidBody(&body);
-      body.setCollisionFlags(body.getCollisionFlags() & ~btCollisionObject::CF_STATIC_OBJECT);
-      body.setMassProps(mass_[k].first, mass_[k].second);
-      world_->addRigidBody(&body);
-      frozen_[k] = false;
-    }
     body.setWorldTransform(transform(b, pose));
     body.setLinearVelocity(btVector3(0, 0, 0));
     body.setAngularVelocity(btVector3(0, 0, 0));
@@ -271,6 +271,17 @@ class World {
   std::unique_ptr<btDiscreteDynamicsWorld> world_;
   std::vector<std::unique_ptr<btCollisionShape>> shapes_, children_;
   std::vector<std::unique_ptr<btRigidBody>> statics_, bodies_;
+  /// Makes frozen body k dynamic again, with its mass and inertia, awake.
+  void thaw(size_t k) {
+    btRigidBody& body = *bodies_[k];
+    world_->removeRigidBody(&body);
+    body.setCollisionFlags(body.getCollisionFlags() & ~btCollisionObject::CF_STATIC_OBJECT);
+    body.setMassProps(mass_[k].first, mass_[k].second);
+    world_->addRigidBody(&body);
+    body.activate(true);
+    frozen_[k] = false;
+  }
+
   std::vector<std::pair<btScalar, btVector3>> mass_;  // per body: its mass and inertia
   std::vector<bool> frozen_;                          // per body: made static (freeze)
 };
@@ -376,6 +387,21 @@ void run_to_rest(World& world, const std::vector<SettleBody>& bodies, std::vecto
   }
 }
 
+/// run_to_rest, and then, where pieces were frozen, every piece free again from where it lies
+/// until the whole layout rests: a piece frozen before others came to lie on it settles under
+/// their weight, as it will in the stability check.
+void settle_world(World& world, const std::vector<SettleBody>& bodies, std::vector<size_t>& id,
+                  std::vector<int>& drops, double ceiling, const SettleOptions& options,
+                  SettleResult& r) {
+  run_to_rest(world, bodies, id, drops, ceiling, options, r);
+  if (options.freeze_after_s <= 0) return;
+  world.thaw_all();
+  SettleOptions free = options;
+  free.freeze_after_s = 0;
+  free.max_seconds = std::min(options.max_seconds, options.free_seconds);
+  run_to_rest(world, bodies, id, drops, ceiling, free, r);
+}
+
 /// A world holding the bodies at `poses` (those placed), at rest; their ids in `id`.
 std::unique_ptr<World> world_at(const std::vector<SettleBody>& bodies,
                                 const std::vector<Placement>& poses, const Container& container,
@@ -404,7 +430,7 @@ SettleResult settle_pieces(const std::vector<SettleBody>& bodies, const Containe
   std::vector<size_t> id;
   std::vector<int> drops(bodies.size(), 0);
   auto world = world_at(bodies, drop_poses, container, options, id);
-  run_to_rest(*world, bodies, id, drops, ceiling, options, r);
+  settle_world(*world, bodies, id, drops, ceiling, options, r);
   r.placements = world->poses(bodies, id);
   // The stability check: the layout in a new world, at rest, run for verify_seconds. If a piece
   // moves more than check_motion_m the layout is not at rest without the contact impulses that
@@ -431,7 +457,7 @@ SettleResult settle_pieces(const std::vector<SettleBody>& bodies, const Containe
     }
     if (r.stability_motion_m <= options.check_motion_m || round == options.max_verify_rounds)
       break;
-    run_to_rest(*world, bodies, id, drops, ceiling, verify, r);
+    settle_world(*world, bodies, id, drops, ceiling, verify, r);
     r.placements = world->poses(bodies, id);
   }
   r.stable = r.stability_motion_m <= options.stable_motion_m;

@@ -389,7 +389,7 @@ TEST(PhysicsSettle, FanRowsOfSeveralObjectsLieSideBySideWithoutCrossing) {
 }
 
 // Pieces that have come to rest are frozen while the others settle on: with kiwi slices
-// lying apart on a board and a tomato half dropped from 60 cm in a corner, the slices are
+// lying apart on a board and a tomato half dropped from 1.5 m in a corner, the slices are
 // frozen while it falls and rolls, so the work (bodies simulated per step, summed) follows the
 // moving piece; every piece ends placed, and at rest in the stability check, which frees every
 // body again.
@@ -407,7 +407,7 @@ TEST(PhysicsSettle, RestedPiecesAreFrozenSoTheWorkFollowsTheMovingOnes) {
   const std::vector<Placement> drops = layout_pieces(layout, board, LayoutOptions{}, 3);
   std::vector<SettleBody> bodies;
   for (size_t k = 0; k < layout.size(); ++k) bodies.push_back({&shapes[k], 1000, drops[k]});
-  bodies.push_back({&half, 1000, {true, glm::dquat(1, 0, 0, 0), glm::dvec3(0.3, 0.6, 0.3)}});
+  bodies.push_back({&half, 1000, {true, glm::dquat(1, 0, 0, 0), glm::dvec3(0.3, 1.5, 0.3)}});
   SettleOptions whole;
   whole.freeze_after_s = 0;
   const SettleResult frozen = settle_pieces(bodies, board, SettleOptions{});
