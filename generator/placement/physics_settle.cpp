@@ -318,18 +318,20 @@ bool inside(const Container& container, const glm::dvec3& c, double ceiling,
 }
 
 /// Steps `world` until it rests (no corner moved more than rest_motion_m in a quarter second,
-/// or every body sleeps) or max_seconds pass. Pieces that left the container are then dropped
-/// again from above the pile and the world runs on; after max_redrops a piece is removed and
-/// counted lost (its id becomes SIZE_MAX). Adds to r.steps, r.redrops and r.lost; sets
-/// r.all_asleep.
+/// every body sleeps, or every body is frozen) or max_seconds pass; a body that rests for
+/// freeze_after_s meanwhile is frozen (World::freeze). Pieces that left the container are then
+/// dropped again from above the pile and the world runs on; after max_redrops a piece is
+/// removed and counted lost (its id becomes SIZE_MAX). Adds to r.steps, r.body_steps,
+/// r.redrops and r.lost; sets r.all_asleep.
 void run_to_rest(World& world, const std::vector<SettleBody>& bodies, std::vector<size_t>& id,
                  std::vector<int>& drops, double ceiling, const SettleOptions& options,
                  SettleResult& r) {
   const int max_steps = static_cast<int>(std::ceil(options.max_seconds / options.time_step_s));
   const int check_every = steps_per_rest_check(options);
   // A body that has rested for still_checks looks in a row is frozen.
-  const int still_checks = std::max(
-      1, static_cast<int>(std::lround(options.freeze_after_s / (check_every * options.time_step_s))));
+  const double look_s = check_every * options.time_step_s;
+  const int still_checks =
+      std::max(1, static_cast<int>(std::lround(options.freeze_after_s / look_s)));
   std::vector<int> still(bodies.size(), 0);
   for (;;) {
     int steps = 0;
@@ -387,19 +389,22 @@ void run_to_rest(World& world, const std::vector<SettleBody>& bodies, std::vecto
   }
 }
 
-/// run_to_rest, and then, where pieces were frozen, every piece free again from where it lies
-/// until the whole layout rests: a piece frozen before others came to lie on it settles under
-/// their weight, as it will in the stability check.
+/// run_to_rest, and then, where pieces may have been frozen, every piece free again from where
+/// it lies until the layout rests or free_seconds pass: a piece frozen before others came to
+/// lie on it settles under their weight, as it will in the stability check. r.all_asleep stays
+/// the verdict of the first run (the second is bounded by design).
 void settle_world(World& world, const std::vector<SettleBody>& bodies, std::vector<size_t>& id,
                   std::vector<int>& drops, double ceiling, const SettleOptions& options,
                   SettleResult& r) {
   run_to_rest(world, bodies, id, drops, ceiling, options, r);
   if (options.freeze_after_s <= 0) return;
+  const bool rested = r.all_asleep;
   world.thaw_all();
   SettleOptions free = options;
   free.freeze_after_s = 0;
   free.max_seconds = std::min(options.max_seconds, options.free_seconds);
   run_to_rest(world, bodies, id, drops, ceiling, free, r);
+  r.all_asleep = rested;
 }
 
 /// A world holding the bodies at `poses` (those placed), at rest; their ids in `id`.

@@ -85,7 +85,7 @@ struct SettleResult {
   /// still moving rather than with the pile.
   long long body_steps = 0;
   bool all_asleep = false;  ///< the last round of settling came to rest (rest_motion_m) before
-                            ///< the time cap
+                            ///< the time cap (the free_seconds after it not counted)
   /// The stability check of `placements`: how far the farthest corner of any body's collision
   /// shape moved in verify_seconds simulated from rest in a new world (metres).
   double stability_motion_m = 0;
