@@ -9,7 +9,6 @@
 //   or:  cmake --build build --target bench_settle && ./build/bench_settle [--counts 40,80,...]
 //        [--scene FILE] (that scene's items and container instead of the market's)
 //        [--freeze S] (SettleOptions::freeze_after_s; 0: no piece is frozen, as before)
-//        [--scene FILE] (another scene's items and container)
 // One line per count: pieces placed and lost, drops again, simulated seconds and steps, the
 // work of the settling (bodies simulated per step, summed: frozen pieces are not), the
 // stability check, wall seconds of the layout and of the settling, and seconds per piece.
@@ -120,7 +119,6 @@ int main(int argc, char** argv) {
     const auto t_layout = Clock::now();
     cutaway::LayoutOptions layout_options;
     if (scene.camera)
-      if (scene.camera)
       layout_options.to_camera = glm::normalize(scene.camera->eye - scene.camera->target);
     const std::vector<cutaway::Placement> drops = cutaway::layout_pieces(
         layout, scene.container, layout_options, cutaway::derive_seed(scene.seed, {~0ull, 4}));
