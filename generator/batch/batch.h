@@ -23,7 +23,6 @@ struct BatchItem {
   /// The parsed template (load_batch reads each file once; items naming it share it), null
   /// after parse_batch alone
   std::shared_ptr<const Template> tmpl;
-  uint64_t template_hash = 0; ///< fnv1a64 of the template file's bytes (asset fingerprints)
   int count = 1;              ///< variants, 1..100000
   uint64_t seed = 0;          ///< the first variant's seed
   double variation = 1.0;     ///< scales the template's variation amount, 0..10

@@ -148,7 +148,6 @@ Batch load_batch(const std::string& path) {
           templates.check(item.template_path, item.cuts[c], parsed[i].length_fields[c]);
       item.tmpl = loaded.tmpl;
       item.template_name = loaded.tmpl->name;
-      item.template_hash = loaded.file_hash;
       // Each asset bakes its own caps: one object's cut faces at the batch's density.
       const double area = estimate_cut_area(item.cuts[c], loaded.extents);
       if (const Check texels = check_cap_texels(area, b.export_options.texels_per_mm); !texels)

@@ -26,7 +26,7 @@ Batch parse_batch(std::string_view text, const std::string& file);
 
 /// Reads the batch file at `path`, parses it as parse_batch, and reads every template it names
 /// (load_template: a broken template is reported at its own file), filling each item's
-/// template_name and template_hash; refuses a cut that would make more than kMaxPiecesPerCut
+/// tmpl and template_name; refuses a cut that would make more than kMaxPiecesPerCut
 /// pieces of one object, at the cut's length, the same cut twice in one item, and two items
 /// that make assets of one name (the same template, an overlapping seed range and the same
 /// cut), at the later item's seed (or the item).

@@ -6,7 +6,6 @@
 #include <sstream>
 #include <vector>
 
-#include "base/hash.h"
 #include "io/template_parser.h"
 #include "io/text_rules.h"
 #include "model/template.h"
@@ -137,10 +136,9 @@ const LoadedTemplate& TemplateCheck::check(const std::string& template_path, con
                                            const std::optional<YamlField>& length_field) {
   auto it = loaded_.find(template_path);
   if (it == loaded_.end()) {
-    std::string text;
-    auto t = std::make_shared<const Template>(load_template(template_path, &text));
+    auto t = std::make_shared<const Template>(load_template(template_path));
     const ObjectExtents extents = template_extents(*t);
-    it = loaded_.emplace(template_path, LoadedTemplate{std::move(t), extents, fnv1a64(text)})
+    it = loaded_.emplace(template_path, LoadedTemplate{std::move(t), extents})
              .first;
   }
   const LoadedTemplate& loaded = it->second;

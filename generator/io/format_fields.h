@@ -59,7 +59,6 @@ std::string resolve_template(const YamlField& f, const std::filesystem::path& di
 struct LoadedTemplate {
   std::shared_ptr<const Template> tmpl;  ///< as load_template returns it
   ObjectExtents extents;                 ///< template_extents of it
-  uint64_t file_hash = 0;                ///< fnv1a64 of the file's bytes
 };
 
 /// Reads each template of a file's items once (load_template: a broken template is reported at

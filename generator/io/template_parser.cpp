@@ -8,9 +8,11 @@
 
 #include <glm/geometric.hpp>
 
+#include "base/byte_stream.h"
 #include "base/colour.h"
 #include "base/constants.h"
 #include "base/error.h"
+#include "base/hash.h"
 #include "io/format_fields.h"
 #include "io/mesh_file.h"
 #include "io/text_rules.h"
@@ -382,6 +384,22 @@ const char* units_name(const Template& t) {
   return t.metres_per_unit == 1.0 ? "m" : (t.metres_per_unit == 1e-2 ? "cm" : "mm");
 }
 
+/// fnv1a64 of `text` (the template file) followed by the data of each mesh surface of `t`, as
+/// ByteWriter encodes it: the file and the meshes it names, by content.
+uint64_t template_source_hash(std::string_view text, const Template& t) {
+  ByteWriter w;
+  w.put_string(text);
+  for (const SurfaceSpec& s : t.surfaces) {
+    if (!s.mesh) continue;
+    w.put_vector(s.mesh->points);
+    w.put_vector(s.mesh->triangles);
+    w.put_vector(s.mesh->front);
+    w.put_vector(s.mesh->back);
+    w.put_vector(s.mesh->blur);
+  }
+  return fnv1a64(w.bytes());
+}
+
 /// Reads the PLY file of a `mesh` surface into it (read_mesh_file), once.
 void read_surface_mesh(SurfaceSpec& s) {
   if (s.kind != SurfaceKind::Mesh || s.mesh) return;
@@ -566,6 +584,7 @@ Template parse_template(std::string_view text, const std::string& file,
   resolve_edge(root, t, h);
   if (!t.npr.perlin_from_file) t.npr.perlin_bands = default_perlin_bands(h);
   for (SurfaceSpec& s : t.surfaces) read_surface_mesh(s);
+  t.source_hash = template_source_hash(text, t);
   return t;
 }
 

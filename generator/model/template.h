@@ -153,6 +153,9 @@ struct Template {
   std::string name;
   std::string description;
   std::string file;             ///< path it was read from
+  /// fnv1a64 of the file's bytes followed by each mesh surface's data (template_source_hash):
+  /// what cut cache keys and batch fingerprints name the template by.
+  uint64_t source_hash = 0;
   double metres_per_unit = 1e-3;
   Symmetry symmetry = Symmetry::Cylindrical;
   int folds = 1;                      ///< N of an N-fold template; 1 otherwise

@@ -82,6 +82,15 @@ std::string cut_label(const CutSpec& cut) {
   return "whole";
 }
 
+std::string cut_exact_text(const CutSpec& cut) {
+  char numbers[256];
+  const Plane& p = cut.plane;
+  std::snprintf(numbers, sizeof numbers, " %.17g %.17g %d %.17g %.17g %.17g %.17g %.17g %.17g",
+                cut.thickness_m, cut.size_m, cut.count, p.point.x, p.point.y, p.point.z,
+                p.normal.x, p.normal.y, p.normal.z);
+  return cut_label(cut) + numbers;
+}
+
 ObjectExtents template_extents(const Template& t) {
   ObjectExtents e;
   if (t.skin >= 0 && t.surfaces[t.skin].kind != SurfaceKind::Mesh) {

@@ -31,6 +31,11 @@ inline constexpr double kMinCutLength_m = 0.5e-3;
 /// "dice:12mm" or "plane" (lengths with up to 3 decimals, trailing zeros dropped).
 std::string cut_label(const CutSpec& cut);
 
+/// Every number of `cut` after its label, written so that it reads back exactly ("%.17g"):
+/// "LABEL thickness size count px py pz nx ny nz", for fingerprints and cache keys (which
+/// must tell apart cuts whose labels round to the same micrometre).
+std::string cut_exact_text(const CutSpec& cut);
+
 /// How far an object reaches, metres: the bounding cylinder about its axis (+Y).
 struct ObjectExtents {
   double radius_m = 0;  ///< largest distance from the axis

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <set>
 #include <string>
 #include <utility>
@@ -14,6 +15,7 @@
 #include <tiny_gltf.h>
 
 #include "base/error.h"
+#include "base/hash.h"
 #include "batch/batch_manifest.h"
 #include "batch/batch_runner.h"
 #include "batch/slurm_job.h"
@@ -124,6 +126,12 @@ Batch two_item_batch() {
                        "outputs: {sample: 4}\n");
   b.items[0].template_name = "tomato";
   b.items[1].template_name = "kiwi";
+  for (BatchItem& item : b.items) {
+    auto tmpl = std::make_shared<Template>();
+    tmpl->name = item.template_name;
+    tmpl->source_hash = fnv1a64(item.template_name);
+    item.tmpl = tmpl;
+  }
   return b;
 }
 
@@ -147,6 +155,12 @@ TEST(BatchPlan, NamesEveryAssetInBatchOrderWithAnEvenSample) {
   EXPECT_NE(plan_batch(two_item_batch(), "backend=gl").assets[3].inputs, plan.assets[3].inputs);
   Batch other = two_item_batch();
   other.export_options.perlin = 0.5;
+  EXPECT_NE(plan_batch(other, "").assets[3].inputs, plan.assets[3].inputs);
+  // Another template file, or the same file with other meshes (Template::source_hash).
+  other = two_item_batch();
+  auto edited = std::make_shared<Template>(*other.items[0].tmpl);
+  edited->source_hash += 1;
+  other.items[0].tmpl = edited;
   EXPECT_NE(plan_batch(other, "").assets[3].inputs, plan.assets[3].inputs);
 }
 
