@@ -243,6 +243,7 @@ Outcome<CutObject> cut_object(SceneAssets& assets, const Variant& variant, uint6
   stats.recut_objects += set.attempts > 1;
   stats.defective_pieces += set.defective_pieces;
   const size_t n = set.pieces.size();
+  out.pieces_cut = n;
   const size_t keep = std::clamp<size_t>(
       static_cast<size_t>(std::llround(options.keep * static_cast<double>(n))), 1, n);
   out.kept = choose(n, keep, options.keep_seed);
@@ -284,6 +285,8 @@ Outcome<CutObject> cut_object(SceneAssets& assets, const Variant& variant, uint6
     out.shapes.push_back(as_cut.empty() ? std::move(merged) : std::move(as_cut[q]));
     out.infos.push_back(
         piece_info(piece, out.shapes.back(), variant.tmpl.name, variant_seed, options.cut));
+    out.cap_normals.push_back(largest_cap_normal(piece));
+    out.cut_faces.push_back(cut_faces(piece));
   }
   return out;
 }

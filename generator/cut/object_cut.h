@@ -70,16 +70,24 @@ struct ObjectCutStats {
   double seconds_bake = 0;      ///< baking cap and skin textures
 };
 
-/// One object cut into pieces, the kept ones ready for export, all in the object frame.
-struct CutObject {
-  PieceSet set;                    ///< every piece as cut (kept skins unwrapped when textured)
+/// The kept pieces of one object ready for export, all in the object frame: what scenes,
+/// batches and the piece views use, and what the cut cache stores (cut_cache.h).
+struct CutPieces {
   std::string backend;             ///< the diffusion backend's name (DiffusionBackend::name)
-  std::vector<size_t> kept;        ///< indices into set.pieces, increasing
+  size_t pieces_cut = 0;           ///< pieces the cut made, before `keep`
   std::vector<AssetMesh> meshes;   ///< per kept piece: as exported (materials, uv, modulated
                                    ///< colours), named OBJECT_pieceCELL
   std::vector<ShadedMesh> shapes;  ///< per kept piece: merge_parts as cut, before its skin
                                    ///< was unwrapped (layout, physics, bounds; colours unused)
   std::vector<PieceInfo> infos;    ///< per kept piece: its glTF node extras
+  std::vector<glm::dvec3> cap_normals;  ///< per kept piece: largest_cap_normal
+  std::vector<int> cut_faces;           ///< per kept piece: cut_faces
+};
+
+/// One object cut into pieces: the kept ones ready for export, and the whole cut.
+struct CutObject : CutPieces {
+  PieceSet set;                    ///< every piece as cut (kept skins unwrapped when textured)
+  std::vector<size_t> kept;        ///< indices into set.pieces, increasing
 };
 
 /// Cuts `variant` (built from seed `variant_seed`) as options.cut says, its caps coloured by

@@ -38,7 +38,7 @@ glm::dquat view_rotation(const glm::dvec3& normal, PieceView view) {
 
 }  // namespace
 
-SceneAssets piece_assets(SceneAssets assets, const CutObject& object, double explode, int width,
+SceneAssets piece_assets(SceneAssets assets, const CutPieces& object, double explode, int width,
                          int height) {
   assets.width = width;
   assets.height = height;
@@ -79,19 +79,19 @@ SceneAssets piece_assets(SceneAssets assets, const CutObject& object, double exp
   return assets;
 }
 
-SceneAssets grid_piece_assets(SceneAssets assets, const CutObject& object, PieceView view,
+SceneAssets grid_piece_assets(SceneAssets assets, const CutPieces& object, PieceView view,
                               int width, int height) {
   const double el = glm::radians(view == PieceView::Up ? 55.0 : 25.0);
   const glm::dvec3 to_camera(0, std::sin(el), std::cos(el));
   assets.width = width;
   assets.height = height;
   assets.background = {1, 1, 1};
-  const size_t n = object.kept.size(), first_mesh = assets.meshes.size();
+  const size_t n = object.meshes.size(), first_mesh = assets.meshes.size();
   std::vector<glm::dquat> rotation(n);
   std::vector<glm::dvec3> lo(n), hi(n);
   glm::dvec3 cell(0.0);
   for (size_t k = 0; k < n; ++k) {
-    rotation[k] = view_rotation(largest_cap_normal(object.set.pieces[object.kept[k]]), view);
+    rotation[k] = view_rotation(object.cap_normals[k], view);
     rotated_bounds(object.shapes[k], rotation[k], lo[k], hi[k]);
     cell = glm::max(cell, hi[k] - lo[k]);
     assets.meshes.push_back(object.meshes[k]);

@@ -15,7 +15,7 @@ namespace cutaway {
 /// (size: the object's bounding-box diagonal), so slices spread evenly, framed from the
 /// front-right 50 degrees up, studio lights, white background. `assets` holds the materials
 /// and textures cut_object() added and its name; the pieces' meshes and instances are added.
-SceneAssets piece_assets(SceneAssets assets, const CutObject& object, double explode, int width,
+SceneAssets piece_assets(SceneAssets assets, const CutPieces& object, double explode, int width,
                          int height);
 
 /// How grid_piece_assets() turns each piece.
@@ -30,7 +30,7 @@ enum class PieceView {
 /// the largest piece's footprint whose column count makes the view closest to the tile's
 /// aspect; seen from the front (+Z) and above, with the studio lights, white background.
 /// `assets` as for piece_assets().
-SceneAssets grid_piece_assets(SceneAssets assets, const CutObject& object, PieceView view,
+SceneAssets grid_piece_assets(SceneAssets assets, const CutPieces& object, PieceView view,
                               int width, int height);
 
 }  // namespace cutaway

@@ -443,10 +443,9 @@ CollisionShape collision_shape(const ShadedMesh& mesh, const CollisionShapeOptio
   return s;
 }
 
-std::vector<AssetHull> collision_hulls(const ShadedMesh& mesh,
-                                       const CollisionShapeOptions& options) {
+std::vector<AssetHull> collision_hulls(const CollisionShape& shape) {
   std::vector<AssetHull> hulls;
-  for (const ConvexPart& part : collision_shape(mesh, options).parts) {
+  for (const ConvexPart& part : shape.parts) {
     const Facets h = hull_facets(part.corners);
     AssetHull hull;
     hull.position = h.corners;

@@ -56,11 +56,10 @@ struct CollisionShape {
 /// Errors: CUTAWAY_CHECK on an empty or flat mesh.
 CollisionShape collision_shape(const ShadedMesh& mesh, const CollisionShapeOptions& options = {});
 
-/// The convex parts of `mesh`'s collision shape (collision_shape, same preconditions) as closed
-/// meshes for export, in the piece's frame (metres): each part's hull corners, its facets
-/// fanned into triangles wound counter-clockwise seen from outside. A part does not grow by
-/// its `outside_m`: engines add their own collision margin. Deterministic.
-std::vector<AssetHull> collision_hulls(const ShadedMesh& mesh,
-                                       const CollisionShapeOptions& options = {});
+/// The convex parts of a collision shape (collision_shape) as closed meshes for export, in
+/// the piece's frame (metres): each part's hull corners, its facets fanned into triangles
+/// wound counter-clockwise seen from outside. A part does not grow by its `outside_m`: engines
+/// add their own collision margin. Deterministic.
+std::vector<AssetHull> collision_hulls(const CollisionShape& shape);
 
 }  // namespace cutaway

@@ -97,7 +97,7 @@ TEST(CollisionShape, ExportedHullsAreClosedConvexMeshesWoundOutward) {
   const std::vector<ShadedMesh> halves = pieces_of("pepper", "halves");
   ASSERT_FALSE(halves.empty());
   const CollisionShape shape = collision_shape(halves[0]);
-  const std::vector<AssetHull> hulls = collision_hulls(halves[0]);
+  const std::vector<AssetHull> hulls = collision_hulls(collision_shape(halves[0]));
   ASSERT_EQ(hulls.size(), shape.parts.size());
   ASSERT_GE(hulls.size(), 2u);
   for (size_t k = 0; k < hulls.size(); ++k) {
