@@ -32,6 +32,7 @@ struct BatchArgs {
   bool slurm = false, dry_run = false;
   int array = 4, cpus_per_task = 1;
   std::string partition, time;
+  CacheArgs cache;
 };
 
 namespace fs = std::filesystem;
@@ -51,10 +52,18 @@ std::string build_settings(const Common& common) {
          " directions=" + directions_value(common);
 }
 
-/// The command line options every array task passes on (those that change the output).
-std::vector<std::string> passed_on(const Common& common) {
-  return {"--backend",    common.backend,           "--sampling", sampling_value(common),
-          "--directions", directions_value(common), "-q"};
+/// The command line options every array task passes on (those that change the output, and
+/// the cut cache's).
+std::vector<std::string> passed_on(const Common& common, const CacheArgs& cache) {
+  std::vector<std::string> args = {"--backend",    common.backend,
+                                   "--sampling",   sampling_value(common),
+                                   "--directions", directions_value(common),
+                                   "-q"};
+  if (cache.off) args.push_back("--no-cache");
+  if (!cache.dir.empty())
+    args.insert(args.end(), {"--cache", fs::absolute(cache.dir).lexically_normal().string()});
+  if (cache.max_bytes > 0) args.insert(args.end(), {"--cache-size", std::to_string(cache.max_bytes)});
+  return args;
 }
 
 /// Writes the sbatch script of the batch into DIR and submits it (unless --dry-run).
@@ -68,7 +77,7 @@ int submit_slurm(const BatchArgs& a, const Batch& batch, const Common& common) {
   job.cpus_per_task = a.cpus_per_task;
   job.partition = a.partition;
   job.time = a.time;
-  job.extra_args = passed_on(common);
+  job.extra_args = passed_on(common, a.cache);
   if (const Check ok = check_slurm_job(job); !ok) throw UsageError(ok.reason());
   fs::create_directories(fs::path(job.dir) / "slurm");
   const fs::path script = fs::path(job.dir) / "batch.sbatch";
@@ -151,6 +160,9 @@ int run_batch_command(const BatchArgs& a, const Common& common) {
   options.shard = shard;
   options.build.sampling = common.sampling;
   options.build.diffusion = diffusion_factory(batch.export_options.cube, common);
+  options.build.diffusion_settings = diffusion_settings(batch.export_options.cube, common);
+  const std::unique_ptr<CutCache> cache = open_cut_cache(a.cache);
+  options.build.cache = cache.get();
   options.build.thumbnail = [](const SceneAssets& assets) {
     return encode_png(render_scene_preview(assets));
   };
@@ -171,6 +183,8 @@ int run_batch_command(const BatchArgs& a, const Common& common) {
   spdlog::info("{}{}: {} assets built, {} already there, {} in {}", batch.name,
                shard ? " shard " + a.shard : "", r.built, r.skipped,
                manifest_name(shard), a.output_dir);
+  if (cache && cache->stats().hits > 0)
+    spdlog::info("{} of the assets built were read from the cut cache", cache->stats().hits);
   return 0;
 }
 
@@ -197,6 +211,7 @@ Command add_batch_command(CLI::App& app) {
                     "with --slurm: CPUs per task, its --threads (default 1)")
       ->check(CLI::Range(1, 1024));
   batch->add_flag("--dry-run", args->dry_run, "with --slurm: write the script, do not submit");
+  add_cache_options(batch, args->cache);
   auto merge_dir = std::make_shared<std::string>();
   CLI::App* merge = batch->add_subcommand(
       "merge", "check and merge the shards' manifests of DIR; write manifest.jsonl and "

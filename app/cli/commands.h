@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 
 #include "app/cli/options.h"
 #include "base/atomic_file.h"
+#include "cache/cut_cache.h"
 #include "cut/object_cut.h"
 #include "model/ds_model.h"
 #include "model/template.h"
@@ -88,6 +90,17 @@ CutSpec checked_cut(const Template& tmpl, const std::string& text, const std::st
 /// The diffusion backend --backend chooses, with cube-map size `cube`, --threads and
 /// --directions.
 DiffusionFactory diffusion_factory(int cube, const Common& common);
+
+/// The backend --backend picks on this machine: "cpu" or "gl" (DiffusionBackend::name).
+std::string resolved_backend(const Common& common);
+
+/// What of the backend diffusion_factory(cube, common) makes changes colours, as cut cache keys
+/// name it: "backend=KIND cube=N directions=D", KIND what --backend picks on this machine.
+std::string diffusion_settings(int cube, const Common& common);
+
+/// The cut cache `args` ask for, its warnings logged; null with --no-cache, or (logged) when
+/// no folder is given and neither XDG_CACHE_HOME nor HOME is set.
+std::unique_ptr<CutCache> open_cut_cache(const CacheArgs& args);
 
 /// `variant` cut for a picture of its pieces (`piece`, `sheet`): every piece kept, vertex
 /// colours modulated by the template's Perlin bands with strength `perlin` and `seed` in the

@@ -2,6 +2,9 @@
 
 #include <filesystem>
 
+#include <spdlog/spdlog.h>
+
+#include "app/cli/commands.h"
 #include "batch/variant_batch.h"
 #include "io/text_rules.h"
 
@@ -57,6 +60,33 @@ void add_export_options(CLI::App* command, std::string& compress, int& lods,
                    "base-colour texture images in .glb, .gltf and .pov: jpeg (the default, about "
                    "a tenth of png's bytes) or png (lossless); material maps are always png")
       ->check(CLI::IsMember({"jpeg", "png"}));
+}
+
+void add_cache_options(CLI::App* command, CacheArgs& args) {
+  command->add_option("--cache", args.dir,
+                      "cut cache folder: cut objects are stored there and read back by later "
+                      "runs (default: $XDG_CACHE_HOME/cutaway, else ~/.cache/cutaway)");
+  command->add_flag("--no-cache", args.off, "cut every object; read and store nothing")
+      ->excludes(command->get_option("--cache"));
+  command
+      ->add_option("--cache-size", args.max_bytes,
+                   "the cut cache's size bound, e.g. 500M or 8G (default 4G): the least "
+                   "recently used entries beyond it are removed")
+      ->transform(CLI::AsSizeValue(false))
+      ->check(CLI::Range(uint64_t{1} << 20, uint64_t{1} << 50));
+}
+
+std::unique_ptr<CutCache> open_cut_cache(const CacheArgs& args) {
+  if (args.off) return nullptr;
+  CutCacheOptions options;
+  options.dir = args.dir.empty() ? CutCache::default_dir() : std::filesystem::path(args.dir);
+  if (options.dir.empty()) {
+    spdlog::warn("no cut cache: neither XDG_CACHE_HOME nor HOME is set (give --cache DIR)");
+    return nullptr;
+  }
+  if (args.max_bytes > 0) options.max_bytes = args.max_bytes;
+  options.warn = [](const std::string& message) { spdlog::warn("{}", message); };
+  return std::make_unique<CutCache>(std::move(options));
 }
 
 void add_common_options(CLI::App& app, CommonOptions& o) {

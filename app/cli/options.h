@@ -30,6 +30,17 @@ const CLI::Validator& shard_rule();
 void add_export_options(CLI::App* command, std::string& compress, int& lods,
                         std::string& textures);
 
+/// `--cache DIR`, `--no-cache` and `--cache-size SIZE` of the commands that cut objects through
+/// the cut cache (scene, batch).
+struct CacheArgs {
+  std::string dir;         ///< empty: CutCache::default_dir()
+  bool off = false;        ///< --no-cache
+  uint64_t max_bytes = 0;  ///< --cache-size in bytes (0: kDefaultCutCacheBytes)
+};
+
+/// Adds the cache options to `command`, stored into `args` when parsed.
+void add_cache_options(CLI::App* command, CacheArgs& args);
+
 /// The options every subcommand takes, before or after its name (`cutaway --stats scene ...`
 /// or `cutaway scene ... --stats`).
 struct CommonOptions {

@@ -78,7 +78,7 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
   CUTAWAY_CHECK(assets.instances.size() == object.shapes.size());  // piece k is instance k
   if (gltf.collision != GltfCollision::None)
     for (size_t k = 0; k < object.shapes.size(); ++k)
-      assets.instances[k].collision = collision_hulls(object.shapes[k]);
+      assets.instances[k].collision = collision_hulls(collision_shape(object.shapes[k]));
   const Written w = write_outputs(assets, targets, common.threads, a.silhouettes, gltf);
   if (common.stats) {
     *common.stats = {{"template", tmpl.name},
@@ -114,9 +114,21 @@ CutSpec checked_cut(const Template& tmpl, const std::string& text, const std::st
 }
 
 DiffusionFactory diffusion_factory(int cube, const Common& common) {
-  const DiffusionChoice choice = parse_diffusion_choice(common.backend);
+  const DiffusionChoice choice =
+      resolve_diffusion_choice(parse_diffusion_choice(common.backend));
   const DiffusionOptions options{cube, common.threads, true, common.adaptive_directions};
   return [options, choice](const DsModel& model) { return make_diffusion(model, options, choice); };
+}
+
+std::string resolved_backend(const Common& common) {
+  return resolve_diffusion_choice(parse_diffusion_choice(common.backend)) == DiffusionChoice::Gl
+             ? "gl"
+             : "cpu";
+}
+
+std::string diffusion_settings(int cube, const Common& common) {
+  return "backend=" + resolved_backend(common) + " cube=" + std::to_string(cube) +
+         " directions=" + (common.adaptive_directions ? "adaptive" : "every");
 }
 
 CutObject cut_for_view(SceneAssets& assets, const Variant& variant, const CutSpec& cut, int cube,

@@ -36,6 +36,7 @@ struct SceneArgs {
   std::string compress = "quantize";  ///< glTF vertex data: none, quantize or meshopt
   int lods = 0;                       ///< glTF levels of detail per mesh (GltfSceneOptions)
   std::string textures = "jpeg";      ///< base-colour texture images: jpeg or png (TextureFormat)
+  CacheArgs cache;
 };
 
 /// Logs what went wrong or nearly so while building (pieces left out, not closed, not settled,
@@ -62,6 +63,9 @@ void log_build(const Scene& scene, uint64_t seed, const SceneStats& st,
               st.stability_checks);
   spdlog::info("{}: {} objects, {} pieces placed, {} triangles (seed {})", scene.name,
                st.objects, st.placed, st.triangles, seed);
+  if (st.cached_objects > 0)
+    spdlog::info("{} of {} objects{} were read from the cut cache", st.cached_objects,
+                 st.objects, st.cached_placements ? " and their placements" : "");
 }
 
 /// Registers the texture files of each .pov and .gltf output: they go beside it, committed with
@@ -80,8 +84,14 @@ void register_texture_outputs(OutputSet& outputs, const Targets& targets,
 
 /// The --stats of a scene: its counts, the physics and the seconds of each stage.
 nlohmann::ordered_json scene_stats(const Scene& scene, uint64_t seed, const std::string& backend,
-                                   const SceneStats& st, double t_parse, double t_build,
-                                   const Written& w) {
+                                   const SceneStats& st, const CutCache* cache, double t_parse,
+                                   double t_build, const Written& w) {
+  nlohmann::ordered_json cached = nullptr;
+  if (cache) {
+    const CutCacheStats c = cache->stats();
+    cached = {{"hits", c.hits}, {"misses", c.misses}, {"stored", c.stored},
+              {"damaged", c.damaged}, {"evicted", c.evicted}};
+  }
   return {{"scene", scene.name},
           {"seed", seed},
           {"backend", backend},
@@ -90,8 +100,10 @@ nlohmann::ordered_json scene_stats(const Scene& scene, uint64_t seed, const std:
           {"placed", st.placed},
           {"triangles", st.triangles},
           {"diffused_points", st.diffused.all},
+          {"cut_cache", cached},
           {"physics",
-           {{"simulated_seconds", st.simulated_seconds},
+           {{"from_cut_cache", st.cached_placements},
+            {"simulated_seconds", st.simulated_seconds},
             {"settled", st.settled},
             {"decomposed_pieces", st.decomposed_pieces},
             {"redropped", st.redropped},
@@ -107,6 +119,7 @@ nlohmann::ordered_json scene_stats(const Scene& scene, uint64_t seed, const std:
             {"diffuse", st.seconds_diffuse},
             {"clip", st.seconds_clip},
             {"bake", st.seconds_bake},
+            {"collision", st.seconds_collision},
             {"layout", st.seconds_layout},
             {"physics", st.seconds_physics},
             {"strokes", w.strokes_s},
@@ -130,18 +143,15 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
   }
   const double t_parse = seconds_since(t0);
   const uint64_t seed = a.seed >= 0 ? static_cast<uint64_t>(a.seed) : scene.seed;
-  const DiffusionFactory diffusion = diffusion_factory(a.cube, common);
-  std::string backend_name;
+  const std::unique_ptr<CutCache> cache = open_cut_cache(a.cache);
   SceneBuildOptions options;
+  options.cache = cache.get();
+  options.diffusion_settings = diffusion_settings(a.cube, common);
   options.sampling = common.sampling;
   options.cap_colours = a.colours == "vertex" ? CapColours::Vertex : CapColours::Texture;
   options.atlas.texels_per_m = 1000 * a.texels_per_mm;  // 0: the scene's
   options.atlas.power_of_two = options.skin.power_of_two = a.power_of_two;
-  options.diffusion = [&](const DsModel& model) {
-    auto backend = diffusion(model);
-    backend_name = backend->name();
-    return backend;
-  };
+  options.diffusion = diffusion_factory(a.cube, common);
   options.progress = [&](int done, int total, const std::string& line) {
     spdlog::info("[{}/{}] {}", done, total, line);
   };
@@ -154,7 +164,8 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
   const Written w =
       write_outputs(assets, targets, common.threads, scene.render.silhouettes,
                     export_options(a.compress, a.lods, a.textures));
-  if (common.stats) *common.stats = scene_stats(scene, seed, backend_name, st, t_parse, t_build, w);
+  if (common.stats)
+    *common.stats = scene_stats(scene, seed, resolved_backend(common), st, cache.get(), t_parse, t_build, w);
   return 0;
 }
 
@@ -188,6 +199,7 @@ Command add_scene_command(CLI::App& app) {
                   "baked textures with sides powers of two (default: multiples of 4, fewer "
                   "texels)");
   add_export_options(scene, args->compress, args->lods, args->textures);
+  add_cache_options(scene, args->cache);
   return {scene, [args](const Common& common, OutputSet& outputs) {
             return run_scene(*args, common, outputs);
           }};

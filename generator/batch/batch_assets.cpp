@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include <glm/trigonometric.hpp>
@@ -14,6 +16,7 @@
 #include "base/source_fingerprint.h"
 #include "base/timer.h"
 #include "batch/variant_batch.h"
+#include "cache/cached_cut.h"
 #include "cut/piece_views.h"
 #include "export/gltf_export.h"
 #include "placement/collision_shape.h"
@@ -28,16 +31,13 @@ using Clock = std::chrono::steady_clock;
 /// The text an asset's fingerprint hashes: everything its bytes depend on.
 std::string fingerprint_text(const Batch& b, const BatchItem& item, uint64_t seed,
                              const CutSpec& cut, bool thumbnail, const std::string& settings) {
-  char cut_numbers[96];  // cut_label rounds to micrometres; the fingerprint does not
-  std::snprintf(cut_numbers, sizeof cut_numbers, "%.17g %.17g %d", cut.thickness_m, cut.size_m,
-                cut.count);
   const nlohmann::ordered_json j = {
       {"cutaway", CUTAWAY_VERSION},
       {"sources", source_fingerprint()},
-      {"template", hex64(item.template_hash)},
+      {"template", hex64(item.tmpl->source_hash)},
       {"seed", seed},
       {"variation", item.variation},
-      {"cut", cut_label(cut) + " " + cut_numbers},
+      {"cut", cut_exact_text(cut)},
       {"model", b.outputs.model},
       {"thumbnail", thumbnail ? b.outputs.thumbnail_px : 0},
       {"compress", static_cast<int>(b.export_options.gltf.compression)},
@@ -106,6 +106,7 @@ BatchPlan plan_batch(const Batch& batch, const std::string& settings) {
   for (BatchAsset& a : plan.assets) {
     a.thumbnail = batch.outputs.thumbnails || a.sample;
     const BatchItem& item = batch.items[a.item];
+    CUTAWAY_CHECK(item.tmpl);  // load_batch read it
     a.inputs = fnv1a64(fingerprint_text(batch, item, a.seed, item.cuts[a.cut], a.thumbnail,
                                         settings));
   }
@@ -114,14 +115,51 @@ BatchPlan plan_batch(const Batch& batch, const std::string& settings) {
 
 namespace {
 
-/// One asset's pieces: `variant` cut by `cut_spec` into a new SceneAssets named `stem` (its
-/// materials and baked textures), every piece kept, Perlin modulation seeded by `seed`.
-CutObject cut_asset(SceneAssets& assets, const Batch& batch, const Variant& variant, uint64_t seed,
-                    const CutSpec& cut_spec, const std::string& stem,
-                    const DiffusionBackend& diffusion, CapSampling sampling, ObjectCutStats& st) {
+/// The variant of a batch unit and its diffusion backend, made when first asked for (a unit
+/// whose cuts are all in the cut cache and that writes no DS model needs neither).
+class LazyVariant {
+ public:
+  LazyVariant(const Template& tmpl, uint64_t seed, const BatchBuildOptions& options)
+      : tmpl_(tmpl), seed_(seed), options_(options) {}
+  const Variant& variant() {
+    if (!variant_) {
+      const auto t0 = Clock::now();
+      variant_ = make_variant(tmpl_, seed_);
+      seconds_ += seconds_since(t0);
+    }
+    return *variant_;
+  }
+  /// One backend (its BVH) serves every cut of the variant.
+  const DiffusionBackend& diffusion() {
+    if (!diffusion_) {
+      const Variant& v = variant();
+      const auto t0 = Clock::now();
+      diffusion_ = options_.diffusion(v.model);
+      seconds_ += seconds_since(t0);
+    }
+    return *diffusion_;
+  }
+  /// Wall seconds spent making the variant and its backend so far.
+  double seconds() const { return seconds_; }
+
+ private:
+  const Template& tmpl_;
+  uint64_t seed_;
+  const BatchBuildOptions& options_;
+  std::optional<Variant> variant_;
+  std::unique_ptr<DiffusionBackend> diffusion_;
+  double seconds_ = 0;
+};
+
+/// One asset's pieces: the unit's variant cut by `cut_spec` into a new SceneAssets named
+/// `stem` (its materials and baked textures), every piece kept, Perlin modulation seeded by
+/// `seed`, with collision shapes when the batch exports them; through the cut cache.
+CachedCut cut_asset(SceneAssets& assets, const Batch& batch, const Template& tmpl,
+                    LazyVariant& variant, uint64_t seed, const CutSpec& cut_spec,
+                    const std::string& stem, const BatchBuildOptions& options,
+                    ObjectCutStats& st) {
   assets.name = stem;
   assets.background = {1, 1, 1};
-  const Template& tmpl = variant.tmpl;
   const PieceMaterials materials =
       add_piece_materials(assets, tmpl.name, tmpl.skin_material, tmpl.cut_material);
   ObjectCutOptions cut;
@@ -130,14 +168,24 @@ CutObject cut_asset(SceneAssets& assets, const Batch& batch, const Variant& vari
   cut.perlin = batch.export_options.perlin;
   cut.atlas.texels_per_m = 1000 * batch.export_options.texels_per_mm;
   cut.atlas.power_of_two = cut.skin.power_of_two = batch.export_options.power_of_two;
-  cut.sampling = sampling;
-  return *cut_object(assets, variant, seed, materials, asset_name(stem), diffusion, cut, st);
+  cut.sampling = options.sampling;
+  const CollisionShapeOptions hulls;
+  const CollisionShapeOptions* collision =
+      batch.export_options.gltf.collision != GltfCollision::None ? &hulls : nullptr;
+  const std::string object = asset_name(stem);
+  const std::string key = cut_cache_key({tmpl.source_hash, tmpl.variation_amount, seed, object,
+                                         options.diffusion_settings, &cut, collision});
+  return cut_through_cache(options.cache, key, assets, materials, collision, [&] {
+    return CutPieces(std::move(*cut_object(assets, variant.variant(), seed, materials, object,
+                                           variant.diffusion(), cut, st)));
+  });
 }
 
 /// The asset's glTF binary: `object`'s pieces placed in `assets` as they lie in the object frame
 /// (with their collision hulls when the batch exports them), a camera framing them and the
 /// studio lights. Fills the record's pieces, volume, hash and geometry counts.
-std::string asset_glb(SceneAssets& assets, CutObject& object, const Batch& batch, AssetRecord& r) {
+std::string asset_glb(SceneAssets& assets, CachedCut& cut, const Batch& batch, AssetRecord& r) {
+  CutPieces& object = cut.pieces;
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
   for (size_t q = 0; q < object.meshes.size(); ++q) {
     for (const glm::dvec3& p : object.shapes[q].position) {
@@ -147,8 +195,8 @@ std::string asset_glb(SceneAssets& assets, CutObject& object, const Batch& batch
     r.volume_m3 += object.infos[q].volume_m3;
     assets.instances.push_back({object.meshes[q].name, static_cast<int>(assets.meshes.size()),
                                 {1, 0, 0, 0}, {0, 0, 0}, object.infos[q]});
-    if (batch.export_options.gltf.collision != GltfCollision::None)
-      assets.instances.back().collision = collision_hulls(object.shapes[q]);
+    if (!cut.collision.empty())
+      assets.instances.back().collision = collision_hulls(cut.collision[q]);
     assets.meshes.push_back(std::move(object.meshes[q]));
   }
   r.pieces = object.meshes.size();
@@ -176,14 +224,12 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
   CUTAWAY_CHECK(item.tmpl);  // load_batch read it
   Template tmpl = *item.tmpl;
   tmpl.variation_amount *= item.variation;
-  const Variant variant = make_variant(tmpl, u.seed);
+  LazyVariant variant(tmpl, u.seed, options);
   // The DS model is one file per variant, shared by its cuts' records: encoded once (its time
-  // counts as the variant's).
+  // counts as the variant's, as do the variant's and its backend's when a cut first needs them).
   const std::string model_file = item.template_name + "-" + std::to_string(u.seed) + ".model.glb";
-  std::string model = batch.outputs.model ? model_to_glb(variant.model, GltfModelOptions{}) : "";
-  // One diffusion backend (its BVH) serves every cut of the variant; its time counts as the
-  // variant's too.
-  const std::unique_ptr<DiffusionBackend> diffusion = options.diffusion(variant.model);
+  std::string model =
+      batch.outputs.model ? model_to_glb(variant.variant().model, GltfModelOptions{}) : "";
   const uint64_t model_hash = fnv1a64(model);
   t.variant = seconds_since(t0);
 
@@ -193,12 +239,14 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
     t0 = Clock::now();
     SceneAssets assets;
     ObjectCutStats st;
-    CutObject object = cut_asset(assets, batch, variant, u.seed, item.cuts[c], a.stem, *diffusion,
-                                 options.sampling, st);
+    const double before = variant.seconds();
+    CachedCut object =
+        cut_asset(assets, batch, tmpl, variant, u.seed, item.cuts[c], a.stem, options, st);
+    const double made_variant = variant.seconds() - before;
+    t.variant += made_variant;
     BuiltAsset built;
     UnitTimings& own = built.seconds;
-    own.variant = t.variant / static_cast<double>(item.cuts.size());
-    own.cut = seconds_since(t0) - st.seconds_bake;
+    own.cut = seconds_since(t0) - st.seconds_bake - made_variant;
     own.bake = st.seconds_bake;
 
     // The thumbnail first: it shows the meshes that the glTF scene then takes over.
@@ -208,7 +256,7 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
         throw InternalError("build_batch_unit: a thumbnail is due and no renderer given");
       t0 = Clock::now();
       const int w = batch.outputs.thumbnail_px;
-      thumbnail = options.thumbnail(grid_piece_assets(assets, object, PieceView::Up, w, w * 3 / 4));
+      thumbnail = options.thumbnail(grid_piece_assets(assets, object.pieces, PieceView::Up, w, w * 3 / 4));
       own.thumbnail = seconds_since(t0);
     }
 
@@ -239,6 +287,7 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
     t.thumbnail += own.thumbnail;
     out.push_back(std::move(built));
   }
+  for (BuiltAsset& built : out) built.seconds.variant = t.variant / static_cast<double>(out.size());
   return out;
 }
 

@@ -55,10 +55,11 @@ ShardRange shard_range(const BatchPlan& plan, const std::optional<Shard>& shard)
 std::string cut_file_label(const CutSpec& cut);
 
 /// The plan of `batch`. Each asset's fingerprint is fnv1a64 of a text holding this program's
-/// version, the template file's hash, the seed, the variation, the cut, the outputs and export
-/// options and `settings` (what else changes the bytes: the diffusion backend and sampling
-/// chosen on the command line). The sample is min(outputs.sample, assets) assets spread
+/// version, the template's source_hash (its file and meshes), the seed, the variation, the
+/// cut, the outputs and export options and `settings` (what else changes the bytes: the
+/// diffusion backend and sampling chosen on the command line). The sample is min(outputs.sample, assets) assets spread
 /// evenly: asset floor(k * assets / sample) for k = 0 .. sample - 1.
+/// @pre every item's tmpl is set (load_batch)
 BatchPlan plan_batch(const Batch& batch, const std::string& settings);
 
 /// One written file of an asset: its name in the output folder, and its bytes.
@@ -104,6 +105,10 @@ using ThumbnailRenderer = std::function<std::string(const SceneAssets&)>;
 /// How build_batch_unit works.
 struct BatchBuildOptions {
   DiffusionFactory diffusion;  ///< required
+  /// What of the diffusion backend changes colours (SceneBuildOptions::diffusion_settings);
+  /// required with `cache`.
+  std::string diffusion_settings;
+  CutCache* cache = nullptr;   ///< the cut cache (cut_cache.h), or null: every asset is cut
   CapSampling sampling = CapSampling::Adaptive;
   ThumbnailRenderer thumbnail;  ///< required when the unit has an asset with a thumbnail
 };

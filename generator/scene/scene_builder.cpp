@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
@@ -14,6 +15,8 @@
 #include "base/error.h"
 #include "base/random.h"
 #include "base/timer.h"
+#include "cache/cached_cut.h"
+#include "cache/cached_placement.h"
 #include "placement/collision_shape.h"
 #include "placement/container_mesh.h"
 #include "placement/physics_settle.h"
@@ -25,10 +28,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// The default view: from the front (+Z), 50 degrees above the horizon.
-const glm::dvec3 kDefaultToCamera(0, std::sin(glm::radians(50.0)), std::cos(glm::radians(50.0)));
-
 }  // namespace
+
+glm::dvec3 default_view_direction() {
+  return {0, std::sin(glm::radians(50.0)), std::cos(glm::radians(50.0))};
+}
 
 uint64_t object_seed(uint64_t scene_seed, int item, int object, int purpose) {
   return derive_seed(scene_seed, {static_cast<uint64_t>(item), static_cast<uint64_t>(object),
@@ -38,7 +42,7 @@ uint64_t object_seed(uint64_t scene_seed, int item, int object, int purpose) {
 AssetCamera scene_camera(const Scene& scene, const glm::dvec3& pile_min,
                          const glm::dvec3& pile_max) {
   const double aspect = static_cast<double>(scene.render.width) / scene.render.height;
-  if (!scene.camera) return frame_box(pile_min, pile_max, kDefaultToCamera, 40, aspect);
+  if (!scene.camera) return frame_box(pile_min, pile_max, default_view_direction(), 40, aspect);
   AssetCamera cam;
   cam.eye = scene.camera->eye;
   cam.target = scene.camera->target;
@@ -61,10 +65,33 @@ struct ScenePieces {
   std::vector<LayoutPiece> arranged;  // cap, arrangement, row (mesh set by the layout step)
   std::vector<double> densities;      // kg/m^3
   std::vector<PieceInfo> infos;
+  std::vector<CollisionShape> collision;
+  std::vector<std::string> cut_keys;   // per object: its cut_cache_key
+  std::vector<Arrangement> arrange;    // per object
 };
 
+/// The options of cut_object() for object `j` of item `i`.
+ObjectCutOptions object_cut_options(const Scene& scene, uint64_t seed,
+                                    const SceneBuildOptions& options, size_t i, int j) {
+  const SceneItem& item = scene.items[i];
+  const int ii = static_cast<int>(i);
+  ObjectCutOptions cut;
+  cut.cut = item.cut;
+  cut.keep = item.keep;
+  cut.keep_seed = object_seed(seed, ii, j, 2);
+  cut.modulation_seed = object_seed(seed, ii, j, 3);
+  cut.perlin = scene.render.perlin;
+  cut.sampling = options.sampling;
+  cut.cap_colours = options.cap_colours;
+  cut.atlas = options.atlas;
+  if (cut.atlas.texels_per_m == 0) cut.atlas.texels_per_m = 1000 * scene.render.texels_per_mm;
+  cut.skin = options.skin;
+  return cut;
+}
+
 /// Step 1: every object of every item as a seeded variant, cut (cut_object), a seeded share
-/// of its pieces kept; the templates' materials and the baked textures go into `assets`.
+/// of its pieces kept, with their collision shapes; the templates' materials and the baked
+/// textures go into `assets`. Objects the cut cache holds are read from it instead.
 ScenePieces cut_scene_objects(const Scene& scene, uint64_t seed, const SceneBuildOptions& options,
                               SceneAssets& assets, SceneStats& st) {
   int total = 0;
@@ -78,44 +105,45 @@ ScenePieces cut_scene_objects(const Scene& scene, uint64_t seed, const SceneBuil
     const PieceMaterials item_materials =
         add_piece_materials(assets, tmpl.name, tmpl.skin_material, tmpl.cut_material);
     for (int j = 0; j < item.count; ++j) {
-      const int ii = static_cast<int>(i);
-      const auto t0 = Clock::now();
-      const uint64_t variant_seed = object_seed(seed, ii, j, 1);
-      const Variant variant = make_variant(tmpl, variant_seed);
-      st.seconds_variants += seconds_since(t0);
-      ObjectCutOptions cut;
-      cut.cut = item.cut;
-      cut.keep = item.keep;
-      cut.keep_seed = object_seed(seed, ii, j, 2);
-      cut.modulation_seed = object_seed(seed, ii, j, 3);
-      cut.perlin = scene.render.perlin;
-      cut.sampling = options.sampling;
-      cut.cap_colours = options.cap_colours;
-      cut.atlas = options.atlas;
-      if (cut.atlas.texels_per_m == 0) cut.atlas.texels_per_m = 1000 * scene.render.texels_per_mm;
-      cut.skin = options.skin;
+      const uint64_t variant_seed = object_seed(seed, static_cast<int>(i), j, 1);
+      const ObjectCutOptions cut = object_cut_options(scene, seed, options, i, j);
       const std::string object =
           "i" + std::to_string(i) + "_" + asset_name(tmpl.name) + "_" + std::to_string(j);
-      const auto t_backend = Clock::now();
-      const std::unique_ptr<DiffusionBackend> diffusion = options.diffusion(variant.model);
-      st.seconds_backend += seconds_since(t_backend);
-      CutObject made = *cut_object(assets, variant, variant_seed, item_materials, object,
-                                   *diffusion, cut, st);
-      for (size_t q = 0; q < made.kept.size(); ++q) {
-        const Piece& piece = made.set.pieces[made.kept[q]];
-        out.meshes.push_back(std::move(made.meshes[q]));
-        out.shapes.push_back(std::move(made.shapes[q]));
-        out.arranged.push_back({nullptr, largest_cap_normal(piece), item.arrange, st.objects,
-                                piece.cell, cut_faces(piece)});
+      const std::string key =
+          cut_cache_key({tmpl.source_hash, tmpl.variation_amount, variant_seed, object,
+                         options.diffusion_settings, &cut, &options.collision});
+      CachedCut made = cut_through_cache(
+          options.cache, key, assets, item_materials, &options.collision, [&] {
+            const auto t0 = Clock::now();
+            const Variant variant = make_variant(tmpl, variant_seed);
+            st.seconds_variants += seconds_since(t0);
+            const auto t_backend = Clock::now();
+            const std::unique_ptr<DiffusionBackend> diffusion = options.diffusion(variant.model);
+            st.seconds_backend += seconds_since(t_backend);
+            return CutPieces(std::move(*cut_object(assets, variant, variant_seed, item_materials,
+                                                   object, *diffusion, cut, st)));
+          });
+      st.cached_objects += made.from_cache;
+      out.cut_keys.push_back(key);
+      out.arrange.push_back(item.arrange);
+      st.seconds_collision += made.seconds_collision;
+      CutPieces& p = made.pieces;
+      for (size_t q = 0; q < p.meshes.size(); ++q) {
+        out.meshes.push_back(std::move(p.meshes[q]));
+        out.shapes.push_back(std::move(p.shapes[q]));
+        out.arranged.push_back({nullptr, p.cap_normals[q], item.arrange, st.objects,
+                                p.infos[q].cell, p.cut_faces[q]});
         out.densities.push_back(tmpl.density_kg_m3);
-        out.infos.push_back(std::move(made.infos[q]));
+        out.infos.push_back(std::move(p.infos[q]));
+        out.collision.push_back(std::move(made.collision[q]));
       }
       ++st.objects;
       if (options.progress)
         options.progress(st.objects, total,
                          tmpl.name + " " + std::to_string(j + 1) + "/" +
-                             std::to_string(item.count) + ": " + std::to_string(made.kept.size()) +
-                             " of " + std::to_string(made.set.pieces.size()) + " pieces");
+                             std::to_string(item.count) + ": " + std::to_string(p.meshes.size()) +
+                             " of " + std::to_string(p.pieces_cut) + " pieces" +
+                             (made.from_cache ? " (cut cache)" : ""));
     }
   }
   st.pieces = static_cast<int>(out.shapes.size());
@@ -132,35 +160,56 @@ std::vector<size_t> placement_order(size_t n, uint64_t seed) {
   return order;
 }
 
-/// Step 2: the pieces in `order` dropped by the height-field layout, then settled as rigid
-/// bodies from those poses; one placement per entry of `order`.
-std::vector<Placement> place_pieces(const Scene& scene, uint64_t seed,
-                                    const SceneBuildOptions& options, const ScenePieces& pieces,
-                                    const std::vector<size_t>& order, SceneStats& st) {
+/// The pieces in `order` dropped by the height-field layout, then settled as rigid bodies
+/// from those poses; one placement per entry of `order`.
+SettleResult lay_out_and_settle(const Scene& scene, uint64_t seed, const SceneBuildOptions& options,
+                                const LayoutOptions& layout_options, const ScenePieces& pieces,
+                                const std::vector<size_t>& order, SceneStats& st) {
   const auto t0 = Clock::now();
   std::vector<LayoutPiece> layout;
   for (size_t k : order) {
     layout.push_back(pieces.arranged[k]);
     layout.back().mesh = &pieces.shapes[k];
   }
-  LayoutOptions layout_options = options.layout;
-  layout_options.to_camera =
-      scene.camera ? glm::normalize(scene.camera->eye - scene.camera->target) : kDefaultToCamera;
   const std::vector<Placement> drops =
       layout_pieces(layout, scene.container, layout_options, derive_seed(seed, {~0ull, 4}));
   st.seconds_layout = seconds_since(t0);
 
   const auto t_physics = Clock::now();
-  std::vector<CollisionShape> collision(order.size());
   std::vector<SettleBody> bodies(order.size());
   for (size_t k = 0; k < order.size(); ++k) {
     if (!drops[k].placed) continue;
-    collision[k] = collision_shape(pieces.shapes[order[k]], options.collision);
-    st.decomposed_pieces += collision[k].decomposed;
-    bodies[k] = {&collision[k], pieces.densities[order[k]], drops[k]};
+    bodies[k] = {&pieces.collision[order[k]], pieces.densities[order[k]], drops[k]};
   }
   SettleResult settled = settle_pieces(bodies, scene.container, options.settle);
   st.seconds_physics = seconds_since(t_physics);
+  return settled;
+}
+
+/// Step 2: the pieces' placements in `order` (lay_out_and_settle), read from the cut cache when
+/// it holds those of the same objects, arrangement, seed, container and options.
+std::vector<Placement> place_pieces(const Scene& scene, uint64_t seed,
+                                    const SceneBuildOptions& options, const ScenePieces& pieces,
+                                    const std::vector<size_t>& order, SceneStats& st) {
+  LayoutOptions layout_options = options.layout;
+  layout_options.to_camera =
+      scene.camera ? glm::normalize(scene.camera->eye - scene.camera->target) : default_view_direction();
+  std::string key;
+  std::optional<SettleResult> cached;
+  if (options.cache) {
+    key = placement_cache_key({pieces.cut_keys, pieces.arrange, seed, &scene.container,
+                               &layout_options, &options.settle});
+    if (std::optional<std::string> payload = options.cache->load(key))
+      cached = decode_settled(*payload, order.size());
+  }
+  st.cached_placements = cached.has_value();
+  SettleResult settled = cached ? std::move(*cached)
+                                : lay_out_and_settle(scene, seed, options, layout_options, pieces,
+                                                     order, st);
+  if (options.cache && !cached) options.cache->store(key, encode_settled(settled));
+  for (size_t k = 0; k < order.size(); ++k)
+    if (settled.placements[k].placed)
+      st.decomposed_pieces += pieces.collision[order[k]].decomposed;
   st.simulated_seconds = settled.simulated_s;
   st.settled = settled.all_asleep;
   st.redropped = settled.redrops;
@@ -213,6 +262,8 @@ void add_placed_pieces(SceneAssets& assets, const Scene& scene, ScenePieces& pie
 SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptions& options,
                         SceneStats* stats) {
   if (!options.diffusion) throw InternalError("build_scene: no diffusion backend");
+  if (options.cache && options.diffusion_settings.empty())
+    throw InternalError("build_scene: a cut cache without the diffusion settings of its keys");
   SceneStats local;
   SceneStats& st = stats ? *stats : local;
   st = SceneStats{};

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "assets/scene_assets.h"
+#include "cache/cut_cache.h"
 #include "cut/object_cut.h"
 #include "placement/physics_settle.h"
 #include "placement/scene_layout.h"
@@ -28,6 +29,10 @@ struct SceneBuildOptions {
   CapAtlasOptions atlas{.texels_per_m = 0};
   SkinTextureOptions skin;     ///< with CapColours::Texture: the swept skins' textures
   DiffusionFactory diffusion;  ///< required
+  /// What of the diffusion backend changes colours (its resolved kind, cube size, directions),
+  /// as the command line writes it: part of the cut cache's keys; required with `cache`.
+  std::string diffusion_settings;
+  CutCache* cache = nullptr;   ///< the cut cache (cut_cache.h), or null: every object is cut
   CapSampling sampling = CapSampling::Adaptive;  ///< which cap points are diffused
   /// Called after each object with (objects done, objects in all, a line of text); may be empty.
   std::function<void(int, int, const std::string&)> progress;
@@ -40,11 +45,14 @@ struct SceneBuildOptions {
 /// (ObjectCutStats) added up over the objects.
 struct SceneStats : ObjectCutStats {
   int objects = 0, pieces = 0, placed = 0;  ///< pieces: kept after `keep`; placed: of those
+  int cached_objects = 0;       ///< objects read from the cut cache (not cut)
+  bool cached_placements = false;  ///< placements read from the cut cache (not settled)
   size_t triangles = 0;
   double seconds_variants = 0;  ///< make_variant (sweep, synthesis, grains, checks)
   double seconds_backend = 0;   ///< building the diffusion backends (BVH or GL setup)
   double seconds_layout = 0;    ///< drop poses (the height-field layout)
-  double seconds_physics = 0;   ///< collision shapes and settling
+  double seconds_collision = 0; ///< the pieces' collision shapes (of objects not cached)
+  double seconds_physics = 0;   ///< settling
   double simulated_seconds = 0;     ///< simulated time of the settling
   bool settled = false;             ///< the last round of settling came to rest before its cap
   int decomposed_pieces = 0;        ///< pieces colliding as several convex parts
@@ -59,6 +67,10 @@ struct SceneStats : ObjectCutStats {
 /// kept, 3: Perlin colour modulation): derive_seed(scene_seed, {item, object, purpose}), so adding an item does not change
 /// the others (doc/scene-format.md, Determinism).
 uint64_t object_seed(uint64_t scene_seed, int item, int object, int purpose);
+
+/// The direction from the scene towards the camera of a scene without a `camera` block: from
+/// the front (+Z), 50 degrees above the horizon (a unit vector).
+glm::dvec3 default_view_direction();
 
 /// The scene's camera (its `camera` block, or one framing the container and the pile from the
 /// front, 50 degrees above the horizon), aspect from render width / height.

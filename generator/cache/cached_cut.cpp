@@ -1,0 +1,324 @@
+#include "cache/cached_cut.h"
+
+#include <chrono>
+
+#include <nlohmann/json.hpp>
+
+#include "base/byte_stream.h"
+#include "base/error.h"
+#include "base/source_fingerprint.h"
+#include "base/timer.h"
+
+namespace cutaway {
+
+namespace {
+
+/// The version of the payload's layout (and of the key's), part of every key.
+constexpr int kPayloadVersion = 1;
+
+// A field added to one of these structs must be added to the key below: their sizes remind.
+static_assert(sizeof(ObjectCutOptions) == 176,
+              "a new ObjectCutOptions field: add it to cut_cache_key");
+static_assert(sizeof(CapAtlasOptions) == 24, "a new CapAtlasOptions field: add it to the key");
+static_assert(sizeof(SkinTextureOptions) == 24,
+              "a new SkinTextureOptions field: add it to the key");
+static_assert(sizeof(CollisionShapeOptions) == 48,
+              "a new CollisionShapeOptions field: add it to the key");
+static_assert(sizeof(CutSpec) == 80, "a new CutSpec field: add it to cut_exact_text");
+
+nlohmann::ordered_json atlas_json(const CapAtlasOptions& a) {
+  return {{"texels_per_m", a.texels_per_m}, {"padding", a.padding}, {"max_size", a.max_size},
+          {"power_of_two", a.power_of_two}};
+}
+
+nlohmann::ordered_json skin_json(const SkinTextureOptions& s) {
+  return {{"texels_per_m", s.texels_per_m}, {"padding", s.padding}, {"max_size", s.max_size},
+          {"power_of_two", s.power_of_two}};
+}
+
+nlohmann::ordered_json collision_json(const CollisionShapeOptions* c) {
+  if (!c) return nullptr;
+  return {{"min_convexity", c->min_convexity},
+          {"concavity", c->concavity},
+          {"decomposition_triangles", c->decomposition_triangles},
+          {"max_parts", c->max_parts},
+          {"seed_corners", c->seed_corners},
+          {"corner_tolerance_m", c->corner_tolerance_m},
+          {"max_corners", c->max_corners}};
+}
+
+/// Where the materials of the cut object are: those it was given (`materials`), then the ones
+/// it added from index `first_new`. Encodes a material index as 0, 1, 2 (the given skin, wall,
+/// cut) or 3 + k (the k-th added one), and back.
+struct MaterialRebase {
+  PieceMaterials given;
+  int first_new = 0;
+
+  int32_t encode(int m) const {
+    if (m >= first_new) return 3 + (m - first_new);
+    if (m == given.skin) return 0;
+    if (m == given.wall) return 1;
+    if (m == given.cut) return 2;
+    throw InternalError("cut cache: a piece names material " + std::to_string(m) +
+                        ", neither its object's nor a new one");
+  }
+  int decode(int32_t code) const {
+    if (code >= 3) return first_new + (code - 3);
+    if (code < 0) throw ByteStreamError("a material code below 0");
+    return code == 0 ? given.skin : (code == 1 ? given.wall : given.cut);
+  }
+};
+
+void put_coloured(ByteWriter& w, const ColouredMesh& m) {
+  w.put_vector(m.position);
+  w.put_vector(m.normal);
+  w.put_vector(m.colour);
+  w.put_vector(m.triangle);
+}
+
+void get_coloured(ByteReader& r, ColouredMesh& m) {
+  m.position = r.get_vector<glm::dvec3>();
+  m.normal = r.get_vector<glm::dvec3>();
+  m.colour = r.get_vector<glm::dvec3>();
+  m.triangle = r.get_vector<glm::uvec3>();
+}
+
+void put_asset_mesh(ByteWriter& w, const AssetMesh& m, const MaterialRebase& rebase) {
+  put_coloured(w, m);
+  w.put_string(m.name);
+  w.put_vector(m.uv);
+  w.put<uint64_t>(m.primitives.size());
+  for (const AssetPrimitive& p : m.primitives) {
+    w.put<uint64_t>(p.first);
+    w.put<uint64_t>(p.count);
+    w.put<int32_t>(rebase.encode(p.material));
+    w.put_vector(p.coarse);
+  }
+}
+
+AssetMesh get_asset_mesh(ByteReader& r, const MaterialRebase& rebase) {
+  AssetMesh m;
+  get_coloured(r, m);
+  m.name = r.get_string();
+  m.uv = r.get_vector<glm::dvec2>();
+  m.primitives.resize(r.count(8));
+  for (AssetPrimitive& p : m.primitives) {
+    p.first = r.get<uint64_t>();
+    p.count = r.get<uint64_t>();
+    p.material = rebase.decode(r.get<int32_t>());
+    p.coarse = r.get_vector<glm::uvec3>();
+  }
+  return m;
+}
+
+void put_piece_info(ByteWriter& w, const PieceInfo& info) {
+  w.put_string(info.template_name);
+  w.put(info.seed);
+  w.put_string(info.cut);
+  w.put<int32_t>(info.cell);
+  w.put<uint64_t>(info.parts.size());
+  for (const std::string& part : info.parts) w.put_string(part);
+  w.put(info.volume_m3);
+}
+
+PieceInfo get_piece_info(ByteReader& r) {
+  PieceInfo info;
+  info.template_name = r.get_string();
+  info.seed = r.get<uint64_t>();
+  info.cut = r.get_string();
+  info.cell = r.get<int32_t>();
+  info.parts.resize(r.count(8));
+  for (std::string& part : info.parts) part = r.get_string();
+  info.volume_m3 = r.get<double>();
+  return info;
+}
+
+void put_collision(ByteWriter& w, const CollisionShape& c) {
+  w.put<uint64_t>(c.parts.size());
+  for (const ConvexPart& part : c.parts) {
+    w.put_vector(part.corners);
+    w.put(part.outside_m);
+  }
+  w.put(c.volume_m3);
+  w.put(c.centroid);
+  w.put(c.convexity);
+  w.put<uint8_t>(c.decomposed);
+}
+
+CollisionShape get_collision(ByteReader& r) {
+  CollisionShape c;
+  c.parts.resize(r.count(8));
+  for (ConvexPart& part : c.parts) {
+    part.corners = r.get_vector<glm::dvec3>();
+    part.outside_m = r.get<double>();
+  }
+  c.volume_m3 = r.get<double>();
+  c.centroid = r.get<glm::dvec3>();
+  c.convexity = r.get<double>();
+  c.decomposed = r.get<uint8_t>() != 0;
+  return c;
+}
+
+/// A texture index of an added material: -1, or k for the k-th added texture.
+int32_t encode_texture(int t, int first_new) {
+  if (t < 0) return -1;
+  if (t < first_new) throw InternalError("cut cache: a new material names an older texture");
+  return t - first_new;
+}
+
+/// The payload: the cut object, the materials and textures it added to the scene (from
+/// `first_material` and `first_texture` on), its collision shapes.
+std::string encode_cut(const CachedCut& made, const SceneAssets& assets,
+                       const MaterialRebase& rebase, int first_texture) {
+  ByteWriter w;
+  w.put<uint64_t>(assets.textures.size() - static_cast<size_t>(first_texture));
+  for (size_t k = static_cast<size_t>(first_texture); k < assets.textures.size(); ++k) {
+    const AssetTexture& t = assets.textures[k];
+    w.put_string(t.name);
+    w.put<int32_t>(t.width);
+    w.put<int32_t>(t.height);
+    w.put<int32_t>(t.channels);
+    w.put_vector(t.pixels);
+    w.put<uint8_t>(t.wrap_u);
+  }
+  w.put<uint64_t>(assets.materials.size() - static_cast<size_t>(rebase.first_new));
+  for (size_t k = static_cast<size_t>(rebase.first_new); k < assets.materials.size(); ++k) {
+    const AssetMaterial& m = assets.materials[k];
+    w.put_string(m.name);
+    w.put(m.pbr);
+    w.put<int32_t>(encode_texture(m.base_colour_texture, first_texture));
+    w.put<int32_t>(encode_texture(m.material_texture, first_texture));
+  }
+  const CutPieces& p = made.pieces;
+  w.put_string(p.backend);
+  w.put<uint64_t>(p.pieces_cut);
+  w.put<uint64_t>(p.meshes.size());
+  for (size_t q = 0; q < p.meshes.size(); ++q) {
+    put_asset_mesh(w, p.meshes[q], rebase);
+    put_coloured(w, p.shapes[q]);
+    w.put_vector(p.shapes[q].material);
+    w.put_vector(p.shapes[q].param);
+    put_piece_info(w, p.infos[q]);
+    w.put(p.cap_normals[q]);
+    w.put<int32_t>(p.cut_faces[q]);
+  }
+  w.put<uint64_t>(made.collision.size());
+  for (const CollisionShape& c : made.collision) put_collision(w, c);
+  return w.take();
+}
+
+/// A texture index read back for a scene whose added textures start at `first_new`.
+int decode_texture(int32_t code, int first_new, size_t added) {
+  if (code < 0) return -1;
+  if (static_cast<size_t>(code) >= added) throw ByteStreamError("a texture beyond the entry's");
+  return first_new + code;
+}
+
+/// Reads what encode_cut wrote, appending its textures and materials to `assets`; leaves
+/// `assets` unchanged when the payload is damaged.
+/// @throws ByteStreamError on a damaged payload
+CachedCut decode_cut(std::string_view payload, SceneAssets& assets,
+                     const PieceMaterials& materials) {
+  ByteReader r(payload);
+  std::vector<AssetTexture> textures(r.count(8));
+  for (AssetTexture& t : textures) {
+    t.name = r.get_string();
+    t.width = r.get<int32_t>();
+    t.height = r.get<int32_t>();
+    t.channels = r.get<int32_t>();
+    t.pixels = r.get_vector<uint8_t>();
+    t.wrap_u = r.get<uint8_t>() != 0;
+  }
+  const int first_texture = static_cast<int>(assets.textures.size());
+  std::vector<AssetMaterial> added(r.count(8));
+  for (AssetMaterial& m : added) {
+    m.name = r.get_string();
+    m.pbr = r.get<PbrMaterial>();
+    m.base_colour_texture = decode_texture(r.get<int32_t>(), first_texture, textures.size());
+    m.material_texture = decode_texture(r.get<int32_t>(), first_texture, textures.size());
+  }
+  const MaterialRebase rebase{materials, static_cast<int>(assets.materials.size())};
+  CachedCut out;
+  out.from_cache = true;
+  CutPieces& p = out.pieces;
+  p.backend = r.get_string();
+  p.pieces_cut = r.get<uint64_t>();
+  const uint64_t n = r.count(8);
+  for (uint64_t q = 0; q < n; ++q) {
+    p.meshes.push_back(get_asset_mesh(r, rebase));
+    ShadedMesh shape;
+    get_coloured(r, shape);
+    shape.material = r.get_vector<glm::dvec2>();
+    shape.param = r.get_vector<glm::dvec2>();
+    p.shapes.push_back(std::move(shape));
+    p.infos.push_back(get_piece_info(r));
+    p.cap_normals.push_back(r.get<glm::dvec3>());
+    p.cut_faces.push_back(r.get<int32_t>());
+  }
+  out.collision.resize(r.count(8));
+  for (CollisionShape& c : out.collision) c = get_collision(r);
+  if (!r.done()) throw ByteStreamError("bytes after the cut object");
+  for (const AssetMesh& m : p.meshes)
+    for (const AssetPrimitive& prim : m.primitives)
+      if (prim.material >= rebase.first_new + static_cast<int>(added.size()))
+        throw ByteStreamError("a material beyond the entry's");
+  for (AssetTexture& t : textures) assets.textures.push_back(std::move(t));
+  for (AssetMaterial& m : added) assets.materials.push_back(std::move(m));
+  return out;
+}
+
+}  // namespace
+
+std::string cut_cache_key(const CutKeyInputs& in) {
+  if (!in.cut) throw InternalError("cut_cache_key: no cut options");
+  const ObjectCutOptions& c = *in.cut;
+  const nlohmann::ordered_json key = {
+      {"cutaway", CUTAWAY_VERSION},
+      {"sources", source_fingerprint()},
+      {"payload", kPayloadVersion},
+      {"template", in.template_hash},
+      {"variation_amount", in.variation_amount},
+      {"variant_seed", in.variant_seed},
+      {"object", in.object},
+      {"diffusion", in.diffusion},
+      {"cut", cut_exact_text(c.cut)},
+      {"whole_when_missed", c.whole_when_missed},
+      {"keep", c.keep},
+      {"keep_seed", c.keep_seed},
+      {"modulation_seed", c.modulation_seed},
+      {"perlin", c.perlin},
+      {"sampling", static_cast<int>(c.sampling)},
+      {"cap_colours", static_cast<int>(c.cap_colours)},
+      {"atlas", atlas_json(c.atlas)},
+      {"skin", skin_json(c.skin)},
+      {"collision", collision_json(in.collision)}};
+  return key.dump();
+}
+
+CachedCut cut_through_cache(CutCache* cache, const std::string& key, SceneAssets& assets,
+                            const PieceMaterials& materials,
+                            const CollisionShapeOptions* collision,
+                            const std::function<CutPieces()>& cut) {
+  if (cache) {
+    if (std::optional<std::string> payload = cache->load(key)) {
+      try {
+        return decode_cut(*payload, assets, materials);
+      } catch (const ByteStreamError&) {
+        // The entry passed its check hash but not its layout: made again below and replaced.
+      }
+    }
+  }
+  const MaterialRebase rebase{materials, static_cast<int>(assets.materials.size())};
+  const int first_texture = static_cast<int>(assets.textures.size());
+  CachedCut made;
+  made.pieces = cut();
+  const auto t0 = std::chrono::steady_clock::now();
+  if (collision)
+    for (const ShadedMesh& shape : made.pieces.shapes)
+      made.collision.push_back(collision_shape(shape, *collision));
+  made.seconds_collision = seconds_since(t0);
+  if (cache) cache->store(key, encode_cut(made, assets, rebase, first_texture));
+  return made;
+}
+
+}  // namespace cutaway

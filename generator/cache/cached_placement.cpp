@@ -1,0 +1,142 @@
+#include "cache/cached_placement.h"
+
+#include <nlohmann/json.hpp>
+
+#include "base/byte_stream.h"
+#include "base/error.h"
+#include "base/hash.h"
+#include "base/source_fingerprint.h"
+
+namespace cutaway {
+
+namespace {
+
+/// The version of the payload's layout (and of the key's), part of every key.
+constexpr int kPayloadVersion = 1;
+
+// A field added to one of these structs must be added to the key below: their sizes remind.
+static_assert(sizeof(Container) == 64, "a new Container field: add it to placement_cache_key");
+static_assert(sizeof(LayoutOptions) == 120,
+              "a new LayoutOptions field: add it to placement_cache_key");
+static_assert(sizeof(SettleOptions) == 160,
+              "a new SettleOptions field: add it to placement_cache_key");
+
+nlohmann::ordered_json vec_json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+nlohmann::ordered_json container_json(const Container& c) {
+  return {{"type", static_cast<int>(c.type)}, {"diameter_m", c.diameter_m},
+          {"width_m", c.width_m},             {"depth_m", c.depth_m},
+          {"height_m", c.height_m},           {"colour", vec_json(c.colour)}};
+}
+
+nlohmann::ordered_json layout_json(const LayoutOptions& o) {
+  return {{"cell_m", o.cell_m},
+          {"candidates", o.candidates},
+          {"clearance_m", o.clearance_m},
+          {"centre_weight", o.centre_weight},
+          {"heap_centre_weight", o.heap_centre_weight},
+          {"to_camera", vec_json(o.to_camera)},
+          {"none_radius_m", o.none_radius_m},
+          {"tilt_deg", o.tilt_deg},
+          {"fan_tilt_deg", o.fan_tilt_deg},
+          {"fan_step", o.fan_step},
+          {"fan_headings", o.fan_headings},
+          {"fan_min_row", o.fan_min_row},
+          {"scatter_gap_m", o.scatter_gap_m},
+          {"scan_step_m", o.scan_step_m}};
+}
+
+nlohmann::ordered_json settle_json(const SettleOptions& o) {
+  return {{"time_step_s", o.time_step_s},
+          {"max_seconds", o.max_seconds},
+          {"margin_m", o.margin_m},
+          {"solver_iterations", o.solver_iterations},
+          {"check_solver_iterations", o.check_solver_iterations},
+          {"verify_seconds", o.verify_seconds},
+          {"stable_motion_m", o.stable_motion_m},
+          {"check_motion_m", o.check_motion_m},
+          {"max_verify_rounds", o.max_verify_rounds},
+          {"friction", o.friction},
+          {"rolling_friction_m", o.rolling_friction_m},
+          {"linear_damping", o.linear_damping},
+          {"angular_damping", o.angular_damping},
+          {"sleep_speed_m_s", o.sleep_speed_m_s},
+          {"sleep_spin_rad_s", o.sleep_spin_rad_s},
+          {"rest_motion_m", o.rest_motion_m},
+          {"freeze_after_s", o.freeze_after_s},
+          {"free_seconds", o.free_seconds},
+          {"container_segments", o.container_segments},
+          {"container_profile_samples", o.container_profile_samples},
+          {"max_redrops", o.max_redrops},
+          {"none_radius_m", o.none_radius_m}};
+}
+
+}  // namespace
+
+std::string placement_cache_key(const PlacementKeyInputs& in) {
+  if (!in.container || !in.layout || !in.settle)
+    throw InternalError("placement_cache_key: missing inputs");
+  nlohmann::ordered_json cuts = nlohmann::ordered_json::array();
+  for (const std::string& key : in.cut_keys) cuts.push_back(hex64(fnv1a64(key)));
+  nlohmann::ordered_json arrange = nlohmann::ordered_json::array();
+  for (Arrangement a : in.arrange) arrange.push_back(static_cast<int>(a));
+  const nlohmann::ordered_json key = {{"cutaway", CUTAWAY_VERSION},
+                                      {"sources", source_fingerprint()},
+                                      {"placements", kPayloadVersion},
+                                      {"cuts", cuts},
+                                      {"arrange", arrange},
+                                      {"seed", in.seed},
+                                      {"container", container_json(*in.container)},
+                                      {"layout", layout_json(*in.layout)},
+                                      {"settle", settle_json(*in.settle)}};
+  return key.dump();
+}
+
+std::string encode_settled(const SettleResult& s) {
+  ByteWriter w;
+  w.put<uint64_t>(s.placements.size());
+  for (const Placement& p : s.placements) {
+    w.put<uint8_t>(p.placed);
+    w.put(p.rotation);
+    w.put(p.translation);
+  }
+  w.put(s.simulated_s);
+  w.put<int32_t>(s.steps);
+  w.put<int64_t>(s.body_steps);
+  w.put<uint8_t>(s.all_asleep);
+  w.put(s.stability_motion_m);
+  w.put<uint8_t>(s.stable);
+  w.put<int32_t>(s.verify_rounds);
+  w.put<int32_t>(s.redrops);
+  w.put<int32_t>(s.lost);
+  return w.take();
+}
+
+std::optional<SettleResult> decode_settled(std::string_view payload, size_t bodies) {
+  try {
+    ByteReader r(payload);
+    SettleResult s;
+    s.placements.resize(r.count(1));
+    if (s.placements.size() != bodies) return std::nullopt;
+    for (Placement& p : s.placements) {
+      p.placed = r.get<uint8_t>() != 0;
+      p.rotation = r.get<glm::dquat>();
+      p.translation = r.get<glm::dvec3>();
+    }
+    s.simulated_s = r.get<double>();
+    s.steps = r.get<int32_t>();
+    s.body_steps = r.get<int64_t>();
+    s.all_asleep = r.get<uint8_t>() != 0;
+    s.stability_motion_m = r.get<double>();
+    s.stable = r.get<uint8_t>() != 0;
+    s.verify_rounds = r.get<int32_t>();
+    s.redrops = r.get<int32_t>();
+    s.lost = r.get<int32_t>();
+    if (!r.done()) return std::nullopt;
+    return s;
+  } catch (const ByteStreamError&) {
+    return std::nullopt;
+  }
+}
+
+}  // namespace cutaway

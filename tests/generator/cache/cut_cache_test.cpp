@@ -1,0 +1,280 @@
+// The cut cache: entries read back exactly, damaged ones rebuilt, the size bound kept by
+// evicting the least recently used, one folder shared by runs at once, and scenes and batches
+// that give the same bytes with and without it.
+#include "cache/cut_cache.h"
+
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <glm/trigonometric.hpp>
+
+#include "base/hash.h"
+#include "cache/cached_cut.h"
+#include "export/gltf_export.h"
+#include "io/scene_parser.h"
+#include "scene/scene_builder.h"
+#include "test_support.h"
+
+namespace cutaway {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A payload of `bytes` bytes that depends on `key`.
+std::string payload_of(const std::string& key, size_t bytes) {
+  std::string p(bytes, '\0');
+  uint64_t h = fnv1a64(key);
+  for (char& c : p) {
+    h = h * 6364136223846793005ULL + 1442695040888963407ULL;
+    c = static_cast<char>(h >> 56);
+  }
+  return p;
+}
+
+/// Every entry file of a cache folder.
+std::vector<fs::path> entries(const fs::path& dir) {
+  std::vector<fs::path> out;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file() && e.path().extension() == ".cut") out.push_back(e.path());
+  return out;
+}
+
+TEST(CutCache, ReadsBackWhatItStoredAndNothingForAnotherKey) {
+  CutCache cache({test::fresh_dir("cut_cache"), kDefaultCutCacheBytes, {}});
+  EXPECT_FALSE(cache.load("a"));
+  cache.store("a", payload_of("a", 1000));
+  cache.store("b", "");
+  EXPECT_EQ(cache.load("a"), payload_of("a", 1000));
+  EXPECT_EQ(cache.load("b"), "");
+  EXPECT_FALSE(cache.load("c"));
+  const CutCacheStats s = cache.stats();
+  EXPECT_EQ(s.hits, 2);
+  EXPECT_EQ(s.misses, 2);
+  EXPECT_EQ(s.stored, 2);
+  EXPECT_EQ(entries(cache.dir()).size(), 2u);
+}
+
+TEST(CutCache, DamagedEntriesAreReportedRemovedAndNotRead) {
+  std::vector<std::string> warnings;
+  CutCache cache({test::fresh_dir("cut_cache"), kDefaultCutCacheBytes,
+                  [&](const std::string& w) { warnings.push_back(w); }});
+  for (const char* key : {"flipped", "truncated", "emptied"}) {
+    cache.store(key, payload_of(key, 5000));
+  }
+  for (const fs::path& file : entries(cache.dir())) {
+    std::string bytes = test::read_file(file);
+    if (bytes.find("flipped") != std::string::npos) bytes[bytes.size() / 2] ^= 0x10;
+    if (bytes.find("truncated") != std::string::npos) bytes.resize(bytes.size() - 9);
+    if (bytes.find("emptied") != std::string::npos) bytes.clear();
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+  }
+  for (const char* key : {"flipped", "truncated", "emptied"}) EXPECT_FALSE(cache.load(key)) << key;
+  EXPECT_EQ(cache.stats().damaged, 3);
+  ASSERT_EQ(warnings.size(), 3u);
+  EXPECT_NE(warnings[0].find("damaged"), std::string::npos) << warnings[0];
+  EXPECT_TRUE(entries(cache.dir()).empty());
+  // Made again, it is read back.
+  cache.store("flipped", payload_of("flipped", 5000));
+  EXPECT_EQ(cache.load("flipped"), payload_of("flipped", 5000));
+}
+
+TEST(CutCache, KeepsItsBoundByEvictingTheLeastRecentlyUsed) {
+  // Entries of about 100 kB under a bound of 280 kB: the third store evicts down to 210 kB.
+  CutCache cache({test::fresh_dir("cut_cache"), 280'000, {}});
+  cache.store("old but read", payload_of("1", 100'000));
+  cache.store("not read", payload_of("2", 100'000));
+  const auto now = fs::file_time_type::clock::now();
+  for (const fs::path& file : entries(cache.dir())) {
+    const bool first = test::read_file(file).find("old but read") != std::string::npos;
+    fs::last_write_time(file, now - std::chrono::seconds(first ? 100 : 50));
+  }
+  ASSERT_TRUE(cache.load("old but read"));  // now the most recently used
+  cache.store("new", payload_of("3", 100'000));
+  EXPECT_EQ(cache.stats().evicted, 1);
+  EXPECT_TRUE(cache.load("old but read"));
+  EXPECT_TRUE(cache.load("new"));
+  EXPECT_FALSE(cache.load("not read"));
+}
+
+TEST(CutCache, RunsSharingOneFolderAtOnceReadWholeEntriesOnly) {
+  // Four caches on one folder (as four runs), storing and reading the same keys at once, with
+  // a bound that makes them evict each other's entries meanwhile.
+  const fs::path dir = test::fresh_dir("cut_cache");
+  std::atomic<int> wrong{0}, warned{0}, hits{0};
+  std::vector<std::thread> runs;
+  for (int t = 0; t < 4; ++t) {
+    runs.emplace_back([&, t] {
+      CutCache cache({dir, 1'500'000, [&](const std::string&) { ++warned; }});
+      for (int round = 0; round < 3; ++round) {
+        for (int k = 0; k < 24; ++k) {
+          const std::string key = "key " + std::to_string((k + 7 * t) % 24);
+          const std::string expected = payload_of(key, 60'000 + 1000 * ((k + 7 * t) % 24));
+          if (std::optional<std::string> got = cache.load(key)) {
+            wrong += *got != expected;
+            ++hits;
+          } else {
+            cache.store(key, expected);
+          }
+        }
+      }
+    });
+  }
+  for (std::thread& run : runs) run.join();
+  EXPECT_EQ(wrong.load(), 0);
+  EXPECT_EQ(warned.load(), 0);
+  EXPECT_GT(hits.load(), 0);
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
+TEST(CutCacheKey, EveryInputThatChangesTheCutChangesTheKey) {
+  ObjectCutOptions cut;
+  cut.cut.type = CutType::Slices;
+  cut.cut.thickness_m = 0.008;
+  const CollisionShapeOptions collision;
+  const CutKeyInputs base{1, 1.0, 2, "i0_tomato_0", "backend=cpu cube=16 directions=adaptive",
+                          &cut, &collision};
+  const std::string key = cut_cache_key(base);
+  EXPECT_EQ(key, cut_cache_key(base));
+  std::vector<std::string> keys;
+  auto with = [&](auto change) {
+    CutKeyInputs in = base;
+    ObjectCutOptions c = cut;
+    CollisionShapeOptions h = collision;
+    in.cut = &c;
+    in.collision = &h;
+    change(in, c, h);
+    keys.push_back(cut_cache_key(in));
+  };
+  with([](CutKeyInputs& in, ObjectCutOptions&, CollisionShapeOptions&) { in.template_hash = 3; });
+  with([](CutKeyInputs& in, ObjectCutOptions&, CollisionShapeOptions&) {
+    in.variation_amount = 1.0 + 1e-15;
+  });
+  with([](CutKeyInputs& in, ObjectCutOptions&, CollisionShapeOptions&) { in.variant_seed = 3; });
+  with([](CutKeyInputs& in, ObjectCutOptions&, CollisionShapeOptions&) { in.object += "x"; });
+  with([](CutKeyInputs& in, ObjectCutOptions&, CollisionShapeOptions&) {
+    in.diffusion = "backend=gl cube=16 directions=adaptive";
+  });
+  with([](CutKeyInputs& in, ObjectCutOptions&, CollisionShapeOptions&) { in.collision = nullptr; });
+  with([](CutKeyInputs&, ObjectCutOptions& c, CollisionShapeOptions&) {
+    c.cut.thickness_m = 0.0080000001;  // the same label, 8mm
+  });
+  with([](CutKeyInputs&, ObjectCutOptions& c, CollisionShapeOptions&) { c.keep = 0.5; });
+  with([](CutKeyInputs&, ObjectCutOptions& c, CollisionShapeOptions&) { c.keep_seed = 9; });
+  with([](CutKeyInputs&, ObjectCutOptions& c, CollisionShapeOptions&) {
+    c.modulation_seed = 9;
+  });
+  with([](CutKeyInputs&, ObjectCutOptions& c, CollisionShapeOptions&) { c.perlin = 0; });
+  with([](CutKeyInputs&, ObjectCutOptions& c, CollisionShapeOptions&) {
+    c.sampling = CapSampling::Dense;
+  });
+  with([](CutKeyInputs&, ObjectCutOptions& c, CollisionShapeOptions&) {
+    c.cap_colours = CapColours::Vertex;
+  });
+  with([](CutKeyInputs&, ObjectCutOptions& c, CollisionShapeOptions&) {
+    c.atlas.texels_per_m = 5000;
+  });
+  with([](CutKeyInputs&, ObjectCutOptions& c, CollisionShapeOptions&) {
+    c.skin.power_of_two = true;
+  });
+  with([](CutKeyInputs&, ObjectCutOptions& c, CollisionShapeOptions&) {
+    c.whole_when_missed = false;
+  });
+  with([](CutKeyInputs&, ObjectCutOptions&, CollisionShapeOptions& h) { h.max_corners = 64; });
+  for (size_t k = 0; k < keys.size(); ++k) {
+    EXPECT_NE(keys[k], key) << "change " << k;
+    for (size_t j = 0; j < k; ++j) EXPECT_NE(keys[k], keys[j]) << k << " " << j;
+  }
+}
+
+/// The tiny test scene, seen by a camera `orbit_deg` around the default view's direction (none:
+/// the file's own view), with a narrower field of view.
+Scene tiny_scene(std::optional<double> orbit_deg = std::nullopt) {
+  Scene scene = load_scene(test::source_path("tests/data/scenes/tiny.yaml").string());
+  if (orbit_deg) {
+    const double a = glm::radians(*orbit_deg);
+    const glm::dvec3 d = 0.6 * default_view_direction();
+    scene.camera = SceneCamera{
+        {std::cos(a) * d.x + std::sin(a) * d.z, d.y, -std::sin(a) * d.x + std::cos(a) * d.z},
+        glm::dvec3(0.0),
+        30};
+  }
+  return scene;
+}
+
+/// The glTF binary of `scene` with the quick options and `cache` (null: none).
+std::string scene_glb(const Scene& scene, CutCache* cache, SceneStats& st) {
+  SceneBuildOptions options = test::quick_scene_options(CapColours::Texture);
+  options.cache = cache;
+  options.diffusion_settings = "backend=cpu cube=4 directions=adaptive";
+  return scene_to_glb(build_scene(scene, scene.seed, options, &st));
+}
+
+/// The tiny test scene's glTF binary with the quick options and `cache` (null: none).
+std::string tiny_scene_glb(CutCache* cache, SceneStats& st) {
+  return scene_glb(tiny_scene(), cache, st);
+}
+
+TEST(CutCacheScene, CachedObjectsGiveTheSameBytesAndDamagedOnesAreCutAgain) {
+  SceneStats uncached, first, second, repaired;
+  const std::string without = tiny_scene_glb(nullptr, uncached);
+  std::vector<std::string> warnings;
+  CutCache cache({test::fresh_dir("cut_cache"), kDefaultCutCacheBytes,
+                  [&](const std::string& w) { warnings.push_back(w); }});
+  EXPECT_EQ(tiny_scene_glb(&cache, first), without);
+  EXPECT_EQ(first.cached_objects, 0);
+  EXPECT_EQ(cache.stats().stored, uncached.objects + 1);  // and the placements
+  EXPECT_EQ(tiny_scene_glb(&cache, second), without);
+  EXPECT_EQ(second.cached_objects, uncached.objects);
+  EXPECT_EQ(second.diffused.all, 0u);  // nothing was cut
+  EXPECT_TRUE(second.cached_placements);  // nor laid out and settled
+  EXPECT_FALSE(first.cached_placements);
+  EXPECT_EQ(second.placed, uncached.placed);
+  EXPECT_EQ(second.stability_motion_m, uncached.stability_motion_m);
+  // One object's entry damaged on disk: warned about, cut again, the same bytes.
+  const std::vector<fs::path> files = entries(cache.dir());
+  ASSERT_EQ(files.size(), static_cast<size_t>(uncached.objects + 1));
+  size_t damaged = 0;
+  for (const fs::path& f : files) {
+    std::string bytes = test::read_file(f);
+    if (bytes.find("\"object\":\"i1_") == std::string::npos) continue;
+    bytes[bytes.size() / 3] ^= 0x01;
+    std::ofstream(f, std::ios::binary | std::ios::trunc) << bytes;
+    ++damaged;
+  }
+  ASSERT_EQ(damaged, 1u);
+  EXPECT_EQ(tiny_scene_glb(&cache, repaired), without);
+  EXPECT_EQ(repaired.cached_objects, uncached.objects - 1);
+  EXPECT_TRUE(repaired.cached_placements);  // the same bytes were cut again
+  EXPECT_EQ(warnings.size(), 1u);
+}
+
+// The placements depend on the direction the camera looks from (the pieces turn their cut
+// faces to it), not on its distance or field of view: a zoom reads them back, an orbit settles
+// the cached pieces again; both give the bytes a run without the cache gives.
+TEST(CutCacheScene, AZoomReadsThePlacementsBackAndAnOrbitSettlesAgain) {
+  CutCache cache({test::fresh_dir("cut_cache"), kDefaultCutCacheBytes, {}});
+  SceneStats first, zoomed, zoomed_uncached, orbited, orbited_uncached;
+  scene_glb(tiny_scene(0), &cache, first);
+  Scene zoom = tiny_scene(0);
+  zoom.camera->eye *= 1.5;
+  zoom.camera->fov_deg = 25;
+  EXPECT_EQ(scene_glb(zoom, &cache, zoomed), scene_glb(zoom, nullptr, zoomed_uncached));
+  EXPECT_EQ(zoomed.cached_objects, first.objects);
+  EXPECT_TRUE(zoomed.cached_placements);
+  const Scene orbit = tiny_scene(40);
+  EXPECT_EQ(scene_glb(orbit, &cache, orbited), scene_glb(orbit, nullptr, orbited_uncached));
+  EXPECT_EQ(orbited.cached_objects, first.objects);
+  EXPECT_FALSE(orbited.cached_placements);
+  EXPECT_GT(orbited.simulated_seconds, 0);
+}
+
+}  // namespace
+}  // namespace cutaway
