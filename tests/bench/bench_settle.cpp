@@ -118,8 +118,9 @@ int main(int argc, char** argv) {
     }
     const auto t_layout = Clock::now();
     cutaway::LayoutOptions layout_options;
-    if (scene.camera)
-      layout_options.to_camera = glm::normalize(scene.camera->eye - scene.camera->target);
+    layout_options.to_camera = scene.camera
+                                   ? glm::normalize(scene.camera->eye - scene.camera->target)
+                                   : cutaway::default_view_direction();
     const std::vector<cutaway::Placement> drops = cutaway::layout_pieces(
         layout, scene.container, layout_options, cutaway::derive_seed(scene.seed, {~0ull, 4}));
     const double layout_s = seconds_since(t_layout);
