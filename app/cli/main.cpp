@@ -1,9 +1,11 @@
 // The `cutaway` command line: registers the subcommands (one NAME_command.cpp each), parses the
 // arguments and runs the chosen one; nothing else lives here (doc/architecture.md, Style).
 // Exit codes: 0 success, 2 bad input, 1 internal failure, 3 an incomplete batch.
+#include <optional>
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <oneapi/tbb/global_control.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
@@ -32,6 +34,10 @@ int main(int argc, char** argv) {
   }
   spdlog::set_level(options.quiet ? spdlog::level::err
                                   : (options.verbose ? spdlog::level::debug : spdlog::level::info));
+  // --threads bounds every stage that shares its work out over the cores, not only PMVC's.
+  std::optional<oneapi::tbb::global_control> thread_limit;
+  if (options.threads > 0)
+    thread_limit.emplace(oneapi::tbb::global_control::max_allowed_parallelism, options.threads);
   const Common common{options.backend,
                       options.threads,
                       nullptr,

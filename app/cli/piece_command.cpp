@@ -76,9 +76,11 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
   gltf.camera_and_lights = a.camera_and_lights;  // an asset leaves them out unless asked
   gltf.collision = parse_gltf_collision(a.collision);
   CUTAWAY_CHECK(assets.instances.size() == object.shapes.size());  // piece k is instance k
-  if (gltf.collision != GltfCollision::None)
-    for (size_t k = 0; k < object.shapes.size(); ++k)
-      assets.instances[k].collision = collision_hulls(collision_shape(object.shapes[k]));
+  if (gltf.collision != GltfCollision::None) {
+    const std::vector<CollisionShape> shapes = collision_shapes(object.shapes);
+    for (size_t k = 0; k < shapes.size(); ++k)
+      assets.instances[k].collision = collision_hulls(shapes[k]);
+  }
   const Written w = write_outputs(assets, targets, common.threads, a.silhouettes, gltf);
   if (common.stats) {
     *common.stats = {{"template", tmpl.name},

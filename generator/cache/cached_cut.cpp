@@ -313,9 +313,7 @@ CachedCut cut_through_cache(CutCache* cache, const std::string& key, SceneAssets
   CachedCut made;
   made.pieces = cut();
   const auto t0 = std::chrono::steady_clock::now();
-  if (collision)
-    for (const ShadedMesh& shape : made.pieces.shapes)
-      made.collision.push_back(collision_shape(shape, *collision));
+  if (collision) made.collision = collision_shapes(made.pieces.shapes, *collision);
   made.seconds_collision = seconds_since(t0);
   if (cache) cache->store(key, encode_cut(made, assets, rebase, first_texture));
   return made;
