@@ -7,6 +7,7 @@
 #include <string>
 
 #include <nlohmann/json.hpp>
+#include <oneapi/tbb/global_control.h>
 #include <spdlog/spdlog.h>
 
 #include "app/cli/commands.h"
@@ -152,6 +153,9 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
   options.atlas.texels_per_m = 1000 * a.texels_per_mm;  // 0: the scene's
   options.atlas.power_of_two = options.skin.power_of_two = a.power_of_two;
   options.diffusion = diffusion_factory(a.cube, common);
+  if (resolved_backend(common) == "cpu")  // gl: one context, one thread
+    options.objects_at_once = 2 * static_cast<int>(oneapi::tbb::global_control::active_value(
+                                      oneapi::tbb::global_control::max_allowed_parallelism));
   options.progress = [&](int done, int total, const std::string& line) {
     spdlog::info("[{}/{}] {}", done, total, line);
   };

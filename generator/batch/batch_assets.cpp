@@ -175,10 +175,12 @@ CachedCut cut_asset(SceneAssets& assets, const Batch& batch, const Template& tmp
   const std::string object = asset_name(stem);
   const std::string key = cut_cache_key({tmpl.source_hash, tmpl.variation_amount, seed, object,
                                          options.diffusion_settings, &cut, collision});
-  return cut_through_cache(options.cache, key, assets, materials, collision, [&] {
-    return CutPieces(std::move(*cut_object(assets, variant.variant(), seed, materials, object,
-                                           variant.diffusion(), cut, st)));
-  });
+  const CutEntry entry = make_cut_entry(
+      options.cache, key, tmpl, collision, [&](SceneAssets& own, const PieceMaterials& given) {
+        return CutPieces(std::move(*cut_object(own, variant.variant(), seed, given, object,
+                                               variant.diffusion(), cut, st)));
+      });
+  return add_cut_entry(entry, assets, materials);
 }
 
 /// The asset's glTF binary: `object`'s pieces placed in `assets` as they lie in the object frame

@@ -239,7 +239,6 @@ CachedCut decode_cut(std::string_view payload, SceneAssets& assets,
   }
   const MaterialRebase rebase{materials, static_cast<int>(assets.materials.size())};
   CachedCut out;
-  out.from_cache = true;
   CutPieces& p = out.pieces;
   p.backend = r.get_string();
   p.pieces_cut = r.get<uint64_t>();
@@ -295,28 +294,39 @@ std::string cut_cache_key(const CutKeyInputs& in) {
   return key.dump();
 }
 
-CachedCut cut_through_cache(CutCache* cache, const std::string& key, SceneAssets& assets,
-                            const PieceMaterials& materials,
-                            const CollisionShapeOptions* collision,
-                            const std::function<CutPieces()>& cut) {
+CutEntry make_cut_entry(CutCache* cache, const std::string& key, const Template& tmpl,
+                        const CollisionShapeOptions* collision,
+                        const std::function<CutPieces(SceneAssets&, const PieceMaterials&)>& cut) {
+  SceneAssets own;
+  const PieceMaterials materials =
+      add_piece_materials(own, tmpl.name, tmpl.skin_material, tmpl.cut_material);
+  const MaterialRebase rebase{materials, static_cast<int>(own.materials.size())};
   if (cache) {
     if (std::optional<std::string> payload = cache->load(key)) {
       try {
-        return decode_cut(*payload, assets, materials);
+        SceneAssets scratch = own;
+        decode_cut(*payload, scratch, materials);  // readable: its layout is this version's
+        return {std::move(*payload), true, 0};
       } catch (const ByteStreamError&) {
         // The entry passed its check hash but not its layout: made again below and replaced.
       }
     }
   }
-  const MaterialRebase rebase{materials, static_cast<int>(assets.materials.size())};
-  const int first_texture = static_cast<int>(assets.textures.size());
   CachedCut made;
-  made.pieces = cut();
+  made.pieces = cut(own, materials);
   const auto t0 = std::chrono::steady_clock::now();
   if (collision) made.collision = collision_shapes(made.pieces.shapes, *collision);
-  made.seconds_collision = seconds_since(t0);
-  if (cache) cache->store(key, encode_cut(made, assets, rebase, first_texture));
-  return made;
+  CutEntry entry{encode_cut(made, own, rebase, 0), false, seconds_since(t0)};
+  if (cache) cache->store(key, entry.payload);
+  return entry;
+}
+
+CachedCut add_cut_entry(const CutEntry& entry, SceneAssets& assets,
+                        const PieceMaterials& materials) {
+  CachedCut out = decode_cut(entry.payload, assets, materials);
+  out.from_cache = entry.from_cache;
+  out.seconds_collision = entry.seconds_collision;
+  return out;
 }
 
 }  // namespace cutaway

@@ -1,7 +1,8 @@
 // Cut objects through the cut cache (doc/architecture.md, Cut cache): the key text of one cut
 // object, and its pieces, the materials and textures it added to the scene and its collision
-// shapes encoded as a cache entry's payload and read back. Scenes and batches cut every object
-// through cut_through_cache(); a cached object gives the same output bytes as a fresh cut.
+// shapes encoded as a cache entry's payload and read back. Scenes and batches make every
+// object's entry (make_cut_entry) and add it to their assets (add_cut_entry): a cached object
+// gives the same output bytes as a fresh cut.
 #pragma once
 
 #include <cstdint>
@@ -45,16 +46,30 @@ struct CachedCut {
   double seconds_collision = 0;           ///< computing `collision` (0 when read back)
 };
 
-/// The cut object of `key`: read from `cache` when it holds it (its materials and textures
-/// appended to `assets`, their indices rebased), else made by `cut` (which appends its own to
-/// `assets` and must refer to existing materials only through `materials`), its collision
-/// shapes computed when `collision` is given, and stored. `cache` may be null (no cache).
-/// Either way `assets` and the result are the same, byte for byte.
+/// One cut object as a cache entry's payload, and where it came from.
+struct CutEntry {
+  std::string payload;           ///< the cut pieces, their new materials and textures, hulls
+  bool from_cache = false;       ///< read back, not cut
+  double seconds_collision = 0;  ///< computing the collision shapes (0 when read back)
+};
+
+/// The cut object of `key` as an entry: read from `cache` when it holds a readable one, else
+/// made by `cut` into a SceneAssets of its own (SceneAssets{}, then `tmpl`'s skin and cut
+/// materials by add_piece_materials, which `cut` is given), its collision shapes computed when
+/// `collision` is given, encoded, and stored. `cache` may be null (no cache). It touches
+/// nothing else, so a scene makes its objects' entries side by side and adds them to its
+/// assets in order (add_cut_entry).
 /// @throws whatever `cut` throws; InternalError when `cut` left a mesh naming a material that
-///         is neither new nor one of `materials`
-CachedCut cut_through_cache(CutCache* cache, const std::string& key, SceneAssets& assets,
-                            const PieceMaterials& materials,
-                            const CollisionShapeOptions* collision,
-                            const std::function<CutPieces()>& cut);
+///         is neither new nor one of those it was given
+CutEntry make_cut_entry(CutCache* cache, const std::string& key, const Template& tmpl,
+                        const CollisionShapeOptions* collision,
+                        const std::function<CutPieces(SceneAssets&, const PieceMaterials&)>& cut);
+
+/// The cut object of `entry`, its textures and materials appended to `assets` with their
+/// indices rebased; `materials` are the object's skin and cut materials in `assets`
+/// (add_piece_materials). The same bytes as cutting into `assets` directly.
+/// @throws ByteStreamError when the payload is not an encoded cut object
+CachedCut add_cut_entry(const CutEntry& entry, SceneAssets& assets,
+                        const PieceMaterials& materials);
 
 }  // namespace cutaway

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
+#include <oneapi/tbb/parallel_for.h>
 
 #include "assets/asset_camera.h"
 #include "base/constants.h"
@@ -89,62 +90,129 @@ ObjectCutOptions object_cut_options(const Scene& scene, uint64_t seed,
   return cut;
 }
 
+/// One object of a scene to cut: its item, its index in the item, and what its cut needs.
+struct ObjectJob {
+  size_t item = 0;
+  int index = 0;  ///< in the item
+  uint64_t variant_seed = 0;
+  ObjectCutOptions cut;
+  std::string name;  ///< the object's asset name
+  std::string key;   ///< cut_cache_key
+};
+
+/// The cut counts and timings of `from` added to `to`.
+void add_cut_stats(SceneStats& to, const SceneStats& from) {
+  to.diffused += from.diffused;
+  to.recut_objects += from.recut_objects;
+  to.defective_pieces += from.defective_pieces;
+  to.seconds_sections += from.seconds_sections;
+  to.seconds_diffuse += from.seconds_diffuse;
+  to.seconds_clip += from.seconds_clip;
+  to.seconds_bake += from.seconds_bake;
+  to.seconds_variants += from.seconds_variants;
+  to.seconds_backend += from.seconds_backend;
+  to.seconds_collision += from.seconds_collision;
+}
+
+/// The cache entry of one object (make_cut_entry): a seeded variant of its item's template,
+/// cut (cut_object). Touches nothing shared: objects are made side by side.
+CutEntry make_object_entry(const Template& tmpl, const ObjectJob& job,
+                           const SceneBuildOptions& options, SceneStats& st) {
+  CutEntry entry = make_cut_entry(
+      options.cache, job.key, tmpl, &options.collision,
+      [&](SceneAssets& own, const PieceMaterials& materials) {
+        const auto t0 = Clock::now();
+        const Variant variant = make_variant(tmpl, job.variant_seed);
+        st.seconds_variants += seconds_since(t0);
+        const auto t_backend = Clock::now();
+        const std::unique_ptr<DiffusionBackend> diffusion = options.diffusion(variant.model);
+        st.seconds_backend += seconds_since(t_backend);
+        return CutPieces(std::move(*cut_object(own, variant, job.variant_seed, materials,
+                                               job.name, *diffusion, job.cut, st)));
+      });
+  st.seconds_collision += entry.seconds_collision;
+  return entry;
+}
+
+/// Adds one object's entry to the scene: its materials and textures to `assets` (the item's
+/// own materials first, at its first object), its kept pieces to `out`; reports progress.
+void add_object(const Scene& scene, const std::vector<Template>& templates, const ObjectJob& job,
+                const CutEntry& entry, const SceneBuildOptions& options, SceneAssets& assets,
+                PieceMaterials& item_materials, ScenePieces& out, SceneStats& st) {
+  const SceneItem& item = scene.items[job.item];
+  const Template& tmpl = templates[job.item];
+  if (job.index == 0)
+    item_materials = add_piece_materials(assets, tmpl.name, tmpl.skin_material, tmpl.cut_material);
+  CachedCut made = add_cut_entry(entry, assets, item_materials);
+  st.cached_objects += made.from_cache;
+  out.cut_keys.push_back(job.key);
+  out.arrange.push_back(item.arrange);
+  CutPieces& p = made.pieces;
+  for (size_t q = 0; q < p.meshes.size(); ++q) {
+    out.meshes.push_back(std::move(p.meshes[q]));
+    out.shapes.push_back(std::move(p.shapes[q]));
+    out.arranged.push_back({nullptr, p.cap_normals[q], item.arrange, st.objects,
+                            p.infos[q].cell, p.cut_faces[q]});
+    out.densities.push_back(tmpl.density_kg_m3);
+    out.infos.push_back(std::move(p.infos[q]));
+    out.collision.push_back(std::move(made.collision[q]));
+  }
+  ++st.objects;
+  if (options.progress) {
+    int total = 0;
+    for (const SceneItem& it : scene.items) total += it.count;
+    options.progress(st.objects, total,
+                     tmpl.name + " " + std::to_string(job.index + 1) + "/" +
+                         std::to_string(item.count) + ": " + std::to_string(p.meshes.size()) +
+                         " of " + std::to_string(p.pieces_cut) + " pieces" +
+                         (made.from_cache ? " (cut cache)" : ""));
+  }
+}
+
 /// Step 1: every object of every item as a seeded variant, cut (cut_object), a seeded share
 /// of its pieces kept, with their collision shapes; the templates' materials and the baked
-/// textures go into `assets`. Objects the cut cache holds are read from it instead.
+/// textures go into `assets`. Objects the cut cache holds are read from it instead. Up to
+/// options.objects_at_once objects are made side by side, then added in item and object order.
 ScenePieces cut_scene_objects(const Scene& scene, uint64_t seed, const SceneBuildOptions& options,
                               SceneAssets& assets, SceneStats& st) {
-  int total = 0;
-  for (const SceneItem& item : scene.items) total += item.count;
-  ScenePieces out;
+  std::vector<Template> templates;  // per item, its variation scaled
+  std::vector<ObjectJob> jobs;
   for (size_t i = 0; i < scene.items.size(); ++i) {
     const SceneItem& item = scene.items[i];
     CUTAWAY_CHECK(item.tmpl);  // load_scene read it
-    Template tmpl = *item.tmpl;
+    templates.push_back(*item.tmpl);
+    Template& tmpl = templates.back();
     tmpl.variation_amount *= item.variation;
-    const PieceMaterials item_materials =
-        add_piece_materials(assets, tmpl.name, tmpl.skin_material, tmpl.cut_material);
     for (int j = 0; j < item.count; ++j) {
-      const uint64_t variant_seed = object_seed(seed, static_cast<int>(i), j, 1);
-      const ObjectCutOptions cut = object_cut_options(scene, seed, options, i, j);
-      const std::string object =
-          "i" + std::to_string(i) + "_" + asset_name(tmpl.name) + "_" + std::to_string(j);
-      const std::string key =
-          cut_cache_key({tmpl.source_hash, tmpl.variation_amount, variant_seed, object,
-                         options.diffusion_settings, &cut, &options.collision});
-      CachedCut made = cut_through_cache(
-          options.cache, key, assets, item_materials, &options.collision, [&] {
-            const auto t0 = Clock::now();
-            const Variant variant = make_variant(tmpl, variant_seed);
-            st.seconds_variants += seconds_since(t0);
-            const auto t_backend = Clock::now();
-            const std::unique_ptr<DiffusionBackend> diffusion = options.diffusion(variant.model);
-            st.seconds_backend += seconds_since(t_backend);
-            return CutPieces(std::move(*cut_object(assets, variant, variant_seed, item_materials,
-                                                   object, *diffusion, cut, st)));
-          });
-      st.cached_objects += made.from_cache;
-      out.cut_keys.push_back(key);
-      out.arrange.push_back(item.arrange);
-      st.seconds_collision += made.seconds_collision;
-      CutPieces& p = made.pieces;
-      for (size_t q = 0; q < p.meshes.size(); ++q) {
-        out.meshes.push_back(std::move(p.meshes[q]));
-        out.shapes.push_back(std::move(p.shapes[q]));
-        out.arranged.push_back({nullptr, p.cap_normals[q], item.arrange, st.objects,
-                                p.infos[q].cell, p.cut_faces[q]});
-        out.densities.push_back(tmpl.density_kg_m3);
-        out.infos.push_back(std::move(p.infos[q]));
-        out.collision.push_back(std::move(made.collision[q]));
-      }
-      ++st.objects;
-      if (options.progress)
-        options.progress(st.objects, total,
-                         tmpl.name + " " + std::to_string(j + 1) + "/" +
-                             std::to_string(item.count) + ": " + std::to_string(p.meshes.size()) +
-                             " of " + std::to_string(p.pieces_cut) + " pieces" +
-                             (made.from_cache ? " (cut cache)" : ""));
+      ObjectJob job{i, j, object_seed(seed, static_cast<int>(i), j, 1),
+                    object_cut_options(scene, seed, options, i, j),
+                    "i" + std::to_string(i) + "_" + asset_name(tmpl.name) + "_" + std::to_string(j),
+                    {}};
+      job.key = cut_cache_key({tmpl.source_hash, tmpl.variation_amount, job.variant_seed, job.name,
+                               options.diffusion_settings, &job.cut, &options.collision});
+      jobs.push_back(std::move(job));
     }
+  }
+  ScenePieces out;
+  PieceMaterials item_materials;
+  const size_t at_once = static_cast<size_t>(std::max(1, options.objects_at_once));
+  for (size_t first = 0; first < jobs.size(); first += at_once) {
+    const size_t n = std::min(at_once, jobs.size() - first);
+    std::vector<CutEntry> entries(n);
+    std::vector<SceneStats> job_stats(n);
+    oneapi::tbb::parallel_for(
+        oneapi::tbb::blocked_range<size_t>(0, n, 1),
+        [&](const oneapi::tbb::blocked_range<size_t>& r) {
+          for (size_t k = r.begin(); k != r.end(); ++k) {
+            const ObjectJob& job = jobs[first + k];
+            entries[k] = make_object_entry(templates[job.item], job, options, job_stats[k]);
+          }
+        },
+        oneapi::tbb::simple_partitioner());
+    for (size_t k = 0; k < n; ++k)
+      add_object(scene, templates, jobs[first + k], entries[k], options, assets, item_materials,
+                 out, st);
+    for (const SceneStats& js : job_stats) add_cut_stats(st, js);
   }
   st.pieces = static_cast<int>(out.shapes.size());
   return out;

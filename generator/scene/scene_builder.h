@@ -33,6 +33,10 @@ struct SceneBuildOptions {
   /// as the command line writes it: part of the cut cache's keys; required with `cache`.
   std::string diffusion_settings;
   CutCache* cache = nullptr;   ///< the cut cache (cut_cache.h), or null: every object is cut
+  /// How many objects are cut side by side (each into its own assets, added to the scene in
+  /// order: the output does not depend on it); 1 cuts one after another, as a backend bound to
+  /// one thread (gl) needs. The stage seconds of cutting are then summed over the objects.
+  int objects_at_once = 1;
   CapSampling sampling = CapSampling::Adaptive;  ///< which cap points are diffused
   /// Called after each object with (objects done, objects in all, a line of text); may be empty.
   std::function<void(int, int, const std::string&)> progress;
@@ -42,7 +46,8 @@ struct SceneBuildOptions {
 };
 
 /// Counts and timings of one build_scene call (wall seconds); those of cutting the objects
-/// (ObjectCutStats) added up over the objects.
+/// (ObjectCutStats, variants, backends, collision shapes) added up over the objects, which
+/// exceeds the wall time when objects are cut side by side (objects_at_once).
 struct SceneStats : ObjectCutStats {
   int objects = 0, pieces = 0, placed = 0;  ///< pieces: kept after `keep`; placed: of those
   int cached_objects = 0;       ///< objects read from the cut cache (not cut)

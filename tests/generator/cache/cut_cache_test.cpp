@@ -209,10 +209,13 @@ Scene tiny_scene(std::optional<double> orbit_deg = std::nullopt) {
   return scene;
 }
 
-/// The glTF binary of `scene` with the quick options and `cache` (null: none).
-std::string scene_glb(const Scene& scene, CutCache* cache, SceneStats& st) {
+/// The glTF binary of `scene` with the quick options and `cache` (null: none), cutting
+/// `objects_at_once` objects side by side.
+std::string scene_glb(const Scene& scene, CutCache* cache, SceneStats& st,
+                      int objects_at_once = 1) {
   SceneBuildOptions options = test::quick_scene_options(CapColours::Texture);
   options.cache = cache;
+  options.objects_at_once = objects_at_once;
   options.diffusion_settings = "backend=cpu cube=4 directions=adaptive";
   return scene_to_glb(build_scene(scene, scene.seed, options, &st));
 }
@@ -254,6 +257,23 @@ TEST(CutCacheScene, CachedObjectsGiveTheSameBytesAndDamagedOnesAreCutAgain) {
   EXPECT_EQ(repaired.cached_objects, uncached.objects - 1);
   EXPECT_TRUE(repaired.cached_placements);  // the same bytes were cut again
   EXPECT_EQ(warnings.size(), 1u);
+}
+
+// Objects cut side by side are added to the scene in order: the bytes do not depend on how
+// many are cut at once, nor on whether they were read from the cache in between.
+TEST(CutCacheScene, ObjectsCutSideBySideGiveTheSameBytes) {
+  const Scene scene = tiny_scene();
+  SceneStats one, four, three_cached;
+  const std::string serial = scene_glb(scene, nullptr, one, 1);
+  ASSERT_GE(one.objects, 2);
+  EXPECT_EQ(scene_glb(scene, nullptr, four, 4), serial);
+  EXPECT_EQ(four.pieces, one.pieces);
+  EXPECT_EQ(four.diffused.all, one.diffused.all);  // the cut counts of every object, added
+  CutCache cache({test::fresh_dir("cut_cache_side_by_side"), kDefaultCutCacheBytes, {}});
+  SceneStats stored;
+  EXPECT_EQ(scene_glb(scene, &cache, stored, 3), serial);
+  EXPECT_EQ(scene_glb(scene, &cache, three_cached, 3), serial);
+  EXPECT_EQ(three_cached.cached_objects, one.objects);
 }
 
 // The placements depend on the direction the camera looks from (the pieces turn their cut
