@@ -270,6 +270,9 @@ void write_file_atomically(const fs::path& given, std::string_view bytes) {
   const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
   std::error_code ec;
   fs::create_directories(parent, ec);
+  if (ec)  // the real cause, not the "no such file" of the write into a missing folder
+    throw EnvironmentError("cannot write " + given.string() + ": cannot create the folder " +
+                           parent.string() + ": " + ec.message());
   RemoveOnSignal guard;
   int fd = -1;
   const std::string tmpl =

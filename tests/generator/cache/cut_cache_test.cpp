@@ -61,6 +61,23 @@ TEST(CutCache, ReadsBackWhatItStoredAndNothingForAnotherKey) {
   EXPECT_EQ(entries(cache.dir()).size(), 2u);
 }
 
+// A folder that cannot be made (here: below a regular file) is warned about once, with the
+// reason, and the run goes on without storing.
+TEST(CutCache, AFolderThatCannotBeMadeIsWarnedAboutOnceAndNothingIsStored) {
+  const fs::path file = test::fresh_dir("cut_cache_blocked") / "a-file";
+  std::ofstream(file) << "not a folder";
+  std::vector<std::string> warnings;
+  CutCache cache({file / "cache", kDefaultCutCacheBytes,
+                  [&](const std::string& w) { warnings.push_back(w); }});
+  cache.store("a", payload_of("a", 100));
+  cache.store("b", payload_of("b", 100));
+  EXPECT_FALSE(cache.load("a"));
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("cannot create the folder"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("Not a directory"), std::string::npos) << warnings[0];
+  EXPECT_EQ(cache.stats().stored, 0);
+}
+
 TEST(CutCache, DamagedEntriesAreReportedRemovedAndNotRead) {
   std::vector<std::string> warnings;
   CutCache cache({test::fresh_dir("cut_cache"), kDefaultCutCacheBytes,
