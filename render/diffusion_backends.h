@@ -26,7 +26,8 @@ DiffusionChoice parse_diffusion_choice(const std::string& name);
 /// through EGL, else Cpu): probes the GPU for Auto.
 DiffusionChoice resolve_diffusion_choice(DiffusionChoice choice);
 
-/// The backend for `choice` (Auto: resolve_diffusion_choice). Both give the same colours within the tolerance the tests state.
+/// The backend for `choice` (Auto: resolve_diffusion_choice). Both give the same colours
+/// within the tolerance the tests state.
 /// @throws EnvironmentError when the chosen backend cannot start (see make_cpu_diffusion,
 ///         make_gl_diffusion)
 std::unique_ptr<DiffusionBackend> make_diffusion(const DsModel& model,

@@ -62,7 +62,8 @@ std::vector<std::string> passed_on(const Common& common, const CacheArgs& cache)
   if (cache.off) args.push_back("--no-cache");
   if (!cache.dir.empty())
     args.insert(args.end(), {"--cache", fs::absolute(cache.dir).lexically_normal().string()});
-  if (cache.max_bytes > 0) args.insert(args.end(), {"--cache-size", std::to_string(cache.max_bytes)});
+  if (cache.max_bytes > 0)
+    args.insert(args.end(), {"--cache-size", std::to_string(cache.max_bytes)});
   return args;
 }
 
@@ -159,8 +160,10 @@ int run_batch_command(const BatchArgs& a, const Common& common) {
   BatchRunOptions options;
   options.shard = shard;
   options.build.sampling = common.sampling;
-  options.build.diffusion = diffusion_factory(batch.export_options.cube, common);
-  options.build.diffusion_settings = diffusion_settings(batch.export_options.cube, common);
+  // Resolved after the plan: the fingerprints name --backend as given ("auto" on every node).
+  const Common resolved = with_resolved_backend(common);
+  options.build.diffusion = diffusion_factory(batch.export_options.cube, resolved);
+  options.build.diffusion_settings = diffusion_settings(batch.export_options.cube, resolved);
   const std::unique_ptr<CutCache> cache = open_cut_cache(a.cache);
   options.build.cache = cache.get();
   options.build.thumbnail = [](const SceneAssets& assets) {

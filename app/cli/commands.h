@@ -91,8 +91,13 @@ CutSpec checked_cut(const Template& tmpl, const std::string& text, const std::st
 /// --directions.
 DiffusionFactory diffusion_factory(int cube, const Common& common);
 
-/// The backend --backend picks on this machine: "cpu" or "gl" (DiffusionBackend::name).
+/// The backend --backend picks on this machine: "cpu" or "gl" (DiffusionBackend::name); with
+/// --backend auto it probes for a GPU (a context made and dropped, about 0.1 s).
 std::string resolved_backend(const Common& common);
+
+/// `common` with its backend resolved (resolved_backend), so that the calls that follow
+/// (diffusion_factory, diffusion_settings, resolved_backend) do not probe again.
+Common with_resolved_backend(const Common& common);
 
 /// What of the backend diffusion_factory(cube, common) makes changes colours, as cut cache keys
 /// name it: "backend=KIND cube=N directions=D", KIND what --backend picks on this machine.

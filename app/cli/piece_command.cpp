@@ -128,6 +128,12 @@ std::string resolved_backend(const Common& common) {
              : "cpu";
 }
 
+Common with_resolved_backend(const Common& common) {
+  Common resolved = common;
+  resolved.backend = resolved_backend(common);
+  return resolved;
+}
+
 std::string diffusion_settings(int cube, const Common& common) {
   return "backend=" + resolved_backend(common) + " cube=" + std::to_string(cube) +
          " directions=" + (common.adaptive_directions ? "adaptive" : "every");

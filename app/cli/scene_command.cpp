@@ -129,7 +129,7 @@ nlohmann::ordered_json scene_stats(const Scene& scene, uint64_t seed, const std:
             {"povray", w.povray_s}}}};
 }
 
-int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
+int run_scene(const SceneArgs& a, const Common& given, OutputSet& outputs) {
   if (a.outputs.empty()) throw UsageError("-o is required (.glb, .gltf or .pov)");
   for (const std::string& path : a.outputs) output_format("-o", path);
   if (!a.png.empty()) require_extension("--png", a.png, ".png");
@@ -143,6 +143,7 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
       throw UsageError("--texels-per-mm: " + texels.reason());
   }
   const double t_parse = seconds_since(t0);
+  const Common common = with_resolved_backend(given);  // probed once, not per use below
   const uint64_t seed = a.seed >= 0 ? static_cast<uint64_t>(a.seed) : scene.seed;
   const std::unique_ptr<CutCache> cache = open_cut_cache(a.cache);
   SceneBuildOptions options;
@@ -169,7 +170,8 @@ int run_scene(const SceneArgs& a, const Common& common, OutputSet& outputs) {
       write_outputs(assets, targets, common.threads, scene.render.silhouettes,
                     export_options(a.compress, a.lods, a.textures));
   if (common.stats)
-    *common.stats = scene_stats(scene, seed, resolved_backend(common), st, cache.get(), t_parse, t_build, w);
+    *common.stats = scene_stats(scene, seed, resolved_backend(common), st, cache.get(), t_parse,
+                                t_build, w);
   return 0;
 }
 

@@ -258,7 +258,8 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
         throw InternalError("build_batch_unit: a thumbnail is due and no renderer given");
       t0 = Clock::now();
       const int w = batch.outputs.thumbnail_px;
-      thumbnail = options.thumbnail(grid_piece_assets(assets, object.pieces, PieceView::Up, w, w * 3 / 4));
+      thumbnail = options.thumbnail(
+          grid_piece_assets(assets, object.pieces, PieceView::Up, w, w * 3 / 4));
       own.thumbnail = seconds_since(t0);
     }
 

@@ -57,8 +57,9 @@ std::string cut_file_label(const CutSpec& cut);
 /// The plan of `batch`. Each asset's fingerprint is fnv1a64 of a text holding this program's
 /// version, the template's source_hash (its file and meshes), the seed, the variation, the
 /// cut, the outputs and export options and `settings` (what else changes the bytes: the
-/// diffusion backend and sampling chosen on the command line). The sample is min(outputs.sample, assets) assets spread
-/// evenly: asset floor(k * assets / sample) for k = 0 .. sample - 1.
+/// diffusion backend and sampling chosen on the command line). The sample is
+/// min(outputs.sample, assets) assets spread evenly: asset floor(k * assets / sample) for
+/// k = 0 .. sample - 1.
 /// @pre every item's tmpl is set (load_batch)
 BatchPlan plan_batch(const Batch& batch, const std::string& settings);
 

@@ -26,14 +26,11 @@ static_assert(sizeof(CollisionShapeOptions) == 48,
               "a new CollisionShapeOptions field: add it to the key");
 static_assert(sizeof(CutSpec) == 80, "a new CutSpec field: add it to cut_exact_text");
 
-nlohmann::ordered_json atlas_json(const CapAtlasOptions& a) {
-  return {{"texels_per_m", a.texels_per_m}, {"padding", a.padding}, {"max_size", a.max_size},
-          {"power_of_two", a.power_of_two}};
-}
-
-nlohmann::ordered_json skin_json(const SkinTextureOptions& s) {
-  return {{"texels_per_m", s.texels_per_m}, {"padding", s.padding}, {"max_size", s.max_size},
-          {"power_of_two", s.power_of_two}};
+/// The options of a baked texture (CapAtlasOptions, SkinTextureOptions: the same fields).
+template <typename TextureOptions>
+nlohmann::ordered_json texture_json(const TextureOptions& t) {
+  return {{"texels_per_m", t.texels_per_m}, {"padding", t.padding}, {"max_size", t.max_size},
+          {"power_of_two", t.power_of_two}};
 }
 
 nlohmann::ordered_json collision_json(const CollisionShapeOptions* c) {
@@ -288,8 +285,8 @@ std::string cut_cache_key(const CutKeyInputs& in) {
       {"perlin", c.perlin},
       {"sampling", static_cast<int>(c.sampling)},
       {"cap_colours", static_cast<int>(c.cap_colours)},
-      {"atlas", atlas_json(c.atlas)},
-      {"skin", skin_json(c.skin)},
+      {"atlas", texture_json(c.atlas)},
+      {"skin", texture_json(c.skin)},
       {"collision", collision_json(in.collision)}};
   return key.dump();
 }

@@ -41,7 +41,7 @@ std::string entry_bytes(std::string_view key, std::string_view payload) {
 struct EntryRead {
   bool damaged = false;
   std::string reason;              ///< with `damaged`
-  std::optional<std::string> key;  ///< the stored key (when not damaged)
+  std::string key;                 ///< the stored key (when not damaged)
   std::string payload;
 };
 
@@ -139,7 +139,7 @@ std::optional<std::string> CutCache::load(std::string_view key) {
          "); it is made again");
     return std::nullopt;
   }
-  if (*entry.key != key) {  // another key with the same hash: it is replaced when stored
+  if (entry.key != key) {  // another key with the same hash: it is replaced when stored
     ++stats_.misses;
     return std::nullopt;
   }
@@ -150,14 +150,24 @@ std::optional<std::string> CutCache::load(std::string_view key) {
 }
 
 void CutCache::store(std::string_view key, std::string_view payload) {
+  {
+    std::lock_guard lock(mutex_);
+    if (write_failed_) return;
+  }
+  // Written outside the lock: objects made side by side store at once (the file is renamed
+  // into place whole, so a reader never sees part of it).
   const std::string bytes = entry_bytes(key, payload);
-  std::lock_guard lock(mutex_);
-  if (write_failed_) return;
+  std::optional<std::string> failure;
   try {
     write_file_atomically(entry_path(key), bytes);
   } catch (const EnvironmentError& e) {
+    failure = e.what();
+  }
+  std::lock_guard lock(mutex_);
+  if (failure) {
+    if (!write_failed_)  // warned once, by the first store that failed
+      warn("cut cache: " + *failure + "; this run stores no more entries");
     write_failed_ = true;
-    warn(std::string("cut cache: ") + e.what() + "; this run stores no more entries");
     return;
   }
   ++stats_.stored;

@@ -465,7 +465,8 @@ std::vector<CollisionShape> collision_shapes(const std::vector<ShadedMesh>& mesh
   oneapi::tbb::parallel_for(
       oneapi::tbb::blocked_range<size_t>(0, meshes.size(), 1),
       [&](const oneapi::tbb::blocked_range<size_t>& r) {
-        for (size_t k = r.begin(); k != r.end(); ++k) shapes[k] = collision_shape(meshes[k], options);
+        for (size_t k = r.begin(); k != r.end(); ++k)
+          shapes[k] = collision_shape(meshes[k], options);
       },
       oneapi::tbb::simple_partitioner());
   return shapes;

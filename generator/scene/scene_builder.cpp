@@ -135,10 +135,12 @@ CutEntry make_object_entry(const Template& tmpl, const ObjectJob& job,
 }
 
 /// Adds one object's entry to the scene: its materials and textures to `assets` (the item's
-/// own materials first, at its first object), its kept pieces to `out`; reports progress.
+/// own materials first, at its first object), its kept pieces to `out`; reports progress (of
+/// `objects` in all).
 void add_object(const Scene& scene, const std::vector<Template>& templates, const ObjectJob& job,
-                const CutEntry& entry, const SceneBuildOptions& options, SceneAssets& assets,
-                PieceMaterials& item_materials, ScenePieces& out, SceneStats& st) {
+                const CutEntry& entry, int objects, const SceneBuildOptions& options,
+                SceneAssets& assets, PieceMaterials& item_materials, ScenePieces& out,
+                SceneStats& st) {
   const SceneItem& item = scene.items[job.item];
   const Template& tmpl = templates[job.item];
   if (job.index == 0)
@@ -158,15 +160,12 @@ void add_object(const Scene& scene, const std::vector<Template>& templates, cons
     out.collision.push_back(std::move(made.collision[q]));
   }
   ++st.objects;
-  if (options.progress) {
-    int total = 0;
-    for (const SceneItem& it : scene.items) total += it.count;
-    options.progress(st.objects, total,
+  if (options.progress)
+    options.progress(st.objects, objects,
                      tmpl.name + " " + std::to_string(job.index + 1) + "/" +
                          std::to_string(item.count) + ": " + std::to_string(p.meshes.size()) +
                          " of " + std::to_string(p.pieces_cut) + " pieces" +
                          (made.from_cache ? " (cut cache)" : ""));
-  }
 }
 
 /// Step 1: every object of every item as a seeded variant, cut (cut_object), a seeded share
@@ -210,8 +209,8 @@ ScenePieces cut_scene_objects(const Scene& scene, uint64_t seed, const SceneBuil
         },
         oneapi::tbb::simple_partitioner());
     for (size_t k = 0; k < n; ++k)
-      add_object(scene, templates, jobs[first + k], entries[k], options, assets, item_materials,
-                 out, st);
+      add_object(scene, templates, jobs[first + k], entries[k], static_cast<int>(jobs.size()),
+                 options, assets, item_materials, out, st);
     for (const SceneStats& js : job_stats) add_cut_stats(st, js);
   }
   st.pieces = static_cast<int>(out.shapes.size());
@@ -260,8 +259,9 @@ std::vector<Placement> place_pieces(const Scene& scene, uint64_t seed,
                                     const SceneBuildOptions& options, const ScenePieces& pieces,
                                     const std::vector<size_t>& order, SceneStats& st) {
   LayoutOptions layout_options = options.layout;
-  layout_options.to_camera =
-      scene.camera ? glm::normalize(scene.camera->eye - scene.camera->target) : default_view_direction();
+  layout_options.to_camera = scene.camera
+                                 ? glm::normalize(scene.camera->eye - scene.camera->target)
+                                 : default_view_direction();
   std::string key;
   std::optional<SettleResult> cached;
   if (options.cache) {
