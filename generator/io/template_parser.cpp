@@ -58,8 +58,9 @@ Gradient<T> parse_gradient(const YamlField& f, ParseValue parse_value) {
   const std::string a = along.string();
   if (a == "profile") g.along = GradientAxis::Profile;
   else if (a == "section") g.along = GradientAxis::Section;
+  else if (a == "ripeness") g.along = GradientAxis::Ripeness;
   else
-    along.fail("must be 'profile' or 'section', not " + quoted(a));
+    along.fail("must be 'profile', 'section' or 'ripeness', not " + quoted(a));
   const YamlField stops = f.require("stops");
   if (stops.size() < 1) stops.fail("a gradient needs at least one stop [t, value]");
   for (size_t i = 0; i < stops.size(); ++i) {
@@ -465,11 +466,12 @@ void parse_symmetry(const YamlField& root, Template& t) {
   t.variation_folds_min = t.variation_folds_max = t.folds;
 }
 
-/// `variation`: its amount (>= 0) and, for nfold, the range of fold counts variants draw.
+/// `variation`: its amount (>= 0), for nfold the range of fold counts variants draw, and the
+/// range of ripeness they draw (the template's own ripeness is its middle).
 void parse_variation(const YamlField& root, Template& t) {
   const auto var = root.get("variation");
   if (!var) return;
-  var->allow_only({"amount", "folds"});
+  var->allow_only({"amount", "folds", "ripeness"});
   if (auto a = var->get("amount")) {
     t.variation_amount = a->number();
     if (t.variation_amount < 0) a->fail("must not be negative");
@@ -481,6 +483,13 @@ void parse_variation(const YamlField& root, Template& t) {
     if (lo < 2 || hi > 64 || lo > hi) vf->fail("needs 2 <= min <= max <= 64");
     t.variation_folds_min = static_cast<int>(lo);
     t.variation_folds_max = static_cast<int>(hi);
+  }
+  if (auto vr = var->get("ripeness")) {
+    if (!vr->is_sequence() || vr->size() != 2) vr->fail("must be [min, max] ripeness in 0..1");
+    const double lo = (*vr)[0].number_in(0.0, 1.0), hi = (*vr)[1].number_in(0.0, 1.0);
+    if (lo > hi) vr->fail("needs min <= max");
+    t.ripeness_range = {lo, hi};
+    t.ripeness = 0.5 * (lo + hi);
   }
 }
 

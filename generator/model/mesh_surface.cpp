@@ -57,11 +57,11 @@ DsSurface mesh_surface(const SurfaceSpec& spec, const Template& tmpl, size_t max
     }
     auto h = s.mesh.add_vertex(DsMesh::Point(p.x, p.y, p.z));
     auto& d = s.mesh.data(h);
-    const glm::dvec3 f = mesh.front.empty() ? spec.front.at(0, 0) : mesh.front[i];
-    const glm::dvec3 b = mesh.back.empty() ? spec.back.at(0, 0) : mesh.back[i];
+    const glm::dvec3 f = mesh.front.empty() ? spec.front.at(0, 0, tmpl.ripeness) : mesh.front[i];
+    const glm::dvec3 b = mesh.back.empty() ? spec.back.at(0, 0, tmpl.ripeness) : mesh.back[i];
     d.front = {f.x, f.y, f.z};
     d.back = {b.x, b.y, b.z};
-    d.blur = mesh.blur.empty() ? spec.blur.at(0, 0)
+    d.blur = mesh.blur.empty() ? spec.blur.at(0, 0, tmpl.ripeness)
                                : std::max(0.0, mesh.blur[i] * tmpl.metres_per_unit);
     vh[i] = h;
   }

@@ -64,7 +64,8 @@ void grid_faces(const SweepGrid& g, std::vector<int>& index_of_row,
 
 /// Adds one grid's vertices (with DS attributes) and faces to `mesh`. Flips the winding when
 /// `flip`.
-void add_grid(const SweepGrid& g, const SurfaceSpec& spec, bool flip, DsMesh& mesh) {
+void add_grid(const SweepGrid& g, const SurfaceSpec& spec, double ripeness, bool flip,
+              DsMesh& mesh) {
   std::vector<DsMesh::VertexHandle> vh;
   std::vector<int> index_of_row;
   for (size_t i = 0; i < g.rows.size(); ++i) {
@@ -74,10 +75,11 @@ void add_grid(const SweepGrid& g, const SurfaceSpec& spec, bool flip, DsMesh& me
       const glm::dvec2& t = g.params[i][j];
       auto h = mesh.add_vertex(DsMesh::Point(p.x, p.y, p.z));
       auto& d = mesh.data(h);
-      const glm::dvec3 f = spec.front.at(t.x, t.y), b = spec.back.at(t.x, t.y);
+      const glm::dvec3 f = spec.front.at(t.x, t.y, ripeness);
+      const glm::dvec3 b = spec.back.at(t.x, t.y, ripeness);
       d.front = {f.x, f.y, f.z};
       d.back = {b.x, b.y, b.z};
-      d.blur = vertex_blur(spec.blur.at(t.x, t.y));
+      d.blur = vertex_blur(spec.blur.at(t.x, t.y, ripeness));
       d.param = {t.x, t.y};
       vh.push_back(h);
     }
@@ -361,7 +363,7 @@ DsSurface sweep_around(const SurfaceSpec& spec, const Template& t, size_t max_ve
   s.role = spec.is_skin ? SurfaceRole::Skin : SurfaceRole::Structure;
   s.visible_front = spec.visible_front;
   s.visible_back = spec.visible_back;
-  add_grid(g, spec, false, s.mesh);
+  add_grid(g, spec, t.ripeness, false, s.mesh);
   return s;
 }
 
@@ -404,7 +406,7 @@ DsSurface sweep_within(const SurfaceSpec& spec, const Template& t, size_t max_ve
   for (int fold = 0; fold < t.folds; ++fold) {
     const Polyline2 loop = resample_uniform(frame_loops[nloops == 1 ? 0 : fold], true, m);
     const SweepGrid g = within_fold_grid(spec, t, rails, heights, loop, fold);
-    add_grid(g, spec, grid_volume(g) < 0, s.mesh);
+    add_grid(g, spec, t.ripeness, grid_volume(g) < 0, s.mesh);
   }
   return s;
 }

@@ -20,12 +20,13 @@ namespace cutaway {
 enum class Symmetry { Cylindrical, NFold, None };
 enum class SurfaceKind { Around, Within, Mesh };
 
-/// What a gradient's parameter t runs along (doc/template-format.md, GRADIENT).
-enum class GradientAxis { Constant, Profile, Section };
+/// What a gradient's parameter t runs along (doc/template-format.md, GRADIENT): the profile's or
+/// the section's normalised arc length, or the variant's ripeness (Template::ripeness).
+enum class GradientAxis { Constant, Profile, Section, Ripeness };
 
-/// A value that is constant or varies linearly between stops along the profile or the section
-/// (doc/template-format.md: COLOR, LENGTH, GRADIENT). T is glm::dvec3 (linear RGB) or double
-/// (metres).
+/// A value that is constant or varies linearly between stops along the profile, the section or
+/// the ripeness (doc/template-format.md: COLOR, LENGTH, GRADIENT). T is glm::dvec3 (linear RGB)
+/// or double (metres).
 template <class T>
 struct Gradient {
   GradientAxis along = GradientAxis::Constant;
@@ -36,10 +37,12 @@ struct Gradient {
   static Gradient constant(T value) { return Gradient{GradientAxis::Constant, {{0.0, value}}}; }
 
   /// The value at normalised arc length t_profile along the profile and t_section along the
-  /// section (both 0..1); the parameter the gradient does not run along is ignored. Values
-  /// beyond the first and last stops are clamped.
-  T at(double t_profile, double t_section) const {
-    const double t = along == GradientAxis::Profile ? t_profile : t_section;
+  /// section (both 0..1), for a variant of the given ripeness (0..1); the parameters the
+  /// gradient does not run along are ignored. Values beyond the first and last stops are clamped.
+  T at(double t_profile, double t_section, double ripeness) const {
+    const double t = along == GradientAxis::Profile   ? t_profile
+                     : along == GradientAxis::Section ? t_section
+                                                      : ripeness;
     if (stops.size() == 1 || t <= stops.front().first) return stops.front().second;
     if (t >= stops.back().first) return stops.back().second;
     for (size_t i = 1; i < stops.size(); ++i) {
@@ -164,6 +167,11 @@ struct Template {
   FileLoc edge_loc;                   ///< where `resolution.edge` is (the file start if absent)
   double variation_amount = 1.0;
   int variation_folds_min = 1, variation_folds_max = 1;
+  /// The range variants draw their ripeness from (`variation.ripeness`, 0 <= x <= y <= 1), and
+  /// the ripeness this template's colours are taken at (gradients `along: ripeness`): the
+  /// range's middle as parsed; a variant's own draw (variation.h, draw_ripeness).
+  glm::dvec2 ripeness_range{0.0, 1.0};
+  double ripeness = 0.5;
   std::vector<SurfaceSpec> surfaces;
   std::vector<GrainSpec> grains;
   int skin = -1;                      ///< index of the surface with role skin (-1: none, only

@@ -1,5 +1,6 @@
 #include "variation/variation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -13,6 +14,8 @@ namespace {
 
 /// Purpose tag of the variation streams in derive_seed paths.
 constexpr uint64_t kPurposeVariation = 0x7661726961;  // "varia"
+/// Purpose tag of the ripeness stream.
+constexpr uint64_t kPurposeRipeness = 0x726970656e;  // "ripen"
 
 }  // namespace
 
@@ -50,7 +53,18 @@ Template draw_variant(const Template& t, uint64_t seed, uint64_t draw, double am
   return rebuild_folds(t, f, vectors, opt.folds);
 }
 
-Variant make_variant(const Template& t, uint64_t seed, const VariationOptions& opt) {
+double draw_ripeness(const Template& t, uint64_t seed) {
+  const double mid = 0.5 * (t.ripeness_range.x + t.ripeness_range.y);
+  const double spread = (t.ripeness_range.y - t.ripeness_range.x) *
+                        std::clamp(t.variation_amount, 0.0, 1.0);
+  if (!(spread > 0)) return mid;
+  Rng rng(derive_seed(seed, {kPurposeRipeness}));
+  return std::clamp(mid + spread * (rng.uniform() - 0.5), t.ripeness_range.x, t.ripeness_range.y);
+}
+
+Variant make_variant(const Template& tmpl, uint64_t seed, const VariationOptions& opt) {
+  Template t = tmpl;
+  t.ripeness = draw_ripeness(tmpl, seed);
   uint64_t draw = 0;
   double scale = 1.0;
   for (int h = 0; h <= opt.halvings; ++h, scale *= 0.5) {

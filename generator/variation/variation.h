@@ -38,11 +38,18 @@ struct Variant {
 Template draw_variant(const Template& tmpl, uint64_t seed, uint64_t draw, double amount_scale,
                       const VariationOptions& options = {});
 
+/// The ripeness of the variant of `seed` (doc/template-format.md, `variation.ripeness`):
+/// uniform about the middle of tmpl.ripeness_range, over the whole range at variation amount
+/// 1 or more and over amount times it below (amount 0: the middle). From a pcg32 stream of
+/// its own, so the shapes a seed draws do not depend on it.
+double draw_ripeness(const Template& tmpl, uint64_t seed);
+
 /// A variant that passes check_template_curves and build_model (closed skin, nothing crosses
 /// the skin, `within` loops inside their folds): draws with the template's amount until one
 /// passes (options.attempts draws), then with the amount halved (options.halvings times); if
-/// none passes, the template itself (amount 0). The model then gets its grains
-/// (scatter_grains with the same seed). Same seed -> identical result.
+/// none passes, the template itself (amount 0). Its colours are taken at draw_ripeness(tmpl,
+/// seed) in every case. The model then gets its grains (scatter_grains with the same seed).
+/// Same seed -> identical result.
 /// @pre tmpl was returned by parse_template / load_template
 /// @throws InputError only when tmpl itself does not build
 Variant make_variant(const Template& tmpl, uint64_t seed, const VariationOptions& options = {});

@@ -101,15 +101,15 @@ TEST(TemplateParser, ValidTemplateValues) {
   EXPECT_NEAR(loop[2].x, -0.02, 1e-12);
   // Colours: sRGB -> linear.
   EXPECT_EQ(skin.front.along, GradientAxis::Constant);
-  EXPECT_NEAR(skin.front.at(0, 0).r, 1.0, 1e-12);
-  EXPECT_NEAR(skin.front.at(0, 0).g, 0.0, 1e-12);
-  EXPECT_NEAR(skin.back.at(0, 0).r, srgb_to_linear(0.5), 1e-12);
-  EXPECT_NEAR(skin.back.at(0, 0).r, 0.2140, 1e-4);
+  EXPECT_NEAR(skin.front.at(0, 0, 0.5).r, 1.0, 1e-12);
+  EXPECT_NEAR(skin.front.at(0, 0, 0.5).g, 0.0, 1e-12);
+  EXPECT_NEAR(skin.back.at(0, 0, 0.5).r, srgb_to_linear(0.5), 1e-12);
+  EXPECT_NEAR(skin.back.at(0, 0, 0.5).r, 0.2140, 1e-4);
   // A LENGTH gradient in metres.
   EXPECT_EQ(skin.blur.along, GradientAxis::Profile);
   ASSERT_EQ(skin.blur.stops.size(), 2u);
   EXPECT_NEAR(skin.blur.stops[0].second, 0.001, 1e-15);
-  EXPECT_NEAR(skin.blur.at(0.5, 0), 0.0015, 1e-15);
+  EXPECT_NEAR(skin.blur.at(0.5, 0, 0.5), 0.0015, 1e-15);
 
   const SurfaceSpec& core = t.surfaces[1];
   EXPECT_EQ(core.kind, SurfaceKind::Within);
@@ -121,11 +121,11 @@ TEST(TemplateParser, ValidTemplateValues) {
   // A colour gradient along the section, interpolated in linear RGB.
   EXPECT_EQ(core.front.along, GradientAxis::Section);
   ASSERT_EQ(core.front.stops.size(), 2u);
-  EXPECT_NEAR(core.front.at(0, 0.25).g, 0.5, 1e-12);
-  EXPECT_NEAR(core.front.at(0, 0.9).b, 1.0, 1e-12);
+  EXPECT_NEAR(core.front.at(0, 0.25, 0.5).g, 0.5, 1e-12);
+  EXPECT_NEAR(core.front.at(0, 0.9, 0.5).b, 1.0, 1e-12);
   // Unset colours and blur keep their defaults.
-  EXPECT_NEAR(core.back.at(0, 0).r, 0.5, 1e-12);
-  EXPECT_DOUBLE_EQ(core.blur.at(0, 0), 0.0);
+  EXPECT_NEAR(core.back.at(0, 0, 0.5).r, 0.5, 1e-12);
+  EXPECT_DOUBLE_EQ(core.blur.at(0, 0, 0.5), 0.0);
 
   ASSERT_EQ(t.grains.size(), 1u);
   const GrainSpec& g = t.grains[0];
@@ -188,8 +188,8 @@ TEST(TemplateParser, JsonIsAccepted) {
                            "t.json");
   EXPECT_EQ(t.name, "json");
   ASSERT_EQ(t.surfaces.size(), 1u);
-  EXPECT_NEAR(t.surfaces[0].back.at(0, 0).g, 1.0, 1e-12);
-  EXPECT_NEAR(t.surfaces[0].blur.at(0, 0), 0.0005, 1e-15);
+  EXPECT_NEAR(t.surfaces[0].back.at(0, 0, 0.5).g, 1.0, 1e-12);
+  EXPECT_NEAR(t.surfaces[0].blur.at(0, 0, 0.5), 0.0005, 1e-15);
   EXPECT_NEAR(t.edge_m, 0.04 / 64, 1e-15);
 }
 

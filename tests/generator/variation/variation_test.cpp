@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "base/colour.h"
 #include "io/template_parser.h"
 #include "model/template_checks.h"
 #include "test_support.h"
@@ -103,6 +104,67 @@ TEST(Variation, AmountZeroKeepsTheTemplate) {
   Template t = load_template(test::source_path("templates/onion.yaml").string());
   t.variation_amount = 0;
   EXPECT_TRUE(same_sections(vary(t, 5), t));
+}
+
+// Colour variation per variant (`variation.ripeness`, gradients `along: ripeness`): each seed
+// draws a ripeness in the range from a stream of its own, so the skin's colour changes between
+// the two stops while the shapes a seed draws stay those of the template without ripeness.
+TEST(Variation, RipenessGivesEachSeedItsColourBetweenTheStopsAndKeepsTheShapes) {
+  const std::string path = test::source_path("templates/onion.yaml").string();
+  std::string text = test::read_file(path);
+  const std::string plain = text;
+  text.replace(text.find("variation: {amount: 1.0}"), 24,
+               "variation: {amount: 1.0, ripeness: [0.2, 0.8]}");
+  const std::string skin_front = "front: \"#b0702e\"";
+  text.replace(text.find(skin_front), skin_front.size(),
+               "front: {along: ripeness, stops: [[0, \"#40a040\"], [1, \"#e0d040\"]]}");
+  const std::string dir = test::source_path("templates").string();
+  const Template t = parse_template(text, path, dir);
+  const Template t_plain = parse_template(plain, path, dir);
+  EXPECT_DOUBLE_EQ(t.ripeness, 0.5);
+  const glm::dvec3 green = srgb_to_linear({0x40 / 255.0, 0xa0 / 255.0, 0x40 / 255.0});
+  const glm::dvec3 yellow = srgb_to_linear({0xe0 / 255.0, 0xd0 / 255.0, 0x40 / 255.0});
+  double lo = 1, hi = 0;
+  for (uint64_t seed = 0; seed < 40; ++seed) {
+    const double r = draw_ripeness(t, seed);
+    EXPECT_GE(r, 0.2);
+    EXPECT_LE(r, 0.8);
+    lo = std::min(lo, r);
+    hi = std::max(hi, r);
+    EXPECT_EQ(r, draw_ripeness(t, seed));
+  }
+  EXPECT_LT(lo, 0.3);
+  EXPECT_GT(hi, 0.7);
+  for (uint64_t seed : {3u, 11u}) {
+    const Variant v = make_variant(t, seed);
+    EXPECT_EQ(v.tmpl.ripeness, draw_ripeness(t, seed));
+    EXPECT_TRUE(same_sections(v.tmpl, vary(t_plain, seed)));
+    const glm::dvec3 expected = green + (yellow - green) * v.tmpl.ripeness;
+    const auto& skin = v.model.surfaces[static_cast<size_t>(t.skin)].mesh;
+    for (auto vh : skin.vertices()) {
+      const auto& f = skin.data(vh).front;
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(f[c], expected[c], 1e-6);
+    }
+  }
+  // Amount 0: every variant at the middle of the range.
+  Template still = t;
+  still.variation_amount = 0;
+  EXPECT_EQ(draw_ripeness(still, 7), 0.5);
+}
+
+TEST(Variation, RipenessRangeIsCheckedWhereItIsWritten) {
+  const std::string path = test::source_path("templates/onion.yaml").string();
+  std::string text = test::read_file(path);
+  text.replace(text.find("variation: {amount: 1.0}"), 24,
+               "variation: {amount: 1.0, ripeness: [0.9, 0.1]}");
+  try {
+    parse_template(text, path, test::source_path("templates").string());
+    ADD_FAILURE() << "a reversed ripeness range was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("variation.ripeness: needs min <= max"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
