@@ -48,9 +48,11 @@ double parse_length(const YamlField& f, double metres_per_unit) {
   return v * metres_per_unit;
 }
 
-/// COLOR or GRADIENT / LENGTH or GRADIENT (doc/template-format.md, GRADIENT).
+/// COLOR or GRADIENT / LENGTH or GRADIENT (doc/template-format.md, GRADIENT). Along the
+/// ripeness each stop's value is itself a value or a gradient along the profile or the section.
 template <class T, class ParseValue>
-Gradient<T> parse_gradient(const YamlField& f, ParseValue parse_value) {
+Gradient<T> parse_gradient(const YamlField& f, ParseValue parse_value,
+                           bool ripeness_allowed = true) {
   if (!f.is_map()) return Gradient<T>::constant(parse_value(f));
   f.allow_only({"along", "stops"});
   Gradient<T> g;
@@ -58,19 +60,25 @@ Gradient<T> parse_gradient(const YamlField& f, ParseValue parse_value) {
   const std::string a = along.string();
   if (a == "profile") g.along = GradientAxis::Profile;
   else if (a == "section") g.along = GradientAxis::Section;
-  else if (a == "ripeness") g.along = GradientAxis::Ripeness;
+  else if (a == "ripeness" && ripeness_allowed) g.along = GradientAxis::Ripeness;
+  else if (a == "ripeness")
+    along.fail("a stop of a gradient along ripeness may run along the profile or the section, "
+               "not along ripeness again");
   else
     along.fail("must be 'profile', 'section' or 'ripeness', not " + quoted(a));
   const YamlField stops = f.require("stops");
   if (stops.size() < 1) stops.fail("a gradient needs at least one stop [t, value]");
+  double last = -1;
   for (size_t i = 0; i < stops.size(); ++i) {
     const YamlField stop = stops[i];
     if (!stop.is_sequence() || stop.size() != 2) stop.fail("a stop must be [t, value]");
     const double t = stop[0].number_in(0.0, 1.0);
-    if (!g.stops.empty() && t <= g.stops.back().first) {
-      stop[0].fail("stops must be in increasing t");
-    }
-    g.stops.emplace_back(t, parse_value(stop[1]));
+    if (t <= last) stop[0].fail("stops must be in increasing t");
+    last = t;
+    if (g.along == GradientAxis::Ripeness)
+      g.by_ripeness.emplace_back(t, parse_gradient<T>(stop[1], parse_value, false));
+    else
+      g.stops.emplace_back(t, parse_value(stop[1]));
   }
   return g;
 }
@@ -554,13 +562,18 @@ void resolve_edge(const YamlField& root, Template& t, double h) {
   }
 }
 
+/// `spine`: a list of [x, y] points in template units (doc/template-format.md, Spine).
+SpineSpec parse_spine(const YamlField& f, double m) {
+  return {parse_points(f, m, "[x, y]"), f.loc()};
+}
+
 }  // namespace
 
 Template parse_template(std::string_view text, const std::string& file,
                         const std::string& base_dir) {
   const YamlField root = parse_yaml(text, file);
   root.allow_only({"format", "name", "description", "units", "symmetry", "resolution", "variation",
-                   "surfaces", "grains", "npr", "materials", "density"});
+                   "surfaces", "grains", "npr", "materials", "density", "spine"});
   Template t;
   t.file = file;
 
@@ -586,6 +599,7 @@ Template parse_template(std::string_view text, const std::string& file,
   }
 
   if (auto npr = root.get("npr")) t.npr = parse_npr(*npr, t.metres_per_unit);
+  if (auto spine = root.get("spine")) t.spine = parse_spine(*spine, t.metres_per_unit);
 
   parse_edge(root, t);
   check_template_curves(t);

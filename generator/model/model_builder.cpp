@@ -4,6 +4,7 @@
 
 #include "model/mesh_surface.h"
 #include "model/model_checks.h"
+#include "model/spine_bend.h"
 #include "model/sweep.h"
 
 namespace cutaway {
@@ -28,6 +29,9 @@ DsModel build_model(const Template& t) {
   }
   update_bounds(model);
   check_model(t, model, order);
+  // The rules above hold in the straight frame; a bend that keeps every stretch positive keeps
+  // them (bend_model refuses one that does not).
+  bend_model(t, model);
   return model;
 }
 

@@ -24,36 +24,50 @@ enum class SurfaceKind { Around, Within, Mesh };
 /// the section's normalised arc length, or the variant's ripeness (Template::ripeness).
 enum class GradientAxis { Constant, Profile, Section, Ripeness };
 
+/// The value at t of stops (t_k, v_k) with increasing t_k: blended linearly between the two
+/// stops around t, clamped to the first and last; `value` turns a stop's v into a T.
+template <class T, class Stop, class Value>
+T blend_stops(const std::vector<std::pair<double, Stop>>& stops, double t, Value value) {
+  if (stops.size() == 1 || t <= stops.front().first) return value(stops.front().second);
+  if (t >= stops.back().first) return value(stops.back().second);
+  for (size_t i = 1; i < stops.size(); ++i) {
+    if (t <= stops[i].first) {
+      const double t0 = stops[i - 1].first, t1 = stops[i].first;
+      const double a = t1 > t0 ? (t - t0) / (t1 - t0) : 1.0;
+      const T v0 = value(stops[i - 1].second), v1 = value(stops[i].second);
+      return v0 + (v1 - v0) * a;
+    }
+  }
+  return value(stops.back().second);
+}
+
 /// A value that is constant or varies linearly between stops along the profile, the section or
 /// the ripeness (doc/template-format.md: COLOR, LENGTH, GRADIENT). T is glm::dvec3 (linear RGB)
-/// or double (metres).
+/// or double (metres). Along the ripeness each stop holds a whole field (constant, or itself
+/// along the profile or the section), so a banana's skin can be brown at the tip and green at
+/// the stalk, and greener or yellower as a whole.
 template <class T>
 struct Gradient {
   GradientAxis along = GradientAxis::Constant;
-  /// Increasing t in 0..1 with their values; one stop when constant.
+  /// Constant, Profile, Section: increasing t in 0..1 with their values; one stop when constant.
   std::vector<std::pair<double, T>> stops;
+  /// Ripeness: increasing ripeness in 0..1 with the field at it (none of them along ripeness).
+  std::vector<std::pair<double, Gradient<T>>> by_ripeness;
 
   /// A constant field.
-  static Gradient constant(T value) { return Gradient{GradientAxis::Constant, {{0.0, value}}}; }
+  static Gradient constant(T value) { return Gradient{GradientAxis::Constant, {{0.0, value}}, {}}; }
 
   /// The value at normalised arc length t_profile along the profile and t_section along the
   /// section (both 0..1), for a variant of the given ripeness (0..1); the parameters the
   /// gradient does not run along are ignored. Values beyond the first and last stops are clamped.
   T at(double t_profile, double t_section, double ripeness) const {
-    const double t = along == GradientAxis::Profile   ? t_profile
-                     : along == GradientAxis::Section ? t_section
-                                                      : ripeness;
-    if (stops.size() == 1 || t <= stops.front().first) return stops.front().second;
-    if (t >= stops.back().first) return stops.back().second;
-    for (size_t i = 1; i < stops.size(); ++i) {
-      if (t <= stops[i].first) {
-        const auto& [t0, v0] = stops[i - 1];
-        const auto& [t1, v1] = stops[i];
-        const double a = t1 > t0 ? (t - t0) / (t1 - t0) : 1.0;
-        return v0 + (v1 - v0) * a;
-      }
+    if (along == GradientAxis::Ripeness) {
+      return blend_stops<T>(by_ripeness, ripeness, [&](const Gradient<T>& g) {
+        return g.at(t_profile, t_section, ripeness);
+      });
     }
-    return stops.back().second;
+    const double t = along == GradientAxis::Profile ? t_profile : t_section;
+    return blend_stops<T>(stops, t, [](const T& v) { return v; });
   }
 };
 
@@ -151,6 +165,14 @@ struct NprSettings {
   bool perlin_from_file = false;  ///< whether the bands were written in the file
 };
 
+/// The bent axis of a template (doc/template-format.md, `spine`): the curve in the profile
+/// plane (z = 0) that the straight +Y axis is bent onto after sweeping. Empty: a straight axis.
+struct SpineSpec {
+  /// [x, y] points in metres, bottom to top; the smooth spline through them is the axis
+  std::vector<glm::dvec2> points;
+  FileLoc loc;  ///< where `spine` is written
+};
+
 /// A whole parsed, validated template.
 struct Template {
   std::string name;
@@ -174,6 +196,7 @@ struct Template {
   double ripeness = 0.5;
   std::vector<SurfaceSpec> surfaces;
   std::vector<GrainSpec> grains;
+  SpineSpec spine;                    ///< the bent axis; no points: straight
   int skin = -1;                      ///< index of the surface with role skin (-1: none, only
                                       ///< for symmetry none)
   NprSettings npr;                    ///< NPR parameters (doc/template-format.md, NPR)

@@ -12,8 +12,6 @@ namespace cutaway {
 
 namespace {
 
-
-
 std::string degrees(double rad) {
   std::ostringstream s;
   s.precision(4);
@@ -138,6 +136,29 @@ void check_within(const SurfaceSpec& s, const Template& t) {
   }
 }
 
+/// The spine (doc/template-format.md, `spine`): only for swept templates, and rising all the
+/// way (its points and the curve fitted through them), so that it neither doubles back nor
+/// crosses itself.
+void check_spine(const Template& t) {
+  const SpineSpec& spine = t.spine;
+  if (spine.points.empty()) return;
+  if (t.symmetry == Symmetry::None)
+    fail_at(spine.loc, "spine", "a spine bends swept surfaces; symmetry none has none");
+  for (size_t i = 1; i < spine.points.size(); ++i) {
+    if (!(spine.points[i].y > spine.points[i - 1].y))
+      fail_at(spine.loc, "spine",
+              "each point must lie higher than the one before it (point " + std::to_string(i) +
+                  " does not): a spine rises from the bottom of the object to its top");
+  }
+  const Polyline2 fitted = fit_curve(spine.points, false, true);
+  for (size_t i = 1; i < fitted.size(); ++i) {
+    if (!(fitted[i].y > fitted[i - 1].y))
+      fail_at(spine.loc, "spine",
+              "the spline through the points turns downwards between two of them; move or add "
+              "points so that it keeps rising");
+  }
+}
+
 }  // namespace
 
 double wrap_angle(double a) {
@@ -161,6 +182,7 @@ void check_template_curves(const Template& t) {
     if (s.kind == SurfaceKind::Around) check_around(s);
     if (s.kind == SurfaceKind::Within) check_within(s, t);
   }
+  check_spine(t);
 }
 
 }  // namespace cutaway

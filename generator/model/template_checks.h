@@ -8,8 +8,10 @@
 
 namespace cutaway {
 
-/// Checks every surface's profile and section curves, as fitted (smooth or polyline).
-/// @throws InputError at the profile or section of the first surface breaking a rule
+/// Checks every surface's profile and section curves, as fitted (smooth or polyline), and the
+/// spine (rising from bottom to top; not for symmetry none).
+/// @throws InputError at the profile or section of the first surface breaking a rule, or at
+///         `spine`
 void check_template_curves(const Template& tmpl);
 
 /// Angular span [lo, hi] (radians, lo < hi, hi - lo <= 2 pi) of fold k: from half way to the

@@ -101,7 +101,11 @@ ObjectExtents template_extents(const Template& t) {
       lo = std::min(lo, p.y);
       hi = std::max(hi, p.y);
     }
-    e.radius_m = max_r * section_reach(skin.section);
+    // A spine moves the axis sideways by at most its points' reach (the spline through them
+    // stays close to it); the height along the straight axis bounds the bent one.
+    double spine_reach = 0;
+    for (const auto& p : t.spine.points) spine_reach = std::max(spine_reach, std::fabs(p.x));
+    e.radius_m = max_r * section_reach(skin.section) + spine_reach;
     e.height_m = hi - lo;
     return e;
   }

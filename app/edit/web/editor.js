@@ -64,6 +64,8 @@ function hex(colour) {
     return '#' + colour.map((c) => Math.round(255 * Math.min(1, Math.max(0, c)))
       .toString(16).padStart(2, '0')).join('');
   }
+  // a stop of a gradient along ripeness may itself be a gradient: show its first colour
+  if (colour && Array.isArray(colour.stops)) return hex(colour.stops[0]?.[1]);
   return '#808080';
 }
 

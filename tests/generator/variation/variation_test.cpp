@@ -152,6 +152,38 @@ TEST(Variation, RipenessGivesEachSeedItsColourBetweenTheStopsAndKeepsTheShapes) 
   EXPECT_EQ(draw_ripeness(still, 7), 0.5);
 }
 
+// A stop along ripeness may hold a field along the profile: the skin keeps its profile gradient
+// at every ripeness and moves between the two stop fields point by point.
+TEST(Variation, ARipenessStopMayBeAFieldAlongTheProfile) {
+  const std::string path = test::source_path("templates/onion.yaml").string();
+  std::string text = test::read_file(path);
+  const std::string skin_front = "front: \"#b0702e\"";
+  const std::string nested =
+      "front: {along: ripeness, stops: [[0, {along: profile, stops: [[0, [0, 0, 0]], "
+      "[1, [0, 1, 0]]]}], [1, {along: profile, stops: [[0, [1, 0, 0]], [1, [1, 1, 1]]]}]]}";
+  text.replace(text.find(skin_front), skin_front.size(), nested);
+  const std::string dir = test::source_path("templates").string();
+  const ColourField f = parse_template(text, path, dir).surfaces[0].front;
+  ASSERT_EQ(f.along, GradientAxis::Ripeness);
+  EXPECT_NEAR(f.at(0, 0, 0).r, 0.0, 1e-12);   // bottom, unripe: black
+  EXPECT_NEAR(f.at(1, 0, 0).g, 1.0, 1e-12);   // top, unripe: green
+  EXPECT_NEAR(f.at(0, 0, 1).r, 1.0, 1e-12);   // bottom, ripe: red
+  EXPECT_NEAR(f.at(1, 0, 0.5).r, 0.5, 1e-12); // top, half ripe: between green and white
+  EXPECT_NEAR(f.at(1, 0, 0.5).g, 1.0, 1e-12);
+  // Nested along ripeness again: refused where it is written.
+  std::string twice = test::read_file(path);
+  twice.replace(
+      twice.find(skin_front), skin_front.size(),
+      "front: {along: ripeness, stops: [[0, {along: ripeness, stops: [[0, [0, 0, 0]]]}]]}");
+  try {
+    parse_template(twice, path, dir);
+    ADD_FAILURE() << "a ripeness gradient inside a ripeness gradient was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("not along ripeness again"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Variation, RipenessRangeIsCheckedWhereItIsWritten) {
   const std::string path = test::source_path("templates/onion.yaml").string();
   std::string text = test::read_file(path);
