@@ -10,6 +10,7 @@
 #include "base/random.h"
 #include "base/timer.h"
 #include "material/colour_modulation.h"
+#include "material/skin_pattern.h"
 #include "pieces/coarse_cap.h"
 
 namespace cutaway {
@@ -133,11 +134,13 @@ std::vector<std::vector<glm::dvec2>> unwrap_skins(PieceSet& set, const std::vect
 /// into a texture "<object>_skin" repeating in u (skin_texture.h), adds a copy of material
 /// `materials.skin` textured with it and returns the object's materials with it as the skin's;
 /// writes each kept piece's skin coordinates into the first entries of uv[q] (sized to the
-/// piece's merge_parts vertices). No skins: `materials` unchanged.
+/// piece's merge_parts vertices). The skin's `patterns` and the Perlin `modulation` are baked
+/// in per texel. No skins: `materials` unchanged.
 PieceMaterials add_skin_texture(SceneAssets& assets, const DsSurface& skin, const PieceSet& set,
                                 const std::vector<size_t>& kept,
                                 const std::vector<std::vector<glm::dvec2>>& skin_uv,
                                 PieceMaterials materials, const std::string& object,
+                                const SkinPatterns* patterns,
                                 const ColourModulation* modulation, double strength,
                                 const SkinTextureOptions& options,
                                 std::vector<std::vector<glm::dvec2>>& uv) {
@@ -154,7 +157,8 @@ PieceMaterials add_skin_texture(SceneAssets& assets, const DsSurface& skin, cons
   if (parts.empty()) return materials;
   const glm::ivec2 size = skin_texture_size(skin, options);
   assets.textures.push_back({object + "_skin", size.x, size.y, 3,
-                             bake_skin_texture(parts, part_uv, size, modulation, strength, options),
+                             bake_skin_texture(parts, part_uv, size, patterns, modulation,
+                                               strength, options),
                              true});
   AssetMaterial textured = assets.materials[static_cast<size_t>(materials.skin)];
   textured.name = object + "_skin";
@@ -254,6 +258,8 @@ Outcome<CutObject> cut_object(SceneAssets& assets, const Variant& variant, uint6
   // see the pieces as cut (the unwrapped skins only add copies of vertices, which would
   // change nothing but the order in which the layout meets them).
   std::vector<ShadedMesh> as_cut;
+  // The skin's patterns, seeded like the Perlin modulation: every piece of the object agrees.
+  const SkinPatterns patterns(variant.tmpl.skin_patterns, options.modulation_seed);
   const bool textured = options.cap_colours == CapColours::Texture;
   if (textured) {
     const auto t_bake = Clock::now();
@@ -269,14 +275,20 @@ Outcome<CutObject> cut_object(SceneAssets& assets, const Variant& variant, uint6
     const ColourModulation modulation(variant.tmpl.npr, options.modulation_seed);
     object_materials = add_cap_texture(assets, set, kept_pieces, materials, object, &modulation,
                                        options.perlin, options.atlas, uv);
-    object_materials =
-        add_skin_texture(assets, variant.model.skin(), set, kept, skin_uv, object_materials,
-                         object, &modulation, options.perlin, options.skin, uv);
+    object_materials = add_skin_texture(
+        assets, variant.model.skin(), set, kept, skin_uv, object_materials, object,
+        patterns.empty() ? nullptr : &patterns, &modulation, options.perlin, options.skin, uv);
     stats.seconds_bake += seconds_since(t_bake);
   }
   for (size_t q = 0; q < kept.size(); ++q) {
     const Piece& piece = set.pieces[kept[q]];
     ShadedMesh merged = merge_parts(piece);
+    // The skin's patterns at its vertices (the skin part comes first), for vertex colours.
+    if (const PiecePart* skin = skin_part(piece);
+        skin && !patterns.empty() && merged.param.size() == merged.position.size()) {
+      for (size_t v = 0; v < skin->mesh.position.size(); ++v)
+        merged.colour[v] = patterns(merged.param[v], merged.position[v], merged.colour[v]);
+    }
     // Perlin colour modulation in the object frame: every piece of one object agrees.
     modulate_colours(merged, variant.tmpl.npr, options.perlin, options.modulation_seed);
     out.meshes.push_back(piece_mesh(

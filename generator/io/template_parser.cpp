@@ -168,7 +168,7 @@ void parse_material_channels(const YamlField& f, const PbrMaterial& cut, glm::dv
 
 SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::string& base_dir) {
   f.allow_only({"name", "kind", "role", "profile", "section", "smooth", "front", "back", "blur",
-                "roughness", "translucency", "visible", "file"});
+                "roughness", "translucency", "visible", "file", "patterns"});
   SurfaceSpec s;
   s.path = f.path();
   s.loc = f.loc();
@@ -501,6 +501,57 @@ void parse_variation(const YamlField& root, Template& t) {
   }
 }
 
+/// One layer of the skin's `patterns`: {stripes: {...}} or {speckles: {...}} (doc/
+/// template-format.md, Skin patterns).
+SkinPatternLayer parse_pattern_layer(const YamlField& f, double m) {
+  SkinPatternLayer p;
+  p.loc = f.loc();
+  if (!f.is_map()) f.fail("a pattern layer is {stripes: {...}} or {speckles: {...}}");
+  f.allow_only({"stripes", "speckles"});
+  if (f.get("stripes").has_value() == f.get("speckles").has_value())
+    f.fail("a pattern layer is {stripes: {...}} or {speckles: {...}}: exactly one of them");
+  const bool stripes = f.get("stripes").has_value();
+  const YamlField b = stripes ? *f.get("stripes") : *f.get("speckles");
+  p.kind = stripes ? SkinPatternLayer::Kind::Stripes : SkinPatternLayer::Kind::Speckles;
+  if (stripes) {
+    b.allow_only({"count", "width", "colour", "opacity", "softness", "wobble"});
+    const int64_t count = b.require("count").integer();
+    if (count < 1 || count > 256) b.require("count").fail("must be a whole number 1 to 256");
+    p.count = static_cast<int>(count);
+    if (auto x = b.get("width")) p.width = x->number_in(0.0, 1.0);
+    if (!(p.width > 0 && p.width < 1)) b.require("width").fail("must lie strictly between 0 and 1");
+    if (auto x = b.get("wobble")) p.wobble = x->number_in(0.0, 1.0);
+  } else {
+    b.allow_only({"spacing", "size", "jitter", "colour", "opacity", "softness"});
+    const YamlField spacing = b.require("spacing"), size = b.require("size");
+    p.spacing_m = parse_length(spacing, m);
+    p.size_m = parse_length(size, m);
+    if (p.size_m < 1e-5) size.fail("must be at least 0.01 mm");
+    if (auto x = b.get("jitter")) p.jitter = x->number_in(0.0, 1.0);
+    if (p.size_m * (1 + p.jitter) > p.spacing_m)
+      spacing.fail("must be at least size x (1 + jitter): a speckle may not reach past the "
+                   "cells next to its own");
+  }
+  p.colour = parse_colour(b.require("colour"));
+  if (auto x = b.get("opacity")) p.opacity = x->number_in(0.0, 1.0);
+  if (auto x = b.get("softness")) p.softness = x->number_in(0.0, 1.0);
+  return p;
+}
+
+/// The skin's `patterns` (a list of layers): only on the skin, and only a swept one (its
+/// texture coordinates are the sweep's parameters).
+void parse_skin_patterns(const YamlField& f, const SurfaceSpec& s, Template& t) {
+  const auto patterns = f.get("patterns");
+  if (!patterns) return;
+  if (!s.is_skin) patterns->fail("only the skin (role: skin) has patterns");
+  if (s.kind != SurfaceKind::Around)
+    patterns->fail("patterns need a swept skin (kind: around): they follow its sweep");
+  if (!patterns->is_sequence() || patterns->size() < 1 || patterns->size() > 8)
+    patterns->fail("must be a list of 1 to 8 pattern layers");
+  for (size_t k = 0; k < patterns->size(); ++k)
+    t.skin_patterns.push_back(parse_pattern_layer((*patterns)[k], t.metres_per_unit));
+}
+
 /// `surfaces`: each surface (parse_surface), names unique, exactly one of role skin.
 void parse_surfaces(const YamlField& root, Template& t, const std::string& base_dir) {
   const YamlField surfaces = root.require("surfaces");
@@ -508,6 +559,7 @@ void parse_surfaces(const YamlField& root, Template& t, const std::string& base_
   std::set<std::string> names;
   for (size_t i = 0; i < surfaces.size(); ++i) {
     SurfaceSpec s = parse_surface(surfaces[i], t, base_dir);
+    parse_skin_patterns(surfaces[i], s, t);
     if (!names.insert(s.name).second) {
       surfaces[i].require("name").fail("surface names must be unique: " + quoted(s.name) +
                                        " is used twice");

@@ -209,7 +209,7 @@ CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
         atlas.uv[cap.piece][cap.first_vertex + v] =
             texel[v] / glm::dvec2(static_cast<double>(width), static_cast<double>(height));
       }
-      rasterise(cap.part->mesh, texel, modulation, strength, canvas);
+      rasterise(cap.part->mesh, texel, nullptr, modulation, strength, canvas);
     }
   }
   const MaterialStats stats = material_stats(canvas);

@@ -109,13 +109,14 @@ std::vector<glm::dvec2> unwrap_skin(ShadedMesh& skin) {
 
 std::vector<uint8_t> bake_skin_texture(const std::vector<const ShadedMesh*>& parts,
                                        const std::vector<const std::vector<glm::dvec2>*>& uv,
-                                       glm::ivec2 size, const ColourModulation* modulation,
-                                       double strength, const SkinTextureOptions& options) {
+                                       glm::ivec2 size, const SkinPatterns* patterns,
+                                       const ColourModulation* modulation, double strength,
+                                       const SkinTextureOptions& options) {
   TexelCanvas canvas(size.x, size.y, true);
   for (size_t i = 0; i < parts.size(); ++i) {
     std::vector<glm::dvec2> texel(uv[i]->size());
     for (size_t v = 0; v < texel.size(); ++v) texel[v] = (*uv[i])[v] * glm::dvec2(size);
-    rasterise(*parts[i], texel, modulation, strength, canvas);
+    rasterise(*parts[i], texel, patterns, modulation, strength, canvas);
   }
   dilate(canvas, options.padding);
   fill_background(canvas);

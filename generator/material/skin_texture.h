@@ -12,6 +12,7 @@
 #include <glm/vec2.hpp>
 
 #include "material/colour_modulation.h"
+#include "material/skin_pattern.h"
 #include "model/ds_model.h"
 #include "pieces/shaded_mesh.h"
 
@@ -48,11 +49,12 @@ std::vector<glm::dvec2> unwrap_skin(ShadedMesh& skin);
 
 /// Bakes the skins `parts` (each a piece's skin part with its unwrap_skin coordinates `uv`)
 /// into one sRGB RGB texture of `size` texels repeating in u (texel_bake.h): front colours
-/// interpolated, modulated by `modulation` (if not null) with `strength`, dilated by
-/// options.padding. Deterministic.
+/// interpolated, the skin's `patterns` laid over them (if not null), modulated by `modulation`
+/// (if not null) with `strength`, dilated by options.padding. Deterministic.
 std::vector<uint8_t> bake_skin_texture(const std::vector<const ShadedMesh*>& parts,
                                        const std::vector<const std::vector<glm::dvec2>*>& uv,
-                                       glm::ivec2 size, const ColourModulation* modulation,
-                                       double strength, const SkinTextureOptions& options);
+                                       glm::ivec2 size, const SkinPatterns* patterns,
+                                       const ColourModulation* modulation, double strength,
+                                       const SkinTextureOptions& options);
 
 }  // namespace cutaway

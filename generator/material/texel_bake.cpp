@@ -18,7 +18,8 @@ TexelCanvas::TexelCanvas(int w, int h, bool wrap)
       covered(colour.size(), 0) {}
 
 void rasterise(const ShadedMesh& mesh, std::span<const glm::dvec2> texel,
-               const ColourModulation* modulation, double strength, TexelCanvas& canvas) {
+               const SkinPatterns* patterns, const ColourModulation* modulation,
+               double strength, TexelCanvas& canvas) {
   const int width = canvas.width, height = canvas.height;
   for (const glm::uvec3& t : mesh.triangle) {
     const glm::dvec2 a = texel[t.x], b = texel[t.y], c = texel[t.z];
@@ -41,11 +42,13 @@ void rasterise(const ShadedMesh& mesh, std::span<const glm::dvec2> texel,
         const int column = ((x % width) + width) % width;
         const size_t i = static_cast<size_t>(y) * width + column;
         glm::dvec3 colour = wa * mesh.colour[t.x] + wb * mesh.colour[t.y] + wc * mesh.colour[t.z];
-        if (modulation) {
-          const glm::dvec3 where =
-              wa * mesh.position[t.x] + wb * mesh.position[t.y] + wc * mesh.position[t.z];
-          colour = (*modulation)(where, colour, strength);
+        const glm::dvec3 where =
+            wa * mesh.position[t.x] + wb * mesh.position[t.y] + wc * mesh.position[t.z];
+        if (patterns) {
+          const glm::dvec2 param(1 - (y + 0.5) / height, (column + 0.5) / width);
+          colour = (*patterns)(param, where, colour);
         }
+        if (modulation) colour = (*modulation)(where, colour, strength);
         canvas.colour[i] = colour;
         canvas.material[i] =
             wa * mesh.material[t.x] + wb * mesh.material[t.y] + wc * mesh.material[t.z];

@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include "material/colour_modulation.h"
+#include "material/skin_pattern.h"
 #include "pieces/shaded_mesh.h"
 
 namespace cutaway {
@@ -34,10 +35,14 @@ struct TexelCanvas {
 /// Rasterises every triangle of `mesh` at `texel` (#V positions in texel units: x right, y down;
 /// texel (i, j) has its centre at (i + 0.5, j + 0.5)) into `canvas`: each texel whose centre
 /// lies in a triangle gets the barycentric interpolation of its vertices' colour and material
-/// channels, the colour modulated by `modulation` (if not null) at the interpolated position
-/// (metres, object frame) with `strength`. Later triangles overwrite earlier ones.
+/// channels; the colour then gets the skin's `patterns` (if not null; the canvas is a skin
+/// texture, so texel (i, j) lies at t_section (i + 0.5) / width and t_profile 1 - (j + 0.5) /
+/// height) and is modulated by `modulation` (if not null), both at the interpolated position
+/// (metres, object frame), the modulation with `strength`. Later triangles overwrite earlier
+/// ones.
 void rasterise(const ShadedMesh& mesh, std::span<const glm::dvec2> texel,
-               const ColourModulation* modulation, double strength, TexelCanvas& canvas);
+               const SkinPatterns* patterns, const ColourModulation* modulation,
+               double strength, TexelCanvas& canvas);
 
 /// `rings` rings of dilation: each uncovered texel with covered 8-neighbours takes their mean.
 void dilate(TexelCanvas& canvas, int rings);

@@ -165,6 +165,26 @@ struct NprSettings {
   bool perlin_from_file = false;  ///< whether the bands were written in the file
 };
 
+/// One layer of the skin's pattern (doc/template-format.md, Skin patterns): a colour laid over
+/// the skin's outside where the pattern is, baked into the skin texture.
+struct SkinPatternLayer {
+  enum class Kind { Stripes, Speckles };
+  Kind kind = Kind::Stripes;
+  glm::dvec3 colour{0.0};  ///< linear RGB
+  double opacity = 1.0;    ///< 0..1: how much of `colour` covers the skin inside the pattern
+  double softness = 0.2;   ///< 0..1: the blended share of the edge (of a stripe's half width
+                           ///< or a speckle's radius)
+  // Stripes: bands along the profile, `count` around the section.
+  int count = 0;           ///< stripes around the section, 1..256
+  double width = 0.5;      ///< share of each period a stripe covers, 0..1 exclusive
+  double wobble = 0.0;     ///< sideways waviness, in periods (0..1): Perlin noise along the skin
+  // Speckles: spots where spheres about jittered lattice points meet the skin.
+  double spacing_m = 0.0;  ///< lattice spacing, metres
+  double size_m = 0.0;     ///< spot radius, metres
+  double jitter = 0.0;     ///< 0..1: relative variation of the radius
+  FileLoc loc;
+};
+
 /// The bent axis of a template (doc/template-format.md, `spine`): the curve in the profile
 /// plane (z = 0) that the straight +Y axis is bent onto after sweeping. Empty: a straight axis.
 struct SpineSpec {
@@ -197,6 +217,8 @@ struct Template {
   std::vector<SurfaceSpec> surfaces;
   std::vector<GrainSpec> grains;
   SpineSpec spine;                    ///< the bent axis; no points: straight
+  /// The skin's pattern layers, in the order they are laid (the skin surface's `patterns`).
+  std::vector<SkinPatternLayer> skin_patterns;
   int skin = -1;                      ///< index of the surface with role skin (-1: none, only
                                       ///< for symmetry none)
   NprSettings npr;                    ///< NPR parameters (doc/template-format.md, NPR)

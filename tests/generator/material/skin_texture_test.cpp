@@ -112,8 +112,8 @@ TEST(SkinTexture, TheTextureShowsTheSkinColourWhereItsVerticesMap) {
   EXPECT_EQ(p2.y & (p2.y - 1), 0) << p2.y;
   EXPECT_GE(p2.x, size.x);
   EXPECT_LT(p2.x, 2 * size.x);
-  const std::vector<uint8_t> a = bake_skin_texture(parts, part_uv, size, nullptr, 0, options);
-  const std::vector<uint8_t> b = bake_skin_texture(parts, part_uv, size, nullptr, 0, options);
+  const std::vector<uint8_t> a = bake_skin_texture(parts, part_uv, size, nullptr, nullptr, 0, options);
+  const std::vector<uint8_t> b = bake_skin_texture(parts, part_uv, size, nullptr, nullptr, 0, options);
   ASSERT_EQ(a.size(), static_cast<size_t>(size.x) * size.y * 3);
   EXPECT_EQ(a, b);
   // Every vertex away from the poles: the texel it maps to shows its colour (the skin's colour

@@ -31,6 +31,9 @@ namespace fs = std::filesystem;
 struct Built {
   Template tmpl;
   DsModel model;
+  /// The model in the sweep's frame: `model` itself, or for a template with a spine the model
+  /// built without it (the fold and profile rules hold there; the bend keeps them).
+  DsModel straight;
   /// model.surfaces[i] was made from tmpl.surfaces[spec_of[i]] (build_model: skin first).
   std::vector<int> spec_of;
 };
@@ -42,6 +45,9 @@ const Built& built(const fs::path& file) {
     auto b = std::make_unique<Built>();
     b->tmpl = load_template(file.string());
     b->model = build_model(b->tmpl);
+    Template straight = b->tmpl;
+    straight.spine = {};
+    b->straight = b->tmpl.spine.points.empty() ? b->model : build_model(straight);
     b->spec_of.push_back(b->tmpl.skin);
     for (int i = 0; i < static_cast<int>(b->tmpl.surfaces.size()); ++i)
       if (i != b->tmpl.skin) b->spec_of.push_back(i);
@@ -216,7 +222,7 @@ TEST_P(ModelProperties, WithinSurfacesAreClosedOutwardAndInsideTheirFolds) {
     if (spec.kind != SurfaceKind::Within) continue;
     ++within;
     SCOPED_TRACE(spec.name);
-    const DsMesh& m = b.model.surfaces[s].mesh;
+    const DsMesh& m = b.straight.surfaces[s].mesh;
     for (auto h : m.halfedges()) ASSERT_FALSE(m.is_boundary(h));
     for (auto v : m.vertices()) ASSERT_TRUE(m.is_manifold(v));
     const auto comps = component_vertices(m);
@@ -306,7 +312,9 @@ double radius_at_angle0(const Polyline2& loop) {
 }
 
 TEST_P(ModelProperties, FaceCountAndBoundsMatchTheSkinProfile) {
-  const Built& b = built(GetParam());
+  const Built& built_model = built(GetParam());
+  // In the sweep's frame (a spine bends the model afterwards; its own test checks the bend).
+  const Built b{built_model.tmpl, built_model.straight, built_model.straight, built_model.spec_of};
   EXPECT_GT(b.model.face_count(), 0u);
   size_t faces = 0;
   glm::dvec3 lo(1e300), hi(-1e300), skin_lo(1e300), skin_hi(-1e300);
@@ -445,7 +453,7 @@ TEST_P(ModelProperties, NFoldModelWithIdenticalFoldsMapsOntoItself) {
         !loop_symmetric(s.section.loops[0], step))
       GTEST_SKIP() << "section of '" << s.name << "' is not N-fold symmetric";
   }
-  for (const DsSurface& s : b.model.surfaces) {
+  for (const DsSurface& s : b.straight.surfaces) {
     EXPECT_TRUE(rotation_invariant(s.mesh, step, 1e-9)) << s.name;
   }
 }
@@ -458,7 +466,7 @@ TEST_P(ModelProperties, CircleSectionsGiveSurfacesOfRevolution) {
     if (spec.kind != SurfaceKind::Around || !spec.section.circle) continue;
     ++circles;
     std::map<double, std::vector<double>> rings;  // exact height -> radii
-    const DsMesh& m = b.model.surfaces[s].mesh;
+    const DsMesh& m = b.straight.surfaces[s].mesh;
     for (auto v : m.vertices()) {
       const auto& p = m.point(v);
       rings[p[1]].push_back(std::hypot(p[0], p[2]));

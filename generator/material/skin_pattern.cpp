@@ -1,0 +1,96 @@
+#include "material/skin_pattern.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "base/constants.h"
+#include "base/random.h"
+
+namespace cutaway {
+
+namespace {
+
+/// Purpose tag of the pattern streams in derive_seed paths.
+constexpr uint64_t kPurposePattern = 0x7061747465;  // "patte"
+
+double smoothstep(double a, double b, double x) {
+  if (!(b > a)) return x < a ? 0.0 : 1.0;
+  const double t = std::clamp((x - a) / (b - a), 0.0, 1.0);
+  return t * t * (3 - 2 * t);
+}
+
+/// Uniform in [0, 1) from the top 53 bits of a SplitMix64 step.
+double unit(uint64_t& state) {
+  return static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53;
+}
+
+/// Coverage of a stripe layer: stripes centred at half periods of u = t_section * count +
+/// phase + wobble * noise, where the noise is read on a cylinder of one unit per period around
+/// (so it wraps with the section) and along the profile at six and twenty-four waves per skin.
+double stripe_coverage(const SkinPatternLayer& s, const PerlinNoise& noise, double phase,
+                       const glm::dvec2& param) {
+  const double angle = 2 * kPi * param.y, radius = s.count / (2 * kPi);
+  const glm::dvec3 around(radius * std::cos(angle), radius * std::sin(angle), 0.0);
+  const double n = noise(around + glm::dvec3(0, 0, 6 * param.x)) +
+                   0.35 * noise(around * 4.0 + glm::dvec3(0, 17.5, 24 * param.x));
+  const double u = param.y * s.count + phase + s.wobble * n;
+  const double from_centre = std::fabs(u - std::floor(u) - 0.5);
+  const double half = 0.5 * s.width, edge = s.softness * half;
+  return 1.0 - smoothstep(half - edge, half + edge, from_centre);
+}
+
+/// Coverage of a speckle layer: the largest over the lattice points of the 27 cells around the
+/// point, each a sphere of radius size (1 + jitter (2h - 1)) about a point placed uniformly in
+/// its cell (both from the cell's hash), its edge blended over `softness` of the radius.
+double speckle_coverage(const SkinPatternLayer& s, uint64_t cells, const glm::dvec3& position) {
+  const glm::dvec3 q = position / s.spacing_m;
+  const glm::dvec3 base = glm::floor(q);
+  double best = 0;
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dz = -1; dz <= 1; ++dz) {
+        const glm::dvec3 cell = base + glm::dvec3(dx, dy, dz);
+        uint64_t state = derive_seed(cells, {static_cast<uint64_t>(static_cast<int64_t>(cell.x)),
+                                             static_cast<uint64_t>(static_cast<int64_t>(cell.y)),
+                                             static_cast<uint64_t>(static_cast<int64_t>(cell.z))});
+        const glm::dvec3 centre = cell + glm::dvec3(unit(state), unit(state), unit(state));
+        const double radius = s.size_m / s.spacing_m * (1 + s.jitter * (2 * unit(state) - 1));
+        const double d = glm::length(q - centre);
+        best = std::max(best, 1.0 - smoothstep(radius * (1 - s.softness), radius, d));
+      }
+  return best;
+}
+
+}  // namespace
+
+SkinPatterns::SkinPatterns(const std::vector<SkinPatternLayer>& layers, uint64_t seed) {
+  for (size_t k = 0; k < layers.size(); ++k) {
+    const uint64_t layer_seed = derive_seed(seed, {kPurposePattern, k});
+    uint64_t state = layer_seed;
+    const double phase = unit(state);
+    layers_.push_back({layers[k], PerlinNoise(layer_seed), phase, splitmix64(state)});
+  }
+}
+
+double SkinPatterns::coverage(size_t k, const glm::dvec2& param,
+                              const glm::dvec3& position) const {
+  const Layer& layer = layers_[k];
+  return layer.spec.kind == SkinPatternLayer::Kind::Stripes
+             ? stripe_coverage(layer.spec, layer.noise, layer.phase, param)
+             : speckle_coverage(layer.spec, layer.cells, position);
+}
+
+glm::dvec3 SkinPatterns::operator()(const glm::dvec2& param, const glm::dvec3& position,
+                                    const glm::dvec3& colour) const {
+  glm::dvec3 c = colour;
+  for (size_t k = 0; k < layers_.size(); ++k) {
+    const double a = layers_[k].spec.opacity * coverage(k, param, position);
+    c += (layers_[k].spec.colour - c) * a;
+  }
+  return c;
+}
+
+}  // namespace cutaway

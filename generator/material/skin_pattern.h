@@ -1,0 +1,51 @@
+// Skin patterns (doc/template-format.md, Skin patterns): stripes along the profile (a
+// watermelon's, a zucchini's) and speckles (a pear's lenticels, a banana's ripening spots)
+// laid over the skin's outside colour, baked into the skin texture per texel (and into vertex
+// colours when cut faces are not textured). They are the skin's surface only: the colour that
+// diffuses into the volume is the skin's back, which they leave alone.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "material/perlin_noise.h"
+#include "model/template.h"
+
+namespace cutaway {
+
+/// The pattern layers of one object, seeded (stripes turn and wobble, speckles move, per seed).
+class SkinPatterns {
+ public:
+  /// @param layers the template's skin_patterns (copied)
+  /// @param seed   identifies the object, e.g. its Perlin modulation seed
+  SkinPatterns(const std::vector<SkinPatternLayer>& layers, uint64_t seed);
+
+  bool empty() const { return layers_.empty(); }
+
+  /// The skin colour with every layer laid over it in order: c = mix(c, layer colour, opacity *
+  /// coverage), in linear RGB.
+  /// @param param    (t_profile, t_section) of the point on the skin, each 0..1 (the skin
+  ///                 texture's v flipped and u; the sweep parameters of a skin vertex)
+  /// @param position the point in the object frame, metres (speckles are placed in space, so
+  ///                 every piece of the object agrees)
+  /// @param colour   the skin's front colour there, linear RGB
+  glm::dvec3 operator()(const glm::dvec2& param, const glm::dvec3& position,
+                        const glm::dvec3& colour) const;
+
+  /// How much of layer `k` covers the point, 0..1 (before its opacity).
+  double coverage(size_t k, const glm::dvec2& param, const glm::dvec3& position) const;
+
+ private:
+  struct Layer {
+    SkinPatternLayer spec;
+    PerlinNoise noise;   ///< stripes: the wobble
+    double phase = 0;    ///< stripes: turn, in periods
+    uint64_t cells = 0;  ///< speckles: the seed of the lattice's points
+  };
+  std::vector<Layer> layers_;
+};
+
+}  // namespace cutaway

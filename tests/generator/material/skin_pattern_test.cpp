@@ -1,0 +1,139 @@
+// Skin patterns (generator/material/skin_pattern.h, doc/template-format.md Skin patterns):
+// stripes come `count` times around the section, cover `width` of each period and wrap across
+// the section's seam; speckles cover spots of about their size, the same for the same seed and
+// elsewhere for another; layers are laid in order; the rules are checked where they are written.
+#include "material/skin_pattern.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "base/colour.h"
+#include "base/constants.h"
+#include "io/template_parser.h"
+#include "test_support.h"
+
+namespace cutaway {
+namespace {
+
+SkinPatternLayer stripes(int count, double width, double wobble) {
+  SkinPatternLayer s;
+  s.kind = SkinPatternLayer::Kind::Stripes;
+  s.count = count;
+  s.width = width;
+  s.wobble = wobble;
+  s.softness = 0.1;
+  s.colour = {0, 0.2, 0};
+  return s;
+}
+
+SkinPatternLayer speckles(double spacing, double size) {
+  SkinPatternLayer s;
+  s.kind = SkinPatternLayer::Kind::Speckles;
+  s.spacing_m = spacing;
+  s.size_m = size;
+  s.softness = 0.1;
+  s.colour = {1, 1, 1};
+  return s;
+}
+
+TEST(SkinPattern, StripesComeCountTimesAroundCoverTheirWidthAndWrapAcrossTheSeam) {
+  const SkinPatterns p({stripes(12, 0.4, 0.0)}, 7);
+  for (double tp : {0.2, 0.5, 0.8}) {
+    int rises = 0;
+    double covered = 0;
+    const int n = 4800;
+    double before = p.coverage(0, {tp, 1.0 - 1.0 / n}, {});
+    for (int i = 0; i < n; ++i) {
+      const double c = p.coverage(0, {tp, (i + 0.5) / n}, {});
+      rises += before < 0.5 && c >= 0.5;
+      covered += c / n;
+      before = c;
+    }
+    EXPECT_EQ(rises, 12) << tp;
+    EXPECT_NEAR(covered, 0.4, 0.01) << tp;
+  }
+  // With wobble the stripes still wrap: t_section 0 and 1 are the same point.
+  const SkinPatterns w({stripes(9, 0.5, 0.6)}, 3);
+  for (double tp : {0.1, 0.37, 0.9})
+    EXPECT_NEAR(w.coverage(0, {tp, 0.0}, {}), w.coverage(0, {tp, 1.0}, {}), 1e-9);
+  // Another seed turns them.
+  const SkinPatterns turned({stripes(12, 0.4, 0.0)}, 8);
+  double differ = 0;
+  for (int i = 0; i < 100; ++i)
+    differ += std::fabs(p.coverage(0, {0.5, i / 100.0}, {}) -
+                        turned.coverage(0, {0.5, i / 100.0}, {}));
+  EXPECT_GT(differ, 1.0);
+}
+
+TEST(SkinPattern, SpecklesCoverSpotsOfTheirSizeAndMoveWithTheSeed) {
+  // Points on a sphere of 40 mm radius; speckles of 1.5 mm radius on a 4 mm lattice.
+  const SkinPatterns a({speckles(4e-3, 1.5e-3)}, 1), same({speckles(4e-3, 1.5e-3)}, 1);
+  const SkinPatterns b({speckles(4e-3, 1.5e-3)}, 2);
+  int covered = 0, moved = 0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    // a Fibonacci sphere
+    const double z = 1 - (i + 0.5) * 2.0 / n, r = std::sqrt(1 - z * z);
+    const double phi = i * kPi * (3 - std::sqrt(5.0));
+    const glm::dvec3 p = 0.04 * glm::dvec3(r * std::cos(phi), z, r * std::sin(phi));
+    const double ca = a.coverage(0, {}, p);
+    EXPECT_GE(ca, 0.0);
+    EXPECT_LE(ca, 1.0);
+    EXPECT_EQ(ca, same.coverage(0, {}, p));
+    covered += ca > 0.5;
+    moved += (ca > 0.5) != (b.coverage(0, {}, p) > 0.5);
+  }
+  // A surface crosses the spheres as a plane would: it is covered where space is, 4/3 pi
+  // 1.5^3 / 4^3 = 22 % (less where spheres overlap and inside the soft edge).
+  EXPECT_GT(covered, n / 10);
+  EXPECT_LT(covered, n * 35 / 100);
+  EXPECT_GT(moved, covered / 2);
+}
+
+TEST(SkinPattern, LayersAreLaidInOrderWithTheirOpacity) {
+  SkinPatternLayer all = stripes(1, 0.999, 0.0);
+  all.softness = 0;
+  all.colour = {1, 0, 0};
+  all.opacity = 0.5;
+  const SkinPatterns p({all}, 0);
+  const glm::dvec3 c = p({0.5, 0.5}, {}, {0, 0, 1});
+  EXPECT_NEAR(c.r, 0.5, 1e-12);
+  EXPECT_NEAR(c.b, 0.5, 1e-12);
+}
+
+std::string refusal(const std::string& find, const std::string& replace) {
+  const std::string path = test::source_path("templates/onion.yaml").string();
+  std::string text = test::read_file(path);
+  text.replace(text.find(find), find.size(), replace);
+  try {
+    parse_template(text, path, test::source_path("templates").string());
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SkinPattern, RulesAreCheckedWhereTheyAreWritten) {
+  const std::string skin_blur = "    blur: 0.3\n  - name: ring-1";
+  EXPECT_NE(refusal(skin_blur, "    blur: 0.3\n    patterns: [{speckles: {spacing: 1, size: 0.8, "
+                               "jitter: 0.5, colour: \"#ffffff\"}}]\n  - name: ring-1")
+                .find("patterns[0].speckles.spacing: must be at least size x (1 + jitter)"),
+            std::string::npos);
+  EXPECT_NE(refusal(skin_blur, "    blur: 0.3\n    patterns: [{stripes: {count: 300, "
+                               "colour: \"#ffffff\"}}]\n  - name: ring-1")
+                .find("stripes.count: must be a whole number 1 to 256"),
+            std::string::npos);
+  EXPECT_NE(refusal("    blur: 0.25\n  - name: ring-2",
+                    "    blur: 0.25\n    patterns: [{stripes: {count: 3, colour: \"#ffffff\"}}]\n"
+                    "  - name: ring-2")
+                .find("only the skin (role: skin) has patterns"),
+            std::string::npos);
+  EXPECT_EQ(refusal(skin_blur, "    blur: 0.3\n    patterns: [{stripes: {count: 16, width: 0.3, "
+                               "wobble: 0.2, colour: \"#204010\"}}]\n  - name: ring-1"),
+            "");
+}
+
+}  // namespace
+}  // namespace cutaway
