@@ -57,7 +57,7 @@ std::vector<BadSceneCase> bad_scenes() {
       // Items and their templates.
       bad("no_items", 7, 8, "items", "a scene needs at least one item"),
       bad("item_without_template", 11, 5, "items[1]", "missing required field 'template'"),
-      bad("missing_template", 8, 15, "items[0].template", "no template named \"mango\" (looked for"),
+      bad("missing_template", 8, 15, "items[0].template", "no template named \"yuzu\" (looked for"),
       bad("missing_template_file", 11, 15, "items[1].template",
           "the template file \"tests/data/scenes/kiwi.yaml\" does not exist"),
       bad("bad_template_name", 8, 15, "items[0].template", "not \"Tomato\""),

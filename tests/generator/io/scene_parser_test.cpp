@@ -221,9 +221,9 @@ TEST(SceneParser, TemplateNameLookupOrder) {
   fs::create_directories(root / "env");
   fs::copy_file(test::source_path("templates/tomato.yaml"), root / "project/templates/tomato.yaml");
   fs::copy_file(test::source_path("templates/onion.yaml"), root / "env/onion.yaml");
-  fs::copy_file(test::source_path("templates/onion.yaml"), root / "env/pear.yaml");
+  fs::copy_file(test::source_path("templates/onion.yaml"), root / "env/yuzu.yaml");
   const std::string text = kHead +
-      "items: [{template: tomato}, {template: onion}, {template: pear}, {template: cucumber}]\n";
+      "items: [{template: tomato}, {template: onion}, {template: yuzu}, {template: cucumber}]\n";
   const std::string file = (root / "project/scenes/s.yaml").string();
 
   ::setenv("CUTAWAY_TEMPLATES", (root / "env").c_str(), 1);
@@ -232,18 +232,18 @@ TEST(SceneParser, TemplateNameLookupOrder) {
   EXPECT_TRUE(
       same_file(s.items[0].template_path, (root / "project/templates/tomato.yaml").string()));
   EXPECT_TRUE(same_file(s.items[1].template_path, (root / "env/onion.yaml").string()));
-  EXPECT_TRUE(same_file(s.items[2].template_path, (root / "env/pear.yaml").string()));
+  EXPECT_TRUE(same_file(s.items[2].template_path, (root / "env/yuzu.yaml").string()));
   EXPECT_TRUE(same_file(s.items[3].template_path, test::source_path("templates/cucumber.yaml")));
 
-  // Without the environment folder, 'pear' is found nowhere: the message names where it looked.
+  // Without the environment folder, 'yuzu' is found nowhere: the message names where it looked.
   try {
     parse_scene(text, file);
-    ADD_FAILURE() << "'pear' was found";
+    ADD_FAILURE() << "'yuzu' was found";
   } catch (const InputError& e) {
     EXPECT_EQ(e.field(), "items[2].template");
     EXPECT_EQ(e.loc().line, 3);
     EXPECT_EQ(e.loc().column, 59);
-    EXPECT_NE(e.rule().find("no template named \"pear\""), std::string::npos) << e.rule();
+    EXPECT_NE(e.rule().find("no template named \"yuzu\""), std::string::npos) << e.rule();
     EXPECT_NE(e.rule().find((root / "project/templates").string()), std::string::npos) << e.rule();
   }
 }
