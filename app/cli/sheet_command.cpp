@@ -17,6 +17,7 @@
 #include "render/image/contact_sheet.h"
 #include "render/piece_tile.h"
 #include "scene/scene.h"
+#include "variation/variation.h"
 
 namespace cutaway::cli {
 
@@ -25,8 +26,8 @@ namespace {
 /// `cutaway sheet TEMPLATE[:CUT][@VIEW]... -o sheet.png [--cut SPEC] [--tile PX] [--columns N]`:
 /// a contact sheet, one labelled tile per template, cut (by CUT or --cut: a `piece --cut` spec,
 /// or `across`, one horizontal plane through the middle) with its pieces laid out cut face up
-/// (VIEW up, the default) or standing with their cut faces toward the camera (VIEW upright)
-///.
+/// (VIEW up, the default) or standing with their cut faces toward the camera (VIEW upright);
+/// with --seed S every template's variant of seed S (grains included).
 struct SheetArgs {
   std::vector<std::string> items;  ///< "PATH.yaml[:CUT][@VIEW]"
   std::string output;              ///< .png
@@ -35,6 +36,7 @@ struct SheetArgs {
   int columns = 0;                 ///< 0: about sqrt(4/3 * tiles)
   int cube = 16;
   double silhouettes = 1.0;  ///< silhouette stroke strength; 0: none
+  int64_t seed = -1;         ///< >= 0: every template's variant of this seed (with its grains)
 };
 
 using Clock = std::chrono::steady_clock;
@@ -87,12 +89,14 @@ Image sheet_tile(const LoadedItem& item, const SheetArgs& a, const Common& commo
   const auto t0 = Clock::now();
   const Template& tmpl = item.tmpl;
   CutSpec cut = item.cut;
-  const Variant variant{tmpl, build_model(tmpl)};
+  const uint64_t seed = a.seed >= 0 ? static_cast<uint64_t>(a.seed) : 0;
+  const Variant variant =
+      a.seed >= 0 ? make_variant(tmpl, seed) : Variant{tmpl, build_model(tmpl), 0, 0.0};
   const DsModel& model = variant.model;
   if (item.across) cut.plane = mid_height_plane(model);
   SceneAssets assets;
   assets.name = tmpl.name;
-  const CutObject object = cut_for_view(assets, variant, cut, a.cube, common, 1.0, 0,
+  const CutObject object = cut_for_view(assets, variant, cut, a.cube, common, 1.0, seed,
                                         tmpl.name + ": cut '" + item.text + "'");
   const Image tile =
       piece_tile(std::move(assets), object, item.view, a.tile, a.silhouettes, tmpl.name, item.text);
@@ -148,6 +152,10 @@ Command add_sheet_command(CLI::App& app) {
   sheet->add_option("--silhouettes", args->silhouettes,
                     "silhouette stroke strength (0: off; default 1)")
       ->check(CLI::Range(0.0, 10.0));
+  sheet->add_option("--seed", args->seed,
+                    "cut every template's random variant of this seed (grains included) "
+                    "instead of the template itself")
+      ->check(seed_rule());
   return {sheet, [args](const Common& common, OutputSet& outputs) {
             return run_sheet(*args, common, outputs);
           }};
