@@ -107,14 +107,15 @@ std::string diffusion_settings(int cube, const Common& common);
 /// no folder is given and neither XDG_CACHE_HOME nor HOME is set.
 std::unique_ptr<CutCache> open_cut_cache(const CacheArgs& args);
 
-/// `variant` cut for a picture of its pieces (`piece`, `sheet`): every piece kept, vertex
-/// colours modulated by the template's Perlin bands with strength `perlin` and `seed` in the
-/// object frame, the template's materials added to `assets`, the backend --backend chooses
-/// with cube-map size `cube` (cut_object).
+/// `variant` cut for a picture of its pieces (`piece`, `sheet`): every piece kept, colours
+/// (vertex colours, or with CapColours::Texture cut faces and skin baked into textures, the
+/// skin's patterns per texel) modulated by the template's Perlin bands with strength `perlin`
+/// and `seed` in the object frame, the template's materials added to `assets`, the backend
+/// --backend chooses with cube-map size `cube` (cut_object).
 /// @throws UsageError "WHAT: rule" when the cut misses the object (`what` names the cut)
 CutObject cut_for_view(SceneAssets& assets, const Variant& variant, const CutSpec& cut, int cube,
                        const Common& common, double perlin, uint64_t seed,
-                       const std::string& what);
+                       const std::string& what, CapColours colours = CapColours::Vertex);
 
 /// The exit code of `batch merge` when shards are still missing: not bad input (2) nor a
 /// failure (1), but more work due.

@@ -141,7 +141,7 @@ std::string diffusion_settings(int cube, const Common& common) {
 
 CutObject cut_for_view(SceneAssets& assets, const Variant& variant, const CutSpec& cut, int cube,
                        const Common& common, double perlin, uint64_t seed,
-                       const std::string& what) {
+                       const std::string& what, CapColours colours) {
   const PieceMaterials materials = add_piece_materials(
       assets, variant.tmpl.name, variant.tmpl.skin_material, variant.tmpl.cut_material);
   ObjectCutOptions options;
@@ -150,7 +150,7 @@ CutObject cut_for_view(SceneAssets& assets, const Variant& variant, const CutSpe
   options.modulation_seed = seed;
   options.perlin = perlin;
   options.sampling = common.sampling;
-  options.cap_colours = CapColours::Vertex;
+  options.cap_colours = colours;
   ObjectCutStats stats;
   Outcome<CutObject> made =
       cut_object(assets, variant, seed, materials, asset_name(variant.tmpl.name),

@@ -96,8 +96,10 @@ Image sheet_tile(const LoadedItem& item, const SheetArgs& a, const Common& commo
   if (item.across) cut.plane = mid_height_plane(model);
   SceneAssets assets;
   assets.name = tmpl.name;
+  // Textured, so that skin patterns show per texel, not per vertex.
   const CutObject object = cut_for_view(assets, variant, cut, a.cube, common, 1.0, seed,
-                                        tmpl.name + ": cut '" + item.text + "'");
+                                        tmpl.name + ": cut '" + item.text + "'",
+                                        CapColours::Texture);
   const Image tile =
       piece_tile(std::move(assets), object, item.view, a.tile, a.silhouettes, tmpl.name, item.text);
   spdlog::info("{} ({}): {} pieces, {:.1f} s", tmpl.name, item.text, object.set.pieces.size(),

@@ -501,18 +501,21 @@ void parse_variation(const YamlField& root, Template& t) {
   }
 }
 
-/// One layer of the skin's `patterns`: {stripes: {...}} or {speckles: {...}} (doc/
-/// template-format.md, Skin patterns).
+/// One layer of the skin's `patterns`: {stripes: {...}}, {speckles: {...}} or {net: {...}}
+/// (doc/template-format.md, Skin patterns).
 SkinPatternLayer parse_pattern_layer(const YamlField& f, double m) {
   SkinPatternLayer p;
   p.loc = f.loc();
-  if (!f.is_map()) f.fail("a pattern layer is {stripes: {...}} or {speckles: {...}}");
-  f.allow_only({"stripes", "speckles"});
-  if (f.get("stripes").has_value() == f.get("speckles").has_value())
-    f.fail("a pattern layer is {stripes: {...}} or {speckles: {...}}: exactly one of them");
-  const bool stripes = f.get("stripes").has_value();
-  const YamlField b = stripes ? *f.get("stripes") : *f.get("speckles");
-  p.kind = stripes ? SkinPatternLayer::Kind::Stripes : SkinPatternLayer::Kind::Speckles;
+  const char* kinds = "a pattern layer is {stripes: {...}}, {speckles: {...}} or {net: {...}}";
+  if (!f.is_map()) f.fail(kinds);
+  f.allow_only({"stripes", "speckles", "net"});
+  const auto stripes = f.get("stripes"), speckles = f.get("speckles"), net = f.get("net");
+  if (stripes.has_value() + speckles.has_value() + net.has_value() != 1)
+    f.fail(std::string(kinds) + ": exactly one of them");
+  const YamlField b = stripes ? *stripes : speckles ? *speckles : *net;
+  p.kind = stripes    ? SkinPatternLayer::Kind::Stripes
+           : speckles ? SkinPatternLayer::Kind::Speckles
+                      : SkinPatternLayer::Kind::Net;
   if (stripes) {
     b.allow_only({"count", "width", "colour", "opacity", "softness", "wobble"});
     const int64_t count = b.require("count").integer();
@@ -522,15 +525,20 @@ SkinPatternLayer parse_pattern_layer(const YamlField& f, double m) {
     if (!(p.width > 0 && p.width < 1)) b.require("width").fail("must lie strictly between 0 and 1");
     if (auto x = b.get("wobble")) p.wobble = x->number_in(0.0, 1.0);
   } else {
-    b.allow_only({"spacing", "size", "jitter", "colour", "opacity", "softness"});
-    const YamlField spacing = b.require("spacing"), size = b.require("size");
+    // speckles: spot radius `size`; net: line `width`; both at least 0.01 mm
+    const char* size_key = speckles ? "size" : "width";
+    if (speckles) b.allow_only({"spacing", "size", "jitter", "colour", "opacity", "softness"});
+    else b.allow_only({"spacing", "width", "colour", "opacity", "softness"});
+    const YamlField spacing = b.require("spacing"), size = b.require(size_key);
     p.spacing_m = parse_length(spacing, m);
     p.size_m = parse_length(size, m);
     if (p.size_m < 1e-5) size.fail("must be at least 0.01 mm");
     if (auto x = b.get("jitter")) p.jitter = x->number_in(0.0, 1.0);
-    if (p.size_m * (1 + p.jitter) > p.spacing_m)
+    if (speckles && p.size_m * (1 + p.jitter) > p.spacing_m)
       spacing.fail("must be at least size x (1 + jitter): a speckle may not reach past the "
                    "cells next to its own");
+    if (net && p.size_m > 0.5 * p.spacing_m)
+      spacing.fail("must be at least twice the net's width: wider lines would fill the cells");
   }
   p.colour = parse_colour(b.require("colour"));
   if (auto x = b.get("opacity")) p.opacity = x->number_in(0.0, 1.0);

@@ -42,6 +42,15 @@ double stripe_coverage(const SkinPatternLayer& s, const PerlinNoise& noise, doub
   return 1.0 - smoothstep(half - edge, half + edge, from_centre);
 }
 
+/// The lattice point of `cell` (uniform in it, from the cell's hash) and the next uniform of
+/// its stream.
+glm::dvec3 lattice_point(uint64_t cells, const glm::dvec3& cell, uint64_t& state) {
+  state = derive_seed(cells, {static_cast<uint64_t>(static_cast<int64_t>(cell.x)),
+                              static_cast<uint64_t>(static_cast<int64_t>(cell.y)),
+                              static_cast<uint64_t>(static_cast<int64_t>(cell.z))});
+  return cell + glm::dvec3(unit(state), unit(state), unit(state));
+}
+
 /// Coverage of a speckle layer: the largest over the lattice points of the 27 cells around the
 /// point, each a sphere of radius size (1 + jitter (2h - 1)) about a point placed uniformly in
 /// its cell (both from the cell's hash), its edge blended over `softness` of the radius.
@@ -52,16 +61,37 @@ double speckle_coverage(const SkinPatternLayer& s, uint64_t cells, const glm::dv
   for (int dx = -1; dx <= 1; ++dx)
     for (int dy = -1; dy <= 1; ++dy)
       for (int dz = -1; dz <= 1; ++dz) {
-        const glm::dvec3 cell = base + glm::dvec3(dx, dy, dz);
-        uint64_t state = derive_seed(cells, {static_cast<uint64_t>(static_cast<int64_t>(cell.x)),
-                                             static_cast<uint64_t>(static_cast<int64_t>(cell.y)),
-                                             static_cast<uint64_t>(static_cast<int64_t>(cell.z))});
-        const glm::dvec3 centre = cell + glm::dvec3(unit(state), unit(state), unit(state));
+        uint64_t state = 0;
+        const glm::dvec3 centre = lattice_point(cells, base + glm::dvec3(dx, dy, dz), state);
         const double radius = s.size_m / s.spacing_m * (1 + s.jitter * (2 * unit(state) - 1));
         const double d = glm::length(q - centre);
         best = std::max(best, 1.0 - smoothstep(radius * (1 - s.softness), radius, d));
       }
   return best;
+}
+
+/// Coverage of a net layer: the walls between the cells of the lattice points (Worley's cellular
+/// basis: the second-nearest point's distance F2 minus the nearest's F1, zero on a wall), lines
+/// `size` wide where F2 - F1 < size, their edge blended over `softness`.
+double net_coverage(const SkinPatternLayer& s, uint64_t cells, const glm::dvec3& position) {
+  const glm::dvec3 q = position / s.spacing_m;
+  const glm::dvec3 base = glm::floor(q);
+  double f1 = 1e300, f2 = 1e300;
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dz = -1; dz <= 1; ++dz) {
+        uint64_t state = 0;
+        const double d =
+            glm::length(q - lattice_point(cells, base + glm::dvec3(dx, dy, dz), state));
+        if (d < f1) {
+          f2 = f1;
+          f1 = d;
+        } else if (d < f2) {
+          f2 = d;
+        }
+      }
+  const double width = s.size_m / s.spacing_m;
+  return 1.0 - smoothstep(width * (1 - s.softness), width, f2 - f1);
 }
 
 }  // namespace
@@ -78,9 +108,15 @@ SkinPatterns::SkinPatterns(const std::vector<SkinPatternLayer>& layers, uint64_t
 double SkinPatterns::coverage(size_t k, const glm::dvec2& param,
                               const glm::dvec3& position) const {
   const Layer& layer = layers_[k];
-  return layer.spec.kind == SkinPatternLayer::Kind::Stripes
-             ? stripe_coverage(layer.spec, layer.noise, layer.phase, param)
-             : speckle_coverage(layer.spec, layer.cells, position);
+  switch (layer.spec.kind) {
+    case SkinPatternLayer::Kind::Stripes:
+      return stripe_coverage(layer.spec, layer.noise, layer.phase, param);
+    case SkinPatternLayer::Kind::Speckles:
+      return speckle_coverage(layer.spec, layer.cells, position);
+    case SkinPatternLayer::Kind::Net:
+      return net_coverage(layer.spec, layer.cells, position);
+  }
+  return 0.0;
 }
 
 glm::dvec3 SkinPatterns::operator()(const glm::dvec2& param, const glm::dvec3& position,

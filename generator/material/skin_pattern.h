@@ -1,5 +1,6 @@
 // Skin patterns (doc/template-format.md, Skin patterns): stripes along the profile (a
-// watermelon's, a zucchini's) and speckles (a pear's lenticels, a banana's ripening spots)
+// watermelon's, a zucchini's), speckles (a pear's lenticels, a banana's ripening spots) and a
+// net (a cantaloupe's netting: the walls of a 3D Voronoi diagram, after Worley 1996)
 // laid over the skin's outside colour, baked into the skin texture per texel (and into vertex
 // colours when cut faces are not textured). They are the skin's surface only: the colour that
 // diffuses into the volume is the skin's back, which they leave alone.

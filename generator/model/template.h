@@ -168,7 +168,7 @@ struct NprSettings {
 /// One layer of the skin's pattern (doc/template-format.md, Skin patterns): a colour laid over
 /// the skin's outside where the pattern is, baked into the skin texture.
 struct SkinPatternLayer {
-  enum class Kind { Stripes, Speckles };
+  enum class Kind { Stripes, Speckles, Net };
   Kind kind = Kind::Stripes;
   glm::dvec3 colour{0.0};  ///< linear RGB
   double opacity = 1.0;    ///< 0..1: how much of `colour` covers the skin inside the pattern
@@ -178,10 +178,11 @@ struct SkinPatternLayer {
   int count = 0;           ///< stripes around the section, 1..256
   double width = 0.5;      ///< share of each period a stripe covers, 0..1 exclusive
   double wobble = 0.0;     ///< sideways waviness, in periods (0..1): Perlin noise along the skin
-  // Speckles: spots where spheres about jittered lattice points meet the skin.
+  // Speckles: spots where spheres about jittered lattice points meet the skin. Net: lines
+  // where the skin meets the walls between the cells of those points (a cantaloupe's netting).
   double spacing_m = 0.0;  ///< lattice spacing, metres
-  double size_m = 0.0;     ///< spot radius, metres
-  double jitter = 0.0;     ///< 0..1: relative variation of the radius
+  double size_m = 0.0;     ///< speckles: spot radius; net: line width; metres
+  double jitter = 0.0;     ///< speckles: 0..1, relative variation of the radius
   FileLoc loc;
 };
 

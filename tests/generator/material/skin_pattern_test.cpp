@@ -1,7 +1,8 @@
 // Skin patterns (generator/material/skin_pattern.h, doc/template-format.md Skin patterns):
 // stripes come `count` times around the section, cover `width` of each period and wrap across
 // the section's seam; speckles cover spots of about their size, the same for the same seed and
-// elsewhere for another; layers are laid in order; the rules are checked where they are written.
+// elsewhere for another; a net draws thin lines between cells; layers are laid in order; the
+// rules are checked where they are written.
 #include "material/skin_pattern.h"
 
 #include <gtest/gtest.h>
@@ -90,6 +91,32 @@ TEST(SkinPattern, SpecklesCoverSpotsOfTheirSizeAndMoveWithTheSeed) {
   EXPECT_GT(covered, n / 10);
   EXPECT_LT(covered, n * 35 / 100);
   EXPECT_GT(moved, covered / 2);
+}
+
+// A net: lines on the walls between lattice cells. Along a straight line through many cells
+// the coverage rises once per wall crossed, and a point at a lattice point (the middle of its
+// cell) is never on a line.
+TEST(SkinPattern, ANetDrawsThinLinesOnTheWallsBetweenCells) {
+  SkinPatternLayer net = speckles(8e-3, 1e-3);
+  net.kind = SkinPatternLayer::Kind::Net;
+  const SkinPatterns p({net}, 4);
+  int rises = 0;
+  double covered = 0;
+  const int n = 20000;
+  double before = 0;
+  for (int i = 0; i < n; ++i) {
+    const double c = p.coverage(0, {}, {0.4 * i / n, 0.0123, 0.0311});  // 400 mm, 50 cells
+    rises += before < 0.5 && c >= 0.5;
+    covered += c / n;
+    before = c;
+  }
+  // About one wall per cell crossed (a line meets between 1 and 2 walls per cell length).
+  EXPECT_GT(rises, 30);
+  EXPECT_LT(rises, 110);
+  // Lines 1 mm wide (in F2 - F1, about half that to each side of a wall) over 8 mm cells,
+  // crossed at all angles (an oblique crossing is longer): measured 36 %.
+  EXPECT_GT(covered, 0.1);
+  EXPECT_LT(covered, 0.45);
 }
 
 TEST(SkinPattern, LayersAreLaidInOrderWithTheirOpacity) {
