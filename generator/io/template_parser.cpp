@@ -75,9 +75,10 @@ Gradient<T> parse_gradient(const YamlField& f, ParseValue parse_value,
     const double t = stop[0].number_in(0.0, 1.0);
     if (t <= last) stop[0].fail("stops must be in increasing t");
     last = t;
-    if (g.along == GradientAxis::Ripeness)
-      g.by_ripeness.emplace_back(t, parse_gradient<T>(stop[1], parse_value, false));
-    else
+    if (g.along == GradientAxis::Ripeness) {
+      Gradient<T> field = parse_gradient<T>(stop[1], parse_value, false);
+      g.by_ripeness.emplace_back(t, CurveGradient<T>{field.along, std::move(field.stops)});
+    } else
       g.stops.emplace_back(t, parse_value(stop[1]));
   }
   return g;

@@ -41,6 +41,26 @@ T blend_stops(const std::vector<std::pair<double, Stop>>& stops, double t, Value
   return value(stops.back().second);
 }
 
+/// A value that is constant or varies linearly between stops along the profile or the section:
+/// one stop of a gradient along the ripeness (below).
+template <class T>
+struct CurveGradient {
+  GradientAxis along = GradientAxis::Constant;  ///< Constant, Profile or Section
+  std::vector<std::pair<double, T>> stops;      ///< increasing t in 0..1 with their values
+
+  /// The value at t_profile or t_section (whichever the gradient runs along), clamped.
+  T at(double t_profile, double t_section) const {
+    return value_at(along, stops, t_profile, t_section);
+  }
+
+  /// The value of `stops` along `along` (Constant, Profile or Section) at the two parameters.
+  static T value_at(GradientAxis along, const std::vector<std::pair<double, T>>& stops,
+                    double t_profile, double t_section) {
+    const double t = along == GradientAxis::Profile ? t_profile : t_section;
+    return blend_stops<T>(stops, t, [](const T& v) { return v; });
+  }
+};
+
 /// A value that is constant or varies linearly between stops along the profile, the section or
 /// the ripeness (doc/template-format.md: COLOR, LENGTH, GRADIENT). T is glm::dvec3 (linear RGB)
 /// or double (metres). Along the ripeness each stop holds a whole field (constant, or itself
@@ -51,23 +71,26 @@ struct Gradient {
   GradientAxis along = GradientAxis::Constant;
   /// Constant, Profile, Section: increasing t in 0..1 with their values; one stop when constant.
   std::vector<std::pair<double, T>> stops;
-  /// Ripeness: increasing ripeness in 0..1 with the field at it (none of them along ripeness).
-  std::vector<std::pair<double, Gradient<T>>> by_ripeness;
+  /// Ripeness: increasing ripeness in 0..1 with the field at it.
+  std::vector<std::pair<double, CurveGradient<T>>> by_ripeness;
 
   /// A constant field.
-  static Gradient constant(T value) { return Gradient{GradientAxis::Constant, {{0.0, value}}, {}}; }
+  static Gradient constant(T value) {
+    Gradient g;
+    g.stops.emplace_back(0.0, value);
+    return g;
+  }
 
   /// The value at normalised arc length t_profile along the profile and t_section along the
   /// section (both 0..1), for a variant of the given ripeness (0..1); the parameters the
   /// gradient does not run along are ignored. Values beyond the first and last stops are clamped.
   T at(double t_profile, double t_section, double ripeness) const {
     if (along == GradientAxis::Ripeness) {
-      return blend_stops<T>(by_ripeness, ripeness, [&](const Gradient<T>& g) {
-        return g.at(t_profile, t_section, ripeness);
+      return blend_stops<T>(by_ripeness, ripeness, [&](const CurveGradient<T>& g) {
+        return g.at(t_profile, t_section);
       });
     }
-    const double t = along == GradientAxis::Profile ? t_profile : t_section;
-    return blend_stops<T>(stops, t, [](const T& v) { return v; });
+    return CurveGradient<T>::value_at(along, stops, t_profile, t_section);
   }
 };
 
