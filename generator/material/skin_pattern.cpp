@@ -42,13 +42,23 @@ double stripe_coverage(const SkinPatternLayer& s, const PerlinNoise& noise, doub
   return 1.0 - smoothstep(half - edge, half + edge, from_centre);
 }
 
-/// The lattice point of `cell` (uniform in it, from the cell's hash) and the next uniform of
-/// its stream.
-glm::dvec3 lattice_point(uint64_t cells, const glm::dvec3& cell, uint64_t& state) {
-  state = derive_seed(cells, {static_cast<uint64_t>(static_cast<int64_t>(cell.x)),
-                              static_cast<uint64_t>(static_cast<int64_t>(cell.y)),
-                              static_cast<uint64_t>(static_cast<int64_t>(cell.z))});
-  return cell + glm::dvec3(unit(state), unit(state), unit(state));
+/// Calls visit(point, state) for the lattice point of each of the 27 cells around `q` (lattice
+/// units): a point placed uniformly in its cell from the cell's hash, and that hash's stream
+/// after the three uniforms, for whatever else the cell draws.
+template <class Visit>
+void visit_lattice_points(uint64_t cells, const glm::dvec3& q, Visit visit) {
+  const glm::dvec3 base = glm::floor(q);
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dz = -1; dz <= 1; ++dz) {
+        const glm::dvec3 cell = base + glm::dvec3(dx, dy, dz);
+        uint64_t state =
+            derive_seed(cells, {static_cast<uint64_t>(static_cast<int64_t>(cell.x)),
+                                static_cast<uint64_t>(static_cast<int64_t>(cell.y)),
+                                static_cast<uint64_t>(static_cast<int64_t>(cell.z))});
+        const glm::dvec3 point = cell + glm::dvec3(unit(state), unit(state), unit(state));
+        visit(point, state);
+      }
 }
 
 /// Coverage of a speckle layer: the largest over the lattice points of the 27 cells around the
@@ -56,17 +66,12 @@ glm::dvec3 lattice_point(uint64_t cells, const glm::dvec3& cell, uint64_t& state
 /// its cell (both from the cell's hash), its edge blended over `softness` of the radius.
 double speckle_coverage(const SkinPatternLayer& s, uint64_t cells, const glm::dvec3& position) {
   const glm::dvec3 q = position / s.spacing_m;
-  const glm::dvec3 base = glm::floor(q);
   double best = 0;
-  for (int dx = -1; dx <= 1; ++dx)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dz = -1; dz <= 1; ++dz) {
-        uint64_t state = 0;
-        const glm::dvec3 centre = lattice_point(cells, base + glm::dvec3(dx, dy, dz), state);
-        const double radius = s.size_m / s.spacing_m * (1 + s.jitter * (2 * unit(state) - 1));
-        const double d = glm::length(q - centre);
-        best = std::max(best, 1.0 - smoothstep(radius * (1 - s.softness), radius, d));
-      }
+  visit_lattice_points(cells, q, [&](const glm::dvec3& centre, uint64_t& state) {
+    const double radius = s.size_m / s.spacing_m * (1 + s.jitter * (2 * unit(state) - 1));
+    const double d = glm::length(q - centre);
+    best = std::max(best, 1.0 - smoothstep(radius * (1 - s.softness), radius, d));
+  });
   return best;
 }
 
@@ -75,21 +80,16 @@ double speckle_coverage(const SkinPatternLayer& s, uint64_t cells, const glm::dv
 /// `size` wide where F2 - F1 < size, their edge blended over `softness`.
 double net_coverage(const SkinPatternLayer& s, uint64_t cells, const glm::dvec3& position) {
   const glm::dvec3 q = position / s.spacing_m;
-  const glm::dvec3 base = glm::floor(q);
   double f1 = 1e300, f2 = 1e300;
-  for (int dx = -1; dx <= 1; ++dx)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dz = -1; dz <= 1; ++dz) {
-        uint64_t state = 0;
-        const double d =
-            glm::length(q - lattice_point(cells, base + glm::dvec3(dx, dy, dz), state));
-        if (d < f1) {
-          f2 = f1;
-          f1 = d;
-        } else if (d < f2) {
-          f2 = d;
-        }
-      }
+  visit_lattice_points(cells, q, [&](const glm::dvec3& point, uint64_t&) {
+    const double d = glm::length(q - point);
+    if (d < f1) {
+      f2 = f1;
+      f1 = d;
+    } else if (d < f2) {
+      f2 = d;
+    }
+  });
   const double width = s.size_m / s.spacing_m;
   return 1.0 - smoothstep(width * (1 - s.softness), width, f2 - f1);
 }

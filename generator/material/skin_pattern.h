@@ -44,7 +44,7 @@ class SkinPatterns {
     SkinPatternLayer spec;
     PerlinNoise noise;   ///< stripes: the wobble
     double phase = 0;    ///< stripes: turn, in periods
-    uint64_t cells = 0;  ///< speckles: the seed of the lattice's points
+    uint64_t cells = 0;  ///< speckles, net: the seed of the lattice's points
   };
   std::vector<Layer> layers_;
 };
