@@ -15,7 +15,7 @@ packages=(
   libglm-dev libeigen3-dev libopenmesh-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libembree-dev libtbb-dev libtinygltf-dev nlohmann-json3-dev libmeshoptimizer-dev libbullet-dev libbullet-extras-dev
   libcpp-httplib-dev node-yaml libjs-three
-  libosmesa6-dev libegl-dev libgl-dev libgles-dev python3 python3-glad libsleef-dev
+  libosmesa6-dev libegl-dev libgl-dev libgles-dev python3 python3-glad libsleef-dev libopenvdb-dev
   povray
 )
 test_packages=(libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev nodejs npm

@@ -71,6 +71,8 @@ Command add_sheet_command(CLI::App& app);
 Command add_scene_command(CLI::App& app);
 /// `cutaway batch BATCH.yaml -o DIR [--shard K/M] [--slurm ...]` and `cutaway batch merge DIR`.
 Command add_batch_command(CLI::App& app);
+/// `cutaway volume TEMPLATE -o OUT [-o ...] [--seed S] [--voxel LENGTH]`.
+Command add_volume_command(CLI::App& app);
 /// `cutaway check FILE...`.
 Command add_check_command(CLI::App& app);
 /// `cutaway edit [TEMPLATE] [--port N]`.

@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
   const std::vector<Command> commands{
       add_model_command(app), add_section_command(app), add_variants_command(app),
       add_piece_command(app), add_sheet_command(app),   add_scene_command(app),
-      add_batch_command(app), add_check_command(app),   add_edit_command(app)};
+      add_batch_command(app), add_volume_command(app), add_check_command(app),   add_edit_command(app)};
 
   spdlog::set_default_logger(spdlog::stderr_color_st("cutaway"));
   spdlog::set_pattern("%v");

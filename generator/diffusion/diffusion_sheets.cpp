@@ -59,4 +59,11 @@ std::vector<DiffusionSheet> make_diffusion_sheets(const DsModel& model) {
   return sheets;
 }
 
+std::vector<DiffusionSheet> surface_sheets(const DsModel& model) {
+  std::vector<DiffusionSheet> sheets;
+  for (const DsSurface& surface : model.surfaces)
+    sheets.push_back(sheet_of(surface.mesh, vertex_normals(surface.mesh), 0));
+  return sheets;
+}
+
 }  // namespace cutaway

@@ -36,4 +36,9 @@ inline constexpr double kMinSheetOffset_m = 1e-6;
 /// distance behind showing the back colour.
 std::vector<DiffusionSheet> make_diffusion_sheets(const DsModel& model);
 
+/// Every surface of `model` as one two-faced sheet where it lies (no blur offset), sheet k
+/// being surface k: for finding which surface a ray meets first and on which side, as the
+/// interior volume does (volume/interior_volume.h).
+std::vector<DiffusionSheet> surface_sheets(const DsModel& model);
+
 }  // namespace cutaway

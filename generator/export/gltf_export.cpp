@@ -984,6 +984,8 @@ EncodedScene encode_scene(const SceneAssets& assets, const GltfSceneOptions& opt
     for (const auto& [view, extensions] : model.view_extensions)
       scene.doc["bufferViews"][static_cast<size_t>(view)]["extensions"] = extensions;
   }
+  for (const auto& [key, value] : options.scene_extras.items())
+    scene.doc["scenes"][0]["extras"][key] = value;
   return scene;
 }
 

@@ -6,6 +6,8 @@
 #include <string>
 #include <string_view>
 
+#include <nlohmann/json.hpp>
+
 #include "assets/scene_assets.h"
 #include "export/texture_image.h"
 #include "model/ds_model.h"
@@ -84,6 +86,9 @@ struct GltfSceneOptions {
   bool camera_and_lights = true;
   /// Collision hulls of the pieces (scenes leave them out: their pieces have settled).
   GltfCollision collision = GltfCollision::None;
+  /// Members added to the scene's extras (an object; e.g. `interior_volume`, the files of the
+  /// object's interior volume, volume/interior_volume.h), beside those the export writes.
+  nlohmann::json scene_extras = nlohmann::json::object();
 };
 
 /// "none", "quantize" or "meshopt" as a GltfCompression.

@@ -2,7 +2,10 @@
 
 #include <limits>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
+
+#include "base/error.h"
 
 namespace cutaway {
 
@@ -42,14 +45,19 @@ void update_bounds(DsModel& model) {
   model.bbox_max = hi;
 }
 
-Plane mid_height_plane(const DsModel& model) {
-  const DsMesh& skin = model.skin().mesh;
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (const auto vh : skin.vertices()) {
-    lo = std::min(lo, skin.point(vh)[1]);
-    hi = std::max(hi, skin.point(vh)[1]);
+std::pair<glm::dvec3, glm::dvec3> skin_bounds(const DsModel& model) {
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+  for (const auto vh : model.skin().mesh.vertices()) {
+    lo = glm::min(lo, to_glm(model.skin().mesh.point(vh)));
+    hi = glm::max(hi, to_glm(model.skin().mesh.point(vh)));
   }
-  return {{0, 0.5 * (lo + hi), 0}, {0, 1, 0}};
+  CUTAWAY_CHECK(hi.x >= lo.x);
+  return {lo, hi};
+}
+
+Plane mid_height_plane(const DsModel& model) {
+  const auto [lo, hi] = skin_bounds(model);
+  return {{0, 0.5 * (lo.y + hi.y), 0}, {0, 1, 0}};
 }
 
 std::vector<glm::dvec3> vertex_normals(const DsMesh& mesh) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
@@ -86,6 +87,11 @@ void set_material(DsMesh& mesh, const glm::dvec2& front, const glm::dvec2& back)
 
 /// Recomputes `model.bbox_min/max` from the surfaces' vertices.
 void update_bounds(DsModel& model);
+
+/// The skin's axis-aligned bounding box (lowest corner, highest corner), metres: the object's
+/// own extent, which grains standing proud of the skin do not move.
+/// @pre the model has a skin with vertices
+std::pair<glm::dvec3, glm::dvec3> skin_bounds(const DsModel& model);
 
 /// The horizontal plane (normal +Y) halfway between the lowest and the highest vertex of the
 /// skin, metres: the mid-height cut of the contact sheets, the variants strip and the tests.

@@ -1,0 +1,280 @@
+#include "volume/interior_volume.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+#include <utility>
+
+#include <glm/geometric.hpp>
+#include <oneapi/tbb/blocked_range.h>
+#include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/task_arena.h>
+
+#include "base/error.h"
+#include "base/timer.h"
+#include "diffusion/diffusion_sheets.h"
+#include "diffusion/sheet_rays.h"
+
+namespace cutaway {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// The rays cast from each voxel centre: the six face-neighbour directions (+x, -x, +y, -y,
+/// +z, -z), then the kSideVotes voting directions (off every axis and diagonal, so that no
+/// vote grazes a sheet the grid or a fold lines up with). 15 rays: one Embree packet.
+constexpr int kEdgeRays = 6;
+const std::array<glm::vec3, kEdgeRays + kSideVotes>& voxel_directions() {
+  static const std::array<glm::vec3, kEdgeRays + kSideVotes> directions = [] {
+    std::array<glm::vec3, kEdgeRays + kSideVotes> d{};
+    d[0] = {1, 0, 0}, d[1] = {-1, 0, 0}, d[2] = {0, 1, 0};
+    d[3] = {0, -1, 0}, d[4] = {0, 0, 1}, d[5] = {0, 0, -1};
+    const glm::vec3 votes[kSideVotes] = {{2, 3, 5},   {-5, 2, 3}, {3, -5, 2},
+                                        {-2, -3, 5}, {5, -2, -3}, {-3, 5, -2},
+                                        {2, 7, -3},  {-7, -3, -2}, {3, -2, -7}};
+    for (int v = 0; v < kSideVotes; ++v) d[kEdgeRays + v] = glm::normalize(votes[v]);
+    return d;
+  }();
+  return directions;
+}
+
+/// Whether the side of `hit`'s surface that a ray along `direction` meets is solid.
+bool solid_side(const DsModel& model, const std::vector<DiffusionSheet>& sheets,
+                const SheetHit& hit, const glm::vec3& direction) {
+  if (hit.sheet < 0) return false;
+  const DsSurface& surface = model.surfaces[static_cast<size_t>(hit.sheet)];
+  const bool front = glm::dot(sheets[static_cast<size_t>(hit.sheet)].face_normal[hit.triangle],
+                              direction) < 0;
+  if (front) return surface.role != SurfaceRole::Skin && surface.visible_front;
+  return surface.visible_back;
+}
+
+/// The majority of the side votes among `hits` (kSideVotes, after the edge rays).
+bool voted_solid(const DsModel& model, const std::vector<DiffusionSheet>& sheets,
+                 std::span<const SheetHit> hits) {
+  const auto& dirs = voxel_directions();
+  int solid = 0;
+  for (int v = 0; v < kSideVotes; ++v)
+    solid += solid_side(model, sheets, hits[kEdgeRays + v], dirs[kEdgeRays + v]) ? 1 : 0;
+  return 2 * solid > kSideVotes;
+}
+
+/// Runs body(begin, end) over [0, n) in chunks on `threads` threads (0: all cores).
+template <typename Body>
+void parallel_chunks(size_t n, int threads, Body body) {
+  auto run = [&] {
+    oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<size_t>(0, n, 64),
+                              [&](const oneapi::tbb::blocked_range<size_t>& r) {
+                                body(r.begin(), r.end());
+                              });
+  };
+  if (threads > 0) {
+    oneapi::tbb::task_arena arena(threads);
+    arena.execute(run);
+  } else {
+    run();
+  }
+}
+
+/// Union-find root of `v`, halving the path on the way.
+uint32_t find_root(std::vector<uint32_t>& parent, uint32_t v) {
+  while (parent[v] != v) {
+    parent[v] = parent[parent[v]];
+    v = parent[v];
+  }
+  return v;
+}
+
+}  // namespace
+
+double default_voxel_length(const DsModel& model) {
+  const auto [lo, hi] = skin_bounds(model);
+  const glm::dvec3 extent = hi - lo;
+  return std::max({extent.x, extent.y, extent.z}) / kDefaultVoxelsAcross;
+}
+
+Outcome<InteriorVolume> volume_grid(const DsModel& model, double voxel_m) {
+  if (!std::isfinite(voxel_m) || voxel_m <= 0)
+    return Outcome<InteriorVolume>::none("the voxel length must be positive and finite");
+  const auto [lo, hi] = skin_bounds(model);
+  InteriorVolume volume;
+  volume.voxel_m = voxel_m;
+  double count = 1;
+  for (int a = 0; a < 3; ++a) {
+    // The box's voxels, plus one empty voxel beyond it on each side.
+    const double n = std::ceil((hi[a] - lo[a]) / voxel_m) + 3;
+    count *= n;
+    if (n > 1e7 || count > static_cast<double>(kMaxVolumeVoxels))
+      return Outcome<InteriorVolume>::none(
+          std::to_string(voxel_m) + " m makes more than " + std::to_string(kMaxVolumeVoxels) +
+          " voxels over the skin; give a longer voxel length");
+    volume.size[a] = static_cast<int>(n);
+    volume.origin[a] = 0.5 * (lo[a] + hi[a]) - 0.5 * (n - 1) * voxel_m;
+  }
+  return volume;
+}
+
+std::vector<PointClass> classify_points(const DsModel& model,
+                                        const std::vector<glm::dvec3>& points, double reach_m,
+                                        int threads) {
+  const std::vector<DiffusionSheet> sheets = surface_sheets(model);
+  const SheetRayCaster caster(sheets, threads);
+  const auto& dirs = voxel_directions();
+  std::vector<PointClass> classes(points.size());
+  parallel_chunks(points.size(), threads, [&](size_t begin, size_t end) {
+    std::array<SheetHit, kEdgeRays + kSideVotes> hits;
+    for (size_t p = begin; p < end; ++p) {
+      caster.cast(points[p], dirs, hits);
+      classes[p].solid = voted_solid(model, sheets, hits);
+      for (int e = 0; e < kEdgeRays; ++e)
+        classes[p].near_sheet = classes[p].near_sheet ||
+                                (hits[static_cast<size_t>(e)].sheet >= 0 &&
+                                 hits[static_cast<size_t>(e)].at.t < reach_m);
+    }
+  });
+  return classes;
+}
+
+InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBackend& diffusion,
+                                      InteriorVolume grid, int threads,
+                                      const ColourModulation* modulation, double strength) {
+  InteriorVolume volume = std::move(grid);
+  const double voxel_m = volume.voxel_m;
+  CUTAWAY_CHECK(voxel_m > 0 && volume.voxels() > 0 && volume.voxels() <= kMaxVolumeVoxels);
+  const auto t0 = Clock::now();
+  const size_t n = volume.voxels();
+  const std::vector<DiffusionSheet> sheets = surface_sheets(model);
+  const SheetRayCaster caster(sheets, threads);
+  const auto& dirs = voxel_directions();
+  std::vector<char> solid(n, 0);
+  // Per surface, each vertex's blur (metres), for telling sharp crossings from soft ones.
+  std::vector<std::vector<float>> blur(model.surfaces.size());
+  for (size_t s = 0; s < model.surfaces.size(); ++s)
+    for (auto vh : model.surfaces[s].mesh.vertices())
+      blur[s].push_back(static_cast<float>(model.surfaces[s].mesh.data(vh).blur));
+  // Per voxel and face-neighbour direction (+x, -x, +y, -y, +z, -z): the distance to the
+  // plane of the surface its segment crosses first (infinity: none), and whether that
+  // surface's blur there is at least half a voxel (a soft crossing, bit e).
+  constexpr float kNone = std::numeric_limits<float>::infinity();
+  std::vector<std::array<float, kEdgeRays>> crossing(n);
+  std::vector<uint8_t> soft(n, 0);
+  const int nx = volume.size.x, ny = volume.size.y;
+  parallel_chunks(n, threads, [&](size_t begin, size_t end) {
+    std::array<SheetHit, kEdgeRays + kSideVotes> hits;
+    for (size_t v = begin; v < end; ++v) {
+      const int i = static_cast<int>(v % nx), j = static_cast<int>(v / nx % ny);
+      const int k = static_cast<int>(v / (static_cast<size_t>(nx) * ny));
+      caster.cast(volume.centre(i, j, k), dirs, hits);
+      solid[v] = voted_solid(model, sheets, hits) ? 1 : 0;
+      for (int e = 0; e < kEdgeRays; ++e) {
+        const SheetHit& hit = hits[static_cast<size_t>(e)];
+        crossing[v][static_cast<size_t>(e)] = kNone;
+        if (hit.sheet < 0 || hit.at.t >= voxel_m) continue;
+        const auto sheet = static_cast<size_t>(hit.sheet);
+        const glm::uvec3& corner = sheets[sheet].triangle[hit.triangle];
+        const double b = (1 - hit.at.u - hit.at.v) * blur[sheet][corner[0]] +
+                         hit.at.u * blur[sheet][corner[1]] + hit.at.v * blur[sheet][corner[2]];
+        if (b >= 0.5 * voxel_m) soft[v] |= static_cast<uint8_t>(1u << e);
+        crossing[v][static_cast<size_t>(e)] = static_cast<float>(
+            hit.at.t * std::abs(static_cast<double>(sheets[sheet].face_normal[hit.triangle][e / 2])));
+      }
+    }
+  });
+  // Sheet distances: over the sharp crossings, and the soft ones between solid and empty.
+  const size_t step[3] = {1, static_cast<size_t>(nx), static_cast<size_t>(nx) * ny};
+  volume.sheet_distance.assign(n, static_cast<float>(voxel_m));
+  for (size_t v = 0; v < n; ++v) {
+    const int coord[3] = {static_cast<int>(v % nx), static_cast<int>(v / nx % ny),
+                          static_cast<int>(v / step[2])};
+    for (int e = 0; e < kEdgeRays; ++e) {
+      const float d = crossing[v][static_cast<size_t>(e)];
+      if (d == kNone) continue;
+      const int a = e / 2, q = coord[a] + (e % 2 == 0 ? 1 : -1);
+      const bool other_solid =
+          q >= 0 && q < volume.size[a] && solid[e % 2 == 0 ? v + step[a] : v - step[a]];
+      if ((soft[v] >> e & 1u) && other_solid == static_cast<bool>(solid[v])) continue;
+      volume.sheet_distance[v] = std::min(volume.sheet_distance[v], d);
+    }
+  }
+
+  // Regions: solid face neighbours whose segment crosses no sharp surface are joined.
+  std::vector<uint32_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0u);
+  for (size_t v = 0; v < n; ++v) {
+    if (!solid[v]) continue;
+    const int coord[3] = {static_cast<int>(v % nx), static_cast<int>(v / nx % ny),
+                          static_cast<int>(v / step[2])};
+    for (int a = 0; a < 3; ++a) {
+      const size_t e = 2 * static_cast<size_t>(a);  // the +a direction
+      if (coord[a] + 1 >= volume.size[a] ||
+          (crossing[v][e] != kNone && !(soft[v] >> e & 1u)))
+        continue;
+      const size_t w = v + step[a];
+      if (!solid[w]) continue;
+      const uint32_t rv = find_root(parent, static_cast<uint32_t>(v));
+      const uint32_t rw = find_root(parent, static_cast<uint32_t>(w));
+      if (rv != rw) parent[std::max(rv, rw)] = std::min(rv, rw);
+    }
+  }
+  volume.region.assign(n, kEmptyRegion);
+  std::vector<uint32_t> label(n, kEmptyRegion);
+  std::vector<glm::dvec3> points;
+  for (size_t v = 0; v < n; ++v) {
+    if (!solid[v]) continue;
+    const uint32_t root = find_root(parent, static_cast<uint32_t>(v));
+    if (label[root] == kEmptyRegion) label[root] = ++volume.regions;
+    volume.region[v] = label[root];
+    points.push_back(volume.centre(static_cast<int>(v % nx), static_cast<int>(v / nx % ny),
+                                   static_cast<int>(v / step[2])));
+  }
+  volume.solid = points.size();
+  volume.seconds_classify = seconds_since(t0);
+
+  const auto t1 = Clock::now();
+  std::vector<glm::dvec3> colour(points.size());
+  std::vector<glm::dvec2> material(points.size());
+  diffusion.diffuse_channels(points, colour, material);
+  if (modulation)
+    for (size_t p = 0; p < points.size(); ++p)
+      colour[p] = (*modulation)(points[p], colour[p], strength);
+  volume.seconds_diffuse = seconds_since(t1);
+  volume.colour.assign(n, glm::vec3(0));
+  volume.material.assign(n, glm::vec2(0));
+  size_t p = 0;
+  for (size_t v = 0; v < n; ++v) {
+    if (!solid[v]) continue;
+    volume.colour[v] = glm::vec3(colour[p]);
+    volume.material[v] = glm::vec2(material[p]);
+    ++p;
+  }
+  // Empty voxels next to solid ones take their solid face neighbours' mean.
+  for (size_t v = 0; v < n; ++v) {
+    if (solid[v]) continue;
+    const int coord[3] = {static_cast<int>(v % nx), static_cast<int>(v / nx % ny),
+                          static_cast<int>(v / step[2])};
+    glm::dvec3 c(0);
+    glm::dvec2 m(0);
+    int count = 0;
+    for (int a = 0; a < 3; ++a) {
+      for (int s = -1; s <= 1; s += 2) {
+        const int q = coord[a] + s;
+        if (q < 0 || q >= volume.size[a]) continue;
+        const size_t w = s > 0 ? v + step[a] : v - step[a];
+        if (!solid[w]) continue;
+        c += glm::dvec3(volume.colour[w]);
+        m += glm::dvec2(volume.material[w]);
+        ++count;
+      }
+    }
+    if (count == 0) continue;
+    volume.colour[v] = glm::vec3(c / static_cast<double>(count));
+    volume.material[v] = glm::vec2(m / static_cast<double>(count));
+  }
+  return volume;
+}
+
+}  // namespace cutaway

@@ -1,0 +1,108 @@
+// A variant's interior as a volume: the PMVC colour and material channels sampled on a regular
+// grid, with what keeps sheets crisp between the samples (doc/algorithms.md §8): each voxel's
+// region (the solid cell between sheets it lies in, or empty) and its distance to the nearest
+// sheet, so a sampler (volume_lookup.h, the cutting page's shader) can colour a cut anywhere
+// without running PMVC again.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "base/outcome.h"
+#include "diffusion/diffusion.h"
+#include "material/colour_modulation.h"
+#include "model/ds_model.h"
+
+namespace cutaway {
+
+/// Region id of empty voxels: outside the skin, or on a hollow side (a cavity).
+inline constexpr uint32_t kEmptyRegion = 0;
+
+/// The most voxels one volume may have (about 1.5 GB of samples and two minutes of PMVC per
+/// million solid voxels on two cores): a finer grid is refused before any work.
+inline constexpr size_t kMaxVolumeVoxels = 16'000'000;
+
+/// A regular grid of samples over an object's skin, object frame, metres. Voxel (i, j, k) is
+/// the cube of edge `voxel_m` centred on origin + voxel_m (i, j, k); arrays are indexed
+/// i + size.x (j + size.y k) (x fastest, then y, then z). The grid reaches one voxel beyond the
+/// skin's bounding box on every side, so every border voxel is empty.
+struct InteriorVolume {
+  glm::ivec3 size{0};           ///< voxels along x, y, z
+  glm::dvec3 origin{0.0};       ///< centre of voxel (0, 0, 0), metres
+  double voxel_m = 0;           ///< edge length, metres
+  /// Linear RGB per voxel: PMVC at the voxel's centre where it is solid; where it is empty,
+  /// the mean of its solid face neighbours (0 with none), so that plain trilinear filtering
+  /// by a tool that ignores `region` does not darken the skin's outline.
+  std::vector<glm::vec3> colour;
+  std::vector<glm::vec2> material;  ///< roughness, translucency (0..1), as `colour`
+  /// Per voxel: kEmptyRegion, or 1 + the index of the solid region its centre lies in. Two
+  /// face neighbours share a region when the segment between their centres crosses no
+  /// surface; regions are numbered in voxel order of their first voxel.
+  std::vector<uint32_t> region;
+  /// Per voxel, metres: the distance from its centre to the plane of the nearest surface
+  /// crossing on its six face-neighbour segments, at most voxel_m (voxel_m: none within one
+  /// voxel). A sampler reads it as an unsigned distance to its region's border.
+  std::vector<float> sheet_distance;
+  uint32_t regions = 0;    ///< solid regions (the largest region id)
+  size_t solid = 0;        ///< voxels whose region is not empty (the PMVC points)
+  double seconds_classify = 0;  ///< ray casts for the regions and the distances
+  double seconds_diffuse = 0;   ///< PMVC at the solid voxels
+
+  size_t voxels() const { return static_cast<size_t>(size.x) * size.y * size.z; }
+  size_t index(int i, int j, int k) const {
+    return static_cast<size_t>(i) + static_cast<size_t>(size.x) * (j + static_cast<size_t>(size.y) * k);
+  }
+  /// The centre of voxel (i, j, k), metres.
+  glm::dvec3 centre(int i, int j, int k) const { return origin + voxel_m * glm::dvec3(i, j, k); }
+};
+
+/// How many voxels the longest edge of the skin's bounding box gets when no voxel length is
+/// given (doc/algorithms.md §8, Voxel size: chosen from the accuracy table).
+inline constexpr int kDefaultVoxelsAcross = 96;
+
+/// The default voxel edge for `model`: its skin's longest bounding-box edge /
+/// kDefaultVoxelsAcross, metres. @pre the skin has vertices
+double default_voxel_length(const DsModel& model);
+
+/// The grid over `model`'s skin with voxel edge `voxel_m` (metres): size and origin set, no
+/// samples; or none, with the reason, when voxel_m is not positive and finite or the grid
+/// would have more than kMaxVolumeVoxels voxels.
+Outcome<InteriorVolume> volume_grid(const DsModel& model, double voxel_m);
+
+/// Samples `model`'s interior on `grid` (volume_grid's, for this model): each voxel
+/// classified solid or empty by the side votes (classify_points), regions joined along
+/// face-neighbour segments that cross no surface (one ray each), sheet distances from those
+/// crossings, and `diffusion` (PMVC over the model's diffusion sheets, the same backend and
+/// settings as cut faces) at every solid voxel's centre, then, with `modulation`, the object's
+/// Perlin colour modulation of that strength at the same centres (as cut faces get it:
+/// material/colour_modulation.h). Ray casts run on `threads` threads (0: all cores); the
+/// result does not depend on it.
+InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBackend& diffusion,
+                                      InteriorVolume grid, int threads = 0,
+                                      const ColourModulation* modulation = nullptr,
+                                      double strength = 1.0);
+
+/// The number of directions whose first hits vote on whether a point is solid (odd: no ties).
+inline constexpr int kSideVotes = 9;
+
+/// What classify_points says of one point.
+struct PointClass {
+  bool solid = false;       ///< inside the object and not in a cavity
+  bool near_sheet = false;  ///< a surface lies within the given reach along some axis
+};
+
+/// Per point (#P, metres, object frame): whether it is solid, and whether a surface crosses
+/// one of the six axis-parallel segments of length `reach_m` from it. A point is solid when
+/// the surface side a ray from it meets first is solid in most of kSideVotes fixed directions;
+/// a side is empty when it is the skin's front (outside) or a hollow side
+/// (DsSurface::visible_front/back false), and a ray that meets nothing counts as empty. The
+/// same test as sample_interior_volume's, for checking a volume at points of one's choosing.
+std::vector<PointClass> classify_points(const DsModel& model,
+                                        const std::vector<glm::dvec3>& points, double reach_m,
+                                        int threads = 0);
+
+}  // namespace cutaway

@@ -1,0 +1,237 @@
+// The interior volume (volume/interior_volume.h, volume_lookup.h, volume_accuracy.h): the grid
+// and its frame, solid and empty, regions and sheet distances, PMVC at the voxel centres, the
+// reading rule, and the accuracy bound against PMVC on random caps.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "diffusion/diffusion.h"
+#include "io/template_parser.h"
+#include "model/model_builder.h"
+#include "test_support.h"
+#include "volume/interior_volume.h"
+#include "volume/volume_accuracy.h"
+#include "volume/volume_lookup.h"
+
+namespace cutaway {
+namespace {
+
+/// A sphere of radius 30 mm holding a sphere of radius 12 mm: hollow inside (the fixture as it
+/// is), or, with `inner` replacing its visibility line, a solid inner sphere.
+DsModel spheres(const std::string& inner = "") {
+  const std::string path = test::source_path("tests/data/section_hollow.yaml").string();
+  std::string text = test::read_file(path);
+  if (!inner.empty()) {
+    const size_t at = text.find("    visible: {back: false}");
+    text.replace(at, std::string("    visible: {back: false}").size(), inner);
+  }
+  return build_model(parse_template(text, path, test::source_path("tests/data").string()));
+}
+
+std::unique_ptr<DiffusionBackend> cpu(const DsModel& model) {
+  DiffusionOptions options;
+  return make_cpu_diffusion(model, options);
+}
+
+InteriorVolume sampled(const DsModel& model, double voxel_m, int threads = 0) {
+  auto grid = volume_grid(model, voxel_m);
+  EXPECT_TRUE(grid.has_value());
+  return sample_interior_volume(model, *cpu(model), std::move(*grid), threads);
+}
+
+TEST(InteriorVolume, GridReachesOneVoxelBeyondTheSkinOnEverySide) {
+  const DsModel model = spheres();
+  const auto [lo, hi] = skin_bounds(model);
+  const Outcome<InteriorVolume> grid = volume_grid(model, 0.002);
+  ASSERT_TRUE(grid);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_EQ(grid->size[a], static_cast<int>(std::ceil((hi[a] - lo[a]) / 0.002)) + 3);
+    // The outermost voxel centres lie at least one voxel outside the skin's box...
+    EXPECT_LE(grid->origin[a], lo[a] - 0.002 + 1e-12);
+    EXPECT_GE(grid->centre(grid->size.x - 1, grid->size.y - 1, grid->size.z - 1)[a],
+              hi[a] + 0.002 - 1e-12);
+    // ...and the grid is centred on it.
+    const double mid = 0.5 * (grid->origin[a] + grid->centre(grid->size.x - 1, grid->size.y - 1,
+                                                             grid->size.z - 1)[a]);
+    EXPECT_NEAR(mid, 0.5 * (lo[a] + hi[a]), 1e-12);
+  }
+  EXPECT_TRUE(grid->colour.empty());  // a grid, no samples yet
+}
+
+TEST(InteriorVolume, RefusesAVoxelThatIsNotALengthOrMakesTooManyVoxels) {
+  const DsModel model = spheres();
+  EXPECT_FALSE(volume_grid(model, 0.0));
+  EXPECT_FALSE(volume_grid(model, -1.0));
+  EXPECT_FALSE(volume_grid(model, std::nan("")));
+  const Outcome<InteriorVolume> fine = volume_grid(model, 1e-5);
+  ASSERT_FALSE(fine);
+  EXPECT_NE(fine.reason().find("voxels over the skin"), std::string::npos) << fine.reason();
+}
+
+TEST(InteriorVolume, OutsideAndTheHollowCavityAreEmptyTheShellIsOneSolidRegion) {
+  const DsModel model = spheres();
+  const double voxel = 0.003;
+  const InteriorVolume v = sampled(model, voxel);
+  ASSERT_EQ(v.region.size(), v.voxels());
+  EXPECT_EQ(v.regions, 1u);
+  size_t solid = 0;
+  for (int k = 0; k < v.size.z; ++k)
+    for (int j = 0; j < v.size.y; ++j)
+      for (int i = 0; i < v.size.x; ++i) {
+        const double r = glm::length(v.centre(i, j, k));
+        const uint32_t region = v.region[v.index(i, j, k)];
+        solid += region != kEmptyRegion;
+        // Away from the two spheres by more than half a voxel's diagonal, the side is clear.
+        if (r < 0.012 - 0.9 * voxel || r > 0.030 + 0.9 * voxel)
+          EXPECT_EQ(region, kEmptyRegion) << i << " " << j << " " << k;
+        else if (r > 0.012 + 0.9 * voxel && r < 0.030 - 0.9 * voxel)
+          EXPECT_EQ(region, 1u) << i << " " << j << " " << k;
+      }
+  EXPECT_EQ(solid, v.solid);
+  const double shell = 4.0 / 3.0 * std::numbers::pi * (std::pow(0.030, 3) - std::pow(0.012, 3));
+  EXPECT_NEAR(static_cast<double>(v.solid) * std::pow(voxel, 3), shell, 0.05 * shell);
+}
+
+TEST(InteriorVolume, SolidVoxelsHoldPmvcAtTheirCentresEmptyOnesBesideThemTheirMean) {
+  const DsModel model = spheres();
+  const InteriorVolume v = sampled(model, 0.004);
+  const auto diffusion = cpu(model);
+  int checked = 0, dilated = 0;
+  for (int k = 0; k < v.size.z; k += 3)
+    for (int j = 0; j < v.size.y; j += 2)
+      for (int i = 0; i < v.size.x; ++i) {
+        const size_t at = v.index(i, j, k);
+        if (v.region[at] == kEmptyRegion) {
+          dilated += v.colour[at] != glm::vec3(0);
+          continue;
+        }
+        const std::vector<glm::dvec3> pmvc = diffusion->diffuse(std::vector{v.centre(i, j, k)});
+        EXPECT_EQ(v.colour[at], glm::vec3(pmvc[0])) << i << " " << j << " " << k;
+        ++checked;
+      }
+  EXPECT_GT(checked, 50);
+  EXPECT_GT(dilated, 10);  // the skin's outline and the cavity's wall
+  // A corner voxel, far from everything, stays black.
+  EXPECT_EQ(v.colour[0], glm::vec3(0));
+}
+
+TEST(InteriorVolume, SharpSurfacesSeparateRegionsBlurredOnesDoNot) {
+  // The inner sphere solid on both sides: a sharp one bounds a region of its own...
+  const InteriorVolume sharp = sampled(spheres("    blur: 0"), 0.003);
+  EXPECT_EQ(sharp.regions, 2u);
+  // ...one blurred by more than half a voxel does not: its colours change smoothly across it.
+  const InteriorVolume soft = sampled(spheres("    blur: 2"), 0.003);
+  EXPECT_EQ(soft.regions, 1u);
+  // Sheet distances: within a voxel of the sharp sphere they are below one voxel, and never
+  // above it anywhere.
+  int near = 0;
+  for (int k = 0; k < sharp.size.z; ++k)
+    for (int j = 0; j < sharp.size.y; ++j)
+      for (int i = 0; i < sharp.size.x; ++i) {
+        const size_t at = sharp.index(i, j, k);
+        EXPECT_LE(sharp.sheet_distance[at], static_cast<float>(sharp.voxel_m));
+        const double r = glm::length(sharp.centre(i, j, k));
+        if (std::abs(r - 0.012) < 0.4 * sharp.voxel_m) {
+          EXPECT_LT(sharp.sheet_distance[at], 0.45 * sharp.voxel_m);
+          EXPECT_NEAR(sharp.sheet_distance[at], std::abs(r - 0.012), 0.1 * sharp.voxel_m);
+          ++near;
+        }
+      }
+  EXPECT_GT(near, 20);
+}
+
+TEST(InteriorVolume, TheThreadCountDoesNotChangeTheVolume) {
+  const DsModel model = spheres("    blur: 0");
+  const InteriorVolume one = sampled(model, 0.004, 1);
+  const InteriorVolume two = sampled(model, 0.004, 2);
+  EXPECT_EQ(one.region, two.region);
+  EXPECT_EQ(one.sheet_distance, two.sheet_distance);
+  EXPECT_EQ(one.colour, two.colour);
+  EXPECT_EQ(one.material, two.material);
+}
+
+/// A 4 x 2 x 2 volume cut by the plane x = origin.x + 1.3 voxels: region 1 (red) on the low
+/// side, region 2 (blue) on the high side, sheet distances as the sampler measures them.
+InteriorVolume two_region_volume() {
+  InteriorVolume v;
+  v.size = {4, 2, 2};
+  v.voxel_m = 0.01;
+  v.origin = {0.1, 0.2, 0.3};
+  const size_t n = v.voxels();
+  v.colour.resize(n);
+  v.material.resize(n);
+  v.region.resize(n);
+  v.sheet_distance.resize(n);
+  const float distance[4] = {0.01f, 0.003f, 0.007f, 0.01f};
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 4; ++i) {
+        const size_t at = v.index(i, j, k);
+        v.region[at] = i <= 1 ? 1 : 2;
+        v.colour[at] = i <= 1 ? glm::vec3(0.8f, 0.1f, 0.1f) : glm::vec3(0.1f, 0.1f, 0.8f);
+        v.material[at] = i <= 1 ? glm::vec2(0.3f, 0.1f) : glm::vec2(0.6f, 0.2f);
+        v.sheet_distance[at] = distance[i];
+      }
+  v.regions = 2;
+  return v;
+}
+
+TEST(InteriorVolumeLookup, ASheetBetweenVoxelCentresStaysSharpAtItsOwnPlace) {
+  const InteriorVolume v = two_region_volume();
+  for (const double y : {0.2, 0.204, 0.21})
+    for (const double z : {0.3, 0.307}) {
+      const VolumeSample before = sample_volume(v, {0.1 + 0.0129, y, z});
+      const VolumeSample after = sample_volume(v, {0.1 + 0.0131, y, z});
+      EXPECT_EQ(before.region, 1u);
+      EXPECT_EQ(after.region, 2u);
+      // No blend of the two sides, however near the sheet.
+      EXPECT_EQ(before.colour, glm::vec3(0.8f, 0.1f, 0.1f));
+      EXPECT_EQ(after.colour, glm::vec3(0.1f, 0.1f, 0.8f));
+      EXPECT_EQ(after.material, glm::vec2(0.6f, 0.2f));
+    }
+}
+
+TEST(InteriorVolumeLookup, OutsideTheGridIsEmpty) {
+  const InteriorVolume v = two_region_volume();
+  EXPECT_EQ(sample_volume(v, {0.0999, 0.205, 0.305}).region, kEmptyRegion);
+  EXPECT_EQ(sample_volume(v, {0.1301, 0.205, 0.305}).region, kEmptyRegion);
+  EXPECT_EQ(sample_volume(v, {std::nan(""), 0.205, 0.305}).region, kEmptyRegion);
+  EXPECT_EQ(sample_volume(v, {0.1299, 0.2099, 0.3099}).region, 2u);  // inside the last centre
+}
+
+TEST(InteriorVolumeAccuracy, TomatoCapsFromTheVolumeMatchPmvcWithinTheBound) {
+  // The tomato at half the default resolution (48 voxels across), on four random caps. Bounds
+  // in steps of 1/255 of sRGB, with headroom over what it measures (doc/algorithms.md §8):
+  // 0.7 / 7.7 away from sheets, 3.0 / 14.6 near them, 0.09 % of points on the wrong side.
+  const Template tmpl = load_template(test::source_path("templates/tomato.yaml").string());
+  const DsModel model = build_model(tmpl);
+  const auto diffusion = cpu(model);
+  auto grid = volume_grid(model, default_voxel_length(model) * 2);
+  ASSERT_TRUE(grid);
+  const InteriorVolume volume = sample_interior_volume(model, *diffusion, std::move(*grid));
+  const VolumeErrors e = volume_errors(model, *diffusion, volume, random_cap_planes(model, 4, 7));
+  EXPECT_GT(e.points, 3000u);
+  EXPECT_GT(e.near_points, 300u);
+  EXPECT_LT(e.mean_far, 1.5);
+  EXPECT_LT(e.p99_far, 12.0);
+  EXPECT_LT(e.mean_near, 5.0);
+  EXPECT_LT(e.p99_near, 25.0);
+  EXPECT_LT(e.wrong_side, 0.005);
+}
+
+TEST(InteriorVolumeAccuracy, RandomCapPlanesCrossTheMiddleOfTheSkin) {
+  const DsModel model = spheres();
+  const std::vector<Plane> planes = random_cap_planes(model, 20, 3);
+  ASSERT_EQ(planes.size(), 20u);
+  for (const Plane& p : planes) {
+    EXPECT_NEAR(glm::length(p.normal), 1.0, 1e-12);
+    for (int a = 0; a < 3; ++a) EXPECT_LE(std::abs(p.point[a]), 0.015 + 1e-9);
+  }
+  EXPECT_EQ(random_cap_planes(model, 20, 3)[7].normal, planes[7].normal);  // seeded
+  EXPECT_NE(random_cap_planes(model, 20, 4)[7].normal, planes[7].normal);
+}
+
+}  // namespace
+}  // namespace cutaway
