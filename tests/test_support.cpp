@@ -64,12 +64,16 @@ std::string in_source_dir(const std::string& program, const std::vector<std::str
 }  // namespace
 
 RunResult run_cutaway(const std::vector<std::string>& args) {
+  return run_program(CUTAWAY_BINARY, args);
+}
+
+RunResult run_program(const std::string& program, const std::vector<std::string>& args) {
   static int counter = 0;
   const auto dir = std::filesystem::path(CUTAWAY_TEST_TMP) / "runs";
   std::filesystem::create_directories(dir);
   const std::string tag = std::to_string(::getpid()) + "-" + std::to_string(counter++);
   const auto out = dir / (tag + ".out"), err = dir / (tag + ".err");
-  std::string cmd = in_source_dir(CUTAWAY_BINARY, args);
+  std::string cmd = in_source_dir(program, args);
   cmd += " </dev/null >";
   cmd += shell_quote(out.string());
   cmd += " 2>";

@@ -32,6 +32,9 @@ struct RunResult {
 /// directory, and captures exit code, stdout and stderr.
 RunResult run_cutaway(const std::vector<std::string>& args);
 
+/// Runs `program` (a path, or a name found on PATH) with `args` as run_cutaway runs cutaway.
+RunResult run_program(const std::string& program, const std::vector<std::string>& args);
+
 /// What one run of build/cutaway under limits did.
 struct LimitedRun {
   int exit_code = -1;  ///< -1: killed by a signal
