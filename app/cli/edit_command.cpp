@@ -22,11 +22,12 @@ namespace {
 /// How long a stop waits for requests still being computed before the process ends anyway.
 constexpr std::chrono::seconds kStopGrace{2};
 
-/// `cutaway edit TEMPLATE [--port N]`: serves the template
+/// `cutaway edit TEMPLATE [--port N] [--volume-voxels N]`: serves the template
 /// editor on 127.0.0.1 until interrupted. TEMPLATE need not exist yet (a new template).
 struct EditArgs {
   std::string template_path = "new-template.yaml";  ///< opened, or made on the first Save
   int port = 8765;
+  int volume_voxels = EditServerOptions{}.volume_voxels_across;  ///< the cutting page's grid
 };
 
 int run_edit(const EditArgs& a) {
@@ -38,9 +39,11 @@ int run_edit(const EditArgs& a) {
   EditServerOptions options;
   options.template_path = path;
   options.port = a.port;
+  options.volume_voxels_across = a.volume_voxels;
   EditServer server(options, opengl_edit_pictures());
-  spdlog::info("cutaway edit: {} at http://127.0.0.1:{}/ (Ctrl-C stops)", path.string(),
-               server.port());
+  spdlog::info("cutaway edit: {} at http://127.0.0.1:{}/ (Ctrl-C stops); cut it live at "
+               "/cut.html",
+               path.string(), server.port());
   // Ctrl-C or SIGTERM stops the server from a thread that waits for the signal. The server
   // ends its connections at once, but a request being computed (a check of a huge template)
   // would keep run() waiting: after kStopGrace the process ends without it. Saves are atomic,
@@ -85,6 +88,9 @@ Command add_edit_command(CLI::App& app) {
   edit->add_option("--port", args->port,
                    "port on 127.0.0.1 (default 8765; 0: any free port, printed)")
       ->check(CLI::Range(0, 65535));
+  edit->add_option("--volume-voxels", args->volume_voxels,
+                   "voxels along the longest edge of the cutting page's interior volume")
+      ->check(CLI::Range(4, 256));
   return {edit, [args](const Common&, OutputSet&) { return run_edit(*args); }};
 }
 

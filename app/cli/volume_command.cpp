@@ -17,7 +17,6 @@
 #include "cut/piece_views.h"
 #include "export/vdb_export.h"
 #include "export/volume_flipbook.h"
-#include "io/cut_notation.h"
 #include "io/template_parser.h"
 #include "material/colour_modulation.h"
 #include "model/model_builder.h"
@@ -151,13 +150,8 @@ int run_volume(const VolumeArgs& a, const Common& common, OutputSet& outputs) {
                  flipbooks.colour.size(), flipbooks.structure.size(), flipbooks.material.size());
   }
   if (!paths.gltf.empty()) {
-    SceneAssets assets;
-    assets.name = tmpl.name;
-    const CutObject object =
-        cut_for_view(assets, variant, *parse_cut_spec("whole", tmpl.metres_per_unit),
-                     a.cube, common, a.perlin, modulation_seed, "the whole object",
-                     CapColours::Texture);
-    assets = piece_assets(std::move(assets), object, 0.0, 800, 600);
+    const SceneAssets assets =
+        whole_object_assets(variant, *diffusion, a.perlin, modulation_seed);
     GltfSceneOptions gltf = export_options("quantize", 0, "jpeg");
     gltf.camera_and_lights = false;
     nlohmann::json reference = {{"voxel_m", volume.voxel_m},

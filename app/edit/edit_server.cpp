@@ -9,6 +9,7 @@
 #include <condition_variable>
 #include <cstring>
 #include <functional>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <set>
@@ -32,8 +33,10 @@
 #include "base/error.h"
 #include "base/file_read.h"
 #include "batch/variant_set.h"
+#include "cut/piece_views.h"
 #include "diffusion/diffusion.h"
 #include "export/gltf_export.h"
+#include "export/volume_flipbook.h"
 #include "io/template_parser.h"
 #include "io/text_rules.h"
 #include "io/yaml_reader.h"
@@ -41,6 +44,7 @@
 #include "model/model_builder.h"
 #include "variation/grains.h"
 #include "variation/variation.h"
+#include "volume/interior_volume.h"
 
 namespace cutaway {
 
@@ -449,6 +453,46 @@ void get_page(const httplib::Request&, httplib::Response& res) {
   res.set_content(std::string(*page), "text/html; charset=utf-8");
 }
 
+/// GET /cut.html: the cutting page, an embedded file.
+void get_cutting_page(const httplib::Request&, httplib::Response& res) {
+  const std::optional<std::string_view> page = editor_web_file("cut.html");
+  CUTAWAY_CHECK(page.has_value());
+  res.set_content(std::string(*page), "text/html; charset=utf-8");
+}
+
+/// The files of the interior volume of `b`'s template (no seed) with `across` voxels along its
+/// skin's longest edge, as the cutting page loads them, by kind ("json", "colour.png",
+/// "structure.png", "material.png", "glb"): the sidecar naming the flipbooks NAME.KIND, and the
+/// whole object referring to NAME.json. PMVC as cut faces have it (cpu backend, cube 16), with
+/// the template's Perlin modulation.
+/// @throws InputError when the volume has more regions than a flipbook numbers
+std::map<std::string, std::string> volume_files_of(const Built& b, int across) {
+  const std::string& name = b.tmpl.name;
+  const auto diffusion = make_cpu_diffusion(b.model, DiffusionOptions{});
+  Outcome<InteriorVolume> grid =
+      volume_grid(b.model, default_voxel_length(b.model) * kDefaultVoxelsAcross / across);
+  CUTAWAY_CHECK(grid.has_value());  // `across` is bounded well below kMaxVolumeVoxels
+  const ColourModulation modulation(b.tmpl.npr, 0);
+  const InteriorVolume volume =
+      sample_interior_volume(b.model, *diffusion, std::move(*grid), 0, &modulation, 1.0);
+  const Outcome<VolumeFlipbooks> books = encode_flipbooks(volume);
+  if (!books) throw InputError({b.tmpl.file, 0, 0}, "(file)", books.reason());
+  std::map<std::string, std::string> files;
+  files["json"] = volume_sidecar(volume, name, -1,
+                                 {name + ".colour.png", name + ".structure.png",
+                                  name + ".material.png", ""})
+                      .dump(2);
+  files["colour.png"] = books->colour;
+  files["structure.png"] = books->structure;
+  files["material.png"] = books->material;
+  GltfSceneOptions gltf;
+  gltf.camera_and_lights = false;
+  gltf.scene_extras["interior_volume"] = {{"sidecar", name + ".json"}};
+  files["glb"] = scene_to_glb(whole_object_assets(Variant{b.tmpl, b.model}, *diffusion, 1.0, 0),
+                              gltf);
+  return files;
+}
+
 /// GET /NAME.js and /NAME.css: the page's embedded scripts and style sheets.
 void get_web_file(const httplib::Request& req, httplib::Response& res) {
   const std::string type = req.matches[2] == "js" ? "text/javascript" : "text/css";
@@ -501,6 +545,12 @@ struct EditServer::Impl {
   std::string built_text;
   std::optional<Built> built;
   std::unique_ptr<DiffusionBackend> section_backend, coarse_section_backend;
+  // The interior volume of the file as it was last asked for (volume_files_of), made one at a
+  // time and without the work lock (it takes seconds): the text it is of, and its files.
+  std::mutex volume_work;
+  std::string volume_text;
+  std::string volume_name;
+  std::map<std::string, std::string> volume_files;
 
   ~Impl() {
     if (listen_fd >= 0) ::close(listen_fd);
@@ -617,6 +667,11 @@ struct EditServer::Impl {
   /// GET /api/template: the file as it is on disk; no work lock (saves rename a whole file
   /// into place).
   void get_template(const httplib::Request& req, httplib::Response& res);
+  /// GET /api/volume/NAME.KIND: a file of the interior volume of the template file as it is on
+  /// disk (KIND json, colour.png, structure.png, material.png or glb; volume_files_of), NAME
+  /// being its template's name; 404 for another name or no file yet, 422 with the verdict
+  /// when the file does not build.
+  void get_volume_file(const httplib::Request& req, httplib::Response& res);
   /// POST /api/check: the verdict on the text, as check_template_text() gives it (200 either
   /// way).
   void post_check(const httplib::Request& req, httplib::Response& res, const std::string& body);
@@ -681,6 +736,43 @@ void EditServer::Impl::get_template(const httplib::Request&, httplib::Response& 
   } catch (const EnvironmentError& e) {
     reply_json(res, 500, {{"ok", false}, {"file", file}, {"message", e.what()}});
   }
+}
+
+void EditServer::Impl::get_volume_file(const httplib::Request& req, httplib::Response& res) {
+  std::optional<std::string> text;
+  try {
+    text = read_template_file(options.template_path);
+  } catch (const EnvironmentError& e) {
+    reply_json(res, 500, {{"ok", false}, {"message", e.what()}});
+    return;
+  }
+  if (!text) {
+    reply_json(res, 404, {{"ok", false}, {"message", "the template is not saved yet"}});
+    return;
+  }
+  const std::lock_guard<std::mutex> lock(volume_work);
+  if (volume_text != *text || volume_files.empty()) {
+    std::optional<Built> copy;
+    handle(*text, res, [&](const Built& b) { copy = b; });
+    if (!copy) return;  // handle() answered with the verdict
+    volume_files.clear();
+    answer_or_refuse(res, [&] {
+      volume_files = volume_files_of(*copy, options.volume_voxels_across);
+      volume_text = *text;
+      volume_name = copy->tmpl.name;
+    });
+    if (volume_files.empty()) return;  // answered with the error
+  }
+  const std::string kind = req.matches[2];
+  if (req.matches[1] != volume_name) {
+    reply_json(res, 404, {{"ok", false},
+                          {"message", "this editor serves the volume of " + volume_name}});
+    return;
+  }
+  const std::string type = kind == "json"  ? "application/json"
+                           : kind == "glb" ? "model/gltf-binary"
+                                           : "image/png";
+  res.set_content(volume_files.at(kind), type);
 }
 
 void EditServer::Impl::post_check(const httplib::Request&, httplib::Response& res,
@@ -805,6 +897,9 @@ EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
   s.router.Get(R"(/([a-z_]+)\.(js|css))", get_web_file);
   s.router.Get(R"(/lib/([a-z]+)/(.+))", std::bind_front(&Impl::get_library_file, &s));
   s.router.Get("/api/template", std::bind_front(&Impl::get_template, &s));
+  s.router.Get("/cut.html", get_cutting_page);
+  s.router.Get(R"(/api/volume/([a-z0-9_-]+)\.(json|colour\.png|structure\.png|material\.png|glb))",
+               std::bind_front(&Impl::get_volume_file, &s));
   s.post("/api/check", std::bind_front(&Impl::post_check, &s));
   s.post("/api/model.png", std::bind_front(&Impl::post_model_png, &s));
   s.post("/api/model.glb", std::bind_front(&Impl::post_model_glb, &s));

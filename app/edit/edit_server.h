@@ -6,7 +6,8 @@
 // Security, as for any local server: it listens on 127.0.0.1 only; requests whose Host or
 // Origin is not the server's own are refused (DNS rebinding, cross-site pages); it serves a
 // fixed set of embedded files and reads and writes only the one template file it was started
-// on (no path comes from a request), and only while it is a regular file.
+// on (no path comes from a request), and only while it is a regular file. The cutting page
+// (/cut.html) cuts that file's template live from its interior volume (/api/volume/...).
 //
 // Bounds, so that no client, however slow or large its requests, stops the others being
 // answered: request bodies are limited in size whatever their transfer encoding (compressed
@@ -80,6 +81,9 @@ struct EditServerOptions {
   int section_cube = 8;                 ///< PMVC cube-map size of the live cross-section
   int coarse_section_cube = 3;          ///< the same while the user drags the plane
   int variant_cube = 8;                 ///< PMVC cube-map size of the variants' cuts
+  /// Voxels along the skin's longest edge of the cutting page's volume (GET /api/volume/...;
+  /// 4..256): coarser than `cutaway volume`'s default, so the page opens in seconds.
+  int volume_voxels_across = 64;
   std::vector<WebLibrary> libraries = editor_libraries();  ///< served at /lib/NAME/
 };
 

@@ -130,4 +130,23 @@ SceneAssets grid_piece_assets(SceneAssets assets, const CutPieces& object, Piece
   return assets;
 }
 
+SceneAssets whole_object_assets(const Variant& variant, const DiffusionBackend& diffusion,
+                                double perlin, uint64_t seed) {
+  SceneAssets assets;
+  assets.name = variant.tmpl.name;
+  const PieceMaterials materials = add_piece_materials(
+      assets, variant.tmpl.name, variant.tmpl.skin_material, variant.tmpl.cut_material);
+  ObjectCutOptions options;
+  options.cut = CutSpec{};  // CutType::Whole
+  options.modulation_seed = seed;
+  options.perlin = perlin;
+  options.cap_colours = CapColours::Texture;
+  ObjectCutStats stats;
+  const Outcome<CutObject> object = cut_object(assets, variant, seed, materials,
+                                               asset_name(variant.tmpl.name), diffusion, options,
+                                               stats);
+  CUTAWAY_CHECK(object.has_value());  // a whole object is never missed
+  return piece_assets(std::move(assets), *object, 0.0, 800, 600);
+}
+
 }  // namespace cutaway

@@ -1,6 +1,7 @@
 // Pictures of the pieces of one object (`cutaway piece --png`, `cutaway sheet`): the pieces
 // as a small SceneAssets, either pulled apart from the object's centre or laid side by side on
-// the ground with their cut faces showing.
+// the ground with their cut faces showing; and the whole object in its own frame (the asset an
+// interior volume goes with).
 #pragma once
 
 #include <string>
@@ -17,6 +18,13 @@ namespace cutaway {
 /// and textures cut_object() added and its name; the pieces' meshes and instances are added.
 SceneAssets piece_assets(SceneAssets assets, const CutPieces& object, double explode, int width,
                          int height);
+
+/// `variant` uncut as an asset in its object frame (metres, +Y up, where its interior volume
+/// lies): one mesh, its skin baked into a texture with the skin's patterns and the Perlin
+/// modulation of strength `perlin` and `seed` (cut_object), the template's skin material, a
+/// front camera and studio lights (for those who render it).
+SceneAssets whole_object_assets(const Variant& variant, const DiffusionBackend& diffusion,
+                                double perlin, uint64_t seed);
 
 /// How grid_piece_assets() turns each piece.
 enum class PieceView {
