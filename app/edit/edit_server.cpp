@@ -36,7 +36,7 @@
 #include "cut/piece_views.h"
 #include "diffusion/diffusion.h"
 #include "export/gltf_export.h"
-#include "export/volume_flipbook.h"
+#include "export/volume_files.h"
 #include "io/template_parser.h"
 #include "io/text_rules.h"
 #include "io/yaml_reader.h"
@@ -470,21 +470,15 @@ std::map<std::string, std::string> volume_files_of(const Built& b, int across) {
   const std::string& name = b.tmpl.name;
   const auto diffusion = make_cpu_diffusion(b.model, DiffusionOptions{});
   Outcome<InteriorVolume> grid =
-      volume_grid(b.model, default_voxel_length(b.model) * kDefaultVoxelsAcross / across);
+      volume_grid(b.model, voxel_length_across(b.model, across));
   CUTAWAY_CHECK(grid.has_value());  // `across` is bounded well below kMaxVolumeVoxels
   const ColourModulation modulation(b.tmpl.npr, 0);
   const InteriorVolume volume =
       sample_interior_volume(b.model, *diffusion, std::move(*grid), 0, &modulation, 1.0);
-  const Outcome<VolumeFlipbooks> books = encode_flipbooks(volume);
-  if (!books) throw InputError({b.tmpl.file, 0, 0}, "(file)", books.reason());
+  Outcome<std::vector<NamedFile>> made = volume_files(volume, name, name, -1, false);
+  if (!made) throw InputError({b.tmpl.file, 0, 0}, "(file)", made.reason());
   std::map<std::string, std::string> files;
-  files["json"] = volume_sidecar(volume, name, -1,
-                                 {name + ".colour.png", name + ".structure.png",
-                                  name + ".material.png", ""})
-                      .dump(2);
-  files["colour.png"] = books->colour;
-  files["structure.png"] = books->structure;
-  files["material.png"] = books->material;
+  for (auto& [file, bytes] : *made) files[file.substr(name.size() + 1)] = std::move(bytes);
   GltfSceneOptions gltf;
   gltf.camera_and_lights = false;
   gltf.scene_extras["interior_volume"] = {{"sidecar", name + ".json"}};

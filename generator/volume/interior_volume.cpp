@@ -91,10 +91,11 @@ uint32_t find_root(std::vector<uint32_t>& parent, uint32_t v) {
 
 }  // namespace
 
-double default_voxel_length(const DsModel& model) {
+double voxel_length_across(const DsModel& model, int across) {
+  CUTAWAY_CHECK(across > 0);
   const auto [lo, hi] = skin_bounds(model);
   const glm::dvec3 extent = hi - lo;
-  return std::max({extent.x, extent.y, extent.z}) / kDefaultVoxelsAcross;
+  return std::max({extent.x, extent.y, extent.z}) / across;
 }
 
 Outcome<InteriorVolume> volume_grid(const DsModel& model, double voxel_m) {

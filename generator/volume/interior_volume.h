@@ -64,9 +64,14 @@ struct InteriorVolume {
 /// given (doc/algorithms.md §8, Voxel size: chosen from the accuracy table).
 inline constexpr int kDefaultVoxelsAcross = 96;
 
-/// The default voxel edge for `model`: its skin's longest bounding-box edge /
-/// kDefaultVoxelsAcross, metres. @pre the skin has vertices
-double default_voxel_length(const DsModel& model);
+/// The voxel edge that puts `across` voxels along the longest edge of `model`'s skin's
+/// bounding box, metres. @pre the skin has vertices, across > 0
+double voxel_length_across(const DsModel& model, int across);
+
+/// The default voxel edge for `model`: voxel_length_across(model, kDefaultVoxelsAcross).
+inline double default_voxel_length(const DsModel& model) {
+  return voxel_length_across(model, kDefaultVoxelsAcross);
+}
 
 /// The grid over `model`'s skin with voxel edge `voxel_m` (metres): size and origin set, no
 /// samples; or none, with the reason, when voxel_m is not positive and finite or the grid

@@ -69,8 +69,7 @@ int main(int argc, char** argv) {
     const auto diffusion = cutaway::make_cpu_diffusion(model, options);
     const std::vector<cutaway::Plane> caps = cutaway::random_cap_planes(model, planes, 1);
     for (int n : across) {
-      const double voxel_m =
-          cutaway::default_voxel_length(model) * cutaway::kDefaultVoxelsAcross / n;
+      const double voxel_m = cutaway::voxel_length_across(model, n);
       auto grid = cutaway::volume_grid(model, voxel_m);
       if (!grid) {
         std::printf("%s %d refused: %s\n", name.c_str(), n, grid.reason().c_str());

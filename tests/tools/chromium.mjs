@@ -1,6 +1,7 @@
 // Headless Chromium for the page tests (/usr/bin/chromium through npm playwright-core), shut
 // off from the network: a fresh profile, no proxy, every host name but 127.0.0.1 unresolvable,
 // and every request that does not go to `origin` aborted.
+import { spawn } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -53,4 +54,22 @@ export async function openPage(origin, { webgl = false, timeoutMs = 60000, warni
     await close();
     throw e;
   }
+}
+
+/// Starts `cutaway edit FILE --port 0 [EXTRA...]`; resolves with {child, origin} once it prints
+/// its URL.
+export function startEditor(cutaway, file, extra = []) {
+  return new Promise((resolve, reject) => {
+    const child = spawn(cutaway, ['edit', file, '--port', '0', ...extra],
+                        { stdio: ['ignore', 'pipe', 'pipe'] });
+    let seen = '';
+    const look = (data) => {
+      seen += data;
+      const m = /http:\/\/127\.0\.0\.1:(\d+)\//.exec(seen);
+      if (m) resolve({ child, origin: `http://127.0.0.1:${m[1]}` });
+    };
+    child.stdout.on('data', look);
+    child.stderr.on('data', look);
+    child.on('exit', (code) => reject(new Error(`cutaway edit exited (${code}): ${seen}`)));
+  });
 }

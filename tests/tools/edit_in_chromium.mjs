@@ -13,10 +13,9 @@
 //     ("changed").
 // Prints one JSON line {ok, steps: [{what, verdict}], cut_seconds, coarse_cut_seconds,
 // warnings, error}; exit code 0 when every step went as expected.
-import { spawn } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
-import { openPage } from './chromium.mjs';
+import { openPage, startEditor } from './chromium.mjs';
 
 const TIMEOUT_MS = 240000;
 const started = Date.now();
@@ -26,22 +25,6 @@ function report(fields) {
   Object.assign(result, fields, { seconds: (Date.now() - started) / 1000 });
   console.log(JSON.stringify(result));
   return result.ok ? 0 : 1;
-}
-
-/// Starts `cutaway edit FILE --port 0`; resolves with {child, origin} once it prints its URL.
-function startEditor(cutaway, file) {
-  return new Promise((resolve, reject) => {
-    const child = spawn(cutaway, ['edit', file, '--port', '0'], { stdio: ['ignore', 'pipe', 'pipe'] });
-    let seen = '';
-    const look = (data) => {
-      seen += data;
-      const m = /http:\/\/127\.0\.0\.1:(\d+)\//.exec(seen);
-      if (m) resolve({ child, origin: `http://127.0.0.1:${m[1]}` });
-    };
-    child.stdout.on('data', look);
-    child.stderr.on('data', look);
-    child.on('exit', (code) => reject(new Error(`cutaway edit exited (${code}): ${seen}`)));
-  });
 }
 
 /// Waits until the page has asked the server about its latest text and shown the answer.

@@ -208,7 +208,7 @@ TEST(InteriorVolumeAccuracy, TomatoCapsFromTheVolumeMatchPmvcWithinTheBound) {
   const Template tmpl = load_template(test::source_path("templates/tomato.yaml").string());
   const DsModel model = build_model(tmpl);
   const auto diffusion = cpu(model);
-  auto grid = volume_grid(model, default_voxel_length(model) * 2);
+  auto grid = volume_grid(model, voxel_length_across(model, 48));
   ASSERT_TRUE(grid);
   const InteriorVolume volume = sample_interior_volume(model, *diffusion, std::move(*grid));
   const VolumeErrors e = volume_errors(model, *diffusion, volume, random_cap_planes(model, 4, 7));
