@@ -12,6 +12,7 @@
 #include "export/gltf_export.h"
 #include "model/template.h"
 #include "pieces/cut_spec.h"
+#include "volume/interior_volume.h"
 
 namespace cutaway {
 
@@ -39,6 +40,10 @@ struct BatchOutputs {
   /// Assets of the contact sheet `batch merge` writes, spread evenly over the batch (0..64);
   /// their thumbnails are written even without `thumbnails`.
   int sample = 12;
+  /// Each variant's interior volume (doc/interior-volume.md): TEMPLATE-SEED.volume.json with
+  /// its flipbooks and TEMPLATE-SEED.volume.vdb, `volume_voxels` along the skin's longest edge.
+  bool volume = false;
+  int volume_voxels = kDefaultVoxelsAcross;  ///< 8..200
 };
 
 /// How the assets are exported.

@@ -19,6 +19,8 @@
 #include "cache/cached_cut.h"
 #include "cut/piece_views.h"
 #include "export/gltf_export.h"
+#include "export/volume_files.h"
+#include "material/colour_modulation.h"
 #include "placement/collision_shape.h"
 #include "variation/variation.h"
 
@@ -39,6 +41,7 @@ std::string fingerprint_text(const Batch& b, const BatchItem& item, uint64_t see
       {"variation", item.variation},
       {"cut", cut_exact_text(cut)},
       {"model", b.outputs.model},
+      {"volume", b.outputs.volume ? b.outputs.volume_voxels : 0},
       {"thumbnail", thumbnail ? b.outputs.thumbnail_px : 0},
       {"compress", static_cast<int>(b.export_options.gltf.compression)},
       {"lods", b.export_options.gltf.lods},
@@ -233,6 +236,26 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
   std::string model =
       batch.outputs.model ? model_to_glb(variant.variant().model, GltfModelOptions{}) : "";
   const uint64_t model_hash = fnv1a64(model);
+  // The interior volume likewise: one set of files per variant, its time the variant's.
+  std::vector<NamedFile> volume;
+  if (batch.outputs.volume) {
+    const DsModel& ds = variant.variant().model;
+    Outcome<InteriorVolume> grid =
+        volume_grid(ds, voxel_length_across(ds, batch.outputs.volume_voxels));
+    CUTAWAY_CHECK(grid.has_value());  // 200 voxels across stay below kMaxVolumeVoxels
+    const ColourModulation modulation(tmpl.npr, u.seed);
+    const DiffusionBackend& diffusion = variant.diffusion();
+    Outcome<std::vector<NamedFile>> files = volume_files(
+        sample_interior_volume(ds, diffusion, std::move(*grid), diffusion.threads(), &modulation,
+                               batch.export_options.perlin),
+        item.template_name + "-" + std::to_string(u.seed) + ".volume", tmpl.name,
+        static_cast<int64_t>(u.seed), true);
+    if (!files)
+      throw InputError({batch.file, 0, 0}, "outputs.volume_voxels", files.reason());
+    volume = std::move(*files);
+  }
+  std::vector<std::pair<std::string, uint64_t>> volume_record;
+  for (const auto& [name, bytes] : volume) volume_record.emplace_back(name, fnv1a64(bytes));
   t.variant = seconds_since(t0);
 
   std::vector<BuiltAsset> out;
@@ -277,6 +300,9 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
       r.model_hash = model_hash;
       if (c == 0) built.files.push_back({r.model, std::move(model)});
     }
+    r.volume = volume_record;
+    if (c == 0)
+      for (auto& [name, bytes] : volume) built.files.push_back({name, std::move(bytes)});
     own.export_glb = seconds_since(t0);
 
     if (!thumbnail.empty()) {

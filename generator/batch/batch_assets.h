@@ -84,6 +84,9 @@ struct AssetRecord {
   uint64_t model_hash = 0;
   std::string thumbnail;      ///< STEM.png, or empty
   uint64_t thumbnail_hash = 0;
+  /// The variant's interior volume files (TEMPLATE-SEED.volume.json first, then its flipbooks
+  /// and .vdb) with their hashes, or none.
+  std::vector<std::pair<std::string, uint64_t>> volume;
   uint64_t inputs = 0;        ///< BatchAsset::inputs
   friend bool operator==(const AssetRecord&, const AssetRecord&) = default;
 };

@@ -54,6 +54,11 @@ std::string manifest_line(const AssetRecord& r) {
     j["thumbnail"] = r.thumbnail;
     j["thumbnail_fnv1a64"] = hex64(r.thumbnail_hash);
   }
+  if (!r.volume.empty()) {
+    j["volume"] = nlohmann::ordered_json::array();
+    for (const auto& [name, hash] : r.volume)
+      j["volume"].push_back({{"file", name}, {"fnv1a64", hex64(hash)}});
+  }
   j["inputs"] = hex64(r.inputs);
   return j.dump() + "\n";
 }
@@ -88,12 +93,22 @@ Outcome<AssetRecord> parse_manifest_line(std::string_view line) {
       if (!h) return Outcome<AssetRecord>::none("thumbnail_fnv1a64 is not 16 hex digits");
       r.thumbnail_hash = *h;
     }
+    if (j.contains("volume")) {
+      for (const auto& f : j.at("volume")) {
+        const auto h = parse_hex64(f.at("fnv1a64").get<std::string>());
+        if (!h) return Outcome<AssetRecord>::none("a volume fnv1a64 is not 16 hex digits");
+        r.volume.emplace_back(f.at("file").get<std::string>(), *h);
+      }
+    }
   } catch (const nlohmann::json::exception& e) {
     return Outcome<AssetRecord>::none(std::string("a field is missing or of the wrong type: ") +
                                       e.what());
   }
   for (const std::string* name : {&r.file, &r.model, &r.thumbnail})
     if (!name->empty() && !plain_file_name(*name))
+      return Outcome<AssetRecord>::none("a file name is not a plain name in the folder");
+  for (const auto& [name, hash] : r.volume)
+    if (!plain_file_name(name))
       return Outcome<AssetRecord>::none("a file name is not a plain name in the folder");
   if (r.file.empty()) return Outcome<AssetRecord>::none("the file name is empty");
   return r;
@@ -118,8 +133,9 @@ std::vector<AssetRecord> read_manifest(const fs::path& path, size_t* bad_lines) 
 }
 
 bool record_files_intact(const AssetRecord& r, const fs::path& dir) {
-  const std::pair<const std::string*, uint64_t> files[] = {
+  std::vector<std::pair<const std::string*, uint64_t>> files = {
       {&r.file, r.hash}, {&r.model, r.model_hash}, {&r.thumbnail, r.thumbnail_hash}};
+  for (const auto& [name, hash] : r.volume) files.emplace_back(&name, hash);
   for (const auto& [name, hash] : files) {
     if (name->empty()) continue;
     std::error_code ec;

@@ -92,11 +92,13 @@ Batch parse(std::string_view text, const std::string& file, std::vector<ParsedIt
     if (parsed) parsed->push_back(std::move(p));
   }
   if (auto o = root.get("outputs")) {
-    o->allow_only({"model", "thumbnails", "thumbnail_size", "sample"});
+    o->allow_only({"model", "thumbnails", "thumbnail_size", "sample", "volume", "volume_voxels"});
     if (auto x = o->get("model")) b.outputs.model = x->boolean();
     if (auto x = o->get("thumbnails")) b.outputs.thumbnails = x->boolean();
     if (auto x = o->get("thumbnail_size")) b.outputs.thumbnail_px = parse_int_in(*x, 64, 1024);
     if (auto x = o->get("sample")) b.outputs.sample = parse_int_in(*x, 0, 64);
+    if (auto x = o->get("volume")) b.outputs.volume = x->boolean();
+    if (auto x = o->get("volume_voxels")) b.outputs.volume_voxels = parse_int_in(*x, 8, 200);
   }
   if (auto e = root.get("export")) {
     e->allow_only({"compress", "lods", "textures", "camera_and_lights", "collision",

@@ -3,7 +3,10 @@
 // the .vdb imported by Blender (headless).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -135,3 +138,55 @@ TEST(InteriorVolumeCommand, BlenderImportsTheVdbWithEveryGridWhereTheGltfPutsThe
 
 }  // namespace
 }  // namespace cutaway
+
+namespace cutaway::test {
+namespace {
+
+// `outputs: {volume: true}`: each variant's interior volume beside its assets, listed with
+// hashes on every one of its assets' manifest lines, and checked by `batch merge`.
+TEST(InteriorVolumeBatch, EachVariantGetsItsVolumeListedAndCheckedByMerge) {
+  const fs::path dir = fresh_dir("volume-batch");
+  const fs::path file = dir / "kiwis.yaml";
+  std::ofstream(file) << "format: cutaway-batch/1\nname: kiwis\nseed: 4\nitems:\n"
+                         "  - template: kiwi\n    count: 2\n"
+                         "    cuts: [{type: halves}, {type: whole}]\n"
+                         "outputs: {volume: true, volume_voxels: 24, sample: 0}\n";
+  RunResult r = run_cutaway({"-q", "batch", file.string(), "-o", (dir / "out").string(),
+                             "--shard", "1/1", "--backend", "cpu"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* seed : {"4", "5"})
+    for (const char* ext : {".json", ".colour.png", ".structure.png", ".material.png", ".vdb"})
+      EXPECT_TRUE(fs::exists(dir / "out" / (std::string("kiwi-") + seed + ".volume" + ext)))
+          << seed << ext;
+  const nlohmann::json sidecar =
+      nlohmann::json::parse(read_file(dir / "out" / "kiwi-5.volume.json"));
+  EXPECT_EQ(sidecar["seed"], 5);
+  EXPECT_EQ(sidecar["vdb"], "kiwi-5.volume.vdb");
+  const auto& size = sidecar["grid"]["size"];  // 24 across the longest edge, one voxel beyond
+  EXPECT_EQ(std::max({size[0].get<int>(), size[1].get<int>(), size[2].get<int>()}), 27);
+  // The same variant's volume as `cutaway volume --seed` makes it (the batch's Perlin strength
+  // and cube are the command's defaults).
+  const fs::path own = dir / "own.json";
+  char voxel_mm[32];
+  std::snprintf(voxel_mm, sizeof voxel_mm, "%.17g",
+                sidecar["grid"]["voxel_m"].get<double>() * 1000);
+  r = run_cutaway({"volume", "templates/kiwi.yaml", "--seed", "5", "--voxel", voxel_mm, "-o",
+                   own.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(read_file(dir / "own.colour.png") ==
+              read_file(dir / "out" / "kiwi-5.volume.colour.png"));
+  // Both assets of a variant list its five files; merge checks them.
+  const std::string manifest = read_file(dir / "out" / "manifest-1-of-1.jsonl");
+  size_t lines = 0;
+  for (size_t at = 0; (at = manifest.find("\"volume\":[", at)) != std::string::npos; ++at) ++lines;
+  EXPECT_EQ(lines, 4u) << manifest;
+  r = run_cutaway({"batch", "merge", (dir / "out").string()});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  // A damaged volume file is found by merge (it is not intact, so the asset is due again).
+  std::ofstream(dir / "out" / "kiwi-4.volume.structure.png") << "damaged";
+  r = run_cutaway({"batch", "merge", (dir / "out").string()});
+  EXPECT_NE(r.exit_code, 0) << r.err;
+}
+
+}  // namespace
+}  // namespace cutaway::test
