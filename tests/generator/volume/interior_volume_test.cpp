@@ -7,7 +7,12 @@
 #include <numbers>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
+#include "cut/piece_views.h"
 #include "diffusion/diffusion.h"
+#include "export/gltf_export.h"
+#include "export/volume_files.h"
 #include "io/template_parser.h"
 #include "model/model_builder.h"
 #include "test_support.h"
@@ -231,6 +236,38 @@ TEST(InteriorVolumeAccuracy, RandomCapPlanesCrossTheMiddleOfTheSkin) {
   }
   EXPECT_EQ(random_cap_planes(model, 20, 3)[7].normal, planes[7].normal);  // seeded
   EXPECT_NE(random_cap_planes(model, 20, 4)[7].normal, planes[7].normal);
+}
+
+}  // namespace
+}  // namespace cutaway
+
+namespace cutaway {
+namespace {
+
+// Every shipped template's volume, coarse (20 voxels across), in every form: the sidecar and
+// flipbooks, the OpenVDB file and the whole object's glTF.
+TEST(InteriorVolumeForms, EveryShippedTemplateGivesEveryForm) {
+  for (const std::filesystem::path& file : test::shipped_templates()) {
+    SCOPED_TRACE(file.string());
+    const Template tmpl = load_template(file.string());
+    const DsModel model = build_model(tmpl);
+    const auto diffusion = cpu(model);
+    auto grid = volume_grid(model, voxel_length_across(model, 20));
+    ASSERT_TRUE(grid);
+    const InteriorVolume volume = sample_interior_volume(model, *diffusion, std::move(*grid));
+    EXPECT_GT(volume.solid, 0u);
+    EXPECT_GE(volume.regions, 1u);
+    const Outcome<std::vector<NamedFile>> files = volume_files(volume, "x", tmpl.name, -1, true);
+    ASSERT_TRUE(files) << files.reason();
+    ASSERT_EQ(files->size(), 5u);
+    const nlohmann::json sidecar = nlohmann::json::parse((*files)[0].second);
+    EXPECT_EQ(sidecar["template"], tmpl.name);
+    EXPECT_EQ(sidecar["vdb"], "x.vdb");
+    EXPECT_EQ((*files)[4].second.substr(0, 4), std::string(" BDV"));
+    const std::string glb =
+        scene_to_glb(whole_object_assets(Variant{tmpl, model}, *diffusion, 1.0, 0));
+    EXPECT_EQ(glb.substr(0, 4), "glTF");
+  }
 }
 
 }  // namespace
