@@ -62,6 +62,9 @@ std::string encode_vdb(const InteriorVolume& volume, const std::string& name, in
   grids.push_back(make_grid<FloatGrid>(volume, "sheet_distance", 0.0f, [&](size_t v) {
     return volume.region[v] == kEmptyRegion ? 0.0f : volume.sheet_distance[v];
   }));
+  const float far = static_cast<float>(volume.voxel_m);
+  grids.push_back(make_grid<FloatGrid>(volume, "outline_distance", far,
+                                       [&](size_t v) { return volume.outline_distance[v]; }));
   openvdb::MetaMap meta;
   meta.insertMeta("template", openvdb::StringMetadata(name));
   meta.insertMeta("seed", openvdb::StringMetadata(seed >= 0 ? std::to_string(seed) : ""));

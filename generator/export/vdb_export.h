@@ -16,6 +16,8 @@ namespace cutaway {
 /// - "roughness", "translucency" (float, 0..1);
 /// - "region" (int32): the region id, absent (0) where empty;
 /// - "sheet_distance" (float, metres);
+/// - "outline_distance" (float, metres; stored within a voxel of the outline, one voxel
+///   elsewhere);
 /// each with the same transform, index (i, j, k) at the voxel's centre in metres of the object
 /// frame (+Y up), and the file metadata "template", "seed" and "creator". OpenVDB puts a
 /// random UUID in every file's header; here it is made of the content's hash instead, so the

@@ -57,7 +57,7 @@ Outcome<VolumeFlipbooks> encode_flipbooks(const InteriorVolume& volume) {
         structure.pixels[px + 0] = static_cast<uint8_t>(region & 0xffu);
         structure.pixels[px + 1] = static_cast<uint8_t>(region >> 8);
         structure.pixels[px + 2] = unit_byte(volume.sheet_distance[v] / volume.voxel_m);
-        structure.pixels[px + 3] = 255;
+        structure.pixels[px + 3] = unit_byte(volume.outline_distance[v] / volume.voxel_m);
         material.pixels[px + 0] = unit_byte(volume.material[v].x);
         material.pixels[px + 1] = unit_byte(volume.material[v].y);
         material.pixels[px + 3] = 255;
@@ -105,12 +105,14 @@ nlohmann::ordered_json volume_sidecar(const InteriorVolume& volume, const std::s
        {{"colour", "RGB: diffused colour, sRGB; A: 255 solid, 0 empty (outside or a cavity)"},
         {"structure",
          "R + 256 G: region id, 0 empty; B: distance from the voxel centre to the nearest "
-         "sheet, 255 = one voxel; A: 255"},
+         "sheet bounding its region, A: to the outline (solid against empty), 255 = one "
+         "voxel"},
         {"material", "R: roughness, G: translucency, linear 0..1; B: 0; A: 255"}}},
       {"reading",
-       "per region r among the 8 voxels around a point, score = sum of trilinear weight * "
-       "(distance if the voxel is in r, else -distance); take the region with the highest "
-       "score (0: empty, draw nothing) and the trilinear blend of that region's voxels only"},
+       "of the 8 voxels around a point with trilinear weights w: empty (draw nothing) unless "
+       "sum w * (A if solid, else -A) > 0; then per solid region r among them, score = sum w * "
+       "(B if the voxel is in r, else -B); take the region with the highest score (ties: the "
+       "lower id) and the trilinear blend of that region's voxels only"},
       {"regions", volume.regions},
       {"solid_voxels", volume.solid}};
   if (!files.vdb.empty()) sidecar["vdb"] = files.vdb;

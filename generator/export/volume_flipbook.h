@@ -28,7 +28,8 @@ FlipbookTiling flipbook_tiling(const glm::ivec3& size);
 struct VolumeFlipbooks {
   /// RGB: the colour, sRGB; A: 255 where the voxel is solid, 0 where empty.
   std::string colour;
-  /// R + 256 G: the region id (0: empty); B: the sheet distance, 255 = one voxel; A: 255.
+  /// R + 256 G: the region id (0: empty); B: the sheet distance, A: the outline distance,
+  /// 255 = one voxel.
   std::string structure;
   /// R: roughness, G: translucency (linear, 0..1 as 0..255); B: 0; A: 255.
   std::string material;

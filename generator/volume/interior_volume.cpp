@@ -150,8 +150,21 @@ InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBacke
   const size_t n = volume.voxels();
   const std::vector<DiffusionSheet> sheets = surface_sheets(model);
   const SheetRayCaster caster(sheets, threads);
+  // The surfaces with an empty side (the skin, cavity walls): where solid meets empty.
+  std::vector<DiffusionSheet> walls;
+  for (size_t s = 0; s < model.surfaces.size(); ++s) {
+    const DsSurface& surface = model.surfaces[s];
+    if (surface.role == SurfaceRole::Skin || !surface.visible_front || !surface.visible_back)
+      walls.push_back(sheets[s]);
+  }
+  const SheetRayCaster wall_caster(walls, threads);
   const auto& dirs = voxel_directions();
+  const std::span<const glm::vec3> edge_dirs(dirs.data(), kEdgeRays);
+  constexpr float kNone = std::numeric_limits<float>::infinity();
   std::vector<char> solid(n, 0);
+  // Per voxel and direction, the distance to the plane of the first wall its segment crosses
+  // (infinity: none).
+  std::vector<std::array<float, kEdgeRays>> wall_crossing(n);
   // Per surface, each vertex's blur (metres), for telling sharp crossings from soft ones.
   std::vector<std::vector<float>> blur(model.surfaces.size());
   for (size_t s = 0; s < model.surfaces.size(); ++s)
@@ -160,44 +173,58 @@ InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBacke
   // Per voxel and face-neighbour direction (+x, -x, +y, -y, +z, -z): the distance to the
   // plane of the surface its segment crosses first (infinity: none), and whether that
   // surface's blur there is at least half a voxel (a soft crossing, bit e).
-  constexpr float kNone = std::numeric_limits<float>::infinity();
   std::vector<std::array<float, kEdgeRays>> crossing(n);
   std::vector<uint8_t> soft(n, 0);
   const int nx = volume.size.x, ny = volume.size.y;
+  // The distance from a voxel centre to the plane of the triangle `hit` crosses on the
+  // segment along edge direction e, or infinity beyond the voxel.
+  auto plane_distance = [&](const SheetHit& hit, const std::vector<DiffusionSheet>& of, int e) {
+    if (hit.sheet < 0 || hit.at.t >= voxel_m) return kNone;
+    const glm::vec3& normal = of[static_cast<size_t>(hit.sheet)].face_normal[hit.triangle];
+    return static_cast<float>(hit.at.t * std::abs(static_cast<double>(normal[e / 2])));
+  };
   parallel_chunks(n, threads, [&](size_t begin, size_t end) {
     std::array<SheetHit, kEdgeRays + kSideVotes> hits;
+    std::array<SheetHit, kEdgeRays> wall_hits;
     for (size_t v = begin; v < end; ++v) {
       const int i = static_cast<int>(v % nx), j = static_cast<int>(v / nx % ny);
       const int k = static_cast<int>(v / (static_cast<size_t>(nx) * ny));
       caster.cast(volume.centre(i, j, k), dirs, hits);
       solid[v] = voted_solid(model, sheets, hits) ? 1 : 0;
+      wall_caster.cast(volume.centre(i, j, k), edge_dirs, wall_hits);
+      for (int e = 0; e < kEdgeRays; ++e)
+        wall_crossing[v][static_cast<size_t>(e)] =
+            plane_distance(wall_hits[static_cast<size_t>(e)], walls, e);
       for (int e = 0; e < kEdgeRays; ++e) {
         const SheetHit& hit = hits[static_cast<size_t>(e)];
-        crossing[v][static_cast<size_t>(e)] = kNone;
-        if (hit.sheet < 0 || hit.at.t >= voxel_m) continue;
+        crossing[v][static_cast<size_t>(e)] = plane_distance(hit, sheets, e);
+        if (crossing[v][static_cast<size_t>(e)] == kNone) continue;
         const auto sheet = static_cast<size_t>(hit.sheet);
         const glm::uvec3& corner = sheets[sheet].triangle[hit.triangle];
         const double b = (1 - hit.at.u - hit.at.v) * blur[sheet][corner[0]] +
                          hit.at.u * blur[sheet][corner[1]] + hit.at.v * blur[sheet][corner[2]];
         if (b >= 0.5 * voxel_m) soft[v] |= static_cast<uint8_t>(1u << e);
-        crossing[v][static_cast<size_t>(e)] = static_cast<float>(
-            hit.at.t * std::abs(static_cast<double>(sheets[sheet].face_normal[hit.triangle][e / 2])));
       }
     }
   });
   // Sheet distances: over the sharp crossings, and the soft ones between solid and empty.
+  // Outline distances: over the wall crossings between solid and empty.
   const size_t step[3] = {1, static_cast<size_t>(nx), static_cast<size_t>(nx) * ny};
   volume.sheet_distance.assign(n, static_cast<float>(voxel_m));
+  volume.outline_distance.assign(n, static_cast<float>(voxel_m));
   for (size_t v = 0; v < n; ++v) {
     const int coord[3] = {static_cast<int>(v % nx), static_cast<int>(v / nx % ny),
                           static_cast<int>(v / step[2])};
     for (int e = 0; e < kEdgeRays; ++e) {
-      const float d = crossing[v][static_cast<size_t>(e)];
-      if (d == kNone) continue;
       const int a = e / 2, q = coord[a] + (e % 2 == 0 ? 1 : -1);
       const bool other_solid =
           q >= 0 && q < volume.size[a] && solid[e % 2 == 0 ? v + step[a] : v - step[a]];
-      if ((soft[v] >> e & 1u) && other_solid == static_cast<bool>(solid[v])) continue;
+      const bool outline = other_solid != static_cast<bool>(solid[v]);
+      const float wall = wall_crossing[v][static_cast<size_t>(e)];
+      if (outline && wall != kNone)
+        volume.outline_distance[v] = std::min(volume.outline_distance[v], wall);
+      const float d = crossing[v][static_cast<size_t>(e)];
+      if (d == kNone || ((soft[v] >> e & 1u) && !outline)) continue;
       volume.sheet_distance[v] = std::min(volume.sheet_distance[v], d);
     }
   }

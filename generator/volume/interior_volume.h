@@ -47,6 +47,11 @@ struct InteriorVolume {
   /// crossing on its six face-neighbour segments, at most voxel_m (voxel_m: none within one
   /// voxel). A sampler reads it as an unsigned distance to its region's border.
   std::vector<float> sheet_distance;
+  /// Per voxel, metres: the distance from its centre to the plane of the nearest crossing of a
+  /// wall (the skin, or a surface with a hollow side) on its face-neighbour segments that run
+  /// between solid and empty, at most voxel_m. A sampler reads it as an unsigned distance to
+  /// the outline, solid against empty, whatever surfaces lie between.
+  std::vector<float> outline_distance;
   uint32_t regions = 0;    ///< solid regions (the largest region id)
   size_t solid = 0;        ///< voxels whose region is not empty (the PMVC points)
   double seconds_classify = 0;  ///< ray casts for the regions and the distances

@@ -23,12 +23,21 @@ VolumeSample sample_volume(const InteriorVolume& volume, const glm::dvec3& point
     weight[c] = 1;
     for (int a = 0; a < 3; ++a) weight[c] *= o[a] ? frac[a] : 1 - frac[a];
   }
-  // Each region's interpolated signed distance to its border; the highest wins.
+  // Solid or empty first: the interpolated signed distance to the outline.
+  double outline = 0;
+  for (int k = 0; k < 8; ++k) {
+    const double e = volume.outline_distance[index[k]];
+    outline += weight[k] * (volume.region[index[k]] == kEmptyRegion ? -e : e);
+  }
+  if (outline <= 0) return sample;
+  // Then the solid region: each one's interpolated signed distance to its border; the
+  // highest wins.
   bool have = false;
   uint32_t best = kEmptyRegion;
   double best_score = 0;
   for (int c = 0; c < 8; ++c) {
     const uint32_t r = volume.region[index[c]];
+    if (r == kEmptyRegion) continue;
     double score = 0;
     for (int k = 0; k < 8; ++k) {
       const double d = volume.sheet_distance[index[k]];
@@ -41,7 +50,6 @@ VolumeSample sample_volume(const InteriorVolume& volume, const glm::dvec3& point
     }
   }
   sample.region = best;
-  if (best == kEmptyRegion) return sample;
   glm::dvec3 colour(0);
   glm::dvec2 material(0);
   double total = 0;

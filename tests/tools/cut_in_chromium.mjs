@@ -25,6 +25,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import zlib from 'node:zlib';
+import { decodePng } from '../../app/edit/web/png_decode.js';
 import { openPage, startEditor } from './chromium.mjs';
 
 const TIMEOUT_MS = 300000;
@@ -42,79 +43,41 @@ function report(fields) {
   return result.ok ? 0 : 1;
 }
 
-// --- PNG decoding, to check the page's bytes against -----------------------------------------
+// --- the page's bytes ----------------------------------------------------------------------
 
-/// RGBA bytes of an 8-bit RGB or RGBA, non-interlaced PNG.
-function decodePng(bytes) {
-  const buf = Buffer.from(bytes);
-  if (buf.readUInt32BE(0) !== 0x89504e47) throw new Error('not a PNG');
-  let width = 0, height = 0, channels = 0;
-  const idat = [];
-  for (let at = 8; at < buf.length;) {
-    const length = buf.readUInt32BE(at), type = buf.toString('latin1', at + 4, at + 8);
-    const body = buf.subarray(at + 8, at + 8 + length);
-    if (type === 'IHDR') {
-      width = body.readUInt32BE(0);
-      height = body.readUInt32BE(4);
-      const [depth, colourType, , , interlace] = body.subarray(8, 13);
-      channels = { 2: 3, 6: 4 }[colourType];
-      if (depth !== 8 || !channels || interlace) throw new Error('unsupported PNG layout');
-    } else if (type === 'IDAT') {
-      idat.push(body);
-    }
-    at += 12 + length;
-  }
-  const raw = zlib.inflateSync(Buffer.concat(idat));
-  const stride = width * channels, out = new Uint8Array(width * height * 4);
-  let previous = new Uint8Array(stride);
-  for (let y = 0; y < height; ++y) {
-    const filter = raw[y * (stride + 1)];
-    const line = Uint8Array.from(raw.subarray(y * (stride + 1) + 1, (y + 1) * (stride + 1)));
-    for (let i = 0; i < stride; ++i) {
-      const a = i >= channels ? line[i - channels] : 0, b = previous[i];
-      const c = i >= channels ? previous[i - channels] : 0;
-      let add = 0;
-      if (filter === 1) add = a;
-      else if (filter === 2) add = b;
-      else if (filter === 3) add = (a + b) >> 1;
-      else if (filter === 4) {
-        const p = a + b - c, pa = Math.abs(p - a), pb = Math.abs(p - b), pc = Math.abs(p - c);
-        add = pa <= pb && pa <= pc ? a : pb <= pc ? b : c;
-      }
-      line[i] = (line[i] + add) & 255;
-    }
-    for (let x = 0; x < width; ++x) {
-      for (let k = 0; k < 4; ++k) {
-        out[(y * width + x) * 4 + k] = k < channels ? line[x * channels + k] : 255;
-      }
-    }
-    previous = line;
-  }
-  return out;
-}
-
-/// The same digest as the page's (cutting_view.js): FNV-1a, RGB counted as 0 where alpha is 0
-/// in the colour image.
-function digest(data, colour) {
+/// FNV-1a (32 bits) of `data`, as the page's volumeDigest() computes it.
+function digest(data) {
   let h = 0x811c9dc5;
-  for (let i = 0; i < data.length; ++i) {
-    const byte = colour && (i & 3) !== 3 && data[i | 3] === 0 ? 0 : data[i];
-    h = Math.imul(h ^ byte, 0x01000193) >>> 0;
-  }
+  for (let i = 0; i < data.length; ++i) h = Math.imul(h ^ data[i], 0x01000193) >>> 0;
   return h.toString(16).padStart(8, '0');
 }
 
+/// The page's flipbooks against the files decoded here (png_decode.js with node's zlib), and
+/// the decoding against what the sidecar counts: the solid voxels (region not 0, and colour
+/// alpha 255) and the largest region id.
 async function checkBytes(page, base, name) {
   const meta = await (await fetch(`${base}/api/volume/${name}.json`)).json();
-  const mine = {};
+  const mine = {}, images = {};
   for (const [which, file] of Object.entries(meta.images)) {
     const response = await fetch(new URL(file, `${base}/api/volume/${name}.json`));
     if (!response.ok) throw new Error(`${file}: HTTP ${response.status}`);
-    mine[which] = digest(decodePng(await response.arrayBuffer()), which === 'colour');
+    images[which] = (await decodePng(new Uint8Array(await response.arrayBuffer()),
+                                     (bytes) => zlib.inflateSync(bytes))).data;
+    mine[which] = digest(images[which]);
   }
   const theirs = await page.evaluate(() => window.cutting.volumeDigest());
   const differing = Object.keys(mine).filter((k) => mine[k] !== theirs[k]);
-  return { bytes_ok: differing.length === 0, bytes_differing: differing };
+  let solid = 0, opaque = 0, largest = 0;
+  for (let p = 0; p < images.structure.length; p += 4) {
+    const region = images.structure[p] + 256 * images.structure[p + 1];
+    solid += region !== 0;
+    largest = Math.max(largest, region);
+    opaque += images.colour[p + 3] === 255;
+  }
+  const counts_ok = solid === meta.solid_voxels && opaque === meta.solid_voxels &&
+                    largest === meta.regions;
+  return { bytes_ok: differing.length === 0 && counts_ok, bytes_differing: differing,
+           counts_ok };
 }
 
 // --- vectors ---------------------------------------------------------------------------------

@@ -8,26 +8,18 @@
 import * as THREE from 'three';
 import { GLTFLoader } from '/lib/three/examples/jsm/loaders/GLTFLoader.js';
 import { OrbitControls } from '/lib/three/examples/jsm/controls/OrbitControls.js';
+import { decodePng } from './png_decode.js';
 
 // ---------------------------------------------------------------------------------------------
 // The volume: flipbook PNGs unpacked into 3D arrays, and the reading rule on the CPU.
 
-/// The RGBA bytes of the PNG at `url`, exactly as stored: no premultiplied alpha, no colour
-/// space conversion. Pixels with alpha 0 come back with RGB 0 (a 2D canvas keeps its pixels
-/// premultiplied); only the colour image has such pixels, and only where the volume is empty.
+/// The RGBA bytes of the PNG at `url`, exactly as stored (png_decode.js).
 async function readPng(url) {
   const response = await fetch(url);
   if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
-  const bitmap = await createImageBitmap(await response.blob(),
-    { premultiplyAlpha: 'none', colorSpaceConversion: 'none' });
-  const { width, height } = bitmap;
-  const canvas = typeof OffscreenCanvas === 'function'
-    ? new OffscreenCanvas(width, height)
-    : Object.assign(document.createElement('canvas'), { width, height });
-  const context = canvas.getContext('2d', { willReadFrequently: true });
-  context.drawImage(bitmap, 0, 0);
-  bitmap.close?.();
-  return { width, height, data: context.getImageData(0, 0, width, height).data };
+  const inflate = async (bytes) => new Uint8Array(await new Response(
+    new Blob([bytes]).stream().pipeThrough(new DecompressionStream('deflate'))).arrayBuffer());
+  return decodePng(new Uint8Array(await response.arrayBuffer()), inflate);
 }
 
 /// The voxels of a flipbook image as one array, x fastest, then y, then z (4 bytes a voxel),
@@ -53,14 +45,10 @@ function unpackFlipbook(image, tiling, size) {
   return out;
 }
 
-/// FNV-1a (32 bits) of the bytes of a flipbook; with `colour`, RGB of pixels whose alpha is 0
-/// counts as 0 (see readPng).
-function digest(data, colour) {
+/// FNV-1a (32 bits) of the bytes of a flipbook.
+function digest(data) {
   let h = 0x811c9dc5;
-  for (let i = 0; i < data.length; ++i) {
-    const byte = colour && (i & 3) !== 3 && data[(i | 3)] === 0 ? 0 : data[i];
-    h = Math.imul(h ^ byte, 0x01000193) >>> 0;
-  }
+  for (let i = 0; i < data.length; ++i) h = Math.imul(h ^ data[i], 0x01000193) >>> 0;
   return h.toString(16).padStart(8, '0');
 }
 
@@ -100,7 +88,7 @@ export async function loadVolume(url) {
   const volume = { meta, size, first, voxel, digests: {} };
   names.forEach((n, i) => {
     volume[n] = unpackFlipbook(images[i], meta.tiling, size);
-    volume.digests[n] = digest(images[i].data, n === 'colour');
+    volume.digests[n] = digest(images[i].data);
   });
   // Solid voxels: their centres (for choosing which side a knife cut keeps) and their box.
   const [nx, ny, nz] = size;
@@ -151,18 +139,24 @@ export function readVolume(volume, x, y, z) {
     f[a] = g - base[a];
   }
   const [nx, ny] = size;
-  const index = [], region = [], dist = [], weight = [];
+  const index = [], region = [], dist = [], edge = [], weight = [];
   for (let c = 0; c < 8; ++c) {
     const o = [c & 1, (c >> 1) & 1, (c >> 2) & 1];
     const v = ((base[2] + o[2]) * ny + (base[1] + o[1])) * nx + (base[0] + o[0]);
     index.push(v);
     region.push(structure[v * 4] + 256 * structure[v * 4 + 1]);
     dist.push(structure[v * 4 + 2] / 255);
+    edge.push(structure[v * 4 + 3] / 255);
     weight.push((o[0] ? f[0] : 1 - f[0]) * (o[1] ? f[1] : 1 - f[1]) * (o[2] ? f[2] : 1 - f[2]));
   }
+  // Solid or empty first: the interpolated signed distance to the outline.
+  let outline = 0;
+  for (let c = 0; c < 8; ++c) outline += weight[c] * (region[c] === 0 ? -edge[c] : edge[c]);
+  if (outline <= 0) return { region: 0, rgb: null };
   let best = 0, bestScore = -Infinity;
   for (let c = 0; c < 8; ++c) {
     const r = region[c];
+    if (r === 0) continue;
     let score = 0;
     for (let e = 0; e < 8; ++e) score += weight[e] * (region[e] === r ? dist[e] : -dist[e]);
     if (score > bestScore || (score === bestScore && r < best)) { best = r; bestScore = score; }
@@ -220,6 +214,7 @@ void main() {
   int region[8];
   float dist[8];
   float weight[8];
+  float outline = 0.0;
   for (int c = 0; c < 8; ++c) {
     ivec3 o = ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
     vec3 w = mix(1.0 - f, f, vec3(o));
@@ -227,13 +222,21 @@ void main() {
     vec4 s = texelFetch(uStructure, b + o, 0);
     region[c] = int(s.r * 255.0 + 0.5) + 256 * int(s.g * 255.0 + 0.5);
     dist[c] = s.b;  // B / 255, and 255 is one voxel
+    outline += weight[c] * (region[c] == 0 ? -s.a : s.a);  // A: the outline distance
   }
+  // Solid or empty first: the interpolated signed distance to the outline.
+  if (outline <= 0.0) discard;
   // Where all eight voxels are in one region (most points), that region wins: no scores.
-  int best = region[0];
+  int best = 0;
   bool mixed = false;
-  for (int c = 1; c < 8; ++c) mixed = mixed || region[c] != best;
+  for (int c = 0; c < 8; ++c) {
+    if (region[c] == 0) continue;
+    mixed = mixed || (best != 0 && region[c] != best);
+    if (best == 0) best = region[c];
+  }
   float bestScore = -1.0e30;
   for (int c = 0; mixed && c < 8; ++c) {
+    if (region[c] == 0) continue;
     float score = 0.0;
     for (int e = 0; e < 8; ++e) score += weight[e] * (region[e] == region[c] ? dist[e] : -dist[e]);
     if (score > bestScore || (score == bestScore && region[c] < best)) {
@@ -241,7 +244,6 @@ void main() {
       bestScore = score;
     }
   }
-  if (best == 0) discard;
   vec3 sum = vec3(0.0), plain = vec3(0.0);
   float wsum = 0.0, n = 0.0;
   for (int c = 0; c < 8; ++c) {

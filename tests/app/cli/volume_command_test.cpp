@@ -122,7 +122,8 @@ TEST(InteriorVolumeCommand, BlenderImportsTheVdbWithEveryGridWhereTheGltfPutsThe
                                              {"roughness", "FLOAT"},
                                              {"translucency", "FLOAT"},
                                              {"region", "INT"},
-                                             {"sheet_distance", "FLOAT"}}));
+                                             {"sheet_distance", "FLOAT"},
+                                             {"outline_distance", "FLOAT"}}));
   // The sphere of radius 30 mm centred on (0, 0, 0), in Blender's +Z-up axes as the glTF
   // importer puts the object. Blender's box runs from the first stored voxel's index to one
   // past the last, and the stored voxels include the one-voxel ring of colour outside the

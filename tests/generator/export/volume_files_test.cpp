@@ -27,6 +27,7 @@ InteriorVolume numbered_volume() {
   v.material.resize(n);
   v.region.resize(n);
   v.sheet_distance.resize(n);
+  v.outline_distance.resize(n);
   for (int k = 0; k < 5; ++k)
     for (int j = 0; j < 2; ++j)
       for (int i = 0; i < 3; ++i) {
@@ -35,6 +36,7 @@ InteriorVolume numbered_volume() {
         v.colour[at] = glm::vec3(0.1f * i, 0.2f * j, 0.05f * k);
         v.material[at] = glm::vec2(0.1f * k, 0.3f * j);
         v.sheet_distance[at] = static_cast<float>(v.voxel_m * (i + 1) / 4.0);
+        v.outline_distance[at] = static_cast<float>(v.voxel_m * (k + 1) / 5.0);
       }
   v.regions = 300 * 2 + 20 + 4;
   v.solid = n - 1;
@@ -68,6 +70,7 @@ TEST(InteriorVolumeFlipbook, TilesSlicesAsTheSidecarSays) {
         EXPECT_EQ(colour.rgba[px + 3], at == 0 ? 0 : 255);
         EXPECT_EQ(structure.rgba[px] + 256 * structure.rgba[px + 1], v.region[at]);
         EXPECT_EQ(structure.rgba[px + 2], std::lround(255.0 * (i + 1) / 4.0));
+        EXPECT_EQ(structure.rgba[px + 3], std::lround(255.0 * (k + 1) / 5.0));
         EXPECT_EQ(material.rgba[px], std::lround(255.0 * 0.1 * k));
         EXPECT_EQ(material.rgba[px + 1], std::lround(255.0 * 0.3 * j));
       }
@@ -113,7 +116,8 @@ TEST(InteriorVolumeVdb, GridsHoldTheVolumeAtTheVoxelCentresInMetres) {
   std::map<std::string, openvdb::GridBase::Ptr> by_name;
   for (const auto& g : *grids) by_name[g->getName()] = g;
   for (const char* name :
-       {"density", "color", "roughness", "translucency", "region", "sheet_distance"})
+       {"density", "color", "roughness", "translucency", "region", "sheet_distance",
+        "outline_distance"})
     ASSERT_TRUE(by_name.count(name)) << name;
   EXPECT_EQ(stream.getMetadata()->metaValue<std::string>("template"), "numbered");
   EXPECT_EQ(stream.getMetadata()->metaValue<std::string>("seed"), "7");

@@ -138,6 +138,11 @@ TEST(InteriorVolume, SharpSurfacesSeparateRegionsBlurredOnesDoNot) {
         const size_t at = sharp.index(i, j, k);
         EXPECT_LE(sharp.sheet_distance[at], static_cast<float>(sharp.voxel_m));
         const double r = glm::length(sharp.centre(i, j, k));
+        EXPECT_LE(sharp.outline_distance[at], static_cast<float>(sharp.voxel_m));
+        // Near the skin the outline distance is below a voxel and near the true one (it
+        // measures to the plane of a crossing along an axis, not along the normal).
+        if (std::abs(r - 0.030) < 0.4 * sharp.voxel_m)
+          EXPECT_NEAR(sharp.outline_distance[at], std::abs(r - 0.030), 0.25 * sharp.voxel_m);
         if (std::abs(r - 0.012) < 0.4 * sharp.voxel_m) {
           EXPECT_LT(sharp.sheet_distance[at], 0.45 * sharp.voxel_m);
           EXPECT_NEAR(sharp.sheet_distance[at], std::abs(r - 0.012), 0.1 * sharp.voxel_m);
@@ -153,6 +158,7 @@ TEST(InteriorVolume, TheThreadCountDoesNotChangeTheVolume) {
   const InteriorVolume two = sampled(model, 0.004, 2);
   EXPECT_EQ(one.region, two.region);
   EXPECT_EQ(one.sheet_distance, two.sheet_distance);
+  EXPECT_EQ(one.outline_distance, two.outline_distance);
   EXPECT_EQ(one.colour, two.colour);
   EXPECT_EQ(one.material, two.material);
 }
@@ -169,6 +175,7 @@ InteriorVolume two_region_volume() {
   v.material.resize(n);
   v.region.resize(n);
   v.sheet_distance.resize(n);
+  v.outline_distance.assign(n, 0.01f);  // all solid: the outline is far
   const float distance[4] = {0.01f, 0.003f, 0.007f, 0.01f};
   for (int k = 0; k < 2; ++k)
     for (int j = 0; j < 2; ++j)
@@ -196,6 +203,24 @@ TEST(InteriorVolumeLookup, ASheetBetweenVoxelCentresStaysSharpAtItsOwnPlace) {
       EXPECT_EQ(after.colour, glm::vec3(0.1f, 0.1f, 0.8f));
       EXPECT_EQ(after.material, glm::vec2(0.6f, 0.2f));
     }
+}
+
+TEST(InteriorVolumeLookup, TheOutlineStaysAtTheSkinOverALayerThinnerThanAVoxel) {
+  // Voxels 0 empty, 1..3 solid region 1: the skin at x = 0.6 voxels, and a sheet at x = 0.8
+  // bounding a thin layer no voxel centre falls in. The outline distances measure to the skin
+  // (0.6 and 0.4 voxels), the sheet distances to the sheet: the outline stays at 0.6.
+  InteriorVolume v = two_region_volume();
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 4; ++i) {
+        const size_t at = v.index(i, j, k);
+        v.region[at] = i == 0 ? kEmptyRegion : 1;
+        v.outline_distance[at] = i == 0 ? 0.006f : i == 1 ? 0.004f : 0.01f;
+        v.sheet_distance[at] = i == 1 ? 0.002f : 0.01f;
+      }
+  EXPECT_EQ(sample_volume(v, {0.1 + 0.0059, 0.205, 0.305}).region, kEmptyRegion);
+  EXPECT_EQ(sample_volume(v, {0.1 + 0.0061, 0.205, 0.305}).region, 1u);
+  EXPECT_EQ(sample_volume(v, {0.1 + 0.0061, 0.205, 0.305}).colour, v.colour[v.index(1, 0, 0)]);
 }
 
 TEST(InteriorVolumeLookup, OutsideTheGridIsEmpty) {
