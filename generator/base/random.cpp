@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <glm/geometric.hpp>
+
 #include "base/error.h"
 
 namespace cutaway {
@@ -66,6 +68,14 @@ uint32_t Rng::below(uint32_t n) {
   for (;;) {
     const uint32_t r = gen_();
     if (r >= threshold) return r % n;
+  }
+}
+
+glm::dvec3 random_direction(Rng& rng) {
+  while (true) {
+    const glm::dvec3 d(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
+    const double len = glm::length(d);
+    if (len > 1e-3 && len <= 1) return d / len;
   }
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <initializer_list>
 
+#include <glm/vec3.hpp>
 #include <pcg_random.hpp>
 
 namespace cutaway {
@@ -50,5 +51,9 @@ class Rng {
   bool has_spare_ = false;
   double spare_ = 0.0;
 };
+
+/// A direction uniform on the unit sphere: a point uniform in the cube [-1, 1)^3, drawn again
+/// until it lies in the unit ball (and not within 1e-3 of its centre), then normalised.
+glm::dvec3 random_direction(Rng& rng);
 
 }  // namespace cutaway

@@ -7,9 +7,8 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
-#include <oneapi/tbb/parallel_for.h>
-#include <oneapi/tbb/task_arena.h>
 
+#include "base/parallel_chunks.h"
 #include "diffusion/adaptive_directions.h"
 #include "diffusion/cube_directions.h"
 #include "diffusion/diffusion.h"
@@ -37,20 +36,12 @@ class CpuDiffusion final : public DiffusionBackend {
                         std::span<glm::dvec2> material) const override {
     check_channel_sizes(points.size(), colour.size(), material.size());
     const bool with_material = !material.empty();
-    auto body = [&](const oneapi::tbb::blocked_range<size_t>& range) {
+    parallel_chunks(points.size(), 4, options_.threads, [&](size_t begin, size_t end) {
       size_t rays = 0;
-      for (size_t i = range.begin(); i != range.end(); ++i)
+      for (size_t i = begin; i != end; ++i)
         rays += diffuse_point(points[i], colour[i], with_material ? &material[i] : nullptr);
       rays_ += rays;
-    };
-    if (options_.threads > 0) {
-      oneapi::tbb::task_arena arena(options_.threads);
-      arena.execute([&] {
-        oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<size_t>(0, points.size(), 4), body);
-      });
-    } else {
-      oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<size_t>(0, points.size(), 4), body);
-    }
+    });
   }
 
   size_t rays_cast() const override { return rays_; }

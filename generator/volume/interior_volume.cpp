@@ -9,11 +9,9 @@
 #include <utility>
 
 #include <glm/geometric.hpp>
-#include <oneapi/tbb/blocked_range.h>
-#include <oneapi/tbb/parallel_for.h>
-#include <oneapi/tbb/task_arena.h>
 
 #include "base/error.h"
+#include "base/parallel_chunks.h"
 #include "base/timer.h"
 #include "diffusion/diffusion_sheets.h"
 #include "diffusion/sheet_rays.h"
@@ -63,23 +61,6 @@ bool voted_solid(const DsModel& model, const std::vector<DiffusionSheet>& sheets
   return 2 * solid > kSideVotes;
 }
 
-/// Runs body(begin, end) over [0, n) in chunks on `threads` threads (0: all cores).
-template <typename Body>
-void parallel_chunks(size_t n, int threads, Body body) {
-  auto run = [&] {
-    oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<size_t>(0, n, 64),
-                              [&](const oneapi::tbb::blocked_range<size_t>& r) {
-                                body(r.begin(), r.end());
-                              });
-  };
-  if (threads > 0) {
-    oneapi::tbb::task_arena arena(threads);
-    arena.execute(run);
-  } else {
-    run();
-  }
-}
-
 /// Union-find root of `v`, halving the path on the way.
 uint32_t find_root(std::vector<uint32_t>& parent, uint32_t v) {
   while (parent[v] != v) {
@@ -126,7 +107,7 @@ std::vector<PointClass> classify_points(const DsModel& model,
   const SheetRayCaster caster(sheets, threads);
   const auto& dirs = voxel_directions();
   std::vector<PointClass> classes(points.size());
-  parallel_chunks(points.size(), threads, [&](size_t begin, size_t end) {
+  parallel_chunks(points.size(), 64, threads, [&](size_t begin, size_t end) {
     std::array<SheetHit, kEdgeRays + kSideVotes> hits;
     for (size_t p = begin; p < end; ++p) {
       caster.cast(points[p], dirs, hits);
@@ -175,7 +156,6 @@ InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBacke
   // surface's blur there is at least half a voxel (a soft crossing, bit e).
   std::vector<std::array<float, kEdgeRays>> crossing(n);
   std::vector<uint8_t> soft(n, 0);
-  const int nx = volume.size.x, ny = volume.size.y;
   // The distance from a voxel centre to the plane of the triangle `hit` crosses on the
   // segment along edge direction e, or infinity beyond the voxel.
   auto plane_distance = [&](const SheetHit& hit, const std::vector<DiffusionSheet>& of, int e) {
@@ -183,15 +163,14 @@ InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBacke
     const glm::vec3& normal = of[static_cast<size_t>(hit.sheet)].face_normal[hit.triangle];
     return static_cast<float>(hit.at.t * std::abs(static_cast<double>(normal[e / 2])));
   };
-  parallel_chunks(n, threads, [&](size_t begin, size_t end) {
+  parallel_chunks(n, 64, threads, [&](size_t begin, size_t end) {
     std::array<SheetHit, kEdgeRays + kSideVotes> hits;
     std::array<SheetHit, kEdgeRays> wall_hits;
     for (size_t v = begin; v < end; ++v) {
-      const int i = static_cast<int>(v % nx), j = static_cast<int>(v / nx % ny);
-      const int k = static_cast<int>(v / (static_cast<size_t>(nx) * ny));
-      caster.cast(volume.centre(i, j, k), dirs, hits);
+      const glm::dvec3 centre = volume.centre(volume.voxel(v));
+      caster.cast(centre, dirs, hits);
       solid[v] = voted_solid(model, sheets, hits) ? 1 : 0;
-      wall_caster.cast(volume.centre(i, j, k), edge_dirs, wall_hits);
+      wall_caster.cast(centre, edge_dirs, wall_hits);
       for (int e = 0; e < kEdgeRays; ++e)
         wall_crossing[v][static_cast<size_t>(e)] =
             plane_distance(wall_hits[static_cast<size_t>(e)], walls, e);
@@ -209,12 +188,12 @@ InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBacke
   });
   // Sheet distances: over the sharp crossings, and the soft ones between solid and empty.
   // Outline distances: over the wall crossings between solid and empty.
-  const size_t step[3] = {1, static_cast<size_t>(nx), static_cast<size_t>(nx) * ny};
+  const size_t step[3] = {1, static_cast<size_t>(volume.size.x),
+                          static_cast<size_t>(volume.size.x) * volume.size.y};
   volume.sheet_distance.assign(n, static_cast<float>(voxel_m));
   volume.outline_distance.assign(n, static_cast<float>(voxel_m));
   for (size_t v = 0; v < n; ++v) {
-    const int coord[3] = {static_cast<int>(v % nx), static_cast<int>(v / nx % ny),
-                          static_cast<int>(v / step[2])};
+    const glm::ivec3 coord = volume.voxel(v);
     for (int e = 0; e < kEdgeRays; ++e) {
       const int a = e / 2, q = coord[a] + (e % 2 == 0 ? 1 : -1);
       const bool other_solid =
@@ -234,8 +213,7 @@ InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBacke
   std::iota(parent.begin(), parent.end(), 0u);
   for (size_t v = 0; v < n; ++v) {
     if (!solid[v]) continue;
-    const int coord[3] = {static_cast<int>(v % nx), static_cast<int>(v / nx % ny),
-                          static_cast<int>(v / step[2])};
+    const glm::ivec3 coord = volume.voxel(v);
     for (int a = 0; a < 3; ++a) {
       const size_t e = 2 * static_cast<size_t>(a);  // the +a direction
       if (coord[a] + 1 >= volume.size[a] ||
@@ -256,8 +234,7 @@ InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBacke
     const uint32_t root = find_root(parent, static_cast<uint32_t>(v));
     if (label[root] == kEmptyRegion) label[root] = ++volume.regions;
     volume.region[v] = label[root];
-    points.push_back(volume.centre(static_cast<int>(v % nx), static_cast<int>(v / nx % ny),
-                                   static_cast<int>(v / step[2])));
+    points.push_back(volume.centre(volume.voxel(v)));
   }
   volume.solid = points.size();
   volume.seconds_classify = seconds_since(t0);
@@ -282,8 +259,7 @@ InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBacke
   // Empty voxels next to solid ones take their solid face neighbours' mean.
   for (size_t v = 0; v < n; ++v) {
     if (solid[v]) continue;
-    const int coord[3] = {static_cast<int>(v % nx), static_cast<int>(v / nx % ny),
-                          static_cast<int>(v / step[2])};
+    const glm::ivec3 coord = volume.voxel(v);
     glm::dvec3 c(0);
     glm::dvec2 m(0);
     int count = 0;

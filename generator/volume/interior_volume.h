@@ -1,7 +1,7 @@
 // A variant's interior as a volume: the PMVC colour and material channels sampled on a regular
 // grid, with what keeps sheets crisp between the samples (doc/algorithms.md §8): each voxel's
-// region (the solid cell between sheets it lies in, or empty) and its distance to the nearest
-// sheet, so a sampler (volume_lookup.h, the cutting page's shader) can colour a cut anywhere
+// region (the solid cell between sheets it lies in, or empty) and its distances to the nearest
+// sheet and to the outline, so a sampler (volume_lookup.h, the cutting page's shader) can colour a cut anywhere
 // without running PMVC again.
 #pragma once
 
@@ -40,12 +40,14 @@ struct InteriorVolume {
   std::vector<glm::vec3> colour;
   std::vector<glm::vec2> material;  ///< roughness, translucency (0..1), as `colour`
   /// Per voxel: kEmptyRegion, or 1 + the index of the solid region its centre lies in. Two
-  /// face neighbours share a region when the segment between their centres crosses no
-  /// surface; regions are numbered in voxel order of their first voxel.
+  /// face neighbours share a region when the segment between their centres crosses no sharp
+  /// surface (one blurred by less than half a voxel there); regions are numbered in voxel
+  /// order of their first voxel.
   std::vector<uint32_t> region;
-  /// Per voxel, metres: the distance from its centre to the plane of the nearest surface
-  /// crossing on its six face-neighbour segments, at most voxel_m (voxel_m: none within one
-  /// voxel). A sampler reads it as an unsigned distance to its region's border.
+  /// Per voxel, metres: the distance from its centre to the plane of the nearest crossing on
+  /// its six face-neighbour segments of a sharp surface, or of any surface between solid and
+  /// empty, at most voxel_m (voxel_m: none within one voxel). A sampler reads it as an
+  /// unsigned distance to its region's border.
   std::vector<float> sheet_distance;
   /// Per voxel, metres: the distance from its centre to the plane of the nearest crossing of a
   /// wall (the skin, or a surface with a hollow side) on its face-neighbour segments that run
@@ -61,8 +63,14 @@ struct InteriorVolume {
   size_t index(int i, int j, int k) const {
     return static_cast<size_t>(i) + static_cast<size_t>(size.x) * (j + static_cast<size_t>(size.y) * k);
   }
+  /// The voxel (i, j, k) of array index `v` (the inverse of index()).
+  glm::ivec3 voxel(size_t v) const {
+    return {static_cast<int>(v % size.x), static_cast<int>(v / size.x % size.y),
+            static_cast<int>(v / (static_cast<size_t>(size.x) * size.y))};
+  }
   /// The centre of voxel (i, j, k), metres.
   glm::dvec3 centre(int i, int j, int k) const { return origin + voxel_m * glm::dvec3(i, j, k); }
+  glm::dvec3 centre(const glm::ivec3& ijk) const { return centre(ijk.x, ijk.y, ijk.z); }
 };
 
 /// How many voxels the longest edge of the skin's bounding box gets when no voxel length is
@@ -85,8 +93,9 @@ Outcome<InteriorVolume> volume_grid(const DsModel& model, double voxel_m);
 
 /// Samples `model`'s interior on `grid` (volume_grid's, for this model): each voxel
 /// classified solid or empty by the side votes (classify_points), regions joined along
-/// face-neighbour segments that cross no surface (one ray each), sheet distances from those
-/// crossings, and `diffusion` (PMVC over the model's diffusion sheets, the same backend and
+/// face-neighbour segments that cross no sharp surface (one ray each), sheet distances from
+/// those crossings, outline distances from a second cast against the walls alone (the skin
+/// and the surfaces with a hollow side), and `diffusion` (PMVC over the model's diffusion sheets, the same backend and
 /// settings as cut faces) at every solid voxel's centre, then, with `modulation`, the object's
 /// Perlin colour modulation of that strength at the same centres (as cut faces get it:
 /// material/colour_modulation.h). Ray casts run on `threads` threads (0: all cores); the

@@ -17,14 +17,6 @@ namespace {
 /// a cap would have more.
 constexpr double kPointsPerPlane = 3000;
 
-glm::dvec3 random_direction(Rng& rng) {
-  while (true) {
-    const glm::dvec3 d(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
-    const double len = glm::length(d);
-    if (len > 1e-3 && len <= 1) return d / len;
-  }
-}
-
 /// Mean and 99th percentile of `errors` (sorted in place); zeros when empty.
 std::pair<double, double> mean_and_p99(std::vector<double>& errors) {
   if (errors.empty()) return {0, 0};

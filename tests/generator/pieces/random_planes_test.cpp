@@ -36,14 +36,6 @@ int env_int(const char* name, int fallback) {
   return v && *v ? std::atoi(v) : fallback;
 }
 
-glm::dvec3 random_unit(Rng& rng) {
-  while (true) {
-    const glm::dvec3 d(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
-    const double len = glm::length(d);
-    if (len > 1e-3 && len <= 1) return d / len;
-  }
-}
-
 /// The i-th plane of the stream: cycles through the kinds of cut.
 Plane random_plane(const DsModel& model, Rng& rng, int i) {
   Plane p;
@@ -53,13 +45,13 @@ Plane random_plane(const DsModel& model, Rng& rng, int i) {
   const DsMesh& mesh = surface.mesh;
   if (kind == 0) {  // anywhere through the bounding box
     for (int k = 0; k < 3; ++k) p.point[k] = rng.uniform(model.bbox_min[k], model.bbox_max[k]);
-    p.normal = random_unit(rng);
+    p.normal = random_direction(rng);
   } else if (kind == 1) {  // through a vertex of a surface: nearly tangent to it there
     const auto vh =
         mesh.vertex_handle(static_cast<int>(rng.below(static_cast<uint32_t>(mesh.n_vertices()))));
     const auto& q = mesh.point(vh);
     p.point = {q[0], q[1], q[2]};
-    p.normal = random_unit(rng);
+    p.normal = random_direction(rng);
   } else {  // at an extreme of the surface's bounding box along an axis, or just inside it
     const int axis = static_cast<int>(rng.below(static_cast<uint32_t>(3)));
     double lo = INFINITY, hi = -INFINITY;
@@ -74,7 +66,7 @@ Plane random_plane(const DsModel& model, Rng& rng, int i) {
     p.normal = glm::dvec3(0.0);
     p.normal[axis] = 1;
     if (rng.uniform() < 0.5) {  // tilted a hair
-      p.normal += 1e-7 * random_unit(rng);
+      p.normal += 1e-7 * random_direction(rng);
       p.normal = glm::normalize(p.normal);
     }
   }
