@@ -18,6 +18,7 @@
 #include "export/vdb_export.h"
 #include "export/volume_flipbook.h"
 #include "io/template_parser.h"
+#include "io/text_rules.h"
 #include "material/colour_modulation.h"
 #include "model/model_builder.h"
 #include "variation/variation.h"
@@ -36,7 +37,7 @@ struct VolumeArgs {
   std::string template_path;
   std::vector<std::string> outputs;
   int64_t seed = -1;    ///< >= 0: the variant of this seed instead of the template
-  double voxel = 0;     ///< template units; 0: default_voxel_length
+  std::string voxel;    ///< template units (a plain decimal); empty: default_voxel_length
   int cube = 16;
   double perlin = 1.0;  ///< Perlin colour modulation strength (the template's npr bands)
 };
@@ -112,8 +113,12 @@ int run_volume(const VolumeArgs& a, const Common& common, OutputSet& outputs) {
   const Variant variant = a.seed >= 0 ? make_variant(tmpl, static_cast<uint64_t>(a.seed))
                                       : Variant{tmpl, build_model(tmpl)};
   const double t_model = seconds_since(t0);
-  const double voxel_m =
-      a.voxel > 0 ? a.voxel * tmpl.metres_per_unit : default_voxel_length(variant.model);
+  double voxel_m = default_voxel_length(variant.model);
+  if (!a.voxel.empty()) {
+    const Outcome<double> given = parse_decimal(a.voxel, "--voxel");
+    if (!given) throw UsageError(given.reason());
+    voxel_m = *given * tmpl.metres_per_unit;
+  }
   Outcome<InteriorVolume> grid = volume_grid(variant.model, voxel_m);  // before any work
   if (!grid) throw UsageError("--voxel: " + grid.reason());
   spdlog::info("{}: sampling {} x {} x {} voxels of {:.3g} mm (PMVC at every solid one)",
@@ -198,8 +203,7 @@ Command add_volume_command(CLI::App& app) {
   volume
       ->add_option("--voxel", args->voxel,
                    "voxel edge in template units (default: the skin's longest edge / " +
-                       std::to_string(kDefaultVoxelsAcross) + ")")
-      ->check(CLI::PositiveNumber);
+                       std::to_string(kDefaultVoxelsAcross) + ")");
   volume->add_option("--cube", args->cube, "cube-map texels per face edge for PMVC")
       ->check(CLI::Range(2, 256));
   volume->add_option("--perlin", args->perlin, "Perlin colour modulation strength (0: none)")

@@ -83,6 +83,11 @@ Outcome<InteriorVolume> volume_grid(const DsModel& model, double voxel_m) {
   if (!std::isfinite(voxel_m) || voxel_m <= 0)
     return Outcome<InteriorVolume>::none("the voxel length must be positive and finite");
   const auto [lo, hi] = skin_bounds(model);
+  const double longest = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  if (voxel_m > 0.5 * longest)
+    return Outcome<InteriorVolume>::none(
+        std::to_string(voxel_m) + " m is longer than half the skin's longest edge (" +
+        std::to_string(longest) + " m); a volume needs at least two voxels across it");
   InteriorVolume volume;
   volume.voxel_m = voxel_m;
   double count = 1;

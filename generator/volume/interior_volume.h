@@ -87,8 +87,8 @@ inline double default_voxel_length(const DsModel& model) {
 }
 
 /// The grid over `model`'s skin with voxel edge `voxel_m` (metres): size and origin set, no
-/// samples; or none, with the reason, when voxel_m is not positive and finite or the grid
-/// would have more than kMaxVolumeVoxels voxels.
+/// samples; or none, with the reason, when voxel_m is not positive and finite, is longer than
+/// half the skin's longest bounding-box edge, or makes more than kMaxVolumeVoxels voxels.
 Outcome<InteriorVolume> volume_grid(const DsModel& model, double voxel_m);
 
 /// Samples `model`'s interior on `grid` (volume_grid's, for this model): each voxel

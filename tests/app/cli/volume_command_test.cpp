@@ -100,6 +100,19 @@ TEST(InteriorVolumeCommand, BadOutputsAndVoxelsAreRefusedBeforeAnyWork) {
   EXPECT_EQ(fine.exit_code, 2);
   EXPECT_NE(fine.err.find("--voxel: "), std::string::npos) << fine.err;
   EXPECT_NE(fine.err.find("give a longer voxel length"), std::string::npos) << fine.err;
+  // A voxel that is not a plain positive decimal, or longer than half the object.
+  const std::vector<std::pair<std::string, std::string>> voxels = {
+      {"nan", "--voxel must be a number"}, {"inf", "--voxel must be a number"},
+      {"abc", "--voxel must be a number"}, {"1e400", "--voxel is too large"},
+      {"-1", "positive and finite"},       {"0", "positive and finite"},
+      {"1e308", "at least two voxels across"}};
+  for (const auto& [voxel, message] : voxels) {
+    const test::RunResult run = test::run_cutaway(
+        {"volume", "tests/data/section_hollow.yaml", "--voxel", voxel, "-o",
+         (dir / "v").string()});
+    EXPECT_EQ(run.exit_code, 2) << voxel << ": " << run.err;
+    EXPECT_NE(run.err.find(message), std::string::npos) << voxel << ": " << run.err;
+  }
   EXPECT_TRUE(test::files_in(dir).empty());  // nothing written, not even a part
 }
 

@@ -70,6 +70,11 @@ TEST(InteriorVolume, RefusesAVoxelThatIsNotALengthOrMakesTooManyVoxels) {
   EXPECT_FALSE(volume_grid(model, 0.0));
   EXPECT_FALSE(volume_grid(model, -1.0));
   EXPECT_FALSE(volume_grid(model, std::nan("")));
+  EXPECT_FALSE(volume_grid(model, 1e308));  // huge voxel centres would break the ray casts
+  const Outcome<InteriorVolume> coarse = volume_grid(model, 0.031);  // the skin is 60 mm
+  ASSERT_FALSE(coarse);
+  EXPECT_NE(coarse.reason().find("at least two voxels across"), std::string::npos);
+  EXPECT_TRUE(volume_grid(model, 0.030));
   const Outcome<InteriorVolume> fine = volume_grid(model, 1e-5);
   ASSERT_FALSE(fine);
   EXPECT_NE(fine.reason().find("voxels over the skin"), std::string::npos) << fine.reason();
