@@ -53,6 +53,7 @@ struct MeshDraw {
   size_t first_index = 0;  // offset into the index buffer, in indices
   size_t index_count = 0;
   int texture = -1;  // base colour: index into SceneAssets::textures, or -1: vertex colours
+  int normal_texture = -1;  // relief: index into SceneAssets::textures, or -1: none
   Highlight highlight;
 };
 
@@ -90,7 +91,7 @@ Highlight highlight(double roughness) {
 
 /// The draws of `mesh`, whose triangles start at `first_index` in the index buffer: one per
 /// primitive (one of material 0 when it has none), textured where its material has a base
-/// colour texture and the mesh has texture coordinates.
+/// colour texture (or a normal map) and the mesh has texture coordinates.
 std::vector<MeshDraw> mesh_draws(const SceneAssets& a, const AssetMesh& mesh, size_t first_index) {
   const std::vector<AssetPrimitive> plain{{0, mesh.triangle.size(), 0, {}}};
   std::vector<MeshDraw> draws;
@@ -98,18 +99,19 @@ std::vector<MeshDraw> mesh_draws(const SceneAssets& a, const AssetMesh& mesh, si
     const AssetMaterial& material = a.materials[static_cast<size_t>(p.material)];
     draws.push_back({first_index + 3 * p.first, 3 * p.count,
                      mesh.uv.empty() ? -1 : material.base_colour_texture,
+                     mesh.uv.empty() ? -1 : material.normal_texture,
                      highlight(material.pbr.roughness)});
   }
   return draws;
 }
 
-/// Uploads `texture` (RGB, sRGB, row 0 at the top) as a GL_SRGB8 texture with mipmaps, filtered
-/// trilinearly, repeating in s where it wraps in u (else clamped) and clamped in t. Row 0 lies
+/// Uploads `texture` (RGB, row 0 at the top) as a GL_SRGB8 texture (GL_RGB8 when it is linear:
+/// a normal map) with mipmaps, filtered trilinearly, repeating in s where it wraps in u (else clamped) and clamped in t. Row 0 lies
 /// at t = 0, so glTF texture coordinates (v down from the top row) address it as they are. The
 /// texture belongs to the current context, which frees it.
 /// @throws InternalError when it is larger than GL_MAX_TEXTURE_SIZE
 /// @throws EnvironmentError when OpenGL reports an error
-GLuint upload_base_colour(const AssetTexture& texture, size_t index, const GlContext& context) {
+GLuint upload_rgb_texture(const AssetTexture& texture, size_t index, const GlContext& context) {
   const std::string name = "texture " + std::to_string(index) + " '" + texture.name + "'";
   GLint max_side = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
@@ -121,7 +123,8 @@ GLuint upload_base_colour(const AssetTexture& texture, size_t index, const GlCon
   glGenTextures(1, &id);
   glBindTexture(GL_TEXTURE_2D, id);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);  // rows of 3 * width bytes, unpadded
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8, texture.width, texture.height, 0, GL_RGB,
+  glTexImage2D(GL_TEXTURE_2D, 0, texture.linear ? GL_RGB8 : GL_SRGB8, texture.width,
+               texture.height, 0, GL_RGB,
                GL_UNSIGNED_BYTE, texture.pixels.data());
   glGenerateMipmap(GL_TEXTURE_2D);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
@@ -191,18 +194,19 @@ SceneGeometry scene_geometry(const SceneAssets& assets) {
   return g;
 }
 
-/// Each base colour texture that some draw of `draws` samples, uploaded once
-/// (upload_base_colour()); per texture of `assets`, its id (0: not uploaded).
-std::vector<GLuint> upload_base_colours(const SceneAssets& assets,
-                                        const std::vector<std::vector<MeshDraw>>& draws,
-                                        const GlContext& context) {
+/// Each base colour and normal texture that some draw of `draws` samples, uploaded once
+/// (upload_rgb_texture()); per texture of `assets`, its id (0: not uploaded).
+std::vector<GLuint> upload_textures(const SceneAssets& assets,
+                                    const std::vector<std::vector<MeshDraw>>& draws,
+                                    const GlContext& context) {
   std::vector<GLuint> textures(assets.textures.size(), 0);
   for (const std::vector<MeshDraw>& list : draws)
-    for (const MeshDraw& draw : list) {
-      if (draw.texture < 0) continue;
-      const auto t = static_cast<size_t>(draw.texture);
-      if (textures[t] == 0) textures[t] = upload_base_colour(assets.textures[t], t, context);
-    }
+    for (const MeshDraw& draw : list)
+      for (const int index : {draw.texture, draw.normal_texture}) {
+        if (index < 0) continue;
+        const auto t = static_cast<size_t>(index);
+        if (textures[t] == 0) textures[t] = upload_rgb_texture(assets.textures[t], t, context);
+      }
   return textures;
 }
 
@@ -241,9 +245,10 @@ struct DrawUniforms {
   explicit DrawUniforms(const GlProgram& program)
       : view_from_object(program.uniform("view_from_object")),
         textured(program.uniform("textured")),
+        relief(program.uniform("relief")),
         shininess(program.uniform("shininess")),
         specular_weight(program.uniform("specular_weight")) {}
-  GLint view_from_object, textured, shininess, specular_weight;
+  GLint view_from_object, textured, relief, shininess, specular_weight;
 };
 
 /// Binds `target` and clears it to `background` and the far depth, with the depth test on,
@@ -262,7 +267,7 @@ void clear_target(const OffscreenTarget& target, const glm::dvec3& background) {
 }
 
 /// Draws every instance of `assets` whose mesh has draws, with the texture ids `textures`
-/// (bound to the active texture unit).
+/// (base colours bound to texture unit 0, normal maps to unit 1).
 void draw_instances(const SceneAssets& assets, const std::vector<std::vector<MeshDraw>>& draws,
                     const std::vector<GLuint>& textures, const glm::dmat4& view,
                     const DrawUniforms& uniforms) {
@@ -275,8 +280,15 @@ void draw_instances(const SceneAssets& assets, const std::vector<std::vector<Mes
     glUniformMatrix4fv(uniforms.view_from_object, 1, GL_FALSE, glm::value_ptr(view_from_object));
     for (const MeshDraw& draw : list) {
       glUniform1i(uniforms.textured, draw.texture >= 0 ? 1 : 0);
-      if (draw.texture >= 0)
+      if (draw.texture >= 0) {
+        glActiveTexture(GL_TEXTURE0);
         glBindTexture(GL_TEXTURE_2D, textures[static_cast<size_t>(draw.texture)]);
+      }
+      glUniform1i(uniforms.relief, draw.normal_texture >= 0 ? 1 : 0);
+      if (draw.normal_texture >= 0) {
+        glActiveTexture(GL_TEXTURE1);
+        glBindTexture(GL_TEXTURE_2D, textures[static_cast<size_t>(draw.normal_texture)]);
+      }
       glUniform1f(uniforms.shininess, draw.highlight.shininess);
       glUniform1f(uniforms.specular_weight, draw.highlight.weight);
       glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(draw.index_count), GL_UNSIGNED_INT,
@@ -310,13 +322,13 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
                      {1, 3, offsetof(SceneVertex, normal)},
                      {2, 3, offsetof(SceneVertex, colour)},
                      {3, 2, offsetof(SceneVertex, uv)}});
-  const std::vector<GLuint> textures = upload_base_colours(assets, geometry.draws, *context);
+  const std::vector<GLuint> textures = upload_textures(assets, geometry.draws, *context);
 
   glUseProgram(program.id());
   set_scene_uniforms(program, assets, view, clip_from_view, options.exposure);
   const DrawUniforms uniforms(program);
   glUniform1i(program.uniform("base_colour"), 0);  // texture unit 0
-  glActiveTexture(GL_TEXTURE0);
+  glUniform1i(program.uniform("normal_map"), 1);   // texture unit 1
 
   clear_target(target, assets.background);
   draw_instances(assets, geometry.draws, textures, view, uniforms);

@@ -1,7 +1,8 @@
 #version 330 core
 // Scene preview (render/scene_preview.h), fragment stage: two-sided shading in linear RGB,
 // hemisphere ambient + Lambert + a Blinn-Phong highlight per light, with the albedo from the
-// vertex colour or the material's base colour texture. The constants, the highlight of each
+// vertex colour or the material's base colour texture and the normal tilted by the material's
+// normal map (the skin's relief). The constants, the highlight of each
 // roughness and the light mapping are documented at render_scene_preview().
 
 const int kMaxLights = 16;  // render/scene_preview.cpp: kMaxLights
@@ -28,8 +29,29 @@ uniform int textured;
 uniform sampler2D base_colour;
 uniform float shininess;
 uniform float specular_weight;
+// The relief: a tangent-space normal map (linear; X along +u, Y toward the top row, Z out of
+// the surface: glTF's normalTexture) when `relief` is non-zero.
+uniform int relief;
+uniform sampler2D normal_map;
 
 out vec4 out_colour;  // linear RGB, opaque
+
+// `n` (unit, the side seen) tilted by the normal map, in the tangent frame the screen-space
+// derivatives of position and uv give (Mikkelsen 2010, "Bump Mapping Unparametrized Surfaces on
+// the GPU"; three.js's perturbNormal2Arb): T along +u, B along +v (down the rows), so the map's
+// Y, which points up the rows, is taken negated.
+vec3 tilted_by_relief(vec3 n) {
+  vec3 q0 = dFdx(v_position), q1 = dFdy(v_position);
+  vec2 st0 = dFdx(v_uv), st1 = dFdy(v_uv);
+  vec3 q1perp = cross(q1, n), q0perp = cross(n, q0);
+  vec3 t = q1perp * st0.x + q0perp * st1.x;
+  vec3 b = q1perp * st0.y + q0perp * st1.y;
+  float det = max(dot(t, t), dot(b, b));
+  if (det <= 0.0) return n;
+  vec3 m = texture(normal_map, v_uv).xyz * 2.0 - 1.0;
+  vec3 tilted = (t * m.x - b * m.y) * inversesqrt(det) + n * m.z;
+  return dot(tilted, tilted) > 0.0 ? normalize(tilted) : n;
+}
 
 void main() {
   vec3 albedo = textured != 0 ? texture(base_colour, v_uv).rgb : v_colour;
@@ -45,6 +67,7 @@ void main() {
     n = dot(flat_normal, flat_normal) > 0.0 ? normalize(flat_normal) : view;
     if (dot(n, view) < 0.0) n = -n;
   }
+  if (relief != 0) n = tilted_by_relief(n);
 
   float hemisphere = mix(kGround, kSky, 0.5 + 0.5 * dot(n, up_view));
   vec3 diffuse = vec3(hemisphere * ambient_scale);

@@ -80,8 +80,8 @@ Check check_texture(const AssetTexture& t) {
   if (t.width < 1 || t.height < 1)
     return Check::none("is " + std::to_string(t.width) + "x" + std::to_string(t.height) +
            " (must be at least 1x1)");
-  if (t.channels != 3 && t.channels != 4)
-    return Check::none("has " + std::to_string(t.channels) + " channels (must be 3 or 4)");
+  if (t.channels != 1 && t.channels != 3 && t.channels != 4)
+    return Check::none("has " + std::to_string(t.channels) + " channels (must be 1, 3 or 4)");
   const size_t bytes = static_cast<size_t>(t.width) * static_cast<size_t>(t.height) *
                        static_cast<size_t>(t.channels);
   if (t.pixels.size() != bytes)
@@ -94,7 +94,9 @@ Check check_material(const AssetMaterial& m, const std::vector<AssetTexture>& te
   if (const std::string_view field = out_of_range_field(m.pbr); !field.empty())
     return Check::none("has " + std::string(field) + " outside its range");
   for (const auto& [field, texture] : {std::pair{"base_colour_texture", m.base_colour_texture},
-                                       std::pair{"material_texture", m.material_texture}})
+                                       std::pair{"material_texture", m.material_texture},
+                                       std::pair{"normal_texture", m.normal_texture},
+                                       std::pair{"height_texture", m.height_texture}})
     if (texture < -1 || texture >= static_cast<int>(textures.size()))
       return Check::none("has " + std::string(field) + " " + std::to_string(texture) +
                          ", neither -1 nor in 0.." +
@@ -102,6 +104,12 @@ Check check_material(const AssetMaterial& m, const std::vector<AssetTexture>& te
   if (m.base_colour_texture >= 0 &&
       textures[static_cast<size_t>(m.base_colour_texture)].channels != 3)
     return Check::none("has a base colour texture that is not RGB (3 channels)");
+  if (m.normal_texture >= 0 && textures[static_cast<size_t>(m.normal_texture)].channels != 3)
+    return Check::none("has a normal texture that is not RGB (3 channels)");
+  if (m.height_texture >= 0 && textures[static_cast<size_t>(m.height_texture)].channels != 1)
+    return Check::none("has a height texture that is not grey (1 channel)");
+  if (m.height_texture >= 0 && !(m.height_bump >= 0 && std::isfinite(m.height_bump)))
+    return Check::none("has a height_bump that is not finite and at least 0");
   return {};
 }
 

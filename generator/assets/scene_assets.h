@@ -32,15 +32,19 @@ inline std::string asset_name(std::string_view name) {
   return s;
 }
 
-/// An image for texturing, 8 bits per channel, row 0 at the top: a base colour (RGB, sRGB) or
-/// a material map (RGBA, linear: G roughness, B metallic, A translucency; the channels glTF's
-/// metallicRoughnessTexture and KHR_materials_diffuse_transmission's texture read).
+/// An image for texturing, 8 bits per channel, row 0 at the top: a base colour (RGB, sRGB), a
+/// material map (RGBA, linear: G roughness, B metallic, A translucency; the channels glTF's
+/// metallicRoughnessTexture and KHR_materials_diffuse_transmission's texture read), a normal
+/// map (RGB, linear: relief_map.h) or a height map (grey, linear).
 struct AssetTexture {
   std::string name;
   int width = 0, height = 0;
-  int channels = 3;             ///< 3 (RGB) or 4 (RGBA)
+  int channels = 3;             ///< 1 (grey), 3 (RGB) or 4 (RGBA)
   std::vector<uint8_t> pixels;  ///< width * height * channels, row by row
   bool wrap_u = false;          ///< repeats in u (addressed beyond 0..1), clamped in v
+  /// Holds data, not colour (material, normal and height maps): stored losslessly (PNG) and
+  /// read without sRGB decoding. Base colours are sRGB (false).
+  bool linear = false;
 };
 
 /// A named material. Its base colour is the vertex colours, or its texture when it has one
@@ -54,6 +58,14 @@ struct AssetMaterial {
   /// With one, pbr.roughness and pbr.translucency are the map's means (for renderers that
   /// cannot read it), and the map holds the values themselves (glTF factors 1).
   int material_texture = -1;
+  /// Index of a tangent-space normal map (RGB, linear; glTF normalTexture's convention:
+  /// relief_map.h) shading the skin's relief, or -1. Its mesh needs uv.
+  int normal_texture = -1;
+  /// Index of the same relief as a height map (grey, linear, 0 lowest) for renderers that bump
+  /// by height (POV-Ray's bump_map), or -1; with one, the relief's slope that one full step of
+  /// the map (0 to 1) between neighbouring texels stands for: height range / metres per texel.
+  int height_texture = -1;
+  double height_bump = 0;
 };
 
 /// Triangles [first, first + count) of a mesh, drawn with one material.

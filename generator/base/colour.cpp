@@ -49,6 +49,10 @@ uint8_t linear_to_srgb8(double c) {
   return static_cast<uint8_t>(std::upper_bound(step.begin(), step.end(), c) - step.begin());
 }
 
+uint8_t unit_to_byte(double v) {
+  return static_cast<uint8_t>(std::lround(255.0 * std::clamp(v, 0.0, 1.0)));
+}
+
 glm::dvec3 srgb_to_linear(const glm::dvec3& c) {
   return {srgb_to_linear(c.x), srgb_to_linear(c.y), srgb_to_linear(c.z)};
 }

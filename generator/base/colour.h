@@ -21,6 +21,10 @@ double linear_to_srgb(double c);
 /// eight comparisons instead of a pow() per texel.
 uint8_t linear_to_srgb8(double c);
 
+/// A value in 0..1 (clamped) as an 8-bit code, lround(255 v), with no transfer curve: for
+/// linear data (material, normal and height maps).
+uint8_t unit_to_byte(double v);
+
 /// Component-wise srgb_to_linear.
 glm::dvec3 srgb_to_linear(const glm::dvec3& c);
 

@@ -14,7 +14,7 @@ namespace cutaway {
 namespace {
 
 /// The version of the payload's layout (and of the key's), part of every key.
-constexpr int kPayloadVersion = 1;
+constexpr int kPayloadVersion = 2;
 
 // A field added to one of these structs must be added to the key below: their sizes remind.
 static_assert(sizeof(ObjectCutOptions) == 176,
@@ -177,6 +177,7 @@ std::string encode_cut(const CachedCut& made, const SceneAssets& assets,
     w.put<int32_t>(t.channels);
     w.put_vector(t.pixels);
     w.put<uint8_t>(t.wrap_u);
+    w.put<uint8_t>(t.linear);
   }
   w.put<uint64_t>(assets.materials.size() - static_cast<size_t>(rebase.first_new));
   for (size_t k = static_cast<size_t>(rebase.first_new); k < assets.materials.size(); ++k) {
@@ -185,6 +186,9 @@ std::string encode_cut(const CachedCut& made, const SceneAssets& assets,
     w.put(m.pbr);
     w.put<int32_t>(encode_texture(m.base_colour_texture, first_texture));
     w.put<int32_t>(encode_texture(m.material_texture, first_texture));
+    w.put<int32_t>(encode_texture(m.normal_texture, first_texture));
+    w.put<int32_t>(encode_texture(m.height_texture, first_texture));
+    w.put<double>(m.height_bump);
   }
   const CutPieces& p = made.pieces;
   w.put_string(p.backend);
@@ -225,6 +229,7 @@ CachedCut decode_cut(std::string_view payload, SceneAssets& assets,
     t.channels = r.get<int32_t>();
     t.pixels = r.get_vector<uint8_t>();
     t.wrap_u = r.get<uint8_t>() != 0;
+    t.linear = r.get<uint8_t>() != 0;
   }
   const int first_texture = static_cast<int>(assets.textures.size());
   std::vector<AssetMaterial> added(r.count(8));
@@ -233,6 +238,9 @@ CachedCut decode_cut(std::string_view payload, SceneAssets& assets,
     m.pbr = r.get<PbrMaterial>();
     m.base_colour_texture = decode_texture(r.get<int32_t>(), first_texture, textures.size());
     m.material_texture = decode_texture(r.get<int32_t>(), first_texture, textures.size());
+    m.normal_texture = decode_texture(r.get<int32_t>(), first_texture, textures.size());
+    m.height_texture = decode_texture(r.get<int32_t>(), first_texture, textures.size());
+    m.height_bump = r.get<double>();
   }
   const MaterialRebase rebase{materials, static_cast<int>(assets.materials.size())};
   CachedCut out;

@@ -108,7 +108,7 @@ PieceMaterials add_cap_texture(SceneAssets& assets, const PieceSet& set,
   if (!atlas.material.empty()) {
     assets.textures.push_back(
         {object + "_cut_material", atlas.material_width, atlas.material_height, 4,
-         std::move(atlas.material)});
+         std::move(atlas.material), false, true});
     cut.material_texture = static_cast<int>(assets.textures.size()) - 1;
   }
   assets.textures.push_back({object + "_cut", atlas.width, atlas.height, 3, std::move(atlas.srgb)});
@@ -135,7 +135,9 @@ std::vector<std::vector<glm::dvec2>> unwrap_skins(PieceSet& set, const std::vect
 /// `materials.skin` textured with it and returns the object's materials with it as the skin's;
 /// writes each kept piece's skin coordinates into the first entries of uv[q] (sized to the
 /// piece's merge_parts vertices). The skin's `patterns` and the Perlin `modulation` are baked
-/// in per texel. No skins: `materials` unchanged.
+/// in per texel; where the patterns have a relief, textures "<object>_skin_normal" and
+/// "<object>_skin_height" become the material's normal and height maps. No skins: `materials`
+/// unchanged.
 PieceMaterials add_skin_texture(SceneAssets& assets, const DsSurface& skin, const PieceSet& set,
                                 const std::vector<size_t>& kept,
                                 const std::vector<std::vector<glm::dvec2>>& skin_uv,
@@ -156,12 +158,20 @@ PieceMaterials add_skin_texture(SceneAssets& assets, const DsSurface& skin, cons
   }
   if (parts.empty()) return materials;
   const glm::ivec2 size = skin_texture_size(skin, options);
-  assets.textures.push_back({object + "_skin", size.x, size.y, 3,
-                             bake_skin_texture(parts, part_uv, size, patterns, modulation,
-                                               strength, options),
-                             true});
+  SkinTexture baked =
+      bake_skin_texture(parts, part_uv, size, patterns, modulation, strength, options);
   AssetMaterial textured = assets.materials[static_cast<size_t>(materials.skin)];
   textured.name = object + "_skin";
+  if (baked.relief) {
+    assets.textures.push_back(
+        {object + "_skin_normal", size.x, size.y, 3, std::move(baked.relief->normal), true, true});
+    textured.normal_texture = static_cast<int>(assets.textures.size()) - 1;
+    assets.textures.push_back(
+        {object + "_skin_height", size.x, size.y, 1, std::move(baked.relief->height), true, true});
+    textured.height_texture = static_cast<int>(assets.textures.size()) - 1;
+    textured.height_bump = (baked.relief->high_m - baked.relief->low_m) * options.texels_per_m;
+  }
+  assets.textures.push_back({object + "_skin", size.x, size.y, 3, std::move(baked.srgb), true});
   textured.base_colour_texture = static_cast<int>(assets.textures.size()) - 1;
   assets.materials.push_back(textured);
   materials.skin = static_cast<int>(assets.materials.size()) - 1;

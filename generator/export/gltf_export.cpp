@@ -24,6 +24,7 @@
 #include "base/atomic_file.h"
 #include "base/error.h"
 #include "export/texture_image.h"
+#include "export/vertex_tangents.h"
 #include "model/pbr_material.h"
 
 namespace cutaway {
@@ -225,6 +226,19 @@ class SceneBuffers {
                     {}, "OCTAHEDRAL");
   }
 
+  /// #V x 4 tangents (unit xyz, w +-1): float without compression, else normalized BYTE (the
+  /// codec alone with meshopt).
+  int tangents(const std::vector<float>& xyzw) {
+    const size_t count = xyzw.size() / 4;
+    if (compression_ == GltfCompression::None)
+      return accessor(xyzw.data(), count, 16, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4,
+                      false);
+    std::vector<int8_t> q(xyzw.size());
+    for (size_t i = 0; i < xyzw.size(); ++i)
+      q[i] = static_cast<int8_t>(std::lround(std::clamp(xyzw[i], -1.f, 1.f) * 127.f));
+    return accessor(q.data(), count, 4, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC4, true);
+  }
+
   /// #V x 3 linear RGB colours in 0..1: normalized UNSIGNED_SHORT.
   int colours(const std::vector<float>& rgb) {
     return vec3(rgb, std::vector<uint16_t>{}, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, 0.f);
@@ -371,19 +385,24 @@ struct AddedMesh {
 };
 
 /// The vertices of a scene mesh as written: float32 attributes (#V x 3; uv #V x 2, empty when
-/// the mesh has none) and where each of the mesh's vertices went.
+/// the mesh has none; tangent #V x 4, empty unless a primitive is normal-mapped) and where each
+/// of the mesh's vertices went.
 struct WrittenVertices {
   std::vector<unsigned> remap;  ///< per mesh vertex, its written index (~0u: not written)
   unsigned count = 0;           ///< #V
-  std::vector<float> position, normal, colour, uv;
+  std::vector<float> position, normal, colour, uv, tangent;
 };
 
 /// Only the vertices of `mesh` some triangle of `lists` uses, each written once (ordered for
 /// fetching by cache_ordered_triangles()): a vertex whose written attributes (float position,
-/// normal, colour, uv) equal an earlier one's is welded to it (the copies of cut vertices on both
-/// sides of a seam that show the same colour).
+/// normal, colour, uv and, `with_tangents`, its vertex_tangents() one) equal an earlier one's is
+/// welded to it (the copies of cut vertices on both sides of a seam that show the same colour).
 WrittenVertices welded_vertices(const AssetMesh& mesh,
-                                const std::vector<std::span<const glm::uvec3>>& lists) {
+                                const std::vector<std::span<const glm::uvec3>>& lists,
+                                bool with_tangents) {
+  const std::vector<glm::dvec4> tangent =
+      with_tangents ? vertex_tangents(mesh.position, mesh.normal, mesh.uv, lists)
+                    : std::vector<glm::dvec4>{};
   const size_t n = mesh.position.size();
   std::vector<bool> needed(n, false);
   for (const auto& list : lists)
@@ -399,7 +418,7 @@ WrittenVertices welded_vertices(const AssetMesh& mesh,
     const glm::dvec3 nrm =
         len > 0 && std::isfinite(len) ? mesh.normal[i] / len : glm::dvec3(0, 1, 0);
     const glm::dvec3 c = glm::clamp(mesh.colour[i], 0.0, 1.0);
-    float vertex[11] = {};
+    float vertex[15] = {};
     for (int k = 0; k < 3; ++k) {
       vertex[k] = static_cast<float>(p[k]);
       vertex[3 + k] = static_cast<float>(nrm[k]);
@@ -410,6 +429,8 @@ WrittenVertices welded_vertices(const AssetMesh& mesh,
       vertex[9] = static_cast<float>(q.x);
       vertex[10] = static_cast<float>(q.y);
     }
+    if (with_tangents)
+      for (int k = 0; k < 4; ++k) vertex[11 + k] = static_cast<float>(tangent[i][k]);
     for (float& v : vertex) v += 0.0f;  // -0 and +0 write alike
     const auto [it, added] = written.emplace(
         std::string(reinterpret_cast<const char*>(vertex), sizeof vertex), out.count);
@@ -420,6 +441,7 @@ WrittenVertices welded_vertices(const AssetMesh& mesh,
     out.normal.insert(out.normal.end(), vertex + 3, vertex + 6);
     out.colour.insert(out.colour.end(), vertex + 6, vertex + 9);
     if (!mesh.uv.empty()) out.uv.insert(out.uv.end(), vertex + 9, vertex + 11);
+    if (with_tangents) out.tangent.insert(out.tangent.end(), vertex + 11, vertex + 15);
   }
   return out;
 }
@@ -447,7 +469,7 @@ std::vector<std::vector<uint32_t>> cache_ordered_triangles(
     meshopt_remapIndexBuffer(list.data(), std::vector<uint32_t>(list).data(), list.size(),
                              fetch.data());
   for (std::vector<float>* stream :
-       {&vertices.position, &vertices.normal, &vertices.colour, &vertices.uv}) {
+       {&vertices.position, &vertices.normal, &vertices.colour, &vertices.uv, &vertices.tangent}) {
     if (stream->empty()) continue;
     const std::vector<float> input = *stream;
     meshopt_remapVertexBuffer(stream->data(), input.data(), used,
@@ -461,12 +483,13 @@ std::vector<std::vector<uint32_t>> cache_ordered_triangles(
 /// when some primitive first uses them.
 class MeshLevels {
  public:
-  /// `primitives` of the mesh, `textured` per primitive, `vertices` as written; `frame`
-  /// receives the frame of the positions.
+  /// `primitives` of the mesh, `textured` and `relief` (normal-mapped) per primitive,
+  /// `vertices` as written; `frame` receives the frame of the positions.
   MeshLevels(SceneBuffers& out, const std::vector<AssetPrimitive>& primitives,
              const std::vector<int>& gltf_material, const std::vector<bool>& textured,
-             const WrittenVertices& vertices, MeshFrame& frame)
+             const std::vector<bool>& relief, const WrittenVertices& vertices, MeshFrame& frame)
       : out_(out), primitives_(primitives), gltf_material_(gltf_material), textured_(textured),
+        relief_(relief),
         vertices_(vertices), positions_(out.positions(vertices.position, frame)),
         normals_(out.normals(vertices.normal)) {}
 
@@ -491,6 +514,10 @@ class MeshLevels {
         if (colours_ < 0) colours_ = out_.colours(vertices_.colour);
         prim.attributes["COLOR_0"] = colours_;
       }
+      if (relief_[k]) {
+        if (tangents_ < 0) tangents_ = out_.tangents(vertices_.tangent);
+        prim.attributes["TANGENT"] = tangents_;
+      }
       prim.indices = out_.indices(lists[k], vertices_.count);
       gm.primitives.push_back(prim);
     }
@@ -503,9 +530,10 @@ class MeshLevels {
   const std::vector<AssetPrimitive>& primitives_;
   const std::vector<int>& gltf_material_;
   const std::vector<bool>& textured_;
+  const std::vector<bool>& relief_;
   const WrittenVertices& vertices_;
   const int positions_, normals_;
-  int colours_ = -1, uvs_ = -1;  // added when some primitive uses them
+  int colours_ = -1, uvs_ = -1, tangents_ = -1;  // added when some primitive uses them
 };
 
 /// Adds mesh `mesh` through `out` (one primitive per AssetPrimitive, sharing the vertex
@@ -519,20 +547,21 @@ AddedMesh add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
   const std::vector<AssetPrimitive>& primitives = mesh.primitives.empty() ? plain : mesh.primitives;
   // Per primitive: textured or not, and its triangles (the coarse ones of a textured primitive
   // that has them: its colour is in the texture).
-  std::vector<bool> textured;
+  std::vector<bool> textured, relief;
   std::vector<std::span<const glm::uvec3>> lists;
   for (const AssetPrimitive& p : primitives) {
-    const int material = gltf_material[static_cast<size_t>(p.material)];
-    textured.push_back(
-        m.materials[static_cast<size_t>(material)].pbrMetallicRoughness.baseColorTexture.index >=
-        0);
+    const tinygltf::Material& material =
+        m.materials[static_cast<size_t>(gltf_material[static_cast<size_t>(p.material)])];
+    textured.push_back(material.pbrMetallicRoughness.baseColorTexture.index >= 0);
+    relief.push_back(material.normalTexture.index >= 0 && !mesh.uv.empty());
     lists.push_back(primitive_triangles(mesh, p, textured.back()));
   }
-  WrittenVertices vertices = welded_vertices(mesh, lists);
+  const bool with_tangents = std::find(relief.begin(), relief.end(), true) != relief.end();
+  WrittenVertices vertices = welded_vertices(mesh, lists, with_tangents);
   const std::vector<std::vector<uint32_t>> idx = cache_ordered_triangles(lists, vertices);
 
   AddedMesh added;
-  MeshLevels levels(out, primitives, gltf_material, textured, vertices, added.frame);
+  MeshLevels levels(out, primitives, gltf_material, textured, relief, vertices, added.frame);
   added.index = levels.add(mesh.name, idx);
   for (int level = 1; level <= lods; ++level) {
     std::vector<std::vector<uint32_t>> coarser(idx.size());
@@ -562,8 +591,8 @@ std::string uri_encode(const std::string& name) {
 /// Adds `material` to `m` as an opaque, single-sided metallic-roughness material (white base
 /// colour: vertex colours give the colour, metallic 0) with KHR_materials_clearcoat,
 /// KHR_materials_sheen and KHR_materials_diffuse_transmission where its values ask for them
-/// (each added to extensionsUsed once); its base colour texture is glTF texture
-/// textures[base_colour_texture].
+/// (each added to extensionsUsed once); its base colour, material map and normal map are glTF
+/// textures textures[base_colour_texture] etc. (a height map is not written: glTF has none).
 void add_pbr_material(tinygltf::Model& m, const AssetMaterial& material,
                       const std::vector<int>& textures) {
   const PbrMaterial& pbr = material.pbr;
@@ -573,6 +602,10 @@ void add_pbr_material(tinygltf::Model& m, const AssetMaterial& material,
     mat.pbrMetallicRoughness.baseColorTexture.index =
         textures[static_cast<size_t>(material.base_colour_texture)];
     mat.pbrMetallicRoughness.baseColorTexture.texCoord = 0;
+  }
+  if (material.normal_texture >= 0) {  // the relief: tangents from MikkTSpace (none written)
+    mat.normalTexture.index = textures[static_cast<size_t>(material.normal_texture)];
+    mat.normalTexture.texCoord = 0;
   }
   const int material_map = material.material_texture < 0
                                ? -1
@@ -697,7 +730,8 @@ void SceneModelBuilder::add_textures() {
   gltf_texture_.assign(assets_.textures.size(), -1);
   for (size_t k = 0; k < assets_.materials.size(); ++k) {
     for (const int t :
-         {assets_.materials[k].base_colour_texture, assets_.materials[k].material_texture})
+         {assets_.materials[k].base_colour_texture, assets_.materials[k].material_texture,
+          assets_.materials[k].normal_texture})
       if (gltf_material_[k] >= 0 && t >= 0)
         gltf_texture_[static_cast<size_t>(t)] = 0;
   }

@@ -238,6 +238,20 @@ std::string image_of(const SceneAssets& a, const AssetMesh& m, int material,
   return texture_files[static_cast<size_t>(t)];
 }
 
+/// The POV-Ray normal block of material `material`'s relief when it has a height map with a
+/// file (a bump_map under the texture's uv_mapping, its bump_size the material's height_bump:
+/// one full grey step per texel tilts the normal by that slope); else empty.
+std::string relief_of(const SceneAssets& a, int material,
+                      const std::vector<std::string>& texture_files) {
+  const AssetMaterial& m = a.materials[static_cast<size_t>(material)];
+  const int t = m.height_texture;
+  if (t < 0 || static_cast<size_t>(t) >= texture_files.size()) return "";
+  std::string out = " normal { bump_map { png \"" + texture_files[static_cast<size_t>(t)] +
+                    "\" interpolate 2 bump_size ";
+  append_number(out, m.height_bump);
+  return out + " } }";
+}
+
 void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, const std::string& id,
                 size_t k, const std::vector<std::string>& texture_files) {
   // The faces with their materials and images: a textured primitive's coarse triangles where
@@ -286,8 +300,8 @@ void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, cons
       face_textures[f].x =
           index_of("texture { uv_mapping pigment { image_map { " +
                    std::string(face_image(f).ends_with(".jpg") ? "jpeg" : "png") + " \"" +
-                   face_image(f) +
-                   "\" interpolate 2 } } finish { " +
+                   face_image(f) + "\" interpolate 2 } }" +
+                   relief_of(a, face_material[f], texture_files) + " finish { " +
                    finish_identifier(static_cast<size_t>(face_material[f])) + " } }");
       continue;
     }

@@ -15,7 +15,7 @@ TextureFormat parse_texture_format(std::string_view name) {
 }
 
 bool is_jpeg(const AssetTexture& texture, TextureFormat format) {
-  return format == TextureFormat::Jpeg && texture.channels == 3;
+  return format == TextureFormat::Jpeg && texture.channels == 3 && !texture.linear;
 }
 
 const char* texture_mime_type(const AssetTexture& texture, TextureFormat format) {
@@ -24,7 +24,7 @@ const char* texture_mime_type(const AssetTexture& texture, TextureFormat format)
 
 std::string encode_texture(const AssetTexture& texture, TextureFormat format) {
   if (texture.width <= 0 || texture.height <= 0 ||
-      (texture.channels != 3 && texture.channels != 4) ||
+      (texture.channels != 1 && texture.channels != 3 && texture.channels != 4) ||
       texture.pixels.size() !=
           static_cast<size_t>(texture.width) * texture.height * texture.channels)
     throw InternalError("texture '" + texture.name + "': size and pixels disagree");

@@ -1,7 +1,7 @@
 // Textures as image files: the one encoder of AssetTexture images, for glTF (embedded, or files
 // beside a .gltf) and POV-Ray (files beside the scene). Base colours may be JPEG (a tenth of
-// the PNG's bytes on a baked cap atlas, at a mean error under 2/255); material maps hold
-// linear data and an alpha channel, so they are always PNG.
+// the PNG's bytes on a baked cap atlas, at a mean error under 2/255); material, normal and
+// height maps hold linear data (AssetTexture::linear), so they are always PNG.
 #pragma once
 
 #include <filesystem>
@@ -13,7 +13,7 @@
 
 namespace cutaway {
 
-/// How base-colour textures (RGB, sRGB) are stored; material maps (RGBA) are always PNG.
+/// How base-colour textures (RGB, sRGB) are stored; linear maps are always PNG.
 enum class TextureFormat {
   Png,   ///< lossless, 8-bit RGB
   Jpeg,  ///< baseline JPEG at kJpegQuality, chroma subsampled 2 x 2 (glTF core, POV-Ray,
@@ -27,13 +27,14 @@ inline constexpr int kJpegQuality = 90;
 /// @throws InternalError for any other name
 TextureFormat parse_texture_format(std::string_view name);
 
-/// Whether `texture` is written as JPEG under `format`: an RGB texture with format Jpeg.
+/// Whether `texture` is written as JPEG under `format`: an sRGB RGB texture with format Jpeg.
 bool is_jpeg(const AssetTexture& texture, TextureFormat format);
 
 /// The MIME type of `texture`'s image under `format`: "image/jpeg" or "image/png".
 const char* texture_mime_type(const AssetTexture& texture, TextureFormat format);
 
-/// `texture` as image bytes: JPEG (is_jpeg) or PNG (8-bit RGB or RGBA), by stb_image_write.
+/// `texture` as image bytes: JPEG (is_jpeg) or PNG (8-bit grey, RGB or RGBA), by
+/// stb_image_write.
 /// Deterministic: the same texture and format give the same bytes.
 /// @throws InternalError when its size and pixel count disagree or it is empty
 std::string encode_texture(const AssetTexture& texture, TextureFormat format);

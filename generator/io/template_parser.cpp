@@ -34,6 +34,9 @@ constexpr double kMaxEdgesPerHeight = 4096;
 /// The fewest edges the skin's height must span (resolution.edge <= height / this): coarser
 /// meshes no longer follow the curves well enough for the cut's caps and walls to meet.
 constexpr double kMinEdgesPerHeight = 8;
+/// The largest skin relief either way, metres: relief is the skin's surface texture (pores,
+/// netting), shown by shading, not a change of its shape.
+constexpr double kMaxReliefM = 2e-3;
 
 /// `v` (in units of `scale` metres) when |v * scale| <= kMaxMetres; fails at `f` otherwise.
 double within_limit(const YamlField& f, double v, double scale) {
@@ -518,7 +521,7 @@ SkinPatternLayer parse_pattern_layer(const YamlField& f, double m) {
            : speckles ? SkinPatternLayer::Kind::Speckles
                       : SkinPatternLayer::Kind::Net;
   if (stripes) {
-    b.allow_only({"count", "width", "colour", "opacity", "softness", "wobble"});
+    b.allow_only({"count", "width", "colour", "opacity", "softness", "wobble", "relief"});
     const int64_t count = b.require("count").integer();
     if (count < 1 || count > 256) b.require("count").fail("must be a whole number 1 to 256");
     p.count = static_cast<int>(count);
@@ -528,8 +531,10 @@ SkinPatternLayer parse_pattern_layer(const YamlField& f, double m) {
   } else {
     // speckles: spot radius `size`; net: line `width`; both at least 0.01 mm
     const char* size_key = speckles ? "size" : "width";
-    if (speckles) b.allow_only({"spacing", "size", "jitter", "colour", "opacity", "softness"});
-    else b.allow_only({"spacing", "width", "colour", "opacity", "softness"});
+    if (speckles)
+      b.allow_only({"spacing", "size", "jitter", "colour", "opacity", "softness", "relief"});
+    else
+      b.allow_only({"spacing", "width", "colour", "opacity", "softness", "relief"});
     const YamlField spacing = b.require("spacing"), size = b.require(size_key);
     p.spacing_m = parse_length(spacing, m);
     p.size_m = parse_length(size, m);
@@ -541,9 +546,17 @@ SkinPatternLayer parse_pattern_layer(const YamlField& f, double m) {
     if (net && p.size_m > 0.5 * p.spacing_m)
       spacing.fail("must be at least twice the net's width: wider lines would fill the cells");
   }
-  p.colour = parse_colour(b.require("colour"));
   if (auto x = b.get("opacity")) p.opacity = x->number_in(0.0, 1.0);
   if (auto x = b.get("softness")) p.softness = x->number_in(0.0, 1.0);
+  if (auto x = b.get("relief")) {
+    // Signed, unlike a LENGTH: raised or sunken.
+    p.relief_m = x->number_in(-kMaxReliefM / m, kMaxReliefM / m) * m;
+  }
+  if (p.opacity > 0) p.colour = parse_colour(b.require("colour"));
+  else if (auto x = b.get("colour")) p.colour = parse_colour(*x);
+  else if (p.relief_m == 0)
+    b.fail("a layer of opacity 0 without a relief changes nothing: give it a relief, or an "
+           "opacity and a colour");
   return p;
 }
 

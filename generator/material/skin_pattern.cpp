@@ -119,6 +119,18 @@ double SkinPatterns::coverage(size_t k, const glm::dvec2& param,
   return 0.0;
 }
 
+bool SkinPatterns::has_relief() const {
+  return std::any_of(layers_.begin(), layers_.end(),
+                     [](const Layer& layer) { return layer.spec.relief_m != 0; });
+}
+
+double SkinPatterns::height(const glm::dvec2& param, const glm::dvec3& position) const {
+  double h = 0;
+  for (size_t k = 0; k < layers_.size(); ++k)
+    if (layers_[k].spec.relief_m != 0) h += layers_[k].spec.relief_m * coverage(k, param, position);
+  return h;
+}
+
 glm::dvec3 SkinPatterns::operator()(const glm::dvec2& param, const glm::dvec3& position,
                                     const glm::dvec3& colour) const {
   glm::dvec3 c = colour;

@@ -2,7 +2,8 @@
 // watermelon's, a zucchini's), speckles (a pear's lenticels, a banana's ripening spots) and a
 // net (a cantaloupe's netting: the walls of a 3D Voronoi diagram, after Worley 1996)
 // laid over the skin's outside colour, baked into the skin texture per texel (and into vertex
-// colours when cut faces are not textured). They are the skin's surface only: the colour that
+// colours when cut faces are not textured), and their relief (an orange's pores, the netting's
+// ridges), baked into the skin's normal map. They are the skin's surface only: the colour that
 // diffuses into the volume is the skin's back, which they leave alone.
 #pragma once
 
@@ -35,6 +36,13 @@ class SkinPatterns {
   /// @param colour   the skin's front colour there, linear RGB
   glm::dvec3 operator()(const glm::dvec2& param, const glm::dvec3& position,
                         const glm::dvec3& colour) const;
+
+  /// Whether any layer has a relief (SkinPatternLayer::relief_m), so the skin gets a normal map.
+  bool has_relief() const;
+
+  /// The skin's relief at the point: the sum over the layers of relief_m * coverage, metres
+  /// above (> 0) or below (< 0) the swept skin. Arguments as for operator().
+  double height(const glm::dvec2& param, const glm::dvec3& position) const;
 
   /// How much of layer `k` covers the point, 0..1 (before its opacity).
   double coverage(size_t k, const glm::dvec2& param, const glm::dvec3& position) const;

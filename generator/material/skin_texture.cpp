@@ -107,20 +107,25 @@ std::vector<glm::dvec2> unwrap_skin(ShadedMesh& skin) {
   return uv;
 }
 
-std::vector<uint8_t> bake_skin_texture(const std::vector<const ShadedMesh*>& parts,
-                                       const std::vector<const std::vector<glm::dvec2>*>& uv,
-                                       glm::ivec2 size, const SkinPatterns* patterns,
-                                       const ColourModulation* modulation, double strength,
-                                       const SkinTextureOptions& options) {
+SkinTexture bake_skin_texture(const std::vector<const ShadedMesh*>& parts,
+                              const std::vector<const std::vector<glm::dvec2>*>& uv,
+                              glm::ivec2 size, const SkinPatterns* patterns,
+                              const ColourModulation* modulation, double strength,
+                              const SkinTextureOptions& options) {
   TexelCanvas canvas(size.x, size.y, true);
+  const bool relief = patterns && patterns->has_relief();
+  if (relief) canvas.relief.assign(canvas.covered.size(), glm::dvec3(0.0));
   for (size_t i = 0; i < parts.size(); ++i) {
     std::vector<glm::dvec2> texel(uv[i]->size());
     for (size_t v = 0; v < texel.size(); ++v) texel[v] = (*uv[i])[v] * glm::dvec2(size);
     rasterise(*parts[i], texel, patterns, modulation, strength, canvas);
   }
+  SkinTexture out;
+  if (relief) out.relief = bake_relief_maps(canvas, options.padding);
   dilate(canvas, options.padding);
   fill_background(canvas);
-  return srgb_pixels(canvas);
+  out.srgb = srgb_pixels(canvas);
+  return out;
 }
 
 }  // namespace cutaway

@@ -2,16 +2,18 @@
 // skin gets texture coordinates from its sweep parameters, u = t_section (around the axis,
 // repeating) and v = 1 - t_profile (top row at the top of the object), and its front colour,
 // Perlin-modulated per texel in the object frame, is baked into one texture per object that
-// all its pieces share.
+// all its pieces share (with the relief of its patterns, a normal and a height map).
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/vec2.hpp>
 
 #include "material/colour_modulation.h"
+#include "material/relief_map.h"
 #include "material/skin_pattern.h"
 #include "model/ds_model.h"
 #include "pieces/shaded_mesh.h"
@@ -47,14 +49,21 @@ std::array<glm::dvec2, 3> skin_corner_uv(const ShadedMesh& mesh, const glm::uvec
 /// @throws InternalError when skin.param is not #V long
 std::vector<glm::dvec2> unwrap_skin(ShadedMesh& skin);
 
+/// A skin's baked textures, all of one size.
+struct SkinTexture {
+  std::vector<uint8_t> srgb;           ///< width * height * 3, sRGB: the colour
+  std::optional<ReliefMaps> relief;    ///< where a pattern layer has a relief
+};
+
 /// Bakes the skins `parts` (each a piece's skin part with its unwrap_skin coordinates `uv`)
 /// into one sRGB RGB texture of `size` texels repeating in u (texel_bake.h): front colours
 /// interpolated, the skin's `patterns` laid over them (if not null), modulated by `modulation`
-/// (if not null) with `strength`, dilated by options.padding. Deterministic.
-std::vector<uint8_t> bake_skin_texture(const std::vector<const ShadedMesh*>& parts,
-                                       const std::vector<const std::vector<glm::dvec2>*>& uv,
-                                       glm::ivec2 size, const SkinPatterns* patterns,
-                                       const ColourModulation* modulation, double strength,
-                                       const SkinTextureOptions& options);
+/// (if not null) with `strength`, dilated by options.padding; and where `patterns` has a
+/// relief, its normal and height maps (relief_map.h). Deterministic.
+SkinTexture bake_skin_texture(const std::vector<const ShadedMesh*>& parts,
+                              const std::vector<const std::vector<glm::dvec2>*>& uv,
+                              glm::ivec2 size, const SkinPatterns* patterns,
+                              const ColourModulation* modulation, double strength,
+                              const SkinTextureOptions& options);
 
 }  // namespace cutaway

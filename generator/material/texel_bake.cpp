@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include "base/colour.h"
 
@@ -25,6 +26,13 @@ void rasterise(const ShadedMesh& mesh, std::span<const glm::dvec2> texel,
     const glm::dvec2 a = texel[t.x], b = texel[t.y], c = texel[t.z];
     const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
     if (area == 0) continue;
+    // The surface's metres per texel across and down: the lengths of d(position)/d(texel),
+    // constant over the triangle (its map from texels to the surface is affine).
+    const glm::dvec2 e1 = b - a, e2 = c - a;
+    const glm::dvec3 p1 = mesh.position[t.y] - mesh.position[t.x],
+                     p2 = mesh.position[t.z] - mesh.position[t.x];
+    const glm::dvec2 texel_metres(glm::length((p1 * e2.y - p2 * e1.y) / area),
+                                  glm::length((p2 * e1.x - p1 * e2.x) / area));
     const glm::ivec2 lo(static_cast<int>(std::floor(std::min({a.x, b.x, c.x}))),
                         static_cast<int>(std::floor(std::min({a.y, b.y, c.y}))));
     const glm::ivec2 hi(static_cast<int>(std::ceil(std::max({a.x, b.x, c.x}))),
@@ -47,6 +55,8 @@ void rasterise(const ShadedMesh& mesh, std::span<const glm::dvec2> texel,
         if (patterns) {
           const glm::dvec2 param(1 - (y + 0.5) / height, (column + 0.5) / width);
           colour = (*patterns)(param, where, colour);
+          if (!canvas.relief.empty())
+            canvas.relief[i] = {patterns->height(param, where), texel_metres};
         }
         if (modulation) colour = (*modulation)(where, colour, strength);
         canvas.colour[i] = colour;
@@ -186,12 +196,6 @@ TexelCanvas half_size(const TexelCanvas& canvas) {
   return half;
 }
 
-namespace {
-uint8_t byte_of(double v) {
-  return static_cast<uint8_t>(std::lround(255.0 * std::clamp(v, 0.0, 1.0)));
-}
-}  // namespace
-
 std::vector<uint8_t> srgb_pixels(const TexelCanvas& canvas) {
   std::vector<uint8_t> out(canvas.colour.size() * 3);
   for (size_t i = 0; i < canvas.colour.size(); ++i) {
@@ -204,9 +208,9 @@ std::vector<uint8_t> material_pixels(const TexelCanvas& canvas) {
   std::vector<uint8_t> out(canvas.material.size() * 4);
   for (size_t i = 0; i < canvas.material.size(); ++i) {
     out[4 * i + 0] = 255;
-    out[4 * i + 1] = byte_of(canvas.material[i].x);
+    out[4 * i + 1] = unit_to_byte(canvas.material[i].x);
     out[4 * i + 2] = 0;
-    out[4 * i + 3] = byte_of(canvas.material[i].y);
+    out[4 * i + 3] = unit_to_byte(canvas.material[i].y);
   }
   return out;
 }

@@ -27,6 +27,10 @@ struct TexelCanvas {
   std::vector<glm::dvec3> colour;    ///< width * height, linear RGB
   std::vector<glm::dvec2> material;  ///< width * height, (roughness, translucency)
   std::vector<uint8_t> covered;      ///< width * height, 1 where baked or dilated
+  /// Empty, or width * height (set by the caller before rasterise to bake the skin's relief):
+  /// per texel the skin's relief height (SkinPatterns::height, metres) and the metres one texel
+  /// spans across (x) and down (y) on the surface there. Not dilated or filled.
+  std::vector<glm::dvec3> relief;
 
   /// An empty (black, uncovered) canvas of w x h texels.
   TexelCanvas(int w, int h, bool wrap);
@@ -38,8 +42,9 @@ struct TexelCanvas {
 /// channels; the colour then gets the skin's `patterns` (if not null; the canvas is a skin
 /// texture, so texel (i, j) lies at t_section (i + 0.5) / width and t_profile 1 - (j + 0.5) /
 /// height) and is modulated by `modulation` (if not null), both at the interpolated position
-/// (metres, object frame), the modulation with `strength`. Later triangles overwrite earlier
-/// ones.
+/// (metres, object frame), the modulation with `strength`. Where the canvas has a `relief`
+/// channel and `patterns` is not null, the texel also gets its relief. Later triangles overwrite
+/// earlier ones.
 void rasterise(const ShadedMesh& mesh, std::span<const glm::dvec2> texel,
                const SkinPatterns* patterns, const ColourModulation* modulation,
                double strength, TexelCanvas& canvas);

@@ -189,7 +189,8 @@ struct NprSettings {
 };
 
 /// One layer of the skin's pattern (doc/template-format.md, Skin patterns): a colour laid over
-/// the skin's outside where the pattern is, baked into the skin texture.
+/// the skin's outside where the pattern is, baked into the skin texture, and a relief, baked
+/// into the skin's normal map.
 struct SkinPatternLayer {
   enum class Kind { Stripes, Speckles, Net };
   Kind kind = Kind::Stripes;
@@ -206,6 +207,9 @@ struct SkinPatternLayer {
   double spacing_m = 0.0;  ///< lattice spacing, metres
   double size_m = 0.0;     ///< speckles: spot radius; net: line width; metres
   double jitter = 0.0;     ///< speckles: 0..1, relative variation of the radius
+  /// Skin relief: the height of the skin inside the pattern, metres, raised (> 0: a net's
+  /// ridges, pebbling) or sunken (< 0: pores, dimples); 0: flat. Baked into a normal map.
+  double relief_m = 0.0;
   FileLoc loc;
 };
 

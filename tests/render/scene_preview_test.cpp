@@ -345,6 +345,42 @@ TEST(ScenePreview, TexturedMaterialsTakeTheirColourFromTheTexture) {
   if (HasFailure()) ADD_FAILURE() << "image: " << path;
 }
 
+/// textured_cube() with a uniform normal map whose texels hold `rgb` (linear, relief_map.h).
+SceneAssets normal_mapped_cube(glm::ivec3 rgb) {
+  SceneAssets a = textured_cube();
+  AssetTexture map{"relief", 4, 4, 3, {}, false, true};
+  for (int i = 0; i < 16; ++i)
+    for (int k = 0; k < 3; ++k) map.pixels.push_back(static_cast<uint8_t>(rgb[k]));
+  a.textures.push_back(map);
+  a.materials.back().normal_texture = static_cast<int>(a.textures.size()) - 1;
+  return a;
+}
+
+TEST(ScenePreview, ANormalMapTiltsTheShadingUpTheTextureAndAcrossIt) {
+  ScenePreviewOptions o;
+  o.samples = 1;
+  const Image plain = render_scene_preview(textured_cube(), o);
+  const Image flat = render_scene_preview(normal_mapped_cube({128, 128, 255}), o);
+  // The front face's texture runs up with v, so the map's +Y (up the texture, -v) leans its
+  // normal down, away from the light (which comes from above and in front, a little from -X),
+  // and -Y leans it up, toward the light; +X leans it toward +X, away from the light.
+  const Image down = render_scene_preview(normal_mapped_cube({128, 192, 221}), o);
+  const Image up = render_scene_preview(normal_mapped_cube({128, 64, 221}), o);
+  const Image right = render_scene_preview(normal_mapped_cube({192, 128, 221}), o);
+  const SceneAssets a = textured_cube();
+  auto brightness = [&](const Image& im, const glm::dvec3& p) {
+    const glm::ivec3 c = pixel(im, project(a, p));
+    return c.r + c.g + c.b;
+  };
+  for (const glm::dvec3& p : {glm::dvec3(-0.08, 0, 0.15), glm::dvec3(0.08, -0.05, 0.15)}) {
+    EXPECT_NEAR(brightness(flat, p), brightness(plain, p), 6) << p.x;
+    EXPECT_LT(brightness(down, p), brightness(flat, p) - 30) << p.x;
+    EXPECT_GT(brightness(up, p), brightness(flat, p) + 10) << p.x;
+    EXPECT_LT(brightness(right, p), brightness(flat, p) - 5) << p.x;
+  }
+  if (HasFailure()) ADD_FAILURE() << "images: " << keep(down, "relief_down");
+}
+
 TEST(ScenePreview, TextureCoordinatesFollowGltfAndRepeatInUWhereTheTextureWraps) {
   SceneAssets a = textured_cube();
   ScenePreviewOptions o;

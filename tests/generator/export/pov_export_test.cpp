@@ -21,6 +21,7 @@
 #include <stb/stb_image.h>
 
 #include "base/colour.h"
+#include "render/image/image.h"
 #include "render/povray_runner.h"
 #include "test_support.h"
 
@@ -452,6 +453,38 @@ TEST(PovExport, TexturedFacesUseTheirImageBesideTheScene) {
   }
   // Without texture files the faces keep their vertex colours.
   EXPECT_EQ(count(scene_to_pov(s), "image_map"), 0u);
+}
+
+TEST(PovExport, AHeightMapBumpsTheTexturedFacesByItsBumpSize) {
+  SceneAssets s = test_scene();
+  test::texture_with_halves(s, 0, 16);
+  const fs::path dir = test::fresh_dir("pov_export_relief");
+  PovrayOptions options;
+  options.threads = 2;
+  write_scene_pov(dir / "plain.pov", s, nullptr, TextureFormat::Png);
+  render_povray(dir / "plain.pov", dir / "plain.png", s.width, s.height, options);
+  // Ridges four texels apart across the texture, one texel slope 0.8 per full grey step.
+  AssetTexture ridges{"relief", 16, 16, 1, {}, false, true};
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) ridges.pixels.push_back(x % 4 == 0 ? 255 : 0);
+  s.textures.push_back(ridges);
+  s.materials.back().height_texture = static_cast<int>(s.textures.size()) - 1;
+  s.materials.back().height_bump = 0.8;
+  write_scene_pov(dir / "scene.pov", s, nullptr, TextureFormat::Png);
+  const std::string text = test::read_file(dir / "scene.pov");
+  EXPECT_EQ(count(text, "image_map { png \"scene_halves.png\" interpolate 2 } } normal { "
+                        "bump_map { png \"scene_relief.png\" interpolate 2 bump_size 0.8 } }"),
+            1u);
+  render_povray(dir / "scene.pov", dir / "scene.png", s.width, s.height, options);
+  // The ridges change the shading of the cube's faces, not where it is.
+  const std::vector<uint8_t> plain = decode_png(test::read_file(dir / "plain.png")).rgba;
+  const std::vector<uint8_t> bumped = decode_png(test::read_file(dir / "scene.png")).rgba;
+  ASSERT_EQ(plain.size(), bumped.size());
+  size_t changed = 0;
+  for (size_t i = 0; i < plain.size(); ++i) changed += std::abs(plain[i] - bumped[i]) > 8;
+  EXPECT_GT(changed, 200u);
+  // Without texture files there is no bump either.
+  EXPECT_EQ(count(scene_to_pov(s), "bump_map"), 0u);
 }
 
 }  // namespace

@@ -803,6 +803,54 @@ TEST(SceneGltf, EveryCompressionPassesTheValidatorAndRendersTheSameInThreeJs) {
   EXPECT_GE(filtered, 2u);
 }
 
+TEST(SceneGltf, ANormalMapIsWrittenWithTangentsAlongUAndItsYUpTheTexture) {
+  const auto dir = test::fresh_dir("scene-gltf-normal-map");
+  SceneAssets s = scene_with_texture();
+  AssetTexture bumps{"bumps", 8, 8, 3, std::vector<uint8_t>(8 * 8 * 3, 128), true, true};
+  for (size_t i = 2; i < bumps.pixels.size(); i += 3) bumps.pixels[i] = 255;
+  s.textures.push_back(bumps);
+  s.materials[1].normal_texture = static_cast<int>(s.textures.size()) - 1;
+  const std::vector<std::pair<std::string, GltfCompression>> modes = {
+      {"none", GltfCompression::None},
+      {"quantize", GltfCompression::Quantize},
+      {"meshopt", GltfCompression::Meshopt}};
+  for (const auto& [name, mode] : modes) {
+    const fs::path file = dir / (name + ".glb");
+    write_scene_gltf(file, s, {mode});
+    const auto report = test::validate_gltf(file);
+    EXPECT_EQ(report.errors, 0) << name << ": " << report.output;
+    EXPECT_EQ(validator_warnings(report), 0) << name << ": " << report.output;
+    const tinygltf::Model m = load(file);
+    ASSERT_EQ(m.materials.size(), 2u);
+    const int normal_texture = m.materials[1].normalTexture.index;
+    ASSERT_GE(normal_texture, 0) << name;
+    const auto& image = m.images[static_cast<size_t>(m.textures[static_cast<size_t>(
+        normal_texture)].source)];
+    EXPECT_EQ(image.mimeType, "image/png") << name;  // linear data: never JPEG
+    const auto& cube = m.meshes[0].primitives[0];
+    ASSERT_TRUE(cube.attributes.count("TANGENT")) << name;
+    EXPECT_FALSE(m.meshes[1].primitives[0].attributes.count("TANGENT")) << name;  // the plate
+    if (mode == GltfCompression::Meshopt) continue;  // its views are encoded
+    // Each cube face: its tangent is the face's u axis (uv's u runs along it), and w = -1,
+    // because cross(normal, u) is the face's v axis, along which uv's v grows, and the map's
+    // +Y points the other way (up the texture).
+    const auto& tangents = m.accessors[static_cast<size_t>(cube.attributes.at("TANGENT"))];
+    const auto& normals = m.accessors[static_cast<size_t>(cube.attributes.at("NORMAL"))];
+    ASSERT_EQ(tangents.type, TINYGLTF_TYPE_VEC4);
+    for (size_t i = 0; i < tangents.count; ++i) {
+      glm::dvec3 t, n;
+      for (int k = 0; k < 3; ++k) {
+        t[k] = component(m, tangents, i, k);
+        n[k] = component(m, normals, i, k);
+      }
+      const int axis = std::fabs(n.x) > 0.5 ? 0 : std::fabs(n.y) > 0.5 ? 1 : 2;
+      const glm::dvec3 u(axis == 1 ? 1 : 0, axis == 2 ? 1 : 0, axis == 0 ? 1 : 0);
+      EXPECT_NEAR(glm::dot(t, u), 1.0, 0.02) << name << " vertex " << i;
+      EXPECT_NEAR(component(m, tangents, i, 3), -1.0, 1e-9) << name << " vertex " << i;
+    }
+  }
+}
+
 /// A closed cube, each face its own n x n grid with its own vertices, as two primitives (five
 /// faces, then the sixth, as a piece's skin and cap): flat patches whose straight borders a
 /// simplifier could shorten at no cost unless they are locked.

@@ -130,6 +130,25 @@ TEST(SkinPattern, LayersAreLaidInOrderWithTheirOpacity) {
   EXPECT_NEAR(c.b, 0.5, 1e-12);
 }
 
+TEST(SkinPattern, TheReliefIsTheSumOfEachLayersReliefTimesItsCoverage) {
+  SkinPatternLayer ridge = stripes(1, 0.999, 0.0);
+  ridge.softness = 0;
+  ridge.relief_m = 4e-4;
+  SkinPatternLayer pores = speckles(0.01, 0.002);
+  pores.relief_m = -2e-4;
+  const SkinPatterns flat({stripes(4, 0.5, 0.0)}, 1);
+  EXPECT_FALSE(flat.has_relief());
+  EXPECT_EQ(flat.height({0.5, 0.3}, {0.01, 0.02, 0.03}), 0.0);
+  const SkinPatterns p({ridge, pores}, 2);
+  EXPECT_TRUE(p.has_relief());
+  for (const glm::dvec3 at : {glm::dvec3(0.011, 0.02, 0.003), glm::dvec3(-0.03, 0.05, 0.01),
+                              glm::dvec3(0.0, 0.001, -0.02)}) {
+    const glm::dvec2 param(0.5, 0.5);
+    EXPECT_NEAR(p.height(param, at), 4e-4 * p.coverage(0, param, at) -
+                                         2e-4 * p.coverage(1, param, at), 1e-15);
+  }
+}
+
 std::string refusal(const std::string& find, const std::string& replace) {
   const std::string path = test::source_path("templates/onion.yaml").string();
   std::string text = test::read_file(path);
@@ -159,6 +178,22 @@ TEST(SkinPattern, RulesAreCheckedWhereTheyAreWritten) {
             std::string::npos);
   EXPECT_EQ(refusal(skin_blur, "    blur: 0.3\n    patterns: [{stripes: {count: 16, width: 0.3, "
                                "wobble: 0.2, colour: \"#204010\"}}]\n  - name: ring-1"),
+            "");
+  // Relief: signed, at most 2 mm either way; a layer of opacity 0 needs no colour but a relief.
+  EXPECT_NE(refusal(skin_blur, "    blur: 0.3\n    patterns: [{net: {spacing: 6, width: 1, "
+                               "colour: \"#ffffff\", relief: 2.5}}]\n  - name: ring-1")
+                .find("patterns[0].net.relief: must be between -2 and 2, not 2.5"),
+            std::string::npos);
+  EXPECT_NE(refusal(skin_blur, "    blur: 0.3\n    patterns: [{speckles: {spacing: 2, size: 0.5, "
+                               "opacity: 0}}]\n  - name: ring-1")
+                .find("a layer of opacity 0 without a relief changes nothing"),
+            std::string::npos);
+  EXPECT_NE(refusal(skin_blur, "    blur: 0.3\n    patterns: [{speckles: {spacing: 2, size: 0.5, "
+                               "relief: -0.2}}]\n  - name: ring-1")
+                .find("patterns[0].speckles: "),
+            std::string::npos);  // opacity 1 (the default) still needs its colour
+  EXPECT_EQ(refusal(skin_blur, "    blur: 0.3\n    patterns: [{speckles: {spacing: 2, size: 0.5, "
+                               "opacity: 0, relief: -0.2}}]\n  - name: ring-1"),
             "");
 }
 

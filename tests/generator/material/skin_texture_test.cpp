@@ -112,8 +112,10 @@ TEST(SkinTexture, TheTextureShowsTheSkinColourWhereItsVerticesMap) {
   EXPECT_EQ(p2.y & (p2.y - 1), 0) << p2.y;
   EXPECT_GE(p2.x, size.x);
   EXPECT_LT(p2.x, 2 * size.x);
-  const std::vector<uint8_t> a = bake_skin_texture(parts, part_uv, size, nullptr, nullptr, 0, options);
-  const std::vector<uint8_t> b = bake_skin_texture(parts, part_uv, size, nullptr, nullptr, 0, options);
+  const std::vector<uint8_t> a =
+      bake_skin_texture(parts, part_uv, size, nullptr, nullptr, 0, options).srgb;
+  const std::vector<uint8_t> b =
+      bake_skin_texture(parts, part_uv, size, nullptr, nullptr, 0, options).srgb;
   ASSERT_EQ(a.size(), static_cast<size_t>(size.x) * size.y * 3);
   EXPECT_EQ(a, b);
   // Every vertex away from the poles: the texel it maps to shows its colour (the skin's colour
@@ -139,6 +141,69 @@ TEST(SkinTexture, TheTextureShowsTheSkinColourWhereItsVerticesMap) {
               sum / n, worst);
   EXPECT_LT(sum / n, 2.0);
   EXPECT_LT(worst, 12.0);
+  EXPECT_FALSE(bake_skin_texture(parts, part_uv, size, nullptr, nullptr, 0, options).relief);
+}
+
+TEST(SkinTexture, ARaisedNetTiltsTheNormalMapOnItsLinesOnly) {
+  const Cut& c = apple_halves();
+  std::vector<ShadedMesh> skins;
+  std::vector<std::vector<glm::dvec2>> uv;
+  for (const Piece& piece : c.set.pieces) {
+    skins.push_back(piece.parts[0].mesh);
+    uv.push_back(unwrap_skin(skins.back()));
+  }
+  std::vector<const ShadedMesh*> parts;
+  std::vector<const std::vector<glm::dvec2>*> part_uv;
+  for (size_t k = 0; k < skins.size(); ++k) {
+    parts.push_back(&skins[k]);
+    part_uv.push_back(&uv[k]);
+  }
+  SkinPatternLayer net;
+  net.kind = SkinPatternLayer::Kind::Net;
+  net.spacing_m = 0.012;
+  net.size_m = 0.002;
+  net.softness = 0.8;
+  net.opacity = 0;
+  net.relief_m = 0.0005;
+  const SkinPatterns patterns({net}, 5);
+  const SkinTextureOptions options;
+  const glm::ivec2 size = skin_texture_size(c.model.skin(), options);
+  const SkinTexture baked =
+      bake_skin_texture(parts, part_uv, size, &patterns, nullptr, 0, options);
+  ASSERT_TRUE(baked.relief);
+  const ReliefMaps& relief = *baked.relief;
+  ASSERT_EQ(relief.normal.size(), static_cast<size_t>(size.x) * size.y * 3);
+  ASSERT_EQ(relief.height.size(), static_cast<size_t>(size.x) * size.y);
+  EXPECT_NEAR(relief.low_m, 0.0, 1e-9);
+  EXPECT_NEAR(relief.high_m, 0.0005, 1e-5);
+  // Opacity 0: the colour is the plain skin's.
+  EXPECT_EQ(baked.srgb, bake_skin_texture(parts, part_uv, size, nullptr, nullptr, 0, options).srgb);
+  // Away from the poles: texels inside the cells (height 0, no line within two texels) are flat,
+  // (128, 128, 255); a good share of the texels on the lines' flanks tilt.
+  size_t flat_cells = 0, tilted_cells = 0, tilted_lines = 0, lines = 0;
+  for (int y = size.y / 8; y < size.y - size.y / 8; ++y)
+    for (int x = 0; x < size.x; ++x) {
+      const size_t i = static_cast<size_t>(y) * size.x + x;
+      const bool tilted = std::abs(relief.normal[3 * i] - 128) > 3 ||
+                          std::abs(relief.normal[3 * i + 1] - 128) > 3;
+      bool near_line = false;
+      for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) {
+          const size_t j = static_cast<size_t>(y + dy) * size.x + (x + dx + size.x) % size.x;
+          near_line = near_line || relief.height[j] > 0;
+        }
+      if (!near_line) {
+        ++(tilted ? tilted_cells : flat_cells);
+        EXPECT_GE(relief.normal[3 * i + 2], 250);
+      } else if (relief.height[i] > 0 && relief.height[i] < 255) {
+        ++lines;
+        tilted_lines += tilted;
+      }
+    }
+  EXPECT_EQ(tilted_cells, 0u);
+  EXPECT_GT(flat_cells, 1000u);
+  ASSERT_GT(lines, 1000u);
+  EXPECT_GT(tilted_lines, lines / 2) << tilted_lines << " of " << lines;
 }
 
 }  // namespace
