@@ -2,6 +2,8 @@
 // a back colour and a blur value, plus per-surface side visibility.
 #pragma once
 
+#include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -68,10 +70,21 @@ struct DsSurface {
 };
 
 /// A whole DS model: all surfaces (skin first), in metres, object frame.
+class SpineBend;
+
+/// The bent axis of a model swept about +Y and then carried onto a spine (spine_bend.h):
+/// the map, shared by the model's copies, and the straight model's height range, so that
+/// cuts along the axis (slices) can follow the spine.
+struct BentAxis {
+  std::shared_ptr<const SpineBend> bend;
+  double y_min = 0, y_max = 0;  ///< the straight model's lowest and highest y, metres
+};
+
 struct DsModel {
   std::string name;
   std::vector<DsSurface> surfaces;
   glm::dvec3 bbox_min{0.0}, bbox_max{0.0};  ///< axis-aligned bounds of all surfaces, metres
+  std::optional<BentAxis> bent_axis;        ///< set where the template has a spine
 
   /// Total triangle count over all surfaces (the paper's "DS faces").
   size_t face_count() const;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include <glm/geometric.hpp>
 
@@ -63,21 +64,28 @@ std::pair<size_t, double> SpineBend::locate(double s) const {
   return {i, u - static_cast<double>(i)};
 }
 
-glm::dvec3 SpineBend::map(const glm::dvec3& p) const {
-  const double s = p.y - y0_, length = step_ * kSpineIntervals;
-  glm::dvec2 c, t;
+std::pair<glm::dvec2, glm::dvec2> SpineBend::frame(double s) const {
+  const double length = step_ * kSpineIntervals;
   if (s <= 0 || s >= length) {
     // Beyond an end: straight on along that end's tangent.
     const size_t e = s <= 0 ? 0 : point_.size() - 1;
-    t = tangent_[e];
-    c = point_[e] + t * (s <= 0 ? s : s - length);
-  } else {
-    const auto [i, a] = locate(s);
-    c = point_[i] + (point_[i + 1] - point_[i]) * a;
-    t = glm::normalize(tangent_[i] + (tangent_[i + 1] - tangent_[i]) * a);
+    const glm::dvec2 t = tangent_[e];
+    return {point_[e] + t * (s <= 0 ? s : s - length), t};
   }
+  const auto [i, a] = locate(s);
+  return {point_[i] + (point_[i + 1] - point_[i]) * a,
+          glm::normalize(tangent_[i] + (tangent_[i + 1] - tangent_[i]) * a)};
+}
+
+glm::dvec3 SpineBend::map(const glm::dvec3& p) const {
+  const auto [c, t] = frame(p.y - y0_);
   const glm::dvec2 q = c + normal_of(t) * p.x;
   return {q.x, q.y, p.z};
+}
+
+Plane SpineBend::cross_plane(double y) const {
+  const auto [c, t] = frame(y - y0_);
+  return {{c.x, c.y, 0.0}, {t.x, t.y, 0.0}};
 }
 
 double SpineBend::stretch(const glm::dvec3& p) const {
@@ -89,7 +97,8 @@ double SpineBend::stretch(const glm::dvec3& p) const {
 
 void bend_model(const Template& tmpl, DsModel& model) {
   if (tmpl.spine.points.empty()) return;
-  const SpineBend bend(tmpl.spine);
+  const auto shared = std::make_shared<const SpineBend>(tmpl.spine);
+  const SpineBend& bend = *shared;
   for (const DsSurface& surface : model.surfaces) {
     for (auto vh : surface.mesh.vertices()) {
       const auto& q = surface.mesh.point(vh);
@@ -113,6 +122,7 @@ void bend_model(const Template& tmpl, DsModel& model) {
       surface.mesh.set_point(vh, DsMesh::Point(b.x, b.y, b.z));
     }
   }
+  model.bent_axis = BentAxis{shared, model.bbox_min.y, model.bbox_max.y};
   update_bounds(model);
 }
 

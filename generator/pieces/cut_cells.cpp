@@ -6,6 +6,7 @@
 
 #include "base/constants.h"
 #include "base/error.h"
+#include "model/spine_bend.h"
 
 namespace cutaway {
 
@@ -50,7 +51,7 @@ std::vector<std::vector<CellFace>> slabs(const std::vector<int>& planes) {
 }  // namespace
 
 CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min,
-                        const glm::dvec3& bbox_max) {
+                        const glm::dvec3& bbox_max, const BentAxis* bent_axis) {
   CutCells out;
   switch (cut.type) {
     case CutType::Whole:
@@ -68,9 +69,12 @@ CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min,
     case CutType::Slices: {
       CUTAWAY_CHECK(cut.thickness_m > 0);
       std::vector<int> ids;
-      for (double y : centred_positions(bbox_min.y, bbox_max.y, cut.thickness_m)) {
+      const double lo = bent_axis ? bent_axis->y_min : bbox_min.y;
+      const double hi = bent_axis ? bent_axis->y_max : bbox_max.y;
+      for (double y : centred_positions(lo, hi, cut.thickness_m)) {
         ids.push_back(static_cast<int>(out.planes.size()));
-        out.planes.push_back({{0, y, 0}, {0, 1, 0}});
+        out.planes.push_back(bent_axis ? bent_axis->bend->cross_plane(y)
+                                       : Plane{{0, y, 0}, {0, 1, 0}});
       }
       for (auto& faces : slabs(ids)) out.cells.push_back({faces});
       break;

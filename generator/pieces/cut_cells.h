@@ -6,6 +6,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "model/ds_model.h"
 #include "pieces/cut_spec.h"
 
 namespace cutaway {
@@ -42,7 +43,12 @@ bool in_cell(const CutCells& cells, const Cell& cell, const glm::dvec3& x, int s
 /// - halves: the plane z = 0 (through the axis), two cells;
 /// - plane: cut.plane, two cells;
 /// - slices: planes y = const, `thickness_m` apart, centred on the bounds so that the two end
-///   pieces are equally thick (1 to 1.5 thicknesses); one cell per slab;
+///   pieces are equally thick (1 to 1.5 thicknesses); one cell per slab. With a `bent_axis`
+///   the same planes of the straight model (over its height range) are carried onto the bent
+///   one (SpineBend::cross_plane): each is perpendicular to the spine where it crosses it, the
+///   slices equally thick along the spine. The bend keeps every point of the object nearer the
+///   spine than its centre of curvature (bend_model), where neighbouring planes meet, so each
+///   slab still holds one slice;
 /// - wedges: `count` half-planes through the axis at angles 2 pi k / count from +X towards -Z
 ///   (the template's angle convention); each wedge is the intersection of two half-spaces
 ///   (count 2: one half-space each); opposite half-planes share one plane;
@@ -51,6 +57,6 @@ bool in_cell(const CutCells& cells, const Cell& cell, const glm::dvec3& x, int s
 /// Deterministic order; a cell the object misses simply yields no piece (cut_pieces).
 /// @pre the lengths of `cut` are positive and finite; count >= 2 for wedges
 CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min,
-                        const glm::dvec3& bbox_max);
+                        const glm::dvec3& bbox_max, const BentAxis* bent_axis = nullptr);
 
 }  // namespace cutaway

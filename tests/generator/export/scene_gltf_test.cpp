@@ -759,15 +759,17 @@ TEST(SceneGltf, QuantizedVerticesLandWhereTheAssetsPutThemWithinTheirStep) {
   }
 }
 
+/// Every compression mode, with the file stem its tests write.
+const std::vector<std::pair<std::string, GltfCompression>> kCompressionModes = {
+    {"none", GltfCompression::None},
+    {"quantize", GltfCompression::Quantize},
+    {"meshopt", GltfCompression::Meshopt}};
+
 TEST(SceneGltf, EveryCompressionPassesTheValidatorAndRendersTheSameInThreeJs) {
   const auto dir = test::fresh_dir("scene-gltf-compress");
   SceneAssets s = scene_with_texture();
   s.meshes[1] = plate("plate", 0.12, 4000);  // enough vertices for the sizes to tell
-  const std::vector<std::pair<std::string, GltfCompression>> modes = {
-      {"none", GltfCompression::None},
-      {"quantize", GltfCompression::Quantize},
-      {"meshopt", GltfCompression::Meshopt}};
-  for (const auto& [name, mode] : modes) {
+  for (const auto& [name, mode] : kCompressionModes) {
     const fs::path file = dir / (name + ".glb");
     write_scene_gltf(file, s, {mode});
     const auto report = test::validate_gltf(file);
@@ -810,11 +812,7 @@ TEST(SceneGltf, ANormalMapIsWrittenWithTangentsAlongUAndItsYUpTheTexture) {
   for (size_t i = 2; i < bumps.pixels.size(); i += 3) bumps.pixels[i] = 255;
   s.textures.push_back(bumps);
   s.materials[1].normal_texture = static_cast<int>(s.textures.size()) - 1;
-  const std::vector<std::pair<std::string, GltfCompression>> modes = {
-      {"none", GltfCompression::None},
-      {"quantize", GltfCompression::Quantize},
-      {"meshopt", GltfCompression::Meshopt}};
-  for (const auto& [name, mode] : modes) {
+  for (const auto& [name, mode] : kCompressionModes) {
     const fs::path file = dir / (name + ".glb");
     write_scene_gltf(file, s, {mode});
     const auto report = test::validate_gltf(file);

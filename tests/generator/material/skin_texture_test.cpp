@@ -83,20 +83,29 @@ TEST(SkinTexture, UnwrappedSkinsSpanLessThanHalfTheTextureAndOnlyCopySeamAndPole
   EXPECT_GT(seam_copies, 0u);  // both halves straddle t_section = 0
 }
 
-TEST(SkinTexture, TheTextureShowsTheSkinColourWhereItsVerticesMap) {
-  const Cut& c = apple_halves();
+/// The apple halves' skins, unwrapped, and the pointers bake_skin_texture takes.
+struct UnwrappedSkins {
   std::vector<ShadedMesh> skins;
   std::vector<std::vector<glm::dvec2>> uv;
-  for (const Piece& piece : c.set.pieces) {
-    skins.push_back(piece.parts[0].mesh);
-    uv.push_back(unwrap_skin(skins.back()));
-  }
   std::vector<const ShadedMesh*> parts;
   std::vector<const std::vector<glm::dvec2>*> part_uv;
-  for (size_t k = 0; k < skins.size(); ++k) {
-    parts.push_back(&skins[k]);
-    part_uv.push_back(&uv[k]);
+
+  explicit UnwrappedSkins(const Cut& c) {
+    for (const Piece& piece : c.set.pieces) {
+      skins.push_back(piece.parts[0].mesh);
+      uv.push_back(unwrap_skin(skins.back()));
+    }
+    for (size_t k = 0; k < skins.size(); ++k) {
+      parts.push_back(&skins[k]);
+      part_uv.push_back(&uv[k]);
+    }
   }
+};
+
+TEST(SkinTexture, TheTextureShowsTheSkinColourWhereItsVerticesMap) {
+  const Cut& c = apple_halves();
+  const UnwrappedSkins unwrapped(c);
+  const auto& [skins, uv, parts, part_uv] = unwrapped;
   const SkinTextureOptions options;
   const glm::ivec2 size = skin_texture_size(c.model.skin(), options);
   // An 80 mm apple: about 250 mm around and 100 mm along its profile.
@@ -146,18 +155,8 @@ TEST(SkinTexture, TheTextureShowsTheSkinColourWhereItsVerticesMap) {
 
 TEST(SkinTexture, ARaisedNetTiltsTheNormalMapOnItsLinesOnly) {
   const Cut& c = apple_halves();
-  std::vector<ShadedMesh> skins;
-  std::vector<std::vector<glm::dvec2>> uv;
-  for (const Piece& piece : c.set.pieces) {
-    skins.push_back(piece.parts[0].mesh);
-    uv.push_back(unwrap_skin(skins.back()));
-  }
-  std::vector<const ShadedMesh*> parts;
-  std::vector<const std::vector<glm::dvec2>*> part_uv;
-  for (size_t k = 0; k < skins.size(); ++k) {
-    parts.push_back(&skins[k]);
-    part_uv.push_back(&uv[k]);
-  }
+  const UnwrappedSkins unwrapped(c);
+  const auto& [skins, uv, parts, part_uv] = unwrapped;
   SkinPatternLayer net;
   net.kind = SkinPatternLayer::Kind::Net;
   net.spacing_m = 0.012;

@@ -127,6 +127,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"templates/tomato.yaml", "wedges:5"},
                       Case{"templates/tomato.yaml", "wedges:6"},
                       Case{"templates/onion.yaml", "slices:12"},
+                      Case{"templates/banana.yaml", "slices:15"},
                       Case{"templates/cucumber.yaml", "dice:25"},
                       Case{"tests/data/section_hollow.yaml", "dice:20"},
                       Case{"tests/data/section_hollow.yaml", "plane:3,4,5/1,2,3"}),
@@ -255,6 +256,48 @@ TEST(Pieces, CoarseCapsKeepPiecesClosedWithTheSameArea) {
     }
     EXPECT_LT(3 * coarse, fine) << "cap triangles: fine " << fine << ", coarse " << coarse;
   }
+}
+
+/// Per section of `set`, the area of its caps on both sides together, square metres.
+std::vector<double> section_cap_areas(const PieceSet& set) {
+  std::vector<double> area(set.sections.size(), 0.0);
+  for (const Piece& piece : set.pieces)
+    for (const PiecePart& part : piece.parts) {
+      if (part.kind != PartKind::Cap) continue;
+      const ShadedMesh& m = part.mesh;
+      for (const glm::uvec3& t : m.triangle)
+        area[static_cast<size_t>(part.plane)] +=
+            0.5 * glm::length(glm::cross(m.position[t.y] - m.position[t.x],
+                                         m.position[t.z] - m.position[t.x]));
+    }
+  return area;
+}
+
+TEST(Pieces, SlicesOfABentObjectAreCutAcrossItsSpine) {
+  // The bend carries each straight plane y = c onto the plane across the spine there, and a
+  // section onto a congruent one: the bent banana's slices have the straight banana's cut
+  // faces, one for one. Planes across +Y would cut its curved ends obliquely, larger.
+  const Template bent = load_template(test::source_path("templates/banana.yaml").string());
+  Template straight = bent;
+  straight.spine = {};
+  std::vector<double> areas[2];
+  std::vector<glm::dvec3> normals;
+  for (const Template* t : {static_cast<const Template*>(&straight), &bent}) {
+    const DsModel model = build_model(*t);
+    const auto diffusion = make_cpu_diffusion(model, {4, 0});
+    PieceOptions options;
+    options.section.edge_m = t->edge_m;
+    const PieceSet set = *cut_pieces(model, *parse_cut_spec("slices:15", 1e-3), *diffusion, options);
+    areas[t == &bent] = section_cap_areas(set);
+    if (t == &bent)
+      for (const CrossSection& cs : set.sections) normals.push_back(cs.plane.normal);
+  }
+  ASSERT_EQ(areas[0].size(), areas[1].size());
+  ASSERT_GE(areas[0].size(), 10u);
+  for (size_t k = 0; k < areas[0].size(); ++k)
+    EXPECT_NEAR(areas[1][k], areas[0][k], 0.01 * areas[0][k]) << "section " << k;
+  // The first and last planes lean apart as the spine turns (about 40 degrees).
+  EXPECT_LT(glm::dot(normals.front(), normals.back()), std::cos(0.5));
 }
 
 TEST(Pieces, CapsOnEitherSideOfACutAreMirrorImagesWithEqualColours) {
