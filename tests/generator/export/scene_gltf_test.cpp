@@ -531,13 +531,14 @@ TEST(SceneGltf, InvalidAssetsThrow) {
       "roughness 1.5");
 }
 
-/// Writes `s` to `file`, expects the Khronos validator to find neither errors nor warnings in
-/// it, and reads it back.
-tinygltf::Model write_valid_and_load(const SceneAssets& s, const fs::path& file) {
-  write_scene_gltf(file, s);
+/// Writes `s` to `file` with `options`, expects the Khronos validator to find neither errors
+/// nor warnings in it, and reads it back.
+tinygltf::Model write_valid_and_load(const SceneAssets& s, const fs::path& file,
+                                     const GltfSceneOptions& options = {}) {
+  write_scene_gltf(file, s, options);
   const auto report = test::validate_gltf(file);
-  EXPECT_EQ(report.errors, 0) << report.output;
-  EXPECT_EQ(validator_warnings(report), 0) << report.output;
+  EXPECT_EQ(report.errors, 0) << file.filename() << ": " << report.output;
+  EXPECT_EQ(validator_warnings(report), 0) << file.filename() << ": " << report.output;
   return load(file);
 }
 
@@ -813,12 +814,7 @@ TEST(SceneGltf, ANormalMapIsWrittenWithTangentsAlongUAndItsYUpTheTexture) {
   s.textures.push_back(bumps);
   s.materials[1].normal_texture = static_cast<int>(s.textures.size()) - 1;
   for (const auto& [name, mode] : kCompressionModes) {
-    const fs::path file = dir / (name + ".glb");
-    write_scene_gltf(file, s, {mode});
-    const auto report = test::validate_gltf(file);
-    EXPECT_EQ(report.errors, 0) << name << ": " << report.output;
-    EXPECT_EQ(validator_warnings(report), 0) << name << ": " << report.output;
-    const tinygltf::Model m = load(file);
+    const tinygltf::Model m = write_valid_and_load(s, dir / (name + ".glb"), {mode});
     ASSERT_EQ(m.materials.size(), 2u);
     const int normal_texture = m.materials[1].normalTexture.index;
     ASSERT_GE(normal_texture, 0) << name;
