@@ -117,7 +117,7 @@ std::unique_ptr<CutCache> open_cut_cache(const CacheArgs& args);
 /// @throws UsageError "WHAT: rule" when the cut misses the object (`what` names the cut)
 CutObject cut_for_view(SceneAssets& assets, const Variant& variant, const CutSpec& cut, int cube,
                        const Common& common, double perlin, uint64_t seed,
-                       const std::string& what, CapColours colours = CapColours::Vertex);
+                       const std::string& what, CapColours colours);
 
 /// The exit code of `batch merge` when shards are still missing: not bad input (2) nor a
 /// failure (1), but more work due.

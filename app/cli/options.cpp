@@ -42,6 +42,15 @@ const CLI::Validator& shard_rule() {
   return rule;
 }
 
+void add_colours_option(CLI::App* command, std::string& colours) {
+  command
+      ->add_option("--colours", colours,
+                   "cut faces and skins in files: texture (baked textures per object, with the "
+                   "skin's patterns and relief per texel; the default) or vertex (vertex "
+                   "colours)")
+      ->check(CLI::IsMember({"texture", "vertex"}));
+}
+
 void add_export_options(CLI::App* command, std::string& compress, int& lods,
                         std::string& textures) {
   command

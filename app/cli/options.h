@@ -30,6 +30,11 @@ const CLI::Validator& shard_rule();
 void add_export_options(CLI::App* command, std::string& compress, int& lods,
                         std::string& textures);
 
+/// `--colours texture|vertex` of the commands that cut objects for files (scene, piece): cut
+/// faces and swept skins baked into textures (with the skin patterns and their relief per
+/// texel) or left in vertex colours; into `colours`.
+void add_colours_option(CLI::App* command, std::string& colours);
+
 /// `--cache DIR`, `--no-cache` and `--cache-size SIZE` of the commands that cut objects through
 /// the cut cache (scene, batch).
 struct CacheArgs {

@@ -38,6 +38,7 @@ struct PieceArgs {
   std::string textures = "jpeg";      ///< base-colour texture images: jpeg or png (TextureFormat)
   bool camera_and_lights = false;     ///< --camera-and-lights: write them into the glTF
   std::string collision = "godot";    ///< --collision: none, godot or unreal hull names
+  std::string colours = "texture";    ///< --colours: texture or vertex (CapColours)
 };
 
 int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
@@ -59,7 +60,8 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
   assets.name = tmpl.name;
   const CutObject object =
       cut_for_view(assets, variant, cut, a.cube, common, a.perlin,
-                   a.seed >= 0 ? static_cast<uint64_t>(a.seed) : 0, "--cut " + quoted(a.cut));
+                   a.seed >= 0 ? static_cast<uint64_t>(a.seed) : 0, "--cut " + quoted(a.cut),
+                   a.colours == "vertex" ? CapColours::Vertex : CapColours::Texture);
   const PieceSet& set = object.set;
   const double t_cut = seconds_since(t1);
   size_t triangles = 0;
@@ -184,6 +186,7 @@ Command add_piece_command(CLI::App& app) {
                    "silhouette stroke strength over the PNG and in .pov (0: off; default 1)")
       ->check(CLI::Range(0.0, 10.0));
   add_export_options(piece, args->compress, args->lods, args->textures);
+  add_colours_option(piece, args->colours);
   piece->add_flag("--camera-and-lights", args->camera_and_lights,
                   "write the preview's camera and studio lights into the glTF file (an asset "
                   "leaves them out by default: it goes into someone else's scene)");

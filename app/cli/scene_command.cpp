@@ -191,11 +191,7 @@ Command add_scene_command(CLI::App& app) {
   scene->add_option("--render", args->render, "POV-Ray render (PNG)");
   scene->add_option("--cube", args->cube, "cube-map texels per face edge for PMVC")
       ->check(CLI::Range(2, 256));
-  scene
-      ->add_option("--colours", args->colours,
-                   "cut faces in glTF: texture (a baked texture per object, the default) or "
-                   "vertex (vertex colours)")
-      ->check(CLI::IsMember({"texture", "vertex"}));
+  add_colours_option(scene, args->colours);
   scene
       ->add_option("--texels-per-mm", args->texels_per_mm,
                    "texel density of baked cut-face textures (default: the scene's "

@@ -165,22 +165,31 @@ TEST(SceneCommand, RefusesBadArgumentsAndLeavesNothing) {
   EXPECT_TRUE(test::files_in(dir).empty());
 }
 
+/// The JSON chunk of a .glb file.
+nlohmann::json glb_json(const fs::path& file) {
+  const std::string glb = test::read_file(file);
+  uint32_t length = 0;
+  std::memcpy(&length, glb.data() + 12, 4);
+  return nlohmann::json::parse(glb.substr(20, length));
+}
+
 TEST(PieceCommand, HalvesGiveTwoValidMeshesAndAPicture) {
   const fs::path dir = test::fresh_dir("piece");
   const test::RunResult r =
       test::run_cutaway({"piece", "templates/tomato.yaml", "--cut", "halves", "--backend", "cpu",
-                         "--cube", "4", "-q", "-o", (dir / "halves.glb").string(), "--png",
-                         (dir / "halves.png").string()});
+                         "--cube", "4", "-q", "--colours", "vertex", "-o",
+                         (dir / "halves.glb").string(), "--png", (dir / "halves.png").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const test::GltfReport report = test::validate_gltf(dir / "halves.glb");
   EXPECT_EQ(report.errors, 0) << report.output;
   const test::PngInfo png = test::png_info(dir / "halves.png");
   EXPECT_EQ(png.width, 800);
   EXPECT_GT(png.not_background, 800u * 600u / 20);
-  // The same halves meshopt-compressed: valid, smaller, the same triangles in three.js.
+  // The same halves meshopt-compressed: valid, smaller (in vertex colours, the file is its
+  // geometry), the same triangles in three.js.
   const test::RunResult m = test::run_cutaway(
       {"piece", "templates/tomato.yaml", "--cut", "halves", "--backend", "cpu", "--cube", "4", "-q",
-       "-o", (dir / "meshopt.glb").string(), "--compress", "meshopt"});
+       "--colours", "vertex", "-o", (dir / "meshopt.glb").string(), "--compress", "meshopt"});
   ASSERT_EQ(m.exit_code, 0) << m.err;
   EXPECT_EQ(test::validate_gltf(dir / "meshopt.glb").errors, 0);
   EXPECT_LT(fs::file_size(dir / "meshopt.glb"), fs::file_size(dir / "halves.glb") / 2);
@@ -189,15 +198,22 @@ TEST(PieceCommand, HalvesGiveTwoValidMeshesAndAPicture) {
   ASSERT_TRUE(packed.ok) << packed.error << "\n" << packed.output;
   EXPECT_EQ(packed.triangles, plain.triangles);
   EXPECT_GT(plain.triangles, 10000);
+  // By default the cut faces and the skin are baked into textures, as in scenes: a cantaloupe
+  // wedge's skin carries its netting's colour and relief (base colour and normal map).
+  const test::RunResult t = test::run_cutaway(
+      {"piece", "templates/cantaloupe.yaml", "--cut", "wedges:6", "--backend", "cpu", "--cube",
+       "4", "-q", "-o", (dir / "cantaloupe.glb").string()});
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  const test::GltfReport textured = test::validate_gltf(dir / "cantaloupe.glb");
+  EXPECT_EQ(textured.errors, 0) << textured.output;
+  size_t normal_mapped = 0;
+  const nlohmann::json gltf = glb_json(dir / "cantaloupe.glb");
+  for (const auto& material : gltf["materials"])
+    normal_mapped += material.contains("normalTexture") &&
+                     material["pbrMetallicRoughness"].contains("baseColorTexture");
+  EXPECT_EQ(normal_mapped, 1u);
 }
 
-/// The JSON chunk of a .glb file.
-nlohmann::json glb_json(const fs::path& file) {
-  const std::string glb = test::read_file(file);
-  uint32_t length = 0;
-  std::memcpy(&length, glb.data() + 12, 4);
-  return nlohmann::json::parse(glb.substr(20, length));
-}
 
 // A piece asset drops into another scene: one root named after it at the origin, no camera,
 // no lights unless asked; its pieces' nodes placed alike whatever the compression (the
