@@ -675,6 +675,14 @@ struct EditServer::Impl {
   /// POST /api/model.glb: the model of the text as binary glTF.
   void post_model_glb(const httplib::Request& req, httplib::Response& res,
                       const std::string& body);
+  /// POST /api/skin.glb: the object of the text uncut, its skin baked as scenes bake it (the
+  /// skin's patterns, their relief as a normal map, the Perlin modulation of seed 0), as
+  /// binary glTF without camera or lights: what the outside looks like.
+  void post_skin_glb(const httplib::Request& req, httplib::Response& res,
+                     const std::string& body);
+  /// The cpu diffusion backend of the current model for cuts (coarse: the dragged plane's),
+  /// made on first use after the model changed. Call with the work lock held.
+  const DiffusionBackend& section_diffusion(const Built& b, bool coarse);
   /// POST /api/section.png?y=Y[&coarse=1]: the text's cut at height Y (template units).
   void post_section_png(const httplib::Request& req, httplib::Response& res,
                         const std::string& body);
@@ -793,6 +801,27 @@ void EditServer::Impl::post_model_glb(const httplib::Request&, httplib::Response
   });
 }
 
+void EditServer::Impl::post_skin_glb(const httplib::Request&, httplib::Response& res,
+                                     const std::string& body) {
+  handle(body, res, [&](const Built& b) {
+    GltfSceneOptions gltf;
+    gltf.camera_and_lights = false;
+    res.set_content(
+        scene_to_glb(whole_object_assets(Variant{b.tmpl, b.model}, section_diffusion(b, false),
+                                         1.0, 0),
+                     gltf),
+        "model/gltf-binary");
+  });
+}
+
+const DiffusionBackend& EditServer::Impl::section_diffusion(const Built& b, bool coarse) {
+  std::unique_ptr<DiffusionBackend>& backend = coarse ? coarse_section_backend : section_backend;
+  if (!backend)
+    backend = make_cpu_diffusion(
+        b.model, {coarse ? options.coarse_section_cube : options.section_cube, 0});
+  return *backend;
+}
+
 void EditServer::Impl::post_section_png(const httplib::Request& req, httplib::Response& res,
                                         const std::string& body) {
   handle(body, res, [&](const Built& b) {
@@ -806,15 +835,10 @@ void EditServer::Impl::post_section_png(const httplib::Request& req, httplib::Re
     plane.normal = {0, 1, 0};
     // While the plane is dragged the page asks for coarse cuts, then a full one.
     const bool coarse = req.get_param_value("coarse") == "1";
-    std::unique_ptr<DiffusionBackend>& backend =
-        coarse ? coarse_section_backend : section_backend;
-    if (!backend)
-      backend = make_cpu_diffusion(
-          b.model, {coarse ? options.coarse_section_cube : options.section_cube, 0});
     CrossSectionOptions o;
     o.edge_m = b.tmpl.edge_m;
     const Outcome<CrossSection> section =
-        make_cross_section(b.model, plane, *backend, o);
+        make_cross_section(b.model, plane, section_diffusion(b, coarse), o);
     if (!section) {
       reply_json(res, 422, {{"ok", false}, {"message", section.reason()}});
       return;
@@ -897,6 +921,7 @@ EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
   s.post("/api/check", std::bind_front(&Impl::post_check, &s));
   s.post("/api/model.png", std::bind_front(&Impl::post_model_png, &s));
   s.post("/api/model.glb", std::bind_front(&Impl::post_model_glb, &s));
+  s.post("/api/skin.glb", std::bind_front(&Impl::post_skin_glb, &s));
   s.post("/api/section.png", std::bind_front(&Impl::post_section_png, &s));
   s.post("/api/variants.png", std::bind_front(&Impl::post_variants_png, &s));
   s.post("/api/save", std::bind_front(&Impl::post_save, &s));

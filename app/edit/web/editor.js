@@ -595,15 +595,24 @@ async function runCheck(mine) {
   statusLine.textContent = body === saved ? 'saved' : 'edited';
   if (!verdict.ok) return;
   if (firstGood) frameViews();
-  const glb = await post('/api/model.glb', body);
-  if (mine !== version || !glb.ok) return;
-  if (model) {
-    await model.show(await glb.arrayBuffer(), !framed);
-    framed = true;
-  }
+  await showModel(mine, body);
   await cut(false);
   askVariants(mine, body);
 }
+
+/// The 3D view of the text: see-through, or with "outside" checked the uncut object with its
+/// skin baked (/api/skin.glb).
+async function showModel(mine, body) {
+  if (!model) return;
+  const outside = $('show-outside').checked;
+  const glb = await post(outside ? '/api/skin.glb' : '/api/model.glb', body);
+  if (mine !== version || !glb.ok || outside !== $('show-outside').checked) return;
+  await model.show(await glb.arrayBuffer(), !framed, outside);
+  framed = true;
+}
+$('show-outside').addEventListener('change', () => {
+  if (verdict?.ok) showModel(version, doc.text);
+});
 
 let variantsTimer = 0;
 /// Asks for the variants' strip once the text has rested for a moment, unless the strip is

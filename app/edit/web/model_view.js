@@ -1,7 +1,8 @@
-// The see-through DS model in 3D (three.js, served from Debian's libjs-three): the model's
-// glTF as the library exports it (`cutaway model` writes the same bytes), every surface drawn
-// translucent and double-sided so that the inner surfaces show through the skin, turned with
-// the mouse (OrbitControls).
+// The DS model in 3D (three.js, served from Debian's libjs-three), turned with the mouse
+// (OrbitControls): see-through, the model's glTF as the library exports it (`cutaway model`
+// writes the same bytes), every surface drawn translucent and double-sided so that the inner
+// surfaces show through the skin; or the outside, the uncut object with its skin baked as
+// scenes bake it (patterns, relief), drawn as the file says.
 import * as THREE from 'three';
 import { GLTFLoader } from '/lib/three/examples/jsm/loaders/GLTFLoader.js';
 import { OrbitControls } from '/lib/three/examples/jsm/controls/OrbitControls.js';
@@ -23,14 +24,15 @@ export class ModelView {
     new ResizeObserver(() => this.render()).observe(canvas);
   }
 
-  /// Shows the model of glTF bytes `buffer` (ArrayBuffer), framing it when `reframe`.
-  show(buffer, reframe) {
+  /// Shows the model of glTF bytes `buffer` (ArrayBuffer), see-through unless `outside`,
+  /// framing it when `reframe`.
+  show(buffer, reframe, outside = false) {
     return new Promise((resolve, reject) => {
       new GLTFLoader().parse(buffer, '', (gltf) => {
         if (this.model) this.scene.remove(this.model);
         this.model = gltf.scene;
         this.model.traverse((o) => {
-          if (!o.isMesh) return;
+          if (!o.isMesh || outside) return;
           const m = o.material;
           m.transparent = true;
           m.opacity = 0.35;

@@ -339,6 +339,36 @@ TEST(EditServer, DrawsTheModelAndACutAtAHeight) {
   EXPECT_EQ(glb->body, model_to_glb(build_model(load_template(file.string())), GltfModelOptions{}));
 }
 
+TEST(EditServer, ShowsTheOutsideWithTheSkinsPatternsAndRelief) {
+  // The cantaloupe's skin: a net with a relief. The outside is one textured, normal-mapped
+  // skin without camera or lights, a valid glTF; a text that breaks a rule gets the verdict.
+  const fs::path dir = test::fresh_dir("edit-outside");
+  const fs::path file = copy_template("cantaloupe", dir);
+  const std::string text = test::read_file(file);
+  RunningServer server(file);
+  httplib::Client c = server.client();
+  const auto skin = c.Post("/api/skin.glb", text, "text/plain");
+  ASSERT_TRUE(skin);
+  ASSERT_EQ(skin->status, 200);
+  EXPECT_EQ(skin->get_header_value("Content-Type"), "model/gltf-binary");
+  const fs::path glb = dir / "outside.glb";
+  std::ofstream(glb, std::ios::binary) << skin->body;
+  const test::GltfReport report = test::validate_gltf(glb);
+  EXPECT_EQ(report.errors, 0) << report.output;
+  uint32_t length = 0;
+  std::memcpy(&length, skin->body.data() + 12, 4);
+  const nlohmann::json gltf = nlohmann::json::parse(skin->body.substr(20, length));
+  EXPECT_FALSE(gltf.contains("cameras"));
+  size_t relief = 0;
+  for (const auto& material : gltf["materials"])
+    relief += material.contains("normalTexture") &&
+              material["pbrMetallicRoughness"].contains("baseColorTexture");
+  EXPECT_EQ(relief, 1u);
+  std::string broken = text;
+  broken.replace(broken.find("units: mm"), 9, "units: furlongs");
+  EXPECT_EQ(status_of(c.Post("/api/skin.glb", broken, "text/plain")), 422);
+}
+
 // Every shipped template, opened and saved unchanged through the server, builds the same model
 // bytes; a new template (no file yet) can be saved, and a saved edit is what is on disk.
 TEST(EditServer, OpeningAndSavingEveryShippedTemplateKeepsItsModel) {
