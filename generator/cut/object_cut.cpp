@@ -163,13 +163,15 @@ PieceMaterials add_skin_texture(SceneAssets& assets, const DsSurface& skin, cons
   AssetMaterial textured = assets.materials[static_cast<size_t>(materials.skin)];
   textured.name = object + "_skin";
   if (baked.relief) {
+    ReliefMaps& relief = *baked.relief;
     assets.textures.push_back(
-        {object + "_skin_normal", size.x, size.y, 3, std::move(baked.relief->normal), true, true});
+        {object + "_skin_normal", size.x, size.y, 3, std::move(relief.normal), true, true});
     textured.normal_texture = static_cast<int>(assets.textures.size()) - 1;
     assets.textures.push_back(
-        {object + "_skin_height", size.x, size.y, 1, std::move(baked.relief->height), true, true});
+        {object + "_skin_height", size.x, size.y, 1, std::move(relief.height), true, true});
     textured.height_texture = static_cast<int>(assets.textures.size()) - 1;
-    textured.height_bump = (baked.relief->high_m - baked.relief->low_m) * options.texels_per_m;
+    textured.height_bump =
+        relief.texel_m > 0 ? (relief.high_m - relief.low_m) / relief.texel_m : 0.0;
   }
   assets.textures.push_back({object + "_skin", size.x, size.y, 3, std::move(baked.srgb), true});
   textured.base_colour_texture = static_cast<int>(assets.textures.size()) - 1;

@@ -40,14 +40,16 @@ ReliefMaps bake_relief_maps(const TexelCanvas& canvas, int padding) {
   if (canvas.relief.size() != canvas.covered.size())
     throw InternalError("bake_relief_maps: the canvas has no relief channel");
   ReliefMaps maps;
-  bool any = false;
+  size_t covered = 0;
   for (size_t i = 0; i < canvas.covered.size(); ++i) {
     if (!canvas.covered[i]) continue;
     const double h = canvas.relief[i].x;
-    maps.low_m = any ? std::min(maps.low_m, h) : h;
-    maps.high_m = any ? std::max(maps.high_m, h) : h;
-    any = true;
+    maps.low_m = covered > 0 ? std::min(maps.low_m, h) : h;
+    maps.high_m = covered > 0 ? std::max(maps.high_m, h) : h;
+    maps.texel_m += 0.5 * (canvas.relief[i].y + canvas.relief[i].z);
+    ++covered;
   }
+  if (covered > 0) maps.texel_m /= static_cast<double>(covered);
   // Both maps as canvases (the normal's components and the height in the colour channel), so
   // that they are dilated and filled as colours are.
   TexelCanvas normal(canvas.width, canvas.height, canvas.wrap_u);

@@ -52,6 +52,7 @@ TEST(ReliefMap, ARampGivesTheNormalOfItsSlopeTiltedAcrossAndUpTheTexture) {
   }
   EXPECT_NEAR(across.low_m, 0.0, 1e-12);
   EXPECT_NEAR(across.high_m, 7.5 * metres, 1e-12);
+  EXPECT_NEAR(across.texel_m, metres, 1e-15);
   EXPECT_EQ(across.height[8 * 16 + 0], 0);
   EXPECT_EQ(across.height[8 * 16 + 15], 255);
   // Rising toward the top row (y decreasing): the texture's "up", so the normal leans to -Y.
