@@ -271,7 +271,8 @@ Outcome<CutObject> cut_object(SceneAssets& assets, const Variant& variant, uint6
   // change nothing but the order in which the layout meets them).
   std::vector<ShadedMesh> as_cut;
   // The skin's patterns, seeded like the Perlin modulation: every piece of the object agrees.
-  const SkinPatterns patterns(variant.tmpl.skin_patterns, options.modulation_seed);
+  const SkinPatterns patterns(variant.tmpl.skin_patterns, options.modulation_seed,
+                              &variant.model);
   const bool textured = options.cap_colours == CapColours::Texture;
   if (textured) {
     const auto t_bake = Clock::now();

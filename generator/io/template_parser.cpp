@@ -505,22 +505,32 @@ void parse_variation(const YamlField& root, Template& t) {
   }
 }
 
-/// One layer of the skin's `patterns`: {stripes: {...}}, {speckles: {...}} or {net: {...}}
-/// (doc/template-format.md, Skin patterns).
+/// One layer of the skin's `patterns`: {stripes: {...}}, {speckles: {...}}, {net: {...}} or
+/// {grains: {...}} (doc/template-format.md, Skin patterns). A grains layer's set is checked
+/// once the grains are read (check_grain_layers).
 SkinPatternLayer parse_pattern_layer(const YamlField& f, double m) {
   SkinPatternLayer p;
   p.loc = f.loc();
-  const char* kinds = "a pattern layer is {stripes: {...}}, {speckles: {...}} or {net: {...}}";
+  const char* kinds =
+      "a pattern layer is {stripes: {...}}, {speckles: {...}}, {net: {...}} or {grains: {...}}";
   if (!f.is_map()) f.fail(kinds);
-  f.allow_only({"stripes", "speckles", "net"});
-  const auto stripes = f.get("stripes"), speckles = f.get("speckles"), net = f.get("net");
-  if (stripes.has_value() + speckles.has_value() + net.has_value() != 1)
+  f.allow_only({"stripes", "speckles", "net", "grains"});
+  const auto stripes = f.get("stripes"), speckles = f.get("speckles"), net = f.get("net"),
+             grains = f.get("grains");
+  if (stripes.has_value() + speckles.has_value() + net.has_value() + grains.has_value() != 1)
     f.fail(std::string(kinds) + ": exactly one of them");
-  const YamlField b = stripes ? *stripes : speckles ? *speckles : *net;
+  const YamlField b = stripes ? *stripes : speckles ? *speckles : net ? *net : *grains;
   p.kind = stripes    ? SkinPatternLayer::Kind::Stripes
            : speckles ? SkinPatternLayer::Kind::Speckles
-                      : SkinPatternLayer::Kind::Net;
-  if (stripes) {
+           : net      ? SkinPatternLayer::Kind::Net
+                      : SkinPatternLayer::Kind::Grains;
+  if (grains) {
+    b.allow_only({"set", "size", "colour", "opacity", "softness", "relief"});
+    p.grain_set = b.require("set").string();
+    const YamlField size = b.require("size");
+    p.size_m = parse_length(size, m);
+    if (p.size_m < 1e-5) size.fail("must be at least 0.01 mm");
+  } else if (stripes) {
     b.allow_only({"count", "width", "colour", "opacity", "softness", "wobble", "relief"});
     const int64_t count = b.require("count").integer();
     if (count < 1 || count > 256) b.require("count").fail("must be a whole number 1 to 256");
@@ -558,6 +568,26 @@ SkinPatternLayer parse_pattern_layer(const YamlField& f, double m) {
     b.fail("a layer of opacity 0 without a relief changes nothing: give it a relief, or an "
            "opacity and a colour");
   return p;
+}
+
+/// The `set` of each grains layer of the skin's patterns names a grain set scattered over the
+/// skin (its spots are where those grains sit).
+void check_grain_layers(const Template& t) {
+  for (size_t k = 0; k < t.skin_patterns.size(); ++k) {
+    const SkinPatternLayer& p = t.skin_patterns[k];
+    if (p.kind != SkinPatternLayer::Kind::Grains) continue;
+    const SurfaceSpec& skin = t.surfaces[static_cast<size_t>(t.skin)];
+    const std::string field = skin.path + ".patterns[" + std::to_string(k) + "].grains.set";
+    const auto g = std::find_if(t.grains.begin(), t.grains.end(),
+                                [&](const GrainSpec& s) { return s.name == p.grain_set; });
+    if (g == t.grains.end())
+      throw InputError(p.loc, field, "no grain set is named " + quoted(p.grain_set));
+    if (g->on != skin.name)
+      throw InputError(p.loc, field,
+                       "grain set " + quoted(p.grain_set) + " lies on " + quoted(g->on) +
+                           ", not on the skin " + quoted(skin.name) +
+                           ": only grains under the skin show on it");
+  }
 }
 
 /// The skin's `patterns` (a list of layers): only on the skin, and only a swept one (its
@@ -671,6 +701,7 @@ Template parse_template(std::string_view text, const std::string& file,
   if (auto grains = root.get("grains")) {
     for (size_t i = 0; i < grains->size(); ++i) t.grains.push_back(parse_grain((*grains)[i], t));
   }
+  check_grain_layers(t);
 
   if (auto npr = root.get("npr")) t.npr = parse_npr(*npr, t.metres_per_unit);
   if (auto spine = root.get("spine")) t.spine = parse_spine(*spine, t.metres_per_unit);

@@ -96,12 +96,23 @@ double net_coverage(const SkinPatternLayer& s, uint64_t cells, const glm::dvec3&
 
 }  // namespace
 
-SkinPatterns::SkinPatterns(const std::vector<SkinPatternLayer>& layers, uint64_t seed) {
+SkinPatterns::SkinPatterns(const std::vector<SkinPatternLayer>& layers, uint64_t seed,
+                           const DsModel* model) {
   for (size_t k = 0; k < layers.size(); ++k) {
     const uint64_t layer_seed = derive_seed(seed, {kPurposePattern, k});
     uint64_t state = layer_seed;
     const double phase = unit(state);
-    layers_.push_back({layers[k], PerlinNoise(layer_seed), phase, splitmix64(state)});
+    Layer layer{layers[k], PerlinNoise(layer_seed), phase, splitmix64(state), {}, {}};
+    if (layer.spec.kind == SkinPatternLayer::Kind::Grains && model) {
+      layer.near.cell = layer.spec.size_m;
+      for (const DsSurface& s : model->surfaces)
+        if (s.role == SurfaceRole::Grain && s.name == layer.spec.grain_set)
+          for (const glm::dvec3& site : s.grain_sites) {
+            layer.near.add(site, layer.sites.size());
+            layer.sites.push_back(site);
+          }
+    }
+    layers_.push_back(std::move(layer));
   }
 }
 
@@ -115,6 +126,17 @@ double SkinPatterns::coverage(size_t k, const glm::dvec2& param,
       return speckle_coverage(layer.spec, layer.cells, position);
     case SkinPatternLayer::Kind::Net:
       return net_coverage(layer.spec, layer.cells, position);
+    case SkinPatternLayer::Kind::Grains: {
+      // The nearest site's spot, its edge blended over `softness` of the radius.
+      const SkinPatternLayer& g = layer.spec;
+      double best = 0;
+      layer.near.visit_near(position, [&](size_t i) {
+        const double d = glm::distance(position, layer.sites[i]);
+        best = std::max(best, 1.0 - smoothstep(g.size_m * (1 - g.softness), g.size_m, d));
+        return true;
+      });
+      return best;
+    }
   }
   return 0.0;
 }

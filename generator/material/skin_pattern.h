@@ -1,6 +1,7 @@
 // Skin patterns (doc/template-format.md, Skin patterns): stripes along the profile (a
 // watermelon's, a zucchini's), speckles (a pear's lenticels, a banana's ripening spots) and a
-// net (a cantaloupe's netting: the walls of a 3D Voronoi diagram, after Worley 1996)
+// net (a cantaloupe's netting: the walls of a 3D Voronoi diagram, after Worley 1996) and spots
+// where grains sit under the skin (a strawberry's achenes)
 // laid over the skin's outside colour, baked into the skin texture per texel (and into vertex
 // colours when cut faces are not textured), and their relief (an orange's pores, the netting's
 // ridges), baked into the skin's normal map. They are the skin's surface only: the colour that
@@ -13,7 +14,9 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "base/point_grid.h"
 #include "material/perlin_noise.h"
+#include "model/ds_model.h"
 #include "model/template.h"
 
 namespace cutaway {
@@ -23,7 +26,10 @@ class SkinPatterns {
  public:
   /// @param layers the template's skin_patterns (copied)
   /// @param seed   identifies the object, e.g. its Perlin modulation seed
-  SkinPatterns(const std::vector<SkinPatternLayer>& layers, uint64_t seed);
+  /// @param model  the object's DS model, whose grain surfaces' sites (DsSurface::grain_sites)
+  ///               the grains layers spot; null, or a set it lacks: those layers cover nothing
+  SkinPatterns(const std::vector<SkinPatternLayer>& layers, uint64_t seed,
+               const DsModel* model = nullptr);
 
   bool empty() const { return layers_.empty(); }
 
@@ -53,6 +59,8 @@ class SkinPatterns {
     PerlinNoise noise;   ///< stripes: the wobble
     double phase = 0;    ///< stripes: turn, in periods
     uint64_t cells = 0;  ///< speckles, net: the seed of the lattice's points
+    std::vector<glm::dvec3> sites;  ///< grains: the grains' sites on the skin, metres
+    PointGrid near{1.0, {}};        ///< grains: the sites in cubes of the spot radius
   };
   std::vector<Layer> layers_;
 };

@@ -67,6 +67,9 @@ struct DsSurface {
   DsMesh mesh;
   bool visible_front = true;  ///< false: the front side is hollow (empty space in cuts)
   bool visible_back = true;   ///< false: the back side is hollow
+  /// Role Grain: each grain's point on the surface it is scattered over (its dart), metres;
+  /// where the skin shows the grains (skin patterns' `grains` layers).
+  std::vector<glm::dvec3> grain_sites;
 };
 
 /// A whole DS model: all surfaces (skin first), in metres, object frame.

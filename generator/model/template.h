@@ -192,7 +192,7 @@ struct NprSettings {
 /// the skin's outside where the pattern is, baked into the skin texture, and a relief, baked
 /// into the skin's normal map.
 struct SkinPatternLayer {
-  enum class Kind { Stripes, Speckles, Net };
+  enum class Kind { Stripes, Speckles, Net, Grains };
   Kind kind = Kind::Stripes;
   glm::dvec3 colour{0.0};  ///< linear RGB
   double opacity = 1.0;    ///< 0..1: how much of `colour` covers the skin inside the pattern
@@ -205,8 +205,11 @@ struct SkinPatternLayer {
   // Speckles: spots where spheres about jittered lattice points meet the skin. Net: lines
   // where the skin meets the walls between the cells of those points (a cantaloupe's netting).
   double spacing_m = 0.0;  ///< lattice spacing, metres
-  double size_m = 0.0;     ///< speckles: spot radius; net: line width; metres
+  double size_m = 0.0;     ///< speckles, grains: spot radius; net: line width; metres
   double jitter = 0.0;     ///< speckles: 0..1, relative variation of the radius
+  /// Grains: spots of radius size_m about the sites of the grain set of this name (which lies
+  /// on the skin), where its grains sit under the skin (a strawberry's achenes in dimples).
+  std::string grain_set;
   /// Skin relief: the height of the skin inside the pattern, metres, raised (> 0: a net's
   /// ridges, pebbling) or sunken (< 0: pores, dimples); 0: flat. Baked into a normal map.
   double relief_m = 0.0;

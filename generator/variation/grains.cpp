@@ -4,13 +4,13 @@
 #include <array>
 #include <cmath>
 #include <sstream>
-#include <unordered_map>
 
 #include <glm/geometric.hpp>
 
 #include "base/area_sampling.h"
 #include "base/constants.h"
 #include "base/error.h"
+#include "base/point_grid.h"
 
 namespace cutaway {
 
@@ -28,19 +28,6 @@ glm::dvec3 any_perpendicular(const glm::dvec3& n) {
   const glm::dvec3 a = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
   return glm::normalize(glm::cross(n, a));
 }
-
-struct HashGrid {
-  double cell;
-  std::unordered_map<uint64_t, std::vector<size_t>> cells;
-  static uint64_t key(int64_t x, int64_t y, int64_t z) {
-    return (static_cast<uint64_t>(x) * 73856093ULL) ^ (static_cast<uint64_t>(y) * 19349663ULL) ^
-           (static_cast<uint64_t>(z) * 83492791ULL);
-  }
-  glm::i64vec3 index(const glm::dvec3& p) const {
-    return {static_cast<int64_t>(std::floor(p.x / cell)), static_cast<int64_t>(std::floor(p.y / cell)),
-            static_cast<int64_t>(std::floor(p.z / cell))};
-  }
-};
 
 /// The triangles of `on` whose three vertices' params lie in the grain's region.
 struct RegionTriangles {
@@ -128,7 +115,7 @@ std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface&
   const AreaSampler sampler(region.area);
   std::vector<GrainPlacement> out;
   if (tris.empty()) return out;
-  HashGrid grid{spec.spacing, {}};
+  PointGrid grid{spec.spacing, {}};
   const double side = spec.on_front ? 1.0 : -1.0;
   int failures = 0;
   while (failures < opt.max_consecutive_failures && out.size() < opt.max_grains) {
@@ -149,19 +136,11 @@ std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface&
     n = glm::length(n) > 1e-12 ? glm::normalize(n) : glm::normalize(fn);
     const glm::dvec3 centre = p + side * spec.depth * n;
     // Poisson-disc test against the accepted centres.
-    const auto c = grid.index(centre);
     bool ok = true;
-    for (int dx = -1; dx <= 1 && ok; ++dx)
-      for (int dy = -1; dy <= 1 && ok; ++dy)
-        for (int dz = -1; dz <= 1 && ok; ++dz) {
-          const auto it = grid.cells.find(HashGrid::key(c.x + dx, c.y + dy, c.z + dz));
-          if (it == grid.cells.end()) continue;
-          for (size_t j : it->second)
-            if (glm::distance(out[j].centre, centre) < spec.spacing) {
-              ok = false;
-              break;
-            }
-        }
+    grid.visit_near(centre, [&](size_t j) {
+      ok = glm::distance(out[j].centre, centre) >= spec.spacing;
+      return ok;
+    });
     // Jitter is drawn for every dart, so the stream does not depend on acceptance order.
     const double size_j = 1 + spec.jitter * rng.uniform(-1.0, 1.0);
     const double turn = spec.jitter * 0.5 * kPi * rng.uniform(-1.0, 1.0);
@@ -189,7 +168,7 @@ std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface&
     g.axis_section = b;
     g.axis_normal = n;
     g.semi_axes = spec.semi_axes * size_j;
-    grid.cells[HashGrid::key(c.x, c.y, c.z)].push_back(out.size());
+    grid.add(centre, out.size());
     out.push_back(g);
   }
   return out;
@@ -245,6 +224,7 @@ void scatter_grains(const Template& t, DsModel& model, uint64_t seed, const Grai
     DsSurface s;
     s.name = spec.name;
     s.role = SurfaceRole::Grain;
+    for (const GrainPlacement& g : grains) s.grain_sites.push_back(g.surface_point);
     add_ellipsoids(grains, spec.front, spec.back, spec.blur, opt, s.mesh);
     set_material(s.mesh, spec.material_front, spec.material_back);
     model.surfaces.push_back(std::move(s));

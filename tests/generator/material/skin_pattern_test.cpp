@@ -13,6 +13,7 @@
 #include "base/colour.h"
 #include "base/constants.h"
 #include "io/template_parser.h"
+#include "model/ds_model.h"
 #include "test_support.h"
 
 namespace cutaway {
@@ -149,6 +150,34 @@ TEST(SkinPattern, TheReliefIsTheSumOfEachLayersReliefTimesItsCoverage) {
   }
 }
 
+TEST(SkinPattern, GrainSpotsCoverTheSkinOverTheirGrainsOnly) {
+  SkinPatternLayer spots;
+  spots.kind = SkinPatternLayer::Kind::Grains;
+  spots.grain_set = "achenes";
+  spots.size_m = 0.001;
+  spots.softness = 0.5;
+  spots.relief_m = -3e-4;
+  DsModel model;
+  DsSurface grains;
+  grains.name = "achenes";
+  grains.role = SurfaceRole::Grain;
+  grains.grain_sites = {{0.01, 0.02, 0.0}, {0.01, 0.0235, 0.0}, {-0.02, 0.0, 0.005}};
+  model.surfaces.push_back(grains);
+  const SkinPatterns p({spots}, 4, &model);
+  for (const glm::dvec3& site : model.surfaces[0].grain_sites) {
+    EXPECT_DOUBLE_EQ(p.coverage(0, {}, site), 1.0);
+    EXPECT_DOUBLE_EQ(p.coverage(0, {}, site + glm::dvec3(0.0003, 0.0, 0.0)), 1.0);  // inner half
+    EXPECT_DOUBLE_EQ(p.coverage(0, {}, site + glm::dvec3(0.0, 0.0, 0.0011)), 0.0);  // outside
+    EXPECT_DOUBLE_EQ(p.height({}, site), -3e-4);
+  }
+  const glm::dvec3 edge(0.01, 0.02, 0.00075);  // halfway through the blended edge
+  EXPECT_NEAR(p.coverage(0, {}, edge), 0.5, 1e-9);
+  EXPECT_DOUBLE_EQ(p.coverage(0, {}, {0.0, 0.0, 0.0}), 0.0);
+  // Without the model (or without that set) the layer covers nothing.
+  const SkinPatterns alone({spots}, 4);
+  EXPECT_DOUBLE_EQ(alone.coverage(0, {}, model.surfaces[0].grain_sites[0]), 0.0);
+}
+
 std::string refusal(const std::string& find, const std::string& replace) {
   const std::string path = test::source_path("templates/onion.yaml").string();
   std::string text = test::read_file(path);
@@ -195,6 +224,31 @@ TEST(SkinPattern, RulesAreCheckedWhereTheyAreWritten) {
   EXPECT_EQ(refusal(skin_blur, "    blur: 0.3\n    patterns: [{speckles: {spacing: 2, size: 0.5, "
                                "opacity: 0, relief: -0.2}}]\n  - name: ring-1"),
             "");
+}
+
+TEST(SkinPattern, AGrainsLayerNamesAGrainSetOnTheSkin) {
+  const std::string path = test::source_path("templates/strawberry.yaml").string();
+  const std::string text = test::read_file(path);
+  auto refused = [&](const std::string& find, const std::string& replace) -> std::string {
+    std::string t = text;
+    const size_t at = t.find(find);
+    EXPECT_NE(at, std::string::npos) << find;
+    if (at == std::string::npos) return "";
+    t.replace(at, find.size(), replace);
+    try {
+      parse_template(t, path, test::source_path("templates").string());
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(refused("set: achenes", "set: achenes"), "");
+  EXPECT_NE(refused("set: achenes", "set: pips")
+                .find("patterns[0].grains.set: no grain set is named \"pips\""),
+            std::string::npos);
+  EXPECT_NE(refused("    on: skin", "    on: rim")
+                .find("grain set \"achenes\" lies on \"rim\", not on the skin \"skin\""),
+            std::string::npos);
 }
 
 }  // namespace
