@@ -106,9 +106,10 @@ std::vector<MeshDraw> mesh_draws(const SceneAssets& a, const AssetMesh& mesh, si
 }
 
 /// Uploads `texture` (RGB, row 0 at the top) as a GL_SRGB8 texture (GL_RGB8 when it is linear:
-/// a normal map) with mipmaps, filtered trilinearly, repeating in s where it wraps in u (else clamped) and clamped in t. Row 0 lies
-/// at t = 0, so glTF texture coordinates (v down from the top row) address it as they are. The
-/// texture belongs to the current context, which frees it.
+/// a normal map) with mipmaps, filtered trilinearly, repeating in s where it wraps in u (else
+/// clamped) and clamped in t. Row 0 lies at t = 0, so glTF texture coordinates (v down from
+/// the top row) address it as they are. The texture belongs to the current context, which
+/// frees it.
 /// @throws InternalError when it is larger than GL_MAX_TEXTURE_SIZE
 /// @throws EnvironmentError when OpenGL reports an error
 GLuint upload_rgb_texture(const AssetTexture& texture, size_t index, const GlContext& context) {

@@ -287,7 +287,8 @@ TEST(Pieces, SlicesOfABentObjectAreCutAcrossItsSpine) {
     const auto diffusion = make_cpu_diffusion(model, {4, 0});
     PieceOptions options;
     options.section.edge_m = t->edge_m;
-    const PieceSet set = *cut_pieces(model, *parse_cut_spec("slices:15", 1e-3), *diffusion, options);
+    const PieceSet set =
+        *cut_pieces(model, *parse_cut_spec("slices:15", 1e-3), *diffusion, options);
     areas[t == &bent] = section_cap_areas(set);
     if (t == &bent)
       for (const CrossSection& cs : set.sections) normals.push_back(cs.plane.normal);
