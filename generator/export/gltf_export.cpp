@@ -410,6 +410,7 @@ WrittenVertices welded_vertices(const AssetMesh& mesh,
       for (int k = 0; k < 3; ++k) needed[t[k]] = true;
   WrittenVertices out;
   out.remap.assign(n, ~0u);
+  const size_t key_floats = with_tangents ? 15 : 11;  // the tangent keys only where written
   std::unordered_map<std::string, unsigned> written;
   for (size_t i = 0; i < n; ++i) {
     if (!needed[i]) continue;
@@ -418,7 +419,7 @@ WrittenVertices welded_vertices(const AssetMesh& mesh,
     const glm::dvec3 nrm =
         len > 0 && std::isfinite(len) ? mesh.normal[i] / len : glm::dvec3(0, 1, 0);
     const glm::dvec3 c = glm::clamp(mesh.colour[i], 0.0, 1.0);
-    float vertex[15] = {};
+    float vertex[15] = {};  // position, normal, colour, uv, tangent (with_tangents only)
     for (int k = 0; k < 3; ++k) {
       vertex[k] = static_cast<float>(p[k]);
       vertex[3 + k] = static_cast<float>(nrm[k]);
@@ -433,7 +434,8 @@ WrittenVertices welded_vertices(const AssetMesh& mesh,
       for (int k = 0; k < 4; ++k) vertex[11 + k] = static_cast<float>(tangent[i][k]);
     for (float& v : vertex) v += 0.0f;  // -0 and +0 write alike
     const auto [it, added] = written.emplace(
-        std::string(reinterpret_cast<const char*>(vertex), sizeof vertex), out.count);
+        std::string(reinterpret_cast<const char*>(vertex), key_floats * sizeof(float)),
+        out.count);
     out.remap[i] = it->second;
     if (!added) continue;
     ++out.count;

@@ -22,6 +22,12 @@ double smoothstep(double a, double b, double x) {
   return t * t * (3 - 2 * t);
 }
 
+/// How much a spot of `radius` covers a point `d` from its centre (a line: `d` from its
+/// middle): 1 within (1 - softness) of the radius, 0 beyond it, smoothstep between.
+double spot(double d, double radius, double softness) {
+  return 1.0 - smoothstep(radius * (1 - softness), radius, d);
+}
+
 /// Uniform in [0, 1) from the top 53 bits of a SplitMix64 step.
 double unit(uint64_t& state) {
   return static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53;
@@ -70,7 +76,7 @@ double speckle_coverage(const SkinPatternLayer& s, uint64_t cells, const glm::dv
   visit_lattice_points(cells, q, [&](const glm::dvec3& centre, uint64_t& state) {
     const double radius = s.size_m / s.spacing_m * (1 + s.jitter * (2 * unit(state) - 1));
     const double d = glm::length(q - centre);
-    best = std::max(best, 1.0 - smoothstep(radius * (1 - s.softness), radius, d));
+    best = std::max(best, spot(d, radius, s.softness));
   });
   return best;
 }
@@ -91,7 +97,7 @@ double net_coverage(const SkinPatternLayer& s, uint64_t cells, const glm::dvec3&
     }
   });
   const double width = s.size_m / s.spacing_m;
-  return 1.0 - smoothstep(width * (1 - s.softness), width, f2 - f1);
+  return spot(f2 - f1, width, s.softness);
 }
 
 }  // namespace
@@ -132,7 +138,7 @@ double SkinPatterns::coverage(size_t k, const glm::dvec2& param,
       double best = 0;
       layer.near.visit_near(position, [&](size_t i) {
         const double d = glm::distance(position, layer.sites[i]);
-        best = std::max(best, 1.0 - smoothstep(g.size_m * (1 - g.softness), g.size_m, d));
+        best = std::max(best, spot(d, g.size_m, g.softness));
         return true;
       });
       return best;
@@ -146,21 +152,21 @@ bool SkinPatterns::has_relief() const {
                      [](const Layer& layer) { return layer.spec.relief_m != 0; });
 }
 
-double SkinPatterns::height(const glm::dvec2& param, const glm::dvec3& position) const {
-  double h = 0;
-  for (size_t k = 0; k < layers_.size(); ++k)
-    if (layers_[k].spec.relief_m != 0) h += layers_[k].spec.relief_m * coverage(k, param, position);
-  return h;
+SkinPatterns::Shade SkinPatterns::shade(const glm::dvec2& param, const glm::dvec3& position,
+                                         const glm::dvec3& colour) const {
+  Shade out{colour, 0.0};
+  for (size_t k = 0; k < layers_.size(); ++k) {
+    const SkinPatternLayer& spec = layers_[k].spec;
+    const double cover = coverage(k, param, position);
+    out.colour += (spec.colour - out.colour) * (spec.opacity * cover);
+    if (spec.relief_m != 0) out.height += spec.relief_m * cover;
+  }
+  return out;
 }
 
 glm::dvec3 SkinPatterns::operator()(const glm::dvec2& param, const glm::dvec3& position,
                                     const glm::dvec3& colour) const {
-  glm::dvec3 c = colour;
-  for (size_t k = 0; k < layers_.size(); ++k) {
-    const double a = layers_[k].spec.opacity * coverage(k, param, position);
-    c += (layers_[k].spec.colour - c) * a;
-  }
-  return c;
+  return shade(param, position, colour).colour;
 }
 
 }  // namespace cutaway

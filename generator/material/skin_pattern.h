@@ -46,9 +46,16 @@ class SkinPatterns {
   /// Whether any layer has a relief (SkinPatternLayer::relief_m), so the skin gets a normal map.
   bool has_relief() const;
 
-  /// The skin's relief at the point: the sum over the layers of relief_m * coverage, metres
-  /// above (> 0) or below (< 0) the swept skin. Arguments as for operator().
-  double height(const glm::dvec2& param, const glm::dvec3& position) const;
+  /// What the layers make of the point: the colour operator() gives, and the skin's relief
+  /// there, the sum over the layers of relief_m * coverage, metres above (> 0) or below (< 0)
+  /// the swept skin; each layer's coverage evaluated once for both. Arguments as for
+  /// operator().
+  struct Shade {
+    glm::dvec3 colour{0.0};
+    double height = 0;
+  };
+  Shade shade(const glm::dvec2& param, const glm::dvec3& position,
+              const glm::dvec3& colour) const;
 
   /// How much of layer `k` covers the point, 0..1 (before its opacity).
   double coverage(size_t k, const glm::dvec2& param, const glm::dvec3& position) const;

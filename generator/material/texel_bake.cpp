@@ -54,9 +54,9 @@ void rasterise(const ShadedMesh& mesh, std::span<const glm::dvec2> texel,
             wa * mesh.position[t.x] + wb * mesh.position[t.y] + wc * mesh.position[t.z];
         if (patterns) {
           const glm::dvec2 param(1 - (y + 0.5) / height, (column + 0.5) / width);
-          colour = (*patterns)(param, where, colour);
-          if (!canvas.relief.empty())
-            canvas.relief[i] = {patterns->height(param, where), texel_metres};
+          const SkinPatterns::Shade shaded = patterns->shade(param, where, colour);
+          colour = shaded.colour;
+          if (!canvas.relief.empty()) canvas.relief[i] = {shaded.height, texel_metres};
         }
         if (modulation) colour = (*modulation)(where, colour, strength);
         canvas.colour[i] = colour;

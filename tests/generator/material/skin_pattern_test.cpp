@@ -139,13 +139,13 @@ TEST(SkinPattern, TheReliefIsTheSumOfEachLayersReliefTimesItsCoverage) {
   pores.relief_m = -2e-4;
   const SkinPatterns flat({stripes(4, 0.5, 0.0)}, 1);
   EXPECT_FALSE(flat.has_relief());
-  EXPECT_EQ(flat.height({0.5, 0.3}, {0.01, 0.02, 0.03}), 0.0);
+  EXPECT_EQ(flat.shade({0.5, 0.3}, {0.01, 0.02, 0.03}, {}).height, 0.0);
   const SkinPatterns p({ridge, pores}, 2);
   EXPECT_TRUE(p.has_relief());
   for (const glm::dvec3 at : {glm::dvec3(0.011, 0.02, 0.003), glm::dvec3(-0.03, 0.05, 0.01),
                               glm::dvec3(0.0, 0.001, -0.02)}) {
     const glm::dvec2 param(0.5, 0.5);
-    EXPECT_NEAR(p.height(param, at), 4e-4 * p.coverage(0, param, at) -
+    EXPECT_NEAR(p.shade(param, at, {}).height, 4e-4 * p.coverage(0, param, at) -
                                          2e-4 * p.coverage(1, param, at), 1e-15);
   }
 }
@@ -168,7 +168,7 @@ TEST(SkinPattern, GrainSpotsCoverTheSkinOverTheirGrainsOnly) {
     EXPECT_DOUBLE_EQ(p.coverage(0, {}, site), 1.0);
     EXPECT_DOUBLE_EQ(p.coverage(0, {}, site + glm::dvec3(0.0003, 0.0, 0.0)), 1.0);  // inner half
     EXPECT_DOUBLE_EQ(p.coverage(0, {}, site + glm::dvec3(0.0, 0.0, 0.0011)), 0.0);  // outside
-    EXPECT_DOUBLE_EQ(p.height({}, site), -3e-4);
+    EXPECT_DOUBLE_EQ(p.shade({}, site, {}).height, -3e-4);
   }
   const glm::dvec3 edge(0.01, 0.02, 0.00075);  // halfway through the blended edge
   EXPECT_NEAR(p.coverage(0, {}, edge), 0.5, 1e-9);
