@@ -118,28 +118,25 @@ PieceMaterials add_cap_texture(SceneAssets& assets, const PieceSet& set,
   return materials;
 }
 
-/// Unwraps the skin part of each kept piece of `set` (unwrap_skin: adds vertices along the
-/// seam and at the poles) and returns per kept piece its coordinates, or nothing for a piece
-/// without skin.
-std::vector<std::vector<glm::dvec2>> unwrap_skins(PieceSet& set, const std::vector<size_t>& kept) {
+/// Unwraps the skin part of each piece of `set` (unwrap_skin: adds vertices along the seam and
+/// at the poles) and returns per piece its coordinates, or nothing for a piece without skin.
+std::vector<std::vector<glm::dvec2>> unwrap_skins(PieceSet& set) {
   std::vector<std::vector<glm::dvec2>> uv;
-  for (size_t k : kept) {
-    Piece& piece = set.pieces[k];
+  for (Piece& piece : set.pieces) {
     uv.push_back(skin_part(piece) ? unwrap_skin(piece.parts[0].mesh) : std::vector<glm::dvec2>{});
   }
   return uv;
 }
 
-/// Bakes the unwrapped skins of the kept pieces of `set` (one object whose DS skin is `skin`)
+/// Bakes the unwrapped skins of the pieces of `set` (one object whose DS skin is `skin`)
 /// into a texture "<object>_skin" repeating in u (skin_texture.h), adds a copy of material
 /// `materials.skin` textured with it and returns the object's materials with it as the skin's;
-/// writes each kept piece's skin coordinates into the first entries of uv[q] (sized to the
+/// writes each piece's skin coordinates into the first entries of uv[q] (sized to the
 /// piece's merge_parts vertices). The skin's `patterns` and the Perlin `modulation` are baked
 /// in per texel; where the patterns have a relief, textures "<object>_skin_normal" and
 /// "<object>_skin_height" become the material's normal and height maps. No skins: `materials`
 /// unchanged.
 PieceMaterials add_skin_texture(SceneAssets& assets, const DsSurface& skin, const PieceSet& set,
-                                const std::vector<size_t>& kept,
                                 const std::vector<std::vector<glm::dvec2>>& skin_uv,
                                 PieceMaterials materials, const std::string& object,
                                 const SkinPatterns* patterns,
@@ -148,9 +145,9 @@ PieceMaterials add_skin_texture(SceneAssets& assets, const DsSurface& skin, cons
                                 std::vector<std::vector<glm::dvec2>>& uv) {
   std::vector<const ShadedMesh*> parts;
   std::vector<const std::vector<glm::dvec2>*> part_uv;
-  for (size_t q = 0; q < kept.size(); ++q) {
+  for (size_t q = 0; q < set.pieces.size(); ++q) {
     if (skin_uv[q].empty()) continue;
-    const Piece& piece = set.pieces[kept[q]];
+    const Piece& piece = set.pieces[q];
     parts.push_back(&skin_part(piece)->mesh);
     part_uv.push_back(&skin_uv[q]);
     uv[q].resize(part_vertex_offsets(piece).back(), glm::dvec2(0.0));
@@ -244,6 +241,11 @@ Outcome<CutObject> cut_object(SceneAssets& assets, const Variant& variant, uint6
   PieceOptions piece_options;
   piece_options.section.edge_m = variant.tmpl.edge_m;
   piece_options.section.sampling = options.sampling;
+  piece_options.keep_pieces = [&options](size_t n) {
+    const size_t keep = std::clamp<size_t>(
+        static_cast<size_t>(std::llround(options.keep * static_cast<double>(n))), 1, n);
+    return choose(n, keep, options.keep_seed);
+  };
   Outcome<PieceSet> made = cut_pieces(variant.model, options.cut, diffusion, piece_options);
   if (!made && !options.whole_when_missed) return Outcome<CutObject>::none(made.reason());
   if (!made)  // every plane misses this variant: keep it whole
@@ -258,14 +260,10 @@ Outcome<CutObject> cut_object(SceneAssets& assets, const Variant& variant, uint6
   stats.diffused += set.diffused;
   stats.recut_objects += set.attempts > 1;
   stats.defective_pieces += set.defective_pieces;
-  const size_t n = set.pieces.size();
-  out.pieces_cut = n;
-  const size_t keep = std::clamp<size_t>(
-      static_cast<size_t>(std::llround(options.keep * static_cast<double>(n))), 1, n);
-  out.kept = choose(n, keep, options.keep_seed);
-  const std::vector<size_t>& kept = out.kept;
+  out.pieces_cut = set.pieces_cut;
+  const size_t n = set.pieces.size();  // the kept ones
   PieceMaterials object_materials = materials;
-  std::vector<std::vector<glm::dvec2>> uv(kept.size());
+  std::vector<std::vector<glm::dvec2>> uv(n);
   // The kept pieces merged before their skins were unwrapped: the layout and the node extras
   // see the pieces as cut (the unwrapped skins only add copies of vertices, which would
   // change nothing but the order in which the layout meets them).
@@ -280,21 +278,21 @@ Outcome<CutObject> cut_object(SceneAssets& assets, const Variant& variant, uint6
     const bool swept = variant.tmpl.surfaces[static_cast<size_t>(variant.tmpl.skin)].kind ==
                        SurfaceKind::Around;
     if (swept)
-      for (size_t k : kept) as_cut.push_back(merge_parts(set.pieces[k]));
+      for (const Piece& piece : set.pieces) as_cut.push_back(merge_parts(piece));
     const std::vector<std::vector<glm::dvec2>> skin_uv =
-        swept ? unwrap_skins(set, kept) : std::vector<std::vector<glm::dvec2>>(kept.size());
-    std::vector<const Piece*> kept_pieces;
-    for (size_t k : kept) kept_pieces.push_back(&set.pieces[k]);
+        swept ? unwrap_skins(set) : std::vector<std::vector<glm::dvec2>>(n);
+    std::vector<const Piece*> pieces;
+    for (const Piece& piece : set.pieces) pieces.push_back(&piece);
     const ColourModulation modulation(variant.tmpl.npr, options.modulation_seed);
-    object_materials = add_cap_texture(assets, set, kept_pieces, materials, object, &modulation,
+    object_materials = add_cap_texture(assets, set, pieces, materials, object, &modulation,
                                        options.perlin, options.atlas, uv);
     object_materials = add_skin_texture(
-        assets, variant.model.skin(), set, kept, skin_uv, object_materials, object,
+        assets, variant.model.skin(), set, skin_uv, object_materials, object,
         patterns.empty() ? nullptr : &patterns, &modulation, options.perlin, options.skin, uv);
     stats.seconds_bake += seconds_since(t_bake);
   }
-  for (size_t q = 0; q < kept.size(); ++q) {
-    const Piece& piece = set.pieces[kept[q]];
+  for (size_t q = 0; q < n; ++q) {
+    const Piece& piece = set.pieces[q];
     ShadedMesh merged = merge_parts(piece);
     // The skin's patterns at its vertices (the skin part comes first), for vertex colours.
     if (const PiecePart* skin = skin_part(piece);

@@ -86,8 +86,8 @@ struct CutPieces {
 
 /// One object cut into pieces: the kept ones ready for export, and the whole cut.
 struct CutObject : CutPieces {
-  PieceSet set;                    ///< every piece as cut (kept skins unwrapped when textured)
-  std::vector<size_t> kept;        ///< indices into set.pieces, increasing
+  /// The cut: its kept pieces (skins unwrapped when textured), their sections and counts.
+  PieceSet set;
 };
 
 /// Cuts `variant` (built from seed `variant_seed`) as options.cut says, its caps coloured by

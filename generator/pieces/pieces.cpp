@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "base/parallel_chunks.h"
 #include "base/timer.h"
 #include "diffusion/shared_batches.h"
 #include "pieces/clip_mesh.h"
@@ -117,56 +118,48 @@ CutCells general_position(const CutCells& cells, const DsModel& model, int attem
 /// (the threads of a cut of hundreds of slices take the next cap when they finish one).
 constexpr size_t kCapsAtOnce = 32;
 
-/// The pieces of `model` in `cells` (steps 1-3 of cut_pieces).
+/// Whether a point of plane `plane` (a triangle's centroid) lies on a face of one of `cells`
+/// (all cells when `only` is null, else those it marks).
+bool on_cell_face(const CutCells& cells, int plane, const glm::dvec3& c,
+                  const std::vector<bool>* only) {
+  for (size_t k = 0; k < cells.cells.size(); ++k) {
+    if (only && !(*only)[k]) continue;
+    const Cell& cell = cells.cells[k];
+    for (const CellFace& f : cell.faces)
+      if (f.plane == plane && in_cell(cells, cell, c, plane)) return true;
+  }
+  return false;
+}
+
+/// The pieces of `model` in `cells` (steps 1-4 of cut_pieces).
 PieceSet pieces_in_cells(const DsModel& model, const CutCells& cells,
                          const DiffusionBackend& diffusion, const PieceOptions& options) {
   PieceSet set;
   set.cells = cells;
+  const int threads = diffusion.threads();
+  const size_t planes = cells.planes.size();
 
-  // 1. One cross-section per plane, restricted to the cells that have a face on it.
+  // 1. One cross-section per plane meshed, restricted to the cells that have a face on it.
   const auto sections_start = std::chrono::steady_clock::now();
   CrossSectionOptions section_options = options.section;
   section_options.merge_boundary = false;
-  const size_t planes = cells.planes.size();
-  std::vector<std::optional<Outcome<CrossSection>>> made(planes);
-  auto make_section = [&](size_t i, const DiffusionBackend& backend) {
-    CapRestriction restriction;
-    for (size_t j = 0; j < planes; ++j)
-      if (j != i) restriction.split_planes.push_back(cells.planes[j]);
-    const int plane = static_cast<int>(i);
-    restriction.keep = [&cells, plane](const glm::dvec3& c) {
-      for (const Cell& cell : cells.cells)
-        for (const CellFace& f : cell.faces)
-          if (f.plane == plane && in_cell(cells, cell, c, plane)) return true;
-      return false;
-    };
-    made[i] = make_cross_section(model, cells.planes[i], backend, section_options, restriction);
-  };
-  // The caps at once, on as many threads as the user gave (kCapsAtOnce when left to us),
-  // their diffusions in shared batches, unless one thread is all we have.
-  const int threads = diffusion.threads();
-  const bool at_once = planes > 1 && threads != 1;
-  if (at_once)
-    set.seconds_diffuse =
-        run_with_shared_batches(diffusion, planes, make_section,
-                                threads > 0 ? static_cast<size_t>(threads) : kCapsAtOnce)
-            .seconds_diffuse;
-  else
-    for (size_t i = 0; i < planes; ++i) make_section(i, diffusion);
-  for (size_t i = 0; i < planes; ++i) {
-    Outcome<CrossSection>& section = *made[i];
-    if (section) {
-      set.diffused += section->diffused;
-      if (!at_once) set.seconds_diffuse += section->seconds_diffuse;
-      set.sections.push_back(std::move(*section));
-    } else {
-      set.sections.push_back(CrossSection{});  // the plane misses the object: no caps on it
-      set.sections.back().plane = cells.planes[i];
+  std::vector<std::optional<Outcome<MeshedSection>>> meshed(planes);
+  parallel_chunks(planes, 1, threads, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i != end; ++i) {
+      CapRestriction restriction;
+      for (size_t j = 0; j < planes; ++j)
+        if (j != i) restriction.split_planes.push_back(cells.planes[j]);
+      const int plane = static_cast<int>(i);
+      restriction.keep = [&cells, plane](const glm::dvec3& c) {
+        return on_cell_face(cells, plane, c, nullptr);
+      };
+      meshed[i] = mesh_cross_section(model, cells.planes[i], section_options, restriction);
     }
-  }
+  });
   set.seconds_sections = seconds_since(sections_start);
 
-  // 2. The skin and the walls of hollow regions, each showing its outward side.
+  // 2. The skin and the walls of hollow regions, each showing its outward side, clipped to
+  // every cell: a cell holds a piece when some part of them or a cap lies in it.
   const auto clip_start = std::chrono::steady_clock::now();
   struct Source {
     int surface;
@@ -184,18 +177,85 @@ PieceSet pieces_in_cells(const DsModel& model, const CutCells& cells,
     sources.push_back({static_cast<int>(s), PartKind::Wall,
                        shaded_surface(surface, hollow_back, hollow_back)});
   }
-
-  // 3. Per cell: clip, add the caps, stitch.
-  const double tolerance =
-      std::max(options.stitch_tolerance * options.section.edge_m, 2 * kOnPlane_m);
+  std::vector<bool> has_cap(cells.cells.size(), false);
+  for (size_t i = 0; i < planes; ++i) {
+    if (!*meshed[i]) continue;
+    for (const glm::dvec3& c : (*meshed[i])->triangle_centroids())
+      for (size_t k = 0; k < cells.cells.size(); ++k)
+        for (const CellFace& f : cells.cells[k].faces)
+          if (!has_cap[k] && f.plane == static_cast<int>(i) &&
+              in_cell(cells, cells.cells[k], c, f.plane))
+            has_cap[k] = true;
+  }
+  std::vector<Piece> made;
   for (size_t c = 0; c < cells.cells.size(); ++c) {
-    const Cell& cell = cells.cells[c];
     Piece piece;
     piece.cell = static_cast<int>(c);
     for (const Source& src : sources) {
-      ShadedMesh clipped = clip_to_cell(src.mesh, cells, cell);
+      ShadedMesh clipped = clip_to_cell(src.mesh, cells, cells.cells[c]);
       if (!clipped.triangle.empty()) piece.parts.push_back({src.kind, src.surface, -1, clipped});
     }
+    if (!piece.parts.empty() || has_cap[c]) made.push_back(std::move(piece));
+  }
+  set.pieces_cut = made.size();
+  std::vector<size_t> kept(made.size());
+  for (size_t k = 0; k < kept.size(); ++k) kept[k] = k;
+  if (options.keep_pieces) kept = options.keep_pieces(made.size());
+  std::vector<bool> kept_cell(cells.cells.size(), false);
+  for (size_t k : kept) kept_cell[static_cast<size_t>(made.at(k).cell)] = true;
+  set.seconds_clip = seconds_since(clip_start);
+
+  // 3. The sections coloured where a kept piece has a cap: at once, on as many threads as the
+  // user gave (kCapsAtOnce when left to us), their diffusions in shared batches, unless one
+  // thread is all we have.
+  const auto colour_start = std::chrono::steady_clock::now();
+  std::vector<bool> kept_face(planes, false);
+  for (size_t k = 0; k < cells.cells.size(); ++k)
+    for (const CellFace& f : cells.cells[k].faces)
+      if (kept_cell[k]) kept_face[static_cast<size_t>(f.plane)] = true;
+  std::vector<size_t> to_colour;
+  for (size_t i = 0; i < planes; ++i) {
+    if (!*meshed[i] || !kept_face[i]) continue;
+    const int plane = static_cast<int>(i);
+    if (kept.size() < made.size())
+      (*meshed[i])->restrict_to([&cells, &kept_cell, plane](const glm::dvec3& c) {
+        return on_cell_face(cells, plane, c, &kept_cell);
+      });
+    to_colour.push_back(i);
+  }
+  std::vector<std::optional<Outcome<CrossSection>>> coloured(planes);
+  auto colour_section = [&](size_t n, const DiffusionBackend& backend) {
+    const size_t i = to_colour[n];
+    coloured[i] = colour_cross_section(std::move(**meshed[i]), backend);
+  };
+  const bool at_once = to_colour.size() > 1 && threads != 1;
+  if (at_once)
+    set.seconds_diffuse =
+        run_with_shared_batches(diffusion, to_colour.size(), colour_section,
+                                threads > 0 ? static_cast<size_t>(threads) : kCapsAtOnce)
+            .seconds_diffuse;
+  else
+    for (size_t n = 0; n < to_colour.size(); ++n) colour_section(n, diffusion);
+  for (size_t i = 0; i < planes; ++i) {
+    if (coloured[i] && *coloured[i]) {
+      CrossSection& section = **coloured[i];
+      set.diffused += section.diffused;
+      if (!at_once) set.seconds_diffuse += section.seconds_diffuse;
+      set.sections.push_back(std::move(section));
+    } else {
+      set.sections.push_back(CrossSection{});  // no cap on this plane: it misses the object,
+      set.sections.back().plane = cells.planes[i];  // or no kept piece has one there
+    }
+  }
+  set.seconds_sections += seconds_since(colour_start);
+
+  // 4. Per kept piece: add the caps, stitch.
+  const auto stitch_start = std::chrono::steady_clock::now();
+  const double tolerance =
+      std::max(options.stitch_tolerance * options.section.edge_m, 2 * kOnPlane_m);
+  for (size_t k : kept) {
+    Piece& piece = made[k];
+    const Cell& cell = cells.cells[static_cast<size_t>(piece.cell)];
     for (const CellFace& face : cell.faces) {
       const CrossSection& section = set.sections[face.plane];
       ShadedMesh cap = cap_in_cell(section, cells, cell, face);
@@ -208,7 +268,7 @@ PieceSet pieces_in_cells(const DsModel& model, const CutCells& cells,
     set.stitched_vertices += stats.snapped + stats.inserted;
     set.pieces.push_back(std::move(piece));
   }
-  set.seconds_clip = seconds_since(clip_start);
+  set.seconds_clip += seconds_since(stitch_start);
   return set;
 }
 
@@ -242,7 +302,7 @@ Outcome<PieceSet> cut_pieces(const DsModel& model, const CutSpec& cut,
     if (set.defective_pieces == 0 || !may_retry || attempt + 1 == kMaxCutAttempts) break;
   }
   if (set.pieces.empty()) return Outcome<PieceSet>::none(kCutMisses);
-  if (cut.type == CutType::Plane && set.pieces.size() < 2)
+  if (cut.type == CutType::Plane && set.pieces_cut < 2)
     return Outcome<PieceSet>::none(kPlaneMisses);
   return set;
 }

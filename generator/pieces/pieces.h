@@ -5,6 +5,8 @@
 // of an object without hollows is a closed, consistently oriented 2-manifold.
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "base/outcome.h"
@@ -43,6 +45,11 @@ struct PieceOptions {
   /// the kOnPlane_m that a split line may bend to pass through a cut vertex
   /// (arrange_split_lines).
   double stitch_tolerance = 1e-5;
+  /// Which of the n pieces a cut makes are kept: their indices into the pieces in cell order,
+  /// increasing, at least one; empty: all. Only the caps of kept pieces are coloured, so a
+  /// scene that keeps a share of each cut pays PMVC for that share (a cap shared by a kept and
+  /// a dropped piece is coloured whole).
+  std::function<std::vector<size_t>(size_t n)> keep_pieces;
 };
 
 /// Planes in general position (general_position): a plane that does not contain the object's
@@ -62,7 +69,10 @@ constexpr double kMinVertexSeparation_m = 1e-9;
 /// The pieces of one cut object and what making them cost.
 struct PieceSet {
   CutCells cells;                      ///< as cut: the planes moved by the last attempt's nudge
-  std::vector<Piece> pieces;           ///< in cell order; cells the object misses give none
+  /// The kept pieces (PieceOptions::keep_pieces), in cell order; cells the object misses give
+  /// none.
+  std::vector<Piece> pieces;
+  size_t pieces_cut = 0;               ///< pieces the cut made, kept or not
   std::vector<CrossSection> sections;  ///< one per plane of `cells` (empty where it misses)
   DiffusedPoints diffused;             ///< PMVC evaluations over all caps
   size_t stitched_vertices = 0;        ///< seam vertices snapped or inserted
@@ -82,16 +92,17 @@ struct PieceSet {
 /// Cuts `model` into pieces along `cut` (make_cut_cells with the model's bounds). Every plane is
 /// cross-sectioned once, with the lines of all other planes as extra constraints (so the two
 /// caps on either side of a cut are mirror images with equal colours), keeping only triangles
-/// that some cell uses. Surfaces that are hollow on one side (visible_front or visible_back
+/// that some cell uses; the planes are meshed first, which cells hold a piece is decided, and
+/// only triangles that a kept piece uses are coloured (PieceOptions::keep_pieces). Surfaces that are hollow on one side (visible_front or visible_back
 /// false, not the skin) are the walls of hollow regions: clipped and shown with the colour of
 /// their other side, facing the hollow. Grains and other structure surfaces only colour the
 /// caps. The planes are first put in general position (kVertexClearance). Every piece is checked
-/// with check_manifold (kMinVertexSeparation_m); when one fails (a near-degenerate configuration:
+/// with check_manifold (kMinVertexSeparation_m); when a kept one fails (a near-degenerate configuration:
 /// a surface edge passing nanometres from the line where two cutting planes meet, so that the two
 /// caps' seams cannot agree), the whole cut is redone with its planes nudged (kMaxCutAttempts; in
 /// the spirit of symbolic perturbation, but with real sub-micrometre moves). The caps of the
-/// planes are made at once, on diffusion.threads() threads (up to 32 when it is 0) that take
-/// them in turn, their diffusions in shared batches (shared_batches.h); one at a time when it
+/// planes are meshed on diffusion.threads() threads and coloured at once, on as many threads
+/// (up to 32 when it is 0) that take them in turn, their diffusions in shared batches (shared_batches.h); one at a time when it
 /// is 1. Deterministic: the result does not depend on the thread count.
 /// @param model  its skin (surfaces[0]) closed and outward
 /// @returns the pieces, or none (an expected outcome): kCutMisses when the cut misses the

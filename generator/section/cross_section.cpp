@@ -13,6 +13,7 @@
 
 #include <array>
 #include <chrono>
+#include <functional>
 #include <map>
 #include <queue>
 #include <tuple>
@@ -146,6 +147,13 @@ class SectionMesher {
   /// Step 3: conforming Delaunay refinement inside the domain, dropped when it fails; then the
   /// restriction's cells.
   void refine();
+  /// The centroids of the faces in the domain (MeshedSection::triangle_centroids).
+  std::vector<glm::dvec3> centroids() const;
+  /// Takes the faces whose centroid `keep` rejects out of the domain.
+  void restrict_to(const std::function<bool(const glm::dvec3&)>& keep);
+  /// Between meshing and colouring: the wall time from pause() to resume() is not counted.
+  void pause() { paused_at_ = std::chrono::steady_clock::now(); }
+  void resume() { start_ += std::chrono::steady_clock::now() - paused_at_; }
   /// Step 4 (adaptive): the blur bands' lines sampled by band_sampling.h.
   void sample_band_lines(const DiffusionBackend& diffusion);
   /// Step 5: output vertices (cut vertices split per side) and triangles.
@@ -191,6 +199,7 @@ class SectionMesher {
   const GrainNeighbourhood near_grains_;  ///< adaptive: points near them are diffused; both:
                                           ///< they are counted
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point paused_at_ = start_;
   double seconds_sampling_ = 0;
   CrossSection cs_;
 
@@ -426,16 +435,26 @@ void SectionMesher::refine() {
     // The same input triangulated the first time, so it has area again.
     CUTAWAY_CHECK(triangulate_domain());
   }
-  if (restriction_.keep) {
-    for (auto f = cdt_.finite_faces_begin(); f != cdt_.finite_faces_end(); ++f) {
-      if (!f->is_in_domain()) continue;
-      const glm::dvec2 c =
-          (to2(f->vertex(0)->point()) + to2(f->vertex(1)->point()) + to2(f->vertex(2)->point())) /
-          3.0;
-      if (!restriction_.keep(plane_.point + cs_.u_axis * c.x + cs_.v_axis * c.y))
-        f->set_in_domain(false);
-    }
+  if (restriction_.keep) restrict_to(restriction_.keep);
+}
+
+std::vector<glm::dvec3> SectionMesher::centroids() const {
+  std::vector<glm::dvec3> out;
+  for (auto f = cdt_.finite_faces_begin(); f != cdt_.finite_faces_end(); ++f) {
+    if (!f->is_in_domain()) continue;
+    const glm::dvec2 c =
+        (to2(f->vertex(0)->point()) + to2(f->vertex(1)->point()) + to2(f->vertex(2)->point())) /
+        3.0;
+    out.push_back(plane_.point + cs_.u_axis * c.x + cs_.v_axis * c.y);
   }
+  return out;
+}
+
+void SectionMesher::restrict_to(const std::function<bool(const glm::dvec3&)>& keep) {
+  const std::vector<glm::dvec3> at = centroids();
+  size_t k = 0;
+  for (auto f = cdt_.finite_faces_begin(); f != cdt_.finite_faces_end(); ++f)
+    if (f->is_in_domain() && !keep(at[k++])) f->set_in_domain(false);
 }
 
 void SectionMesher::sample_band_lines(const DiffusionBackend& diffusion) {
@@ -658,21 +677,62 @@ class GrainCountingDiffusion final : public DiffusionBackend {
 
 }  // namespace
 
+/// What a MeshedSection holds: the mesher and its own copies of what the mesher refers to.
+struct MeshedSection::Stages {
+  Stages(const DsModel& model, const Plane& p, const CrossSectionOptions& o,
+         const CapRestriction& r)
+      : plane(p), options(o), restriction(r), mesher(model, plane, options, restriction) {}
+  const Plane plane;
+  const CrossSectionOptions options;
+  const CapRestriction restriction;
+  SectionMesher mesher;
+};
+
+MeshedSection::MeshedSection(std::unique_ptr<Stages> stages) : stages_(std::move(stages)) {}
+MeshedSection::MeshedSection(MeshedSection&&) noexcept = default;
+MeshedSection& MeshedSection::operator=(MeshedSection&&) noexcept = default;
+MeshedSection::~MeshedSection() = default;
+
+std::vector<glm::dvec3> MeshedSection::triangle_centroids() const {
+  return stages_->mesher.centroids();
+}
+
+void MeshedSection::restrict_to(const std::function<bool(const glm::dvec3&)>& keep) {
+  stages_->mesher.restrict_to(keep);
+}
+
+Outcome<MeshedSection> mesh_cross_section(const DsModel& model, const Plane& plane,
+                                          const CrossSectionOptions& options,
+                                          const CapRestriction& restriction) {
+  auto stages = std::make_unique<MeshedSection::Stages>(model, plane, options, restriction);
+  SectionMesher& mesher = stages->mesher;
+  if (!mesher.collect_segments()) return Outcome<MeshedSection>::none(kPlaneMisses);
+  mesher.arrange_constraints();
+  if (!mesher.triangulate_domain()) return Outcome<MeshedSection>::none(kPlaneOnlyTouches);
+  mesher.refine();
+  mesher.pause();
+  return MeshedSection(std::move(stages));
+}
+
+Outcome<CrossSection> colour_cross_section(MeshedSection section,
+                                           const DiffusionBackend& diffusion) {
+  SectionMesher& mesher = section.stages_->mesher;
+  mesher.resume();
+  const GrainCountingDiffusion counted(diffusion, mesher.grains());
+  mesher.sample_band_lines(counted);
+  if (!mesher.split_vertices()) return Outcome<CrossSection>::none(kPlaneOnlyTouches);
+  CrossSection out = mesher.diffuse_rest(counted);
+  out.diffused.near_grains = counted.near();
+  return out;
+}
+
 Outcome<CrossSection> make_cross_section(const DsModel& model, const Plane& plane,
                                          const DiffusionBackend& diffusion,
                                          const CrossSectionOptions& options,
                                          const CapRestriction& restriction) {
-  SectionMesher mesher(model, plane, options, restriction);
-  if (!mesher.collect_segments()) return Outcome<CrossSection>::none(kPlaneMisses);
-  mesher.arrange_constraints();
-  if (!mesher.triangulate_domain()) return Outcome<CrossSection>::none(kPlaneOnlyTouches);
-  mesher.refine();
-  const GrainCountingDiffusion counted(diffusion, mesher.grains());
-  mesher.sample_band_lines(counted);
-  if (!mesher.split_vertices()) return Outcome<CrossSection>::none(kPlaneOnlyTouches);
-  CrossSection section = mesher.diffuse_rest(counted);
-  section.diffused.near_grains = counted.near();
-  return section;
+  Outcome<MeshedSection> meshed = mesh_cross_section(model, plane, options, restriction);
+  if (!meshed) return Outcome<CrossSection>::none(meshed.reason());
+  return colour_cross_section(std::move(*meshed), diffusion);
 }
 
 }  // namespace cutaway

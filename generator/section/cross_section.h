@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -134,5 +135,44 @@ Outcome<CrossSection> make_cross_section(const DsModel& model, const Plane& plan
                                 const DiffusionBackend& diffusion,
                                 const CrossSectionOptions& options,
                                 const CapRestriction& restriction = {});
+
+/// A cross-section triangulated and refined but not yet split or coloured: make_cross_section
+/// stopped before its first PMVC evaluation, so that a caller can see where its triangles lie
+/// and leave out those it does not need (the caps of pieces a scene does not keep) before
+/// paying for their colours. Move-only; holds copies of what it was made from, except `model`,
+/// which must outlive it.
+class MeshedSection {
+ public:
+  struct Stages;  ///< the meshing state (cross_section.cpp)
+  explicit MeshedSection(std::unique_ptr<Stages> stages);
+  MeshedSection(MeshedSection&&) noexcept;
+  MeshedSection& operator=(MeshedSection&&) noexcept;
+  ~MeshedSection();
+
+  /// The centroids (metres, object frame) of the triangles in the cut face, one per triangle,
+  /// in the triangulation's order: the points a CapRestriction's `keep` is asked about.
+  std::vector<glm::dvec3> triangle_centroids() const;
+  /// Leaves out the triangles whose centroid `keep` rejects, as a restriction's `keep` would
+  /// have (refinement came before either, so the triangles kept are the same).
+  void restrict_to(const std::function<bool(const glm::dvec3&)>& keep);
+
+ private:
+  friend Outcome<CrossSection> colour_cross_section(MeshedSection section,
+                                                    const DiffusionBackend& diffusion);
+  std::unique_ptr<Stages> stages_;
+};
+
+/// make_cross_section's meshing: its steps up to the refinement and the restriction's cells.
+/// @returns the meshed section, or none for the reasons make_cross_section gives
+Outcome<MeshedSection> mesh_cross_section(const DsModel& model, const Plane& plane,
+                                          const CrossSectionOptions& options,
+                                          const CapRestriction& restriction = {});
+
+/// make_cross_section's colouring of a meshed section: the blur bands, the split of the cut
+/// vertices and PMVC diffusion with `diffusion`. mesh_cross_section followed by this gives
+/// what make_cross_section gives.
+/// @returns the cross-section, or none (kPlaneOnlyTouches) when no triangle is left
+Outcome<CrossSection> colour_cross_section(MeshedSection section,
+                                           const DiffusionBackend& diffusion);
 
 }  // namespace cutaway
