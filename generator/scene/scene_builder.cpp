@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <oneapi/tbb/parallel_for.h>
 
 #include "assets/asset_camera.h"
@@ -253,6 +254,18 @@ SettleResult lay_out_and_settle(const Scene& scene, uint64_t seed, const SceneBu
   return settled;
 }
 
+/// The turn about +Y (radians, counter-clockwise seen from above).
+glm::dquat turn_about_y(double angle) { return glm::angleAxis(angle, glm::dvec3(0, 1, 0)); }
+
+/// The angle about +Y that turns the front (+Z) towards `to_camera` seen from above, for a
+/// container that is round (bowl, plate, none); 0 for a board, and for a camera straight above
+/// or below.
+double camera_azimuth(const Container& container, const glm::dvec3& to_camera) {
+  if (container.type == ContainerType::Board) return 0;
+  if (std::hypot(to_camera.x, to_camera.z) < 1e-9) return 0;
+  return std::atan2(to_camera.x, to_camera.z);
+}
+
 /// Step 2: the pieces' placements in `order` (lay_out_and_settle), read from the cut cache when
 /// it holds those of the same objects, arrangement, seed, container and options.
 std::vector<Placement> place_pieces(const Scene& scene, uint64_t seed,
@@ -262,6 +275,12 @@ std::vector<Placement> place_pieces(const Scene& scene, uint64_t seed,
   layout_options.to_camera = scene.camera
                                  ? glm::normalize(scene.camera->eye - scene.camera->target)
                                  : default_view_direction();
+  // A round container (bowl, plate, the floor's resting disc) is the same from every side: the
+  // pieces are laid out and settled for the camera turned about the vertical axis to the front
+  // (+Z) and turned back with it, so that a camera moved round the container finds them in the
+  // cut cache, and the pile turns with the camera as a whole.
+  const double azimuth = camera_azimuth(scene.container, layout_options.to_camera);
+  if (azimuth != 0) layout_options.to_camera = turn_about_y(-azimuth) * layout_options.to_camera;
   std::string key;
   std::optional<SettleResult> cached;
   if (options.cache) {
@@ -278,6 +297,13 @@ std::vector<Placement> place_pieces(const Scene& scene, uint64_t seed,
   for (size_t k = 0; k < order.size(); ++k)
     if (settled.placements[k].placed)
       st.decomposed_pieces += pieces.collision[order[k]].decomposed;
+  if (azimuth != 0) {
+    const glm::dquat turn = turn_about_y(azimuth);
+    for (Placement& place : settled.placements) {
+      place.rotation = turn * place.rotation;
+      place.translation = turn * place.translation;
+    }
+  }
   st.simulated_seconds = settled.simulated_s;
   st.settled = settled.all_asleep;
   st.redropped = settled.redrops;

@@ -294,23 +294,53 @@ TEST(CutCacheScene, ObjectsCutSideBySideGiveTheSameBytes) {
 }
 
 // The placements depend on the direction the camera looks from (the pieces turn their cut
-// faces to it), not on its distance or field of view: a zoom reads them back, an orbit settles
-// the cached pieces again; both give the bytes a run without the cache gives.
-TEST(CutCacheScene, AZoomReadsThePlacementsBackAndAnOrbitSettlesAgain) {
+// faces to it), not on its distance or field of view: a zoom reads them back; on a board an
+// orbit settles the cached pieces again; all give the bytes a run without the cache gives.
+TEST(CutCacheScene, AZoomReadsThePlacementsBackAndAnOrbitOverABoardSettlesAgain) {
   CutCache cache({test::fresh_dir("cut_cache"), kDefaultCutCacheBytes, {}});
   SceneStats first, zoomed, zoomed_uncached, orbited, orbited_uncached;
-  scene_glb(tiny_scene(0), &cache, first);
-  Scene zoom = tiny_scene(0);
+  const auto on_board = [](Scene scene) {
+    scene.container = {ContainerType::Board, 0, 0.3, 0.2, 0.02, scene.container.colour};
+    return scene;
+  };
+  scene_glb(on_board(tiny_scene(0)), &cache, first);
+  Scene zoom = on_board(tiny_scene(0));
   zoom.camera->eye *= 1.5;
   zoom.camera->fov_deg = 25;
   EXPECT_EQ(scene_glb(zoom, &cache, zoomed), scene_glb(zoom, nullptr, zoomed_uncached));
   EXPECT_EQ(zoomed.cached_objects, first.objects);
   EXPECT_TRUE(zoomed.cached_placements);
-  const Scene orbit = tiny_scene(40);
+  const Scene orbit = on_board(tiny_scene(40));
   EXPECT_EQ(scene_glb(orbit, &cache, orbited), scene_glb(orbit, nullptr, orbited_uncached));
   EXPECT_EQ(orbited.cached_objects, first.objects);
   EXPECT_FALSE(orbited.cached_placements);
   EXPECT_GT(orbited.simulated_seconds, 0);
+}
+
+// A bowl is the same from every side: the pile is laid out for the camera turned to the front
+// and turned back with it, so an orbit reads the placements back from the cache, and every
+// piece lies where the front view's piece lies, turned by the orbit's angle.
+TEST(CutCacheScene, AnOrbitRoundABowlTurnsThePileWithTheCamera) {
+  CutCache cache({test::fresh_dir("cut_cache_bowl_orbit"), kDefaultCutCacheBytes, {}});
+  SceneBuildOptions options = test::quick_scene_options(CapColours::Texture);
+  options.diffusion_settings = "backend=cpu cube=4 directions=adaptive";
+  const Scene front = tiny_scene(0), orbit = tiny_scene(40);
+  SceneStats st_front, st_orbit, st_cached;
+  const SceneAssets a = build_scene(front, front.seed, options, &st_front);
+  const SceneAssets b = build_scene(orbit, orbit.seed, options, &st_orbit);
+  ASSERT_EQ(a.instances.size(), b.instances.size());
+  const glm::dquat turn = glm::angleAxis(glm::radians(40.0), glm::dvec3(0, 1, 0));
+  for (size_t k = 1; k < a.instances.size(); ++k) {  // the bowl first, where it was
+    const AssetInstance& p = a.instances[k];
+    const AssetInstance& q = b.instances[k];
+    EXPECT_LT(glm::length(turn * p.translation - q.translation), 1e-9) << k;
+    EXPECT_GT(std::abs(glm::dot(turn * p.rotation, q.rotation)), 1 - 1e-12) << k;
+  }
+  EXPECT_GT(st_orbit.simulated_seconds, 0);
+  options.cache = &cache;
+  scene_to_glb(build_scene(front, front.seed, options, nullptr));
+  EXPECT_EQ(scene_to_glb(build_scene(orbit, orbit.seed, options, &st_cached)), scene_to_glb(b));
+  EXPECT_TRUE(st_cached.cached_placements);
 }
 
 }  // namespace
