@@ -257,13 +257,30 @@ SettleResult lay_out_and_settle(const Scene& scene, uint64_t seed, const SceneBu
 /// The turn about +Y (radians, counter-clockwise seen from above).
 glm::dquat turn_about_y(double angle) { return glm::angleAxis(angle, glm::dvec3(0, 1, 0)); }
 
-/// The angle about +Y that turns the front (+Z) towards `to_camera` seen from above, for a
-/// container that is round (bowl, plate, none); 0 for a board, and for a camera straight above
-/// or below.
-double camera_azimuth(const Container& container, const glm::dvec3& to_camera) {
-  if (container.type == ContainerType::Board) return 0;
-  if (std::hypot(to_camera.x, to_camera.z) < 1e-9) return 0;
-  return std::atan2(to_camera.x, to_camera.z);
+/// The direction a layout is made for, and the turn about +Y that takes its placements to the
+/// scene: the camera's azimuth (its direction seen from above, 0 at the front, +Z) decides how
+/// much of the camera's direction the pile depends on. A round container (bowl, plate, the
+/// floor's resting disc) is the same from every side: the layout is made for the camera turned
+/// to the front and turned back by the azimuth. A board is not: the layout is made for the
+/// camera turned to the nearest side of the board (the azimuth rounded to a quarter turn), as
+/// pieces are laid out for someone at one side of it, and stays where it is. Either way a camera
+/// moved round the scene within those bounds finds the placements in the cut cache.
+struct LayoutView {
+  glm::dvec3 to_camera;
+  double turn_back = 0;  ///< radians about +Y, counter-clockwise seen from above
+};
+
+LayoutView layout_view(const Container& container, const glm::dvec3& to_camera) {
+  const double level = std::hypot(to_camera.x, to_camera.z);
+  // The elevation to a nanoradian: a camera moved round the scene keeps it to the last bits
+  // only up to rounding, and the direction is part of the placements' cache key.
+  const double elevation = std::round(std::atan2(to_camera.y, level) * 1e9) / 1e9;
+  const double azimuth = level < 1e-9 ? 0.0 : std::atan2(to_camera.x, to_camera.z);
+  const double side =
+      container.type == ContainerType::Board ? kPi / 2 * std::round(azimuth / (kPi / 2)) : 0.0;
+  const glm::dvec3 direction{std::sin(side) * std::cos(elevation), std::sin(elevation),
+                             std::cos(side) * std::cos(elevation)};
+  return {direction, container.type == ContainerType::Board ? 0.0 : azimuth};
 }
 
 /// Step 2: the pieces' placements in `order` (lay_out_and_settle), read from the cut cache when
@@ -275,12 +292,8 @@ std::vector<Placement> place_pieces(const Scene& scene, uint64_t seed,
   layout_options.to_camera = scene.camera
                                  ? glm::normalize(scene.camera->eye - scene.camera->target)
                                  : default_view_direction();
-  // A round container (bowl, plate, the floor's resting disc) is the same from every side: the
-  // pieces are laid out and settled for the camera turned about the vertical axis to the front
-  // (+Z) and turned back with it, so that a camera moved round the container finds them in the
-  // cut cache, and the pile turns with the camera as a whole.
-  const double azimuth = camera_azimuth(scene.container, layout_options.to_camera);
-  if (azimuth != 0) layout_options.to_camera = turn_about_y(-azimuth) * layout_options.to_camera;
+  const LayoutView view = layout_view(scene.container, layout_options.to_camera);
+  layout_options.to_camera = view.to_camera;
   std::string key;
   std::optional<SettleResult> cached;
   if (options.cache) {
@@ -297,8 +310,8 @@ std::vector<Placement> place_pieces(const Scene& scene, uint64_t seed,
   for (size_t k = 0; k < order.size(); ++k)
     if (settled.placements[k].placed)
       st.decomposed_pieces += pieces.collision[order[k]].decomposed;
-  if (azimuth != 0) {
-    const glm::dquat turn = turn_about_y(azimuth);
+  if (view.turn_back != 0) {
+    const glm::dquat turn = turn_about_y(view.turn_back);
     for (Placement& place : settled.placements) {
       place.rotation = turn * place.rotation;
       place.translation = turn * place.translation;

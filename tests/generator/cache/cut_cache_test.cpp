@@ -294,11 +294,13 @@ TEST(CutCacheScene, ObjectsCutSideBySideGiveTheSameBytes) {
 }
 
 // The placements depend on the direction the camera looks from (the pieces turn their cut
-// faces to it), not on its distance or field of view: a zoom reads them back; on a board an
-// orbit settles the cached pieces again; all give the bytes a run without the cache gives.
-TEST(CutCacheScene, AZoomReadsThePlacementsBackAndAnOrbitOverABoardSettlesAgain) {
+// faces to it), not on its distance or field of view: a zoom reads them back; on a board, the
+// side of the board the camera looks from decides (the azimuth to a quarter turn), so an orbit
+// of 40 degrees reads them back too and one of 100 settles the cached pieces again; all give
+// the bytes a run without the cache gives.
+TEST(CutCacheScene, AZoomOrAnOrbitToTheSameSideOfABoardReadsThePlacementsBack) {
   CutCache cache({test::fresh_dir("cut_cache"), kDefaultCutCacheBytes, {}});
-  SceneStats first, zoomed, zoomed_uncached, orbited, orbited_uncached;
+  SceneStats first, zoomed, zoomed_uncached, orbited, orbited_uncached, side, side_uncached;
   const auto on_board = [](Scene scene) {
     scene.container = {ContainerType::Board, 0, 0.3, 0.2, 0.02, scene.container.colour};
     return scene;
@@ -312,9 +314,12 @@ TEST(CutCacheScene, AZoomReadsThePlacementsBackAndAnOrbitOverABoardSettlesAgain)
   EXPECT_TRUE(zoomed.cached_placements);
   const Scene orbit = on_board(tiny_scene(40));
   EXPECT_EQ(scene_glb(orbit, &cache, orbited), scene_glb(orbit, nullptr, orbited_uncached));
-  EXPECT_EQ(orbited.cached_objects, first.objects);
-  EXPECT_FALSE(orbited.cached_placements);
-  EXPECT_GT(orbited.simulated_seconds, 0);
+  EXPECT_TRUE(orbited.cached_placements);
+  const Scene other_side = on_board(tiny_scene(100));
+  EXPECT_EQ(scene_glb(other_side, &cache, side), scene_glb(other_side, nullptr, side_uncached));
+  EXPECT_EQ(side.cached_objects, first.objects);
+  EXPECT_FALSE(side.cached_placements);
+  EXPECT_GT(side.simulated_seconds, 0);
 }
 
 // A bowl is the same from every side: the pile is laid out for the camera turned to the front
