@@ -4,13 +4,14 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
-#include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/parallel_pipeline.h>
 
 #include "assets/asset_camera.h"
 #include "base/constants.h"
@@ -195,25 +196,37 @@ ScenePieces cut_scene_objects(const Scene& scene, uint64_t seed, const SceneBuil
   }
   ScenePieces out;
   PieceMaterials item_materials;
-  const size_t at_once = static_cast<size_t>(std::max(1, options.objects_at_once));
-  for (size_t first = 0; first < jobs.size(); first += at_once) {
-    const size_t n = std::min(at_once, jobs.size() - first);
-    std::vector<CutEntry> entries(n);
-    std::vector<SceneStats> job_stats(n);
-    oneapi::tbb::parallel_for(
-        oneapi::tbb::blocked_range<size_t>(0, n, 1),
-        [&](const oneapi::tbb::blocked_range<size_t>& r) {
-          for (size_t k = r.begin(); k != r.end(); ++k) {
-            const ObjectJob& job = jobs[first + k];
-            entries[k] = make_object_entry(templates[job.item], job, options, job_stats[k]);
-          }
-        },
-        oneapi::tbb::simple_partitioner());
-    for (size_t k = 0; k < n; ++k)
-      add_object(scene, templates, jobs[first + k], entries[k], static_cast<int>(jobs.size()),
-                 options, assets, item_materials, out, st);
-    for (const SceneStats& js : job_stats) add_cut_stats(st, js);
-  }
+  // A pipeline: up to objects_at_once objects in the making at a time, each starting as soon as
+  // one before it is done (no object waits for the slowest of a group), added in order.
+  struct Made {
+    size_t job = 0;
+    CutEntry entry;
+    SceneStats stats;
+  };
+  using MadePtr = std::shared_ptr<Made>;
+  namespace tbb = oneapi::tbb;
+  size_t next = 0;
+  tbb::parallel_pipeline(
+      static_cast<size_t>(std::max(1, options.objects_at_once)),
+      tbb::make_filter<void, size_t>(tbb::filter_mode::serial_in_order,
+                                     [&](tbb::flow_control& control) -> size_t {
+                                       if (next == jobs.size()) control.stop();
+                                       return next++;
+                                     }) &
+          tbb::make_filter<size_t, MadePtr>(
+              tbb::filter_mode::parallel,
+              [&](size_t k) {
+                auto made = std::make_shared<Made>();
+                made->job = k;
+                made->entry =
+                    make_object_entry(templates[jobs[k].item], jobs[k], options, made->stats);
+                return made;
+              }) &
+          tbb::make_filter<MadePtr, void>(tbb::filter_mode::serial_in_order, [&](MadePtr made) {
+            add_object(scene, templates, jobs[made->job], made->entry,
+                       static_cast<int>(jobs.size()), options, assets, item_materials, out, st);
+            add_cut_stats(st, made->stats);
+          }));
   st.pieces = static_cast<int>(out.shapes.size());
   return out;
 }
