@@ -166,6 +166,12 @@ class World {
   }
 
   bool frozen(size_t k) const { return frozen_[k]; }
+  /// Whether any body in the world is frozen.
+  bool any_frozen() const {
+    for (size_t k = 0; k < bodies_.size(); ++k)
+      if (frozen_[k] && bodies_[k]->isInWorld()) return true;
+    return false;
+  }
 
   /// Makes every frozen body dynamic again, at rest where it lies.
   void thaw_all() {
@@ -389,15 +395,15 @@ void run_to_rest(World& world, const std::vector<SettleBody>& bodies, std::vecto
   }
 }
 
-/// run_to_rest, and then, where pieces may have been frozen, every piece free again from where
-/// it lies until the layout rests or free_seconds pass: a piece frozen before others came to
+/// run_to_rest, and then, where pieces were frozen, every piece free again from where it lies
+/// until the layout rests or free_seconds pass: a piece frozen before others came to
 /// lie on it settles under their weight, as it will in the stability check. r.all_asleep stays
 /// the verdict of the first run (the second is bounded by design).
 void settle_world(World& world, const std::vector<SettleBody>& bodies, std::vector<size_t>& id,
                   std::vector<int>& drops, double ceiling, const SettleOptions& options,
                   SettleResult& r) {
   run_to_rest(world, bodies, id, drops, ceiling, options, r);
-  if (options.freeze_after_s <= 0) return;
+  if (options.freeze_after_s <= 0 || !world.any_frozen()) return;
   const bool rested = r.all_asleep;
   world.thaw_all();
   SettleOptions free = options;

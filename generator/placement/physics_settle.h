@@ -4,7 +4,7 @@
 // time step, bodies added in input order, until the layout rests or a time cap is reached.
 // A piece that has rested for freeze_after_s is frozen (made static where it lies), so the
 // work follows the pieces still moving; once none moves, every piece is freed for up to
-// free_seconds more.
+// free_seconds more (when some piece was frozen).
 // A piece that ends outside the container is dropped again from above the pile; after
 // `max_redrops` it is reported as not placed, never silently lost. Settling ends with the
 // stability check: the layout, in a new world at rest, may move at most `stable_motion_m` in
@@ -65,7 +65,8 @@ struct SettleOptions {
   double freeze_after_s = 0.5;
   /// Once no piece moves, frozen pieces are freed and the layout runs on, every piece free,
   /// until it rests or for at most this long (seconds): a piece frozen before others came to
-  /// lie on it settles under their weight, as it will in the stability check.
+  /// lie on it settles under their weight, as it will in the stability check. Skipped when no
+  /// piece is frozen then: the layout already rested with every piece free.
   double free_seconds = 1.0;
   /// The bowl's and plate's collision mesh (container_mesh): segments around the axis and
   /// along each profile curve (the exported mesh has 96 and 40). Its chords lie on the open
