@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "base/colour.h"
+#include "base/parallel_chunks.h"
 
 namespace cutaway {
 
@@ -22,49 +23,57 @@ void rasterise(const ShadedMesh& mesh, std::span<const glm::dvec2> texel,
                const SkinPatterns* patterns, const ColourModulation* modulation,
                double strength, TexelCanvas& canvas) {
   const int width = canvas.width, height = canvas.height;
-  for (const glm::uvec3& t : mesh.triangle) {
-    const glm::dvec2 a = texel[t.x], b = texel[t.y], c = texel[t.z];
-    const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-    if (area == 0) continue;
-    // The surface's metres per texel across and down: the lengths of d(position)/d(texel),
-    // constant over the triangle (its map from texels to the surface is affine).
-    const glm::dvec2 e1 = b - a, e2 = c - a;
-    const glm::dvec3 p1 = mesh.position[t.y] - mesh.position[t.x],
-                     p2 = mesh.position[t.z] - mesh.position[t.x];
-    const glm::dvec2 texel_metres(glm::length((p1 * e2.y - p2 * e1.y) / area),
-                                  glm::length((p2 * e1.x - p1 * e2.x) / area));
-    const glm::ivec2 lo(static_cast<int>(std::floor(std::min({a.x, b.x, c.x}))),
-                        static_cast<int>(std::floor(std::min({a.y, b.y, c.y}))));
-    const glm::ivec2 hi(static_cast<int>(std::ceil(std::max({a.x, b.x, c.x}))),
-                        static_cast<int>(std::ceil(std::max({a.y, b.y, c.y}))));
-    const int x_from = canvas.wrap_u ? lo.x : std::max(lo.x, 0);
-    const int x_to = canvas.wrap_u ? std::min(hi.x, lo.x + width - 1) : std::min(hi.x, width - 1);
-    for (int y = std::max(lo.y, 0); y <= std::min(hi.y, height - 1); ++y)
-      for (int x = x_from; x <= x_to; ++x) {
-        const glm::dvec2 p(x + 0.5, y + 0.5);
-        // Barycentric weights; a small tolerance closes hairline gaps on shared edges.
-        const double wa = ((b.x - p.x) * (c.y - p.y) - (b.y - p.y) * (c.x - p.x)) / area;
-        const double wb = ((c.x - p.x) * (a.y - p.y) - (c.y - p.y) * (a.x - p.x)) / area;
-        const double wc = 1 - wa - wb;
-        if (wa < -1e-9 || wb < -1e-9 || wc < -1e-9) continue;
-        const int column = ((x % width) + width) % width;
-        const size_t i = static_cast<size_t>(y) * width + column;
-        glm::dvec3 colour = wa * mesh.colour[t.x] + wb * mesh.colour[t.y] + wc * mesh.colour[t.z];
-        const glm::dvec3 where =
-            wa * mesh.position[t.x] + wb * mesh.position[t.y] + wc * mesh.position[t.z];
-        if (patterns) {
-          const glm::dvec2 param(1 - (y + 0.5) / height, (column + 0.5) / width);
-          const SkinPatterns::Shade shaded = patterns->shade(param, where, colour);
-          colour = shaded.colour;
-          if (!canvas.relief.empty()) canvas.relief[i] = {shaded.height, texel_metres};
+  // Bands of rows on TBB's threads, each walking every triangle in order: a texel is written by
+  // the same triangles in the same order as in one pass, whatever the threads.
+  parallel_chunks(static_cast<size_t>(height), 16, 0, [&](size_t row_begin, size_t row_end) {
+    const int first_row = static_cast<int>(row_begin), last_row = static_cast<int>(row_end) - 1;
+    for (const glm::uvec3& t : mesh.triangle) {
+      const glm::dvec2 a = texel[t.x], b = texel[t.y], c = texel[t.z];
+      const glm::ivec2 lo(static_cast<int>(std::floor(std::min({a.x, b.x, c.x}))),
+                          static_cast<int>(std::floor(std::min({a.y, b.y, c.y}))));
+      const glm::ivec2 hi(static_cast<int>(std::ceil(std::max({a.x, b.x, c.x}))),
+                          static_cast<int>(std::ceil(std::max({a.y, b.y, c.y}))));
+      if (hi.y < first_row || lo.y > last_row) continue;
+      const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+      if (area == 0) continue;
+      // The surface's metres per texel across and down: the lengths of d(position)/d(texel),
+      // constant over the triangle (its map from texels to the surface is affine).
+      const glm::dvec2 e1 = b - a, e2 = c - a;
+      const glm::dvec3 p1 = mesh.position[t.y] - mesh.position[t.x],
+                       p2 = mesh.position[t.z] - mesh.position[t.x];
+      const glm::dvec2 texel_metres(glm::length((p1 * e2.y - p2 * e1.y) / area),
+                                    glm::length((p2 * e1.x - p1 * e2.x) / area));
+      const int x_from = canvas.wrap_u ? lo.x : std::max(lo.x, 0);
+      const int x_to =
+          canvas.wrap_u ? std::min(hi.x, lo.x + width - 1) : std::min(hi.x, width - 1);
+      for (int y = std::max({lo.y, 0, first_row}); y <= std::min({hi.y, height - 1, last_row}); ++y)
+        for (int x = x_from; x <= x_to; ++x) {
+          const glm::dvec2 p(x + 0.5, y + 0.5);
+          // Barycentric weights; a small tolerance closes hairline gaps on shared edges.
+          const double wa = ((b.x - p.x) * (c.y - p.y) - (b.y - p.y) * (c.x - p.x)) / area;
+          const double wb = ((c.x - p.x) * (a.y - p.y) - (c.y - p.y) * (a.x - p.x)) / area;
+          const double wc = 1 - wa - wb;
+          if (wa < -1e-9 || wb < -1e-9 || wc < -1e-9) continue;
+          const int column = ((x % width) + width) % width;
+          const size_t i = static_cast<size_t>(y) * width + column;
+          glm::dvec3 colour =
+              wa * mesh.colour[t.x] + wb * mesh.colour[t.y] + wc * mesh.colour[t.z];
+          const glm::dvec3 where =
+              wa * mesh.position[t.x] + wb * mesh.position[t.y] + wc * mesh.position[t.z];
+          if (patterns) {
+            const glm::dvec2 param(1 - (y + 0.5) / height, (column + 0.5) / width);
+            const SkinPatterns::Shade shaded = patterns->shade(param, where, colour);
+            colour = shaded.colour;
+            if (!canvas.relief.empty()) canvas.relief[i] = {shaded.height, texel_metres};
+          }
+          if (modulation) colour = (*modulation)(where, colour, strength);
+          canvas.colour[i] = colour;
+          canvas.material[i] =
+              wa * mesh.material[t.x] + wb * mesh.material[t.y] + wc * mesh.material[t.z];
+          canvas.covered[i] = 1;
         }
-        if (modulation) colour = (*modulation)(where, colour, strength);
-        canvas.colour[i] = colour;
-        canvas.material[i] =
-            wa * mesh.material[t.x] + wb * mesh.material[t.y] + wc * mesh.material[t.z];
-        canvas.covered[i] = 1;
-      }
-  }
+    }
+  });
 }
 
 void dilate(TexelCanvas& canvas, int rings) {

@@ -44,7 +44,7 @@ struct TexelCanvas {
 /// height) and is modulated by `modulation` (if not null), both at the interpolated position
 /// (metres, object frame), the modulation with `strength`. Where the canvas has a `relief`
 /// channel and `patterns` is not null, the texel also gets its relief. Later triangles overwrite
-/// earlier ones.
+/// earlier ones. Bands of rows are baked on all cores; the canvas does not depend on them.
 void rasterise(const ShadedMesh& mesh, std::span<const glm::dvec2> texel,
                const SkinPatterns* patterns, const ColourModulation* modulation,
                double strength, TexelCanvas& canvas);
