@@ -118,16 +118,20 @@ CutCells general_position(const CutCells& cells, const DsModel& model, int attem
 /// (the threads of a cut of hundreds of slices take the next cap when they finish one).
 constexpr size_t kCapsAtOnce = 32;
 
-/// Whether a point of plane `plane` (a triangle's centroid) lies on a face of one of `cells`
-/// (all cells when `only` is null, else those it marks).
+/// Whether a point of plane `plane` (a triangle's centroid) lies on a face of cell k.
+bool on_face_of(const CutCells& cells, size_t k, int plane, const glm::dvec3& c) {
+  const Cell& cell = cells.cells[k];
+  for (const CellFace& f : cell.faces)
+    if (f.plane == plane && in_cell(cells, cell, c, plane)) return true;
+  return false;
+}
+
+/// Whether a point of plane `plane` lies on a face of one of `cells` (all cells when `only` is
+/// null, else those it marks).
 bool on_cell_face(const CutCells& cells, int plane, const glm::dvec3& c,
                   const std::vector<bool>* only) {
-  for (size_t k = 0; k < cells.cells.size(); ++k) {
-    if (only && !(*only)[k]) continue;
-    const Cell& cell = cells.cells[k];
-    for (const CellFace& f : cell.faces)
-      if (f.plane == plane && in_cell(cells, cell, c, plane)) return true;
-  }
+  for (size_t k = 0; k < cells.cells.size(); ++k)
+    if ((!only || (*only)[k]) && on_face_of(cells, k, plane, c)) return true;
   return false;
 }
 
@@ -182,10 +186,7 @@ PieceSet pieces_in_cells(const DsModel& model, const CutCells& cells,
     if (!*meshed[i]) continue;
     for (const glm::dvec3& c : (*meshed[i])->triangle_centroids())
       for (size_t k = 0; k < cells.cells.size(); ++k)
-        for (const CellFace& f : cells.cells[k].faces)
-          if (!has_cap[k] && f.plane == static_cast<int>(i) &&
-              in_cell(cells, cells.cells[k], c, f.plane))
-            has_cap[k] = true;
+        if (!has_cap[k] && on_face_of(cells, k, static_cast<int>(i), c)) has_cap[k] = true;
   }
   std::vector<Piece> made;
   for (size_t c = 0; c < cells.cells.size(); ++c) {
