@@ -10,6 +10,7 @@
 #include "base/error.h"
 #include "base/finite.h"
 #include "placement/container_mesh.h"
+#include "placement/hull_shape.h"
 
 namespace cutaway {
 
@@ -101,9 +102,10 @@ class World {
     const btScalar margin = static_cast<btScalar>(options_.margin_m * kUnitsPerMetre);
     std::unique_ptr<btCollisionShape> shape;
     auto hull_of = [&](const ConvexPart& part) {
-      auto hull = std::make_unique<btConvexHullShape>();
-      for (const glm::dvec3& p : part.corners) hull->addPoint(to_bt(p - s.centroid), false);
-      hull->recalcLocalAabb();
+      std::vector<btVector3> corners;
+      corners.reserve(part.corners.size());
+      for (const glm::dvec3& p : part.corners) corners.push_back(to_bt(p - s.centroid));
+      auto hull = std::make_unique<HullShape>(corners);
       // Polyhedral contact clipping: a resting face touches with all its contact points in one
       // step, where GJK finds one point a step. Without it a settled salad simulated again
       // from rest sagged 5-12 mm while its contacts were found again.
