@@ -61,8 +61,8 @@ std::vector<PoolPiece> cut_pool(const cutaway::Scene& scene, int per_item) {
       const auto diffusion = cutaway::make_cpu_diffusion(variant.model, {4, 0});
       cutaway::CutObject made =
           *cutaway::cut_object(assets, variant, seed, materials, "pool", *diffusion, o, stats);
-      for (size_t q = 0; q < made.kept.size(); ++q) {
-        const cutaway::Piece& piece = made.set.pieces[made.kept[q]];
+      for (size_t q = 0; q < made.set.pieces.size(); ++q) {
+        const cutaway::Piece& piece = made.set.pieces[q];
         PoolPiece p;
         p.shape = std::move(made.shapes[q]);
         p.layout = {nullptr, cutaway::largest_cap_normal(piece), item.arrange,
