@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <tuple>
 
 #include <glm/geometric.hpp>
@@ -503,6 +504,28 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
     if (!heap) scattered.push_back(field.at(best_i, best_j));
   }
   return out;
+}
+
+std::vector<size_t> placement_order(size_t n, uint64_t seed) {
+  std::vector<size_t> order(n);
+  std::iota(order.begin(), order.end(), size_t{0});
+  Rng rng(derive_seed(seed, {~0ull, 3}));
+  for (size_t k = order.size(); k > 1; --k)
+    std::swap(order[k - 1], order[rng.below(static_cast<uint32_t>(k))]);
+  return order;
+}
+
+LayoutView layout_view(const Container& container, const glm::dvec3& to_camera) {
+  const double level = std::hypot(to_camera.x, to_camera.z);
+  // The elevation to a nanoradian: a camera moved round the scene keeps it to the last bits
+  // only up to rounding, and the direction is part of the placements' cache key.
+  const double elevation = std::round(std::atan2(to_camera.y, level) * 1e9) / 1e9;
+  const double azimuth = level < 1e-9 ? 0.0 : std::atan2(to_camera.x, to_camera.z);
+  const double side =
+      container.type == ContainerType::Board ? kPi / 2 * std::round(azimuth / (kPi / 2)) : 0.0;
+  const glm::dvec3 direction{std::sin(side) * std::cos(elevation), std::sin(elevation),
+                             std::cos(side) * std::cos(elevation)};
+  return {direction, container.type == ContainerType::Board ? 0.0 : azimuth};
 }
 
 }  // namespace cutaway

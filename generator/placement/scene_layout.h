@@ -6,6 +6,7 @@
 // the container, each on free ground).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -91,5 +92,29 @@ struct Placement {
 std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
                                      const Container& container, const LayoutOptions& options,
                                      uint64_t seed);
+
+/// The pieces' indices 0 .. n-1 in a seeded order (Fisher-Yates with the stream of `seed`
+/// reserved for it), the order they are laid out and settled in, so that the kinds mix in the
+/// pile. Deterministic in `seed`.
+std::vector<size_t> placement_order(size_t n, uint64_t seed);
+
+/// The direction a layout is made for, and the turn about +Y that takes its placements to the
+/// scene (layout_view).
+struct LayoutView {
+  glm::dvec3 to_camera{0.0};  ///< unit, for LayoutOptions::to_camera
+  double turn_back = 0;       ///< radians about +Y, counter-clockwise seen from above
+};
+
+/// What of the camera's direction `to_camera` (from the scene towards the camera, unit) a
+/// layout in `container` is made for. The camera's azimuth (its direction seen from above, 0
+/// at the front, +Z) decides how much the pile depends on it. A round container (bowl, plate,
+/// the floor's resting disc) is the same from every side: the layout is made for the camera
+/// turned to the front and turned back by the azimuth. A board is not: the layout is made for
+/// the camera turned to the nearest side of the board (the azimuth rounded to a quarter turn),
+/// as pieces are laid out for someone at one side of it, and stays where it is (turn_back 0).
+/// The elevation is rounded to a nanoradian, so that a camera moved round the scene, which
+/// keeps it only up to rounding, gives the same direction to the last bit (it is part of the
+/// placements' cache key). A camera straight above or below counts as at the front.
+LayoutView layout_view(const Container& container, const glm::dvec3& to_camera);
 
 }  // namespace cutaway

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <numeric>
 #include <optional>
 #include <stdexcept>
 
@@ -23,6 +22,7 @@
 #include "placement/collision_shape.h"
 #include "placement/container_mesh.h"
 #include "placement/physics_settle.h"
+#include "placement/scene_layout.h"
 #include "variation/variation.h"
 
 namespace cutaway {
@@ -231,16 +231,6 @@ ScenePieces cut_scene_objects(const Scene& scene, uint64_t seed, const SceneBuil
   return out;
 }
 
-/// The pieces' indices in a seeded order (Fisher-Yates), so that the kinds mix in the pile.
-std::vector<size_t> placement_order(size_t n, uint64_t seed) {
-  std::vector<size_t> order(n);
-  std::iota(order.begin(), order.end(), size_t{0});
-  Rng rng(derive_seed(seed, {~0ull, 3}));
-  for (size_t k = order.size(); k > 1; --k)
-    std::swap(order[k - 1], order[rng.below(static_cast<uint32_t>(k))]);
-  return order;
-}
-
 /// The pieces in `order` dropped by the height-field layout, then settled as rigid bodies
 /// from those poses; one placement per entry of `order`.
 SettleResult lay_out_and_settle(const Scene& scene, uint64_t seed, const SceneBuildOptions& options,
@@ -269,32 +259,6 @@ SettleResult lay_out_and_settle(const Scene& scene, uint64_t seed, const SceneBu
 
 /// The turn about +Y (radians, counter-clockwise seen from above).
 glm::dquat turn_about_y(double angle) { return glm::angleAxis(angle, glm::dvec3(0, 1, 0)); }
-
-/// The direction a layout is made for, and the turn about +Y that takes its placements to the
-/// scene: the camera's azimuth (its direction seen from above, 0 at the front, +Z) decides how
-/// much of the camera's direction the pile depends on. A round container (bowl, plate, the
-/// floor's resting disc) is the same from every side: the layout is made for the camera turned
-/// to the front and turned back by the azimuth. A board is not: the layout is made for the
-/// camera turned to the nearest side of the board (the azimuth rounded to a quarter turn), as
-/// pieces are laid out for someone at one side of it, and stays where it is. Either way a camera
-/// moved round the scene within those bounds finds the placements in the cut cache.
-struct LayoutView {
-  glm::dvec3 to_camera;
-  double turn_back = 0;  ///< radians about +Y, counter-clockwise seen from above
-};
-
-LayoutView layout_view(const Container& container, const glm::dvec3& to_camera) {
-  const double level = std::hypot(to_camera.x, to_camera.z);
-  // The elevation to a nanoradian: a camera moved round the scene keeps it to the last bits
-  // only up to rounding, and the direction is part of the placements' cache key.
-  const double elevation = std::round(std::atan2(to_camera.y, level) * 1e9) / 1e9;
-  const double azimuth = level < 1e-9 ? 0.0 : std::atan2(to_camera.x, to_camera.z);
-  const double side =
-      container.type == ContainerType::Board ? kPi / 2 * std::round(azimuth / (kPi / 2)) : 0.0;
-  const glm::dvec3 direction{std::sin(side) * std::cos(elevation), std::sin(elevation),
-                             std::cos(side) * std::cos(elevation)};
-  return {direction, container.type == ContainerType::Board ? 0.0 : azimuth};
-}
 
 /// Step 2: the pieces' placements in `order` (lay_out_and_settle), read from the cut cache when
 /// it holds those of the same objects, arrangement, seed, container and options.

@@ -104,12 +104,9 @@ int main(int argc, char** argv) {
   std::printf("settle: a pool of %zu pieces of %s cut in %.1f s\n", pool.size(),
               scene.name.c_str(), seconds_since(t_pool));
   for (const int n : counts) {
-    // Pieces of the pool in turn, in a seeded order as the scene builder mixes them.
-    std::vector<size_t> which(static_cast<size_t>(n));
-    for (size_t k = 0; k < which.size(); ++k) which[k] = k % pool.size();
-    cutaway::Rng rng(cutaway::derive_seed(scene.seed, {~0ull, 3}));
-    for (size_t k = which.size(); k > 1; --k)
-      std::swap(which[k - 1], which[rng.below(static_cast<uint32_t>(k))]);
+    // Pieces of the pool in turn, in the seeded order the scene builder mixes them in.
+    std::vector<size_t> which = cutaway::placement_order(static_cast<size_t>(n), scene.seed);
+    for (size_t& k : which) k %= pool.size();
     std::vector<cutaway::LayoutPiece> layout;
     for (size_t k = 0; k < which.size(); ++k) {
       layout.push_back(pool[which[k]].layout);
@@ -118,9 +115,12 @@ int main(int argc, char** argv) {
     }
     const auto t_layout = Clock::now();
     cutaway::LayoutOptions layout_options;
-    layout_options.to_camera = scene.camera
-                                   ? glm::normalize(scene.camera->eye - scene.camera->target)
-                                   : cutaway::default_view_direction();
+    layout_options.to_camera =
+        cutaway::layout_view(scene.container,
+                             scene.camera
+                                 ? glm::normalize(scene.camera->eye - scene.camera->target)
+                                 : cutaway::default_view_direction())
+            .to_camera;
     const std::vector<cutaway::Placement> drops = cutaway::layout_pieces(
         layout, scene.container, layout_options, cutaway::derive_seed(scene.seed, {~0ull, 4}));
     const double layout_s = seconds_since(t_layout);
