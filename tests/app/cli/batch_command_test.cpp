@@ -126,8 +126,9 @@ TEST(BatchCommand, ReadsCutObjectsFromTheCacheAndWritesTheSameFiles) {
   for (const char* out : {"first", "again"}) {
     EXPECT_EQ(files_in(dir / out), files) << out;
     for (const std::string& f : files)
-      if (f.rfind("timings-", 0) != 0)  // wall seconds
+      if (f.rfind("timings-", 0) != 0) {  // wall seconds
         EXPECT_EQ(read_file(dir / out / f), read_file(dir / "none" / f)) << out << "/" << f;
+      }
   }
 }
 

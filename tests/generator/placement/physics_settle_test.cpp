@@ -329,7 +329,9 @@ items:
     // the slice before it (seed 2 does since the portable libm changed Bullet's last bits):
     // it only has to lie beyond that slice.
     EXPECT_GT(extent[k].second, extent[k - 1].second) << "slice " << k;
-    if (k + 1 < extent.size()) EXPECT_LT(extent[k].first, extent[k - 1].second) << "slice " << k;
+    if (k + 1 < extent.size()) {
+      EXPECT_LT(extent[k].first, extent[k - 1].second) << "slice " << k;
+    }
   }
   // Not all flat on the plate: the slices resting on others stand higher than the lowest.
   EXPECT_GT(*std::max_element(top.begin(), top.end()),

@@ -94,10 +94,11 @@ TEST(InteriorVolume, OutsideAndTheHollowCavityAreEmptyTheShellIsOneSolidRegion) 
         const uint32_t region = v.region[v.index(i, j, k)];
         solid += region != kEmptyRegion;
         // Away from the two spheres by more than half a voxel's diagonal, the side is clear.
-        if (r < 0.012 - 0.9 * voxel || r > 0.030 + 0.9 * voxel)
+        if (r < 0.012 - 0.9 * voxel || r > 0.030 + 0.9 * voxel) {
           EXPECT_EQ(region, kEmptyRegion) << i << " " << j << " " << k;
-        else if (r > 0.012 + 0.9 * voxel && r < 0.030 - 0.9 * voxel)
+        } else if (r > 0.012 + 0.9 * voxel && r < 0.030 - 0.9 * voxel) {
           EXPECT_EQ(region, 1u) << i << " " << j << " " << k;
+        }
       }
   EXPECT_EQ(solid, v.solid);
   const double shell = 4.0 / 3.0 * std::numbers::pi * (std::pow(0.030, 3) - std::pow(0.012, 3));
@@ -146,8 +147,9 @@ TEST(InteriorVolume, SharpSurfacesSeparateRegionsBlurredOnesDoNot) {
         EXPECT_LE(sharp.outline_distance[at], static_cast<float>(sharp.voxel_m));
         // Near the skin the outline distance is below a voxel and near the true one (it
         // measures to the plane of a crossing along an axis, not along the normal).
-        if (std::abs(r - 0.030) < 0.4 * sharp.voxel_m)
+        if (std::abs(r - 0.030) < 0.4 * sharp.voxel_m) {
           EXPECT_NEAR(sharp.outline_distance[at], std::abs(r - 0.030), 0.25 * sharp.voxel_m);
+        }
         if (std::abs(r - 0.012) < 0.4 * sharp.voxel_m) {
           EXPECT_LT(sharp.sheet_distance[at], 0.45 * sharp.voxel_m);
           EXPECT_NEAR(sharp.sheet_distance[at], std::abs(r - 0.012), 0.1 * sharp.voxel_m);
