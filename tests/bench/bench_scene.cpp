@@ -389,6 +389,7 @@ int main(int argc, char** argv) {
     }
     std::printf("  %s peak memory (RSS) %.2f GB  [target < 2 GB]\n", path.stem().c_str(),
                 usage.ru_maxrss / 1e6);  // kilobytes
+    std::fflush(stdout);  // each scene's lines as it ends, also into a file
   }
   // PMVC work: the same build dense, adaptively sampled, and with adaptive directions too.
   for (const fs::path& path : scenes) {
@@ -454,6 +455,7 @@ int main(int argc, char** argv) {
         "%-12s cap vertices' colour, default against dense every texel: %zu vertices, mean "
         "%.3f/255, 99th percentile %.2f, max %.1f  [target mean <= 1/255]\n",
         path.stem().c_str(), errors.vertices, errors.mean, errors.p99, errors.max);
+    std::fflush(stdout);
   }
   return 0;
 }
