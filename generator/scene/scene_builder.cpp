@@ -37,6 +37,11 @@ glm::dvec3 default_view_direction() {
   return {0, std::sin(glm::radians(50.0)), std::cos(glm::radians(50.0))};
 }
 
+glm::dvec3 scene_view_direction(const Scene& scene) {
+  return scene.camera ? glm::normalize(scene.camera->eye - scene.camera->target)
+                      : default_view_direction();
+}
+
 uint64_t object_seed(uint64_t scene_seed, int item, int object, int purpose) {
   return derive_seed(scene_seed, {static_cast<uint64_t>(item), static_cast<uint64_t>(object),
                                   static_cast<uint64_t>(purpose)});
@@ -265,11 +270,8 @@ glm::dquat turn_about_y(double angle) { return glm::angleAxis(angle, glm::dvec3(
 std::vector<Placement> place_pieces(const Scene& scene, uint64_t seed,
                                     const SceneBuildOptions& options, const ScenePieces& pieces,
                                     const std::vector<size_t>& order, SceneStats& st) {
+  const LayoutView view = layout_view(scene.container, scene_view_direction(scene));
   LayoutOptions layout_options = options.layout;
-  layout_options.to_camera = scene.camera
-                                 ? glm::normalize(scene.camera->eye - scene.camera->target)
-                                 : default_view_direction();
-  const LayoutView view = layout_view(scene.container, layout_options.to_camera);
   layout_options.to_camera = view.to_camera;
   std::string key;
   std::optional<SettleResult> cached;

@@ -77,6 +77,10 @@ uint64_t object_seed(uint64_t scene_seed, int item, int object, int purpose);
 /// the front (+Z), 50 degrees above the horizon (a unit vector).
 glm::dvec3 default_view_direction();
 
+/// The direction from the scene towards its camera (unit): from the `camera` block's target to
+/// its eye, or default_view_direction() without one.
+glm::dvec3 scene_view_direction(const Scene& scene);
+
 /// The scene's camera (its `camera` block, or one framing the container and the pile from the
 /// front, 50 degrees above the horizon), aspect from render width / height.
 AssetCamera scene_camera(const Scene& scene, const glm::dvec3& pile_min,

@@ -116,11 +116,7 @@ int main(int argc, char** argv) {
     const auto t_layout = Clock::now();
     cutaway::LayoutOptions layout_options;
     layout_options.to_camera =
-        cutaway::layout_view(scene.container,
-                             scene.camera
-                                 ? glm::normalize(scene.camera->eye - scene.camera->target)
-                                 : cutaway::default_view_direction())
-            .to_camera;
+        cutaway::layout_view(scene.container, cutaway::scene_view_direction(scene)).to_camera;
     const std::vector<cutaway::Placement> drops = cutaway::layout_pieces(
         layout, scene.container, layout_options, cutaway::derive_seed(scene.seed, {~0ull, 4}));
     const double layout_s = seconds_since(t_layout);
