@@ -57,11 +57,15 @@ void log_build(const Scene& scene, uint64_t seed, const SceneStats& st,
                  settle.max_redrops + 1);
   const double limit = settle.stable_motion_m;
   const auto level = st.stability_motion_m > limit ? spdlog::level::warn : spdlog::level::info;
+  const std::string kept =
+      st.stability_kept_check < st.stability_checks
+          ? fmt::format(", the layout of check {} kept", st.stability_kept_check)
+          : std::string();
   spdlog::log(level,
               "stability check: re-simulated for {:g} s, the settled pieces moved at most "
-              "{:.2f} mm (limit {:g} mm; {} checks)",
+              "{:.2f} mm (limit {:g} mm; {} checks{})",
               settle.verify_seconds, 1000 * st.stability_motion_m, 1000 * limit,
-              st.stability_checks);
+              st.stability_checks, kept);
   spdlog::info("{}: {} objects, {} pieces placed, {} triangles (seed {})", scene.name,
                st.objects, st.placed, st.triangles, seed);
   if (st.cached_objects > 0)
@@ -110,7 +114,8 @@ nlohmann::ordered_json scene_stats(const Scene& scene, uint64_t seed, const std:
             {"redropped", st.redropped},
             {"lost", st.lost},
             {"stability_motion_mm", 1000 * st.stability_motion_m},
-            {"stability_checks", st.stability_checks}}},
+            {"stability_checks", st.stability_checks},
+            {"stability_kept_check", st.stability_kept_check}}},
           {"seconds",
            {{"parse", t_parse},
             {"build", t_build},

@@ -12,7 +12,7 @@ namespace cutaway {
 namespace {
 
 /// The version of the payload's layout (and of the key's), part of every key.
-constexpr int kPayloadVersion = 1;
+constexpr int kPayloadVersion = 2;
 
 // A field added to one of these structs must be added to the key below: their sizes remind.
 static_assert(sizeof(Container) == 64, "a new Container field: add it to placement_cache_key");
@@ -107,6 +107,7 @@ std::string encode_settled(const SettleResult& s) {
   w.put(s.stability_motion_m);
   w.put<uint8_t>(s.stable);
   w.put<int32_t>(s.verify_rounds);
+  w.put<int32_t>(s.kept_round);
   w.put<int32_t>(s.redrops);
   w.put<int32_t>(s.lost);
   return w.take();
@@ -130,6 +131,7 @@ std::optional<SettleResult> decode_settled(std::string_view payload, size_t bodi
     s.stability_motion_m = r.get<double>();
     s.stable = r.get<uint8_t>() != 0;
     s.verify_rounds = r.get<int32_t>();
+    s.kept_round = r.get<int32_t>();
     s.redrops = r.get<int32_t>();
     s.lost = r.get<int32_t>();
     if (!r.done()) return std::nullopt;

@@ -8,7 +8,8 @@
 // A piece that ends outside the container is dropped again from above the pile; after
 // `max_redrops` it is reported as not placed, never silently lost. Settling ends with the
 // stability check: the layout, in a new world at rest, may move at most `stable_motion_m` in
-// `verify_seconds`; if it moves more it settles on from there and is checked again.
+// `verify_seconds`; if it moves more it settles on from there and is checked again. When the
+// last check does not pass, the layout of the check that moved least within the limit is kept.
 #pragma once
 
 #include <vector>
@@ -43,8 +44,10 @@ struct SettleOptions {
   /// A check passes (no more settling) when no corner moves more than this, half the limit:
   /// with the limit itself, 64 slices in a bowl ended at 0.997 mm, a hair inside it.
   double check_motion_m = 0.0005;
-  int max_verify_rounds = 3;       ///< stability checks, each after a round of settling
-                                   ///< (the last one's motion is reported, limit or not)
+  /// Stability checks, each after a round of settling. When the last does not pass, the
+  /// layout of the check that moved least, within stable_motion_m, is kept; with none within
+  /// it the last one's, with its motion (counted until it passed the limit).
+  int max_verify_rounds = 3;
   double friction = 0.8;           ///< Coulomb friction (piece on piece and on the container)
   /// Rolling (and spinning) resistance, metres: soft produce flattens where it rests, and the
   /// contact patch resists rolling with a torque up to this x the normal force. Without it a
@@ -92,6 +95,9 @@ struct SettleResult {
   double stability_motion_m = 0;
   bool stable = false;      ///< stability_motion_m <= stable_motion_m
   int verify_rounds = 0;    ///< stability checks run (a failed one is followed by settling)
+  /// The check whose starting layout `placements` is: the last one, unless it did not pass
+  /// (check_motion_m) and an earlier one moved less while within stable_motion_m.
+  int kept_round = 0;
   int redrops = 0;          ///< drops again of pieces that had left the container
   int lost = 0;             ///< pieces still outside after max_redrops drops again
 };

@@ -302,6 +302,7 @@ std::vector<Placement> place_pieces(const Scene& scene, uint64_t seed,
   st.lost = settled.lost;
   st.stability_motion_m = settled.stability_motion_m;
   st.stability_checks = settled.verify_rounds;
+  st.stability_kept_check = settled.kept_round;
   return std::move(settled.placements);
 }
 

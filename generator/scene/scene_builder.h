@@ -63,9 +63,10 @@ struct SceneStats : ObjectCutStats {
   int decomposed_pieces = 0;        ///< pieces colliding as several convex parts
   int redropped = 0, lost = 0;      ///< settle_pieces: drops again; pieces left out
   /// The stability check of the placed layout: the farthest any piece's corner moved in 1 s
-  /// re-simulated from rest (metres; SettleResult::stability_motion_m), and the checks run.
+  /// re-simulated from rest (metres; SettleResult::stability_motion_m), the checks run and
+  /// the check whose layout was kept (SettleResult::kept_round).
   double stability_motion_m = 0;
-  int stability_checks = 0;
+  int stability_checks = 0, stability_kept_check = 0;
 };
 
 /// The seed of item `item`, object `object`, for `purpose` (1: variant, 2: which pieces are

@@ -424,5 +424,39 @@ TEST(PhysicsSettle, RestedPiecesAreFrozenSoTheWorkFollowsTheMovingOnes) {
   EXPECT_LT(static_cast<double>(frozen.body_steps), 0.67 * static_cast<double>(free.body_steps));
 }
 
+// When the last stability check does not pass, the layout of the check that moved least
+// within the limit is kept (a later round of settling can unsettle a piece that rested), and the
+// motion reported is that layout's own: checked again from the kept placements, with no
+// settling first, it moves exactly as much.
+TEST(PhysicsSettle, TheKeptLayoutIsTheOneItsReportedCheckMeasured) {
+  const std::vector<ShadedMesh> slices = pieces_of("kiwi", "slices:10");
+  std::vector<CollisionShape> shapes;
+  std::vector<LayoutPiece> layout;
+  for (const ShadedMesh& m : slices) {
+    shapes.push_back(collision_shape(m));
+    layout.push_back({&m, {0, 1, 0}, Arrangement::Pile});
+  }
+  Container board{ContainerType::Board, 0, 0.3, 0.3, 0.02};
+  const std::vector<Placement> drops = layout_pieces(layout, board, LayoutOptions{}, 5);
+  std::vector<SettleBody> bodies;
+  for (size_t k = 0; k < layout.size(); ++k) bodies.push_back({&shapes[k], 1000, drops[k]});
+  SettleOptions options;
+  options.check_motion_m = 0;  // no check passes: all of them run
+  const SettleResult r = settle_pieces(bodies, board, options);
+  EXPECT_EQ(r.verify_rounds, options.max_verify_rounds);
+  EXPECT_GE(r.kept_round, 1);
+  EXPECT_LE(r.kept_round, r.verify_rounds);
+  ASSERT_TRUE(r.stable) << r.stability_motion_m;
+  for (size_t k = 0; k < bodies.size(); ++k) bodies[k].drop = r.placements[k];
+  SettleOptions check_only = options;
+  check_only.max_seconds = 0;
+  check_only.max_verify_rounds = 1;
+  const SettleResult again = settle_pieces(bodies, board, check_only);
+  EXPECT_EQ(again.kept_round, 1);
+  EXPECT_EQ(again.stability_motion_m, r.stability_motion_m);
+  std::printf("kept check %d of %d: %.3f mm\n", r.kept_round, r.verify_rounds,
+              1000 * r.stability_motion_m);
+}
+
 }  // namespace
 }  // namespace cutaway
