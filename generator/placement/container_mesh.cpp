@@ -181,14 +181,19 @@ std::optional<AssetMesh> container_mesh(const Container& c, int segments, int pr
 }
 
 std::optional<double> rest_height(const Container& c, double x, double z, double none_radius_m) {
+  if (c.type == ContainerType::Board) {
+    if (std::fabs(x) > 0.5 * c.width_m || std::fabs(z) > 0.5 * c.depth_m) return std::nullopt;
+    return c.height_m;
+  }
+  // A round container: by the distance from the axis (the layout asks for every vertex of
+  // every candidate position, so a board does not compute it).
   const double r = std::hypot(x, z);
   switch (c.type) {
     case ContainerType::None:
       if (r > none_radius_m) return std::nullopt;
       return 0.0;
     case ContainerType::Board:
-      if (std::fabs(x) > 0.5 * c.width_m || std::fabs(z) > 0.5 * c.depth_m) return std::nullopt;
-      return c.height_m;
+      break;
     case ContainerType::Bowl:
       if (r >= 0.5 * c.diameter_m - bowl_wall(c)) return std::nullopt;
       return bowl_inner(c, r);
