@@ -98,6 +98,7 @@ struct Turned {
   glm::dquat rotation{1, 0, 0, 0};
   glm::dvec3 centre{0.0};       ///< subtracted from the turned vertices
   std::vector<glm::dvec3> q;    ///< the turned, centred vertices
+  glm::dvec3 lo{0.0}, hi{0.0};  ///< their bounds
   Footprint f;
 };
 
@@ -112,6 +113,11 @@ Turned turn(const LayoutPiece& piece, const glm::dquat& rotation, double cs) {
   t.centre /= static_cast<double>(t.q.size());
   t.centre.y = 0;
   for (glm::dvec3& v : t.q) v -= t.centre;
+  t.lo = t.hi = t.q.front();
+  for (const glm::dvec3& v : t.q) {
+    t.lo = glm::min(t.lo, v);
+    t.hi = glm::max(t.hi, v);
+  }
   t.f = footprint(t.q, piece.mesh->triangle, cs);
   return t;
 }
@@ -143,10 +149,21 @@ class HeightField {
   double rest(const Turned& t, int i, int j) const {
     double y = -kBlocked;
     const glm::dvec2 o = at(i, j);
-    for (const glm::dvec3& v : t.q) {
-      const auto h = rest_height(*container_, v.x + o.x, v.z + o.y, options_->none_radius_m);
-      if (!h) return kBlocked;
-      y = std::max(y, *h - v.y);
+    if (container_->type == ContainerType::Board) {
+      // A board's top is flat and rectangular: every vertex is on it when the corners of the
+      // bounds are (adding o is monotonic, so the extreme vertices give the extreme sums), and
+      // the lowest vertex decides the height. The same answer as asking every vertex, at once.
+      for (const glm::dvec3& v : {t.lo, t.hi}) {
+        const auto h = rest_height(*container_, v.x + o.x, v.z + o.y, options_->none_radius_m);
+        if (!h) return kBlocked;
+        y = *h - t.lo.y;
+      }
+    } else {
+      for (const glm::dvec3& v : t.q) {
+        const auto h = rest_height(*container_, v.x + o.x, v.z + o.y, options_->none_radius_m);
+        if (!h) return kBlocked;
+        y = std::max(y, *h - v.y);
+      }
     }
     for (int a = 0; a < t.f.na; ++a) {
       for (int b = 0; b < t.f.nb; ++b) {
