@@ -1,7 +1,12 @@
 #include "scene/scene_budget.h"
 
+#include <exception>
 #include <map>
+#include <optional>
 #include <string>
+#include <vector>
+
+#include <oneapi/tbb/parallel_for.h>
 
 #include "base/error.h"
 #include "model/model_builder.h"
@@ -9,18 +14,35 @@
 namespace cutaway {
 
 long long check_scene_model_vertices(const Scene& scene, const ModelVisitor& each_model) {
-  std::map<std::string, long long> vertices_of;  // per template file
+  // Each template's model, built side by side (their error, if any, kept for its item).
+  std::map<std::string, size_t> index_of;  // per template file
+  std::vector<const SceneItem*> first_item;
+  for (const SceneItem& item : scene.items) {
+    CUTAWAY_CHECK(item.tmpl);  // load_scene read it
+    if (index_of.emplace(item.template_path, first_item.size()).second)
+      first_item.push_back(&item);
+  }
+  std::vector<std::optional<DsModel>> models(first_item.size());
+  std::vector<std::exception_ptr> failed(first_item.size());
+  oneapi::tbb::parallel_for(size_t{0}, first_item.size(), [&](size_t k) {
+    try {
+      models[k] = build_model(*first_item[k]->tmpl);
+    } catch (...) {
+      failed[k] = std::current_exception();
+    }
+  });
+  // Then the items in order, as if each model were built at its template's first item: the
+  // same error, at the same item, whatever finished first.
+  std::vector<bool> visited(first_item.size(), false);
   long long total = 0;
   for (const SceneItem& item : scene.items) {
-    auto it = vertices_of.find(item.template_path);
-    if (it == vertices_of.end()) {
-      CUTAWAY_CHECK(item.tmpl);  // load_scene read it
-      const DsModel model = build_model(*item.tmpl);
-      if (each_model) each_model(*item.tmpl, model);
-      it = vertices_of.emplace(item.template_path, static_cast<long long>(model.vertex_count()))
-               .first;
+    const size_t k = index_of.at(item.template_path);
+    if (!visited[k]) {
+      visited[k] = true;
+      if (failed[k]) std::rethrow_exception(failed[k]);
+      if (each_model) each_model(*item.tmpl, *models[k]);
     }
-    total += item.count * it->second;
+    total += item.count * static_cast<long long>(models[k]->vertex_count());
     if (total > kMaxSceneModelVertices) {
       throw InputError(item.loc, item.path + ".count",
                        "the objects up to here have " + std::to_string(total) +

@@ -19,11 +19,12 @@ inline constexpr long long kMaxSceneModelVertices = 3'000'000;
 /// Called with a template and the DS model built from it.
 using ModelVisitor = std::function<void(const Template&, const DsModel&)>;
 
-/// Builds the DS model of each template `scene` names, once per template, and refuses the
-/// scene when its objects' model vertices (count x the template model's vertices, over the
-/// items in order) pass kMaxSceneModelVertices.
-/// `each_model`, when given, is called with each template and its model as they are built
-/// (`cutaway check` checks their grain limits there instead of building them again).
+/// Builds the DS model of each template `scene` names, once per template (side by side, on
+/// the TBB threads), and refuses the scene when its objects' model vertices (count x the
+/// template model's vertices, over the items in order) pass kMaxSceneModelVertices.
+/// `each_model`, when given, is called with each template and its model at the template's
+/// first item, in item order (`cutaway check` checks their grain limits there instead of
+/// building them again). Errors are those of building the models one by one in item order.
 /// @pre the scene was read with load_scene (its templates exist and parse)
 /// @returns the total (within the limit)
 /// @throws InputError at the item that passes the total ("items[i].count"), as build_model,
