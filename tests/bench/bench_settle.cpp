@@ -132,11 +132,11 @@ int main(int argc, char** argv) {
     const long placed = std::count_if(r.placements.begin(), r.placements.end(),
                                       [](const cutaway::Placement& p) { return p.placed; });
     std::printf("settle %3d pieces: %3ld placed (%d laid out, %d lost, %d drops again), "
-                "%.2f s simulated in %d steps, %lld body steps, stability %.2f mm after %d "
-                "checks%s; layout %.2f s, settling %.1f s (%.3f s per piece)\n",
+                "%.2f s simulated in %d steps, %lld body steps, stability %.2f mm (check %d of "
+                "%d)%s; layout %.2f s, settling %.1f s (%.3f s per piece)\n",
                 n, placed, dropped, r.lost, r.redrops, r.simulated_s, r.steps, r.body_steps,
-                1000 * r.stability_motion_m, r.verify_rounds, r.stable ? "" : " (over 1 mm)",
-                layout_s, settle_s, settle_s / n);
+                1000 * r.stability_motion_m, r.kept_round, r.verify_rounds,
+                r.stable ? "" : " (over 1 mm)", layout_s, settle_s, settle_s / n);
     std::fflush(stdout);
   }
   return 0;
