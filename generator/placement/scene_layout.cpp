@@ -6,10 +6,12 @@
 #include <map>
 #include <numeric>
 #include <tuple>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/gtx/quaternion.hpp>
+#include <oneapi/tbb/parallel_for.h>
 
 #include "base/constants.h"
 #include "base/random.h"
@@ -279,7 +281,27 @@ class FanTurns {
   /// object upright.
   const Turned& get(size_t p, int h, bool flat) {
     auto [it, added] = cache_.try_emplace({p, h, flat});
-    if (!added) return it->second;
+    if (added) it->second = make(p, h, flat);
+    return it->second;
+  }
+
+  /// Turns, side by side, what fan rows of `row` will ask for: each of its pieces in every
+  /// heading, flat where `flat` says (turns are independent, so the cache holds the same
+  /// values as when they are made one by one).
+  void prepare(const std::vector<size_t>& row, const std::vector<bool>& flat) {
+    std::vector<std::tuple<size_t, int, bool>> missing;
+    for (int h = 0; h < headings_; ++h)
+      for (size_t k = 0; k < row.size(); ++k)
+        if (!cache_.count({row[k], h, flat[k]})) missing.emplace_back(row[k], h, flat[k]);
+    std::vector<Turned> made(missing.size());
+    oneapi::tbb::parallel_for(size_t{0}, missing.size(), [&](size_t i) {
+      made[i] = make(std::get<0>(missing[i]), std::get<1>(missing[i]), std::get<2>(missing[i]));
+    });
+    for (size_t i = 0; i < missing.size(); ++i) cache_.emplace(missing[i], std::move(made[i]));
+  }
+
+ private:
+  Turned make(size_t p, int h, bool flat) const {
     const glm::dvec3 up(0, 1, 0), d = direction(h);
     const glm::dvec3 lean =  // tilted from up towards +d
         glm::angleAxis(glm::radians(options_->fan_tilt_deg), glm::cross(d, up)) * up;
@@ -287,8 +309,7 @@ class FanTurns {
     const glm::dquat r = glm::length(piece.cap_normal) > 0
                              ? glm::rotation(glm::normalize(piece.cap_normal), flat ? up : lean)
                              : glm::dquat(1, 0, 0, 0);
-    it->second = turn(piece, r, options_->cell_m);
-    return it->second;
+    return turn(piece, r, options_->cell_m);
   }
 
  private:
@@ -307,16 +328,23 @@ struct FanRow {
   std::vector<double> along;
 };
 
+/// Which pieces of a fan row lie flat. The first, with none under it: dropped leaning, it
+/// tipped over and slid away from the second. So does an end closing the row: leaning, the
+/// lowest point of its rounded side lay under the slice before it, and it rolled off the row.
+std::vector<bool> lying_flat(const std::vector<LayoutPiece>& pieces,
+                             const std::vector<size_t>& row) {
+  std::vector<bool> flat(row.size());
+  for (size_t k = 0; k < row.size(); ++k) flat[k] = k == 0 || pieces[row[k]].cut_faces < 2;
+  return flat;
+}
+
 FanRow fan_row(const std::vector<LayoutPiece>& pieces, const std::vector<size_t>& row, int h,
                const LayoutOptions& options, FanTurns& turns) {
   FanRow f;
   f.d = turns.direction(h);
+  const std::vector<bool> flat = lying_flat(pieces, row);
   for (size_t k = 0; k < row.size(); ++k) {
-    // The first piece, with none under it, lies flat: dropped leaning, it tipped over and slid
-    // away from the second. So does an end closing the row: leaning, the lowest point of its
-    // rounded side lay under the slice before it, and it rolled off the row.
-    const bool flat = k == 0 || pieces[row[k]].cut_faces < 2;
-    f.turned.push_back(&turns.get(row[k], h, flat));
+    f.turned.push_back(&turns.get(row[k], h, flat[k]));
     double lo = kBlocked, hi = -kBlocked;
     for (const glm::dvec3& v : f.turned.back()->q) {
       lo = std::min(lo, glm::dot(v, f.d));
@@ -337,6 +365,7 @@ bool place_fan(const std::vector<LayoutPiece>& pieces, const std::vector<size_t>
                bool may_overlap, const LayoutOptions& options, FanTurns& turns, Rng& rng,
                HeightField& field, std::vector<Placement>& out) {
   std::vector<FanRow> headings(static_cast<size_t>(turns.headings()));
+  turns.prepare(row, lying_flat(pieces, row));
   const int n = field.cells();
   const int gap = static_cast<int>(std::ceil(options.scatter_gap_m / options.cell_m));
   // Each candidate is tried on `trial` (the row's own pieces rest on each other), which is
