@@ -390,6 +390,26 @@ TEST(PhysicsSettle, FanRowsOfSeveralObjectsLieSideBySideWithoutCrossing) {
   EXPECT_EQ(shared, 0) << example;
 }
 
+/// Pieces laid out on `container` as `arrange` asks (layout seed `seed`), each with its
+/// collision shape: the bodies to settle (density 1000 kg/m^3; they point into `shapes`).
+struct LaidOut {
+  std::vector<CollisionShape> shapes;
+  std::vector<SettleBody> bodies;
+};
+LaidOut laid_out(const std::vector<ShadedMesh>& pieces, Arrangement arrange,
+                 const Container& container, uint64_t seed) {
+  LaidOut out;
+  std::vector<LayoutPiece> layout;
+  for (const ShadedMesh& m : pieces) {
+    out.shapes.push_back(collision_shape(m));
+    layout.push_back({&m, {0, 1, 0}, arrange});
+  }
+  const std::vector<Placement> drops = layout_pieces(layout, container, LayoutOptions{}, seed);
+  for (size_t k = 0; k < layout.size(); ++k)
+    out.bodies.push_back({&out.shapes[k], 1000, drops[k]});
+  return out;
+}
+
 // Pieces that have come to rest are frozen while the others settle on: with kiwi slices
 // lying apart on a board and a tomato half dropped from 1.5 m in a corner, the slices are
 // frozen while it falls and rolls, so the work (bodies simulated per step, summed) follows the
@@ -399,16 +419,9 @@ TEST(PhysicsSettle, RestedPiecesAreFrozenSoTheWorkFollowsTheMovingOnes) {
   const std::vector<ShadedMesh> slices = pieces_of("kiwi", "slices:10");
   const std::vector<ShadedMesh> halves = pieces_of("tomato", "halves");
   const CollisionShape half = collision_shape(halves[0]);
-  std::vector<CollisionShape> shapes;
-  std::vector<LayoutPiece> layout;
-  for (const ShadedMesh& m : slices) {
-    shapes.push_back(collision_shape(m));
-    layout.push_back({&m, {0, 1, 0}, Arrangement::Scatter});
-  }
   Container board{ContainerType::Board, 0, 0.8, 0.8, 0.02};
-  const std::vector<Placement> drops = layout_pieces(layout, board, LayoutOptions{}, 3);
-  std::vector<SettleBody> bodies;
-  for (size_t k = 0; k < layout.size(); ++k) bodies.push_back({&shapes[k], 1000, drops[k]});
+  LaidOut laid = laid_out(slices, Arrangement::Scatter, board, 3);
+  std::vector<SettleBody>& bodies = laid.bodies;
   bodies.push_back({&half, 1000, {true, glm::dquat(1, 0, 0, 0), glm::dvec3(0.3, 1.5, 0.3)}});
   SettleOptions whole;
   whole.freeze_after_s = 0;
@@ -430,16 +443,9 @@ TEST(PhysicsSettle, RestedPiecesAreFrozenSoTheWorkFollowsTheMovingOnes) {
 // settling first, it moves exactly as much.
 TEST(PhysicsSettle, TheKeptLayoutIsTheOneItsReportedCheckMeasured) {
   const std::vector<ShadedMesh> slices = pieces_of("kiwi", "slices:10");
-  std::vector<CollisionShape> shapes;
-  std::vector<LayoutPiece> layout;
-  for (const ShadedMesh& m : slices) {
-    shapes.push_back(collision_shape(m));
-    layout.push_back({&m, {0, 1, 0}, Arrangement::Pile});
-  }
   Container board{ContainerType::Board, 0, 0.3, 0.3, 0.02};
-  const std::vector<Placement> drops = layout_pieces(layout, board, LayoutOptions{}, 5);
-  std::vector<SettleBody> bodies;
-  for (size_t k = 0; k < layout.size(); ++k) bodies.push_back({&shapes[k], 1000, drops[k]});
+  LaidOut laid = laid_out(slices, Arrangement::Pile, board, 5);
+  std::vector<SettleBody>& bodies = laid.bodies;
   SettleOptions options;
   options.check_motion_m = 0;  // no check passes: all of them run
   const SettleResult r = settle_pieces(bodies, board, options);
