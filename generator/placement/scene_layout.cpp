@@ -5,6 +5,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <tuple>
 #include <vector>
 
@@ -155,11 +156,12 @@ class HeightField {
       // A board's top is flat and rectangular: every vertex is on it when the corners of the
       // bounds are (adding o is monotonic, so the extreme vertices give the extreme sums), and
       // the lowest vertex decides the height. The same answer as asking every vertex, at once.
+      std::optional<double> h;
       for (const glm::dvec3& v : {t.lo, t.hi}) {
-        const auto h = rest_height(*container_, v.x + o.x, v.z + o.y, options_->none_radius_m);
+        h = rest_height(*container_, v.x + o.x, v.z + o.y, options_->none_radius_m);
         if (!h) return kBlocked;
-        y = *h - t.lo.y;
       }
+      y = *h - t.lo.y;
     } else {
       for (const glm::dvec3& v : t.q) {
         const auto h = rest_height(*container_, v.x + o.x, v.z + o.y, options_->none_radius_m);

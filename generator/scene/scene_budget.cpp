@@ -33,12 +33,10 @@ long long check_scene_model_vertices(const Scene& scene, const ModelVisitor& eac
   });
   // Then the items in order, as if each model were built at its template's first item: the
   // same error, at the same item, whatever finished first.
-  std::vector<bool> visited(first_item.size(), false);
   long long total = 0;
   for (const SceneItem& item : scene.items) {
     const size_t k = index_of.at(item.template_path);
-    if (!visited[k]) {
-      visited[k] = true;
+    if (first_item[k] == &item) {
       if (failed[k]) std::rethrow_exception(failed[k]);
       if (each_model) each_model(*item.tmpl, *models[k]);
     }
