@@ -18,7 +18,7 @@ constexpr int kPayloadVersion = 2;
 static_assert(sizeof(Container) == 64, "a new Container field: add it to placement_cache_key");
 static_assert(sizeof(LayoutOptions) == 120,
               "a new LayoutOptions field: add it to placement_cache_key");
-static_assert(sizeof(SettleOptions) == 160,
+static_assert(sizeof(SettleOptions) == 168,
               "a new SettleOptions field: add it to placement_cache_key");
 
 nlohmann::ordered_json vec_json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
@@ -56,6 +56,7 @@ nlohmann::ordered_json settle_json(const SettleOptions& o) {
           {"stable_motion_m", o.stable_motion_m},
           {"check_motion_m", o.check_motion_m},
           {"max_verify_rounds", o.max_verify_rounds},
+          {"resettle_gap_m", o.resettle_gap_m},
           {"friction", o.friction},
           {"rolling_friction_m", o.rolling_friction_m},
           {"linear_damping", o.linear_damping},

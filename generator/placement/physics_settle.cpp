@@ -151,6 +151,7 @@ class World {
     bodies_.push_back(std::move(body));
     mass_.push_back({mass, inertia});
     frozen_.push_back(false);
+    pinned_.push_back(false);
     return bodies_.size() - 1;
   }
 
@@ -176,10 +177,24 @@ class World {
     return false;
   }
 
-  /// Makes every frozen body dynamic again, at rest where it lies.
+  /// Makes every frozen body dynamic again, at rest where it lies (pinned ones stay frozen).
   void thaw_all() {
     for (size_t k = 0; k < bodies_.size(); ++k)
-      if (frozen_[k] && bodies_[k]->isInWorld()) thaw(k);
+      if (frozen_[k] && !pinned_[k] && bodies_[k]->isInWorld()) thaw(k);
+  }
+
+  /// Freezes body k for the rest of this world's life: thaw_all leaves it static.
+  void pin(size_t k) {
+    freeze(k);
+    pinned_[k] = true;
+  }
+
+  /// The corners (low, high) of body k's bounding box in the world, its collision margin
+  /// included (metres).
+  std::pair<glm::dvec3, glm::dvec3> bounds(size_t k) const {
+    btVector3 lo, hi;
+    bodies_[k]->getAabb(lo, hi);
+    return {from_bt(lo), from_bt(hi)};
   }
 
   /// The bodies in the world that are not frozen.
@@ -293,6 +308,7 @@ class World {
 
   std::vector<std::pair<btScalar, btVector3>> mass_;  // per body: its mass and inertia
   std::vector<bool> frozen_;                          // per body: made static (freeze)
+  std::vector<bool> pinned_;                          // per body: frozen for good (pin)
 };
 
 /// How far the farthest corner of the body's collision shape lies between poses a and b (metres);
@@ -416,6 +432,33 @@ void settle_world(World& world, const std::vector<SettleBody>& bodies, std::vect
   r.all_asleep = rested;
 }
 
+/// After a failed stability check in `world`, which started from `checked`: pins (World::pin)
+/// every body that moved at most options.check_motion_m since, unless its bounds come within
+/// options.resettle_gap_m of those of a body that moved more. The settling that follows then
+/// moves only where the check found motion.
+void pin_resting(World& world, const std::vector<SettleBody>& bodies,
+                 const std::vector<size_t>& id, const std::vector<Placement>& checked,
+                 const SettleOptions& options) {
+  const std::vector<Placement> now = world.poses(bodies, id);
+  std::vector<std::pair<glm::dvec3, glm::dvec3>> moved;  // their bounds
+  std::vector<bool> rested(bodies.size(), false);
+  for (size_t k = 0; k < bodies.size(); ++k) {
+    if (id[k] == SIZE_MAX) continue;
+    rested[k] = body_motion(bodies[k], checked[k], now[k]) <= options.check_motion_m;
+    if (!rested[k]) moved.push_back(world.bounds(id[k]));
+  }
+  const glm::dvec3 gap(options.resettle_gap_m);
+  for (size_t k = 0; k < bodies.size(); ++k) {
+    if (!rested[k]) continue;
+    const auto [lo, hi] = world.bounds(id[k]);
+    const bool near_motion = std::any_of(moved.begin(), moved.end(), [&](const auto& m) {
+      return glm::all(glm::lessThanEqual(lo, m.second + gap)) &&
+             glm::all(glm::lessThanEqual(m.first, hi + gap));
+    });
+    if (!near_motion) world.pin(id[k]);
+  }
+}
+
 /// A world holding the bodies at `poses` (those placed), at rest; their ids in `id`.
 std::unique_ptr<World> world_at(const std::vector<SettleBody>& bodies,
                                 const std::vector<Placement>& poses, const Container& container,
@@ -449,8 +492,9 @@ SettleResult settle_pieces(const std::vector<SettleBody>& bodies, const Containe
   // The stability check: the layout in a new world, at rest, run for verify_seconds. If a piece
   // moves more than check_motion_m the layout is not at rest without the contact impulses that
   // settling built up step after step (a settled salad sagged 6.7 mm when they were lost); it
-  // settles on in that world, from where the check stopped, and is checked again. Stable:
-  // the kept check moved no corner more than stable_motion_m.
+  // settles on in that world, from where the check stopped, where the check found motion
+  // (pin_resting), and is checked again. Stable: the kept check moved no corner more than
+  // stable_motion_m.
   const int verify_steps =
       static_cast<int>(std::ceil(options.verify_seconds / options.time_step_s));
   const int check_every = steps_per_rest_check(options);
@@ -489,6 +533,7 @@ SettleResult settle_pieces(const std::vector<SettleBody>& bodies, const Containe
       }
       break;
     }
+    pin_resting(*world, bodies, id, r.placements, options);
     settle_world(*world, bodies, id, drops, ceiling, verify, r);
     r.placements = world->poses(bodies, id);
   }
