@@ -190,10 +190,12 @@ ScenePieces cut_scene_objects(const Scene& scene, uint64_t seed, const SceneBuil
     Template& tmpl = templates.back();
     tmpl.variation_amount *= item.variation;
     for (int j = 0; j < item.count; ++j) {
+      // Appended rather than "i" + ...: GCC 12 warns of an overlapping copy there (-Wrestrict,
+      // a false positive).
+      std::string name = "i";
+      name += std::to_string(i) + "_" + asset_name(tmpl.name) + "_" + std::to_string(j);
       ObjectJob job{i, j, object_seed(seed, static_cast<int>(i), j, 1),
-                    object_cut_options(scene, seed, options, i, j),
-                    "i" + std::to_string(i) + "_" + asset_name(tmpl.name) + "_" + std::to_string(j),
-                    {}};
+                    object_cut_options(scene, seed, options, i, j), std::move(name), {}};
       job.key = cut_cache_key({tmpl.source_hash, tmpl.variation_amount, job.variant_seed, job.name,
                                options.diffusion_settings, &job.cut, &options.collision});
       jobs.push_back(std::move(job));
