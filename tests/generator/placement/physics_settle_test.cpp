@@ -469,7 +469,7 @@ TEST(PhysicsSettle, TheKeptLayoutIsTheOneItsReportedCheckMeasured) {
 // tomato half falls from 40 cm in a corner; settling stops after a quarter second, while it
 // still falls, so the first check fails. In the round of settling that follows only the tomato half
 // moves: the work (bodies simulated per step) is its alone, and every slice ends within the
-// pass mark of where the first check found it. With a gap that reaches every piece, every
+// pass mark of the layout the first check started from. With a gap that reaches every piece, every
 // piece settles on.
 TEST(PhysicsSettle, AfterAFailedCheckOnlyThePiecesNearTheMotionSettleOn) {
   const std::vector<ShadedMesh> slices = pieces_of("kiwi", "slices:10");
@@ -496,7 +496,8 @@ TEST(PhysicsSettle, AfterAFailedCheckOnlyThePiecesNearTheMotionSettleOn) {
   const long long round_work_everywhere = all.body_steps - first.body_steps;
   std::printf("%zu pieces: %lld body steps settling after the check, %lld with every piece\n",
               bodies.size(), round_work, round_work_everywhere);
-  EXPECT_LE(round_work, second.steps - first.steps);  // at most one body a step
+  // At most one body a step (the steps counted also hold the second check's).
+  EXPECT_LE(round_work, second.steps - first.steps);
   EXPECT_GT(round_work_everywhere, 2 * round_work);
   for (size_t k = 0; k < apart; ++k) {
     const double moved = glm::distance(second.placements[k].translation,
