@@ -214,7 +214,7 @@ CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
   }
   const MaterialStats stats = material_stats(canvas);
   dilate(canvas, pad);
-  atlas.covered = canvas.covered;
+  atlas.covered.assign(canvas.covered.begin(), canvas.covered.end());
   fill_background(canvas);
   atlas.srgb = srgb_pixels(canvas);
   // To 1e-6: the diffusion's single-precision sheets give 0.30000001 for 0.3.

@@ -79,7 +79,7 @@ void rasterise(const ShadedMesh& mesh, std::span<const glm::dvec2> texel,
 void dilate(TexelCanvas& canvas, int rings) {
   const int width = canvas.width, height = canvas.height;
   for (int ring = 0; ring < rings; ++ring) {
-    const std::vector<uint8_t> before = canvas.covered;
+    const HugePageVector<uint8_t> before = canvas.covered;
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) {
         const size_t i = static_cast<size_t>(y) * width + x;
@@ -109,81 +109,91 @@ void dilate(TexelCanvas& canvas, int rings) {
 }
 
 void fill_background(TexelCanvas& canvas) {
-  // One pyramid level: weighted sums turned into means, a weight in 0..1 per texel.
+  // One pyramid level: per texel a mean and whether it holds one. Weights are 0 or 1 at every
+  // level (a coarse texel's weight is the sum of its children's, clamped to 1), so a flag
+  // holds them; level 0 is the canvas itself.
   struct Level {
     int width = 0, height = 0;
-    std::vector<glm::dvec3> colour;
-    std::vector<glm::dvec2> material;
-    std::vector<double> weight;
+    HugePageVector<glm::dvec3> colour;
+    HugePageVector<glm::dvec2> material;
+    HugePageVector<uint8_t> filled;
   };
   if (std::find(canvas.covered.begin(), canvas.covered.end(), 1) == canvas.covered.end()) return;
-  std::vector<Level> levels(1);
-  levels[0].width = canvas.width;
-  levels[0].height = canvas.height;
-  levels[0].colour = std::move(canvas.colour);
-  levels[0].material = std::move(canvas.material);
-  for (const uint8_t c : canvas.covered) levels[0].weight.push_back(c ? 1.0 : 0.0);
-  // Pull: each coarser texel is the weighted mean of its (up to) 2 x 2 finer ones, its weight
-  // their summed weight clamped to 1.
-  while (levels.back().width > 1 || levels.back().height > 1) {
-    const Level& fine = levels.back();
+  struct View {
+    int width, height;
+    glm::dvec3* colour;
+    glm::dvec2* material;
+    const uint8_t* filled;
+  };
+  std::vector<Level> coarser;
+  auto view = [&](size_t k) {  // level k: 0 the canvas, k > 0 coarser[k - 1]
+    if (k == 0)
+      return View{canvas.width, canvas.height, canvas.colour.data(), canvas.material.data(),
+                  canvas.covered.data()};
+    Level& l = coarser[k - 1];
+    return View{l.width, l.height, l.colour.data(), l.material.data(), l.filled.data()};
+  };
+  // Pull: each coarser texel is the mean of its filled (up to) 2 x 2 finer ones, summed in
+  // row order, and filled where any of them is.
+  for (size_t k = 0;; ++k) {
+    const View fine = view(k);
+    if (fine.width <= 1 && fine.height <= 1) break;
     Level coarse;
     coarse.width = (fine.width + 1) / 2;
     coarse.height = (fine.height + 1) / 2;
     const size_t n = static_cast<size_t>(coarse.width) * coarse.height;
     coarse.colour.assign(n, glm::dvec3(0.0));
     coarse.material.assign(n, glm::dvec2(0.0));
-    coarse.weight.assign(n, 0.0);
-    for (int y = 0; y < fine.height; ++y)
-      for (int x = 0; x < fine.width; ++x) {
-        const size_t f = static_cast<size_t>(y) * fine.width + x;
-        const size_t c = static_cast<size_t>(y / 2) * coarse.width + x / 2;
-        coarse.colour[c] += fine.weight[f] * fine.colour[f];
-        coarse.material[c] += fine.weight[f] * fine.material[f];
-        coarse.weight[c] += fine.weight[f];
-      }
-    for (size_t c = 0; c < n; ++c) {
-      if (coarse.weight[c] > 0) {
-        coarse.colour[c] /= coarse.weight[c];
-        coarse.material[c] /= coarse.weight[c];
-      }
-      coarse.weight[c] = std::min(coarse.weight[c], 1.0);
-    }
-    levels.push_back(std::move(coarse));
+    coarse.filled.assign(n, 0);
+    parallel_chunks(static_cast<size_t>(coarse.height), 64, 0, [&](size_t y0, size_t y1) {
+      for (int y = static_cast<int>(y0); y < static_cast<int>(y1); ++y)
+        for (int x = 0; x < coarse.width; ++x) {
+          const size_t c = static_cast<size_t>(y) * coarse.width + x;
+          int count = 0;
+          for (int fy = 2 * y; fy < std::min(2 * y + 2, fine.height); ++fy)
+            for (int fx = 2 * x; fx < std::min(2 * x + 2, fine.width); ++fx) {
+              const size_t f = static_cast<size_t>(fy) * fine.width + fx;
+              if (!fine.filled[f]) continue;
+              coarse.colour[c] += fine.colour[f];
+              coarse.material[c] += fine.material[f];
+              ++count;
+            }
+          if (count > 0) {
+            coarse.colour[c] /= static_cast<double>(count);
+            coarse.material[c] /= static_cast<double>(count);
+            coarse.filled[c] = 1;
+          }
+        }
+    });
+    coarser.push_back(std::move(coarse));
   }
-  // Push: from the coarsest level down, a texel of weight w keeps w of its own mean and takes
-  // 1 - w from the bilinear upsampling of the (already filled) coarser level.
-  for (size_t k = levels.size() - 1; k-- > 0;) {
-    Level& fine = levels[k];
-    const Level& coarse = levels[k + 1];
+  // Push: from the coarsest level down, an empty texel takes the bilinear upsampling of the
+  // (already filled) coarser level; filled texels keep their means.
+  for (size_t k = coarser.size(); k-- > 0;) {
+    const View fine = view(k), coarse = view(k + 1);
     auto at = [&coarse](int x, int y) {
       return static_cast<size_t>(std::clamp(y, 0, coarse.height - 1)) * coarse.width +
              static_cast<size_t>(std::clamp(x, 0, coarse.width - 1));
     };
-    for (int y = 0; y < fine.height; ++y)
-      for (int x = 0; x < fine.width; ++x) {
-        const size_t f = static_cast<size_t>(y) * fine.width + x;
-        if (fine.weight[f] >= 1) continue;
-        // The fine texel's centre in coarse texel units, and its four nearest coarse centres.
-        const double cx = (x + 0.5) / 2 - 0.5, cy = (y + 0.5) / 2 - 0.5;
-        const int x0 = static_cast<int>(std::floor(cx)), y0 = static_cast<int>(std::floor(cy));
-        const double tx = cx - x0, ty = cy - y0;
-        const size_t i00 = at(x0, y0), i10 = at(x0 + 1, y0), i01 = at(x0, y0 + 1),
-                     i11 = at(x0 + 1, y0 + 1);
-        const glm::dvec3 colour =
-            (1 - ty) * ((1 - tx) * coarse.colour[i00] + tx * coarse.colour[i10]) +
-            ty * ((1 - tx) * coarse.colour[i01] + tx * coarse.colour[i11]);
-        const glm::dvec2 material =
-            (1 - ty) * ((1 - tx) * coarse.material[i00] + tx * coarse.material[i10]) +
-            ty * ((1 - tx) * coarse.material[i01] + tx * coarse.material[i11]);
-        const double w = fine.weight[f];
-        fine.colour[f] = w * fine.colour[f] + (1 - w) * colour;
-        fine.material[f] = w * fine.material[f] + (1 - w) * material;
-        fine.weight[f] = 1;
-      }
+    parallel_chunks(static_cast<size_t>(fine.height), 64, 0, [&](size_t y0, size_t y1) {
+      for (int y = static_cast<int>(y0); y < static_cast<int>(y1); ++y)
+        for (int x = 0; x < fine.width; ++x) {
+          const size_t f = static_cast<size_t>(y) * fine.width + x;
+          if (fine.filled[f]) continue;
+          // The fine texel's centre in coarse texel units, and its four nearest coarse centres.
+          const double cx = (x + 0.5) / 2 - 0.5, cy = (y + 0.5) / 2 - 0.5;
+          const int x0 = static_cast<int>(std::floor(cx)), y0 = static_cast<int>(std::floor(cy));
+          const double tx = cx - x0, ty = cy - y0;
+          const size_t i00 = at(x0, y0), i10 = at(x0 + 1, y0), i01 = at(x0, y0 + 1),
+                       i11 = at(x0 + 1, y0 + 1);
+          fine.colour[f] = (1 - ty) * ((1 - tx) * coarse.colour[i00] + tx * coarse.colour[i10]) +
+                           ty * ((1 - tx) * coarse.colour[i01] + tx * coarse.colour[i11]);
+          fine.material[f] =
+              (1 - ty) * ((1 - tx) * coarse.material[i00] + tx * coarse.material[i10]) +
+              ty * ((1 - tx) * coarse.material[i01] + tx * coarse.material[i11]);
+        }
+    });
   }
-  canvas.colour = std::move(levels[0].colour);
-  canvas.material = std::move(levels[0].material);
 }
 
 TexelCanvas half_size(const TexelCanvas& canvas) {

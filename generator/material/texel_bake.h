@@ -12,6 +12,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "base/huge_page_buffer.h"
 #include "material/colour_modulation.h"
 #include "material/skin_pattern.h"
 #include "pieces/shaded_mesh.h"
@@ -24,13 +25,13 @@ struct TexelCanvas {
   /// With `wrap_u`, texel columns repeat (x modulo width): a texture addressed with u beyond
   /// 0..1 under glTF's default REPEAT wrapping (the skin's section parameter runs around).
   bool wrap_u = false;
-  std::vector<glm::dvec3> colour;    ///< width * height, linear RGB
-  std::vector<glm::dvec2> material;  ///< width * height, (roughness, translucency)
-  std::vector<uint8_t> covered;      ///< width * height, 1 where baked or dilated
+  HugePageVector<glm::dvec3> colour;    ///< width * height, linear RGB
+  HugePageVector<glm::dvec2> material;  ///< width * height, (roughness, translucency)
+  HugePageVector<uint8_t> covered;      ///< width * height, 1 where baked or dilated
   /// Empty, or width * height (set by the caller before rasterise to bake the skin's relief):
   /// per texel the skin's relief height (SkinPatterns::height, metres) and the metres one texel
   /// spans across (x) and down (y) on the surface there. Not dilated or filled.
-  std::vector<glm::dvec3> relief;
+  HugePageVector<glm::dvec3> relief;
 
   /// An empty (black, uncovered) canvas of w x h texels.
   TexelCanvas(int w, int h, bool wrap);

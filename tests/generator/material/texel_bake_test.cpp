@@ -86,7 +86,7 @@ TEST(TexelBake, HalfSizeAveragesTwoByTwoTexels) {
   EXPECT_EQ(half.colour[3], glm::dvec3((20 + 21) / 2.0));   // row 2 alone
   EXPECT_EQ(half.colour[5], glm::dvec3(24.0));              // the corner texel alone
   EXPECT_EQ(half.material[4], glm::dvec2(2.5, 2.0));
-  EXPECT_EQ(half.covered, (std::vector<uint8_t>{1, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(half.covered, (HugePageVector<uint8_t>{1, 0, 0, 0, 0, 0}));
 }
 
 }  // namespace
