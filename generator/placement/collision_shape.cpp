@@ -179,10 +179,12 @@ std::pair<std::vector<glm::dvec3>, double> convex_hull(const std::vector<glm::dv
 }
 
 /// The planes of the convex hull of `corners`: unit outward normal and offset (n . x = d on
-/// the plane), and the hull's triangles (each facet's fan) for exact distances.
+/// the plane), and the hull's triangles (each facet's fan) for exact distances: those of
+/// plane k are triangle[first[k]] up to triangle[first[k + 1]].
 struct HullPlanes {
   std::vector<std::pair<glm::dvec3, double>> plane;
   std::vector<Kernel::Triangle_3> triangle;
+  std::vector<size_t> first;  ///< #planes + 1
 };
 
 HullPlanes hull_planes(const std::vector<glm::dvec3>& corners) {
@@ -193,27 +195,52 @@ HullPlanes hull_planes(const std::vector<glm::dvec3>& corners) {
   };
   for (const Facets::Facet& f : h.facets) {
     out.plane.emplace_back(f.normal, f.offset);
+    out.first.push_back(out.triangle.size());
     for (size_t k = 1; k + 1 < f.loop.size(); ++k)
       out.triangle.emplace_back(point(f.loop[0]), point(f.loop[k]), point(f.loop[k + 1]));
   }
+  out.first.push_back(out.triangle.size());
   return out;
 }
 
 /// The largest distance of any of `points` outside the convex hull of `corners` (0 if none
-/// is outside), metres, rounded up to 0.1 um.
+/// is outside), metres, rounded up to 0.1 um. A point is outside where CGAL's exact
+/// orientation puts it on the outer side of a hull triangle, and its distance is the least
+/// of CGAL's distances to the triangles. Shortcuts give the same result faster: a point more
+/// than kSure inside every facet's plane (the planes in doubles are off by far less) is
+/// inside, and one more than kSure outside a facet's plane outside, without exact tests; a
+/// triangle whose plane lies farther than the nearest triangle found so far (by more than
+/// rounding) cannot be the nearest, so its distance is not computed.
 double outside_distance(const std::vector<glm::dvec3>& points,
                         const std::vector<glm::dvec3>& corners) {
+  constexpr double kSure = 1e-9;  // metres
   const HullPlanes h = hull_planes(corners);
   double outside = 0;
+  std::vector<double> above(h.plane.size());  // the point's height over each plane
   for (const glm::dvec3& p : points) {
+    size_t highest = 0;
+    for (size_t f = 0; f < h.plane.size(); ++f) {
+      above[f] = glm::dot(h.plane[f].first, p) - h.plane[f].second;
+      if (above[f] > above[highest]) highest = f;
+    }
+    if (h.plane.empty() || above[highest] < -kSure) continue;
     const Kernel::Point_3 q(p.x, p.y, p.z);
-    bool out = false;
+    bool out = above[highest] > kSure;  // on the outer side of that facet's triangles
     for (const Kernel::Triangle_3& t : h.triangle)
       out = out || CGAL::orientation(t[0], t[1], t[2], q) == CGAL::POSITIVE;
     if (!out) continue;
+    // The facet the point stands highest over first: its triangles are nearly always nearest.
     double d2 = std::numeric_limits<double>::max();
-    for (const Kernel::Triangle_3& t : h.triangle)
-      d2 = std::min(d2, CGAL::to_double(CGAL::squared_distance(q, t)));
+    const auto facet = [&](size_t f) {
+      for (size_t k = h.first[f]; k < h.first[f + 1]; ++k)
+        d2 = std::min(d2, CGAL::to_double(CGAL::squared_distance(q, h.triangle[k])));
+    };
+    facet(highest);
+    for (size_t f = 0; f < h.plane.size(); ++f) {
+      const double bound = std::abs(above[f]) - kSure;
+      if (f == highest || (bound > 0 && bound * bound > d2 * (1 + 1e-12))) continue;
+      facet(f);
+    }
     outside = std::max(outside, std::sqrt(d2));
   }
   return std::ceil(outside * 1e7) / 1e7;
