@@ -12,6 +12,7 @@
 #include "base/finite.h"
 #include "placement/container_mesh.h"
 #include "placement/hull_shape.h"
+#include "placement/ordered_dispatcher.h"
 
 namespace cutaway {
 
@@ -289,7 +290,7 @@ class World {
   Container container_;
   SettleOptions options_;
   btDefaultCollisionConfiguration configuration_;
-  btCollisionDispatcher dispatcher_{&configuration_};
+  OrderedDispatcher dispatcher_{&configuration_};
   btDbvtBroadphase broadphase_;
   btSequentialImpulseConstraintSolver solver_;
   std::unique_ptr<btDiscreteDynamicsWorld> world_;

@@ -1,7 +1,8 @@
 // Rigid-body settling of placed pieces with Bullet (doc/algorithms.md §4, Settling): every
 // piece a rigid body (its collision_shape, mass = density x volume), the container static
-// convex tiles (a box for the board) on a table at y = 0, stepped single-threaded with a fixed
-// time step, bodies added in input order, until the layout rests or a time cap is reached.
+// convex tiles (a box for the board) on a table at y = 0, stepped with a fixed time step (the
+// contacts of a step computed on several threads, in the serial order: ordered_dispatcher.h),
+// bodies added in input order, until the layout rests or a time cap is reached.
 // A piece that has rested for freeze_after_s is frozen (made static where it lies), so the
 // work follows the pieces still moving; once none moves, every piece is freed for up to
 // free_seconds more (when some piece was frozen).
@@ -110,7 +111,8 @@ struct SettleResult {
 
 /// Settles `bodies` from their drop poses in `container` and checks that the result is at rest
 /// (see the file comment). Deterministic: the same bodies and options give the same placements
-/// (single-threaded Bullet, fixed order and step). Errors: a placed body without a shape or
+/// whatever the thread count (a fixed order and step; the contacts of a step are computed on
+/// TBB's threads and merged in the serial order: ordered_dispatcher.h). Errors: a placed body without a shape or
 /// with a density <= 0 is a programming error (CUTAWAY_CHECK).
 SettleResult settle_pieces(const std::vector<SettleBody>& bodies, const Container& container,
                            const SettleOptions& options);
