@@ -60,8 +60,12 @@ Written write_outputs(const SceneAssets& assets, const Targets& t, int threads, 
                       const GltfSceneOptions& gltf) {
   Written w;
   auto t0 = Clock::now();
+  // Strokes are drawn in the preview and the POV-Ray scene; a glTF file has none.
+  bool drawn = !t.png.given.empty() || !t.render.given.empty();
+  for (const Target& out : t.exports)
+    drawn = drawn || output_format("-o", out.given) != Format::Gltf;
   std::vector<Stroke> strokes;
-  if (silhouettes > 0) {
+  if (silhouettes > 0 && drawn) {
     StrokeOptions so;
     so.strength = silhouettes;
     strokes = extract_strokes(assets, so);
