@@ -20,11 +20,12 @@ btPersistentManifold* OrderedDispatcher::getNewManifold(const btCollisionObject*
                                                         const btCollisionObject* body1) {
   if (recording_.dispatcher != this) return btCollisionDispatcher::getNewManifold(body0, body1);
   // btCollisionDispatcher::getNewManifold's manifold, not yet in the list.
-  const btScalar breaking =
-      (m_dispatcherFlags & CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD)
-          ? btMin(body0->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold),
-                  body1->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold))
-          : gContactBreakingThreshold;
+  const auto breaking_of = [](const btCollisionObject* body) {
+    return body->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold);
+  };
+  const btScalar breaking = (m_dispatcherFlags & CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD)
+                                ? btMin(breaking_of(body0), breaking_of(body1))
+                                : gContactBreakingThreshold;
   const btScalar processing =
       btMin(body0->getContactProcessingThreshold(), body1->getContactProcessingThreshold());
   void* memory = nullptr;
@@ -62,10 +63,12 @@ void OrderedDispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairs,
                                                   const btDispatcherInfo& info,
                                                   btDispatcher* dispatcher) {
   const int count = pairs->getNumOverlappingPairs();
-  // Serially where there are no threads to share the pairs or too few pairs to share, and
-  // where Bullet would sort the pairs first.
+  // Serially where there are no threads to share the pairs or too few pairs to share, where
+  // Bullet would sort the pairs first, and for time of impact (each pair lowers one shared
+  // value).
   if (oneapi::tbb::this_task_arena::max_concurrency() == 1 || count < 16 ||
-      info.m_deterministicOverlappingPairs) {
+      info.m_deterministicOverlappingPairs ||
+      info.m_dispatchFunc != btDispatcherInfo::DISPATCH_DISCRETE) {
     btCollisionDispatcher::dispatchAllCollisionPairs(pairs, info, dispatcher);
     return;
   }

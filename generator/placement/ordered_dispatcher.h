@@ -19,11 +19,12 @@
 namespace cutaway {
 
 /// A btCollisionDispatcher whose dispatchAllCollisionPairs processes the overlapping pairs on
-/// TBB's threads (serially where the thread limit is 1 or there are fewer than 16 pairs) and
-/// leaves the same manifolds in the same order as btCollisionDispatcher. Outside that pass (pairs removed by the broadphase,
-/// bodies removed) it is btCollisionDispatcher. Bullet's pool allocators do not lock where
-/// Bullet is built without BT_THREADSAFE (Debian's): this dispatcher takes its pools under a
-/// lock of its own.
+/// TBB's threads and leaves the same manifolds in the same order as btCollisionDispatcher
+/// (serially where the thread limit is 1, there are fewer than 16 pairs, or the query is not
+/// the discrete one, whose near callbacks write only to their own pair). Outside that pass
+/// (pairs removed by the broadphase, bodies removed) it is btCollisionDispatcher. Bullet's pool
+/// allocators do not lock where Bullet is built without BT_THREADSAFE (Debian's): this
+/// dispatcher takes its pools under a lock of its own.
 class OrderedDispatcher : public btCollisionDispatcher {
  public:
   explicit OrderedDispatcher(btCollisionConfiguration* configuration);
