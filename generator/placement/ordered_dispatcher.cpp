@@ -3,7 +3,6 @@
 #include <new>
 #include <vector>
 
-#include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
 #include <LinearMath/btPoolAllocator.h>
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/parallel_for.h>

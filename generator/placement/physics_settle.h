@@ -112,8 +112,8 @@ struct SettleResult {
 /// Settles `bodies` from their drop poses in `container` and checks that the result is at rest
 /// (see the file comment). Deterministic: the same bodies and options give the same placements
 /// whatever the thread count (a fixed order and step; the contacts of a step are computed on
-/// TBB's threads and merged in the serial order: ordered_dispatcher.h). Errors: a placed body without a shape or
-/// with a density <= 0 is a programming error (CUTAWAY_CHECK).
+/// TBB's threads and merged in the serial order: ordered_dispatcher.h). Errors: a placed body
+/// without a shape or with a density <= 0 is a programming error (CUTAWAY_CHECK).
 SettleResult settle_pieces(const std::vector<SettleBody>& bodies, const Container& container,
                            const SettleOptions& options);
 
