@@ -14,7 +14,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev libstb-dev libpcg-cpp-dev
   libglm-dev libeigen3-dev libopenmesh-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libembree-dev libtbb-dev libtinygltf-dev nlohmann-json3-dev libmeshoptimizer-dev libbullet-dev libbullet-extras-dev
-  libcpp-httplib-dev node-yaml libjs-three
+  libcpp-httplib-dev zlib1g-dev node-yaml libjs-three
   libosmesa6-dev libegl-dev libgl-dev libgles-dev python3 python3-glad libsleef-dev libopenvdb-dev
   povray
 )

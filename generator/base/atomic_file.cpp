@@ -262,6 +262,10 @@ std::string read_file_bytes(const std::filesystem::path& path) {
 }
 
 void write_file_atomically(const fs::path& given, std::string_view bytes) {
+  write_file_atomically(given, std::span<const std::string_view>(&bytes, 1));
+}
+
+void write_file_atomically(const fs::path& given, std::span<const std::string_view> parts) {
   std::string rule;
   fs::path path = resolve_links(given, rule);
   if (path.empty()) path = given;  // let the write below report the problem
@@ -288,14 +292,16 @@ void write_file_atomically(const fs::path& given, std::string_view bytes) {
     ::unlink(tmpl.c_str());
     throw EnvironmentError("cannot write " + given.string() + ": " + errno_text(e));
   };
-  size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      fail(errno);
+  for (const std::string_view bytes : parts) {
+    size_t done = 0;
+    while (done < bytes.size()) {
+      const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+      if (n < 0) {
+        if (errno == EINTR) continue;
+        fail(errno);
+      }
+      done += static_cast<size_t>(n);
     }
-    done += static_cast<size_t>(n);
   }
   if (::fchmod(fd, 0644) != 0 || ::fsync(fd) != 0) fail(errno);
   if (::close(fd) != 0) {

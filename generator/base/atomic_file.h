@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -32,6 +33,12 @@ namespace cutaway {
 /// @throws EnvironmentError "cannot write PATH: REASON" when the file cannot be written (the
 ///         temporary file is removed; an existing `path` is unchanged)
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
+
+/// write_file_atomically of the bytes of `parts` one after the other, without joining them
+/// in memory first (a cut cache entry: its payload, then its trailer).
+/// @throws EnvironmentError as write_file_atomically
+void write_file_atomically(const std::filesystem::path& path,
+                           std::span<const std::string_view> parts);
 
 /// The largest file the program reads back (a glTF binary's own limit, 4 GiB).
 inline constexpr uint64_t kMaxReadBackBytes = uint64_t{4} << 30;

@@ -18,8 +18,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// The first bytes of every entry: the format and its version.
-constexpr std::string_view kMagic = "cutaway cut cache 1\n";
+/// Closes every entry's trailer: the format and its version.
+constexpr std::string_view kMagic = "cutaway cut cache 2\n";
 
 /// Entries are named by this extension; anything else in the folder is not the cache's.
 constexpr std::string_view kEntryExtension = ".cut";
@@ -27,37 +27,55 @@ constexpr std::string_view kEntryExtension = ".cut";
 /// Temporary files left by a run killed mid-write are removed after this long.
 constexpr auto kStaleTemporary = std::chrono::hours(1);
 
-/// An entry's bytes: magic, key, payload, then fnv1a64 of everything before it.
-std::string entry_bytes(std::string_view key, std::string_view payload) {
+/// An entry is its payload, then a trailer: the key, the key's and the payload's sizes (64-bit
+/// counts), kMagic, and the CRC-32 of all bytes before it. The payload comes first so that a
+/// read gives it back by cutting the trailer off, without copying (a market's entries hold
+/// half a gigabyte). The trailer of `key` after `payload`.
+std::string entry_trailer(std::string_view key, std::string_view payload) {
   ByteWriter w;
+  for (char c : key) w.put(c);
+  w.put<uint64_t>(key.size());
+  w.put<uint64_t>(payload.size());
   for (char c : kMagic) w.put(c);
-  w.put_string(key);
-  w.put_string(payload);
-  w.put<uint64_t>(fnv1a64(w.bytes()));
+  w.put<uint32_t>(crc32(w.bytes(), crc32(payload)));
   return w.take();
 }
 
+/// The fixed part of a trailer after the key: two sizes, kMagic and the CRC-32.
+constexpr size_t kTrailerTail = 8 + 8 + kMagic.size() + 4;
+
+/// How entries of version 1 began (their payload followed the key, their check an FNV-1a).
+constexpr std::string_view kVersion1Magic = "cutaway cut cache 1\n";
+
 /// What reading an entry found.
 struct EntryRead {
+  bool old_version = false;  ///< an entry of version 1: not read, replaced when stored
   bool damaged = false;
-  std::string reason;              ///< with `damaged`
-  std::string key;                 ///< the stored key (when not damaged)
-  std::string payload;
+  std::string reason;       ///< with `damaged`
+  std::string_view key;     ///< the stored key (when not damaged), in the entry's bytes
+  size_t payload_size = 0;  ///< the payload: the entry's first bytes
 };
 
-EntryRead read_entry(const std::string& bytes) {
+EntryRead read_entry(std::string_view bytes) {
   EntryRead r;
+  if (bytes.starts_with(kVersion1Magic)) {
+    r.old_version = true;
+    return r;
+  }
   try {
-    if (bytes.size() < kMagic.size() + 8 || std::string_view(bytes).substr(0, kMagic.size()) !=
-                                                kMagic)
+    if (bytes.size() < kTrailerTail ||
+        bytes.substr(bytes.size() - 4 - kMagic.size(), kMagic.size()) != kMagic)
       throw ByteStreamError("not a cut cache entry of this version");
-    const std::string_view body(bytes.data(), bytes.size() - 8);
-    ByteReader tail(std::string_view(bytes).substr(body.size()));
-    if (tail.get<uint64_t>() != fnv1a64(body)) throw ByteStreamError("its check hash differs");
-    ByteReader in(body.substr(kMagic.size()));
-    r.key = in.get_string();
-    r.payload = in.get_string();
-    if (!in.done()) throw ByteStreamError("bytes after its payload");
+    ByteReader tail(bytes.substr(bytes.size() - kTrailerTail));
+    const uint64_t key_size = tail.get<uint64_t>(), payload_size = tail.get<uint64_t>();
+    if (key_size > bytes.size() || payload_size > bytes.size() - key_size ||
+        payload_size + key_size + kTrailerTail != bytes.size())
+      throw ByteStreamError("its sizes do not add up");
+    ByteReader check(bytes.substr(bytes.size() - 4));
+    if (check.get<uint32_t>() != crc32(bytes.substr(0, bytes.size() - 4)))
+      throw ByteStreamError("its check sum differs");
+    r.key = bytes.substr(payload_size, key_size);
+    r.payload_size = payload_size;
   } catch (const ByteStreamError& e) {
     r.damaged = true;
     r.reason = e.what();
@@ -139,14 +157,17 @@ std::optional<std::string> CutCache::load(std::string_view key) {
          "); it is made again");
     return std::nullopt;
   }
-  if (entry.key != key) {  // another key with the same hash: it is replaced when stored
+  // An entry of an earlier version, or of another key with the same hash: replaced when
+  // stored.
+  if (entry.old_version || entry.key != key) {
     ++stats_.misses;
     return std::nullopt;
   }
   std::error_code ec;
   fs::last_write_time(path, fs::file_time_type::clock::now(), ec);
   ++stats_.hits;
-  return std::move(entry.payload);
+  bytes.resize(entry.payload_size);
+  return bytes;
 }
 
 void CutCache::store(std::string_view key, std::string_view payload) {
@@ -156,10 +177,11 @@ void CutCache::store(std::string_view key, std::string_view payload) {
   }
   // Written outside the lock: objects made side by side store at once (the file is renamed
   // into place whole, so a reader never sees part of it).
-  const std::string bytes = entry_bytes(key, payload);
+  const std::string trailer = entry_trailer(key, payload);
+  const std::string_view parts[] = {payload, trailer};
   std::optional<std::string> failure;
   try {
-    write_file_atomically(entry_path(key), bytes);
+    write_file_atomically(entry_path(key), parts);
   } catch (const EnvironmentError& e) {
     failure = e.what();
   }
@@ -176,7 +198,7 @@ void CutCache::store(std::string_view key, std::string_view payload) {
     for (const EntryFile& f : scan_entries(options_.dir)) used += f.bytes;
     used_bytes_ = used;
   } else {
-    *used_bytes_ += bytes.size();
+    *used_bytes_ += payload.size() + trailer.size();
   }
   if (*used_bytes_ > options_.max_bytes) evict_beyond_bound();
 }

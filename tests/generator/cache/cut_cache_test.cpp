@@ -102,6 +102,25 @@ TEST(CutCache, DamagedEntriesAreReportedRemovedAndNotRead) {
   EXPECT_EQ(cache.load("flipped"), payload_of("flipped", 5000));
 }
 
+// An entry written by an earlier cutaway (version 1: the key first, an FNV-1a check) is not
+// damaged: it is not read, not warned about, and the next store replaces it.
+TEST(CutCache, AnEntryOfTheFirstVersionIsReplacedWithoutAWarning) {
+  std::vector<std::string> warnings;
+  const fs::path dir = test::fresh_dir("cut_cache_v1");
+  CutCache cache({dir, kDefaultCutCacheBytes, [&](const std::string& w) { warnings.push_back(w); }});
+  const std::string name = hex64(fnv1a64("old"));
+  const fs::path file = dir / name.substr(0, 2) / (name + ".cut");
+  fs::create_directories(file.parent_path());
+  std::ofstream(file, std::ios::binary) << "cutaway cut cache 1\n" << payload_of("old", 300);
+  EXPECT_FALSE(cache.load("old"));
+  EXPECT_TRUE(warnings.empty());
+  EXPECT_EQ(cache.stats().damaged, 0);
+  EXPECT_EQ(cache.stats().misses, 1);
+  cache.store("old", payload_of("old", 5000));
+  EXPECT_EQ(cache.load("old"), payload_of("old", 5000));
+  EXPECT_EQ(entries(dir).size(), 1u);
+}
+
 TEST(CutCache, KeepsItsBoundByEvictingTheLeastRecentlyUsed) {
   // Entries of about 100 kB under a bound of 280 kB: the third store evicts down to 210 kB.
   CutCache cache({test::fresh_dir("cut_cache"), 280'000, {}});
