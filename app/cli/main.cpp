@@ -10,11 +10,9 @@
 #include <spdlog/spdlog.h>
 
 #include "app/cli/commands.h"
-#include "base/memory_reuse.h"
 
 int main(int argc, char** argv) {
   using namespace cutaway::cli;
-  cutaway::reuse_freed_memory();
   CLI::App app{"cutaway: cut objects with a consistent interior, from diffusion surfaces "
                "(Takayama et al. 2010)"};
   app.require_subcommand(1);

@@ -38,7 +38,6 @@
 #include <unistd.h>
 
 #include "base/colour.h"
-#include "base/memory_reuse.h"
 #include "base/timer.h"
 #include "cache/cut_cache.h"
 #include "export/gltf_export.h"
@@ -356,7 +355,6 @@ CapErrors cap_vertex_errors(const cutaway::SceneAssets& reference,
 }  // namespace
 
 int main(int argc, char** argv) {
-  cutaway::reuse_freed_memory();  // as the command line does
   int repeat = 1, threads = 0;
   std::string only;
   for (int i = 1; i + 1 < argc; i += 2) {
