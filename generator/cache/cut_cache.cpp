@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Closes every entry's trailer: the format and its version.
+/// The format and its version, in every entry's trailer just before its CRC-32.
 constexpr std::string_view kMagic = "cutaway cut cache 2\n";
 
 /// Entries are named by this extension; anything else in the folder is not the cache's.
