@@ -1,13 +1,11 @@
 #include "cache/cached_cut.h"
 
-#include <chrono>
 
 #include <nlohmann/json.hpp>
 
 #include "base/byte_stream.h"
 #include "base/error.h"
 #include "base/source_fingerprint.h"
-#include "base/timer.h"
 
 namespace cutaway {
 
@@ -319,9 +317,10 @@ CutEntry make_cut_entry(CutCache* cache, const std::string& key, const Template&
   }
   CachedCut made;
   made.pieces = cut(own, materials);
-  const auto t0 = std::chrono::steady_clock::now();
-  if (collision) made.collision = collision_shapes(made.pieces.shapes, *collision);
-  CutEntry entry{encode_cut(made, own, rebase, 0), false, seconds_since(t0)};
+  double collision_seconds = 0;
+  if (collision)
+    made.collision = collision_shapes(made.pieces.shapes, *collision, &collision_seconds);
+  CutEntry entry{encode_cut(made, own, rebase, 0), false, collision_seconds};
   if (cache) cache->store(key, entry.payload);
   return entry;
 }

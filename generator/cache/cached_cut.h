@@ -43,14 +43,17 @@ struct CachedCut {
   CutPieces pieces;
   std::vector<CollisionShape> collision;  ///< per kept piece, or empty (no options given)
   bool from_cache = false;                ///< read back, not cut
-  double seconds_collision = 0;           ///< computing `collision` (0 when read back)
+  /// Processor seconds computing `collision`, summed over threads (0 when read back).
+  double seconds_collision = 0;
 };
 
 /// One cut object as a cache entry's payload, and where it came from.
 struct CutEntry {
   std::string payload;           ///< the cut pieces, their new materials and textures, hulls
   bool from_cache = false;       ///< read back, not cut
-  double seconds_collision = 0;  ///< computing the collision shapes (0 when read back)
+  /// Processor seconds computing the collision shapes, summed over threads (collision_shapes;
+  /// 0 when read back).
+  double seconds_collision = 0;
 };
 
 /// The cut object of `key` as an entry: read from `cache` when it holds a readable one, else

@@ -59,8 +59,12 @@ CollisionShape collision_shape(const ShadedMesh& mesh, const CollisionShapeOptio
 
 /// collision_shape of each of `meshes` (#pieces), entry k for mesh k, the pieces shared out over
 /// the cores (the process's TBB limit, `--threads`): the same result with any thread count.
+/// `processor_seconds`, when given, receives the processor time the pieces took, summed over
+/// the threads that made them (thread_processor_seconds): unlike wall time, it does not grow
+/// when other work shares the cores.
 std::vector<CollisionShape> collision_shapes(const std::vector<ShadedMesh>& meshes,
-                                             const CollisionShapeOptions& options = {});
+                                             const CollisionShapeOptions& options = {},
+                                             double* processor_seconds = nullptr);
 
 /// The convex parts of a collision shape (collision_shape) as closed meshes for export, in
 /// the piece's frame (metres): each part's hull corners, its facets fanned into triangles

@@ -46,8 +46,9 @@ struct SceneBuildOptions {
 };
 
 /// Counts and timings of one build_scene call (wall seconds); those of cutting the objects
-/// (ObjectCutStats, variants, backends, collision shapes) added up over the objects, which
-/// exceeds the wall time when objects are cut side by side (objects_at_once).
+/// (ObjectCutStats, variants, backends) added up over the objects, which exceeds the wall time
+/// when objects are cut side by side (objects_at_once). Collision shapes are counted in
+/// processor seconds instead (see seconds_collision).
 struct SceneStats : ObjectCutStats {
   int objects = 0, pieces = 0, placed = 0;  ///< pieces: kept after `keep`; placed: of those
   int cached_objects = 0;       ///< objects read from the cut cache (not cut)
@@ -56,7 +57,10 @@ struct SceneStats : ObjectCutStats {
   double seconds_variants = 0;  ///< make_variant (sweep, synthesis, grains, checks)
   double seconds_backend = 0;   ///< building the diffusion backends (BVH or GL setup)
   double seconds_layout = 0;    ///< drop poses (the height-field layout)
-  double seconds_collision = 0; ///< the pieces' collision shapes (of objects not cached)
+  /// The pieces' collision shapes (of objects not cached), in processor seconds summed over
+  /// the threads that made them: the work they cost, which the wall time of objects cut side
+  /// by side overstates (each waits for a core while the others run).
+  double seconds_collision = 0;
   double seconds_physics = 0;   ///< settling
   double simulated_seconds = 0;     ///< simulated time of the settling
   bool settled = false;             ///< the last round of settling came to rest before its cap
