@@ -1,6 +1,5 @@
 #include "cache/cached_cut.h"
 
-
 #include <nlohmann/json.hpp>
 
 #include "base/byte_stream.h"
