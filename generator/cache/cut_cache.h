@@ -6,8 +6,9 @@
 // Safe to share: entries are written to a temporary file and renamed into place, so a reader
 // sees a whole entry or none, and two runs storing the same entry at once store the same bytes.
 // Each entry ends with a CRC-32 of its bytes: a damaged one (a disk error, a truncated copy) is
-// reported, removed and made again; one of an earlier version is replaced without a word. The folder is kept under a size bound by removing the
-// least recently used entries (by modification time, which a read renews).
+// reported, removed and made again; one of an earlier version is replaced without a word. The
+// folder is kept under a size bound by removing the least recently used entries (by
+// modification time, which a read renews).
 #pragma once
 
 #include <cstdint>

@@ -107,11 +107,13 @@ TEST(CutCache, DamagedEntriesAreReportedRemovedAndNotRead) {
 TEST(CutCache, AnEntryOfTheFirstVersionIsReplacedWithoutAWarning) {
   std::vector<std::string> warnings;
   const fs::path dir = test::fresh_dir("cut_cache_v1");
-  CutCache cache({dir, kDefaultCutCacheBytes, [&](const std::string& w) { warnings.push_back(w); }});
-  const std::string name = hex64(fnv1a64("old"));
-  const fs::path file = dir / name.substr(0, 2) / (name + ".cut");
-  fs::create_directories(file.parent_path());
-  std::ofstream(file, std::ios::binary) << "cutaway cut cache 1\n" << payload_of("old", 300);
+  CutCache cache(
+      {dir, kDefaultCutCacheBytes, [&](const std::string& w) { warnings.push_back(w); }});
+  // The entry's file, where the cache names it, rewritten as version 1 wrote it.
+  cache.store("old", payload_of("old", 300));
+  ASSERT_EQ(entries(dir).size(), 1u);
+  std::ofstream(entries(dir)[0], std::ios::binary | std::ios::trunc)
+      << "cutaway cut cache 1\n" << payload_of("old", 300);
   EXPECT_FALSE(cache.load("old"));
   EXPECT_TRUE(warnings.empty());
   EXPECT_EQ(cache.stats().damaged, 0);
