@@ -64,6 +64,7 @@ std::vector<std::string> passed_on(const Common& common, const CacheArgs& cache)
     args.insert(args.end(), {"--cache", fs::absolute(cache.dir).lexically_normal().string()});
   if (cache.max_bytes > 0)
     args.insert(args.end(), {"--cache-size", std::to_string(cache.max_bytes)});
+  if (cache.shared) args.push_back("--cache-shared");
   return args;
 }
 

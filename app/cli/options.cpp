@@ -83,6 +83,11 @@ void add_cache_options(CLI::App* command, CacheArgs& args) {
                    "recently used entries beyond it are removed")
       ->transform(CLI::AsSizeValue(false))
       ->check(CLI::Range(uint64_t{1} << 20, uint64_t{1} << 50));
+  command
+      ->add_flag("--cache-shared", args.shared,
+                 "accept a cut cache folder that other users can write (a cache shared by a "
+                 "group; its entries are checked as untrusted input either way)")
+      ->excludes(command->get_option("--no-cache"));
 }
 
 std::unique_ptr<CutCache> open_cut_cache(const CacheArgs& args) {
@@ -94,7 +99,13 @@ std::unique_ptr<CutCache> open_cut_cache(const CacheArgs& args) {
     return nullptr;
   }
   if (args.max_bytes > 0) options.max_bytes = args.max_bytes;
+  options.shared = args.shared;
   options.warn = [](const std::string& message) { spdlog::warn("{}", message); };
+  // A folder named on the command line that may not be used is bad input, refused before any
+  // work; the default folder in such a state only costs the run its cache (warned).
+  if (!args.dir.empty())
+    if (const std::string rule = cut_cache_folder_rule(options); !rule.empty())
+      throw UsageError("--cache " + args.dir + ": " + rule);
   return std::make_unique<CutCache>(std::move(options));
 }
 

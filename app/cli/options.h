@@ -35,12 +35,13 @@ void add_export_options(CLI::App* command, std::string& compress, int& lods,
 /// texel) or left in vertex colours; into `colours`.
 void add_colours_option(CLI::App* command, std::string& colours);
 
-/// `--cache DIR`, `--no-cache` and `--cache-size SIZE` of the commands that cut objects through
+/// `--cache DIR`, `--no-cache`, `--cache-size SIZE` and `--cache-shared` of the commands that cut objects through
 /// the cut cache (scene, batch).
 struct CacheArgs {
   std::string dir;         ///< empty: CutCache::default_dir()
   bool off = false;        ///< --no-cache
   uint64_t max_bytes = 0;  ///< --cache-size in bytes (0: kDefaultCutCacheBytes)
+  bool shared = false;     ///< --cache-shared: a folder other users may write is accepted
 };
 
 /// Adds the cache options to `command`, stored into `args` when parsed.

@@ -21,6 +21,7 @@
 
 #include "base/error.h"
 #include "base/file_read.h"
+#include "base/folder.h"
 
 namespace cutaway {
 
@@ -164,45 +165,6 @@ void unwatch(int slot) {
 
 std::string errno_text(int e) { return std::strerror(e); }
 
-// Where writing `path` ends up: symbolic links followed to the end of the chain (the last
-// target may not exist). Sets `rule` and returns {} when that fails.
-fs::path resolve_links(const fs::path& path, std::string& rule) {
-  fs::path cur = path;
-  for (int hops = 0; hops <= 40; ++hops) {
-    struct stat st;
-    if (::lstat(cur.c_str(), &st) != 0) {
-      if (errno == ENOENT) return cur;  // a new file (or a missing directory: checked later)
-      if (errno == ENOTDIR) {
-        rule = "a part of the path is not a directory";
-      } else {
-        rule = "cannot look at " + cur.string() + ": " + errno_text(errno);
-      }
-      return {};
-    }
-    if (!S_ISLNK(st.st_mode)) return cur;
-    std::error_code ec;
-    const fs::path target = fs::read_symlink(cur, ec);
-    if (ec) {
-      rule = "cannot read the symbolic link " + cur.string() + ": " + ec.message();
-      return {};
-    }
-    cur = target.is_absolute() ? target : cur.parent_path() / target;
-  }
-  rule = "too many levels of symbolic links";
-  return {};
-}
-
-// "" when `path` (links resolved) may be replaced by a regular file, else the rule it breaks.
-std::string target_rule(const fs::path& path) {
-  struct stat st;
-  if (::lstat(path.c_str(), &st) != 0) return "";
-  if (S_ISDIR(st.st_mode)) return "is a directory";
-  if (!S_ISREG(st.st_mode)) {
-    return "is not a regular file (a device, FIFO or socket); outputs must be regular files";
-  }
-  return "";
-}
-
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -233,18 +195,21 @@ void RemoveOnSignal::release() noexcept {
 }
 
 fs::path create_watched(const std::string& prefix, RemoveOnSignal::Kind kind,
-                        RemoveOnSignal& guard, int* fd) {
+                        RemoveOnSignal& guard, int* fd, const Folder* in) {
   constexpr char kChars[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+  const int dirfd = in ? in->fd() : AT_FDCWD;
   for (int attempt = 0; attempt < 100; ++attempt) {
     unsigned char random[6];
     if (::getrandom(random, sizeof random, 0) != static_cast<ssize_t>(sizeof random)) return {};
-    std::string path = prefix;
-    for (const unsigned char r : random) path += kChars[r % (sizeof kChars - 1)];
+    std::string name = prefix;
+    for (const unsigned char r : random) name += kChars[r % (sizeof kChars - 1)];
+    const fs::path path = in ? in->path() / name : fs::path(name);
     guard = RemoveOnSignal(path, kind);
     const bool made =
         kind == RemoveOnSignal::Kind::Folder
-            ? ::mkdir(path.c_str(), 0700) == 0
-            : (*fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0600)) >= 0;
+            ? ::mkdirat(dirfd, name.c_str(), 0700) == 0
+            : (*fd = ::openat(dirfd, name.c_str(),
+                              O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600)) >= 0;
     if (made) return path;
     const int e = errno;
     guard.release();  // not ours: it existed before, or nothing was made
@@ -266,54 +231,15 @@ void write_file_atomically(const fs::path& given, std::string_view bytes) {
 }
 
 void write_file_atomically(const fs::path& given, std::span<const std::string_view> parts) {
-  std::string rule;
-  fs::path path = resolve_links(given, rule);
-  if (path.empty()) path = given;  // let the write below report the problem
-  rule = target_rule(path);
-  if (!rule.empty()) throw EnvironmentError("cannot write " + given.string() + ": " + rule);
-  const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  std::error_code ec;
-  fs::create_directories(parent, ec);
-  if (ec)  // the real cause, not the "no such file" of the write into a missing folder
-    throw EnvironmentError("cannot write " + given.string() + ": cannot create the folder " +
-                           parent.string() + ": " + ec.message());
-  RemoveOnSignal guard;
-  int fd = -1;
-  const std::string tmpl =
-      create_watched((parent / (path.filename().string() + ".tmp-")).string(),
-                     RemoveOnSignal::Kind::File, guard, &fd)
-          .string();
-  if (tmpl.empty()) {
-    throw EnvironmentError("cannot write " + given.string() + ": cannot create a file in " +
-                             parent.string() + ": " + errno_text(errno));
+  if (!given.has_filename())
+    throw EnvironmentError("cannot write " + given.string() + ": names a folder, not a file");
+  Folder folder;
+  try {
+    folder = Folder::open(given.parent_path(), true);
+  } catch (const EnvironmentError& e) {
+    throw EnvironmentError("cannot write " + given.string() + ": " + e.what());
   }
-  auto fail = [&](int e) {
-    ::close(fd);
-    ::unlink(tmpl.c_str());
-    throw EnvironmentError("cannot write " + given.string() + ": " + errno_text(e));
-  };
-  for (const std::string_view bytes : parts) {
-    size_t done = 0;
-    while (done < bytes.size()) {
-      const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-      if (n < 0) {
-        if (errno == EINTR) continue;
-        fail(errno);
-      }
-      done += static_cast<size_t>(n);
-    }
-  }
-  if (::fchmod(fd, 0644) != 0 || ::fsync(fd) != 0) fail(errno);
-  if (::close(fd) != 0) {
-    const int e = errno;
-    ::unlink(tmpl.c_str());
-    throw EnvironmentError("cannot write " + given.string() + ": " + errno_text(e));
-  }
-  if (std::rename(tmpl.c_str(), path.c_str()) != 0) {
-    const int e = errno;
-    ::unlink(tmpl.c_str());
-    throw EnvironmentError("cannot write " + given.string() + ": " + errno_text(e));
-  }
+  folder.write_atomically(given.filename().string(), parts);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -328,11 +254,9 @@ fs::path OutputSet::add(const std::string& option, const std::string& path) {
   const fs::path given(path);
   if (!given.has_filename()) throw refuse("names a directory (ends in '/'), not a file");
 
-  std::string rule;
-  const fs::path target = resolve_links(given, rule);
-  if (target.empty()) throw refuse(rule);
-  rule = target_rule(target);
-  if (!rule.empty()) throw refuse(rule);
+  const fs::path& target = given;  // a link there is replaced, never followed
+  if (const std::string rule = replace_rule(AT_FDCWD, target.string()); !rule.empty())
+    throw refuse(rule);
 
   // The directory: there, or created (each missing level, remembered for abort()).
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
@@ -378,11 +302,21 @@ OutputSet::Stage& OutputSet::stage_for(const std::string& what, const fs::path& 
     if (s.dir == dir) return s;
   Stage s;
   s.dir = dir;
-  s.folder = create_watched((dir / ".cutaway.tmp-").string(), RemoveOnSignal::Kind::Folder,
-                            s.guard);
+  try {
+    s.handle = Folder::open(dir, false);
+  } catch (const EnvironmentError& e) {
+    throw OutputPathError(what + ": " + e.what());
+  }
+  s.folder = create_watched(".cutaway.tmp-", RemoveOnSignal::Kind::Folder, s.guard, nullptr,
+                            &s.handle);
   if (s.folder.empty()) {
     throw OutputPathError(what + ": cannot create files in " + dir.string() + ": " +
                           errno_text(errno));
+  }
+  try {
+    s.staging = s.handle.sub(s.folder.filename().string(), false);
+  } catch (const EnvironmentError& e) {
+    throw OutputPathError(what + ": " + e.what());
   }
   stages_.push_back(std::move(s));
   return stages_.back();
@@ -391,7 +325,8 @@ OutputSet::Stage& OutputSet::stage_for(const std::string& what, const fs::path& 
 void OutputSet::commit() {
   if (done_) throw InternalError("OutputSet::commit called twice or after abort()");
   struct Move {
-    fs::path from, to;
+    const Stage* stage;
+    std::string from, to;  ///< names in the staging folder and in the target's directory
   };
   std::vector<Move> moves;
   try {
@@ -400,13 +335,12 @@ void OutputSet::commit() {
       for (const auto& entry : fs::directory_iterator(s.folder)) {
         const std::string name = entry.path().filename().string();
         const auto it = s.targets.find(name);
-        fs::path to = it != s.targets.end() ? it->second.path : s.dir / name;  // a companion file
-        std::string rule;
-        const fs::path resolved = resolve_links(to, rule);
-        if (resolved.empty()) throw EnvironmentError("cannot write " + to.string() + ": " + rule);
-        rule = target_rule(resolved);
-        if (!rule.empty()) throw EnvironmentError("cannot write " + to.string() + ": " + rule);
-        moves.push_back({entry.path(), resolved});
+        const std::string to_name =
+            it != s.targets.end() ? it->second.path.filename().string() : name;  // a companion
+        const std::string rule = replace_rule(s.handle.fd(), to_name);
+        if (!rule.empty())
+          throw EnvironmentError("cannot write " + (s.dir / to_name).string() + ": " + rule);
+        moves.push_back({&s, name, to_name});
       }
     }
   } catch (const fs::filesystem_error& e) {
@@ -423,14 +357,17 @@ void OutputSet::commit() {
     if (const int sig = g_deferred_signal.exchange(0)) ::raise(sig);
   };
   for (size_t i = 0; i < moves.size(); ++i) {
-    if (std::rename(moves[i].from.c_str(), moves[i].to.c_str()) != 0) {
+    const Move& m = moves[i];
+    // Through the directory's handle: a link at the target is replaced, never followed.
+    if (::renameat(m.stage->staging.fd(), m.from.c_str(), m.stage->handle.fd(), m.to.c_str()) !=
+        0) {
       const int e = errno;
-      std::string msg = "cannot write " + moves[i].to.string() + ": " + errno_text(e);
+      std::string msg = "cannot write " + (m.stage->dir / m.to).string() + ": " + errno_text(e);
       if (i > 0) {
         msg += " (already written:";
         for (size_t j = 0; j < i; ++j) {
           msg += ' ';
-          msg += moves[j].to.string();
+          msg += (moves[j].stage->dir / moves[j].to).string();
         }
         msg += ")";
       }
@@ -440,18 +377,8 @@ void OutputSet::commit() {
     }
   }
   end_commit();
-  std::vector<fs::path> synced;
-  for (const Move& m : moves) {
-    committed_.push_back(m.to);
-    const fs::path d = m.to.parent_path();
-    if (std::find(synced.begin(), synced.end(), d) != synced.end()) continue;
-    synced.push_back(d);
-    const int fd = ::open(d.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd >= 0) {
-      ::fsync(fd);
-      ::close(fd);
-    }
-  }
+  for (const Move& m : moves) committed_.push_back(m.stage->dir / m.to);
+  for (const Stage& s : stages_) ::fsync(s.handle.fd());
   for (Stage& s : stages_) {
     std::error_code ec;
     fs::remove_all(s.folder, ec);

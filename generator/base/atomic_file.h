@@ -22,11 +22,15 @@
 
 #include <sys/types.h>
 
+#include "base/folder.h"
+
 namespace cutaway {
 
-/// Writes `bytes` to `path` atomically: a temporary file "PATH.tmp-XXXXXX" in the same
-/// directory, flushed (fsync), then renamed over `path`. Creates missing parent directories.
-/// A symbolic link at `path` is replaced by the file (OutputSet writes through links).
+/// Writes `bytes` to `path` atomically, through its folder (Folder::write_atomically,
+/// folder.h): a temporary file "NAME.tmp-XXXXXX" made in the folder with O_EXCL | O_NOFOLLOW,
+/// flushed (fsync), then renamed over the name. Creates missing parent directories. A symbolic
+/// link at `path` is replaced by the file, never written through (the file it pointed to is
+/// untouched); a directory, device, FIFO or socket there is refused.
 /// The temporary file is removed when the write fails, and by RemoveOnSignal's handlers when
 /// SIGTERM, SIGINT or SIGHUP stops the process during the write; after a SIGKILL it stays
 /// behind, while `path` keeps its old bytes.
@@ -87,10 +91,12 @@ class RemoveOnSignal {
 /// Creates a new file (mode 0600, open for writing, its descriptor in *fd) or folder (mode
 /// 0700, fd null) named `prefix` followed by six random letters and digits, as mkstemp and
 /// mkdtemp do, but watched by `guard` from before it exists: no signal can find it created and
-/// not yet watched.
+/// not yet watched. With `in`, `prefix` is a plain name in that folder and the file or folder
+/// is made through its handle (openat with O_EXCL | O_NOFOLLOW, mkdirat).
 /// @returns its path, or an empty path with errno set when it cannot be created
 std::filesystem::path create_watched(const std::string& prefix, RemoveOnSignal::Kind kind,
-                                     RemoveOnSignal& guard, int* fd = nullptr);
+                                     RemoveOnSignal& guard, int* fd = nullptr,
+                                     const Folder* in = nullptr);
 
 /// An output path refused before any work: what() is "OPTION PATH: RULE", e.g.
 /// "--png out/x.png: is a directory", or "-o: the path is empty". The CLI reports it as bad
@@ -121,16 +127,16 @@ class OutputPathError : public std::invalid_argument {
 ///
 /// Rules add() applies to a path (each refusal an OutputPathError "OPTION PATH: RULE"):
 ///  - not empty, and not ending in '/';
-///  - a symbolic link is written through: the link stays and the file it points to (followed
-///    to the end of the chain, at most 40 links, which may not exist yet) is replaced;
-///  - an existing target must be a regular file: a directory, a character or block device
-///    (/dev/null and /dev/full included), a FIFO or a socket is refused ("is not a regular
-///    file");
+///  - a symbolic link at the path is replaced by the file, never written through: the file it
+///    points to is untouched (commit() renames through the directory's handle, renameat);
+///  - an existing target must be a regular file or a link: a directory, a character or block
+///    device (/dev/null and /dev/full included), a FIFO or a socket is refused ("is not a
+///    regular file");
 ///  - the target's directory is created when missing (with its missing parents; abort()
 ///    removes them again), unless some part of it exists and is not a directory;
 ///  - the directory must let us create files (the staging folder is created there, so a
 ///    read-only file system or missing permission is found here, not after the work);
-///  - no two outputs may have the same target (a link and its target are the same target).
+///  - no two outputs may have the same target (the same name in the same directory).
 /// Not thread-safe: one thread registers, writes and commits.
 class OutputSet {
  public:
@@ -165,12 +171,14 @@ class OutputSet {
 
  private:
   struct Target {
-    std::filesystem::path path;  ///< where the file goes (links resolved, absolute)
+    std::filesystem::path path;  ///< where the file goes (its directory resolved, absolute)
     std::string given;           ///< the path as the user gave it
   };
   struct Stage {
     std::filesystem::path dir;              ///< the targets' directory (resolved, absolute)
+    Folder handle;                          ///< `dir`, open: targets are renamed through it
     std::filesystem::path folder;           ///< the staging folder in it
+    Folder staging;                         ///< `folder`, open
     std::map<std::string, Target> targets;  ///< staged file name -> its target
     RemoveOnSignal guard;
   };

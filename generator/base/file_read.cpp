@@ -1,8 +1,8 @@
 #include "base/file_read.h"
 
-#include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <new>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -60,28 +60,45 @@ std::string read_regular_file(const std::filesystem::path& path, uint64_t max_by
   require_readable(path, st, max_bytes);
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
   if (fd < 0) throw FileReadError(path, system_rule());
+  return read_open_file(fd, path, max_bytes);
+}
+
+std::string read_open_file(int fd, const std::filesystem::path& path, uint64_t max_bytes) {
   const FdCloser closer{fd};
+  struct stat st {};
   if (::fstat(fd, &st) != 0) throw FileReadError(path, system_rule());
   require_readable(path, st, max_bytes);
-
-  std::string bytes(static_cast<size_t>(st.st_size), '\0');
+  std::string bytes;
+  try {
+    bytes.resize(static_cast<size_t>(st.st_size));  // the one allocation
+  } catch (const std::bad_alloc&) {
+    throw FileReadError(path, "is too large to hold in memory (" +
+                                  std::to_string(st.st_size) + " bytes)");
+  }
   size_t got = 0;
-  for (;;) {
-    if (got == bytes.size()) {
-      if (got > max_bytes) throw FileReadError(path, larger_than(max_bytes));
-      // The file may have grown since fstat: read on, one more than the limit at most.
-      bytes.resize(static_cast<size_t>(std::min<uint64_t>(max_bytes + 1, got + 65536)));
+  const auto read_into = [&](char* at, size_t n) {
+    for (;;) {
+      const ssize_t k = ::read(fd, at, n);
+      if (k >= 0) return static_cast<size_t>(k);
+      if (errno != EINTR) throw FileReadError(path, system_rule());
     }
-    const ssize_t n = ::read(fd, bytes.data() + got, bytes.size() - got);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      throw FileReadError(path, system_rule());
-    }
-    if (n == 0) break;
-    got += static_cast<size_t>(n);
+  };
+  while (got < bytes.size()) {
+    const size_t k = read_into(bytes.data() + got, bytes.size() - got);
+    if (k == 0) break;  // shorter than fstat said: it shrank meanwhile
+    got += k;
   }
   bytes.resize(got);
-  return bytes;
+  if (got < static_cast<size_t>(st.st_size)) return bytes;
+  // At its size: the end of the file, unless it grew since fstat; then read on, to one byte
+  // over the limit at most.
+  char more[65536];
+  for (;;) {
+    const size_t k = read_into(more, sizeof more);
+    if (k == 0) return bytes;
+    if (bytes.size() + k > max_bytes) throw FileReadError(path, larger_than(max_bytes));
+    bytes.append(more, k);
+  }
 }
 
 }  // namespace cutaway

@@ -29,11 +29,20 @@ class FileReadError : public EnvironmentError {
 /// The file is opened without blocking and checked on its open descriptor: a directory, FIFO,
 /// socket or device is refused, and so is a file whose size is over `max_bytes`, before any
 /// byte is read; at most max_bytes + 1 bytes are read, so a file that grows past the limit
-/// while it is read is refused too. Memory: the file's size, never more than `max_bytes`.
+/// while it is read is refused too. Memory: one allocation of the file's size (read_open_file),
+/// never more than `max_bytes`.
 /// @throws FileReadError whose rule, to follow the file's name, is "does not exist", "is a
 ///         directory", "is not a regular file (a FIFO, socket or device)", "is larger than N MiB"
 ///         (KiB, bytes: the largest whole unit of max_bytes) or "cannot be read: REASON"
 std::string read_regular_file(const std::filesystem::path& path, uint64_t max_bytes);
+
+/// The bytes of the file open on `fd` (which this takes over and closes), named `path` in
+/// errors: checked on the descriptor as read_regular_file checks, then read into one allocation
+/// of the file's size until end of file. A file that grows while it is read is read on up to
+/// max_bytes + 1 (then refused); only then does the buffer grow. Memory: the file's size.
+/// @throws FileReadError as read_regular_file; "is too large to hold in memory (N bytes)" when
+///         the allocation fails
+std::string read_open_file(int fd, const std::filesystem::path& path, uint64_t max_bytes);
 
 /// `bytes` in words as size rules state it: "16 MiB", "64 KiB", "1000 bytes" (the largest
 /// binary unit that divides it).

@@ -6,8 +6,7 @@
 
 namespace cutaway {
 
-uint64_t fnv1a64(std::string_view bytes) {
-  uint64_t h = 0xcbf29ce484222325ULL;
+uint64_t fnv1a64(std::string_view bytes, uint64_t h) {
   for (const unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ULL;
   return h;
 }

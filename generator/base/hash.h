@@ -11,7 +11,10 @@ namespace cutaway {
 /// FNV-1a, 64 bits: the content hash of a written file in manifests (so that a batch can be
 /// checked against another run without comparing the files themselves) and of a template file
 /// in asset fingerprints.
-uint64_t fnv1a64(std::string_view bytes);
+/// Continues from `hash` (the value of the bytes before, or kFnv1a64Start): fnv1a64(b,
+/// fnv1a64(a)) == fnv1a64(a + b), so a file can be hashed a piece at a time.
+inline constexpr uint64_t kFnv1a64Start = 0xcbf29ce484222325ULL;
+uint64_t fnv1a64(std::string_view bytes, uint64_t hash = kFnv1a64Start);
 
 /// CRC-32 (ISO-HDLC, as zlib, PNG and gzip compute it) of `bytes`, continuing from `crc` (0
 /// to start): crc32(b, crc32(a)) == crc32(a + b). zlib's table-driven code checks a gigabyte

@@ -1,20 +1,46 @@
 #include "batch/batch_manifest.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <map>
+#include <optional>
 #include <regex>
 #include <sstream>
+#include <vector>
+
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
-#include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/file_read.h"
+#include "base/folder.h"
+#include "base/hash.h"
 
 namespace cutaway {
 
 namespace {
 
 namespace fs = std::filesystem;
+
+/// The largest manifest or batch index read back (a batch of a million assets writes about
+/// 500 MB of manifest lines; ours are far below).
+constexpr uint64_t kMaxManifestBytes = uint64_t{1} << 30;
+
+/// The bytes of our own file `path` (a manifest, the batch index), not through a link, at most
+/// kMaxManifestBytes; nullopt when there is none (or not a regular file).
+/// @throws FileReadError when it is there but cannot be read or is too large
+std::optional<std::string> read_own_file(const fs::path& path) {
+  try {
+    return Folder::open(path.parent_path(), false).read(path.filename().string(),
+                                                        kMaxManifestBytes);
+  } catch (const FileReadError& e) {
+    if (e.rule() == "does not exist") return std::nullopt;
+    throw;
+  } catch (const EnvironmentError&) {  // the folder itself is not there
+    return std::nullopt;
+  }
+}
 
 /// 16 hex digits as a number; none when the text is not that.
 std::optional<uint64_t> parse_hex64(const std::string& text) {
@@ -27,6 +53,32 @@ std::optional<uint64_t> parse_hex64(const std::string& text) {
 bool plain_file_name(const std::string& name) {
   return !name.empty() && name[0] != '.' && name.find('/') == std::string::npos &&
          name.find('\0') == std::string::npos;
+}
+
+/// The FNV-1a hash of the regular file `name` in `folder` (a link is not followed), read a
+/// mebibyte at a time so that any file size costs the same memory; nullopt when it is not a
+/// regular file or cannot be read.
+std::optional<uint64_t> file_fnv1a64(const Folder& folder, const std::string& name) {
+  int fd = -1;
+  try {
+    fd = folder.open_regular(name);
+  } catch (const FileReadError&) {
+    return std::nullopt;
+  }
+  std::vector<char> chunk(size_t{1} << 20);
+  uint64_t hash = kFnv1a64Start;
+  for (;;) {
+    const ssize_t n = ::read(fd, chunk.data(), chunk.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      ::close(fd);
+      return std::nullopt;
+    }
+    if (n == 0) break;
+    hash = fnv1a64(std::string_view(chunk.data(), static_cast<size_t>(n)), hash);
+  }
+  ::close(fd);
+  return hash;
 }
 
 }  // namespace
@@ -116,9 +168,9 @@ Outcome<AssetRecord> parse_manifest_line(std::string_view line) {
 
 std::vector<AssetRecord> read_manifest(const fs::path& path, size_t* bad_lines) {
   std::vector<AssetRecord> out;
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return out;
-  std::istringstream in(read_file_bytes(path));
+  const std::optional<std::string> bytes = read_own_file(path);
+  if (!bytes) return out;
+  std::istringstream in(*bytes);
   std::string line;
   while (std::getline(in, line)) {
     if (line.empty()) continue;
@@ -136,11 +188,17 @@ bool record_files_intact(const AssetRecord& r, const fs::path& dir) {
   std::vector<std::pair<const std::string*, uint64_t>> files = {
       {&r.file, r.hash}, {&r.model, r.model_hash}, {&r.thumbnail, r.thumbnail_hash}};
   for (const auto& [name, hash] : r.volume) files.emplace_back(&name, hash);
+  Folder folder;
+  try {
+    folder = Folder::open(dir, false);
+  } catch (const EnvironmentError&) {
+    return false;
+  }
   for (const auto& [name, hash] : files) {
     if (name->empty()) continue;
-    std::error_code ec;
-    if (!fs::is_regular_file(dir / *name, ec)) return false;
-    if (fnv1a64(read_file_bytes(dir / *name)) != hash) return false;
+    // A link, or anything but a regular file, is damaged: never followed, never read.
+    const std::optional<uint64_t> h = file_fnv1a64(folder, *name);
+    if (!h || *h != hash) return false;
   }
   return true;
 }
@@ -161,10 +219,15 @@ std::string batch_index_text(const Batch& batch, const BatchPlan& plan) {
 
 Outcome<BatchIndex> read_batch_index(const fs::path& dir) {
   const fs::path path = dir / "batch.json";
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec))
+  std::optional<std::string> bytes;
+  try {
+    bytes = read_own_file(path);
+  } catch (const FileReadError& e) {
+    return Outcome<BatchIndex>::none(e.what());
+  }
+  if (!bytes)
     return Outcome<BatchIndex>::none(path.string() + " is missing (not a batch output folder)");
-  const nlohmann::json j = nlohmann::json::parse(read_file_bytes(path), nullptr, false);
+  const nlohmann::json j = nlohmann::json::parse(*bytes, nullptr, false);
   BatchIndex index;
   try {
     if (j.is_discarded() || j.at("format") != "cutaway-batch-index/1")
@@ -188,9 +251,12 @@ MergeReport merge_manifests(const BatchIndex& index, const fs::path& dir) {
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
-    if (e.is_regular_file() && std::regex_match(name, shard_name)) report.manifests.push_back(name);
+    if (e.symlink_status(ec).type() == fs::file_type::regular &&
+        std::regex_match(name, shard_name))
+      report.manifests.push_back(name);
   }
-  if (report.manifests.empty() && fs::is_regular_file(dir / "manifest.jsonl", ec))
+  if (report.manifests.empty() &&
+      fs::symlink_status(dir / "manifest.jsonl", ec).type() == fs::file_type::regular)
     report.manifests.push_back("manifest.jsonl");
   std::sort(report.manifests.begin(), report.manifests.end());
   std::map<std::string, std::vector<AssetRecord>> by_file;

@@ -23,9 +23,11 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-/// Appends `text` to the file at `path` (created when missing) and flushes it to disk.
+/// Appends `text` to the file at `path` (created when missing) and flushes it to disk. A link at
+/// `path` is refused (O_NOFOLLOW), never written through.
 void append_durably(const fs::path& path, const std::string& text) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  const int fd =
+      ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd < 0)
     throw EnvironmentError("cannot write " + path.string() + ": " + std::strerror(errno));
   size_t written = 0;
@@ -52,7 +54,7 @@ std::multimap<std::string, AssetRecord> known_records(const fs::path& dir) {
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
-    if (!e.is_regular_file() || name.rfind("manifest", 0) != 0 ||
+    if (e.symlink_status(ec).type() != fs::file_type::regular || name.rfind("manifest", 0) != 0 ||
         e.path().extension() != ".jsonl")
       continue;
     for (AssetRecord& r : read_manifest(e.path())) known.emplace(r.file, std::move(r));

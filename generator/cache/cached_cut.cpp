@@ -5,6 +5,7 @@
 #include "base/byte_stream.h"
 #include "base/error.h"
 #include "base/source_fingerprint.h"
+#include "cache/cut_entry_check.h"
 
 namespace cutaway {
 
@@ -40,6 +41,20 @@ nlohmann::ordered_json collision_json(const CollisionShapeOptions* c) {
           {"corner_tolerance_m", c->corner_tolerance_m},
           {"max_corners", c->max_corners}};
 }
+
+// The fewest bytes each element of the payload takes (its counts and fixed fields), which
+// every count read back is checked against (ByteReader::count), so that no crafted count can
+// allocate more than a small multiple of the entry's own size.
+constexpr size_t kTextureBytes = 8 + 3 * 4 + 8 + 2;
+constexpr size_t kMaterialBytes = 8 + sizeof(PbrMaterial) + 4 * 4 + 8;
+constexpr size_t kColouredBytes = 4 * 8;
+constexpr size_t kPrimitiveBytes = 8 + 8 + 4 + 8;
+constexpr size_t kPieceInfoBytes = 8 + 8 + 8 + 4 + 8 + 8;
+constexpr size_t kPieceBytes = kColouredBytes + 8 + 8 + 8 +         // the mesh
+                               kColouredBytes + 8 + 8 +             // its shape
+                               kPieceInfoBytes + sizeof(glm::dvec3) + 4;
+constexpr size_t kConvexPartBytes = 8 + 8;
+constexpr size_t kCollisionBytes = 8 + 8 + sizeof(glm::dvec3) + 8 + 1;
 
 /// Where the materials of the cut object are: those it was given (`materials`), then the ones
 /// it added from index `first_new`. Encodes a material index as 0, 1, 2 (the given skin, wall,
@@ -95,7 +110,7 @@ AssetMesh get_asset_mesh(ByteReader& r, const MaterialRebase& rebase) {
   get_coloured(r, m);
   m.name = r.get_string();
   m.uv = r.get_vector<glm::dvec2>();
-  m.primitives.resize(r.count(8));
+  m.primitives.resize(r.count(kPrimitiveBytes));
   for (AssetPrimitive& p : m.primitives) {
     p.first = r.get<uint64_t>();
     p.count = r.get<uint64_t>();
@@ -121,7 +136,7 @@ PieceInfo get_piece_info(ByteReader& r) {
   info.seed = r.get<uint64_t>();
   info.cut = r.get_string();
   info.cell = r.get<int32_t>();
-  info.parts.resize(r.count(8));
+  info.parts.resize(r.count(8));  // each a string: its count
   for (std::string& part : info.parts) part = r.get_string();
   info.volume_m3 = r.get<double>();
   return info;
@@ -141,7 +156,7 @@ void put_collision(ByteWriter& w, const CollisionShape& c) {
 
 CollisionShape get_collision(ByteReader& r) {
   CollisionShape c;
-  c.parts.resize(r.count(8));
+  c.parts.resize(r.count(kConvexPartBytes));
   for (ConvexPart& part : c.parts) {
     part.corners = r.get_vector<glm::dvec3>();
     part.outside_m = r.get<double>();
@@ -218,7 +233,7 @@ int decode_texture(int32_t code, int first_new, size_t added) {
 CachedCut decode_cut(std::string_view payload, SceneAssets& assets,
                      const PieceMaterials& materials) {
   ByteReader r(payload);
-  std::vector<AssetTexture> textures(r.count(8));
+  std::vector<AssetTexture> textures(r.count(kTextureBytes));
   for (AssetTexture& t : textures) {
     t.name = r.get_string();
     t.width = r.get<int32_t>();
@@ -229,7 +244,7 @@ CachedCut decode_cut(std::string_view payload, SceneAssets& assets,
     t.linear = r.get<uint8_t>() != 0;
   }
   const int first_texture = static_cast<int>(assets.textures.size());
-  std::vector<AssetMaterial> added(r.count(8));
+  std::vector<AssetMaterial> added(r.count(kMaterialBytes));
   for (AssetMaterial& m : added) {
     m.name = r.get_string();
     m.pbr = r.get<PbrMaterial>();
@@ -244,7 +259,7 @@ CachedCut decode_cut(std::string_view payload, SceneAssets& assets,
   CutPieces& p = out.pieces;
   p.backend = r.get_string();
   p.pieces_cut = r.get<uint64_t>();
-  const uint64_t n = r.count(8);
+  const uint64_t n = r.count(kPieceBytes);
   for (uint64_t q = 0; q < n; ++q) {
     p.meshes.push_back(get_asset_mesh(r, rebase));
     ShadedMesh shape;
@@ -256,7 +271,7 @@ CachedCut decode_cut(std::string_view payload, SceneAssets& assets,
     p.cap_normals.push_back(r.get<glm::dvec3>());
     p.cut_faces.push_back(r.get<int32_t>());
   }
-  out.collision.resize(r.count(8));
+  out.collision.resize(r.count(kCollisionBytes));
   for (CollisionShape& c : out.collision) c = get_collision(r);
   if (!r.done()) throw ByteStreamError("bytes after the cut object");
   for (const AssetMesh& m : p.meshes)
@@ -305,13 +320,20 @@ CutEntry make_cut_entry(CutCache* cache, const std::string& key, const Template&
   const MaterialRebase rebase{materials, static_cast<int>(own.materials.size())};
   if (cache) {
     if (std::optional<std::string> payload = cache->load(key)) {
+      // Untrusted input, whatever its CRC: decoded and checked in full before it is used, and
+      // made again (below) when it fails.
+      std::string problem;
       try {
         SceneAssets scratch = own;
-        decode_cut(*payload, scratch, materials);  // readable: its layout is this version's
-        return {std::move(*payload), true, 0};
-      } catch (const ByteStreamError&) {
-        // The entry passed its check hash but not its layout: made again below and replaced.
+        CachedCut probe = decode_cut(*payload, scratch, materials);
+        const Check usable = check_cached_cut(probe.pieces, probe.collision, collision != nullptr,
+                                              scratch, template_reach_m(tmpl));
+        if (usable) return {std::move(*payload), true, 0};
+        problem = usable.reason();
+      } catch (const ByteStreamError& e) {
+        problem = e.what();
       }
+      cache->discard(key, problem);
     }
   }
   CachedCut made;
@@ -322,6 +344,11 @@ CutEntry make_cut_entry(CutCache* cache, const std::string& key, const Template&
   CutEntry entry{encode_cut(made, own, rebase, 0), false, collision_seconds};
   if (cache) cache->store(key, entry.payload);
   return entry;
+}
+
+std::string encode_cut_entry(const CachedCut& cut, const SceneAssets& assets,
+                             const PieceMaterials& materials, int first_new_material) {
+  return encode_cut(cut, assets, MaterialRebase{materials, first_new_material}, 0);
 }
 
 CachedCut add_cut_entry(const CutEntry& entry, SceneAssets& assets,

@@ -68,6 +68,14 @@ CutEntry make_cut_entry(CutCache* cache, const std::string& key, const Template&
                         const CollisionShapeOptions* collision,
                         const std::function<CutPieces(SceneAssets&, const PieceMaterials&)>& cut);
 
+/// The payload of `cut`, a cut object decoded by add_cut_entry into `assets` that held only
+/// `materials` (add_piece_materials: its first `first_new_material` materials) and no textures
+/// before: the inverse of add_cut_entry, so that an entry can be read, changed and written
+/// again (the tests of untrusted entries do).
+/// @throws InternalError when a piece names a material that is neither given nor new
+std::string encode_cut_entry(const CachedCut& cut, const SceneAssets& assets,
+                             const PieceMaterials& materials, int first_new_material);
+
 /// The cut object of `entry`, its textures and materials appended to `assets` with their
 /// indices rebased; `materials` are the object's skin and cut materials in `assets`
 /// (add_piece_materials). The same bytes as cutting into `assets` directly.

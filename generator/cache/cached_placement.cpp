@@ -118,8 +118,10 @@ std::optional<SettleResult> decode_settled(std::string_view payload, size_t bodi
   try {
     ByteReader r(payload);
     SettleResult s;
-    s.placements.resize(r.count(1));
-    if (s.placements.size() != bodies) return std::nullopt;
+    constexpr size_t kPlacementBytes = 1 + sizeof(glm::dquat) + sizeof(glm::dvec3);
+    const uint64_t n = r.count(kPlacementBytes);
+    if (n != bodies) return std::nullopt;  // checked before anything is allocated
+    s.placements.resize(n);
     for (Placement& p : s.placements) {
       p.placed = r.get<uint8_t>() != 0;
       p.rotation = r.get<glm::dquat>();

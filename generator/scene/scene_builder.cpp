@@ -19,6 +19,7 @@
 #include "base/timer.h"
 #include "cache/cached_cut.h"
 #include "cache/cached_placement.h"
+#include "cache/cut_entry_check.h"
 #include "placement/collision_shape.h"
 #include "placement/container_mesh.h"
 #include "placement/physics_settle.h"
@@ -280,8 +281,19 @@ std::vector<Placement> place_pieces(const Scene& scene, uint64_t seed,
   if (options.cache) {
     key = placement_cache_key({pieces.cut_keys, pieces.arrange, seed, &scene.container,
                                &layout_options, &options.settle});
-    if (std::optional<std::string> payload = options.cache->load(key))
+    if (std::optional<std::string> payload = options.cache->load(key)) {
+      // Untrusted input: checked against this scene's pieces and container, else made again.
       cached = decode_settled(*payload, order.size());
+      const Check usable =
+          cached ? check_cached_placements(cached->placements, order.size(), scene.container,
+                                           options.settle.none_radius_m)
+                 : Check::none("it is not the placements of this scene's " +
+                               std::to_string(order.size()) + " pieces");
+      if (!usable) {
+        options.cache->discard(key, usable.reason());
+        cached.reset();
+      }
+    }
   }
   st.cached_placements = cached.has_value();
   SettleResult settled = cached ? std::move(*cached)

@@ -4,6 +4,9 @@
 #include "cache/cut_cache.h"
 
 #include <atomic>
+#include <cstring>
+#include <functional>
+#include <limits>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +20,7 @@
 
 #include "base/hash.h"
 #include "cache/cached_cut.h"
+#include "cache/cached_placement.h"
 #include "export/gltf_export.h"
 #include "io/scene_parser.h"
 #include "scene/scene_builder.h"
@@ -149,7 +153,9 @@ TEST(CutCache, RunsSharingOneFolderAtOnceReadWholeEntriesOnly) {
   std::vector<std::thread> runs;
   for (int t = 0; t < 4; ++t) {
     runs.emplace_back([&, t] {
-      CutCache cache({dir, 1'500'000, [&](const std::string&) { ++warned; }});
+      CutCache cache({dir, 1'500'000, [&](const std::string& w) {
+                        if (++warned == 1) ADD_FAILURE() << w;
+                      }});
       for (int round = 0; round < 3; ++round) {
         for (int k = 0; k < 24; ++k) {
           const std::string key = "key " + std::to_string((k + 7 * t) % 24);
@@ -367,6 +373,204 @@ TEST(CutCacheScene, AnOrbitRoundABowlTurnsThePileWithTheCamera) {
   scene_to_glb(build_scene(front, front.seed, options, nullptr));
   EXPECT_EQ(scene_to_glb(build_scene(orbit, orbit.seed, options, &st_cached)), scene_to_glb(b));
   EXPECT_TRUE(st_cached.cached_placements);
+}
+
+
+// ---------------------------------------------------------------------------------------------
+// Every entry is untrusted input: entries with a valid CRC-32 whose content is wrong are found
+// by the checks of what they decode to, removed with one warning naming the file, and made
+// again; the scene comes out as without the cache.
+
+/// The key an entry file holds (its trailer: the key, the key's and the payload's sizes as
+/// 64-bit counts, the format line of 20 bytes and the CRC-32).
+std::string entry_key(const std::string& bytes) {
+  const size_t tail = 8 + 8 + 20 + 4;
+  uint64_t key_size = 0, payload_size = 0;
+  std::memcpy(&key_size, bytes.data() + bytes.size() - tail, 8);
+  std::memcpy(&payload_size, bytes.data() + bytes.size() - tail + 8, 8);
+  return bytes.substr(payload_size, key_size);
+}
+
+/// The key of the entry file in `dir` whose key contains `marker`.
+std::string key_containing(const fs::path& dir, const std::string& marker) {
+  for (const fs::path& f : entries(dir)) {
+    const std::string key = entry_key(test::read_file(f));
+    if (key.find(marker) != std::string::npos) return key;
+  }
+  ADD_FAILURE() << "no entry whose key holds " << marker;
+  return {};
+}
+
+/// What one run of the tiny scene through a cache whose entry was rewritten found.
+struct CraftedRun {
+  bool same_bytes = false;
+  std::vector<std::string> warnings;
+  CutCacheStats stats;
+  SceneStats scene;
+};
+
+/// The tiny scene through `dir`'s cache, against the bytes `without` a cache.
+CraftedRun run_tiny(const fs::path& dir, const std::string& without) {
+  CraftedRun r;
+  CutCache cache({dir, kDefaultCutCacheBytes, [&](const std::string& w) {
+                    r.warnings.push_back(w);
+                  }});
+  r.same_bytes = tiny_scene_glb(&cache, r.scene) == without;
+  r.stats = cache.stats();
+  return r;
+}
+
+/// Rewrites the cut entry of the tiny scene's object whose key names `object` (its CRC made
+/// valid again by storing it) after `change` altered what it decodes to.
+void rewrite_cut_entry(const fs::path& dir, const std::string& object,
+                       const std::function<void(CachedCut&, SceneAssets&)>& change) {
+  CutCache cache({dir, kDefaultCutCacheBytes, {}});
+  const std::string key = key_containing(dir, "\"object\":\"" + object);
+  const std::optional<std::string> payload = cache.load(key);
+  ASSERT_TRUE(payload);
+  SceneAssets own;
+  const PieceMaterials materials = add_piece_materials(own, "x", PbrMaterial{}, PbrMaterial{});
+  const int first_new = static_cast<int>(own.materials.size());
+  CachedCut cut = add_cut_entry(CutEntry{*payload, true, 0}, own, materials);
+  change(cut, own);
+  cache.store(key, encode_cut_entry(cut, own, materials, first_new));
+}
+
+/// A cache of the tiny scene, its bytes without a cache in *without.
+fs::path tiny_cache(const std::string& name, std::string* without) {
+  SceneStats st;
+  *without = tiny_scene_glb(nullptr, st);
+  const fs::path dir = test::fresh_dir(name);
+  CutCache cache({dir, kDefaultCutCacheBytes, {}});
+  SceneStats first;
+  EXPECT_EQ(tiny_scene_glb(&cache, first), *without);
+  return dir;
+}
+
+/// The crafted entry was caught: the same bytes, one warning naming the entry's file, counted
+/// damaged; and made again, so the next run reads every object back without a word.
+void expect_caught_and_rebuilt(const fs::path& dir, const std::string& without,
+                               const std::string& reason) {
+  const CraftedRun r = run_tiny(dir, without);
+  EXPECT_TRUE(r.same_bytes);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find((dir / kCutCacheLayout).string()), std::string::npos)
+      << r.warnings[0];
+  EXPECT_NE(r.warnings[0].find("is damaged ("), std::string::npos) << r.warnings[0];
+  EXPECT_NE(r.warnings[0].find(reason), std::string::npos) << r.warnings[0];
+  EXPECT_EQ(r.stats.damaged, 1);
+  const CraftedRun again = run_tiny(dir, without);
+  EXPECT_TRUE(again.same_bytes);
+  EXPECT_TRUE(again.warnings.empty()) << again.warnings[0];
+  EXPECT_EQ(again.scene.cached_objects, again.scene.objects);
+  EXPECT_TRUE(again.scene.cached_placements);
+}
+
+TEST(UntrustedCacheEntry, AShapeTriangleIndexOutOfRangeIsCaughtNotACrash) {
+  std::string without;
+  const fs::path dir = tiny_cache("entry_shape_index", &without);
+  rewrite_cut_entry(dir, "i1_", [](CachedCut& c, SceneAssets&) {
+    c.pieces.shapes[0].triangle[5] = {100000000u, 200000000u, 300000000u};
+  });
+  expect_caught_and_rebuilt(dir, without, "triangle vertex index not below");
+}
+
+TEST(UntrustedCacheEntry, ATriangleIndexNanPositionOrPrimitiveRangeIsCaught) {
+  std::string without;
+  const fs::path dir = tiny_cache("entry_mesh", &without);
+  const std::vector<std::pair<std::function<void(CachedCut&, SceneAssets&)>, std::string>> cases =
+      {{[](CachedCut& c, SceneAssets&) { c.pieces.meshes[0].triangle[5] = {100000000u, 0, 0}; },
+        "triangle vertex index not below"},
+       {[](CachedCut& c, SceneAssets&) {
+          c.pieces.meshes[0].position[3].x = std::numeric_limits<double>::quiet_NaN();
+        },
+        "non-finite"},
+       {[](CachedCut& c, SceneAssets&) { c.pieces.meshes[0].primitives[1].count = 10000000; },
+        "primitives"}};
+  for (const auto& [change, reason] : cases) {
+    rewrite_cut_entry(dir, "i0_", change);
+    expect_caught_and_rebuilt(dir, without, reason);
+  }
+}
+
+TEST(UntrustedCacheEntry, ATextureLargerThanItsPixelsIsCaught) {
+  std::string without;
+  const fs::path dir = tiny_cache("entry_texture", &without);
+  rewrite_cut_entry(dir, "i0_", [](CachedCut&, SceneAssets& own) {
+    ASSERT_FALSE(own.textures.empty());
+    own.textures[0].width = own.textures[0].height = 4096;
+    own.textures[0].channels = 4;
+  });
+  expect_caught_and_rebuilt(dir, without, "bytes of pixels");
+}
+
+// Plausible but wrong content changes the output silently unless it is checked against the
+// object that asked for it: a mesh scaled by half again leaves its shape's place; a piece scaled
+// thirty times, mesh and shape, leaves its template's reach.
+TEST(UntrustedCacheEntry, AMovedMeshIsCaughtByItsShapeAndItsTemplatesReach) {
+  std::string without;
+  const fs::path dir = tiny_cache("entry_moved", &without);
+  rewrite_cut_entry(dir, "i1_", [](CachedCut& c, SceneAssets&) {
+    for (glm::dvec3& p : c.pieces.meshes[0].position) p *= 1.5;
+  });
+  expect_caught_and_rebuilt(dir, without, "does not lie where its shape lies");
+  rewrite_cut_entry(dir, "i1_", [](CachedCut& c, SceneAssets&) {
+    for (glm::dvec3& p : c.pieces.meshes[0].position) p *= 30.0;
+    for (glm::dvec3& p : c.pieces.shapes[0].position) p *= 30.0;
+  });
+  expect_caught_and_rebuilt(dir, without, "beyond its template's reach");
+}
+
+TEST(UntrustedCacheEntry, PlacementsFarAwayOrNotFiniteAreCaught) {
+  std::string without;
+  const fs::path dir = tiny_cache("entry_placements", &without);
+  const std::vector<std::pair<std::function<void(Placement&)>, std::string>> cases = {
+      {[](Placement& p) { p.translation.y = 1000; }, "outside the container's reach"},
+      {[](Placement& p) { p.rotation.x = std::numeric_limits<double>::quiet_NaN(); },
+       "not a finite unit quaternion"},
+      {[](Placement& p) { p.translation.z = std::numeric_limits<double>::infinity(); },
+       "non-finite translation"}};
+  for (const auto& [change, reason] : cases) {
+    {
+      CutCache cache({dir, kDefaultCutCacheBytes, {}});
+      const std::string key = key_containing(dir, "\"placements\":");
+      const std::optional<std::string> payload = cache.load(key);
+      ASSERT_TRUE(payload);
+      uint64_t bodies = 0;
+      std::memcpy(&bodies, payload->data(), 8);
+      std::optional<SettleResult> settled = decode_settled(*payload, bodies);
+      ASSERT_TRUE(settled);
+      change(settled->placements[1]);
+      cache.store(key, encode_settled(*settled));
+    }
+    const CraftedRun r = run_tiny(dir, without);
+    EXPECT_TRUE(r.same_bytes) << reason;
+    ASSERT_EQ(r.warnings.size(), 1u) << reason;
+    EXPECT_NE(r.warnings[0].find(reason), std::string::npos) << r.warnings[0];
+    EXPECT_FALSE(r.scene.cached_placements);
+    EXPECT_GT(r.scene.simulated_seconds, 0);
+  }
+}
+
+// Counts are checked against what each element costs at least, before anything is allocated:
+// an entry of zeros whose first count claims one texture per 8 bytes is refused at that count.
+TEST(UntrustedCacheEntry, ACountBeyondWhatItsElementsCostIsRefusedBeforeAllocating) {
+  std::string without;
+  const fs::path dir = tiny_cache("entry_counts", &without);
+  {
+    CutCache cache({dir, kDefaultCutCacheBytes, {}});
+    const std::string key = key_containing(dir, "\"object\":\"i2_");
+    std::string crafted(size_t{8} << 20, '\0');
+    const uint64_t claimed = (crafted.size() - 8) / 8;
+    std::memcpy(crafted.data(), &claimed, 8);
+    cache.store(key, crafted);
+  }
+  expect_caught_and_rebuilt(dir, without, "a count beyond the data");
+  // The placements: a count of one placement per byte left is refused just the same.
+  std::string plc(size_t{1} << 20, '\0');
+  const uint64_t claimed = plc.size() - 8;
+  std::memcpy(plc.data(), &claimed, 8);
+  EXPECT_FALSE(decode_settled(plc, claimed));
 }
 
 }  // namespace
