@@ -48,11 +48,12 @@ using namespace std::chrono_literals;
 
 /// A server on a free port for `template_path`, running on its own thread while in scope, with
 /// options as `adjust` makes them. Its pictures are stand-ins that say what they were given
-/// (the OpenGL previews have tests of their own).
+/// (the OpenGL previews have tests of their own), or as `draw` makes them.
 class RunningServer {
  public:
   explicit RunningServer(const fs::path& template_path,
-                         const std::function<void(EditServerOptions&)>& adjust = nullptr) {
+                         const std::function<void(EditServerOptions&)>& adjust = nullptr,
+                         const std::function<void(EditRenderers&)>& draw = nullptr) {
     EditServerOptions o;
     o.template_path = template_path;
     o.port = 0;
@@ -69,6 +70,7 @@ class RunningServer {
       for (const auto& c : cuts) out += c ? std::to_string(c->position.size()) + "," : "-,";
       return out;
     };
+    if (draw) draw(r);
     server_ = std::make_unique<EditServer>(o, r);
     thread_ = std::thread([this] { server_->run(); });
   }
@@ -77,10 +79,13 @@ class RunningServer {
     thread_.join();
   }
   int port() const { return server_->port(); }
-  /// A client that sends the server's own Host header.
+  const std::string& token() const { return server_->token(); }
+  EditWorkCounts counts() const { return server_->work_counts(); }
+  /// A client that sends the server's own Host header and its page's token.
   httplib::Client client() const {
     httplib::Client c("127.0.0.1", port());
     c.set_read_timeout(60, 0);
+    c.set_default_headers({{std::string(kTokenHeader), token()}});
     return c;
   }
 
@@ -162,9 +167,11 @@ int raw_status(const std::string& answer) {
   return answer.rfind("HTTP/1.1 ", 0) == 0 ? std::atoi(answer.c_str() + 9) : -1;
 }
 
-/// A request head for the server on `port`, with `headers` (each ending in CRLF) added.
-std::string request_head(int port, const std::string& line, const std::string& headers) {
-  return line + "\r\nHost: 127.0.0.1:" + std::to_string(port) + "\r\n" + headers + "\r\n";
+/// A request head for `server`, with its Host and token and `headers` (each ending in CRLF).
+std::string request_head(const RunningServer& server, const std::string& line,
+                         const std::string& headers) {
+  return line + "\r\nHost: 127.0.0.1:" + std::to_string(server.port()) + "\r\n" +
+         std::string(kTokenHeader) + ": " + server.token() + "\r\n" + headers + "\r\n";
 }
 
 TEST(EditServer, RefusesForeignHostsAndOrigins) {
@@ -431,7 +438,7 @@ TEST(EditServer, BoundsChunkedBodies) {
   constexpr size_t kLimit = 64u << 10;
   RunningServer server(file, [](EditServerOptions& o) { o.max_body_bytes = kLimit; });
   RawConnection big(server.port());
-  ASSERT_TRUE(big.send(request_head(server.port(), "POST /api/check HTTP/1.1",
+  ASSERT_TRUE(big.send(request_head(server, "POST /api/check HTTP/1.1",
                                     "Transfer-Encoding: chunked\r\n")));
   // A sender offers 256 MiB in 64 KiB chunks; the server's answer must come long before.
   std::atomic<size_t> sent{0};
@@ -447,7 +454,7 @@ TEST(EditServer, BoundsChunkedBodies) {
 
   const std::string text = "format: cutaway-template/1\nname: x\n";
   RawConnection small(server.port());
-  ASSERT_TRUE(small.send(request_head(server.port(), "POST /api/check HTTP/1.1",
+  ASSERT_TRUE(small.send(request_head(server, "POST /api/check HTTP/1.1",
                                       "Transfer-Encoding: chunked\r\nConnection: close\r\n")));
   char size[16];
   std::snprintf(size, sizeof size, "%zx\r\n", text.size());
@@ -467,7 +474,7 @@ TEST(EditServer, RefusesBodiesItCannotBound) {
   const auto answer = [&](const std::string& line, const std::string& headers,
                           const std::string& body) {
     RawConnection c(server.port());
-    c.send(request_head(server.port(), line, headers) + body);
+    c.send(request_head(server, line, headers) + body);
     return c.read_to_close();
   };
   const std::string gzip_bytes("\x1f\x8b\x08\x00\x00\x00\x00\x00\x00\x03", 10);
@@ -507,7 +514,7 @@ TEST(EditServer, RefusesBodiesItCannotBound) {
 // 200 clients that send their heads a line at a time (slowloris) and eight strips of variants
 // at once do not delay checks: the checks are answered while the slow connections are still
 // held and while a strip is being made, the slow connections are closed at the request timeout,
-// and only one strip is made at a time (the older requests are answered 503). The test orders
+// and only one strip is made at a time (the older requests are answered 409). The test orders
 // events rather than timing them: a strip makes eight variants and cuts them, a check builds one
 // model, so a check queued behind a strip or a slow client would be answered after it.
 TEST(EditServer, AnswersChecksBesideSlowClientsAndVariants) {
@@ -563,7 +570,7 @@ TEST(EditServer, AnswersChecksBesideSlowClientsAndVariants) {
   }
   for (std::thread& t : variants) t.join();
   // A strip was made, and every check was answered before it was.
-  for (const int status : variants_status) EXPECT_TRUE(status == 200 || status == 503) << status;
+  for (const int status : variants_status) EXPECT_TRUE(status == 200 || status == 409) << status;
   Clock::time_point strip_made = Clock::time_point::min();
   for (size_t k = 0; k < variants_status.size(); ++k)
     if (variants_status[k] == 200) strip_made = std::max(strip_made, variants_answered[k]);
@@ -582,7 +589,7 @@ TEST(EditServer, TurnsAwayConnectionsOverTheBound) {
   std::vector<RawConnection> held;
   for (int k = 0; k < 3; ++k) held.emplace_back(server.port());
   RawConnection over(server.port());
-  over.send(request_head(server.port(), "GET /api/template HTTP/1.1", ""));
+  over.send(request_head(server, "GET /api/template HTTP/1.1", ""));
   const std::string refused = over.read_to_close();
   EXPECT_EQ(raw_status(refused), 503) << refused;
   held.pop_back();
@@ -655,6 +662,14 @@ int printed_port(const fs::path& log) {
   return 0;
 }
 
+/// The token in the page that the server `c` talks to serves at /; empty when there is none.
+std::string token_of_page(httplib::Client& c) {
+  const auto page = c.Get("/");
+  std::smatch m;
+  const std::regex meta(R"re(<meta name="cutaway-token" content="([0-9a-f]{32})">)re");
+  return page && std::regex_search(page->body, m, meta) ? m[1].str() : "";
+}
+
 /// Whether the child `pid` ended within `limit`, its wait status in *status (reaped).
 bool ends_within(pid_t pid, std::chrono::milliseconds limit, int* status) {
   for (const Clock::time_point until = Clock::now() + limit; Clock::now() < until;) {
@@ -683,6 +698,7 @@ TEST(EditServer, StopsOnSigtermWithAFifoTemplate) {
   }
   httplib::Client c("127.0.0.1", port);
   c.set_read_timeout(1, 0);
+  c.set_default_headers({{std::string(kTokenHeader), token_of_page(c)}});
   EXPECT_EQ(status_of(c.Get("/api/template")), 500);
   RawConnection slow(port);
   slow.send("GET / HTTP/1.1\r\n");
