@@ -25,6 +25,7 @@
 #include <poll.h>
 #include <strings.h>
 #include <sys/eventfd.h>
+#include <sys/random.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -339,43 +340,196 @@ std::optional<std::pair<int, std::string>> head_refusal(const httplib::Request& 
   return std::nullopt;
 }
 
-/// Runs one job at a time where only the newest request matters (the variants' strip of the
-/// text being edited): a newer request makes the waiting one give up and tells the running one,
-/// which stops early.
-class NewestJobRunner {
+/// The views of the pages whose requests compute, each with its own turn in the work queue:
+/// the cutting page's volume, the editor's model (picture, glTF, skin), its cut and its strip
+/// of variants.
+enum class WorkView { Volume, Model, Cut, Variants };
+constexpr size_t kWorkViews = 4;
+
+/// What became of a request handed to WorkQueue::run.
+enum class Admission {
+  Ran,         ///< its job ran
+  Superseded,  ///< a newer request of its view came while it waited: its job did not run
+  Busy,        ///< the queue held its bound: its job did not run
+};
+
+/// The work requests: per view one runs at a time and at most one waits; a newer request of a
+/// view replaces the one waiting and tells the one running (which stops early where it can).
+/// At most `bound` requests are admitted at once, running or waiting, over all views; one more
+/// is refused at once. Requests that are not work (checks, saves) never pass through it.
+class WorkQueue {
  public:
-  /// Runs `job(superseded)` once the job running has ended, unless a newer request comes
-  /// first; `superseded()` tells `job` that a newer request is waiting. Returns whether `job`
-  /// ran. Exceptions of `job` pass through.
-  bool run(const std::function<void(const std::function<bool()>& superseded)>& job) {
+  /// @pre bound >= 1
+  explicit WorkQueue(int bound) : bound_(bound) {}
+
+  /// Runs `job(superseded)` in `view`'s turn, once the job of the view running has ended;
+  /// `superseded()` tells `job` that a newer request of the view has come. Exceptions of `job`
+  /// pass through.
+  Admission run(WorkView view,
+                const std::function<void(const std::function<bool()>& superseded)>& job) {
     std::unique_lock<std::mutex> lock(mutex_);
-    const uint64_t ticket = ++newest_;
+    Slot& slot = slots_[static_cast<size_t>(view)];
+    const bool replaces = slot.waiting != 0;  // takes the place of the request waiting
+    if (!replaces && counts_.running + counts_.waiting >= bound_) {
+      ++counts_.turned_away;
+      return Admission::Busy;
+    }
+    if (!replaces) ++counts_.waiting;
+    const uint64_t ticket = ++slot.newest;
+    slot.waiting = ticket;
     changed_.notify_all();  // the one waiting, if any, gives up
-    changed_.wait(lock, [&] { return !running_ || newest_ != ticket; });
-    if (newest_ != ticket) return false;
-    running_ = true;
+    changed_.wait(lock, [&] { return !slot.running || slot.newest != ticket; });
+    if (slot.newest != ticket) {
+      ++counts_.superseded;
+      return Admission::Superseded;
+    }
+    slot.waiting = 0;
+    slot.running = true;
+    --counts_.waiting;
+    ++counts_.running;
     lock.unlock();
     struct Ending {  // the next job may start, even when this one throws
-      NewestJobRunner& runner;
+      WorkQueue& queue;
+      Slot& slot;
       ~Ending() {
-        const std::lock_guard<std::mutex> relock(runner.mutex_);
-        runner.running_ = false;
-        runner.changed_.notify_all();
+        const std::lock_guard<std::mutex> relock(queue.mutex_);
+        slot.running = false;
+        --queue.counts_.running;
+        ++queue.counts_.finished;
+        queue.changed_.notify_all();
       }
-    } ending{*this};
-    job([this, ticket] {
+    } ending{*this, slot};
+    job([this, &slot, ticket] {
       const std::lock_guard<std::mutex> relock(mutex_);
-      return newest_ != ticket;
+      return slot.newest != ticket;
     });
-    return true;
+    return Admission::Ran;
+  }
+
+  /// The counts so far (volumes_sampled is not the queue's: 0).
+  EditWorkCounts counts() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return counts_;
   }
 
  private:
-  std::mutex mutex_;
+  struct Slot {
+    uint64_t newest = 0;   // the ticket of the view's newest request
+    uint64_t waiting = 0;  // the ticket of the request waiting, 0 when none
+    bool running = false;
+  };
+  const int bound_;
+  mutable std::mutex mutex_;
   std::condition_variable changed_;
-  uint64_t newest_ = 0;  // the ticket of the newest request
-  bool running_ = false;
+  std::array<Slot, kWorkViews> slots_{};
+  EditWorkCounts counts_;
 };
+
+/// Answers a work request that did not run (`admission` Superseded: 409; Busy: 503 with
+/// Retry-After); a request whose job ran is left as its job answered it.
+void answer_admission(Admission admission, httplib::Response& res) {
+  if (admission == Admission::Superseded) {
+    reply_json(res, 409, {{"ok", false}, {"message", "a newer request of this view replaced it"}});
+  } else if (admission == Admission::Busy) {
+    reply_json(res, 503, {{"ok", false}, {"message", "the editor is busy; retry in a moment"}});
+    res.set_header("Retry-After", "1");
+  }
+}
+
+/// A template text that built, shared by the requests about it, which may run side by side,
+/// with the cpu diffusion backends of its cuts, each made at the first cut that needs it.
+class BuiltText {
+ public:
+  BuiltText(std::string text, Built built) : text(std::move(text)), built(std::move(built)) {}
+
+  const std::string text;
+  const Built built;
+
+  /// The backend of cuts with a PMVC cube of `cube` texels a face; from any thread.
+  const DiffusionBackend& section_diffusion(int cube) const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    std::unique_ptr<DiffusionBackend>& backend = backends_[cube];
+    if (!backend) backend = make_cpu_diffusion(built.model, {cube, 0});
+    return *backend;
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  mutable std::map<int, std::unique_ptr<DiffusionBackend>> backends_;
+};
+
+/// A random token of 32 hex digits (128 bits of getrandom), new for each server.
+/// @throws std::system_error when the system gives no random bytes
+std::string random_token() {
+  std::array<unsigned char, 16> bytes{};
+  for (size_t got = 0; got < bytes.size();) {
+    const ssize_t n = ::getrandom(bytes.data() + got, bytes.size() - got, 0);
+    if (n < 0 && errno != EINTR)
+      throw std::system_error(errno, std::generic_category(), "getrandom");
+    if (n > 0) got += static_cast<size_t>(n);
+  }
+  constexpr std::string_view kHex = "0123456789abcdef";
+  std::string token;
+  for (const unsigned char b : bytes) {
+    token += kHex[b >> 4];
+    token += kHex[b & 15];
+  }
+  return token;
+}
+
+/// Whether `given` is `token`, compared in a time that does not depend on where they differ.
+bool same_token(std::string_view given, std::string_view token) {
+  if (given.size() != token.size()) return false;
+  unsigned char difference = 0;
+  for (size_t i = 0; i < token.size(); ++i)
+    difference |= static_cast<unsigned char>(given[i] ^ token[i]);
+  return difference == 0;
+}
+
+/// Where index.html and cut.html hold the server's token: the server fills in the content.
+constexpr std::string_view kTokenPlaceholder = R"(<meta name="cutaway-token" content="">)";
+
+/// The embedded page `file` with `token` filled into its token meta tag.
+std::string page_with_token(std::string_view file, const std::string& token) {
+  const std::optional<std::string_view> page = editor_web_file(file);
+  CUTAWAY_CHECK(page.has_value());
+  std::string html(*page);
+  const size_t at = html.find(kTokenPlaceholder);
+  CUTAWAY_CHECK(at != std::string::npos);
+  html.replace(at, kTokenPlaceholder.size(),
+               R"(<meta name="cutaway-token" content=")" + token + "\">");
+  return html;
+}
+
+/// An interior volume's files for the cutting page (volume_files_of), by kind, and the name of
+/// the template they are of.
+struct VolumeFiles {
+  std::string name;
+  std::map<std::string, std::string> files;
+};
+
+/// Answers the file `kind` of `volume`.
+void answer_volume_file(const VolumeFiles& volume, const std::string& kind,
+                        httplib::Response& res) {
+  const std::string type = kind == "json"  ? "application/json"
+                           : kind == "glb" ? "model/gltf-binary"
+                                           : "image/png";
+  res.set_content(volume.files.at(kind), type);
+}
+
+/// Whether `asked` is the volume's template's `name`; answers 404 when not.
+bool names_volume(const std::string& asked, const std::string& name, httplib::Response& res) {
+  if (asked == name) return true;
+  reply_json(res, 404, {{"ok", false}, {"message", "this editor serves the volume of " + name}});
+  return false;
+}
+
+/// The template text `text` without what does not change its template, comments and layout:
+/// yaml-cpp's dump of its parse. Texts that differ only there have one volume.
+/// @throws InputError when `text` is not YAML
+std::string template_content(std::string_view text, const std::filesystem::path& template_path) {
+  return YAML::Dump(parse_yaml(text, template_path.filename().string()).node());
+}
 
 /// httplib's server as a router: this file accepts and serves the connections and hands each
 /// request to process_request() (httplib 0.11's own loop has a fixed pool of threads, 8 on a
@@ -444,20 +598,6 @@ void answer_exception(const httplib::Request&, httplib::Response& res, std::exce
   } catch (...) {
   }
   reply_json(res, 500, {{"ok", false}, {"message", why}});
-}
-
-/// GET /: the page, an embedded file.
-void get_page(const httplib::Request&, httplib::Response& res) {
-  const std::optional<std::string_view> page = editor_web_file("index.html");
-  CUTAWAY_CHECK(page.has_value());
-  res.set_content(std::string(*page), "text/html; charset=utf-8");
-}
-
-/// GET /cut.html: the cutting page, an embedded file.
-void get_cutting_page(const httplib::Request&, httplib::Response& res) {
-  const std::optional<std::string_view> page = editor_web_file("cut.html");
-  CUTAWAY_CHECK(page.has_value());
-  res.set_content(std::string(*page), "text/html; charset=utf-8");
 }
 
 /// The files of the interior volume of `b`'s template (no seed) with `across` voxels along its
@@ -531,20 +671,19 @@ struct EditServer::Impl {
   std::condition_variable connection_ended;
   std::set<int> connections;
   bool stopping = false;
-  std::mutex work;  // one request at a time touches the library and OpenGL
-  NewestJobRunner variants;  // the variants' strips, one at a time
-  // The last text that built, with its template and model, and the cpu backend of its cuts
-  // (made at the first cut): the page asks for the verdict, the model picture and cuts at
-  // several heights of one text, which are built once. Guarded by `work`.
-  std::string built_text;
-  std::optional<Built> built;
-  std::unique_ptr<DiffusionBackend> section_backend, coarse_section_backend;
-  // The interior volume of the file as it was last asked for (volume_files_of), made one at a
-  // time and without the work lock (it takes seconds): the text it is of, and its files.
-  std::mutex volume_work;
-  std::string volume_text;
-  std::string volume_name;
-  std::map<std::string, std::string> volume_files;
+  std::string token = random_token();  // what requests to /api/ must carry (kTokenHeader)
+  std::unique_ptr<WorkQueue> work;       // the requests that compute
+  std::mutex render;                     // one picture at a time is drawn (OpenGL)
+  // The last text that built: the page asks for the verdict, the model and cuts at several
+  // heights of one text, which is built once. The lock is held while a text builds.
+  std::mutex build_mutex;
+  std::shared_ptr<const BuiltText> latest;
+  // The interior volume of the saved template last asked for: the template_content it is of,
+  // and its files. The lock is held only to look up or store.
+  std::mutex volume_mutex;
+  std::string volume_content;
+  std::shared_ptr<const VolumeFiles> volume;
+  std::atomic<int> volumes_sampled{0};
 
   ~Impl() {
     if (listen_fd >= 0) ::close(listen_fd);
@@ -552,24 +691,34 @@ struct EditServer::Impl {
   }
 
   /// The template and model of `text`, from the last request when it sent the same text.
+  /// Waits at most for one other text to build, never for work.
   /// @throws InputError as build()
-  const Built& built_for(const std::string& text) {
-    if (!built || text != built_text) {
-      built.reset();
-      section_backend.reset();
-      coarse_section_backend.reset();
-      built = build(text, options.template_path);
-      built_text = text;
+  std::shared_ptr<const BuiltText> built_for(const std::string& text) {
+    const std::lock_guard<std::mutex> lock(build_mutex);
+    if (!latest || latest->text != text) {
+      latest.reset();
+      latest = std::make_shared<const BuiltText>(text, build(text, options.template_path));
     }
-    return *built;
+    return latest;
   }
 
-  /// Runs `answer` for a request about the template text `body`, under the work lock, as
-  /// answer_or_refuse().
-  void handle(const std::string& body, httplib::Response& res,
-              const std::function<void(const Built&)>& answer) {
-    const std::lock_guard<std::mutex> lock(work);
-    answer_or_refuse(res, [&] { answer(built_for(body)); });
+  /// Answers a work request of `view` about the template text `body`: in the view's turn of
+  /// the work queue (answer_admission() when it does not get one), builds the text (422 with
+  /// the verdict) and runs `answer(built, superseded)`, as answer_or_refuse(). A request
+  /// whose client has gone by its turn is dropped.
+  void work_on(WorkView view, const std::string& body, httplib::Response& res,
+               const std::function<void(const BuiltText&, const std::function<bool()>&)>&
+                   answer) {
+    answer_admission(work->run(view, [&](const std::function<bool()>& superseded) {
+      if (this_connection->client_gone()) return;
+      answer_or_refuse(res, [&] { answer(*built_for(body), superseded); });
+    }), res);
+  }
+
+  /// The volume made for `content` (template_content), or null when it was not made.
+  std::shared_ptr<const VolumeFiles> volume_of(const std::string& content) {
+    const std::lock_guard<std::mutex> lock(volume_mutex);
+    return volume_content == content ? volume : nullptr;
   }
 
   /// The body of a POST, read within the bounds (max_body_bytes; the connection's allowance
@@ -650,54 +799,54 @@ struct EditServer::Impl {
     turn_away(fd, options.max_connections);
   }
 
-  /// The pre-routing handler: before a request's body is read, who may ask (403 otherwise),
-  /// and whether its head bars the body (head_refusal()); a request that passes may send a
-  /// body of max_body_bytes.
+  /// The pre-routing handler: before a request's body is read, who may ask (403 otherwise:
+  /// check_request(), and the token on every request to /api/), and whether its head bars the
+  /// body (head_refusal()); a request that passes may send a body of max_body_bytes.
   httplib::Server::HandlerResponse screen_request(const httplib::Request& req,
                                                   httplib::Response& res);
+  /// GET / and /cut.html: the embedded page `file` with the server's token, not to be cached
+  /// (a restarted server has another token).
+  void get_page(std::string_view file, httplib::Response& res) const;
   /// GET /lib/NAME/PATH: a file of the library NAME the page imports, from its own folder
   /// (library_file keeps requests inside it).
   void get_library_file(const httplib::Request& req, httplib::Response& res);
-  /// GET /api/template: the file as it is on disk; no work lock (saves rename a whole file
-  /// into place).
+  /// GET /api/template: the file as it is on disk; no lock (saves rename a whole file into
+  /// place).
   void get_template(const httplib::Request& req, httplib::Response& res);
-  /// GET /api/volume/NAME.KIND: a file of the interior volume of the template file as it is on
-  /// disk (KIND json, colour.png, structure.png, material.png or glb; volume_files_of), NAME
-  /// being its template's name; 404 for another name or no file yet, 422 with the verdict
-  /// when the file does not build.
-  void get_volume_file(const httplib::Request& req, httplib::Response& res);
+  /// POST /api/volume/NAME.KIND: a file of the interior volume of the template file as it is
+  /// on disk (KIND json, colour.png, structure.png, material.png or glb; volume_files_of),
+  /// NAME being its template's name. The name is compared before any work: 404 for another
+  /// name or no file yet, 422 with the verdict when the file does not build. The volume is
+  /// sampled once per template_content, in the Volume view's turn of the work queue.
+  void post_volume_file(const httplib::Request& req, httplib::Response& res,
+                        const std::string& body);
   /// POST /api/check: the verdict on the text, as check_template_text() gives it (200 either
-  /// way).
+  /// way); never waits for work.
   void post_check(const httplib::Request& req, httplib::Response& res, const std::string& body);
-  /// POST /api/model.png: the see-through model of the text.
+  /// POST /api/model.png: the see-through model of the text (Model view).
   void post_model_png(const httplib::Request& req, httplib::Response& res,
                       const std::string& body);
-  /// POST /api/model.glb: the model of the text as binary glTF.
+  /// POST /api/model.glb: the model of the text as binary glTF (Model view).
   void post_model_glb(const httplib::Request& req, httplib::Response& res,
                       const std::string& body);
   /// POST /api/skin.glb: the object of the text uncut, its skin baked as scenes bake it (the
   /// skin's patterns, their relief as a normal map, the Perlin modulation of seed 0), as
-  /// binary glTF without camera or lights: what the outside looks like.
+  /// binary glTF without camera or lights: what the outside looks like (Model view).
   void post_skin_glb(const httplib::Request& req, httplib::Response& res,
                      const std::string& body);
-  /// The cpu diffusion backend of the current model for cuts (coarse: the dragged plane's),
-  /// made on first use after the model changed. Call with the work lock held.
-  const DiffusionBackend& section_diffusion(const Built& b, bool coarse);
-  /// POST /api/section.png?y=Y[&coarse=1]: the text's cut at height Y (template units).
+  /// POST /api/section.png?y=Y[&coarse=1]: the text's cut at height Y (template units; Cut
+  /// view).
   void post_section_png(const httplib::Request& req, httplib::Response& res,
                         const std::string& body);
   /// POST /api/variants.png[?count=N]: a strip of seeded variants (seeds 1..count, count 1..8,
-  /// default 4): their mid-height cuts, as `cutaway variants` draws its contact sheet. It takes
-  /// seconds, so it holds the library only to get the template and to draw: checks and cuts of
-  /// newer text go on meanwhile. One strip is made at a time, and only the newest request's:
-  /// an older one still waiting, or being made, is answered 503 (the page wants the strip of
-  /// its latest text); one whose client left is dropped after the variant it is on.
+  /// default 4): their mid-height cuts, as `cutaway variants` draws its contact sheet
+  /// (Variants view). A strip being made when a newer request comes ends after the variant it
+  /// is on, answered 409; one whose client left is dropped after the variant it is on.
   void post_variants_png(const httplib::Request& req, httplib::Response& res,
                          const std::string& body);
   /// POST /api/save: writes the text to the template file. The text is checked and the answer
   /// made before the file is written, so that an answer is never an error about a file that
-  /// was written; the write itself is outside the work lock (it renames a whole file into
-  /// place).
+  /// was written; no work is waited for, and the write renames a whole file into place.
   void post_save(const httplib::Request& req, httplib::Response& res, const std::string& body);
 };
 
@@ -709,6 +858,13 @@ httplib::Server::HandlerResponse EditServer::Impl::screen_request(const httplib:
     refuse_and_close(req, res, 403, allowed.reason());
     return httplib::Server::HandlerResponse::Handled;
   }
+  if (req.path.starts_with("/api/") &&
+      !same_token(req.get_header_value(std::string(kTokenHeader)), token)) {
+    refuse_and_close(req, res, 403,
+                     "requests to /api/ need the token of the page this editor serves (" +
+                         std::string(kTokenHeader) + "); reload the page");
+    return httplib::Server::HandlerResponse::Handled;
+  }
   if (const auto refusal = head_refusal(req, options.max_body_bytes)) {
     refuse_and_close(req, res, refusal->first, refusal->second);
     return httplib::Server::HandlerResponse::Handled;
@@ -716,6 +872,11 @@ httplib::Server::HandlerResponse EditServer::Impl::screen_request(const httplib:
   // A chunked body's framing may take up to a head's worth of bytes more than its content.
   this_connection->allow_body(options.max_body_bytes + kMaxRequestHeadBytes);
   return httplib::Server::HandlerResponse::Unhandled;
+}
+
+void EditServer::Impl::get_page(std::string_view file, httplib::Response& res) const {
+  res.set_header("Cache-Control", "no-store");
+  res.set_content(page_with_token(file, token), "text/html; charset=utf-8");
 }
 
 void EditServer::Impl::get_library_file(const httplib::Request& req, httplib::Response& res) {
@@ -740,7 +901,8 @@ void EditServer::Impl::get_template(const httplib::Request&, httplib::Response& 
   }
 }
 
-void EditServer::Impl::get_volume_file(const httplib::Request& req, httplib::Response& res) {
+void EditServer::Impl::post_volume_file(const httplib::Request& req, httplib::Response& res,
+                                        const std::string&) {
   std::optional<std::string> text;
   try {
     text = read_template_file(options.template_path);
@@ -752,36 +914,38 @@ void EditServer::Impl::get_volume_file(const httplib::Request& req, httplib::Res
     reply_json(res, 404, {{"ok", false}, {"message", "the template is not saved yet"}});
     return;
   }
-  const std::lock_guard<std::mutex> lock(volume_work);
-  if (volume_text != *text || volume_files.empty()) {
-    std::optional<Built> copy;
-    handle(*text, res, [&](const Built& b) { copy = b; });
-    if (!copy) return;  // handle() answered with the verdict
-    volume_files.clear();
-    answer_or_refuse(res, [&] {
-      volume_files = volume_files_of(*copy, options.volume_voxels_across);
-      volume_text = *text;
-      volume_name = copy->tmpl.name;
-    });
-    if (volume_files.empty()) return;  // answered with the error
-  }
-  const std::string kind = req.matches[2];
-  if (req.matches[1] != volume_name) {
-    reply_json(res, 404, {{"ok", false},
-                          {"message", "this editor serves the volume of " + volume_name}});
+  const std::string name = req.matches[1], kind = req.matches[2];
+  std::optional<std::string> content;
+  answer_or_refuse(res, [&] { content = template_content(*text, options.template_path); });
+  if (!content) return;  // answered with the verdict
+  if (const std::shared_ptr<const VolumeFiles> made = volume_of(*content)) {
+    if (names_volume(name, made->name, res)) answer_volume_file(*made, kind, res);
     return;
   }
-  const std::string type = kind == "json"  ? "application/json"
-                           : kind == "glb" ? "model/gltf-binary"
-                                           : "image/png";
-  res.set_content(volume_files.at(kind), type);
+  std::shared_ptr<const BuiltText> b;
+  answer_or_refuse(res, [&] { b = built_for(*text); });
+  if (!b || !names_volume(name, b->built.tmpl.name, res)) return;
+  answer_admission(work->run(WorkView::Volume, [&](const std::function<bool()>&) {
+    if (this_connection->client_gone()) return;
+    std::shared_ptr<const VolumeFiles> made = volume_of(*content);  // by a request before
+    answer_or_refuse(res, [&] {
+      if (!made) {
+        made = std::make_shared<const VolumeFiles>(VolumeFiles{
+            b->built.tmpl.name, volume_files_of(b->built, options.volume_voxels_across)});
+        ++volumes_sampled;
+        const std::lock_guard<std::mutex> lock(volume_mutex);
+        volume_content = *content;
+        volume = made;
+      }
+      answer_volume_file(*made, kind, res);
+    });
+  }), res);
 }
 
 void EditServer::Impl::post_check(const httplib::Request&, httplib::Response& res,
                                   const std::string& body) {
-  const std::lock_guard<std::mutex> lock(work);
   try {
-    reply_json(res, 200, verdict_of(built_for(body)));
+    reply_json(res, 200, verdict_of(built_for(body)->built));
   } catch (const InputError& e) {
     reply_json(res, 200, verdict_of(e));
   }
@@ -789,60 +953,55 @@ void EditServer::Impl::post_check(const httplib::Request&, httplib::Response& re
 
 void EditServer::Impl::post_model_png(const httplib::Request&, httplib::Response& res,
                                       const std::string& body) {
-  handle(body, res, [&](const Built& b) {
-    res.set_content(renderers.model_png(b.model), "image/png");
+  work_on(WorkView::Model, body, res, [&](const BuiltText& b, const auto&) {
+    const std::lock_guard<std::mutex> lock(render);
+    res.set_content(renderers.model_png(b.built.model), "image/png");
   });
 }
 
 void EditServer::Impl::post_model_glb(const httplib::Request&, httplib::Response& res,
                                       const std::string& body) {
-  handle(body, res, [&](const Built& b) {
-    res.set_content(model_to_glb(b.model, GltfModelOptions{}), "model/gltf-binary");
+  work_on(WorkView::Model, body, res, [&](const BuiltText& b, const auto&) {
+    res.set_content(model_to_glb(b.built.model, GltfModelOptions{}), "model/gltf-binary");
   });
 }
 
 void EditServer::Impl::post_skin_glb(const httplib::Request&, httplib::Response& res,
                                      const std::string& body) {
-  handle(body, res, [&](const Built& b) {
+  work_on(WorkView::Model, body, res, [&](const BuiltText& b, const auto&) {
     GltfSceneOptions gltf;
     gltf.camera_and_lights = false;
     res.set_content(
-        scene_to_glb(whole_object_assets(Variant{b.tmpl, b.model}, section_diffusion(b, false),
-                                         1.0, 0),
+        scene_to_glb(whole_object_assets(Variant{b.built.tmpl, b.built.model},
+                                         b.section_diffusion(options.section_cube), 1.0, 0),
                      gltf),
         "model/gltf-binary");
   });
 }
 
-const DiffusionBackend& EditServer::Impl::section_diffusion(const Built& b, bool coarse) {
-  std::unique_ptr<DiffusionBackend>& backend = coarse ? coarse_section_backend : section_backend;
-  if (!backend)
-    backend = make_cpu_diffusion(
-        b.model, {coarse ? options.coarse_section_cube : options.section_cube, 0});
-  return *backend;
-}
-
 void EditServer::Impl::post_section_png(const httplib::Request& req, httplib::Response& res,
                                         const std::string& body) {
-  handle(body, res, [&](const Built& b) {
-    const Outcome<double> y = parse_decimal(req.get_param_value("y"), "y");
-    if (!y) {
-      reply_json(res, 400, {{"ok", false}, {"message", y.reason() + " (template units)"}});
-      return;
-    }
+  const Outcome<double> y = parse_decimal(req.get_param_value("y"), "y");
+  if (!y) {
+    reply_json(res, 400, {{"ok", false}, {"message", y.reason() + " (template units)"}});
+    return;
+  }
+  // While the plane is dragged the page asks for coarse cuts, then a full one.
+  const int cube =
+      req.get_param_value("coarse") == "1" ? options.coarse_section_cube : options.section_cube;
+  work_on(WorkView::Cut, body, res, [&](const BuiltText& b, const auto&) {
     Plane plane;
-    plane.point = {0, *y * b.tmpl.metres_per_unit, 0};
+    plane.point = {0, *y * b.built.tmpl.metres_per_unit, 0};
     plane.normal = {0, 1, 0};
-    // While the plane is dragged the page asks for coarse cuts, then a full one.
-    const bool coarse = req.get_param_value("coarse") == "1";
     CrossSectionOptions o;
-    o.edge_m = b.tmpl.edge_m;
+    o.edge_m = b.built.tmpl.edge_m;
     const Outcome<CrossSection> section =
-        make_cross_section(b.model, plane, section_diffusion(b, coarse), o);
+        make_cross_section(b.built.model, plane, b.section_diffusion(cube), o);
     if (!section) {
       reply_json(res, 422, {{"ok", false}, {"message", section.reason()}});
       return;
     }
+    const std::lock_guard<std::mutex> lock(render);
     res.set_content(renderers.section_png(*section), "image/png");
   });
 }
@@ -855,41 +1014,34 @@ void EditServer::Impl::post_variants_png(const httplib::Request& req, httplib::R
     reply_json(res, 400, {{"ok", false}, {"message", "count must be a whole number from 1 to 8"}});
     return;
   }
-  std::optional<Template> tmpl;
-  handle(body, res, [&](const Built& b) { tmpl = b.tmpl; });
-  if (!tmpl) return;  // handle() answered with the verdict
   const int cube = options.variant_cube;
   const DiffusionFactory diffusion = [cube](const DsModel& m) {
     return make_cpu_diffusion(m, {cube, 0});
   };
-  const auto replaced = [&res] {
-    reply_json(res, 503, {{"ok", false}, {"message", "a newer variants request replaced this one"}});
-  };
-  const bool ran = variants.run([&](const std::function<bool()>& superseded) {
-    answer_or_refuse(res, [&] {
-      std::vector<Outcome<CrossSection>> sections;
-      for (int seed = 1; seed <= count; ++seed) {
-        if (superseded()) return replaced();
-        if (this_connection->client_gone()) return;  // no one to answer
-        sections.push_back(variant_section(make_variant(*tmpl, seed), diffusion));
-      }
-      if (std::none_of(sections.begin(), sections.end(), [](const auto& c) { return bool(c); })) {
-        reply_json(res, 422, {{"ok", false},
-                              {"message", "no variant has a cut at mid-height: " + sections[0].reason()}});
-        return;
-      }
-      const std::lock_guard<std::mutex> lock(work);  // the renderers are one at a time
-      res.set_content(renderers.variants_png(std::move(sections)), "image/png");
-    });
+  work_on(WorkView::Variants, body, res,
+          [&](const BuiltText& b, const std::function<bool()>& superseded) {
+    std::vector<Outcome<CrossSection>> sections;
+    for (int seed = 1; seed <= count; ++seed) {
+      if (superseded()) return answer_admission(Admission::Superseded, res);
+      if (this_connection->client_gone()) return;  // no one to answer
+      sections.push_back(variant_section(make_variant(b.built.tmpl, seed), diffusion));
+    }
+    if (std::none_of(sections.begin(), sections.end(), [](const auto& c) { return bool(c); })) {
+      reply_json(res, 422, {{"ok", false},
+                            {"message", "no variant has a cut at mid-height: " +
+                                            sections[0].reason()}});
+      return;
+    }
+    const std::lock_guard<std::mutex> lock(render);
+    res.set_content(renderers.variants_png(std::move(sections)), "image/png");
   });
-  if (!ran) replaced();
 }
 
 void EditServer::Impl::post_save(const httplib::Request&, httplib::Response& res,
                                  const std::string& body) {
   bool valid = false;
-  handle(body, res, [&](const Built&) { valid = true; });
-  if (!valid) return;  // handle() answered with the verdict
+  answer_or_refuse(res, [&] { valid = built_for(body) != nullptr; });
+  if (!valid) return;  // answered with the verdict
   answer_or_refuse(res, [&] {
     const std::string answer =
         json_text({{"ok", true}, {"file", options.template_path.filename().string()}});
@@ -903,6 +1055,7 @@ EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
   Impl& s = *impl_;
   s.options = std::move(options);
   s.renderers = std::move(renderers);
+  s.work = std::make_unique<WorkQueue>(s.options.max_work_requests);
   // What the answers' Keep-Alive header says (serve_connection() does it).
   s.router.set_keep_alive_max_count(kRequestsPerConnection);
   s.router.set_keep_alive_timeout(
@@ -911,13 +1064,17 @@ EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
   s.router.set_pre_routing_handler(std::bind_front(&Impl::screen_request, &s));
   // The page: embedded files (no request names a file on disk), and the libraries it
   // imports, each from its own folder.
-  s.router.Get("/", get_page);
+  s.router.Get("/", [&s](const httplib::Request&, httplib::Response& res) {
+    s.get_page("index.html", res);
+  });
   s.router.Get(R"(/([a-z_]+)\.(js|css))", get_web_file);
   s.router.Get(R"(/lib/([a-z]+)/(.+))", std::bind_front(&Impl::get_library_file, &s));
   s.router.Get("/api/template", std::bind_front(&Impl::get_template, &s));
-  s.router.Get("/cut.html", get_cutting_page);
-  s.router.Get(R"(/api/volume/([a-z0-9_-]+)\.(json|colour\.png|structure\.png|material\.png|glb))",
-               std::bind_front(&Impl::get_volume_file, &s));
+  s.router.Get("/cut.html", [&s](const httplib::Request&, httplib::Response& res) {
+    s.get_page("cut.html", res);
+  });
+  s.post(R"(/api/volume/([a-z0-9_-]+)\.(json|colour\.png|structure\.png|material\.png|glb))",
+         std::bind_front(&Impl::post_volume_file, &s));
   s.post("/api/check", std::bind_front(&Impl::post_check, &s));
   s.post("/api/model.png", std::bind_front(&Impl::post_model_png, &s));
   s.post("/api/model.glb", std::bind_front(&Impl::post_model_glb, &s));
@@ -938,6 +1095,14 @@ EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
 EditServer::~EditServer() = default;
 
 int EditServer::port() const { return impl_->port; }
+
+const std::string& EditServer::token() const { return impl_->token; }
+
+EditWorkCounts EditServer::work_counts() const {
+  EditWorkCounts counts = impl_->work->counts();
+  counts.volumes_sampled = impl_->volumes_sampled;
+  return counts;
+}
 
 void EditServer::run() {
   Impl& s = *impl_;

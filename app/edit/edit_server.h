@@ -4,16 +4,19 @@
 // picture of the see-through DS model, a cross-section at a height, and the saved file.
 //
 // Security, as for any local server: it listens on 127.0.0.1 only; requests whose Host or
-// Origin is not the server's own are refused (DNS rebinding, cross-site pages); it serves a
-// fixed set of embedded files and reads and writes only the one template file it was started
-// on (no path comes from a request), and only while it is a regular file. The cutting page
-// (/cut.html) cuts that file's template live from its interior volume (/api/volume/...).
+// Origin is not the server's own are refused (DNS rebinding, cross-site pages); every request
+// to /api/ must carry the server's token (a random one per server, which only the pages it
+// serves hold), so that a page of another origin cannot make it work; it serves a fixed set of
+// embedded files and reads and writes only the one template file it was started on (no path
+// comes from a request), and only while it is a regular file. The cutting page (/cut.html)
+// cuts that file's template live from its interior volume (POST /api/volume/...).
 //
 // Bounds, so that no client, however slow or large its requests, stops the others being
 // answered: request bodies are limited in size whatever their transfer encoding (compressed
 // ones are refused); a request must arrive within a time limit of its first byte; connections
-// are served each on its own thread, up to a bound; variant strips are made one at a time (a
-// newer request replaces an older one) and without the lock the other requests take.
+// are served each on its own thread, up to a bound; work (volumes, model pictures, skins, cuts,
+// variant strips) is queued with a small bound, one request at a time per view of the pages,
+// a newer request of a view replacing the older; checks and saves never wait behind work.
 #pragma once
 
 #include <chrono>
@@ -62,6 +65,8 @@ struct EditRenderers {
 inline constexpr size_t kMaxRequestHeadBytes = 64u << 10;
 /// The most requests served on one connection before it is closed (the client opens another).
 inline constexpr int kRequestsPerConnection = 100;
+/// The header that carries the server's token (EditServer::token()) on requests to /api/.
+inline constexpr std::string_view kTokenHeader = "X-Cutaway-Token";
 
 /// How EditServer listens and what it bounds.
 struct EditServerOptions {
@@ -81,10 +86,24 @@ struct EditServerOptions {
   int section_cube = 8;                 ///< PMVC cube-map size of the live cross-section
   int coarse_section_cube = 3;          ///< the same while the user drags the plane
   int variant_cube = 8;                 ///< PMVC cube-map size of the variants' cuts
-  /// Voxels along the skin's longest edge of the cutting page's volume (GET /api/volume/...;
+  /// Voxels along the skin's longest edge of the cutting page's volume (POST /api/volume/...;
   /// 4..256): coarser than `cutaway volume`'s default, so the page opens in seconds.
   int volume_voxels_across = 64;
+  /// Work requests (volume, model picture and glTF, skin, cut, variants) admitted at once,
+  /// running or waiting; one more is answered 503 with Retry-After at once.
+  int max_work_requests = 4;
   std::vector<WebLibrary> libraries = editor_libraries();  ///< served at /lib/NAME/
+};
+
+/// What the server's work queue has done since it started (EditServer::work_counts()): work
+/// requests are those that compute (volume, model picture and glTF, skin, cut, variants).
+struct EditWorkCounts {
+  int running = 0;          ///< work requests being computed now
+  int waiting = 0;          ///< work requests admitted, waiting for their view's turn
+  int finished = 0;         ///< work requests that ran (whatever they answered)
+  int superseded = 0;       ///< answered 409: a newer request of their view replaced them
+  int turned_away = 0;      ///< answered 503: the queue held max_work_requests
+  int volumes_sampled = 0;  ///< interior volumes sampled for the cutting page
 };
 
 /// Passes when a request may be served, else fails with why not (403): its Host header must
@@ -99,9 +118,10 @@ Check check_request(std::string_view host, std::string_view origin, int port);
 class EditServer {
  public:
   /// Binds 127.0.0.1:options.port and listens.
-  /// @pre options.max_connections >= 1, the timeouts > 0
+  /// @pre options.max_connections >= 1, options.max_work_requests >= 1, the timeouts > 0
   /// @throws EnvironmentError "port N on 127.0.0.1 is taken; pass another with --port" when
   ///         it cannot bind
+  /// @throws std::system_error when the system gives no random bytes for the token
   EditServer(EditServerOptions options, EditRenderers renderers);
   /// @pre run() has returned, or was never called
   ~EditServer();
@@ -109,6 +129,12 @@ class EditServer {
   EditServer& operator=(const EditServer&) = delete;
 
   int port() const;  ///< the bound port
+  /// The server's token: 32 hex digits from the system's random source, new for each server.
+  /// The pages it serves hold it (a meta tag named cutaway-token) and send it in kTokenHeader;
+  /// a request to /api/ without it is refused (403) before any of its work.
+  const std::string& token() const;
+  /// The work queue's counts so far; from any thread.
+  EditWorkCounts work_counts() const;
   /// Serves until stop(); blocks; returns at once after a stop(). Before returning it closes
   /// the listening socket and waits for the connections' threads: requests being read or
   /// written end at once (their sockets are shut down), a variants strip being made stops

@@ -77,6 +77,7 @@ int main(int argc, char** argv) {
     std::thread serving([&] { server.run(); });
     httplib::Client client("127.0.0.1", server.port());
     client.set_read_timeout(600, 0);
+    client.set_default_headers({{std::string(kTokenHeader), server.token()}});
     const auto t0 = Clock::now();
     const auto verdict = client.Post("/api/check", body, "text/plain");
     const double check = std::chrono::duration<double>(Clock::now() - t0).count();

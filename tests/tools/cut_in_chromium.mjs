@@ -54,12 +54,16 @@ function digest(data) {
 
 /// The page's flipbooks against the files decoded here (png_decode.js with node's zlib), and
 /// the decoding against what the sidecar counts: the solid voxels (region not 0, and colour
-/// alpha 255) and the largest region id.
+/// alpha 255) and the largest region id. The files are asked for as the page asks: with POST and
+/// the token the page holds when `cutaway edit` served it, else with GET.
 async function checkBytes(page, base, name) {
-  const meta = await (await fetch(`${base}/api/volume/${name}.json`)).json();
+  const token = await page.evaluate(
+    () => document.querySelector('meta[name="cutaway-token"]')?.content ?? '');
+  const asking = token ? { method: 'POST', headers: { 'X-Cutaway-Token': token } } : {};
+  const meta = await (await fetch(`${base}/api/volume/${name}.json`, asking)).json();
   const mine = {}, images = {};
   for (const [which, file] of Object.entries(meta.images)) {
-    const response = await fetch(new URL(file, `${base}/api/volume/${name}.json`));
+    const response = await fetch(new URL(file, `${base}/api/volume/${name}.json`), asking);
     if (!response.ok) throw new Error(`${file}: HTTP ${response.status}`);
     images[which] = (await decodePng(new Uint8Array(await response.arrayBuffer()),
                                      (bytes) => zlib.inflateSync(bytes))).data;

@@ -4,18 +4,24 @@
 // whose fragment shader reads the volume by the sidecar's reading rule (region scores from the
 // eight voxels around a point, then the trilinear blend of the winning region's colours).
 // Query parameters: volume (URL of the sidecar JSON; its image names are relative to it) and
-// model (URL of the .glb). Test hooks are on window.cutting (see the end of this file).
+// model (URL of the .glb). Served by `cutaway edit`, which samples the volume when asked, the
+// files are asked for with POST and the server's token; from a plain file server, with GET.
+// Test hooks are on window.cutting (see the end of this file).
 import * as THREE from 'three';
 import { GLTFLoader } from '/lib/three/examples/jsm/loaders/GLTFLoader.js';
 import { OrbitControls } from '/lib/three/examples/jsm/controls/OrbitControls.js';
 import { decodePng } from './png_decode.js';
+import { ask, token } from './server_request.js';
+
+/// How the page asks for the files it loads (ask()'s init).
+const asking = token ? { method: 'POST' } : {};
 
 // ---------------------------------------------------------------------------------------------
 // The volume: flipbook PNGs unpacked into 3D arrays, and the reading rule on the CPU.
 
 /// The RGBA bytes of the PNG at `url`, exactly as stored (png_decode.js).
 async function readPng(url) {
-  const response = await fetch(url);
+  const response = await ask(url, asking);
   if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
   const inflate = async (bytes) => new Uint8Array(await new Response(
     new Blob([bytes]).stream().pipeThrough(new DecompressionStream('deflate'))).arrayBuffer());
@@ -78,7 +84,7 @@ function toHalf(value) {
 /// (the box outside which every point reads as empty)}.
 export async function loadVolume(url) {
   const absolute = new URL(url, location.href);
-  const response = await fetch(absolute);
+  const response = await ask(absolute, asking);
   if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
   const meta = await response.json();
   const size = meta.grid.size, first = meta.grid.first_centre_m, voxel = meta.grid.voxel_m;
@@ -800,8 +806,13 @@ export class CuttingView {
 // ---------------------------------------------------------------------------------------------
 // The page: loading, the panel and the test hooks.
 
-function loadModel(url) {
-  return new Promise((resolve, reject) => new GLTFLoader().load(url, resolve, undefined,
+/// The glTF at `url` (binary), parsed by three.js; its relative references resolve against it.
+async function loadModel(url) {
+  const response = await ask(url, asking);
+  if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
+  const bytes = await response.arrayBuffer();
+  const base = new URL('.', new URL(url, location.href)).href;
+  return new Promise((resolve, reject) => new GLTFLoader().parse(bytes, base, resolve,
     (e) => reject(new Error(`${url}: ${e?.message ?? e}`))));
 }
 

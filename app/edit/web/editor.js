@@ -8,6 +8,7 @@ import { TemplateDoc, starterText } from '/template_doc.js';
 import { fitStroke } from '/stroke_fit.js';
 import { SketchView } from '/sketch_view.js';
 import { ModelView } from '/model_view.js';
+import { ask } from '/server_request.js';
 
 const $ = (id) => document.getElementById(id);
 const text = $('template');
@@ -506,8 +507,26 @@ function refresh() {
   check();
 }
 
-async function post(path, body) {
-  return fetch(path, { method: 'POST', body, headers: { 'Content-Type': 'text/plain' } });
+const inFlight = {};   // by view ('model', 'cut', 'variants'): the AbortController of its request
+
+/// POSTs the template text `body` to `path` (server_request.js ask()). With a `view`, the
+/// request replaces the view's earlier one, which is aborted (the server then drops or stops
+/// its work), so that at most one request per view is in flight. Resolves to the answer, or to
+/// null when a newer request of the view replaced this one.
+async function post(path, body, view = null) {
+  let signal;
+  if (view) {
+    inFlight[view]?.abort();
+    inFlight[view] = new AbortController();
+    signal = inFlight[view].signal;
+  }
+  try {
+    return await ask(path, { method: 'POST', body, signal,
+                             headers: { 'Content-Type': 'text/plain' } });
+  } catch (e) {
+    if (e.name === 'AbortError') return null;
+    throw e;
+  }
 }
 
 function showVerdict() {
@@ -557,8 +576,9 @@ async function cut(coarse) {
   const y = lo + (hi - lo) * Number($('plane').value);
   $('height').textContent = y.toFixed(2);
   const t0 = performance.now();
-  await showPicture($('section'),
-                    await post(`/api/section.png?y=${y}${coarse ? '&coarse=1' : ''}`, doc.text));
+  const answer = await post(`/api/section.png?y=${y}${coarse ? '&coarse=1' : ''}`, doc.text,
+                            'cut');
+  if (answer) await showPicture($('section'), answer);
   $('cut-time').textContent = `${((performance.now() - t0) / 1000).toFixed(2)} s${coarse ? ' (coarse)' : ''}`;
   sectionBusy = false;
   if (sectionAgain !== null) {
@@ -605,8 +625,8 @@ async function runCheck(mine) {
 async function showModel(mine, body) {
   if (!model) return;
   const outside = $('show-outside').checked;
-  const glb = await post(outside ? '/api/skin.glb' : '/api/model.glb', body);
-  if (mine !== version || !glb.ok || outside !== $('show-outside').checked) return;
+  const glb = await post(outside ? '/api/skin.glb' : '/api/model.glb', body, 'model');
+  if (!glb || mine !== version || !glb.ok || outside !== $('show-outside').checked) return;
   await model.show(await glb.arrayBuffer(), !framed, outside);
   framed = true;
 }
@@ -631,8 +651,8 @@ $('show-variants').addEventListener('change', () => {
 async function showVariants(mine, body) {
   if (mine !== version || !$('show-variants').checked) return;
   const t0 = performance.now();
-  const answer = await post('/api/variants.png?count=4', body);
-  if (mine !== version) return;
+  const answer = await post('/api/variants.png?count=4', body, 'variants');
+  if (!answer || mine !== version) return;
   if (await showPicture($('variants'), answer)) {
     $('variants-time').textContent = `${((performance.now() - t0) / 1000).toFixed(1)} s`;
   }
@@ -662,7 +682,7 @@ function makeModelView() {
   }
 }
 const model = makeModelView();
-const start = await (await fetch('/api/template')).json();
+const start = await (await ask('/api/template')).json();
 $('file').textContent = start.file;
 saved = start.exists ? start.text : '';
 const stem = start.file.replace(/\.yaml$/, '').toLowerCase().replace(/[^a-z0-9_-]/g, '-').slice(0, 64);

@@ -3,18 +3,23 @@
 // saving: every shipped template opened and saved unchanged keeps its model bytes. Its bounds,
 // each with the request or load that broke them before: bodies too large whatever their
 // encoding, slow clients by the hundred beside variant strips, a FIFO in place of the
-// template, a file name that is not UTF-8.
+// template, a file name that is not UTF-8. Its work only for its own page: requests without the
+// page's token, a foreign page's image, a wrong volume name, work over the queue's bound and
+// stale requests of a view start nothing, and checks are answered while work runs. Work is
+// asserted by the server's counts and statuses, never by times.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <mutex>
 #include <regex>
 #include <string>
 #include <thread>
@@ -48,11 +53,12 @@ using namespace std::chrono_literals;
 
 /// A server on a free port for `template_path`, running on its own thread while in scope, with
 /// options as `adjust` makes them. Its pictures are stand-ins that say what they were given
-/// (the OpenGL previews have tests of their own).
+/// (the OpenGL previews have tests of their own), or as `draw` makes them.
 class RunningServer {
  public:
   explicit RunningServer(const fs::path& template_path,
-                         const std::function<void(EditServerOptions&)>& adjust = nullptr) {
+                         const std::function<void(EditServerOptions&)>& adjust = nullptr,
+                         const std::function<void(EditRenderers&)>& draw = nullptr) {
     EditServerOptions o;
     o.template_path = template_path;
     o.port = 0;
@@ -69,6 +75,7 @@ class RunningServer {
       for (const auto& c : cuts) out += c ? std::to_string(c->position.size()) + "," : "-,";
       return out;
     };
+    if (draw) draw(r);
     server_ = std::make_unique<EditServer>(o, r);
     thread_ = std::thread([this] { server_->run(); });
   }
@@ -77,10 +84,13 @@ class RunningServer {
     thread_.join();
   }
   int port() const { return server_->port(); }
-  /// A client that sends the server's own Host header.
+  const std::string& token() const { return server_->token(); }
+  EditWorkCounts counts() const { return server_->work_counts(); }
+  /// A client that sends the server's own Host header and its page's token.
   httplib::Client client() const {
     httplib::Client c("127.0.0.1", port());
     c.set_read_timeout(60, 0);
+    c.set_default_headers({{std::string(kTokenHeader), token()}});
     return c;
   }
 
@@ -162,9 +172,11 @@ int raw_status(const std::string& answer) {
   return answer.rfind("HTTP/1.1 ", 0) == 0 ? std::atoi(answer.c_str() + 9) : -1;
 }
 
-/// A request head for the server on `port`, with `headers` (each ending in CRLF) added.
-std::string request_head(int port, const std::string& line, const std::string& headers) {
-  return line + "\r\nHost: 127.0.0.1:" + std::to_string(port) + "\r\n" + headers + "\r\n";
+/// A request head for `server`, with its Host and token and `headers` (each ending in CRLF).
+std::string request_head(const RunningServer& server, const std::string& line,
+                         const std::string& headers) {
+  return line + "\r\nHost: 127.0.0.1:" + std::to_string(server.port()) + "\r\n" +
+         std::string(kTokenHeader) + ": " + server.token() + "\r\n" + headers + "\r\n";
 }
 
 TEST(EditServer, RefusesForeignHostsAndOrigins) {
@@ -431,7 +443,7 @@ TEST(EditServer, BoundsChunkedBodies) {
   constexpr size_t kLimit = 64u << 10;
   RunningServer server(file, [](EditServerOptions& o) { o.max_body_bytes = kLimit; });
   RawConnection big(server.port());
-  ASSERT_TRUE(big.send(request_head(server.port(), "POST /api/check HTTP/1.1",
+  ASSERT_TRUE(big.send(request_head(server, "POST /api/check HTTP/1.1",
                                     "Transfer-Encoding: chunked\r\n")));
   // A sender offers 256 MiB in 64 KiB chunks; the server's answer must come long before.
   std::atomic<size_t> sent{0};
@@ -447,7 +459,7 @@ TEST(EditServer, BoundsChunkedBodies) {
 
   const std::string text = "format: cutaway-template/1\nname: x\n";
   RawConnection small(server.port());
-  ASSERT_TRUE(small.send(request_head(server.port(), "POST /api/check HTTP/1.1",
+  ASSERT_TRUE(small.send(request_head(server, "POST /api/check HTTP/1.1",
                                       "Transfer-Encoding: chunked\r\nConnection: close\r\n")));
   char size[16];
   std::snprintf(size, sizeof size, "%zx\r\n", text.size());
@@ -467,7 +479,7 @@ TEST(EditServer, RefusesBodiesItCannotBound) {
   const auto answer = [&](const std::string& line, const std::string& headers,
                           const std::string& body) {
     RawConnection c(server.port());
-    c.send(request_head(server.port(), line, headers) + body);
+    c.send(request_head(server, line, headers) + body);
     return c.read_to_close();
   };
   const std::string gzip_bytes("\x1f\x8b\x08\x00\x00\x00\x00\x00\x00\x03", 10);
@@ -507,7 +519,7 @@ TEST(EditServer, RefusesBodiesItCannotBound) {
 // 200 clients that send their heads a line at a time (slowloris) and eight strips of variants
 // at once do not delay checks: the checks are answered while the slow connections are still
 // held and while a strip is being made, the slow connections are closed at the request timeout,
-// and only one strip is made at a time (the older requests are answered 503). The test orders
+// and only one strip is made at a time (the older requests are answered 409). The test orders
 // events rather than timing them: a strip makes eight variants and cuts them, a check builds one
 // model, so a check queued behind a strip or a slow client would be answered after it.
 TEST(EditServer, AnswersChecksBesideSlowClientsAndVariants) {
@@ -563,7 +575,7 @@ TEST(EditServer, AnswersChecksBesideSlowClientsAndVariants) {
   }
   for (std::thread& t : variants) t.join();
   // A strip was made, and every check was answered before it was.
-  for (const int status : variants_status) EXPECT_TRUE(status == 200 || status == 503) << status;
+  for (const int status : variants_status) EXPECT_TRUE(status == 200 || status == 409) << status;
   Clock::time_point strip_made = Clock::time_point::min();
   for (size_t k = 0; k < variants_status.size(); ++k)
     if (variants_status[k] == 200) strip_made = std::max(strip_made, variants_answered[k]);
@@ -582,7 +594,7 @@ TEST(EditServer, TurnsAwayConnectionsOverTheBound) {
   std::vector<RawConnection> held;
   for (int k = 0; k < 3; ++k) held.emplace_back(server.port());
   RawConnection over(server.port());
-  over.send(request_head(server.port(), "GET /api/template HTTP/1.1", ""));
+  over.send(request_head(server, "GET /api/template HTTP/1.1", ""));
   const std::string refused = over.read_to_close();
   EXPECT_EQ(raw_status(refused), 503) << refused;
   held.pop_back();
@@ -655,6 +667,14 @@ int printed_port(const fs::path& log) {
   return 0;
 }
 
+/// The token in the page that the server `c` talks to serves at /; empty when there is none.
+std::string token_of_page(httplib::Client& c) {
+  const auto page = c.Get("/");
+  std::smatch m;
+  const std::regex meta(R"re(<meta name="cutaway-token" content="([0-9a-f]{32})">)re");
+  return page && std::regex_search(page->body, m, meta) ? m[1].str() : "";
+}
+
 /// Whether the child `pid` ended within `limit`, its wait status in *status (reaped).
 bool ends_within(pid_t pid, std::chrono::milliseconds limit, int* status) {
   for (const Clock::time_point until = Clock::now() + limit; Clock::now() < until;) {
@@ -683,6 +703,7 @@ TEST(EditServer, StopsOnSigtermWithAFifoTemplate) {
   }
   httplib::Client c("127.0.0.1", port);
   c.set_read_timeout(1, 0);
+  c.set_default_headers({{std::string(kTokenHeader), token_of_page(c)}});
   EXPECT_EQ(status_of(c.Get("/api/template")), 500);
   RawConnection slow(port);
   slow.send("GET / HTTP/1.1\r\n");
@@ -738,6 +759,268 @@ TEST(EditServer, ASaveThatFailsWritesNothing) {
   EXPECT_TRUE(fs::is_directory(folder));
   EXPECT_TRUE(fs::is_empty(folder));
   EXPECT_EQ(test::files_in(dir), std::vector<std::string>{});
+}
+
+/// Waits until `server`'s work counts pass `ready` (at most a minute, for a broken server);
+/// whether they did.
+bool counts_reach(const RunningServer& server,
+                  const std::function<bool(const EditWorkCounts&)>& ready) {
+  for (const Clock::time_point until = Clock::now() + 60s; Clock::now() < until;) {
+    if (ready(server.counts())) return true;
+    std::this_thread::sleep_for(5ms);
+  }
+  return false;
+}
+
+/// Where stand-in pictures wait until the test opens it, so that work stays running for as
+/// long as the test needs.
+class Gate {
+ public:
+  /// Called by a picture: counts it in, then waits until the gate is open.
+  void pass() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    ++arrived_;
+    changed_.notify_all();
+    changed_.wait(lock, [&] { return open_; });
+  }
+  /// Waits until `n` pictures have arrived (at most a minute); whether they did.
+  bool arrived(int n) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    return changed_.wait_for(lock, 60s, [&] { return arrived_ >= n; });
+  }
+  void open() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    open_ = true;
+    changed_.notify_all();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  int arrived_ = 0;
+  bool open_ = false;
+};
+
+// Every request to /api/ needs the token of the page the server served, a new one for each
+// server: without it, or with another server's, it is refused (403) before any work, and the
+// file is not written. The pages carry it and are not cached.
+TEST(EditServer, RefusesApiRequestsWithoutThePagesToken) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  const std::string text = test::read_file(file) + "# edited\n";
+  RunningServer server(file, [](EditServerOptions& o) { o.volume_voxels_across = 8; });
+  RunningServer other(file);
+  EXPECT_EQ(server.token().size(), 32u);
+  EXPECT_NE(server.token(), other.token());
+  httplib::Client c("127.0.0.1", server.port());  // a client without the token
+  EXPECT_EQ(token_of_page(c), server.token());
+  const auto cutting = c.Get("/cut.html");
+  ASSERT_TRUE(cutting);
+  EXPECT_NE(cutting->body.find("content=\"" + server.token() + "\""), std::string::npos);
+  EXPECT_EQ(cutting->get_header_value("Cache-Control"), "no-store");
+  const std::string header(kTokenHeader);
+  for (const char* path :
+       {"/api/check", "/api/model.png", "/api/model.glb", "/api/skin.glb", "/api/section.png?y=26",
+        "/api/variants.png", "/api/save", "/api/volume/tomato.json", "/api/volume/tomato.glb"}) {
+    for (const httplib::Headers& headers :
+         {httplib::Headers{}, httplib::Headers{{header, other.token()}},
+          httplib::Headers{{header, ""}}, httplib::Headers{{header, server.token().substr(1)}}})
+      EXPECT_EQ(status_of(c.Post(path, headers, text, "text/plain")), 403) << path;
+  }
+  EXPECT_EQ(status_of(c.Get("/api/template")), 403);
+  const EditWorkCounts counts = server.counts();
+  EXPECT_EQ(counts.finished + counts.running + counts.waiting, 0);
+  EXPECT_EQ(counts.volumes_sampled, 0);
+  EXPECT_TRUE(untouched(file));
+  EXPECT_EQ(status_of(server.client().Post("/api/check", text, "text/plain")), 200);
+}
+
+// A page of another origin that embeds <img src="http://127.0.0.1:PORT/api/volume/x.json">
+// makes the browser send a GET with the right Host and no Origin: it starts no work (it once
+// sampled a volume for minutes). Nor does a GET with the token: the volume is POST only.
+TEST(EditServer, AForeignPagesImageStartsNoWork) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  RunningServer server(file, [](EditServerOptions& o) { o.volume_voxels_across = 8; });
+  const std::string port = std::to_string(server.port());
+  for (const std::string& host : {"127.0.0.1:" + port, "localhost:" + port}) {
+    for (const char* path : {"/api/volume/anything.json", "/api/volume/tomato.json",
+                             "/api/volume/tomato.glb"}) {
+      RawConnection img(server.port());
+      img.send(std::string("GET ") + path + " HTTP/1.1\r\nHost: " + host +
+               "\r\nAccept: image/avif,image/webp,image/*,*/*;q=0.8\r\n"
+               "Referer: http://127.0.0.1:1/page.html\r\nSec-Fetch-Site: same-site\r\n"
+               "Sec-Fetch-Mode: no-cors\r\nSec-Fetch-Dest: image\r\nConnection: close\r\n\r\n");
+      const std::string answer = img.read_to_close();
+      EXPECT_EQ(raw_status(answer), 403) << host << path << answer;
+    }
+  }
+  EXPECT_EQ(status_of(server.client().Get("/api/volume/tomato.json")), 404);
+  const EditWorkCounts counts = server.counts();
+  EXPECT_EQ(counts.volumes_sampled, 0);
+  EXPECT_EQ(counts.finished + counts.running + counts.waiting, 0);
+}
+
+// The volume's name is compared before any work (a wrong one was once answered 404 after the
+// whole volume was sampled); the volume is sampled once for its template, whichever files are
+// asked for, and a save that changes only a comment does not sample it again.
+TEST(EditServer, SamplesTheVolumeOnlyForItsNameAndOncePerTemplate) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  const std::string text = test::read_file(file);
+  RunningServer server(file, [](EditServerOptions& o) { o.volume_voxels_across = 8; });
+  httplib::Client c = server.client();
+  const auto wrong = c.Post("/api/volume/wrongname.json", "", "text/plain");
+  ASSERT_TRUE(wrong);
+  EXPECT_EQ(wrong->status, 404);
+  EXPECT_NE(wrong->body.find("the volume of tomato"), std::string::npos) << wrong->body;
+  EXPECT_EQ(server.counts().volumes_sampled, 0);
+  EXPECT_EQ(server.counts().finished, 0);  // not even queued
+  const auto sidecar = c.Post("/api/volume/tomato.json", "", "text/plain");
+  ASSERT_TRUE(sidecar);
+  ASSERT_EQ(sidecar->status, 200) << sidecar->body;
+  EXPECT_EQ(nlohmann::json::parse(sidecar->body)["template"], "tomato");
+  for (const char* kind : {"colour.png", "structure.png", "material.png", "glb"})
+    EXPECT_EQ(status_of(c.Post(std::string("/api/volume/tomato.") + kind, "", "text/plain")), 200)
+        << kind;
+  EXPECT_EQ(server.counts().volumes_sampled, 1);
+  EXPECT_EQ(status_of(c.Post("/api/save", text + "\n# only a comment\n", "text/plain")), 200);
+  const auto again = c.Post("/api/volume/tomato.json", "", "text/plain");
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->body, sidecar->body);
+  EXPECT_EQ(server.counts().volumes_sampled, 1);
+  // A change of the template (here its description) samples it again.
+  std::string changed = text;
+  changed.replace(changed.find("70 mm across"), 12, "71 mm across");
+  EXPECT_EQ(status_of(c.Post("/api/save", changed, "text/plain")), 200);
+  EXPECT_EQ(status_of(c.Post("/api/volume/tomato.json", "", "text/plain")), 200);
+  EXPECT_EQ(server.counts().volumes_sampled, 2);
+}
+
+// Work is admitted up to max_work_requests, running or waiting; one more is refused at once
+// with 503 and Retry-After, and checks and saves are answered while the work runs. A stand-in
+// picture held at a gate keeps the work running for as long as the test needs.
+TEST(EditServer, RefusesWorkOverItsBoundAndChecksMeanwhile) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  const std::string text = test::read_file(file);
+  Gate gate;
+  RunningServer server(
+      file,
+      [](EditServerOptions& o) {
+        o.max_work_requests = 2;
+        o.volume_voxels_across = 8;
+      },
+      [&](EditRenderers& r) {
+        r.model_png = [&](const DsModel&) {
+          gate.pass();
+          return std::string("model");
+        };
+      });
+  int picture_status = 0, cut_status = 0;
+  std::thread picture([&] {
+    picture_status = status_of(server.client().Post("/api/model.png", text, "text/plain"));
+  });
+  ASSERT_TRUE(gate.arrived(1));
+  // The cut runs beside it, then waits to draw (one picture at a time).
+  std::thread cut([&] {
+    cut_status = status_of(server.client().Post("/api/section.png?y=26", text, "text/plain"));
+  });
+  EXPECT_TRUE(counts_reach(server, [](const EditWorkCounts& c) { return c.running == 2; }));
+  httplib::Client c = server.client();
+  for (const char* path : {"/api/variants.png", "/api/skin.glb", "/api/volume/tomato.json"}) {
+    const auto busy = c.Post(path, text, "text/plain");
+    ASSERT_TRUE(busy) << path;
+    EXPECT_EQ(busy->status, 503) << path;
+    EXPECT_EQ(busy->get_header_value("Retry-After"), "1") << path;
+  }
+  const auto checked = c.Post("/api/check", text + "# edited\n", "text/plain");
+  ASSERT_TRUE(checked);
+  EXPECT_TRUE(nlohmann::json::parse(checked->body)["ok"]) << checked->body;
+  EXPECT_EQ(status_of(c.Post("/api/save", text + "# saved\n", "text/plain")), 200);
+  EditWorkCounts counts = server.counts();
+  EXPECT_EQ(counts.running, 2);  // the check and the save were answered while both ran
+  EXPECT_EQ(counts.finished, 0);
+  EXPECT_EQ(counts.turned_away, 3);
+  EXPECT_EQ(counts.volumes_sampled, 0);
+  gate.open();
+  picture.join();
+  cut.join();
+  EXPECT_EQ(picture_status, 200);
+  EXPECT_EQ(cut_status, 200);
+  counts = server.counts();
+  EXPECT_EQ(counts.finished, 2);
+  EXPECT_EQ(counts.running + counts.waiting, 0);
+  EXPECT_EQ(status_of(c.Post("/api/variants.png?count=1", text, "text/plain")), 200);
+}
+
+// A newer request of a view replaces the older one waiting, which is answered 409 at once
+// (before the running one ends); the one running finishes, then the newest runs.
+TEST(EditServer, ANewerRequestOfAViewReplacesTheOlder) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  const std::string text = test::read_file(file);
+  Gate gate;
+  RunningServer server(file, nullptr, [&](EditRenderers& r) {
+    r.model_png = [&](const DsModel&) {
+      gate.pass();
+      return std::string("model");
+    };
+  });
+  std::array<int, 3> status{};
+  const auto ask = [&](size_t k) {
+    return std::thread([&, k] {
+      status[k] = status_of(server.client().Post(
+          "/api/model.png", text + "# edit " + std::to_string(k) + "\n", "text/plain"));
+    });
+  };
+  std::thread first = ask(0);
+  ASSERT_TRUE(gate.arrived(1));
+  std::thread second = ask(1);
+  EXPECT_TRUE(counts_reach(server, [](const EditWorkCounts& c) { return c.waiting == 1; }));
+  std::thread third = ask(2);
+  second.join();  // answered while the first is still held at the gate
+  EXPECT_EQ(status[1], 409);
+  EXPECT_EQ(server.counts().superseded, 1);
+  EXPECT_EQ(server.counts().finished, 0);
+  gate.open();
+  first.join();
+  third.join();
+  EXPECT_EQ(status[0], 200);
+  EXPECT_EQ(status[2], 200);
+  EXPECT_EQ(server.counts().finished, 2);
+}
+
+// Twelve skin bakes asked for at once (the page once sent one per edit and cancelled none) held
+// the one work lock, and a check waited behind them all. Now the check is answered while the
+// first bake still runs, and the bakes do not pile up: one runs, one waits, the others are
+// replaced (409); a straggler may come after a bake ended.
+TEST(EditServer, AnswersChecksWhileSkinsBake) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("cantaloupe", dir);
+  const std::string text = test::read_file(file);
+  RunningServer server(file);
+  std::array<int, 12> status{};
+  std::vector<std::thread> bakes;
+  for (size_t k = 0; k < status.size(); ++k) {
+    bakes.emplace_back([&, k] {
+      httplib::Client c = server.client();
+      c.set_read_timeout(600, 0);
+      status[k] = status_of(c.Post("/api/skin.glb", text, "text/plain"));
+    });
+  }
+  EXPECT_TRUE(counts_reach(server, [](const EditWorkCounts& c) { return c.running == 1; }));
+  const auto checked = server.client().Post("/api/check", text + "\n# edited\n", "text/plain");
+  const EditWorkCounts during = server.counts();
+  ASSERT_TRUE(checked);
+  EXPECT_TRUE(nlohmann::json::parse(checked->body)["ok"]) << checked->body;
+  EXPECT_EQ(during.finished, 0) << "the check waited for a bake";
+  for (std::thread& t : bakes) t.join();
+  for (const int s : status) EXPECT_TRUE(s == 200 || s == 409) << s;
+  const EditWorkCounts after = server.counts();
+  EXPECT_EQ(after.finished + after.superseded, 12);
+  EXPECT_LE(after.finished, 3);
+  EXPECT_EQ(static_cast<int>(std::count(status.begin(), status.end(), 200)), after.finished);
 }
 
 }  // namespace
