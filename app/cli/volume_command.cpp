@@ -52,8 +52,9 @@ struct VolumePaths {
 
 /// Refuses a stem (an -o without extension) that names a folder rather than files beside
 /// one: a trailing '/', ".", ".." or an existing folder ('d2/' would write 'd2/.vdb', '.' would
-/// write '..vdb').
-/// @throws UsageError "-o 'STEM': RULE"
+/// write '..vdb'); and one that is an output's extension alone ('d2/.json', which has no
+/// extension to std::filesystem, would write 'd2/.json.vdb').
+/// @throws UsageError "-o \"STEM\": RULE"
 void require_file_stem(const std::string& stem) {
   const fs::path path(stem);
   const fs::path name = path.filename();
@@ -62,6 +63,10 @@ void require_file_stem(const std::string& stem) {
     throw UsageError("-o " + quoted(stem) + ": a stem names the files STEM.vdb, STEM.json and "
                      "STEM.glb, not a folder; give a file name, e.g. " +
                      quoted((path / "").string() + "NAME"));
+  for (const char* ext : {".vdb", ".json", ".glb", ".gltf"})
+    if (name == ext)
+      throw UsageError("-o " + quoted(stem) + ": no file name before the extension; give e.g. " +
+                       quoted((path.parent_path() / "NAME").string() + ext));
 }
 
 /// -o paths sorted by form: a stem without extension asks for all three forms.

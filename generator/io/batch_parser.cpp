@@ -60,7 +60,7 @@ void check_volume_cost(const Batch& b, const ObjectExtents& extents, const std::
   const Check cost = check_volume_rays(n.x * n.y * n.z, cube);
   if (cost) return;
   const int most = most_voxels_across(box, cube);
-  field.fail(cost.reason() + " for template " + quoted(name) + "; " +
+  field.fail("template " + quoted(name) + ": " + cost.reason() + "; " +
              (most >= kMinBatchVolumeVoxels
                   ? "give volume_voxels " + std::to_string(most) + " or fewer"
                   : std::string("give a smaller export.cube")));
