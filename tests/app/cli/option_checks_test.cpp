@@ -33,8 +33,9 @@ bool numeric(const CLI::Option& option) {
   return option.get_type_size() != 0 && (base == "INT" || base == "UINT" || base == "FLOAT");
 }
 
-/// A command line of subcommand `path` ("volume", "batch merge") that would do its work, with
-/// its outputs in `dir`, so that a value not refused while parsing shows as work or output.
+/// A command line of subcommand `path` ("volume", "batch merge") that would do its work (but
+/// `edit`'s), with its outputs in `dir`, so that a value not refused while parsing shows as
+/// work, output or another message.
 std::vector<std::string> working_command(const std::string& path, const fs::path& dir) {
   const std::string out = (dir / "out").string();
   const std::map<std::string, std::vector<std::string>> commands = {
@@ -48,7 +49,9 @@ std::vector<std::string> working_command(const std::string& path, const fs::path
       {"batch merge", {"batch", "merge", out}},
       {"volume", {"volume", "templates/cherry.yaml", "--voxel", "2", "-o", out}},
       {"check", {"check", "templates/cherry.yaml"}},
-      {"edit", {"edit", (dir / "new.yaml").string()}},
+      // A template in a missing folder: `edit` refuses it at once instead of serving forever,
+      // so a value the rules let through fails the test without hanging it.
+      {"edit", {"edit", (dir / "missing" / "new.yaml").string()}},
   };
   const auto it = commands.find(path);
   return it == commands.end() ? std::vector<std::string>{} : it->second;
