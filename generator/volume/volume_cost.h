@@ -26,8 +26,9 @@ inline constexpr int kClassifyRaysPerVoxel = 21;
 
 /// The rays a volume of `voxels` voxels casts with PMVC cube-map size `cube`, counted as
 /// voxels x (kClassifyRaysPerVoxel + 6 cube^2): every voxel a PMVC point casting every texel
-/// of its cube. An upper bound in practice: 30 to 60 % of a shipped template's voxels are
-/// solid (the PMVC points), and adaptive directions (the default) cast about 40 % of the cube.
+/// of its cube. An upper bound in practice: a quarter to two thirds of a shipped template's
+/// voxels are solid (the PMVC points), and adaptive directions (the default) cast about 40 %
+/// of the cube.
 constexpr double volume_rays(double voxels, int cube) {
   return voxels * (kClassifyRaysPerVoxel + 6.0 * cube * cube);
 }
