@@ -208,12 +208,12 @@ Command add_batch_command(CLI::App& app) {
   batch->add_flag("--slurm", args->slurm,
                   "write DIR/batch.sbatch, an sbatch array job of --array shards, and submit it");
   batch->add_option("--array", args->array, "with --slurm: array tasks (shards; default 4)")
-      ->check(CLI::Range(1, 100000));
+      ->check(number_rule(1, 100000));
   batch->add_option("--partition", args->partition, "with --slurm: the Slurm partition");
   batch->add_option("--time", args->time, "with --slurm: each task's time limit (e.g. 2:00:00)");
   batch->add_option("--cpus-per-task", args->cpus_per_task,
                     "with --slurm: CPUs per task, its --threads (default 1)")
-      ->check(CLI::Range(1, 1024));
+      ->check(number_rule(1, 1024));
   batch->add_flag("--dry-run", args->dry_run, "with --slurm: write the script, do not submit");
   add_cache_options(batch, args->cache);
   auto merge_dir = std::make_shared<std::string>();

@@ -78,6 +78,12 @@ Command add_check_command(CLI::App& app);
 /// `cutaway edit [TEMPLATE] [--port N]`.
 Command add_edit_command(CLI::App& app);
 
+/// Makes `app` the `cutaway` command line: its description, --version, the common options
+/// (stored into `options` when parsed) and every subcommand above, registered but not parsed
+/// or run; main() parses the arguments and runs the chosen one (run_command).
+/// @returns the subcommands, in the order of `cutaway --help`
+std::vector<Command> add_cutaway_commands(CLI::App& app, CommonOptions& options);
+
 /// Runs the chosen `command` as every subcommand runs (app/cli/run_command.cpp): its output
 /// paths checked, its outputs committed when it returns 0, `--stats` printed, and each error
 /// turned into its message on stderr and its exit code (2 bad input, 1 failure).

@@ -9,11 +9,14 @@
 #include <mutex>
 #include <thread>
 
+#include <glm/vec3.hpp>
 #include <spdlog/spdlog.h>
 
 #include "app/cli/commands.h"
 #include "app/edit/edit_pictures.h"
 #include "app/edit/edit_server.h"
+#include "diffusion/diffusion.h"
+#include "volume/volume_cost.h"
 
 namespace cutaway::cli {
 
@@ -87,10 +90,11 @@ Command add_edit_command(CLI::App& app) {
                    "template file (.yaml); may be new (default new-template.yaml here)");
   edit->add_option("--port", args->port,
                    "port on 127.0.0.1 (default 8765; 0: any free port, printed)")
-      ->check(CLI::Range(0, 65535));
+      ->check(number_rule(0, 65535));
+  // The page's volumes (cube 16) within the cost of every volume, whatever the skin's shape.
   edit->add_option("--volume-voxels", args->volume_voxels,
                    "voxels along the longest edge of the cutting page's interior volume")
-      ->check(CLI::Range(4, 256));
+      ->check(number_rule(4, most_voxels_across(glm::dvec3(1), DiffusionOptions{}.cube_size)));
   return {edit, [args](const Common&, OutputSet&) { return run_edit(*args); }};
 }
 

@@ -1,5 +1,5 @@
-// The `cutaway` command line: registers the subcommands (one NAME_command.cpp each), parses the
-// arguments and runs the chosen one; nothing else lives here (doc/architecture.md, Style).
+// The `cutaway` command line: builds the app (cutaway_app.cpp), parses the arguments and runs
+// the chosen subcommand; nothing else lives here (doc/architecture.md, Style).
 // Exit codes: 0 success, 2 bad input, 1 internal failure, 3 an incomplete batch.
 #include <optional>
 #include <vector>
@@ -13,17 +13,9 @@
 
 int main(int argc, char** argv) {
   using namespace cutaway::cli;
-  CLI::App app{"cutaway: cut objects with a consistent interior, from diffusion surfaces "
-               "(Takayama et al. 2010)"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", "cutaway " CUTAWAY_VERSION);
-  app.fallthrough();  // common options may follow the subcommand
+  CLI::App app;
   CommonOptions options;
-  add_common_options(app, options);
-  const std::vector<Command> commands{
-      add_model_command(app), add_section_command(app), add_variants_command(app),
-      add_piece_command(app), add_sheet_command(app),   add_scene_command(app),
-      add_batch_command(app), add_volume_command(app), add_check_command(app),   add_edit_command(app)};
+  const std::vector<Command> commands = add_cutaway_commands(app, options);
 
   spdlog::set_default_logger(spdlog::stderr_color_st("cutaway"));
   spdlog::set_pattern("%v");

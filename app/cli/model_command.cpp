@@ -86,7 +86,7 @@ Command add_model_command(CLI::App& app) {
                     "glTF binary to write (.glb); default NAME.glb when no --png is given");
   model->add_option("--png", args->png, "PNG picture of the see-through model");
   model->add_option("--size", args->width, "PNG width and height in pixels")
-      ->check(CLI::Range(16, 2880));
+      ->check(number_rule(16, 2880));
   model->add_option("--seed", args->seed, "build the random variant of this seed")
       ->check(seed_rule());
   return {model, [args](const Common& common, OutputSet& outputs) {

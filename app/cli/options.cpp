@@ -1,11 +1,16 @@
 #include "app/cli/options.h"
 
+#include <cmath>
 #include <filesystem>
+#include <functional>
 
+#include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 
 #include "app/cli/commands.h"
 #include "batch/variant_batch.h"
+#include "base/error.h"
+#include "base/outcome.h"
 #include "io/text_rules.h"
 
 namespace cutaway::cli {
@@ -30,7 +35,32 @@ CLI::Validator notation_rule(Parse parse, const char* name) {
       name);
 }
 
+/// The CLI11 rule of a number: the text passes when parse_decimal reads it and `accepts` the
+/// value, else fails with "must be WORDS, not TEXT" (CLI11 puts the option's name before it).
+/// `range` describes the accepted values in the help, after the option's type.
+CLI::Validator decimal_rule(std::function<bool(double)> accepts, const std::string& words,
+                            const std::string& range) {
+  return CLI::Validator(
+      [accepts, words](std::string& text) {
+        const Outcome<double> value = parse_decimal(text, "the value");
+        if (value && accepts(*value)) return std::string();
+        return "must be " + words + ", not " + quoted(text);
+      },
+      range);
+}
+
 }  // namespace
+
+CLI::Validator number_rule(double min, double max, bool whole) {
+  return decimal_rule(
+      [=](double v) { return v >= min && v <= max && (!whole || v == std::floor(v)); },
+      fmt::format("a {}number from {} to {}", whole ? "whole " : "", min, max),
+      fmt::format("in [{} - {}]", min, max));
+}
+
+CLI::Validator positive_number_rule() {
+  return decimal_rule([](double v) { return v > 0; }, "a number above 0", "above 0");
+}
 
 const CLI::Validator& seed_rule() {
   static const CLI::Validator rule = notation_rule(parse_seed, "SEED");
@@ -63,7 +93,7 @@ void add_export_options(CLI::App* command, std::string& compress, int& lods,
       ->add_option("--lods", lods,
                    "glTF levels of detail per mesh (MSFT_lod, nodes NAME_LOD1...): level L has "
                    "about 2^-L of the triangles, outlines and seams kept (default 0)")
-      ->check(CLI::Range(0, 4));
+      ->check(number_rule(0, 4));
   command
       ->add_option("--textures", textures,
                    "base-colour texture images in .glb, .gltf and .pov: jpeg (the default, about "
@@ -82,7 +112,7 @@ void add_cache_options(CLI::App* command, CacheArgs& args) {
                    "the cut cache's size bound, e.g. 500M or 8G (default 4G): the least "
                    "recently used entries beyond it are removed")
       ->transform(CLI::AsSizeValue(false))
-      ->check(CLI::Range(uint64_t{1} << 20, uint64_t{1} << 50));
+      ->check(number_rule(uint64_t{1} << 20, uint64_t{1} << 50));
   command
       ->add_flag("--cache-shared", args.shared,
                  "accept a cut cache folder that other users can write (a cache shared by a "
@@ -114,7 +144,7 @@ void add_common_options(CLI::App& app, CommonOptions& o) {
   app.add_flag("-q,--quiet", o.quiet, "print errors only");
   app.add_flag("-v,--verbose", o.verbose, "print progress and details");
   app.add_option("--threads", o.threads, "worker threads (0: all cores); results do not depend on it")
-      ->check(CLI::Range(0, 1024));
+      ->check(number_rule(0, 1024));
   app.add_option("--backend", o.backend,
                  "colour diffusion: cpu (Embree ray casting), gl (the same rays in an OpenGL "
                  "compute shader), auto (gl on a GPU, else cpu)")

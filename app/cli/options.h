@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include <CLI/CLI.hpp>
 
@@ -16,6 +17,25 @@ struct UsageError : std::runtime_error {
 
 /// Throws UsageError "OPTION: 'PATH' must end in EXT" unless `path` ends in `ext` (".glb").
 void require_extension(const std::string& option, const std::string& path, const char* ext);
+
+/// The rule of a numeric option, for every numeric option of every subcommand: the text must be
+/// a decimal number (parse_decimal: digits, point, exponent; no nan, inf or hex) from `min` to
+/// `max`, and whole when `whole`. CLI11's own Range lets NaN through (every comparison with it
+/// is false); this rule refuses it while the arguments are parsed, before any work.
+/// @returns a CLI11 check that fails with 'must be a [whole] number from MIN to MAX, not "TEXT"'
+///          (CLI11 prefixes the option: exit code 2 with "OPTION: rule")
+CLI::Validator number_rule(double min, double max, bool whole);
+
+/// number_rule for an option of type T: whole numbers for an integer T.
+template <class T>
+CLI::Validator number_rule(T min, T max) {
+  return number_rule(static_cast<double>(min), static_cast<double>(max), std::is_integral_v<T>);
+}
+
+/// The rule of a numeric option with no upper bound of its own (a length whose limits follow
+/// from the input): a decimal number (as number_rule) above 0.
+/// @returns a CLI11 check that fails with 'must be a number above 0, not "TEXT"'
+CLI::Validator positive_number_rule();
 
 /// --seed's rule (parse_seed), checked on the text before CLI11 converts it, which would
 /// saturate a seed beyond 2^63 - 1 silently.

@@ -176,15 +176,15 @@ Command add_piece_command(CLI::App& app) {
   piece->add_option("-o,--output", args->output, "pieces to write: .glb, .gltf or .pov");
   piece->add_option("--png", args->png, "PNG of the pieces pulled slightly apart");
   piece->add_option("--cube", args->cube, "cube-map texels per face edge for PMVC")
-      ->check(CLI::Range(2, 256));
+      ->check(number_rule(2, 256));
   piece
       ->add_option("--perlin", args->perlin,
                    "Perlin colour modulation strength (0: off; default 1)")
-      ->check(CLI::Range(0.0, 10.0));
+      ->check(number_rule(0.0, 10.0));
   piece
       ->add_option("--silhouettes", args->silhouettes,
                    "silhouette stroke strength over the PNG and in .pov (0: off; default 1)")
-      ->check(CLI::Range(0.0, 10.0));
+      ->check(number_rule(0.0, 10.0));
   add_export_options(piece, args->compress, args->lods, args->textures);
   add_colours_option(piece, args->colours);
   piece->add_flag("--camera-and-lights", args->camera_and_lights,

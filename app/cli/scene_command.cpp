@@ -195,13 +195,13 @@ Command add_scene_command(CLI::App& app) {
   scene->add_option("--png", args->png, "OpenGL preview (PNG)");
   scene->add_option("--render", args->render, "POV-Ray render (PNG)");
   scene->add_option("--cube", args->cube, "cube-map texels per face edge for PMVC")
-      ->check(CLI::Range(2, 256));
+      ->check(number_rule(2, 256));
   add_colours_option(scene, args->colours);
   scene
       ->add_option("--texels-per-mm", args->texels_per_mm,
                    "texel density of baked cut-face textures (default: the scene's "
                    "render.texels_per_mm, else 8.6: a 60 mm cut face 516 texels across)")
-      ->check(CLI::Range(0.1, 100.0));
+      ->check(number_rule(0.1, 100.0));
   scene->add_flag("--power-of-two", args->power_of_two,
                   "baked textures with sides powers of two (default: multiples of 4, fewer "
                   "texels)");

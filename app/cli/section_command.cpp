@@ -111,9 +111,9 @@ Command add_section_command(CLI::App& app) {
                       "cut face to write: .glb (linear COLOR_0) or .ply (sRGB colours); "
                       "default NAME-section.glb when no --png is given");
   section->add_option("--png", args->png, "PNG of the cut face seen head-on (sRGB)");
-  section->add_option("--size", args->width, "PNG width in pixels")->check(CLI::Range(16, 2880));
+  section->add_option("--size", args->width, "PNG width in pixels")->check(number_rule(16, 2880));
   section->add_option("--cube", args->cube, "cube-map texels per face edge for PMVC")
-      ->check(CLI::Range(2, 256));
+      ->check(number_rule(2, 256));
   section->add_option("--seed", args->seed, "cut the random variant of this seed")
       ->check(seed_rule());
   return {section, [args](const Common& common, OutputSet& outputs) {

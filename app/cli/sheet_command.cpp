@@ -146,14 +146,14 @@ Command add_sheet_command(CLI::App& app) {
   sheet->add_option("--cut", args->cut,
                     "cut of templates without their own: as piece --cut, or across (one "
                     "horizontal plane at mid-height)");
-  sheet->add_option("--tile", args->tile, "tile width in pixels")->check(CLI::Range(64, 2048));
+  sheet->add_option("--tile", args->tile, "tile width in pixels")->check(number_rule(64, 2048));
   sheet->add_option("--columns", args->columns, "columns (0: about sqrt(4/3 tiles))")
-      ->check(CLI::Range(0, 64));
+      ->check(number_rule(0, 64));
   sheet->add_option("--cube", args->cube, "cube-map texels per face edge for PMVC")
-      ->check(CLI::Range(2, 256));
+      ->check(number_rule(2, 256));
   sheet->add_option("--silhouettes", args->silhouettes,
                     "silhouette stroke strength (0: off; default 1)")
-      ->check(CLI::Range(0.0, 10.0));
+      ->check(number_rule(0.0, 10.0));
   sheet->add_option("--seed", args->seed,
                     "cut every template's random variant of this seed (grains included) "
                     "instead of the template itself")

@@ -117,7 +117,7 @@ Command add_variants_command(CLI::App& app) {
   CLI::App* variants = app.add_subcommand(
       "variants", "random variants of a template (glb + manifest.json + contact-sheet.png)");
   variants->add_option("TEMPLATE", args->template_path, "template file (.yaml)")->required();
-  variants->add_option("--count", args->count, "number of variants")->check(CLI::Range(1, 100000));
+  variants->add_option("--count", args->count, "number of variants")->check(number_rule(1, 100000));
   variants->add_option("--seed", args->seed, "seed of the first variant (then seed + 1, ...)")
       ->check(seed_rule());
   variants->add_option("-o,--output", args->output_dir, "output folder")->required();
@@ -128,10 +128,10 @@ Command add_variants_command(CLI::App& app) {
   variants->add_option("--sheet", args->sheet,
                        "contact-sheet.png: the mid-height horizontal cuts of the first N "
                        "variants (of the shard) at one scale; 0: none")
-      ->check(CLI::Range(0, 256));
+      ->check(number_rule(0, 256));
   variants->add_option("--tile", args->tile,
                        "contact-sheet tile size in pixels (the largest cut's extent)")
-      ->check(CLI::Range(16, 4096));
+      ->check(number_rule(16, 4096));
   return {variants, [args, variants](const Common& common, OutputSet& outputs) {
             args->shard_given = variants->count("--shard") > 0;
             return run_variants(*args, common, outputs);

@@ -1,12 +1,15 @@
 // `cutaway volume`: a variant's interior as a volume (OpenVDB, flipbook PNGs with a JSON
 // sidecar, and the whole object as glTF referring to them). Argument checks and calls into the
 // libraries only.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 
 #include "app/cli/commands.h"
@@ -18,11 +21,11 @@
 #include "export/vdb_export.h"
 #include "export/volume_flipbook.h"
 #include "io/template_parser.h"
-#include "io/text_rules.h"
 #include "material/colour_modulation.h"
 #include "model/model_builder.h"
 #include "variation/variation.h"
 #include "volume/interior_volume.h"
+#include "volume/volume_cost.h"
 
 namespace cutaway::cli {
 
@@ -37,7 +40,7 @@ struct VolumeArgs {
   std::string template_path;
   std::vector<std::string> outputs;
   int64_t seed = -1;    ///< >= 0: the variant of this seed instead of the template
-  std::string voxel;    ///< template units (a plain decimal); empty: default_voxel_length
+  double voxel = 0;     ///< template units; 0 (not given): default_voxel_length
   int cube = 16;
   double perlin = 1.0;  ///< Perlin colour modulation strength (the template's npr bands)
 };
@@ -47,8 +50,28 @@ struct VolumePaths {
   std::string vdb, sidecar, gltf;
 };
 
+/// Refuses a stem (an -o without extension) that names a folder rather than files beside
+/// one: a trailing '/', ".", ".." or an existing folder ('d2/' would write 'd2/.vdb', '.' would
+/// write '..vdb'); and one that is an output's extension alone ('d2/.json', which has no
+/// extension to std::filesystem, would write 'd2/.json.vdb').
+/// @throws UsageError "-o \"STEM\": RULE"
+void require_file_stem(const std::string& stem) {
+  const fs::path path(stem);
+  const fs::path name = path.filename();
+  std::error_code ec;
+  if (name.empty() || name == "." || name == ".." || fs::is_directory(path, ec))
+    throw UsageError("-o " + quoted(stem) + ": a stem names the files STEM.vdb, STEM.json and "
+                     "STEM.glb, not a folder; give a file name, e.g. " +
+                     quoted((path / "").string() + "NAME"));
+  for (const char* ext : {".vdb", ".json", ".glb", ".gltf"})
+    if (name == ext)
+      throw UsageError("-o " + quoted(stem) + ": no file name before the extension; give e.g. " +
+                       quoted((path.parent_path() / "NAME").string() + ext));
+}
+
 /// -o paths sorted by form: a stem without extension asks for all three forms.
-/// @throws UsageError for another extension, a form asked twice, or a glTF with no volume
+/// @throws UsageError for another extension, a form asked twice, a glTF with no volume, or a
+///         stem that names a folder (require_file_stem)
 VolumePaths volume_paths(const std::vector<std::string>& outputs) {
   VolumePaths paths;
   auto set = [](std::string& slot, const std::string& path) {
@@ -59,6 +82,7 @@ VolumePaths volume_paths(const std::vector<std::string>& outputs) {
   for (const std::string& o : outputs) {
     const std::string ext = fs::path(o).extension().string();
     if (ext.empty()) {
+      require_file_stem(o);
       set(paths.vdb, o + ".vdb");
       set(paths.sidecar, o + ".json");
       set(paths.gltf, o + ".glb");
@@ -94,6 +118,20 @@ std::string flipbook_path(const std::string& json, const std::string& channel) {
   return p.string() + "." + channel + ".png";
 }
 
+/// How to get a volume of `model` at cube size `cube` under the bounds (most_voxels_across):
+/// "give --voxel L or longer (N voxels along the skin's longest edge), or a smaller --cube",
+/// L in template units (`metres_per_unit`), rounded up to 3 significant digits.
+std::string coarser_grid_advice(const DsModel& model, double metres_per_unit, int cube) {
+  const auto [lo, hi] = skin_bounds(model);
+  const glm::dvec3 extent = hi - lo;
+  const int across = std::max(most_voxels_across(extent, cube), 1);
+  const double voxel = std::max({extent.x, extent.y, extent.z}) / across / metres_per_unit;
+  const double step = std::pow(10.0, std::floor(std::log10(voxel)) - 2);
+  return fmt::format("give --voxel {:.3g} or longer ({} voxels along the skin's longest edge), "
+                     "or a smaller --cube",
+                     std::ceil(voxel / step) * step, across);
+}
+
 int run_volume(const VolumeArgs& a, const Common& common, OutputSet& outputs) {
   const VolumePaths paths = volume_paths(a.outputs);
   fs::path vdb_file, sidecar_file, colour_file, structure_file, material_file;
@@ -113,14 +151,14 @@ int run_volume(const VolumeArgs& a, const Common& common, OutputSet& outputs) {
   const Variant variant = a.seed >= 0 ? make_variant(tmpl, static_cast<uint64_t>(a.seed))
                                       : Variant{tmpl, build_model(tmpl)};
   const double t_model = seconds_since(t0);
-  double voxel_m = default_voxel_length(variant.model);
-  if (!a.voxel.empty()) {
-    const Outcome<double> given = parse_decimal(a.voxel, "--voxel");
-    if (!given) throw UsageError(given.reason());
-    voxel_m = *given * tmpl.metres_per_unit;
-  }
-  Outcome<InteriorVolume> grid = volume_grid(variant.model, voxel_m);  // before any work
+  const double voxel_m =
+      a.voxel > 0 ? a.voxel * tmpl.metres_per_unit : default_voxel_length(variant.model);
+  // The grid and its cost, before any work.
+  Outcome<InteriorVolume> grid = volume_grid(variant.model, voxel_m);
   if (!grid) throw UsageError("--voxel: " + grid.reason());
+  if (const Check cost = check_volume_rays(static_cast<double>(grid->voxels()), a.cube); !cost)
+    throw UsageError("--voxel: " + cost.reason() + "; " +
+                     coarser_grid_advice(variant.model, tmpl.metres_per_unit, a.cube));
   spdlog::info("{}: sampling {} x {} x {} voxels of {:.3g} mm (PMVC at every solid one)",
                tmpl.name, grid->size.x, grid->size.y, grid->size.z, voxel_m * 1e3);
   const uint64_t modulation_seed = a.seed >= 0 ? static_cast<uint64_t>(a.seed) : 0;
@@ -203,11 +241,14 @@ Command add_volume_command(CLI::App& app) {
   volume
       ->add_option("--voxel", args->voxel,
                    "voxel edge in template units (default: the skin's longest edge / " +
-                       std::to_string(kDefaultVoxelsAcross) + ")");
+                       std::to_string(kDefaultVoxelsAcross) +
+                       "); a grid that would cast more rays than the default grid of a "
+                       "cube-shaped skin is refused")
+      ->check(positive_number_rule());
   volume->add_option("--cube", args->cube, "cube-map texels per face edge for PMVC")
-      ->check(CLI::Range(2, 256));
+      ->check(number_rule(2, 256));
   volume->add_option("--perlin", args->perlin, "Perlin colour modulation strength (0: none)")
-      ->check(CLI::Range(0.0, 10.0));
+      ->check(number_rule(0.0, 10.0));
   return {volume, [args](const Common& common, OutputSet& outputs) {
             return run_volume(*args, common, outputs);
           }};

@@ -1,12 +1,18 @@
 #include "io/batch_parser.h"
 
-#include <filesystem>
 #include <algorithm>
+#include <filesystem>
 #include <optional>
+#include <string>
+
+#include <glm/vec3.hpp>
 
 #include "io/format_fields.h"
 #include "io/text_rules.h"
 #include "io/yaml_reader.h"
+#include "pieces/cut_spec.h"
+#include "volume/interior_volume.h"
+#include "volume/volume_cost.h"
 
 namespace cutaway {
 
@@ -23,6 +29,10 @@ uint64_t parse_seed(const YamlField& f) {
   return static_cast<uint64_t>(v);
 }
 
+/// outputs.volume_voxels' range: voxels along the skin's longest edge (the cost may bound it
+/// lower for a template: check_volume_cost).
+constexpr int kMinBatchVolumeVoxels = 8, kMaxBatchVolumeVoxels = 200;
+
 /// The cut fields of every item, kept for the checks load_batch makes once templates are read.
 struct ParsedItem {
   YamlField item;                                       ///< the item's mapping
@@ -31,7 +41,32 @@ struct ParsedItem {
   std::optional<YamlField> seed_field;
 };
 
-Batch parse(std::string_view text, const std::string& file, std::vector<ParsedItem>* parsed) {
+/// The fields load_batch checks once templates are read.
+struct ParsedBatch {
+  std::vector<ParsedItem> items;
+  /// Where a volume's cost is refused: outputs.volume_voxels, else outputs.volume (none when
+  /// no volume is asked for).
+  std::optional<YamlField> volume;
+};
+
+/// Fails at `field` when the volume of template `name` (within `extents`) that `b` asks for
+/// would cost more than any volume may (check_volume_rays, its grid estimated from the extents
+/// as volume_grid lays it over the skin), naming the most voxels across that fit.
+void check_volume_cost(const Batch& b, const ObjectExtents& extents, const std::string& name,
+                       const YamlField& field) {
+  const glm::dvec3 box(2 * extents.radius_m, extents.height_m, 2 * extents.radius_m);
+  const glm::dvec3 n = grid_voxels(box, std::max(box.x, box.y) / b.outputs.volume_voxels);
+  const int cube = b.export_options.cube;
+  const Check cost = check_volume_rays(n.x * n.y * n.z, cube);
+  if (cost) return;
+  const int most = most_voxels_across(box, cube);
+  field.fail("template " + quoted(name) + ": " + cost.reason() + "; " +
+             (most >= kMinBatchVolumeVoxels
+                  ? "give volume_voxels " + std::to_string(most) + " or fewer"
+                  : std::string("give a smaller export.cube")));
+}
+
+Batch parse(std::string_view text, const std::string& file, ParsedBatch* parsed) {
   const YamlField root = parse_yaml(text, file);
   Batch b;
   b.file = file;
@@ -89,7 +124,7 @@ Batch parse(std::string_view text, const std::string& file, std::vector<ParsedIt
           "the items up to here make " + std::to_string(assets) + " assets (at most " +
           std::to_string(kMaxBatchAssets) + " in a batch: split it into several batches)");
     b.items.push_back(std::move(item));
-    if (parsed) parsed->push_back(std::move(p));
+    if (parsed) parsed->items.push_back(std::move(p));
   }
   if (auto o = root.get("outputs")) {
     o->allow_only({"model", "thumbnails", "thumbnail_size", "sample", "volume", "volume_voxels"});
@@ -98,7 +133,11 @@ Batch parse(std::string_view text, const std::string& file, std::vector<ParsedIt
     if (auto x = o->get("thumbnail_size")) b.outputs.thumbnail_px = parse_int_in(*x, 64, 1024);
     if (auto x = o->get("sample")) b.outputs.sample = parse_int_in(*x, 0, 64);
     if (auto x = o->get("volume")) b.outputs.volume = x->boolean();
-    if (auto x = o->get("volume_voxels")) b.outputs.volume_voxels = parse_int_in(*x, 8, 200);
+    if (auto x = o->get("volume_voxels"))
+      b.outputs.volume_voxels =
+          parse_int_in(*x, kMinBatchVolumeVoxels, kMaxBatchVolumeVoxels);
+    if (parsed && b.outputs.volume)
+      parsed->volume = o->get("volume_voxels").value_or(o->require("volume"));
   }
   if (auto e = root.get("export")) {
     e->allow_only({"compress", "lods", "textures", "camera_and_lights", "collision",
@@ -139,8 +178,9 @@ Batch parse_batch(std::string_view text, const std::string& file) {
 
 Batch load_batch(const std::string& path) {
   const std::string text = read_input_file(path);
-  std::vector<ParsedItem> parsed;
-  Batch b = parse(text, path, &parsed);
+  ParsedBatch parsed_batch;
+  Batch b = parse(text, path, &parsed_batch);
+  std::vector<ParsedItem>& parsed = parsed_batch.items;
   TemplateCheck templates;
   // An asset is named by its template, seed and cut (batch_assets.h): no two may agree.
   for (size_t i = 0; i < b.items.size(); ++i) {
@@ -154,6 +194,8 @@ Batch load_batch(const std::string& path) {
       const double area = estimate_cut_area(item.cuts[c], loaded.extents);
       if (const Check texels = check_cap_texels(area, b.export_options.texels_per_mm); !texels)
         parsed[i].cut_fields[c].fail(texels.reason());
+      if (c == 0 && parsed_batch.volume)
+        check_volume_cost(b, loaded.extents, item.template_name, *parsed_batch.volume);
     }
     for (size_t c = 0; c < item.cuts.size(); ++c)
       for (size_t d = 0; d < c; ++d)

@@ -15,6 +15,7 @@
 #include "base/timer.h"
 #include "diffusion/diffusion_sheets.h"
 #include "diffusion/sheet_rays.h"
+#include "volume/volume_cost.h"
 
 namespace cutaway {
 
@@ -26,6 +27,8 @@ using Clock = std::chrono::steady_clock;
 /// +z, -z), then the kSideVotes voting directions (off every axis and diagonal, so that no
 /// vote grazes a sheet the grid or a fold lines up with). 15 rays: one Embree packet.
 constexpr int kEdgeRays = 6;
+// The cost counted before the work (volume_cost.h): these 15, and the 6 edges against the walls.
+static_assert(kClassifyRaysPerVoxel == 2 * kEdgeRays + kSideVotes);
 const std::array<glm::vec3, kEdgeRays + kSideVotes>& voxel_directions() {
   static const std::array<glm::vec3, kEdgeRays + kSideVotes> directions = [] {
     std::array<glm::vec3, kEdgeRays + kSideVotes> d{};
@@ -90,10 +93,10 @@ Outcome<InteriorVolume> volume_grid(const DsModel& model, double voxel_m) {
         std::to_string(longest) + " m); a volume needs at least two voxels across it");
   InteriorVolume volume;
   volume.voxel_m = voxel_m;
+  const glm::dvec3 counts = grid_voxels(hi - lo, voxel_m);
   double count = 1;
   for (int a = 0; a < 3; ++a) {
-    // The box's voxels, plus one empty voxel beyond it on each side.
-    const double n = std::ceil((hi[a] - lo[a]) / voxel_m) + 3;
+    const double n = counts[a];
     count *= n;
     if (n > 1e7 || count > static_cast<double>(kMaxVolumeVoxels))
       return Outcome<InteriorVolume>::none(

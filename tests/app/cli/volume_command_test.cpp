@@ -101,10 +101,11 @@ TEST(InteriorVolumeCommand, BadOutputsAndVoxelsAreRefusedBeforeAnyWork) {
   EXPECT_NE(fine.err.find("--voxel: "), std::string::npos) << fine.err;
   EXPECT_NE(fine.err.find("give a longer voxel length"), std::string::npos) << fine.err;
   // A voxel that is not a plain positive decimal, or longer than half the object.
+  const std::string positive = "--voxel: must be a number above 0, not ";
   const std::vector<std::pair<std::string, std::string>> voxels = {
-      {"nan", "--voxel must be a number"}, {"inf", "--voxel must be a number"},
-      {"abc", "--voxel must be a number"}, {"1e400", "--voxel is too large"},
-      {"-1", "positive and finite"},       {"0", "positive and finite"},
+      {"nan", positive + "\"nan\""}, {"inf", positive + "\"inf\""},
+      {"abc", positive + "\"abc\""}, {"1e400", positive + "\"1e400\""},
+      {"-1", positive + "\"-1\""},   {"0", positive + "\"0\""},
       {"1e308", "at least two voxels across"}};
   for (const auto& [voxel, message] : voxels) {
     const test::RunResult run = test::run_cutaway(
