@@ -9,13 +9,14 @@
 //
 // `make test` cuts one seed per template; CUTAWAY_DICE_SEEDS=N (set by `make fuzz`) cuts N.
 // Besides: the papaya, whose seeds hang into its hollow, cut in halves and in wedges for the
-// seeds that once gave open pieces, and a strawberry with achenes so dense that they overlap
-// (a spacing `cutaway check` accepts), cut in halves.
+// seeds that once gave open pieces, and a strawberry with achenes as dense as `cutaway check`
+// accepts (they overlap), cut in halves and in wedges.
 #include <cstdlib>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "base/error.h"
 #include "diffusion/diffusion.h"
 #include "io/cut_notation.h"
 #include "io/template_parser.h"
@@ -83,16 +84,19 @@ TEST(SeededCuts, PapayaHalvesAndWedgesAreClosed) {
   }
 }
 
-// Achenes 0.7 mm apart, under the grain limit that `cutaway check` applies: the 0.9 x 0.6 x
-// 0.5 mm grains overlap each other and reach out of the skin, and the halves are closed.
+// Achenes as dense as the grain limits allow: 0.9 mm apart, their largest semi-axis (the
+// 0.9 x 0.6 x 0.5 mm grains overlap each other and reach out of the skin), cut closed in halves
+// and in 4 wedges; 0.7 mm apart (under the grain total), refused.
 TEST(SeededCuts, OverlappingGrainsThatCheckAcceptsCutClosed) {
   Template tmpl = load_template(test::source_path("templates/strawberry.yaml").string());
   ASSERT_EQ(tmpl.grains.size(), 1u);
   tmpl.grains[0].spacing = 0.7e-3;
+  EXPECT_THROW(check_grain_limits(tmpl, build_model(tmpl)), InputError);
+  tmpl.grains[0].spacing = tmpl.grains[0].semi_axes.x;  // 0.9 mm, the largest
   EXPECT_NO_THROW(check_grain_limits(tmpl, build_model(tmpl)));
-  const Variant v = make_variant(tmpl, 1);
+  const Variant v = make_variant(tmpl, 2);
   const auto diffusion = make_cpu_diffusion(v.model, {4, 0});
-  expect_closed_pieces(v, *diffusion, "halves");
+  for (const char* cut : {"halves", "wedges:4"}) expect_closed_pieces(v, *diffusion, cut);
 }
 
 }  // namespace
