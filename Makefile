@@ -58,7 +58,8 @@ sanitize: deps-test
 # Longer hunts than `make test` makes (CI may skip this; about 25 minutes on 2 cores): every
 # libFuzzer target for FUZZ_SECONDS each, then the random-plane property test with
 # RANDOM_PLANES planes per template (and half as many per seeded variant) from another seed,
-# and the seeded-dice closedness test with DICE_SEEDS seeds per template.
+# and the seeded-dice closedness test with DICE_SEEDS seeds per template (templates with grains
+# also halved and cut in 4 wedges).
 FUZZ_SECONDS ?= 240
 RANDOM_PLANES ?= 300
 RANDOM_PLANES_SEED ?= 1

@@ -102,6 +102,12 @@ bool in_domain(const Cdt& cdt, Vertex v) {
   return false;
 }
 
+/// Whether a surface's cut segments can bound the domain: the skin, and surfaces hidden on a
+/// side (the walls of hollows). The others only divide colours.
+bool bounds_domain(const DsSurface& surface) {
+  return surface.role == SurfaceRole::Skin || !surface.visible_front || !surface.visible_back;
+}
+
 /// Which side of segment s the point c lies on: +1 front, -1 back, 0 on its line.
 int side_of(const Segment2& s, const glm::dvec2& c) {
   const double d = glm::dot(c - s.a, s.front);
@@ -183,7 +189,8 @@ class SectionMesher {
   bool on_other_segment(const glm::dvec2& p, size_t own) const;
   /// Inserts the ladder points of the blur bands (step 1).
   void insert_blur_bands();
-  /// Marks the faces of each region bounded by cut segments in or out of the domain (step 2).
+  /// Marks the faces of each region bounded by the skin's and the walls' cut segments in or out
+  /// of the domain (step 2).
   void mark_domain();
   /// A new output vertex at p on `surface` (-1: interior), black for now.
   unsigned add_vertex(const Point2& p, int surface);
@@ -386,11 +393,13 @@ void SectionMesher::mark_domain() {
       if (cdt_.is_infinite(g)) in = false;
       for (int i = 0; i < 3; ++i) {
         const Face nb = g->neighbor(i);
-        // Split lines divide cells, not regions: flood across them.
+        // Split lines divide cells, not regions, and so do the segments of surfaces that are
+        // seen on both sides (grains, structure): flood across them. A grain's loop that lies
+        // wholly in a hollow or outside the skin is then decided by what surrounds it.
         const Segment2* s = g->is_constrained(i)
                                 ? segment_on(g->vertex(Cdt::cw(i)), g->vertex(Cdt::ccw(i)))
                                 : nullptr;
-        if (!s) {
+        if (!s || !bounds_domain(model_.surfaces[segments_[s->index].surface])) {
           if (!region.count(nb)) {
             region[nb] = id;
             queue.push(nb);

@@ -124,7 +124,9 @@ void plane_frame(const Plane& plane, glm::dvec3& u, glm::dvec3& v);
 /// other vertex with `diffusion` (PMVC).
 /// A region of the plane is in the domain when it is bounded (not connected to infinity), is
 /// not on the skin's front (outer) side, and is not on a hollow side (visible_front/back false)
-/// of any surface bounding it.
+/// of any surface bounding it. Only the skin and the walls of hollows bound regions: the loops
+/// of grains and other surfaces seen on both sides lie in the region around them (a grain in
+/// a hollow or outside the skin is no part of the cut face).
 /// With a `restriction`, its split planes' lines are constraints that do not bound the domain
 /// (vertices on them are split like cut vertices and diffused), and triangles whose centroid it
 /// does not keep are left out before diffusion.

@@ -96,6 +96,12 @@ void check_grain_limits(const Template& tmpl, const DsModel& model) {
         << extent * 1e3 << " mm across)";
       throw InputError(spec.shape_loc, spec.path + ".shape", s.str());
     }
+    if (spec.spacing < largest) {
+      std::ostringstream s;
+      s << "the spacing (" << spec.spacing * 1e3 << " mm) is smaller than the grain's largest"
+        << " semi-axis (" << largest * 1e3 << " mm): a grain would hold another's centre";
+      throw InputError(spec.spacing_loc, spec.path + ".spacing", s.str());
+    }
     if (spec.depth > extent) {
       std::ostringstream s;
       s << "the depth (" << spec.depth * 1e3 << " mm) is larger than the object (" << extent * 1e3

@@ -60,8 +60,11 @@ inline constexpr double kMaxGrains = 10000;
 
 /// Refuses grain sets of `tmpl` that would take unbounded work or make no sense on `model`
 /// (built from tmpl), before any dart is thrown: more than kMaxGrains grains for the regions'
-/// areas over all sets (a spacing far too small), or an ellipsoid semi-axis or a depth larger than
-/// the skin's bounding box. A region with no area is allowed (it gets no grains).
+/// areas over all sets (a spacing far too small), an ellipsoid semi-axis or a depth larger than
+/// the skin's bounding box, or a spacing below the largest semi-axis (grains so dense that one
+/// can hold the centres of others: their loops on a cut face cross each other and the skin
+/// nanometres apart, and pieces of wedges and dice were found open). A region with no area is
+/// allowed (it gets no grains).
 /// @throws InputError at the grain's `spacing`, `shape` or item, naming the rule
 void check_grain_limits(const Template& tmpl, const DsModel& model);
 

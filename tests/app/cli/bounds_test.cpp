@@ -84,6 +84,11 @@ TEST(Bounds, TemplateTotalsAreCheckedBeforeTheWork) {
                               (dir / "g.glb").string()}),
                  "grains[0].spacing");
   EXPECT_FALSE(fs::exists(dir / "g.glb"));
+  // Achenes 0.7 mm apart, under the total but closer than their largest semi-axis (0.9 mm):
+  // pieces of wedges and dice were open.
+  expect_refused(run_bounded({"check", kDir + "strawberry_achenes_0_7.yaml"}),
+                 "strawberry_achenes_0_7.yaml:44:14: grains[0].spacing: the spacing (0.7 mm) is "
+                 "smaller than the grain's largest semi-axis (0.9 mm)");
   // An edge longer than an eighth of the skin's height: the pieces would not close.
   expect_refused(run_bounded({"check", kDir + "avocado_edge_too_long.yaml"}),
                  "resolution.edge: the edge length must be at most 1/8");

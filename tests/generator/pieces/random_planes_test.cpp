@@ -1,8 +1,9 @@
 // Random cuts of every shipped template, as a batch of seeded variants meets them: planes through
 // the bounding box at random, planes through a vertex of each surface with a random normal
 // (nearly tangent to it), planes at the extremes of each surface's bounding box (touching its
-// poles and tips), and the same on a seeded variant. Every cut must end in a cross-section
-// whose boundary is closed and whose colours are finite, or in the clean "misses" / "only
+// poles and tips), and the same on a seeded variant, grains included. Every cut must end in a
+// cross-section whose boundary is closed and runs along the skin and the hollows' walls only
+// (never round a grain) and whose colours are finite, or in the clean "misses" / "only
 // touches" error; never a crash, a hang or another error.
 //
 // `make test` cuts kPlanesPerTemplate planes per template. CUTAWAY_RANDOM_PLANES=N (set by
@@ -10,6 +11,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <exception>
@@ -23,6 +25,7 @@
 #include "io/template_parser.h"
 #include "model/model_builder.h"
 #include "section/cross_section.h"
+#include "section/cut_segments.h"
 #include "test_support.h"
 #include "variation/variation.h"
 
@@ -98,6 +101,52 @@ Plane random_plane(const DsModel& model, Rng& rng, int i) {
   return ::testing::AssertionSuccess();
 }
 
+/// Whether a surface bounds the cut face: the skin and the walls of hollows (a side hidden).
+bool bounds_face(const DsSurface& surface) {
+  return surface.role == SurfaceRole::Skin || !surface.visible_front || !surface.visible_back;
+}
+
+/// Every boundary edge of the cut face (used by one triangle, welded by exact position) has
+/// both ends within a thousandth of an edge (`edge_m`) of a cut segment of the skin or of a
+/// hollow's wall, merged as make_cross_section merges them: a grain, seen on both sides,
+/// colours the face but never bounds it, so that no loop of a grain in a hollow or outside
+/// the skin is left as an island that no clipped skin or wall meets.
+::testing::AssertionResult bounded_by_skin_and_walls(const DsModel& model, const CrossSection& cs,
+                                                     double edge_m) {
+  std::vector<CutSegment> cut;
+  for (const CutSegment& s : cut_segments(model, cs.plane))
+    if (bounds_face(model.surfaces[static_cast<size_t>(s.surface)])) cut.push_back(s);
+  const CrossSectionOptions options{edge_m};
+  const std::vector<CutSegment> bounding =
+      merge_collinear_segments(cut, options.merge_tolerance * edge_m, edge_m);
+  auto on_bounding = [&](const glm::dvec3& p) {
+    for (const CutSegment& s : bounding) {
+      const glm::dvec3 d = s.b - s.a;
+      const double t = std::clamp(glm::dot(p - s.a, d) / glm::dot(d, d), 0.0, 1.0);
+      if (glm::distance(p, s.a + t * d) <= 1e-3 * edge_m) return true;
+    }
+    return false;
+  };
+  using Point = std::tuple<double, double, double>;
+  auto point = [&](unsigned v) {
+    const glm::dvec3& p = cs.position[v];
+    return Point(p.x, p.y, p.z);
+  };
+  std::map<std::pair<Point, Point>, int> uses;  // undirected edges, welded
+  for (const glm::uvec3& t : cs.triangle)
+    for (int k = 0; k < 3; ++k) ++uses[std::minmax(point(t[k]), point(t[(k + 1) % 3]))];
+  size_t off = 0;
+  for (const auto& [edge, n] : uses) {
+    if (n != 1) continue;
+    for (const Point& p : {edge.first, edge.second})
+      off += !on_bounding({std::get<0>(p), std::get<1>(p), std::get<2>(p)});
+  }
+  if (off > 0)
+    return ::testing::AssertionFailure()
+           << off << " ends of boundary edges lie on no segment of the skin or a wall";
+  return ::testing::AssertionSuccess();
+}
+
 /// Cuts `model` with `count` planes of the stream `seed`; returns how many gave sections.
 int cut_many(const DsModel& model, double edge_m, const std::string& what, uint64_t seed,
              int count) {
@@ -131,6 +180,7 @@ int cut_many(const DsModel& model, double edge_m, const std::string& what, uint6
     for (const glm::dvec3& p : cs.position)
       EXPECT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
     EXPECT_TRUE(closed_boundary(cs));
+    EXPECT_TRUE(bounded_by_skin_and_walls(model, cs, edge_m));
   }
   return sections;
 }

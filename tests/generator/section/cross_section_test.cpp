@@ -1,7 +1,8 @@
 // Cross-sections (doc/algorithms.md §3) against properties a cut face must have: one colour
 // in gives that colour out, the analytic two-sphere PMVC, the same colour on a line whatever
-// plane cuts through it, holes where a side is hollow, blur bands about twice the blur wide,
-// and degenerate planes (tangent, through vertices and edges, missing the object).
+// plane cuts through it, holes where a side is hollow, grains that colour the face but never
+// bound it, blur bands about twice the blur wide, and degenerate planes (tangent, through
+// vertices and edges, missing the object).
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -19,6 +20,7 @@
 #include "model/model_builder.h"
 #include "section/cross_section.h"
 #include "test_support.h"
+#include "variation/grains.h"
 
 namespace cutaway {
 namespace {
@@ -244,6 +246,51 @@ TEST(CrossSection, HollowSideLeavesAHole) {
     EXPECT_NEAR(area, skin - hole, 0.01 * (skin - hole))
         << "skin loop " << skin << " m^2, hole " << hole << " m^2";
   }
+}
+
+// 4b. Grains are seen on both sides: they colour the cut face but never bound it. A grain
+//     wholly inside the hollow, one across the hollow's wall and one wholly outside the skin
+//     leave no island: no triangle inside the cavity's loop or outside the skin's, and the
+//     area is still the skin loop's minus the cavity loop's.
+TEST(CrossSection, GrainsInAHollowOrOutsideTheSkinLeaveNoIsland) {
+  const Template t = load_template(test::source_path("tests/data/section_hollow.yaml").string());
+  DsModel model = build_model(t);
+  std::vector<GrainPlacement> grains;
+  for (const double r : {0.006, 0.012, 0.0315}) {  // skin radius 30 mm, cavity 12 mm
+    GrainPlacement g;
+    g.centre = g.surface_point = {r, 0.001, 0};
+    g.axis_profile = {0, 1, 0};
+    g.axis_section = {0, 0, 1};
+    g.axis_normal = {1, 0, 0};
+    g.semi_axes = {0.002, 0.0015, 0.001};
+    grains.push_back(g);
+  }
+  DsSurface seeds;
+  seeds.name = "seeds";
+  seeds.role = SurfaceRole::Grain;
+  for (const GrainPlacement& g : grains) seeds.grain_sites.push_back(g.surface_point);
+  add_ellipsoids(grains, glm::dvec3(0.02), glm::dvec3(0.05), 0, {}, seeds.mesh);
+  model.surfaces.push_back(std::move(seeds));
+  update_bounds(model);
+  const auto diffusion = make_cpu_diffusion(model, DiffusionOptions{8, 0});
+  const Plane plane = plane_of({0, 0.0012, 0}, {0, 1, 0});
+  const CrossSection cs = *make_cross_section(model, plane, *diffusion, {t.edge_m});
+  expect_valid_triangulation(cs, "grains");
+  const std::vector<CutSegment> segs = cut_segments(model, plane);
+  double area = 0;
+  size_t in_hole = 0, outside = 0;
+  for (const glm::uvec3& tri : cs.triangle) {
+    area += signed_area(cs, tri);
+    const glm::dvec2 centroid = (in_plane(cs, cs.position[tri[0]]) +
+                                 in_plane(cs, cs.position[tri[1]]) +
+                                 in_plane(cs, cs.position[tri[2]])) / 3.0;
+    in_hole += inside_loops(segs, 1, cs, centroid);
+    outside += !inside_loops(segs, 0, cs, centroid);
+  }
+  EXPECT_EQ(in_hole, 0u) << "triangles of a grain inside the hollow cavity";
+  EXPECT_EQ(outside, 0u) << "triangles of a grain outside the skin";
+  const double skin = std::fabs(loop_area(segs, 0, cs)), hole = std::fabs(loop_area(segs, 1, cs));
+  EXPECT_NEAR(area, skin - hole, 1e-3 * (skin - hole));
 }
 
 /// The blue channel (the inner sphere's back colour, only it shows blue) along the ray from
