@@ -66,7 +66,7 @@ RANDOM_PLANES_SEED ?= 1
 DICE_SEEDS ?= 6
 fuzz: deps-test $(BUILD)/build.ninja
 	cmake --build $(BUILD) -j $(JOBS)
-	for kind in build template scene ply cut; do \
+	for kind in build template scene ply cut cache; do \
 	  cmake -DKIND=$$kind -DSOURCE_DIR=$(CURDIR) -DBINARY_DIR=$(CURDIR)/$(BUILD)/fuzz \
 	    -DCLANGXX=$$(command -v clang++ || command -v clang++-14) -DSECONDS=$(FUZZ_SECONDS) \
 	    -DGENERATOR=Ninja -P tests/fuzz/run_fuzz.cmake || exit 1; \

@@ -12,6 +12,7 @@
 
 #include "assets/scene_assets.h"
 #include "cache/cut_cache.h"
+#include "cache/cut_entry_codec.h"
 #include "cut/object_cut.h"
 #include "placement/collision_shape.h"
 
@@ -38,14 +39,6 @@ struct CutKeyInputs {
 /// give the same pieces.
 std::string cut_cache_key(const CutKeyInputs& in);
 
-/// One cut object as a scene or batch uses it.
-struct CachedCut {
-  CutPieces pieces;
-  std::vector<CollisionShape> collision;  ///< per kept piece, or empty (no options given)
-  bool from_cache = false;                ///< read back, not cut
-  /// Processor seconds computing `collision`, summed over threads (0 when read back).
-  double seconds_collision = 0;
-};
 
 /// One cut object as a cache entry's payload, and where it came from.
 struct CutEntry {
@@ -67,14 +60,6 @@ struct CutEntry {
 CutEntry make_cut_entry(CutCache* cache, const std::string& key, const Template& tmpl,
                         const CollisionShapeOptions* collision,
                         const std::function<CutPieces(SceneAssets&, const PieceMaterials&)>& cut);
-
-/// The payload of `cut`, a cut object decoded by add_cut_entry into `assets` that held only
-/// `materials` (add_piece_materials: its first `first_new_material` materials) and no textures
-/// before: the inverse of add_cut_entry, so that an entry can be read, changed and written
-/// again (the tests of untrusted entries do).
-/// @throws InternalError when a piece names a material that is neither given nor new
-std::string encode_cut_entry(const CachedCut& cut, const SceneAssets& assets,
-                             const PieceMaterials& materials, int first_new_material);
 
 /// The cut object of `entry`, its textures and materials appended to `assets` with their
 /// indices rebased; `materials` are the object's skin and cut materials in `assets`

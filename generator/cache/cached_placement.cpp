@@ -2,7 +2,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "base/byte_stream.h"
 #include "base/error.h"
 #include "base/hash.h"
 #include "base/source_fingerprint.h"
@@ -91,57 +90,6 @@ std::string placement_cache_key(const PlacementKeyInputs& in) {
                                       {"layout", layout_json(*in.layout)},
                                       {"settle", settle_json(*in.settle)}};
   return key.dump();
-}
-
-std::string encode_settled(const SettleResult& s) {
-  ByteWriter w;
-  w.put<uint64_t>(s.placements.size());
-  for (const Placement& p : s.placements) {
-    w.put<uint8_t>(p.placed);
-    w.put(p.rotation);
-    w.put(p.translation);
-  }
-  w.put(s.simulated_s);
-  w.put<int32_t>(s.steps);
-  w.put<int64_t>(s.body_steps);
-  w.put<uint8_t>(s.all_asleep);
-  w.put(s.stability_motion_m);
-  w.put<uint8_t>(s.stable);
-  w.put<int32_t>(s.verify_rounds);
-  w.put<int32_t>(s.kept_round);
-  w.put<int32_t>(s.redrops);
-  w.put<int32_t>(s.lost);
-  return w.take();
-}
-
-std::optional<SettleResult> decode_settled(std::string_view payload, size_t bodies) {
-  try {
-    ByteReader r(payload);
-    SettleResult s;
-    constexpr size_t kPlacementBytes = 1 + sizeof(glm::dquat) + sizeof(glm::dvec3);
-    const uint64_t n = r.count(kPlacementBytes);
-    if (n != bodies) return std::nullopt;  // checked before anything is allocated
-    s.placements.resize(n);
-    for (Placement& p : s.placements) {
-      p.placed = r.get<uint8_t>() != 0;
-      p.rotation = r.get<glm::dquat>();
-      p.translation = r.get<glm::dvec3>();
-    }
-    s.simulated_s = r.get<double>();
-    s.steps = r.get<int32_t>();
-    s.body_steps = r.get<int64_t>();
-    s.all_asleep = r.get<uint8_t>() != 0;
-    s.stability_motion_m = r.get<double>();
-    s.stable = r.get<uint8_t>() != 0;
-    s.verify_rounds = r.get<int32_t>();
-    s.kept_round = r.get<int32_t>();
-    s.redrops = r.get<int32_t>();
-    s.lost = r.get<int32_t>();
-    if (!r.done()) return std::nullopt;
-    return s;
-  } catch (const ByteStreamError&) {
-    return std::nullopt;
-  }
 }
 
 }  // namespace cutaway

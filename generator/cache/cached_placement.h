@@ -1,7 +1,8 @@
 // Placements through the cut cache (doc/architecture.md, Cut cache): a scene's layout and
 // settling depend only on its cut objects, their arrangement, the seed, the container and the
 // layout and settling options, so a run that changes none of them (another output format,
-// resolution, light, zoom) reads the settled placements back instead of settling again.
+// resolution, light, zoom) reads the settled placements back instead of settling again. The
+// payload (encode_settled, decode_settled) is in cut_entry_codec.h.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cache/cut_entry_codec.h"
 #include "placement/container.h"
 #include "placement/physics_settle.h"
 #include "placement/scene_layout.h"
@@ -30,12 +32,5 @@ struct PlacementKeyInputs {
 /// fingerprint, a hash of each object's cut key, and every field of the other inputs (numbers
 /// written so that they read back exactly).
 std::string placement_cache_key(const PlacementKeyInputs& in);
-
-/// `settled` as a cache payload: its placements and its counts.
-std::string encode_settled(const SettleResult& settled);
-
-/// What encode_settled wrote, or nullopt when the payload is damaged or holds other than
-/// `bodies` placements.
-std::optional<SettleResult> decode_settled(std::string_view payload, size_t bodies);
 
 }  // namespace cutaway

@@ -1,6 +1,6 @@
 # KIND=build configures and builds the fuzz sub-project (tests/fuzz, clang) into the build tree
 # (the CTest test fuzz_build); KIND template, scene, ply or cut runs that parser's fuzzer, built
-# before, for SECONDS seconds: any crash, sanitizer report, timeout or out-of-memory fails (the
+# before (KIND cache: the cut cache's entry decoding), for SECONDS seconds: any crash, sanitizer report, timeout or out-of-memory fails (the
 # CTest tests fuzz_template_parser, fuzz_scene_parser, fuzz_ply_parser and fuzz_cut_parser):
 #   cmake -DKIND=build -DSOURCE_DIR=<repo> -DBINARY_DIR=<build>/fuzz -DCLANGXX=clang++
 #         -DGENERATOR=Ninja -P tests/fuzz/run_fuzz.cmake
@@ -49,6 +49,8 @@ if(KIND STREQUAL "ply")
   file(GLOB seeds ${SOURCE_DIR}/tests/fuzz/ply_corpus/*.ply ${SOURCE_DIR}/tests/data/*.ply)
 elseif(KIND STREQUAL "cut")
   file(GLOB seeds ${SOURCE_DIR}/tests/fuzz/cut_corpus/*)
+elseif(KIND STREQUAL "cache")
+  file(GLOB seeds ${SOURCE_DIR}/tests/fuzz/cache_corpus/*)
 elseif(KIND STREQUAL "scene")
   file(GLOB seeds ${SOURCE_DIR}/scenes/*.yaml ${SOURCE_DIR}/tests/data/scenes/*.yaml
        ${SOURCE_DIR}/tests/data/scenes/bad/*.yaml)
@@ -56,13 +58,17 @@ else()
   file(GLOB seeds ${SOURCE_DIR}/templates/*.yaml ${SOURCE_DIR}/tests/bad_input/*)
 endif()
 file(COPY ${seeds} DESTINATION ${work}/seeds)
+set(dict)
+if(EXISTS ${SOURCE_DIR}/tests/fuzz/${KIND}.dict)
+  set(dict -dict=${SOURCE_DIR}/tests/fuzz/${KIND}.dict)
+endif()
 
 execute_process(
   COMMAND ${CMAKE_COMMAND} -E env
           ASAN_OPTIONS=detect_stack_use_after_return=1:allocator_may_return_null=0
           UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
           ${BINARY_DIR}/${KIND}_fuzz -max_total_time=${SECONDS} -rss_limit_mb=2048 -timeout=10
-          -dict=${SOURCE_DIR}/tests/fuzz/${KIND}.dict -print_final_stats=1
+          ${dict} -print_final_stats=1
           -artifact_prefix=${work}/artifacts/ ${work}/corpus ${work}/seeds
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
 # libFuzzer prints a line per new input: keep the start (the seed run) and the end (stats).

@@ -433,7 +433,7 @@ void rewrite_cut_entry(const fs::path& dir, const std::string& object,
   const int first_new = static_cast<int>(own.materials.size());
   CachedCut cut = add_cut_entry(CutEntry{*payload, true, 0}, own, materials);
   change(cut, own);
-  cache.store(key, encode_cut_entry(cut, own, materials, first_new));
+  cache.store(key, encode_cut_payload(cut, own, materials, first_new));
 }
 
 /// A cache of the tiny scene, its bytes without a cache in *without.
