@@ -254,12 +254,12 @@ fs::path OutputSet::add(const std::string& option, const std::string& path) {
   const fs::path given(path);
   if (!given.has_filename()) throw refuse("names a directory (ends in '/'), not a file");
 
-  const fs::path& target = given;  // a link there is replaced, never followed
-  if (const std::string rule = replace_rule(AT_FDCWD, target.string()); !rule.empty())
+  // A link there is replaced, never followed: the given path itself is the target.
+  if (const std::string rule = replace_rule(AT_FDCWD, given.string()); !rule.empty())
     throw refuse(rule);
 
   // The directory: there, or created (each missing level, remembered for abort()).
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  const fs::path dir = given.has_parent_path() ? given.parent_path() : fs::path(".");
   std::vector<fs::path> missing;
   for (fs::path d = dir; !d.empty(); d = d.parent_path()) {
     struct stat st;
@@ -283,7 +283,7 @@ fs::path OutputSet::add(const std::string& option, const std::string& path) {
   std::error_code ec;
   const fs::path real_dir = fs::canonical(dir, ec);
   if (ec) throw refuse("cannot look at " + dir.string() + ": " + ec.message());
-  const fs::path key = real_dir / target.filename();
+  const fs::path key = real_dir / given.filename();
   if (const auto it = given_.find(key); it != given_.end()) {
     throw refuse(it->second == what ? "is given twice" : "is the same file as " + it->second);
   }

@@ -50,14 +50,13 @@ int Folder::fd() const {
   return *fd_;
 }
 
-Folder Folder::open(const fs::path& path, bool create, mode_t mode) {
+Folder Folder::open(const fs::path& path, bool create) {
   const fs::path where = path.empty() ? fs::path(".") : path;
   if (create) {
     std::error_code ec;
-    const bool made = fs::create_directories(where, ec);
+    fs::create_directories(where, ec);
     if (ec && !fs::is_directory(where))
       throw EnvironmentError("cannot create the folder " + where.string() + ": " + ec.message());
-    if (made && mode != 0777) ::chmod(where.c_str(), mode);  // the folder made last: `where`
   }
   const int fd = ::open(where.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (fd < 0) {

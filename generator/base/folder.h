@@ -35,10 +35,10 @@ class Folder {
   Folder() = default;
 
   /// Opens the folder at `path` (links in `path` followed), first creating it and its missing
-  /// parents (mode 0777 less the umask, or `mode`) when `create`.
+  /// parents (mode 0777 less the umask) when `create`.
   /// @throws EnvironmentError "cannot open the folder PATH: REASON" ("is not a folder" when it is
   ///         a file), or "cannot create the folder PATH: REASON"
-  static Folder open(const std::filesystem::path& path, bool create, mode_t mode = 0777);
+  static Folder open(const std::filesystem::path& path, bool create);
 
   /// The sub-folder `name` (one plain name: no '/', not "." or "..") of this folder, opened
   /// with O_NOFOLLOW: a symbolic link there is refused ("is a symbolic link, not a folder").

@@ -50,10 +50,7 @@ std::optional<uint64_t> parse_hex64(const std::string& text) {
 }
 
 /// A plain file name (no folder, not hidden): what a record may name in the output folder.
-bool plain_file_name(const std::string& name) {
-  return !name.empty() && name[0] != '.' && name.find('/') == std::string::npos &&
-         name.find('\0') == std::string::npos;
-}
+bool plain_file_name(const std::string& name) { return plain_name(name) && name[0] != '.'; }
 
 /// The FNV-1a hash of the regular file `name` in `folder` (a link is not followed), read a
 /// mebibyte at a time so that any file size costs the same memory; nullopt when it is not a

@@ -274,9 +274,13 @@ std::optional<std::string> CutCache::load(std::string_view key) {
   } catch (const FileReadError& e) {
     // None, or something at the entry's name that no entry can be (a link, a FIFO, a folder,
     // a file over the bound): ours by its name, so removed; the rest of the cache works on.
-    const std::string& rule = e.rule();
-    const bool foreign = rule.starts_with("is ");  // a link, folder, FIFO, device, too large
-    if (shard && foreign && shard.kind(name) != EntryKind::Missing) {
+    // Decided by what lies there, not by the message: gone meanwhile (another run's
+    // eviction) or a read error of a real entry is a plain miss.
+    struct stat st;
+    const bool foreign =
+        shard && ::fstatat(shard.fd(), name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 &&
+        (!S_ISREG(st.st_mode) || static_cast<uint64_t>(st.st_size) > kMaxCutCacheEntryBytes);
+    if (foreign) {
       const bool removed = shard.remove(name);
       std::lock_guard lock(mutex_);
       ++stats_.damaged;

@@ -47,6 +47,12 @@ double signed_area(const CrossSection& cs, const glm::uvec3& t) {
   return 0.5 * cross2(b - a, c - a);
 }
 
+/// The centroid of triangle `t` in the plane's 2D frame.
+glm::dvec2 centroid_in_plane(const CrossSection& cs, const glm::uvec3& t) {
+  return (in_plane(cs, cs.position[t[0]]) + in_plane(cs, cs.position[t[1]]) +
+          in_plane(cs, cs.position[t[2]])) / 3.0;
+}
+
 /// The Gouraud-interpolated colour of the cut face at p (on the plane): barycentric lookup in
 /// the triangle containing p; nothing when p is off the cut face.
 std::optional<glm::dvec3> colour_at(const CrossSection& cs, const glm::dvec3& p) {
@@ -235,9 +241,7 @@ TEST(CrossSection, HollowSideLeavesAHole) {
     size_t in_hole = 0;
     for (const glm::uvec3& tri : cs.triangle) {
       area += signed_area(cs, tri);
-      const glm::dvec2 centroid = (in_plane(cs, cs.position[tri[0]]) +
-                                   in_plane(cs, cs.position[tri[1]]) +
-                                   in_plane(cs, cs.position[tri[2]])) / 3.0;
+      const glm::dvec2 centroid = centroid_in_plane(cs, tri);
       in_hole += inside_loops(segs, 1, cs, centroid);
     }
     const double skin = std::fabs(loop_area(segs, 0, cs)), hole = std::fabs(loop_area(segs, 1, cs));
@@ -281,9 +285,7 @@ TEST(CrossSection, GrainsInAHollowOrOutsideTheSkinLeaveNoIsland) {
   size_t in_hole = 0, outside = 0;
   for (const glm::uvec3& tri : cs.triangle) {
     area += signed_area(cs, tri);
-    const glm::dvec2 centroid = (in_plane(cs, cs.position[tri[0]]) +
-                                 in_plane(cs, cs.position[tri[1]]) +
-                                 in_plane(cs, cs.position[tri[2]])) / 3.0;
+    const glm::dvec2 centroid = centroid_in_plane(cs, tri);
     in_hole += inside_loops(segs, 1, cs, centroid);
     outside += !inside_loops(segs, 0, cs, centroid);
   }
