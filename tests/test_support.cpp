@@ -51,29 +51,26 @@ void add_word(std::string& cmd, const std::string& word) {
   cmd += shell_quote(word);
 }
 
-/// A shell command run from the source tree: "cd SOURCE_DIR && PROGRAM ARGS..." (quoted).
-std::string in_source_dir(const std::string& program, const std::vector<std::string>& args) {
+/// A shell command run from the source tree: "cd SOURCE_DIR && [ENV] PROGRAM ARGS..." (quoted;
+/// `env`, when given, is "NAME=VALUE" set for the program alone).
+std::string in_source_dir(const std::string& program, const std::vector<std::string>& args,
+                          const std::string& env = {}) {
   std::string cmd = "cd";
   add_word(cmd, CUTAWAY_SOURCE_DIR);
   cmd += " &&";
+  if (!env.empty()) add_word(cmd, env);
   add_word(cmd, program);
   for (const std::string& a : args) add_word(cmd, a);
   return cmd;
 }
 
-}  // namespace
-
-RunResult run_cutaway(const std::vector<std::string>& args) {
-  return run_program(CUTAWAY_BINARY, args);
-}
-
-RunResult run_program(const std::string& program, const std::vector<std::string>& args) {
+/// Runs the shell command `cmd` with stdin from /dev/null, capturing its stdout and stderr.
+RunResult run_shell(std::string cmd) {
   static int counter = 0;
   const auto dir = std::filesystem::path(CUTAWAY_TEST_TMP) / "runs";
   std::filesystem::create_directories(dir);
   const std::string tag = std::to_string(::getpid()) + "-" + std::to_string(counter++);
   const auto out = dir / (tag + ".out"), err = dir / (tag + ".err");
-  std::string cmd = in_source_dir(program, args);
   cmd += " </dev/null >";
   cmd += shell_quote(out.string());
   cmd += " 2>";
@@ -85,6 +82,61 @@ RunResult run_program(const std::string& program, const std::vector<std::string>
   std::filesystem::remove(out);
   std::filesystem::remove(err);
   return r;
+}
+
+/// Every test process starts with a default cut cache of its own (XDG_CACHE_HOME), empty, so
+/// that whatever runs cutaway without run_cutaway (the editor's server, the browser pages,
+/// forked runs under limits) never reads what another test stored.
+/// Removed when the process that made it ends (not a child forked from it).
+struct OwnDefaultCache {
+  const pid_t owner = ::getpid();
+  const std::filesystem::path dir =
+      std::filesystem::path(CUTAWAY_TEST_TMP) / "process-caches" / std::to_string(owner);
+  OwnDefaultCache() {
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+    ::setenv("XDG_CACHE_HOME", dir.c_str(), 1);
+  }
+  ~OwnDefaultCache() {
+    std::error_code ec;
+    if (::getpid() == owner) std::filesystem::remove_all(dir, ec);
+  }
+};
+const OwnDefaultCache kOwnDefaultCache;
+
+}  // namespace
+
+RunResult run_cutaway(const std::vector<std::string>& args) {
+  static int counter = 0;
+  const auto cache = std::filesystem::path(CUTAWAY_TEST_TMP) / "run-caches" /
+                     (std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  std::filesystem::remove_all(cache);
+  RunResult r = run_shell(in_source_dir(CUTAWAY_BINARY, args, "XDG_CACHE_HOME=" + cache.string()));
+  std::filesystem::remove_all(cache);
+  return r;
+}
+
+RunResult run_program(const std::string& program, const std::vector<std::string>& args) {
+  return run_shell(in_source_dir(program, args));
+}
+
+::testing::AssertionResult made_afresh(const RunResult& run) {
+  nlohmann::json stats;
+  std::istringstream lines(run.err);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("{", 0) == 0) {
+      const nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
+      if (j.is_object() && j.contains("cut_cache")) stats = j;
+    }
+  if (stats.is_null())
+    return ::testing::AssertionFailure() << "no --stats line with a cut_cache in: " << run.err;
+  const nlohmann::json& cache = stats["cut_cache"];
+  if (!cache.is_null() && cache.value("hits", 0) != 0)
+    return ::testing::AssertionFailure()
+           << cache.value("hits", 0) << " cut objects were read from the cut cache, not made";
+  if (stats.contains("physics") && stats["physics"].value("from_cut_cache", false))
+    return ::testing::AssertionFailure() << "the placements were read from the cut cache";
+  return ::testing::AssertionSuccess();
 }
 
 std::string read_file(const std::filesystem::path& path) { return slurp(path); }

@@ -29,8 +29,16 @@ struct RunResult {
 };
 
 /// Runs build/cutaway with `args` (no shell interpretation of the arguments), in the source
-/// directory, and captures exit code, stdout and stderr.
+/// directory, and captures exit code, stdout and stderr. Each run has a default cut cache of
+/// its own, empty (XDG_CACHE_HOME), removed afterwards: two runs never share cut objects unless
+/// the test names one `--cache DIR` for both.
 RunResult run_cutaway(const std::vector<std::string>& args);
+
+/// Whether `run` (a scene or batch run given `--stats`) made every cut object and placement
+/// itself: its stats line reports a cut_cache (or null with --no-cache) without hits, and no
+/// placements from the cache. What every byte comparison across runs asserts of each run, so
+/// that it compares work done, not a cache read back.
+::testing::AssertionResult made_afresh(const RunResult& run);
 
 /// Runs `program` (a path, or a name found on PATH) with `args` as run_cutaway runs cutaway.
 RunResult run_program(const std::string& program, const std::vector<std::string>& args);

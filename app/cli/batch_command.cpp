@@ -189,6 +189,12 @@ int run_batch_command(const BatchArgs& a, const Common& common) {
                manifest_name(shard), a.output_dir);
   if (cache && cache->stats().hits > 0)
     spdlog::info("{} of the assets built were read from the cut cache", cache->stats().hits);
+  if (common.stats)
+    *common.stats = {{"batch", batch.name},
+                     {"shard", a.shard},
+                     {"assets_built", r.built},
+                     {"assets_already_there", r.skipped},
+                     {"cut_cache", cut_cache_stats(cache.get())}};
   return 0;
 }
 

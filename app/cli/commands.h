@@ -115,6 +115,10 @@ std::string diffusion_settings(int cube, const Common& common);
 /// no folder is given and neither XDG_CACHE_HOME nor HOME is set.
 std::unique_ptr<CutCache> open_cut_cache(const CacheArgs& args);
 
+/// The `cut_cache` of `--stats`: hits, misses, stored, damaged and evicted entries of `cache`
+/// this run (null without a cache). A run that cut every object afresh has no hits.
+nlohmann::ordered_json cut_cache_stats(const CutCache* cache);
+
 /// `variant` cut for a picture of its pieces (`piece`, `sheet`): every piece kept, colours
 /// (vertex colours, or with CapColours::Texture cut faces and skin baked into textures, the
 /// skin's patterns per texel) modulated by the template's Perlin bands with strength `perlin`

@@ -120,6 +120,13 @@ void add_cache_options(CLI::App* command, CacheArgs& args) {
       ->excludes(command->get_option("--no-cache"));
 }
 
+nlohmann::ordered_json cut_cache_stats(const CutCache* cache) {
+  if (!cache) return nullptr;
+  const CutCacheStats c = cache->stats();
+  return {{"hits", c.hits}, {"misses", c.misses}, {"stored", c.stored}, {"damaged", c.damaged},
+          {"evicted", c.evicted}};
+}
+
 std::unique_ptr<CutCache> open_cut_cache(const CacheArgs& args) {
   if (args.off) return nullptr;
   CutCacheOptions options;

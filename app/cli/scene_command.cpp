@@ -91,12 +91,6 @@ void register_texture_outputs(OutputSet& outputs, const Targets& targets,
 nlohmann::ordered_json scene_stats(const Scene& scene, uint64_t seed, const std::string& backend,
                                    const SceneStats& st, const CutCache* cache, double t_parse,
                                    double t_build, const Written& w) {
-  nlohmann::ordered_json cached = nullptr;
-  if (cache) {
-    const CutCacheStats c = cache->stats();
-    cached = {{"hits", c.hits}, {"misses", c.misses}, {"stored", c.stored},
-              {"damaged", c.damaged}, {"evicted", c.evicted}};
-  }
   return {{"scene", scene.name},
           {"seed", seed},
           {"backend", backend},
@@ -105,7 +99,7 @@ nlohmann::ordered_json scene_stats(const Scene& scene, uint64_t seed, const std:
           {"placed", st.placed},
           {"triangles", st.triangles},
           {"diffused_points", st.diffused.all},
-          {"cut_cache", cached},
+          {"cut_cache", cut_cache_stats(cache)},
           {"physics",
            {{"from_cut_cache", st.cached_placements},
             {"simulated_seconds", st.simulated_seconds},

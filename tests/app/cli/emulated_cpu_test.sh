@@ -12,7 +12,8 @@ cd "$(dirname "$0")/../.."
 command -v qemu-x86_64 >/dev/null || { echo "qemu-x86_64 is missing (apt-get install qemu-user)" >&2; exit 2; }
 rm -rf "$work"
 mkdir -p "$work/native" "$work/nehalem"
-args=(scene tests/data/scenes/emulated_cpu.yaml --cube 8)
+# --no-cache: each CPU cuts and settles every object itself.
+args=(scene tests/data/scenes/emulated_cpu.yaml --cube 8 --no-cache)
 "$binary" "${args[@]}" -o "$work/native/scene.glb" -o "$work/native/scene.pov" >/dev/null
 start=$(date +%s)
 qemu-x86_64 -cpu Nehalem "$binary" "${args[@]}" -o "$work/nehalem/scene.glb" \

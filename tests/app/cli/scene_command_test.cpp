@@ -128,12 +128,16 @@ TEST(SceneCommand, ExportsValidGltfAndPovRayAndPictures) {
 
 TEST(SceneCommand, SameSeedSameBytesWhateverTheThreadsAnotherSeedAnotherLayout) {
   // One folder per run, the same file names (a .pov names its texture files by its stem).
+  // Each run cuts and settles everything itself (its own empty cache, checked by its stats).
   const fs::path dir = test::fresh_dir("scene-determinism");
   for (const auto& [run, extra] : std::vector<std::pair<std::string, std::vector<std::string>>>{
-           {"a", {"--threads", "1"}}, {"b", {"--threads", "2"}}, {"c", {"--seed", "12"}}}) {
+           {"a", {"--threads", "1", "--stats"}},
+           {"b", {"--threads", "2", "--stats"}},
+           {"c", {"--seed", "12", "--stats"}}}) {
     fs::create_directories(dir / run);
     const test::RunResult r = test::run_cutaway(scene_args(dir / run, "s", extra));
     ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(test::made_afresh(r)) << run;
   }
   for (const char* file : {"s.glb", "s.pov", "s_i0_tomato_0_cut.jpg"}) {
     const std::string a = test::read_file(dir / "a" / file);
@@ -142,6 +146,23 @@ TEST(SceneCommand, SameSeedSameBytesWhateverTheThreadsAnotherSeedAnotherLayout) 
     EXPECT_FALSE(a == test::read_file(dir / "c" / file)) << file;
   }
   EXPECT_EQ(test::files_in(dir / "a"), test::files_in(dir / "b"));
+}
+
+// What keeps the byte comparisons honest: a run whose cut objects and placements were read back
+// from a cache is told from one that made them (test::made_afresh), by its --stats.
+TEST(SceneCommand, ARunReadFromTheCutCacheIsToldFromOneThatCutEverything) {
+  const fs::path dir = test::fresh_dir("scene-afresh");
+  const std::vector<std::string> cache = {"--cache", (dir / "cache").string(), "--stats"};
+  const test::RunResult first = test::run_cutaway(scene_args(dir, "first", cache));
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_TRUE(test::made_afresh(first));
+  const test::RunResult again = test::run_cutaway(scene_args(dir, "again", cache));
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  const ::testing::AssertionResult read_back = test::made_afresh(again);
+  EXPECT_FALSE(read_back);
+  EXPECT_NE(std::string(read_back.message()).find("read from the cut cache"), std::string::npos)
+      << read_back.message();
+  EXPECT_EQ(test::read_file(dir / "again.glb"), test::read_file(dir / "first.glb"));
 }
 
 TEST(SceneCommand, RefusesBadArgumentsAndLeavesNothing) {

@@ -18,10 +18,13 @@ cleanup() { "$src/scripts/slurm-one-node.sh" stop "$cluster" || true; }
 trap cleanup EXIT
 eval "export $("$src/scripts/slurm-one-node.sh" start "$cluster")"
 
-"$cutaway" -q batch "$batch" -o "$work/local"
+# Both builds cut every object themselves (--no-cache, passed on to the array tasks): the
+# comparison is of work done twice, not of a cache read back.
+"$cutaway" -q batch "$batch" -o "$work/local" --no-cache
 "$cutaway" -q batch merge "$work/local"
 
-job=$("$cutaway" -q batch "$batch" -o "$work/slurm" --slurm --array 4)
+job=$("$cutaway" -q batch "$batch" -o "$work/slurm" --slurm --array 4 --no-cache)
+grep -q -- '--no-cache' "$work/slurm/batch.sbatch"
 [[ "$job" =~ ^[0-9]+$ ]] || { echo "FAIL: no job id from batch --slurm: '$job'"; exit 1; }
 grep -q -- '--array=1-4' "$work/slurm/batch.sbatch"
 for _ in $(seq 600); do
