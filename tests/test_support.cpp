@@ -9,6 +9,7 @@
 #include <thread>
 #include <tuple>
 #include <map>
+#include <memory>
 #include <array>
 #include <cctype>
 #include <cstdlib>
@@ -273,11 +274,27 @@ std::vector<std::filesystem::path> shipped_templates() {
   return out;
 }
 
+std::string template_test_name(const std::filesystem::path& path) {
+  std::string name = path.stem().string();
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+}
+
+const BuiltTemplate& built_template(const std::filesystem::path& path) {
+  static std::map<std::string, std::unique_ptr<BuiltTemplate>> built;
+  std::unique_ptr<BuiltTemplate>& slot = built[path.string()];
+  if (!slot) {
+    Template tmpl = load_template(path.string());
+    DsModel model = build_model(tmpl);
+    slot = std::make_unique<BuiltTemplate>(BuiltTemplate{std::move(tmpl), std::move(model)});
+  }
+  return *slot;
+}
+
 MidHeightCut mid_height_cut(const std::filesystem::path& path) {
-  MidHeightCut cut{load_template(path.string()), {}, {}};
-  cut.model = build_model(cut.tmpl);
-  cut.plane = mid_height_plane(cut.model);
-  return cut;
+  const BuiltTemplate& b = built_template(path);
+  return {b.tmpl, b.model, mid_height_plane(b.model)};
 }
 
 std::vector<size_t> interior_vertices(const CrossSection& cs, size_t at_most) {

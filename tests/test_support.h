@@ -161,15 +161,31 @@ void texture_with_halves(SceneAssets& assets, size_t mesh, int size);
 /// The template files shipped in templates/ (absolute paths, sorted).
 std::vector<std::filesystem::path> shipped_templates();
 
-/// A template, its DS model and the horizontal plane through the middle of the model's bounding
-/// box (the cut the accuracy tests make on every shipped template).
-struct MidHeightCut {
+/// The name a sweep over templates gives the test of the template at `path`: its file stem with
+/// every character that is not a letter or digit made '_' ("kiwi", "boiled_egg").
+std::string template_test_name(const std::filesystem::path& path);
+
+/// A template and its DS model.
+struct BuiltTemplate {
   Template tmpl;
   DsModel model;
+};
+
+/// The template at `path`, loaded and built once per test process: the sweeps over every
+/// template run one process per template (tests/CMakeLists.txt), and every test of the sweep in
+/// it shares this build. Throws as load_template and build_model do.
+const BuiltTemplate& built_template(const std::filesystem::path& path);
+
+/// A template, its DS model (shared, built_template) and the horizontal plane through the
+/// middle of the model's bounding box (the cut the accuracy tests make on every shipped
+/// template).
+struct MidHeightCut {
+  const Template& tmpl;
+  const DsModel& model;
   Plane plane;
 };
 
-/// Loads and builds the template at `path` (throws as load_template does).
+/// The mid-height cut of the template at `path` (throws as built_template does).
 MidHeightCut mid_height_cut(const std::filesystem::path& path);
 
 /// Up to about `at_most` interior vertices of `cs` (off the cut segments, cut_surface < 0),

@@ -27,10 +27,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// A built template, kept for the whole test program (building is the expensive part).
+/// A built template (test::built_template: shared with the sweep's other tests in this
+/// process), with what these properties need besides.
 struct Built {
-  Template tmpl;
-  DsModel model;
+  const Template& tmpl;
+  const DsModel& model;
   /// The model in the sweep's frame: `model` itself, or for a template with a spine the model
   /// built without it (the fold and profile rules hold there; the bend keeps them).
   DsModel straight;
@@ -42,16 +43,15 @@ const Built& built(const fs::path& file) {
   static std::map<std::string, std::unique_ptr<Built>> cache;
   auto& slot = cache[file.string()];
   if (!slot) {
-    auto b = std::make_unique<Built>();
-    b->tmpl = load_template(file.string());
-    b->model = build_model(b->tmpl);
-    Template straight = b->tmpl;
+    const test::BuiltTemplate& shared = test::built_template(file);
+    Template straight = shared.tmpl;
     straight.spine = {};
-    b->straight = b->tmpl.spine.points.empty() ? b->model : build_model(straight);
-    b->spec_of.push_back(b->tmpl.skin);
-    for (int i = 0; i < static_cast<int>(b->tmpl.surfaces.size()); ++i)
-      if (i != b->tmpl.skin) b->spec_of.push_back(i);
-    slot = std::move(b);
+    slot = std::make_unique<Built>(Built{
+        shared.tmpl, shared.model,
+        shared.tmpl.spine.points.empty() ? shared.model : build_model(straight), {}});
+    slot->spec_of.push_back(slot->tmpl.skin);
+    for (int i = 0; i < static_cast<int>(slot->tmpl.surfaces.size()); ++i)
+      if (i != slot->tmpl.skin) slot->spec_of.push_back(i);
   }
   return *slot;
 }
@@ -481,15 +481,15 @@ TEST_P(ModelProperties, CircleSectionsGiveSurfacesOfRevolution) {
   if (circles == 0) GTEST_SKIP() << "no circle sections";
 }
 
-std::string template_test_name(const ::testing::TestParamInfo<fs::path>& info) {
-  std::string n = info.param.parent_path().filename().string() + "_" + info.param.stem().string();
-  for (char& c : n)
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  return n;
+// Named by the template's stem as the other sweeps are (tests/CMakeLists.txt runs each shipped
+// template's sweep in one process); the test data's templates after "data_".
+std::string property_test_name(const ::testing::TestParamInfo<fs::path>& info) {
+  const bool shipped = info.param.parent_path().filename() == "templates";
+  return (shipped ? "" : "data_") + test::template_test_name(info.param);
 }
 
 INSTANTIATE_TEST_SUITE_P(Templates, ModelProperties, ::testing::ValuesIn(property_templates()),
-                         template_test_name);
+                         property_test_name);
 
 }  // namespace
 }  // namespace cutaway

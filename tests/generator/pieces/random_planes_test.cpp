@@ -190,8 +190,9 @@ class RandomPlanes : public ::testing::TestWithParam<std::filesystem::path> {};
 TEST_P(RandomPlanes, CutOrMissCleanly) {
   const int count = env_int("CUTAWAY_RANDOM_PLANES", kPlanesPerTemplate);
   const uint64_t offset = static_cast<uint64_t>(env_int("CUTAWAY_RANDOM_PLANES_SEED", 0));
-  const Template t = load_template(GetParam().string());
-  const DsModel model = build_model(t);
+  const test::BuiltTemplate& built = test::built_template(GetParam());
+  const Template& t = built.tmpl;
+  const DsModel& model = built.model;
   const int a =
       cut_many(model, t.edge_m, t.name, derive_seed(offset, {1, model.face_count()}), count);
   // A seeded variant, grains included, as a batch of variants makes them.
@@ -203,7 +204,7 @@ TEST_P(RandomPlanes, CutOrMissCleanly) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Templates, RandomPlanes, ::testing::ValuesIn(test::shipped_templates()),
-                         [](const auto& info) { return info.param.stem().string(); });
+                         [](const auto& info) { return test::template_test_name(info.param); });
 
 }  // namespace
 }  // namespace cutaway

@@ -56,7 +56,7 @@ class SeededDice : public ::testing::TestWithParam<std::filesystem::path> {};
 TEST_P(SeededDice, PiecesAreClosedWithoutSlivers) {
   const char* env = std::getenv("CUTAWAY_DICE_SEEDS");
   const int seeds = env && *env ? std::atoi(env) : 1;
-  const Template tmpl = load_template(GetParam().string());
+  const Template& tmpl = test::built_template(GetParam()).tmpl;
   for (int s = 0; s < seeds; ++s) {
     const uint64_t seed = 100 + static_cast<uint64_t>(s);
     SCOPED_TRACE("seed " + std::to_string(seed));
@@ -70,7 +70,7 @@ TEST_P(SeededDice, PiecesAreClosedWithoutSlivers) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Templates, SeededDice, ::testing::ValuesIn(test::shipped_templates()),
-                         [](const auto& info) { return info.param.stem().string(); });
+                         [](const auto& info) { return test::template_test_name(info.param); });
 
 // The papaya's seeds reach into its hollow: where a plane cut one wholly inside the hollow, the
 // cap had an island and both halves were open, for every seed 1 to 20.

@@ -110,90 +110,97 @@ TwoSamplings dense_and_adaptive(const DsModel& model, const Plane& plane, double
   return {std::move(dense), *make_cross_section(model, plane, *cube16, options)};
 }
 
-TEST(AdaptiveSampling, MatchesDenseCube32ReferenceOnEveryTemplatesMidHeightCut) {
-  size_t dense_points = 0, adaptive_points = 0;
-  for (const std::filesystem::path& path : test::shipped_templates()) {
-    const test::MidHeightCut cut = test::mid_height_cut(path);
-    const Template& t = cut.tmpl;
-    const DsModel& model = cut.model;
-    const auto [dense, adaptive] = dense_and_adaptive(model, cut.plane, t.edge_m);
-    dense_points += dense.diffused.all;
-    adaptive_points += adaptive.diffused.all;
-    // At the cap's vertices (dense sampling diffuses them all, so only adaptive sampling's are
-    // checked) and over each cap's area.
-    // The reference casts every texel of its cube (no adaptive directions).
-    const auto cube32 = make_cpu_diffusion(model, DiffusionOptions{32, 0, true, false});
-    const auto [adaptive_at, materials_at] = vertex_errors(*cube32, adaptive, 300);
-    ASSERT_GT(adaptive_at.points, 10u) << t.name;
-    const Errors dense_area = area_errors(*cube32, dense, 400);
-    const Errors adaptive_area = area_errors(*cube32, adaptive, 400);
-    std::printf(
-        "%-10s %5zu -> %5zu points (%4.1fx); error vs cube 32 at the vertices: adaptive mean "
-        "%.2f max %.2f; over the area: dense mean %.2f max %.2f, adaptive mean %.2f max %.2f "
-        "(sRGB of 255); material channels at the vertices: mean %.2f max %.2f (of 255)\n",
-        t.name.c_str(), dense.diffused.all, adaptive.diffused.all,
-        static_cast<double>(dense.diffused.all) / adaptive.diffused.all, adaptive_at.mean,
-        adaptive_at.max, dense_area.mean, dense_area.max, adaptive_area.mean, adaptive_area.max,
-        materials_at.mean, materials_at.max);
-    // The bound at the vertices: mean error at most 1 of 255 (measured: at most 0.88, star
-    // fruit; the largest single error is 15, volcano and star fruit).
-    EXPECT_LE(adaptive_at.mean, 1.0) << t.name;
-    // The material channels (roughness, translucency) have a looser tolerance (4 steps against
-    // the colour's 2): mean at most 1.5 steps (measured: at most 0.73, kiwi; the largest single
-    // error is 23 steps, 0.09 of roughness or translucency, kiwi).
-    EXPECT_LE(materials_at.mean, 1.5) << t.name;
-    // Over the area, dense sampling has errors of its own (linear across triangles that a blur
-    // band crosses: means 0.2-1.0, volcano 4.3); adaptive sampling may add at most half a step
-    // (measured: at most 0.31, kiwi).
-    EXPECT_LE(adaptive_area.mean, dense_area.mean + 0.5) << t.name;
-  }
-  std::printf("all templates: %zu -> %zu points (%.1fx)\n", dense_points, adaptive_points,
-              static_cast<double>(dense_points) / adaptive_points);
-  // Measured: 3.4x.
-  EXPECT_GE(static_cast<double>(dense_points), 3.2 * adaptive_points);
+// One test per shipped template (the sweep's process shares the template's build).
+class AdaptiveSamplingOnTemplates : public ::testing::TestWithParam<std::filesystem::path> {};
+
+TEST_P(AdaptiveSamplingOnTemplates, MatchesDenseCube32ReferenceAtTheMidHeightCut) {
+  const test::MidHeightCut cut = test::mid_height_cut(GetParam());
+  const Template& t = cut.tmpl;
+  const DsModel& model = cut.model;
+  const auto [dense, adaptive] = dense_and_adaptive(model, cut.plane, t.edge_m);
+  // At the cap's vertices (dense sampling diffuses them all, so only adaptive sampling's are
+  // checked) and over each cap's area.
+  // The reference casts every texel of its cube (no adaptive directions).
+  const auto cube32 = make_cpu_diffusion(model, DiffusionOptions{32, 0, true, false});
+  const auto [adaptive_at, materials_at] = vertex_errors(*cube32, adaptive, 300);
+  ASSERT_GT(adaptive_at.points, 10u) << t.name;
+  const Errors dense_area = area_errors(*cube32, dense, 400);
+  const Errors adaptive_area = area_errors(*cube32, adaptive, 400);
+  std::printf(
+      "%-10s %5zu -> %5zu points (%4.1fx); error vs cube 32 at the vertices: adaptive mean "
+      "%.2f max %.2f; over the area: dense mean %.2f max %.2f, adaptive mean %.2f max %.2f "
+      "(sRGB of 255); material channels at the vertices: mean %.2f max %.2f (of 255)\n",
+      t.name.c_str(), dense.diffused.all, adaptive.diffused.all,
+      static_cast<double>(dense.diffused.all) / adaptive.diffused.all, adaptive_at.mean,
+      adaptive_at.max, dense_area.mean, dense_area.max, adaptive_area.mean, adaptive_area.max,
+      materials_at.mean, materials_at.max);
+  // The bound at the vertices: mean error at most 1 of 255 (measured: at most 0.88, star
+  // fruit; the largest single error is 15, volcano and star fruit).
+  EXPECT_LE(adaptive_at.mean, 1.0) << t.name;
+  // The material channels (roughness, translucency) have a looser tolerance (4 steps against
+  // the colour's 2): mean at most 1.5 steps (measured: at most 0.73, kiwi; the largest single
+  // error is 23 steps, 0.09 of roughness or translucency, kiwi).
+  EXPECT_LE(materials_at.mean, 1.5) << t.name;
+  // Over the area, dense sampling has errors of its own (linear across triangles that a blur
+  // band crosses: means 0.2-1.0, volcano 4.3); adaptive sampling may add at most half a step
+  // (measured: at most 0.31, kiwi).
+  EXPECT_LE(adaptive_area.mean, dense_area.mean + 0.5) << t.name;
+  // Adaptive sampling diffuses far fewer points (over all shipped templates 3.4 times fewer;
+  // at least 1.5 times fewer on each).
+  EXPECT_GE(static_cast<double>(dense.diffused.all), 1.5 * adaptive.diffused.all) << t.name;
 }
 
-TEST(AdaptiveSampling, MatchesDenseNearTheGrainsOfSeededVariants) {
+INSTANTIATE_TEST_SUITE_P(Templates, AdaptiveSamplingOnTemplates,
+                         ::testing::ValuesIn(test::shipped_templates()),
+                         [](const auto& info) { return test::template_test_name(info.param); });
+
+// One test per shipped template with grains (the others are skipped).
+class AdaptiveSamplingNearGrains : public ::testing::TestWithParam<std::filesystem::path> {};
+
+TEST_P(AdaptiveSamplingNearGrains, MatchesDenseNearTheGrainsOfASeededVariant) {
   // The shipped templates' base models have no grains; their variants do (seeds, pips), and
   // around a grain the colour changes over a fraction of the cap's edge length. Every
   // interior vertex of the adaptive cap against the dense cap's (the same vertices, the same
   // backend): sampling's own error, where grains are.
-  size_t templates = 0, dense_points = 0, adaptive_points = 0, near_grain_points = 0;
-  double worst_mean = 0, worst_max = 0;
-  for (const std::filesystem::path& path : test::shipped_templates()) {
-    const Template t = load_template(path.string());
-    if (t.grains.empty()) continue;
-    ++templates;
-    const DsModel model = make_variant(t, 5).model;
-    const auto [dense, adaptive] = dense_and_adaptive(model, mid_height_plane(model), t.edge_m);
-    ASSERT_EQ(dense.position.size(), adaptive.position.size()) << t.name;
-    // Both count the points near grains, and adaptive sampling diffuses every one of them.
-    near_grain_points += dense.diffused.near_grains;
-    EXPECT_EQ(adaptive.diffused.near_grains, dense.diffused.near_grains) << t.name;
-    dense_points += dense.diffused.all;
-    adaptive_points += adaptive.diffused.all;
-    std::vector<double> errors;
-    for (size_t v = 0; v < adaptive.position.size(); ++v)
-      if (adaptive.cut_surface[v] < 0)
-        errors.push_back(colour_difference(adaptive.colour[v], dense.colour[v]));
-    const Errors e = summary(errors);
-    std::printf("%-10s seed 5: %5zu -> %5zu points; %zu interior vertices against dense: mean "
-                "%.2f max %.1f (sRGB of 255)\n",
-                t.name.c_str(), dense.diffused.all, adaptive.diffused.all, e.points,
-                e.mean, e.max);
-    worst_mean = std::max(worst_mean, e.mean);
-    worst_max = std::max(worst_max, e.max);
-    // Measured: means at most 0.77 (star fruit), the largest single error 72 (kiwi). Without
-    // diffusing the points near grains (grain_neighbourhood.h) kiwi cuts had single errors up
-    // to 157 and a strawberry cut a mean of 2.7, where interpolation ran across a seed's halo.
-    EXPECT_LE(e.mean, 1.0) << t.name;
-    EXPECT_LE(e.max, 80.0) << t.name;
-  }
-  EXPECT_GE(templates, 4u);
-  EXPECT_GT(near_grain_points, 0u);  // the pepper's seeds are far from its mid-height cut
-  std::printf("seeded variants: %zu -> %zu points (%.1fx); worst mean %.2f, worst max %.1f\n",
-              dense_points, adaptive_points,
-              static_cast<double>(dense_points) / adaptive_points, worst_mean, worst_max);
+  const Template& t = test::built_template(GetParam()).tmpl;
+  if (t.grains.empty()) GTEST_SKIP() << t.name << " has no grains";
+  const DsModel model = make_variant(t, 5).model;
+  const auto [dense, adaptive] = dense_and_adaptive(model, mid_height_plane(model), t.edge_m);
+  ASSERT_EQ(dense.position.size(), adaptive.position.size()) << t.name;
+  // Both count the points near grains, and adaptive sampling diffuses every one of them (the
+  // pepper's seeds are far from its mid-height cut: it has none).
+  EXPECT_EQ(adaptive.diffused.near_grains, dense.diffused.near_grains) << t.name;
+  std::vector<double> errors;
+  for (size_t v = 0; v < adaptive.position.size(); ++v)
+    if (adaptive.cut_surface[v] < 0)
+      errors.push_back(colour_difference(adaptive.colour[v], dense.colour[v]));
+  const Errors e = summary(errors);
+  std::printf("%-10s seed 5: %5zu -> %5zu points (%zu near grains); %zu interior vertices "
+              "against dense: mean %.2f max %.1f (sRGB of 255)\n",
+              t.name.c_str(), dense.diffused.all, adaptive.diffused.all,
+              dense.diffused.near_grains, e.points, e.mean, e.max);
+  // Measured: means at most 0.77 (star fruit), the largest single error 72 (kiwi). Without
+  // diffusing the points near grains (grain_neighbourhood.h) kiwi cuts had single errors up
+  // to 157 and a strawberry cut a mean of 2.7, where interpolation ran across a seed's halo.
+  EXPECT_LE(e.mean, 1.0) << t.name;
+  EXPECT_LE(e.max, 80.0) << t.name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Templates, AdaptiveSamplingNearGrains,
+                         ::testing::ValuesIn(test::shipped_templates()),
+                         [](const auto& info) { return test::template_test_name(info.param); });
+
+// The sweep above is about grains: enough shipped templates have them, and the kiwi's seeds
+// (a ring around the core at every height) lie near its mid-height cut.
+TEST(AdaptiveSampling, TheGrainSweepHasTemplatesWithGrainsNearTheCut) {
+  size_t with_grains = 0;
+  for (const std::filesystem::path& path : test::shipped_templates())
+    with_grains += !load_template(path.string()).grains.empty();
+  EXPECT_GE(with_grains, 4u);
+  const Template t = load_template(test::source_path("templates/kiwi.yaml").string());
+  const DsModel model = make_variant(t, 5).model;
+  const auto [dense, adaptive] = dense_and_adaptive(model, mid_height_plane(model), t.edge_m);
+  EXPECT_GT(dense.diffused.near_grains, 0u);
 }
 
 /// Two grains (octahedra of radius 1 mm at x = 0 and x = 10 mm) on one grain surface.

@@ -30,7 +30,7 @@ class ShippedVariation : public ::testing::TestWithParam<std::filesystem::path> 
 
 TEST_P(ShippedVariation, EveryVariantBuilds) {
   const std::filesystem::path& path = GetParam();
-  Template t = load_template(path.string());
+  Template t = test::built_template(path).tmpl;
   t.edge_m *= 2;
   const auto t0 = std::chrono::steady_clock::now();
   int distinct = 0, redraws = 0, halved = 0;
@@ -67,12 +67,7 @@ TEST_P(ShippedVariation, EveryVariantBuilds) {
 
 INSTANTIATE_TEST_SUITE_P(Templates, ShippedVariation,
                          ::testing::ValuesIn(test::shipped_templates()),
-                         [](const ::testing::TestParamInfo<std::filesystem::path>& info) {
-                           std::string n = info.param.stem().string();
-                           for (char& c : n)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return n;
-                         });
+                         [](const auto& info) { return test::template_test_name(info.param); });
 
 TEST(Variation, SameSeedSameVariant) {
   for (const char* name : {"templates/onion.yaml", "templates/tomato.yaml"}) {

@@ -277,30 +277,35 @@ namespace cutaway {
 namespace {
 
 // Every shipped template's volume, coarse (20 voxels across), in every form: the sidecar and
-// flipbooks, the OpenVDB file and the whole object's glTF.
-TEST(InteriorVolumeForms, EveryShippedTemplateGivesEveryForm) {
-  for (const std::filesystem::path& file : test::shipped_templates()) {
-    SCOPED_TRACE(file.string());
-    const Template tmpl = load_template(file.string());
-    const DsModel model = build_model(tmpl);
-    const auto diffusion = cpu(model);
-    auto grid = volume_grid(model, voxel_length_across(model, 20));
-    ASSERT_TRUE(grid);
-    const InteriorVolume volume = sample_interior_volume(model, *diffusion, std::move(*grid));
-    EXPECT_GT(volume.solid, 0u);
-    EXPECT_GE(volume.regions, 1u);
-    const Outcome<std::vector<NamedFile>> files = volume_files(volume, "x", tmpl.name, -1, true);
-    ASSERT_TRUE(files) << files.reason();
-    ASSERT_EQ(files->size(), 5u);
-    const nlohmann::json sidecar = nlohmann::json::parse((*files)[0].second);
-    EXPECT_EQ(sidecar["template"], tmpl.name);
-    EXPECT_EQ(sidecar["vdb"], "x.vdb");
-    EXPECT_EQ((*files)[4].second.substr(0, 4), std::string(" BDV"));
-    const std::string glb =
-        scene_to_glb(whole_object_assets(Variant{tmpl, model}, *diffusion, 1.0, 0));
-    EXPECT_EQ(glb.substr(0, 4), "glTF");
-  }
+// flipbooks, the OpenVDB file and the whole object's glTF. One test per shipped template (the
+// sweep's process shares the template's build).
+class InteriorVolumeForms : public ::testing::TestWithParam<std::filesystem::path> {};
+
+TEST_P(InteriorVolumeForms, EveryFormIsMade) {
+  const test::BuiltTemplate& built = test::built_template(GetParam());
+  const Template& tmpl = built.tmpl;
+  const DsModel& model = built.model;
+  const auto diffusion = cpu(model);
+  auto grid = volume_grid(model, voxel_length_across(model, 20));
+  ASSERT_TRUE(grid);
+  const InteriorVolume volume = sample_interior_volume(model, *diffusion, std::move(*grid));
+  EXPECT_GT(volume.solid, 0u);
+  EXPECT_GE(volume.regions, 1u);
+  const Outcome<std::vector<NamedFile>> files = volume_files(volume, "x", tmpl.name, -1, true);
+  ASSERT_TRUE(files) << files.reason();
+  ASSERT_EQ(files->size(), 5u);
+  const nlohmann::json sidecar = nlohmann::json::parse((*files)[0].second);
+  EXPECT_EQ(sidecar["template"], tmpl.name);
+  EXPECT_EQ(sidecar["vdb"], "x.vdb");
+  EXPECT_EQ((*files)[4].second.substr(0, 4), std::string(" BDV"));
+  const std::string glb =
+      scene_to_glb(whole_object_assets(Variant{tmpl, model}, *diffusion, 1.0, 0));
+  EXPECT_EQ(glb.substr(0, 4), "glTF");
 }
+
+INSTANTIATE_TEST_SUITE_P(Templates, InteriorVolumeForms,
+                         ::testing::ValuesIn(test::shipped_templates()),
+                         [](const auto& info) { return test::template_test_name(info.param); });
 
 }  // namespace
 }  // namespace cutaway
