@@ -4,7 +4,7 @@
 BUILD ?= build
 JOBS  ?= $(shell nproc)
 
-.PHONY: all deps deps-test build demo test test-cpus sanitize fuzz bench gallery template-sheet clean
+.PHONY: all deps deps-test build demo test check test-times test-cpus sanitize fuzz bench gallery template-sheet clean
 
 all: build
 
@@ -32,7 +32,21 @@ demo: deps $(BUILD)/build.ninja
 test: deps-test
 	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
 	cmake --build $(BUILD) -j $(JOBS)
-	cd $(BUILD) && ctest --output-on-failure --no-tests=error -j $(JOBS)
+	cd $(BUILD) && ctest --output-on-failure --no-tests=error -j $(JOBS) \
+	  --output-junit Testing/junit.xml
+	@python3 scripts/test-times.py $(BUILD)
+
+# The inner loop: the unit tier alone (no scenes, no external programs), after a build.
+check: deps-test
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
+	cmake --build $(BUILD) -j $(JOBS)
+	cd $(BUILD) && ctest --output-on-failure --no-tests=error -j $(JOBS) -L unit \
+	  --output-junit Testing/junit.xml
+	@python3 scripts/test-times.py $(BUILD)
+
+# The slowest 20 tests and the time per tier of the last `make test` or `make check`.
+test-times:
+	python3 scripts/test-times.py $(BUILD)
 
 # Same bytes on an older CPU: a small scene made natively and under qemu-user emulating an
 # SSE4.2-only CPU (Nehalem: no AVX, no FMA), compared byte for byte (about 2 minutes; not part
@@ -53,7 +67,7 @@ sanitize: deps-test
 	cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCUTAWAY_SANITIZE=ON
 	cmake --build build-asan -j $(JOBS)
 	cd build-asan && ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	  ctest --output-on-failure -j $(JOBS) -LE fuzz --timeout 1800
+	  ctest --output-on-failure -j $(JOBS) --timeout 1800
 
 # Longer hunts than `make test` makes (CI may skip this; about 25 minutes on 2 cores): every
 # libFuzzer target for FUZZ_SECONDS each, then the random-plane property test with

@@ -1,12 +1,11 @@
 #!/usr/bin/env bash
-# Fixture of the viewer tests: the shipped salad, plate and market scenes as .glb, made with the
-# default options into DIR, each cut afresh (--no-cache) (the three.js exposure test and the Blender add-on tests read them).
-# Usage: tests/app/cli/shipped_scenes.sh CUTAWAY SOURCE_DIR DIR
+# Fixture of the viewer tests: one shipped scene (salad, plate or market) as DIR/SCENE.glb, made
+# with the default options and cut afresh (--no-cache); the three.js exposure test and the
+# Blender add-on tests read them. One CTest test per scene, so that they run side by side.
+# Usage: tests/app/cli/shipped_scenes.sh CUTAWAY SOURCE_DIR DIR SCENE
 set -euo pipefail
-cutaway=$1 source_dir=$2 dir=$3
-rm -rf "$dir"
+cutaway=$1 source_dir=$2 dir=$3 scene=$4
 mkdir -p "$dir"
-for scene in salad plate market; do
-  "$cutaway" scene "$source_dir/scenes/$scene.yaml" -o "$dir/$scene.glb" -q --no-cache
-done
-ls -l "$dir"
+rm -f "$dir/$scene.glb"
+"$cutaway" scene "$source_dir/scenes/$scene.yaml" -o "$dir/$scene.glb" -q --no-cache
+ls -l "$dir/$scene.glb"
