@@ -21,6 +21,8 @@ import os
 import re
 import sys
 
+import doc_blocks
+
 INCLUDE = re.compile(r'\s*#\s*include\s+"([^"]+)"')
 DOC = os.path.join('doc', 'architecture.md')
 # One line of the layout table: "floor 11  io | ..." or "          render | ...".
@@ -101,29 +103,9 @@ def code_floors(folders, edges):
     return floors, sorted(left)
 
 
-def layout_block(doc_text):
-    """(line number, text) of each line of the first ``` block after "## Layout", or None."""
-    lines = doc_text.split('\n')
-    start = next((i for i, line in enumerate(lines) if line.strip() == '## Layout'), None)
-    if start is None:
-        return None
-    block, inside = [], False
-    for i in range(start + 1, len(lines)):
-        line = lines[i]
-        if line.startswith('## '):
-            return None  # the section ended without a table
-        if line.startswith('```'):
-            if inside:
-                return block
-            inside = True
-        elif inside:
-            block.append((i + 1, line))
-    return None
-
-
 def doc_floors(doc_text):
     """({folder: floor}, problems) from the layout table of doc/architecture.md."""
-    block = layout_block(doc_text)
+    block = doc_blocks.block_after(doc_text, '## Layout')
     if block is None:
         return {}, [f'{DOC}: no ``` table after "## Layout"']
     floor_of, problems, floor = {}, [], None

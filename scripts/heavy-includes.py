@@ -19,6 +19,8 @@ import os
 import re
 import sys
 
+import doc_blocks
+
 DOC = os.path.join('doc', 'architecture.md')
 HEADING = '### Heavy includes'
 TOPS = ('generator', 'render', 'app')
@@ -38,29 +40,9 @@ class Library:
         return any(rel == a or (a.endswith('/') and rel.startswith(a)) for a in self.allowed)
 
 
-def table_block(doc_text):
-    """(line number, text) of each line of the first ``` block after HEADING, or None."""
-    lines = doc_text.split('\n')
-    start = next((i for i, line in enumerate(lines) if line.strip() == HEADING), None)
-    if start is None:
-        return None
-    block, inside = [], False
-    for i in range(start + 1, len(lines)):
-        line = lines[i]
-        if line.startswith('#') and not inside:
-            return None  # the next heading came before a table
-        if line.startswith('```'):
-            if inside:
-                return block
-            inside = True
-        elif inside:
-            block.append((i + 1, line))
-    return None
-
-
 def read_table(doc_text):
     """([Library], problems) from the table of doc/architecture.md."""
-    block = table_block(doc_text)
+    block = doc_blocks.block_after(doc_text, HEADING)
     if block is None:
         return [], [f'{DOC}: no ``` table after "{HEADING}"']
     rows = [(n, line) for n, line in block if line.strip()]
