@@ -199,8 +199,11 @@ TEST(AdaptiveSampling, TheGrainSweepHasTemplatesWithGrainsNearTheCut) {
   EXPECT_GE(with_grains, 4u);
   const Template t = load_template(test::source_path("templates/kiwi.yaml").string());
   const DsModel model = make_variant(t, 5).model;
-  const auto [dense, adaptive] = dense_and_adaptive(model, mid_height_plane(model), t.edge_m);
-  EXPECT_GT(dense.diffused.near_grains, 0u);
+  CrossSectionOptions options{t.edge_m};
+  options.sampling = CapSampling::Adaptive;
+  const CrossSection cut = *make_cross_section(model, mid_height_plane(model),
+                                               *make_cpu_diffusion(model, {16, 0}), options);
+  EXPECT_GT(cut.diffused.near_grains, 0u);
 }
 
 /// Two grains (octahedra of radius 1 mm at x = 0 and x = 10 mm) on one grain surface.
