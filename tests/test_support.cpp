@@ -59,7 +59,8 @@ std::string in_source_dir(const std::string& program, const std::vector<std::str
   std::string cmd = "cd";
   add_word(cmd, CUTAWAY_SOURCE_DIR);
   cmd += " &&";
-  if (!env.empty()) add_word(cmd, env);
+  if (const size_t eq = env.find('='); eq != std::string::npos)  // NAME=VALUE, VALUE quoted
+    cmd += " " + env.substr(0, eq + 1) + shell_quote(env.substr(eq + 1));
   add_word(cmd, program);
   for (const std::string& a : args) add_word(cmd, a);
   return cmd;
