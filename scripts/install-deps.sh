@@ -4,7 +4,8 @@
 # of the batch test), Blender and python3-numpy (its glTF importer needs numpy; the add-on's
 # tests run it headless) from Debian, and, from npm into node_modules/
 # (package-lock.json, exact versions), the Khronos glTF validator, three.js (its GLTFLoader is
-# the real glTF client of tests/tools/load_gltf_three.mjs) and playwright-core (drives Chromium).
+# the real glTF client of tests/tools/load_gltf_three.mjs), playwright-core (drives Chromium)
+# and ESLint with @eslint/js and globals (lints app/edit/web/).
 # A fast no-op when everything is already present.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -63,6 +64,6 @@ npm_modules_current() {
 }
 
 if ((with_tests)) && ! npm_modules_current; then
-  echo "install-deps: installing gltf-validator, three, playwright-core into node_modules/" >&2
+  echo "install-deps: installing the npm test tools of package.json into node_modules/" >&2
   npm ci --no-audit --no-fund --silent
 fi
