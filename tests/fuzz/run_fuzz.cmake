@@ -1,7 +1,7 @@
-# KIND=build configures and builds the fuzz sub-project (tests/fuzz, clang) into the build tree
-# (the CTest test fuzz_build); KIND template, scene, ply or cut runs that parser's fuzzer, built
-# before (KIND cache: the cut cache's entry decoding), for SECONDS seconds: any crash, sanitizer report, timeout or out-of-memory fails (the
-# CTest tests fuzz_template_parser, fuzz_scene_parser, fuzz_ply_parser and fuzz_cut_parser):
+# What `make fuzz` runs: KIND=build configures and builds the fuzz sub-project (tests/fuzz,
+# clang, ASan and UBSan) into the build tree; KIND template, scene, ply or cut runs that
+# parser's fuzzer, built before (KIND cache: the cut cache's entry decoding), for SECONDS
+# seconds: any crash, sanitizer report, timeout or out-of-memory fails. Not part of `make test`.
 #   cmake -DKIND=build -DSOURCE_DIR=<repo> -DBINARY_DIR=<build>/fuzz -DCLANGXX=clang++
 #         -DGENERATOR=Ninja -P tests/fuzz/run_fuzz.cmake
 #   cmake -DKIND=template -DSECONDS=60 -DSOURCE_DIR=<repo> -DBINARY_DIR=<build>/fuzz ...
