@@ -72,12 +72,13 @@ sanitize: deps-test
 # Longer hunts than `make test` makes (CI may skip this; about 25 minutes on 2 cores): every
 # libFuzzer target for FUZZ_SECONDS each, then the random-plane property test with
 # RANDOM_PLANES planes per template (and half as many per seeded variant) from another seed,
-# and the seeded-dice closedness test with DICE_SEEDS seeds per template (templates with grains
-# also halved and cut in 4 wedges).
+# the seeded-dice closedness test with DICE_SEEDS seeds per template (templates with grains
+# also halved and cut in 4 wedges), and VARIANT_SEEDS seeded variants of every template built.
 FUZZ_SECONDS ?= 240
 RANDOM_PLANES ?= 300
 RANDOM_PLANES_SEED ?= 1
 DICE_SEEDS ?= 6
+VARIANT_SEEDS ?= 200
 fuzz: deps-test $(BUILD)/build.ninja
 	cmake --build $(BUILD) -j $(JOBS)
 	for kind in build template scene ply cut cache; do \
@@ -88,6 +89,7 @@ fuzz: deps-test $(BUILD)/build.ninja
 	cd $(BUILD) && CUTAWAY_RANDOM_PLANES=$(RANDOM_PLANES) CUTAWAY_RANDOM_PLANES_SEED=$(RANDOM_PLANES_SEED) \
 	  ./cutaway_tests --gtest_filter='Templates/RandomPlanes.*'
 	cd $(BUILD) && CUTAWAY_DICE_SEEDS=$(DICE_SEEDS) ./cutaway_tests --gtest_filter='Templates/SeededDice.*'
+	cd $(BUILD) && CUTAWAY_VARIANT_SEEDS=$(VARIANT_SEEDS) ./cutaway_tests --gtest_filter='Templates/ShippedVariation.*'
 
 bench: build
 	cmake --build $(BUILD) --target benchmarks -j $(JOBS)

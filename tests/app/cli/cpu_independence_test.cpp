@@ -86,6 +86,9 @@ TEST(CpuIndependence, PieceWithDice) {
   expect_same_bytes_every_way(
       "dice", {"piece", "templates/kiwi.yaml", "--cut", "dice:20", "--seed", "5", "-o",
                "OUT/kiwi.glb"}, 1);
+}
+
+TEST(CpuIndependence, PieceWithDiceAsPovRay) {
   expect_same_bytes_every_way(
       "dice-pov", {"piece", "templates/kiwi.yaml", "--cut", "dice:20", "--seed", "5", "-o",
                    "OUT/kiwi.pov"}, 1);

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
+#include <cstdlib>
 #include <cstdio>
 
 #include "base/colour.h"
@@ -23,19 +23,20 @@ bool same_sections(const Template& a, const Template& b) {
   return true;
 }
 
-// 200 seeds per shipped template, one test per template (so that CTest runs them in
-// parallel). For speed the meshes are built at twice the template's edge length (the curves,
-// and so the rules they must keep, are the same at any resolution).
+// 100 seeds per shipped template (CUTAWAY_VARIANT_SEEDS; `make fuzz` draws 200), one test per
+// template (the template's sweep). For speed the meshes are built at twice the template's edge
+// length (the curves, and so the rules they must keep, are the same at any resolution).
 class ShippedVariation : public ::testing::TestWithParam<std::filesystem::path> {};
 
 TEST_P(ShippedVariation, EveryVariantBuilds) {
   const std::filesystem::path& path = GetParam();
   Template t = test::built_template(path).tmpl;
   t.edge_m *= 2;
-  const auto t0 = std::chrono::steady_clock::now();
+  const char* env = std::getenv("CUTAWAY_VARIANT_SEEDS");
+  const int seeds = env && *env ? std::atoi(env) : 100;
   int distinct = 0, redraws = 0, halved = 0;
   Template first;
-  for (uint64_t seed = 0; seed < 200; ++seed) {
+  for (uint64_t seed = 0; seed < static_cast<uint64_t>(seeds); ++seed) {
     const Variant v = make_variant(t, seed);
     if (seed == 0) first = v.tmpl;
     redraws += v.draws - 1;
@@ -47,10 +48,8 @@ TEST_P(ShippedVariation, EveryVariantBuilds) {
     for (size_t i = 0; i < t.surfaces.size(); ++i)
       EXPECT_EQ(v.tmpl.surfaces[i].profile, t.surfaces[i].profile);
   }
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("%s: 200 variants in %.2f s (%.1f/s), %d differ from seed 0's, %d redraws, "
-              "%d with a halved amount\n",
-              t.name.c_str(), s, 200 / s, distinct, redraws, halved);
+  std::printf("%s: %d variants, %d differ from seed 0's, %d redraws, %d with a halved amount\n",
+              t.name.c_str(), seeds, distinct, redraws, halved);
   // Cylindrical: drawn loops vary. N-fold: a fold-count range or unequal folds vary (the
   // shipped cucumber has three equal folds and a fixed count: all its variants agree).
   bool varies = false;
@@ -61,7 +60,7 @@ TEST_P(ShippedVariation, EveryVariantBuilds) {
              !fold_pca(fold_features(t, {})).axes.empty();
   }
   if (varies) {
-    EXPECT_GE(distinct, 100) << t.name;
+    EXPECT_GE(distinct, seeds / 2) << t.name;
   }
 }
 
