@@ -12,8 +12,8 @@
 #include <memory>
 #include <array>
 #include <cctype>
+#include <cstdio>
 #include <cstdlib>
-#include <chrono>
 #include <fstream>
 #include <cstring>
 #include <sstream>
@@ -87,8 +87,8 @@ RunResult run_shell(std::string cmd) {
 }
 
 /// Every test process starts with a default cut cache of its own (XDG_CACHE_HOME), empty, so
-/// that whatever runs cutaway without run_cutaway (the editor's server, the browser pages,
-/// forked runs under limits) never reads what another test stored.
+/// that whatever runs cutaway without run_cutaway or run_cutaway_limited (the editor's server,
+/// the browser pages) never reads what another test stored.
 /// Removed when the process that made it ends (not a child forked from it).
 struct OwnDefaultCache {
   const pid_t owner = ::getpid();
@@ -410,19 +410,54 @@ void texture_with_halves(SceneAssets& assets, size_t mesh, int size) {
   return ::testing::AssertionFailure() << manifold.reason();
 }
 
+namespace {
+
+/// The counter `key` ("rchar", "wchar") of a /proc/.../io file; UINT64_MAX when it cannot be
+/// read (a kernel without task I/O accounting), which no bound admits.
+uint64_t io_count(const std::string& io_file, const std::string& key) {
+  std::ifstream io(io_file);
+  for (std::string line; std::getline(io, line);)
+    if (line.rfind(key + ": ", 0) == 0) return std::stoull(line.substr(key.size() + 2));
+  return UINT64_MAX;
+}
+
+/// The address space this process has mapped now, bytes (VmSize of /proc/self/status).
+uint64_t mapped_bytes() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("VmSize:", 0) == 0) return std::stoull(line.substr(7)) * 1024;
+  return 0;
+}
+
+}  // namespace
+
 LimitedRun run_cutaway_limited(const std::vector<std::string>& args, uint64_t address_space,
                                int cpu_seconds) {
-  const std::filesystem::path err_file = fresh_dir("limited_run") / "stderr.txt";
-  std::vector<std::string> words{CUTAWAY_BINARY};
+  static int counter = 0;
+  const std::filesystem::path dir = fresh_dir("limited_run");
+  const std::filesystem::path err_file = dir / "stderr.txt", report_file = dir / "report.txt";
+  const auto cache = std::filesystem::path(CUTAWAY_TEST_TMP) / "run-caches" /
+                     ("limited-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  std::filesystem::remove_all(cache);
+  // tests/tools/measured_run starts cutaway and measures it: a child forked from this process
+  // would carry this process's peak memory into its own.
+  std::vector<std::string> words{CUTAWAY_MEASURED_RUN, report_file.string(), CUTAWAY_BINARY};
   words.insert(words.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (auto& w : words) argv.push_back(w.data());
   argv.push_back(nullptr);
+  // The environment with a cut cache of the run's own, built before fork (setenv is not
+  // async-signal-safe).
+  std::vector<std::string> env_words{"XDG_CACHE_HOME=" + cache.string()};
+  for (char** e = environ; *e != nullptr; ++e)
+    if (std::strncmp(*e, "XDG_CACHE_HOME=", 15) != 0) env_words.emplace_back(*e);
+  std::vector<char*> envp;
+  for (auto& w : env_words) envp.push_back(w.data());
+  envp.push_back(nullptr);
   const std::string err_path = err_file.string();
-  const auto t0 = std::chrono::steady_clock::now();
   const pid_t pid = ::fork();
   if (pid == 0) {
-    // Only async-signal-safe calls between fork and exec.
+    // Only async-signal-safe calls between fork and exec. The limits pass to cutaway.
     const rlimit as{address_space, address_space},
         cpu{static_cast<rlim_t>(cpu_seconds), static_cast<rlim_t>(cpu_seconds)};
 #ifndef __SANITIZE_ADDRESS__  // AddressSanitizer reserves terabytes of shadow address space
@@ -437,23 +472,68 @@ LimitedRun run_cutaway_limited(const std::vector<std::string>& args, uint64_t ad
     ::dup2(null, 0);
     ::dup2(null, 1);
     ::dup2(err, 2);
-    ::execv(argv[0], argv.data());
+    ::execve(argv[0], argv.data(), envp.data());
     ::_exit(127);
   }
   LimitedRun r;
   int status = 0;
-  rusage usage{};
-  if (pid < 0 || ::wait4(pid, &status, 0, &usage) != pid) {
-    ADD_FAILURE() << "cannot run " << CUTAWAY_BINARY;
+  if (pid < 0 || ::waitpid(pid, &status, 0) != pid) {
+    ADD_FAILURE() << "cannot run " << CUTAWAY_MEASURED_RUN;
     return r;
   }
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
-  if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
-  r.peak_rss_bytes = static_cast<uint64_t>(usage.ru_maxrss) * 1024;
   r.err = read_file(err_file);
+  const std::string report = read_file(report_file);
+  long long peak_kib = 0, read_bytes = 0, written_bytes = 0;
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 ||
+      std::sscanf(report.c_str(),
+                  "exit %d signal %d peak_rss_kib %lld read_bytes %lld written_bytes %lld",
+                  &r.exit_code, &r.signal, &peak_kib, &read_bytes, &written_bytes) != 5) {
+    ADD_FAILURE() << "no measured run of " << CUTAWAY_BINARY << " (wait status " << status
+                  << "): " << r.err;
+    r.exit_code = -1;
+    return r;
+  }
+  r.peak_rss_bytes = static_cast<uint64_t>(peak_kib) * 1024;
+  // -1: the kernel keeps no I/O counts.
+  r.read_bytes = read_bytes < 0 ? UINT64_MAX : static_cast<uint64_t>(read_bytes);
+  r.written_bytes = written_bytes < 0 ? UINT64_MAX : static_cast<uint64_t>(written_bytes);
+  std::filesystem::remove_all(cache);
   return r;
 }
 
+const LimitedRun& cutaway_start() {
+  static const LimitedRun start = [] {
+    LimitedRun r = run_cutaway_limited({"--version"}, uint64_t{1} << 30, 60);
+    EXPECT_EQ(r.exit_code, 0) << "cutaway --version: " << r.err;
+    return r;
+  }();
+  return start;
+}
+
+uint64_t thread_bytes_read() {
+  const uint64_t n = io_count("/proc/thread-self/io", "rchar");
+  if (n == UINT64_MAX) ADD_FAILURE() << "no /proc/thread-self/io: the kernel keeps no I/O counts";
+  return n;
+}
+
+int exit_code_within_address_space(uint64_t headroom, const std::function<int()>& body) {
+  const uint64_t limit = mapped_bytes() + headroom;
+  const pid_t child = ::fork();
+  if (child < 0) return -1;
+  if (child == 0) {
+    const rlimit as{limit, limit};
+    if (::setrlimit(RLIMIT_AS, &as) != 0) ::_exit(102);
+    try {
+      ::_exit(body());
+    } catch (const std::bad_alloc&) {
+      ::_exit(100);
+    } catch (...) {
+      ::_exit(101);
+    }
+  }
+  int status = 0;
+  if (::waitpid(child, &status, 0) != child || !WIFEXITED(status)) return -1;
+  return WEXITSTATUS(status);
+}
 
 }  // namespace cutaway::test

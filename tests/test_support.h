@@ -3,6 +3,7 @@
 
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -43,21 +44,62 @@ RunResult run_cutaway(const std::vector<std::string>& args);
 /// Runs `program` (a path, or a name found on PATH) with `args` as run_cutaway runs cutaway.
 RunResult run_program(const std::string& program, const std::vector<std::string>& args);
 
-/// What one run of build/cutaway under limits did.
+/// What one run of build/cutaway under limits did, measured in work (memory, bytes), never in
+/// time: a run that hangs is stopped by its CPU limit or by CTest's timeout.
 struct LimitedRun {
   int exit_code = -1;  ///< -1: killed by a signal
   int signal = 0;
   std::string err;     ///< stderr
-  double seconds = 0;  ///< wall time
-  uint64_t peak_rss_bytes = 0;  ///< the child's peak resident memory
+  /// cutaway's own peak resident memory (wait4's ru_maxrss, taken by tests/tools/measured_run,
+  /// which starts it: not this process's peak, which a child forked from it would carry).
+  uint64_t peak_rss_bytes = 0;
+  /// Bytes cutaway's read calls returned (rchar of /proc/PID/io, taken before it is reaped):
+  /// files, pipes and /proc alike, whether from the page cache or the disk; cutaway_start()
+  /// says what the program reads before any input. UINT64_MAX (which no bound admits) when the
+  /// kernel keeps no I/O counts.
+  uint64_t read_bytes = 0;
+  uint64_t written_bytes = 0;  ///< bytes its write calls took (wchar of /proc/PID/io), likewise
 };
 
-/// Runs build/cutaway with `args` in the source directory, with at most `address_space` bytes of
-/// address space (an allocation beyond it fails: std::bad_alloc, exit code 1; not under AddressSanitizer,
-/// which needs far more address space, and reports huge allocations itself) and `cpu_seconds`
-/// of CPU time (a regression fails the test instead of taking the machine).
+/// Runs build/cutaway with `args` in the source directory through tests/tools/measured_run,
+/// with at most `address_space` bytes of address space (RLIM_INFINITY: no limit; an allocation
+/// beyond it fails: std::bad_alloc, exit code 1; not under AddressSanitizer, which needs far
+/// more address space, and reports huge allocations itself) and `cpu_seconds` of CPU time (a
+/// safety net against a hang, never a measure: a regression fails the test instead of taking
+/// the machine). Like run_cutaway, each run has an empty cut cache of its own; its stdout is
+/// discarded. A run that cannot be started or measured adds a test failure (exit_code -1).
+/// Peak memory under AddressSanitizer (shadow memory, a quarantine of freed blocks) says little:
+/// see kPeakMemoryBounds.
 LimitedRun run_cutaway_limited(const std::vector<std::string>& args, uint64_t address_space,
                                int cpu_seconds);
+
+/// Whether bounds on peak resident memory hold in this build: not under AddressSanitizer, whose
+/// shadow memory and quarantine of freed blocks (256 MiB) add to every peak.
+#ifdef __SANITIZE_ADDRESS__
+inline constexpr bool kPeakMemoryBounds = false;
+#else
+inline constexpr bool kPeakMemoryBounds = true;
+#endif
+
+/// What build/cutaway costs before it looks at any input: its run of `cutaway --version` under
+/// run_cutaway_limited (1 GiB, 60 s of CPU), made once per test process. Its read_bytes are
+/// the libraries' headers, /proc and /sys (about 56 KiB), its peak_rss_bytes the loaded program
+/// (about 100 MiB): the baseline that bounds on a run's work are stated over.
+const LimitedRun& cutaway_start();
+
+/// Bytes the calling thread's read calls have returned so far (rchar of /proc/thread-self/io):
+/// the difference of two calls is what the code between them read, plus the about 100 bytes
+/// of the first call's own read of that file. A test failure when the kernel keeps no such
+/// count.
+uint64_t thread_bytes_read();
+
+/// Runs `body` in a forked child whose address space may grow by at most `headroom` bytes over
+/// what this process has mapped now (VmSize of /proc/self/status), and returns the child's exit
+/// code: what `body` returned, 100 when it threw std::bad_alloc (an allocation beyond the
+/// headroom), 101 when it threw anything else, -1 when the child could not be started or
+/// did not exit. Measures peak allocation (reserved, not only touched, memory) of in-process
+/// code without the test process's own history.
+int exit_code_within_address_space(uint64_t headroom, const std::function<int()>& body);
 
 /// A fresh, empty directory under the build tree, named after `name`, the running test and
 /// the process (parallel test processes never share one).
