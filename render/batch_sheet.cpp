@@ -22,8 +22,8 @@ Outcome<BatchSheet> batch_contact_sheet(const BatchIndex& index, const MergeRepo
     try {
       picture = decode_png(read_file_bytes(thumbnail));
     } catch (const EnvironmentError& e) {
-      return Outcome<BatchSheet>::none("the thumbnail " + thumbnail.string() +
-                                       " cannot be used (" + e.what() +
+      return Outcome<BatchSheet>::none("the thumbnail " + thumbnail.string() + " cannot be used (" +
+                                       e.what() +
                                        "); remove it and its asset and run that shard again");
     }
     tiles.push_back(labelled_tile(picture, r.template_name + "-" + std::to_string(r.seed), r.cut,

@@ -45,9 +45,7 @@ struct PreviewGeometry {
 };
 
 void check_options(const PreviewOptions& o) {
-  auto fail = [](const std::string& what) {
-    throw InternalError("render_model_preview: " + what);
-  };
+  auto fail = [](const std::string& what) { throw InternalError("render_model_preview: " + what); };
   if (o.width < 1 || o.height < 1 || o.width > kMaxImageSide || o.height > kMaxImageSide)
     fail("image size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
          " is outside 1.." + std::to_string(kMaxImageSide));
@@ -96,10 +94,10 @@ PreviewGeometry build_geometry(const DsModel& model, const PreviewOptions& optio
       const auto& q = mesh.point(vh);
       const auto& data = mesh.data(vh);
       // A hollow side has no material to show; it takes the other side's colour.
-      const OpenMesh::Vec3d front = surface.visible_front || !surface.visible_back ? data.front
-                                                                                   : data.back;
-      const OpenMesh::Vec3d back = surface.visible_back || !surface.visible_front ? data.back
-                                                                                  : data.front;
+      const OpenMesh::Vec3d front =
+          surface.visible_front || !surface.visible_back ? data.front : data.back;
+      const OpenMesh::Vec3d back =
+          surface.visible_back || !surface.visible_front ? data.back : data.front;
       const glm::dvec3& n = normals[static_cast<size_t>(vh.idx())];
       PreviewVertex pv{};
       for (int i = 0; i < 3; ++i) {
@@ -125,9 +123,9 @@ void sort_back_to_front(const glm::dmat4& view_from_object,
   const glm::dvec4 z_row(view_from_object[0][2], view_from_object[1][2], view_from_object[2][2],
                          view_from_object[3][2]);
   for (size_t t = 0; t < n; ++t) {
-    const glm::dvec3 c =
-        (positions[indices[3 * t]] + positions[indices[3 * t + 1]] + positions[indices[3 * t + 2]]) /
-        3.0;
+    const glm::dvec3 c = (positions[indices[3 * t]] + positions[indices[3 * t + 1]] +
+                          positions[indices[3 * t + 2]]) /
+                         3.0;
     depth[t] = glm::dot(z_row, glm::dvec4(c, 1.0));
   }
   std::vector<size_t> order(n);
@@ -146,8 +144,7 @@ void sort_back_to_front(const glm::dmat4& view_from_object,
 Image render_model_preview(const DsModel& model, const PreviewOptions& options) {
   check_options(options);
   if (model.face_count() == 0)
-    throw InternalError("render_model_preview: model '" + model.name +
-                        "' has no triangles");
+    throw InternalError("render_model_preview: model '" + model.name + "' has no triangles");
   const glm::dvec3 centre = 0.5 * (model.bbox_min + model.bbox_max);
   const double diagonal_m = glm::length(model.bbox_max - model.bbox_min);
   if (!(diagonal_m > 0) || !std::isfinite(diagonal_m))
@@ -186,7 +183,7 @@ Image render_model_preview(const DsModel& model, const PreviewOptions& options) 
   const GlProgram program("preview.vert", "preview.frag");
 
   const OffscreenTarget target(*context, options.width, options.height, options.samples,
-                              "render_model_preview");
+                               "render_model_preview");
 
   make_vertex_array(geometry.vertices, geometry.indices,
                     {{0, 3, offsetof(PreviewVertex, position)},

@@ -11,13 +11,13 @@ namespace cutaway {
 
 /// How render_model_preview() draws. Units are in the names; colours say sRGB or linear.
 struct PreviewOptions {
-  int width = 800, height = 800;  ///< image size, pixels; 1..16384 (and what GL allows)
-  int samples = 4;                ///< MSAA samples per pixel, >= 1; clamped to what GL offers
-  double azimuth_deg = 35;        ///< camera orbit about +Y; 0 looks from +Z toward -Z
-  double elevation_deg = 25;      ///< camera height above the XZ plane; -89..89
-  double fov_deg = 30;            ///< full field of view of the image's shorter side; 1..170
-  double skin_alpha = 0.35;       ///< opacity of the skin (surfaces[0]), 0..1
-  double inner_alpha = 0.7;       ///< opacity of every other surface, 0..1
+  int width = 800, height = 800;        ///< image size, pixels; 1..16384 (and what GL allows)
+  int samples = 4;                      ///< MSAA samples per pixel, >= 1; clamped to what GL offers
+  double azimuth_deg = 35;              ///< camera orbit about +Y; 0 looks from +Z toward -Z
+  double elevation_deg = 25;            ///< camera height above the XZ plane; -89..89
+  double fov_deg = 30;                  ///< full field of view of the image's shorter side; 1..170
+  double skin_alpha = 0.35;             ///< opacity of the skin (surfaces[0]), 0..1
+  double inner_alpha = 0.7;             ///< opacity of every other surface, 0..1
   glm::dvec3 background_srgb{1, 1, 1};  ///< opaque background, sRGB 0..1
 };
 

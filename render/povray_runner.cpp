@@ -20,7 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kTailLines = 15;               // lines of it quoted in an error
+constexpr int kTailLines = 15;  // lines of it quoted in an error
 
 // A fresh directory under the system's temporary directory, removed with everything in it,
 // also when SIGTERM, SIGINT or SIGHUP stops the process (RemoveOnSignal).
@@ -31,7 +31,7 @@ class TempDir {
                            RemoveOnSignal::Kind::Folder, guard_);
     if (path_.empty()) {
       throw EnvironmentError("cannot create a temporary directory for POV-Ray: " +
-                               std::string(std::strerror(errno)));
+                             std::string(std::strerror(errno)));
     }
   }
   ~TempDir() {
@@ -91,10 +91,19 @@ void render_povray(const fs::path& pov_file, const fs::path& png_out, int width,
     }
   }
 
-  std::vector<std::string> args = {
-      options.executable, "+Iscene.pov", "+Oscene.png", "+FN", "+W" + std::to_string(width),
-      "+H" + std::to_string(height), "-D", "-P", "-V", "-GS", "-GR",
-      "+Q" + std::to_string(options.quality), "File_Gamma=sRGB"};
+  std::vector<std::string> args = {options.executable,
+                                   "+Iscene.pov",
+                                   "+Oscene.png",
+                                   "+FN",
+                                   "+W" + std::to_string(width),
+                                   "+H" + std::to_string(height),
+                                   "-D",
+                                   "-P",
+                                   "-V",
+                                   "-GS",
+                                   "-GR",
+                                   "+Q" + std::to_string(options.quality),
+                                   "File_Gamma=sRGB"};
   if (options.antialias) {
     args.insert(args.end(), {"+A0.3", "+AM2", "+R3"});
   } else {
@@ -116,7 +125,7 @@ void render_povray(const fs::path& pov_file, const fs::path& png_out, int width,
     }
     if (exited_ok) how = "wrote no image";
     throw EnvironmentError("POV-Ray failed on " + pov_file.string() + " (" + how + "):\n" +
-                             last_lines(run.output, kTailLines));
+                           last_lines(run.output, kTailLines));
   }
   write_file_atomically(png_out, read_file_bytes(image));
 }

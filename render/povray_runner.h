@@ -5,14 +5,13 @@
 #include <filesystem>
 #include <string>
 
-
 namespace cutaway {
 
 /// How render_povray() runs POV-Ray.
 struct PovrayOptions {
-  bool antialias = true;   ///< adaptive supersampling: +A0.3 +AM2 +R3; off: -A
-  int quality = 9;         ///< POV-Ray's +Q, 0..11 (9: everything but radiosity)
-  int threads = 0;         ///< render threads (+WT); 0 = POV-Ray's default (one per core)
+  bool antialias = true;  ///< adaptive supersampling: +A0.3 +AM2 +R3; off: -A
+  int quality = 9;        ///< POV-Ray's +Q, 0..11 (9: everything but radiosity)
+  int threads = 0;        ///< render threads (+WT); 0 = POV-Ray's default (one per core)
   std::string executable = "povray";  ///< a name looked up in PATH, or a path
 };
 

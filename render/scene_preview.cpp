@@ -27,7 +27,7 @@ namespace cutaway {
 namespace {
 
 constexpr int kMaxImageSide = 16384;
-constexpr int kMaxLights = 16;          // shaders/scene.frag: kMaxLights
+constexpr int kMaxLights = 16;                        // shaders/scene.frag: kMaxLights
 constexpr double kReferenceLux = 3 * kLumensPerWatt;  // AssetLight's default shows at scale 1
 constexpr double kShininess = 48;       // Blinn-Phong exponent at the default roughness
 constexpr double kSpecular = 0.15;      // highlight weight at the default roughness
@@ -52,7 +52,7 @@ struct Highlight {
 struct MeshDraw {
   size_t first_index = 0;  // offset into the index buffer, in indices
   size_t index_count = 0;
-  int texture = -1;  // base colour: index into SceneAssets::textures, or -1: vertex colours
+  int texture = -1;         // base colour: index into SceneAssets::textures, or -1: vertex colours
   int normal_texture = -1;  // relief: index into SceneAssets::textures, or -1: none
   Highlight highlight;
 };
@@ -66,8 +66,8 @@ glm::ivec2 check_input(const SceneAssets& a, const ScenePreviewOptions& o) {
   const int width = o.width != 0 ? o.width : a.width;
   const int height = o.height != 0 ? o.height : a.height;
   if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)
-    fail("image size " + std::to_string(width) + "x" + std::to_string(height) +
-         " is outside 1.." + std::to_string(kMaxImageSide));
+    fail("image size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 1.." +
+         std::to_string(kMaxImageSide));
   if (o.samples < 1) fail("samples must be >= 1, got " + std::to_string(o.samples));
   if (!(o.exposure > 0 && std::isfinite(o.exposure)))
     fail("exposure must be positive and finite, got " + std::to_string(o.exposure));
@@ -124,9 +124,8 @@ GLuint upload_rgb_texture(const AssetTexture& texture, size_t index, const GlCon
   glGenTextures(1, &id);
   glBindTexture(GL_TEXTURE_2D, id);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);  // rows of 3 * width bytes, unpadded
-  glTexImage2D(GL_TEXTURE_2D, 0, texture.linear ? GL_RGB8 : GL_SRGB8, texture.width,
-               texture.height, 0, GL_RGB,
-               GL_UNSIGNED_BYTE, texture.pixels.data());
+  glTexImage2D(GL_TEXTURE_2D, 0, texture.linear ? GL_RGB8 : GL_SRGB8, texture.width, texture.height,
+               0, GL_RGB, GL_UNSIGNED_BYTE, texture.pixels.data());
   glGenerateMipmap(GL_TEXTURE_2D);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -134,7 +133,7 @@ GLuint upload_rgb_texture(const AssetTexture& texture, size_t index, const GlCon
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   if (glGetError() != GL_NO_ERROR)
     throw EnvironmentError("render_scene_preview: cannot upload " + name + " on " +
-                             context.description());
+                           context.description());
   return id;
 }
 
@@ -149,14 +148,13 @@ void attach_depth_buffer(const OffscreenTarget& target, const GlContext& context
     glRenderbufferStorageMultisample(GL_RENDERBUFFER, target.samples(), GL_DEPTH_COMPONENT24,
                                      target.width(), target.height());
   else
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, target.width(),
-                          target.height());
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, target.width(), target.height());
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE ||
       glGetError() != GL_NO_ERROR)
     throw EnvironmentError("render_scene_preview: cannot attach a depth buffer with " +
-                             std::to_string(target.samples()) + " samples on " +
-                             context.description());
+                           std::to_string(target.samples()) + " samples on " +
+                           context.description());
 }
 
 /// Every instanced mesh once, in one vertex and one index buffer (indices already offset), and
@@ -214,9 +212,8 @@ std::vector<GLuint> upload_textures(const SceneAssets& assets,
 /// Sets the uniforms of `program` (in use) that hold for the whole scene: the lights in the
 /// view frame (the documented mapping: scale = colour * (lux / 2049) * exposure), the view's up,
 /// the ambient scale and the projection.
-void set_scene_uniforms(const GlProgram& program, const SceneAssets& assets,
-                        const glm::dmat4& view, const glm::mat4& clip_from_view,
-                        double exposure) {
+void set_scene_uniforms(const GlProgram& program, const SceneAssets& assets, const glm::dmat4& view,
+                        const glm::mat4& clip_from_view, double exposure) {
   const glm::dmat3 view_rotation(view);
   std::vector<float> light_vector(4 * kMaxLights, 0.0f), light_scale(3 * kMaxLights, 0.0f);
   for (size_t i = 0; i < assets.lights.size(); ++i) {
@@ -224,8 +221,7 @@ void set_scene_uniforms(const GlProgram& program, const SceneAssets& assets,
     glm::dvec4 v;
     if (light.type == LightType::Directional)
       v = glm::dvec4(view_rotation * -glm::normalize(light.direction), 0.0);
-    else
-      v = glm::dvec4(glm::dvec3(view * glm::dvec4(light.position, 1.0)), 1.0);
+    else v = glm::dvec4(glm::dvec3(view * glm::dvec4(light.position, 1.0)), 1.0);
     const glm::dvec3 scale = light.colour * (light.intensity / kReferenceLux * exposure);
     for (int k = 0; k < 4; ++k) light_vector[4 * i + k] = static_cast<float>(v[k]);
     for (int k = 0; k < 3; ++k) light_scale[3 * i + k] = static_cast<float>(scale[k]);
@@ -245,8 +241,7 @@ void set_scene_uniforms(const GlProgram& program, const SceneAssets& assets,
 struct DrawUniforms {
   explicit DrawUniforms(const GlProgram& program)
       : view_from_object(program.uniform("view_from_object")),
-        textured(program.uniform("textured")),
-        relief(program.uniform("relief")),
+        textured(program.uniform("textured")), relief(program.uniform("relief")),
         shininess(program.uniform("shininess")),
         specular_weight(program.uniform("specular_weight")) {}
   GLint view_from_object, textured, relief, shininess, specular_weight;
@@ -314,8 +309,7 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
   // The vertex array, buffers and depth renderbuffer below are not deleted one by one: they
   // belong to `context`, which frees them.
   const GlProgram program("scene.vert", "scene.frag");
-  const OffscreenTarget target(*context, size.x, size.y, options.samples,
-                               "render_scene_preview");
+  const OffscreenTarget target(*context, size.x, size.y, options.samples, "render_scene_preview");
   attach_depth_buffer(target, *context);
 
   make_vertex_array(geometry.vertices, geometry.indices,

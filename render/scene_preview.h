@@ -11,9 +11,9 @@ namespace cutaway {
 
 /// How render_scene_preview() draws. Units are in the names.
 struct ScenePreviewOptions {
-  int width = 0;     ///< image width, pixels; 0 = SceneAssets::width, else 1..16384
-  int height = 0;    ///< image height, pixels; 0 = SceneAssets::height, else 1..16384
-  int samples = 8;   ///< MSAA samples per pixel, >= 1; clamped to what GL offers
+  int width = 0;          ///< image width, pixels; 0 = SceneAssets::width, else 1..16384
+  int height = 0;         ///< image height, pixels; 0 = SceneAssets::height, else 1..16384
+  int samples = 8;        ///< MSAA samples per pixel, >= 1; clamped to what GL offers
   double exposure = 1.0;  ///< scales the light of all lights and the ambient term (not the
                           ///< background), > 0 and finite
   /// Silhouette strokes (extract_strokes() for this image size) drawn over the render with
@@ -46,12 +46,12 @@ struct ScenePreviewOptions {
 /// rougher material a broader, weaker highlight. Other material channels (the material map,
 /// clearcoat, sheen, translucency) are not shown. Per light i, c_i is its linear colour, l_i the
 /// unit direction toward it, h_i the Blinn-Phong half vector, and s_i = E_i / 2049 lux the
-/// illuminance it gives relative to the AssetLight default (3 kLumensPerWatt): E_i is `intensity` in lux for a directional light
-/// and `intensity` / d^2 (candela over squared metres to the light) for a point light. So one
-/// default directional light (2049 lux) falling head-on shows 0.75 * a plus the ambient.
-/// H(n) is a hemisphere ambient of 0.25 from the sky (+Y) down to 0.10 from the ground,
-/// blended by n.y, so faces turned away from every light are darker but never black. There are
-/// no shadows. The result is written to a 16-bit float framebuffer, multisampled edges are
+/// illuminance it gives relative to the AssetLight default (3 kLumensPerWatt): E_i is `intensity`
+/// in lux for a directional light and `intensity` / d^2 (candela over squared metres to the light)
+/// for a point light. So one default directional light (2049 lux) falling head-on shows 0.75 * a
+/// plus the ambient. H(n) is a hemisphere ambient of 0.25 from the sky (+Y) down to 0.10 from the
+/// ground, blended by n.y, so faces turned away from every light are darker but never black. There
+/// are no shadows. The result is written to a 16-bit float framebuffer, multisampled edges are
 /// resolved in linear RGB, and each component is clamped to 0..1 and encoded to sRGB8
 /// (linear_to_srgb8). The background is `assets.background` (linear RGB) everywhere nothing
 /// is drawn. The image is opaque. The result is deterministic: the same assets and options give

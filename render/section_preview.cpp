@@ -37,8 +37,8 @@ void check_input(const CrossSection& s, const SectionPreviewOptions& o) {
   if (o.width < 1 || o.width > kMaxImageSide)
     fail("width " + std::to_string(o.width) + " is outside 1.." + std::to_string(kMaxImageSide));
   if (o.height < 0 || o.height > kMaxImageSide)
-    fail("height " + std::to_string(o.height) + " is outside 1.." +
-         std::to_string(kMaxImageSide) + " (or 0 for the section's aspect)");
+    fail("height " + std::to_string(o.height) + " is outside 1.." + std::to_string(kMaxImageSide) +
+         " (or 0 for the section's aspect)");
   if (o.samples < 1) fail("samples must be >= 1, got " + std::to_string(o.samples));
   if (!(o.margin >= 0 && o.margin <= 1))
     fail("margin must be in 0..1, got " + std::to_string(o.margin));
@@ -50,8 +50,7 @@ void check_input(const CrossSection& s, const SectionPreviewOptions& o) {
     for (int i = 0; i < 3; ++i)
       if (s.triangle[t][i] >= s.position.size())
         fail("triangle " + std::to_string(t) + " has vertex index " +
-             std::to_string(s.triangle[t][i]) + ", not below " +
-             std::to_string(s.position.size()));
+             std::to_string(s.triangle[t][i]) + ", not below " + std::to_string(s.position.size()));
 }
 
 }  // namespace
@@ -72,8 +71,8 @@ Image render_section_preview(const CrossSection& section, const SectionPreviewOp
   }
   const glm::dvec2 extent_m = hi - lo;
   if (!(extent_m.x > 0 && extent_m.y > 0))
-    fail("the section's extent in the (u, v) frame is degenerate (" +
-         std::to_string(extent_m.x) + " x " + std::to_string(extent_m.y) + " m)");
+    fail("the section's extent in the (u, v) frame is degenerate (" + std::to_string(extent_m.x) +
+         " x " + std::to_string(extent_m.y) + " m)");
 
   // Fit: the extent grown by the margin on every side, one scale for both axes, centred.
   const double border_m = options.margin * std::max(extent_m.x, extent_m.y);
@@ -97,19 +96,19 @@ Image render_section_preview(const CrossSection& section, const SectionPreviewOp
   }
   std::vector<uint32_t> indices;
   indices.reserve(3 * section.triangle.size());
-  for (const glm::uvec3& t : section.triangle)
-    indices.insert(indices.end(), {t.x, t.y, t.z});
+  for (const glm::uvec3& t : section.triangle) indices.insert(indices.end(), {t.x, t.y, t.z});
 
   const std::unique_ptr<GlContext> context = create_offscreen_context();
   // The vertex array and buffers below are not deleted one by one: they belong to `context`,
   // which frees them.
   const GlProgram program("section.vert", "section.frag");
   // 32-bit float: the vertex colours reach the sRGB8 encoding without half-float rounding.
-  const OffscreenTarget target(*context, width, height, options.samples,
-                               "render_section_preview", GL_RGBA32F);
+  const OffscreenTarget target(*context, width, height, options.samples, "render_section_preview",
+                               GL_RGBA32F);
 
-  make_vertex_array(vertices, indices, {{0, 2, offsetof(SectionVertex, section)},
-                                        {1, 3, offsetof(SectionVertex, colour)}});
+  make_vertex_array(vertices, indices,
+                    {{0, 2, offsetof(SectionVertex, section)},
+                     {1, 3, offsetof(SectionVertex, colour)}});
 
   glUseProgram(program.id());
   glUniform2f(program.uniform("clip_from_section"), static_cast<float>(clip_from_section.x),

@@ -11,10 +11,10 @@ namespace cutaway {
 
 /// How render_section_preview() draws. Units are in the names; colours say sRGB or linear.
 struct SectionPreviewOptions {
-  int width = 800;   ///< image width, pixels; 1..16384 (and what GL allows)
-  int height = 0;    ///< image height, pixels; 0 = from the aspect of the section's extent
-                     ///< (with margins), else 1..16384
-  int samples = 4;   ///< MSAA samples per pixel, >= 1; clamped to what GL offers
+  int width = 800;       ///< image width, pixels; 1..16384 (and what GL allows)
+  int height = 0;        ///< image height, pixels; 0 = from the aspect of the section's extent
+                         ///< (with margins), else 1..16384
+  int samples = 4;       ///< MSAA samples per pixel, >= 1; clamped to what GL offers
   double margin = 0.04;  ///< empty border on each side, as a fraction of the longer side of
                          ///< the section's extent; 0..1
   glm::dvec3 background_srgb{1, 1, 1};  ///< opaque background, sRGB 0..1

@@ -201,9 +201,10 @@ GltfReport validate_gltf(const std::filesystem::path& file) {
 }
 
 NodeToolRun run_node_tool(const std::string& script, const std::vector<std::string>& args) {
-  const auto log = std::filesystem::path(CUTAWAY_TEST_TMP) /
-                   ("node-" + std::to_string(::getpid()) + "-" +
-                    std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id())) + ".log");
+  const auto log =
+      std::filesystem::path(CUTAWAY_TEST_TMP) /
+      ("node-" + std::to_string(::getpid()) + "-" +
+       std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id())) + ".log");
   std::filesystem::create_directories(log.parent_path());
   std::vector<std::string> words{"tests/tools/" + script};
   words.insert(words.end(), args.begin(), args.end());
@@ -390,8 +391,8 @@ void texture_with_halves(SceneAssets& assets, size_t mesh, int size) {
     for (int x = 0; x < size; ++x) {
       const bool left = x < size / 2;
       texture.pixels.insert(texture.pixels.end(), {static_cast<uint8_t>(left ? 20 : 240),
-                                               static_cast<uint8_t>(left ? 40 : 220),
-                                               static_cast<uint8_t>(left ? 230 : 20)});
+                                                   static_cast<uint8_t>(left ? 40 : 220),
+                                                   static_cast<uint8_t>(left ? 230 : 20)});
     }
   assets.textures.push_back(texture);
   assets.materials.push_back(

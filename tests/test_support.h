@@ -49,7 +49,7 @@ RunResult run_program(const std::string& program, const std::vector<std::string>
 struct LimitedRun {
   int exit_code = -1;  ///< -1: killed by a signal
   int signal = 0;
-  std::string err;     ///< stderr
+  std::string err;  ///< stderr
   /// cutaway's own peak resident memory (wait4's ru_maxrss, taken by tests/tools/measured_run,
   /// which starts it: not this process's peak, which a child forked from it would carry).
   uint64_t peak_rss_bytes = 0;
@@ -127,7 +127,7 @@ std::vector<std::string> files_in(const std::filesystem::path& dir);
 struct NodeToolRun {
   nlohmann::json report;  ///< its last line that parses as a JSON object (null when none)
   int exit_code = -1;
-  std::string output;     ///< everything it printed (stdout and stderr)
+  std::string output;  ///< everything it printed (stdout and stderr)
 };
 
 /// Runs `node tests/tools/SCRIPT ARGS...` in the source directory (no shell interpretation of
@@ -136,8 +136,8 @@ NodeToolRun run_node_tool(const std::string& script, const std::vector<std::stri
 
 /// Result of the Khronos glTF validator on one file.
 struct GltfReport {
-  int errors = -1;           ///< -1: the validator did not run
-  std::string output;        ///< its JSON line (messages included)
+  int errors = -1;     ///< -1: the validator did not run
+  std::string output;  ///< its JSON line (messages included)
 };
 
 /// Runs the Khronos glTF validator (node + npm gltf-validator from node_modules/, installed by
@@ -146,20 +146,20 @@ GltfReport validate_gltf(const std::filesystem::path& file);
 
 /// What three.js's GLTFLoader (a real glTF client) made of one file in headless Chromium.
 struct ThreeLoadReport {
-  bool ok = false;             ///< the file loaded
-  int meshes = 0;              ///< glTF meshes built
-  int nodes = 0;               ///< glTF nodes built
-  int cameras = 0;             ///< camera objects in the loaded scene
-  int lights = 0;              ///< light objects in the loaded scene
-  long triangles = 0;          ///< triangles of every mesh object (instances counted)
-  int mesh_objects = 0;        ///< mesh objects in the scene (one per node and primitive)
-  std::array<double, 3> camera_position{};   ///< world space, metres (the last camera)
-  std::array<double, 3> camera_direction{};  ///< world space, unit: where it looks
+  bool ok = false;       ///< the file loaded
+  int meshes = 0;        ///< glTF meshes built
+  int nodes = 0;         ///< glTF nodes built
+  int cameras = 0;       ///< camera objects in the loaded scene
+  int lights = 0;        ///< light objects in the loaded scene
+  long triangles = 0;    ///< triangles of every mesh object (instances counted)
+  int mesh_objects = 0;  ///< mesh objects in the scene (one per node and primitive)
+  std::array<double, 3> camera_position{};              ///< world space, metres (the last camera)
+  std::array<double, 3> camera_direction{};             ///< world space, unit: where it looks
   std::vector<std::array<double, 3>> light_directions;  ///< of directional lights, unit
-  std::vector<std::string> warnings;  ///< console warnings and errors of the page
-  double seconds = 0;          ///< the whole run: server, Chromium launch, load
-  std::string error;           ///< why it failed
-  std::string output;          ///< everything the script printed
+  std::vector<std::string> warnings;                    ///< console warnings and errors of the page
+  double seconds = 0;  ///< the whole run: server, Chromium launch, load
+  std::string error;   ///< why it failed
+  std::string output;  ///< everything the script printed
 };
 
 /// Loads `file` (.glb, or .gltf with its .bin) with three.js's GLTFLoader in headless Chromium

@@ -55,10 +55,9 @@ std::string build_settings(const Common& common) {
 /// The command line options every array task passes on (those that change the output, and
 /// the cut cache's).
 std::vector<std::string> passed_on(const Common& common, const CacheArgs& cache) {
-  std::vector<std::string> args = {"--backend",    common.backend,
-                                   "--sampling",   sampling_value(common),
-                                   "--directions", directions_value(common),
-                                   "-q"};
+  std::vector<std::string> args = {
+      "--backend",    common.backend,           "--sampling", sampling_value(common),
+      "--directions", directions_value(common), "-q"};
   if (cache.off) args.push_back("--no-cache");
   if (!cache.dir.empty())
     args.insert(args.end(), {"--cache", fs::absolute(cache.dir).lexically_normal().string()});
@@ -109,8 +108,8 @@ int run_batch_merge(const std::string& dir, OutputSet& outputs) {
     if (names.size() > 10) shown += ", ...";
     spdlog::warn("{} {}: {}", names.size(), what, shown);
   };
-  spdlog::info("{}: {} manifest(s), {} of {} assets intact", index->batch,
-               report.manifests.size(), report.records.size(), index->assets.size());
+  spdlog::info("{}: {} manifest(s), {} of {} assets intact", index->batch, report.manifests.size(),
+               report.records.size(), index->assets.size());
   list("assets missing (in no manifest)", report.missing);
   list("assets listed by several manifests (identically; kept once)", report.duplicated);
   list("assets listed differently by several manifests", report.conflicting);
@@ -185,8 +184,8 @@ int run_batch_command(const BatchArgs& a, const Common& common) {
   };
   const BatchRunResult r = run_batch(batch, plan, a.output_dir, options);
   spdlog::info("{}{}: {} assets built, {} already there, {} in {}", batch.name,
-               shard ? " shard " + a.shard : "", r.built, r.skipped,
-               manifest_name(shard), a.output_dir);
+               shard ? " shard " + a.shard : "", r.built, r.skipped, manifest_name(shard),
+               a.output_dir);
   if (cache && cache->stats().hits > 0)
     spdlog::info("{} of the assets built were read from the cut cache", cache->stats().hits);
   if (common.stats)
@@ -208,8 +207,9 @@ Command add_batch_command(CLI::App& app) {
   batch->require_subcommand(0, 1);
   batch->add_option("BATCH", args->batch_path, "batch file (.yaml)");
   batch->add_option("-o,--output", args->output_dir, "output folder");
-  batch->add_option("--shard", args->shard,
-                    "K/M: build only the K-th of M contiguous shares of the variants")
+  batch
+      ->add_option("--shard", args->shard,
+                   "K/M: build only the K-th of M contiguous shares of the variants")
       ->check(shard_rule());
   batch->add_flag("--slurm", args->slurm,
                   "write DIR/batch.sbatch, an sbatch array job of --array shards, and submit it");
@@ -217,8 +217,9 @@ Command add_batch_command(CLI::App& app) {
       ->check(number_rule(1, 100000));
   batch->add_option("--partition", args->partition, "with --slurm: the Slurm partition");
   batch->add_option("--time", args->time, "with --slurm: each task's time limit (e.g. 2:00:00)");
-  batch->add_option("--cpus-per-task", args->cpus_per_task,
-                    "with --slurm: CPUs per task, its --threads (default 1)")
+  batch
+      ->add_option("--cpus-per-task", args->cpus_per_task,
+                   "with --slurm: CPUs per task, its --threads (default 1)")
       ->check(number_rule(1, 1024));
   batch->add_flag("--dry-run", args->dry_run, "with --slurm: write the script, do not submit");
   add_cache_options(batch, args->cache);

@@ -37,8 +37,8 @@ struct Common {
   /// outputs are committed, with "outputs_fnv1a64" added (each written file's content hash).
   nlohmann::ordered_json* stats = nullptr;
   CapSampling sampling = CapSampling::Adaptive;  ///< --sampling: which cap points are diffused
-  bool adaptive_directions = true;  ///< --directions adaptive (true) or every (false)
-  bool quiet = false;               ///< --quiet: errors only (no progress bars)
+  bool adaptive_directions = true;               ///< --directions adaptive (true) or every (false)
+  bool quiet = false;                            ///< --quiet: errors only (no progress bars)
 };
 
 /// A subcommand's work, bound to its parsed arguments: returns the exit code.
@@ -126,8 +126,8 @@ nlohmann::ordered_json cut_cache_stats(const CutCache* cache);
 /// --backend chooses with cube-map size `cube` (cut_object).
 /// @throws UsageError "WHAT: rule" when the cut misses the object (`what` names the cut)
 CutObject cut_for_view(SceneAssets& assets, const Variant& variant, const CutSpec& cut, int cube,
-                       const Common& common, double perlin, uint64_t seed,
-                       const std::string& what, CapColours colours);
+                       const Common& common, double perlin, uint64_t seed, const std::string& what,
+                       CapColours colours);
 
 /// The exit code of `batch merge` when shards are still missing: not bad input (2) nor a
 /// failure (1), but more work due.

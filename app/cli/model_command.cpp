@@ -65,13 +65,13 @@ int run_model(const ModelArgs& a, const Common& common, OutputSet& outputs) {
     spdlog::info("wrote {}", a.png);
   }
   if (common.stats) {
-    *common.stats = {{"template", tmpl.name},
-                     {"surfaces", model.surfaces.size()},
-                     {"vertices", model.vertex_count()},
-                     {"faces", model.face_count()},
-                     {"seconds",
-                      {{"parse", t_parse}, {"sweep", t_sweep}, {"render", t_render},
-                       {"export", t_export}}}};
+    *common.stats = {
+        {"template", tmpl.name},
+        {"surfaces", model.surfaces.size()},
+        {"vertices", model.vertex_count()},
+        {"faces", model.face_count()},
+        {"seconds",
+         {{"parse", t_parse}, {"sweep", t_sweep}, {"render", t_render}, {"export", t_export}}}};
   }
   return 0;
 }

@@ -123,7 +123,10 @@ void add_cache_options(CLI::App* command, CacheArgs& args) {
 nlohmann::ordered_json cut_cache_stats(const CutCache* cache) {
   if (!cache) return nullptr;
   const CutCacheStats c = cache->stats();
-  return {{"hits", c.hits}, {"misses", c.misses}, {"stored", c.stored}, {"damaged", c.damaged},
+  return {{"hits", c.hits},
+          {"misses", c.misses},
+          {"stored", c.stored},
+          {"damaged", c.damaged},
           {"evicted", c.evicted}};
 }
 
@@ -150,7 +153,8 @@ void add_common_options(CLI::App& app, CommonOptions& o) {
   app.add_flag("--stats", o.stats, "print JSON counts, timings and output file hashes on stderr");
   app.add_flag("-q,--quiet", o.quiet, "print errors only");
   app.add_flag("-v,--verbose", o.verbose, "print progress and details");
-  app.add_option("--threads", o.threads, "worker threads (0: all cores); results do not depend on it")
+  app.add_option("--threads", o.threads,
+                 "worker threads (0: all cores); results do not depend on it")
       ->check(number_rule(0, 1024));
   app.add_option("--backend", o.backend,
                  "colour diffusion: cpu (Embree ray casting), gl (the same rays in an OpenGL "

@@ -47,16 +47,15 @@ const CLI::Validator& shard_rule();
 
 /// `--compress none|quantize|meshopt`, `--lods N` and `--textures jpeg|png` of the commands
 /// that write glTF and POV-Ray scenes, into the given variables.
-void add_export_options(CLI::App* command, std::string& compress, int& lods,
-                        std::string& textures);
+void add_export_options(CLI::App* command, std::string& compress, int& lods, std::string& textures);
 
 /// `--colours texture|vertex` of the commands that cut objects for files (scene, piece): cut
 /// faces and swept skins baked into textures (with the skin patterns and their relief per
 /// texel) or left in vertex colours; into `colours`.
 void add_colours_option(CLI::App* command, std::string& colours);
 
-/// `--cache DIR`, `--no-cache`, `--cache-size SIZE` and `--cache-shared` of the commands that cut objects through
-/// the cut cache (scene, batch).
+/// `--cache DIR`, `--no-cache`, `--cache-size SIZE` and `--cache-shared` of the commands that cut
+/// objects through the cut cache (scene, batch).
 struct CacheArgs {
   std::string dir;         ///< empty: CutCache::default_dir()
   bool off = false;        ///< --no-cache
@@ -71,10 +70,10 @@ void add_cache_options(CLI::App* command, CacheArgs& args);
 /// or `cutaway scene ... --stats`).
 struct CommonOptions {
   bool stats = false, quiet = false, verbose = false;
-  int threads = 0;                     ///< 0: all cores
-  std::string backend = "auto";        ///< auto | cpu | gl
-  std::string sampling = "adaptive";   ///< dense: every vertex, for comparison
-  std::string directions = "adaptive"; ///< every: every cube texel, for comparison
+  int threads = 0;                      ///< 0: all cores
+  std::string backend = "auto";         ///< auto | cpu | gl
+  std::string sampling = "adaptive";    ///< dense: every vertex, for comparison
+  std::string directions = "adaptive";  ///< every: every cube texel, for comparison
 };
 
 /// Adds the common options to `app`, stored into `options` when parsed.

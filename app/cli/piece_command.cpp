@@ -31,7 +31,7 @@ struct PieceArgs {
   int64_t seed = -1;  ///< >= 0: cut the variant of this seed instead of the template
   int width = 800, height = 600;
   int cube = 16;
-  double perlin = 1.0;  ///< Perlin colour modulation strength (the template's npr bands)
+  double perlin = 1.0;       ///< Perlin colour modulation strength (the template's npr bands)
   double silhouettes = 1.0;  ///< silhouette stroke strength over the PNG and in .pov; 0: none
   std::string compress = "quantize";  ///< glTF vertex data: none, quantize or meshopt
   int lods = 0;                       ///< glTF levels of detail per mesh (GltfSceneOptions)
@@ -118,8 +118,7 @@ CutSpec checked_cut(const Template& tmpl, const std::string& text, const std::st
 }
 
 DiffusionFactory diffusion_factory(int cube, const Common& common) {
-  const DiffusionChoice choice =
-      resolve_diffusion_choice(parse_diffusion_choice(common.backend));
+  const DiffusionChoice choice = resolve_diffusion_choice(parse_diffusion_choice(common.backend));
   const DiffusionOptions options{cube, common.threads, true, common.adaptive_directions};
   return [options, choice](const DsModel& model) { return make_diffusion(model, options, choice); };
 }
@@ -142,8 +141,8 @@ std::string diffusion_settings(int cube, const Common& common) {
 }
 
 CutObject cut_for_view(SceneAssets& assets, const Variant& variant, const CutSpec& cut, int cube,
-                       const Common& common, double perlin, uint64_t seed,
-                       const std::string& what, CapColours colours) {
+                       const Common& common, double perlin, uint64_t seed, const std::string& what,
+                       CapColours colours) {
   const PieceMaterials materials = add_piece_materials(
       assets, variant.tmpl.name, variant.tmpl.skin_material, variant.tmpl.cut_material);
   ObjectCutOptions options;

@@ -31,9 +31,9 @@ struct SceneArgs {
   std::vector<std::string> outputs;
   int64_t seed = -1;  ///< >= 0: overrides the scene's seed
   int cube = 16;
-  std::string colours = "texture";  ///< "texture" or "vertex" (CapColours)
-  double texels_per_mm = 0;         ///< CapAtlasOptions::texels_per_m / 1000; 0: the scene's
-  bool power_of_two = false;        ///< --power-of-two: texture sides powers of two
+  std::string colours = "texture";    ///< "texture" or "vertex" (CapColours)
+  double texels_per_mm = 0;           ///< CapAtlasOptions::texels_per_m / 1000; 0: the scene's
+  bool power_of_two = false;          ///< --power-of-two: texture sides powers of two
   std::string compress = "quantize";  ///< glTF vertex data: none, quantize or meshopt
   int lods = 0;                       ///< glTF levels of detail per mesh (GltfSceneOptions)
   std::string textures = "jpeg";      ///< base-colour texture images: jpeg or png (TextureFormat)
@@ -66,17 +66,17 @@ void log_build(const Scene& scene, uint64_t seed, const SceneStats& st,
               "{:.2f} mm (limit {:g} mm; {} checks{})",
               settle.verify_seconds, 1000 * st.stability_motion_m, 1000 * limit,
               st.stability_checks, kept);
-  spdlog::info("{}: {} objects, {} pieces placed, {} triangles (seed {})", scene.name,
-               st.objects, st.placed, st.triangles, seed);
+  spdlog::info("{}: {} objects, {} pieces placed, {} triangles (seed {})", scene.name, st.objects,
+               st.placed, st.triangles, seed);
   if (st.cached_objects > 0)
-    spdlog::info("{} of {} objects{} were read from the cut cache", st.cached_objects,
-                 st.objects, st.cached_placements ? " and their placements" : "");
+    spdlog::info("{} of {} objects{} were read from the cut cache", st.cached_objects, st.objects,
+                 st.cached_placements ? " and their placements" : "");
 }
 
 /// Registers the texture files of each .pov and .gltf output: they go beside it, committed with
 /// it (a .pov and a .gltf of one stem share them).
-void register_texture_outputs(OutputSet& outputs, const Targets& targets,
-                              const SceneAssets& assets, TextureFormat format) {
+void register_texture_outputs(OutputSet& outputs, const Targets& targets, const SceneAssets& assets,
+                              TextureFormat format) {
   std::set<std::string> texture_files;
   for (const Target& out : targets.exports)
     if (output_format("-o", out.given) == Format::Pov ||
@@ -165,12 +165,11 @@ int run_scene(const SceneArgs& a, const Common& given, OutputSet& outputs) {
   const double t_build = seconds_since(t1);
   log_build(scene, seed, st, options.settle);
   register_texture_outputs(outputs, targets, assets, parse_texture_format(a.textures));
-  const Written w =
-      write_outputs(assets, targets, common.threads, scene.render.silhouettes,
-                    export_options(a.compress, a.lods, a.textures));
+  const Written w = write_outputs(assets, targets, common.threads, scene.render.silhouettes,
+                                  export_options(a.compress, a.lods, a.textures));
   if (common.stats)
-    *common.stats = scene_stats(scene, seed, resolved_backend(common), st, cache.get(), t_parse,
-                                t_build, w);
+    *common.stats =
+        scene_stats(scene, seed, resolved_backend(common), st, cache.get(), t_parse, t_build, w);
   return 0;
 }
 
@@ -182,8 +181,9 @@ Command add_scene_command(CLI::App& app) {
       "scene", "the main job: a scene of cut objects as glTF or POV-Ray, and pictures of it");
   scene->add_option("SCENE", args->scene_path, "scene file (.yaml)")->required();
   scene->add_option("--seed", args->seed, "seed (default: the scene file's)")->check(seed_rule());
-  scene->add_option("-o,--output", args->outputs,
-                    "scene to write: .glb, .gltf or .pov; repeat for several formats")
+  scene
+      ->add_option("-o,--output", args->outputs,
+                   "scene to write: .glb, .gltf or .pov; repeat for several formats")
       ->required()
       ->allow_extra_args(false);
   scene->add_option("--png", args->png, "OpenGL preview (PNG)");

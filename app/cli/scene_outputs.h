@@ -37,8 +37,7 @@ Targets register_outputs(OutputSet& outputs, const std::vector<std::string>& pat
 
 /// The glTF options of `--compress`, `--lods` and `--textures` (the texture format serves
 /// the .pov files' images too).
-GltfSceneOptions export_options(const std::string& compress, int lods,
-                                const std::string& textures);
+GltfSceneOptions export_options(const std::string& compress, int lods, const std::string& textures);
 
 /// Writes `assets` as each of `t.exports` (glTF or POV-Ray by extension), `t.png` (OpenGL
 /// preview) and `t.render` (POV-Ray), each when asked for; glTF as `gltf` says, POV-Ray with

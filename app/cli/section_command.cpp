@@ -40,7 +40,8 @@ struct SectionArgs {
 int run_section(const SectionArgs& a, const Common& common, OutputSet& outputs) {
   const auto t0 = Clock::now();
   const cutaway::Template tmpl = cutaway::load_template(a.template_path);
-  const cutaway::Outcome<cutaway::Plane> parsed = cutaway::parse_plane_spec(a.plane, tmpl.metres_per_unit);
+  const cutaway::Outcome<cutaway::Plane> parsed =
+      cutaway::parse_plane_spec(a.plane, tmpl.metres_per_unit);
   if (!parsed) throw UsageError("--plane: " + parsed.reason());
   const cutaway::Plane plane = *parsed;
   const std::string out = a.output.empty() && a.png.empty() ? tmpl.name + "-section.glb" : a.output;
@@ -71,8 +72,8 @@ int run_section(const SectionArgs& a, const Common& common, OutputSet& outputs) 
   }
   if (!out.empty()) {
     const bool ply = std::filesystem::path(out).extension() == ".ply";
-    cutaway::write_file_atomically(
-        out_file, ply ? cutaway::section_to_ply(section) : cutaway::section_to_glb(section));
+    cutaway::write_file_atomically(out_file, ply ? cutaway::section_to_ply(section)
+                                                 : cutaway::section_to_glb(section));
     spdlog::info("wrote {}", out);
   }
   if (!a.png.empty()) {
@@ -104,8 +105,9 @@ Command add_section_command(CLI::App& app) {
   auto args = std::make_shared<SectionArgs>();
   CLI::App* section = app.add_subcommand("section", "one cross-section with diffused colours");
   section->add_option("TEMPLATE", args->template_path, "template file (.yaml)")->required();
-  section->add_option("--plane", args->plane,
-                      "cutting plane: AXIS=VALUE (e.g. y=20) or px,py,pz/nx,ny,nz, template units")
+  section
+      ->add_option("--plane", args->plane,
+                   "cutting plane: AXIS=VALUE (e.g. y=20) or px,py,pz/nx,ny,nz, template units")
       ->required();
   section->add_option("-o,--output", args->output,
                       "cut face to write: .glb (linear COLOR_0) or .ply (sRGB colours); "

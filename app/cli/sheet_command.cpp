@@ -97,9 +97,9 @@ Image sheet_tile(const LoadedItem& item, const SheetArgs& a, const Common& commo
   SceneAssets assets;
   assets.name = tmpl.name;
   // Textured, so that skin patterns show per texel, not per vertex.
-  const CutObject object = cut_for_view(assets, variant, cut, a.cube, common, 1.0, seed,
-                                        tmpl.name + ": cut '" + item.text + "'",
-                                        CapColours::Texture);
+  const CutObject object =
+      cut_for_view(assets, variant, cut, a.cube, common, 1.0, seed,
+                   tmpl.name + ": cut '" + item.text + "'", CapColours::Texture);
   const Image tile =
       piece_tile(std::move(assets), object, item.view, a.tile, a.silhouettes, tmpl.name, item.text);
   spdlog::info("{} ({}): {} pieces, {:.1f} s", tmpl.name, item.text, object.set.pieces.size(),
@@ -138,9 +138,10 @@ Command add_sheet_command(CLI::App& app) {
   auto args = std::make_shared<SheetArgs>();
   CLI::App* sheet =
       app.add_subcommand("sheet", "contact sheet of cut templates, one labelled tile each (PNG)");
-  sheet->add_option("TEMPLATE", args->items,
-                    "template files, each optionally with its own cut and view: "
-                    "PATH.yaml[:CUT][@up|@upright]")
+  sheet
+      ->add_option("TEMPLATE", args->items,
+                   "template files, each optionally with its own cut and view: "
+                   "PATH.yaml[:CUT][@up|@upright]")
       ->required();
   sheet->add_option("-o,--output", args->output, "sheet to write (.png)")->required();
   sheet->add_option("--cut", args->cut,
@@ -151,12 +152,14 @@ Command add_sheet_command(CLI::App& app) {
       ->check(number_rule(0, 64));
   sheet->add_option("--cube", args->cube, "cube-map texels per face edge for PMVC")
       ->check(number_rule(2, 256));
-  sheet->add_option("--silhouettes", args->silhouettes,
-                    "silhouette stroke strength (0: off; default 1)")
+  sheet
+      ->add_option("--silhouettes", args->silhouettes,
+                   "silhouette stroke strength (0: off; default 1)")
       ->check(number_rule(0.0, 10.0));
-  sheet->add_option("--seed", args->seed,
-                    "cut every template's random variant of this seed (grains included) "
-                    "instead of the template itself")
+  sheet
+      ->add_option("--seed", args->seed,
+                   "cut every template's random variant of this seed (grains included) "
+                   "instead of the template itself")
       ->check(seed_rule());
   return {sheet, [args](const Common& common, OutputSet& outputs) {
             return run_sheet(*args, common, outputs);

@@ -36,8 +36,8 @@ struct VariantsArgs {
   uint64_t seed = 0;
   std::string shard;  ///< "K/M" when shard_given
   bool shard_given = false;
-  int sheet = 64;     ///< contact sheet: at most this many tiles (0: no sheet)
-  int tile = 256;     ///< contact-sheet tile size, pixels
+  int sheet = 64;  ///< contact sheet: at most this many tiles (0: no sheet)
+  int tile = 256;  ///< contact-sheet tile size, pixels
 };
 
 int run_variants(const VariantsArgs& a, const Common& common, OutputSet& outputs) {
@@ -55,7 +55,8 @@ int run_variants(const VariantsArgs& a, const Common& common, OutputSet& outputs
                      std::to_string(kMaxSeed - static_cast<uint64_t>(a.count - 1)));
   }
   // The contact sheet's pixels, at most: one tile-wide square per variant on it.
-  const long long sheet_pixels = static_cast<long long>(std::min(a.sheet, a.count)) * a.tile * a.tile;
+  const long long sheet_pixels =
+      static_cast<long long>(std::min(a.sheet, a.count)) * a.tile * a.tile;
   if (sheet_pixels > kMaxRenderPixels)
     throw UsageError("--sheet " + std::to_string(a.sheet) + " with --tile " +
                      std::to_string(a.tile) + " makes a contact sheet of up to " +
@@ -94,11 +95,10 @@ int run_variants(const VariantsArgs& a, const Common& common, OutputSet& outputs
   for (int i = first; i < std::min(last, first + a.sheet); ++i) {
     const uint64_t seed = a.seed + static_cast<uint64_t>(i);
     sections.push_back(variant_section(make_variant(tmpl, seed), sheet_diffusion));
-    if (sections.back())
-      any = true;
+    if (sections.back()) any = true;
     else
-      spdlog::warn("seed {}: no horizontal section at mid-height ({}); its tile stays empty",
-                   seed, sections.back().reason());
+      spdlog::warn("seed {}: no horizontal section at mid-height ({}); its tile stays empty", seed,
+                   sections.back().reason());
   }
   if (any) {
     SectionTileOptions tile_options;
@@ -121,16 +121,19 @@ Command add_variants_command(CLI::App& app) {
   variants->add_option("--seed", args->seed, "seed of the first variant (then seed + 1, ...)")
       ->check(seed_rule());
   variants->add_option("-o,--output", args->output_dir, "output folder")->required();
-  variants->add_option("--shard", args->shard,
-                       "K/M: write only the K-th of M contiguous shares of the variants (seeds "
-                       "unchanged, so the shards together make one unsharded run)")
+  variants
+      ->add_option("--shard", args->shard,
+                   "K/M: write only the K-th of M contiguous shares of the variants (seeds "
+                   "unchanged, so the shards together make one unsharded run)")
       ->check(shard_rule());
-  variants->add_option("--sheet", args->sheet,
-                       "contact-sheet.png: the mid-height horizontal cuts of the first N "
-                       "variants (of the shard) at one scale; 0: none")
+  variants
+      ->add_option("--sheet", args->sheet,
+                   "contact-sheet.png: the mid-height horizontal cuts of the first N "
+                   "variants (of the shard) at one scale; 0: none")
       ->check(number_rule(0, 256));
-  variants->add_option("--tile", args->tile,
-                       "contact-sheet tile size in pixels (the largest cut's extent)")
+  variants
+      ->add_option("--tile", args->tile,
+                   "contact-sheet tile size in pixels (the largest cut's extent)")
       ->check(number_rule(16, 4096));
   return {variants, [args, variants](const Common& common, OutputSet& outputs) {
             args->shard_given = variants->count("--shard") > 0;

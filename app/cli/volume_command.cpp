@@ -39,8 +39,8 @@ namespace fs = std::filesystem;
 struct VolumeArgs {
   std::string template_path;
   std::vector<std::string> outputs;
-  int64_t seed = -1;    ///< >= 0: the variant of this seed instead of the template
-  double voxel = 0;     ///< template units; 0 (not given): default_voxel_length
+  int64_t seed = -1;  ///< >= 0: the variant of this seed instead of the template
+  double voxel = 0;   ///< template units; 0 (not given): default_voxel_length
   int cube = 16;
   double perlin = 1.0;  ///< Perlin colour modulation strength (the template's npr bands)
 };
@@ -60,7 +60,8 @@ void require_file_stem(const std::string& stem) {
   const fs::path name = path.filename();
   std::error_code ec;
   if (name.empty() || name == "." || name == ".." || fs::is_directory(path, ec))
-    throw UsageError("-o " + quoted(stem) + ": a stem names the files STEM.vdb, STEM.json and "
+    throw UsageError("-o " + quoted(stem) +
+                     ": a stem names the files STEM.vdb, STEM.json and "
                      "STEM.glb, not a folder; give a file name, e.g. " +
                      quoted((path / "").string() + "NAME"));
   for (const char* ext : {".vdb", ".json", ".glb", ".gltf"})
@@ -75,8 +76,9 @@ void require_file_stem(const std::string& stem) {
 VolumePaths volume_paths(const std::vector<std::string>& outputs) {
   VolumePaths paths;
   auto set = [](std::string& slot, const std::string& path) {
-    if (!slot.empty()) throw UsageError("-o " + quoted(path) + ": a second " +
-                                        fs::path(path).extension().string() + " output");
+    if (!slot.empty())
+      throw UsageError("-o " + quoted(path) + ": a second " + fs::path(path).extension().string() +
+                       " output");
     slot = path;
   };
   for (const std::string& o : outputs) {
@@ -142,9 +144,8 @@ int run_volume(const VolumeArgs& a, const Common& common, OutputSet& outputs) {
     structure_file = outputs.add("-o", flipbook_path(paths.sidecar, "structure"));
     material_file = outputs.add("-o", flipbook_path(paths.sidecar, "material"));
   }
-  const Targets targets = paths.gltf.empty()
-                              ? Targets{}
-                              : register_outputs(outputs, {paths.gltf}, "", "");
+  const Targets targets =
+      paths.gltf.empty() ? Targets{} : register_outputs(outputs, {paths.gltf}, "", "");
 
   const auto t0 = Clock::now();
   const Template tmpl = load_template(a.template_path);
@@ -159,8 +160,8 @@ int run_volume(const VolumeArgs& a, const Common& common, OutputSet& outputs) {
   if (const Check cost = check_volume_rays(static_cast<double>(grid->voxels()), a.cube); !cost)
     throw UsageError("--voxel: " + cost.reason() + "; " +
                      coarser_grid_advice(variant.model, tmpl.metres_per_unit, a.cube));
-  spdlog::info("{}: sampling {} x {} x {} voxels of {:.3g} mm (PMVC at every solid one)",
-               tmpl.name, grid->size.x, grid->size.y, grid->size.z, voxel_m * 1e3);
+  spdlog::info("{}: sampling {} x {} x {} voxels of {:.3g} mm (PMVC at every solid one)", tmpl.name,
+               grid->size.x, grid->size.y, grid->size.z, voxel_m * 1e3);
   const uint64_t modulation_seed = a.seed >= 0 ? static_cast<uint64_t>(a.seed) : 0;
   const ColourModulation modulation(tmpl.npr, modulation_seed);
   const auto diffusion = diffusion_factory(a.cube, common)(variant.model);
@@ -193,8 +194,7 @@ int run_volume(const VolumeArgs& a, const Common& common, OutputSet& outputs) {
                  flipbooks.colour.size(), flipbooks.structure.size(), flipbooks.material.size());
   }
   if (!paths.gltf.empty()) {
-    const SceneAssets assets =
-        whole_object_assets(variant, *diffusion, a.perlin, modulation_seed);
+    const SceneAssets assets = whole_object_assets(variant, *diffusion, a.perlin, modulation_seed);
     GltfSceneOptions gltf = export_options("quantize", 0, "jpeg");
     gltf.camera_and_lights = false;
     nlohmann::json reference = {{"voxel_m", volume.voxel_m},
@@ -236,8 +236,7 @@ Command add_volume_command(CLI::App& app) {
                    "OUT.glb/.gltf (the whole object, the volume in its extras), or OUT without "
                    "extension for all three; repeatable")
       ->required();
-  volume->add_option("--seed", args->seed, "the random variant of this seed")
-      ->check(seed_rule());
+  volume->add_option("--seed", args->seed, "the random variant of this seed")->check(seed_rule());
   volume
       ->add_option("--voxel", args->voxel,
                    "voxel edge in template units (default: the skin's longest edge / " +

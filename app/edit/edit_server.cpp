@@ -58,16 +58,17 @@ struct Built {
 };
 
 Built build(std::string_view text, const std::filesystem::path& template_path) {
-  Template tmpl = parse_template(text, template_path.filename().string(),
-                                 template_path.parent_path().string());
+  Template tmpl =
+      parse_template(text, template_path.filename().string(), template_path.parent_path().string());
   DsModel model = build_model(tmpl);
   check_grain_limits(tmpl, model);  // as `cutaway check` does
   return {std::move(tmpl), std::move(model)};
 }
 
 nlohmann::json verdict_of(const InputError& e) {
-  return {{"ok", false},          {"file", e.loc().file}, {"line", e.loc().line},
-          {"column", e.loc().column}, {"field", e.field()},  {"rule", e.rule()},
+  return {{"ok", false},          {"file", e.loc().file},
+          {"line", e.loc().line}, {"column", e.loc().column},
+          {"field", e.field()},   {"rule", e.rule()},
           {"message", e.what()}};
 }
 
@@ -76,7 +77,8 @@ nlohmann::json vec3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 /// `points` (metres) fitted as the template means them, in template units.
 nlohmann::json fitted(const Polyline2& points, bool closed, bool smooth, double units) {
   nlohmann::json out = nlohmann::json::array();
-  for (const glm::dvec2& p : fit_curve(points, closed, smooth)) out.push_back({p.x / units, p.y / units});
+  for (const glm::dvec2& p : fit_curve(points, closed, smooth))
+    out.push_back({p.x / units, p.y / units});
   return out;
 }
 
@@ -84,7 +86,8 @@ nlohmann::json fitted(const Polyline2& points, bool closed, bool smooth, double 
 nlohmann::json fitted_curves(const Template& t) {
   nlohmann::json curves = nlohmann::json::array();
   for (const SurfaceSpec& s : t.surfaces) {
-    nlohmann::json c = {{"profile", nlohmann::json::array()}, {"sections", nlohmann::json::array()}};
+    nlohmann::json c = {{"profile", nlohmann::json::array()},
+                        {"sections", nlohmann::json::array()}};
     if (s.kind != SurfaceKind::Mesh) {
       c["profile"] = fitted(s.profile, s.kind == SurfaceKind::Within, s.smooth, t.metres_per_unit);
       for (const auto& loop : s.section.loops)
@@ -304,7 +307,7 @@ void refuse_and_close(const httplib::Request& req, httplib::Response& res, int s
 /// but chunked, no multipart form) and must state its length, at most `max_body_bytes`, or be
 /// chunked.
 std::optional<std::pair<int, std::string>> head_refusal(const httplib::Request& req,
-                                                         size_t max_body_bytes) {
+                                                        size_t max_body_bytes) {
   using Refusal = std::pair<int, std::string>;
   if (req.method != "GET" && req.method != "HEAD" && req.method != "POST")
     return Refusal{405, "the method " + quoted(req.method) + " is not served (GET and POST are)"};
@@ -576,10 +579,10 @@ int bound_port(int fd) {
 
 /// Answers a connection over the bound 503 and closes it, without waiting for the client.
 void turn_away(int fd, int max_connections) {
-  const std::string body = json_text(
-      {{"ok", false},
-       {"message", "the server is serving " + std::to_string(max_connections) +
-                       " connections, its most; retry in a moment"}});
+  const std::string body =
+      json_text({{"ok", false},
+                 {"message", "the server is serving " + std::to_string(max_connections) +
+                                 " connections, its most; retry in a moment"}});
   const std::string answer =
       "HTTP/1.1 503 Service Unavailable\r\nContent-Type: application/json\r\nContent-Length: " +
       std::to_string(body.size()) + "\r\nRetry-After: 1\r\nConnection: close\r\n\r\n" + body;
@@ -609,8 +612,7 @@ void answer_exception(const httplib::Request&, httplib::Response& res, std::exce
 std::map<std::string, std::string> volume_files_of(const Built& b, int across) {
   const std::string& name = b.tmpl.name;
   const auto diffusion = make_cpu_diffusion(b.model, DiffusionOptions{});
-  Outcome<InteriorVolume> grid =
-      volume_grid(b.model, voxel_length_across(b.model, across));
+  Outcome<InteriorVolume> grid = volume_grid(b.model, voxel_length_across(b.model, across));
   CUTAWAY_CHECK(grid.has_value());  // `across` is bounded well below kMaxVolumeVoxels
   const ColourModulation modulation(b.tmpl.npr, 0);
   const InteriorVolume volume =
@@ -622,8 +624,8 @@ std::map<std::string, std::string> volume_files_of(const Built& b, int across) {
   GltfSceneOptions gltf;
   gltf.camera_and_lights = false;
   gltf.scene_extras["interior_volume"] = {{"sidecar", name + ".json"}};
-  files["glb"] = scene_to_glb(whole_object_assets(Variant{b.tmpl, b.model}, *diffusion, 1.0, 0),
-                              gltf);
+  files["glb"] =
+      scene_to_glb(whole_object_assets(Variant{b.tmpl, b.model}, *diffusion, 1.0, 0), gltf);
   return files;
 }
 
@@ -632,10 +634,8 @@ void get_web_file(const httplib::Request& req, httplib::Response& res) {
   const std::string type = req.matches[2] == "js" ? "text/javascript" : "text/css";
   const std::optional<std::string_view> text =
       editor_web_file(req.matches[1].str() + "." + req.matches[2].str());
-  if (text)
-    res.set_content(std::string(*text), type + "; charset=utf-8");
-  else
-    reply_json(res, 404, {{"ok", false}, {"message", "no such file"}});
+  if (text) res.set_content(std::string(*text), type + "; charset=utf-8");
+  else reply_json(res, 404, {{"ok", false}, {"message", "no such file"}});
 }
 
 }  // namespace
@@ -652,8 +652,8 @@ nlohmann::json check_template_text(std::string_view text,
 Check check_request(std::string_view host, std::string_view origin, int port) {
   const std::string p = std::to_string(port);
   if (host != "127.0.0.1:" + p && host != "localhost:" + p)
-    return Check::none("the Host header must be 127.0.0.1:" + p + " or localhost:" + p +
-                       ", not " + quoted(host));
+    return Check::none("the Host header must be 127.0.0.1:" + p + " or localhost:" + p + ", not " +
+                       quoted(host));
   if (!origin.empty() && origin != "http://127.0.0.1:" + p && origin != "http://localhost:" + p)
     return Check::none("requests from other sites are refused (Origin " + quoted(origin) + ")");
   return {};
@@ -672,8 +672,8 @@ struct EditServer::Impl {
   std::set<int> connections;
   bool stopping = false;
   std::string token = random_token();  // what requests to /api/ must carry (kTokenHeader)
-  std::unique_ptr<WorkQueue> work;       // the requests that compute
-  std::mutex render;                     // one picture at a time is drawn (OpenGL)
+  std::unique_ptr<WorkQueue> work;     // the requests that compute
+  std::mutex render;                   // one picture at a time is drawn (OpenGL)
   // The last text that built: the page asks for the verdict, the model and cuts at several
   // heights of one text, which is built once. The lock is held while a text builds.
   std::mutex build_mutex;
@@ -707,12 +707,14 @@ struct EditServer::Impl {
   /// the verdict) and runs `answer(built, superseded)`, as answer_or_refuse(). A request
   /// whose client has gone by its turn is dropped.
   void work_on(WorkView view, const std::string& body, httplib::Response& res,
-               const std::function<void(const BuiltText&, const std::function<bool()>&)>&
-                   answer) {
-    answer_admission(work->run(view, [&](const std::function<bool()>& superseded) {
-      if (this_connection->client_gone()) return;
-      answer_or_refuse(res, [&] { answer(*built_for(body), superseded); });
-    }), res);
+               const std::function<void(const BuiltText&, const std::function<bool()>&)>& answer) {
+    answer_admission(work->run(view,
+                               [&](const std::function<bool()>& superseded) {
+                                 if (this_connection->client_gone()) return;
+                                 answer_or_refuse(res,
+                                                  [&] { answer(*built_for(body), superseded); });
+                               }),
+                     res);
   }
 
   /// The volume made for `content` (template_content), or null when it was not made.
@@ -737,13 +739,14 @@ struct EditServer::Impl {
     if (read) return body;
     Connection& c = *this_connection;
     if (too_large || c.overran())
-      refuse_and_close(req, res, 413, "request bodies are limited to " +
-                                     std::to_string(options.max_body_bytes) + " bytes");
+      refuse_and_close(req, res, 413,
+                       "request bodies are limited to " + std::to_string(options.max_body_bytes) +
+                           " bytes");
     else if (c.timed_out())
-      refuse_and_close(req, res, 408, "the request did not arrive within " +
-                                     std::to_string(options.request_timeout.count()) + " ms");
-    else
-      refuse_and_close(req, res, 400, "the request's body is cut short or badly chunked");
+      refuse_and_close(req, res, 408,
+                       "the request did not arrive within " +
+                           std::to_string(options.request_timeout.count()) + " ms");
+    else refuse_and_close(req, res, 400, "the request's body is cut short or badly chunked");
     return std::nullopt;
   }
 
@@ -751,9 +754,9 @@ struct EditServer::Impl {
   void post(const std::string& pattern,
             std::function<void(const httplib::Request&, httplib::Response&, const std::string&)>
                 handler) {
-    router.Post(pattern, [this, handler = std::move(handler)](const httplib::Request& req,
-                                                              httplib::Response& res,
-                                                              const httplib::ContentReader& reader) {
+    router.Post(pattern, [this, handler = std::move(handler)](
+                             const httplib::Request& req, httplib::Response& res,
+                             const httplib::ContentReader& reader) {
       if (const std::optional<std::string> body = read_body(req, reader, res))
         handler(req, res, *body);
     });
@@ -824,16 +827,13 @@ struct EditServer::Impl {
   /// way); never waits for work.
   void post_check(const httplib::Request& req, httplib::Response& res, const std::string& body);
   /// POST /api/model.png: the see-through model of the text (Model view).
-  void post_model_png(const httplib::Request& req, httplib::Response& res,
-                      const std::string& body);
+  void post_model_png(const httplib::Request& req, httplib::Response& res, const std::string& body);
   /// POST /api/model.glb: the model of the text as binary glTF (Model view).
-  void post_model_glb(const httplib::Request& req, httplib::Response& res,
-                      const std::string& body);
+  void post_model_glb(const httplib::Request& req, httplib::Response& res, const std::string& body);
   /// POST /api/skin.glb: the object of the text uncut, its skin baked as scenes bake it (the
   /// skin's patterns, their relief as a normal map, the Perlin modulation of seed 0), as
   /// binary glTF without camera or lights: what the outside looks like (Model view).
-  void post_skin_glb(const httplib::Request& req, httplib::Response& res,
-                     const std::string& body);
+  void post_skin_glb(const httplib::Request& req, httplib::Response& res, const std::string& body);
   /// POST /api/section.png?y=Y[&coarse=1]: the text's cut at height Y (template units; Cut
   /// view).
   void post_section_png(const httplib::Request& req, httplib::Response& res,
@@ -925,21 +925,25 @@ void EditServer::Impl::post_volume_file(const httplib::Request& req, httplib::Re
   std::shared_ptr<const BuiltText> b;
   answer_or_refuse(res, [&] { b = built_for(*text); });
   if (!b || !names_volume(name, b->built.tmpl.name, res)) return;
-  answer_admission(work->run(WorkView::Volume, [&](const std::function<bool()>&) {
-    if (this_connection->client_gone()) return;
-    std::shared_ptr<const VolumeFiles> made = volume_of(*content);  // by a request before
-    answer_or_refuse(res, [&] {
-      if (!made) {
-        made = std::make_shared<const VolumeFiles>(VolumeFiles{
-            b->built.tmpl.name, volume_files_of(b->built, options.volume_voxels_across)});
-        ++volumes_sampled;
-        const std::lock_guard<std::mutex> lock(volume_mutex);
-        volume_content = *content;
-        volume = made;
-      }
-      answer_volume_file(*made, kind, res);
-    });
-  }), res);
+  answer_admission(work->run(WorkView::Volume,
+                             [&](const std::function<bool()>&) {
+                               if (this_connection->client_gone()) return;
+                               std::shared_ptr<const VolumeFiles> made =
+                                   volume_of(*content);  // by a request before
+                               answer_or_refuse(res, [&] {
+                                 if (!made) {
+                                   made = std::make_shared<const VolumeFiles>(VolumeFiles{
+                                       b->built.tmpl.name,
+                                       volume_files_of(b->built, options.volume_voxels_across)});
+                                   ++volumes_sampled;
+                                   const std::lock_guard<std::mutex> lock(volume_mutex);
+                                   volume_content = *content;
+                                   volume = made;
+                                 }
+                                 answer_volume_file(*made, kind, res);
+                               });
+                             }),
+                   res);
 }
 
 void EditServer::Impl::post_check(const httplib::Request&, httplib::Response& res,
@@ -971,11 +975,11 @@ void EditServer::Impl::post_skin_glb(const httplib::Request&, httplib::Response&
   work_on(WorkView::Model, body, res, [&](const BuiltText& b, const auto&) {
     GltfSceneOptions gltf;
     gltf.camera_and_lights = false;
-    res.set_content(
-        scene_to_glb(whole_object_assets(Variant{b.built.tmpl, b.built.model},
-                                         b.section_diffusion(options.section_cube), 1.0, 0),
-                     gltf),
-        "model/gltf-binary");
+    res.set_content(scene_to_glb(whole_object_assets(Variant{b.built.tmpl, b.built.model},
+                                                     b.section_diffusion(options.section_cube), 1.0,
+                                                     0),
+                                 gltf),
+                    "model/gltf-binary");
   });
 }
 
@@ -1018,23 +1022,24 @@ void EditServer::Impl::post_variants_png(const httplib::Request& req, httplib::R
   const DiffusionFactory diffusion = [cube](const DsModel& m) {
     return make_cpu_diffusion(m, {cube, 0});
   };
-  work_on(WorkView::Variants, body, res,
-          [&](const BuiltText& b, const std::function<bool()>& superseded) {
-    std::vector<Outcome<CrossSection>> sections;
-    for (int seed = 1; seed <= count; ++seed) {
-      if (superseded()) return answer_admission(Admission::Superseded, res);
-      if (this_connection->client_gone()) return;  // no one to answer
-      sections.push_back(variant_section(make_variant(b.built.tmpl, seed), diffusion));
-    }
-    if (std::none_of(sections.begin(), sections.end(), [](const auto& c) { return bool(c); })) {
-      reply_json(res, 422, {{"ok", false},
-                            {"message", "no variant has a cut at mid-height: " +
-                                            sections[0].reason()}});
-      return;
-    }
-    const std::lock_guard<std::mutex> lock(render);
-    res.set_content(renderers.variants_png(std::move(sections)), "image/png");
-  });
+  work_on(
+      WorkView::Variants, body, res,
+      [&](const BuiltText& b, const std::function<bool()>& superseded) {
+        std::vector<Outcome<CrossSection>> sections;
+        for (int seed = 1; seed <= count; ++seed) {
+          if (superseded()) return answer_admission(Admission::Superseded, res);
+          if (this_connection->client_gone()) return;  // no one to answer
+          sections.push_back(variant_section(make_variant(b.built.tmpl, seed), diffusion));
+        }
+        if (std::none_of(sections.begin(), sections.end(), [](const auto& c) { return bool(c); })) {
+          reply_json(res, 422,
+                     {{"ok", false},
+                      {"message", "no variant has a cut at mid-height: " + sections[0].reason()}});
+          return;
+        }
+        const std::lock_guard<std::mutex> lock(render);
+        res.set_content(renderers.variants_png(std::move(sections)), "image/png");
+      });
 }
 
 void EditServer::Impl::post_save(const httplib::Request&, httplib::Response& res,
@@ -1086,7 +1091,7 @@ EditServer::EditServer(EditServerOptions options, EditRenderers renderers)
   s.listen_fd = listen_on_loopback(s.options.port);
   if (s.listen_fd < 0)
     throw EnvironmentError("port " + std::to_string(s.options.port) +
-                             " on 127.0.0.1 is taken; pass another with --port");
+                           " on 127.0.0.1 is taken; pass another with --port");
   s.port = bound_port(s.listen_fd);
   s.wake_fd = ::eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
   if (s.wake_fd < 0) throw std::system_error(errno, std::generic_category(), "eventfd");

@@ -55,7 +55,7 @@ nlohmann::json check_template_text(std::string_view text,
 /// Pictures the editor shows, rendered by the caller's renderers (the OpenGL previews live in
 /// render/, which the library does not include): PNG bytes.
 struct EditRenderers {
-  std::function<std::string(const DsModel&)> model_png;        ///< the see-through model
+  std::function<std::string(const DsModel&)> model_png;         ///< the see-through model
   std::function<std::string(const CrossSection&)> section_png;  ///< one cut face, head-on
   /// The mid-height cuts of seeded variants side by side (a missing one: an empty tile).
   std::function<std::string(std::vector<Outcome<CrossSection>>)> variants_png;
@@ -83,9 +83,9 @@ struct EditServerOptions {
   std::chrono::milliseconds request_timeout{5000};
   /// How long a connection may wait for its next request (keep-alive) or its first one.
   std::chrono::milliseconds idle_timeout{5000};
-  int section_cube = 8;                 ///< PMVC cube-map size of the live cross-section
-  int coarse_section_cube = 3;          ///< the same while the user drags the plane
-  int variant_cube = 8;                 ///< PMVC cube-map size of the variants' cuts
+  int section_cube = 8;         ///< PMVC cube-map size of the live cross-section
+  int coarse_section_cube = 3;  ///< the same while the user drags the plane
+  int variant_cube = 8;         ///< PMVC cube-map size of the variants' cuts
   /// Voxels along the skin's longest edge of the cutting page's volume (POST /api/volume/...;
   /// 4..97, the most volume_cost.h's bound allows any skin at cube 16): coarser than `cutaway
   /// volume`'s default, so the page opens in seconds.

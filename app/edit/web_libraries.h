@@ -14,8 +14,8 @@ namespace cutaway {
 
 /// One library: the files of `folder` are served at /lib/NAME/RELATIVE_PATH.
 struct WebLibrary {
-  std::string name;               ///< a-z only, e.g. "yaml"
-  std::filesystem::path folder;   ///< absolute
+  std::string name;              ///< a-z only, e.g. "yaml"
+  std::filesystem::path folder;  ///< absolute
 };
 
 /// yaml (/usr/share/nodejs/yaml/browser/dist) and three (/usr/share/javascript/three), or the

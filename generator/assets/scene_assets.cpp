@@ -18,9 +18,9 @@ Check check_camera(const AssetCamera& c, bool needs_up) {
     return Check::none("eye, target and up must be finite");
   const glm::dvec3 forward = c.target - c.eye;
   if (!(glm::length(forward) > 0)) return Check::none("eye and target coincide");
-  if (needs_up && (!(glm::length(c.up) > 0) ||
-                   !(glm::length(glm::cross(glm::normalize(forward), c.up)) >
-                     1e-9 * glm::length(c.up))))
+  if (needs_up &&
+      (!(glm::length(c.up) > 0) ||
+       !(glm::length(glm::cross(glm::normalize(forward), c.up)) > 1e-9 * glm::length(c.up))))
     return Check::none("up is zero or parallel to the view direction");
   if (!(c.fov_y_deg > 0 && c.fov_y_deg < 180))
     return Check::none("fov_y_deg must be in (0, 180), not " + std::to_string(c.fov_y_deg));
@@ -28,7 +28,7 @@ Check check_camera(const AssetCamera& c, bool needs_up) {
     return Check::none("aspect must be positive and finite");
   if (!(c.znear > 0 && c.znear < c.zfar && std::isfinite(c.zfar)))
     return Check::none("need 0 < znear < zfar (finite), not " + std::to_string(c.znear) + ", " +
-           std::to_string(c.zfar));
+                       std::to_string(c.zfar));
   return {};
 }
 
@@ -79,14 +79,15 @@ namespace {
 Check check_texture(const AssetTexture& t) {
   if (t.width < 1 || t.height < 1)
     return Check::none("is " + std::to_string(t.width) + "x" + std::to_string(t.height) +
-           " (must be at least 1x1)");
+                       " (must be at least 1x1)");
   if (t.channels != 1 && t.channels != 3 && t.channels != 4)
     return Check::none("has " + std::to_string(t.channels) + " channels (must be 1, 3 or 4)");
   const size_t bytes = static_cast<size_t>(t.width) * static_cast<size_t>(t.height) *
                        static_cast<size_t>(t.channels);
   if (t.pixels.size() != bytes)
-    return Check::none("has " + std::to_string(t.pixels.size()) +
-           " bytes of pixels, not width * height * channels = " + std::to_string(bytes));
+    return Check::none(
+        "has " + std::to_string(t.pixels.size()) +
+        " bytes of pixels, not width * height * channels = " + std::to_string(bytes));
   return {};
 }
 
@@ -114,7 +115,7 @@ Check check_material(const AssetMaterial& m, const std::vector<AssetTexture>& te
 }
 
 Check check_mesh(const AssetMesh& m, const std::vector<AssetMaterial>& materials,
-                        const AssetRules& rules) {
+                 const AssetRules& rules) {
   const size_t n = m.position.size();
   if (rules.meshes_need_triangles && (n == 0 || m.triangle.empty()))
     return Check::none("has no triangles");
@@ -129,7 +130,7 @@ Check check_mesh(const AssetMesh& m, const std::vector<AssetMaterial>& materials
                          " has a non-finite position, normal or colour");
   if (!m.uv.empty() && m.uv.size() != n)
     return Check::none("has " + std::to_string(m.uv.size()) + " texture coordinates for " +
-           std::to_string(n) + " positions (must be equal, or none)");
+                       std::to_string(n) + " positions (must be equal, or none)");
   for (size_t v = 0; v < m.uv.size(); ++v)
     if (!all_finite(m.uv[v]))
       return Check::none("vertex " + std::to_string(v) + " has non-finite texture coordinates");
@@ -178,8 +179,8 @@ Check check_assets(const SceneAssets& a, const AssetRules& rules) {
     if (Check c = named("texture", i, a.textures[i].name, check_texture(a.textures[i])); !c)
       return c;
   for (size_t i = 0; i < a.materials.size(); ++i)
-    if (Check c = named("material", i, a.materials[i].name,
-                        check_material(a.materials[i], a.textures));
+    if (Check c =
+            named("material", i, a.materials[i].name, check_material(a.materials[i], a.textures));
         !c)
       return c;
   for (size_t i = 0; i < a.meshes.size(); ++i)

@@ -81,9 +81,9 @@ struct AssetPrimitive {
 /// One triangle mesh in its own frame (ColouredMesh: metres, linear colours, triangles
 /// counter-clockwise seen from outside), named, with texture coordinates and materials.
 struct AssetMesh : ColouredMesh {
-  std::string name;                   ///< unique in the scene, [A-Za-z0-9_]+
-  std::vector<glm::dvec2> uv;         ///< #V texture coordinates 0..1 (glTF: v down from the
-                                      ///< top row), or empty: no textured material
+  std::string name;            ///< unique in the scene, [A-Za-z0-9_]+
+  std::vector<glm::dvec2> uv;  ///< #V texture coordinates 0..1 (glTF: v down from the
+                               ///< top row), or empty: no textured material
   /// The triangles by material, in order, covering all of them without gaps (a piece: skin
   /// and walls, then caps). Empty: one primitive of material 0.
   std::vector<AssetPrimitive> primitives;
@@ -119,8 +119,8 @@ struct AssetHull {
 
 /// One placed copy of a mesh: scene point = translation + rotation * (mesh point).
 struct AssetInstance {
-  std::string name;          ///< unique in the scene
-  int mesh = -1;             ///< index into SceneAssets::meshes
+  std::string name;                 ///< unique in the scene
+  int mesh = -1;                    ///< index into SceneAssets::meshes
   glm::dquat rotation{1, 0, 0, 0};  ///< unit quaternion (w, x, y, z)
   glm::dvec3 translation{0.0};      ///< metres
   PieceInfo piece;                  ///< for pieces
@@ -131,8 +131,8 @@ struct AssetInstance {
 /// A pinhole camera in the scene frame (+Y up, metres).
 struct AssetCamera {
   glm::dvec3 eye{0, 0.3, 0.3}, target{0.0}, up{0, 1, 0};
-  double fov_y_deg = 40;    ///< vertical field of view, degrees
-  double aspect = 4.0 / 3;  ///< width / height
+  double fov_y_deg = 40;           ///< vertical field of view, degrees
+  double aspect = 4.0 / 3;         ///< width / height
   double znear = 0.01, zfar = 10;  ///< metres
 };
 
@@ -179,9 +179,9 @@ constexpr double kLumensPerWatt = 683.0;
 struct AssetLight {
   std::string name;
   LightType type = LightType::Directional;
-  glm::dvec3 position{0.0};              ///< point: metres
-  glm::dvec3 direction{0, -1, 0};        ///< directional: unit, the way the light travels
-  glm::dvec3 colour{1, 1, 1};            ///< linear RGB
+  glm::dvec3 position{0.0};               ///< point: metres
+  glm::dvec3 direction{0, -1, 0};         ///< directional: unit, the way the light travels
+  glm::dvec3 colour{1, 1, 1};             ///< linear RGB
   double intensity = 3 * kLumensPerWatt;  ///< lux (directional) or candela (point)
 };
 
@@ -216,14 +216,14 @@ struct AssetRules {
 
 /// Whether `assets` are sound (else what is wrong, in words naming the element): the one
 /// validation of SceneAssets every exporter and renderer applies, with `rules` for what each
-/// tolerates. At least one material (material 0). Textures: at least 1 x 1, 3 or 4 channels, width * height * channels bytes.
-/// Materials: PbrMaterial fields in range, texture indices -1 or valid, base colour textures
-/// RGB. Meshes (all, instanced or not): #V normals and colours, positions and colours finite,
-/// uv #V or empty and finite, triangle and coarse indices below #V, check_primitives.
-/// Instances: an existing mesh, a finite non-zero
-/// rotation, a finite translation, collision hulls with >= 4 finite corners, >= 4 triangles
-/// and indices in range. The camera (check_camera). Lights: finite, intensity and
-/// colour >= 0, directional ones with a non-zero direction. The background finite and >= 0.
+/// tolerates. At least one material (material 0). Textures: at least 1 x 1, 3 or 4 channels, width
+/// * height * channels bytes. Materials: PbrMaterial fields in range, texture indices -1 or valid,
+/// base colour textures RGB. Meshes (all, instanced or not): #V normals and colours, positions and
+/// colours finite, uv #V or empty and finite, triangle and coarse indices below #V,
+/// check_primitives. Instances: an existing mesh, a finite non-zero rotation, a finite translation,
+/// collision hulls with >= 4 finite corners, >= 4 triangles and indices in range. The camera
+/// (check_camera). Lights: finite, intensity and colour >= 0, directional ones with a non-zero
+/// direction. The background finite and >= 0.
 Check check_assets(const SceneAssets& assets, const AssetRules& rules = {});
 
 /// Throws InternalError("WHO: reason") when check_assets(assets, rules) fails: the

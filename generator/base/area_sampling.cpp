@@ -20,10 +20,10 @@ AreaSample AreaSampler::draw(Rng& rng) const {
   CUTAWAY_CHECK(total() > 0);
   const double r = rng.uniform(0.0, total());
   AreaSample s;
-  s.triangle = std::min(
-      cumulative_.size() - 1,
-      static_cast<size_t>(std::upper_bound(cumulative_.begin(), cumulative_.end(), r) -
-                          cumulative_.begin()));
+  s.triangle =
+      std::min(cumulative_.size() - 1,
+               static_cast<size_t>(std::upper_bound(cumulative_.begin(), cumulative_.end(), r) -
+                                   cumulative_.begin()));
   double u = rng.uniform(), v = rng.uniform();
   if (u + v > 1) {
     u = 1 - u;

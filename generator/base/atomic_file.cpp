@@ -194,8 +194,8 @@ void RemoveOnSignal::release() noexcept {
   slot_ = -1;
 }
 
-fs::path create_watched(const std::string& prefix, RemoveOnSignal::Kind kind,
-                        RemoveOnSignal& guard, int* fd, const Folder* in) {
+fs::path create_watched(const std::string& prefix, RemoveOnSignal::Kind kind, RemoveOnSignal& guard,
+                        int* fd, const Folder* in) {
   constexpr char kChars[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
   const int dirfd = in ? in->fd() : AT_FDCWD;
   for (int attempt = 0; attempt < 100; ++attempt) {
@@ -307,8 +307,8 @@ OutputSet::Stage& OutputSet::stage_for(const std::string& what, const fs::path& 
   } catch (const EnvironmentError& e) {
     throw OutputPathError(what + ": " + e.what());
   }
-  s.folder = create_watched(".cutaway.tmp-", RemoveOnSignal::Kind::Folder, s.guard, nullptr,
-                            &s.handle);
+  s.folder =
+      create_watched(".cutaway.tmp-", RemoveOnSignal::Kind::Folder, s.guard, nullptr, &s.handle);
   if (s.folder.empty()) {
     throw OutputPathError(what + ": cannot create files in " + dir.string() + ": " +
                           errno_text(errno));

@@ -187,9 +187,9 @@ class OutputSet {
   Stage& stage_for(const std::string& what, const std::filesystem::path& dir);
 
   std::vector<Stage> stages_;
-  std::map<std::filesystem::path, std::string> given_;   ///< target -> "OPTION PATH"
-  std::vector<std::filesystem::path> created_dirs_;      ///< by add(), in creation order
-  std::vector<std::filesystem::path> committed_;         ///< by commit(), in rename order
+  std::map<std::filesystem::path, std::string> given_;  ///< target -> "OPTION PATH"
+  std::vector<std::filesystem::path> created_dirs_;     ///< by add(), in creation order
+  std::vector<std::filesystem::path> committed_;        ///< by commit(), in rename order
   bool done_ = false;
 };
 

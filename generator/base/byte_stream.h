@@ -15,8 +15,7 @@
 
 namespace cutaway {
 
-static_assert(std::endian::native == std::endian::little,
-              "the encoding is little-endian");
+static_assert(std::endian::native == std::endian::little, "the encoding is little-endian");
 
 /// Thrown by ByteReader when the bytes end early or a count is implausible (damaged data).
 class ByteStreamError : public std::runtime_error {

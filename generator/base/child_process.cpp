@@ -47,9 +47,8 @@ std::string find_executable(const std::string& name, const std::string& hint) {
   throw EnvironmentError("'" + name + "' was not found in PATH; " + hint);
 }
 
-
 ChildResult run_child(const fs::path& dir, const std::string& exe,
-                   const std::vector<std::string>& args) {
+                      const std::vector<std::string>& args) {
   std::vector<char*> argv;
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
@@ -123,6 +122,5 @@ ChildResult run_child(const fs::path& dir, const std::string& exe,
   }
   return result;
 }
-
 
 }  // namespace cutaway

@@ -50,7 +50,8 @@ uint8_t srgb8_by_formula(double c) {
 std::array<double, 255> srgb8_steps() {
   std::array<double, 255> step{};
   for (int k = 1; k <= 255; ++k) {
-    uint64_t lo = std::bit_cast<uint64_t>(0.0), hi = std::bit_cast<uint64_t>(1.0);  // f(lo) < k <= f(hi)
+    uint64_t lo = std::bit_cast<uint64_t>(0.0),
+             hi = std::bit_cast<uint64_t>(1.0);  // f(lo) < k <= f(hi)
     while (hi - lo > 1) {
       const uint64_t mid = lo + (hi - lo) / 2;
       (srgb8_by_formula(std::bit_cast<double>(mid)) >= k ? hi : lo) = mid;

@@ -19,9 +19,9 @@ double srgb_to_linear(double c);
 double linear_to_srgb(double c);
 
 /// One linear component to an 8-bit sRGB code: lround(255 * linear_to_srgb(c)) with the power
-/// taken by pow() (clamped to 0..1; NaN gives 0), the same bits as that formula, found by binary search in the table of
-/// the 255 linear values where the code steps up (made once, by bisection on that formula):
-/// eight comparisons instead of a pow() per texel.
+/// taken by pow() (clamped to 0..1; NaN gives 0), the same bits as that formula, found by binary
+/// search in the table of the 255 linear values where the code steps up (made once, by bisection on
+/// that formula): eight comparisons instead of a pow() per texel.
 uint8_t linear_to_srgb8(double c);
 
 /// A value in 0..1 (clamped) as an 8-bit code, lround(255 v), with no transfer curve: for
@@ -54,8 +54,8 @@ struct VisibleTolerance {
   double colour = 0;    ///< colour_difference
   double material = 0;  ///< material_difference
   /// Whether (colour, material) lies within both tolerances of (colour_ref, material_ref).
-  bool accepts(const glm::dvec3& colour, const glm::dvec2& material,
-               const glm::dvec3& colour_ref, const glm::dvec2& material_ref) const {
+  bool accepts(const glm::dvec3& colour, const glm::dvec2& material, const glm::dvec3& colour_ref,
+               const glm::dvec2& material_ref) const {
     return colour_difference(colour, colour_ref) <= this->colour &&
            material_difference(material, material_ref) <= this->material;
   }

@@ -15,10 +15,8 @@ std::string format_input_error(const FileLoc& loc, const std::string& field,
 }  // namespace
 
 InputError::InputError(FileLoc loc, std::string field, std::string rule)
-    : std::runtime_error(format_input_error(loc, field, rule)),
-      loc_(std::move(loc)),
-      field_(std::move(field)),
-      rule_(std::move(rule)) {}
+    : std::runtime_error(format_input_error(loc, field, rule)), loc_(std::move(loc)),
+      field_(std::move(field)), rule_(std::move(rule)) {}
 
 size_t utf8_length(std::string_view s, size_t i) {
   const auto c = static_cast<unsigned char>(s[i]);

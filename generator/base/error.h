@@ -84,19 +84,19 @@ inline std::string quoted(const char* text, size_t max_bytes = 60) {
 }  // namespace cutaway
 
 /// CHECK-style assertion that stays on in Release builds (pbrt-v4 util/check.h).
-#define CUTAWAY_CHECK(cond)                                          \
-  do {                                                               \
+#define CUTAWAY_CHECK(cond)                                              \
+  do {                                                                   \
     if (!(cond)) ::cutaway::check_failed(__FILE__, __LINE__, #cond, ""); \
   } while (false)
 
 /// Like CUTAWAY_CHECK, printing both values of a failed comparison.
-#define CUTAWAY_CHECK_OP(a, op, b)                                           \
-  do {                                                                       \
-    const auto& check_a_ = (a);                                              \
-    const auto& check_b_ = (b);                                              \
-    if (!(check_a_ op check_b_)) {                                           \
-      std::ostringstream check_s_;                                           \
-      check_s_ << #a " = " << check_a_ << ", " #b " = " << check_b_;         \
+#define CUTAWAY_CHECK_OP(a, op, b)                                                    \
+  do {                                                                                \
+    const auto& check_a_ = (a);                                                       \
+    const auto& check_b_ = (b);                                                       \
+    if (!(check_a_ op check_b_)) {                                                    \
+      std::ostringstream check_s_;                                                    \
+      check_s_ << #a " = " << check_a_ << ", " #b " = " << check_b_;                  \
       ::cutaway::check_failed(__FILE__, __LINE__, #a " " #op " " #b, check_s_.str()); \
-    }                                                                        \
+    }                                                                                 \
   } while (false)

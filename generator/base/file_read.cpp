@@ -11,8 +11,7 @@
 namespace cutaway {
 
 FileReadError::FileReadError(const std::filesystem::path& path, std::string rule)
-    : EnvironmentError("cannot read " + path.string() + ": " + rule),
-      rule_(std::move(rule)) {}
+    : EnvironmentError("cannot read " + path.string() + ": " + rule), rule_(std::move(rule)) {}
 
 std::string byte_size_words(uint64_t bytes) {
   if (bytes != 0 && bytes % (uint64_t{1} << 30) == 0) return std::to_string(bytes >> 30) + " GiB";
@@ -72,8 +71,8 @@ std::string read_open_file(int fd, const std::filesystem::path& path, uint64_t m
   try {
     bytes.resize(static_cast<size_t>(st.st_size));  // the one allocation
   } catch (const std::bad_alloc&) {
-    throw FileReadError(path, "is too large to hold in memory (" +
-                                  std::to_string(st.st_size) + " bytes)");
+    throw FileReadError(path, "is too large to hold in memory (" + std::to_string(st.st_size) +
+                                  " bytes)");
   }
   size_t got = 0;
   const auto read_into = [&](char* at, size_t n) {

@@ -41,8 +41,8 @@ std::string replace_rule(int dirfd, const std::string& name) {
 }
 
 bool plain_name(std::string_view name) {
-  return !name.empty() && name != "." && name != ".." &&
-         name.find('/') == std::string_view::npos && name.find('\0') == std::string_view::npos;
+  return !name.empty() && name != "." && name != ".." && name.find('/') == std::string_view::npos &&
+         name.find('\0') == std::string_view::npos;
 }
 
 int Folder::fd() const {
@@ -79,8 +79,8 @@ Folder Folder::sub(std::string_view name, bool create, mode_t mode) const {
     const int e = errno;
     std::string rule = errno_words(e);
     if (e == ELOOP) rule = "is a symbolic link, not a folder";
-    if (e == ENOTDIR) rule = kind(name) == EntryKind::Link ? "is a symbolic link, not a folder"
-                                                           : "is not a folder";
+    if (e == ENOTDIR)
+      rule = kind(name) == EntryKind::Link ? "is a symbolic link, not a folder" : "is not a folder";
     throw EnvironmentError("cannot open the folder " + shown.string() + ": " + rule);
   }
   return Folder(own_fd(sub_fd), shown);
@@ -107,8 +107,8 @@ void Folder::write_atomically(std::string_view name, std::span<const std::string
   int out = -1;
   const fs::path tmp = create_watched(n + ".tmp-", RemoveOnSignal::Kind::File, guard, &out, this);
   if (tmp.empty())
-    throw EnvironmentError("cannot write " + shown + ": cannot create a file in " +
-                           path_.string() + ": " + errno_words(errno));
+    throw EnvironmentError("cannot write " + shown + ": cannot create a file in " + path_.string() +
+                           ": " + errno_words(errno));
   const std::string tmp_name = tmp.filename().string();
   const auto fail = [&](int e) {
     if (out >= 0) ::close(out);

@@ -42,10 +42,8 @@ struct HugePageAllocator {
     return static_cast<T*>(p);
   }
   void deallocate(T* p, size_t n) noexcept {
-    if (n * sizeof(T) < kHugePageBytes)
-      ::operator delete(p);
-    else
-      std::free(p);
+    if (n * sizeof(T) < kHugePageBytes) ::operator delete(p);
+    else std::free(p);
   }
   template <typename U>
   bool operator==(const HugePageAllocator<U>&) const noexcept {

@@ -86,11 +86,11 @@ void sincosf(float x, float* s, float* c) noexcept {
 namespace cutaway {
 
 const char* const kPortableLibmFunctions[] = {
-    "sin",    "cos",    "tan",   "asin",   "acos",   "atan",   "atan2",  "sinh",   "cosh",
-    "tanh",   "asinh",  "acosh", "atanh",  "exp",    "exp2",   "exp10",  "expm1",  "log",
-    "log2",   "log10",  "log1p", "pow",    "cbrt",   "hypot",  "sincos", "sinf",   "cosf",
-    "tanf",   "asinf",  "acosf", "atanf",  "atan2f", "sinhf",  "coshf",  "tanhf",  "asinhf",
-    "acoshf", "atanhf", "expf",  "exp2f",  "exp10f", "expm1f", "logf",   "log2f",  "log10f",
+    "sin",    "cos",    "tan",   "asin",   "acos",   "atan",   "atan2",  "sinh",  "cosh",
+    "tanh",   "asinh",  "acosh", "atanh",  "exp",    "exp2",   "exp10",  "expm1", "log",
+    "log2",   "log10",  "log1p", "pow",    "cbrt",   "hypot",  "sincos", "sinf",  "cosf",
+    "tanf",   "asinf",  "acosf", "atanf",  "atan2f", "sinhf",  "coshf",  "tanhf", "asinhf",
+    "acoshf", "atanhf", "expf",  "exp2f",  "exp10f", "expm1f", "logf",   "log2f", "log10f",
     "log1pf", "powf",   "cbrtf", "hypotf", "sincosf"};
 const int kPortableLibmFunctionCount =
     static_cast<int>(sizeof(kPortableLibmFunctions) / sizeof(kPortableLibmFunctions[0]));

@@ -98,7 +98,8 @@ BatchPlan plan_batch(const Batch& batch, const std::string& settings) {
         a.item = i;
         a.cut = c;
         a.seed = seed;
-        a.stem = item.template_name + "-" + std::to_string(seed) + "-" + cut_file_label(item.cuts[c]);
+        a.stem =
+            item.template_name + "-" + std::to_string(seed) + "-" + cut_file_label(item.cuts[c]);
         plan.assets.push_back(std::move(a));
       }
     }
@@ -110,8 +111,8 @@ BatchPlan plan_batch(const Batch& batch, const std::string& settings) {
     a.thumbnail = batch.outputs.thumbnails || a.sample;
     const BatchItem& item = batch.items[a.item];
     CUTAWAY_CHECK(item.tmpl);  // load_batch read it
-    a.inputs = fnv1a64(fingerprint_text(batch, item, a.seed, item.cuts[a.cut], a.thumbnail,
-                                        settings));
+    a.inputs =
+        fnv1a64(fingerprint_text(batch, item, a.seed, item.cuts[a.cut], a.thumbnail, settings));
   }
   return plan;
 }
@@ -159,8 +160,7 @@ class LazyVariant {
 /// `seed`, with collision shapes when the batch exports them; through the cut cache.
 CachedCut cut_asset(SceneAssets& assets, const Batch& batch, const Template& tmpl,
                     LazyVariant& variant, uint64_t seed, const CutSpec& cut_spec,
-                    const std::string& stem, const BatchBuildOptions& options,
-                    ObjectCutStats& st) {
+                    const std::string& stem, const BatchBuildOptions& options, ObjectCutStats& st) {
   assets.name = stem;
   assets.background = {1, 1, 1};
   const PieceMaterials materials =
@@ -198,8 +198,11 @@ std::string asset_glb(SceneAssets& assets, CachedCut& cut, const Batch& batch, A
       hi = glm::max(hi, p);
     }
     r.volume_m3 += object.infos[q].volume_m3;
-    assets.instances.push_back({object.meshes[q].name, static_cast<int>(assets.meshes.size()),
-                                {1, 0, 0, 0}, {0, 0, 0}, object.infos[q]});
+    assets.instances.push_back({object.meshes[q].name,
+                                static_cast<int>(assets.meshes.size()),
+                                {1, 0, 0, 0},
+                                {0, 0, 0},
+                                object.infos[q]});
     if (!cut.collision.empty())
       assets.instances.back().collision = collision_hulls(cut.collision[q]);
     assets.meshes.push_back(std::move(object.meshes[q]));
@@ -245,13 +248,12 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
     CUTAWAY_CHECK(grid.has_value());  // 200 voxels across stay below kMaxVolumeVoxels
     const ColourModulation modulation(tmpl.npr, u.seed);
     const DiffusionBackend& diffusion = variant.diffusion();
-    Outcome<std::vector<NamedFile>> files = volume_files(
-        sample_interior_volume(ds, diffusion, std::move(*grid), diffusion.threads(), &modulation,
-                               batch.export_options.perlin),
-        item.template_name + "-" + std::to_string(u.seed) + ".volume", tmpl.name,
-        static_cast<int64_t>(u.seed), true);
-    if (!files)
-      throw InputError({batch.file, 0, 0}, "outputs.volume_voxels", files.reason());
+    Outcome<std::vector<NamedFile>> files =
+        volume_files(sample_interior_volume(ds, diffusion, std::move(*grid), diffusion.threads(),
+                                            &modulation, batch.export_options.perlin),
+                     item.template_name + "-" + std::to_string(u.seed) + ".volume", tmpl.name,
+                     static_cast<int64_t>(u.seed), true);
+    if (!files) throw InputError({batch.file, 0, 0}, "outputs.volume_voxels", files.reason());
     volume = std::move(*files);
   }
   std::vector<std::pair<std::string, uint64_t>> volume_record;
@@ -281,8 +283,8 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
         throw InternalError("build_batch_unit: a thumbnail is due and no renderer given");
       t0 = Clock::now();
       const int w = batch.outputs.thumbnail_px;
-      thumbnail = options.thumbnail(
-          grid_piece_assets(assets, object.pieces, PieceView::Up, w, w * 3 / 4));
+      thumbnail =
+          options.thumbnail(grid_piece_assets(assets, object.pieces, PieceView::Up, w, w * 3 / 4));
       own.thumbnail = seconds_since(t0);
     }
 

@@ -28,9 +28,9 @@ struct BatchAsset {
   size_t unit = 0, item = 0, cut = 0;  ///< indices into the plan's units, the batch's items
                                        ///< and the item's cuts
   uint64_t seed = 0;
-  std::string stem;   ///< TEMPLATE-SEED-CUT, e.g. "tomato-100-wedges-6"; files STEM.glb,
-                      ///< STEM.png, and TEMPLATE-SEED.model.glb for the variant
-  uint64_t inputs = 0;  ///< fingerprint of everything the asset's bytes depend on
+  std::string stem;        ///< TEMPLATE-SEED-CUT, e.g. "tomato-100-wedges-6"; files STEM.glb,
+                           ///< STEM.png, and TEMPLATE-SEED.model.glb for the variant
+  uint64_t inputs = 0;     ///< fingerprint of everything the asset's bytes depend on
   bool thumbnail = false;  ///< STEM.png is written (outputs.thumbnails, or in the sample)
   bool sample = false;     ///< on the contact sheet of `batch merge`
 };
@@ -72,22 +72,22 @@ struct BatchFile {
 /// One asset's line of the manifest (batch_manifest.h). Files are named relative to the
 /// output folder; hashes are fnv1a64 of their bytes.
 struct AssetRecord {
-  std::string file;           ///< STEM.glb
+  std::string file;  ///< STEM.glb
   std::string template_name;
   uint64_t seed = 0;
-  std::string cut;            ///< cut_label()
+  std::string cut;  ///< cut_label()
   size_t pieces = 0;
   size_t triangles = 0, vertices = 0;  ///< in `file`, as count_glb_geometry reads them
-  double volume_m3 = 0;       ///< the pieces' volumes summed, cubic metres
-  uint64_t hash = 0;          ///< of `file`
-  std::string model;          ///< TEMPLATE-SEED.model.glb, or empty
+  double volume_m3 = 0;                ///< the pieces' volumes summed, cubic metres
+  uint64_t hash = 0;                   ///< of `file`
+  std::string model;                   ///< TEMPLATE-SEED.model.glb, or empty
   uint64_t model_hash = 0;
-  std::string thumbnail;      ///< STEM.png, or empty
+  std::string thumbnail;  ///< STEM.png, or empty
   uint64_t thumbnail_hash = 0;
   /// The variant's interior volume files (TEMPLATE-SEED.volume.json first, then its flipbooks
   /// and .vdb) with their hashes, or none.
   std::vector<std::pair<std::string, uint64_t>> volume;
-  uint64_t inputs = 0;        ///< BatchAsset::inputs
+  uint64_t inputs = 0;  ///< BatchAsset::inputs
   friend bool operator==(const AssetRecord&, const AssetRecord&) = default;
 };
 
@@ -112,7 +112,7 @@ struct BatchBuildOptions {
   /// What of the diffusion backend changes colours (SceneBuildOptions::diffusion_settings);
   /// required with `cache`.
   std::string diffusion_settings;
-  CutCache* cache = nullptr;   ///< the cut cache (cut_cache.h), or null: every asset is cut
+  CutCache* cache = nullptr;  ///< the cut cache (cut_cache.h), or null: every asset is cut
   CapSampling sampling = CapSampling::Adaptive;
   ThumbnailRenderer thumbnail;  ///< required when the unit has an asset with a thumbnail
 };

@@ -32,8 +32,8 @@ constexpr uint64_t kMaxManifestBytes = uint64_t{1} << 30;
 /// @throws FileReadError when it is there but cannot be read or is too large
 std::optional<std::string> read_own_file(const fs::path& path) {
   try {
-    return Folder::open(path.parent_path(), false).read(path.filename().string(),
-                                                        kMaxManifestBytes);
+    return Folder::open(path.parent_path(), false)
+        .read(path.filename().string(), kMaxManifestBytes);
   } catch (const FileReadError& e) {
     if (e.rule() == "does not exist") return std::nullopt;
     throw;
@@ -86,14 +86,10 @@ std::string shard_file_name(const std::string& stem, const std::optional<Shard>&
 }
 
 std::string manifest_line(const AssetRecord& r) {
-  nlohmann::ordered_json j = {{"file", r.file},
-                              {"template", r.template_name},
-                              {"seed", r.seed},
-                              {"cut", r.cut},
-                              {"pieces", r.pieces},
-                              {"triangles", r.triangles},
-                              {"vertices", r.vertices},
-                              {"volume_m3", r.volume_m3},
+  nlohmann::ordered_json j = {{"file", r.file},          {"template", r.template_name},
+                              {"seed", r.seed},          {"cut", r.cut},
+                              {"pieces", r.pieces},      {"triangles", r.triangles},
+                              {"vertices", r.vertices},  {"volume_m3", r.volume_m3},
                               {"fnv1a64", hex64(r.hash)}};
   if (!r.model.empty()) {
     j["model"] = r.model;
@@ -202,9 +198,9 @@ bool record_files_intact(const AssetRecord& r, const fs::path& dir) {
 
 std::string batch_index_text(const Batch& batch, const BatchPlan& plan) {
   // One asset per line, so that the file reads and diffs well.
-  std::string text = "{\"format\":\"cutaway-batch-index/1\",\"batch\":" +
-                     nlohmann::json(batch.name).dump() +
-                     ",\"units\":" + std::to_string(plan.units.size()) + ",\"assets\":[\n";
+  std::string text =
+      "{\"format\":\"cutaway-batch-index/1\",\"batch\":" + nlohmann::json(batch.name).dump() +
+      ",\"units\":" + std::to_string(plan.units.size()) + ",\"assets\":[\n";
   for (size_t i = 0; i < plan.assets.size(); ++i) {
     const BatchAsset& a = plan.assets[i];
     const nlohmann::ordered_json j = {
@@ -234,7 +230,8 @@ Outcome<BatchIndex> read_batch_index(const fs::path& dir) {
     for (const auto& a : j.at("assets")) {
       const auto inputs = parse_hex64(a.at("inputs").get<std::string>());
       if (!inputs) return Outcome<BatchIndex>::none(path.string() + ": a bad inputs hash");
-      index.assets.push_back({a.at("stem").get<std::string>(), *inputs, a.at("sample").get<bool>()});
+      index.assets.push_back(
+          {a.at("stem").get<std::string>(), *inputs, a.at("sample").get<bool>()});
     }
   } catch (const nlohmann::json::exception& e) {
     return Outcome<BatchIndex>::none(path.string() + ": " + e.what());
@@ -248,8 +245,7 @@ MergeReport merge_manifests(const BatchIndex& index, const fs::path& dir) {
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
-    if (e.symlink_status(ec).type() == fs::file_type::regular &&
-        std::regex_match(name, shard_name))
+    if (e.symlink_status(ec).type() == fs::file_type::regular && std::regex_match(name, shard_name))
       report.manifests.push_back(name);
   }
   if (report.manifests.empty() &&

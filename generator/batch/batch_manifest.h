@@ -56,8 +56,8 @@ struct IndexedAsset {
 
 /// What batch.json holds.
 struct BatchIndex {
-  std::string batch;  ///< the batch's name
-  size_t units = 0;   ///< variants (what shards divide)
+  std::string batch;                 ///< the batch's name
+  size_t units = 0;                  ///< variants (what shards divide)
   std::vector<IndexedAsset> assets;  ///< in batch order
 };
 
@@ -70,18 +70,16 @@ Outcome<BatchIndex> read_batch_index(const std::filesystem::path& dir);
 
 /// What merge_manifests found.
 struct MergeReport {
-  std::vector<std::string> manifests;  ///< the manifest files read, sorted
-  std::vector<AssetRecord> records;    ///< one per asset found intact, in batch order
-  std::vector<std::string> missing;    ///< assets in no manifest, or listed with other inputs
-  std::vector<std::string> duplicated; ///< assets listed identically by several manifests
+  std::vector<std::string> manifests;    ///< the manifest files read, sorted
+  std::vector<AssetRecord> records;      ///< one per asset found intact, in batch order
+  std::vector<std::string> missing;      ///< assets in no manifest, or listed with other inputs
+  std::vector<std::string> duplicated;   ///< assets listed identically by several manifests
   std::vector<std::string> conflicting;  ///< assets listed differently by several manifests
-  std::vector<std::string> damaged;    ///< assets whose files are missing or changed
-  std::vector<std::string> unknown;    ///< records of files not in the batch index
-  size_t bad_lines = 0;                ///< manifest lines that are not records
+  std::vector<std::string> damaged;      ///< assets whose files are missing or changed
+  std::vector<std::string> unknown;      ///< records of files not in the batch index
+  size_t bad_lines = 0;                  ///< manifest lines that are not records
   /// Whether the merged manifest can be written: every asset found intact, once.
-  bool complete() const {
-    return missing.empty() && conflicting.empty() && damaged.empty();
-  }
+  bool complete() const { return missing.empty() && conflicting.empty() && damaged.empty(); }
 };
 
 /// Reads the shard manifests in `dir` (manifest-K-of-M.jsonl; when there are none,

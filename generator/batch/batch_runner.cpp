@@ -26,10 +26,8 @@ using Clock = std::chrono::steady_clock;
 /// Appends `text` to the file at `path` (created when missing) and flushes it to disk. A link at
 /// `path` is refused (O_NOFOLLOW), never written through.
 void append_durably(const fs::path& path, const std::string& text) {
-  const int fd =
-      ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_NOFOLLOW | O_CLOEXEC, 0644);
-  if (fd < 0)
-    throw EnvironmentError("cannot write " + path.string() + ": " + std::strerror(errno));
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (fd < 0) throw EnvironmentError("cannot write " + path.string() + ": " + std::strerror(errno));
   size_t written = 0;
   while (written < text.size()) {
     const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
@@ -44,8 +42,7 @@ void append_durably(const fs::path& path, const std::string& text) {
   const bool synced = ::fsync(fd) == 0;
   const int err = errno;
   ::close(fd);
-  if (!synced)
-    throw EnvironmentError("cannot write " + path.string() + ": " + std::strerror(err));
+  if (!synced) throw EnvironmentError("cannot write " + path.string() + ": " + std::strerror(err));
 }
 
 /// The records of every manifest in `dir`, by file name.
@@ -128,18 +125,18 @@ BatchRunResult run_batch(const Batch& batch, const BatchPlan& plan, const fs::pa
     progress.variant = batch.items[unit.item].template_name + "-" + std::to_string(unit.seed);
     progress.skipped = all_there;
     progress.assets.clear();
-    for (size_t c = 0; c < cuts; ++c) progress.assets.push_back(plan.assets[unit.first_asset + c].stem);
+    for (size_t c = 0; c < cuts; ++c)
+      progress.assets.push_back(plan.assets[unit.first_asset + c].stem);
     progress.seconds = seconds_since(t0);
-    const nlohmann::ordered_json timing = {
-        {"variant", progress.variant},
-        {"skipped", all_there},
-        {"seconds",
-         {{"total", progress.seconds},
-          {"variant", t.variant},
-          {"cut", t.cut},
-          {"bake", t.bake},
-          {"export", t.export_glb},
-          {"thumbnail", t.thumbnail}}}};
+    const nlohmann::ordered_json timing = {{"variant", progress.variant},
+                                           {"skipped", all_there},
+                                           {"seconds",
+                                            {{"total", progress.seconds},
+                                             {"variant", t.variant},
+                                             {"cut", t.cut},
+                                             {"bake", t.bake},
+                                             {"export", t.export_glb},
+                                             {"thumbnail", t.thumbnail}}}};
     append_durably(timings, timing.dump() + "\n");
     if (options.progress) options.progress(progress);
   }

@@ -20,10 +20,10 @@ namespace cutaway {
 struct BatchProgress {
   size_t units_done = 0, units = 0;  ///< variants of the shard done (built or skipped), in all
   size_t assets_built = 0, assets_skipped = 0;  ///< so far
-  std::string variant;  ///< the variant just done, TEMPLATE-SEED
-  std::vector<std::string> assets;  ///< its assets' stems, in order
-  bool skipped = false; ///< its assets were all there already
-  double seconds = 0;   ///< the wall time it took
+  std::string variant;                          ///< the variant just done, TEMPLATE-SEED
+  std::vector<std::string> assets;              ///< its assets' stems, in order
+  bool skipped = false;                         ///< its assets were all there already
+  double seconds = 0;                           ///< the wall time it took
 };
 
 /// How run_batch works.
@@ -35,7 +35,7 @@ struct BatchRunOptions {
 
 /// What run_batch did.
 struct BatchRunResult {
-  size_t units = 0;            ///< variants of the shard
+  size_t units = 0;               ///< variants of the shard
   size_t built = 0, skipped = 0;  ///< assets
 };
 

@@ -50,10 +50,11 @@ bool sbatch_safe_path(const std::string& path) {
 Check check_slurm_job(const SlurmJob& job) {
   for (const std::string* path : {&job.cutaway, &job.batch_file, &job.dir}) {
     if (!sbatch_safe_path(*path))
-      return Check::none("the path " + quoted(*path) +
-             " holds white space, a control character, a quote, a backslash, '%' or bytes "
-             "that are not UTF-8 (sbatch splits and expands #SBATCH lines on them): choose "
-             "another folder");
+      return Check::none(
+          "the path " + quoted(*path) +
+          " holds white space, a control character, a quote, a backslash, '%' or bytes "
+          "that are not UTF-8 (sbatch splits and expands #SBATCH lines on them): choose "
+          "another folder");
   }
   if (!plain_value(job.partition))
     return Check::none("--partition must hold only A-Z a-z 0-9 _ . , : -");
@@ -69,8 +70,8 @@ std::string sbatch_script(const SlurmJob& job) {
   const std::string m = std::to_string(job.array);
   std::ostringstream s;
   s << "#!/bin/bash\n"
-    << "# cutaway batch " << job.job_name << ": " << m
-    << " array tasks, task K writing shard K/" << m << " of the batch.\n"
+    << "# cutaway batch " << job.job_name << ": " << m << " array tasks, task K writing shard K/"
+    << m << " of the batch.\n"
     << "# Written by `cutaway batch --slurm`; `cutaway batch merge " << job.dir
     << "` checks and merges the shards when the job is done.\n"
     << "#SBATCH --job-name=cutaway-" << job.job_name << "\n"
@@ -92,8 +93,8 @@ std::string sbatch_script(const SlurmJob& job) {
 std::string submit_sbatch(const std::filesystem::path& script) {
   const std::string exe = find_executable(
       "sbatch", "run this on a Slurm login node (Debian: the slurm-client package)");
-  const ChildResult run = run_child(std::filesystem::current_path(), exe,
-                                    {"sbatch", "--parsable", script.string()});
+  const ChildResult run =
+      run_child(std::filesystem::current_path(), exe, {"sbatch", "--parsable", script.string()});
   if (!WIFEXITED(run.status) || WEXITSTATUS(run.status) != 0)
     throw EnvironmentError("sbatch failed on " + script.string() + ": " + run.output);
   // --parsable prints "JOBID" or "JOBID;CLUSTER" on its last line (warnings may come first).

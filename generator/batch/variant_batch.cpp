@@ -31,8 +31,8 @@ std::string variant_manifest(const std::string& name, const std::optional<Shard>
     out += "  {\"file\": \"" + r.file + "\", \"seed\": " + std::to_string(r.seed) +
            ", \"template\": \"" + name + "\", \"fnv1a64\": \"" + hex64(r.hash) +
            "\", \"ds_faces\": " + std::to_string(r.ds_faces) +
-           ", \"folds\": " + std::to_string(r.folds) + "}" +
-           (i + 1 < records.size() ? "," : "") + "\n";
+           ", \"folds\": " + std::to_string(r.folds) + "}" + (i + 1 < records.size() ? "," : "") +
+           "\n";
   }
   out += "]}\n";
   return out;

@@ -36,18 +36,18 @@ Outcome<Shard> parse_shard(std::string_view text);
 
 /// One written variant in the manifest.
 struct VariantRecord {
-  std::string file;      ///< file name in the output folder, e.g. "tomato-7.glb"
-  uint64_t seed = 0;     ///< the variant's seed
-  uint64_t hash = 0;     ///< fnv1a64 of the file's bytes
-  size_t ds_faces = 0;   ///< triangles of the variant's DS model, all surfaces
-  int folds = 0;         ///< the variant's fold count (N-fold templates; 0 cylindrical)
+  std::string file;     ///< file name in the output folder, e.g. "tomato-7.glb"
+  uint64_t seed = 0;    ///< the variant's seed
+  uint64_t hash = 0;    ///< fnv1a64 of the file's bytes
+  size_t ds_faces = 0;  ///< triangles of the variant's DS model, all surfaces
+  int folds = 0;        ///< the variant's fold count (N-fold templates; 0 cylindrical)
 };
 
 /// The manifest.json of a batch of variants of template `name`: one object with "template",
 /// "shard" ("K/M", only for a sharded run) and "variants", one line per record with file, seed,
 /// template, fnv1a64 (16 hex digits), ds_faces and folds: two runs of the same variants give
-/// the same manifest (the command logs the timings instead). `name` and the file names are written as given: template
-/// names are restricted to a-z, 0-9, '-' and '_' (template-format.md).
+/// the same manifest (the command logs the timings instead). `name` and the file names are written
+/// as given: template names are restricted to a-z, 0-9, '-' and '_' (template-format.md).
 std::string variant_manifest(const std::string& name, const std::optional<Shard>& shard,
                              const std::vector<VariantRecord>& records);
 

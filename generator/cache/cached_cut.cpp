@@ -28,7 +28,9 @@ static_assert(sizeof(CutSpec) == 80, "a new CutSpec field: add it to cut_exact_t
 /// The options of a baked texture (CapAtlasOptions, SkinTextureOptions: the same fields).
 template <typename TextureOptions>
 nlohmann::ordered_json texture_json(const TextureOptions& t) {
-  return {{"texels_per_m", t.texels_per_m}, {"padding", t.padding}, {"max_size", t.max_size},
+  return {{"texels_per_m", t.texels_per_m},
+          {"padding", t.padding},
+          {"max_size", t.max_size},
           {"power_of_two", t.power_of_two}};
 }
 
@@ -48,26 +50,25 @@ nlohmann::ordered_json collision_json(const CollisionShapeOptions* c) {
 std::string cut_cache_key(const CutKeyInputs& in) {
   if (!in.cut) throw InternalError("cut_cache_key: no cut options");
   const ObjectCutOptions& c = *in.cut;
-  const nlohmann::ordered_json key = {
-      {"cutaway", CUTAWAY_VERSION},
-      {"sources", source_fingerprint()},
-      {"payload", kPayloadVersion},
-      {"template", in.template_hash},
-      {"variation_amount", in.variation_amount},
-      {"variant_seed", in.variant_seed},
-      {"object", in.object},
-      {"diffusion", in.diffusion},
-      {"cut", cut_exact_text(c.cut)},
-      {"whole_when_missed", c.whole_when_missed},
-      {"keep", c.keep},
-      {"keep_seed", c.keep_seed},
-      {"modulation_seed", c.modulation_seed},
-      {"perlin", c.perlin},
-      {"sampling", static_cast<int>(c.sampling)},
-      {"cap_colours", static_cast<int>(c.cap_colours)},
-      {"atlas", texture_json(c.atlas)},
-      {"skin", texture_json(c.skin)},
-      {"collision", collision_json(in.collision)}};
+  const nlohmann::ordered_json key = {{"cutaway", CUTAWAY_VERSION},
+                                      {"sources", source_fingerprint()},
+                                      {"payload", kPayloadVersion},
+                                      {"template", in.template_hash},
+                                      {"variation_amount", in.variation_amount},
+                                      {"variant_seed", in.variant_seed},
+                                      {"object", in.object},
+                                      {"diffusion", in.diffusion},
+                                      {"cut", cut_exact_text(c.cut)},
+                                      {"whole_when_missed", c.whole_when_missed},
+                                      {"keep", c.keep},
+                                      {"keep_seed", c.keep_seed},
+                                      {"modulation_seed", c.modulation_seed},
+                                      {"perlin", c.perlin},
+                                      {"sampling", static_cast<int>(c.sampling)},
+                                      {"cap_colours", static_cast<int>(c.cap_colours)},
+                                      {"atlas", texture_json(c.atlas)},
+                                      {"skin", texture_json(c.skin)},
+                                      {"collision", collision_json(in.collision)}};
   return key.dump();
 }
 

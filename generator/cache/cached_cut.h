@@ -23,8 +23,8 @@ struct CutKeyInputs {
   uint64_t template_hash = 0;   ///< Template::source_hash (the file and its meshes)
   double variation_amount = 1;  ///< the variation amount the variant was made with
   uint64_t variant_seed = 0;
-  std::string object;           ///< the name cut_object() gives the object (names its meshes,
-                                ///< textures and materials)
+  std::string object;  ///< the name cut_object() gives the object (names its meshes,
+                       ///< textures and materials)
   /// The diffusion backend's settings that change colours (its resolved kind, cube size,
   /// directions), as the command line writes them.
   std::string diffusion;
@@ -39,11 +39,10 @@ struct CutKeyInputs {
 /// give the same pieces.
 std::string cut_cache_key(const CutKeyInputs& in);
 
-
 /// One cut object as a cache entry's payload, and where it came from.
 struct CutEntry {
-  std::string payload;           ///< the cut pieces, their new materials and textures, hulls
-  bool from_cache = false;       ///< read back, not cut
+  std::string payload;      ///< the cut pieces, their new materials and textures, hulls
+  bool from_cache = false;  ///< read back, not cut
   /// Processor seconds computing the collision shapes, summed over threads (collision_shapes;
   /// 0 when read back).
   double seconds_collision = 0;

@@ -23,9 +23,12 @@ static_assert(sizeof(SettleOptions) == 168,
 nlohmann::ordered_json vec_json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
 nlohmann::ordered_json container_json(const Container& c) {
-  return {{"type", static_cast<int>(c.type)}, {"diameter_m", c.diameter_m},
-          {"width_m", c.width_m},             {"depth_m", c.depth_m},
-          {"height_m", c.height_m},           {"colour", vec_json(c.colour)}};
+  return {{"type", static_cast<int>(c.type)},
+          {"diameter_m", c.diameter_m},
+          {"width_m", c.width_m},
+          {"depth_m", c.depth_m},
+          {"height_m", c.height_m},
+          {"colour", vec_json(c.colour)}};
 }
 
 nlohmann::ordered_json layout_json(const LayoutOptions& o) {

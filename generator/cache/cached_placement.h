@@ -20,10 +20,10 @@ namespace cutaway {
 
 /// Everything that decides a scene's placements, for placement_cache_key().
 struct PlacementKeyInputs {
-  std::vector<std::string> cut_keys;  ///< each object's cut_cache_key, in scene order
-  std::vector<Arrangement> arrange;   ///< each object's arrangement, in scene order
-  uint64_t seed = 0;                  ///< the scene's seed (placement order, layout)
-  const Container* container = nullptr;  ///< required
+  std::vector<std::string> cut_keys;      ///< each object's cut_cache_key, in scene order
+  std::vector<Arrangement> arrange;       ///< each object's arrangement, in scene order
+  uint64_t seed = 0;                      ///< the scene's seed (placement order, layout)
+  const Container* container = nullptr;   ///< required
   const LayoutOptions* layout = nullptr;  ///< required: with the camera's to_camera
   const SettleOptions* settle = nullptr;  ///< required
 };

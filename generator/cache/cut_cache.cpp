@@ -341,8 +341,8 @@ void CutCache::store(std::string_view key, std::string_view payload) {
   try {
     // Something no shard can be at the shard's name (a link, a file): ours, so removed.
     const std::string shard_dir = name.substr(0, 2);
-    if (const EntryKind k = root_.kind(shard_dir); k != EntryKind::Missing &&
-                                                   k != EntryKind::Directory)
+    if (const EntryKind k = root_.kind(shard_dir);
+        k != EntryKind::Missing && k != EntryKind::Directory)
       root_.remove(shard_dir);
     const Folder shard = root_.sub(shard_dir, true, options_.shared ? 02770 : 0700);
     // Something no entry can be at the entry's name (a FIFO, a folder): ours, so removed.

@@ -44,8 +44,8 @@ inline constexpr std::string_view kCutCacheLayout = "cutaway-cache-v2";
 
 /// Where a cut cache is and how large it may grow.
 struct CutCacheOptions {
-  std::filesystem::path dir;                ///< created when missing; the cache lives in
-                                            ///< dir / kCutCacheLayout
+  std::filesystem::path dir;                   ///< created when missing; the cache lives in
+                                               ///< dir / kCutCacheLayout
   uint64_t max_bytes = kDefaultCutCacheBytes;  ///< entries beyond it are evicted, oldest first
   /// Told about what does not stop the run: a damaged entry, a folder that cannot be written
   /// (the cache then only reads), a folder refused (the cache then does nothing). May be
@@ -58,11 +58,11 @@ struct CutCacheOptions {
 
 /// What one CutCache did.
 struct CutCacheStats {
-  int hits = 0;      ///< entries read back
-  int misses = 0;    ///< keys not found (including damaged entries)
-  int damaged = 0;   ///< entries whose bytes failed their check, removed
-  int stored = 0;    ///< entries written
-  int evicted = 0;   ///< entries removed to keep the size bound
+  int hits = 0;     ///< entries read back
+  int misses = 0;   ///< keys not found (including damaged entries)
+  int damaged = 0;  ///< entries whose bytes failed their check, removed
+  int stored = 0;   ///< entries written
+  int evicted = 0;  ///< entries removed to keep the size bound
 };
 
 /// Why the cache folder `options.dir` may not be used (its layout folder looked at without

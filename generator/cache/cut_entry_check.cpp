@@ -89,7 +89,8 @@ double template_reach_m(const Template& tmpl) {
   double metres = 0;  // profiles and sections are parsed into metres, mesh files are in units
   for (const SurfaceSpec& s : tmpl.surfaces) {
     const double widening = section_widening(s.section);
-    for (const glm::dvec2& p : s.profile) metres = std::max(metres, std::hypot(p.x * widening, p.y));
+    for (const glm::dvec2& p : s.profile)
+      metres = std::max(metres, std::hypot(p.x * widening, p.y));
     if (s.mesh)
       for (const glm::dvec3& p : s.mesh->points)
         metres = std::max(metres, glm::length(p) * tmpl.metres_per_unit);
@@ -98,8 +99,8 @@ double template_reach_m(const Template& tmpl) {
   for (const glm::dvec2& p : tmpl.spine.points) spine = std::max(spine, glm::length(p));
   double grain = 0;  // a grain's centre lies on or near a surface, its body around it
   for (const GrainSpec& g : tmpl.grains)
-    grain = std::max(grain, std::abs(g.depth) + std::max({g.semi_axes.x, g.semi_axes.y,
-                                                           g.semi_axes.z}));
+    grain = std::max(grain,
+                     std::abs(g.depth) + std::max({g.semi_axes.x, g.semi_axes.y, g.semi_axes.z}));
   return 2 * std::max(1.0, tmpl.variation_amount) * (metres + spine + grain);
 }
 
@@ -113,7 +114,8 @@ Check check_cached_cut(CutPieces& p, const std::vector<CollisionShape>& collisio
   const size_t n = p.meshes.size();
   if (p.shapes.size() != n || p.infos.size() != n || p.cap_normals.size() != n ||
       p.cut_faces.size() != n)
-    return Check::none("has " + std::to_string(n) + " meshes but other counts of shapes, infos, "
+    return Check::none("has " + std::to_string(n) +
+                       " meshes but other counts of shapes, infos, "
                        "cap normals or cut faces");
   if (collision.size() != (collision_expected ? n : 0))
     return Check::none("has " + std::to_string(collision.size()) + " collision shapes for " +
@@ -155,8 +157,8 @@ Check check_cached_placements(const std::vector<Placement>& placements, size_t b
   for (size_t k = 0; k < placements.size(); ++k) {
     const Placement& p = placements[k];
     const std::string which = "placement " + std::to_string(k);
-    if (!std::isfinite(p.rotation.w) || !all_finite(glm::dvec3(p.rotation.x, p.rotation.y,
-                                                               p.rotation.z)) ||
+    if (!std::isfinite(p.rotation.w) ||
+        !all_finite(glm::dvec3(p.rotation.x, p.rotation.y, p.rotation.z)) ||
         !(std::abs(glm::length(p.rotation) - 1) <= 1e-6))
       return Check::none(which + " has a rotation that is not a finite unit quaternion");
     if (!all_finite(p.translation)) return Check::none(which + " has a non-finite translation");

@@ -17,8 +17,8 @@ constexpr size_t kMaterialBytes = 8 + sizeof(PbrMaterial) + 4 * 4 + 8;
 constexpr size_t kColouredBytes = 4 * 8;
 constexpr size_t kPrimitiveBytes = 8 + 8 + 4 + 8;
 constexpr size_t kPieceInfoBytes = 8 + 8 + 8 + 4 + 8 + 8;
-constexpr size_t kPieceBytes = kColouredBytes + 8 + 8 + 8 +         // the mesh
-                               kColouredBytes + 8 + 8 +             // its shape
+constexpr size_t kPieceBytes = kColouredBytes + 8 + 8 + 8 +  // the mesh
+                               kColouredBytes + 8 + 8 +      // its shape
                                kPieceInfoBytes + sizeof(glm::dvec3) + 4;
 constexpr size_t kConvexPartBytes = 8 + 8;
 constexpr size_t kCollisionBytes = 8 + 8 + sizeof(glm::dvec3) + 8 + 1;

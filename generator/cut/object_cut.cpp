@@ -59,8 +59,7 @@ AssetMesh piece_mesh(const ShadedMesh& merged, const Piece& piece, PieceMaterial
     if (run.count == 0) continue;
     if (!out.primitives.empty() && out.primitives.back().material == run.material)
       out.primitives.back().count += run.count;
-    else
-      out.primitives.push_back({run.first, run.count, run.material, {}});
+    else out.primitives.push_back({run.first, run.count, run.material, {}});
   }
   if (surface < n && out.primitives.back().first == surface)  // the caps alone
     out.primitives.back().coarse = coarse_caps;
@@ -106,9 +105,8 @@ PieceMaterials add_cap_texture(SceneAssets& assets, const PieceSet& set,
   cut.pbr.roughness = atlas.material_mean.x;
   cut.pbr.translucency = atlas.material_mean.y;
   if (!atlas.material.empty()) {
-    assets.textures.push_back(
-        {object + "_cut_material", atlas.material_width, atlas.material_height, 4,
-         std::move(atlas.material), false, true});
+    assets.textures.push_back({object + "_cut_material", atlas.material_width,
+                               atlas.material_height, 4, std::move(atlas.material), false, true});
     cut.material_texture = static_cast<int>(assets.textures.size()) - 1;
   }
   assets.textures.push_back({object + "_cut", atlas.width, atlas.height, 3, std::move(atlas.srgb)});
@@ -139,9 +137,8 @@ std::vector<std::vector<glm::dvec2>> unwrap_skins(PieceSet& set) {
 PieceMaterials add_skin_texture(SceneAssets& assets, const DsSurface& skin, const PieceSet& set,
                                 const std::vector<std::vector<glm::dvec2>>& skin_uv,
                                 PieceMaterials materials, const std::string& object,
-                                const SkinPatterns* patterns,
-                                const ColourModulation* modulation, double strength,
-                                const SkinTextureOptions& options,
+                                const SkinPatterns* patterns, const ColourModulation* modulation,
+                                double strength, const SkinTextureOptions& options,
                                 std::vector<std::vector<glm::dvec2>>& uv) {
   std::vector<const ShadedMesh*> parts;
   std::vector<const std::vector<glm::dvec2>*> part_uv;
@@ -269,14 +266,13 @@ Outcome<CutObject> cut_object(SceneAssets& assets, const Variant& variant, uint6
   // change nothing but the order in which the layout meets them).
   std::vector<ShadedMesh> as_cut;
   // The skin's patterns, seeded like the Perlin modulation: every piece of the object agrees.
-  const SkinPatterns patterns(variant.tmpl.skin_patterns, options.modulation_seed,
-                              &variant.model);
+  const SkinPatterns patterns(variant.tmpl.skin_patterns, options.modulation_seed, &variant.model);
   const bool textured = options.cap_colours == CapColours::Texture;
   if (textured) {
     const auto t_bake = Clock::now();
     // Swept skins first: unwrapping adds vertices to the skin parts, which come first.
-    const bool swept = variant.tmpl.surfaces[static_cast<size_t>(variant.tmpl.skin)].kind ==
-                       SurfaceKind::Around;
+    const bool swept =
+        variant.tmpl.surfaces[static_cast<size_t>(variant.tmpl.skin)].kind == SurfaceKind::Around;
     if (swept)
       for (const Piece& piece : set.pieces) as_cut.push_back(merge_parts(piece));
     const std::vector<std::vector<glm::dvec2>> skin_uv =
@@ -286,9 +282,10 @@ Outcome<CutObject> cut_object(SceneAssets& assets, const Variant& variant, uint6
     const ColourModulation modulation(variant.tmpl.npr, options.modulation_seed);
     object_materials = add_cap_texture(assets, set, pieces, materials, object, &modulation,
                                        options.perlin, options.atlas, uv);
-    object_materials = add_skin_texture(
-        assets, variant.model.skin(), set, skin_uv, object_materials, object,
-        patterns.empty() ? nullptr : &patterns, &modulation, options.perlin, options.skin, uv);
+    object_materials =
+        add_skin_texture(assets, variant.model.skin(), set, skin_uv, object_materials, object,
+                         patterns.empty() ? nullptr : &patterns, &modulation, options.perlin,
+                         options.skin, uv);
     stats.seconds_bake += seconds_since(t_bake);
   }
   for (size_t q = 0; q < n; ++q) {
@@ -302,9 +299,9 @@ Outcome<CutObject> cut_object(SceneAssets& assets, const Variant& variant, uint6
     }
     // Perlin colour modulation in the object frame: every piece of one object agrees.
     modulate_colours(merged, variant.tmpl.npr, options.perlin, options.modulation_seed);
-    out.meshes.push_back(piece_mesh(
-        merged, piece, object_materials, object + "_piece" + std::to_string(piece.cell), uv[q],
-        textured ? coarse_caps(piece, set.sections) : std::vector<glm::uvec3>{}));
+    out.meshes.push_back(
+        piece_mesh(merged, piece, object_materials, object + "_piece" + std::to_string(piece.cell),
+                   uv[q], textured ? coarse_caps(piece, set.sections) : std::vector<glm::uvec3>{}));
     out.shapes.push_back(as_cut.empty() ? std::move(merged) : std::move(as_cut[q]));
     out.infos.push_back(
         piece_info(piece, out.shapes.back(), variant.tmpl.name, variant_seed, options.cut));

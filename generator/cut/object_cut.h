@@ -49,14 +49,14 @@ struct ObjectCutOptions {
   /// A cut whose every plane misses the object: true keeps the object whole (one piece, as in
   /// scenes and batches); false makes cut_object() return the reason instead.
   bool whole_when_missed = true;
-  double keep = 1;                ///< the fraction of the pieces kept, (0, 1]; at least one
-  uint64_t keep_seed = 0;         ///< which pieces are kept (a seeded choice)
-  uint64_t modulation_seed = 0;   ///< Perlin colour modulation, in the object frame
-  double perlin = 1;              ///< its strength, 0..10
+  double keep = 1;               ///< the fraction of the pieces kept, (0, 1]; at least one
+  uint64_t keep_seed = 0;        ///< which pieces are kept (a seeded choice)
+  uint64_t modulation_seed = 0;  ///< Perlin colour modulation, in the object frame
+  double perlin = 1;             ///< its strength, 0..10
   CapSampling sampling = CapSampling::Adaptive;  ///< which cap points are diffused
   CapColours cap_colours = CapColours::Texture;
-  CapAtlasOptions atlas;          ///< with CapColours::Texture; texels_per_m > 0
-  SkinTextureOptions skin;        ///< with CapColours::Texture: the swept skin's texture
+  CapAtlasOptions atlas;    ///< with CapColours::Texture; texels_per_m > 0
+  SkinTextureOptions skin;  ///< with CapColours::Texture: the swept skin's texture
 };
 
 /// Counts and timings (wall seconds) of cut_object() calls, added up.
@@ -73,13 +73,13 @@ struct ObjectCutStats {
 /// The kept pieces of one object ready for export, all in the object frame: what scenes,
 /// batches and the piece views use, and what the cut cache stores (cut_cache.h).
 struct CutPieces {
-  std::string backend;             ///< the diffusion backend's name (DiffusionBackend::name)
-  size_t pieces_cut = 0;           ///< pieces the cut made, before `keep`
-  std::vector<AssetMesh> meshes;   ///< per kept piece: as exported (materials, uv, modulated
-                                   ///< colours), named OBJECT_pieceCELL
-  std::vector<ShadedMesh> shapes;  ///< per kept piece: merge_parts as cut, before its skin
-                                   ///< was unwrapped (layout, physics, bounds; colours unused)
-  std::vector<PieceInfo> infos;    ///< per kept piece: its glTF node extras
+  std::string backend;                  ///< the diffusion backend's name (DiffusionBackend::name)
+  size_t pieces_cut = 0;                ///< pieces the cut made, before `keep`
+  std::vector<AssetMesh> meshes;        ///< per kept piece: as exported (materials, uv, modulated
+                                        ///< colours), named OBJECT_pieceCELL
+  std::vector<ShadedMesh> shapes;       ///< per kept piece: merge_parts as cut, before its skin
+                                        ///< was unwrapped (layout, physics, bounds; colours unused)
+  std::vector<PieceInfo> infos;         ///< per kept piece: its glTF node extras
   std::vector<glm::dvec3> cap_normals;  ///< per kept piece: largest_cap_normal
   std::vector<int> cut_faces;           ///< per kept piece: cut_faces
 };

@@ -67,14 +67,17 @@ SceneAssets piece_assets(SceneAssets assets, const CutPieces& object, double exp
       elo = glm::min(elo, p + offset);
       ehi = glm::max(ehi, p + offset);
     }
-    assets.instances.push_back({object.meshes[k].name, static_cast<int>(assets.meshes.size()),
-                                {1, 0, 0, 0}, offset, object.infos[k]});
+    assets.instances.push_back({object.meshes[k].name,
+                                static_cast<int>(assets.meshes.size()),
+                                {1, 0, 0, 0},
+                                offset,
+                                object.infos[k]});
     assets.meshes.push_back(object.meshes[k]);
   }
   const double az = glm::radians(20.0), el = glm::radians(50.0);
-  assets.camera = frame_box(elo, ehi,
-                            {std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el)},
-                            30, static_cast<double>(width) / height);
+  assets.camera =
+      frame_box(elo, ehi, {std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el)},
+                30, static_cast<double>(width) / height);
   light_like_studio(assets);
   return assets;
 }
@@ -122,8 +125,8 @@ SceneAssets grid_piece_assets(SceneAssets assets, const CutPieces& object, Piece
     const glm::dvec3 offset = centre - glm::dvec3(mid.x, lo[k].y, mid.z);
     all_lo = glm::min(all_lo, lo[k] + offset);
     all_hi = glm::max(all_hi, hi[k] + offset);
-    assets.instances.push_back({object.meshes[k].name, static_cast<int>(first_mesh + k),
-                                rotation[k], offset, {}});
+    assets.instances.push_back(
+        {object.meshes[k].name, static_cast<int>(first_mesh + k), rotation[k], offset, {}});
   }
   assets.camera = frame_box(all_lo, all_hi, to_camera, 30, aspect);
   light_like_studio(assets);
@@ -142,9 +145,8 @@ SceneAssets whole_object_assets(const Variant& variant, const DiffusionBackend& 
   options.perlin = perlin;
   options.cap_colours = CapColours::Texture;
   ObjectCutStats stats;
-  const Outcome<CutObject> object = cut_object(assets, variant, seed, materials,
-                                               asset_name(variant.tmpl.name), diffusion, options,
-                                               stats);
+  const Outcome<CutObject> object = cut_object(
+      assets, variant, seed, materials, asset_name(variant.tmpl.name), diffusion, options, stats);
   CUTAWAY_CHECK(object.has_value());  // a whole object is never missed
   return piece_assets(std::move(assets), *object, 0.0, 800, 600);
 }

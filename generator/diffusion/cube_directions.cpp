@@ -44,8 +44,8 @@ CubeDirections make_cube_directions(int n) {
         const double x0 = -1 + 2.0 * col / n, x1 = -1 + 2.0 * (col + 1) / n;
         const glm::dvec3 p = face_point(f, 0.5 * (x0 + x1), 0.5 * (y0 + y1));
         d.direction.push_back(glm::vec3(glm::normalize(p)));
-        d.solid_angle.push_back(area_element(x0, y0) - area_element(x0, y1) -
-                                area_element(x1, y0) + area_element(x1, y1));
+        d.solid_angle.push_back(area_element(x0, y0) - area_element(x0, y1) - area_element(x1, y0) +
+                                area_element(x1, y1));
       }
     }
   }

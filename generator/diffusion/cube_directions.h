@@ -11,9 +11,9 @@ namespace cutaway {
 
 /// 6 * n * n directions, face-major (+X, -X, +Y, -Y, +Z, -Z), then rows, then columns.
 struct CubeDirections {
-  int n = 0;                          ///< texels per cube face edge
-  std::vector<glm::vec3> direction;   ///< unit direction through each texel centre
-  std::vector<double> solid_angle;    ///< exact solid angle of each texel, steradians
+  int n = 0;                         ///< texels per cube face edge
+  std::vector<glm::vec3> direction;  ///< unit direction through each texel centre
+  std::vector<double> solid_angle;   ///< exact solid angle of each texel, steradians
 };
 
 /// The directions and solid angles of an n x n per face cube map. The solid angle of the texel

@@ -25,7 +25,7 @@ struct DiffusionOptions {
   /// 7e-5 on average (at most 0.002, linear) and the two-sphere error is 0.0016 against
   /// 0.0013, at a quarter of the rays.
   int cube_size = 16;
-  int threads = 0;     ///< worker threads; 0 = all cores. Results do not depend on it.
+  int threads = 0;  ///< worker threads; 0 = all cores. Results do not depend on it.
   /// Each point's cube map turned by its own seeded rotation (cube_rotation): texel errors
   /// cancel instead of adding up where the cube's grid lines up with an object's symmetry.
   bool rotate_cubes = true;
@@ -47,10 +47,10 @@ inline bool uses_adaptive_directions(const DiffusionOptions& options) {
 
 /// colour(x) = sum_w c(w) dOmega(w) / r(w)  /  sum_w dOmega(w) / r(w) over the cube-map texel
 /// directions w that hit a sheet (with adaptive directions: the coarse texels where the sheet
-/// seen does not change and the fine texels of the others); r(w) is the Euclidean distance to the first hit and c(w) the
-/// colour the hit sheet shows there (make_diffusion_sheets). The material channels (roughness,
-/// translucency) are diffused the same way, from the same rays (paper §6: material information
-/// on DSs besides colours).
+/// seen does not change and the fine texels of the others); r(w) is the Euclidean distance to the
+/// first hit and c(w) the colour the hit sheet shows there (make_diffusion_sheets). The material
+/// channels (roughness, translucency) are diffused the same way, from the same rays (paper §6:
+/// material information on DSs besides colours).
 class DiffusionBackend {
  public:
   virtual ~DiffusionBackend() = default;
@@ -96,8 +96,8 @@ class DiffusionBackend {
 inline void check_channel_sizes(size_t points, size_t colour, size_t material) {
   if (colour != points || (material != 0 && material != points))
     throw InternalError("diffusion: " + std::to_string(points) + " points but " +
-                        std::to_string(colour) + " colours and " +
-                        std::to_string(material) + " material channels");
+                        std::to_string(colour) + " colours and " + std::to_string(material) +
+                        " material channels");
 }
 
 /// The CPU backend: Embree 3 ray casting, packets of 16 directions of one point, TBB over

@@ -32,8 +32,8 @@ DiffusionSheet sheet_of(const DsMesh& mesh, const std::vector<glm::dvec3>& norma
     int k = 0;
     for (auto vh : mesh.fv_range(fh)) t[k++] = static_cast<unsigned>(vh.idx());
     s.triangle.push_back(t);
-    const glm::vec3 n = glm::cross(s.position[t[1]] - s.position[t[0]],
-                                   s.position[t[2]] - s.position[t[0]]);
+    const glm::vec3 n =
+        glm::cross(s.position[t[1]] - s.position[t[0]], s.position[t[2]] - s.position[t[0]]);
     const float len = glm::length(n);
     s.face_normal.push_back(len > 0 ? n / len : glm::vec3(0));
   }

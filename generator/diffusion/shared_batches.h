@@ -15,11 +15,11 @@ namespace cutaway {
 
 /// Counts of one run_with_shared_batches call.
 struct SharedBatchStats {
-  size_t batches = 0;        ///< calls of the backend
-  size_t points = 0;         ///< points diffused in them
+  size_t batches = 0;          ///< calls of the backend
+  size_t points = 0;           ///< points diffused in them
   double seconds_diffuse = 0;  ///< wall time spent in the backend's calls
-  size_t workers = 0;  ///< worker threads started (fewer than asked for when the system has
-                       ///< no more to give)
+  size_t workers = 0;          ///< worker threads started (fewer than asked for when the system has
+                               ///< no more to give)
 };
 
 /// Runs task(i, diffusion) for every i in [0, count) on up to `max_threads` worker threads

@@ -58,8 +58,8 @@ Split best_split(const std::vector<Item>& items, size_t begin, size_t end, const
     std::array<Box, kBins> bin_box;
     std::array<size_t, kBins> bin_count{};
     for (size_t i = begin; i < end; ++i) {
-      const int b = std::min(kBins - 1,
-                             static_cast<int>(kBins * (items[i].centroid[axis] - lo) / extent));
+      const int b =
+          std::min(kBins - 1, static_cast<int>(kBins * (items[i].centroid[axis] - lo) / extent));
       bin_box[b].grow(items[i].box);
       ++bin_count[b];
     }

@@ -58,7 +58,8 @@ void grow_triangle(glm::dvec3& a, glm::dvec3& b, glm::dvec3& c, double margin) {
 /// The smallest float >= x (x >= 0).
 float float_at_least(double x) {
   const float f = static_cast<float>(x);
-  return static_cast<double>(f) >= x ? f : std::nextafter(f, std::numeric_limits<float>::infinity());
+  return static_cast<double>(f) >= x ? f
+                                     : std::nextafter(f, std::numeric_limits<float>::infinity());
 }
 
 }  // namespace
@@ -110,7 +111,8 @@ std::optional<TriangleCrossing> cross_corners(const float* vertices, size_t t,
 bool collect_near(RTCPointQueryFunctionArguments* args) {
   const Query& q = *static_cast<const Query*>(args->userPtr);
   const float* vertices = (*q.corners)[args->geomID];
-  const glm::dvec3 a = own_corner(vertices, args->primID, 0), b = own_corner(vertices, args->primID, 1),
+  const glm::dvec3 a = own_corner(vertices, args->primID, 0),
+                   b = own_corner(vertices, args->primID, 1),
                    c = own_corner(vertices, args->primID, 2);
   const glm::dvec3 lo = glm::min(a, glm::min(b, c)) - q.near_radius;
   const glm::dvec3 hi = glm::max(a, glm::max(b, c)) + q.near_radius;
@@ -148,8 +150,7 @@ void decide_proposal(const RTCFilterFunctionNArguments* args) {
     }
     const glm::dvec3 d(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
                        RTCRayN_dir_z(args->ray, args->N, i));
-    const auto crossing =
-        cross_corners((*query.corners)[sheet_index], triangle, query.origin, d);
+    const auto crossing = cross_corners((*query.corners)[sheet_index], triangle, query.origin, d);
     SheetHit& best = query.best[lane];
     const int s = static_cast<int>(sheet_index);
     const bool better = crossing && comes_before(*crossing, s, triangle, best);
@@ -194,9 +195,9 @@ SheetRayCaster::SheetRayCaster(const std::vector<DiffusionSheet>& sheets, int th
     throw EnvironmentError("cannot initialise Embree (rtcNewDevice(\"" + config + "\") failed)");
   }
   embree_->scene = rtcNewScene(embree_->device);
-  rtcSetSceneFlags(embree_->scene,
-                   mode_ == SheetHits::Decided ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT
-                                               : RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneFlags(embree_->scene, mode_ == SheetHits::Decided
+                                       ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT
+                                       : RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(embree_->scene, RTC_BUILD_QUALITY_HIGH);
   // Each sheet as its own geometry (ID = sheet index); decided: each triangle with its own
   // three grown corners, and the filter.

@@ -7,11 +7,11 @@
 // of the sheets whose triangles are grown by a margin well above its rounding error, from an
 // origin moved back along the ray by another margin, and hands every triangle it meets to a
 // filter; so are the triangles next to the ray's origin, where a grazing ray's t may come out
-// with the wrong sign. The filter decides in double precision, by one fixed formula (cross_triangle), on the
-// original triangle: whether the ray crosses it, where, and whether that is nearer than the
-// best crossing so far (ties go to the lower sheet, then triangle, index). Every triangle the
-// exact test would accept is among the proposals whatever the kernel, so the answer is the
-// exact test's alone.
+// with the wrong sign. The filter decides in double precision, by one fixed formula
+// (cross_triangle), on the original triangle: whether the ray crosses it, where, and whether that
+// is nearer than the best crossing so far (ties go to the lower sheet, then triangle, index). Every
+// triangle the exact test would accept is among the proposals whatever the kernel, so the answer is
+// the exact test's alone.
 #pragma once
 
 #include <optional>

@@ -66,8 +66,8 @@ int add_vec3_accessor(tinygltf::Model& m, const std::vector<float>& xyz, bool wi
 
 int add_index_accessor(tinygltf::Model& m, const std::vector<uint32_t>& idx) {
   tinygltf::Accessor a;
-  a.bufferView = add_view(m, idx.data(), idx.size() * sizeof(uint32_t),
-                          TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  a.bufferView =
+      add_view(m, idx.data(), idx.size() * sizeof(uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
   a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
   a.type = TINYGLTF_TYPE_SCALAR;
   a.count = idx.size();
@@ -329,8 +329,7 @@ class SceneBuffers {
   /// `view_stride`, 0 for none) whose bytes are `packed`, meshoptimizer's encoding in `mode`
   /// (with `filter`, when not null).
   int encoded_view(const std::vector<unsigned char>& packed, size_t count, size_t size,
-                   size_t view_stride, const char* mode, int target,
-                   const char* filter = nullptr) {
+                   size_t view_stride, const char* mode, int target, const char* filter = nullptr) {
     auto& buf = m_.buffers[0].data;
     while (buf.size() % 4) buf.push_back(0);
     const size_t offset = buf.size();
@@ -345,9 +344,9 @@ class SceneBuffers {
     fallback_ += view.byteLength;
     m_.bufferViews.push_back(view);
     const int index = static_cast<int>(m_.bufferViews.size()) - 1;
-    nlohmann::json encoding = {{"buffer", 0},         {"byteOffset", offset},
-                               {"byteLength", packed.size()}, {"byteStride", size},
-                               {"count", count},      {"mode", mode}};
+    nlohmann::json encoding = {
+        {"buffer", 0},        {"byteOffset", offset}, {"byteLength", packed.size()},
+        {"byteStride", size}, {"count", count},       {"mode", mode}};
     if (filter) encoding["filter"] = filter;
     view_extensions_.emplace_back(index, nlohmann::json{{"EXT_meshopt_compression", encoding}});
     return index;
@@ -434,8 +433,7 @@ WrittenVertices welded_vertices(const AssetMesh& mesh,
       for (int k = 0; k < 4; ++k) vertex[11 + k] = static_cast<float>(tangent[i][k]);
     for (float& v : vertex) v += 0.0f;  // -0 and +0 write alike
     const auto [it, added] = written.emplace(
-        std::string(reinterpret_cast<const char*>(vertex), key_floats * sizeof(float)),
-        out.count);
+        std::string(reinterpret_cast<const char*>(vertex), key_floats * sizeof(float)), out.count);
     out.remap[i] = it->second;
     if (!added) continue;
     ++out.count;
@@ -491,8 +489,7 @@ class MeshLevels {
              const std::vector<int>& gltf_material, const std::vector<bool>& textured,
              const std::vector<bool>& relief, const WrittenVertices& vertices, MeshFrame& frame)
       : out_(out), primitives_(primitives), gltf_material_(gltf_material), textured_(textured),
-        relief_(relief),
-        vertices_(vertices), positions_(out.positions(vertices.position, frame)),
+        relief_(relief), vertices_(vertices), positions_(out.positions(vertices.position, frame)),
         normals_(out.normals(vertices.normal)) {}
 
   /// Adds the glTF mesh `name` with `lists` (per primitive, its triangles' indices); returns
@@ -609,9 +606,8 @@ void add_pbr_material(tinygltf::Model& m, const AssetMaterial& material,
     mat.normalTexture.index = textures[static_cast<size_t>(material.normal_texture)];
     mat.normalTexture.texCoord = 0;
   }
-  const int material_map = material.material_texture < 0
-                               ? -1
-                               : textures[static_cast<size_t>(material.material_texture)];
+  const int material_map =
+      material.material_texture < 0 ? -1 : textures[static_cast<size_t>(material.material_texture)];
   if (material_map >= 0) {  // the map holds the values: factors 1
     mat.pbrMetallicRoughness.roughnessFactor = 1.0;
     mat.pbrMetallicRoughness.metallicRoughnessTexture.index = material_map;
@@ -710,12 +706,12 @@ class SceneModelBuilder {
   size_t fallback_bytes_ = 0;
   std::vector<std::pair<int, nlohmann::json>> view_extensions_;
   std::vector<std::pair<std::string, std::string>> images_;
-  std::vector<int> gltf_material_;  // per material of the assets; -1: unused
-  std::vector<int> gltf_texture_;   // per texture of the assets; -1: unused
-  std::vector<AddedMesh> added_;    // per mesh of the assets
-  size_t main_nodes_ = 0;           // the nodes in the scene's list
+  std::vector<int> gltf_material_;         // per material of the assets; -1: unused
+  std::vector<int> gltf_texture_;          // per texture of the assets; -1: unused
+  std::vector<AddedMesh> added_;           // per mesh of the assets
+  size_t main_nodes_ = 0;                  // the nodes in the scene's list
   std::vector<tinygltf::Node> lod_nodes_;  // after the others
-  int hull_material_ = -1;  // the collision hulls' one material, once needed
+  int hull_material_ = -1;                 // the collision hulls' one material, once needed
 };
 
 std::vector<int> SceneModelBuilder::used_materials(const SceneAssets& assets) {
@@ -731,11 +727,9 @@ std::vector<int> SceneModelBuilder::used_materials(const SceneAssets& assets) {
 void SceneModelBuilder::add_textures() {
   gltf_texture_.assign(assets_.textures.size(), -1);
   for (size_t k = 0; k < assets_.materials.size(); ++k) {
-    for (const int t :
-         {assets_.materials[k].base_colour_texture, assets_.materials[k].material_texture,
-          assets_.materials[k].normal_texture})
-      if (gltf_material_[k] >= 0 && t >= 0)
-        gltf_texture_[static_cast<size_t>(t)] = 0;
+    for (const int t : {assets_.materials[k].base_colour_texture,
+                        assets_.materials[k].material_texture, assets_.materials[k].normal_texture})
+      if (gltf_material_[k] >= 0 && t >= 0) gltf_texture_[static_cast<size_t>(t)] = 0;
   }
   for (size_t t = 0; t < assets_.textures.size(); ++t)
     if (gltf_texture_[t] >= 0) gltf_texture_[t] = add_texture(t);
@@ -861,8 +855,7 @@ tinygltf::Node SceneModelBuilder::mesh_node(const AssetInstance& inst) {
   node.name = inst.name + "_mesh";
   node.mesh = mesh.index;
   if (mesh.frame.offset != glm::dvec3(0.0)) node.translation = gltf_vec3(mesh.frame.offset);
-  if (mesh.frame.scale != 1.0)
-    node.scale = {mesh.frame.scale, mesh.frame.scale, mesh.frame.scale};
+  if (mesh.frame.scale != 1.0) node.scale = {mesh.frame.scale, mesh.frame.scale, mesh.frame.scale};
   // Levels of detail (MSFT_lod): a node per level, placed as the mesh node, outside the
   // scene's list; level l is shown down to 0.2 * 4^-l of the screen's height, the last one
   // always.
@@ -879,8 +872,8 @@ tinygltf::Node SceneModelBuilder::mesh_node(const AssetInstance& inst) {
     coverage.emplace_back(0.0);
     node.extensions["MSFT_lod"] =
         tinygltf::Value(tinygltf::Value::Object{{"ids", tinygltf::Value(ids)}});
-    node.extras =
-        tinygltf::Value(tinygltf::Value::Object{{"MSFT_screencoverage", tinygltf::Value(coverage)}});
+    node.extras = tinygltf::Value(
+        tinygltf::Value::Object{{"MSFT_screencoverage", tinygltf::Value(coverage)}});
   }
   return node;
 }
@@ -916,8 +909,8 @@ std::vector<tinygltf::Node> SceneModelBuilder::hull_nodes(const AssetInstance& i
     tinygltf::Node hull_node;
     hull_node.name = hull_mesh.name;
     hull_node.mesh = static_cast<int>(m_.meshes.size()) - 1;
-    hull_node.extras =
-        tinygltf::Value(tinygltf::Value::Object{{"collision", tinygltf::Value(std::string("convex"))}});
+    hull_node.extras = tinygltf::Value(
+        tinygltf::Value::Object{{"collision", tinygltf::Value(std::string("convex"))}});
     nodes.push_back(std::move(hull_node));
   }
   return nodes;
@@ -1242,8 +1235,8 @@ void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& asse
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext != ".glb" && ext != ".gltf") {
-    throw InternalError("scene export: unknown extension '" + path.extension().string() +
-                        "' of " + path.string() + " (expected .glb or .gltf)");
+    throw InternalError("scene export: unknown extension '" + path.extension().string() + "' of " +
+                        path.string() + " (expected .glb or .gltf)");
   }
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
   std::error_code ec;

@@ -18,8 +18,8 @@ namespace cutaway {
 /// How a DS model looks in glTF: alpha-blended surfaces so that the inner structure shows
 /// (paper Fig. 9).
 struct GltfModelOptions {
-  double skin_alpha = 0.35;   ///< opacity of the skin, 0..1
-  double inner_alpha = 0.7;   ///< opacity of every other surface, 0..1
+  double skin_alpha = 0.35;  ///< opacity of the skin, 0..1
+  double inner_alpha = 0.7;  ///< opacity of every other surface, 0..1
 };
 
 /// Encodes the model as binary glTF (.glb): one mesh per DS surface with two primitives, the
@@ -135,9 +135,8 @@ GltfCollision parse_gltf_collision(std::string_view name);
 ///   lights' radiance: three.js's toneMappingExposure under LinearToneMapping, Blender's
 ///   exposure 0 under its Standard view) and `ambient_lux` = `assets.ambient_lux` when > 0.
 /// Node order: the root, each instance's node then its mesh node and hull nodes, the camera,
-/// the lights, the level nodes; the scene lists the root, the camera and the lights. asset.generator is
-/// "cutaway".
-/// Deterministic: the same assets give the same bytes.
+/// the lights, the level nodes; the scene lists the root, the camera and the lights.
+/// asset.generator is "cutaway". Deterministic: the same assets give the same bytes.
 /// @throws InternalError when the assets break their documented invariants: a mesh
 ///   without triangles, with arrays of different lengths, an index out of range or a
 ///   non-finite position, primitives that do not cover its triangles in order or name a

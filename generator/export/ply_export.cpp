@@ -19,8 +19,8 @@ std::string section_to_ply(const CrossSection& section) {
   std::vector<Mesh::VertexHandle> vh;
   for (size_t i = 0; i < section.position.size(); ++i) {
     const glm::dvec3& p = section.position[i];
-    const auto h = mesh.add_vertex(Mesh::Point(static_cast<float>(p.x), static_cast<float>(p.y),
-                                               static_cast<float>(p.z)));
+    const auto h = mesh.add_vertex(
+        Mesh::Point(static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)));
     const glm::dvec3 c = linear_to_srgb(section.colour[i]);
     mesh.set_color(h, Mesh::Color(static_cast<unsigned char>(std::lround(c.x * 255)),
                                   static_cast<unsigned char>(std::lround(c.y * 255)),

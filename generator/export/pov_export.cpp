@@ -25,7 +25,7 @@ namespace cutaway {
 namespace {
 
 constexpr double kPointFadeDistance_m = 0.01;  // POV-Ray fade_distance of point lights
-constexpr size_t kMaxIdentifier = 40;           // POV-Ray's identifier length limit
+constexpr size_t kMaxIdentifier = 40;          // POV-Ray's identifier length limit
 
 // Appends `v` with 6 significant digits (the text of "%.6g"), independent of the C locale.
 void append_number(std::string& out, double v, int digits = 6) {
@@ -97,8 +97,8 @@ std::vector<glm::dvec3> usable_normals(const AssetMesh& m) {
     if (face_sum.empty()) {
       face_sum.assign(m.position.size(), glm::dvec3(0.0));
       for (const auto& t : m.triangle) {
-        const glm::dvec3 a = glm::cross(m.position[t.y] - m.position[t.x],
-                                        m.position[t.z] - m.position[t.x]);
+        const glm::dvec3 a =
+            glm::cross(m.position[t.y] - m.position[t.x], m.position[t.z] - m.position[t.x]);
         face_sum[t.x] += a;
         face_sum[t.y] += a;
         face_sum[t.z] += a;
@@ -297,12 +297,11 @@ void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, cons
   std::vector<glm::uvec3> face_textures(faces.size());
   for (size_t f = 0; f < faces.size(); ++f) {
     if (!face_image(f).empty()) {
-      face_textures[f].x =
-          index_of("texture { uv_mapping pigment { image_map { " +
-                   std::string(face_image(f).ends_with(".jpg") ? "jpeg" : "png") + " \"" +
-                   face_image(f) + "\" interpolate 2 } }" +
-                   relief_of(a, face_material[f], texture_files) + " finish { " +
-                   finish_identifier(static_cast<size_t>(face_material[f])) + " } }");
+      face_textures[f].x = index_of(
+          "texture { uv_mapping pigment { image_map { " +
+          std::string(face_image(f).ends_with(".jpg") ? "jpeg" : "png") + " \"" + face_image(f) +
+          "\" interpolate 2 } }" + relief_of(a, face_material[f], texture_files) + " finish { " +
+          finish_identifier(static_cast<size_t>(face_material[f])) + " } }");
       continue;
     }
     for (int c = 0; c < 3; ++c) face_textures[f][c] = pair_of(faces[f][c], face_material[f]);
@@ -352,8 +351,7 @@ void write_mesh(std::string& out, const SceneAssets& a, const AssetMesh& m, cons
   out += "\n  }\n}\n\n";
 }
 
-void write_instance(std::string& out, const AssetInstance& inst, const std::string& id,
-                    size_t i) {
+void write_instance(std::string& out, const AssetInstance& inst, const std::string& id, size_t i) {
   const glm::dquat q = inst.rotation;
   const double qlen = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
   // glm matrices are column-major: r[c] is the image of the c-th basis vector, which is the
@@ -376,9 +374,10 @@ void write_instance(std::string& out, const AssetInstance& inst, const std::stri
   out += ">\n}\n\n";
 }
 
-/// The strokes as tubes (spheres joined by cones): widths in pixels of an image assets.height pixels high
-/// become radii at each point's depth along the camera's view direction, and every point moves
-/// toward the eye by its radius so that the tube stays in front of the surface it outlines.
+/// The strokes as tubes (spheres joined by cones): widths in pixels of an image assets.height
+/// pixels high become radii at each point's depth along the camera's view direction, and every
+/// point moves toward the eye by its radius so that the tube stays in front of the surface it
+/// outlines.
 void write_strokes(std::string& out, const SceneAssets& a, const std::vector<Stroke>& strokes) {
   const AssetCamera& c = a.camera;
   const glm::dvec3 forward = glm::normalize(c.target - c.eye);
@@ -401,8 +400,8 @@ void write_strokes(std::string& out, const SceneAssets& a, const std::vector<Str
               "stroke " + std::to_string(s) + ": non-finite point or width");
       const double depth = glm::dot(p - c.eye, forward);
       if (!(depth > 0)) continue;
-      const double r = std::max(1e-6, 0.5 * stroke.width_px[k % n] * depth *
-                                          metres_per_pixel_per_depth);
+      const double r =
+          std::max(1e-6, 0.5 * stroke.width_px[k % n] * depth * metres_per_pixel_per_depth);
       // As written: two points whose text is the same would make a cone of zero length, which
       // POV-Ray refuses ("Degenerate cone/cylinder", a fatal parse error).
       const glm::dvec3 q = written(p + r * glm::normalize(c.eye - p));
@@ -456,9 +455,8 @@ std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* s
   write_camera(out, assets.camera);
   write_lights(out, assets);
   // Material 0 keeps the finish of scenes written before materials: a small, sharp highlight.
-  out +=
-      "#declare Cutaway_Finish = finish { ambient 0.15 diffuse 0.8 specular 0.25 "
-      "roughness 0.02 }\n";
+  out += "#declare Cutaway_Finish = finish { ambient 0.15 diffuse 0.8 specular 0.25 "
+         "roughness 0.02 }\n";
   for (size_t k = 1; k < assets.materials.size(); ++k)
     write_finish(out, assets.materials[k].pbr, k);
   out += "\n";

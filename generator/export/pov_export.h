@@ -85,10 +85,9 @@ namespace cutaway {
 /// @throws InternalError naming the mesh, instance or light that breaks a precondition
 /// - with `texture_files` (texture_file_names()): faces whose material has a base colour texture
 ///   (and whose mesh has uv) get one texture each, `uv_mapping` with `image_map { png NAME
-///   interpolate 2 }` (`jpeg` for a NAME ending in .jpg) and the material's finish; such meshes add uv_vectors (v flipped: POV-Ray
-///   counts from the bottom row) and no uv_indices (POV-Ray then uses the face indices). Without,
-///   those faces keep
-///   their vertex colours.
+///   interpolate 2 }` (`jpeg` for a NAME ending in .jpg) and the material's finish; such meshes add
+///   uv_vectors (v flipped: POV-Ray counts from the bottom row) and no uv_indices (POV-Ray then
+///   uses the face indices). Without, those faces keep their vertex colours.
 std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* strokes = nullptr,
                          const std::vector<std::string>& texture_files = {});
 

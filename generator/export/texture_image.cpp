@@ -10,8 +10,7 @@ namespace cutaway {
 TextureFormat parse_texture_format(std::string_view name) {
   if (name == "png") return TextureFormat::Png;
   if (name == "jpeg") return TextureFormat::Jpeg;
-  throw InternalError("texture format must be png or jpeg, not '" + std::string(name) +
-                      "'");
+  throw InternalError("texture format must be png or jpeg, not '" + std::string(name) + "'");
 }
 
 bool is_jpeg(const AssetTexture& texture, TextureFormat format) {

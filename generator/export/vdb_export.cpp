@@ -48,8 +48,8 @@ std::string encode_vdb(const InteriorVolume& volume, const std::string& name, in
   grids.push_back(make_grid<FloatGrid>(volume, "density", 0.0f, [&](size_t v) {
     return volume.region[v] == kEmptyRegion ? 0.0f : 1.0f;
   }));
-  grids.push_back(make_grid<openvdb::Vec3SGrid>(
-      volume, "color", openvdb::Vec3s(0.0f), [&](size_t v) {
+  grids.push_back(
+      make_grid<openvdb::Vec3SGrid>(volume, "color", openvdb::Vec3s(0.0f), [&](size_t v) {
         return openvdb::Vec3s(volume.colour[v].x, volume.colour[v].y, volume.colour[v].z);
       }));
   grids.push_back(make_grid<FloatGrid>(volume, "roughness", 0.0f,

@@ -19,7 +19,6 @@ using NamedFile = std::pair<std::string, std::string>;
 /// `with_vdb`, STEM.vdb (encode_vdb). `name` and `seed` are the template's and the variant's
 /// (seed < 0: the template itself). None, with the reason, as encode_flipbooks.
 Outcome<std::vector<NamedFile>> volume_files(const InteriorVolume& volume, const std::string& stem,
-                                             const std::string& name, int64_t seed,
-                                             bool with_vdb);
+                                             const std::string& name, int64_t seed, bool with_vdb);
 
 }  // namespace cutaway

@@ -75,16 +75,14 @@ nlohmann::ordered_json volume_sidecar(const InteriorVolume& volume, const std::s
   const glm::dvec3 lo = volume.origin - 0.5 * volume.voxel_m;
   const glm::dvec3 hi = lo + volume.voxel_m * glm::dvec3(volume.size);
   auto vec = [](const glm::dvec3& v) { return nlohmann::ordered_json::array({v.x, v.y, v.z}); };
-  nlohmann::ordered_json images = {{"colour", files.colour},
-                                   {"structure", files.structure},
-                                   {"material", files.material}};
+  nlohmann::ordered_json images = {
+      {"colour", files.colour}, {"structure", files.structure}, {"material", files.material}};
   nlohmann::ordered_json sidecar = {
       {"asset", "cutaway interior volume"},
       {"version", 1},
       {"template", name},
       {"seed", seed >= 0 ? nlohmann::ordered_json(seed) : nlohmann::ordered_json(nullptr)},
-      {"frame",
-       "object frame of the template's model and of the whole-object glTF: metres, +Y up"},
+      {"frame", "object frame of the template's model and of the whole-object glTF: metres, +Y up"},
       {"grid",
        {{"size", {volume.size.x, volume.size.y, volume.size.z}},
         {"voxel_m", volume.voxel_m},

@@ -120,9 +120,9 @@ Batch parse(std::string_view text, const std::string& file, ParsedBatch* parsed)
     }
     assets += static_cast<long long>(item.count) * static_cast<long long>(item.cuts.size());
     if (assets > kMaxBatchAssets)
-      f.get("count").value_or(f).fail(
-          "the items up to here make " + std::to_string(assets) + " assets (at most " +
-          std::to_string(kMaxBatchAssets) + " in a batch: split it into several batches)");
+      f.get("count").value_or(f).fail("the items up to here make " + std::to_string(assets) +
+                                      " assets (at most " + std::to_string(kMaxBatchAssets) +
+                                      " in a batch: split it into several batches)");
     b.items.push_back(std::move(item));
     if (parsed) parsed->items.push_back(std::move(p));
   }
@@ -134,8 +134,7 @@ Batch parse(std::string_view text, const std::string& file, ParsedBatch* parsed)
     if (auto x = o->get("sample")) b.outputs.sample = parse_int_in(*x, 0, 64);
     if (auto x = o->get("volume")) b.outputs.volume = x->boolean();
     if (auto x = o->get("volume_voxels"))
-      b.outputs.volume_voxels =
-          parse_int_in(*x, kMinBatchVolumeVoxels, kMaxBatchVolumeVoxels);
+      b.outputs.volume_voxels = parse_int_in(*x, kMinBatchVolumeVoxels, kMaxBatchVolumeVoxels);
     if (parsed && b.outputs.volume)
       parsed->volume = o->get("volume_voxels").value_or(o->require("volume"));
   }
@@ -212,9 +211,8 @@ Batch load_batch(const std::string& path) {
         for (const CutSpec& theirs : other.cuts)
           if (cut_label(cut) == cut_label(theirs)) {
             const std::string rule = "makes the assets of " + other.path + " again (template " +
-                                     quoted(item.template_name) + ", seed " +
-                                     std::to_string(lo) + ", cut " + cut_label(cut) +
-                                     "): give it other seeds";
+                                     quoted(item.template_name) + ", seed " + std::to_string(lo) +
+                                     ", cut " + cut_label(cut) + "): give it other seeds";
             (parsed[i].seed_field ? *parsed[i].seed_field : parsed[i].item).fail(rule);
           }
     }

@@ -43,8 +43,10 @@ Outcome<CutSpec> parse_cut_spec(const std::string& text, double metres_per_unit)
   }
   if (kind == "slices" || kind == "wedges" || kind == "dice" || kind == "plane") {
     if (!has_arg || arg.empty()) {
-      const char* value = kind == "slices" ? "THICKNESS" : kind == "wedges" ? "COUNT"
-                          : kind == "dice" ? "SIZE" : "SPEC";
+      const char* value = kind == "slices"   ? "THICKNESS"
+                          : kind == "wedges" ? "COUNT"
+                          : kind == "dice"   ? "SIZE"
+                                             : "SPEC";
       return R::none(quoted(text) + ": write " + kind + ":" + value);
     }
   }

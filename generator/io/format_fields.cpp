@@ -21,8 +21,8 @@ namespace fs = std::filesystem;
 void require_format(const YamlField& root, const std::string& expected) {
   const YamlField format = root.require("format");
   if (format.string() != expected) {
-    format.fail("unsupported format " + quoted(format.string()) + " (this version of cutaway reads " +
-                expected + ")");
+    format.fail("unsupported format " + quoted(format.string()) +
+                " (this version of cutaway reads " + expected + ")");
   }
 }
 
@@ -72,8 +72,7 @@ CutSpec parse_cut(const YamlField& f, double m, std::optional<YamlField>& length
   else if (t == "slices") cut.type = CutType::Slices, own = "thickness";
   else if (t == "wedges") cut.type = CutType::Wedges, own = "count";
   else if (t == "dice") cut.type = CutType::Dice, own = "size";
-  else
-    type.fail("must be whole, halves, slices, wedges or dice, not " + quoted(t));
+  else type.fail("must be whole, halves, slices, wedges or dice, not " + quoted(t));
   for (const char* key : {"thickness", "count", "size"}) {
     if (auto x = f.get(key); x && (!own || std::string_view(own) != key)) {
       x->fail("a " + quoted(t) + " cut has no " + key);
@@ -107,8 +106,7 @@ std::string resolve_template(const YamlField& f, const fs::path& scene_dir, cons
     const fs::path p = fs::path(v).is_absolute() ? fs::path(v) : (scene_dir / v).lexically_normal();
     if (!fs::is_regular_file(p, ec)) {
       f.fail("the template file " + quoted(p.string(), 4096) +
-             " does not exist (a path is relative to the " +
-             std::string(kind) + "'s folder)");
+             " does not exist (a path is relative to the " + std::string(kind) + "'s folder)");
     }
     return p.string();
   }
@@ -131,15 +129,13 @@ std::string resolve_template(const YamlField& f, const fs::path& scene_dir, cons
   f.fail("no template named " + quoted(v) + " (looked for " + v + ".yaml in " + looked + ")");
 }
 
-
 const LoadedTemplate& TemplateCheck::check(const std::string& template_path, const CutSpec& cut,
                                            const std::optional<YamlField>& length_field) {
   auto it = loaded_.find(template_path);
   if (it == loaded_.end()) {
     auto t = std::make_shared<const Template>(load_template(template_path));
     const ObjectExtents extents = template_extents(*t);
-    it = loaded_.emplace(template_path, LoadedTemplate{std::move(t), extents})
-             .first;
+    it = loaded_.emplace(template_path, LoadedTemplate{std::move(t), extents}).first;
   }
   const LoadedTemplate& loaded = it->second;
   const long long n = estimate_piece_count(cut, loaded.extents);

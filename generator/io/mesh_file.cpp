@@ -27,8 +27,7 @@ using PlyMesh = OpenMesh::TriMesh_ArrayKernelT<OpenMesh::DefaultTraitsDouble>;
 
 /// The bytes of a mesh file, refused when it is not a .ply path, not a regular file or larger
 /// than kMaxMeshFileBytes (read_regular_file: nothing is read from a FIFO or device).
-std::string mesh_file_bytes(const std::string& file, const FileLoc& loc,
-                            const std::string& field) {
+std::string mesh_file_bytes(const std::string& file, const FileLoc& loc, const std::string& field) {
   if (std::filesystem::path(file).extension() != ".ply") {
     throw InputError(loc, field, "a mesh surface's file must be a PLY file (.ply)");
   }

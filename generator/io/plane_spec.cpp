@@ -42,9 +42,8 @@ Outcome<Plane> parse_plane_spec(const std::string& spec, double metres_per_unit)
   using R = Outcome<Plane>;
   const std::string_view s = trim_blanks(spec);
   const auto not_a_plane = [&] {
-    return R::none(quoted(spec) +
-                   " is not a plane: write AXIS=VALUE (e.g. y=20) or "
-                   "px,py,pz/nx,ny,nz (a point and a normal, template units)");
+    return R::none(quoted(spec) + " is not a plane: write AXIS=VALUE (e.g. y=20) or "
+                                  "px,py,pz/nx,ny,nz (a point and a normal, template units)");
   };
   Plane plane;
   if (const size_t eq = s.find('='); eq != std::string_view::npos) {
@@ -53,7 +52,8 @@ Outcome<Plane> parse_plane_spec(const std::string& spec, double metres_per_unit)
       return not_a_plane();
     const int axis = std::tolower(axis_text[0]) - 'x';
     plane.point = glm::dvec3(0.0);
-    const Outcome<double> at = to_metres(s.substr(eq + 1), "the plane's coordinate", metres_per_unit);
+    const Outcome<double> at =
+        to_metres(s.substr(eq + 1), "the plane's coordinate", metres_per_unit);
     if (!at) return R::none(at.reason());
     plane.point[axis] = *at;
     plane.normal = glm::dvec3(0.0);

@@ -21,8 +21,8 @@ constexpr size_t kMaxPlyNumberLength = 64;
 /// A PLY scalar type.
 struct PlyType {
   std::string_view name;
-  int size;      ///< bytes in a binary file
-  bool integer;  ///< else floating point
+  int size;        ///< bytes in a binary file
+  bool integer;    ///< else floating point
   int64_t lo, hi;  ///< range of an integer type
 };
 
@@ -243,7 +243,8 @@ void PlyGuard::parse_header() {
       if (w.size() != 3 || w[0] != "format" || !is_float_text(w[2]) ||
           (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian")) {
         fail_line(2, "must be 'format ascii 1.0', 'format binary_little_endian 1.0' or "
-                     "'format binary_big_endian 1.0', not " + quoted(line));
+                     "'format binary_big_endian 1.0', not " +
+                         quoted(line));
       }
       out_.binary = w[1] != "ascii";
       big_endian_ = w[1] == "binary_big_endian";
@@ -277,8 +278,8 @@ void PlyGuard::parse_item(int line_no, std::string_view line,
   if (key == "obj_info") {
     // OpenMesh reads an obj_info line word by word, as keywords.
     for (size_t k = 1; k < w.size(); ++k) {
-      if (w[k] == "element" || w[k] == "property" || w[k] == "comment" ||
-          w[k] == "end_header" || w[k] == "obj_info" || w[k] == "format") {
+      if (w[k] == "element" || w[k] == "property" || w[k] == "comment" || w[k] == "end_header" ||
+          w[k] == "obj_info" || w[k] == "format") {
         fail_line(line_no, "an obj_info line must not contain the keyword " + quoted(w[k]));
       }
     }
@@ -293,7 +294,8 @@ void PlyGuard::parse_item(int line_no, std::string_view line,
     } else if (!(w.size() == 3 && ply_type(w[1])) &&
                !(w.size() == 5 && w[1] == "list" && ply_type(w[2]) && ply_type(w[3]))) {
       fail_line(line_no, "write 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME' "
-                         "with PLY types, not " + quoted(line));
+                         "with PLY types, not " +
+                             quoted(line));
     }
   } else {
     fail_line(line_no, "unknown keyword " + quoted(key, 24) +
@@ -312,8 +314,8 @@ void PlyGuard::parse_element(int line_no, std::string_view line,
   bool digits = !count.empty();
   for (char c : count) digits = digits && c >= '0' && c <= '9';
   if (!digits) {
-    fail_line(line_no, "the " + what + " count must be a whole number >= 0, not " +
-                           quoted(count, 24));
+    fail_line(line_no,
+              "the " + what + " count must be a whole number >= 0, not " + quoted(count, 24));
   }
   size_t first = 0;
   while (first + 1 < count.size() && count[first] == '0') ++first;
@@ -373,8 +375,8 @@ void PlyGuard::parse_property(int line, const std::vector<std::string_view>& w) 
                       "short, ushort, int, uint, float, double or int8 ... float64)");
     }
     if (w[2] != "uchar" && w[2] != "uint8" && w[2] != "uint16" && w[2] != "int") {
-      fail_line(line, "a list's count type must be uchar, uint8, uint16 or int, not " +
-                          quoted(w[2]));
+      fail_line(line,
+                "a list's count type must be uchar, uint8, uint16 or int, not " + quoted(w[2]));
     }
     p.count_type = ply_type(w[2]);
     p.type = ply_type(w[3]);
@@ -403,9 +405,9 @@ void PlyGuard::parse_property(int line, const std::vector<std::string_view>& w) 
       !is_float) {
     fail_line(line, "the vertex property " + quoted(n) + " must be float or double");
   }
-  const bool colour = n == "red" || n == "green" || n == "blue" || n == "alpha" ||
-                      (e.is_vertex() && (n == "diffuse_red" || n == "diffuse_green" ||
-                                         n == "diffuse_blue"));
+  const bool colour =
+      n == "red" || n == "green" || n == "blue" || n == "alpha" ||
+      (e.is_vertex() && (n == "diffuse_red" || n == "diffuse_green" || n == "diffuse_blue"));
   if (!list && colour && p.type->size == 8) {
     fail_line(line, "the colour property " + quoted(n) + " must be float or an integer type");
   }
@@ -430,8 +432,7 @@ void PlyGuard::parse_property(int line, const std::vector<std::string_view>& w) 
 /// OpenMesh finds a binary body by stepping back to the end of the last header word it read
 /// before 'end_header' and skipping "\nend_header\n" (12 bytes) or "\r\nend_header\r\n" (14):
 /// the body must start there.
-void PlyGuard::check_binary_start(size_t end_header, size_t last_item_end,
-                                  bool last_item_comment) {
+void PlyGuard::check_binary_start(size_t end_header, size_t last_item_end, bool last_item_comment) {
   if (!out_.binary) return;
   const bool crlf = bytes_.substr(last_item_end, 2) == "\r\n";
   const size_t openmesh_body = last_item_end + (crlf ? 14 : 12);
@@ -465,8 +466,8 @@ void PlyGuard::check_sizes() {
       for (size_t k = 0; k < declared.size(); ++k) {
         what += (k == 0 ? "" : k + 1 == declared.size() ? " and " : ", ") + declared[k];
       }
-      fail("the PLY header declares " + what + " but the file has only " +
-           std::to_string(size) + " bytes (" +
+      fail("the PLY header declares " + what + " but the file has only " + std::to_string(size) +
+           " bytes (" +
            (need == UINT64_MAX ? std::string("they need more")
                                : "they need at least " + std::to_string(need)) +
            ")");
@@ -562,8 +563,8 @@ void PlyGuard::walk_ascii() {
   };
   auto bad = [&](const PlyElement& e, uint64_t i, const PlyProperty& p, std::string_view word,
                  const PlyType& t, const char* what) {
-    fail(one(e, i) + ", property " + quoted(p.name, 24) + ": " + quoted(word, 24) +
-         " is not " + what + " (" + std::string(t.name) + ")");
+    fail(one(e, i) + ", property " + quoted(p.name, 24) + ": " + quoted(word, 24) + " is not " +
+         what + " (" + std::string(t.name) + ")");
   };
   // Reads and checks one number of type t; returns it when an integer.
   auto number = [&](const PlyElement& e, uint64_t i, const PlyProperty& p, const PlyType& t,

@@ -25,11 +25,11 @@ inline constexpr size_t kMaxMeshFileBytes = size_t{256} << 20;
 
 /// What check_ply found in a PLY file that passed it.
 struct PlyCheck {
-  bool binary = false;     ///< binary_little_endian or binary_big_endian (else ascii)
-  size_t header_end = 0;   ///< byte offset of the `end_header` line
-  size_t vertices = 0;     ///< vertices declared (and present)
-  size_t faces = 0;        ///< faces (polygons) declared (and present)
-  size_t triangles = 0;    ///< triangles the faces make (a face of n corners makes n - 2)
+  bool binary = false;    ///< binary_little_endian or binary_big_endian (else ascii)
+  size_t header_end = 0;  ///< byte offset of the `end_header` line
+  size_t vertices = 0;    ///< vertices declared (and present)
+  size_t faces = 0;       ///< faces (polygons) declared (and present)
+  size_t triangles = 0;   ///< triangles the faces make (a face of n corners makes n - 2)
 };
 
 /// The guard in front of OpenMesh's PLY reader, which trusts the header's counts (it reserves

@@ -114,8 +114,8 @@ RenderSettings parse_render(const YamlField& r) {
   if (auto x = r.get("silhouettes")) out.silhouettes = x->number_in(0, 10);
   if (auto x = r.get("texels_per_mm")) out.texels_per_mm = x->number_in(0.1, 100);
   if (static_cast<long long>(out.width) * out.height > kMaxRenderPixels)
-    r.fail("width x height is " + std::to_string(out.width * out.height) +
-           " pixels (at most " + std::to_string(kMaxRenderPixels) + ", e.g. 3840 x 2160)");
+    r.fail("width x height is " + std::to_string(out.width * out.height) + " pixels (at most " +
+           std::to_string(kMaxRenderPixels) + ", e.g. 3840 x 2160)");
   return out;
 }
 
@@ -154,17 +154,17 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
   const double m = s.metres_per_unit;
 
   if (auto c = root.get("container")) s.container = parse_container(*c, m);
-  Arrangement arrange = s.container.type == ContainerType::Board ||
-                                s.container.type == ContainerType::None
-                            ? Arrangement::Scatter
-                            : Arrangement::Pile;
+  Arrangement arrange =
+      s.container.type == ContainerType::Board || s.container.type == ContainerType::None
+          ? Arrangement::Scatter
+          : Arrangement::Pile;
   if (auto a = root.get("arrange")) arrange = parse_arrangement(*a);
 
   fs::path scene_dir = fs::path(file).parent_path();
   if (scene_dir.empty()) scene_dir = ".";
   TemplateCheck templates;
   long long objects = 0, pieces = 0;  // totals of the items so far
-  double heap_m3 = 0;  // the heap the pieces kept so far make (kHeapPacking)
+  double heap_m3 = 0;                 // the heap the pieces kept so far make (kHeapPacking)
   const double holds_m3 = heap_capacity(s.container, LayoutOptions{}.none_radius_m);
   const YamlField items = root.require("items");
   if (items.size() == 0) items.fail("a scene needs at least one item");
@@ -212,8 +212,8 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
   if (auto c = root.get("camera")) s.camera = parse_camera(*c, m);
   if (auto r = root.get("render")) s.render = parse_render(*r);
   if (const Check texels = check_cap_texels(scene_cut_area(s), s.render.texels_per_mm); !texels) {
-    const auto density = root.get("render") ? root.get("render")->get("texels_per_mm")
-                                            : std::optional<YamlField>();
+    const auto density =
+        root.get("render") ? root.get("render")->get("texels_per_mm") : std::optional<YamlField>();
     const YamlField last = items[items.size() - 1];
     (density ? *density : last.get("count").value_or(last)).fail(texels.reason());
   }

@@ -40,7 +40,8 @@ constexpr double kMaxReliefM = 2e-3;
 
 /// `v` (in units of `scale` metres) when |v * scale| <= kMaxMetres; fails at `f` otherwise.
 double within_limit(const YamlField& f, double v, double scale) {
-  if (std::fabs(v * scale) > kMaxMetres) f.fail("must be at most 1000 km in size (|value| <= 1e6 m)");
+  if (std::fabs(v * scale) > kMaxMetres)
+    f.fail("must be at most 1000 km in size (|value| <= 1e6 m)");
   return v;
 }
 
@@ -67,8 +68,7 @@ Gradient<T> parse_gradient(const YamlField& f, ParseValue parse_value,
   else if (a == "ripeness")
     along.fail("a stop of a gradient along ripeness may run along the profile or the section, "
                "not along ripeness again");
-  else
-    along.fail("must be 'profile', 'section' or 'ripeness', not " + quoted(a));
+  else along.fail("must be 'profile', 'section' or 'ripeness', not " + quoted(a));
   const YamlField stops = f.require("stops");
   if (stops.size() < 1) stops.fail("a gradient needs at least one stop [t, value]");
   double last = -1;
@@ -81,8 +81,7 @@ Gradient<T> parse_gradient(const YamlField& f, ParseValue parse_value,
     if (g.along == GradientAxis::Ripeness) {
       Gradient<T> field = parse_gradient<T>(stop[1], parse_value, false);
       g.by_ripeness.emplace_back(t, CurveGradient<T>{field.along, std::move(field.stops)});
-    } else
-      g.stops.emplace_back(t, parse_value(stop[1]));
+    } else g.stops.emplace_back(t, parse_value(stop[1]));
   }
   return g;
 }
@@ -132,10 +131,9 @@ SectionSpec parse_section(const YamlField& f, double m) {
   s.loc = f.loc();
   if (f.is_scalar()) {
     if (f.string() != "circle") {
-      f.fail(
-          "must be 'circle', a loop [[x, z], ...], {polar: [[deg, radius], ...]} or a list "
-          "of loops, not " +
-          quoted(f.string()));
+      f.fail("must be 'circle', a loop [[x, z], ...], {polar: [[deg, radius], ...]} or a list "
+             "of loops, not " +
+             quoted(f.string()));
     }
     s.circle = true;
     return s;
@@ -185,8 +183,7 @@ SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::stri
   if (k == "around") s.kind = SurfaceKind::Around;
   else if (k == "within") s.kind = SurfaceKind::Within;
   else if (k == "mesh") s.kind = SurfaceKind::Mesh;
-  else
-    kind.fail("must be 'around', 'within' or 'mesh', not " + quoted(k));
+  else kind.fail("must be 'around', 'within' or 'mesh', not " + quoted(k));
 
   if (t.symmetry == Symmetry::Cylindrical && s.kind != SurfaceKind::Around) {
     kind.fail("a cylindrical template has only 'around' surfaces (" + quoted(k) +
@@ -238,7 +235,8 @@ SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::stri
         section->fail("an 'around' section is 'circle' or one loop around the axis");
       }
       if (s.kind == SurfaceKind::Within) {
-        if (s.section.circle) section->fail("a 'within' section is a loop inside fold 0, or N loops");
+        if (s.section.circle)
+          section->fail("a 'within' section is a loop inside fold 0, or N loops");
         if (s.section.loops.size() != 1 && static_cast<int>(s.section.loops.size()) != t.folds) {
           section->fail("a 'within' section is one loop or exactly " + std::to_string(t.folds) +
                         " loops (one per fold), not " + std::to_string(s.section.loops.size()));
@@ -416,8 +414,8 @@ uint64_t template_source_hash(std::string_view text, const Template& t) {
 /// Reads the PLY file of a `mesh` surface into it (read_mesh_file), once.
 void read_surface_mesh(SurfaceSpec& s) {
   if (s.kind != SurfaceKind::Mesh || s.mesh) return;
-  s.mesh = std::make_shared<const MeshData>(read_mesh_file(s.mesh_file, s.mesh_loc,
-                                                           s.path + ".file"));
+  s.mesh =
+      std::make_shared<const MeshData>(read_mesh_file(s.mesh_file, s.mesh_loc, s.path + ".file"));
 }
 
 /// Skin height (metres) for the default edge length: the y range of the skin's profile or mesh
@@ -447,8 +445,7 @@ void parse_symmetry(const YamlField& root, Template& t) {
   if (ty == "cylindrical") t.symmetry = Symmetry::Cylindrical;
   else if (ty == "nfold") t.symmetry = Symmetry::NFold;
   else if (ty == "none") t.symmetry = Symmetry::None;
-  else
-    type.fail("must be cylindrical, nfold or none, not " + quoted(ty));
+  else type.fail("must be cylindrical, nfold or none, not " + quoted(ty));
   if (t.symmetry == Symmetry::NFold) {
     const YamlField folds = sym.require("folds");
     const int64_t n = folds.integer();
@@ -543,8 +540,7 @@ SkinPatternLayer parse_pattern_layer(const YamlField& f, double m) {
     const char* size_key = speckles ? "size" : "width";
     if (speckles)
       b.allow_only({"spacing", "size", "jitter", "colour", "opacity", "softness", "relief"});
-    else
-      b.allow_only({"spacing", "width", "colour", "opacity", "softness", "relief"});
+    else b.allow_only({"spacing", "width", "colour", "opacity", "softness", "relief"});
     const YamlField spacing = b.require("spacing"), size = b.require(size_key);
     p.spacing_m = parse_length(spacing, m);
     p.size_m = parse_length(size, m);
@@ -653,8 +649,8 @@ void resolve_edge(const YamlField& root, Template& t, double h) {
     t.edge_m = h / 64;
   } else if (h / t.edge_m > kMaxEdgesPerHeight) {
     std::ostringstream rule;
-    rule << "the edge length must be at least 1/" << kMaxEdgesPerHeight
-         << " of the skin's height (" << h / t.metres_per_unit << " " << units_name(t)
+    rule << "the edge length must be at least 1/" << kMaxEdgesPerHeight << " of the skin's height ("
+         << h / t.metres_per_unit << " " << units_name(t)
          << "): the meshes would not fit in memory";
     throw InputError(t.edge_loc, "resolution.edge", rule.str());
   } else if (h / t.edge_m < kMinEdgesPerHeight) {

@@ -78,8 +78,8 @@ Outcome<double> parse_decimal(std::string_view s, const std::string& what) {
 
 Outcome<uint64_t> parse_seed(std::string_view s) {
   const auto refuse = [s] {
-    return Outcome<uint64_t>::none("must be a whole number from 0 to " +
-                                   std::to_string(kMaxSeed) + ", not " + quoted(s));
+    return Outcome<uint64_t>::none("must be a whole number from 0 to " + std::to_string(kMaxSeed) +
+                                   ", not " + quoted(s));
   };
   if (s.empty() || s.size() > 19) return refuse();
   uint64_t value = 0;

@@ -339,7 +339,9 @@ std::string read_input_file(const std::string& path) {
   }
 }
 
-YamlField load_yaml_file(const std::string& path) { return parse_yaml(read_input_file(path), path); }
+YamlField load_yaml_file(const std::string& path) {
+  return parse_yaml(read_input_file(path), path);
+}
 
 glm::dvec3 parse_colour(const YamlField& f) {
   if (f.is_scalar()) {
@@ -347,7 +349,8 @@ glm::dvec3 parse_colour(const YamlField& f) {
     static const std::regex hex("#[0-9a-fA-F]{6}");
     if (!std::regex_match(s, hex)) {
       f.fail("a colour must be \"#rrggbb\" (hex digits) or [r, g, b] with components in 0..1, "
-             "not " + quoted(s));
+             "not " +
+             quoted(s));
     }
     glm::dvec3 c;
     for (int k = 0; k < 3; ++k) c[k] = std::stoi(s.substr(1 + 2 * k, 2), nullptr, 16) / 255.0;

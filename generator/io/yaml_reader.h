@@ -54,8 +54,8 @@ class YamlField {
 
   /// Scalars. Each fails with a rule naming the expected type and the value found (quoted()).
   std::string string() const;
-  double number() const;     ///< finite (NaN and infinities are refused)
-  int64_t integer() const;   ///< a whole number, |n| <= 9e15 (where doubles hold them all)
+  double number() const;    ///< finite (NaN and infinities are refused)
+  int64_t integer() const;  ///< a whole number, |n| <= 9e15 (where doubles hold them all)
   bool boolean() const;
   /// A number within [lo, hi] ("must be between LO and HI").
   double number_in(double lo, double hi) const;

@@ -59,8 +59,7 @@ std::vector<Island> group_islands(const std::vector<CapPart>& caps) {
     merged = false;
     for (size_t a = 0; a < islands.size(); ++a)
       for (size_t b = a + 1; b < islands.size(); ++b) {
-        if (islands[a].plane != islands[b].plane || !overlap(islands[a], islands[b], eps))
-          continue;
+        if (islands[a].plane != islands[b].plane || !overlap(islands[a], islands[b], eps)) continue;
         islands[a].lo = glm::min(islands[a].lo, islands[b].lo);
         islands[a].hi = glm::max(islands[a].hi, islands[b].hi);
         islands[a].caps.insert(islands[a].caps.end(), islands[b].caps.begin(),
@@ -102,8 +101,8 @@ int round_up_side(int n, bool power_of_two) {
 }
 
 struct Packing {
-  int width = 0, height = 0;    ///< round_up_side's sides; 0 x 0 when nothing fits
-  std::vector<glm::ivec2> at;   ///< per rectangle, its lowest corner
+  int width = 0, height = 0;   ///< round_up_side's sides; 0 x 0 when nothing fits
+  std::vector<glm::ivec2> at;  ///< per rectangle, its lowest corner
 };
 
 /// The packing of `sizes` (their total area `area`, the widest `widest` texels across) whose
@@ -114,8 +113,8 @@ struct Packing {
 Packing smallest_packing(const std::vector<glm::ivec2>& sizes, int widest, double area,
                          int max_size, bool power_of_two) {
   Packing best;
-  const int start = round_up_side(
-      std::max(widest, static_cast<int>(std::ceil(std::sqrt(area)))), power_of_two);
+  const int start =
+      round_up_side(std::max(widest, static_cast<int>(std::ceil(std::sqrt(area)))), power_of_two);
   long best_texels = 0;
   for (int width = start; width <= max_size && width <= 2 * start;
        width = power_of_two ? 2 * width
@@ -186,8 +185,8 @@ CapAtlas bake_cap_atlas(const std::vector<const Piece*>& pieces,
       area += static_cast<double>(size.x) * size.y;
       widest = std::max(widest, size.x);
     }
-    const auto [w, h, placed] = smallest_packing(sizes, widest, area, options.max_size,
-                                                 options.power_of_two);
+    const auto [w, h, placed] =
+        smallest_packing(sizes, widest, area, options.max_size, options.power_of_two);
     width = w;
     height = h;
     at = placed;

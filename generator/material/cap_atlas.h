@@ -50,7 +50,7 @@ struct CapAtlas {
   int material_width = 0, material_height = 0;  ///< texels of the material map
   glm::dvec2 material_mean{0.0};  ///< mean (roughness, translucency) over the caps' texels,
                                   ///< to 1e-6 (the diffusion's single precision)
-  double texels_per_m = 0;    ///< the density used (options.texels_per_m, or less to fit)
+  double texels_per_m = 0;        ///< the density used (options.texels_per_m, or less to fit)
   /// Per piece of the input, per vertex of merge_parts(piece): texture coordinates in 0..1
   /// (glTF convention: u to the right, v down from the top row); (0, 0) on the skin and walls.
   std::vector<std::vector<glm::dvec2>> uv;

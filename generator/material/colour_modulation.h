@@ -54,7 +54,7 @@ class ColourModulation {
   struct Band {
     PerlinBand params;
     PerlinNoise noise;
-    glm::dvec3 offset;  ///< lattice units
+    glm::dvec3 offset;     ///< lattice units
     glm::dvec3 tint_srgb;  ///< params.tint encoded as sRGB (band_weight compares in sRGB)
   };
   std::vector<Band> bands_;

@@ -19,10 +19,10 @@ double lerp(double a, double b, double t) { return a + t * (b - a); }
 /// of them repeated (Perlin 2002, §3) so that a 4-bit hash picks one without a division; the
 /// padding keeps the set symmetric enough to add no visible bias.
 constexpr double kGradients[16][3] = {
-    {1, 1, 0},  {-1, 1, 0},  {1, -1, 0}, {-1, -1, 0},  //
-    {1, 0, 1},  {-1, 0, 1},  {1, 0, -1}, {-1, 0, -1},  //
-    {0, 1, 1},  {0, -1, 1},  {0, 1, -1}, {0, -1, -1},  //
-    {1, 1, 0},  {-1, 1, 0},  {0, -1, 1}, {0, -1, -1},
+    {1, 1, 0}, {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0},  //
+    {1, 0, 1}, {-1, 0, 1}, {1, 0, -1}, {-1, 0, -1},  //
+    {0, 1, 1}, {0, -1, 1}, {0, 1, -1}, {0, -1, -1},  //
+    {1, 1, 0}, {-1, 1, 0}, {0, -1, 1}, {0, -1, -1},
 };
 
 /// The gradient selected by `hash` dotted with the offset (x, y, z) from its lattice point.

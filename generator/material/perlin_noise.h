@@ -11,8 +11,8 @@
 namespace cutaway {
 
 /// One instance of improved Perlin noise. The 256-entry permutation table is a Fisher-Yates
-/// shuffle drawn from Rng(seed) (generator/base/random.h), so every seed, e.g. every object variant,
-/// gets its own noise; the same seed gives the same values on every platform.
+/// shuffle drawn from Rng(seed) (generator/base/random.h), so every seed, e.g. every object
+/// variant, gets its own noise; the same seed gives the same values on every platform.
 ///
 /// Properties (tests/generator/material/perlin_noise_test.cpp checks them):
 /// - 0 at every integer lattice point;

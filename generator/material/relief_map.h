@@ -21,7 +21,7 @@ struct ReliefMaps {
   /// width * height, linear grey: the height from low_m (0) to high_m (255).
   std::vector<uint8_t> height;
   double low_m = 0, high_m = 0;  ///< the relief's lowest and highest height, metres
-  double texel_m = 0;  ///< mean metres a texel spans on the surface (across and down)
+  double texel_m = 0;            ///< mean metres a texel spans on the surface (across and down)
 };
 
 /// Bakes the relief channel of `canvas` (rasterised, not yet dilated; TexelCanvas::relief).

@@ -29,9 +29,7 @@ double spot(double d, double radius, double softness) {
 }
 
 /// Uniform in [0, 1) from the top 53 bits of a SplitMix64 step.
-double unit(uint64_t& state) {
-  return static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53;
-}
+double unit(uint64_t& state) { return static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53; }
 
 /// Coverage of a stripe layer: stripes centred at half periods of u = t_section * count +
 /// phase + wobble * noise, where the noise is read on a cylinder of one unit per period around
@@ -58,10 +56,9 @@ void visit_lattice_points(uint64_t cells, const glm::dvec3& q, Visit visit) {
     for (int dy = -1; dy <= 1; ++dy)
       for (int dz = -1; dz <= 1; ++dz) {
         const glm::dvec3 cell = base + glm::dvec3(dx, dy, dz);
-        uint64_t state =
-            derive_seed(cells, {static_cast<uint64_t>(static_cast<int64_t>(cell.x)),
-                                static_cast<uint64_t>(static_cast<int64_t>(cell.y)),
-                                static_cast<uint64_t>(static_cast<int64_t>(cell.z))});
+        uint64_t state = derive_seed(cells, {static_cast<uint64_t>(static_cast<int64_t>(cell.x)),
+                                             static_cast<uint64_t>(static_cast<int64_t>(cell.y)),
+                                             static_cast<uint64_t>(static_cast<int64_t>(cell.z))});
         const glm::dvec3 point = cell + glm::dvec3(unit(state), unit(state), unit(state));
         visit(point, state);
       }
@@ -122,16 +119,14 @@ SkinPatterns::SkinPatterns(const std::vector<SkinPatternLayer>& layers, uint64_t
   }
 }
 
-double SkinPatterns::coverage(size_t k, const glm::dvec2& param,
-                              const glm::dvec3& position) const {
+double SkinPatterns::coverage(size_t k, const glm::dvec2& param, const glm::dvec3& position) const {
   const Layer& layer = layers_[k];
   switch (layer.spec.kind) {
     case SkinPatternLayer::Kind::Stripes:
       return stripe_coverage(layer.spec, layer.noise, layer.phase, param);
     case SkinPatternLayer::Kind::Speckles:
       return speckle_coverage(layer.spec, layer.cells, position);
-    case SkinPatternLayer::Kind::Net:
-      return net_coverage(layer.spec, layer.cells, position);
+    case SkinPatternLayer::Kind::Net: return net_coverage(layer.spec, layer.cells, position);
     case SkinPatternLayer::Kind::Grains: {
       // The nearest site's spot, its edge blended over `softness` of the radius.
       const SkinPatternLayer& g = layer.spec;
@@ -153,7 +148,7 @@ bool SkinPatterns::has_relief() const {
 }
 
 SkinPatterns::Shade SkinPatterns::shade(const glm::dvec2& param, const glm::dvec3& position,
-                                         const glm::dvec3& colour) const {
+                                        const glm::dvec3& colour) const {
   Shade out{colour, 0.0};
   for (size_t k = 0; k < layers_.size(); ++k) {
     const SkinPatternLayer& spec = layers_[k].spec;

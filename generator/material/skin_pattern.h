@@ -54,8 +54,7 @@ class SkinPatterns {
     glm::dvec3 colour{0.0};
     double height = 0;
   };
-  Shade shade(const glm::dvec2& param, const glm::dvec3& position,
-              const glm::dvec3& colour) const;
+  Shade shade(const glm::dvec2& param, const glm::dvec3& position, const glm::dvec3& colour) const;
 
   /// How much of layer `k` covers the point, 0..1 (before its opacity).
   double coverage(size_t k, const glm::dvec2& param, const glm::dvec3& position) const;
@@ -63,9 +62,9 @@ class SkinPatterns {
  private:
   struct Layer {
     SkinPatternLayer spec;
-    PerlinNoise noise;   ///< stripes: the wobble
-    double phase = 0;    ///< stripes: turn, in periods
-    uint64_t cells = 0;  ///< speckles, net: the seed of the lattice's points
+    PerlinNoise noise;              ///< stripes: the wobble
+    double phase = 0;               ///< stripes: turn, in periods
+    uint64_t cells = 0;             ///< speckles, net: the seed of the lattice's points
     std::vector<glm::dvec3> sites;  ///< grains: the grains' sites on the skin, metres
     PointGrid near{1.0, {}};        ///< grains: the sites in cubes of the spot radius
   };

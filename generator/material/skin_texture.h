@@ -51,8 +51,8 @@ std::vector<glm::dvec2> unwrap_skin(ShadedMesh& skin);
 
 /// A skin's baked textures, all of one size.
 struct SkinTexture {
-  std::vector<uint8_t> srgb;           ///< width * height * 3, sRGB: the colour
-  std::optional<ReliefMaps> relief;    ///< where a pattern layer has a relief
+  std::vector<uint8_t> srgb;         ///< width * height * 3, sRGB: the colour
+  std::optional<ReliefMaps> relief;  ///< where a pattern layer has a relief
 };
 
 /// Bakes the skins `parts` (each a piece's skin part with its unwrap_skin coordinates `uv`)

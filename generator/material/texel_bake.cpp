@@ -12,16 +12,12 @@
 namespace cutaway {
 
 TexelCanvas::TexelCanvas(int w, int h, bool wrap)
-    : width(w),
-      height(h),
-      wrap_u(wrap),
-      colour(static_cast<size_t>(w) * h, glm::dvec3(0.0)),
-      material(colour.size(), glm::dvec2(0.0)),
-      covered(colour.size(), 0) {}
+    : width(w), height(h), wrap_u(wrap), colour(static_cast<size_t>(w) * h, glm::dvec3(0.0)),
+      material(colour.size(), glm::dvec2(0.0)), covered(colour.size(), 0) {}
 
 void rasterise(const ShadedMesh& mesh, std::span<const glm::dvec2> texel,
-               const SkinPatterns* patterns, const ColourModulation* modulation,
-               double strength, TexelCanvas& canvas) {
+               const SkinPatterns* patterns, const ColourModulation* modulation, double strength,
+               TexelCanvas& canvas) {
   const int width = canvas.width, height = canvas.height;
   // Bands of rows on TBB's threads, each walking every triangle in order: a texel is written by
   // the same triangles in the same order as in one pass, whatever the threads.
@@ -44,8 +40,7 @@ void rasterise(const ShadedMesh& mesh, std::span<const glm::dvec2> texel,
       const glm::dvec2 texel_metres(glm::length((p1 * e2.y - p2 * e1.y) / area),
                                     glm::length((p2 * e1.x - p1 * e2.x) / area));
       const int x_from = canvas.wrap_u ? lo.x : std::max(lo.x, 0);
-      const int x_to =
-          canvas.wrap_u ? std::min(hi.x, lo.x + width - 1) : std::min(hi.x, width - 1);
+      const int x_to = canvas.wrap_u ? std::min(hi.x, lo.x + width - 1) : std::min(hi.x, width - 1);
       for (int y = std::max({lo.y, 0, first_row}); y <= std::min({hi.y, height - 1, last_row}); ++y)
         for (int x = x_from; x <= x_to; ++x) {
           const glm::dvec2 p(x + 0.5, y + 0.5);
@@ -56,8 +51,7 @@ void rasterise(const ShadedMesh& mesh, std::span<const glm::dvec2> texel,
           if (wa < -1e-9 || wb < -1e-9 || wc < -1e-9) continue;
           const int column = ((x % width) + width) % width;
           const size_t i = static_cast<size_t>(y) * width + column;
-          glm::dvec3 colour =
-              wa * mesh.colour[t.x] + wb * mesh.colour[t.y] + wc * mesh.colour[t.z];
+          glm::dvec3 colour = wa * mesh.colour[t.x] + wb * mesh.colour[t.y] + wc * mesh.colour[t.z];
           const glm::dvec3 where =
               wa * mesh.position[t.x] + wb * mesh.position[t.y] + wc * mesh.position[t.z];
           if (patterns) {

@@ -47,8 +47,8 @@ struct TexelCanvas {
 /// channel and `patterns` is not null, the texel also gets its relief. Later triangles overwrite
 /// earlier ones. Bands of rows are baked on all cores; the canvas does not depend on them.
 void rasterise(const ShadedMesh& mesh, std::span<const glm::dvec2> texel,
-               const SkinPatterns* patterns, const ColourModulation* modulation,
-               double strength, TexelCanvas& canvas);
+               const SkinPatterns* patterns, const ColourModulation* modulation, double strength,
+               TexelCanvas& canvas);
 
 /// `rings` rings of dilation: each uncovered texel with covered 8-neighbours takes their mean.
 void dilate(TexelCanvas& canvas, int rings);

@@ -71,8 +71,9 @@ Polyline2 catmull_rom(const Polyline2& input, bool closed, int per_segment) {
   CUTAWAY_CHECK_OP(p.size(), >=, 2u);
   const size_t n = p.size();
   auto at = [&](long i) -> glm::dvec2 {
-    if (closed) return p[static_cast<size_t>(((i % static_cast<long>(n)) + static_cast<long>(n)) %
-                                             static_cast<long>(n))];
+    if (closed)
+      return p[static_cast<size_t>(((i % static_cast<long>(n)) + static_cast<long>(n)) %
+                                   static_cast<long>(n))];
     if (i < 0) return 2.0 * p[0] - p[1];
     if (i >= static_cast<long>(n)) return 2.0 * p[n - 1] - p[n - 2];
     return p[static_cast<size_t>(i)];

@@ -12,7 +12,6 @@ namespace cutaway {
 /// intersection (PMP::do_intersect) and point-in-closed-mesh (Side_of_triangle_mesh).
 /// @param surface_specs  model.surfaces[i] was made from tmpl.surfaces[surface_specs[i]]
 /// @throws InputError at the offending surface of the template
-void check_model(const Template& tmpl, const DsModel& model,
-                 const std::vector<int>& surface_specs);
+void check_model(const Template& tmpl, const DsModel& model, const std::vector<int>& surface_specs);
 
 }  // namespace cutaway

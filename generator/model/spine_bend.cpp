@@ -52,8 +52,8 @@ SpineBend::SpineBend(const SpineSpec& spine) {
   turn_.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const auto [a, b] = stencil(i);
-    const glm::dvec2 dn = (normal_of(tangent_[b]) - normal_of(tangent_[a])) /
-                          (step_ * static_cast<double>(b - a));
+    const glm::dvec2 dn =
+        (normal_of(tangent_[b]) - normal_of(tangent_[a])) / (step_ * static_cast<double>(b - a));
     turn_[i] = glm::dot(dn, tangent_[i]);
   }
 }

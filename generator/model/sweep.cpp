@@ -13,7 +13,6 @@ namespace cutaway {
 
 namespace {
 
-
 /// Row-major grid of vertices; a row of one vertex is a pole.
 struct SweepGrid {
   std::vector<std::vector<glm::dvec3>> rows;
@@ -26,14 +25,12 @@ void check_vertex_budget(size_t rows, size_t cols, const SurfaceSpec& spec, cons
                          size_t max_vertices) {
   if (rows * cols > max_vertices) {
     const size_t taken = kMaxModelVertices - std::min(max_vertices, kMaxModelVertices);
-    throw InputError(t.edge_loc, "resolution.edge",
-                     "the edge length is too small: surface " + quoted(spec.name) +
-                         " would get at least " + std::to_string(rows * cols) +
-                         " vertices, and the model may have at most " +
-                         std::to_string(kMaxModelVertices) + " over all surfaces" +
-                         (taken > 0 ? " (" + std::to_string(taken) +
-                                          " taken by the surfaces before it)"
-                                    : ""));
+    throw InputError(
+        t.edge_loc, "resolution.edge",
+        "the edge length is too small: surface " + quoted(spec.name) + " would get at least " +
+            std::to_string(rows * cols) + " vertices, and the model may have at most " +
+            std::to_string(kMaxModelVertices) + " over all surfaces" +
+            (taken > 0 ? " (" + std::to_string(taken) + " taken by the surfaces before it)" : ""));
   }
 }
 
@@ -159,7 +156,7 @@ struct WithinRails {
   std::vector<double> tprof;  ///< arc-length parameter of each profile point
   size_t top = 0;             ///< index of the highest profile point
   Rail inner, outer;
-  double mean_length = 0;     ///< the rails' mean length, metres
+  double mean_length = 0;  ///< the rails' mean length, metres
 };
 
 WithinRails within_rails(const SurfaceSpec& spec) {
@@ -195,8 +192,8 @@ WithinRails within_rails(const SurfaceSpec& spec) {
     for (size_t i = 1; i < rail->y.size(); ++i) rail->y[i] = std::max(rail->y[i], rail->y[i - 1]);
     rail->s.assign(rail->y.size(), 0.0);
     for (size_t i = 1; i < rail->y.size(); ++i) {
-      rail->s[i] = rail->s[i - 1] + std::hypot(rail->y[i] - rail->y[i - 1],
-                                               rail->r[i] - rail->r[i - 1]);
+      rail->s[i] =
+          rail->s[i - 1] + std::hypot(rail->y[i] - rail->y[i - 1], rail->r[i] - rail->r[i - 1]);
     }
   }
   const double len_a = ra.s.back(), len_b = rb.s.back();
@@ -251,9 +248,8 @@ Polyline2 fold_frame_loop(const SurfaceSpec& spec, const Template& t, size_t k) 
     uw.push_back({rho * std::cos(rel), rho * std::sin(rel)});
   }
   if (signed_area(uw) < 0) std::reverse(uw.begin(), uw.end());
-  const auto start = std::max_element(uw.begin(), uw.end(), [](auto& a, auto& b) {
-    return a.x < b.x;
-  });
+  const auto start =
+      std::max_element(uw.begin(), uw.end(), [](auto& a, auto& b) { return a.x < b.x; });
   std::rotate(uw.begin(), start, uw.end());
   return uw;
 }
@@ -396,7 +392,8 @@ DsSurface sweep_within(const SurfaceSpec& spec, const Template& t, size_t max_ve
     frame_loops.push_back(std::move(uw));
   }
   const int m = segments_for(max_scaled_perimeter, edge, 8);
-  check_vertex_budget(static_cast<size_t>(n + 1) * t.folds, static_cast<size_t>(m), spec, t, max_vertices);
+  check_vertex_budget(static_cast<size_t>(n + 1) * t.folds, static_cast<size_t>(m), spec, t,
+                      max_vertices);
 
   DsSurface s;
   s.name = spec.name;

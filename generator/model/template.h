@@ -86,9 +86,8 @@ struct Gradient {
   /// gradient does not run along are ignored. Values beyond the first and last stops are clamped.
   T at(double t_profile, double t_section, double ripeness) const {
     if (along == GradientAxis::Ripeness) {
-      return blend_stops<T>(by_ripeness, ripeness, [&](const CurveGradient<T>& g) {
-        return g.at(t_profile, t_section);
-      });
+      return blend_stops<T>(by_ripeness, ripeness,
+                            [&](const CurveGradient<T>& g) { return g.at(t_profile, t_section); });
     }
     return CurveGradient<T>::value_at(along, stops, t_profile, t_section);
   }
@@ -114,9 +113,9 @@ struct MeshData {
   std::vector<std::array<int, 3>> triangles;
   /// #V per-vertex colours, linear RGB (the file's front_* and back_* properties), or empty
   std::vector<glm::dvec3> front, back;
-  std::vector<double> blur;  ///< #V per-vertex blur, template units (`blur`), or empty
-  bool closed = false;       ///< no edge has a triangle on one side only
-  double signed_volume6 = 0; ///< six times the signed volume: negative when wound inwards
+  std::vector<double> blur;   ///< #V per-vertex blur, template units (`blur`), or empty
+  bool closed = false;        ///< no edge has a triangle on one side only
+  double signed_volume6 = 0;  ///< six times the signed volume: negative when wound inwards
 };
 
 /// One diffusion surface of the template (doc/template-format.md, Surfaces).
@@ -150,19 +149,19 @@ struct SurfaceSpec {
 /// Grains scattered over a surface by Poisson-disc dart throwing (doc/template-format.md, Grains).
 struct GrainSpec {
   std::string name;
-  std::string on;                            ///< name of the surface they are scattered over
-  glm::dvec2 region_profile{0.0, 1.0};       ///< normalised arc-length range along the profile
-  glm::dvec2 region_section{0.0, 1.0};       ///< normalised arc-length range along the section
-  double spacing = 0.0;                      ///< Poisson-disc radius, metres
-  bool on_front = false;                     ///< side of `on` they sit on (default back)
-  double depth = 0.0;                        ///< centre distance from `on` towards the side, metres
-  glm::dvec3 semi_axes{0.0};                 ///< ellipsoid semi-axes (profile tangent, section
-                                             ///< tangent, normal), metres
-  glm::dvec3 front{0.0}, back{0.0};          ///< linear RGB
-  double blur = 0.0;                         ///< metres
+  std::string on;                       ///< name of the surface they are scattered over
+  glm::dvec2 region_profile{0.0, 1.0};  ///< normalised arc-length range along the profile
+  glm::dvec2 region_section{0.0, 1.0};  ///< normalised arc-length range along the section
+  double spacing = 0.0;                 ///< Poisson-disc radius, metres
+  bool on_front = false;                ///< side of `on` they sit on (default back)
+  double depth = 0.0;                   ///< centre distance from `on` towards the side, metres
+  glm::dvec3 semi_axes{0.0};            ///< ellipsoid semi-axes (profile tangent, section
+                                        ///< tangent, normal), metres
+  glm::dvec3 front{0.0}, back{0.0};     ///< linear RGB
+  double blur = 0.0;                    ///< metres
   glm::dvec2 material_front{0.6, 0.0}, material_back{0.6, 0.0};  ///< (roughness, translucency)
-  double jitter = 0.0;                       ///< relative variation of size and orientation, 0..1
-  FileLoc loc, spacing_loc, shape_loc;       ///< the item, its `spacing` and its `shape`
+  double jitter = 0.0;                  ///< relative variation of size and orientation, 0..1
+  FileLoc loc, spacing_loc, shape_loc;  ///< the item, its `spacing` and its `shape`
   std::string path;
 };
 
@@ -199,9 +198,9 @@ struct SkinPatternLayer {
   double softness = 0.2;   ///< 0..1: the blended share of the edge (of a stripe's half width
                            ///< or a speckle's radius)
   // Stripes: bands along the profile, `count` around the section.
-  int count = 0;           ///< stripes around the section, 1..256
-  double width = 0.5;      ///< share of each period a stripe covers, 0..1 exclusive
-  double wobble = 0.0;     ///< sideways waviness, in periods (0..1): Perlin noise along the skin
+  int count = 0;        ///< stripes around the section, 1..256
+  double width = 0.5;   ///< share of each period a stripe covers, 0..1 exclusive
+  double wobble = 0.0;  ///< sideways waviness, in periods (0..1): Perlin noise along the skin
   // Speckles: spots where spheres about jittered lattice points meet the skin. Net: lines
   // where the skin meets the walls between the cells of those points (a cantaloupe's netting).
   double spacing_m = 0.0;  ///< lattice spacing, metres
@@ -228,16 +227,16 @@ struct SpineSpec {
 struct Template {
   std::string name;
   std::string description;
-  std::string file;             ///< path it was read from
+  std::string file;  ///< path it was read from
   /// fnv1a64 of the file's bytes followed by each mesh surface's data (template_source_hash):
   /// what cut cache keys and batch fingerprints name the template by.
   uint64_t source_hash = 0;
   double metres_per_unit = 1e-3;
   Symmetry symmetry = Symmetry::Cylindrical;
-  int folds = 1;                      ///< N of an N-fold template; 1 otherwise
-  std::vector<double> fold_angles;    ///< radians, increasing, one per fold (nfold)
-  double edge_m = 0.0;                ///< target edge length of the surface meshes, metres
-  FileLoc edge_loc;                   ///< where `resolution.edge` is (the file start if absent)
+  int folds = 1;                    ///< N of an N-fold template; 1 otherwise
+  std::vector<double> fold_angles;  ///< radians, increasing, one per fold (nfold)
+  double edge_m = 0.0;              ///< target edge length of the surface meshes, metres
+  FileLoc edge_loc;                 ///< where `resolution.edge` is (the file start if absent)
   double variation_amount = 1.0;
   int variation_folds_min = 1, variation_folds_max = 1;
   /// The range variants draw their ripeness from (`variation.ripeness`, 0 <= x <= y <= 1), and
@@ -247,12 +246,12 @@ struct Template {
   double ripeness = 0.5;
   std::vector<SurfaceSpec> surfaces;
   std::vector<GrainSpec> grains;
-  SpineSpec spine;                    ///< the bent axis; no points: straight
+  SpineSpec spine;  ///< the bent axis; no points: straight
   /// The skin's pattern layers, in the order they are laid (the skin surface's `patterns`).
   std::vector<SkinPatternLayer> skin_patterns;
-  int skin = -1;                      ///< index of the surface with role skin (-1: none, only
-                                      ///< for symmetry none)
-  NprSettings npr;                    ///< NPR parameters (doc/template-format.md, NPR)
+  int skin = -1;    ///< index of the surface with role skin (-1: none, only
+                    ///< for symmetry none)
+  NprSettings npr;  ///< NPR parameters (doc/template-format.md, NPR)
   /// Materials (README, Templates: `materials`): the skin's outside (and the walls of
   /// hollows), and the cut faces. Absent: PbrMaterial{} for both, the look of templates
   /// written before them.

@@ -29,8 +29,9 @@ void check_distinct(const Polyline2& points, bool closed, const FileLoc& loc,
                     const std::string& field) {
   const size_t n = without_duplicates(points, closed).size();
   if (n < 3) {
-    fail_at(loc, field, "a curve needs at least 3 distinct points, not " + std::to_string(n) +
-                            (closed ? " (a closed curve's last point may repeat its first)" : ""));
+    fail_at(loc, field,
+            "a curve needs at least 3 distinct points, not " + std::to_string(n) +
+                (closed ? " (a closed curve's last point may repeat its first)" : ""));
   }
 }
 
@@ -68,8 +69,9 @@ void check_around(const SurfaceSpec& s) {
   const Polyline2 loop = fit_curve(s.section.loops[0], true, s.smooth);
   check_simple(loop, true, s.section.loc, sfield, s.smooth);
   if (winding_number(loop, {0, 0}) == 0) {
-    fail_at(s.section.loc, sfield, "an 'around' section loop must surround the axis (the point "
-                                   "[0, 0])");
+    fail_at(s.section.loc, sfield,
+            "an 'around' section loop must surround the axis (the point "
+            "[0, 0])");
   }
   // Star-shaped about the axis: the angle turns the same way at every step.
   int sign = 0;
@@ -117,8 +119,8 @@ void check_within(const SurfaceSpec& s, const Template& t) {
   }
   const std::string sfield = s.path + ".section";
   for (size_t k = 0; k < s.section.loops.size(); ++k) {
-    const std::string lf = s.section.loops.size() > 1 ? sfield + "[" + std::to_string(k) + "]"
-                                                      : sfield;
+    const std::string lf =
+        s.section.loops.size() > 1 ? sfield + "[" + std::to_string(k) + "]" : sfield;
     check_distinct(s.section.loops[k], true, s.section.loc, lf);
     const Polyline2 loop = fit_curve(s.section.loops[k], true, s.smooth);
     check_simple(loop, true, s.section.loc, lf, s.smooth);

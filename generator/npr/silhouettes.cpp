@@ -114,7 +114,7 @@ struct Topology {
   std::vector<uint32_t> representative;  // per welded id: one mesh vertex
   std::vector<glm::dvec3> face_normal;   // per triangle, unnormalised; zero when degenerate
   struct Edge {
-    uint32_t a, b;  // welded ids, a < b
+    uint32_t a, b;                    // welded ids, a < b
     uint32_t first_face, face_count;  // into edge_faces
   };
   std::vector<Edge> edges;
@@ -320,9 +320,9 @@ struct InstanceView {
 /// with options.structure_width the seams inside smooth surfaces (structure lines inside cut
 /// faces) in sight, into `structure`. An edge is in sight by the majority of its samples
 /// against `depth`; a long edge partly hidden is split into its runs in sight.
-void visible_feature_edges(const InstanceView& in, const DepthBuffer& depth,
-                           const Projection& proj, const StrokeOptions& options,
-                           StrokePoints& points, std::vector<FeatureEdge>& outlines,
+void visible_feature_edges(const InstanceView& in, const DepthBuffer& depth, const Projection& proj,
+                           const StrokeOptions& options, StrokePoints& points,
+                           std::vector<FeatureEdge>& outlines,
                            std::vector<FeatureEdge>& structure) {
   const AssetMesh& mesh = in.mesh;
   const Topology& topo = in.topo;
@@ -472,16 +472,14 @@ std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptio
                         std::to_string(height) + " is outside 1..16384");
   for (const AssetInstance& inst : assets.instances)
     if (inst.mesh < 0 || static_cast<size_t>(inst.mesh) >= assets.meshes.size())
-      throw InternalError("extract_strokes: instance '" + inst.name +
-                          "' has no valid mesh index");
+      throw InternalError("extract_strokes: instance '" + inst.name + "' has no valid mesh index");
   std::vector<Stroke> strokes;
   if (!(options.strength > 0)) return strokes;
 
   const Projection proj = make_projection(assets.camera, width, height);
   std::vector<std::vector<glm::dvec3>> pixels;
   const DepthBuffer depth = scene_depth(assets, proj, width, height, pixels);
-  const double base_width =
-      options.width_px > 0 ? options.width_px : std::max(1.5, height / 320.0);
+  const double base_width = options.width_px > 0 ? options.width_px : std::max(1.5, height / 320.0);
   std::unordered_map<int, Topology> topologies;  // per mesh index, built once
 
   for (size_t i = 0; i < assets.instances.size(); ++i) {
@@ -489,8 +487,7 @@ std::vector<Stroke> extract_strokes(const SceneAssets& assets, const StrokeOptio
     const AssetMesh& mesh = assets.meshes[static_cast<size_t>(inst.mesh)];
     if (mesh.triangle.empty()) continue;
     auto found = topologies.find(inst.mesh);
-    if (found == topologies.end())
-      found = topologies.emplace(inst.mesh, make_topology(mesh)).first;
+    if (found == topologies.end()) found = topologies.emplace(inst.mesh, make_topology(mesh)).first;
     const Topology& topo = found->second;
     // 2. Which triangles face the eye (in the mesh frame).
     InstanceView view{mesh, topo, pixels[i], std::vector<int8_t>(mesh.triangle.size(), 0)};

@@ -19,7 +19,7 @@ struct Stroke {
   std::vector<double> width_px;    ///< one per point: full width in pixels of the image the
                                    ///< strokes were extracted for (thin at both ends)
   glm::dvec3 colour{0.0};          ///< linear RGB
-  bool closed = false;  ///< the last point connects back to the first (not repeated)
+  bool closed = false;             ///< the last point connects back to the first (not repeated)
 };
 
 /// How extract_strokes() finds and shapes strokes.
@@ -36,9 +36,9 @@ struct StrokeOptions {
   double smoothing_shift_px = 1.5;  ///< the most a pass moves a point, pixels: smoothing takes
                                     ///< out the zigzag of mesh edges, not the corners of long
                                     ///< edges (a box's outline)
-  double darkening = 0.12;    ///< colour = darkening * mean colour of the faces along it
-  double structure_width = 0.6;  ///< width of structure lines (inside cut faces) relative to
-                                 ///< outlines; 0 turns them off
+  double darkening = 0.12;          ///< colour = darkening * mean colour of the faces along it
+  double structure_width = 0.6;     ///< width of structure lines (inside cut faces) relative to
+                                    ///< outlines; 0 turns them off
 };
 
 /// Extracts the strokes of `assets` as seen from `assets.camera` in an image of the options'

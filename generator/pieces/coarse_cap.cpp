@@ -46,10 +46,8 @@ void mark_nesting(Cdt& cdt) {
       for (int i = 0; i < 3; ++i) {
         Cdt::Face_handle n = f->neighbor(i);
         if (n->info() != -1) continue;
-        if (cdt.is_constrained({f, i}))
-          border.push_back({n, level + 1});
-        else
-          queue.push_back(n);
+        if (cdt.is_constrained({f, i})) border.push_back({n, level + 1});
+        else queue.push_back(n);
       }
     }
   }

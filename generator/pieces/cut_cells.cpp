@@ -32,7 +32,8 @@ namespace {
 std::vector<double> centred_positions(double lo, double hi, double spacing) {
   const int count = std::max(1, static_cast<int>(std::floor((hi - lo) / spacing)) - 1);
   std::vector<double> out;
-  for (int k = 0; k < count; ++k) out.push_back(0.5 * (lo + hi) + (k - 0.5 * (count - 1)) * spacing);
+  for (int k = 0; k < count; ++k)
+    out.push_back(0.5 * (lo + hi) + (k - 0.5 * (count - 1)) * spacing);
   return out;
 }
 
@@ -50,13 +51,11 @@ std::vector<std::vector<CellFace>> slabs(const std::vector<int>& planes) {
 
 }  // namespace
 
-CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min,
-                        const glm::dvec3& bbox_max, const BentAxis* bent_axis) {
+CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min, const glm::dvec3& bbox_max,
+                        const BentAxis* bent_axis) {
   CutCells out;
   switch (cut.type) {
-    case CutType::Whole:
-      out.cells.push_back({});
-      break;
+    case CutType::Whole: out.cells.push_back({}); break;
     case CutType::Halves:
     case CutType::Plane: {
       Plane p;

@@ -56,7 +56,7 @@ bool in_cell(const CutCells& cells, const Cell& cell, const glm::dvec3& x, int s
 ///   that overlaps the bounds.
 /// Deterministic order; a cell the object misses simply yields no piece (cut_pieces).
 /// @pre the lengths of `cut` are positive and finite; count >= 2 for wedges
-CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min,
-                        const glm::dvec3& bbox_max, const BentAxis* bent_axis = nullptr);
+CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min, const glm::dvec3& bbox_max,
+                        const BentAxis* bent_axis = nullptr);
 
 }  // namespace cutaway

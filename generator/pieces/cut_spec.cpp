@@ -66,18 +66,12 @@ std::string cut_label(const CutSpec& cut) {
     return s + "mm";
   };
   switch (cut.type) {
-    case CutType::Whole:
-      return "whole";
-    case CutType::Halves:
-      return "halves";
-    case CutType::Slices:
-      return "slices:" + mm(cut.thickness_m);
-    case CutType::Wedges:
-      return "wedges:" + std::to_string(cut.count);
-    case CutType::Dice:
-      return "dice:" + mm(cut.size_m);
-    case CutType::Plane:
-      return "plane";
+    case CutType::Whole: return "whole";
+    case CutType::Halves: return "halves";
+    case CutType::Slices: return "slices:" + mm(cut.thickness_m);
+    case CutType::Wedges: return "wedges:" + std::to_string(cut.count);
+    case CutType::Dice: return "dice:" + mm(cut.size_m);
+    case CutType::Plane: return "plane";
   }
   return "whole";
 }
@@ -86,8 +80,8 @@ std::string cut_exact_text(const CutSpec& cut) {
   char numbers[256];
   const Plane& p = cut.plane;
   std::snprintf(numbers, sizeof numbers, " %.17g %.17g %d %.17g %.17g %.17g %.17g %.17g %.17g",
-                cut.thickness_m, cut.size_m, cut.count, p.point.x, p.point.y, p.point.z,
-                p.normal.x, p.normal.y, p.normal.z);
+                cut.thickness_m, cut.size_m, cut.count, p.point.x, p.point.y, p.point.z, p.normal.x,
+                p.normal.y, p.normal.z);
   return cut_label(cut) + numbers;
 }
 

@@ -70,9 +70,8 @@ std::vector<std::array<unsigned, 3>> weld(const ShadedMesh& mesh, std::vector<gl
   std::sort(order.begin(), order.end());
   std::vector<size_t> first(corners);  // corner -> the first corner at its position
   for (size_t i = 0; i < corners; ++i)
-    first[order[i].corner] = i > 0 && order[i - 1].same_place(order[i])
-                                 ? first[order[i - 1].corner]
-                                 : order[i].corner;
+    first[order[i].corner] =
+        i > 0 && order[i - 1].same_place(order[i]) ? first[order[i - 1].corner] : order[i].corner;
   // Ids in the order of the first corners; a corner's first corner comes no later than itself.
   std::vector<unsigned> id(corners, 0);
   std::vector<std::array<unsigned, 3>> tris(mesh.triangle.size());
@@ -129,8 +128,10 @@ Check check_manifold(const ShadedMesh& mesh, double min_separation_m) {
     const unsigned start = fan[begin][1];
     unsigned a = start;
     do {
-      const auto it = std::lower_bound(
-          first, last, a, [](const std::array<unsigned, 3>& f, unsigned key) { return f[1] < key; });
+      const auto it =
+          std::lower_bound(first, last, a, [](const std::array<unsigned, 3>& f, unsigned key) {
+            return f[1] < key;
+          });
       broken = it == last || (*it)[1] != a;
       if (broken) break;
       a = (*it)[2];

@@ -178,8 +178,8 @@ PieceSet pieces_in_cells(const DsModel& model, const CutCells& cells,
       continue;
     // The hollow side faces out of the piece and shows the material side's colour.
     const bool hollow_back = !surface.visible_back;
-    sources.push_back({static_cast<int>(s), PartKind::Wall,
-                       shaded_surface(surface, hollow_back, hollow_back)});
+    sources.push_back(
+        {static_cast<int>(s), PartKind::Wall, shaded_surface(surface, hollow_back, hollow_back)});
   }
   std::vector<bool> has_cap(cells.cells.size(), false);
   for (size_t i = 0; i < planes; ++i) {
@@ -244,7 +244,7 @@ PieceSet pieces_in_cells(const DsModel& model, const CutCells& cells,
       if (!at_once) set.seconds_diffuse += section.seconds_diffuse;
       set.sections.push_back(std::move(section));
     } else {
-      set.sections.push_back(CrossSection{});  // no cap on this plane: it misses the object,
+      set.sections.push_back(CrossSection{});       // no cap on this plane: it misses the object,
       set.sections.back().plane = cells.planes[i];  // or no kept piece has one there
     }
   }
@@ -289,8 +289,7 @@ Outcome<PieceSet> cut_pieces(const DsModel& model, const CutSpec& cut,
     PieceSet next = pieces_in_cells(model, moved, diffusion, options);
     const auto check_start = std::chrono::steady_clock::now();
     for (const Piece& piece : next.pieces)
-      if (!check_manifold(merge_parts(piece), kMinVertexSeparation_m))
-        ++next.defective_pieces;
+      if (!check_manifold(merge_parts(piece), kMinVertexSeparation_m)) ++next.defective_pieces;
     next.seconds_clip += seconds_since(check_start);
     // Totals over all attempts.
     next.seconds_sections += set.seconds_sections;
@@ -316,10 +315,8 @@ ShadedMesh merge_parts(const Piece& piece) {
     out.normal.insert(out.normal.end(), part.mesh.normal.begin(), part.mesh.normal.end());
     out.colour.insert(out.colour.end(), part.mesh.colour.begin(), part.mesh.colour.end());
     out.material.insert(out.material.end(), part.mesh.material.begin(), part.mesh.material.end());
-    if (part.mesh.param.empty())
-      out.param.resize(out.position.size(), glm::dvec2(0.0));
-    else
-      out.param.insert(out.param.end(), part.mesh.param.begin(), part.mesh.param.end());
+    if (part.mesh.param.empty()) out.param.resize(out.position.size(), glm::dvec2(0.0));
+    else out.param.insert(out.param.end(), part.mesh.param.begin(), part.mesh.param.end());
     for (const glm::uvec3& t : part.mesh.triangle) out.triangle.push_back(t + base);
   }
   return out;
@@ -333,8 +330,7 @@ std::vector<unsigned> part_vertex_offsets(const Piece& piece) {
 }
 
 const PiecePart* skin_part(const Piece& piece) {
-  return !piece.parts.empty() && piece.parts[0].kind == PartKind::Skin ? &piece.parts[0]
-                                                                         : nullptr;
+  return !piece.parts.empty() && piece.parts[0].kind == PartKind::Skin ? &piece.parts[0] : nullptr;
 }
 
 size_t surface_triangle_count(const Piece& piece) {

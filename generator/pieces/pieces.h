@@ -68,7 +68,7 @@ constexpr double kMinVertexSeparation_m = 1e-9;
 
 /// The pieces of one cut object and what making them cost.
 struct PieceSet {
-  CutCells cells;                      ///< as cut: the planes moved by the last attempt's nudge
+  CutCells cells;  ///< as cut: the planes moved by the last attempt's nudge
   /// The kept pieces (PieceOptions::keep_pieces), in cell order; cells the object misses give
   /// none.
   std::vector<Piece> pieces;
@@ -81,7 +81,7 @@ struct PieceSet {
   /// time of the backend's calls; one cap at a time, the caps' own seconds_diffuse, which
   /// include adaptive sampling's interpolation.
   double seconds_diffuse = 0;
-  double seconds_clip = 0;             ///< clipping, stitching and checking
+  double seconds_clip = 0;  ///< clipping, stitching and checking
   // Counts and times are totals over all attempts.
   int attempts = 1;             ///< cuts made (1 unless the first was near-degenerate)
   size_t defective_pieces = 0;  ///< pieces of the last attempt that fail check_manifold (0
@@ -93,17 +93,18 @@ struct PieceSet {
 /// cross-sectioned once, with the lines of all other planes as extra constraints (so the two
 /// caps on either side of a cut are mirror images with equal colours), keeping only triangles
 /// that some cell uses; the planes are meshed first, which cells hold a piece is decided, and
-/// only triangles that a kept piece uses are coloured (PieceOptions::keep_pieces). Surfaces that are hollow on one side (visible_front or visible_back
-/// false, not the skin) are the walls of hollow regions: clipped and shown with the colour of
-/// their other side, facing the hollow. Grains and other structure surfaces only colour the
-/// caps. The planes are first put in general position (kVertexClearance). Every piece is checked
-/// with check_manifold (kMinVertexSeparation_m); when a kept one fails (a near-degenerate configuration:
-/// a surface edge passing nanometres from the line where two cutting planes meet, so that the two
-/// caps' seams cannot agree), the whole cut is redone with its planes nudged (kMaxCutAttempts; in
-/// the spirit of symbolic perturbation, but with real sub-micrometre moves). The caps of the
-/// planes are meshed on diffusion.threads() threads and coloured at once, on as many threads
-/// (up to 32 when it is 0) that take them in turn, their diffusions in shared batches (shared_batches.h); one at a time when it
-/// is 1. Deterministic: the result does not depend on the thread count.
+/// only triangles that a kept piece uses are coloured (PieceOptions::keep_pieces). Surfaces that
+/// are hollow on one side (visible_front or visible_back false, not the skin) are the walls of
+/// hollow regions: clipped and shown with the colour of their other side, facing the hollow. Grains
+/// and other structure surfaces only colour the caps. The planes are first put in general position
+/// (kVertexClearance). Every piece is checked with check_manifold (kMinVertexSeparation_m); when a
+/// kept one fails (a near-degenerate configuration: a surface edge passing nanometres from the line
+/// where two cutting planes meet, so that the two caps' seams cannot agree), the whole cut is
+/// redone with its planes nudged (kMaxCutAttempts; in the spirit of symbolic perturbation, but with
+/// real sub-micrometre moves). The caps of the planes are meshed on diffusion.threads() threads and
+/// coloured at once, on as many threads (up to 32 when it is 0) that take them in turn, their
+/// diffusions in shared batches (shared_batches.h); one at a time when it is 1. Deterministic: the
+/// result does not depend on the thread count.
 /// @param model  its skin (surfaces[0]) closed and outward
 /// @returns the pieces, or none (an expected outcome): kCutMisses when the cut misses the
 ///          object entirely (no piece), kPlaneMisses (cross_section.h) when a `plane` cut leaves

@@ -196,8 +196,8 @@ void split_triangle(ShadedMesh& mesh, size_t f, const EdgeInserts& edges, Stitch
 
 /// Step 2: inserts other parts' boundary vertices into the boundary edges they lie on (within
 /// the tolerance, strictly inside the edge), splitting those edges' triangles.
-void insert_seam_vertices(std::vector<ShadedMesh*>& parts, double tolerance_m,
-                          const Boundaries& b, StitchStats& stats) {
+void insert_seam_vertices(std::vector<ShadedMesh*>& parts, double tolerance_m, const Boundaries& b,
+                          StitchStats& stats) {
   const std::vector<BoundaryVertex>& all = b.all;
   PointGrid grid(b.cell);
   for (size_t i = 0; i < all.size(); ++i) grid.add(parts[all[i].part]->position[all[i].vertex], i);

@@ -13,8 +13,8 @@ namespace cutaway {
 
 /// Counts of what stitch_seams changed.
 struct StitchStats {
-  size_t snapped = 0;  ///< boundary vertices moved onto another part's boundary vertex
-  size_t inserted = 0; ///< vertices inserted into boundary edges (T-junctions resolved)
+  size_t snapped = 0;   ///< boundary vertices moved onto another part's boundary vertex
+  size_t inserted = 0;  ///< vertices inserted into boundary edges (T-junctions resolved)
 };
 
 /// Makes the boundaries of `parts` meet vertex to vertex:

@@ -46,7 +46,8 @@ void remove_unused_vertices(ShadedMesh& mesh) {
   ShadedMesh out;
   for (unsigned i = 0; i < mesh.position.size(); ++i)
     if (remap[i] == 0) remap[i] = copy_vertex(mesh, i, out);
-  for (glm::uvec3 t : mesh.triangle) out.triangle.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
+  for (glm::uvec3 t : mesh.triangle)
+    out.triangle.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
   mesh = std::move(out);
 }
 
@@ -58,8 +59,7 @@ void flip(ShadedMesh& mesh) {
 double signed_volume(const ShadedMesh& mesh) {
   double six_v = 0;
   for (const glm::uvec3& t : mesh.triangle) {
-    six_v += glm::dot(mesh.position[t[0]],
-                      glm::cross(mesh.position[t[1]], mesh.position[t[2]]));
+    six_v += glm::dot(mesh.position[t[0]], glm::cross(mesh.position[t[1]], mesh.position[t[2]]));
   }
   return six_v / 6;
 }

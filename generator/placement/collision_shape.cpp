@@ -175,7 +175,8 @@ std::pair<std::vector<glm::dvec3>, double> convex_hull(const std::vector<glm::dv
   for (const Facets::Facet& f : h.facets) {
     for (size_t k = 1; k + 1 < f.loop.size(); ++k)
       volume += glm::dot(h.corners[f.loop[0]],
-                         glm::cross(h.corners[f.loop[k]], h.corners[f.loop[k + 1]])) / 6;
+                         glm::cross(h.corners[f.loop[k]], h.corners[f.loop[k + 1]])) /
+                6;
   }
   return {h.corners, volume};
 }
@@ -336,10 +337,11 @@ ConvexPart reduce(const std::vector<glm::dvec3>& points, const CollisionShapeOpt
     }
   }
   const std::vector<glm::dvec3> corners = convex_hull([&] {
-    std::vector<glm::dvec3> c;
-    for (size_t k : chosen) c.push_back(points[k]);
-    return c;
-  }()).first;
+                                            std::vector<glm::dvec3> c;
+                                            for (size_t k : chosen) c.push_back(points[k]);
+                                            return c;
+                                          }())
+                                              .first;
   const double outside = outside_distance(points, corners);
   part.corners = outside > 0 ? inflate(corners, outside) : corners;
   part.outside_m = outside > 0 ? outside_distance(points, part.corners) : 0;
@@ -359,7 +361,8 @@ std::vector<ConvexPart> decompose(const Welded& w, const CollisionShapeOptions& 
   std::vector<unsigned> indices;
   for (const auto& t : w.triangle) indices.insert(indices.end(), t.begin(), t.end());
   std::vector<unsigned> simple(indices.size());
-  const size_t target = std::min(indices.size(), static_cast<size_t>(3 * o.decomposition_triangles));
+  const size_t target =
+      std::min(indices.size(), static_cast<size_t>(3 * o.decomposition_triangles));
   simple.resize(meshopt_simplify(simple.data(), indices.data(), indices.size(), xyz.data(),
                                  w.point.size(), 3 * sizeof(float), target, 0.02f, 0, nullptr));
   if (simple.size() < 12) return {};
@@ -503,8 +506,7 @@ std::vector<CollisionShape> collision_shapes(const std::vector<ShadedMesh>& mesh
         }
       },
       oneapi::tbb::simple_partitioner());
-  if (processor_seconds)
-    *processor_seconds = std::accumulate(seconds.begin(), seconds.end(), 0.0);
+  if (processor_seconds) *processor_seconds = std::accumulate(seconds.begin(), seconds.end(), 0.0);
   return shapes;
 }
 

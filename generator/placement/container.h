@@ -20,10 +20,10 @@ enum class ContainerType { Bowl, Plate, Board, None };
 /// box (width along X, depth along Z, height). Metres.
 struct Container {
   ContainerType type = ContainerType::None;
-  double diameter_m = 0;  ///< bowl, plate: outer rim diameter
-  double width_m = 0;     ///< board: along X
-  double depth_m = 0;     ///< board: along Z
-  double height_m = 0;    ///< bowl, plate, board: total height
+  double diameter_m = 0;             ///< bowl, plate: outer rim diameter
+  double width_m = 0;                ///< board: along X
+  double depth_m = 0;                ///< board: along Z
+  double height_m = 0;               ///< bowl, plate, board: total height
   glm::dvec3 colour{0.9, 0.9, 0.9};  ///< linear RGB
 };
 

@@ -47,7 +47,8 @@ AssetMesh lathe(const std::vector<glm::dvec2>& profile, const std::vector<glm::d
       const double a = 2 * kPi * k / segments;
       const double c = std::cos(a), s = -std::sin(a);
       mesh.position.push_back({profile[i].x * c, profile[i].y, profile[i].x * s});
-      mesh.normal.push_back(glm::normalize(glm::dvec3(normals[i].x * c, normals[i].y, normals[i].x * s)));
+      mesh.normal.push_back(
+          glm::normalize(glm::dvec3(normals[i].x * c, normals[i].y, normals[i].x * s)));
       mesh.colour.push_back(colour);
     }
   }
@@ -116,8 +117,7 @@ std::optional<AssetMesh> container_mesh(const Container& c, int segments, int pr
   std::vector<glm::dvec2> pts, nrm;
   const double R = 0.5 * c.diameter_m, H = c.height_m;
   switch (c.type) {
-    case ContainerType::None:
-      return std::nullopt;
+    case ContainerType::None: return std::nullopt;
     case ContainerType::Board: {
       AssetMesh mesh = box_mesh({-0.5 * c.width_m, 0, -0.5 * c.depth_m},
                                 {0.5 * c.width_m, H, 0.5 * c.depth_m}, c.colour);
@@ -192,8 +192,7 @@ std::optional<double> rest_height(const Container& c, double x, double z, double
     case ContainerType::None:
       if (r > none_radius_m) return std::nullopt;
       return 0.0;
-    case ContainerType::Board:
-      break;
+    case ContainerType::Board: break;
     case ContainerType::Bowl:
       if (r >= 0.5 * c.diameter_m - bowl_wall(c)) return std::nullopt;
       return bowl_inner(c, r);
@@ -208,8 +207,7 @@ double heap_capacity(const Container& c, double none_radius_m) {
   // A cone of slope kHeapSlope over a disc of radius r.
   const auto cone = [](double r) { return kPi * r * r * (kHeapSlope * r) / 3; };
   switch (c.type) {
-    case ContainerType::None:
-      return cone(none_radius_m);
+    case ContainerType::None: return cone(none_radius_m);
     case ContainerType::Board: {
       // A hip roof over W x D (W >= D): ridge height h = D/2 slope, volume h D (3 W - D) / 6.
       const double w = std::max(c.width_m, c.depth_m), d = std::min(c.width_m, c.depth_m);
@@ -219,22 +217,17 @@ double heap_capacity(const Container& c, double none_radius_m) {
       const double a = 0.5 * c.diameter_m - bowl_wall(c);
       return 2.0 / 3.0 * kPi * a * a * (c.height_m - bowl_floor(c)) + cone(a);
     }
-    case ContainerType::Plate:
-      return cone(0.5 * c.diameter_m);
+    case ContainerType::Plate: return cone(0.5 * c.diameter_m);
   }
   return cone(none_radius_m);
 }
 
 double rest_radius(const Container& c, double none_radius_m) {
   switch (c.type) {
-    case ContainerType::None:
-      return none_radius_m;
-    case ContainerType::Board:
-      return 0.5 * std::hypot(c.width_m, c.depth_m);
-    case ContainerType::Bowl:
-      return 0.5 * c.diameter_m - bowl_wall(c);
-    case ContainerType::Plate:
-      return 0.5 * c.diameter_m;
+    case ContainerType::None: return none_radius_m;
+    case ContainerType::Board: return 0.5 * std::hypot(c.width_m, c.depth_m);
+    case ContainerType::Bowl: return 0.5 * c.diameter_m - bowl_wall(c);
+    case ContainerType::Plate: return 0.5 * c.diameter_m;
   }
   return none_radius_m;
 }

@@ -88,10 +88,8 @@ void OrderedDispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairs,
   for (int i = 0; i < count; ++i) {
     std::vector<Change>& changes = changes_[static_cast<size_t>(i)];
     for (const Change& c : changes) {
-      if (c.made)
-        append(c.manifold);
-      else
-        btCollisionDispatcher::releaseManifold(c.manifold);
+      if (c.made) append(c.manifold);
+      else btCollisionDispatcher::releaseManifold(c.manifold);
     }
     changes.clear();
   }

@@ -27,9 +27,7 @@ btVector3 to_bt(const glm::dvec3& p) {
                    static_cast<btScalar>(p.z * kUnitsPerMetre));
 }
 
-glm::dvec3 from_bt(const btVector3& v) {
-  return glm::dvec3(v.x(), v.y(), v.z()) / kUnitsPerMetre;
-}
+glm::dvec3 from_bt(const btVector3& v) { return glm::dvec3(v.x(), v.y(), v.z()) / kUnitsPerMetre; }
 
 /// The centre of mass of body `b` placed at the object-frame pose `pose` (metres).
 glm::dvec3 centre_of_mass(const SettleBody& b, const Placement& pose) {
@@ -144,8 +142,7 @@ class World {
     auto body = std::make_unique<btRigidBody>(info);
     // Friction anchors: a contact point that sticks keeps its place on both bodies instead of
     // being found again every step.
-    body->setCollisionFlags(body->getCollisionFlags() |
-                            btCollisionObject::CF_HAS_FRICTION_ANCHOR);
+    body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_HAS_FRICTION_ANCHOR);
     body->setWorldTransform(transform(b, pose));
     shapes_.push_back(std::move(shape));
     world_->addRigidBody(body.get());
@@ -279,8 +276,7 @@ class World {
     info.m_friction = static_cast<btScalar>(options_.friction);
     info.m_startWorldTransform.setOrigin(origin);
     auto body = std::make_unique<btRigidBody>(info);
-    body->setCollisionFlags(body->getCollisionFlags() |
-                            btCollisionObject::CF_HAS_FRICTION_ANCHOR);
+    body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_HAS_FRICTION_ANCHOR);
     world_->addRigidBody(body.get());
     shapes_.push_back(std::move(shape));
     statics_.push_back(std::move(body));
@@ -319,8 +315,8 @@ double body_motion(const SettleBody& body, const Placement& a, const Placement& 
   if (!a.placed || !b.placed) return moved;
   for (const ConvexPart& part : body.shape->parts) {
     for (const glm::dvec3& p : part.corners) {
-      moved = std::max(moved, glm::length((a.translation + a.rotation * p) -
-                                          (b.translation + b.rotation * p)));
+      moved = std::max(
+          moved, glm::length((a.translation + a.rotation * p) - (b.translation + b.rotation * p)));
     }
   }
   return moved;
@@ -337,8 +333,7 @@ double largest_motion(const std::vector<SettleBody>& bodies, const std::vector<P
 
 /// Whether a piece with centre of mass `c` lies in the container: over its resting area, above
 /// the table and below `ceiling` (higher, a failed simulation step has thrown it).
-bool inside(const Container& container, const glm::dvec3& c, double ceiling,
-            double none_radius_m) {
+bool inside(const Container& container, const glm::dvec3& c, double ceiling, double none_radius_m) {
   return all_finite(c) && c.y > 0 && c.y < ceiling &&
          rest_height(container, c.x, c.z, none_radius_m).has_value();
 }
@@ -437,9 +432,8 @@ void settle_world(World& world, const std::vector<SettleBody>& bodies, std::vect
 /// every body that moved at most options.check_motion_m since, unless its bounds come within
 /// options.resettle_gap_m of those of a body that moved more. The settling that follows then
 /// moves only where the check found motion.
-void pin_resting(World& world, const std::vector<SettleBody>& bodies,
-                 const std::vector<size_t>& id, const std::vector<Placement>& checked,
-                 const SettleOptions& options) {
+void pin_resting(World& world, const std::vector<SettleBody>& bodies, const std::vector<size_t>& id,
+                 const std::vector<Placement>& checked, const SettleOptions& options) {
   const std::vector<Placement> now = world.poses(bodies, id);
   std::vector<std::pair<glm::dvec3, glm::dvec3>> moved;  // their bounds
   std::vector<bool> rested(bodies.size(), false);

@@ -55,16 +55,16 @@ struct SettleOptions {
   /// market stall's steadiest check moved 0.88 mm that way, 0.71 mm this way, in half the time;
   /// a heap of 160 pieces ended at 2.66 mm, now 0.48 mm, one of 320 at 4.13 mm, now 1.33 mm.
   double resettle_gap_m = 0.002;
-  double friction = 0.8;           ///< Coulomb friction (piece on piece and on the container)
+  double friction = 0.8;  ///< Coulomb friction (piece on piece and on the container)
   /// Rolling (and spinning) resistance, metres: soft produce flattens where it rests, and the
   /// contact patch resists rolling with a torque up to this x the normal force. Without it a
   /// rounded avocado half rolled 0.5 mm a second on the flat board for three stability checks;
   /// with 0.5 mm it rests after one.
   double rolling_friction_m = 0.0005;
-  double linear_damping = 0.2;     ///< fraction of velocity lost per second
+  double linear_damping = 0.2;  ///< fraction of velocity lost per second
   double angular_damping = 0.5;
-  double sleep_speed_m_s = 0.005;      ///< a body below this speed ...
-  double sleep_spin_rad_s = 0.15;      ///< ... and this spin for 2 s sleeps (Bullet's rule)
+  double sleep_speed_m_s = 0.005;  ///< a body below this speed ...
+  double sleep_spin_rad_s = 0.15;  ///< ... and this spin for 2 s sleeps (Bullet's rule)
   /// The layout is at rest when every body sleeps or no corner of any body's collision shape
   /// moved more than this in the last quarter second (checked every quarter second), metres.
   double rest_motion_m = 0.00015;
@@ -82,8 +82,8 @@ struct SettleOptions {
   /// along each profile curve (the exported mesh has 96 and 40). Its chords lie on the open
   /// side of the exported surface: on a 26 cm bowl at most 0.6 mm above it.
   int container_segments = 32, container_profile_samples = 12;
-  int max_redrops = 3;             ///< drops again of a piece that left the container
-  double none_radius_m = 0.2;      ///< resting radius on the floor (container type none)
+  int max_redrops = 3;         ///< drops again of a piece that left the container
+  double none_radius_m = 0.2;  ///< resting radius on the floor (container type none)
 };
 
 /// What settle_pieces did.
@@ -100,13 +100,13 @@ struct SettleResult {
   /// The stability check of `placements`: how far the farthest corner of any body's collision
   /// shape moved in verify_seconds simulated from rest in a new world (metres).
   double stability_motion_m = 0;
-  bool stable = false;      ///< stability_motion_m <= stable_motion_m
-  int verify_rounds = 0;    ///< stability checks run (a failed one is followed by settling)
+  bool stable = false;    ///< stability_motion_m <= stable_motion_m
+  int verify_rounds = 0;  ///< stability checks run (a failed one is followed by settling)
   /// The check whose starting layout `placements` is: the last one, unless it did not pass
   /// (check_motion_m) and an earlier one moved less while within stable_motion_m.
   int kept_round = 0;
-  int redrops = 0;          ///< drops again of pieces that had left the container
-  int lost = 0;             ///< pieces still outside after max_redrops drops again
+  int redrops = 0;  ///< drops again of pieces that had left the container
+  int lost = 0;     ///< pieces still outside after max_redrops drops again
 };
 
 /// Settles `bodies` from their drop poses in `container` and checks that the result is at rest

@@ -501,8 +501,7 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
   const bool side_by_side = container.type != ContainerType::Board;
   std::vector<glm::dvec2> scattered;  // where the scattered pieces went
   const int gap = static_cast<int>(std::ceil(options.scatter_gap_m / options.cell_m));
-  const int step =
-      std::max(1, static_cast<int>(std::lround(options.scan_step_m / options.cell_m)));
+  const int step = std::max(1, static_cast<int>(std::lround(options.scan_step_m / options.cell_m)));
   for (size_t p = 0; p < pieces.size(); ++p) {
     const LayoutPiece& piece = pieces[p];
     if (piece.arrange == Arrangement::Fan && out[p].placed) continue;
@@ -511,8 +510,8 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
     // Pile pieces heap from the start; scattered ones once no free ground is left, and the
     // pieces of a fan row that fitted nowhere, as a real board or plate heaps up.
     bool heap = piece.arrange != Arrangement::Scatter;
-    const double centre_weight = piece.arrange == Arrangement::Pile ? options.centre_weight
-                                                                    : options.heap_centre_weight;
+    const double centre_weight =
+        piece.arrange == Arrangement::Pile ? options.centre_weight : options.heap_centre_weight;
     double best_score = kBlocked, best_y = 0;
     int best_i = -1, best_j = -1;
     // A position for the piece at cell (i, j), scored: heaped, the lowest near the axis;

@@ -38,22 +38,22 @@ inline constexpr int kMaxLayoutCells = 2048;
 
 /// Options of layout_pieces.
 struct LayoutOptions {
-  double cell_m = 0.001;           ///< height-field cell edge, metres (at least; see kMaxLayoutCells)
-  int candidates = 64;             ///< random positions tried per piece
-  double clearance_m = 0.001;      ///< gap left under each drop pose (clear of the bodies' margins), m
-  double centre_weight = 0.25;     ///< score = rest height + centre_weight * distance to the axis
+  double cell_m = 0.001;        ///< height-field cell edge, metres (at least; see kMaxLayoutCells)
+  int candidates = 64;          ///< random positions tried per piece
+  double clearance_m = 0.001;   ///< gap left under each drop pose (clear of the bodies' margins), m
+  double centre_weight = 0.25;  ///< score = rest height + centre_weight * distance to the axis
   /// The same for scattered and fanned pieces that heap (no free ground left): nearly the
   /// lowest anywhere, so that a crowded board fills its low gaps before a heap rises
   double heap_centre_weight = 0.02;
   glm::dvec3 to_camera{0, 0.7, 0.7};  ///< direction from the scene towards the camera
-  double none_radius_m = 0.2;      ///< resting radius on the floor (container type none)
-  double tilt_deg = 12;            ///< random tilt of each piece's facing direction, degrees
-  double fan_tilt_deg = 18;        ///< fan: how far each piece's cap leans along the row, degrees
-  double fan_step = 0.5;           ///< fan: advance per piece, fraction of its length in the row
-  int fan_headings = 12;           ///< fan: row directions tried, evenly spaced from a seeded one
-  int fan_min_row = 3;             ///< fan: a row that fits nowhere splits while halves keep this
-  double scatter_gap_m = 0.008;    ///< scatter: free ground kept around each piece, metres
-  double scan_step_m = 0.004;      ///< scatter without a gap: the grid of positions scanned, m
+  double none_radius_m = 0.2;         ///< resting radius on the floor (container type none)
+  double tilt_deg = 12;               ///< random tilt of each piece's facing direction, degrees
+  double fan_tilt_deg = 18;      ///< fan: how far each piece's cap leans along the row, degrees
+  double fan_step = 0.5;         ///< fan: advance per piece, fraction of its length in the row
+  int fan_headings = 12;         ///< fan: row directions tried, evenly spaced from a seeded one
+  int fan_min_row = 3;           ///< fan: a row that fits nowhere splits while halves keep this
+  double scatter_gap_m = 0.008;  ///< scatter: free ground kept around each piece, metres
+  double scan_step_m = 0.004;    ///< scatter without a gap: the grid of positions scanned, m
 };
 
 /// Where one piece goes: scene point = translation + rotation * (object-frame point).
@@ -64,11 +64,11 @@ struct Placement {
 };
 
 /// Places `pieces`: first the fan rows (by group: an end of the object, the slices in rank
-/// order, the other end), then the others in the given order. Every piece is turned, then put at the lowest
-/// height where every vertex is above the container's resting surface (exact for its convex
-/// surfaces) and its footprint (per cell: its lowest and highest surface points over the cell)
-/// clears the height field of the pieces before it by clearance_m; the height field then rises
-/// to the piece's top.
+/// order, the other end), then the others in the given order. Every piece is turned, then put at
+/// the lowest height where every vertex is above the container's resting surface (exact for its
+/// convex surfaces) and its footprint (per cell: its lowest and highest surface points over the
+/// cell) clears the height field of the pieces before it by clearance_m; the height field then
+/// rises to the piece's top.
 /// - pile: the largest cap faces halfway between up and `to_camera` (taken no lower than the
 ///   horizon, so a camera below the container gives caps facing up; a whole object stands
 ///   upright), tilted by up to tilt_deg and spun at random; of `candidates` random positions

@@ -34,18 +34,18 @@ struct SceneItem {
   /// The parsed template (load_scene reads each file once; items naming it share it), null
   /// after parse_scene alone
   std::shared_ptr<const Template> tmpl;
-  int count = 1;              ///< whole objects, >= 1
-  CutSpec cut;                ///< lengths already in metres
-  double keep = 1.0;          ///< fraction of the pieces placed, in (0, 1]
-  double variation = 1.0;     ///< scales the template's variation amount, >= 0
+  int count = 1;           ///< whole objects, >= 1
+  CutSpec cut;             ///< lengths already in metres
+  double keep = 1.0;       ///< fraction of the pieces placed, in (0, 1]
+  double variation = 1.0;  ///< scales the template's variation amount, >= 0
   /// Its `arrange`, else the scene's, else the container's default (scatter on a board or on
   /// the floor, pile in a bowl or on a plate).
   Arrangement arrange = Arrangement::Pile;
   /// Upper bound of one object's cut-face area, m^2 (estimate_cut_area; set by load_scene,
   /// 0 when the templates were not read)
   double cut_area_m2 = 0;
-  FileLoc loc;                ///< where the item is written
-  std::string path;           ///< field path prefix for errors, e.g. "items[2]"
+  FileLoc loc;       ///< where the item is written
+  std::string path;  ///< field path prefix for errors, e.g. "items[2]"
 };
 
 /// A camera given in the scene file (metres, scene frame: +Y up, the container's base at y = 0).
@@ -57,8 +57,8 @@ struct SceneCamera {
 /// Output settings of the scene file's `render` block.
 struct RenderSettings {
   int width = 1280, height = 960;  ///< pixels
-  double perlin = 1.0;       ///< NPR Perlin colour modulation strength, 0 turns it off
-  double silhouettes = 1.0;  ///< NPR silhouette stroke strength, 0 turns them off
+  double perlin = 1.0;             ///< NPR Perlin colour modulation strength, 0 turns it off
+  double silhouettes = 1.0;        ///< NPR silhouette stroke strength, 0 turns them off
   /// Texel density of the baked cut-face textures, texels per millimetre (0.1..100): about
   /// twice the pixels per millimetre the closest cut face gets in the pictures wanted.
   double texels_per_mm = 8.6;
@@ -67,8 +67,8 @@ struct RenderSettings {
 /// A whole parsed, validated scene.
 struct Scene {
   std::string name;
-  std::string file;             ///< path it was read from
-  uint64_t seed = 0;            ///< default seed (the command line's --seed overrides it)
+  std::string file;   ///< path it was read from
+  uint64_t seed = 0;  ///< default seed (the command line's --seed overrides it)
   double metres_per_unit = 1e-3;
   Container container;
   std::vector<SceneItem> items;

@@ -19,8 +19,7 @@ long long check_scene_model_vertices(const Scene& scene, const ModelVisitor& eac
   std::vector<const SceneItem*> first_item;
   for (const SceneItem& item : scene.items) {
     CUTAWAY_CHECK(item.tmpl);  // load_scene read it
-    if (index_of.emplace(item.template_path, first_item.size()).second)
-      first_item.push_back(&item);
+    if (index_of.emplace(item.template_path, first_item.size()).second) first_item.push_back(&item);
   }
   std::vector<std::optional<DsModel>> models(first_item.size());
   std::vector<std::exception_ptr> failed(first_item.size());
@@ -44,8 +43,7 @@ long long check_scene_model_vertices(const Scene& scene, const ModelVisitor& eac
     if (total > kMaxSceneModelVertices) {
       throw InputError(item.loc, item.path + ".count",
                        "the objects up to here have " + std::to_string(total) +
-                           " DS-model vertices (at most " +
-                           std::to_string(kMaxSceneModelVertices) +
+                           " DS-model vertices (at most " + std::to_string(kMaxSceneModelVertices) +
                            " in a scene): fewer objects, or coarser templates");
     }
   }

@@ -75,8 +75,8 @@ struct ScenePieces {
   std::vector<double> densities;      // kg/m^3
   std::vector<PieceInfo> infos;
   std::vector<CollisionShape> collision;
-  std::vector<std::string> cut_keys;   // per object: its cut_cache_key
-  std::vector<Arrangement> arrange;    // per object
+  std::vector<std::string> cut_keys;  // per object: its cut_cache_key
+  std::vector<Arrangement> arrange;   // per object
 };
 
 /// The options of cut_object() for object `j` of item `i`.
@@ -135,8 +135,8 @@ CutEntry make_object_entry(const Template& tmpl, const ObjectJob& job,
         const auto t_backend = Clock::now();
         const std::unique_ptr<DiffusionBackend> diffusion = options.diffusion(variant.model);
         st.seconds_backend += seconds_since(t_backend);
-        return CutPieces(std::move(*cut_object(own, variant, job.variant_seed, materials,
-                                               job.name, *diffusion, job.cut, st)));
+        return CutPieces(std::move(*cut_object(own, variant, job.variant_seed, materials, job.name,
+                                               *diffusion, job.cut, st)));
       });
   st.seconds_collision += entry.seconds_collision;
   return entry;
@@ -161,8 +161,8 @@ void add_object(const Scene& scene, const std::vector<Template>& templates, cons
   for (size_t q = 0; q < p.meshes.size(); ++q) {
     out.meshes.push_back(std::move(p.meshes[q]));
     out.shapes.push_back(std::move(p.shapes[q]));
-    out.arranged.push_back({nullptr, p.cap_normals[q], item.arrange, st.objects,
-                            p.infos[q].cell, p.cut_faces[q]});
+    out.arranged.push_back(
+        {nullptr, p.cap_normals[q], item.arrange, st.objects, p.infos[q].cell, p.cut_faces[q]});
     out.densities.push_back(tmpl.density_kg_m3);
     out.infos.push_back(std::move(p.infos[q]));
     out.collision.push_back(std::move(made.collision[q]));
@@ -195,8 +195,12 @@ ScenePieces cut_scene_objects(const Scene& scene, uint64_t seed, const SceneBuil
       // a false positive).
       std::string name = "i";
       name += std::to_string(i) + "_" + asset_name(tmpl.name) + "_" + std::to_string(j);
-      ObjectJob job{i, j, object_seed(seed, static_cast<int>(i), j, 1),
-                    object_cut_options(scene, seed, options, i, j), std::move(name), {}};
+      ObjectJob job{i,
+                    j,
+                    object_seed(seed, static_cast<int>(i), j, 1),
+                    object_cut_options(scene, seed, options, i, j),
+                    std::move(name),
+                    {}};
       job.key = cut_cache_key({tmpl.source_hash, tmpl.variation_amount, job.variant_seed, job.name,
                                options.diffusion_settings, &job.cut, &options.collision});
       jobs.push_back(std::move(job));
@@ -221,15 +225,15 @@ ScenePieces cut_scene_objects(const Scene& scene, uint64_t seed, const SceneBuil
                                        if (next == jobs.size()) control.stop();
                                        return next++;
                                      }) &
-          tbb::make_filter<size_t, MadePtr>(
-              tbb::filter_mode::parallel,
-              [&](size_t k) {
-                auto made = std::make_shared<Made>();
-                made->job = k;
-                made->entry =
-                    make_object_entry(templates[jobs[k].item], jobs[k], options, made->stats);
-                return made;
-              }) &
+          tbb::make_filter<size_t, MadePtr>(tbb::filter_mode::parallel,
+                                            [&](size_t k) {
+                                              auto made = std::make_shared<Made>();
+                                              made->job = k;
+                                              made->entry =
+                                                  make_object_entry(templates[jobs[k].item],
+                                                                    jobs[k], options, made->stats);
+                                              return made;
+                                            }) &
           tbb::make_filter<MadePtr, void>(tbb::filter_mode::serial_in_order, [&](MadePtr made) {
             add_object(scene, templates, jobs[made->job], made->entry,
                        static_cast<int>(jobs.size()), options, assets, item_materials, out, st);
@@ -296,13 +300,12 @@ std::vector<Placement> place_pieces(const Scene& scene, uint64_t seed,
     }
   }
   st.cached_placements = cached.has_value();
-  SettleResult settled = cached ? std::move(*cached)
-                                : lay_out_and_settle(scene, seed, options, layout_options, pieces,
-                                                     order, st);
+  SettleResult settled =
+      cached ? std::move(*cached)
+             : lay_out_and_settle(scene, seed, options, layout_options, pieces, order, st);
   if (options.cache && !cached) options.cache->store(key, encode_settled(settled));
   for (size_t k = 0; k < order.size(); ++k)
-    if (settled.placements[k].placed)
-      st.decomposed_pieces += pieces.collision[order[k]].decomposed;
+    if (settled.placements[k].placed) st.decomposed_pieces += pieces.collision[order[k]].decomposed;
   if (view.turn_back != 0) {
     const glm::dquat turn = turn_about_y(view.turn_back);
     for (Placement& place : settled.placements) {

@@ -32,7 +32,7 @@ struct SceneBuildOptions {
   /// What of the diffusion backend changes colours (its resolved kind, cube size, directions),
   /// as the command line writes it: part of the cut cache's keys; required with `cache`.
   std::string diffusion_settings;
-  CutCache* cache = nullptr;   ///< the cut cache (cut_cache.h), or null: every object is cut
+  CutCache* cache = nullptr;  ///< the cut cache (cut_cache.h), or null: every object is cut
   /// How many objects are cut side by side (each into its own assets, added to the scene in
   /// order: the output does not depend on it); 1 cuts one after another, as a backend bound to
   /// one thread (gl) needs. The stage seconds of cutting are then summed over the objects.
@@ -40,7 +40,7 @@ struct SceneBuildOptions {
   CapSampling sampling = CapSampling::Adaptive;  ///< which cap points are diffused
   /// Called after each object with (objects done, objects in all, a line of text); may be empty.
   std::function<void(int, int, const std::string&)> progress;
-  LayoutOptions layout;        ///< its to_camera is replaced by the scene camera's direction
+  LayoutOptions layout;             ///< its to_camera is replaced by the scene camera's direction
   CollisionShapeOptions collision;  ///< the pieces' rigid bodies
   SettleOptions settle;             ///< the settling of the layout's drop poses
 };
@@ -51,8 +51,8 @@ struct SceneBuildOptions {
 /// processor seconds instead (see seconds_collision).
 struct SceneStats : ObjectCutStats {
   int objects = 0, pieces = 0, placed = 0;  ///< pieces: kept after `keep`; placed: of those
-  int cached_objects = 0;       ///< objects read from the cut cache (not cut)
-  bool cached_placements = false;  ///< placements read from the cut cache (not settled)
+  int cached_objects = 0;                   ///< objects read from the cut cache (not cut)
+  bool cached_placements = false;           ///< placements read from the cut cache (not settled)
   size_t triangles = 0;
   double seconds_variants = 0;  ///< make_variant (sweep, synthesis, grains, checks)
   double seconds_backend = 0;   ///< building the diffusion backends (BVH or GL setup)
@@ -61,11 +61,11 @@ struct SceneStats : ObjectCutStats {
   /// the threads that made them: the work they cost, which the wall time of objects cut side
   /// by side overstates (each waits for a core while the others run).
   double seconds_collision = 0;
-  double seconds_physics = 0;   ///< settling
-  double simulated_seconds = 0;     ///< simulated time of the settling
-  bool settled = false;             ///< the last round of settling came to rest before its cap
-  int decomposed_pieces = 0;        ///< pieces colliding as several convex parts
-  int redropped = 0, lost = 0;      ///< settle_pieces: drops again; pieces left out
+  double seconds_physics = 0;    ///< settling
+  double simulated_seconds = 0;  ///< simulated time of the settling
+  bool settled = false;          ///< the last round of settling came to rest before its cap
+  int decomposed_pieces = 0;     ///< pieces colliding as several convex parts
+  int redropped = 0, lost = 0;   ///< settle_pieces: drops again; pieces left out
   /// The stability check of the placed layout: the farthest any piece's corner moved in 1 s
   /// re-simulated from rest (metres; SettleResult::stability_motion_m), the checks run and
   /// the check whose layout was kept (SettleResult::kept_round).
@@ -74,8 +74,8 @@ struct SceneStats : ObjectCutStats {
 };
 
 /// The seed of item `item`, object `object`, for `purpose` (1: variant, 2: which pieces are
-/// kept, 3: Perlin colour modulation): derive_seed(scene_seed, {item, object, purpose}), so adding an item does not change
-/// the others (doc/scene-format.md, Determinism).
+/// kept, 3: Perlin colour modulation): derive_seed(scene_seed, {item, object, purpose}), so adding
+/// an item does not change the others (doc/scene-format.md, Determinism).
 uint64_t object_seed(uint64_t scene_seed, int item, int object, int purpose);
 
 /// The direction from the scene towards the camera of a scene without a `camera` block: from

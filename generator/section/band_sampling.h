@@ -66,8 +66,8 @@ void mark_irregular_band_points(std::span<BandPoint> points, const SegmentChains
 
 /// How sparsely the lines are sampled.
 struct BandSamplingOptions {
-  double spacing_m = 0;  ///< largest arc length between the first samples of a line (its
-                         ///< two ends are always samples)
+  double spacing_m = 0;        ///< largest arc length between the first samples of a line (its
+                               ///< two ends are always samples)
   VisibleTolerance tolerance;  ///< largest accepted differences (colour.h) between a test
                                ///< point's diffused and interpolated values
 };

@@ -135,8 +135,7 @@ class SectionMesher {
   SectionMesher(const DsModel& model, const Plane& plane, const CrossSectionOptions& options,
                 const CapRestriction& restriction)
       : model_(model), plane_(plane), options_(options), restriction_(restriction),
-        adaptive_(options.sampling == CapSampling::Adaptive),
-        near_grains_(model, plane) {
+        adaptive_(options.sampling == CapSampling::Adaptive), near_grains_(model, plane) {
     cs_.plane = plane;
     plane_frame(plane, cs_.u_axis, cs_.v_axis);
   }
@@ -258,7 +257,8 @@ bool SectionMesher::collect_segments() {
     const glm::dvec2 a = project(s.a), b = project(s.b);
     lifted_.emplace(std::make_pair(a.x, a.y), s.a);
     lifted_.emplace(std::make_pair(b.x, b.y), s.b);
-    seg2_.push_back({a, b,
+    seg2_.push_back({a,
+                     b,
                      {glm::dot(s.front_normal, cs_.u_axis), glm::dot(s.front_normal, cs_.v_axis)},
                      static_cast<int>(i)});
   }
@@ -483,8 +483,7 @@ void SectionMesher::sample_band_lines(const DiffusionBackend& diffusion) {
       }
       auto e = cdt_.incident_edges(v), last = e;
       do {
-        if (cdt_.is_infinite(e->first) && cdt_.is_infinite(e->first->neighbor(e->second)))
-          continue;
+        if (cdt_.is_infinite(e->first) && cdt_.is_infinite(e->first->neighbor(e->second))) continue;
         if (!cdt_.is_constrained(*e)) continue;
         const Vertex a = e->first->vertex(Cdt::cw(e->second));
         const Vertex b = e->first->vertex(Cdt::ccw(e->second));
@@ -506,11 +505,11 @@ void SectionMesher::sample_band_lines(const DiffusionBackend& diffusion) {
     for (BandPoint& b : band_points) b.exact = b.exact || near_grains_.near(b.position);
     std::vector<glm::dvec3> colours(band_points.size());
     std::vector<glm::dvec2> materials(band_points.size());
-    const BandSamplingCounts band = sample_bands(
-        band_points, diffusion,
-        {options_.band_spacing * options_.edge_m,
-         {options_.tolerance, options_.material_tolerance}},
-        colours, materials);
+    const BandSamplingCounts band =
+        sample_bands(band_points, diffusion,
+                     {options_.band_spacing * options_.edge_m,
+                      {options_.tolerance, options_.material_tolerance}},
+                     colours, materials);
     for (size_t i = 0; i < band_vertices.size(); ++i)
       samples_.emplace(band_vertices[i], std::make_pair(colours[i], materials[i]));
     cs_.diffused.all = band.diffused;
@@ -651,11 +650,11 @@ CrossSection SectionMesher::diffuse_rest(const DiffusionBackend& diffusion) {
     const auto interior = std::chrono::steady_clock::now();
     std::vector<bool> free(cs_.position.size(), false);
     for (unsigned id : interpolated_) free[id] = true;
-    const HarmonicSamplingCounts counts = sample_harmonically(
-        cs_.position, cs_.triangle, free, cs_.colour, cs_.material, diffusion,
-        {options_.harmonic_spacing * options_.edge_m,
-         options_.harmonic_min_spacing * options_.edge_m,
-         {options_.tolerance, options_.material_tolerance}});
+    const HarmonicSamplingCounts counts =
+        sample_harmonically(cs_.position, cs_.triangle, free, cs_.colour, cs_.material, diffusion,
+                            {options_.harmonic_spacing * options_.edge_m,
+                             options_.harmonic_min_spacing * options_.edge_m,
+                             {options_.tolerance, options_.material_tolerance}});
     cs_.diffused.all += counts.diffused;
     cs_.seconds_diffuse += seconds_since(interior);
   }

@@ -39,24 +39,24 @@ struct CrossSectionOptions {
   double interior_edge = 3.0;  ///< largest triangle edge, in edge_m: the cut segments are
                                ///< finer, and refinement grades from them into the interior
   CapSampling sampling = CapSampling::Adaptive;
-  double tolerance = 2.0;  ///< adaptive: largest colour interpolation error left at a test
-                           ///< point, in steps of 1/255 (colour_difference: sRGB)
+  double tolerance = 2.0;           ///< adaptive: largest colour interpolation error left at a test
+                                    ///< point, in steps of 1/255 (colour_difference: sRGB)
   double material_tolerance = 4.0;  ///< adaptive: the same for the material channels
                                     ///< (material_difference: 8-bit roughness, translucency)
-  double harmonic_spacing = 6.0;  ///< adaptive: Poisson-disc radius of the first interior
-                                  ///< samples, in edge_m (harmonic_sampling.h)
+  double harmonic_spacing = 6.0;    ///< adaptive: Poisson-disc radius of the first interior
+                                    ///< samples, in edge_m (harmonic_sampling.h)
   double harmonic_min_spacing = 0.25;  ///< adaptive: the interior's test radius is halved down
                                        ///< to this, in edge_m (harmonic_sampling.h)
-  double band_spacing = 16.0;     ///< adaptive: largest arc length between the first samples
-                                  ///< along a blur band's lines, in edge_m (band_sampling.h)
-  double merge_tolerance = 0.01;  ///< nearly collinear cut segments are merged up to edge_m
-                                  ///< long where they deviate less than this, in edge_m
+  double band_spacing = 16.0;          ///< adaptive: largest arc length between the first samples
+                                       ///< along a blur band's lines, in edge_m (band_sampling.h)
+  double merge_tolerance = 0.01;       ///< nearly collinear cut segments are merged up to edge_m
+                                       ///< long where they deviate less than this, in edge_m
   /// Whether the skin's and the hollow walls' segments (the domain's boundary) are merged too.
   /// Pieces turn it off, so that the caps' boundaries run through exactly the crossings where
   /// the clipped skin ends.
   bool merge_boundary = true;
-  double shape_bound = 0.125; ///< Delaunay_mesh_size_criteria_2 shape bound B = 1/(4 sin^2 a):
-                              ///< 0.125 is a minimum angle a of about 20.7 degrees
+  double shape_bound = 0.125;  ///< Delaunay_mesh_size_criteria_2 shape bound B = 1/(4 sin^2 a):
+                               ///< 0.125 is a minimum angle a of about 20.7 degrees
 };
 
 /// Restricts a cross-section to the faces of convex cells (doc/algorithms.md §4): the lines
@@ -91,16 +91,16 @@ struct DiffusedPoints {
 struct CrossSection {
   Plane plane;
   glm::dvec3 u_axis{1, 0, 0}, v_axis{0, 1, 0};  ///< in-plane frame: cross(u, v) = normal
-  std::vector<glm::dvec3> position;   ///< #V, metres, object frame
-  std::vector<glm::uvec3> triangle;   ///< #F, counter-clockwise seen from the normal's side
-  std::vector<glm::dvec3> colour;     ///< #V, linear RGB
-  std::vector<glm::dvec2> material;   ///< #V, material channels (roughness, translucency)
+  std::vector<glm::dvec3> position;             ///< #V, metres, object frame
+  std::vector<glm::uvec3> triangle;  ///< #F, counter-clockwise seen from the normal's side
+  std::vector<glm::dvec3> colour;    ///< #V, linear RGB
+  std::vector<glm::dvec2> material;  ///< #V, material channels (roughness, translucency)
   /// #V: the surface a vertex lies on (a cut vertex, one duplicate per side), or -1 for an
   /// interior vertex.
   std::vector<int> cut_surface;
-  size_t interior_vertices = 0;  ///< vertices off the cut segments
-  DiffusedPoints diffused;       ///< PMVC evaluations
-  size_t cut_segments = 0;       ///< input cut segments
+  size_t interior_vertices = 0;    ///< vertices off the cut segments
+  DiffusedPoints diffused;         ///< PMVC evaluations
+  size_t cut_segments = 0;         ///< input cut segments
   bool refinement_capped = false;  ///< Delaunay refinement ran out of its step budget or
                                    ///< failed CGAL's checks (rounding near a degenerate input),
                                    ///< so the cap is the unrefined constrained Delaunay
@@ -134,9 +134,9 @@ void plane_frame(const Plane& plane, glm::dvec3& u, glm::dvec3& v);
 ///          skips (no cap), with the reason kPlaneMisses when no cut segment lies on the skin,
 ///          kPlaneOnlyTouches when the cut face has no area or the restriction keeps nothing
 Outcome<CrossSection> make_cross_section(const DsModel& model, const Plane& plane,
-                                const DiffusionBackend& diffusion,
-                                const CrossSectionOptions& options,
-                                const CapRestriction& restriction = {});
+                                         const DiffusionBackend& diffusion,
+                                         const CrossSectionOptions& options,
+                                         const CapRestriction& restriction = {});
 
 /// A cross-section triangulated and refined but not yet split or coloured: make_cross_section
 /// stopped before its first PMVC evaluation, so that a caller can see where its triangles lie

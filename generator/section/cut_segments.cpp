@@ -97,7 +97,7 @@ std::vector<CutSegment> merge_collinear_segments(const std::vector<CutSegment>& 
   std::vector<CutSegment> segs = segments;
   std::vector<bool> alive(segs.size(), true);
   std::map<Key, std::vector<size_t>> incident;  // end point -> segments ending there
-  std::vector<Key> order;                        // end points in order of first appearance
+  std::vector<Key> order;                       // end points in order of first appearance
   for (size_t i = 0; i < segs.size(); ++i) {
     for (const glm::dvec3& p : {segs[i].a, segs[i].b}) {
       auto& list = incident[key(p)];

@@ -72,9 +72,8 @@ class HarmonicSampler {
                   const std::vector<bool>& free, std::span<glm::dvec3> colour,
                   std::span<glm::dvec2> material, const DiffusionBackend& diffusion,
                   HarmonicSamplingCounts& counts)
-      : n_(position.size()), position_(position), free_(free), colour_(colour),
-        material_(material), diffusion_(diffusion), counts_(counts), unknown_(free),
-        neighbours_(n_) {
+      : n_(position.size()), position_(position), free_(free), colour_(colour), material_(material),
+        diffusion_(diffusion), counts_(counts), unknown_(free), neighbours_(n_) {
     for (const auto& [edge, w] : cotangent_weights(position, triangle)) {
       neighbours_[edge.first].emplace_back(edge.second, w);
       neighbours_[edge.second].emplace_back(edge.first, w);
@@ -108,7 +107,7 @@ class HarmonicSampler {
   std::span<glm::dvec2> material_;
   const DiffusionBackend& diffusion_;
   HarmonicSamplingCounts& counts_;
-  std::vector<bool> unknown_;  // free and not diffused yet
+  std::vector<bool> unknown_;                                         // free and not diffused yet
   std::vector<std::vector<std::pair<unsigned, double>>> neighbours_;  // (vertex, weight)
 };
 
@@ -148,8 +147,7 @@ std::vector<size_t> HarmonicSampler::unanchored(const std::vector<bool>& chosen)
       members.push_back(i);
       anchored = anchored || chosen[i];
       for (const auto& [j, w] : neighbours_[i]) {
-        if (!free_[j])
-          anchored = true;
+        if (!free_[j]) anchored = true;
         else if (!seen[j]) {
           seen[j] = true;
           stack.push_back(j);
@@ -186,8 +184,7 @@ void HarmonicSampler::interpolate() {
   Eigen::SparseMatrix<double> laplace(rows, rows);
   laplace.setFromTriplets(entries.begin(), entries.end());
   const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(laplace);
-  const Eigen::MatrixXd x =
-      solver.info() == Eigen::Success ? solver.solve(rhs) : Eigen::MatrixXd();
+  const Eigen::MatrixXd x = solver.info() == Eigen::Success ? solver.solve(rhs) : Eigen::MatrixXd();
   if (solver.info() != Eigen::Success || !x.allFinite()) {  // never seen: diffuse them all
     std::vector<size_t> all;
     for (size_t i = 0; i < n_; ++i)
@@ -256,8 +253,7 @@ HarmonicSamplingCounts sample_harmonically(
   const size_t n = position.size();
   if (free.size() != n || colour.size() != n || material.size() != n)
     throw InternalError("sample_harmonically: one flag, colour and material per vertex");
-  if (!(options.spacing_m > 0))
-    throw InternalError("sample_harmonically: the spacing must be > 0");
+  if (!(options.spacing_m > 0)) throw InternalError("sample_harmonically: the spacing must be > 0");
   HarmonicSamplingCounts counts;
   for (bool f : free) counts.free += f;
   if (counts.free == 0) return counts;

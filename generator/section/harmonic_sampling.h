@@ -18,9 +18,9 @@ namespace cutaway {
 
 /// How sparsely a cap's interior is sampled. Lengths in metres.
 struct HarmonicSamplingOptions {
-  double spacing_m = 0;      ///< Poisson-disc radius of the first samples
-  double min_spacing_m = 0;  ///< refinement halves the radius down to this; a region still
-                             ///< failing below it has every vertex diffused
+  double spacing_m = 0;        ///< Poisson-disc radius of the first samples
+  double min_spacing_m = 0;    ///< refinement halves the radius down to this; a region still
+                               ///< failing below it has every vertex diffused
   VisibleTolerance tolerance;  ///< largest accepted differences (colour.h) between a test
                                ///< point's diffused and interpolated values
 };

@@ -29,8 +29,8 @@ std::vector<Line2> split_lines(const Plane& plane, const glm::dvec3& u, const gl
 }
 
 std::vector<Constraint2> arrange_split_lines(
-    const std::vector<std::pair<glm::dvec2, glm::dvec2>>& segments,
-    const std::vector<Line2>& lines, const glm::dvec2& lo, const glm::dvec2& hi, double snap_m) {
+    const std::vector<std::pair<glm::dvec2, glm::dvec2>>& segments, const std::vector<Line2>& lines,
+    const glm::dvec2& lo, const glm::dvec2& hi, double snap_m) {
   // Points along each segment (parameter 0..1) and along each line (distance from its foot).
   std::vector<std::vector<std::pair<double, glm::dvec2>>> on_segment(segments.size());
   std::vector<std::vector<std::pair<double, glm::dvec2>>> on_line(lines.size());
@@ -107,8 +107,9 @@ std::vector<Constraint2> arrange_split_lines(
   std::vector<Constraint2> out;
   auto emit = [&out](std::vector<std::pair<double, glm::dvec2>>& points, int segment) {
     std::sort(points.begin(), points.end(), [](const auto& x, const auto& y) {
-      return x.first != y.first ? x.first < y.first
-                                : std::tie(x.second.x, x.second.y) < std::tie(y.second.x, y.second.y);
+      return x.first != y.first
+                 ? x.first < y.first
+                 : std::tie(x.second.x, x.second.y) < std::tie(y.second.x, y.second.y);
     });
     for (size_t k = 0; k + 1 < points.size(); ++k)
       if (points[k].second != points[k + 1].second)

@@ -40,7 +40,7 @@ struct Constraint2 {
 /// inside the box split both. Zero-length pieces are dropped. Deterministic: segments in input
 /// order, then lines.
 std::vector<Constraint2> arrange_split_lines(
-    const std::vector<std::pair<glm::dvec2, glm::dvec2>>& segments,
-    const std::vector<Line2>& lines, const glm::dvec2& lo, const glm::dvec2& hi, double snap_m);
+    const std::vector<std::pair<glm::dvec2, glm::dvec2>>& segments, const std::vector<Line2>& lines,
+    const glm::dvec2& lo, const glm::dvec2& hi, double snap_m);
 
 }  // namespace cutaway

@@ -13,7 +13,6 @@ namespace cutaway {
 
 namespace {
 
-
 /// Cyclic [1 4 6 4 1] / 16 filter, times `gain`.
 CyclicSignal blur(const CyclicSignal& s, double gain) {
   CyclicSignal out(s.length, s.channels);
@@ -46,8 +45,8 @@ CyclicSignal expand(const CyclicSignal& s, int length) {
 
 /// Parent feature vectors of every position of level `l` (all coarser bands at the ancestors),
 /// unnormalised; `dims` components each.
-std::vector<double> parent_features(const std::vector<CyclicSignal>& bands, int l,
-                                    bool derivatives, int& dims) {
+std::vector<double> parent_features(const std::vector<CyclicSignal>& bands, int l, bool derivatives,
+                                    int& dims) {
   const int n = bands[l].length, C = bands[l].channels;
   const int top = static_cast<int>(bands.size()) - 1;
   dims = (top - l) * C * (derivatives ? 2 : 1);
@@ -144,8 +143,7 @@ std::vector<CyclicSignal> synthesize_bands(const std::vector<CyclicSignal>& in,
   return out;
 }
 
-CyclicSignal debonet_synthesize(const CyclicSignal& signal, const DeBonetOptions& opt,
-                                Rng& rng) {
+CyclicSignal debonet_synthesize(const CyclicSignal& signal, const DeBonetOptions& opt, Rng& rng) {
   return collapse_pyramid(synthesize_bands(laplacian_pyramid(signal, opt.min_length), opt, rng));
 }
 

@@ -14,8 +14,6 @@ namespace cutaway {
 
 namespace {
 
-
-
 glm::dvec2 xz_at(double rho, double phi) { return {rho * std::cos(phi), -rho * std::sin(phi)}; }
 
 /// Point of segment p-q on the ray from the axis at angle `phi`.
@@ -97,9 +95,8 @@ FoldFeatures fold_features(const Template& t, const FoldPcaOptions& opt) {
       f.points.push_back(opt.arc_samples);
       for (int k = 0; k < N; ++k) {
         const Pie pie = pie_of(t, k, N);
-        const Polyline2 arc =
-            resample_uniform(arc_between(s.section.loops[0], s.smooth, pie.lo, pie.hi), false,
-                             opt.arc_samples);
+        const Polyline2 arc = resample_uniform(
+            arc_between(s.section.loops[0], s.smooth, pie.lo, pie.hi), false, opt.arc_samples);
         for (int i = 0; i < opt.arc_samples; ++i) {
           glm::dvec2 c;
           const double rho = glm::length(arc[i]);
@@ -123,8 +120,8 @@ FoldFeatures fold_features(const Template& t, const FoldPcaOptions& opt) {
         for (const auto& p : fit_curve(s.section.loops[li], true, s.smooth))
           c.push_back(pie.to_canonical(p, t.fold_angles[li]));
         if (signed_area(c) < 0) std::reverse(c.begin(), c.end());
-        const auto start = std::max_element(c.begin(), c.end(),
-                                            [](auto& a, auto& b) { return a.x < b.x; });
+        const auto start =
+            std::max_element(c.begin(), c.end(), [](auto& a, auto& b) { return a.x < b.x; });
         std::rotate(c.begin(), start, c.end());
         Polyline2 r = resample_uniform(c, true, M);
         if (k == 0) {
@@ -195,9 +192,10 @@ std::vector<double> draw_fold(const FoldPca& pca, double amount, Rng& rng) {
   return v;
 }
 
-std::vector<std::vector<Polyline2>> fold_curves_xz(
-    const FoldFeatures& f, const std::vector<std::vector<double>>& vectors,
-    const std::vector<double>& angles, const FoldPcaOptions& opt) {
+std::vector<std::vector<Polyline2>> fold_curves_xz(const FoldFeatures& f,
+                                                   const std::vector<std::vector<double>>& vectors,
+                                                   const std::vector<double>& angles,
+                                                   const FoldPcaOptions& opt) {
   const int Np = static_cast<int>(vectors.size());
   CUTAWAY_CHECK(Np >= 1 && static_cast<int>(angles.size()) == Np);
   Template frame;  // only for fold_span
@@ -222,8 +220,8 @@ std::vector<std::vector<Polyline2>> fold_curves_xz(
     if (f.open[ci]) {
       // Blend across each fold line k | k+1: both ends move to the mean radius.
       const int B = std::clamp(opt.blend_points, 1, M / 2);
-      const glm::dvec2 up(std::cos(W / 2), std::sin(W / 2)), down(std::cos(W / 2),
-                                                                  -std::sin(W / 2));
+      const glm::dvec2 up(std::cos(W / 2), std::sin(W / 2)),
+          down(std::cos(W / 2), -std::sin(W / 2));
       std::vector<Polyline2> blended = canon;
       for (int k = 0; k < Np; ++k) {
         const int k1 = (k + 1) % Np;
@@ -245,8 +243,8 @@ std::vector<std::vector<Polyline2>> fold_curves_xz(
       if (f.open[ci]) {
         // Exactly on the fold lines, shared with the neighbours.
         xz.front() = xz_at(glm::length(canon[k].front()), pies[k].lo);
-        xz.back() = xz_at(glm::length(canon[k].back()), pies[(k + 1) % Np].lo +
-                                                            (k + 1 == Np ? 2 * kPi : 0.0));
+        xz.back() = xz_at(glm::length(canon[k].back()),
+                          pies[(k + 1) % Np].lo + (k + 1 == Np ? 2 * kPi : 0.0));
       }
       out[ci].push_back(std::move(xz));
     }
@@ -255,8 +253,7 @@ std::vector<std::vector<Polyline2>> fold_curves_xz(
 }
 
 Template rebuild_folds(const Template& t, const FoldFeatures& f,
-                       const std::vector<std::vector<double>>& vectors,
-                       const FoldPcaOptions& opt) {
+                       const std::vector<std::vector<double>>& vectors, const FoldPcaOptions& opt) {
   const int Np = static_cast<int>(vectors.size());
   Template out = t;
   if (Np != t.folds) {

@@ -25,23 +25,23 @@ struct FoldPcaOptions {
 /// +x; a point at distance rho becomes (rho cos theta, rho sin theta), theta in [-W/2, W/2],
 /// metres. Every curve of a fold contributes its canonical points (x, y pairs) in order.
 struct FoldFeatures {
-  int folds = 0;                       ///< N
+  int folds = 0;  ///< N
   /// Curves in feature order: index of the template surface and whether it is a Type I open
   /// curve (`around` section, split at the fold lines) or a Type II loop (`within` section).
   std::vector<int> surface;
   std::vector<bool> open;
-  std::vector<int> points;             ///< points of each curve
+  std::vector<int> points;  ///< points of each curve
   /// N feature vectors (one per fold), each sum(points) * 2 long.
   std::vector<std::vector<double>> samples;
 };
 
 /// Principal components of the fold samples.
 struct FoldPca {
-  std::vector<double> mean;                 ///< the mean fold
-  std::vector<std::vector<double>> axes;    ///< unit principal vectors (sign: largest-magnitude
-                                            ///< component positive), decreasing sigma
-  std::vector<double> sigma;                ///< standard deviation along each axis (metres),
-                                            ///< singular value / sqrt(N - 1); only > 1e-12 kept
+  std::vector<double> mean;               ///< the mean fold
+  std::vector<std::vector<double>> axes;  ///< unit principal vectors (sign: largest-magnitude
+                                          ///< component positive), decreasing sigma
+  std::vector<double> sigma;              ///< standard deviation along each axis (metres),
+                                          ///< singular value / sqrt(N - 1); only > 1e-12 kept
 };
 
 /// Feature vectors of every fold: `around` surfaces with a drawn section (circles have no
@@ -66,10 +66,9 @@ std::vector<double> draw_fold(const FoldPca& pca, double amount, Rng& rng);
 /// linearly towards the mean radius of the two end points), so fold k's last point equals fold
 /// k + 1's first point (to rounding) and the joined loop is continuous.
 /// @pre fold_vectors[k].size() == features.samples[0].size(); angles increasing, radians
-std::vector<std::vector<Polyline2>> fold_curves_xz(const FoldFeatures& features,
-                                                   const std::vector<std::vector<double>>& fold_vectors,
-                                                   const std::vector<double>& fold_angles_out,
-                                                   const FoldPcaOptions& options);
+std::vector<std::vector<Polyline2>> fold_curves_xz(
+    const FoldFeatures& features, const std::vector<std::vector<double>>& fold_vectors,
+    const std::vector<double>& fold_angles_out, const FoldPcaOptions& options);
 
 /// `tmpl` with N' = fold_vectors.size() folds: fold angles kept when N' == N, else
 /// fold_angles[0] + k 2 pi / N'; every Type I section becomes the joined loop of its N' open

@@ -18,9 +18,7 @@ namespace {
 
 constexpr uint64_t kPurposeGrains = 0x677261696e;  // "grain"
 
-glm::dvec3 point(const DsMesh& m, DsMesh::VertexHandle v) {
-  return to_glm(m.point(v));
-}
+glm::dvec3 point(const DsMesh& m, DsMesh::VertexHandle v) { return to_glm(m.point(v)); }
 
 bool in_range(double x, const glm::dvec2& r) { return x >= r.x - 1e-12 && x <= r.y + 1e-12; }
 
@@ -77,8 +75,8 @@ void check_grain_limits(const Template& tmpl, const DsModel& model) {
   const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
   double before = 0;  // the most grains of the sets before this one
   for (const GrainSpec& spec : tmpl.grains) {
-    const double area = AreaSampler(region_triangles(spec, grain_support(spec, model).mesh).area)
-                            .total();
+    const double area =
+        AreaSampler(region_triangles(spec, grain_support(spec, model).mesh).area).total();
     const double most = area / (0.5 * std::sqrt(3.0) * spec.spacing * spec.spacing);
     if (before + most > kMaxGrains) {
       std::ostringstream s;

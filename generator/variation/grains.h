@@ -27,7 +27,7 @@ struct GrainPlacement {
 struct GrainOptions {
   /// Stop after this many consecutive rejected darts (the region is then nearly saturated).
   int max_consecutive_failures = 2000;
-  size_t max_grains = 100000;  ///< hard cap per grain set
+  size_t max_grains = 100000;    ///< hard cap per grain set
   int rings = 6, segments = 10;  ///< ellipsoid mesh resolution (UV sphere)
 };
 
@@ -49,8 +49,7 @@ std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface&
 /// normal axis, outward normals) per placement to `mesh`, with DS attributes front, back (linear
 /// RGB) and blur (metres).
 void add_ellipsoids(const std::vector<GrainPlacement>& grains, const glm::dvec3& front,
-                    const glm::dvec3& back, double blur, const GrainOptions& options,
-                    DsMesh& mesh);
+                    const glm::dvec3& back, double blur, const GrainOptions& options, DsMesh& mesh);
 
 /// The most grains a template's grain sets may ask for together, each set counted as its
 /// region's area over the area a grain's Poisson disc claims in the densest packing

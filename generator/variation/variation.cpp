@@ -55,8 +55,8 @@ Template draw_variant(const Template& t, uint64_t seed, uint64_t draw, double am
 
 double draw_ripeness(const Template& t, uint64_t seed) {
   const double mid = 0.5 * (t.ripeness_range.x + t.ripeness_range.y);
-  const double spread = (t.ripeness_range.y - t.ripeness_range.x) *
-                        std::clamp(t.variation_amount, 0.0, 1.0);
+  const double spread =
+      (t.ripeness_range.y - t.ripeness_range.x) * std::clamp(t.variation_amount, 0.0, 1.0);
   if (!(spread > 0)) return mid;
   Rng rng(derive_seed(seed, {kPurposeRipeness}));
   return std::clamp(mid + spread * (rng.uniform() - 0.5), t.ripeness_range.x, t.ripeness_range.y);

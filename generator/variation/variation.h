@@ -15,10 +15,10 @@ namespace cutaway {
 
 /// Options of vary / make_variant.
 struct VariationOptions {
-  int loop_samples = 128;      ///< De Bonet: samples per section loop (a multiple of 8 x 2^k)
-  int attempts = 6;            ///< draws per amount before the amount is halved
-  int halvings = 3;            ///< amount halvings before giving up (the template unchanged)
-  DeBonetOptions debonet;      ///< its `amount` is replaced by the template's
+  int loop_samples = 128;  ///< De Bonet: samples per section loop (a multiple of 8 x 2^k)
+  int attempts = 6;        ///< draws per amount before the amount is halved
+  int halvings = 3;        ///< amount halvings before giving up (the template unchanged)
+  DeBonetOptions debonet;  ///< its `amount` is replaced by the template's
   FoldPcaOptions folds;
 };
 
@@ -26,8 +26,8 @@ struct VariationOptions {
 struct Variant {
   Template tmpl;
   DsModel model;
-  int draws = 0;         ///< draws made (1 when the first one passed)
-  double amount = 0.0;   ///< the variation amount that passed (template's, or halved; 0: none)
+  int draws = 0;        ///< draws made (1 when the first one passed)
+  double amount = 0.0;  ///< the variation amount that passed (template's, or halved; 0: none)
 };
 
 /// One variant of `tmpl`, unchecked: cylindrical -> the drawn section loops (`around`, not

@@ -34,9 +34,9 @@ const std::array<glm::vec3, kEdgeRays + kSideVotes>& voxel_directions() {
     std::array<glm::vec3, kEdgeRays + kSideVotes> d{};
     d[0] = {1, 0, 0}, d[1] = {-1, 0, 0}, d[2] = {0, 1, 0};
     d[3] = {0, -1, 0}, d[4] = {0, 0, 1}, d[5] = {0, 0, -1};
-    const glm::vec3 votes[kSideVotes] = {{2, 3, 5},   {-5, 2, 3}, {3, -5, 2},
-                                        {-2, -3, 5}, {5, -2, -3}, {-3, 5, -2},
-                                        {2, 7, -3},  {-7, -3, -2}, {3, -2, -7}};
+    const glm::vec3 votes[kSideVotes] = {{2, 3, 5},   {-5, 2, 3},   {3, -5, 2},
+                                         {-2, -3, 5}, {5, -2, -3},  {-3, 5, -2},
+                                         {2, 7, -3},  {-7, -3, -2}, {3, -2, -7}};
     for (int v = 0; v < kSideVotes; ++v) d[kEdgeRays + v] = glm::normalize(votes[v]);
     return d;
   }();
@@ -48,8 +48,8 @@ bool solid_side(const DsModel& model, const std::vector<DiffusionSheet>& sheets,
                 const SheetHit& hit, const glm::vec3& direction) {
   if (hit.sheet < 0) return false;
   const DsSurface& surface = model.surfaces[static_cast<size_t>(hit.sheet)];
-  const bool front = glm::dot(sheets[static_cast<size_t>(hit.sheet)].face_normal[hit.triangle],
-                              direction) < 0;
+  const bool front =
+      glm::dot(sheets[static_cast<size_t>(hit.sheet)].face_normal[hit.triangle], direction) < 0;
   if (front) return surface.role != SurfaceRole::Skin && surface.visible_front;
   return surface.visible_back;
 }
@@ -99,18 +99,17 @@ Outcome<InteriorVolume> volume_grid(const DsModel& model, double voxel_m) {
     const double n = counts[a];
     count *= n;
     if (n > 1e7 || count > static_cast<double>(kMaxVolumeVoxels))
-      return Outcome<InteriorVolume>::none(
-          std::to_string(voxel_m) + " m makes more than " + std::to_string(kMaxVolumeVoxels) +
-          " voxels over the skin; give a longer voxel length");
+      return Outcome<InteriorVolume>::none(std::to_string(voxel_m) + " m makes more than " +
+                                           std::to_string(kMaxVolumeVoxels) +
+                                           " voxels over the skin; give a longer voxel length");
     volume.size[a] = static_cast<int>(n);
     volume.origin[a] = 0.5 * (lo[a] + hi[a]) - 0.5 * (n - 1) * voxel_m;
   }
   return volume;
 }
 
-std::vector<PointClass> classify_points(const DsModel& model,
-                                        const std::vector<glm::dvec3>& points, double reach_m,
-                                        int threads) {
+std::vector<PointClass> classify_points(const DsModel& model, const std::vector<glm::dvec3>& points,
+                                        double reach_m, int threads) {
   const std::vector<DiffusionSheet> sheets = surface_sheets(model);
   const SheetRayCaster caster(sheets, threads);
   const auto& dirs = voxel_directions();
@@ -121,9 +120,9 @@ std::vector<PointClass> classify_points(const DsModel& model,
       caster.cast(points[p], dirs, hits);
       classes[p].solid = voted_solid(model, sheets, hits);
       for (int e = 0; e < kEdgeRays; ++e)
-        classes[p].near_sheet = classes[p].near_sheet ||
-                                (hits[static_cast<size_t>(e)].sheet >= 0 &&
-                                 hits[static_cast<size_t>(e)].at.t < reach_m);
+        classes[p].near_sheet =
+            classes[p].near_sheet || (hits[static_cast<size_t>(e)].sheet >= 0 &&
+                                      hits[static_cast<size_t>(e)].at.t < reach_m);
     }
   });
   return classes;
@@ -224,8 +223,7 @@ InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBacke
     const glm::ivec3 coord = volume.voxel(v);
     for (int a = 0; a < 3; ++a) {
       const size_t e = 2 * static_cast<size_t>(a);  // the +a direction
-      if (coord[a] + 1 >= volume.size[a] ||
-          (crossing[v][e] != kNone && !(soft[v] >> e & 1u)))
+      if (coord[a] + 1 >= volume.size[a] || (crossing[v][e] != kNone && !(soft[v] >> e & 1u)))
         continue;
       const size_t w = v + step[a];
       if (!solid[w]) continue;

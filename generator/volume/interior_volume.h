@@ -1,8 +1,8 @@
 // A variant's interior as a volume: the PMVC colour and material channels sampled on a regular
 // grid, with what keeps sheets crisp between the samples (doc/algorithms.md §8): each voxel's
 // region (the solid cell between sheets it lies in, or empty) and its distances to the nearest
-// sheet and to the outline, so a sampler (volume_lookup.h, the cutting page's shader) can colour a cut anywhere
-// without running PMVC again.
+// sheet and to the outline, so a sampler (volume_lookup.h, the cutting page's shader) can colour a
+// cut anywhere without running PMVC again.
 #pragma once
 
 #include <cstddef>
@@ -31,9 +31,9 @@ inline constexpr size_t kMaxVolumeVoxels = 16'000'000;
 /// i + size.x (j + size.y k) (x fastest, then y, then z). The grid reaches one voxel beyond the
 /// skin's bounding box on every side, so every border voxel is empty.
 struct InteriorVolume {
-  glm::ivec3 size{0};           ///< voxels along x, y, z
-  glm::dvec3 origin{0.0};       ///< centre of voxel (0, 0, 0), metres
-  double voxel_m = 0;           ///< edge length, metres
+  glm::ivec3 size{0};      ///< voxels along x, y, z
+  glm::dvec3 origin{0.0};  ///< centre of voxel (0, 0, 0), metres
+  double voxel_m = 0;      ///< edge length, metres
   /// Linear RGB per voxel: PMVC at the voxel's centre where it is solid; where it is empty,
   /// the mean of its solid face neighbours (0 with none), so that plain trilinear filtering
   /// by a tool that ignores `region` does not darken the skin's outline.
@@ -54,14 +54,15 @@ struct InteriorVolume {
   /// between solid and empty, at most voxel_m. A sampler reads it as an unsigned distance to
   /// the outline, solid against empty, whatever surfaces lie between.
   std::vector<float> outline_distance;
-  uint32_t regions = 0;    ///< solid regions (the largest region id)
-  size_t solid = 0;        ///< voxels whose region is not empty (the PMVC points)
+  uint32_t regions = 0;         ///< solid regions (the largest region id)
+  size_t solid = 0;             ///< voxels whose region is not empty (the PMVC points)
   double seconds_classify = 0;  ///< ray casts for the regions and the distances
   double seconds_diffuse = 0;   ///< PMVC at the solid voxels
 
   size_t voxels() const { return static_cast<size_t>(size.x) * size.y * size.z; }
   size_t index(int i, int j, int k) const {
-    return static_cast<size_t>(i) + static_cast<size_t>(size.x) * (j + static_cast<size_t>(size.y) * k);
+    return static_cast<size_t>(i) +
+           static_cast<size_t>(size.x) * (j + static_cast<size_t>(size.y) * k);
   }
   /// The voxel (i, j, k) of array index `v` (the inverse of index()).
   glm::ivec3 voxel(size_t v) const {
@@ -95,11 +96,11 @@ Outcome<InteriorVolume> volume_grid(const DsModel& model, double voxel_m);
 /// classified solid or empty by the side votes (classify_points), regions joined along
 /// face-neighbour segments that cross no sharp surface (one ray each), sheet distances from
 /// those crossings, outline distances from a second cast against the walls alone (the skin
-/// and the surfaces with a hollow side), and `diffusion` (PMVC over the model's diffusion sheets, the same backend and
-/// settings as cut faces) at every solid voxel's centre, then, with `modulation`, the object's
-/// Perlin colour modulation of that strength at the same centres (as cut faces get it:
-/// material/colour_modulation.h). Ray casts run on `threads` threads (0: all cores); the
-/// result does not depend on it.
+/// and the surfaces with a hollow side), and `diffusion` (PMVC over the model's diffusion sheets,
+/// the same backend and settings as cut faces) at every solid voxel's centre, then, with
+/// `modulation`, the object's Perlin colour modulation of that strength at the same centres (as cut
+/// faces get it: material/colour_modulation.h). Ray casts run on `threads` threads (0: all cores);
+/// the result does not depend on it.
 InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBackend& diffusion,
                                       InteriorVolume grid, int threads = 0,
                                       const ColourModulation* modulation = nullptr,
@@ -120,8 +121,7 @@ struct PointClass {
 /// a side is empty when it is the skin's front (outside) or a hollow side
 /// (DsSurface::visible_front/back false), and a ray that meets nothing counts as empty. The
 /// same test as sample_interior_volume's, for checking a volume at points of one's choosing.
-std::vector<PointClass> classify_points(const DsModel& model,
-                                        const std::vector<glm::dvec3>& points, double reach_m,
-                                        int threads = 0);
+std::vector<PointClass> classify_points(const DsModel& model, const std::vector<glm::dvec3>& points,
+                                        double reach_m, int threads = 0);
 
 }  // namespace cutaway

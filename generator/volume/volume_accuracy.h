@@ -15,8 +15,8 @@ namespace cutaway {
 
 /// Colour errors of a volume against PMVC, in steps of 1/255 of sRGB (colour_difference).
 struct VolumeErrors {
-  size_t points = 0;       ///< solid cap points compared
-  size_t near_points = 0;  ///< of them, within one voxel of a surface along an axis
+  size_t points = 0;                   ///< solid cap points compared
+  size_t near_points = 0;              ///< of them, within one voxel of a surface along an axis
   double mean_far = 0, p99_far = 0;    ///< at points more than one voxel from every surface
   double mean_near = 0, p99_near = 0;  ///< at points within one voxel of a surface
   /// Share of the cap points (solid by classify_points, or by the volume) whose solid or

@@ -40,10 +40,9 @@ constexpr double volume_rays(double voxels, int cube) {
 /// templates' defaults (39 to 347 s of PMVC on two cores, doc/interior-volume.md). The leek's
 /// largest accepted volume (0.99 million voxels of 0.628 mm, 1.54e9 rays counted) cast 0.40e9
 /// and took 198 processor seconds.
-inline constexpr double kMaxVolumeRays =
-    volume_rays(double{kDefaultVoxelsAcross + 4} * (kDefaultVoxelsAcross + 4) *
-                    (kDefaultVoxelsAcross + 4),
-                DiffusionOptions{}.cube_size);
+inline constexpr double kMaxVolumeRays = volume_rays(
+    double{kDefaultVoxelsAcross + 4} * (kDefaultVoxelsAcross + 4) * (kDefaultVoxelsAcross + 4),
+    DiffusionOptions{}.cube_size);
 
 /// Passes when a volume of `voxels` voxels at cube size `cube` costs at most kMaxVolumeRays
 /// (volume_rays), else fails with "the volume would cast about R rays (V voxels x P rays

@@ -158,11 +158,16 @@ class EglContext final : public GlContext {
     EGLint n = 0;
     if (!eglChooseConfig(display, config_attribs, &config, 1, &n) || n == 0)
       return "no OpenGL config (" + egl_error() + ")";
-    const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+    const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                      4,
+                                      EGL_CONTEXT_MINOR_VERSION,
+                                      5,
                                       EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+                                      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                      EGL_NONE};
     context_ = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs);
-    return context_ != EGL_NO_CONTEXT ? "" : "eglCreateContext(4.5 core) failed (" + egl_error() + ")";
+    return context_ != EGL_NO_CONTEXT ? ""
+                                      : "eglCreateContext(4.5 core) failed (" + egl_error() + ")";
   }
   EGLDisplay display_ = EGL_NO_DISPLAY;
   EGLContext context_ = EGL_NO_CONTEXT;

@@ -58,7 +58,8 @@ GlProgram::GlProgram(std::string_view vertex_file, std::string_view fragment_fil
     glDeleteShader(vs);
     throw;
   }
-  link({vs, fs}, "shaders/" + std::string(vertex_file) + " + shaders/" + std::string(fragment_file));
+  link({vs, fs},
+       "shaders/" + std::string(vertex_file) + " + shaders/" + std::string(fragment_file));
 }
 
 GlProgram::GlProgram(std::string_view compute_file) {

@@ -21,8 +21,7 @@ bool make_colour_framebuffer(int width, int height, int samples, GLenum internal
   glBindRenderbuffer(GL_RENDERBUFFER, renderbuffer);
   if (samples > 1)
     glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, internal_format, width, height);
-  else
-    glRenderbufferStorage(GL_RENDERBUFFER, internal_format, width, height);
+  else glRenderbufferStorage(GL_RENDERBUFFER, internal_format, width, height);
   glGenFramebuffers(1, &framebuffer);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer);
@@ -51,7 +50,7 @@ OffscreenTarget::OffscreenTarget(const GlContext& context, int width, int height
                         std::to_string(max_side) + " of " + context.description());
   if (!make_colour_framebuffer(width, height, 1, internal_format, resolved_, resolved_buffer_))
     throw EnvironmentError(caller_ + ": cannot create a floating-point framebuffer on " +
-                             context.description());
+                           context.description());
   // Try the requested count, clamped to the driver's maximum, then fewer until one is accepted.
   for (int s = std::min(samples, std::max(max_samples, 1)); s > 1; s /= 2) {
     if (make_colour_framebuffer(width, height, s, internal_format, multisampled_,
@@ -98,8 +97,7 @@ Image OffscreenTarget::resolve_and_read() const {
   if (const GLenum error = glGetError(); error != GL_NO_ERROR) {
     char code[16];
     std::snprintf(code, sizeof code, "0x%04x", error);
-    throw EnvironmentError(caller_ + ": OpenGL error " + code + " on " +
-                             context_.description());
+    throw EnvironmentError(caller_ + ": OpenGL error " + code + " on " + context_.description());
   }
 
   // GL rows are bottom first; Image rows are top first. Linear -> sRGB8 on the CPU.

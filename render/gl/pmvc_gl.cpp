@@ -108,8 +108,8 @@ class GlDiffusion final : public DiffusionBackend {
     }
     points_buffer_ = storage_buffer(std::vector<BatchPoint>{}, kBatchPoints * sizeof(BatchPoint),
                                     GL_DYNAMIC_DRAW);
-    sums_buffer_ = storage_buffer(std::vector<glm::dvec4>{},
-                                  2 * kBatchPoints * sizeof(glm::dvec4), GL_DYNAMIC_READ);
+    sums_buffer_ = storage_buffer(std::vector<glm::dvec4>{}, 2 * kBatchPoints * sizeof(glm::dvec4),
+                                  GL_DYNAMIC_READ);
     check_gl("while setting up");
   }
 
@@ -168,11 +168,11 @@ class GlDiffusion final : public DiffusionBackend {
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, points_buffer_);
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
                     static_cast<GLsizeiptr>(batch.size() * sizeof(BatchPoint)), batch.data());
-    const GLuint bindings[] = {nodes_buffer_,           triangles_buffer_,
-                               vertices_buffer_,        directions_buffer_,
-                               solid_angle_buffer_,     points_buffer_,
-                               sums_buffer_,            fine_directions_buffer_,
-                               fine_solid_angle_buffer_, pairs_buffer_};
+    const GLuint bindings[] = {
+        nodes_buffer_,      triangles_buffer_,       vertices_buffer_,
+        directions_buffer_, solid_angle_buffer_,     points_buffer_,
+        sums_buffer_,       fine_directions_buffer_, fine_solid_angle_buffer_,
+        pairs_buffer_};
     for (GLuint i = 0; i < 10; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, bindings[i]);
     glUseProgram(trace_->id());
     glUniform1i(direction_count_location_, direction_count_);
@@ -194,7 +194,7 @@ class GlDiffusion final : public DiffusionBackend {
     glGetIntegerv(GL_MINOR_VERSION, &minor);
     if (major < 4 || (major == 4 && minor < 3))
       throw EnvironmentError("gl diffusion: the OpenGL context (" + context_->description() +
-                               ") lacks OpenGL 4.3 (compute shaders)");
+                             ") lacks OpenGL 4.3 (compute shaders)");
   }
 
   /// Uploads the BVH nodes, its triangles in leaf order and every sheet vertex's attributes.
@@ -203,8 +203,8 @@ class GlDiffusion final : public DiffusionBackend {
     const SheetBvh bvh = build_sheet_bvh(sheets);
     if (bvh.depth > kMaxBvhDepth)
       throw EnvironmentError("gl diffusion: the sheets' BVH is " + std::to_string(bvh.depth) +
-                               " levels deep; the GPU traversal walks at most " +
-                               std::to_string(kMaxBvhDepth));
+                             " levels deep; the GPU traversal walks at most " +
+                             std::to_string(kMaxBvhDepth));
     std::vector<GpuVertex> vertices;
     std::vector<uint32_t> first_vertex;  // per sheet
     for (const DiffusionSheet& s : sheets) {

@@ -111,10 +111,10 @@ void draw_strokes(const std::vector<Stroke>& strokes, const AssetCamera& camera,
   // The vertex array and buffer belong to the caller's context, which frees them.
   make_vertex_array(vertices.data(), vertices.size() * sizeof(StrokeVertex),
                     static_cast<GLsizei>(sizeof(StrokeVertex)), nullptr, 0,
-                    {{0, 2, offsetof(StrokeVertex, pixel)}, {1, 3, offsetof(StrokeVertex, colour)}});
+                    {{0, 2, offsetof(StrokeVertex, pixel)},
+                     {1, 3, offsetof(StrokeVertex, colour)}});
   glUseProgram(program.id());
-  glUniform2f(program.uniform("image_size"), static_cast<float>(width),
-              static_cast<float>(height));
+  glUniform2f(program.uniform("image_size"), static_cast<float>(width), static_cast<float>(height));
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   glDisable(GL_BLEND);

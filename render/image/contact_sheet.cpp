@@ -112,10 +112,10 @@ std::vector<Image> render_section_tiles(const std::vector<CrossSection>& section
   tiles.reserve(sections.size());
   for (size_t i = 0; i < sections.size(); ++i) {
     SectionPreviewOptions o;
-    o.width = std::clamp(static_cast<int>(std::lround(extent[i].x * pixels_per_m)), 1,
-                         options.tile_px);
-    o.height = std::clamp(static_cast<int>(std::lround(extent[i].y * pixels_per_m)), 1,
-                          options.tile_px);
+    o.width =
+        std::clamp(static_cast<int>(std::lround(extent[i].x * pixels_per_m)), 1, options.tile_px);
+    o.height =
+        std::clamp(static_cast<int>(std::lround(extent[i].y * pixels_per_m)), 1, options.tile_px);
     o.margin = 0;
     o.samples = options.samples;
     o.background_srgb = options.background_srgb;
@@ -149,8 +149,8 @@ Image labelled_tile(const Image& picture, const std::string& name, const std::st
   return tile;
 }
 
-Image section_sheet(std::vector<Outcome<CrossSection>> sections,
-                    const SectionTileOptions& options, int columns) {
+Image section_sheet(std::vector<Outcome<CrossSection>> sections, const SectionTileOptions& options,
+                    int columns) {
   std::vector<CrossSection> present;
   for (Outcome<CrossSection>& s : sections)
     if (s) present.push_back(std::move(*s));

@@ -8,14 +8,13 @@
 #include <string_view>
 #include <vector>
 
-
 namespace cutaway {
 
 /// An 8-bit RGBA image: `rgba` holds width * height * 4 bytes, rows top first, pixels left to
 /// right, R G B A each; colour is sRGB-encoded, alpha is linear (255 = opaque).
 struct Image {
-  int width = 0, height = 0;   ///< pixels
-  std::vector<uint8_t> rgba;   ///< width * height * 4 bytes, sRGB8 + alpha, row 0 = top
+  int width = 0, height = 0;  ///< pixels
+  std::vector<uint8_t> rgba;  ///< width * height * 4 bytes, sRGB8 + alpha, row 0 = top
 };
 
 /// `image` encoded as PNG (8-bit RGBA, stb_image_write).

@@ -45,8 +45,8 @@ void draw_label(Image& image, const std::string& text, int x, int y, int scale,
   // stb_easy_font: 4 vertices of 16 bytes per quad; about 270 bytes per character suffice.
   std::vector<char> buffer(s.size() * 300 + 1024);
   unsigned char colour[4] = {0, 0, 0, 255};
-  const int quads = stb_easy_font_print(0, 0, s.data(), colour, buffer.data(),
-                                        static_cast<int>(buffer.size()));
+  const int quads =
+      stb_easy_font_print(0, 0, s.data(), colour, buffer.data(), static_cast<int>(buffer.size()));
   uint8_t rgb[3];
   for (int c = 0; c < 3; ++c)
     rgb[c] = static_cast<uint8_t>(std::lround(255 * std::clamp(srgb[c], 0.0, 1.0)));

@@ -46,8 +46,8 @@ Times cuts(httplib::Client& client, const std::string& body, double lo, double h
   Times t;
   for (int k = 0; k < 5; ++k) {
     const double y = lo + (hi - lo) * (0.15 + 0.175 * k + shift);
-    const double s = timed_post(client, "/api/section.png?y=" + std::to_string(y) +
-                                            (coarse ? "&coarse=1" : ""), body);
+    const double s = timed_post(
+        client, "/api/section.png?y=" + std::to_string(y) + (coarse ? "&coarse=1" : ""), body);
     t.mean += s / 5;
     t.max = std::max(t.max, s);
   }
@@ -83,7 +83,8 @@ int main(int argc, char** argv) {
     const double check = std::chrono::duration<double>(Clock::now() - t0).count();
     const auto v = nlohmann::json::parse(verdict ? verdict->body : "{}", nullptr, false);
     if (!v.is_object() || !v.value("ok", false)) {
-      std::printf("%-11s does not build: %s\n", name.c_str(), verdict ? verdict->body.c_str() : "no answer");
+      std::printf("%-11s does not build: %s\n", name.c_str(),
+                  verdict ? verdict->body.c_str() : "no answer");
     } else {
       const double lo = v["bbox_min"][1], hi = v["bbox_max"][1];
       const double glb = timed_post(client, "/api/model.glb", body);
@@ -91,8 +92,8 @@ int main(int argc, char** argv) {
       const Times coarse = cuts(client, body, lo, hi, true, 0.01);
       const double variants = timed_post(client, "/api/variants.png", body);
       const bench::PaperRow* row = bench::find_row(table1, name);
-      std::printf("%-11s %6.3f %6.3f %7.3f/%7.3f %7.3f/%7.3f %8.2f %7s\n", name.c_str(), check,
-                  glb, full.mean, full.max, coarse.mean, coarse.max, variants,
+      std::printf("%-11s %6.3f %6.3f %7.3f/%7.3f %7.3f/%7.3f %8.2f %7s\n", name.c_str(), check, glb,
+                  full.mean, full.max, coarse.mean, coarse.max, variants,
                   row ? row->cut_s.c_str() : "-");
     }
     std::fflush(stdout);

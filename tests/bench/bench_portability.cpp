@@ -62,13 +62,13 @@ struct Run {
 };
 
 Run run_once(const Config& config, const Case& c, const fs::path& out) {
-  std::vector<std::string> args = {"env", config.embree_hits ? "CUTAWAY_PMVC_HITS=embree"
-                                                             : "CUTAWAY_PMVC_HITS=decided",
-                                   config.exe};
+  std::vector<std::string> args = {
+      "env", config.embree_hits ? "CUTAWAY_PMVC_HITS=embree" : "CUTAWAY_PMVC_HITS=decided",
+      config.exe};
   for (const std::string& a : c.args) args.push_back(a == "OUT" ? out.string() : a);
   const auto t0 = Clock::now();
-  const cutaway::ChildResult r =
-      cutaway::run_child(CUTAWAY_SOURCE_DIR, cutaway::find_executable("env", "install coreutils"), args);
+  const cutaway::ChildResult r = cutaway::run_child(
+      CUTAWAY_SOURCE_DIR, cutaway::find_executable("env", "install coreutils"), args);
   const double s = cutaway::seconds_since(t0);
   if (!WIFEXITED(r.status) || WEXITSTATUS(r.status) != 0) {
     std::fprintf(stderr, "bench_portability: %s (%s) failed:\n%s\n", c.name, config.name,
@@ -84,7 +84,8 @@ int main(int argc, char** argv) {
   int repeat = 3;
   std::string only;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
+    if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc)
+      repeat = std::max(1, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
   }
   const std::vector<Case> cases = {
@@ -93,8 +94,8 @@ int main(int argc, char** argv) {
         "-q", "-o", "OUT"}},
       {"salad",
        {"scene", "scenes/salad.yaml", "--seed", "3", "--backend", "cpu", "-q", "-o", "OUT"}}};
-  const fs::path dir = fs::temp_directory_path() / ("cutaway_bench_portability_" +
-                                                    std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("cutaway_bench_portability_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   std::printf("# bench_portability: cpu backend, all %u cores, best of %d, configurations "
               "alternating; whole processes (parse to written .glb)\n",

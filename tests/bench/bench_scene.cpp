@@ -94,12 +94,12 @@ void check_outputs(const std::string& name, const cutaway::SceneAssets& assets,
       const size_t from = at + key.size() + 3;
       return json.substr(from, json.find_first_of(",}", from) - from);
     };
-    const std::string report = run("cd '" + source.string() +
-                                   "' && node tests/tools/validate_gltf.mjs '" + glb.string() +
-                                   "' 2>/dev/null");
-    const std::string three = run("cd '" + source.string() +
-                                  "' && node tests/tools/load_gltf_three.mjs '" + glb.string() +
-                                  "' 2>/dev/null");
+    const std::string report =
+        run("cd '" + source.string() + "' && node tests/tools/validate_gltf.mjs '" + glb.string() +
+            "' 2>/dev/null");
+    const std::string three =
+        run("cd '" + source.string() + "' && node tests/tools/load_gltf_three.mjs '" +
+            glb.string() + "' 2>/dev/null");
     std::printf(" %s: validator %s errors %s warnings, three.js ok %s %s triangles |", mode_name,
                 field(report, "errors").c_str(), field(report, "warnings").c_str(),
                 field(three, "ok").c_str(), field(three, "triangles").c_str());
@@ -122,13 +122,14 @@ void check_outputs(const std::string& name, const cutaway::SceneAssets& assets,
 
 /// The scene's camera moved: `orbit_deg` about the vertical through its target (in a bowl or on
 /// a plate the settled pile turns with it; on a board, past 45 degrees, the cut faces turn to
-/// another side and the layout is redone), and its field of view narrowed by a fifth (a zoom: nothing but the picture changes). A scene without a camera gets the one the
-/// builder would frame it with first (default_view_direction).
+/// another side and the layout is redone), and its field of view narrowed by a fifth (a zoom:
+/// nothing but the picture changes). A scene without a camera gets the one the builder would frame
+/// it with first (default_view_direction).
 cutaway::Scene moved_camera(cutaway::Scene scene, double orbit_deg) {
   if (!scene.camera) {
     const double distance = 1.0;  // metres; the field of view frames it
-    scene.camera = cutaway::SceneCamera{distance * cutaway::default_view_direction(),
-                                        glm::dvec3(0.0), 40};
+    scene.camera =
+        cutaway::SceneCamera{distance * cutaway::default_view_direction(), glm::dvec3(0.0), 40};
   }
   cutaway::SceneCamera& c = *scene.camera;
   const glm::dvec3 d = c.eye - c.target;
@@ -191,10 +192,10 @@ void bench_cached_reruns(const fs::path& path, int threads, double first_s) {
       "  %s cut cache: storing %.2f s (%.0f MB) | re-run, camera zoomed %.2f s = %.1f %% of "
       "the first run [target <= 15 %%: %s] (%s) | camera orbited 30 deg %.2f s = %.1f %% [%s] "
       "(%s) | orbited 90 deg %.2f s = %.1f %% [%s] (%s)\n",
-      path.stem().c_str(), store_s, bytes / 1e6, zoom_s, 100 * zoom_s / first_s,
-      verdict(zoom_s), read_back(zoomed).c_str(), orbit_s, 100 * orbit_s / first_s,
-      verdict(orbit_s), read_back(orbited).c_str(), turn_s, 100 * turn_s / first_s,
-      verdict(turn_s), read_back(turned).c_str());
+      path.stem().c_str(), store_s, bytes / 1e6, zoom_s, 100 * zoom_s / first_s, verdict(zoom_s),
+      read_back(zoomed).c_str(), orbit_s, 100 * orbit_s / first_s, verdict(orbit_s),
+      read_back(orbited).c_str(), turn_s, 100 * turn_s / first_s, verdict(turn_s),
+      read_back(turned).c_str());
 }
 
 /// One scene end to end, best of `repeat`: a line of counts and seconds against the scene's
@@ -248,8 +249,7 @@ void bench_scene(const fs::path& path, int repeat, int threads) {
   // settling runs alone, so its wall seconds count; the collision shapes are made while other
   // objects are cut and the cores are busy, so their processor seconds count shared over the
   // cores (their wall seconds summed over objects would count the waits for a core as well).
-  const int cores =
-      threads > 0 ? threads : static_cast<int>(std::thread::hardware_concurrency());
+  const int cores = threads > 0 ? threads : static_cast<int>(std::thread::hardware_concurrency());
   const double collision_wall = best_stats.seconds_collision / cores;
   const double physics = collision_wall + best_stats.seconds_physics;
   std::printf(
@@ -257,13 +257,12 @@ void bench_scene(const fs::path& path, int repeat, int threads) {
       "%.2f processor s / %d cores, settling %.2f s) | %.2f s simulated, "
       "%d stability checks, the kept one (%d) moved %.2f mm [<= 1 mm], %d redropped, %d lost\n",
       path.stem().c_str(), physics, 100 * physics / best, physics <= 0.2 * best ? "met" : "MISSED",
-      best_stats.seconds_collision, cores, best_stats.seconds_physics,
-      best_stats.simulated_seconds, best_stats.stability_checks, best_stats.stability_kept_check,
+      best_stats.seconds_collision, cores, best_stats.seconds_physics, best_stats.simulated_seconds,
+      best_stats.stability_checks, best_stats.stability_kept_check,
       1000 * best_stats.stability_motion_m, best_stats.redropped, best_stats.lost);
   {
     const auto line = [&](const char* stage, double s) {
-      std::printf("  %s %-28s %6.2f s  %5.1f %%\n", path.stem().c_str(), stage, s,
-                  100 * s / best);
+      std::printf("  %s %-28s %6.2f s  %5.1f %%\n", path.stem().c_str(), stage, s, 100 * s / best);
     };
     line("parse scene + templates", best_parse);
     line("variants (sweep, synthesis)", best_stats.seconds_variants);
@@ -300,10 +299,9 @@ void bench_scene(const fs::path& path, int repeat, int threads) {
   const std::vector<cutaway::Stroke> lines = strokes.strength > 0
                                                  ? cutaway::extract_strokes(best_assets, strokes)
                                                  : std::vector<cutaway::Stroke>{};
-  std::printf(
-      " | pov %.1f MB | of which textures %.1f MB  [large scene: glb <= 20 MB default, "
-      "<= 8 MB meshopt]\n",
-      cutaway::scene_to_pov(best_assets, &lines).size() / 1e6, images / 1e6);
+  std::printf(" | pov %.1f MB | of which textures %.1f MB  [large scene: glb <= 20 MB default, "
+              "<= 8 MB meshopt]\n",
+              cutaway::scene_to_pov(best_assets, &lines).size() / 1e6, images / 1e6);
   // The textures as a GPU holds them, counted as gltf-transform `inspect` does: RGBA8 with a
   // full mip chain, width x height x 4 x 4/3 bytes per image.
   double texels = 0;
@@ -383,8 +381,7 @@ int main(int argc, char** argv) {
     if (child == 0) {
       // --threads bounds every parallel stage, as the command line's does.
       std::optional<oneapi::tbb::global_control> limit;
-      if (threads > 0)
-        limit.emplace(oneapi::tbb::global_control::max_allowed_parallelism, threads);
+      if (threads > 0) limit.emplace(oneapi::tbb::global_control::max_allowed_parallelism, threads);
       bench_scene(path, repeat, threads);
       std::fflush(stdout);
       _exit(0);
@@ -398,7 +395,7 @@ int main(int argc, char** argv) {
     }
     std::printf("  %s peak memory (RSS) %.2f GB  [target < 2 GB]\n", path.stem().c_str(),
                 usage.ru_maxrss / 1e6);  // kilobytes
-    std::fflush(stdout);  // each scene's lines as it ends, also into a file
+    std::fflush(stdout);                 // each scene's lines as it ends, also into a file
   }
   // PMVC work: the same build dense, adaptively sampled, and with adaptive directions too.
   for (const fs::path& path : scenes) {
@@ -432,8 +429,8 @@ int main(int argc, char** argv) {
         "sampling %7zu points (%zu on blur bands, %zu interior) %7.2f s (%.2f s), with adaptive "
         "directions %7.2f s (%.2f s) | %.2fx fewer points, %.2fx less cap time, %.2fx less in "
         "PMVC calls (sampling %.2fx, directions %.2fx)  [target 4x, 3x]\n",
-        path.stem().c_str(), dense.diffused.all, dense.seconds_sections,
-        dense.seconds_diffuse, sampled.diffused.all, sampled.diffused.on_bands,
+        path.stem().c_str(), dense.diffused.all, dense.seconds_sections, dense.seconds_diffuse,
+        sampled.diffused.all, sampled.diffused.on_bands,
         sampled.diffused.all - sampled.diffused.on_bands, sampled.seconds_sections,
         sampled.seconds_diffuse, both.seconds_sections, both.seconds_diffuse,
         static_cast<double>(dense.diffused.all) / both.diffused.all,
@@ -460,10 +457,9 @@ int main(int argc, char** argv) {
         dense_else, both_else, static_cast<double>(dense_else) / both_else, ceiling);
     // Accuracy: the default's cap vertices against dense sampling casting every texel.
     const CapErrors errors = cap_vertex_errors(runs[0].assets, runs[2].assets);
-    std::printf(
-        "%-12s cap vertices' colour, default against dense every texel: %zu vertices, mean "
-        "%.3f/255, 99th percentile %.2f, max %.1f  [target mean <= 1/255]\n",
-        path.stem().c_str(), errors.vertices, errors.mean, errors.p99, errors.max);
+    std::printf("%-12s cap vertices' colour, default against dense every texel: %zu vertices, mean "
+                "%.3f/255, 99th percentile %.2f, max %.1f  [target mean <= 1/255]\n",
+                path.stem().c_str(), errors.vertices, errors.mean, errors.p99, errors.max);
     std::fflush(stdout);
   }
   return 0;

@@ -8,7 +8,8 @@
 //
 // Run:   make bench                       (builds and runs the `benchmarks` target)
 //   or:  cmake --build build --target bench_sections && ./build/bench_sections
-// Options: --threads N (0: all cores, default), --cube N (default: the CLI default, 16), --repeat N (best of N
+// Options: --threads N (0: all cores, default), --cube N (default: the CLI default, 16), --repeat N
+// (best of N
 //          timings per cut, default 3), --gl (also time the GL backend, its agreement with the
 //          cpu backend in steps of 1/255, and whole cuts with it, dense and adaptive; slow on
 //          llvmpipe).
@@ -81,8 +82,7 @@ class TimedBackend final : public cutaway::DiffusionBackend {
 class RawEmbree {
  public:
   RawEmbree(const cutaway::DsModel& model, int threads, cutaway::SheetHits hits)
-      : threads_(threads),
-        sheets_(cutaway::make_diffusion_sheets(model)),
+      : threads_(threads), sheets_(cutaway::make_diffusion_sheets(model)),
         caster_(sheets_, threads, hits) {}
 
   /// Seconds to trace every direction of `dirs` from every point.
@@ -227,7 +227,7 @@ int main(int argc, char** argv) {
         const size_t rays_before = cpu->rays_cast();
         const auto t0 = Clock::now();
         cs = *cutaway::make_cross_section(model, cut.plane, timed,
-                                         cutaway::CrossSectionOptions{tmpl.edge_m});
+                                          cutaway::CrossSectionOptions{tmpl.edge_m});
         cut_s = std::min(cut_s, seconds_since(t0));
         cut_rays = cpu->rays_cast() - rays_before;
         diffuse_s = std::min(diffuse_s, timed.seconds);
@@ -247,10 +247,10 @@ int main(int argc, char** argv) {
           "texel %.3f: %.2fx less; vs_every_texel_mean=%.3f/255 max=%.2f/255\n",
           tmpl.name.c_str(), cut.name, rays / points.size(), dirs.direction.size(), material_s,
           every_s, every_s / material_s, vs_every.mean, vs_every.max);
-      std::printf(
-          "%-9s %-10s cpu colour_s=%.3f colour_and_material_s=%.3f material_cost=%+.1f%% "
-          "(target <= +15%%)\n",
-          tmpl.name.c_str(), cut.name, colour_s, material_s, 100 * (material_s / colour_s - 1));
+      std::printf("%-9s %-10s cpu colour_s=%.3f colour_and_material_s=%.3f material_cost=%+.1f%% "
+                  "(target <= +15%%)\n",
+                  tmpl.name.c_str(), cut.name, colour_s, material_s,
+                  100 * (material_s / colour_s - 1));
       std::printf("%-9s %-10s ds_vertices=%zu ds_faces=%zu paper_vertices=%s paper_faces=%s "
                   "paper_cut_s=%s bvh_s=%.3f cut_s=%.3f triangulate_s=%.3f pmvc_s=%.3f "
                   "section_vertices=%zu pmvc_points=%zu rays=%.3g pmvc_rays_per_s=%.3g "

@@ -65,8 +65,9 @@ std::vector<PoolPiece> cut_pool(const cutaway::Scene& scene, int per_item) {
         const cutaway::Piece& piece = made.set.pieces[q];
         PoolPiece p;
         p.shape = std::move(made.shapes[q]);
-        p.layout = {nullptr, cutaway::largest_cap_normal(piece), item.arrange,
-                    static_cast<int>(pool.size()), piece.cell, cutaway::cut_faces(piece)};
+        p.layout = {nullptr,      cutaway::largest_cap_normal(piece),
+                    item.arrange, static_cast<int>(pool.size()),
+                    piece.cell,   cutaway::cut_faces(piece)};
         p.collision = cutaway::collision_shape(p.shape);
         p.density_kg_m3 = item.tmpl->density_kg_m3;
         pool.push_back(std::move(p));
@@ -101,8 +102,8 @@ int main(int argc, char** argv) {
   const cutaway::Scene scene = cutaway::load_scene(file);
   const auto t_pool = Clock::now();
   const std::vector<PoolPiece> pool = cut_pool(scene, 2);
-  std::printf("settle: a pool of %zu pieces of %s cut in %.1f s\n", pool.size(),
-              scene.name.c_str(), seconds_since(t_pool));
+  std::printf("settle: a pool of %zu pieces of %s cut in %.1f s\n", pool.size(), scene.name.c_str(),
+              seconds_since(t_pool));
   for (const int n : counts) {
     // Pieces of the pool in turn, in the seeded order the scene builder mixes them in.
     std::vector<size_t> which = cutaway::placement_order(static_cast<size_t>(n), scene.seed);

@@ -10,8 +10,8 @@
 //   or:  cmake --build build --target bench_templates && ./build/bench_templates
 // Options: --threads N (0: all cores, default), --cube N (default 16), --repeat N (best of N,
 //          default 3).
-// The paper's figures come from tests/data/paper-table1.tsv. Its times are for a 2010 laptop (2.6 GHz CPU,
-// NVIDIA Quadro FX 570M); its sizes are of its model files, ours of the templates.
+// The paper's figures come from tests/data/paper-table1.tsv. Its times are for a 2010 laptop (2.6
+// GHz CPU, NVIDIA Quadro FX 570M); its sizes are of its model files, ours of the templates.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -93,11 +93,10 @@ int main(int argc, char** argv) {
   std::printf("# bench_templates: cpu backend, cube %d, %d threads (%u cores), best of %d; "
               "cut_s: the horizontal cross-section at mid-height (triangulation + PMVC, BVH "
               "built: bvh_s); paper: %s\n",
-              cube, threads > 0 ? threads : static_cast<int>(cores), cores, repeat,
-              source.c_str());
+              cube, threads > 0 ? threads : static_cast<int>(cores), cores, repeat, source.c_str());
   std::printf("%-11s %-11s %8s %8s %9s %7s %7s %7s | %-11s %8s %8s %9s %7s\n", "template",
-              "symmetry", "vertices", "faces", "size_kb", "bvh_s", "cut_s", "vcut_s",
-              "paper_sym", "vertices", "faces", "size_kb", "cut_s");
+              "symmetry", "vertices", "faces", "size_kb", "bvh_s", "cut_s", "vcut_s", "paper_sym",
+              "vertices", "faces", "size_kb", "cut_s");
   int missing = 0;
   for (const PaperRow& paper : table1) {
     const fs::path path = fs::path(CUTAWAY_SOURCE_DIR) / "templates" / (paper.title + ".yaml");

@@ -41,8 +41,8 @@ int main(int argc, char** argv) {
     if (e.path().extension() == ".yaml") templates.push_back(e.path());
   std::sort(templates.begin(), templates.end());
 
-  std::printf("%-10s %8s %10s %10s %10s %10s %8s\n", "template", "variants", "variants/s",
-              "faces", "faces min", "faces max", "draws");
+  std::printf("%-10s %8s %10s %10s %10s %10s %8s\n", "template", "variants", "variants/s", "faces",
+              "faces min", "faces max", "draws");
   for (const fs::path& path : templates) {
     const cutaway::Template tmpl = cutaway::load_template(path.string());
     int n = 0, draws = 0;

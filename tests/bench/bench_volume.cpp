@@ -80,16 +80,17 @@ int main(int argc, char** argv) {
       const auto flipbooks = cutaway::encode_flipbooks(volume);
       const double colour_kb = flipbooks ? flipbooks->colour.size() / 1e3 : -1;
       const double all_kb = flipbooks ? (flipbooks->colour.size() + flipbooks->structure.size() +
-                                         flipbooks->material.size()) / 1e3
+                                         flipbooks->material.size()) /
+                                            1e3
                                       : -1;
       const double vdb_kb = cutaway::encode_vdb(volume, name, -1).size() / 1e3;
       const cutaway::VolumeErrors e =
           cutaway::volume_errors(model, *diffusion, volume, caps, threads);
-      std::printf("%s %d %.3f %zu %zu %u %.2f %.2f %.0f %.0f %.0f %zu %zu %.2f %.1f %.2f %.1f %.2f\n",
-                  name.c_str(), n, voxel_m * 1e3, volume.voxels(), volume.solid, volume.regions,
-                  volume.seconds_classify, volume.seconds_diffuse, colour_kb, all_kb, vdb_kb,
-                  e.points, e.near_points, e.mean_far, e.p99_far, e.mean_near, e.p99_near,
-                  100 * e.wrong_side);
+      std::printf(
+          "%s %d %.3f %zu %zu %u %.2f %.2f %.0f %.0f %.0f %zu %zu %.2f %.1f %.2f %.1f %.2f\n",
+          name.c_str(), n, voxel_m * 1e3, volume.voxels(), volume.solid, volume.regions,
+          volume.seconds_classify, volume.seconds_diffuse, colour_kb, all_kb, vdb_kb, e.points,
+          e.near_points, e.mean_far, e.p99_far, e.mean_near, e.p99_near, 100 * e.wrong_side);
       std::fflush(stdout);
       if (name == "tomato" && n == cutaway::kDefaultVoxelsAcross) tomato_bytes = colour_kb * 1e3;
     }

@@ -33,8 +33,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const cutaway::PieceMaterials given{1, 2, 3};
   try {
     cutaway::CachedCut cut = cutaway::decode_cut_payload(payload, assets, given);
-    const cutaway::Check usable = cutaway::check_cached_cut(
-        cut.pieces, cut.collision, !cut.collision.empty(), assets, 0.5);
+    const cutaway::Check usable =
+        cutaway::check_cached_cut(cut.pieces, cut.collision, !cut.collision.empty(), assets, 0.5);
     if (!usable && usable.reason().empty()) std::abort();
   } catch (const cutaway::ByteStreamError&) {
     // Damaged: the expected outcome for almost every mutation.

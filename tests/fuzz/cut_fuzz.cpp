@@ -1,8 +1,8 @@
 // libFuzzer target: any byte string given to parse_cut_spec (the `--cut` notation, and through
 // `plane:` the `--plane` notation of parse_plane_spec) either parses into finite planes and
-// lengths or is refused with a reason (an Outcome without a value). Anything else (a crash, an exception,
-// a sanitizer report, a hang, a non-finite or unnormalised plane) is a finding.
-// Built by tests/fuzz/CMakeLists.txt with clang -fsanitize=fuzzer,address,undefined.
+// lengths or is refused with a reason (an Outcome without a value). Anything else (a crash, an
+// exception, a sanitizer report, a hang, a non-finite or unnormalised plane) is a finding. Built by
+// tests/fuzz/CMakeLists.txt with clang -fsanitize=fuzzer,address,undefined.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -17,7 +17,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   for (const double metres_per_unit : {1e-3, 1.0}) {
-    const cutaway::Outcome<cutaway::CutSpec> parsed = cutaway::parse_cut_spec(text, metres_per_unit);
+    const cutaway::Outcome<cutaway::CutSpec> parsed =
+        cutaway::parse_cut_spec(text, metres_per_unit);
     if (!parsed) {
       // Refused input: the expected outcome for almost every mutation; it says why.
       if (parsed.reason().empty()) std::abort();

@@ -22,10 +22,9 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
   // The importer reads a file: one per fuzzing process, rewritten for every input.
-  static const std::string file =
-      (std::filesystem::temp_directory_path() /
-       ("cutaway_ply_fuzz_" + std::to_string(::getpid()) + ".ply"))
-          .string();
+  static const std::string file = (std::filesystem::temp_directory_path() /
+                                   ("cutaway_ply_fuzz_" + std::to_string(::getpid()) + ".ply"))
+                                      .string();
   std::ofstream(file, std::ios::binary | std::ios::trunc).write(bytes.data(), bytes.size());
 
   cutaway::Template tmpl;

@@ -32,8 +32,8 @@ TEST(ComposeGrid, SizesCellsByTheLargestTileAndCentresSmallerOnes) {
   EXPECT_EQ(sheet.width, 2 * 4 + 3 * 2);
   EXPECT_EQ(sheet.height, 2 * 6 + 3 * 2);
   ASSERT_EQ(sheet.rgba.size(), static_cast<size_t>(sheet.width) * sheet.height * 4);
-  EXPECT_EQ(red_at(sheet, 0, 0), 255);   // margin
-  EXPECT_EQ(red_at(sheet, 2, 2), 10);    // tile 0 fills cell (0, 0)
+  EXPECT_EQ(red_at(sheet, 0, 0), 255);  // margin
+  EXPECT_EQ(red_at(sheet, 2, 2), 10);   // tile 0 fills cell (0, 0)
   EXPECT_EQ(red_at(sheet, 5, 7), 10);
   // Tile 1 (2 x 2) centred in cell (1, 0), which starts at x = 8, y = 2: pixels 9..10, 4..5.
   EXPECT_EQ(red_at(sheet, 8, 2), 255);
@@ -60,10 +60,8 @@ TEST(ComposeGrid, RefusesBadInput) {
   Image broken = solid(2, 2, 0);
   broken.rgba.pop_back();
   EXPECT_THROW(compose_grid({broken}, 1), InternalError);
-  EXPECT_THROW(compose_grid({solid(2, 2, 0)}, 1, GridOptions{-1, {1, 1, 1}}),
-               InternalError);
-  EXPECT_THROW(compose_grid({solid(9000, 10, 0), solid(9000, 10, 0)}, 2),
-               InternalError);
+  EXPECT_THROW(compose_grid({solid(2, 2, 0)}, 1, GridOptions{-1, {1, 1, 1}}), InternalError);
+  EXPECT_THROW(compose_grid({solid(9000, 10, 0), solid(9000, 10, 0)}, 2), InternalError);
 }
 
 // A missing section keeps its place as a tile of the background; the present ones are drawn

@@ -41,9 +41,9 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr int kWidth = 160, kHeight = 120;
-constexpr int kChannelTolerance = 16;         // of 255
-constexpr double kPixelFraction = 0.005;      // of all pixels may differ by more
-constexpr int kCube = 4;                      // PMVC cube-map texels per face edge: fast
+constexpr int kChannelTolerance = 16;     // of 255
+constexpr double kPixelFraction = 0.005;  // of all pixels may differ by more
+constexpr int kCube = 4;                  // PMVC cube-map texels per face edge: fast
 
 bool updating() {
   const char* v = std::getenv("CUTAWAY_UPDATE_GOLDEN");
@@ -62,9 +62,9 @@ void check_golden(const std::string& name, const Image& image) {
   const std::string bytes = test::read_file(reference_path);
   ASSERT_FALSE(bytes.empty()) << reference_path << " is missing: run scripts/update-golden.sh";
   int w = 0, h = 0, channels = 0;
-  unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                static_cast<int>(bytes.size()), &w, &h,
-                                                &channels, 4);
+  unsigned char* pixels =
+      stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()),
+                            static_cast<int>(bytes.size()), &w, &h, &channels, 4);
   ASSERT_NE(pixels, nullptr) << reference_path << " is not a PNG";
   Image reference;
   reference.width = w;
@@ -97,10 +97,9 @@ void check_golden(const std::string& name, const Image& image) {
   write_png(out_image, image);
   write_png(out_reference, reference);
   if (same_size) write_png(out_difference, difference);
-  ADD_FAILURE() << name << ": " << differing << " pixels differ by more than "
-                << kChannelTolerance << " (at most " << allowed << " may); image "
-                << image.width << "x" << image.height << ", reference " << w << "x" << h
-                << "\n  image:      " << out_image.string()
+  ADD_FAILURE() << name << ": " << differing << " pixels differ by more than " << kChannelTolerance
+                << " (at most " << allowed << " may); image " << image.width << "x" << image.height
+                << ", reference " << w << "x" << h << "\n  image:      " << out_image.string()
                 << "\n  reference:  " << out_reference.string()
                 << (same_size ? "\n  difference: " + out_difference.string() : std::string());
 }
@@ -139,8 +138,8 @@ TEST(Golden, SectionNpr) { section_case("section-tomato-npr", 1); }
 void pieces_case(const std::string& name, double npr) {
   SceneAssets assets;
   assets.name = tomato().name;
-  const PieceMaterials materials = add_piece_materials(
-      assets, tomato().name, tomato().skin_material, tomato().cut_material);
+  const PieceMaterials materials =
+      add_piece_materials(assets, tomato().name, tomato().skin_material, tomato().cut_material);
   ObjectCutOptions cut;
   cut.cut = *parse_cut_spec("halves", tomato().metres_per_unit);
   cut.perlin = npr;

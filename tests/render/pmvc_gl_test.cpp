@@ -52,8 +52,8 @@ TEST(PmvcGl, ConcentricSpheresMatchTheAnalyticIntegral) {
   EXPECT_EQ(backend->name(), "gl");
   const test::TwoSphereErrors e = test::two_sphere_errors(*backend, t.edge_m);
   RecordProperty("mean_error", std::to_string(e.mean));
-  std::printf("pmvc gl: %zu points, mean error %.5f, max %.5f, %.3f s\n", e.points, e.mean,
-              e.max, e.seconds);
+  std::printf("pmvc gl: %zu points, mean error %.5f, max %.5f, %.3f s\n", e.points, e.mean, e.max,
+              e.seconds);
   EXPECT_LE(e.mean, 0.005);
   EXPECT_LE(e.max, 0.03);
 }
@@ -72,8 +72,8 @@ surfaces:
   const DsModel model = build_model(parse_template(text, "faces.yaml", "."));
   const auto backend = make_gl_diffusion(model, DiffusionOptions{16, 0});
   // Inside the core: only the core's back face. Between: the skin's back and the core's front.
-  const std::vector<glm::dvec3> points = {{0.001, 0.002, -0.003}, {-0.004, 0, 0.002},
-                                          {0.018, 0.003, 0.001}, {0, -0.02, 0.004}};
+  const std::vector<glm::dvec3> points = {
+      {0.001, 0.002, -0.003}, {-0.004, 0, 0.002}, {0.018, 0.003, 0.001}, {0, -0.02, 0.004}};
   const std::vector<glm::dvec3> colours = backend->diffuse(points);
   const glm::dvec3 blue_grey = srgb_to_linear(glm::dvec3(0x33, 0x66, 0x99) / 255.0);
   for (size_t i = 0; i < points.size(); ++i) {
@@ -125,8 +125,7 @@ TEST(PmvcGl, AgreesWithTheCpuBackendInsideTheTomato) {
         n, adaptive ? " adaptive" : "", points.size(), mean, max, rays / points.size(),
         static_cast<double>(gl->rays_cast()) / points.size(), points.size() / gl_s, rays / gl_s,
         points.size() / cpu_s, rays / cpu_s);
-    RecordProperty(adaptive ? "mean_difference_adaptive" : "mean_difference",
-                   std::to_string(mean));
+    RecordProperty(adaptive ? "mean_difference_adaptive" : "mean_difference", std::to_string(mean));
     EXPECT_LE(mean, 0.005);  // doc/algorithms.md §2: backends agree to 0.005 per channel on average
     EXPECT_LE(max, 0.05);
     EXPECT_NEAR(static_cast<double>(gl->rays_cast()), rays, 0.01 * rays);
@@ -148,7 +147,8 @@ TEST(PmvcGl, ResultsAreBitIdenticalAcrossRunsAndBatches) {
   std::vector<glm::dvec3> some;
   for (size_t i : picks) some.push_back(all[i]);
   const std::vector<glm::dvec3> alone = backend->diffuse(some);
-  for (size_t k = 0; k < some.size(); ++k) EXPECT_EQ(alone[k], first[picks[k]]) << "point " << picks[k];
+  for (size_t k = 0; k < some.size(); ++k)
+    EXPECT_EQ(alone[k], first[picks[k]]) << "point " << picks[k];
   const std::vector<glm::dvec3> reversed_order = [&] {
     std::vector<glm::dvec3> r(all.rbegin(), all.rend());
     return backend->diffuse(r);

@@ -98,8 +98,7 @@ TEST(PovrayRunner, MissingExecutableOrSceneThrows) {
                InternalError);
   PovrayOptions bad_quality;
   bad_quality.quality = 12;
-  EXPECT_THROW(render_povray(dir / "scene.pov", dir / "a.png", 10, 10, bad_quality),
-               InternalError);
+  EXPECT_THROW(render_povray(dir / "scene.pov", dir / "a.png", 10, 10, bad_quality), InternalError);
   EXPECT_FALSE(fs::exists(dir / "a.png"));
 }
 

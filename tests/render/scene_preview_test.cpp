@@ -78,7 +78,7 @@ SceneAssets two_cubes() {
   AssetLight sun;
   sun.name = "sun";
   sun.direction = glm::normalize(glm::dvec3(0, -0.6, 0.8));  // travels down and toward +Z
-  sun.intensity = 3 * kLumensPerWatt;  // the reference light: scale 1
+  sun.intensity = 3 * kLumensPerWatt;                        // the reference light: scale 1
   a.lights.push_back(sun);
   a.background = {0.25, 0.5, 0.75};  // exact in half floats
   a.width = kWidth;
@@ -160,8 +160,8 @@ TEST(ScenePreview, ALitFaceIsBrighterThanOneTurnedAway) {
   o.samples = 4;
   const Image im = render_scene_preview(a, o);
   for (const double x : {-0.3, 0.3}) {
-    const glm::ivec3 top = pixel(im, project(a, {x, 0.15, 0}));     // faces the light (0.6)
-    const glm::ivec3 front = pixel(im, project(a, {x, 0, 0.15}));   // turned away (-0.8)
+    const glm::ivec3 top = pixel(im, project(a, {x, 0.15, 0}));    // faces the light (0.6)
+    const glm::ivec3 front = pixel(im, project(a, {x, 0, 0.15}));  // turned away (-0.8)
     const int top_sum = top.r + top.g + top.b, front_sum = front.r + front.g + front.b;
     EXPECT_GT(top_sum, front_sum + 60) << "x = " << x;
     EXPECT_GT(front_sum, 30) << "the ambient term keeps shadowed faces from black";
@@ -181,8 +181,8 @@ TEST(ScenePreview, PlacesInstancesOfOneMeshByQuaternionThenTranslation) {
   // degrees about +Y, which takes +X to -Z (away from the camera).
   a.meshes.push_back(box("bar", {0.25, 0.03, 0.03}, {0.8, 0.05, 0.05}, {0.25, 0, 0}));
   a.instances.push_back(instance("plain", 0, {0, 0.2, 0}));
-  a.instances.push_back(instance("turned", 0, {0, -0.2, 0},
-                                 glm::angleAxis(glm::radians(90.0), glm::dvec3(0, 1, 0))));
+  a.instances.push_back(
+      instance("turned", 0, {0, -0.2, 0}, glm::angleAxis(glm::radians(90.0), glm::dvec3(0, 1, 0))));
   ScenePreviewOptions o;
   o.samples = 1;
   const Image im = render_scene_preview(a, o);
@@ -445,4 +445,3 @@ TEST(ScenePreview, DefaultMaterialsDrawExactlyAsVertexColours) {
 
 }  // namespace
 }  // namespace cutaway
-

@@ -113,9 +113,10 @@ std::vector<BadCase> bad_cases() {
       fixture("wrong_type", 6, 20, "resolution.edge", "must be a number, not \"fine\""),
       generated("empty_value", 4, 3, "symmetry.type", "must be a text value, not nothing",
                 [] { return kHead + "name: bad\nsymmetry:\n  type:\nsurfaces: []\n"; }),
-      generated(
-          "empty_list_item", 5, 3, "surfaces[0]", "must be a mapping",
-          [] { return kHead + "name: bad\nsymmetry: {type: cylindrical}\nsurfaces:\n  -\n"; }),
+      generated("empty_list_item", 5, 3, "surfaces[0]", "must be a mapping",
+                [] {
+                  return kHead + "name: bad\nsymmetry: {type: cylindrical}\nsurfaces:\n  -\n";
+                }),
       fixture("nan_edge", 6, 20, "resolution.edge", "must be a finite number, not \".nan\""),
       fixture("infinite_point", 11, 33, "surfaces[0].profile[2][0]", "must be a finite number"),
       // Colours, blur, gradients.

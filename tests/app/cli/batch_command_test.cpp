@@ -48,8 +48,9 @@ TEST(BatchCommand, MergeRefusesAFolderThatIsNoBatchAndAnIncompleteBatch) {
 // manifest it used to rewrite before it read the thumbnails.
 TEST(BatchCommand, MergeReadsEveryThumbnailBeforeWritingAnything) {
   const fs::path dir = fresh_dir("batch-merge-thumbnail");
-  RunResult r = run_cutaway({"-q", "batch", source_path("tests/data/batches/four-variants.yaml").string(),
-                             "-o", dir.string(), "--shard", "1/1", "--backend", "cpu"});
+  RunResult r =
+      run_cutaway({"-q", "batch", source_path("tests/data/batches/four-variants.yaml").string(),
+                   "-o", dir.string(), "--shard", "1/1", "--backend", "cpu"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path manifest = dir / "manifest-1-of-1.jsonl";
   std::string lines = read_file(manifest);
@@ -121,8 +122,7 @@ TEST(BatchCommand, ReadsCutObjectsFromTheCacheAndWritesTheSameFiles) {
   EXPECT_TRUE(made_afresh(first));
   const RunResult again = run("again", {"--cache", (dir / "cache").string()});
   ASSERT_EQ(again.exit_code, 0) << again.err;
-  EXPECT_NE(again.err.find("2 of the assets built were read from the cut cache"),
-            std::string::npos)
+  EXPECT_NE(again.err.find("2 of the assets built were read from the cut cache"), std::string::npos)
       << again.err;
   EXPECT_FALSE(made_afresh(again));
   const std::vector<std::string> files = files_in(dir / "none");

@@ -48,9 +48,9 @@ void expect_made(const test::LimitedRun& r) {
 
 TEST(Bounds, CamerasLookingStraightDownOrFromBelowMakeTheirScene) {
   const fs::path dir = test::fresh_dir("bounds");
-  const test::LimitedRun down = run_bounded({"scene", kDir + "camera_top_down.yaml", "-o",
-                                             (dir / "down.glb").string(), "-o",
-                                             (dir / "down.pov").string()});
+  const test::LimitedRun down =
+      run_bounded({"scene", kDir + "camera_top_down.yaml", "-o", (dir / "down.glb").string(), "-o",
+                   (dir / "down.pov").string()});
   expect_made(down);
   EXPECT_TRUE(fs::exists(dir / "down.glb") && fs::exists(dir / "down.pov"));
   // From below the container, the pile is placed as from its side: every piece.
@@ -99,9 +99,8 @@ TEST(Bounds, ABlurAsWideAsTheGapToTheNextLayerStillGivesClosedPieces) {
   // The shipped volcano with one layer blurred by 10 mm: its ladder points fell exactly on the
   // next layer's cut segment.
   const fs::path dir = test::fresh_dir("bounds");
-  const test::LimitedRun r =
-      run_bounded({"piece", kDir + "volcano_blur_10.yaml", "--cut", "halves", "-o",
-                   (dir / "v.glb").string()});
+  const test::LimitedRun r = run_bounded(
+      {"piece", kDir + "volcano_blur_10.yaml", "--cut", "halves", "-o", (dir / "v.glb").string()});
   expect_made(r);
   EXPECT_EQ(r.err.find("not closed"), std::string::npos) << r.err;
 }
@@ -112,7 +111,8 @@ TEST(Bounds, SceneAndBatchTotalsAreChecked) {
   {
     std::ofstream f(dir / "many.yaml");
     f << "format: cutaway-scene/1\nname: many\nitems:\n";
-    for (int i = 0; i < 2000; ++i) f << "  - {template: okra, count: 64, cut: {type: dice, size: 5}}\n";
+    for (int i = 0; i < 2000; ++i)
+      f << "  - {template: okra, count: 64, cut: {type: dice, size: 5}}\n";
   }
   // Its first item alone: 64 okra diced at 5 mm make more pieces than a scene may hold.
   const test::LimitedRun many = run_bounded({"check", (dir / "many.yaml").string()});
@@ -173,8 +173,8 @@ TEST(Bounds, SceneAndBatchTotalsAreChecked) {
   }
   expect_refused(run_bounded({"check", (dir / "batch.yaml").string()}),
                  "items[0].count: the items up to here make 1600000 assets (at most 1000000");
-  expect_refused(run_bounded({"batch", (dir / "batch.yaml").string(), "-o",
-                              (dir / "out").string(), "--shard", "1/100000"}),
+  expect_refused(run_bounded({"batch", (dir / "batch.yaml").string(), "-o", (dir / "out").string(),
+                              "--shard", "1/100000"}),
                  "1600000 assets");
 }
 
@@ -211,8 +211,7 @@ TEST(Bounds, SmallerHolesAreClosed) {
   expect_refused(run_bounded({"check", kDir + "tomato_second_document.yaml"}), "(file): ");
   // The last variant's seed must be one --seed accepts.
   expect_refused(run_bounded({"variants", "templates/strawberry.yaml", "--seed",
-                              "9223372036854775806", "--count", "3", "-o",
-                              (dir / "v").string()}),
+                              "9223372036854775806", "--count", "3", "-o", (dir / "v").string()}),
                  "give --seed at most 9223372036854775805");
   EXPECT_FALSE(fs::exists(dir / "v"));
   // Contact sheets are held to a render's pixels before any variant or tile is made.

@@ -84,26 +84,27 @@ void expect_same_bytes_every_way(const std::string& name, const std::vector<std:
 
 TEST(CpuIndependence, PieceWithDice) {
   expect_same_bytes_every_way(
-      "dice", {"piece", "templates/kiwi.yaml", "--cut", "dice:20", "--seed", "5", "-o",
-               "OUT/kiwi.glb"}, 1);
+      "dice",
+      {"piece", "templates/kiwi.yaml", "--cut", "dice:20", "--seed", "5", "-o", "OUT/kiwi.glb"}, 1);
 }
 
 TEST(CpuIndependence, PieceWithDiceAsPovRay) {
   expect_same_bytes_every_way(
-      "dice-pov", {"piece", "templates/kiwi.yaml", "--cut", "dice:20", "--seed", "5", "-o",
-                   "OUT/kiwi.pov"}, 1);
+      "dice-pov",
+      {"piece", "templates/kiwi.yaml", "--cut", "dice:20", "--seed", "5", "-o", "OUT/kiwi.pov"}, 1);
 }
 
 TEST(CpuIndependence, SectionOfASeededVariant) {
-  expect_same_bytes_every_way(
-      "section", {"section", "templates/tomato.yaml", "--plane", "2,20,1/0.3,1,0.2", "--seed",
-                  "9", "-o", "OUT/cut.glb"}, 1);
+  expect_same_bytes_every_way("section",
+                              {"section", "templates/tomato.yaml", "--plane", "2,20,1/0.3,1,0.2",
+                               "--seed", "9", "-o", "OUT/cut.glb"},
+                              1);
 }
 
 TEST(CpuIndependence, SceneWithPhysicsAndTextures) {
   expect_same_bytes_every_way(
-      "scene", {"scene", "tests/data/scenes/tiny.yaml", "-o", "OUT/tiny.glb", "-o",
-                "OUT/tiny.pov"}, 2);
+      "scene", {"scene", "tests/data/scenes/tiny.yaml", "-o", "OUT/tiny.glb", "-o", "OUT/tiny.pov"},
+      2);
 }
 
 TEST(CpuIndependence, BatchAssetsAndManifest) {
@@ -120,10 +121,9 @@ TEST(CpuIndependence, BatchAssetsAndManifest) {
 
 TEST(CpuIndependence, VariantSet) {
   expect_same_bytes_every_way(
-      "variants", {"variants", "templates/tomato.yaml", "--count", "3", "--seed", "4", "-o",
-                   "OUT/set/"}, 3);
+      "variants",
+      {"variants", "templates/tomato.yaml", "--count", "3", "--seed", "4", "-o", "OUT/set/"}, 3);
 }
 
 }  // namespace
 }  // namespace cutaway
-

@@ -37,16 +37,17 @@ std::vector<fs::path> cache_entries(const fs::path& dir) {
   for (const auto& e : fs::recursive_directory_iterator(dir / "cutaway-cache-v2"))
     if (e.symlink_status().type() == fs::file_type::regular && e.path().extension() == ".cut")
       out.push_back(e.path());
-  std::sort(out.begin(), out.end(),
-            [](const fs::path& a, const fs::path& b) { return fs::file_size(a) > fs::file_size(b); });
+  std::sort(out.begin(), out.end(), [](const fs::path& a, const fs::path& b) {
+    return fs::file_size(a) > fs::file_size(b);
+  });
   return out;
 }
 
 /// The cherry scene through the cache `cache`, written to `out`; its bytes.
 RunResult cherry_scene(const fs::path& cache, const fs::path& out,
                        std::vector<std::string> more = {}) {
-  std::vector<std::string> args = {"scene", kCherryScene, "--cache", cache.string(), "-o",
-                                   out.string()};
+  std::vector<std::string> args = {"scene",        kCherryScene, "--cache",
+                                   cache.string(), "-o",         out.string()};
   args.insert(args.end(), more.begin(), more.end());
   return run_cutaway(args);
 }
@@ -89,8 +90,8 @@ TEST(FileSafety, BatchMergeHashesAHugeFileWithinBoundedMemory) {
   fs::remove(vdb);
   std::ofstream(vdb).close();
   fs::resize_file(vdb, uint64_t{3900} << 20);
-  const LimitedRun merged = run_cutaway_limited({"batch", "merge", out.string()},
-                                                uint64_t{1} << 30, 120);
+  const LimitedRun merged =
+      run_cutaway_limited({"batch", "merge", out.string()}, uint64_t{1} << 30, 120);
   EXPECT_EQ(merged.exit_code, 3) << merged.err;
   EXPECT_NE(merged.err.find("cherry-11"), std::string::npos) << merged.err;
   EXPECT_LT(merged.peak_rss_bytes, uint64_t{256} << 20);
@@ -167,9 +168,9 @@ TEST(FileSafety, AHugeFileAtAnEntryIsRemovedUnread) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path entry = cache_entries(cache)[0];
   fs::resize_file(entry, uint64_t{3900} << 20);
-  const LimitedRun limited = run_cutaway_limited(
-      {"scene", kCherryScene, "--cache", cache.string(), "-o", (dir / "again.glb").string()},
-      uint64_t{3} << 30, 120);
+  const LimitedRun limited = run_cutaway_limited({"scene", kCherryScene, "--cache", cache.string(),
+                                                  "-o", (dir / "again.glb").string()},
+                                                 uint64_t{3} << 30, 120);
   EXPECT_EQ(limited.exit_code, 0) << limited.err;
   EXPECT_NE(limited.err.find(entry.string()), std::string::npos) << limited.err;
   EXPECT_NE(limited.err.find("is larger than 1 GiB"), std::string::npos) << limited.err;

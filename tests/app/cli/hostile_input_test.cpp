@@ -146,8 +146,8 @@ TEST(HostileKeys, EmptyKeyIsQuotedInThePath) {
 
 TEST(HostileKeys, KeyWithATrailingBlankIsQuotedInThePath) {
   const std::string input = "tests/data/reliability/key-trailing-space.yaml";
-  expect_refusal(run_limited({"check", input}), input, "symmetry[\"name \"]: ",
-                 "unknown field \"name \"");
+  expect_refusal(run_limited({"check", input}), input,
+                 "symmetry[\"name \"]: ", "unknown field \"name \"");
 }
 
 TEST(HostileKeys, ControlCharacterInAKeyIsEscaped) {
@@ -195,12 +195,13 @@ TEST_P(HostileLongValue, MessageStaysShort) {
 INSTANTIATE_TEST_SUITE_P(
     TenMegabytes, HostileLongValue,
     ::testing::Values(
-        LongValue{"number", "edge: 2", "edge: " + std::string(k10MB), "resolution.edge: ",
-                  "must be a number, not \"xxx"},
+        LongValue{"number", "edge: 2", "edge: " + std::string(k10MB),
+                  "resolution.edge: ", "must be a number, not \"xxx"},
         LongValue{"colour", "front: \"#c8281e\"", "front: \"#" + std::string(k10MB) + "\"",
                   "surfaces[0].front: ", "…(10485761 bytes)…xxx"},
         LongValue{"mesh_file", "    kind: around\n    role: skin\n    profile",
-                  "    kind: around\n    role: skin\n    file: " + std::string(k10MB) + "\n    profile",
+                  "    kind: around\n    role: skin\n    file: " + std::string(k10MB) +
+                      "\n    profile",
                   "surfaces[0].file: ", "only a 'mesh' surface has a file"},
         LongValue{"key", "    section: circle",
                   "    ? " + std::string(k10MB) + "\n    : 1\n    section: circle",

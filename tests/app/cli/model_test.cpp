@@ -77,9 +77,8 @@ TEST_P(ModelCommand, WritesAValidGlbAndAPngDeterministically) {
   EXPECT_EQ(big_endian_u32(png, 16), static_cast<uint32_t>(kSize));
   EXPECT_EQ(big_endian_u32(png, 20), static_cast<uint32_t>(kSize));
   int w = 0, h = 0, channels = 0;
-  unsigned char* pixels =
-      stbi_load_from_memory(reinterpret_cast<const unsigned char*>(png.data()),
-                            static_cast<int>(png.size()), &w, &h, &channels, 4);
+  unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(png.data()),
+                                                static_cast<int>(png.size()), &w, &h, &channels, 4);
   ASSERT_NE(pixels, nullptr) << stbi_failure_reason();
   EXPECT_EQ(w, kSize);
   EXPECT_EQ(h, kSize);
@@ -116,9 +115,9 @@ TEST(ModelCommandRefuses, AWrongOutputExtensionWithExitCodeTwoAndNoFile) {
 TEST(ModelCommandRefuses, ABadTemplateWithExitCodeTwoAndNoFile) {
   const fs::path dir = test::fresh_dir("cli_model_bad_template");
   std::ofstream(dir / "bad.yaml") << "format: cutaway-template/1\nname: bad\n";
-  const test::RunResult r = test::run_cutaway(
-      {"model", (dir / "bad.yaml").string(), "-o", (dir / "x.glb").string(), "--png",
-       (dir / "x.png").string()});
+  const test::RunResult r =
+      test::run_cutaway({"model", (dir / "bad.yaml").string(), "-o", (dir / "x.glb").string(),
+                         "--png", (dir / "x.png").string()});
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("bad.yaml"), std::string::npos) << r.err;
   EXPECT_EQ(test::files_in(dir), std::vector<std::string>{"bad.yaml"});

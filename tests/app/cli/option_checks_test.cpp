@@ -114,17 +114,14 @@ TEST(OptionChecks, NanPerlinTexelsAndSilhouettesExitTwoNamingTheOptionBeforeAnyW
   const std::vector<Case> cases = {
       {{"volume", "templates/cherry.yaml", "-o", out, "--voxel", "2", "--perlin", "nan"},
        "--perlin: must be a number from 0 to 10, not \"nan\""},
-      {{"piece", "templates/cherry.yaml", "--cut", "halves", "-o", out + ".glb", "--perlin",
-        "nan"},
+      {{"piece", "templates/cherry.yaml", "--cut", "halves", "-o", out + ".glb", "--perlin", "nan"},
        "--perlin: must be a number from 0 to 10, not \"nan\""},
-      {{"scene", "scenes/board.yaml", "--no-cache", "-o", out + ".glb", "--texels-per-mm",
-        "nan"},
+      {{"scene", "scenes/board.yaml", "--no-cache", "-o", out + ".glb", "--texels-per-mm", "nan"},
        "--texels-per-mm: must be a number from 0.1 to 100, not \"nan\""},
       {{"piece", "templates/cherry.yaml", "--cut", "halves", "-o", out + ".glb", "--png",
         out + ".png", "--silhouettes", "nan"},
        "--silhouettes: must be a number from 0 to 10, not \"nan\""},
-      {{"piece", "templates/cherry.yaml", "--cut", "halves", "-o", out + ".glb", "--cube",
-        "16.5"},
+      {{"piece", "templates/cherry.yaml", "--cut", "halves", "-o", out + ".glb", "--cube", "16.5"},
        "--cube: must be a whole number from 2 to 256, not \"16.5\""},
   };
   for (const Case& c : cases) {
@@ -140,11 +137,11 @@ TEST(OptionChecks, AVolumeStemNamingAFolderIsRefusedBeforeAnyWork) {
   const fs::path dir = test::fresh_dir("volume-stem-folder");
   fs::create_directories(dir / "d2");
   const fs::path sources = fs::current_path();  // where `-o .` and `-o ..` would write
-  const std::vector<std::string> stems = {(dir / "d2").string() + "/", (dir / "d2").string(),
-                                          ".", "..", (dir / "d2" / "..").string()};
+  const std::vector<std::string> stems = {(dir / "d2").string() + "/", (dir / "d2").string(), ".",
+                                          "..", (dir / "d2" / "..").string()};
   for (const std::string& stem : stems) {
-    const RunResult run = test::run_cutaway(
-        {"volume", "templates/tomato.yaml", "--voxel", "2", "-o", stem});
+    const RunResult run =
+        test::run_cutaway({"volume", "templates/tomato.yaml", "--voxel", "2", "-o", stem});
     EXPECT_EQ(run.exit_code, 2) << stem << ": " << run.err;
     EXPECT_NE(run.err.find("a stem names the files STEM.vdb, STEM.json and STEM.glb, not a "
                            "folder"),
@@ -177,8 +174,8 @@ TEST(OptionChecks, TheLeekAtAQuarterMillimetreIsRefusedWithItsCostAndACoarserVox
   EXPECT_EQ(run.err.find("sampling"), std::string::npos) << run.err;
   EXPECT_TRUE(test::files_in(dir).empty());
   // The same grid at a smaller cube is cheaper, and a bigger cube costs more than it.
-  const RunResult cube = test::run_cutaway({"volume", "templates/cherry.yaml", "--cube", "64",
-                                            "-o", (dir / "cherry").string()});
+  const RunResult cube = test::run_cutaway(
+      {"volume", "templates/cherry.yaml", "--cube", "64", "-o", (dir / "cherry").string()});
   EXPECT_EQ(cube.exit_code, 2) << cube.err;
   EXPECT_NE(cube.err.find("rays each at cube 64"), std::string::npos) << cube.err;
   EXPECT_TRUE(test::files_in(dir).empty());
@@ -223,8 +220,7 @@ TEST(OptionChecks, ABatchVolumeBeyondTheBoundIsRefusedAtItsField) {
       << run.err;
   EXPECT_NE(run.err.find("; give volume_voxels 98 or fewer"), std::string::npos) << run.err;
   // The same refusal before a batch run's work, and a larger cube counts too.
-  run = test::run_cutaway(
-      {"batch", file.string(), "--no-cache", "-o", (dir / "out").string()});
+  run = test::run_cutaway({"batch", file.string(), "--no-cache", "-o", (dir / "out").string()});
   EXPECT_EQ(run.exit_code, 2) << run.err;
   EXPECT_NE(run.err.find("outputs.volume_voxels: template \"cherry\": the volume would cast"),
             std::string::npos)

@@ -142,9 +142,19 @@ fs::path tmpdir_of(const fs::path& dir) {
 /// A scene run writing a.glb, a.pov and a.png (POV-Ray) into `dir`, TMPDIR `tmpdir`.
 Spawn scene_run(const fs::path& dir, const fs::path& tmpdir) {
   Spawn s;
-  s.args = {"scene", kScene, "--backend", "cpu", "--cube", "4", "-q",
-            "-o", (dir / "a.glb").string(), "-o", (dir / "a.pov").string(),
-            "--render", (dir / "a.png").string()};
+  s.args = {"scene",
+            kScene,
+            "--backend",
+            "cpu",
+            "--cube",
+            "4",
+            "-q",
+            "-o",
+            (dir / "a.glb").string(),
+            "-o",
+            (dir / "a.pov").string(),
+            "--render",
+            (dir / "a.png").string()};
   s.env = {"TMPDIR=" + tmpdir.string()};
   return s;
 }
@@ -207,17 +217,19 @@ TEST_P(SignalMidRun, RemovesEveryTemporaryFileAndKeepsTheOldOutputs) {
   fs::remove_all(tmpdir);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    OutputFaults, SignalMidRun,
-    ::testing::Values(std::make_pair(SIGTERM, When::WritingPov),
-                      std::make_pair(SIGTERM, When::Rendering),
-                      std::make_pair(SIGINT, When::Rendering),
-                      std::make_pair(SIGHUP, When::WritingPov)),
-    [](const ::testing::TestParamInfo<std::pair<int, When>>& info) {
-      const int sig = info.param.first;
-      return std::string(sig == SIGTERM ? "SIGTERM" : sig == SIGINT ? "SIGINT" : "SIGHUP") +
-             (info.param.second == When::WritingPov ? "_WritingPov" : "_Rendering");
-    });
+INSTANTIATE_TEST_SUITE_P(OutputFaults, SignalMidRun,
+                         ::testing::Values(std::make_pair(SIGTERM, When::WritingPov),
+                                           std::make_pair(SIGTERM, When::Rendering),
+                                           std::make_pair(SIGINT, When::Rendering),
+                                           std::make_pair(SIGHUP, When::WritingPov)),
+                         [](const ::testing::TestParamInfo<std::pair<int, When>>& info) {
+                           const int sig = info.param.first;
+                           return std::string(sig == SIGTERM  ? "SIGTERM"
+                                              : sig == SIGINT ? "SIGINT"
+                                                              : "SIGHUP") +
+                                  (info.param.second == When::WritingPov ? "_WritingPov"
+                                                                         : "_Rendering");
+                         });
 
 TEST(OutputFaults, SigkillKeepsTheOldOutputsWhole) {
   const fs::path dir = test::fresh_dir("output_faults_sigkill");
@@ -254,9 +266,8 @@ TEST(OutputFaults, AnUnwritablePathIsRefusedBeforeAnyWork) {
   const fs::path dir = test::fresh_dir("output_faults_unwritable");
   write_text(dir / "file", "a regular file");
   // --png below a regular file: its directory can neither exist nor be created.
-  const test::RunResult r =
-      test::run_cutaway({"model", kTomato, "-o", (dir / "ok.glb").string(), "--png",
-                         (dir / "file" / "x.png").string()});
+  const test::RunResult r = test::run_cutaway({"model", kTomato, "-o", (dir / "ok.glb").string(),
+                                               "--png", (dir / "file" / "x.png").string()});
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("cutaway: --png " + (dir / "file" / "x.png").string() + ": "),
             std::string::npos)
@@ -265,8 +276,8 @@ TEST(OutputFaults, AnUnwritablePathIsRefusedBeforeAnyWork) {
   EXPECT_EQ(entries(dir), (std::vector<std::string>{"file"}));  // no ok.glb
 
   // The same for a folder of `variants`, and (not as root) a directory without write permission.
-  const test::RunResult v = test::run_cutaway(
-      {"variants", kTomato, "--count", "2", "-o", (dir / "file").string()});
+  const test::RunResult v =
+      test::run_cutaway({"variants", kTomato, "--count", "2", "-o", (dir / "file").string()});
   EXPECT_EQ(v.exit_code, 2) << v.err;
   EXPECT_NE(v.err.find("is not a directory"), std::string::npos) << v.err;
   if (::geteuid() != 0) {
@@ -278,7 +289,7 @@ TEST(OutputFaults, AnUnwritablePathIsRefusedBeforeAnyWork) {
     EXPECT_EQ(p.exit_code, 2) << p.err;
     EXPECT_NE(p.err.find("cannot create files in"), std::string::npos) << p.err;
   }
-  EXPECT_EQ(entries(dir), (std::vector<std::string>{"file"}) ) << "no ok.glb";
+  EXPECT_EQ(entries(dir), (std::vector<std::string>{"file"})) << "no ok.glb";
 }
 
 TEST(OutputFaults, AWriteErrorIsExitCode1AndLeavesNoPartialFile) {
@@ -316,9 +327,9 @@ TEST(OutputFaults, DevicesAndFifosAreRefusedAndLinksToThemReplaced) {
   // A character device of our own (root makes one: a second /dev/zero), refused by kind.
   const bool device = ::mknod((dir / "zero.png").c_str(), S_IFCHR | 0666, makedev(1, 5)) == 0;
   if (device)
-    cases.push_back({{"model", kTomato, "-o", (dir / "ok.glb").string(), "--png",
-                      (dir / "zero.png").string()},
-                     "--png " + (dir / "zero.png").string()});
+    cases.push_back(
+        {{"model", kTomato, "-o", (dir / "ok.glb").string(), "--png", (dir / "zero.png").string()},
+         "--png " + (dir / "zero.png").string()});
   for (const auto& [args, named] : cases) {
     const test::RunResult r = test::run_cutaway(args);
     EXPECT_EQ(r.exit_code, 2) << named << ": " << r.err;
@@ -330,9 +341,9 @@ TEST(OutputFaults, DevicesAndFifosAreRefusedAndLinksToThemReplaced) {
   if (device) expected.push_back("zero.png");
   EXPECT_EQ(entries(dir), expected);
   // Links to the devices: the outputs take the links' places.
-  const test::RunResult linked = test::run_cutaway(
-      {"model", kTomato, "-q", "-o", (dir / "null.glb").string(), "--png",
-       (dir / "full.png").string()});
+  const test::RunResult linked =
+      test::run_cutaway({"model", kTomato, "-q", "-o", (dir / "null.glb").string(), "--png",
+                         (dir / "full.png").string()});
   EXPECT_EQ(linked.exit_code, 0) << linked.err;
   EXPECT_EQ(fs::symlink_status(dir / "null.glb").type(), fs::file_type::regular);
   EXPECT_EQ(fs::symlink_status(dir / "full.png").type(), fs::file_type::regular);
@@ -351,9 +362,8 @@ TEST(OutputFaults, MissingDirectoriesAreCreatedAndRemovedAgainWhenTheRunFails) {
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_EQ(test::files_in(dir), (std::vector<std::string>{"new/sub/x.glb"}));
   // A cut that misses the object fails after the outputs were registered.
-  const test::RunResult bad =
-      test::run_cutaway({"piece", kTomato, "--cut", "plane:y=500", "-o",
-                         (dir / "other/sub/x.glb").string()});
+  const test::RunResult bad = test::run_cutaway(
+      {"piece", kTomato, "--cut", "plane:y=500", "-o", (dir / "other/sub/x.glb").string()});
   EXPECT_EQ(bad.exit_code, 2) << bad.err;
   EXPECT_EQ(entries(dir), (std::vector<std::string>{"new"}));
   EXPECT_EQ(entries(dir / "new/sub"), (std::vector<std::string>{"x.glb"}));
@@ -369,8 +379,8 @@ TEST(OutputFaults, SymbolicLinksAreReplacedNeverWrittenThrough) {
   ASSERT_EQ(direct.exit_code, 0) << direct.err;
   fs::create_directory(dir / "real");
   write_text(dir / "real/target.glb", "old glb");
-  fs::create_symlink("real/target.glb", dir / "link.glb");        // to an existing file
-  fs::create_symlink("real/new.glb", dir / "dangling.glb");       // to a file to be created
+  fs::create_symlink("real/target.glb", dir / "link.glb");   // to an existing file
+  fs::create_symlink("real/new.glb", dir / "dangling.glb");  // to a file to be created
   for (const char* link : {"link.glb", "dangling.glb"}) {
     const test::RunResult r =
         test::run_cutaway({"model", kTomato, "-q", "-o", (dir / link).string()});

@@ -34,8 +34,8 @@ std::ostream& operator<<(std::ostream& os, const BadSceneCase& c) { return os <<
 /// A fixture kDir/NAME.yaml whose message names `file` (default: the fixture itself).
 BadSceneCase bad(std::string name, int line, int column, std::string field, std::string rule,
                  std::string file = "") {
-  return BadSceneCase{std::move(name), line, column, std::move(field), std::move(rule),
-                      std::move(file)};
+  return BadSceneCase{std::move(name), line,           column, std::move(field),
+                      std::move(rule), std::move(file)};
 }
 
 std::vector<BadSceneCase> bad_scenes() {
@@ -129,9 +129,8 @@ TEST(SceneCheck, EveryFixtureIsTested) {
 
 /// The bases the fixtures are derived from are valid: each fixture's defect is its only one.
 TEST(SceneCheck, BasesAreValid) {
-  const auto r = test::run_cutaway(
-      {"check", kDir + "valid_bowl.yaml", kDir + "valid_board.yaml",
-       "tests/data/scenes/small.yaml"});
+  const auto r = test::run_cutaway({"check", kDir + "valid_bowl.yaml", kDir + "valid_board.yaml",
+                                    "tests/data/scenes/small.yaml"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
   EXPECT_NE(r.out.find(kDir + "valid_bowl.yaml: ok (scene 'fixture', 2 items, 3 objects, "),

@@ -23,19 +23,27 @@ const char* kTiny = "tests/data/scenes/tiny.yaml";
 
 std::vector<std::string> scene_args(const fs::path& dir, const std::string& stem,
                                     std::vector<std::string> extra = {}) {
-  std::vector<std::string> args = {"scene", kTiny, "--backend", "cpu", "--cube", "4", "-q",
-                                   "-o", (dir / (stem + ".glb")).string(),
-                                   "-o", (dir / (stem + ".pov")).string()};
+  std::vector<std::string> args = {"scene",
+                                   kTiny,
+                                   "--backend",
+                                   "cpu",
+                                   "--cube",
+                                   "4",
+                                   "-q",
+                                   "-o",
+                                   (dir / (stem + ".glb")).string(),
+                                   "-o",
+                                   (dir / (stem + ".pov")).string()};
   args.insert(args.end(), extra.begin(), extra.end());
   return args;
 }
 
 TEST(SceneCommand, ExportsValidGltfAndPovRayAndPictures) {
   const fs::path dir = test::fresh_dir("scene");
-  auto args = scene_args(dir, "tiny",
-                         {"-o", (dir / "tiny.gltf").string(), "--png",
-                          (dir / "preview.png").string(), "--render",
-                          (dir / "povray.png").string()});
+  auto args =
+      scene_args(dir, "tiny",
+                 {"-o", (dir / "tiny.gltf").string(), "--png", (dir / "preview.png").string(),
+                  "--render", (dir / "povray.png").string()});
   const test::RunResult r = test::run_cutaway(args);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* f : {"tiny.glb", "tiny.gltf"}) {
@@ -221,9 +229,9 @@ TEST(PieceCommand, HalvesGiveTwoValidMeshesAndAPicture) {
   EXPECT_GT(plain.triangles, 10000);
   // By default the cut faces and the skin are baked into textures, as in scenes: a cantaloupe
   // wedge's skin carries its netting's colour and relief (base colour and normal map).
-  const test::RunResult t = test::run_cutaway(
-      {"piece", "templates/cantaloupe.yaml", "--cut", "wedges:6", "--backend", "cpu", "--cube",
-       "4", "-q", "-o", (dir / "cantaloupe.glb").string()});
+  const test::RunResult t =
+      test::run_cutaway({"piece", "templates/cantaloupe.yaml", "--cut", "wedges:6", "--backend",
+                         "cpu", "--cube", "4", "-q", "-o", (dir / "cantaloupe.glb").string()});
   ASSERT_EQ(t.exit_code, 0) << t.err;
   const test::GltfReport textured = test::validate_gltf(dir / "cantaloupe.glb");
   EXPECT_EQ(textured.errors, 0) << textured.output;
@@ -234,7 +242,6 @@ TEST(PieceCommand, HalvesGiveTwoValidMeshesAndAPicture) {
                      material["pbrMetallicRoughness"].contains("baseColorTexture");
   EXPECT_EQ(normal_mapped, 1u);
 }
-
 
 // A piece asset drops into another scene: one root named after it at the origin, no camera,
 // no lights unless asked; its pieces' nodes placed alike whatever the compression (the
@@ -258,22 +265,24 @@ TEST(PieceCommand, AssetsHaveOneRootNoCameraOrLightsAndTheSameTransformsWhatever
     ASSERT_EQ(j.at("scenes").at(0).at("nodes").size(), 1u) << compress;
     const auto& root = j["nodes"][j.at("scenes").at(0).at("nodes").at(0).get<size_t>()];
     EXPECT_EQ(root["name"], j.at("scenes").at(0).at("name")) << compress;
-    EXPECT_FALSE(root.contains("translation") || root.contains("rotation") || root.contains("scale"));
+    EXPECT_FALSE(root.contains("translation") || root.contains("rotation") ||
+                 root.contains("scale"));
     ASSERT_EQ(root["children"].size(), 3u) << compress;
     for (size_t k = 0; k < 3; ++k) {
       const auto& piece = j["nodes"][root["children"][k].get<size_t>()];
       const auto& reference = files["none"]["nodes"][root["children"][k].get<size_t>()];
-      EXPECT_EQ(piece.value("translation", nlohmann::json()), reference.value("translation", nlohmann::json()));
-      EXPECT_EQ(piece.value("rotation", nlohmann::json()), reference.value("rotation", nlohmann::json()));
+      EXPECT_EQ(piece.value("translation", nlohmann::json()),
+                reference.value("translation", nlohmann::json()));
+      EXPECT_EQ(piece.value("rotation", nlohmann::json()),
+                reference.value("rotation", nlohmann::json()));
       EXPECT_FALSE(piece.contains("scale")) << compress;
       EXPECT_EQ(piece["extras"]["piece"], static_cast<int>(k)) << compress;
       // Below the piece: its mesh node, then its convex collision hulls, named for Godot.
       ASSERT_GE(piece["children"].size(), 2u) << compress;
       for (size_t c = 1; c < piece["children"].size(); ++c) {
         const auto& hull = j["nodes"][piece["children"][c].get<size_t>()];
-        EXPECT_EQ(hull["name"].get<std::string>(),
-                  piece["name"].get<std::string>() + "_collision" + std::to_string(c - 1) +
-                      "-convcolonly");
+        EXPECT_EQ(hull["name"].get<std::string>(), piece["name"].get<std::string>() + "_collision" +
+                                                       std::to_string(c - 1) + "-convcolonly");
         EXPECT_EQ(hull["extras"]["collision"], "convex");
       }
     }
@@ -281,9 +290,9 @@ TEST(PieceCommand, AssetsHaveOneRootNoCameraOrLightsAndTheSameTransformsWhatever
   // Unreal's naming: UCX_ and the render mesh's name; none: no hulls.
   for (const char* naming : {"unreal", "none"}) {
     const fs::path file = dir / (std::string(naming) + "-hulls.glb");
-    const test::RunResult r = test::run_cutaway(
-        {"piece", "templates/tomato.yaml", "--cut", "halves", "--backend", "cpu", "--cube", "4",
-         "-q", "-o", file.string(), "--collision", naming});
+    const test::RunResult r =
+        test::run_cutaway({"piece", "templates/tomato.yaml", "--cut", "halves", "--backend", "cpu",
+                           "--cube", "4", "-q", "-o", file.string(), "--collision", naming});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json j = glb_json(file);
     size_t hulls = 0;
@@ -295,9 +304,9 @@ TEST(PieceCommand, AssetsHaveOneRootNoCameraOrLightsAndTheSameTransformsWhatever
     EXPECT_EQ(hulls > 0, std::string(naming) == "unreal") << naming;
   }
   // Asked for, the preview's camera and lights come along.
-  const test::RunResult r = test::run_cutaway(
-      {"piece", "templates/tomato.yaml", "--cut", "halves", "--backend", "cpu", "--cube", "4", "-q",
-       "-o", (dir / "lit.glb").string(), "--camera-and-lights"});
+  const test::RunResult r = test::run_cutaway({"piece", "templates/tomato.yaml", "--cut", "halves",
+                                               "--backend", "cpu", "--cube", "4", "-q", "-o",
+                                               (dir / "lit.glb").string(), "--camera-and-lights"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json lit = glb_json(dir / "lit.glb");
   EXPECT_EQ(lit["cameras"].size(), 1u);
@@ -306,10 +315,10 @@ TEST(PieceCommand, AssetsHaveOneRootNoCameraOrLightsAndTheSameTransformsWhatever
 
 TEST(PieceCommand, LevelsOfDetailHalveTheTrianglesAndLeaveNoHoles) {
   const fs::path dir = test::fresh_dir("piece-lods");
-  const test::RunResult r = test::run_cutaway(
-      {"piece", "templates/tomato.yaml", "--cut", "wedges:4", "--backend", "cpu", "--cube", "4",
-       "-q", "-o", (dir / "lods.glb").string(), "--lods", "2", "--compress", "none",
-       "--collision", "none"});
+  const test::RunResult r =
+      test::run_cutaway({"piece", "templates/tomato.yaml", "--cut", "wedges:4", "--backend", "cpu",
+                         "--cube", "4", "-q", "-o", (dir / "lods.glb").string(), "--lods", "2",
+                         "--compress", "none", "--collision", "none"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const test::GltfReport report = test::validate_gltf(dir / "lods.glb");
   EXPECT_EQ(report.errors, 0) << report.output;

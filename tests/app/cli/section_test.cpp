@@ -22,9 +22,8 @@ const std::string kSpheres = "templates/spheres.yaml";
 TEST(SectionCommand, WritesAValidGlb) {
   for (const char* tmpl : {"templates/tomato.yaml", "templates/onion.yaml"}) {
     const fs::path dir = test::fresh_dir("cli_section_glb");
-    const test::RunResult r = test::run_cutaway(
-        {"section", tmpl, "--plane", "4,20,1/0.2,1,0.1", "--cube", "8", "-o",
-         (dir / "x.glb").string()});
+    const test::RunResult r = test::run_cutaway({"section", tmpl, "--plane", "4,20,1/0.2,1,0.1",
+                                                 "--cube", "8", "-o", (dir / "x.glb").string()});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     ASSERT_EQ(test::files_in(dir), std::vector<std::string>{"x.glb"});
     EXPECT_EQ(test::read_file(dir / "x.glb").substr(0, 4), "glTF");
@@ -81,9 +80,9 @@ TEST(SectionCommand, WritesAPngAndStats) {
   }
   EXPECT_EQ(json_lines, 1) << r.err;
 
-  const test::RunResult quiet = test::run_cutaway(
-      {"section", kSpheres, "--plane", "z=0", "--cube", "4", "-q", "--stats", "-o",
-       (dir / "q.glb").string()});
+  const test::RunResult quiet =
+      test::run_cutaway({"section", kSpheres, "--plane", "z=0", "--cube", "4", "-q", "--stats",
+                         "-o", (dir / "q.glb").string()});
   ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
   EXPECT_EQ(std::count(quiet.err.begin(), quiet.err.end(), '\n'), 1) << quiet.err;
   ASSERT_TRUE(nlohmann::json::accept(quiet.err)) << quiet.err;
@@ -97,9 +96,9 @@ TEST(SectionCommand, WritesAPngAndStats) {
 TEST(SectionCommand, BadPlanesExitTwoAndWriteNothing) {
   for (const std::string plane : {"y=abc", "1,2/0,0,0", "0,0,0/0,0,0", "w=3", "", "y=", "1,2,3"}) {
     const fs::path dir = test::fresh_dir("cli_section_bad");
-    const test::RunResult r = test::run_cutaway(
-        {"section", kSpheres, "--plane", plane, "-o", (dir / "x.glb").string(), "--png",
-         (dir / "x.png").string()});
+    const test::RunResult r =
+        test::run_cutaway({"section", kSpheres, "--plane", plane, "-o", (dir / "x.glb").string(),
+                           "--png", (dir / "x.png").string()});
     EXPECT_EQ(r.exit_code, 2) << "--plane '" << plane << "': " << r.err;
     EXPECT_NE(r.err.find("plane"), std::string::npos) << r.err;
     EXPECT_TRUE(test::files_in(dir).empty()) << "--plane '" << plane << "'";
@@ -109,8 +108,8 @@ TEST(SectionCommand, BadPlanesExitTwoAndWriteNothing) {
 TEST(SectionCommand, PlaneMissingOrTouchingTheObjectExitsTwo) {
   for (const std::string plane : {"y=100", "y=40", "y=-40", "100,0,0/1,0.5,0"}) {
     const fs::path dir = test::fresh_dir("cli_section_miss");
-    const test::RunResult r = test::run_cutaway(
-        {"section", kSpheres, "--plane", plane, "-o", (dir / "x.glb").string()});
+    const test::RunResult r =
+        test::run_cutaway({"section", kSpheres, "--plane", plane, "-o", (dir / "x.glb").string()});
     EXPECT_EQ(r.exit_code, 2) << "--plane " << plane << ": " << r.err;
     EXPECT_TRUE(r.err.find("misses") != std::string::npos ||
                 r.err.find("touches") != std::string::npos)
@@ -132,19 +131,19 @@ TEST(SectionCommand, PlaneMissingOrTouchingTheObjectExitsTwo) {
 
 TEST(SectionCommand, ByteIdenticalAcrossRunsAndThreadCounts) {
   std::string glb[7];
-  const std::vector<std::vector<std::string>> extra = {
-      {"--sampling", "dense"},
-      {"--sampling", "dense", "--threads", "1"},
-      {"--sampling", "dense", "--threads", "2"},
-      {"--threads", "1"},  // adaptive, the default
-      {"--threads", "2"},
-      {"--directions", "every", "--threads", "1"},
-      {"--directions", "every", "--threads", "2"}};
+  const std::vector<std::vector<std::string>> extra = {{"--sampling", "dense"},
+                                                       {"--sampling", "dense", "--threads", "1"},
+                                                       {"--sampling", "dense", "--threads", "2"},
+                                                       {"--threads", "1"},  // adaptive, the default
+                                                       {"--threads", "2"},
+                                                       {"--directions", "every", "--threads", "1"},
+                                                       {"--directions", "every", "--threads", "2"}};
   for (int run = 0; run < 7; ++run) {
     const fs::path dir = test::fresh_dir("cli_section_det_" + std::to_string(run));
-    std::vector<std::string> args = {"section", "templates/tomato.yaml", "--plane",
-                                     "3,25,-2/0.3,0.2,1", "--cube", "8", "-o",
-                                     (dir / "x.glb").string()};
+    std::vector<std::string> args = {"section", "templates/tomato.yaml",
+                                     "--plane", "3,25,-2/0.3,0.2,1",
+                                     "--cube",  "8",
+                                     "-o",      (dir / "x.glb").string()};
     args.insert(args.end(), extra[run].begin(), extra[run].end());
     const test::RunResult r = test::run_cutaway(args);
     ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -17,9 +17,9 @@ namespace fs = std::filesystem;
 TEST(SheetCommand, TwoTemplatesMakeOneLabelledRow) {
   const fs::path dir = test::fresh_dir("sheet");
   const fs::path out = dir / "sheet.png";
-  const test::RunResult r = test::run_cutaway(
-      {"sheet", "templates/avocado.yaml", "templates/apple.yaml:across", "--tile", "128",
-       "--cube", "4", "--backend", "cpu", "-q", "-o", out.string()});
+  const test::RunResult r =
+      test::run_cutaway({"sheet", "templates/avocado.yaml", "templates/apple.yaml:across", "--tile",
+                         "128", "--cube", "4", "--backend", "cpu", "-q", "-o", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const test::PngInfo info = test::png_info(out);
   // Two tiles of 128 pixels in one row, margins of 4 pixels around and between them.
@@ -38,9 +38,18 @@ TEST(SheetCommand, TwoTemplatesMakeOneLabelledRow) {
 TEST(SheetCommand, ASeedCutsEveryTemplatesVariantOfThatSeed) {
   const fs::path dir = test::fresh_dir("sheet-seed");
   auto sheet = [&](const std::string& name, const std::vector<std::string>& seed) {
-    std::vector<std::string> args = {"sheet", "templates/watermelon.yaml:across",
-                                     "templates/grape.yaml", "--tile", "128", "--cube", "4",
-                                     "--backend", "cpu", "-q", "-o", (dir / name).string()};
+    std::vector<std::string> args = {"sheet",
+                                     "templates/watermelon.yaml:across",
+                                     "templates/grape.yaml",
+                                     "--tile",
+                                     "128",
+                                     "--cube",
+                                     "4",
+                                     "--backend",
+                                     "cpu",
+                                     "-q",
+                                     "-o",
+                                     (dir / name).string()};
     args.insert(args.end(), seed.begin(), seed.end());
     const test::RunResult r = test::run_cutaway(args);
     EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -64,8 +73,8 @@ TEST(SheetCommand, RefusesBadItemsBeforeWriting) {
       {"templates/avocado.yaml", "templates/apple.yaml@sideways"},
   };
   for (const auto& items : bad) {
-    std::vector<std::string> args = {"sheet", "--cube", "4", "--backend", "cpu", "-q",
-                                     "-o", out.string()};
+    std::vector<std::string> args = {"sheet", "--cube", "4",  "--backend",
+                                     "cpu",   "-q",     "-o", out.string()};
     args.insert(args.end(), items.begin(), items.end());
     const test::RunResult r = test::run_cutaway(args);
     EXPECT_EQ(r.exit_code, 2) << items[1] << ": " << r.err;

@@ -58,9 +58,10 @@ const std::string kTomato = "templates/tomato.yaml";
 
 test::RunResult variants(const fs::path& dir, int count, int seed,
                          std::vector<std::string> extra = {}) {
-  std::vector<std::string> args = {"variants", test::source_path(kTomato).string(), "--count",
-                                   std::to_string(count), "--seed", std::to_string(seed),
-                                   "-o", dir.string()};
+  std::vector<std::string> args = {"variants", test::source_path(kTomato).string(),
+                                   "--count",  std::to_string(count),
+                                   "--seed",   std::to_string(seed),
+                                   "-o",       dir.string()};
   args.insert(args.end(), extra.begin(), extra.end());
   return test::run_cutaway(args);
 }
@@ -71,7 +72,7 @@ TEST(VariantsCommand, WritesValidVariantsAManifestAndAContactSheetDeterministica
   ASSERT_EQ(ra.exit_code, 0) << ra.err;
   EXPECT_EQ(ra.err.find("variants: ["), std::string::npos) << "a progress bar without a terminal";
   const std::vector<std::string> files = {"contact-sheet.png", "manifest.json", "tomato-0.glb",
-                                          "tomato-1.glb", "tomato-2.glb", "tomato-3.glb"};
+                                          "tomato-1.glb",      "tomato-2.glb",  "tomato-3.glb"};
   ASSERT_EQ(test::files_in(a), files);
 
   // manifest.json: one entry per variant with file, seed, template, hash, DS faces, folds.

@@ -29,10 +29,9 @@ TEST(InteriorVolumeCommand, AStemWritesEveryFormEachReferringToTheOthers) {
   const fs::path dir = test::fresh_dir("volume-stem");
   const test::RunResult run = volume({"-o", (dir / "hollow").string()});
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_EQ(test::files_in(dir),
-            (std::vector<std::string>{"hollow.colour.png", "hollow.glb", "hollow.json",
-                                      "hollow.material.png", "hollow.structure.png",
-                                      "hollow.vdb"}));
+  EXPECT_EQ(test::files_in(dir), (std::vector<std::string>{"hollow.colour.png", "hollow.glb",
+                                                           "hollow.json", "hollow.material.png",
+                                                           "hollow.structure.png", "hollow.vdb"}));
   const nlohmann::json sidecar = nlohmann::json::parse(test::read_file(dir / "hollow.json"));
   EXPECT_EQ(sidecar["template"], "section-hollow");
   EXPECT_TRUE(sidecar["seed"].is_null());
@@ -41,8 +40,8 @@ TEST(InteriorVolumeCommand, AStemWritesEveryFormEachReferringToTheOthers) {
   EXPECT_DOUBLE_EQ(sidecar["grid"]["voxel_m"].get<double>(), 0.003);
   EXPECT_EQ(sidecar["regions"], 1);
   const test::PngInfo png = test::png_info(dir / "hollow.colour.png");
-  EXPECT_EQ(png.width, sidecar["tiling"]["columns"].get<int>() *
-                           sidecar["tiling"]["tile_width"].get<int>());
+  EXPECT_EQ(png.width,
+            sidecar["tiling"]["columns"].get<int>() * sidecar["tiling"]["tile_width"].get<int>());
   EXPECT_EQ(test::read_file(dir / "hollow.vdb").substr(0, 4), std::string(" BDV"));
   // The glTF is valid and names the volume's files in its scene's extras.
   const test::GltfReport report = test::validate_gltf(dir / "hollow.glb");
@@ -65,8 +64,8 @@ TEST(InteriorVolumeCommand, TheSameSeedGivesTheSameBytesAnotherSeedOthers) {
                                  (dir / name).string() + ".vdb"})
                   .exit_code,
               0);
-  ASSERT_EQ(test::run_cutaway({"volume", "templates/kiwi.yaml", "--voxel", "3", "--seed", "6",
-                               "-o", (dir / "c.json").string()})
+  ASSERT_EQ(test::run_cutaway({"volume", "templates/kiwi.yaml", "--voxel", "3", "--seed", "6", "-o",
+                               (dir / "c.json").string()})
                 .exit_code,
             0);
   EXPECT_EQ(test::read_file(dir / "a.vdb"), test::read_file(dir / "b.vdb"));
@@ -94,23 +93,25 @@ TEST(InteriorVolumeCommand, BadOutputsAndVoxelsAreRefusedBeforeAnyWork) {
     EXPECT_EQ(run.exit_code, 2) << run.err;
     EXPECT_NE(run.err.find(c.message), std::string::npos) << run.err;
   }
-  const test::RunResult fine = test::run_cutaway(
-      {"volume", "tests/data/section_hollow.yaml", "--voxel", "0.001", "-o",
-       (dir / "fine").string()});
+  const test::RunResult fine =
+      test::run_cutaway({"volume", "tests/data/section_hollow.yaml", "--voxel", "0.001", "-o",
+                         (dir / "fine").string()});
   EXPECT_EQ(fine.exit_code, 2);
   EXPECT_NE(fine.err.find("--voxel: "), std::string::npos) << fine.err;
   EXPECT_NE(fine.err.find("give a longer voxel length"), std::string::npos) << fine.err;
   // A voxel that is not a plain positive decimal, or longer than half the object.
   const std::string positive = "--voxel: must be a number above 0, not ";
   const std::vector<std::pair<std::string, std::string>> voxels = {
-      {"nan", positive + "\"nan\""}, {"inf", positive + "\"inf\""},
-      {"abc", positive + "\"abc\""}, {"1e400", positive + "\"1e400\""},
-      {"-1", positive + "\"-1\""},   {"0", positive + "\"0\""},
+      {"nan", positive + "\"nan\""},
+      {"inf", positive + "\"inf\""},
+      {"abc", positive + "\"abc\""},
+      {"1e400", positive + "\"1e400\""},
+      {"-1", positive + "\"-1\""},
+      {"0", positive + "\"0\""},
       {"1e308", "at least two voxels across"}};
   for (const auto& [voxel, message] : voxels) {
     const test::RunResult run = test::run_cutaway(
-        {"volume", "tests/data/section_hollow.yaml", "--voxel", voxel, "-o",
-         (dir / "v").string()});
+        {"volume", "tests/data/section_hollow.yaml", "--voxel", voxel, "-o", (dir / "v").string()});
     EXPECT_EQ(run.exit_code, 2) << voxel << ": " << run.err;
     EXPECT_NE(run.err.find(message), std::string::npos) << voxel << ": " << run.err;
   }
@@ -122,8 +123,8 @@ TEST(InteriorVolumeCommand, BlenderImportsTheVdbWithEveryGridWhereTheGltfPutsThe
   ASSERT_EQ(volume({"-o", (dir / "hollow.vdb").string()}).exit_code, 0);
   const test::RunResult run = test::run_program(
       "blender", {"-b", "--factory-startup", "--python-exit-code", "1", "--python",
-                  "tests/blender/volume_import.py", "--", (dir / "hollow.vdb").string(),
-                  "--render", (dir / "blender.png").string()});
+                  "tests/blender/volume_import.py", "--", (dir / "hollow.vdb").string(), "--render",
+                  (dir / "blender.png").string()});
   ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
   const size_t at = run.out.find("VOLUME_REPORT ");
   ASSERT_NE(at, std::string::npos) << run.out;
@@ -166,8 +167,8 @@ TEST(InteriorVolumeBatch, EachVariantGetsItsVolumeListedAndCheckedByMerge) {
                          "  - template: kiwi\n    count: 2\n"
                          "    cuts: [{type: halves}, {type: whole}]\n"
                          "outputs: {volume: true, volume_voxels: 24, sample: 0}\n";
-  RunResult r = run_cutaway({"-q", "batch", file.string(), "-o", (dir / "out").string(),
-                             "--shard", "1/1", "--backend", "cpu"});
+  RunResult r = run_cutaway({"-q", "batch", file.string(), "-o", (dir / "out").string(), "--shard",
+                             "1/1", "--backend", "cpu"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* seed : {"4", "5"})
     for (const char* ext : {".json", ".colour.png", ".structure.png", ".material.png", ".vdb"})
@@ -185,8 +186,8 @@ TEST(InteriorVolumeBatch, EachVariantGetsItsVolumeListedAndCheckedByMerge) {
   char voxel_mm[32];
   std::snprintf(voxel_mm, sizeof voxel_mm, "%.17g",
                 sidecar["grid"]["voxel_m"].get<double>() * 1000);
-  r = run_cutaway({"volume", "templates/kiwi.yaml", "--seed", "5", "--voxel", voxel_mm, "-o",
-                   own.string()});
+  r = run_cutaway(
+      {"volume", "templates/kiwi.yaml", "--seed", "5", "--voxel", voxel_mm, "-o", own.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(read_file(dir / "own.colour.png") ==
               read_file(dir / "out" / "kiwi-5.volume.colour.png"));

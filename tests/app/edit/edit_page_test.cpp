@@ -100,8 +100,8 @@ TEST(EditPage, EveryShippedTemplateKeepsItsBytesThroughThePage) {
   // Setting every curve to the value it has changes no byte of any shipped template, so each
   // builds the same model.
   for (const fs::path& copy : copies) {
-    EXPECT_EQ(test::read_file(copy), test::read_file(test::source_path("templates/" +
-                                                                       copy.filename().string())))
+    EXPECT_EQ(test::read_file(copy),
+              test::read_file(test::source_path("templates/" + copy.filename().string())))
         << copy.filename();
   }
 }

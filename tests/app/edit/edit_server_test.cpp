@@ -194,9 +194,9 @@ std::string request_head(const RunningServer& server, const std::string& line,
 TEST(EditServer, RefusesForeignHostsAndOrigins) {
   EXPECT_TRUE(check_request("127.0.0.1:8765", "", 8765));
   EXPECT_TRUE(check_request("localhost:8765", "http://localhost:8765", 8765));
-  EXPECT_FALSE(check_request("evil.example:8765", "", 8765));     // DNS rebinding
-  EXPECT_FALSE(check_request("127.0.0.1:9999", "", 8765));        // another port
-  EXPECT_FALSE(check_request("", "", 8765));                      // no Host at all
+  EXPECT_FALSE(check_request("evil.example:8765", "", 8765));  // DNS rebinding
+  EXPECT_FALSE(check_request("127.0.0.1:9999", "", 8765));     // another port
+  EXPECT_FALSE(check_request("", "", 8765));                   // no Host at all
   EXPECT_FALSE(check_request("127.0.0.1:8765", "http://evil.example", 8765));
   EXPECT_FALSE(check_request("127.0.0.1:8765", "https://127.0.0.1:8765", 8765));
 
@@ -210,9 +210,9 @@ TEST(EditServer, RefusesForeignHostsAndOrigins) {
   EXPECT_EQ(status_of(rebound), 403);
   ASSERT_TRUE(rebound);
   EXPECT_EQ(rebound->body.find("tomato"), std::string::npos);  // nothing of the template leaks
-  EXPECT_EQ(status_of(c.Post("/api/save", {{"Origin", "http://evil.example"}}, "name: x",
-                             "text/plain")),
-            403);
+  EXPECT_EQ(
+      status_of(c.Post("/api/save", {{"Origin", "http://evil.example"}}, "name: x", "text/plain")),
+      403);
   EXPECT_TRUE(untouched(file));
 }
 
@@ -248,9 +248,9 @@ TEST(EditServer, ServesLibrariesOnlyFromTheirFolders) {
   fs::create_symlink(dir / "lib" / "outside.js", lib / "link.js");  // leads out of the folder
   EXPECT_EQ(library_file(lib, "index.js"), fs::canonical(lib / "index.js"));
   EXPECT_EQ(library_file(lib, "sub/part.js"), fs::canonical(lib / "sub" / "part.js"));
-  for (const char* bad : {"../outside.js", "sub/../../outside.js", "./index.js", ".hidden.js",
-                          "notes.txt", "link.js", "sub//part.js", "/etc/passwd.js", "sub",
-                          "missing.js", "a b.js", "sub/", ""})
+  for (const char* bad :
+       {"../outside.js", "sub/../../outside.js", "./index.js", ".hidden.js", "notes.txt", "link.js",
+        "sub//part.js", "/etc/passwd.js", "sub", "missing.js", "a b.js", "sub/", ""})
     EXPECT_FALSE(library_file(lib, bad)) << bad;
 
   const fs::path file = copy_template("tomato", dir);
@@ -265,9 +265,9 @@ TEST(EditServer, ServesLibrariesOnlyFromTheirFolders) {
   ASSERT_TRUE(got);
   EXPECT_EQ(got->status, 200);
   EXPECT_EQ(got->body, "export const y = 2;");
-  for (const char* path : {"/lib/yaml/../outside.js", "/lib/yaml/%2e%2e/outside.js",
-                           "/lib/yaml/link.js", "/lib/yaml/notes.txt", "/lib/three/index.js",
-                           "/lib/yaml/..%2foutside.js"})
+  for (const char* path :
+       {"/lib/yaml/../outside.js", "/lib/yaml/%2e%2e/outside.js", "/lib/yaml/link.js",
+        "/lib/yaml/notes.txt", "/lib/three/index.js", "/lib/yaml/..%2foutside.js"})
     EXPECT_EQ(status_of(c.Get(path)), 404) << path;
   server.stop();
   serving.join();
@@ -308,7 +308,8 @@ TEST(EditServer, SaysWhereTheTextBreaksARule) {
   EXPECT_FALSE(bad["ok"]);
   EXPECT_EQ(bad["file"], "tomato.yaml");
   EXPECT_EQ(bad["field"], "units");
-  EXPECT_EQ(bad["line"].get<int>(), 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n')));
+  EXPECT_EQ(bad["line"].get<int>(),
+            1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n')));
   EXPECT_GE(bad["column"].get<int>(), 1);
   EXPECT_NE(bad["rule"].get<std::string>(), "");
   // Over HTTP: the same verdict; pictures and saving refuse the text with it (422), and the
@@ -446,7 +447,6 @@ TEST(EditServer, ATakenPortIsAClearError) {
   }
 }
 
-
 // A chunked body is bounded as one with a Content-Length: past the limit the server answers 413
 // and stops reading (600 MB were once taken in); a small chunked body is served.
 TEST(EditServer, BoundsChunkedBodies) {
@@ -455,8 +455,8 @@ TEST(EditServer, BoundsChunkedBodies) {
   constexpr size_t kLimit = 64u << 10;
   RunningServer server(file, [](EditServerOptions& o) { o.max_body_bytes = kLimit; });
   RawConnection big(server.port());
-  ASSERT_TRUE(big.send(request_head(server, "POST /api/check HTTP/1.1",
-                                    "Transfer-Encoding: chunked\r\n")));
+  ASSERT_TRUE(
+      big.send(request_head(server, "POST /api/check HTTP/1.1", "Transfer-Encoding: chunked\r\n")));
   // A sender offers 256 MiB in 64 KiB chunks; the server's answer must come long before.
   std::atomic<size_t> sent{0};
   std::thread sender([&] {
@@ -498,17 +498,18 @@ TEST(EditServer, RefusesBodiesItCannotBound) {
   EXPECT_EQ(raw_status(answer("POST /api/check HTTP/1.1",
                               "Content-Encoding: gzip\r\nContent-Length: 10\r\n", gzip_bytes)),
             415);
-  EXPECT_EQ(raw_status(answer("POST /api/save HTTP/1.1", "Content-Encoding: br\r\nContent-Length: 10\r\n",
-                              gzip_bytes)),
+  EXPECT_EQ(raw_status(answer("POST /api/save HTTP/1.1",
+                              "Content-Encoding: br\r\nContent-Length: 10\r\n", gzip_bytes)),
             415);
-  EXPECT_EQ(raw_status(answer("POST /api/check HTTP/1.1",
-                              "Transfer-Encoding: gzip, chunked\r\n", "a\r\n" + gzip_bytes)),
+  EXPECT_EQ(raw_status(answer("POST /api/check HTTP/1.1", "Transfer-Encoding: gzip, chunked\r\n",
+                              "a\r\n" + gzip_bytes)),
             415);
   EXPECT_EQ(raw_status(answer("POST /api/check HTTP/1.1", "", "name: x")), 411);
   EXPECT_EQ(raw_status(answer("POST /api/check HTTP/1.1", "Content-Length: 12x\r\n", "")), 400);
   EXPECT_EQ(raw_status(answer("PUT /api/save HTTP/1.1", "Content-Length: 7\r\n", "name: x")), 405);
   EXPECT_EQ(raw_status(answer("GET / HTTP/1.1", "Content-Length: 7\r\n", "name: x")), 400);
-  const std::string over = answer("POST /api/save HTTP/1.1", "Content-Length: 999999999999\r\n", "");
+  const std::string over =
+      answer("POST /api/save HTTP/1.1", "Content-Length: 999999999999\r\n", "");
   EXPECT_EQ(raw_status(over), 413) << over;
   // The answer says it closes the connection, once, whether or not the client asked to.
   const auto closes = [](const std::string& a) {
@@ -548,8 +549,8 @@ TEST(EditServer, AnswersChecksBesideSlowClientsAndVariants) {
   std::vector<RawConnection> slow;
   for (int k = 0; k < 200; ++k) {
     slow.emplace_back(port, kTimeout + 5s);
-    ASSERT_TRUE(slow.back().send("GET / HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) +
-                                 "\r\n"));
+    ASSERT_TRUE(
+        slow.back().send("GET / HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) + "\r\n"));
   }
   std::vector<int> variants_status(8, 0);
   std::vector<Clock::time_point> variants_answered(8);
@@ -738,7 +739,8 @@ TEST(EditServer, StopsOnSigtermWithAFifoTemplate) {
 // where it once was a 500 with an empty body; saving answers 200 and writes the text once.
 TEST(EditServer, ServesAFileNameThatIsNotUtf8) {
   const fs::path dir = test::fresh_dir("edit");
-  const fs::path file = dir / "tom\xff" "ato.yaml";
+  const fs::path file = dir / "tom\xff"
+                              "ato.yaml";
   fs::copy_file(test::source_path("templates/tomato.yaml"), file);
   RunningServer server(file);
   httplib::Client c = server.client();
@@ -746,12 +748,14 @@ TEST(EditServer, ServesAFileNameThatIsNotUtf8) {
   ASSERT_TRUE(opened);
   ASSERT_EQ(opened->status, 200) << opened->body;
   const nlohmann::json doc = nlohmann::json::parse(opened->body);
-  EXPECT_EQ(doc["file"], "tom\xef\xbf\xbd" "ato.yaml");
+  EXPECT_EQ(doc["file"], "tom\xef\xbf\xbd"
+                         "ato.yaml");
   std::string text = doc["text"].get<std::string>();
   const auto bad = c.Post("/api/check", "units: furlongs\n", "text/plain");
   ASSERT_TRUE(bad);
   EXPECT_EQ(bad->status, 200);
-  EXPECT_EQ(nlohmann::json::parse(bad->body)["file"], "tom\xef\xbf\xbd" "ato.yaml");
+  EXPECT_EQ(nlohmann::json::parse(bad->body)["file"], "tom\xef\xbf\xbd"
+                                                      "ato.yaml");
   text += "# saved\n";
   const auto saved = c.Post("/api/save", text, "text/plain");
   ASSERT_TRUE(saved);
@@ -861,8 +865,8 @@ TEST(EditServer, AForeignPagesImageStartsNoWork) {
   RunningServer server(file, [](EditServerOptions& o) { o.volume_voxels_across = 8; });
   const std::string port = std::to_string(server.port());
   for (const std::string& host : {"127.0.0.1:" + port, "localhost:" + port}) {
-    for (const char* path : {"/api/volume/anything.json", "/api/volume/tomato.json",
-                             "/api/volume/tomato.glb"}) {
+    for (const char* path :
+         {"/api/volume/anything.json", "/api/volume/tomato.json", "/api/volume/tomato.glb"}) {
       RawConnection img(server.port());
       img.send(std::string("GET ") + path + " HTTP/1.1\r\nHost: " + host +
                "\r\nAccept: image/avif,image/webp,image/*,*/*;q=0.8\r\n"

@@ -53,13 +53,28 @@ TEST(SceneAssetsCheck, NamesEachBrokenElement) {
       {"material 0", [](SceneAssets& a) { a.materials[0].base_colour_texture = 1; }},
       {"mesh 0 'tri'", [](SceneAssets& a) { a.meshes[0].colour.pop_back(); }},
       {"mesh 0 'tri'", [](SceneAssets& a) { a.meshes[0].triangle[0].z = 3; }},
-      {"mesh 0 'tri'", [](SceneAssets& a) { a.meshes[0].uv = {{0, 0}}; }},
-      {"mesh 0 'tri'", [](SceneAssets& a) { a.meshes[0].primitives = {{0, 1, 5, {}}}; }},
-      {"mesh 0 'tri'", [](SceneAssets& a) { a.meshes[0].primitives = {{0, 1, 0, {{0, 1, 9}}}}; }},
+      {"mesh 0 'tri'",
+       [](SceneAssets& a) {
+         a.meshes[0].uv = {{0, 0}};
+       }},
+      {"mesh 0 'tri'",
+       [](SceneAssets& a) {
+         a.meshes[0].primitives = {{0, 1, 5, {}}};
+       }},
+      {"mesh 0 'tri'",
+       [](SceneAssets& a) {
+         a.meshes[0].primitives = {{0, 1, 0, {{0, 1, 9}}}};
+       }},
       {"instance 0 'tri'", [](SceneAssets& a) { a.instances[0].mesh = 1; }},
-      {"instance 0 'tri'", [](SceneAssets& a) { a.instances[0].rotation = {0, 0, 0, 0}; }},
+      {"instance 0 'tri'",
+       [](SceneAssets& a) {
+         a.instances[0].rotation = {0, 0, 0, 0};
+       }},
       {"camera", [](SceneAssets& a) { a.camera.target = a.camera.eye; }},
-      {"light 0", [](SceneAssets& a) { a.lights[0].direction = {0, 0, 0}; }},
+      {"light 0",
+       [](SceneAssets& a) {
+         a.lights[0].direction = {0, 0, 0};
+       }},
       {"light 0", [](SceneAssets& a) { a.lights[0].intensity = -1; }},
       {"background", [](SceneAssets& a) { a.background.g = -1; }},
       {"no materials", [](SceneAssets& a) { a.materials.clear(); }},

@@ -1,5 +1,5 @@
-// quoted() (generator/base/error.h), the one way a message shows a user's value, and the field paths
-// of mapping keys (child_path, generator/io/yaml_reader.h): escaped, one line, short.
+// quoted() (generator/base/error.h), the one way a message shows a user's value, and the field
+// paths of mapping keys (child_path, generator/io/yaml_reader.h): escaped, one line, short.
 #include "base/error.h"
 
 #include <gtest/gtest.h>

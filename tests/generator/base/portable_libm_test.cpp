@@ -32,8 +32,7 @@ TEST(PortableLibm, CallsComputeSleefsPureCBits) {
     EXPECT_EQ(std::exp(v * 0.01), Sleef_expd1_u10purec(x * 0.01)) << x;
     EXPECT_EQ(std::atan2(v, 3.0), Sleef_atan2d1_u10purec(x, 3.0)) << x;
   }
-  for (float x : {0.1f, 0.5f, 0.99f})
-    EXPECT_EQ(acosf_found(x), Sleef_acosf1_u10purec(x)) << x;
+  for (float x : {0.1f, 0.5f, 0.99f}) EXPECT_EQ(acosf_found(x), Sleef_acosf1_u10purec(x)) << x;
   EXPECT_EQ(powf_found(1.7f, 2.2f), Sleef_powf1_u10purec(1.7f, 2.2f));
 }
 

@@ -1,5 +1,5 @@
-// Deterministic random numbers (generator/base/random.h): golden values catch any change of platform,
-// compiler or library; moments check the transforms.
+// Deterministic random numbers (generator/base/random.h): golden values catch any change of
+// platform, compiler or library; moments check the transforms.
 #include "base/random.h"
 
 #include <gtest/gtest.h>

@@ -49,11 +49,12 @@ std::string error_of(const std::string& text) {
 const char* kHeader = "format: cutaway-batch/1\nname: t\n";
 
 TEST(BatchFormat, ReadsItemsCutsAndDefaults) {
-  const Batch b = parse_text(std::string(kHeader) +
-                             "seed: 5\nunits: cm\nitems:\n"
-                             "  - template: tomato\n    count: 3\n"
-                             "    cuts: [{type: slices, thickness: 1.2}, {type: wedges, count: 5}]\n"
-                             "  - template: kiwi\n    seed: 90\n");
+  const Batch b =
+      parse_text(std::string(kHeader) +
+                 "seed: 5\nunits: cm\nitems:\n"
+                 "  - template: tomato\n    count: 3\n"
+                 "    cuts: [{type: slices, thickness: 1.2}, {type: wedges, count: 5}]\n"
+                 "  - template: kiwi\n    seed: 90\n");
   ASSERT_EQ(b.items.size(), 2u);
   EXPECT_EQ(b.items[0].seed, 5u);
   EXPECT_EQ(b.items[0].count, 3);
@@ -76,8 +77,9 @@ TEST(BatchFormat, ReadsItemsCutsAndDefaults) {
 
 TEST(BatchFormat, RefusesBrokenRulesAtTheField) {
   const std::string items = "items:\n  - template: tomato\n";
-  EXPECT_NE(error_of("format: cutaway-batch/2\nname: t\n" + items).find(":1:9: format: unsupported"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of("format: cutaway-batch/2\nname: t\n" + items).find(":1:9: format: unsupported"),
+      std::string::npos);
   EXPECT_NE(error_of(std::string(kHeader) + items + "    colour: red\n").find("items[0].colour"),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kHeader) + items + "    count: 0\n").find("items[0].count"),
@@ -119,11 +121,11 @@ TEST(BatchFormat, RefusesTwoItemsMakingTheSameAsset) {
 }
 
 Batch two_item_batch() {
-  Batch b = parse_text(std::string(kHeader) +
-                       "items:\n  - template: tomato\n    count: 3\n"
-                       "    cuts: [{type: halves}, {type: wedges, count: 6}]\n"
-                       "  - template: kiwi\n    seed: 50\n    count: 2\n"
-                       "outputs: {sample: 4}\n");
+  Batch b =
+      parse_text(std::string(kHeader) + "items:\n  - template: tomato\n    count: 3\n"
+                                        "    cuts: [{type: halves}, {type: wedges, count: 6}]\n"
+                                        "  - template: kiwi\n    seed: 50\n    count: 2\n"
+                                        "outputs: {sample: 4}\n");
   b.items[0].template_name = "tomato";
   b.items[1].template_name = "kiwi";
   for (BatchItem& item : b.items) {
@@ -252,7 +254,8 @@ TEST(BatchRun, ResumesWhereACrashLeftOffAndShardsMergeToTheSameManifest) {
   fs::remove(sharded / "manifest-2-of-2.jsonl");
   report = merge_manifests(*index, sharded);
   EXPECT_FALSE(report.complete());
-  EXPECT_EQ(report.missing, (std::vector<std::string>{"persimmon-8-wedges-4", "persimmon-8-halves"}));
+  EXPECT_EQ(report.missing,
+            (std::vector<std::string>{"persimmon-8-wedges-4", "persimmon-8-halves"}));
   std::ofstream(sharded / "persimmon-7-halves.glb", std::ios::app) << "x";
   report = merge_manifests(*index, sharded);
   EXPECT_EQ(report.damaged, (std::vector<std::string>{"persimmon-7-halves"}));
@@ -339,8 +342,8 @@ TEST(SlurmJob, WritesAnArrayScriptAndRefusesUnquotablePaths) {
 // "out\f--chdir=/srv" would become an option of its own. Each separator, control character,
 // quote, pattern character and a byte that is not UTF-8 is refused, in each of the three paths.
 TEST(SlurmJob, RefusesEveryByteSbatchSplitsOnOrCannotPrint) {
-  std::vector<std::string> bad = {" ", "\t", "\n", "\v", "\f", "\r", "'", "\"", "%", "\\",
-                                  "\x7f", "\xc2\x85", "\xc2\xa0", "\xff", "\xc3"};
+  std::vector<std::string> bad = {" ", "\t", "\n",   "\v",       "\f",       "\r",   "'",   "\"",
+                                  "%", "\\", "\x7f", "\xc2\x85", "\xc2\xa0", "\xff", "\xc3"};
   for (int c = 1; c < 0x20; ++c) bad.push_back(std::string(1, static_cast<char>(c)));
   for (const std::string& b : bad) {
     for (int which = 0; which < 3; ++which) {

@@ -42,9 +42,10 @@ TEST(VariantBatch, ParsesTheShardNotation) {
   EXPECT_EQ(s->m, 8);
   ASSERT_TRUE(parse_shard("100000/100000"));
   ASSERT_TRUE(parse_shard("1/1"));
-  for (const char* bad : {"", "/", "3", "3/", "/8", "0/8", "9/8", "3/0", "-1/8", "3/-8", "+3/8",
-                          " 3/8", "3/8 ", "3.0/8", "3/8/9", "1/100001", "1/9999999",
-                          "99999999999/1", "3\\8", "three/8"}) {
+  for (const char* bad : {"",     "/",      "3",     "3/",       "/8",        "0/8",
+                          "9/8",  "3/0",    "-1/8",  "3/-8",     "+3/8",      " 3/8",
+                          "3/8 ", "3.0/8",  "3/8/9", "1/100001", "1/9999999", "99999999999/1",
+                          "3\\8", "three/8"}) {
     const Outcome<Shard> r = parse_shard(bad);
     ASSERT_FALSE(r) << bad;
     EXPECT_NE(r.reason().find("must be K/M"), std::string::npos) << r.reason();
@@ -60,9 +61,8 @@ TEST(VariantBatch, Fnv1aMatchesItsTestVectors) {
 }
 
 TEST(VariantBatch, ManifestListsEveryRecord) {
-  const std::vector<VariantRecord> records = {
-      {"kiwi-4.glb", 4, 0xdf52bd8c9272b6ffULL, 82900, 24},
-      {"kiwi-5.glb", 5, 0x1ULL, 10, 0}};
+  const std::vector<VariantRecord> records = {{"kiwi-4.glb", 4, 0xdf52bd8c9272b6ffULL, 82900, 24},
+                                              {"kiwi-5.glb", 5, 0x1ULL, 10, 0}};
   EXPECT_EQ(variant_manifest("kiwi", std::nullopt, records),
             "{\"template\": \"kiwi\", \"variants\": [\n"
             "  {\"file\": \"kiwi-4.glb\", \"seed\": 4, \"template\": \"kiwi\", \"fnv1a64\": "

@@ -56,8 +56,9 @@ TEST(VariantSet, HandsEachModelOverInSeedOrderWithItsRecord) {
 
 TEST(VariantSet, TheSheetSectionLiesAtTheSkinsMidHeight) {
   const Variant v = make_variant(kiwi(), 7);
-  const Outcome<CrossSection> s = variant_section(
-      v, [](const DsModel& model) { return make_cpu_diffusion(model, {4, 0}); });
+  const Outcome<CrossSection> s = variant_section(v, [](const DsModel& model) {
+    return make_cpu_diffusion(model, {4, 0});
+  });
   ASSERT_TRUE(s) << s.reason();
   double lo = 1e9, hi = -1e9;
   for (const auto vh : v.model.skin().mesh.vertices()) {

@@ -116,8 +116,8 @@ TEST(CutCache, AnEntryOfTheFirstVersionIsReplacedWithoutAWarning) {
   // The entry's file, where the cache names it, rewritten as version 1 wrote it.
   cache.store("old", payload_of("old", 300));
   ASSERT_EQ(entries(dir).size(), 1u);
-  std::ofstream(entries(dir)[0], std::ios::binary | std::ios::trunc)
-      << "cutaway cut cache 1\n" << payload_of("old", 300);
+  std::ofstream(entries(dir)[0], std::ios::binary | std::ios::trunc) << "cutaway cut cache 1\n"
+                                                                     << payload_of("old", 300);
   EXPECT_FALSE(cache.load("old"));
   EXPECT_TRUE(warnings.empty());
   EXPECT_EQ(cache.stats().damaged, 0);
@@ -183,8 +183,8 @@ TEST(CutCacheKey, EveryInputThatChangesTheCutChangesTheKey) {
   cut.cut.type = CutType::Slices;
   cut.cut.thickness_m = 0.008;
   const CollisionShapeOptions collision;
-  const CutKeyInputs base{1, 1.0, 2, "i0_tomato_0", "backend=cpu cube=16 directions=adaptive",
-                          &cut, &collision};
+  const CutKeyInputs base{
+      1, 1.0, 2, "i0_tomato_0", "backend=cpu cube=16 directions=adaptive", &cut, &collision};
   const std::string key = cut_cache_key(base);
   EXPECT_EQ(key, cut_cache_key(base));
   std::vector<std::string> keys;
@@ -212,9 +212,7 @@ TEST(CutCacheKey, EveryInputThatChangesTheCutChangesTheKey) {
   });
   with([](CutKeyInputs&, ObjectCutOptions& c, CollisionShapeOptions&) { c.keep = 0.5; });
   with([](CutKeyInputs&, ObjectCutOptions& c, CollisionShapeOptions&) { c.keep_seed = 9; });
-  with([](CutKeyInputs&, ObjectCutOptions& c, CollisionShapeOptions&) {
-    c.modulation_seed = 9;
-  });
+  with([](CutKeyInputs&, ObjectCutOptions& c, CollisionShapeOptions&) { c.modulation_seed = 9; });
   with([](CutKeyInputs&, ObjectCutOptions& c, CollisionShapeOptions&) { c.perlin = 0; });
   with([](CutKeyInputs&, ObjectCutOptions& c, CollisionShapeOptions&) {
     c.sampling = CapSampling::Dense;
@@ -245,10 +243,10 @@ Scene tiny_scene(std::optional<double> orbit_deg = std::nullopt) {
   if (orbit_deg) {
     const double a = glm::radians(*orbit_deg);
     const glm::dvec3 d = 0.6 * default_view_direction();
-    scene.camera = SceneCamera{
-        {std::cos(a) * d.x + std::sin(a) * d.z, d.y, -std::sin(a) * d.x + std::cos(a) * d.z},
-        glm::dvec3(0.0),
-        30};
+    scene.camera = SceneCamera{{std::cos(a) * d.x + std::sin(a) * d.z, d.y,
+                                -std::sin(a) * d.x + std::cos(a) * d.z},
+                               glm::dvec3(0.0),
+                               30};
   }
   return scene;
 }
@@ -280,7 +278,7 @@ TEST(CutCacheScene, CachedObjectsGiveTheSameBytesAndDamagedOnesAreCutAgain) {
   EXPECT_EQ(cache.stats().stored, uncached.objects + 1);  // and the placements
   EXPECT_EQ(tiny_scene_glb(&cache, second), without);
   EXPECT_EQ(second.cached_objects, uncached.objects);
-  EXPECT_EQ(second.diffused.all, 0u);  // nothing was cut
+  EXPECT_EQ(second.diffused.all, 0u);     // nothing was cut
   EXPECT_TRUE(second.cached_placements);  // nor laid out and settled
   EXPECT_FALSE(first.cached_placements);
   EXPECT_EQ(second.placed, uncached.placed);
@@ -375,7 +373,6 @@ TEST(CutCacheScene, AnOrbitRoundABowlTurnsThePileWithTheCamera) {
   EXPECT_TRUE(st_cached.cached_placements);
 }
 
-
 // ---------------------------------------------------------------------------------------------
 // Every entry is untrusted input: entries with a valid CRC-32 whose content is wrong are found
 // by the checks of what they decode to, removed with one warning naming the file, and made
@@ -412,9 +409,8 @@ struct CraftedRun {
 /// The tiny scene through `dir`'s cache, against the bytes `without` a cache.
 CraftedRun run_tiny(const fs::path& dir, const std::string& without) {
   CraftedRun r;
-  CutCache cache({dir, kDefaultCutCacheBytes, [&](const std::string& w) {
-                    r.warnings.push_back(w);
-                  }});
+  CutCache cache(
+      {dir, kDefaultCutCacheBytes, [&](const std::string& w) { r.warnings.push_back(w); }});
   r.same_bytes = tiny_scene_glb(&cache, r.scene) == without;
   r.stats = cache.stats();
   return r;
@@ -478,15 +474,17 @@ TEST(UntrustedCacheEntry, AShapeTriangleIndexOutOfRangeIsCaughtNotACrash) {
 TEST(UntrustedCacheEntry, ATriangleIndexNanPositionOrPrimitiveRangeIsCaught) {
   std::string without;
   const fs::path dir = tiny_cache("entry_mesh", &without);
-  const std::vector<std::pair<std::function<void(CachedCut&, SceneAssets&)>, std::string>> cases =
-      {{[](CachedCut& c, SceneAssets&) { c.pieces.meshes[0].triangle[5] = {100000000u, 0, 0}; },
-        "triangle vertex index not below"},
-       {[](CachedCut& c, SceneAssets&) {
-          c.pieces.meshes[0].position[3].x = std::numeric_limits<double>::quiet_NaN();
-        },
-        "non-finite"},
-       {[](CachedCut& c, SceneAssets&) { c.pieces.meshes[0].primitives[1].count = 10000000; },
-        "primitives"}};
+  const std::vector<std::pair<std::function<void(CachedCut&, SceneAssets&)>, std::string>> cases = {
+      {[](CachedCut& c, SceneAssets&) {
+         c.pieces.meshes[0].triangle[5] = {100000000u, 0, 0};
+       },
+       "triangle vertex index not below"},
+      {[](CachedCut& c, SceneAssets&) {
+         c.pieces.meshes[0].position[3].x = std::numeric_limits<double>::quiet_NaN();
+       },
+       "non-finite"},
+      {[](CachedCut& c, SceneAssets&) { c.pieces.meshes[0].primitives[1].count = 10000000; },
+       "primitives"}};
   for (const auto& [change, reason] : cases) {
     rewrite_cut_entry(dir, "i0_", change);
     expect_caught_and_rebuilt(dir, without, reason);

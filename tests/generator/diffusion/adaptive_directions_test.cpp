@@ -101,8 +101,7 @@ TEST(AdaptiveDirections, TexelsAreRefinedWhereWhatIsSeenChanges) {
 
 TEST(AdaptiveDirections, PmvcAsAccurateAsEveryTexelWithAboutHalfTheRays) {
   // The kiwi's mid-height cut: 24 narrow locules with seeds, many silhouettes to refine.
-  const test::MidHeightCut cut =
-      test::mid_height_cut(test::source_path("templates/kiwi.yaml"));
+  const test::MidHeightCut cut = test::mid_height_cut(test::source_path("templates/kiwi.yaml"));
   const auto every_texel = make_cpu_diffusion(cut.model, DiffusionOptions{16, 0, true, false});
   CrossSectionOptions options{cut.tmpl.edge_m};
   options.sampling = CapSampling::Dense;

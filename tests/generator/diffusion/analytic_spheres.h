@@ -37,8 +37,12 @@ double integrate(F f, double a, double b, int pieces = 4000) {
 /// of radii a < r < b (doc/algorithms.md §2(b)).
 inline double inner_share(double a, double b, double r) {
   const double theta0 = std::asin(a / r);
-  auto d1 = [&](double t) { return r * std::cos(t) - std::sqrt(std::max(0.0, a * a - r * r * std::sin(t) * std::sin(t))); };
-  auto d2 = [&](double t) { return r * std::cos(t) + std::sqrt(b * b - r * r * std::sin(t) * std::sin(t)); };
+  auto d1 = [&](double t) {
+    return r * std::cos(t) - std::sqrt(std::max(0.0, a * a - r * r * std::sin(t) * std::sin(t)));
+  };
+  auto d2 = [&](double t) {
+    return r * std::cos(t) + std::sqrt(b * b - r * r * std::sin(t) * std::sin(t));
+  };
   const double wa = integrate([&](double t) { return std::sin(t) / d1(t); }, 0, theta0);
   const double wb = integrate([&](double t) { return std::sin(t) / d2(t); }, theta0, kPi);
   return wa / (wa + wb);
@@ -59,7 +63,9 @@ inline TwoSphereErrors two_sphere_errors(const DiffusionBackend& backend, double
   std::vector<glm::dvec3> points;
   std::vector<double> expected;
   // Rays from the centre in several directions, off the axes and on them.
-  const glm::dvec3 dirs[] = {{1, 0, 0}, {0, 1, 0}, glm::normalize(glm::dvec3(1, 0.7, -0.4)),
+  const glm::dvec3 dirs[] = {{1, 0, 0},
+                             {0, 1, 0},
+                             glm::normalize(glm::dvec3(1, 0.7, -0.4)),
                              glm::normalize(glm::dvec3(-0.3, -0.8, 0.5))};
   for (const auto& d : dirs) {
     for (double r = a + edge_m; r <= b - edge_m + 1e-12; r += (b - a - 2 * edge_m) / 24) {

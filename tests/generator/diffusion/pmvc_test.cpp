@@ -18,7 +18,6 @@
 namespace cutaway {
 namespace {
 
-
 using test::inner_share;
 
 TEST(CubeDirections, SolidAnglesSumToTheSphere) {
@@ -43,8 +42,8 @@ TEST(PmvcCpu, ConcentricSpheresMatchTheAnalyticIntegral) {
       test::two_sphere_errors(*make_cpu_diffusion(model, aligned), t.edge_m);
   std::printf("pmvc cpu, cubes not turned: mean error %.5f, max %.5f\n", a.mean, a.max);
   RecordProperty("mean_error", std::to_string(e.mean));
-  std::printf("pmvc cpu: %zu points, mean error %.5f, max %.5f, %.3f s\n", e.points, e.mean,
-              e.max, e.seconds);
+  std::printf("pmvc cpu: %zu points, mean error %.5f, max %.5f, %.3f s\n", e.points, e.mean, e.max,
+              e.seconds);
   EXPECT_LE(e.mean, 0.005);
   EXPECT_LE(e.max, 0.03);
 }
@@ -75,10 +74,9 @@ TEST(PmvcCpu, TurnedCubesCancelTheTexelErrorsOnTheAxisOfAFourFoldObject) {
   };
   const auto [aligned_mean, aligned_max] = errors(false);
   const auto [turned_mean, turned_max] = errors(true);
-  std::printf(
-      "pepper axis, cube 16 vs 64 (linear): aligned mean %.5f max %.5f, turned mean "
-      "%.5f max %.5f\n",
-      aligned_mean, aligned_max, turned_mean, turned_max);
+  std::printf("pepper axis, cube 16 vs 64 (linear): aligned mean %.5f max %.5f, turned mean "
+              "%.5f max %.5f\n",
+              aligned_mean, aligned_max, turned_mean, turned_max);
   EXPECT_LT(turned_max, aligned_max);
   EXPECT_LT(turned_mean, aligned_mean);
 }
@@ -94,8 +92,8 @@ surfaces:
 )";
   const DsModel model = build_model(parse_template(text, "one-colour.yaml", "."));
   const auto backend = make_cpu_diffusion(model, DiffusionOptions{8, 1});
-  const std::vector<glm::dvec3> pts = {{0.001, 0.005, 0}, {0.015, 0.02, 0.003}, {0, 0.04, 0.001},
-                                       {0.002, 0.02, 0.002}};
+  const std::vector<glm::dvec3> pts = {
+      {0.001, 0.005, 0}, {0.015, 0.02, 0.003}, {0, 0.04, 0.001}, {0.002, 0.02, 0.002}};
   const glm::dvec3 want = srgb_to_linear(glm::dvec3(0x33, 0x66, 0x99) / 255.0);
   for (const auto& c : backend->diffuse(pts)) {
     EXPECT_NEAR(c.x, want.x, 1e-6);

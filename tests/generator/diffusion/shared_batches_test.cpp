@@ -90,7 +90,8 @@ TEST(SharedBatches, TasksGetTheBackendsValuesInFewerCallsOnTheCallingThread) {
   constexpr size_t kTasks = 6;
   std::vector<int> wrong(kTasks, 0);
   const SharedBatchStats stats = run_with_shared_batches(
-      backend, kTasks, [&](size_t task, const DiffusionBackend& diffusion) {
+      backend, kTasks,
+      [&](size_t task, const DiffusionBackend& diffusion) {
         // Task i makes i + 1 rounds, so tasks drop out one by one.
         for (int round = 0; round <= static_cast<int>(task); ++round) {
           const std::vector<glm::dvec3> points = round_points(task, round);
@@ -99,8 +100,7 @@ TEST(SharedBatches, TasksGetTheBackendsValuesInFewerCallsOnTheCallingThread) {
           diffusion.diffuse_channels(points, colour, material);
           for (size_t k = 0; k < points.size(); ++k) {
             wrong[task] += colour[k] != recorded_colour(points[k]);
-            if (!material.empty())
-              wrong[task] += material[k] != recorded_material(points[k]);
+            if (!material.empty()) wrong[task] += material[k] != recorded_material(points[k]);
           }
         }
       },
@@ -146,14 +146,17 @@ TEST(SharedBatches, ATasksExceptionReachesTheCallerAndTheOthersFinish) {
   RecordingBackend backend;
   std::atomic<int> finished{0};
   auto run = [&] {
-    run_with_shared_batches(backend, 4, [&](size_t task, const DiffusionBackend& diffusion) {
-      const std::vector<glm::dvec3> points = round_points(task, 0);
-      std::vector<glm::dvec3> colour(points.size());
-      diffusion.diffuse_channels(points, colour, {});
-      if (task == 2) throw std::invalid_argument("task 2 failed");
-      diffusion.diffuse_channels(points, colour, {});
-      ++finished;
-    }, 4);
+    run_with_shared_batches(
+        backend, 4,
+        [&](size_t task, const DiffusionBackend& diffusion) {
+          const std::vector<glm::dvec3> points = round_points(task, 0);
+          std::vector<glm::dvec3> colour(points.size());
+          diffusion.diffuse_channels(points, colour, {});
+          if (task == 2) throw std::invalid_argument("task 2 failed");
+          diffusion.diffuse_channels(points, colour, {});
+          ++finished;
+        },
+        4);
   };
   EXPECT_THROW(run(), std::invalid_argument);
   EXPECT_EQ(finished.load(), 3);
@@ -164,14 +167,17 @@ TEST(SharedBatches, ABackendErrorReachesTheCallerWithoutALeftWaitingTask) {
   backend.fail_after = 1;  // the second batch throws
   std::atomic<int> finished{0};
   auto run = [&] {
-    run_with_shared_batches(backend, 3, [&](size_t task, const DiffusionBackend& diffusion) {
-      for (int round = 0; round < 3; ++round) {
-        const std::vector<glm::dvec3> points = round_points(task, round);
-        std::vector<glm::dvec3> colour(points.size());
-        diffusion.diffuse_channels(points, colour, {});
-      }
-      ++finished;
-    }, 3);
+    run_with_shared_batches(
+        backend, 3,
+        [&](size_t task, const DiffusionBackend& diffusion) {
+          for (int round = 0; round < 3; ++round) {
+            const std::vector<glm::dvec3> points = round_points(task, round);
+            std::vector<glm::dvec3> colour(points.size());
+            diffusion.diffuse_channels(points, colour, {});
+          }
+          ++finished;
+        },
+        3);
   };
   EXPECT_THROW(run(), std::runtime_error);
   EXPECT_EQ(finished.load(), 0);
@@ -227,11 +233,14 @@ TEST(SharedBatches, WhenThreadsRunOutTheWorkersStartedOrTheCallerRunEveryTask) {
 TEST(SharedBatches, WrongChannelSizesAreRefusedInTheTask) {
   RecordingBackend backend;
   auto run = [&] {
-    run_with_shared_batches(backend, 2, [&](size_t, const DiffusionBackend& diffusion) {
-      const std::vector<glm::dvec3> points(3, glm::dvec3(1.0));
-      std::vector<glm::dvec3> colour(2);
-      diffusion.diffuse_channels(points, colour, {});
-    }, 2);
+    run_with_shared_batches(
+        backend, 2,
+        [&](size_t, const DiffusionBackend& diffusion) {
+          const std::vector<glm::dvec3> points(3, glm::dvec3(1.0));
+          std::vector<glm::dvec3> colour(2);
+          diffusion.diffuse_channels(points, colour, {});
+        },
+        2);
   };
   EXPECT_THROW(run(), InternalError);
   EXPECT_TRUE(backend.batch_sizes.empty());

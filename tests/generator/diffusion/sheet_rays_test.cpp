@@ -65,15 +65,18 @@ std::vector<Ray> hard_rays(const std::vector<DiffusionSheet>& sheets, const DsMo
   std::vector<Ray> rays;
   const glm::dvec3 lo = model.bbox_min, hi = model.bbox_max;
   while (rays.size() < count) {
-    const glm::dvec3 origin(rng.uniform(lo.x, hi.x) * 0.8, rng.uniform(lo.y, hi.y) * 0.8 + 0.1 * hi.y,
+    const glm::dvec3 origin(rng.uniform(lo.x, hi.x) * 0.8,
+                            rng.uniform(lo.y, hi.y) * 0.8 + 0.1 * hi.y,
                             rng.uniform(lo.z, hi.z) * 0.8);
     const DiffusionSheet& s = sheets[rng.below(sheets.size())];
     const glm::uvec3 t = s.triangle[rng.below(s.triangle.size())];
     const int corner = static_cast<int>(rng.below(3));
-    const glm::dvec3 p = glm::dvec3(s.position[t[corner]]), q = glm::dvec3(s.position[t[(corner + 1) % 3]]);
+    const glm::dvec3 p = glm::dvec3(s.position[t[corner]]),
+                     q = glm::dvec3(s.position[t[(corner + 1) % 3]]);
     const double along = rng.below(4) == 0 ? 0.0 : rng.uniform();  // a corner or an edge point
     const glm::dvec3 nudge(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
-    const glm::dvec3 target = p + along * (q - p) + nudge * (1e-9 * std::pow(10.0, rng.uniform(0, 3)));
+    const glm::dvec3 target =
+        p + along * (q - p) + nudge * (1e-9 * std::pow(10.0, rng.uniform(0, 3)));
     if (glm::length(target - origin) < 1e-4) continue;
     rays.push_back({origin, glm::vec3(glm::normalize(target - origin))});
     const glm::dvec3 far(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
@@ -89,7 +92,8 @@ std::vector<Ray> hard_rays(const std::vector<DiffusionSheet>& sheets, const DsMo
     const double u = rng.uniform(), v = rng.uniform() * (1 - u);
     const glm::dvec3 on = a + u * (b - a) + v * (c - a) +
                           n * (rng.uniform(-1, 1) * 1e-9 * std::pow(10.0, rng.uniform(-3, 1)));
-    const glm::dvec3 graze = along_plane + n * (rng.uniform(-1, 1) * std::pow(10.0, rng.uniform(-6, 0)));
+    const glm::dvec3 graze =
+        along_plane + n * (rng.uniform(-1, 1) * std::pow(10.0, rng.uniform(-6, 0)));
     rays.push_back({on, glm::vec3(glm::normalize(graze))});
   }
   return rays;
@@ -112,10 +116,10 @@ void expect_brute_force_hits(const char* isa) {
     const bool same = got.sheet == want.sheet && got.triangle == want.triangle &&
                       got.at.t == want.at.t && got.at.u == want.at.u && got.at.v == want.at.v;
     if (!same && ++wrong <= 5)
-      ADD_FAILURE() << (isa ? isa : "default") << ": ray from (" << r.origin.x << ", "
-                    << r.origin.y << ", " << r.origin.z << ") hit sheet " << got.sheet
-                    << " triangle " << got.triangle << " at " << got.at.t << ", exact: sheet "
-                    << want.sheet << " triangle " << want.triangle << " at " << want.at.t;
+      ADD_FAILURE() << (isa ? isa : "default") << ": ray from (" << r.origin.x << ", " << r.origin.y
+                    << ", " << r.origin.z << ") hit sheet " << got.sheet << " triangle "
+                    << got.triangle << " at " << got.at.t << ", exact: sheet " << want.sheet
+                    << " triangle " << want.triangle << " at " << want.at.t;
   }
   EXPECT_EQ(wrong, 0u) << "of " << rays.size() << " rays";
   EXPECT_GT(hits, rays.size() / 2);

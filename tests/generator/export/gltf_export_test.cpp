@@ -1,5 +1,5 @@
-// glTF export of DS models (generator/export/gltf_export.h): structure read back with tinygltf, colours
-// and winding of the two sides, determinism, and the Khronos validator.
+// glTF export of DS models (generator/export/gltf_export.h): structure read back with tinygltf,
+// colours and winding of the two sides, determinism, and the Khronos validator.
 #include "export/gltf_export.h"
 
 #include <gtest/gtest.h>
@@ -33,9 +33,9 @@ tinygltf::Model load_glb(const std::string& bytes) {
   tinygltf::TinyGLTF loader;
   tinygltf::Model m;
   std::string err, warn;
-  const bool ok = loader.LoadBinaryFromMemory(
-      &m, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
-      static_cast<unsigned int>(bytes.size()));
+  const bool ok = loader.LoadBinaryFromMemory(&m, &err, &warn,
+                                              reinterpret_cast<const unsigned char*>(bytes.data()),
+                                              static_cast<unsigned int>(bytes.size()));
   EXPECT_TRUE(ok) << err << warn;
   return m;
 }

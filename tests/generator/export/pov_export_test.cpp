@@ -1,7 +1,7 @@
-// POV-Ray export (generator/export/pov_export.h): the text's structure and determinism, and a render of
-// a small asymmetric scene with the system's povray (render/povray_runner.h) checked against a
-// pinhole projection of the same camera (not mirrored, not flipped) and an analytic Lambert
-// colour.
+// POV-Ray export (generator/export/pov_export.h): the text's structure and determinism, and a
+// render of a small asymmetric scene with the system's povray (render/povray_runner.h) checked
+// against a pinhole projection of the same camera (not mirrored, not flipped) and an analytic
+// Lambert colour.
 #include "base/constants.h"
 #include "export/pov_export.h"
 #include "npr/silhouettes.h"
@@ -70,8 +70,8 @@ AssetMesh tetrahedron() {
   const glm::dvec3 centroid = (p[0] + p[1] + p[2] + p[3]) / 4.0;
   AssetMesh m;
   m.name = "tetra";
-  for (const auto& f : {glm::uvec3{0, 1, 2}, glm::uvec3{0, 2, 3}, glm::uvec3{2, 1, 3},
-                        glm::uvec3{1, 0, 3}}) {
+  for (const auto& f :
+       {glm::uvec3{0, 1, 2}, glm::uvec3{0, 2, 3}, glm::uvec3{2, 1, 3}, glm::uvec3{1, 0, 3}}) {
     glm::uvec3 t = f;
     glm::dvec3 n = glm::cross(p[t.y] - p[t.x], p[t.z] - p[t.x]);
     if (glm::dot(n, p[t.x] - centroid) < 0) {
@@ -90,16 +90,19 @@ AssetMesh tetrahedron() {
 }
 
 // Seen from +Z: a red cube left and low, the same cube turned, up in the middle, a blue
-// tetrahedron right and low, its front face's tip turned to the left; a directional light from the upper right front and a point light
-// above and behind (it does not reach the faces that face the camera).
+// tetrahedron right and low, its front face's tip turned to the left; a directional light from the
+// upper right front and a point light above and behind (it does not reach the faces that face the
+// camera).
 SceneAssets test_scene() {
   SceneAssets s;
   s.name = "pov test";
   s.meshes = {cube("cube", 0.5, kRed), tetrahedron()};
   AssetInstance left{"left cube", 0, glm::dquat(1, 0, 0, 0), {-0.8, -0.3, 0}};
-  AssetInstance top{"top_cube", 0,
-                    glm::angleAxis(0.6, glm::normalize(glm::dvec3(1, 1, 0))), {0, 0.6, 0}};
-  AssetInstance right{"right_tetra", 1, glm::angleAxis(kPi / 2, glm::dvec3(0, 0, 1)),
+  AssetInstance top{
+      "top_cube", 0, glm::angleAxis(0.6, glm::normalize(glm::dvec3(1, 1, 0))), {0, 0.6, 0}};
+  AssetInstance right{"right_tetra",
+                      1,
+                      glm::angleAxis(kPi / 2, glm::dvec3(0, 0, 1)),
                       {0.8, -0.3, 0}};  // turned: its tip points left (-X)
   s.instances = {left, top, right};
   s.camera.eye = {0, 0, 3};
@@ -142,7 +145,8 @@ Block block(const std::string& text, size_t from, const std::string& keyword,
   const size_t open = text.find(keyword + " {", from);
   if (open == std::string::npos) return b;
   const size_t close = text.find("\n  }", open);
-  const std::string body = text.substr(open + keyword.size() + 2, close - open - keyword.size() - 2);
+  const std::string body =
+      text.substr(open + keyword.size() + 2, close - open - keyword.size() - 2);
   b.declared = std::stoi(body);
   b.entries = count(body, entry);
   return b;
@@ -327,8 +331,8 @@ TEST(PovExport, RendersLikeTheOpenGlCamera) {
 
   // Background where nothing is: the corners, sRGB of the linear background.
   const glm::dvec3 bg = 255.0 * linear_to_srgb(kBackground);
-  const int corners[4][2] = {{0, 0}, {s.width - 1, 0}, {0, s.height - 1},
-                             {s.width - 1, s.height - 1}};
+  const int corners[4][2] = {
+      {0, 0}, {s.width - 1, 0}, {0, s.height - 1}, {s.width - 1, s.height - 1}};
   for (const auto& c : corners) {
     EXPECT_LE(glm::length(png.srgb8(c[0], c[1]) - bg), 2.5) << "corner " << c[0] << "," << c[1];
   }
@@ -370,18 +374,18 @@ TEST(PovExport, RendersLikeTheOpenGlCamera) {
   // (0, 0.3) went to (-0.3, 0), so (0.2, 0.2) is on the face and (-0.2, 0.2) is not; the
   // transposed (inverse) rotation would give the opposite.
   const glm::dvec3 tetra_at = s.instances[2].translation + glm::dvec3(0, 0, 0.2);
-  EXPECT_TRUE(bluish(png.linear(project(s.camera, tetra_at + glm::dvec3(0.2, 0.2, 0), s.width,
-                                        s.height))));
-  EXPECT_FALSE(bluish(png.linear(project(s.camera, tetra_at + glm::dvec3(-0.2, 0.2, 0),
-                                         s.width, s.height))));
+  EXPECT_TRUE(
+      bluish(png.linear(project(s.camera, tetra_at + glm::dvec3(0.2, 0.2, 0), s.width, s.height))));
+  EXPECT_FALSE(bluish(
+      png.linear(project(s.camera, tetra_at + glm::dvec3(-0.2, 0.2, 0), s.width, s.height))));
 
   // The turned cube is up (not flipped vertically): its centre shows red, the point mirrored
   // across the horizontal midline shows background.
   const glm::dvec2 top_px = project(s.camera, s.instances[1].translation, s.width, s.height);
   EXPECT_LT(top_px.y, s.height / 2.0);
   EXPECT_TRUE(reddish(png.linear(top_px)));
-  const glm::dvec3 below = png.srgb8(static_cast<int>(top_px.x), s.height - 1 -
-                                                                     static_cast<int>(top_px.y));
+  const glm::dvec3 below =
+      png.srgb8(static_cast<int>(top_px.x), s.height - 1 - static_cast<int>(top_px.y));
   EXPECT_LE(glm::length(below - bg), 2.5);
 }
 
@@ -397,14 +401,12 @@ TEST(PovExport, AFinishPerMaterialOnTheFacesThatUseIt) {
   const size_t n = s.meshes[0].triangle.size();
   s.meshes[0].primitives = {{0, 2, 0}, {2, n - 2, 1}};
   const std::string text = scene_to_pov(s);
-  EXPECT_EQ(count(text,
-                  "#declare Cutaway_Finish = finish { ambient 0.15 diffuse 0.8 specular "
-                  "0.25 roughness 0.02 }"),
+  EXPECT_EQ(count(text, "#declare Cutaway_Finish = finish { ambient 0.15 diffuse 0.8 specular "
+                        "0.25 roughness 0.02 }"),
             1u);
   // Translucency as POV-Ray 3.7's backside illumination; the clear coat as a sharp phong.
-  EXPECT_EQ(count(text,
-                  "#declare Cutaway_Finish_1 = finish { ambient 0.15 diffuse 0.8, 0.4 "
-                  "specular 0.5 roughness 0.0025 phong 0.48 phong_size 40 }"),
+  EXPECT_EQ(count(text, "#declare Cutaway_Finish_1 = finish { ambient 0.15 diffuse 0.8, 0.4 "
+                        "specular 0.5 roughness 0.0025 phong 0.48 phong_size 40 }"),
             1u)
       << text.substr(0, 2000);
   EXPECT_GE(count(text, "finish { Cutaway_Finish_1 }"), 1u);
@@ -438,8 +440,7 @@ TEST(PovExport, TexturedFacesUseTheirImageBesideTheScene) {
     write_scene_pov(dir / "scene.pov", s, nullptr, format);
     EXPECT_EQ(test::files_in(dir), (std::vector<std::string>{"scene.pov", file}));
     const std::string text = test::read_file(dir / "scene.pov");
-    EXPECT_EQ(count(text, std::string("image_map { ") + type + " \"" + file +
-                              "\" interpolate 2 }"),
+    EXPECT_EQ(count(text, std::string("image_map { ") + type + " \"" + file + "\" interpolate 2 }"),
               1u);
     EXPECT_EQ(count(text, "uv_vectors {"), 1u);
     // No uv_indices: POV-Ray takes the face indices (the render below shows both halves).

@@ -71,8 +71,8 @@ SceneAssets small_scene() {
   s.name = "test_salad";
   s.meshes.push_back(cube("tomato_piece", 0.02, {0.8, 0.1, 0.05}));
   s.meshes.push_back(plate("plate", 0.12, 32));
-  AssetInstance a{"piece_0", 0, glm::angleAxis(0.3, glm::normalize(glm::dvec3(1, 2, 3))),
-                  {0.03, 0.02, 0.0}};
+  AssetInstance a{
+      "piece_0", 0, glm::angleAxis(0.3, glm::normalize(glm::dvec3(1, 2, 3))), {0.03, 0.02, 0.0}};
   AssetInstance b{"piece_1", 0, glm::angleAxis(-1.1, glm::dvec3(0, 1, 0)), {-0.04, 0.02, 0.01}};
   AssetInstance c{"plate_0", 1, glm::dquat(1, 0, 0, 0), {0, 0, 0}};
   s.instances = {a, b, c};
@@ -98,7 +98,7 @@ SceneAssets small_scene() {
 }
 
 constexpr int kNodes = 1 + 2 * 3 + 1 + 2;  // root, instances and their meshes, camera, lights
-constexpr int kCameraNode = 7;                 // then the two lights
+constexpr int kCameraNode = 7;             // then the two lights
 
 long instanced_triangles(const SceneAssets& s) {
   long n = 0;
@@ -213,7 +213,8 @@ TEST(SceneGltf, StructureReadsBackWithTinygltf) {
   ASSERT_EQ(m.scenes.size(), 1u);
   EXPECT_EQ(m.scenes[0].name, "test_salad");
   ASSERT_EQ(m.nodes.size(), static_cast<size_t>(kNodes));
-  EXPECT_EQ(m.scenes[0].nodes, (std::vector<int>{0, kCameraNode, kCameraNode + 1, kCameraNode + 2}));
+  EXPECT_EQ(m.scenes[0].nodes,
+            (std::vector<int>{0, kCameraNode, kCameraNode + 1, kCameraNode + 2}));
   // One root named after the scene, at the origin, over every instance.
   EXPECT_EQ(m.nodes[0].name, "test_salad");
   EXPECT_TRUE(m.nodes[0].translation.empty() && m.nodes[0].rotation.empty());
@@ -252,7 +253,7 @@ TEST(SceneGltf, StructureReadsBackWithTinygltf) {
   EXPECT_NEAR(glm::length(look - want), 0, 1e-12);
   const glm::dquat cq(cam_node.rotation[3], cam_node.rotation[0], cam_node.rotation[1],
                       cam_node.rotation[2]);
-  EXPECT_GT(glm::dot(cq * glm::dvec3(0, 1, 0), s.camera.up), 0.5);  // not upside down
+  EXPECT_GT(glm::dot(cq * glm::dvec3(0, 1, 0), s.camera.up), 0.5);         // not upside down
   EXPECT_NEAR(glm::dot(cq * glm::dvec3(1, 0, 0), s.camera.up), 0, 1e-12);  // no roll
 
   // The lights: KHR_lights_punctual, used and referenced from their nodes.
@@ -326,7 +327,8 @@ TEST(SceneGltf, CollisionHullsAreNamedForEnginesSeeThroughAndNotCounted) {
               : std::vector<std::string>{"UCX_tomato_piece_00", "UCX_tomato_piece_01",
                                          "UCX_plate_00"};
       const std::vector<std::pair<int, const AssetHull*>> hulls = {
-          {3, &s.instances[0].collision[0]}, {4, &s.instances[0].collision[1]},
+          {3, &s.instances[0].collision[0]},
+          {4, &s.instances[0].collision[1]},
           {9, &s.instances[2].collision[0]}};
       for (size_t k = 0; k < hulls.size(); ++k) {
         const nlohmann::json& node = nodes[static_cast<size_t>(hulls[k].first)];
@@ -404,8 +406,7 @@ TEST(SceneGltf, LookRotationsHandleAViewAlongTheUpVector) {
                                           reinterpret_cast<const unsigned char*>(glb.data()),
                                           static_cast<unsigned>(glb.size())))
       << err;
-  EXPECT_NEAR(glm::length(minus_z(m.nodes[kCameraNode].rotation) - glm::dvec3(0, -1, 0)), 0,
-              1e-12);
+  EXPECT_NEAR(glm::length(minus_z(m.nodes[kCameraNode].rotation) - glm::dvec3(0, -1, 0)), 0, 1e-12);
   EXPECT_NEAR(glm::length(minus_z(m.nodes[kCameraNode + 1].rotation) - glm::dvec3(0, -1, 0)), 0,
               1e-12);
 }
@@ -694,8 +695,7 @@ double component(const tinygltf::Model& m, const tinygltf::Accessor& a, size_t i
       std::memcpy(&v, p, 2);
       return std::max(v / 32767.0, -1.0);
     }
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-      return std::max(static_cast<int8_t>(*p) / 127.0, -1.0);
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return std::max(static_cast<int8_t>(*p) / 127.0, -1.0);
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
       uint16_t v;
       std::memcpy(&v, p, 2);
@@ -723,10 +723,10 @@ TEST(SceneGltf, QuantizedVerticesLandWhereTheAssetsPutThemWithinTheirStep) {
     const tinygltf::Node& mesh_node = m.nodes[2 + 2 * i];
     ASSERT_EQ(mesh_node.scale.size(), 3u);
     const double scale = mesh_node.scale[0];
-    const glm::dvec3 offset =
-        mesh_node.translation.empty()
-            ? glm::dvec3(0.0)
-            : glm::dvec3(mesh_node.translation[0], mesh_node.translation[1], mesh_node.translation[2]);
+    const glm::dvec3 offset = mesh_node.translation.empty()
+                                  ? glm::dvec3(0.0)
+                                  : glm::dvec3(mesh_node.translation[0], mesh_node.translation[1],
+                                               mesh_node.translation[2]);
     const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
     const glm::dvec3 t(node.translation[0], node.translation[1], node.translation[2]);
     const auto& prim = m.meshes[static_cast<size_t>(mesh_node.mesh)].primitives[0];
@@ -818,8 +818,8 @@ TEST(SceneGltf, ANormalMapIsWrittenWithTangentsAlongUAndItsYUpTheTexture) {
     ASSERT_EQ(m.materials.size(), 2u);
     const int normal_texture = m.materials[1].normalTexture.index;
     ASSERT_GE(normal_texture, 0) << name;
-    const auto& image = m.images[static_cast<size_t>(m.textures[static_cast<size_t>(
-        normal_texture)].source)];
+    const auto& image =
+        m.images[static_cast<size_t>(m.textures[static_cast<size_t>(normal_texture)].source)];
     EXPECT_EQ(image.mimeType, "image/png") << name;  // linear data: never JPEG
     const auto& cube = m.meshes[0].primitives[0];
     ASSERT_TRUE(cube.attributes.count("TANGENT")) << name;
@@ -895,7 +895,8 @@ TEST(SceneGltf, LevelsOfDetailKeepBordersSoClosedMeshesStayClosed) {
   EXPECT_EQ(m.extensionsUsed.back(), "MSFT_lod");
   // The nodes first as without levels; the level nodes after them, outside the scene's list.
   EXPECT_EQ(m.nodes.size(), static_cast<size_t>(kNodes) + 2 * 3);
-  EXPECT_EQ(m.scenes[0].nodes, (std::vector<int>{0, kCameraNode, kCameraNode + 1, kCameraNode + 2}));
+  EXPECT_EQ(m.scenes[0].nodes,
+            (std::vector<int>{0, kCameraNode, kCameraNode + 1, kCameraNode + 2}));
 }
 
 TEST(SceneGltf, ThreeJsRendersTheTexture) {

@@ -1,5 +1,5 @@
-// Texture images (generator/export/texture_image.h): JPEG base colours stay close to the baked texels
-// at a fraction of the PNG's bytes, material maps stay PNG, encoding is deterministic, and
+// Texture images (generator/export/texture_image.h): JPEG base colours stay close to the baked
+// texels at a fraction of the PNG's bytes, material maps stay PNG, encoding is deterministic, and
 // file names and MIME types follow the format.
 #include "export/texture_image.h"
 

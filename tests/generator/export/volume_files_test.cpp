@@ -115,9 +115,8 @@ TEST(InteriorVolumeVdb, GridsHoldTheVolumeAtTheVoxelCentresInMetres) {
   const openvdb::GridPtrVecPtr grids = stream.getGrids();
   std::map<std::string, openvdb::GridBase::Ptr> by_name;
   for (const auto& g : *grids) by_name[g->getName()] = g;
-  for (const char* name :
-       {"density", "color", "roughness", "translucency", "region", "sheet_distance",
-        "outline_distance"})
+  for (const char* name : {"density", "color", "roughness", "translucency", "region",
+                           "sheet_distance", "outline_distance"})
     ASSERT_TRUE(by_name.count(name)) << name;
   EXPECT_EQ(stream.getMetadata()->metaValue<std::string>("template"), "numbered");
   EXPECT_EQ(stream.getMetadata()->metaValue<std::string>("seed"), "7");

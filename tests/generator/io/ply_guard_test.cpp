@@ -31,10 +31,10 @@ std::string refusal(const std::string& ply) {
   return "";
 }
 
-#define EXPECT_REFUSED(ply, fragment)                                              \
-  do {                                                                             \
-    const std::string rule_ = refusal(ply);                                        \
-    EXPECT_NE(rule_.find(fragment), std::string::npos)                             \
+#define EXPECT_REFUSED(ply, fragment)                                                         \
+  do {                                                                                        \
+    const std::string rule_ = refusal(ply);                                                   \
+    EXPECT_NE(rule_.find(fragment), std::string::npos)                                        \
         << "expected a refusal containing \"" << (fragment) << "\", got \"" << rule_ << "\""; \
   } while (false)
 
@@ -101,8 +101,9 @@ TEST(PlyGuard, ValidFilesPassWithTheirCounts) {
   }
   // Quads make two triangles each; a face property after the indices, an element after the
   // faces, no line break at the end, CRLF lines.
-  const std::string quads = ascii("4", "2", "0 0 0\r\n1 0 0\r\n1 1 0\r\n0 1 0\r\n4 0 1 2 3 7\r\n4 3 2 1 0 8",
-                                  kXyz, kIndices + "property uchar part\n");
+  const std::string quads =
+      ascii("4", "2", "0 0 0\r\n1 0 0\r\n1 1 0\r\n0 1 0\r\n4 0 1 2 3 7\r\n4 3 2 1 0 8", kXyz,
+            kIndices + "property uchar part\n");
   const PlyCheck q = check_ply(quads, kLoc, kField);
   EXPECT_EQ(q.faces, 2u);
   EXPECT_EQ(q.triangles, 4u);
@@ -138,14 +139,16 @@ TEST(PlyGuard, CountsBeyondTheTemplateLimitsAreRefused) {
   std::string big = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(nv) +
                     "\n" + kXyz + "element face 0\n" + kIndices + "end_header\n";
   big.resize(big.size() + nv * 12, '\0');
-  EXPECT_REFUSED(big, "declares " + std::to_string(nv) + " vertices; a template mesh may have at most " +
+  EXPECT_REFUSED(big, "declares " + std::to_string(nv) +
+                          " vertices; a template mesh may have at most " +
                           std::to_string(kMaxMeshVertices));
   const size_t nf = kMaxMeshFaces + 1;
   std::string many = "ply\nformat binary_little_endian 1.0\nelement vertex 3\n" + kXyz +
                      "element face " + std::to_string(nf) +
                      "\nproperty list uchar uchar vertex_indices\nend_header\n";
   many.resize(many.size() + 36 + nf * 4, '\0');
-  EXPECT_REFUSED(many, "declares " + std::to_string(nf) + " faces; a template mesh may have at most " +
+  EXPECT_REFUSED(many, "declares " + std::to_string(nf) +
+                           " faces; a template mesh may have at most " +
                            std::to_string(kMaxMeshFaces));
 }
 
@@ -154,11 +157,11 @@ TEST(PlyGuard, TruncatedBodiesAreRefused) {
   EXPECT_REFUSED(ascii("4", "4", kTetraVerts + "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1"),
                  "declares 4 vertices and 4 faces but the file has only");
   const std::string b = binary(false);
-  EXPECT_REFUSED(b.substr(0, b.size() - 1), "but the file has only " +
-                                                std::to_string(b.size() - 1) + " bytes");
+  EXPECT_REFUSED(b.substr(0, b.size() - 1),
+                 "but the file has only " + std::to_string(b.size() - 1) + " bytes");
   // Long enough, but the numbers run out (blanks are no numbers) ...
-  EXPECT_REFUSED(ascii("4", "4", kTetraVerts + "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2" +
-                                     std::string(40, ' ')),
+  EXPECT_REFUSED(ascii("4", "4",
+                       kTetraVerts + "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2" + std::string(40, ' ')),
                  "the file ends in face 3 (its header declares 4 faces)");
   EXPECT_REFUSED(ascii("4", "4", "0 0 0\n1 0 0\n0 1 0\n0 0\n" + std::string(40, '\n')),
                  "the file ends in vertex 3 (its header declares 4 vertices)");
@@ -200,9 +203,10 @@ TEST(PlyGuard, AsciiNumbersMustParseAsTheirTypes) {
   EXPECT_REFUSED(ascii("4", "4", "0 0 0\n1 0 0\n0 1 0\n0 0 nan\n" + kTetraFaces), "\"nan\"");
   EXPECT_EQ(refusal(ascii("4", "4", "0 0 0\n1. -.5 +2e-3\n0 1E2 0\n0 0 1e-50\n" + kTetraFaces)),
             "");
-  EXPECT_REFUSED(ascii("4", "4", "0 0 0 256\n1 0 0 1\n0 1 0 1\n0 0 1 1\n" + kTetraFaces,
-                       kXyz + "property uchar front_red\n"),
-                 "vertex 0, property \"front_red\": \"256\" is not a whole number in the type's range");
+  EXPECT_REFUSED(
+      ascii("4", "4", "0 0 0 256\n1 0 0 1\n0 1 0 1\n0 0 1 1\n" + kTetraFaces,
+            kXyz + "property uchar front_red\n"),
+      "vertex 0, property \"front_red\": \"256\" is not a whole number in the type's range");
 }
 
 TEST(PlyGuard, HeadersOpenMeshWouldMisreadAreRefused) {
@@ -218,13 +222,11 @@ TEST(PlyGuard, HeadersOpenMeshWouldMisreadAreRefused) {
   EXPECT_REFUSED("ply\nformat ascii 1.0\nelement face 0\n" + kIndices + "element vertex 0\n" +
                      kXyz + "end_header\n",
                  "the 'vertex' element must come before 'face'");
-  EXPECT_REFUSED(ascii("4", "4", "", "property float x\nproperty float y\n"),
-                 "no property 'z'");
+  EXPECT_REFUSED(ascii("4", "4", "", "property float x\nproperty float y\n"), "no property 'z'");
   EXPECT_REFUSED(ascii("4", "4", "", "property int x\nproperty float y\nproperty float z\n"),
                  "the vertex property \"x\" must be float or double");
   EXPECT_REFUSED(ascii("4", "4", "", kXyz + "property float128 w\n"), "with a PLY type");
-  EXPECT_REFUSED(ascii("4", "4", "", kXyz + "property float float\n"),
-                 "must not be a type name");
+  EXPECT_REFUSED(ascii("4", "4", "", kXyz + "property float float\n"), "must not be a type name");
   EXPECT_REFUSED(ascii("4", "4", "", kXyz + "property double red\n"),
                  "the colour property \"red\" must be float or an integer type");
   EXPECT_REFUSED(ascii("4", "4", "", kXyz, "property list float int vertex_indices\n"),

@@ -207,8 +207,8 @@ TEST(SceneParser, JsonIsAccepted) {
 TEST(SceneParser, TemplatePathRelativeToTheScene) {
   const Scene s = parse(kHead + "items: [{template: ../mesh_octahedra.yaml}, "
                                 "{template: ../../../templates/onion.yaml}]\n");
-  EXPECT_TRUE(same_file(s.items[0].template_path,
-                        test::source_path("tests/data/mesh_octahedra.yaml")));
+  EXPECT_TRUE(
+      same_file(s.items[0].template_path, test::source_path("tests/data/mesh_octahedra.yaml")));
   EXPECT_EQ(s.items[0].template_name, "../mesh_octahedra.yaml");
   EXPECT_TRUE(same_file(s.items[1].template_path, test::source_path("templates/onion.yaml")));
 }
@@ -222,7 +222,8 @@ TEST(SceneParser, TemplateNameLookupOrder) {
   fs::copy_file(test::source_path("templates/tomato.yaml"), root / "project/templates/tomato.yaml");
   fs::copy_file(test::source_path("templates/onion.yaml"), root / "env/onion.yaml");
   fs::copy_file(test::source_path("templates/onion.yaml"), root / "env/yuzu.yaml");
-  const std::string text = kHead +
+  const std::string text =
+      kHead +
       "items: [{template: tomato}, {template: onion}, {template: yuzu}, {template: cucumber}]\n";
   const std::string file = (root / "project/scenes/s.yaml").string();
 
@@ -330,8 +331,9 @@ TEST(SceneParser, LoadSceneChecksTheTemplates) {
 
   // parse_scene does not read the templates; load_scene does, and reports the template's error.
   const fs::path dir = test::fresh_dir("scene_broken_template");
-  const std::string text = kHead + "items: [{template: " +
-                           test::source_path("tests/bad_input/folds_one.yaml").string() + "}]\n";
+  const std::string text =
+      kHead + "items: [{template: " + test::source_path("tests/bad_input/folds_one.yaml").string() +
+      "}]\n";
   std::ofstream(dir / "s.yaml") << text;
   EXPECT_NO_THROW(parse_scene(text, (dir / "s.yaml").string()));
   const InputError e = load_error_of((dir / "s.yaml").string());
@@ -359,7 +361,8 @@ TEST(SceneParser, LoadSceneRefusesTooManyPieces) {
 
   // 2 mm slices make 401: fine (at a texel density that keeps their caps within the total, on
   // a board large enough to hold their heap).
-  std::ofstream(dir / "ok.yaml") << kHead + R"(container: {type: board, width: 4000, depth: 4000, height: 20}
+  std::ofstream(dir / "ok.yaml")
+      << kHead + R"(container: {type: board, width: 4000, depth: 4000, height: 20}
 items:
   - template: big.yaml
     cut: {type: slices, thickness: 2}

@@ -1,5 +1,5 @@
-// parse_template (generator/io/template_parser.h) on in-memory text: the values it produces (units to
-// metres, sRGB to linear, polar sections, gradients, defaults) and the InputError it raises
+// parse_template (generator/io/template_parser.h) on in-memory text: the values it produces (units
+// to metres, sRGB to linear, polar sections, gradients, defaults) and the InputError it raises
 // (file, line, column, field path, rule).
 #include "base/constants.h"
 #include "io/template_parser.h"
@@ -15,7 +15,6 @@
 
 namespace cutaway {
 namespace {
-
 
 const char* const kTemplate = R"(format: cutaway-template/1
 name: test-fruit_1
@@ -360,8 +359,8 @@ TEST(TemplateParser, ErrorNotFiniteAndWrongType) {
   EXPECT_EQ(nan.field(), "resolution.edge");
   EXPECT_NE(nan.rule().find("finite"), std::string::npos) << nan.rule();
 
-  const InputError folds = error_of(
-      "format: cutaway-template/1\nname: x\nsymmetry: {type: nfold, folds: five}\n");
+  const InputError folds =
+      error_of("format: cutaway-template/1\nname: x\nsymmetry: {type: nfold, folds: five}\n");
   EXPECT_EQ(folds.loc().line, 3);
   EXPECT_EQ(folds.loc().column, 32);
   EXPECT_EQ(folds.field(), "symmetry.folds");

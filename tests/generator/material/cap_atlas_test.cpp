@@ -1,6 +1,6 @@
-// Baked cap textures (generator/material/cap_atlas.h): the texture agrees with direct PMVC evaluation
-// at texel centres away from the cut segments, the two caps of one cut agree through their
-// textures, islands do not overlap and are dilated, and baking is deterministic.
+// Baked cap textures (generator/material/cap_atlas.h): the texture agrees with direct PMVC
+// evaluation at texel centres away from the cut segments, the two caps of one cut agree through
+// their textures, islands do not overlap and are dilated, and baking is deterministic.
 #include "io/cut_notation.h"
 #include "material/cap_atlas.h"
 
@@ -162,10 +162,9 @@ TEST(CapAtlas, TheMaterialMapAgreesWithDirectPmvcAwayFromCutSegments) {
     hi = std::max(hi, direct[i].y);
   }
   const double mean = sum / static_cast<double>(points.size());
-  std::printf(
-      "material map vs direct PMVC over %zu points: mean %.2f, max %.2f (of 255); "
-      "translucency %.2f..%.2f\n",
-      points.size(), mean, worst, lo, hi);
+  std::printf("material map vs direct PMVC over %zu points: mean %.2f, max %.2f (of 255); "
+              "translucency %.2f..%.2f\n",
+              points.size(), mean, worst, lo, hi);
   EXPECT_GT(hi - lo, 0.2);  // the gel and the wall differ: the map is not a constant
   EXPECT_LT(mean, 1.0);
   EXPECT_LT(worst, 8.0);
@@ -239,8 +238,8 @@ TEST(CapAtlas, TheTwoCapsOfACutShareOneIsland) {
   // about four times the texels of one wedge (2 caps on 2 faces), not eight times.
   PieceOptions piece_options;
   piece_options.section.edge_m = h.tmpl.edge_m;
-  const PieceSet wedges = *cut_pieces(h.model, *parse_cut_spec("wedges:8", 1e-3), *h.diffusion,
-                                     piece_options);
+  const PieceSet wedges =
+      *cut_pieces(h.model, *parse_cut_spec("wedges:8", 1e-3), *h.diffusion, piece_options);
   ASSERT_EQ(wedges.pieces.size(), 8u);
   const CapAtlas eight = bake_cap_atlas(all_pieces(wedges), wedges.sections, nullptr, 0, options);
   const CapAtlas single = bake_cap_atlas({&wedges.pieces[0]}, wedges.sections, nullptr, 0, options);

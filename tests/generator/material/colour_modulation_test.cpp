@@ -295,10 +295,10 @@ TEST(NprBlock, RefusesBadValuesWithTheirLocation) {
        "npr.perlin.bands[0].amplitude", "must be between 0 and 1"},
       {"npr: {perlin: {bands: [{period: 1, amplitude: 0.1, tint: '#fff'}]}}\n", 10, 58,
        "npr.perlin.bands[0].tint", "not \"#fff\""},
-      {"npr: {perlin: {bands: [{period: 1, amplitude: 0.1, tint: '#ffffff', reach: 0}]}}\n",
-       10, 76, "npr.perlin.bands[0].reach", "must be positive"},
-      {"npr: {perlin: {bands: [{period: 1, amplitude: 0.1, tint: '#ffffff', reach: 2}]}}\n",
-       10, 76, "npr.perlin.bands[0].reach", "must be between 0 and 1.75"},
+      {"npr: {perlin: {bands: [{period: 1, amplitude: 0.1, tint: '#ffffff', reach: 0}]}}\n", 10, 76,
+       "npr.perlin.bands[0].reach", "must be positive"},
+      {"npr: {perlin: {bands: [{period: 1, amplitude: 0.1, tint: '#ffffff', reach: 2}]}}\n", 10, 76,
+       "npr.perlin.bands[0].reach", "must be between 0 and 1.75"},
   };
   for (const Case& c : cases) {
     const InputError e = error_of(c.npr);

@@ -38,11 +38,8 @@ glm::dvec3 normal_at(const ReliefMaps& maps, int w, int x, int y) {
 TEST(ReliefMap, ARampGivesTheNormalOfItsSlopeTiltedAcrossAndUpTheTexture) {
   const double metres = 5e-4;
   // Rising toward +x by half a texel's width per texel: slope 0.5, so the normal leans to -X.
-  const ReliefMaps across =
-      bake_relief_maps(relief_canvas(16, 16, false, metres, [&](int x, int) {
-                         return 0.5 * metres * x;
-                       }),
-                       2);
+  const ReliefMaps across = bake_relief_maps(
+      relief_canvas(16, 16, false, metres, [&](int x, int) { return 0.5 * metres * x; }), 2);
   const glm::dvec3 want = glm::normalize(glm::dvec3(-0.5, 0, 1));
   for (int x : {0, 7, 15}) {
     const glm::dvec3 n = normal_at(across, 16, x, 8);

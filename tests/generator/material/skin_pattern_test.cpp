@@ -64,8 +64,8 @@ TEST(SkinPattern, StripesComeCountTimesAroundCoverTheirWidthAndWrapAcrossTheSeam
   const SkinPatterns turned({stripes(12, 0.4, 0.0)}, 8);
   double differ = 0;
   for (int i = 0; i < 100; ++i)
-    differ += std::fabs(p.coverage(0, {0.5, i / 100.0}, {}) -
-                        turned.coverage(0, {0.5, i / 100.0}, {}));
+    differ +=
+        std::fabs(p.coverage(0, {0.5, i / 100.0}, {}) - turned.coverage(0, {0.5, i / 100.0}, {}));
   EXPECT_GT(differ, 1.0);
 }
 
@@ -145,8 +145,8 @@ TEST(SkinPattern, TheReliefIsTheSumOfEachLayersReliefTimesItsCoverage) {
   for (const glm::dvec3 at : {glm::dvec3(0.011, 0.02, 0.003), glm::dvec3(-0.03, 0.05, 0.01),
                               glm::dvec3(0.0, 0.001, -0.02)}) {
     const glm::dvec2 param(0.5, 0.5);
-    EXPECT_NEAR(p.shade(param, at, {}).height, 4e-4 * p.coverage(0, param, at) -
-                                         2e-4 * p.coverage(1, param, at), 1e-15);
+    EXPECT_NEAR(p.shade(param, at, {}).height,
+                4e-4 * p.coverage(0, param, at) - 2e-4 * p.coverage(1, param, at), 1e-15);
   }
 }
 

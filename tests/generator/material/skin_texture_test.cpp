@@ -167,8 +167,7 @@ TEST(SkinTexture, ARaisedNetTiltsTheNormalMapOnItsLinesOnly) {
   const SkinPatterns patterns({net}, 5);
   const SkinTextureOptions options;
   const glm::ivec2 size = skin_texture_size(c.model.skin(), options);
-  const SkinTexture baked =
-      bake_skin_texture(parts, part_uv, size, &patterns, nullptr, 0, options);
+  const SkinTexture baked = bake_skin_texture(parts, part_uv, size, &patterns, nullptr, 0, options);
   ASSERT_TRUE(baked.relief);
   const ReliefMaps& relief = *baked.relief;
   ASSERT_EQ(relief.normal.size(), static_cast<size_t>(size.x) * size.y * 3);
@@ -183,8 +182,8 @@ TEST(SkinTexture, ARaisedNetTiltsTheNormalMapOnItsLinesOnly) {
   for (int y = size.y / 8; y < size.y - size.y / 8; ++y)
     for (int x = 0; x < size.x; ++x) {
       const size_t i = static_cast<size_t>(y) * size.x + x;
-      const bool tilted = std::abs(relief.normal[3 * i] - 128) > 3 ||
-                          std::abs(relief.normal[3 * i + 1] - 128) > 3;
+      const bool tilted =
+          std::abs(relief.normal[3 * i] - 128) > 3 || std::abs(relief.normal[3 * i + 1] - 128) > 3;
       bool near_line = false;
       for (int dy = -2; dy <= 2; ++dy)
         for (int dx = -2; dx <= 2; ++dx) {

@@ -82,9 +82,9 @@ TEST(TexelBake, HalfSizeAveragesTwoByTwoTexels) {
   ASSERT_EQ(half.width, 3);
   ASSERT_EQ(half.height, 2);
   EXPECT_EQ(half.colour[0], glm::dvec3((0 + 1 + 10 + 11) / 4.0));
-  EXPECT_EQ(half.colour[2], glm::dvec3((4 + 14) / 2.0));    // column 4 alone
-  EXPECT_EQ(half.colour[3], glm::dvec3((20 + 21) / 2.0));   // row 2 alone
-  EXPECT_EQ(half.colour[5], glm::dvec3(24.0));              // the corner texel alone
+  EXPECT_EQ(half.colour[2], glm::dvec3((4 + 14) / 2.0));   // column 4 alone
+  EXPECT_EQ(half.colour[3], glm::dvec3((20 + 21) / 2.0));  // row 2 alone
+  EXPECT_EQ(half.colour[5], glm::dvec3(24.0));             // the corner texel alone
   EXPECT_EQ(half.material[4], glm::dvec2(2.5, 2.0));
   EXPECT_EQ(half.covered, (HugePageVector<uint8_t>{1, 0, 0, 0, 0, 0}));
 }

@@ -36,8 +36,8 @@ struct PlySpec {
 /// A closed octahedron of radius 10 (file units), outward winding; vertex i has front colour
 /// (10 i, 20 i, 30 i) / 255 sRGB, back colour (255 - 10 i, 100, 5 i) / 255 and blur 0.5 i.
 constexpr double kRadius = 10;
-const double kVerts[6][3] = {{kRadius, 0, 0}, {-kRadius, 0, 0}, {0, kRadius, 0},
-                             {0, -kRadius, 0}, {0, 0, kRadius}, {0, 0, -kRadius}};
+const double kVerts[6][3] = {{kRadius, 0, 0},  {-kRadius, 0, 0}, {0, kRadius, 0},
+                             {0, -kRadius, 0}, {0, 0, kRadius},  {0, 0, -kRadius}};
 const int kFaces[8][3] = {{0, 2, 4}, {4, 2, 1}, {1, 2, 5}, {5, 2, 0},
                           {4, 3, 0}, {1, 3, 4}, {5, 3, 1}, {0, 3, 5}};
 
@@ -60,7 +60,9 @@ void write_ply(const fs::path& file, const PlySpec& s) {
   h += "comment cutaway mesh_surface_test\nelement vertex " + std::to_string(s.isolated ? 7 : 6) +
        "\n";
   h += "property float x\nproperty float y\nproperty float z\n";
-  auto is_uchar = [&](int k) { return s.colours == "uchar" || (s.colours == "mixed" && k % 3 == 0); };
+  auto is_uchar = [&](int k) {
+    return s.colours == "uchar" || (s.colours == "mixed" && k % 3 == 0);
+  };
   if (!s.colours.empty()) {
     for (int k = 0; k < 6; ++k)
       h += std::string("property ") + (is_uchar(k) ? "uchar " : "float ") + names[k] + "\n";
@@ -274,8 +276,8 @@ TEST(MeshImport, AClosedMeshWoundInwardsIsTurnedOutwards) {
   const std::vector<int> want{0, 4, 2};
   bool same = false;
   for (int k = 0; k < 3; ++k) {
-    same = same || (first[0] == want[k] && first[1] == want[(k + 1) % 3] &&
-                    first[2] == want[(k + 2) % 3]);
+    same = same ||
+           (first[0] == want[k] && first[1] == want[(k + 1) % 3] && first[2] == want[(k + 2) % 3]);
   }
   EXPECT_TRUE(same) << first[0] << " " << first[1] << " " << first[2];
 }

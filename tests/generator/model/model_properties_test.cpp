@@ -46,9 +46,11 @@ const Built& built(const fs::path& file) {
     const test::BuiltTemplate& shared = test::built_template(file);
     Template straight = shared.tmpl;
     straight.spine = {};
-    slot = std::make_unique<Built>(Built{
-        shared.tmpl, shared.model,
-        shared.tmpl.spine.points.empty() ? shared.model : build_model(straight), {}});
+    slot = std::make_unique<Built>(
+        Built{shared.tmpl,
+              shared.model,
+              shared.tmpl.spine.points.empty() ? shared.model : build_model(straight),
+              {}});
     slot->spec_of.push_back(slot->tmpl.skin);
     for (int i = 0; i < static_cast<int>(slot->tmpl.surfaces.size()); ++i)
       if (i != slot->tmpl.skin) slot->spec_of.push_back(i);
@@ -96,9 +98,10 @@ class InsideTest {
 
   bool inside(const glm::dvec3& p) {
     if (glm::any(glm::lessThan(p, lo_)) || glm::any(glm::greaterThan(p, hi_))) return false;
-    static const std::array<glm::dvec3, 3> dirs{glm::normalize(glm::dvec3(0.8017, 0.0131, 0.5977)),
-                                                glm::normalize(glm::dvec3(-0.3109, -0.0173, 0.9504)),
-                                                glm::normalize(glm::dvec3(-0.7331, 0.0157, -0.6801))};
+    static const std::array<glm::dvec3, 3> dirs{
+        glm::normalize(glm::dvec3(0.8017, 0.0131, 0.5977)),
+        glm::normalize(glm::dvec3(-0.3109, -0.0173, 0.9504)),
+        glm::normalize(glm::dvec3(-0.7331, 0.0157, -0.6801))};
     int votes = 0;
     for (const auto& d : dirs) votes += crossings(p, d) % 2;
     return votes >= 2;
@@ -262,8 +265,8 @@ TEST_P(ModelProperties, EverySurfaceLiesInsideTheSkin) {
     const size_t stride = std::max<size_t>(1, m.n_vertices() / 4000);
     for (size_t i = 0; i < m.n_vertices(); i += stride) {
       const glm::dvec3 p = to_glm(m.point(DsMesh::VertexHandle(static_cast<int>(i))));
-      ASSERT_TRUE(inside.inside(p)) << b.model.surfaces[s].name << " vertex " << i << " at ("
-                                    << p.x << ", " << p.y << ", " << p.z << ")";
+      ASSERT_TRUE(inside.inside(p)) << b.model.surfaces[s].name << " vertex " << i << " at (" << p.x
+                                    << ", " << p.y << ", " << p.z << ")";
     }
   }
 }

@@ -91,8 +91,7 @@ TEST(SpineBend, SpinesThatFoldTheObjectOrTurnDownAreRefusedAtTheSpine) {
                    test::source_path("templates").string());
     ADD_FAILURE() << "a spine on a mesh template was accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("symmetry none has none"), std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find("symmetry none has none"), std::string::npos) << e.what();
   }
 }
 

@@ -18,7 +18,6 @@
 namespace cutaway {
 namespace {
 
-
 Template parse(const std::string& text) { return parse_template(text, "sweep_test.yaml", "."); }
 
 const SurfaceSpec& surface(const Template& t, const std::string& name) {
@@ -105,11 +104,10 @@ TEST(SweepAround, PolesMakeWatertightFans) {
 }
 
 TEST(SweepAround, OpenProfilesLeaveRingsOpenAndNormalsPointAwayFromTheAxis) {
-  const std::string extra =
-      "  - name: shell\n    kind: around\n    smooth: false\n"
-      "    profile: [[4, 2], [8, 10], [4, 18]]\n"
-      "  - name: cup\n    kind: around\n    smooth: false\n"
-      "    profile: [[0, 3], [5, 5], [6, 9]]\n";
+  const std::string extra = "  - name: shell\n    kind: around\n    smooth: false\n"
+                            "    profile: [[4, 2], [8, 10], [4, 18]]\n"
+                            "  - name: cup\n    kind: around\n    smooth: false\n"
+                            "    profile: [[0, 3], [5, 5], [6, 9]]\n";
   const Template t = parse(cylinder("{type: cylindrical}", "0.8", "circle", extra));
   const DsSurface shell = sweep_around(surface(t, "shell"), t);
   const DsSurface cup = sweep_around(surface(t, "cup"), t);
@@ -241,12 +239,15 @@ TEST(SweepAround, TheVertexBudgetGuardRefusesATinyEdge) {
 /// and a diamond loop from u = 12 to u = 18 in fold 0.
 std::string hexagon_within(const std::string& edge, const std::string& extra = "") {
   return "format: cutaway-template/1\nname: hex\nunits: mm\nsymmetry: {type: nfold, folds: 4}\n"
-         "resolution: {edge: " + edge + "}\nsurfaces:\n"
+         "resolution: {edge: " +
+         edge +
+         "}\nsurfaces:\n"
          "  - name: skin\n    kind: around\n    role: skin\n    smooth: false\n"
          "    profile: [[0, -2], [30, -2], [30, 22], [0, 22]]\n"
          "  - name: cell\n    kind: within\n    smooth: false\n"
          "    profile: [[15, 0], [20, 5], [20, 15], [15, 20], [10, 15], [10, 5]]\n"
-         "    section: [[12, 0], [15, -1.5], [18, 0], [15, 1.5]]\n" + extra;
+         "    section: [[12, 0], [15, -1.5], [18, 0], [15, 1.5]]\n" +
+         extra;
 }
 
 double rail_in(double y_mm) { return y_mm <= 5 ? 15 - y_mm : (y_mm <= 15 ? 10 : y_mm - 5); }

@@ -36,10 +36,10 @@ struct PaperModel {
 // Written out, so that the tests are instantiated without reading a file; checked against the
 // table's file below.
 const PaperModel kTable1[] = {
-    {"tomato", 20412, true},      {"onion", 8110, true},     {"persimmon", 18208, true},
-    {"pepper", 18328, true},      {"avocado", 5341, true},   {"apple", 7685, true},
-    {"okra", 18480, true},        {"star_fruit", 12190, true}, {"strawberry", 32049, true},
-    {"cucumber", 28592, true},    {"kiwi", 38688, true},     {"volcano", 20673, true},
+    {"tomato", 20412, true},   {"onion", 8110, true},       {"persimmon", 18208, true},
+    {"pepper", 18328, true},   {"avocado", 5341, true},     {"apple", 7685, true},
+    {"okra", 18480, true},     {"star_fruit", 12190, true}, {"strawberry", 32049, true},
+    {"cucumber", 28592, true}, {"kiwi", 38688, true},       {"volcano", 20673, true},
     {"kidney", 5694, false},
 };
 

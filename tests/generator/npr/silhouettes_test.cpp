@@ -157,8 +157,12 @@ AssetMesh roof(double slope_deg) {
   const double w = 0.05, d = 0.05;
   const glm::dvec3 left(-w * std::cos(s), -w * std::sin(s), 0);
   const glm::dvec3 right(w * std::cos(s), -w * std::sin(s), 0);
-  m.position = {{0, 0, -d}, {0, 0, d}, left + glm::dvec3(0, 0, d), left + glm::dvec3(0, 0, -d),
-                right + glm::dvec3(0, 0, -d), right + glm::dvec3(0, 0, d)};
+  m.position = {{0, 0, -d},
+                {0, 0, d},
+                left + glm::dvec3(0, 0, d),
+                left + glm::dvec3(0, 0, -d),
+                right + glm::dvec3(0, 0, -d),
+                right + glm::dvec3(0, 0, d)};
   m.triangle = {{0, 3, 2}, {0, 2, 1}, {0, 1, 5}, {0, 5, 4}};
   m.normal.assign(m.position.size(), {0, 1, 0});
   m.colour.assign(m.position.size(), {0.2, 0.6, 0.2});

@@ -1,5 +1,5 @@
-// parse_cut_spec (generator/pieces/cut_spec.h): the command line's `--cut` forms, their units and their
-// rejections; template_extents and estimate_piece_count on the shipped templates.
+// parse_cut_spec (generator/pieces/cut_spec.h): the command line's `--cut` forms, their units and
+// their rejections; template_extents and estimate_piece_count on the shipped templates.
 #include "io/cut_notation.h"
 #include "pieces/cut_spec.h"
 

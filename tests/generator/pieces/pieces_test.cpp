@@ -68,8 +68,8 @@ Key key(const glm::dvec3& p) { return {p.x, p.y, p.z}; }
       ++steps;
     } while (a != start && steps <= next.size());
     if (steps != next.size())
-      return ::testing::AssertionFailure() << "a non-manifold vertex (" << next.size()
-                                           << " triangles in more than one fan)";
+      return ::testing::AssertionFailure()
+             << "a non-manifold vertex (" << next.size() << " triangles in more than one fan)";
   }
   return ::testing::AssertionSuccess();
 }
@@ -100,8 +100,8 @@ TEST_P(PiecesTest, ClosedManifoldsWhoseVolumesAddUp) {
   const auto diffusion = make_cpu_diffusion(model, {8, 0});
   PieceOptions options;
   options.section.edge_m = tmpl.edge_m;
-  const PieceSet set =
-      *cut_pieces(model, *parse_cut_spec(GetParam().cut, tmpl.metres_per_unit), *diffusion, options);
+  const PieceSet set = *cut_pieces(model, *parse_cut_spec(GetParam().cut, tmpl.metres_per_unit),
+                                   *diffusion, options);
   ASSERT_GE(set.pieces.size(), 2u);
   for (const CrossSection& cs : set.sections) EXPECT_FALSE(cs.refinement_capped);
   double volume = 0;
@@ -121,22 +121,22 @@ TEST_P(PiecesTest, ClosedManifoldsWhoseVolumesAddUp) {
   EXPECT_NEAR(volume, expected, 0.005 * expected) << (hollow ? "with hollows" : "");
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Templates, PiecesTest,
-    ::testing::Values(Case{"templates/tomato.yaml", "halves"},
-                      Case{"templates/tomato.yaml", "wedges:5"},
-                      Case{"templates/tomato.yaml", "wedges:6"},
-                      Case{"templates/onion.yaml", "slices:12"},
-                      Case{"templates/banana.yaml", "slices:15"},
-                      Case{"templates/cucumber.yaml", "dice:25"},
-                      Case{"tests/data/section_hollow.yaml", "dice:20"},
-                      Case{"tests/data/section_hollow.yaml", "plane:3,4,5/1,2,3"}),
-    [](const auto& info) {
-      std::string name = std::string(info.param.file) + "_" + info.param.cut;
-      for (char& c : name)
-        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-      return name;
-    });
+INSTANTIATE_TEST_SUITE_P(Templates, PiecesTest,
+                         ::testing::Values(Case{"templates/tomato.yaml", "halves"},
+                                           Case{"templates/tomato.yaml", "wedges:5"},
+                                           Case{"templates/tomato.yaml", "wedges:6"},
+                                           Case{"templates/onion.yaml", "slices:12"},
+                                           Case{"templates/banana.yaml", "slices:15"},
+                                           Case{"templates/cucumber.yaml", "dice:25"},
+                                           Case{"tests/data/section_hollow.yaml", "dice:20"},
+                                           Case{"tests/data/section_hollow.yaml",
+                                                "plane:3,4,5/1,2,3"}),
+                         [](const auto& info) {
+                           std::string name = std::string(info.param.file) + "_" + info.param.cut;
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
 
 namespace {
 
@@ -349,17 +349,16 @@ TEST(Pieces, CapsOnEitherSideOfACutAreMirrorImagesWithEqualColours) {
 }
 
 TEST(CutCells, SlicesAreCentredAndWedgesPartitionSpace) {
-  const CutCells slices = make_cut_cells(*parse_cut_spec("slices:10", 1e-3), {-0.03, 0, -0.03},
-                                         {0.03, 0.052, 0.03});
+  const CutCells slices =
+      make_cut_cells(*parse_cut_spec("slices:10", 1e-3), {-0.03, 0, -0.03}, {0.03, 0.052, 0.03});
   // 52 mm in 10 mm slices: 4 planes, end pieces 11 mm thick.
   ASSERT_EQ(slices.planes.size(), 4u);
   EXPECT_NEAR(slices.planes.front().point.y, 0.011, 1e-12);
   EXPECT_NEAR(slices.planes.back().point.y, 0.041, 1e-12);
   EXPECT_EQ(slices.cells.size(), 5u);
   for (int n : {2, 3, 5, 6}) {
-    const CutCells wedges =
-        make_cut_cells(*parse_cut_spec("wedges:" + std::to_string(n), 1e-3), glm::dvec3(-1),
-                       glm::dvec3(1));
+    const CutCells wedges = make_cut_cells(*parse_cut_spec("wedges:" + std::to_string(n), 1e-3),
+                                           glm::dvec3(-1), glm::dvec3(1));
     EXPECT_EQ(wedges.planes.size(), n % 2 ? size_t(n) : size_t(n / 2));
     ASSERT_EQ(wedges.cells.size(), size_t(n));
     // Every direction about the axis lies in exactly one wedge, the wedge of its angle.
@@ -394,13 +393,15 @@ TEST(ClipMesh, ClosedBoundaryAndVerticesOnThePlane) {
     EXPECT_NEAR(half.material[i].x, half.position[i].x, 1e-12);
     EXPECT_NEAR(half.material[i].y, 1 - half.position[i].x, 1e-12);
   }
-  // The diagonal's crossing is shared: 3 + 2 crossings = 5 vertices... (0,0),(0,1),(.5,0),(.5,.5),(.5,1)
+  // The diagonal's crossing is shared: 3 + 2 crossings = 5 vertices...
+  // (0,0),(0,1),(.5,0),(.5,.5),(.5,1)
   EXPECT_EQ(half.position.size(), 5u);
   // x <= 1: vertices at x = 1 count as positive, the boundary passes through them, no slivers.
   const ShadedMesh all = clip_to_half_space(sq, {{1, 0, 0}, {1, 0, 0}}, false);
   for (const glm::uvec3& t : all.triangle)
     EXPECT_GT(glm::length(glm::cross(all.position[t[1]] - all.position[t[0]],
-                                     all.position[t[2]] - all.position[t[0]])), 1e-12);
+                                     all.position[t[2]] - all.position[t[0]])),
+              1e-12);
 }
 
 }  // namespace

@@ -82,8 +82,7 @@ TEST(HullShape, ADirectionThatIsNotANumberGivesTheFirstCorner) {
   const std::vector<btVector3> corners = {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {-1, -1, -1}};
   const HullShape shape(corners);
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  EXPECT_TRUE(same(shape.localGetSupportingVertexWithoutMargin(btVector3(nan, 0, 0)),
-                   corners[0]));
+  EXPECT_TRUE(same(shape.localGetSupportingVertexWithoutMargin(btVector3(nan, 0, 0)), corners[0]));
 }
 
 }  // namespace

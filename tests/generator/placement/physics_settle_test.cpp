@@ -263,7 +263,8 @@ items:
   - template: cucumber
     cut: {type: slices, thickness: 20}
     keep: 0.5
-)", test::source_path("scenes/scatter.yaml").string());
+)",
+                                                test::source_path("scenes/scatter.yaml").string());
   ASSERT_EQ(scene.items[0].arrange, Arrangement::Scatter);  // the board's default
   SceneStats stats;
   const SceneAssets assets = test::build_settled_scene(scene, CapColours::Vertex, &stats);
@@ -288,7 +289,8 @@ items:
   - template: cucumber
     cut: {type: slices, thickness: 10}
     keep: 0.5
-)", test::source_path("scenes/fan.yaml").string());
+)",
+                                                test::source_path("scenes/fan.yaml").string());
   SceneStats stats;
   const SceneAssets assets = test::build_settled_scene(scene, CapColours::Vertex, &stats);
   ASSERT_GE(stats.placed, 4);
@@ -406,8 +408,7 @@ LaidOut laid_out(const std::vector<ShadedMesh>& pieces, Arrangement arrange,
     layout.push_back({&m, {0, 1, 0}, arrange});
   }
   const std::vector<Placement> drops = layout_pieces(layout, container, LayoutOptions{}, seed);
-  for (size_t k = 0; k < layout.size(); ++k)
-    out.bodies.push_back({&out.shapes[k], 1000, drops[k]});
+  for (size_t k = 0; k < layout.size(); ++k) out.bodies.push_back({&out.shapes[k], 1000, drops[k]});
   return out;
 }
 
@@ -483,7 +484,7 @@ TEST(PhysicsSettle, AfterAFailedCheckOnlyThePiecesNearTheMotionSettleOn) {
   for (size_t k = 0; k < apart; ++k) bodies[k].drop = rested.placements[k];
   bodies.push_back({&half, 1000, {true, glm::dquat(1, 0, 0, 0), glm::dvec3(0.3, 0.4, 0.3)}});
   SettleOptions options;
-  options.max_seconds = 0.25;  // the tomato half still falls when the first check starts
+  options.max_seconds = 0.25;   // the tomato half still falls when the first check starts
   options.stable_motion_m = 0;  // the last round's layout is returned
   options.max_verify_rounds = 1;
   const SettleResult first = settle_pieces(bodies, board, options);
@@ -501,15 +502,14 @@ TEST(PhysicsSettle, AfterAFailedCheckOnlyThePiecesNearTheMotionSettleOn) {
   EXPECT_LE(round_work, second.steps - first.steps);
   EXPECT_GT(round_work_everywhere, 2 * round_work);
   for (size_t k = 0; k < apart; ++k) {
-    const double moved = glm::distance(second.placements[k].translation,
-                                       first.placements[k].translation);
+    const double moved =
+        glm::distance(second.placements[k].translation, first.placements[k].translation);
     EXPECT_LE(moved, options.check_motion_m) << "slice " << k;
   }
   EXPECT_GT(glm::distance(second.placements[apart].translation,
                           first.placements[apart].translation),
             0.01);
 }
-
 
 // The contacts of a step are computed on several threads (ordered_dispatcher.h) with the serial
 // dispatcher's results: a pile of kiwi slices and tomato wedges in a bowl (tens of overlapping
@@ -523,8 +523,8 @@ TEST(PhysicsSettle, ContactsOnSeveralThreadsGiveTheSerialPlacements) {
   SettleOptions options;
   options.max_verify_rounds = 1;
   const auto settle_on = [&](int threads) {
-    const oneapi::tbb::global_control limit(
-        oneapi::tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
+    const oneapi::tbb::global_control limit(oneapi::tbb::global_control::max_allowed_parallelism,
+                                            static_cast<size_t>(threads));
     return settle_pieces(laid.bodies, bowl, options);
   };
   const SettleResult serial = settle_on(1), parallel = settle_on(4);

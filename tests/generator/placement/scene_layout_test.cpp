@@ -103,7 +103,8 @@ glm::dvec3 nearest_support_below(const std::vector<Mesh>& pieces, size_t a, cons
       if (d < nearest && d > 0) {
         nearest = d;
         direction = glm::dvec3(CGAL::to_double(q.x() - p.x()), CGAL::to_double(q.y() - p.y()),
-                               CGAL::to_double(q.z() - p.z())) / d;
+                               CGAL::to_double(q.z() - p.z())) /
+                    d;
       }
     }
   }
@@ -169,7 +170,8 @@ items:
   - template: cucumber
     count: 4
     cut: {type: slices, thickness: 10}
-)", test::source_path("scenes/pile.yaml").string());
+)",
+                                                test::source_path("scenes/pile.yaml").string());
   // Every piece placed, none lost, and the stability check: re-simulated for 1 s in a new
   // world, no corner moves 1 mm.
   SceneStats stats;

@@ -126,14 +126,13 @@ TEST_P(AdaptiveSamplingOnTemplates, MatchesDenseCube32ReferenceAtTheMidHeightCut
   ASSERT_GT(adaptive_at.points, 10u) << t.name;
   const Errors dense_area = area_errors(*cube32, dense, 400);
   const Errors adaptive_area = area_errors(*cube32, adaptive, 400);
-  std::printf(
-      "%-10s %5zu -> %5zu points (%4.1fx); error vs cube 32 at the vertices: adaptive mean "
-      "%.2f max %.2f; over the area: dense mean %.2f max %.2f, adaptive mean %.2f max %.2f "
-      "(sRGB of 255); material channels at the vertices: mean %.2f max %.2f (of 255)\n",
-      t.name.c_str(), dense.diffused.all, adaptive.diffused.all,
-      static_cast<double>(dense.diffused.all) / adaptive.diffused.all, adaptive_at.mean,
-      adaptive_at.max, dense_area.mean, dense_area.max, adaptive_area.mean, adaptive_area.max,
-      materials_at.mean, materials_at.max);
+  std::printf("%-10s %5zu -> %5zu points (%4.1fx); error vs cube 32 at the vertices: adaptive mean "
+              "%.2f max %.2f; over the area: dense mean %.2f max %.2f, adaptive mean %.2f max %.2f "
+              "(sRGB of 255); material channels at the vertices: mean %.2f max %.2f (of 255)\n",
+              t.name.c_str(), dense.diffused.all, adaptive.diffused.all,
+              static_cast<double>(dense.diffused.all) / adaptive.diffused.all, adaptive_at.mean,
+              adaptive_at.max, dense_area.mean, dense_area.max, adaptive_area.mean,
+              adaptive_area.max, materials_at.mean, materials_at.max);
   // The bound at the vertices: mean error at most 1 of 255 (measured: at most 0.88, star
   // fruit; the largest single error is 15, volcano and star fruit).
   EXPECT_LE(adaptive_at.mean, 1.0) << t.name;
@@ -177,8 +176,8 @@ TEST_P(AdaptiveSamplingNearGrains, MatchesDenseNearTheGrainsOfASeededVariant) {
   const Errors e = summary(errors);
   std::printf("%-10s seed 5: %5zu -> %5zu points (%zu near grains); %zu interior vertices "
               "against dense: mean %.2f max %.1f (sRGB of 255)\n",
-              t.name.c_str(), dense.diffused.all, adaptive.diffused.all,
-              dense.diffused.near_grains, e.points, e.mean, e.max);
+              t.name.c_str(), dense.diffused.all, adaptive.diffused.all, dense.diffused.near_grains,
+              e.points, e.mean, e.max);
   // Measured: means at most 0.77 (star fruit), the largest single error 72 (kiwi). Without
   // diffusing the points near grains (grain_neighbourhood.h) kiwi cuts had single errors up
   // to 157 and a strawberry cut a mean of 2.7, where interpolation ran across a seed's halo.
@@ -216,11 +215,11 @@ DsModel two_grains() {
     std::vector<DsMesh::VertexHandle> v;
     for (const glm::dvec3& d : {glm::dvec3(1, 0, 0), glm::dvec3(-1, 0, 0), glm::dvec3(0, 1, 0),
                                 glm::dvec3(0, -1, 0), glm::dvec3(0, 0, 1), glm::dvec3(0, 0, -1)})
-      v.push_back(surface.mesh.add_vertex(
-          DsMesh::Point(x + 0.001 * d.x, 0.001 * d.y, 0.001 * d.z)));
-    for (const auto& [a, b, c] : {std::array{0, 2, 4}, std::array{2, 1, 4}, std::array{1, 3, 4},
-                                  std::array{3, 0, 4}, std::array{2, 0, 5}, std::array{1, 2, 5},
-                                  std::array{3, 1, 5}, std::array{0, 3, 5}})
+      v.push_back(
+          surface.mesh.add_vertex(DsMesh::Point(x + 0.001 * d.x, 0.001 * d.y, 0.001 * d.z)));
+    for (const auto& [a, b, c] :
+         {std::array{0, 2, 4}, std::array{2, 1, 4}, std::array{1, 3, 4}, std::array{3, 0, 4},
+          std::array{2, 0, 5}, std::array{1, 2, 5}, std::array{3, 1, 5}, std::array{0, 3, 5}})
       surface.mesh.add_face(v[a], v[b], v[c]);
   }
   return model;
@@ -327,7 +326,8 @@ TEST(BandSampling, LinearFieldIsExactFromFewSamplesAndAKinkIsRefined) {
   auto run = [&](const FieldDiffusion& field) {
     std::vector<glm::dvec3> colour(points.size());
     std::vector<glm::dvec2> material(points.size());
-    const BandSamplingCounts counts = sample_bands(points, field, {0.02, {0.25, 0.25}}, colour, material);
+    const BandSamplingCounts counts =
+        sample_bands(points, field, {0.02, {0.25, 0.25}}, colour, material);
     double worst = 0;
     std::vector<glm::dvec3> exact(points.size());
     std::vector<glm::dvec2> unused(points.size());
@@ -392,21 +392,21 @@ TEST(BandSampling, ABandAlongsideAtHalfAWidthIsNotIrregularButOneRunningAcrossIs
   // it, `gap` above on y = 0.5 mm + gap, or across it, up the line x = 5 mm.
   const double width = 0.0005;
   const std::vector<std::array<glm::dvec2, 2>> segments{
-      {glm::dvec2(0, 0), glm::dvec2(0.01, 0)},   {glm::dvec2(0.01, 0), glm::dvec2(0.01, 0.01)},
+      {glm::dvec2(0, 0), glm::dvec2(0.01, 0)},       {glm::dvec2(0.01, 0), glm::dvec2(0.01, 0.01)},
       {glm::dvec2(0.01, 0.01), glm::dvec2(0, 0.01)}, {glm::dvec2(0, 0.01), glm::dvec2(0, 0)},
-      {glm::dvec2(0, 1), glm::dvec2(1, 1)},      {glm::dvec2(1, 1), glm::dvec2(0, 1)}};
+      {glm::dvec2(0, 1), glm::dvec2(1, 1)},          {glm::dvec2(1, 1), glm::dvec2(0, 1)}};
   const SegmentChains chains = chain_segments(segments, std::vector<int>{1, 1, 1, 1, 2, 2});
   ASSERT_EQ(chains.chains, 2);
   ASSERT_TRUE(chains.closed[0] && chains.closed[1]);
   auto irregular_on_trace = [&](bool across, double gap) {
     std::vector<BandPoint> points;
     for (int i = 0; i < 100; ++i)  // the bottom side of chain 0's front trace
-      points.push_back({band_line(0, 1), 0.0001 * (i + 0.5),
-                        glm::dvec3(0.0001 * (i + 0.5), width, 0), width});
+      points.push_back(
+          {band_line(0, 1), 0.0001 * (i + 0.5), glm::dvec3(0.0001 * (i + 0.5), width, 0), width});
     for (int i = 0; i < 100; ++i) {
       const double s = 0.0001 * (i + 0.5);
-      const glm::dvec3 at = across ? glm::dvec3(0.005, s - 0.005 + width, 0)
-                                   : glm::dvec3(s, width + gap, 0);
+      const glm::dvec3 at =
+          across ? glm::dvec3(0.005, s - 0.005 + width, 0) : glm::dvec3(s, width + gap, 0);
       points.push_back({band_line(1, 0), s, at, width});
     }
     mark_irregular_band_points(points, chains);

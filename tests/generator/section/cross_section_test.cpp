@@ -25,7 +25,6 @@
 namespace cutaway {
 namespace {
 
-
 DsModel model_of(const std::string& relative) {
   return build_model(load_template(test::source_path(relative).string()));
 }
@@ -50,7 +49,8 @@ double signed_area(const CrossSection& cs, const glm::uvec3& t) {
 /// The centroid of triangle `t` in the plane's 2D frame.
 glm::dvec2 centroid_in_plane(const CrossSection& cs, const glm::uvec3& t) {
   return (in_plane(cs, cs.position[t[0]]) + in_plane(cs, cs.position[t[1]]) +
-          in_plane(cs, cs.position[t[2]])) / 3.0;
+          in_plane(cs, cs.position[t[2]])) /
+         3.0;
 }
 
 /// The Gouraud-interpolated colour of the cut face at p (on the plane): barycentric lookup in
@@ -84,8 +84,8 @@ void expect_valid_triangulation(const CrossSection& cs, const std::string& what)
     const glm::dvec3 p0 = cs.position[t[0]], p1 = cs.position[t[1]], p2 = cs.position[t[2]];
     // In 3D too, so that a wrong in-plane frame cannot hide a flipped face.
     const glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
-    const double longest = std::max({glm::distance(p0, p1), glm::distance(p1, p2),
-                                     glm::distance(p2, p0)});
+    const double longest =
+        std::max({glm::distance(p0, p1), glm::distance(p1, p2), glm::distance(p2, p0)});
     const double ratio = signed_area(cs, t) / (longest * longest);
     worst = std::min(worst, ratio);
     if (!(ratio > 1e-6) || !(glm::dot(n, cs.plane.normal) > 0)) ++bad;
@@ -232,7 +232,8 @@ TEST(CrossSection, HollowSideLeavesAHole) {
   const Template t = load_template(test::source_path("tests/data/section_hollow.yaml").string());
   const DsModel model = build_model(t);
   const auto diffusion = make_cpu_diffusion(model, DiffusionOptions{8, 0});
-  const Plane planes[] = {plane_of({0, 0, 0}, {0, 1, 0}), plane_of({0.002, 0.004, 0}, {1, 0.3, 0.5})};
+  const Plane planes[] = {plane_of({0, 0, 0}, {0, 1, 0}),
+                          plane_of({0.002, 0.004, 0}, {1, 0.3, 0.5})};
   for (const Plane& plane : planes) {
     const CrossSection cs = *make_cross_section(model, plane, *diffusion, {t.edge_m});
     expect_valid_triangulation(cs, "hollow");
@@ -407,10 +408,9 @@ TEST(CrossSection, PlanesThroughVerticesGiveValidTriangulations) {
     for (const Plane& plane : {plane_of({0, 0, 0}, {0, 0, 1}), plane_of({0, 0, 0}, {1, 0, 0}),
                                plane_of({0, mid, 0}, {0, 1, 0})}) {
       const CrossSection cs = *make_cross_section(model, plane, *diffusion, {t.edge_m});
-      expect_valid_triangulation(cs, std::string(file) + " normal " +
-                                         std::to_string(plane.normal.x) + "," +
-                                         std::to_string(plane.normal.y) + "," +
-                                         std::to_string(plane.normal.z));
+      expect_valid_triangulation(
+          cs, std::string(file) + " normal " + std::to_string(plane.normal.x) + "," +
+                  std::to_string(plane.normal.y) + "," + std::to_string(plane.normal.z));
       double area = 0;
       for (const glm::uvec3& tri : cs.triangle) area += signed_area(cs, tri);
       const std::vector<CutSegment> segs = cut_segments(model, plane);

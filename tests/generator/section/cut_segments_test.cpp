@@ -25,8 +25,8 @@ Plane plane_of(glm::dvec3 point, glm::dvec3 normal) { return {point, glm::normal
 
 std::string describe(const Plane& p) {
   char buf[160];
-  std::snprintf(buf, sizeof buf, "plane (%g, %g, %g)/(%g, %g, %g)", p.point.x, p.point.y,
-                p.point.z, p.normal.x, p.normal.y, p.normal.z);
+  std::snprintf(buf, sizeof buf, "plane (%g, %g, %g)/(%g, %g, %g)", p.point.x, p.point.y, p.point.z,
+                p.normal.x, p.normal.y, p.normal.z);
   return buf;
 }
 
@@ -96,9 +96,10 @@ TEST(CutSegments, EndPointsLieOnThePlaneAndSegmentsHaveLength) {
     EXPECT_NEAR(glm::length(s.front_normal), 1.0, 1e-12);
   }
   // Surface order, deterministic.
-  EXPECT_TRUE(std::is_sorted(segs.begin(), segs.end(), [](const CutSegment& x, const CutSegment& y) {
-    return x.surface < y.surface;
-  }));
+  EXPECT_TRUE(
+      std::is_sorted(segs.begin(), segs.end(), [](const CutSegment& x, const CutSegment& y) {
+        return x.surface < y.surface;
+      }));
   const std::vector<CutSegment> again = cut_segments(model, plane);
   ASSERT_EQ(again.size(), segs.size());
   for (size_t i = 0; i < segs.size(); ++i) EXPECT_EQ(again[i].a, segs[i].a);
@@ -118,7 +119,8 @@ TEST(CutSegments, OrientationAndAttributes) {
       const glm::dvec3 side = glm::cross(plane.normal, s.b - s.a);
       (glm::dot(side, s.front_normal) > 0 ? left : right)++;
       const glm::dvec3 mid = 0.5 * (s.a + s.b);
-      const double in_plane_out = glm::dot(s.front_normal, mid - plane.normal * glm::dot(mid, plane.normal));
+      const double in_plane_out =
+          glm::dot(s.front_normal, mid - plane.normal * glm::dot(mid, plane.normal));
       EXPECT_GT(in_plane_out, 0) << "front normal points inwards";
       EXPECT_EQ(s.at_a.blur, 0.0);
       EXPECT_EQ(s.at_b.blur, 0.0);

@@ -12,7 +12,6 @@
 namespace cutaway {
 namespace {
 
-
 /// A textured 2-channel cyclic signal: a few incommensurate bumps plus pseudo-random detail.
 CyclicSignal texture(int n) {
   CyclicSignal s(n, 2);

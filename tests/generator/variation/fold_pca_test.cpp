@@ -1,4 +1,5 @@
-// PCA fold blending (generator/variation/fold_pca.h) on the tomato and on a tomato whose folds differ.
+// PCA fold blending (generator/variation/fold_pca.h) on the tomato and on a tomato whose folds
+// differ.
 #include "base/constants.h"
 #include "variation/fold_pca.h"
 
@@ -16,7 +17,6 @@
 
 namespace cutaway {
 namespace {
-
 
 /// The shipped tomato with equal folds: its chambers' per-fold loops replaced by fold 0's loop,
 /// repeated in every fold (its skin's lobes are already 5-fold symmetric).

@@ -1,5 +1,5 @@
-// Variants of the shipped templates (generator/variation/variation.h): every variant builds (closed skin,
-// nothing crosses the skin, `within` loops inside their folds: build_model runs check_model),
+// Variants of the shipped templates (generator/variation/variation.h): every variant builds (closed
+// skin, nothing crosses the skin, `within` loops inside their folds: build_model runs check_model),
 // variants differ from each other, and the same seed gives the same variant.
 #include "variation/variation.h"
 
@@ -54,7 +54,8 @@ TEST_P(ShippedVariation, EveryVariantBuilds) {
   // shipped cucumber has three equal folds and a fixed count: all its variants agree).
   bool varies = false;
   if (t.symmetry == Symmetry::Cylindrical) {
-    for (const auto& sf : t.surfaces) varies |= sf.kind == SurfaceKind::Around && !sf.section.circle;
+    for (const auto& sf : t.surfaces)
+      varies |= sf.kind == SurfaceKind::Around && !sf.section.circle;
   } else if (t.symmetry == Symmetry::NFold) {
     varies = t.variation_folds_max > t.variation_folds_min ||
              !fold_pca(fold_features(t, {})).axes.empty();
@@ -159,10 +160,10 @@ TEST(Variation, ARipenessStopMayBeAFieldAlongTheProfile) {
   const std::string dir = test::source_path("templates").string();
   const ColourField f = parse_template(text, path, dir).surfaces[0].front;
   ASSERT_EQ(f.along, GradientAxis::Ripeness);
-  EXPECT_NEAR(f.at(0, 0, 0).r, 0.0, 1e-12);   // bottom, unripe: black
-  EXPECT_NEAR(f.at(1, 0, 0).g, 1.0, 1e-12);   // top, unripe: green
-  EXPECT_NEAR(f.at(0, 0, 1).r, 1.0, 1e-12);   // bottom, ripe: red
-  EXPECT_NEAR(f.at(1, 0, 0.5).r, 0.5, 1e-12); // top, half ripe: between green and white
+  EXPECT_NEAR(f.at(0, 0, 0).r, 0.0, 1e-12);    // bottom, unripe: black
+  EXPECT_NEAR(f.at(1, 0, 0).g, 1.0, 1e-12);    // top, unripe: green
+  EXPECT_NEAR(f.at(0, 0, 1).r, 1.0, 1e-12);    // bottom, ripe: red
+  EXPECT_NEAR(f.at(1, 0, 0.5).r, 0.5, 1e-12);  // top, half ripe: between green and white
   EXPECT_NEAR(f.at(1, 0, 0.5).g, 1.0, 1e-12);
   // Nested along ripeness again: refused where it is written.
   std::string twice = test::read_file(path);
@@ -187,8 +188,7 @@ TEST(Variation, RipenessRangeIsCheckedWhereItIsWritten) {
     parse_template(text, path, test::source_path("templates").string());
     ADD_FAILURE() << "a reversed ripeness range was accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("variation.ripeness: needs min <= max"),
-              std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("variation.ripeness: needs min <= max"), std::string::npos)
         << e.what();
   }
 }
