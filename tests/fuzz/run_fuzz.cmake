@@ -36,7 +36,7 @@ if(KIND STREQUAL "build")
   return()
 endif()
 if(NOT EXISTS ${BINARY_DIR}/${KIND}_fuzz)
-  message(FATAL_ERROR "${BINARY_DIR}/${KIND}_fuzz is missing: the test fuzz_build builds it")
+  message(FATAL_ERROR "${BINARY_DIR}/${KIND}_fuzz is missing: KIND=build (make fuzz) builds it")
 endif()
 
 # Seed corpus: the shipped files and the bad-input fixtures of the format. The working corpus
