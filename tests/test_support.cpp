@@ -106,16 +106,27 @@ struct OwnDefaultCache {
 };
 const OwnDefaultCache kOwnDefaultCache;
 
+/// A cut cache folder for one run of cutaway, empty (under test-tmp/run-caches/), removed when
+/// the run is over, whichever way the test leaves.
+struct RunCache {
+  const std::filesystem::path dir;
+  RunCache() : dir(next()) { std::filesystem::remove_all(dir); }
+  ~RunCache() {
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+  }
+  static std::filesystem::path next() {
+    static int counter = 0;
+    return std::filesystem::path(CUTAWAY_TEST_TMP) / "run-caches" /
+           (std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  }
+};
+
 }  // namespace
 
 RunResult run_cutaway(const std::vector<std::string>& args) {
-  static int counter = 0;
-  const auto cache = std::filesystem::path(CUTAWAY_TEST_TMP) / "run-caches" /
-                     (std::to_string(::getpid()) + "-" + std::to_string(counter++));
-  std::filesystem::remove_all(cache);
-  RunResult r = run_shell(in_source_dir(CUTAWAY_BINARY, args, "XDG_CACHE_HOME=" + cache.string()));
-  std::filesystem::remove_all(cache);
-  return r;
+  const RunCache cache;
+  return run_shell(in_source_dir(CUTAWAY_BINARY, args, "XDG_CACHE_HOME=" + cache.dir.string()));
 }
 
 RunResult run_program(const std::string& program, const std::vector<std::string>& args) {
@@ -434,12 +445,9 @@ uint64_t mapped_bytes() {
 
 LimitedRun run_cutaway_limited(const std::vector<std::string>& args, uint64_t address_space,
                                int cpu_seconds) {
-  static int counter = 0;
   const std::filesystem::path dir = fresh_dir("limited_run");
   const std::filesystem::path err_file = dir / "stderr.txt", report_file = dir / "report.txt";
-  const auto cache = std::filesystem::path(CUTAWAY_TEST_TMP) / "run-caches" /
-                     ("limited-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-  std::filesystem::remove_all(cache);
+  const RunCache cache;
   // tests/tools/measured_run starts cutaway and measures it: a child forked from this process
   // would carry this process's peak memory into its own.
   std::vector<std::string> words{CUTAWAY_MEASURED_RUN, report_file.string(), CUTAWAY_BINARY};
@@ -449,7 +457,7 @@ LimitedRun run_cutaway_limited(const std::vector<std::string>& args, uint64_t ad
   argv.push_back(nullptr);
   // The environment with a cut cache of the run's own, built before fork (setenv is not
   // async-signal-safe).
-  std::vector<std::string> env_words{"XDG_CACHE_HOME=" + cache.string()};
+  std::vector<std::string> env_words{"XDG_CACHE_HOME=" + cache.dir.string()};
   for (char** e = environ; *e != nullptr; ++e)
     if (std::strncmp(*e, "XDG_CACHE_HOME=", 15) != 0) env_words.emplace_back(*e);
   std::vector<char*> envp;
@@ -498,7 +506,6 @@ LimitedRun run_cutaway_limited(const std::vector<std::string>& args, uint64_t ad
   // -1: the kernel keeps no I/O counts.
   r.read_bytes = read_bytes < 0 ? UINT64_MAX : static_cast<uint64_t>(read_bytes);
   r.written_bytes = written_bytes < 0 ? UINT64_MAX : static_cast<uint64_t>(written_bytes);
-  std::filesystem::remove_all(cache);
   return r;
 }
 
