@@ -28,21 +28,19 @@ demo: deps $(BUILD)/build.ninja
 	@echo "demo: wrote out/salad.glb, out/salad.pov, out/salad.png (OpenGL preview), out/salad-povray.png (POV-Ray)"
 
 # Configured again: a build folder made by `make demo` before GoogleTest was installed has no
-# tests yet.
+# tests yet. TIER: a CTest label expression (-L), empty for every tier.
+TIER ?=
+CTEST_RUN = cd $(BUILD) && ctest --output-on-failure --no-tests=error -j $(JOBS) \
+	  $(if $(TIER),-L $(TIER)) --output-junit Testing/junit.xml
 test: deps-test
 	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
 	cmake --build $(BUILD) -j $(JOBS)
-	cd $(BUILD) && ctest --output-on-failure --no-tests=error -j $(JOBS) \
-	  --output-junit Testing/junit.xml
+	$(CTEST_RUN)
 	@python3 scripts/test-times.py $(BUILD)
 
 # The inner loop: the unit tier alone (no scenes, no external programs), after a build.
-check: deps-test
-	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
-	cmake --build $(BUILD) -j $(JOBS)
-	cd $(BUILD) && ctest --output-on-failure --no-tests=error -j $(JOBS) -L unit \
-	  --output-junit Testing/junit.xml
-	@python3 scripts/test-times.py $(BUILD)
+check:
+	$(MAKE) test TIER=unit
 
 # The slowest 20 tests and the time per tier of the last `make test` or `make check`.
 test-times:
