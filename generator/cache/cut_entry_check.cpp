@@ -7,6 +7,7 @@
 
 #include "base/error.h"
 #include "base/finite.h"
+#include "variation/organic_deformation.h"
 
 namespace cutaway {
 
@@ -101,7 +102,11 @@ double template_reach_m(const Template& tmpl) {
   for (const GrainSpec& g : tmpl.grains)
     grain = std::max(grain,
                      std::abs(g.depth) + std::max({g.semi_axes.x, g.semi_axes.y, g.semi_axes.z}));
-  return 2 * std::max(1.0, tmpl.variation_amount) * (metres + spine + grain);
+  // A variant's organic deformation (lumps, lopsidedness, lean) moves points by at most its
+  // reach, taken at the template's amount or 1, whichever is larger.
+  const double organic =
+      organic_reach_m(tmpl.organic, std::max(1.0, tmpl.variation_amount), metres, metres);
+  return 2 * std::max(1.0, tmpl.variation_amount) * (metres + spine + grain) + organic;
 }
 
 Check check_cached_cut(CutPieces& p, const std::vector<CollisionShape>& collision,

@@ -22,7 +22,8 @@ namespace cutaway {
 /// largest distance from the origin of any point written
 /// in the template (profile points at the section's widest, mesh vertices), of the spine's
 /// farthest point and of the largest grain's depth and semi-axis, which leaves room for the
-/// variants' synthesis and the spine's bend.
+/// variants' synthesis and the spine's bend, plus the organic deformation's reach
+/// (organic_reach_m at that amount).
 double template_reach_m(const Template& tmpl);
 
 /// Whether the cut object `pieces` and `collision` (one shape per piece, or none when

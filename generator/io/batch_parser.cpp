@@ -189,6 +189,7 @@ Batch load_batch(const std::string& path) {
           templates.check(item.template_path, item.cuts[c], parsed[i].length_fields[c]);
       item.tmpl = loaded.tmpl;
       item.template_name = loaded.tmpl->name;
+      if (c == 0) check_item_variation(parsed[i].item, *item.tmpl, item.variation);
       // Each asset bakes its own caps: one object's cut faces at the batch's density.
       const double area = estimate_cut_area(item.cuts[c], loaded.extents);
       if (const Check texels = check_cap_texels(area, b.export_options.texels_per_mm); !texels)

@@ -9,6 +9,7 @@
 #include "io/template_parser.h"
 #include "io/text_rules.h"
 #include "model/template.h"
+#include "variation/organic_deformation.h"
 
 #ifndef CUTAWAY_TEMPLATES_DIR
 #define CUTAWAY_TEMPLATES_DIR "templates"
@@ -146,6 +147,14 @@ const LoadedTemplate& TemplateCheck::check(const std::string& template_path, con
     length_field->fail(s.str());
   }
   return loaded;
+}
+
+void check_item_variation(const YamlField& item, const Template& tmpl, double variation) {
+  const auto field = item.get("variation");
+  if (!field) return;
+  const Check c =
+      check_organic(tmpl.organic, tmpl.variation_amount * variation, tmpl.metres_per_unit);
+  if (!c) field->fail("template " + tmpl.name + ": " + c.reason());
 }
 
 }  // namespace cutaway

@@ -55,6 +55,12 @@ CutSpec parse_cut(const YamlField& f, double metres_per_unit,
 std::string resolve_template(const YamlField& f, const std::filesystem::path& dir,
                              const char* kind);
 
+/// Fails at the `variation` field of a scene or batch `item` when the template's organic
+/// deformation (lumps, lopsided, lean) at its amount scaled by `variation` could fold the object
+/// over itself (check_organic), naming the template. No such field: nothing to check (the
+/// template's own amount passed when it was read).
+void check_item_variation(const YamlField& item, const Template& tmpl, double variation);
+
 /// A template file read and parsed once for all the items that name it.
 struct LoadedTemplate {
   std::shared_ptr<const Template> tmpl;  ///< as load_template returns it

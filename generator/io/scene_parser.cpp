@@ -197,6 +197,7 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
     if (load_templates) {
       const LoadedTemplate& loaded = templates.check(item.template_path, item.cut, length_field);
       item.tmpl = loaded.tmpl;
+      check_item_variation(f, *item.tmpl, item.variation);
       const ObjectExtents& extents = loaded.extents;
       pieces += item.count * estimate_piece_count(item.cut, extents);
       if (pieces > kMaxScenePieces)

@@ -19,6 +19,7 @@
 #include "io/yaml_reader.h"
 #include "model/mesh_surface.h"
 #include "model/template_checks.h"
+#include "variation/organic_deformation.h"
 
 namespace cutaway {
 
@@ -480,11 +481,22 @@ void parse_symmetry(const YamlField& root, Template& t) {
 void parse_variation(const YamlField& root, Template& t) {
   const auto var = root.get("variation");
   if (!var) return;
-  var->allow_only({"amount", "folds", "ripeness"});
+  var->allow_only({"amount", "folds", "ripeness", "lumps", "lopsided", "lean"});
   if (auto a = var->get("amount")) {
     t.variation_amount = a->number();
     if (t.variation_amount < 0) a->fail("must not be negative");
   }
+  t.organic.loc = var->loc();
+  if (auto lumps = var->get("lumps")) {
+    lumps->allow_only({"amplitude", "size"});
+    t.organic.lump_amplitude_m =
+        parse_positive_length(lumps->require("amplitude"), t.metres_per_unit);
+    t.organic.lump_size_m = parse_positive_length(lumps->require("size"), t.metres_per_unit);
+  }
+  if (auto l = var->get("lopsided")) t.organic.lopsided = l->number_in(0.0, 0.5);
+  if (auto l = var->get("lean")) t.organic.lean_rad = l->number_in(0.0, 30.0) * kDeg;
+  if (const Check c = check_organic(t.organic, t.variation_amount, t.metres_per_unit); !c)
+    var->fail(c.reason());
   if (auto vf = var->get("folds")) {
     if (t.symmetry != Symmetry::NFold) vf->fail("variation.folds is only for symmetry nfold");
     if (!vf->is_sequence() || vf->size() != 2) vf->fail("must be [min, max] fold counts");
@@ -700,7 +712,14 @@ Template parse_template(std::string_view text, const std::string& file,
   check_grain_layers(t);
 
   if (auto npr = root.get("npr")) t.npr = parse_npr(*npr, t.metres_per_unit);
-  if (auto spine = root.get("spine")) t.spine = parse_spine(*spine, t.metres_per_unit);
+  if (auto spine = root.get("spine")) {
+    t.spine = parse_spine(*spine, t.metres_per_unit);
+    // A lean is a shear of the straight axis; slices of a bent object follow the spine.
+    if (t.organic.lean_rad > 0)
+      root.require("variation")
+          .require("lean")
+          .fail("a template with a spine cannot lean: the spine already sets where its axis goes");
+  }
 
   parse_edge(root, t);
   check_template_curves(t);

@@ -83,11 +83,20 @@ struct BentAxis {
   double y_min = 0, y_max = 0;  ///< the straight model's lowest and highest y, metres
 };
 
+/// The axis halves and wedges cut along where a variant's organic deformation leaned it
+/// (organic_deformation.h): the line through `point` along `direction` (unit). Absent: the
+/// straight +Y axis through the origin.
+struct CutAxis {
+  glm::dvec3 point{0.0};
+  glm::dvec3 direction{0, 1, 0};
+};
+
 struct DsModel {
   std::string name;
   std::vector<DsSurface> surfaces;
   glm::dvec3 bbox_min{0.0}, bbox_max{0.0};  ///< axis-aligned bounds of all surfaces, metres
   std::optional<BentAxis> bent_axis;        ///< set where the template has a spine
+  std::optional<CutAxis> cut_axis;          ///< set where a variant's axis leans
 
   /// Total triangle count over all surfaces (the paper's "DS faces").
   size_t face_count() const;

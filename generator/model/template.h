@@ -223,6 +223,20 @@ struct SpineSpec {
   FileLoc loc;  ///< where `spine` is written
 };
 
+/// The organic deformation a template's variants get (doc/template-format.md, `variation`:
+/// lumps, lopsided, lean; variation/organic_deformation.h): the largest values a variant draws
+/// at variation amount 1. All zero: variants are pure sweeps.
+struct OrganicSpec {
+  double lump_amplitude_m = 0.0;  ///< the lumps' largest displacement, metres (0: no lumps)
+  double lump_size_m = 0.0;       ///< their wavelength, metres (> 0 where there are lumps)
+  double lopsided = 0.0;          ///< one side fuller by up to this fraction, 0..0.5
+  double lean_rad = 0.0;          ///< the axis leans by up to this angle, radians, 0..30 degrees
+  FileLoc loc;                    ///< where `variation` is written
+
+  /// True when any part is asked for.
+  bool any() const { return lump_amplitude_m > 0 || lopsided > 0 || lean_rad > 0; }
+};
+
 /// A whole parsed, validated template.
 struct Template {
   std::string name;
@@ -244,6 +258,7 @@ struct Template {
   /// range's middle as parsed; a variant's own draw (variation.h, draw_ripeness).
   glm::dvec2 ripeness_range{0.0, 1.0};
   double ripeness = 0.5;
+  OrganicSpec organic;  ///< lumps, lopsidedness and lean of the variants
   std::vector<SurfaceSpec> surfaces;
   std::vector<GrainSpec> grains;
   SpineSpec spine;  ///< the bent axis; no points: straight

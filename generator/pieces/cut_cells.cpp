@@ -49,10 +49,18 @@ std::vector<std::vector<CellFace>> slabs(const std::vector<int>& planes) {
   return out;
 }
 
+/// A plane through the straight axis (x = z = 0) turned to contain a leaned `axis`: its normal
+/// made perpendicular to the axis's direction, through the axis's point. No axis: `p` itself.
+Plane along_axis(const Plane& p, const CutAxis* axis) {
+  if (!axis) return p;
+  const glm::dvec3 n = p.normal - glm::dot(p.normal, axis->direction) * axis->direction;
+  return {axis->point, glm::normalize(n)};
+}
+
 }  // namespace
 
 CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min, const glm::dvec3& bbox_max,
-                        const BentAxis* bent_axis) {
+                        const BentAxis* bent_axis, const CutAxis* cut_axis) {
   CutCells out;
   switch (cut.type) {
     case CutType::Whole: out.cells.push_back({}); break;
@@ -60,7 +68,7 @@ CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min, const gl
     case CutType::Plane: {
       Plane p;
       if (cut.type == CutType::Plane) p = cut.plane;
-      out.planes.push_back(p);
+      out.planes.push_back(cut.type == CutType::Halves ? along_axis(p, cut_axis) : p);
       out.cells.push_back({{{0, true}}});
       out.cells.push_back({{{0, false}}});
       break;
@@ -93,7 +101,7 @@ CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min, const gl
         }
         const double t = 2 * kPi * k / n;
         plane_of[k] = static_cast<int>(out.planes.size());
-        out.planes.push_back({{0, 0, 0}, {std::sin(t), 0, std::cos(t)}});
+        out.planes.push_back(along_axis({{0, 0, 0}, {std::sin(t), 0, std::cos(t)}}, cut_axis));
       }
       for (int k = 0; k < n; ++k) {
         const int next = (k + 1) % n;

@@ -54,9 +54,13 @@ bool in_cell(const CutCells& cells, const Cell& cell, const glm::dvec3& x, int s
 ///   (count 2: one half-space each); opposite half-planes share one plane;
 /// - dice: planes x, y, z = const, `size_m` apart, centred on the bounds; one cell per box
 ///   that overlaps the bounds.
+/// With a `cut_axis` (a variant whose axis leans, organic_deformation.h) the halves' plane and
+/// the wedges' half-planes are turned to contain that axis instead of +Y (their normals made
+/// perpendicular to it, through its point); slices stay horizontal (the lean is a shear, which
+/// keeps horizontal planes horizontal), dice and a given plane stay as they are.
 /// Deterministic order; a cell the object misses simply yields no piece (cut_pieces).
 /// @pre the lengths of `cut` are positive and finite; count >= 2 for wedges
 CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min, const glm::dvec3& bbox_max,
-                        const BentAxis* bent_axis = nullptr);
+                        const BentAxis* bent_axis = nullptr, const CutAxis* cut_axis = nullptr);
 
 }  // namespace cutaway

@@ -7,6 +7,7 @@
 #include "model/model_builder.h"
 #include "model/template_checks.h"
 #include "variation/grains.h"
+#include "variation/organic_deformation.h"
 
 namespace cutaway {
 
@@ -80,6 +81,7 @@ Variant make_variant(const Template& tmpl, uint64_t seed, const VariationOptions
       if (m) {
         // Outside the retry: a grain set over its limits is the template's fault, not the draw's.
         scatter_grains(v, *m, seed);
+        deform_model(draw_organic(t, *m, seed), *m);
         return {std::move(v), std::move(*m), static_cast<int>(draw), t.variation_amount * scale};
       }
       if (t.symmetry == Symmetry::None || !(t.variation_amount > 0)) break;
@@ -88,6 +90,7 @@ Variant make_variant(const Template& tmpl, uint64_t seed, const VariationOptions
   }
   DsModel m = build_model(t);
   scatter_grains(t, m, seed);
+  deform_model(draw_organic(t, m, seed), m);
   return {t, std::move(m), static_cast<int>(draw), 0.0};
 }
 

@@ -48,7 +48,9 @@ double draw_ripeness(const Template& tmpl, uint64_t seed);
 /// the skin, `within` loops inside their folds): draws with the template's amount until one
 /// passes (options.attempts draws), then with the amount halved (options.halvings times); if
 /// none passes, the template itself (amount 0). Its colours are taken at draw_ripeness(tmpl,
-/// seed) in every case. The model then gets its grains (scatter_grains with the same seed).
+/// seed) in every case. The model then gets its grains (scatter_grains with the same seed), and
+/// then the whole model its organic deformation (draw_organic with the same seed and the
+/// template's full amount; none where the template asks for none).
 /// Same seed -> identical result.
 /// @pre tmpl was returned by parse_template / load_template
 /// @throws InputError only when tmpl itself does not build
