@@ -18,7 +18,7 @@
 //   (c) knife strokes, Shift-drag and the Knife button (knife_ok: the new normal is
 //       perpendicular to the stroke's rays, i.e. the plane holds the stroke and the view
 //       direction);
-//   (d) frame times over about 60 frames while Alt-dragging the plane.
+//   (d) frame times over about 30 frames while Alt-dragging the plane.
 // Screenshots go to DIR/cut-NAME-*.png when --out is given.
 // Prints one JSON line {ok, pages: [{name, cap_points, max_diff, mean_diff, knife_ok, drag_ok,
 // frame_ms_mean, frame_ms_p95, ...}], warnings, error}; exit code 0 when ok.
@@ -306,8 +306,8 @@ async function checkFrames(page, box, info) {
   await page.keyboard.down('Alt');
   await page.mouse.move(x, y0);
   await page.mouse.down();
-  for (let k = 1; k <= 60; ++k) {
-    const y = y0 + 60 * Math.sin((k / 60) * 2 * Math.PI);
+  for (let k = 1; k <= 30; ++k) {
+    const y = y0 + 60 * Math.sin((k / 30) * 2 * Math.PI);
     const seen = await page.evaluate(() => window.cutting.frameStats().frames);
     await page.mouse.move(x, y);
     await page.waitForFunction((n) => window.cutting.frameStats().frames > n, seen,
@@ -359,7 +359,7 @@ async function checkName(page, base, name, out) {
                  entry.max_diff <= MAX_DIFF && entry.mean_diff <= MEAN_DIFF &&
                  entry.empty_mismatches === 0;
   entry.ok = entry.cap_ok && entry.bytes_ok && entry.drag_ok && entry.flip_ok &&
-             entry.knife_ok && entry.frames >= 50;
+             entry.knife_ok && entry.frames >= 25;
   return entry;
 }
 
