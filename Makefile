@@ -29,11 +29,8 @@ demo: deps $(BUILD)/build.ninja
 
 # Configured again: a build folder made by `make demo` before GoogleTest was installed has no
 # tests yet. TIER: a CTest label expression (-L), empty for every tier.
-# TEST_JOBS: tests run side by side, one more than the cores: part of the time a test waits on
-# Chromium, Blender, POV-Ray or its files (the test phase kept 1.72 of 2 cores busy at -j 2).
 TIER ?=
-TEST_JOBS ?= $(shell echo $$(( $(JOBS) + 1 )))
-CTEST_RUN = cd $(BUILD) && ctest --output-on-failure --no-tests=error -j $(TEST_JOBS) \
+CTEST_RUN = cd $(BUILD) && ctest --output-on-failure --no-tests=error -j $(JOBS) \
 	  $(if $(TIER),-L $(TIER)) --output-junit Testing/junit.xml
 test: deps-test
 	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
