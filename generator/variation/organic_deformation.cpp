@@ -139,12 +139,13 @@ OrganicDeformation draw_organic(const Template& t, const DsModel& model, uint64_
   d.lopsided = spec.lopsided * amount * rng.uniform(0.3, 1.0);
   const glm::dvec3 lean_direction = horizontal_direction(rng);
   d.lean = lean_direction * std::tan(spec.lean_rad * amount * rng.uniform(0.3, 1.0));
-  // The skin's horizontal centre and the lumped model's reach from it (every vertex: sheets and
-  // grains too, and the lumps' largest displacement, so that |u| <= R wherever the lopsided
-  // stretch is applied: on the lumps' image of the whole model).
   const auto [skin_lo, skin_hi] = skin_bounds(model);
   d.centre = {0.5 * (skin_lo.x + skin_hi.x), 0.0, 0.5 * (skin_lo.z + skin_hi.z)};
   d.base_y = skin_lo.y;
+  if (!(d.lopsided > 0)) return d;
+  // The lumped model's reach from the skin's centre (every vertex: sheets and grains too, and
+  // the lumps' largest displacement, so that |u| <= R wherever the lopsided stretch is applied:
+  // on the lumps' image of the whole model); only the lopsided stretch uses it.
   double reach = 0;
   for (const DsSurface& s : model.surfaces)
     for (auto vh : s.mesh.vertices()) {
