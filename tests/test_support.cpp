@@ -189,6 +189,12 @@ std::filesystem::path source_path(const std::string& relative) {
   return std::filesystem::path(CUTAWAY_SOURCE_DIR) / relative;
 }
 
+DsModel model_of(const std::string& relative) {
+  return build_model(load_template(source_path(relative).string()));
+}
+
+Plane plane_of(glm::dvec3 point, glm::dvec3 normal) { return {point, glm::normalize(normal)}; }
+
 std::vector<std::string> files_in(const std::filesystem::path& dir) {
   std::vector<std::string> out;
   if (!std::filesystem::exists(dir)) return out;

@@ -108,6 +108,14 @@ std::filesystem::path fresh_dir(const std::string& name);
 /// Absolute path of a file in the source tree, e.g. source_path("templates/tomato.yaml").
 std::filesystem::path source_path(const std::string& relative);
 
+/// The diffusion-surface model of the template at `relative` in the source tree (the template's
+/// own sweep, no variation), e.g. model_of("templates/kiwi.yaml"). Throws what load_template
+/// and build_model throw.
+DsModel model_of(const std::string& relative);
+
+/// The plane through `point` (metres) with the unit normal along `normal` (any length > 0).
+Plane plane_of(glm::dvec3 point, glm::dvec3 normal);
+
 /// Options of build_scene for quick scene tests: the cpu backend with 4 cube-map cells per face
 /// and all threads, cap colours `colours`, every other option its default.
 SceneBuildOptions quick_scene_options(CapColours colours);

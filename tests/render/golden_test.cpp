@@ -104,7 +104,7 @@ void check_golden(const std::string& name, const Image& image) {
                 << (same_size ? "\n  difference: " + out_difference.string() : std::string());
 }
 
-const Template& tomato() {
+const Template& tomato_template() {
   static const Template t = load_template(test::source_path("templates/tomato.yaml").string());
   return t;
 }
@@ -117,15 +117,17 @@ TEST(Golden, Model) {
   PreviewOptions o;
   o.width = kWidth;
   o.height = kHeight;
-  check_golden("model-tomato", render_model_preview(build_model(tomato()), o));
+  check_golden("model-tomato", render_model_preview(build_model(tomato_template()), o));
 }
 
 void section_case(const std::string& name, double perlin) {
-  const DsModel model = build_model(tomato());
+  const DsModel model = build_model(tomato_template());
   const auto diffusion = cpu_diffusion(model);
-  CrossSection section = *make_cross_section(
-      model, *parse_plane_spec("y=26", tomato().metres_per_unit), *diffusion, {tomato().edge_m});
-  if (perlin > 0) modulate_colours(section.position, section.colour, tomato().npr, perlin, 0);
+  CrossSection section =
+      *make_cross_section(model, *parse_plane_spec("y=26", tomato_template().metres_per_unit),
+                          *diffusion, {tomato_template().edge_m});
+  if (perlin > 0)
+    modulate_colours(section.position, section.colour, tomato_template().npr, perlin, 0);
   SectionPreviewOptions o;
   o.width = kWidth;
   o.height = kHeight;
@@ -137,16 +139,17 @@ TEST(Golden, SectionNpr) { section_case("section-tomato-npr", 1); }
 
 void pieces_case(const std::string& name, double npr) {
   SceneAssets assets;
-  assets.name = tomato().name;
+  assets.name = tomato_template().name;
   const PieceMaterials materials =
-      add_piece_materials(assets, tomato().name, tomato().skin_material, tomato().cut_material);
+      add_piece_materials(assets, tomato_template().name, tomato_template().skin_material,
+                          tomato_template().cut_material);
   ObjectCutOptions cut;
-  cut.cut = *parse_cut_spec("halves", tomato().metres_per_unit);
+  cut.cut = *parse_cut_spec("halves", tomato_template().metres_per_unit);
   cut.perlin = npr;
   cut.cap_colours = CapColours::Vertex;
   ObjectCutStats stats;
-  const Variant variant{tomato(), build_model(tomato())};
-  const CutObject object = *cut_object(assets, variant, 0, materials, tomato().name,
+  const Variant variant{tomato_template(), build_model(tomato_template())};
+  const CutObject object = *cut_object(assets, variant, 0, materials, tomato_template().name,
                                        *cpu_diffusion(variant.model), cut, stats);
   assets = piece_assets(std::move(assets), object, 0.3, kWidth, kHeight);
   StrokeOptions so;

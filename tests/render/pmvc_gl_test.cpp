@@ -39,7 +39,7 @@ std::vector<glm::dvec3> tomato_points() {
   return points;
 }
 
-const DsModel& tomato() {
+const DsModel& tomato_model() {
   static const DsModel model =
       build_model(load_template(test::source_path("templates/tomato.yaml").string()));
   return model;
@@ -84,7 +84,7 @@ surfaces:
 
 TEST(PmvcGl, MaterialChannelsAreDiffusedFromTheSameRaysAsColours) {
   const test::MaterialChannelErrors e =
-      test::material_channel_errors(tomato(), tomato_points(), [](const DsModel& m) {
+      test::material_channel_errors(tomato_model(), tomato_points(), [](const DsModel& m) {
         return make_gl_diffusion(m, DiffusionOptions{16, 0});
       });
   EXPECT_GT(e.distinct_values, 0.05);
@@ -100,8 +100,8 @@ TEST(PmvcGl, AgreesWithTheCpuBackendInsideTheTomato) {
   const int n = 16;
   for (const bool adaptive : {true, false}) {
     const DiffusionOptions options{n, 0, true, adaptive};
-    const auto gl = make_gl_diffusion(tomato(), options);
-    const auto cpu = make_cpu_diffusion(tomato(), options);
+    const auto gl = make_gl_diffusion(tomato_model(), options);
+    const auto cpu = make_cpu_diffusion(tomato_model(), options);
     auto start = std::chrono::steady_clock::now();
     const std::vector<glm::dvec3> a = gl->diffuse(points);
     const double gl_s = seconds_since(start);
@@ -138,7 +138,7 @@ TEST(PmvcGl, AgreesWithTheCpuBackendInsideTheTomato) {
 TEST(PmvcGl, ResultsAreBitIdenticalAcrossRunsAndBatches) {
   const std::vector<glm::dvec3> tomato_all = tomato_points();
   const std::vector<glm::dvec3> all(tomato_all.begin(), tomato_all.begin() + 60);
-  const auto backend = make_gl_diffusion(tomato(), DiffusionOptions{16, 0});
+  const auto backend = make_gl_diffusion(tomato_model(), DiffusionOptions{16, 0});
   const std::vector<glm::dvec3> first = backend->diffuse(all);
   const std::vector<glm::dvec3> second = backend->diffuse(all);
   ASSERT_EQ(first, second);
@@ -158,18 +158,18 @@ TEST(PmvcGl, ResultsAreBitIdenticalAcrossRunsAndBatches) {
 }
 
 TEST(PmvcGl, OutsidePointsAreBlackAndBadCubeSizesAreRefused) {
-  const auto backend = make_gl_diffusion(tomato(), DiffusionOptions{8, 0});
+  const auto backend = make_gl_diffusion(tomato_model(), DiffusionOptions{8, 0});
   const std::vector<glm::dvec3> outside = backend->diffuse(std::vector<glm::dvec3>{{1, 1, 1}});
   EXPECT_EQ(outside[0], glm::dvec3(0.0));
   EXPECT_TRUE(backend->diffuse({}).empty());
-  EXPECT_THROW(make_gl_diffusion(tomato(), DiffusionOptions{0, 0}), InternalError);
+  EXPECT_THROW(make_gl_diffusion(tomato_model(), DiffusionOptions{0, 0}), InternalError);
 }
 
 /// Throughput on templates/tomato.yaml, both backends, cube 32 and 16 (not part of the suite:
 /// run with --gtest_also_run_disabled_tests --gtest_filter='*Throughput*').
 TEST(PmvcGl, DISABLED_Throughput) {
   size_t vertices = 0, triangles = 0;
-  for (const DiffusionSheet& s : make_diffusion_sheets(tomato())) {
+  for (const DiffusionSheet& s : make_diffusion_sheets(tomato_model())) {
     vertices += s.position.size();
     triangles += s.triangle.size();
   }
@@ -179,8 +179,8 @@ TEST(PmvcGl, DISABLED_Throughput) {
     for (const glm::dvec3& p : tomato_points()) points.push_back(p + glm::dvec3(0, 1e-4 * i, 0));
   for (int n : {32, 16}) {
     for (bool use_gl : {true, false}) {
-      const auto backend = use_gl ? make_gl_diffusion(tomato(), DiffusionOptions{n, 0})
-                                  : make_cpu_diffusion(tomato(), DiffusionOptions{n, 0});
+      const auto backend = use_gl ? make_gl_diffusion(tomato_model(), DiffusionOptions{n, 0})
+                                  : make_cpu_diffusion(tomato_model(), DiffusionOptions{n, 0});
       const auto start = std::chrono::steady_clock::now();
       backend->diffuse(points);
       const double s = seconds_since(start);

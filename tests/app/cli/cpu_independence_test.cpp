@@ -66,7 +66,9 @@ void expect_same_bytes_every_way(const std::string& name, const std::vector<std:
     const test::RunResult r = test::run_cutaway(a);
     if (way.variable) ::unsetenv(way.variable);
     ASSERT_EQ(r.exit_code, 0) << way.name << ": " << r.err;
-    if (cached_command) EXPECT_TRUE(test::made_afresh(r)) << way.name;
+    if (cached_command) {
+      EXPECT_TRUE(test::made_afresh(r)) << way.name;
+    }
     const auto files = files_under(out);
     ASSERT_GE(files.size(), at_least) << way.name;
     if (first.empty()) {

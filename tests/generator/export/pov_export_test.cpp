@@ -36,7 +36,7 @@ const glm::dvec3 kPaleBlue{0.1, 0.2, 0.9};  // its back apex
 const glm::dvec3 kBackground{0.05, 0.25, 0.1};
 
 // Axis-aligned cube of edge `edge_m` about the origin: 24 vertices (flat faces), one colour.
-AssetMesh cube(const std::string& name, double edge_m, const glm::dvec3& colour) {
+AssetMesh coloured_cube(const std::string& name, double edge_m, const glm::dvec3& colour) {
   AssetMesh m;
   m.name = name;
   const double h = edge_m / 2;
@@ -96,7 +96,7 @@ AssetMesh tetrahedron() {
 SceneAssets test_scene() {
   SceneAssets s;
   s.name = "pov test";
-  s.meshes = {cube("cube", 0.5, kRed), tetrahedron()};
+  s.meshes = {coloured_cube("cube", 0.5, kRed), tetrahedron()};
   AssetInstance left{"left cube", 0, glm::dquat(1, 0, 0, 0), {-0.8, -0.3, 0}};
   AssetInstance top{
       "top_cube", 0, glm::angleAxis(0.6, glm::normalize(glm::dvec3(1, 1, 0))), {0, 0.6, 0}};

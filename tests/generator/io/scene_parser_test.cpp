@@ -25,12 +25,12 @@ std::string scene_file(const std::string& name = "t.yaml") {
   return test::source_path("tests/data/scenes/" + name).string();
 }
 
-Scene parse(const std::string& text) { return parse_scene(text, scene_file()); }
+Scene parse_scene_text(const std::string& text) { return parse_scene(text, scene_file()); }
 
-/// The InputError parse() raises on `text` (fails the test when it parses).
-InputError error_of(const std::string& text) {
+/// The InputError parse_scene_text() raises on `text` (fails the test when it parses).
+InputError scene_error_of(const std::string& text) {
   try {
-    parse(text);
+    parse_scene_text(text);
   } catch (const InputError& e) {
     return e;
   }
@@ -113,7 +113,7 @@ TEST(SceneParser, SmallSceneValues) {
 }
 
 TEST(SceneParser, Defaults) {
-  const Scene s = parse(kHead + kItem);
+  const Scene s = parse_scene_text(kHead + kItem);
   EXPECT_EQ(s.seed, 0u);
   EXPECT_DOUBLE_EQ(s.metres_per_unit, 1e-3);
   EXPECT_EQ(s.container.type, ContainerType::None);
@@ -132,7 +132,7 @@ TEST(SceneParser, Defaults) {
 
 TEST(SceneParser, ContainerDefaultsPerType) {
   const auto container = [](const std::string& type) {
-    return parse(kHead + "container: {type: " + type + "}\n" + kItem).container;
+    return parse_scene_text(kHead + "container: {type: " + type + "}\n" + kItem).container;
   };
   const Container bowl = container("bowl");
   EXPECT_EQ(bowl.type, ContainerType::Bowl);
@@ -161,7 +161,7 @@ TEST(SceneParser, ContainerDefaultsPerType) {
 }
 
 TEST(SceneParser, UnitsBecomeMetres) {
-  const Scene cm = parse(kHead + R"(units: cm
+  const Scene cm = parse_scene_text(kHead + R"(units: cm
 container: {type: board, width: 40, depth: 30, height: 2, color: [1, 0, 0.5]}
 items:
   - template: cucumber
@@ -180,7 +180,7 @@ camera: {eye: [0, 30, 25], target: [0, 2, 0]}
   expect_vec(cm.camera->eye, 0, 0.30, 0.25);
   EXPECT_DOUBLE_EQ(cm.camera->fov_deg, 40);
 
-  const Scene m = parse(kHead + R"(units: m
+  const Scene m = parse_scene_text(kHead + R"(units: m
 container: {type: bowl, diameter: 0.3, height: 0.1}
 items: [{template: tomato, count: 64, cut: {type: wedges, count: 8}, keep: 0.25, variation: 0}]
 seed: 123456789012
@@ -195,7 +195,7 @@ seed: 123456789012
 }
 
 TEST(SceneParser, JsonIsAccepted) {
-  const Scene s = parse(R"({"format": "cutaway-scene/1", "name": "j", "units": "cm",
+  const Scene s = parse_scene_text(R"({"format": "cutaway-scene/1", "name": "j", "units": "cm",
     "container": {"type": "plate", "diameter": 30},
     "items": [{"template": "onion", "cut": {"type": "halves"}}]})");
   EXPECT_EQ(s.name, "j");
@@ -205,8 +205,8 @@ TEST(SceneParser, JsonIsAccepted) {
 }
 
 TEST(SceneParser, TemplatePathRelativeToTheScene) {
-  const Scene s = parse(kHead + "items: [{template: ../mesh_octahedra.yaml}, "
-                                "{template: ../../../templates/onion.yaml}]\n");
+  const Scene s = parse_scene_text(kHead + "items: [{template: ../mesh_octahedra.yaml}, "
+                                           "{template: ../../../templates/onion.yaml}]\n");
   EXPECT_TRUE(
       same_file(s.items[0].template_path, test::source_path("tests/data/mesh_octahedra.yaml")));
   EXPECT_EQ(s.items[0].template_name, "../mesh_octahedra.yaml");
@@ -250,7 +250,7 @@ TEST(SceneParser, TemplateNameLookupOrder) {
 }
 
 TEST(SceneParser, ErrorUnknownItemField) {
-  const InputError e = error_of(kHead + R"(items:
+  const InputError e = scene_error_of(kHead + R"(items:
   - template: tomato
     cut: {type: halves}
     colour: red
@@ -314,7 +314,7 @@ TEST(SceneParser, ErrorsOfTypeAndRange) {
       {kHead, "(root)", "missing required field 'items'"},
   };
   for (const auto& c : cases) {
-    const InputError e = error_of(c.text);
+    const InputError e = scene_error_of(c.text);
     EXPECT_EQ(e.field(), c.field) << c.text << e.what();
     EXPECT_NE(e.rule().find(c.rule), std::string::npos) << c.text << e.what();
     EXPECT_GE(e.loc().line, 1) << c.text;

@@ -230,11 +230,11 @@ surfaces:
     profile: [[0, 0], [2, 1], [2.5, 2], [2, 3], [0, 4]]
 )";
 
-Template parse(const std::string& npr) { return parse_template(kHead + npr, "t.yaml", "."); }
+Template parse_npr(const std::string& npr) { return parse_template(kHead + npr, "t.yaml", "."); }
 
-InputError error_of(const std::string& npr) {
+InputError npr_error_of(const std::string& npr) {
   try {
-    parse(npr);
+    parse_npr(npr);
   } catch (const InputError& e) {
     return e;
   }
@@ -243,7 +243,7 @@ InputError error_of(const std::string& npr) {
 }
 
 TEST(NprBlock, ParsesBandsInTemplateUnits) {
-  const Template t = parse(R"(npr:
+  const Template t = parse_npr(R"(npr:
   perlin:
     bands:
       - {period: 0.2, amplitude: 0.12, tint: "#c8281e", reach: 0.35}
@@ -265,7 +265,7 @@ TEST(NprBlock, ParsesBandsInTemplateUnits) {
 
 TEST(NprBlock, DefaultsFromTheSkinHeightAndAnEmptyListTurnsItOff) {
   for (const std::string& npr : {std::string(), std::string("npr: {}\n")}) {
-    const Template t = parse(npr);
+    const Template t = parse_npr(npr);
     EXPECT_FALSE(t.npr.perlin_from_file);
     ASSERT_EQ(t.npr.perlin_bands.size(), 2u);  // skin height 4 cm
     EXPECT_NEAR(t.npr.perlin_bands[0].frequency_per_m, 16 / 0.04, 1e-9);
@@ -273,7 +273,7 @@ TEST(NprBlock, DefaultsFromTheSkinHeightAndAnEmptyListTurnsItOff) {
     EXPECT_GT(t.npr.perlin_bands[0].amplitude, 0);
     EXPECT_FALSE(t.npr.perlin_bands[0].tinted);
   }
-  const Template off = parse("npr: {perlin: {bands: []}}\n");
+  const Template off = parse_npr("npr: {perlin: {bands: []}}\n");
   EXPECT_TRUE(off.npr.perlin_from_file);
   EXPECT_TRUE(off.npr.perlin_bands.empty());
 }
@@ -301,7 +301,7 @@ TEST(NprBlock, RefusesBadValuesWithTheirLocation) {
        "npr.perlin.bands[0].reach", "must be between 0 and 1.75"},
   };
   for (const Case& c : cases) {
-    const InputError e = error_of(c.npr);
+    const InputError e = npr_error_of(c.npr);
     EXPECT_EQ(e.loc().file, "t.yaml");
     EXPECT_EQ(e.loc().line, c.line) << c.npr << e.what();
     EXPECT_EQ(e.loc().column, c.column) << c.npr << e.what();
@@ -311,7 +311,7 @@ TEST(NprBlock, RefusesBadValuesWithTheirLocation) {
   // More than 8 bands.
   std::string many = "npr: {perlin: {bands: [";
   for (int i = 0; i < 9; ++i) many += std::string(i ? ", " : "") + "{period: 1, amplitude: 0.1}";
-  const InputError e = error_of(many + "]}}\n");
+  const InputError e = npr_error_of(many + "]}}\n");
   EXPECT_EQ(e.field(), "npr.perlin.bands");
   EXPECT_NE(e.rule().find("at most 8 bands, not 9"), std::string::npos) << e.what();
 }

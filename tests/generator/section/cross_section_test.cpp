@@ -25,11 +25,8 @@
 namespace cutaway {
 namespace {
 
-DsModel model_of(const std::string& relative) {
-  return build_model(load_template(test::source_path(relative).string()));
-}
-
-Plane plane_of(glm::dvec3 point, glm::dvec3 normal) { return {point, glm::normalize(normal)}; }
+using test::model_of;
+using test::plane_of;
 
 glm::dvec2 in_plane(const CrossSection& cs, const glm::dvec3& p) {
   const glm::dvec3 d = p - cs.plane.point;

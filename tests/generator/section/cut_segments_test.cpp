@@ -17,11 +17,8 @@
 namespace cutaway {
 namespace {
 
-DsModel model_of(const std::string& relative) {
-  return build_model(load_template(test::source_path(relative).string()));
-}
-
-Plane plane_of(glm::dvec3 point, glm::dvec3 normal) { return {point, glm::normalize(normal)}; }
+using test::model_of;
+using test::plane_of;
 
 std::string describe(const Plane& p) {
   char buf[160];
