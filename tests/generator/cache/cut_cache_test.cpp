@@ -432,18 +432,44 @@ void rewrite_cut_entry(const fs::path& dir, const std::string& object,
   cache.store(key, encode_cut_payload(cut, own, materials, first_new));
 }
 
-/// A cache of the tiny scene, and in *without the bytes of the run that filled it: every object
-/// cut and every placement settled afresh (the cache was empty), which are the bytes of a run
-/// without a cache (CutCacheScene.CachedObjectsGiveTheSameBytesAndDamagedOnesAreCutAgain).
-fs::path tiny_cache(const std::string& name, std::string* without) {
-  const fs::path dir = test::fresh_dir(name);
-  CutCache cache({dir, kDefaultCutCacheBytes, {}});
-  SceneStats first;
-  *without = tiny_scene_glb(&cache, first);
-  EXPECT_EQ(first.cached_objects, 0);
-  EXPECT_FALSE(first.cached_placements);
-  return dir;
-}
+/// The tests of crafted entries share one filled cache of the tiny scene (CTest runs the suite
+/// as one test, tests/CMakeLists.txt): filled once, by a run that cut every object and settled
+/// every placement afresh (the cache was empty, as the suite asserts), so its bytes are those of
+/// a run without a cache (CutCacheScene.CachedObjectsGiveTheSameBytesAndDamagedOnesAreCutAgain).
+class UntrustedCacheEntry : public ::testing::Test {
+ public:
+  static void SetUpTestSuite() {
+    filled_ = new fs::path(test::fresh_dir("entry_filled"));
+    CutCache cache({*filled_, kDefaultCutCacheBytes, {}});
+    SceneStats first;
+    without_ = new std::string(tiny_scene_glb(&cache, first));
+    filling_cut_afresh_ =
+        first.cached_objects == 0 && !first.cached_placements && first.objects > 0;
+  }
+  static void TearDownTestSuite() {
+    delete filled_;
+    delete without_;
+  }
+
+ protected:
+  /// A copy of the filled cache in a folder of this test's own, and in *without the filling
+  /// run's bytes.
+  static fs::path tiny_cache(const std::string& name, std::string* without) {
+    EXPECT_TRUE(filling_cut_afresh_) << "the run that filled the cache read from a cache";
+    const fs::path dir = test::fresh_dir(name);
+    fs::copy(*filled_, dir, fs::copy_options::recursive);
+    *without = *without_;
+    return dir;
+  }
+
+ private:
+  static fs::path* filled_;
+  static std::string* without_;
+  static bool filling_cut_afresh_;
+};
+fs::path* UntrustedCacheEntry::filled_ = nullptr;
+std::string* UntrustedCacheEntry::without_ = nullptr;
+bool UntrustedCacheEntry::filling_cut_afresh_ = false;
 
 /// The crafted entry was caught: the same bytes, one warning naming the entry's file, counted
 /// damaged; and made again, so the next run reads every object back without a word.
@@ -464,7 +490,7 @@ void expect_caught_and_rebuilt(const fs::path& dir, const std::string& without,
   EXPECT_TRUE(again.scene.cached_placements);
 }
 
-TEST(UntrustedCacheEntry, AShapeTriangleIndexOutOfRangeIsCaughtNotACrash) {
+TEST_F(UntrustedCacheEntry, AShapeTriangleIndexOutOfRangeIsCaughtNotACrash) {
   std::string without;
   const fs::path dir = tiny_cache("entry_shape_index", &without);
   rewrite_cut_entry(dir, "i1_", [](CachedCut& c, SceneAssets&) {
@@ -473,7 +499,7 @@ TEST(UntrustedCacheEntry, AShapeTriangleIndexOutOfRangeIsCaughtNotACrash) {
   expect_caught_and_rebuilt(dir, without, "triangle vertex index not below");
 }
 
-TEST(UntrustedCacheEntry, ATriangleIndexNanPositionOrPrimitiveRangeIsCaught) {
+TEST_F(UntrustedCacheEntry, ATriangleIndexNanPositionOrPrimitiveRangeIsCaught) {
   std::string without;
   const fs::path dir = tiny_cache("entry_mesh", &without);
   const std::vector<std::pair<std::function<void(CachedCut&, SceneAssets&)>, std::string>> cases = {
@@ -493,7 +519,7 @@ TEST(UntrustedCacheEntry, ATriangleIndexNanPositionOrPrimitiveRangeIsCaught) {
   }
 }
 
-TEST(UntrustedCacheEntry, ATextureLargerThanItsPixelsIsCaught) {
+TEST_F(UntrustedCacheEntry, ATextureLargerThanItsPixelsIsCaught) {
   std::string without;
   const fs::path dir = tiny_cache("entry_texture", &without);
   rewrite_cut_entry(dir, "i0_", [](CachedCut&, SceneAssets& own) {
@@ -507,7 +533,7 @@ TEST(UntrustedCacheEntry, ATextureLargerThanItsPixelsIsCaught) {
 // Plausible but wrong content changes the output silently unless it is checked against the
 // object that asked for it: a mesh scaled by half again leaves its shape's place; a piece scaled
 // thirty times, mesh and shape, leaves its template's reach.
-TEST(UntrustedCacheEntry, AMovedMeshIsCaughtByItsShapeAndItsTemplatesReach) {
+TEST_F(UntrustedCacheEntry, AMovedMeshIsCaughtByItsShapeAndItsTemplatesReach) {
   std::string without;
   const fs::path dir = tiny_cache("entry_moved", &without);
   rewrite_cut_entry(dir, "i1_", [](CachedCut& c, SceneAssets&) {
@@ -521,7 +547,7 @@ TEST(UntrustedCacheEntry, AMovedMeshIsCaughtByItsShapeAndItsTemplatesReach) {
   expect_caught_and_rebuilt(dir, without, "beyond its template's reach");
 }
 
-TEST(UntrustedCacheEntry, PlacementsFarAwayOrNotFiniteAreCaught) {
+TEST_F(UntrustedCacheEntry, PlacementsFarAwayOrNotFiniteAreCaught) {
   std::string without;
   const fs::path dir = tiny_cache("entry_placements", &without);
   const std::vector<std::pair<std::function<void(Placement&)>, std::string>> cases = {
@@ -554,7 +580,7 @@ TEST(UntrustedCacheEntry, PlacementsFarAwayOrNotFiniteAreCaught) {
 
 // Counts are checked against what each element costs at least, before anything is allocated:
 // an entry of zeros whose first count claims one texture per 8 bytes is refused at that count.
-TEST(UntrustedCacheEntry, ACountBeyondWhatItsElementsCostIsRefusedBeforeAllocating) {
+TEST_F(UntrustedCacheEntry, ACountBeyondWhatItsElementsCostIsRefusedBeforeAllocating) {
   std::string without;
   const fs::path dir = tiny_cache("entry_counts", &without);
   {
