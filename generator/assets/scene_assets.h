@@ -106,7 +106,7 @@ struct PieceInfo {
   uint64_t seed = 0;               ///< the variant's seed
   std::string cut;                 ///< cut_label() of its cut
   int cell = -1;                   ///< its cell of the cut (the piece index)
-  std::vector<std::string> parts;  ///< the kinds of its parts: "skin", "wall", "cap"
+  std::vector<std::string> parts;  ///< the kinds of its parts: "skin", "wall", "stone", "cap"
   double volume_m3 = 0;            ///< enclosed volume, cubic metres
 };
 

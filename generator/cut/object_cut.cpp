@@ -73,9 +73,10 @@ PieceInfo piece_info(const Piece& piece, const ShadedMesh& merged, const std::st
                      uint64_t seed, const CutSpec& cut) {
   PieceInfo info{template_name, seed, cut_label(cut), piece.cell, {}, signed_volume(merged)};
   for (const PiecePart& part : piece.parts) {
-    const std::string kind = part.kind == PartKind::Skin   ? "skin"
-                             : part.kind == PartKind::Wall ? "wall"
-                                                           : "cap";
+    const std::string kind = part.kind == PartKind::Skin    ? "skin"
+                             : part.kind == PartKind::Wall  ? "wall"
+                             : part.kind == PartKind::Stone ? "stone"
+                                                            : "cap";
     if (std::find(info.parts.begin(), info.parts.end(), kind) == info.parts.end())
       info.parts.push_back(kind);
   }
@@ -238,6 +239,7 @@ Outcome<CutObject> cut_object(SceneAssets& assets, const Variant& variant, uint6
   PieceOptions piece_options;
   piece_options.section.edge_m = variant.tmpl.edge_m;
   piece_options.section.sampling = options.sampling;
+  piece_options.stone_seed = variant_seed;
   piece_options.keep_pieces = [&options](size_t n) {
     const size_t keep = std::clamp<size_t>(
         static_cast<size_t>(std::llround(options.keep * static_cast<double>(n))), 1, n);

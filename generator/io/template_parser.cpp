@@ -171,7 +171,8 @@ void parse_material_channels(const YamlField& f, const PbrMaterial& cut, glm::dv
 
 SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::string& base_dir) {
   f.allow_only({"name", "kind", "role", "profile", "section", "smooth", "front", "back", "blur",
-                "roughness", "translucency", "visible", "file", "patterns"});
+                "roughness", "translucency", "visible", "rigid", "offset", "tilt", "wander", "file",
+                "patterns"});
   SurfaceSpec s;
   s.path = f.path();
   s.loc = f.loc();
@@ -263,6 +264,31 @@ SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::stri
     vis->allow_only({"front", "back"});
     if (auto x = vis->get("front")) s.visible_front = x->boolean();
     if (auto x = vis->get("back")) s.visible_back = x->boolean();
+  }
+  if (auto x = f.get("tilt")) {
+    if (s.is_skin) x->fail("the skin is the object's frame: tilt the surfaces inside it");
+    if (!x->is_sequence() || x->size() != 2)
+      x->fail("a tilt is [about x, about z] in degrees, each in -90..90");
+    s.tilt_rad = {(*x)[0].number_in(-90, 90) * kDeg, (*x)[1].number_in(-90, 90) * kDeg};
+    s.placement_loc = x->loc();
+  }
+  if (auto x = f.get("offset")) {
+    if (s.is_skin) x->fail("the skin is the object's frame: offset the surfaces inside it");
+    if (!x->is_sequence() || x->size() != 3) x->fail("an offset is [x, y, z] in template units");
+    for (int k = 0; k < 3; ++k) s.offset_m[k] = within_limit((*x)[k], (*x)[k].number(), m) * m;
+    s.placement_loc = x->loc();
+  }
+  if (auto x = f.get("wander")) {
+    if (s.is_skin) x->fail("the skin is the object's frame: let the surfaces inside it wander");
+    s.wander_m = parse_length(*x, m);
+  }
+  if (auto x = f.get("rigid")) {
+    s.rigid = x->boolean();
+    if (s.rigid && s.is_skin) x->fail("the skin cannot be rigid (a rigid surface lies inside it)");
+    if (s.rigid && (!s.visible_front || !s.visible_back)) {
+      x->fail("a rigid surface is solid inside and has flesh outside: neither side may be hollow "
+              "('visible')");
+    }
   }
   return s;
 }

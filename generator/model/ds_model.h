@@ -67,6 +67,9 @@ struct DsSurface {
   DsMesh mesh;
   bool visible_front = true;  ///< false: the front side is hollow (empty space in cuts)
   bool visible_back = true;   ///< false: the back side is hollow
+  /// Closed, and never split by a cut: the whole surface, with everything inside it, goes to one
+  /// piece (pieces/rigid_stones.h). Its front is its outside.
+  bool rigid = false;
   /// Role Grain: each grain's point on the surface it is scattered over (its dart), metres;
   /// where the skin shows the grains (skin patterns' `grains` layers).
   std::vector<glm::dvec3> grain_sites;

@@ -40,6 +40,7 @@ DsSurface mesh_surface(const SurfaceSpec& spec, const Template& tmpl, size_t max
   s.role = spec.is_skin ? SurfaceRole::Skin : SurfaceRole::Structure;
   s.visible_front = spec.visible_front;
   s.visible_back = spec.visible_back;
+  s.rigid = spec.rigid;
   // A closed mesh's front is its outside (doc/template-format.md, Surfaces: Front and back):
   // wound inwards, it is turned.
   const bool turn = mesh.closed && mesh.signed_volume6 < 0;

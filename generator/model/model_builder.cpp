@@ -4,6 +4,7 @@
 
 #include "model/mesh_surface.h"
 #include "model/model_checks.h"
+#include "model/part_placement.h"
 #include "model/spine_bend.h"
 #include "model/sweep.h"
 
@@ -28,6 +29,7 @@ DsModel build_model(const Template& t) {
     set_material(model.surfaces.back().mesh, spec.material_front, spec.material_back);
   }
   update_bounds(model);
+  place_parts(t, order, model);
   check_model(t, model, order);
   // The rules above hold in the straight frame; a bend that keeps every stretch positive keeps
   // them (bend_model refuses one that does not).

@@ -5,6 +5,12 @@
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <cstdio>
+#include <exception>
+#include <iterator>
+#include <string>
+#include <vector>
+
 namespace cutaway {
 
 namespace {
@@ -28,6 +34,27 @@ SurfaceMesh to_cgal(const DsMesh& mesh) {
     sm.add_face(f[0], f[1], f[2]);
   }
   return sm;
+}
+
+/// " near (x, y, z)" in template units: a point where `a` and `b` cross (the first point of
+/// their intersection polylines, CGAL's corefinement); empty where it finds none (surfaces that
+/// only touch, or faces it cannot intersect).
+std::string crossing_point(const SurfaceMesh& a, const SurfaceMesh& b, double metres_per_unit) {
+  std::vector<std::vector<Kernel::Point_3>> lines;
+  try {
+    PMP::surface_intersection(a, b, std::back_inserter(lines));
+  } catch (const std::exception&) {
+    return "";
+  }
+  for (const auto& line : lines) {
+    if (line.empty()) continue;
+    const Kernel::Point_3& p = line.front();
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " near (%.1f, %.1f, %.1f)", p.x() / metres_per_unit,
+                  p.y() / metres_per_unit, p.z() / metres_per_unit);
+    return buf;
+  }
+  return "";
 }
 
 }  // namespace
@@ -61,6 +88,40 @@ void check_model(const Template& t, const DsModel& model, const std::vector<int>
                              quoted(skin_spec.name) +
                              ": every other surface must lie inside the skin");
       }
+    }
+  }
+  // A rigid surface is closed, and no other surface crosses or touches it: each lies wholly
+  // inside it (kept whole with it) or wholly outside (cut as flesh).
+  for (size_t i = 1; i < model.surfaces.size(); ++i) {
+    if (!model.surfaces[i].rigid) continue;
+    const SurfaceSpec& spec = t.surfaces[specs[i]];
+    for (auto h : model.surfaces[i].mesh.halfedges()) {
+      if (model.surfaces[i].mesh.is_boundary(h)) {
+        throw InputError(spec.loc, spec.path,
+                         "rigid: the rigid surface " + quoted(spec.name) +
+                             " must be closed (it has a hole), since a cut keeps what it "
+                             "encloses whole");
+      }
+    }
+  }
+  // No two surfaces cross or touch: each lies inside, outside or beside each other one (a
+  // crossing gives cut faces whose regions are not nested, and colours smeared across them).
+  std::vector<SurfaceMesh> inner;
+  for (size_t i = 1; i < model.surfaces.size(); ++i)
+    inner.push_back(to_cgal(model.surfaces[i].mesh));
+  for (size_t j = 1; j < model.surfaces.size(); ++j) {
+    for (size_t i = 1; i < j; ++i) {
+      if (!PMP::do_intersect(inner[i - 1], inner[j - 1])) continue;
+      const SurfaceSpec& a = t.surfaces[specs[i]];
+      const SurfaceSpec& b = t.surfaces[specs[j]];
+      const bool rigid = model.surfaces[i].rigid || model.surfaces[j].rigid;
+      throw InputError(b.loc, b.path,
+                       "surface " + quoted(b.name) + " touches or crosses " +
+                           (rigid ? "the rigid surface " : "surface ") + quoted(a.name) +
+                           crossing_point(inner[i - 1], inner[j - 1], t.metres_per_unit) +
+                           (rigid ? ": a surface lies wholly inside a rigid one or wholly "
+                                    "outside it"
+                                  : ": surfaces may nest inside each other but not cross"));
     }
   }
 }

@@ -359,6 +359,7 @@ DsSurface sweep_around(const SurfaceSpec& spec, const Template& t, size_t max_ve
   s.role = spec.is_skin ? SurfaceRole::Skin : SurfaceRole::Structure;
   s.visible_front = spec.visible_front;
   s.visible_back = spec.visible_back;
+  s.rigid = spec.rigid;
   add_grid(g, spec, t.ripeness, false, s.mesh);
   return s;
 }
@@ -400,6 +401,7 @@ DsSurface sweep_within(const SurfaceSpec& spec, const Template& t, size_t max_ve
   s.role = spec.is_skin ? SurfaceRole::Skin : SurfaceRole::Structure;
   s.visible_front = spec.visible_front;
   s.visible_back = spec.visible_back;
+  s.rigid = spec.rigid;
   for (int fold = 0; fold < t.folds; ++fold) {
     const Polyline2 loop = resample_uniform(frame_loops[nloops == 1 ? 0 : fold], true, m);
     const SweepGrid g = within_fold_grid(spec, t, rails, heights, loop, fold);

@@ -136,6 +136,19 @@ struct SurfaceSpec {
   glm::dvec2 material_front{0.6, 0.0}, material_back{0.6, 0.0};
   bool visible_front = true;
   bool visible_back = true;
+  /// A closed inner surface that a knife does not cross (a stone, a pit, a shell): cuts leave
+  /// it whole in one piece and an imprint of it in the others (doc/template-format.md, Rigid
+  /// surfaces; algorithms.md §4).
+  bool rigid = false;
+  /// An inner surface moved off the axis (part_placement.h): turned by `tilt_rad` (about +X,
+  /// then about +Z, through the centre of its bounding box), then moved by `offset_m`
+  /// (metres), together with every surface it encloses. Zero: where it was swept.
+  glm::dvec3 offset_m{0.0};
+  glm::dvec2 tilt_rad{0.0};
+  /// How far a variant may move the surface from its offset, metres (`wander`): each variant
+  /// adds a seeded offset within a ball of this radius times its amount (draw_variant).
+  double wander_m = 0;
+  FileLoc placement_loc;  ///< its `offset` (or `tilt`, when it has no offset)
   /// mesh: the PLY file, resolved relative to the template's directory, and what it holds
   /// (shared by the copies of the template, e.g. its variants)
   std::string mesh_file;

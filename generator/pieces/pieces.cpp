@@ -14,6 +14,7 @@
 #include "diffusion/shared_batches.h"
 #include "pieces/clip_mesh.h"
 #include "pieces/manifold_check.h"
+#include "pieces/rigid_stones.h"
 #include "pieces/seam_stitch.h"
 
 namespace cutaway {
@@ -135,9 +136,13 @@ bool on_cell_face(const CutCells& cells, int plane, const glm::dvec3& c,
   return false;
 }
 
-/// The pieces of `model` in `cells` (steps 1-4 of cut_pieces).
-PieceSet pieces_in_cells(const DsModel& model, const CutCells& cells,
-                         const DiffusionBackend& diffusion, const PieceOptions& options) {
+/// The pieces of `model` in `cells` (steps 1-4 of cut_pieces); `stones`: its rigid surfaces'
+/// plan, or null when it has none.
+PieceSet pieces_in_cells(const DsModel& original, const CutCells& cells,
+                         const DiffusionBackend& diffusion, const PieceOptions& options,
+                         const StonePlan* stones) {
+  // The sections and walls see each stone as hollow and what is inside it as absent.
+  const DsModel& model = stones ? stones->hollowed : original;
   PieceSet set;
   set.cells = cells;
   const int threads = diffusion.threads();
@@ -188,13 +193,35 @@ PieceSet pieces_in_cells(const DsModel& model, const CutCells& cells,
       for (size_t k = 0; k < cells.cells.size(); ++k)
         if (!has_cap[k] && on_face_of(cells, k, static_cast<int>(i), c)) has_cap[k] = true;
   }
+  // Each stone goes whole to one cell: there, its own wall is inside the piece, and its
+  // surface outside the cell, showing the stone's colour, closes the piece instead.
+  std::vector<int> holder;
+  if (stones)
+    for (const RigidStone& stone : stones->stones)
+      holder.push_back(holder_cell(stone, cells, options.stone_seed));
+  auto held_here = [&](int surface, size_t c) {
+    if (!stones) return false;
+    for (size_t k = 0; k < stones->stones.size(); ++k)
+      if (stones->stones[k].surface == surface && holder[k] == static_cast<int>(c)) return true;
+    return false;
+  };
   std::vector<Piece> made;
   for (size_t c = 0; c < cells.cells.size(); ++c) {
     Piece piece;
     piece.cell = static_cast<int>(c);
     for (const Source& src : sources) {
+      if (held_here(src.surface, c)) continue;
       ShadedMesh clipped = clip_to_cell(src.mesh, cells, cells.cells[c]);
       if (!clipped.triangle.empty()) piece.parts.push_back({src.kind, src.surface, -1, clipped});
+    }
+    for (size_t k = 0; stones && k < stones->stones.size(); ++k) {
+      if (holder[k] != static_cast<int>(c)) continue;
+      const RigidStone& stone = stones->stones[k];
+      const DsSurface& surface = original.surfaces[static_cast<size_t>(stone.surface)];
+      const ShadedMesh outside =
+          shaded_surface(surface, !stone.front_outside, !stone.front_outside);
+      for (ShadedMesh& part : outside_cell(outside, cells, cells.cells[c]))
+        piece.parts.push_back({PartKind::Stone, stone.surface, -1, std::move(part)});
     }
     if (!piece.parts.empty() || has_cap[c]) made.push_back(std::move(piece));
   }
@@ -284,10 +311,11 @@ Outcome<PieceSet> cut_pieces(const DsModel& model, const CutSpec& cut,
   const bool may_retry =
       !cells.planes.empty() &&
       check_manifold(shaded_surface(model.skin(), true, false), kMinVertexSeparation_m).has_value();
+  const std::optional<StonePlan> stones = plan_stones(model);
   PieceSet set;
   for (int attempt = 0;; ++attempt) {
     const CutCells moved = general_position(cells, model, attempt, options.section.edge_m);
-    PieceSet next = pieces_in_cells(model, moved, diffusion, options);
+    PieceSet next = pieces_in_cells(model, moved, diffusion, options, stones ? &*stones : nullptr);
     const auto check_start = std::chrono::steady_clock::now();
     for (const Piece& piece : next.pieces)
       if (!check_manifold(merge_parts(piece), kMinVertexSeparation_m)) ++next.defective_pieces;

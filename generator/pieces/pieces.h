@@ -19,18 +19,21 @@
 namespace cutaway {
 
 /// What a part of a piece's surface is.
-enum class PartKind { Skin, Wall, Cap };
+/// Stone: the surface of a rigid surface outside the cell of the piece that holds it whole
+/// (rigid_stones.h).
+enum class PartKind { Skin, Wall, Stone, Cap };
 
 /// One part of a piece's surface. Normals point out of the piece; colours are what that side
-/// shows (skin: its front colour; wall: the colour of its non-hollow side; cap: diffused).
+/// shows (skin: its front colour; wall: the colour of its non-hollow side; stone: the colour
+/// of its inside; cap: diffused).
 struct PiecePart {
   PartKind kind = PartKind::Skin;
-  int surface = -1;  ///< skin, wall: index into DsModel::surfaces
+  int surface = -1;  ///< skin, wall, stone: index into DsModel::surfaces
   int plane = -1;    ///< cap: index into CutCells::planes
   ShadedMesh mesh;
 };
 
-/// One piece: the parts of its surface, in the order skin, walls, caps (by plane index).
+/// One piece: the parts of its surface, in the order skin, walls, stones, caps (by plane index).
 struct Piece {
   int cell = -1;  ///< index into CutCells::cells
   std::vector<PiecePart> parts;
@@ -50,6 +53,9 @@ struct PieceOptions {
   /// scene that keeps a share of each cut pays PMVC for that share (a cap shared by a kept and
   /// a dropped piece is coloured whole).
   std::function<std::vector<size_t>(size_t n)> keep_pieces;
+  /// Breaks ties between cells that hold equal shares of a rigid surface (holder_cell): the
+  /// variant's seed.
+  uint64_t stone_seed = 0;
 };
 
 /// Planes in general position (general_position): a plane that does not contain the object's
@@ -96,15 +102,18 @@ struct PieceSet {
 /// only triangles that a kept piece uses are coloured (PieceOptions::keep_pieces). Surfaces that
 /// are hollow on one side (visible_front or visible_back false, not the skin) are the walls of
 /// hollow regions: clipped and shown with the colour of their other side, facing the hollow. Grains
-/// and other structure surfaces only colour the caps. The planes are first put in general position
-/// (kVertexClearance). Every piece is checked with check_manifold (kMinVertexSeparation_m); when a
-/// kept one fails (a near-degenerate configuration: a surface edge passing nanometres from the line
-/// where two cutting planes meet, so that the two caps' seams cannot agree), the whole cut is
-/// redone with its planes nudged (kMaxCutAttempts; in the spirit of symbolic perturbation, but with
-/// real sub-micrometre moves). The caps of the planes are meshed on diffusion.threads() threads and
-/// coloured at once, on as many threads (up to 32 when it is 0) that take them in turn, their
-/// diffusions in shared batches (shared_batches.h); one at a time when it is 1. Deterministic: the
-/// result does not depend on the thread count.
+/// and other structure surfaces only colour the caps. A rigid surface (a stone) is never split
+/// (rigid_stones.h): it is hollow inside for every piece, as a cavity, except the piece whose
+/// cell holds most of it, which also gets the stone's surface outside its cell (stone parts),
+/// so that piece holds the whole stone and everything in it. The planes are first put in general
+/// position (kVertexClearance). Every piece is checked with check_manifold
+/// (kMinVertexSeparation_m); when a kept one fails (a near-degenerate configuration: a surface edge
+/// passing nanometres from the line where two cutting planes meet, so that the two caps' seams
+/// cannot agree), the whole cut is redone with its planes nudged (kMaxCutAttempts; in the spirit of
+/// symbolic perturbation, but with real sub-micrometre moves). The caps of the planes are meshed on
+/// diffusion.threads() threads and coloured at once, on as many threads (up to 32 when it is 0)
+/// that take them in turn, their diffusions in shared batches (shared_batches.h); one at a time
+/// when it is 1. Deterministic: the result does not depend on the thread count.
 /// @param model  its skin (surfaces[0]) closed and outward
 /// @returns the pieces, or none (an expected outcome): kCutMisses when the cut misses the
 ///          object entirely (no piece), kPlaneMisses (cross_section.h) when a `plane` cut leaves

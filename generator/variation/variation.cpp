@@ -4,6 +4,8 @@
 #include <cmath>
 #include <optional>
 
+#include <glm/geometric.hpp>
+
 #include "model/model_builder.h"
 #include "model/template_checks.h"
 #include "variation/grains.h"
@@ -17,6 +19,24 @@ namespace {
 constexpr uint64_t kPurposeVariation = 0x7661726961;  // "varia"
 /// Purpose tag of the ripeness stream.
 constexpr uint64_t kPurposeRipeness = 0x726970656e;  // "ripen"
+/// Purpose tag of the parts' wander streams (one per surface and draw).
+constexpr uint64_t kPurposeWander = 0x77616e646572;  // "wander"
+
+/// `out` with every surface that may wander moved by a seeded offset, uniform in the ball of
+/// radius amount * wander_m (rejection sampling), on top of its own offset.
+Template wandered(Template out, uint64_t seed, uint64_t draw, double amount) {
+  for (size_t i = 0; i < out.surfaces.size(); ++i) {
+    SurfaceSpec& s = out.surfaces[i];
+    if (!(s.wander_m > 0)) continue;
+    Rng rng(derive_seed(seed, {kPurposeWander, draw, static_cast<uint64_t>(i)}));
+    glm::dvec3 d;
+    do {
+      d = {rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)};
+    } while (glm::dot(d, d) > 1);
+    s.offset_m += amount * s.wander_m * d;
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -37,12 +57,12 @@ Template draw_variant(const Template& t, uint64_t seed, uint64_t draw, double am
       loops.push_back(s.section.loops[0]);
       smooth.push_back(s.smooth);
     }
-    if (which.empty()) return t;
+    if (which.empty()) return wandered(out, seed, draw, amount);
     DeBonetOptions d = opt.debonet;
     d.amount = amount;
     const auto varied = synthesize_loops(loops, smooth, opt.loop_samples, d, rng);
     for (size_t k = 0; k < which.size(); ++k) out.surfaces[which[k]].section.loops = {varied[k]};
-    return out;
+    return wandered(out, seed, draw, amount);
   }
   // N-fold.
   const FoldFeatures f = fold_features(t, opt.folds);
@@ -51,7 +71,7 @@ Template draw_variant(const Template& t, uint64_t seed, uint64_t draw, double am
   const int np = lo + static_cast<int>(rng.below(static_cast<uint32_t>(hi - lo + 1)));
   std::vector<std::vector<double>> vectors;
   for (int k = 0; k < np; ++k) vectors.push_back(draw_fold(pca, amount, rng));
-  return rebuild_folds(t, f, vectors, opt.folds);
+  return wandered(rebuild_folds(t, f, vectors, opt.folds), seed, draw, amount);
 }
 
 double draw_ripeness(const Template& t, uint64_t seed) {

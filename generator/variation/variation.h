@@ -35,6 +35,9 @@ struct Variant {
 /// N-fold -> N' folds (uniform in [variation_folds_min, max]) drawn by PCA fold blending with
 /// coefficients ~ N(0, amount^2); none or amount 0 -> tmpl. Deterministic in (seed, draw).
 /// Circle sections stay circles (nothing to vary; their radius channel would be constant).
+/// Besides, each surface with a `wander` (SurfaceSpec::wander_m) gets a seeded offset uniform
+/// in the ball of radius amount * wander_m, from a stream of its own per surface and draw
+/// (part_placement.h moves it; a draw that makes it cross another surface is drawn again).
 Template draw_variant(const Template& tmpl, uint64_t seed, uint64_t draw, double amount_scale,
                       const VariationOptions& options = {});
 

@@ -74,17 +74,6 @@ Key key(const glm::dvec3& p) { return {p.x, p.y, p.z}; }
   return ::testing::AssertionSuccess();
 }
 
-double surface_volume(const DsSurface& s) {
-  double six_v = 0;
-  for (auto fh : s.mesh.faces()) {
-    std::array<OpenMesh::Vec3d, 3> p;
-    int k = 0;
-    for (auto vh : s.mesh.fv_range(fh)) p[k++] = s.mesh.point(vh);
-    six_v += OpenMesh::dot(p[0], OpenMesh::cross(p[1], p[2]));
-  }
-  return six_v / 6;
-}
-
 struct Case {
   const char* file;
   const char* cut;
@@ -114,10 +103,10 @@ TEST_P(PiecesTest, ClosedManifoldsWhoseVolumesAddUp) {
     EXPECT_GT(v, 0) << "piece of cell " << piece.cell;
     volume += v;
   }
-  double expected = surface_volume(model.skin());
+  double expected = test::surface_volume(model.skin());
   for (const DsSurface& s : model.surfaces)
     if (s.role != SurfaceRole::Grain && s.visible_front != s.visible_back)
-      expected -= std::fabs(surface_volume(s));
+      expected -= std::fabs(test::surface_volume(s));
   EXPECT_NEAR(volume, expected, 0.005 * expected) << (hollow ? "with hollows" : "");
 }
 
