@@ -89,7 +89,9 @@ Check check_collision(const CollisionShape& c, double reach_m) {
 double template_reach_m(const Template& tmpl) {
   double metres = 0;  // profiles and sections are parsed into metres, mesh files are in units
   for (const SurfaceSpec& s : tmpl.surfaces) {
-    const double widening = section_widening(s.section);
+    double widening = section_widening(s.section);
+    for (const HeightSection& h : s.sections)
+      widening = std::max(widening, section_widening(h.section));
     for (const glm::dvec2& p : s.profile)
       metres = std::max(metres, std::hypot(p.x * widening, p.y));
     if (s.mesh)

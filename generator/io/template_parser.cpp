@@ -171,8 +171,8 @@ void parse_material_channels(const YamlField& f, const PbrMaterial& cut, glm::dv
 
 SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::string& base_dir) {
   f.allow_only({"name", "kind", "role", "profile", "section", "smooth", "front", "back", "blur",
-                "roughness", "translucency", "visible", "rigid", "offset", "tilt", "wander", "file",
-                "patterns"});
+                "roughness", "translucency", "visible", "rigid", "offset", "tilt", "wander",
+                "sections", "file", "patterns"});
   SurfaceSpec s;
   s.path = f.path();
   s.loc = f.loc();
@@ -231,7 +231,25 @@ SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::stri
       profile.fail("an 'around' profile is ordered bottom to top (its last point must be higher "
                    "than its first)");
     }
-    if (auto section = f.get("section")) {
+    if (auto sections = f.get("sections")) {
+      if (s.kind != SurfaceKind::Around || t.symmetry != Symmetry::Cylindrical)
+        sections->fail("only an 'around' surface of a cylindrical template has 'sections'");
+      if (f.get("section")) sections->fail("give 'section' or 'sections', not both");
+      if (!sections->is_sequence() || sections->size() < 2)
+        sections->fail("'sections' lists at least two {at, section}, from the lowest height up");
+      for (size_t i = 0; i < sections->size(); ++i) {
+        const YamlField e = (*sections)[i];
+        e.allow_only({"at", "section"});
+        const YamlField at = e.require("at");
+        HeightSection h{at.number_in(0, 1), parse_section(e.require("section"), m)};
+        if (!s.sections.empty() && !(h.at > s.sections.back().at))
+          at.fail("the heights 'at' must increase from one section to the next");
+        if (!h.section.circle && h.section.loops.size() > 1)
+          e.require("section").fail("an 'around' section is 'circle' or one loop around the axis");
+        s.sections.push_back(std::move(h));
+      }
+      s.section = s.sections.front().section;
+    } else if (auto section = f.get("section")) {
       s.section = parse_section(*section, m);
       if (s.kind == SurfaceKind::Around && s.section.loops.size() > 1) {
         section->fail("an 'around' section is 'circle' or one loop around the axis");

@@ -300,6 +300,60 @@ SweepGrid within_fold_grid(const SurfaceSpec& spec, const Template& t, const Wit
   return g;
 }
 
+/// The distance from the origin to the closed polyline `loop` (star-shaped about the origin)
+/// along the ray at angle `phi`, direction (cos phi, -sin phi) (the templates' angle
+/// convention: from +X towards -Z); the farthest crossing, 0 when the ray meets none.
+double radius_along(const Polyline2& loop, double phi) {
+  const glm::dvec2 d(std::cos(phi), -std::sin(phi));
+  double best = 0;
+  for (size_t i = 0; i < loop.size(); ++i) {
+    const glm::dvec2 a = loop[i], e = loop[(i + 1) % loop.size()] - a;
+    const double den = d.x * e.y - d.y * e.x;
+    if (den == 0) continue;
+    const double t = (a.x * e.y - a.y * e.x) / den;  // origin + t d = a + u e
+    const double u = (a.x * d.y - a.y * d.x) / den;
+    if (u >= 0 && u <= 1 && t > best) best = t;
+  }
+  return best;
+}
+
+/// The unit loops of an 'around' surface with `sections` at several heights: per profile
+/// sample i of n + 1 (normalised arc length i / n), m points at the angles 2 pi j / m, each
+/// section's radius there over its radius at angle 0, blended between the two sections whose
+/// heights enclose i / n by a smoothstep (below the first and above the last: that one).
+std::vector<Polyline2> blended_unit_loops(const SurfaceSpec& spec, int n, int m) {
+  std::vector<std::vector<double>> radii;
+  for (const HeightSection& h : spec.sections) {
+    std::vector<double> r(static_cast<size_t>(m), 1.0);
+    if (!h.section.circle) {
+      const Polyline2 loop = fit_curve(h.section.loops[0], true, spec.smooth);
+      const double r0 = radius_along(loop, 0);
+      for (int j = 0; j < m; ++j) r[j] = radius_along(loop, 2 * kPi * j / m) / r0;
+    }
+    radii.push_back(std::move(r));
+  }
+  std::vector<Polyline2> loops;
+  for (int i = 0; i <= n; ++i) {
+    const double tp = static_cast<double>(i) / n;
+    size_t k = 0;
+    while (k + 1 < spec.sections.size() && spec.sections[k + 1].at <= tp) ++k;
+    double w = 0;
+    if (k + 1 < spec.sections.size() && tp > spec.sections[k].at) {
+      const double x = (tp - spec.sections[k].at) / (spec.sections[k + 1].at - spec.sections[k].at);
+      w = x * x * (3 - 2 * x);
+    }
+    const std::vector<double>& a = radii[k];
+    const std::vector<double>& b = radii[std::min(k + 1, radii.size() - 1)];
+    Polyline2 loop;
+    for (int j = 0; j < m; ++j) {
+      const double phi = 2 * kPi * j / m, r = (1 - w) * a[j] + w * b[j];
+      loop.push_back({r * std::cos(phi), -r * std::sin(phi)});
+    }
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
 }  // namespace
 
 DsSurface sweep_around(const SurfaceSpec& spec, const Template& t, size_t max_vertices) {
@@ -323,6 +377,12 @@ DsSurface sweep_around(const SurfaceSpec& spec, const Template& t, size_t max_ve
     rho0 = glm::length(started.front());
     perimeter = curve_length(started, true) / rho0;
   }
+  for (const HeightSection& h : spec.sections) {  // the longest of the sections at heights
+    if (h.section.circle) continue;
+    const Polyline2 loop =
+        around_loop_from_angle0(fit_curve(h.section.loops[0], true, spec.smooth));
+    perimeter = std::max(perimeter, curve_length(loop, true) / glm::length(loop.front()));
+  }
   int m = segments_for(max_r * perimeter, edge, 8);
   // An N-fold object maps onto itself under a turn by 2 pi / N only if every fold gets the same
   // samples: a multiple of N, so that sample k m / N lies where sample 0 turned by k folds lies.
@@ -337,9 +397,12 @@ DsSurface sweep_around(const SurfaceSpec& spec, const Template& t, size_t max_ve
     for (const auto& p : resample_uniform(started, true, m)) unit_loop.push_back(p / rho0);
   }
 
+  const std::vector<Polyline2> at_height =
+      spec.sections.empty() ? std::vector<Polyline2>{} : blended_unit_loops(spec, n, m);
   SweepGrid g;
   for (int i = 0; i <= n; ++i) {
     const double r = prof[i].x, y = prof[i].y, tp = static_cast<double>(i) / n;
+    const Polyline2& unit = at_height.empty() ? unit_loop : at_height[static_cast<size_t>(i)];
     std::vector<glm::dvec3> row;
     std::vector<glm::dvec2> par;
     if ((i == 0 || i == n) && r <= 0) {
@@ -347,7 +410,7 @@ DsSurface sweep_around(const SurfaceSpec& spec, const Template& t, size_t max_ve
       par.push_back({tp, 0});
     } else {
       for (int j = 0; j < m; ++j) {
-        row.push_back({r * unit_loop[j].x, y, r * unit_loop[j].y});
+        row.push_back({r * unit[j].x, y, r * unit[j].y});
         par.push_back({tp, static_cast<double>(j) / m});
       }
     }

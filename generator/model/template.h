@@ -118,6 +118,13 @@ struct MeshData {
   double signed_volume6 = 0;  ///< six times the signed volume: negative when wound inwards
 };
 
+/// An `around` section written for one height of its profile (`sections`): `at` is the
+/// normalised arc length along the profile, 0 at its first point, 1 at its last.
+struct HeightSection {
+  double at = 0;
+  SectionSpec section;
+};
+
 /// One diffusion surface of the template (doc/template-format.md, Surfaces).
 struct SurfaceSpec {
   std::string name;
@@ -126,6 +133,10 @@ struct SurfaceSpec {
   /// around: open curve bottom to top, [r, y] in metres, r >= 0. within: closed curve, r > 0.
   std::vector<glm::dvec2> profile;
   SectionSpec section;
+  /// around, cylindrical: sections at several heights, `at` increasing (at least two), blended
+  /// between them (sweep.h); empty: `section` at every height. When set, `section` is the
+  /// first of them.
+  std::vector<HeightSection> sections;
   /// true: centripetal Catmull-Rom spline through the points; false: polyline.
   bool smooth = true;
   ColourField front = ColourField::constant({0.5, 0.5, 0.5});

@@ -44,6 +44,34 @@ void check_simple(const Polyline2& fitted, bool closed, const FileLoc& loc,
   }
 }
 
+/// The rules of one section loop of an 'around' surface: distinct points, simple, round the
+/// axis, star-shaped about it.
+void check_around_section(const SurfaceSpec& s, const SectionSpec& section,
+                          const std::string& sfield) {
+  if (section.circle) return;
+  check_distinct(section.loops[0], true, section.loc, sfield);
+  const Polyline2 loop = fit_curve(section.loops[0], true, s.smooth);
+  check_simple(loop, true, section.loc, sfield, s.smooth);
+  if (winding_number(loop, {0, 0}) == 0) {
+    fail_at(section.loc, sfield,
+            "an 'around' section loop must surround the axis (the point "
+            "[0, 0])");
+  }
+  // Star-shaped about the axis: the angle turns the same way at every step.
+  int sign = 0;
+  for (size_t i = 0; i < loop.size(); ++i) {
+    const glm::dvec2 a = loop[i], b = loop[(i + 1) % loop.size()];
+    const double d = wrap_angle(horizontal_angle(b) - horizontal_angle(a));
+    const int sg = d > 1e-12 ? 1 : (d < -1e-12 ? -1 : 0);
+    if (sg == 0 || (sign != 0 && sg != sign)) {
+      fail_at(section.loc, sfield,
+              "an 'around' section loop must be star-shaped about the axis: every ray from "
+              "the axis meets it once");
+    }
+    sign = sg;
+  }
+}
+
 void check_around(const SurfaceSpec& s) {
   const std::string field = s.path + ".profile";
   check_distinct(s.profile, false, s.profile_loc, field);
@@ -63,29 +91,13 @@ void check_around(const SurfaceSpec& s) {
             "the skin must be closed: an 'around' skin's profile starts and ends on the axis "
             "(r = 0)");
   }
-  if (s.section.circle) return;
-  const std::string sfield = s.path + ".section";
-  check_distinct(s.section.loops[0], true, s.section.loc, sfield);
-  const Polyline2 loop = fit_curve(s.section.loops[0], true, s.smooth);
-  check_simple(loop, true, s.section.loc, sfield, s.smooth);
-  if (winding_number(loop, {0, 0}) == 0) {
-    fail_at(s.section.loc, sfield,
-            "an 'around' section loop must surround the axis (the point "
-            "[0, 0])");
+  if (s.sections.empty()) {
+    check_around_section(s, s.section, s.path + ".section");
+    return;
   }
-  // Star-shaped about the axis: the angle turns the same way at every step.
-  int sign = 0;
-  for (size_t i = 0; i < loop.size(); ++i) {
-    const glm::dvec2 a = loop[i], b = loop[(i + 1) % loop.size()];
-    const double d = wrap_angle(horizontal_angle(b) - horizontal_angle(a));
-    const int sg = d > 1e-12 ? 1 : (d < -1e-12 ? -1 : 0);
-    if (sg == 0 || (sign != 0 && sg != sign)) {
-      fail_at(s.section.loc, sfield,
-              "an 'around' section loop must be star-shaped about the axis: every ray from "
-              "the axis meets it once");
-    }
-    sign = sg;
-  }
+  for (size_t k = 0; k < s.sections.size(); ++k)
+    check_around_section(s, s.sections[k].section,
+                         s.path + ".sections[" + std::to_string(k) + "].section");
 }
 
 void check_within(const SurfaceSpec& s, const Template& t) {

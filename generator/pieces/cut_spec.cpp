@@ -99,7 +99,9 @@ ObjectExtents template_extents(const Template& t) {
     // stays close to it); the height along the straight axis bounds the bent one.
     double spine_reach = 0;
     for (const auto& p : t.spine.points) spine_reach = std::max(spine_reach, std::fabs(p.x));
-    e.radius_m = max_r * section_reach(skin.section) + spine_reach;
+    double reach = section_reach(skin.section);
+    for (const HeightSection& h : skin.sections) reach = std::max(reach, section_reach(h.section));
+    e.radius_m = max_r * reach + spine_reach;
     e.height_m = hi - lo;
     return e;
   }

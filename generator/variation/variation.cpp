@@ -52,7 +52,9 @@ Template draw_variant(const Template& t, uint64_t seed, uint64_t draw, double am
     std::vector<bool> smooth;
     for (int i = 0; i < static_cast<int>(t.surfaces.size()); ++i) {
       const SurfaceSpec& s = t.surfaces[i];
-      if (s.kind != SurfaceKind::Around || s.section.circle) continue;
+      // Sections at several heights keep their shapes (the organic deformation still moves
+      // them); De Bonet varies one loop per surface.
+      if (s.kind != SurfaceKind::Around || s.section.circle || !s.sections.empty()) continue;
       which.push_back(i);
       loops.push_back(s.section.loops[0]);
       smooth.push_back(s.smooth);

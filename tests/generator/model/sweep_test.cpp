@@ -170,6 +170,75 @@ TEST(SweepAround, APolarSquareKeepsItsShape) {
   EXPECT_GT(corners, 0);  // 4-fold: the section count is a multiple of 4, so corners are samples
 }
 
+/// The cylinder with `sections` (a YAML flow list) instead of one section.
+std::string cylinder_with_sections(const std::string& symmetry, const std::string& sections) {
+  std::string text = cylinder(symmetry, "1.3");
+  text.replace(text.find("    section: circle\n"), 20, "    sections: " + sections + "\n");
+  return text;
+}
+
+// Sections at two heights: a circle up to a quarter of the profile, a square from three
+// quarters, and between them every ring lies between the two (blended radius by radius).
+TEST(SweepAround, SectionsAtSeveralHeightsBlendFromOneToTheNext) {
+  const std::string sq = "{polar: [[45, 1.4142135623730951], [135, 1.4142135623730951], "
+                         "[225, 1.4142135623730951], [315, 1.4142135623730951]]}";
+  const Template t = parse(cylinder_with_sections(
+      "{type: cylindrical}", "[{at: 0.25, section: circle}, {at: 0.75, section: " + sq + "}]"));
+  ASSERT_EQ(t.surfaces[0].sections.size(), 2u);
+  const DsSurface s = sweep_around(t.surfaces[0], t);
+  int circles = 0, squares = 0, between = 0;
+  for (auto v : s.mesh.vertices()) {
+    const glm::dvec3 p = point(s.mesh, v);
+    const double tp = s.mesh.data(v).param[0];
+    const double r = cylinder_profile(tp).x;
+    if (r == 0) continue;
+    const double round = std::hypot(p.x, p.z), square = std::max(std::abs(p.x), std::abs(p.z));
+    if (tp <= 0.25) {
+      ASSERT_NEAR(round, r, 1e-9) << tp;
+      ++circles;
+    } else if (tp >= 0.75) {
+      ASSERT_NEAR(square, r, 1e-9) << tp;
+      ++squares;
+    } else {
+      ASSERT_LE(square, r + 1e-9) << tp;
+      ASSERT_GE(round, r - 1e-9) << tp;
+      ++between;
+    }
+  }
+  EXPECT_GT(circles, 0);
+  EXPECT_GT(squares, 0);
+  EXPECT_GT(between, 0);
+}
+
+TEST(SweepAround, SectionsAtHeightsFollowTheirRules) {
+  auto error = [](const std::string& text) -> std::string {
+    try {
+      check_template_curves(parse(text));
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_NE(error(cylinder_with_sections("{type: cylindrical}",
+                                         "[{at: 0.5, section: circle}, {at: 0.5, section: "
+                                         "circle}]"))
+                .find("sections[1].at: the heights 'at' must increase"),
+            std::string::npos);
+  EXPECT_NE(error(cylinder_with_sections("{type: nfold, folds: 4}",
+                                         "[{at: 0, section: circle}, {at: 1, section: circle}]"))
+                .find("only an 'around' surface of a cylindrical template has 'sections'"),
+            std::string::npos);
+  EXPECT_NE(error(cylinder_with_sections("{type: cylindrical}", "[{at: 0, section: circle}]"))
+                .find("at least two"),
+            std::string::npos);
+  // Each loop is held to the rules of a single section, at its own field.
+  EXPECT_NE(error(cylinder_with_sections(
+                      "{type: cylindrical}",
+                      "[{at: 0, section: circle}, {at: 1, section: [[1, 1], [2, 1], [2, 2]]}]"))
+                .find("sections[1].section: an 'around' section loop must surround the axis"),
+            std::string::npos);
+}
+
 TEST(SweepAround, GradientsFollowTheSweepParameters) {
   const std::string extra =
       "    front: {along: profile, stops: [[0, \"#000000\"], [1, \"#ffffff\"]]}\n"
