@@ -300,9 +300,11 @@ SweepGrid within_fold_grid(const SurfaceSpec& spec, const Template& t, const Wit
   return g;
 }
 
-/// The distance from the origin to the closed polyline `loop` (star-shaped about the origin)
-/// along the ray at angle `phi`, direction (cos phi, -sin phi) (the templates' angle
-/// convention: from +X towards -Z); the farthest crossing, 0 when the ray meets none.
+/// The distance from the origin to the closed polyline `loop` (star-shaped about the origin:
+/// template_checks.h) along the ray at angle `phi`, direction (cos phi, -sin phi) (the
+/// templates' angle convention: from +X towards -Z). A ray through a corner of the loop meets
+/// both of its segments at an end, where rounding may put the crossing a hair outside either:
+/// each segment is taken with a margin of 1e-9 of its length, and the farthest crossing wins.
 double radius_along(const Polyline2& loop, double phi) {
   const glm::dvec2 d(std::cos(phi), -std::sin(phi));
   double best = 0;
@@ -312,8 +314,9 @@ double radius_along(const Polyline2& loop, double phi) {
     if (den == 0) continue;
     const double t = (a.x * e.y - a.y * e.x) / den;  // origin + t d = a + u e
     const double u = (a.x * d.y - a.y * d.x) / den;
-    if (u >= 0 && u <= 1 && t > best) best = t;
+    if (u >= -1e-9 && u <= 1 + 1e-9 && t > best) best = t;
   }
+  CUTAWAY_CHECK(best > 0);  // a star-shaped loop round the origin meets every ray
   return best;
 }
 

@@ -483,7 +483,9 @@ SettleResult settle_pieces(const std::vector<SettleBody>& bodies, const Containe
   std::vector<int> drops(bodies.size(), 0);
   auto world = world_at(bodies, drop_poses, container, options, id);
   settle_world(*world, bodies, id, drops, ceiling, options, r);
-  r.placements = world->poses(bodies, id);
+  // Not a step taken (max_seconds 0: only the check): the layout is the one given, exactly,
+  // not its round trip through the world's transforms (they are single precision).
+  r.placements = r.steps == 0 ? drop_poses : world->poses(bodies, id);
   // The stability check: the layout in a new world, at rest, run for verify_seconds. If a piece
   // moves more than check_motion_m the layout is not at rest without the contact impulses that
   // settling built up step after step (a settled salad sagged 6.7 mm when they were lost); it
