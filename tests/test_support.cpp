@@ -193,17 +193,6 @@ DsModel model_of(const std::string& relative) {
   return build_model(load_template(source_path(relative).string()));
 }
 
-double surface_volume(const DsSurface& surface) {
-  double six_v = 0;
-  for (auto fh : surface.mesh.faces()) {
-    std::array<OpenMesh::Vec3d, 3> p;
-    int k = 0;
-    for (auto vh : surface.mesh.fv_range(fh)) p[k++] = surface.mesh.point(vh);
-    six_v += OpenMesh::dot(p[0], OpenMesh::cross(p[1], p[2]));
-  }
-  return six_v / 6;
-}
-
 Plane plane_of(glm::dvec3 point, glm::dvec3 normal) { return {point, glm::normalize(normal)}; }
 
 std::vector<std::string> files_in(const std::filesystem::path& dir) {

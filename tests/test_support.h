@@ -113,10 +113,6 @@ std::filesystem::path source_path(const std::string& relative);
 /// and build_model throw.
 DsModel model_of(const std::string& relative);
 
-/// The signed volume a DS surface's triangles enclose (divergence theorem), cubic metres:
-/// positive for a closed surface whose front is its outside.
-double surface_volume(const DsSurface& surface);
-
 /// The plane through `point` (metres) with the unit normal along `normal` (any length > 0).
 Plane plane_of(glm::dvec3 point, glm::dvec3 normal);
 

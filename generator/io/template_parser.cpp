@@ -288,13 +288,11 @@ SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::stri
     if (!x->is_sequence() || x->size() != 2)
       x->fail("a tilt is [about x, about z] in degrees, each in -90..90");
     s.tilt_rad = {(*x)[0].number_in(-90, 90) * kDeg, (*x)[1].number_in(-90, 90) * kDeg};
-    s.placement_loc = x->loc();
   }
   if (auto x = f.get("offset")) {
     if (s.is_skin) x->fail("the skin is the object's frame: offset the surfaces inside it");
     if (!x->is_sequence() || x->size() != 3) x->fail("an offset is [x, y, z] in template units");
     for (int k = 0; k < 3; ++k) s.offset_m[k] = within_limit((*x)[k], (*x)[k].number(), m) * m;
-    s.placement_loc = x->loc();
   }
   if (auto x = f.get("wander")) {
     if (s.is_skin) x->fail("the skin is the object's frame: let the surfaces inside it wander");

@@ -45,14 +45,29 @@ void update_bounds(DsModel& model) {
   model.bbox_max = hi;
 }
 
-std::pair<glm::dvec3, glm::dvec3> skin_bounds(const DsModel& model) {
+std::pair<glm::dvec3, glm::dvec3> mesh_bounds(const DsMesh& mesh) {
   glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
-  for (const auto vh : model.skin().mesh.vertices()) {
-    lo = glm::min(lo, to_glm(model.skin().mesh.point(vh)));
-    hi = glm::max(hi, to_glm(model.skin().mesh.point(vh)));
+  for (const auto vh : mesh.vertices()) {
+    lo = glm::min(lo, to_glm(mesh.point(vh)));
+    hi = glm::max(hi, to_glm(mesh.point(vh)));
   }
   CUTAWAY_CHECK(hi.x >= lo.x);
   return {lo, hi};
+}
+
+double signed_volume(const DsMesh& mesh) {
+  double six_v = 0;
+  for (auto fh : mesh.faces()) {
+    std::array<glm::dvec3, 3> p;
+    int k = 0;
+    for (auto vh : mesh.fv_range(fh)) p[k++] = to_glm(mesh.point(vh));
+    six_v += glm::dot(p[0], glm::cross(p[1], p[2]));
+  }
+  return six_v / 6;
+}
+
+std::pair<glm::dvec3, glm::dvec3> skin_bounds(const DsModel& model) {
+  return mesh_bounds(model.skin().mesh);
 }
 
 Plane mid_height_plane(const DsModel& model) {

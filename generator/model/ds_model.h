@@ -116,6 +116,14 @@ void set_material(DsMesh& mesh, const glm::dvec2& front, const glm::dvec2& back)
 /// Recomputes `model.bbox_min/max` from the surfaces' vertices.
 void update_bounds(DsModel& model);
 
+/// The axis-aligned bounding box of `mesh`'s vertices (lowest corner, highest corner), metres.
+/// @pre the mesh has vertices
+std::pair<glm::dvec3, glm::dvec3> mesh_bounds(const DsMesh& mesh);
+
+/// The signed volume `mesh`'s triangles enclose (divergence theorem: the sum of det(a, b, c) /
+/// 6), cubic metres: positive for a closed surface whose front is its outside.
+double signed_volume(const DsMesh& mesh);
+
 /// The skin's axis-aligned bounding box (lowest corner, highest corner), metres: the object's
 /// own extent, which grains standing proud of the skin do not move.
 /// @pre the model has a skin with vertices

@@ -52,7 +52,11 @@ bool closed_surface(const DsMesh& mesh) {
 std::vector<size_t> surfaces_inside(const DsModel& model, size_t s) {
   std::vector<size_t> out;
   if (!closed_surface(model.surfaces[s].mesh)) return out;
-  const InsideTest test(model.surfaces[s].mesh);
+  return surfaces_inside(model, s, InsideTest(model.surfaces[s].mesh));
+}
+
+std::vector<size_t> surfaces_inside(const DsModel& model, size_t s, const InsideTest& test) {
+  std::vector<size_t> out;
   for (size_t j = 0; j < model.surfaces.size(); ++j) {
     const DsMesh& mesh = model.surfaces[j].mesh;
     if (j == s || mesh.n_vertices() == 0) continue;

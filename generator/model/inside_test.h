@@ -38,4 +38,8 @@ bool closed_surface(const DsMesh& mesh);
 /// closed.
 std::vector<size_t> surfaces_inside(const DsModel& model, size_t s);
 
+/// The same with surface s's InsideTest already built (`test`), for a caller that tests more
+/// points against it. @pre s is closed
+std::vector<size_t> surfaces_inside(const DsModel& model, size_t s, const InsideTest& test);
+
 }  // namespace cutaway

@@ -5,6 +5,8 @@
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
 
+#include "model/inside_test.h"
+
 #include <cstdio>
 #include <exception>
 #include <iterator>
@@ -95,13 +97,11 @@ void check_model(const Template& t, const DsModel& model, const std::vector<int>
   for (size_t i = 1; i < model.surfaces.size(); ++i) {
     if (!model.surfaces[i].rigid) continue;
     const SurfaceSpec& spec = t.surfaces[specs[i]];
-    for (auto h : model.surfaces[i].mesh.halfedges()) {
-      if (model.surfaces[i].mesh.is_boundary(h)) {
-        throw InputError(spec.loc, spec.path,
-                         "rigid: the rigid surface " + quoted(spec.name) +
-                             " must be closed (it has a hole), since a cut keeps what it "
-                             "encloses whole");
-      }
+    if (!closed_surface(model.surfaces[i].mesh)) {
+      throw InputError(spec.loc, spec.path,
+                       "rigid: the rigid surface " + quoted(spec.name) +
+                           " must be closed (it has a hole), since a cut keeps what it "
+                           "encloses whole");
     }
   }
   // No two surfaces cross or touch: each lies inside, outside or beside each other one (a

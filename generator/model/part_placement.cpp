@@ -1,9 +1,7 @@
 #include "model/part_placement.h"
 
 #include <cmath>
-#include <limits>
 
-#include <glm/common.hpp>
 #include <glm/mat3x3.hpp>
 
 #include "model/inside_test.h"
@@ -19,12 +17,7 @@ void place_parts(const Template& t, const std::vector<int>& specs, DsModel& mode
     size_t s = 0;
     while (s < specs.size() && specs[s] != spec_index) ++s;
     if (s == specs.size()) continue;
-    const DsMesh& own = model.surfaces[s].mesh;
-    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
-    for (auto vh : own.vertices()) {
-      lo = glm::min(lo, to_glm(own.point(vh)));
-      hi = glm::max(hi, to_glm(own.point(vh)));
-    }
+    const auto [lo, hi] = mesh_bounds(model.surfaces[s].mesh);
     const glm::dvec3 centre = 0.5 * (lo + hi);
     const double cx = std::cos(spec.tilt_rad.x), sx = std::sin(spec.tilt_rad.x);
     const double cz = std::cos(spec.tilt_rad.y), sz = std::sin(spec.tilt_rad.y);

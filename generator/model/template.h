@@ -159,7 +159,6 @@ struct SurfaceSpec {
   /// How far a variant may move the surface from its offset, metres (`wander`): each variant
   /// adds a seeded offset within a ball of this radius times its amount (draw_variant).
   double wander_m = 0;
-  FileLoc placement_loc;  ///< its `offset` (or `tilt`, when it has no offset)
   /// mesh: the PLY file, resolved relative to the template's directory, and what it holds
   /// (shared by the copies of the template, e.g. its variants)
   std::string mesh_file;

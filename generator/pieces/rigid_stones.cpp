@@ -1,9 +1,7 @@
 #include "pieces/rigid_stones.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <limits>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -15,18 +13,6 @@
 namespace cutaway {
 
 namespace {
-
-/// Six times the signed volume `mesh` encloses (divergence theorem).
-double signed_volume6(const DsMesh& mesh) {
-  double v = 0;
-  for (auto fh : mesh.faces()) {
-    std::array<glm::dvec3, 3> p;
-    int k = 0;
-    for (auto vh : mesh.fv_range(fh)) p[k++] = to_glm(mesh.point(vh));
-    v += glm::dot(p[0], glm::cross(p[1], p[2]));
-  }
-  return v;
-}
 
 /// Purpose of the seed that breaks ties between cells holding equal shares of a stone.
 constexpr uint64_t kPurposeStoneTie = 0x73746f6e65ull;  // "stone"
@@ -46,17 +32,13 @@ std::optional<StonePlan> plan_stones(const DsModel& model) {
     const InsideTest test(surface.mesh);
     RigidStone stone;
     stone.surface = s;
-    const double v6 = signed_volume6(surface.mesh);
-    stone.front_outside = v6 >= 0;
-    stone.volume_m3 = std::fabs(v6) / 6;
+    const double volume = signed_volume(surface.mesh);
+    stone.front_outside = volume >= 0;
+    stone.volume_m3 = std::fabs(volume);
     // Everything inside the stone stays with it, uncut.
-    for (size_t j : surfaces_inside(model, static_cast<size_t>(s))) inside_stone[j] = true;
+    for (size_t j : surfaces_inside(model, static_cast<size_t>(s), test)) inside_stone[j] = true;
     // Its volume as grid points, at the centres of the grid's cells.
-    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
-    for (auto vh : surface.mesh.vertices()) {
-      lo = glm::min(lo, to_glm(surface.mesh.point(vh)));
-      hi = glm::max(hi, to_glm(surface.mesh.point(vh)));
-    }
+    const auto [lo, hi] = mesh_bounds(surface.mesh);
     const double step = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) / kStoneGridSteps;
     if (step > 0) {
       const glm::ivec3 n = glm::max(glm::ivec3(glm::ceil((hi - lo) / step)), glm::ivec3(1));

@@ -244,17 +244,6 @@ TEST(MeshImport, AnOpenMeshIsRefusedAsSkinButAcceptedInside) {
   EXPECT_EQ(model.surfaces[0].name, "outer");
 }
 
-double signed_volume(const DsMesh& m) {
-  double v = 0;
-  for (auto f : m.faces()) {
-    std::array<DsMesh::Point, 3> p;
-    int k = 0;
-    for (auto vh : m.fv_range(f)) p[k++] = m.point(vh);
-    v += OpenMesh::dot(p[0], OpenMesh::cross(p[1], p[2])) / 6;
-  }
-  return v;
-}
-
 TEST(MeshImport, AClosedMeshWoundInwardsIsTurnedOutwards) {
   for (bool binary : {false, true}) {
     const fs::path dir = test::fresh_dir("mesh_surface_inwards");

@@ -103,10 +103,10 @@ TEST_P(PiecesTest, ClosedManifoldsWhoseVolumesAddUp) {
     EXPECT_GT(v, 0) << "piece of cell " << piece.cell;
     volume += v;
   }
-  double expected = test::surface_volume(model.skin());
+  double expected = signed_volume(model.skin().mesh);
   for (const DsSurface& s : model.surfaces)
     if (s.role != SurfaceRole::Grain && s.visible_front != s.visible_back)
-      expected -= std::fabs(test::surface_volume(s));
+      expected -= std::fabs(signed_volume(s.mesh));
   EXPECT_NEAR(volume, expected, 0.005 * expected) << (hollow ? "with hollows" : "");
 }
 

@@ -105,11 +105,11 @@ bool holds_stone(const Piece& piece) {
 /// The object's volume as its pieces should add up to: inside the skin, less the hollows that
 /// no stone encloses (what a stone encloses goes whole with it).
 double solid_volume(const Cut& c) {
-  double v = std::fabs(test::surface_volume(c.model.skin()));
+  double v = std::fabs(signed_volume(c.model.skin().mesh));
   for (const DsSurface& s : c.plan->hollowed.surfaces)
     if (s.role != SurfaceRole::Grain && !s.rigid && s.visible_front != s.visible_back &&
         s.mesh.n_faces() > 0)
-      v -= std::fabs(test::surface_volume(s));
+      v -= std::fabs(signed_volume(s.mesh));
   return v;
 }
 

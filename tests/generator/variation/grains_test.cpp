@@ -29,17 +29,6 @@ const DsSurface& named(const DsModel& m, const std::string& name) {
   throw std::runtime_error("no surface " + name);
 }
 
-double signed_volume(const DsMesh& m) {
-  double v = 0;
-  for (auto fh : m.faces()) {
-    glm::dvec3 p[3];
-    int k = 0;
-    for (auto vh : m.fv_range(fh)) p[k++] = to_glm(m.point(vh));
-    v += glm::dot(p[0], glm::cross(p[1], p[2])) / 6;
-  }
-  return v;
-}
-
 TEST(Grains, PoissonDiscSpacingHolds) {
   for (const char* name : {"templates/tomato.yaml", "templates/cucumber.yaml"}) {
     const Built b = build(name);
