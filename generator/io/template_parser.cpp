@@ -202,7 +202,7 @@ SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::stri
 
   const double m = t.metres_per_unit;
   if (s.kind == SurfaceKind::Mesh) {
-    for (const char* key : {"profile", "section", "smooth"}) {
+    for (const char* key : {"profile", "section", "sections", "smooth"}) {
       if (auto x = f.get(key)) x->fail(std::string("a 'mesh' surface has no ") + key);
     }
     const YamlField file = f.require("file");
@@ -231,9 +231,20 @@ SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::stri
       profile.fail("an 'around' profile is ordered bottom to top (its last point must be higher "
                    "than its first)");
     }
+    // The rules one section of this surface follows (its loops; the geometry is checked by
+    // check_template_curves).
+    auto check_section_loops = [&](const YamlField& field, const SectionSpec& section) {
+      if (s.kind == SurfaceKind::Around && section.loops.size() > 1)
+        field.fail("an 'around' section is 'circle' or one loop around the axis");
+      if (s.kind == SurfaceKind::Within) {
+        if (section.circle) field.fail("a 'within' section is a loop inside fold 0, or N loops");
+        if (section.loops.size() != 1 && static_cast<int>(section.loops.size()) != t.folds) {
+          field.fail("a 'within' section is one loop or exactly " + std::to_string(t.folds) +
+                     " loops (one per fold), not " + std::to_string(section.loops.size()));
+        }
+      }
+    };
     if (auto sections = f.get("sections")) {
-      if (s.kind != SurfaceKind::Around || t.symmetry != Symmetry::Cylindrical)
-        sections->fail("only an 'around' surface of a cylindrical template has 'sections'");
       if (f.get("section")) sections->fail("give 'section' or 'sections', not both");
       if (!sections->is_sequence() || sections->size() < 2)
         sections->fail("'sections' lists at least two {at, section}, from the lowest height up");
@@ -244,24 +255,13 @@ SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::stri
         HeightSection h{at.number_in(0, 1), parse_section(e.require("section"), m)};
         if (!s.sections.empty() && !(h.at > s.sections.back().at))
           at.fail("the heights 'at' must increase from one section to the next");
-        if (!h.section.circle && h.section.loops.size() > 1)
-          e.require("section").fail("an 'around' section is 'circle' or one loop around the axis");
+        check_section_loops(e.require("section"), h.section);
         s.sections.push_back(std::move(h));
       }
       s.section = s.sections.front().section;
     } else if (auto section = f.get("section")) {
       s.section = parse_section(*section, m);
-      if (s.kind == SurfaceKind::Around && s.section.loops.size() > 1) {
-        section->fail("an 'around' section is 'circle' or one loop around the axis");
-      }
-      if (s.kind == SurfaceKind::Within) {
-        if (s.section.circle)
-          section->fail("a 'within' section is a loop inside fold 0, or N loops");
-        if (s.section.loops.size() != 1 && static_cast<int>(s.section.loops.size()) != t.folds) {
-          section->fail("a 'within' section is one loop or exactly " + std::to_string(t.folds) +
-                        " loops (one per fold), not " + std::to_string(s.section.loops.size()));
-        }
-      }
+      check_section_loops(*section, s.section);
     } else if (s.kind == SurfaceKind::Around) {
       s.section.circle = true;
       s.section.loc = f.loc();

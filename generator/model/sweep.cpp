@@ -238,12 +238,12 @@ std::pair<double, double> u_range(const Polyline2& loop) {
   return {umin, umax};
 }
 
-/// Section loop `k` of a 'within' surface in its fold frame (u along the fold centre, w towards
+/// Loop `k` of a 'within' section in fold k's frame (u along the fold centre, w towards
 /// increasing angle), counter-clockwise in (u, w), started at the largest u.
-Polyline2 fold_frame_loop(const SurfaceSpec& spec, const Template& t, size_t k) {
+Polyline2 fold_frame_loop(const SectionSpec& section, bool smooth, const Template& t, size_t k) {
   const double centre = t.fold_angles[k];
   Polyline2 uw;
-  for (const auto& p : fit_curve(spec.section.loops[k], true, spec.smooth)) {
+  for (const auto& p : fit_curve(section.loops[k], true, smooth)) {
     const double rel = horizontal_angle(p) - centre, rho = glm::length(p);
     uw.push_back({rho * std::cos(rel), rho * std::sin(rel)});
   }
@@ -254,19 +254,24 @@ Polyline2 fold_frame_loop(const SurfaceSpec& spec, const Template& t, size_t k) 
   return uw;
 }
 
-/// The sweep grid of fold `fold`: at each height, `loop` (m points, fold frame) stretched in u
-/// from the inner to the outer rail and scaled alike in w, rotated to the fold's centre angle;
-/// a single point on the inner rail at the lowest and highest height.
-/// @throws InputError when a point leaves the fold's angular span
+/// The sweep grid of fold `fold`: at each height i, `loops[i]` (m points, fold frame, started
+/// at its largest u) stretched in u from the inner to the outer rail and scaled alike in w,
+/// rotated to the fold's centre angle; a single point on the inner rail at the lowest and
+/// highest height. `blended[i]`: loop i is a blend of two sections, checked here for
+/// self-intersection (the sections themselves passed check_template_curves).
+/// @throws InputError when a point leaves the fold's angular span or a blended loop crosses
+///         itself
 SweepGrid within_fold_grid(const SurfaceSpec& spec, const Template& t, const WithinRails& w,
-                           const std::vector<double>& heights, const Polyline2& loop, int fold) {
-  const int n = static_cast<int>(heights.size()) - 1, m = static_cast<int>(loop.size());
-  const auto [umin, umax] = u_range(loop);
+                           const std::vector<double>& heights, const std::vector<Polyline2>& loops,
+                           const std::vector<bool>& blended, int fold) {
+  const int n = static_cast<int>(heights.size()) - 1;
   const double theta = t.fold_angles[fold];
   const glm::dvec3 centre_dir(std::cos(theta), 0, -std::sin(theta));
   const glm::dvec3 across_dir(-std::sin(theta), 0, -std::cos(theta));
   const auto [span_lo, span_hi] = fold_span(t, fold);
-  const std::string field = spec.path + ".section";
+  const std::string field =
+      spec.sections.empty() ? spec.path + ".section" : spec.path + ".sections";
+  const FileLoc& loc = spec.sections.empty() ? spec.section.loc : spec.sections.front().section.loc;
   SweepGrid g;
   for (int i = 0; i <= n; ++i) {
     const double y = heights[i];
@@ -278,13 +283,22 @@ SweepGrid within_fold_grid(const SurfaceSpec& spec, const Template& t, const Wit
       row.push_back(centre_dir * rin + glm::dvec3(0, y, 0));
       par.push_back({i == 0 ? 0.0 : w.tprof[w.top], 0});
     } else {
+      const Polyline2& loop = loops[static_cast<size_t>(i)];
+      const int m = static_cast<int>(loop.size());
+      if (blended[static_cast<size_t>(i)] && find_self_intersection(loop, true)) {
+        throw InputError(loc, field,
+                         "the blend of two sections crosses itself at height " +
+                             std::to_string(y / t.metres_per_unit) +
+                             ": give a section between them, or make them more alike");
+      }
+      const auto [umin, umax] = u_range(loop);
       const double k = (rout - rin) / (umax - umin);
       for (int j = 0; j < m; ++j) {
         const double u = rin + (loop[j].x - umin) * k, wv = loop[j].y * k;
         const glm::dvec3 p = centre_dir * u + across_dir * wv + glm::dvec3(0, y, 0);
         const double rel = std::atan2(wv, u);
         if (rel <= span_lo - theta || rel >= span_hi - theta) {
-          throw InputError(spec.section.loc, field,
+          throw InputError(loc, field,
                            "the swept 'within' surface leaves fold " + std::to_string(fold) +
                                " at height " + std::to_string(y / t.metres_per_unit) +
                                ": make the loop narrower across the fold");
@@ -320,6 +334,20 @@ double radius_along(const Polyline2& loop, double phi) {
   return best;
 }
 
+/// Which two of `sections` (at increasing heights) a ring at normalised height tp lies between,
+/// and the smoothstep weight of the upper one: (k, w) blends sections k and k + 1 as
+/// (1 - w) a + w b; below the first and above the last height, w = 0 and k is that section.
+std::pair<size_t, double> height_blend(const std::vector<HeightSection>& sections, double tp) {
+  size_t k = 0;
+  while (k + 1 < sections.size() && sections[k + 1].at <= tp) ++k;
+  double w = 0;
+  if (k + 1 < sections.size() && tp > sections[k].at) {
+    const double x = (tp - sections[k].at) / (sections[k + 1].at - sections[k].at);
+    w = x * x * (3 - 2 * x);
+  }
+  return {k, w};
+}
+
 /// The unit loops of an 'around' surface with `sections` at several heights: per profile
 /// sample i of n + 1 (normalised arc length i / n), m points at the angles 2 pi j / m, each
 /// section's radius there over its radius at angle 0, blended between the two sections whose
@@ -337,14 +365,7 @@ std::vector<Polyline2> blended_unit_loops(const SurfaceSpec& spec, int n, int m)
   }
   std::vector<Polyline2> loops;
   for (int i = 0; i <= n; ++i) {
-    const double tp = static_cast<double>(i) / n;
-    size_t k = 0;
-    while (k + 1 < spec.sections.size() && spec.sections[k + 1].at <= tp) ++k;
-    double w = 0;
-    if (k + 1 < spec.sections.size() && tp > spec.sections[k].at) {
-      const double x = (tp - spec.sections[k].at) / (spec.sections[k + 1].at - spec.sections[k].at);
-      w = x * x * (3 - 2 * x);
-    }
+    const auto [k, w] = height_blend(spec.sections, static_cast<double>(i) / n);
     const std::vector<double>& a = radii[k];
     const std::vector<double>& b = radii[std::min(k + 1, radii.size() - 1)];
     Polyline2 loop;
@@ -355,6 +376,43 @@ std::vector<Polyline2> blended_unit_loops(const SurfaceSpec& spec, int n, int m)
     loops.push_back(std::move(loop));
   }
   return loops;
+}
+
+/// The fold-frame loops of fold `fold` of a 'within' surface at each of the n + 1 heights, m
+/// points each, and which of them are blends. With one `section`: its loop (fold 0's or the
+/// fold's own) resampled by arc length, at every height. With `sections`: each section's loop
+/// resampled by arc length from its largest u and normalised to u in 0..1 (w by the same
+/// factor), blended point by point between the two sections around the height i / n (the
+/// rails' normalised arc length, as within_heights spaces them) by a smoothstep.
+std::pair<std::vector<Polyline2>, std::vector<bool>> within_fold_loops(
+    const SurfaceSpec& spec, const std::vector<std::vector<Polyline2>>& frame_loops, int n, int m,
+    int fold) {
+  auto loop_of = [&](size_t sec) {
+    const std::vector<Polyline2>& loops = frame_loops[sec];
+    return resample_uniform(loops[loops.size() == 1 ? 0 : static_cast<size_t>(fold)], true, m);
+  };
+  const size_t rows = static_cast<size_t>(n) + 1;
+  if (spec.sections.empty())
+    return {std::vector<Polyline2>(rows, loop_of(0)), std::vector<bool>(rows, false)};
+  std::vector<Polyline2> unit;
+  for (size_t sec = 0; sec < spec.sections.size(); ++sec) {
+    Polyline2 loop = loop_of(sec);
+    const auto [umin, umax] = u_range(loop);
+    for (auto& p : loop) p = {(p.x - umin) / (umax - umin), p.y / (umax - umin)};
+    unit.push_back(std::move(loop));
+  }
+  std::vector<Polyline2> out;
+  std::vector<bool> blended;
+  for (size_t i = 0; i < rows; ++i) {
+    const auto [k, w] = height_blend(spec.sections, static_cast<double>(i) / n);
+    const Polyline2& a = unit[k];
+    const Polyline2& b = unit[std::min(k + 1, unit.size() - 1)];
+    Polyline2 loop;
+    for (int j = 0; j < m; ++j) loop.push_back((1 - w) * a[j] + w * b[j]);
+    out.push_back(std::move(loop));
+    blended.push_back(w > 0);
+  }
+  return {out, blended};
 }
 
 }  // namespace
@@ -442,21 +500,27 @@ DsSurface sweep_within(const SurfaceSpec& spec, const Template& t, size_t max_ve
   check_vertex_budget(static_cast<size_t>(n + 1) * t.folds, 8, spec, t, max_vertices);
   const std::vector<double> heights = within_heights(rails, n);
 
-  // The section loops in their fold frames; the points per ring from the longest loop once
-  // stretched to the widest span between the rails.
-  const size_t nloops = spec.section.loops.size();
-  std::vector<Polyline2> frame_loops;
+  // The section loops in their fold frames (per section at a height, per loop); the points per
+  // ring from the longest loop once stretched to the widest span between the rails.
+  std::vector<const SectionSpec*> sections;
+  if (spec.sections.empty()) sections.push_back(&spec.section);
+  for (const HeightSection& h : spec.sections) sections.push_back(&h.section);
+  std::vector<std::vector<Polyline2>> frame_loops;
   double max_width = 0;
   for (int i = 0; i <= n; ++i)
     max_width = std::max(max_width, rails.outer.at(rails.outer.r, heights[i]) -
                                         rails.inner.at(rails.inner.r, heights[i]));
   double max_scaled_perimeter = 0;
-  for (size_t k = 0; k < nloops; ++k) {
-    Polyline2 uw = fold_frame_loop(spec, t, k);
-    const auto [umin, umax] = u_range(uw);
-    max_scaled_perimeter =
-        std::max(max_scaled_perimeter, curve_length(uw, true) * max_width / (umax - umin));
-    frame_loops.push_back(std::move(uw));
+  for (const SectionSpec* section : sections) {
+    std::vector<Polyline2> loops;
+    for (size_t k = 0; k < section->loops.size(); ++k) {
+      Polyline2 uw = fold_frame_loop(*section, spec.smooth, t, k);
+      const auto [umin, umax] = u_range(uw);
+      max_scaled_perimeter =
+          std::max(max_scaled_perimeter, curve_length(uw, true) * max_width / (umax - umin));
+      loops.push_back(std::move(uw));
+    }
+    frame_loops.push_back(std::move(loops));
   }
   const int m = segments_for(max_scaled_perimeter, edge, 8);
   check_vertex_budget(static_cast<size_t>(n + 1) * t.folds, static_cast<size_t>(m), spec, t,
@@ -469,8 +533,8 @@ DsSurface sweep_within(const SurfaceSpec& spec, const Template& t, size_t max_ve
   s.visible_back = spec.visible_back;
   s.rigid = spec.rigid;
   for (int fold = 0; fold < t.folds; ++fold) {
-    const Polyline2 loop = resample_uniform(frame_loops[nloops == 1 ? 0 : fold], true, m);
-    const SweepGrid g = within_fold_grid(spec, t, rails, heights, loop, fold);
+    const auto [loops, blended] = within_fold_loops(spec, frame_loops, n, m, fold);
+    const SweepGrid g = within_fold_grid(spec, t, rails, heights, loops, blended, fold);
     add_grid(g, spec, t.ripeness, grid_volume(g) < 0, s.mesh);
   }
   return s;

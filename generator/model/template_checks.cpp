@@ -100,6 +100,30 @@ void check_around(const SurfaceSpec& s) {
                          s.path + ".sections[" + std::to_string(k) + "].section");
 }
 
+/// The rules of one section of a 'within' surface: each loop has distinct points, is simple
+/// and lies strictly inside its fold (one loop: fold 0's).
+void check_within_section(const SectionSpec& section, bool smooth, const Template& t,
+                          const std::string& sfield) {
+  for (size_t k = 0; k < section.loops.size(); ++k) {
+    const std::string lf =
+        section.loops.size() > 1 ? sfield + "[" + std::to_string(k) + "]" : sfield;
+    check_distinct(section.loops[k], true, section.loc, lf);
+    const Polyline2 loop = fit_curve(section.loops[k], true, smooth);
+    check_simple(loop, true, section.loc, lf, smooth);
+    const auto [span_lo, span_hi] = fold_span(t, static_cast<int>(k));
+    const double centre = t.fold_angles[k];
+    for (const auto& p : loop) {
+      const double rel = wrap_angle(horizontal_angle(p) - centre);
+      if (glm::length(p) < 1e-12 || rel <= span_lo - centre || rel >= span_hi - centre) {
+        fail_at(section.loc, lf,
+                "a 'within' loop must lie inside fold " + std::to_string(k) + " (angles " +
+                    degrees(span_lo) + " to " + degrees(span_hi) + " degrees); a point is at " +
+                    degrees(horizontal_angle(p)) + " degrees");
+      }
+    }
+  }
+}
+
 void check_within(const SurfaceSpec& s, const Template& t) {
   const std::string field = s.path + ".profile";
   check_distinct(s.profile, true, s.profile_loc, field);
@@ -129,25 +153,13 @@ void check_within(const SurfaceSpec& s, const Template& t) {
       i = j;
     }
   }
-  const std::string sfield = s.path + ".section";
-  for (size_t k = 0; k < s.section.loops.size(); ++k) {
-    const std::string lf =
-        s.section.loops.size() > 1 ? sfield + "[" + std::to_string(k) + "]" : sfield;
-    check_distinct(s.section.loops[k], true, s.section.loc, lf);
-    const Polyline2 loop = fit_curve(s.section.loops[k], true, s.smooth);
-    check_simple(loop, true, s.section.loc, lf, s.smooth);
-    const auto [span_lo, span_hi] = fold_span(t, static_cast<int>(k));
-    const double centre = t.fold_angles[k];
-    for (const auto& p : loop) {
-      const double rel = wrap_angle(horizontal_angle(p) - centre);
-      if (glm::length(p) < 1e-12 || rel <= span_lo - centre || rel >= span_hi - centre) {
-        fail_at(s.section.loc, lf,
-                "a 'within' loop must lie inside fold " + std::to_string(k) + " (angles " +
-                    degrees(span_lo) + " to " + degrees(span_hi) + " degrees); a point is at " +
-                    degrees(horizontal_angle(p)) + " degrees");
-      }
-    }
+  if (s.sections.empty()) {
+    check_within_section(s.section, s.smooth, t, s.path + ".section");
+    return;
   }
+  for (size_t k = 0; k < s.sections.size(); ++k)
+    check_within_section(s.sections[k].section, s.smooth, t,
+                         s.path + ".sections[" + std::to_string(k) + "].section");
 }
 
 /// The spine (doc/template-format.md, `spine`): only for swept templates, and rising all the

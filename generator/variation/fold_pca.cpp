@@ -89,59 +89,65 @@ FoldFeatures fold_features(const Template& t, const FoldPcaOptions& opt) {
   const double W = 2 * kPi / N;
   for (int si = 0; si < static_cast<int>(t.surfaces.size()); ++si) {
     const SurfaceSpec& s = t.surfaces[si];
-    if (s.kind == SurfaceKind::Around && !s.section.circle) {
-      f.surface.push_back(si);
-      f.open.push_back(true);
-      f.points.push_back(opt.arc_samples);
-      for (int k = 0; k < N; ++k) {
-        const Pie pie = pie_of(t, k, N);
-        const Polyline2 arc = resample_uniform(
-            arc_between(s.section.loops[0], s.smooth, pie.lo, pie.hi), false, opt.arc_samples);
-        for (int i = 0; i < opt.arc_samples; ++i) {
-          glm::dvec2 c;
-          const double rho = glm::length(arc[i]);
-          if (i == 0) c = {rho * std::cos(-W / 2), rho * std::sin(-W / 2)};
-          else if (i + 1 == opt.arc_samples) c = {rho * std::cos(W / 2), rho * std::sin(W / 2)};
-          else c = pie.to_canonical(arc[i], t.fold_angles[k]);
-          f.samples[k].push_back(c.x);
-          f.samples[k].push_back(c.y);
-        }
-      }
-    } else if (s.kind == SurfaceKind::Within) {
-      f.surface.push_back(si);
-      f.open.push_back(false);
-      f.points.push_back(opt.loop_samples);
-      const int M = opt.loop_samples;
-      Polyline2 reference;
-      for (int k = 0; k < N; ++k) {
-        const int li = s.section.loops.size() == 1 ? 0 : k;
-        const Pie pie = pie_of(t, li, N);
-        Polyline2 c;
-        for (const auto& p : fit_curve(s.section.loops[li], true, s.smooth))
-          c.push_back(pie.to_canonical(p, t.fold_angles[li]));
-        if (signed_area(c) < 0) std::reverse(c.begin(), c.end());
-        const auto start =
-            std::max_element(c.begin(), c.end(), [](auto& a, auto& b) { return a.x < b.x; });
-        std::rotate(c.begin(), start, c.end());
-        Polyline2 r = resample_uniform(c, true, M);
-        if (k == 0) {
-          reference = r;
-        } else {
-          int best = 0;
-          double best_sum = 1e300;
-          for (int sh = 0; sh < M; ++sh) {
-            double sum = 0;
-            for (int i = 0; i < M; ++i) sum += glm::distance(reference[i], r[(i + sh) % M]);
-            if (sum < best_sum) {
-              best_sum = sum;
-              best = sh;
-            }
+    for (int sec = s.sections.empty() ? -1 : 0; sec < static_cast<int>(s.sections.size()); ++sec) {
+      const SectionSpec& section =
+          sec < 0 ? s.section : s.sections[static_cast<size_t>(sec)].section;
+      if (s.kind == SurfaceKind::Around && !section.circle) {
+        f.surface.push_back(si);
+        f.section.push_back(sec);
+        f.open.push_back(true);
+        f.points.push_back(opt.arc_samples);
+        for (int k = 0; k < N; ++k) {
+          const Pie pie = pie_of(t, k, N);
+          const Polyline2 arc = resample_uniform(
+              arc_between(section.loops[0], s.smooth, pie.lo, pie.hi), false, opt.arc_samples);
+          for (int i = 0; i < opt.arc_samples; ++i) {
+            glm::dvec2 c;
+            const double rho = glm::length(arc[i]);
+            if (i == 0) c = {rho * std::cos(-W / 2), rho * std::sin(-W / 2)};
+            else if (i + 1 == opt.arc_samples) c = {rho * std::cos(W / 2), rho * std::sin(W / 2)};
+            else c = pie.to_canonical(arc[i], t.fold_angles[k]);
+            f.samples[k].push_back(c.x);
+            f.samples[k].push_back(c.y);
           }
-          std::rotate(r.begin(), r.begin() + best, r.end());
         }
-        for (const auto& p : r) {
-          f.samples[k].push_back(p.x);
-          f.samples[k].push_back(p.y);
+      } else if (s.kind == SurfaceKind::Within) {
+        f.surface.push_back(si);
+        f.section.push_back(sec);
+        f.open.push_back(false);
+        f.points.push_back(opt.loop_samples);
+        const int M = opt.loop_samples;
+        Polyline2 reference;
+        for (int k = 0; k < N; ++k) {
+          const int li = section.loops.size() == 1 ? 0 : k;
+          const Pie pie = pie_of(t, li, N);
+          Polyline2 c;
+          for (const auto& p : fit_curve(section.loops[li], true, s.smooth))
+            c.push_back(pie.to_canonical(p, t.fold_angles[li]));
+          if (signed_area(c) < 0) std::reverse(c.begin(), c.end());
+          const auto start =
+              std::max_element(c.begin(), c.end(), [](auto& a, auto& b) { return a.x < b.x; });
+          std::rotate(c.begin(), start, c.end());
+          Polyline2 r = resample_uniform(c, true, M);
+          if (k == 0) {
+            reference = r;
+          } else {
+            int best = 0;
+            double best_sum = 1e300;
+            for (int sh = 0; sh < M; ++sh) {
+              double sum = 0;
+              for (int i = 0; i < M; ++i) sum += glm::distance(reference[i], r[(i + sh) % M]);
+              if (sum < best_sum) {
+                best_sum = sum;
+                best = sh;
+              }
+            }
+            std::rotate(r.begin(), r.begin() + best, r.end());
+          }
+          for (const auto& p : r) {
+            f.samples[k].push_back(p.x);
+            f.samples[k].push_back(p.y);
+          }
         }
       }
     }
@@ -263,7 +269,10 @@ Template rebuild_folds(const Template& t, const FoldFeatures& f,
   }
   const auto curves = fold_curves_xz(f, vectors, out.fold_angles, opt);
   for (size_t ci = 0; ci < f.surface.size(); ++ci) {
-    SectionSpec& sec = out.surfaces[f.surface[ci]].section;
+    SurfaceSpec& surface = out.surfaces[f.surface[ci]];
+    SectionSpec& sec = f.section[ci] < 0
+                           ? surface.section
+                           : surface.sections[static_cast<size_t>(f.section[ci])].section;
     sec.loops.clear();
     if (f.open[ci]) {
       Polyline2 loop;
@@ -272,6 +281,7 @@ Template rebuild_folds(const Template& t, const FoldFeatures& f,
     } else {
       sec.loops = curves[ci];
     }
+    if (!surface.sections.empty()) surface.section = surface.sections.front().section;
   }
   return out;
 }

@@ -26,9 +26,11 @@ struct FoldPcaOptions {
 /// metres. Every curve of a fold contributes its canonical points (x, y pairs) in order.
 struct FoldFeatures {
   int folds = 0;  ///< N
-  /// Curves in feature order: index of the template surface and whether it is a Type I open
-  /// curve (`around` section, split at the fold lines) or a Type II loop (`within` section).
+  /// Curves in feature order: index of the template surface, which of its sections (-1: its
+  /// one `section`; k: `sections[k]`), and whether it is a Type I open curve (`around`
+  /// section, split at the fold lines) or a Type II loop (`within` section).
   std::vector<int> surface;
+  std::vector<int> section;
   std::vector<bool> open;
   std::vector<int> points;  ///< points of each curve
   /// N feature vectors (one per fold), each sum(points) * 2 long.
@@ -48,7 +50,9 @@ struct FoldPca {
 /// folds and are left out) split at the N fold lines into open curves resampled uniformly by
 /// arc length (end points exactly on the fold lines); `within` loops resampled uniformly,
 /// counter-clockwise in canonical space, aligned with fold 0's loop by the cyclic shift with
-/// the least sum of distances. A `within` section of one loop gives N equal samples.
+/// the least sum of distances. A `within` section of one loop gives N equal samples. A surface
+/// with `sections` at several heights gives one curve per section, so that all of them are
+/// blended with the same fold vectors.
 /// @pre tmpl.symmetry == NFold and tmpl passed check_template_curves
 FoldFeatures fold_features(const Template& tmpl, const FoldPcaOptions& options);
 
@@ -72,8 +76,9 @@ std::vector<std::vector<Polyline2>> fold_curves_xz(
 
 /// `tmpl` with N' = fold_vectors.size() folds: fold angles kept when N' == N, else
 /// fold_angles[0] + k 2 pi / N'; every Type I section becomes the joined loop of its N' open
-/// curves, every Type II section a list of N' loops (loop k inside fold k). Profiles, colours,
-/// blur, grains and circle sections are kept.
+/// curves, every Type II section a list of N' loops (loop k inside fold k); so does each of a
+/// surface's `sections` (`section` stays the first of them). Profiles, colours, blur, grains
+/// and circle sections are kept.
 Template rebuild_folds(const Template& tmpl, const FoldFeatures& features,
                        const std::vector<std::vector<double>>& fold_vectors,
                        const FoldPcaOptions& options);

@@ -8,6 +8,8 @@
 
 #include <cmath>
 #include <map>
+#include <set>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 
@@ -210,6 +212,33 @@ TEST(SweepAround, SectionsAtSeveralHeightsBlendFromOneToTheNext) {
   EXPECT_GT(between, 0);
 }
 
+// In an N-fold template too: the rings keep a multiple of N samples, so the blended surface
+// maps onto itself under a turn by one fold.
+TEST(SweepAround, SectionsAtSeveralHeightsInAnNFoldTemplateKeepItsFolds) {
+  const std::string sq = "{polar: [[45, 1.4142135623730951], [135, 1.4142135623730951], "
+                         "[225, 1.4142135623730951], [315, 1.4142135623730951]]}";
+  const Template t = parse(cylinder_with_sections(
+      "{type: nfold, folds: 4}", "[{at: 0.25, section: circle}, {at: 0.75, section: " + sq + "}]"));
+  check_template_curves(t);
+  const DsSurface s = sweep_around(t.surfaces[0], t);
+  std::vector<glm::dvec3> points;
+  for (auto v : s.mesh.vertices()) points.push_back(point(s.mesh, v));
+  auto key = [](const glm::dvec3& p) {
+    return std::tuple<long, long, long>(std::lround(p.x * 1e8), std::lround(p.y * 1e8),
+                                        std::lround(p.z * 1e8));
+  };
+  std::set<std::tuple<long, long, long>> keys;
+  for (const auto& p : points) keys.insert(key(p));
+  int squares = 0;
+  for (const auto& p : points) {
+    // A turn by 90 degrees about +Y: (x, z) -> (z, -x).
+    ASSERT_TRUE(keys.count(key({p.z, p.y, -p.x}))) << p.x << " " << p.y << " " << p.z;
+    squares += p.y > 0.016 && p.y < 0.02 &&
+               std::abs(std::max(std::abs(p.x), std::abs(p.z)) - 10e-3) < 1e-9;
+  }
+  EXPECT_GT(squares, 0);
+}
+
 TEST(SweepAround, SectionsAtHeightsFollowTheirRules) {
   auto error = [](const std::string& text) -> std::string {
     try {
@@ -225,8 +254,10 @@ TEST(SweepAround, SectionsAtHeightsFollowTheirRules) {
                 .find("sections[1].at: the heights 'at' must increase"),
             std::string::npos);
   EXPECT_NE(error(cylinder_with_sections("{type: nfold, folds: 4}",
-                                         "[{at: 0, section: circle}, {at: 1, section: circle}]"))
-                .find("only an 'around' surface of a cylindrical template has 'sections'"),
+                                         "[{at: 0, section: circle}, {at: 1, section: "
+                                         "[[1, 0], [0, 1], [-1, 0], [0, -1]]}, {at: 0.5, "
+                                         "section: circle}]"))
+                .find("sections[2].at: the heights 'at' must increase"),
             std::string::npos);
   EXPECT_NE(error(cylinder_with_sections("{type: cylindrical}", "[{at: 0, section: circle}]"))
                 .find("at least two"),
@@ -368,6 +399,88 @@ TEST(SweepWithin, SectionParameterStartsAtTheOutermostPoint) {
       ASSERT_NEAR(r, rail_out(p.y * 1e3) * 1e-3, 1e-12);
     }
   }
+}
+
+/// The hexagon's cell with `sections` (a YAML flow list) instead of its one section.
+std::string hexagon_with_sections(const std::string& sections) {
+  std::string text = hexagon_within("1");
+  const std::string one = "    section: [[12, 0], [15, -1.5], [18, 0], [15, 1.5]]\n";
+  text.replace(text.find(one), one.size(), "    sections: " + sections + "\n");
+  return text;
+}
+
+// A loop that widens with height: a diamond half as wide as long up to 0.3 of the rails, one
+// as wide as long from 0.7; each ring still reaches from rail to rail, and between the two
+// heights its width grows steadily.
+TEST(SweepWithin, SectionsAtSeveralHeightsBlendTheLoop) {
+  const Template t =
+      parse(hexagon_with_sections("[{at: 0.3, section: [[12, 0], [15, -1.5], [18, 0], [15, 1.5]]}, "
+                                  "{at: 0.7, section: [[12, 0], [15, -3], [18, 0], [15, 3]]}]"));
+  check_template_curves(t);
+  const DsSurface s = sweep_within(surface(t, "cell"), t);
+  EXPECT_EQ(boundary_halfedges(s.mesh), 0);
+  const size_t per_fold = s.mesh.n_vertices() / 4;
+  for (int fold = 0; fold < 4; ++fold) {
+    const double a = t.fold_angles[fold];
+    const glm::dvec2 centre(std::cos(a), -std::sin(a)), across(-std::sin(a), -std::cos(a));
+    std::map<double, glm::dvec3> ring;  // y -> (min u, max u, max |w|)
+    for (size_t i = fold * per_fold; i < (fold + 1) * per_fold; ++i) {
+      const glm::dvec3 p = point(s.mesh, DsMesh::VertexHandle(static_cast<int>(i)));
+      const double u = glm::dot(glm::dvec2(p.x, p.z), centre);
+      const double w = std::abs(glm::dot(glm::dvec2(p.x, p.z), across));
+      auto [it, fresh] = ring.try_emplace(p.y, u, u, w);
+      it->second = {std::min(it->second.x, u), std::max(it->second.y, u),
+                    std::max(it->second.z, w)};
+    }
+    ring.erase(ring.begin());  // the poles
+    ring.erase(std::prev(ring.end()));
+    double last = 0;
+    int narrow = 0, wide = 0;
+    for (const auto& [y, r] : ring) {
+      EXPECT_NEAR(r.x, rail_in(y * 1e3) * 1e-3, 1e-12) << y;
+      EXPECT_NEAR(r.y, rail_out(y * 1e3) * 1e-3, 1e-12) << y;
+      const double ratio = r.z / (r.y - r.x);  // half width over length
+      EXPECT_GE(ratio, last - 1e-12) << y;
+      EXPECT_GE(ratio, 0.25 - 1e-9) << y;
+      EXPECT_LE(ratio, 0.5 + 1e-9) << y;
+      narrow += std::abs(ratio - 0.25) < 1e-9;
+      wide += std::abs(ratio - 0.5) < 1e-9;
+      last = ratio;
+    }
+    EXPECT_GT(narrow, 2) << "fold " << fold;
+    EXPECT_GT(wide, 2) << "fold " << fold;
+  }
+}
+
+TEST(SweepWithin, SectionsAtHeightsFollowTheirRules) {
+  auto error = [](const std::string& text) -> std::string {
+    try {
+      const Template t = parse(text);
+      check_template_curves(t);
+      for (const SurfaceSpec& s : t.surfaces)
+        if (s.kind == SurfaceKind::Within) sweep_within(s, t);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  // Each section's loops follow the rules of a single section, at its own field.
+  EXPECT_NE(error(hexagon_with_sections("[{at: 0, section: [[12, 0], [15, -1.5], [18, 0]]}, "
+                                        "{at: 1, section: [[12, 0], [15, 20], [18, 0]]}]"))
+                .find("sections[1].section: a 'within' loop must lie inside fold 0"),
+            std::string::npos);
+  EXPECT_NE(error(hexagon_with_sections("[{at: 0, section: circle}, "
+                                        "{at: 1, section: [[12, 0], [15, 1], [18, 0]]}]"))
+                .find("sections[0].section: a 'within' section is a loop"),
+            std::string::npos);
+  // A C opening one way blended into a C opening the other way crosses itself half way.
+  EXPECT_NE(error(hexagon_with_sections(
+                      "[{at: 0.2, section: [[12, -1], [18, -1], [18, 0], [13, 0], [13, 0.5], "
+                      "[18, 0.5], [18, 1.5], [12, 1.5]]}, "
+                      "{at: 0.8, section: [[12, -1], [18, -1], [18, 1.5], [12, 1.5], [12, 0.5], "
+                      "[17, 0.5], [17, 0], [12, 0]]}]"))
+                .find("the blend of two sections crosses itself"),
+            std::string::npos);
 }
 
 TEST(SweepWithin, TheVertexBudgetGuardRefusesATinyEdge) {

@@ -161,6 +161,68 @@ TEST(FoldPca, VariantWithNFoldsHasNChambers) {
   }
 }
 
+/// The widest angle a loop spans about the axis, radians.
+double angular_width(const Polyline2& loop) {
+  double lo = 1e9, hi = -1e9;
+  const double centre = horizontal_angle(loop[0]);
+  for (const auto& p : loop) {
+    const double a = wrap_angle(horizontal_angle(p) - centre);
+    lo = std::min(lo, a);
+    hi = std::max(hi, a);
+  }
+  return hi - lo;
+}
+
+// A surface with sections at several heights has every section blended with the same fold
+// vectors: the rebuilt object keeps both heights' loops, each in N' folds, the upper ones
+// still narrower than the lower ones.
+TEST(FoldPca, EverySectionAtAHeightIsRebuiltInTheNewFolds) {
+  Template t = uneven_tomato();
+  size_t chambers = 0;
+  for (size_t i = 0; i < t.surfaces.size(); ++i) {
+    SurfaceSpec& s = t.surfaces[i];
+    if (s.name != "chambers") continue;
+    chambers = i;
+    SectionSpec narrow = s.section;
+    for (size_t k = 0; k < narrow.loops.size(); ++k) {
+      for (auto& p : narrow.loops[k]) {
+        const double rel = wrap_angle(horizontal_angle(p) - t.fold_angles[k]);
+        p = polar_xz(glm::length(p), t.fold_angles[k] + 0.7 * rel);
+      }
+    }
+    s.sections = {{0.2, s.section}, {0.8, narrow}};
+  }
+  ASSERT_GT(chambers, 0u);
+  check_template_curves(t);
+  const FoldFeatures f = fold_features(t, {});
+  int of_chambers = 0;
+  for (size_t c = 0; c < f.surface.size(); ++c) {
+    if (f.surface[c] != static_cast<int>(chambers)) continue;
+    EXPECT_EQ(f.section[c], of_chambers);
+    ++of_chambers;
+  }
+  EXPECT_EQ(of_chambers, 2);
+  const FoldPca pca = fold_pca(f);
+  Rng rng(derive_seed(22, {6}));
+  std::vector<std::vector<double>> vs;
+  for (int k = 0; k < 6; ++k) vs.push_back(draw_fold(pca, 1.0, rng));
+  Template v = rebuild_folds(t, f, vs, {});
+  v.edge_m *= 2;
+  const SurfaceSpec& s = v.surfaces[chambers];
+  ASSERT_EQ(s.sections.size(), 2u);
+  for (const HeightSection& h : s.sections) EXPECT_EQ(h.section.loops.size(), 6u);
+  EXPECT_EQ(s.section.loops, s.sections[0].section.loops);
+  for (size_t k = 0; k < 6; ++k) {
+    EXPECT_LT(angular_width(s.sections[1].section.loops[k]),
+              0.8 * angular_width(s.sections[0].section.loops[k]))
+        << "fold " << k;
+  }
+  check_template_curves(v);
+  const DsModel m = build_model(v);
+  for (const auto& surface : m.surfaces)
+    if (surface.name == "chambers") EXPECT_EQ(components(surface.mesh), 6);
+}
+
 TEST(FoldPca, MeanOfEqualFoldsRebuildsTheTemplate) {
   const Template t = tomato();
   const FoldFeatures f = fold_features(t, {});
