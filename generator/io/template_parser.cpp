@@ -170,9 +170,9 @@ void parse_material_channels(const YamlField& f, const PbrMaterial& cut, glm::dv
 }
 
 SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::string& base_dir) {
-  f.allow_only({"name", "kind", "role", "profile", "section", "smooth", "front", "back", "blur",
-                "roughness", "translucency", "visible", "rigid", "offset", "tilt", "wander",
-                "sections", "file", "patterns"});
+  f.allow_only({"name", "kind",   "role",      "profile",      "section", "smooth",  "front",
+                "back", "blur",   "roughness", "translucency", "visible", "rigid",   "offset",
+                "tilt", "wander", "sections",  "span",         "file",    "patterns"});
   SurfaceSpec s;
   s.path = f.path();
   s.loc = f.loc();
@@ -283,6 +283,18 @@ SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::stri
     if (auto x = vis->get("front")) s.visible_front = x->boolean();
     if (auto x = vis->get("back")) s.visible_back = x->boolean();
   }
+  if (auto x = f.get("span")) {
+    if (s.kind != SurfaceKind::Around)
+      x->fail("only an 'around' surface covers part of the way round");
+    if (s.is_skin) x->fail("the skin is closed: it goes all the way round");
+    if (!x->is_sequence() || x->size() != 2)
+      x->fail("a span is [from, to] in degrees, counter-clockwise seen from above");
+    s.span_rad = {(*x)[0].number_in(-360, 360) * kDeg, (*x)[1].number_in(-360, 720) * kDeg};
+    const double turn = s.span_rad.y - s.span_rad.x;
+    if (!(turn > 0) || !(turn < 2 * kPi - 1e-9))
+      x->fail("'to' must lie above 'from' by less than a whole turn (360 degrees); leave "
+              "'span' out for a surface all the way round");
+  }
   if (auto x = f.get("tilt")) {
     if (s.is_skin) x->fail("the skin is the object's frame: tilt the surfaces inside it");
     if (!x->is_sequence() || x->size() != 2)
@@ -301,6 +313,8 @@ SurfaceSpec parse_surface(const YamlField& f, const Template& t, const std::stri
   if (auto x = f.get("rigid")) {
     s.rigid = x->boolean();
     if (s.rigid && s.is_skin) x->fail("the skin cannot be rigid (a rigid surface lies inside it)");
+    if (s.rigid && s.span_rad.y > s.span_rad.x)
+      x->fail("a rigid surface is closed: it cannot cover only a 'span'");
     if (s.rigid && (!s.visible_front || !s.visible_back)) {
       x->fail("a rigid surface is solid inside and has flesh outside: neither side may be hollow "
               "('visible')");

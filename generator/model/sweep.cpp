@@ -17,6 +17,7 @@ namespace {
 struct SweepGrid {
   std::vector<std::vector<glm::dvec3>> rows;
   std::vector<std::vector<glm::dvec2>> params;  // (t_profile, t_section) per vertex
+  bool open_rows = false;  // rows end where they start (a `span`): no face joins last to first
 };
 
 /// Refuses a surface of rows x cols vertices (at least) beyond the `max_vertices` left of the
@@ -40,14 +41,15 @@ int segments_for(double length_m, double edge_m, int minimum) {
 }
 
 /// Appends the grid's triangles to `faces` with vertex indices offset by `base`; rows are
-/// closed loops of equal length (or poles). Winding: (i,j) -> (i,j+1) -> (i+1,j+1).
+/// closed loops of equal length (or open ones when g.open_rows), or poles. Winding: (i,j) ->
+/// (i,j+1) -> (i+1,j+1).
 void grid_faces(const SweepGrid& g, std::vector<int>& index_of_row,
                 std::vector<std::array<int, 3>>& faces) {
   for (size_t i = 0; i + 1 < g.rows.size(); ++i) {
     const auto& a = g.rows[i];
     const auto& b = g.rows[i + 1];
     const size_t m = std::max(a.size(), b.size());
-    for (size_t j = 0; j < m; ++j) {
+    for (size_t j = 0; j < (g.open_rows ? m - 1 : m); ++j) {
       const size_t j1 = (j + 1) % m;
       auto va = [&](size_t k) { return index_of_row[i] + static_cast<int>(a.size() == 1 ? 0 : k); };
       auto vb = [&](size_t k) {
@@ -348,30 +350,37 @@ std::pair<size_t, double> height_blend(const std::vector<HeightSection>& section
   return {k, w};
 }
 
-/// The unit loops of an 'around' surface with `sections` at several heights: per profile
-/// sample i of n + 1 (normalised arc length i / n), m points at the angles 2 pi j / m, each
-/// section's radius there over its radius at angle 0, blended between the two sections whose
-/// heights enclose i / n by a smoothstep (below the first and above the last: that one).
-std::vector<Polyline2> blended_unit_loops(const SurfaceSpec& spec, int n, int m) {
+/// The unit rings of an 'around' surface sampled at the angles `phis` (from +X towards -Z):
+/// per profile sample i of n + 1 (normalised arc length i / n), the point at each angle at the
+/// section's radius there over its radius at angle 0. With `sections` at several heights, the
+/// radii are blended between the two sections whose heights enclose i / n by a smoothstep
+/// (below the first and above the last: that one).
+std::vector<Polyline2> unit_rings_at_angles(const SurfaceSpec& spec, int n,
+                                            const std::vector<double>& phis) {
   std::vector<std::vector<double>> radii;
-  for (const HeightSection& h : spec.sections) {
-    std::vector<double> r(static_cast<size_t>(m), 1.0);
-    if (!h.section.circle) {
-      const Polyline2 loop = fit_curve(h.section.loops[0], true, spec.smooth);
+  std::vector<const SectionSpec*> sections;
+  if (spec.sections.empty()) sections.push_back(&spec.section);
+  for (const HeightSection& h : spec.sections) sections.push_back(&h.section);
+  for (const SectionSpec* section : sections) {
+    std::vector<double> r(phis.size(), 1.0);
+    if (!section->circle) {
+      const Polyline2 loop = fit_curve(section->loops[0], true, spec.smooth);
       const double r0 = radius_along(loop, 0);
-      for (int j = 0; j < m; ++j) r[j] = radius_along(loop, 2 * kPi * j / m) / r0;
+      for (size_t j = 0; j < phis.size(); ++j) r[j] = radius_along(loop, phis[j]) / r0;
     }
     radii.push_back(std::move(r));
   }
   std::vector<Polyline2> loops;
   for (int i = 0; i <= n; ++i) {
-    const auto [k, w] = height_blend(spec.sections, static_cast<double>(i) / n);
+    const auto [k, w] = spec.sections.empty()
+                            ? std::pair<size_t, double>{0, 0.0}
+                            : height_blend(spec.sections, static_cast<double>(i) / n);
     const std::vector<double>& a = radii[k];
     const std::vector<double>& b = radii[std::min(k + 1, radii.size() - 1)];
     Polyline2 loop;
-    for (int j = 0; j < m; ++j) {
-      const double phi = 2 * kPi * j / m, r = (1 - w) * a[j] + w * b[j];
-      loop.push_back({r * std::cos(phi), -r * std::sin(phi)});
+    for (size_t j = 0; j < phis.size(); ++j) {
+      const double r = (1 - w) * a[j] + w * b[j];
+      loop.push_back({r * std::cos(phis[j]), -r * std::sin(phis[j])});
     }
     loops.push_back(std::move(loop));
   }
@@ -444,11 +453,15 @@ DsSurface sweep_around(const SurfaceSpec& spec, const Template& t, size_t max_ve
         around_loop_from_angle0(fit_curve(h.section.loops[0], true, spec.smooth));
     perimeter = std::max(perimeter, curve_length(loop, true) / glm::length(loop.front()));
   }
-  int m = segments_for(max_r * perimeter, edge, 8);
+  const bool partial = spec.span_rad.y > spec.span_rad.x;
+  const double turn = partial ? spec.span_rad.y - spec.span_rad.x : 2 * kPi;
+  int m = segments_for(max_r * perimeter * turn / (2 * kPi), edge, partial ? 4 : 8);
   // An N-fold object maps onto itself under a turn by 2 pi / N only if every fold gets the same
   // samples: a multiple of N, so that sample k m / N lies where sample 0 turned by k folds lies.
-  if (t.symmetry == Symmetry::NFold && t.folds > 1) m = (m + t.folds - 1) / t.folds * t.folds;
-  check_vertex_budget(static_cast<size_t>(n) + 1, static_cast<size_t>(m), spec, t, max_vertices);
+  if (!partial && t.symmetry == Symmetry::NFold && t.folds > 1)
+    m = (m + t.folds - 1) / t.folds * t.folds;
+  check_vertex_budget(static_cast<size_t>(n) + 1, static_cast<size_t>(m) + partial, spec, t,
+                      max_vertices);
   if (spec.section.circle) {
     for (int j = 0; j < m; ++j) {
       const double phi = 2 * kPi * j / m;
@@ -458,9 +471,17 @@ DsSurface sweep_around(const SurfaceSpec& spec, const Template& t, size_t max_ve
     for (const auto& p : resample_uniform(started, true, m)) unit_loop.push_back(p / rho0);
   }
 
-  const std::vector<Polyline2> at_height =
-      spec.sections.empty() ? std::vector<Polyline2>{} : blended_unit_loops(spec, n, m);
+  // Equal angles where the section changes with height or the surface covers a span; equal
+  // arc length otherwise (a single section all the way round).
+  std::vector<Polyline2> at_height;
+  if (partial || !spec.sections.empty()) {
+    std::vector<double> phis;
+    for (int j = 0; j < m + partial; ++j) phis.push_back(spec.span_rad.x + turn * j / m);
+    at_height = unit_rings_at_angles(spec, n, phis);
+  }
   SweepGrid g;
+  g.open_rows = partial;
+  const int cols = m + partial;
   for (int i = 0; i <= n; ++i) {
     const double r = prof[i].x, y = prof[i].y, tp = static_cast<double>(i) / n;
     const Polyline2& unit = at_height.empty() ? unit_loop : at_height[static_cast<size_t>(i)];
@@ -470,7 +491,7 @@ DsSurface sweep_around(const SurfaceSpec& spec, const Template& t, size_t max_ve
       row.push_back({0, y, 0});
       par.push_back({tp, 0});
     } else {
-      for (int j = 0; j < m; ++j) {
+      for (int j = 0; j < cols; ++j) {
         row.push_back({r * unit[j].x, y, r * unit[j].y});
         par.push_back({tp, static_cast<double>(j) / m});
       }

@@ -137,6 +137,10 @@ struct SurfaceSpec {
   /// between them (sweep.h); empty: `section` at every height. When set, `section` is the
   /// first of them.
   std::vector<HeightSection> sections;
+  /// around: the angles (radians, from +X towards -Z, first < second, less than a turn apart)
+  /// between which the surface covers the way round (`span`: a leaf, a membrane); equal: all
+  /// the way round, closed.
+  glm::dvec2 span_rad{0.0};
   /// true: centripetal Catmull-Rom spline through the points; false: polyline.
   bool smooth = true;
   ColourField front = ColourField::constant({0.5, 0.5, 0.5});

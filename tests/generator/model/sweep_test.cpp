@@ -131,6 +131,78 @@ TEST(SweepAround, OpenProfilesLeaveRingsOpenAndNormalsPointAwayFromTheAxis) {
   }
 }
 
+// A leaf that covers a third of the way round: every vertex lies in its span, the two side
+// edges and the two end rings are its only boundary, its normals point away from the axis, and
+// the section parameter runs 0..1 across the span. A pole closes one end as a fan.
+TEST(SweepAround, ASpanCoversPartOfTheWayRound) {
+  const std::string extra = "  - name: leaf\n    kind: around\n    smooth: false\n"
+                            "    span: [30, 150]\n    section: {polar: [[0, 1], [90, 1.2], "
+                            "[180, 1], [270, 1.2]]}\n"
+                            "    profile: [[4, 2], [8, 10], [4, 18]]\n"
+                            "  - name: cup\n    kind: around\n    smooth: false\n"
+                            "    span: [-60, 60]\n    profile: [[0, 3], [5, 5], [6, 9]]\n";
+  const Template t = parse(cylinder("{type: nfold, folds: 4}", "0.8", "circle", extra));
+  check_template_curves(t);
+  const DsSurface leaf = sweep_around(surface(t, "leaf"), t);
+  const DsSurface cup = sweep_around(surface(t, "cup"), t);
+  int rows = 0, cols = 0;
+  for (auto v : leaf.mesh.vertices()) {
+    const glm::dvec3 p = point(leaf.mesh, v);
+    const double deg = horizontal_angle({p.x, p.z}) * 180 / kPi;
+    const double ts = leaf.mesh.data(v).param[1];
+    ASSERT_NEAR(deg, 30 + 120 * ts, 1e-9);
+    rows += ts == 0;
+    cols += leaf.mesh.data(v).param[0] == 0;
+  }
+  EXPECT_GE(cols, 5);
+  EXPECT_EQ(boundary_halfedges(leaf.mesh), 2 * (rows - 1) + 2 * (cols - 1));
+  for (const DsSurface* s : {&leaf, &cup}) {
+    for (auto v : s->mesh.vertices()) ASSERT_TRUE(s->mesh.is_manifold(v)) << s->name;
+    for (auto f : s->mesh.faces()) {
+      const auto n = s->mesh.calc_face_normal(f);
+      const auto c = s->mesh.calc_face_centroid(f);
+      EXPECT_GT(n[0] * c[0] + n[2] * c[2], 0) << s->name << " face " << f.idx();
+    }
+  }
+  int cup_rows = 0, cup_cols = 0;
+  for (auto v : cup.mesh.vertices()) {
+    const auto& d = cup.mesh.data(v);
+    cup_rows += d.param[1] == 0;
+    cup_cols += d.param[0] == 1;
+  }
+  // The pole, the rings' two sides and the open top ring.
+  EXPECT_EQ(boundary_halfedges(cup.mesh), 2 * (cup_rows - 1) + (cup_cols - 1));
+}
+
+TEST(SweepAround, ASpanFollowsItsRules) {
+  auto error = [](const std::string& extra) -> std::string {
+    try {
+      parse(cylinder("{type: cylindrical}", "1", "circle", extra));
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const std::string inner =
+      "  - name: leaf\n    kind: around\n    profile: [[4, 2], [8, 10], [4, 18]]\n";
+  EXPECT_NE(error(inner + "    span: [150, 30]\n").find("span: 'to' must lie above 'from'"),
+            std::string::npos);
+  EXPECT_NE(error(inner + "    span: [0, 360]\n").find("less than a whole turn"),
+            std::string::npos);
+  EXPECT_NE(error(inner + "    span: [0, 90]\n    rigid: true\n")
+                .find("rigid: a rigid surface is closed"),
+            std::string::npos);
+  std::string skin = cylinder("{type: cylindrical}", "1", "circle");
+  skin.replace(skin.find("    section: circle"), 0, "    span: [0, 90]\n");
+  try {
+    parse(skin);
+    ADD_FAILURE() << "a skin with a span was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("span: the skin is closed"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(SweepAround, SectionRadiusAtAngleZeroEqualsTheProfileRadius) {
   // A rhombus-like polar loop: radius 2 at angle 0 (the loop's scale does not matter).
   const Template t = parse(
