@@ -55,6 +55,21 @@ RegionTriangles region_triangles(const GrainSpec& spec, const DsMesh& m) {
   return r;
 }
 
+/// The triangles of grain g's ellipsoid mesh, as add_ellipsoids makes it.
+std::vector<std::array<glm::dvec3, 3>> ellipsoid_triangles(const GrainPlacement& g,
+                                                           const GrainOptions& opt) {
+  DsMesh mesh;
+  add_ellipsoids({g}, glm::dvec3(0.0), glm::dvec3(0.0), 0.0, opt, mesh);
+  std::vector<std::array<glm::dvec3, 3>> out;
+  for (auto fh : mesh.faces()) {
+    std::array<glm::dvec3, 3> t;
+    int k = 0;
+    for (auto vh : mesh.fv_range(fh)) t[k++] = point(mesh, vh);
+    out.push_back(t);
+  }
+  return out;
+}
+
 const DsSurface& grain_support(const GrainSpec& spec, const DsModel& model) {
   const DsSurface* on = nullptr;
   for (const auto& s : model.surfaces)
@@ -110,7 +125,8 @@ void check_grain_limits(const Template& tmpl, const DsModel& model) {
 }
 
 std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface& on, Rng& rng,
-                                         const GrainOptions& opt) {
+                                         const GrainOptions& opt, const CrossingTest* obstacles,
+                                         std::vector<size_t>* crossings) {
   CUTAWAY_CHECK(spec.spacing > 0);
   const DsMesh& m = on.mesh;
   const std::vector<glm::dvec3> normals = vertex_normals(m);
@@ -152,7 +168,6 @@ std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface&
       ++failures;
       continue;
     }
-    failures = 0;
     // Gradient of t_profile over the triangle.
     const glm::dvec3 e1 = pos[1] - pos[0], e2 = pos[2] - pos[0];
     const double fa2 = glm::dot(fn, fn);
@@ -172,6 +187,17 @@ std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface&
     g.axis_section = b;
     g.axis_normal = n;
     g.semi_axes = spec.semi_axes * size_j;
+    if (obstacles) {
+      if (const int hit = obstacles->crossed(ellipsoid_triangles(g, opt)); hit >= 0) {
+        if (crossings) {
+          if (crossings->size() <= static_cast<size_t>(hit)) crossings->resize(hit + 1, 0);
+          ++(*crossings)[static_cast<size_t>(hit)];
+        }
+        ++failures;
+        continue;
+      }
+    }
+    failures = 0;
     grid.add(centre, out.size());
     out.push_back(g);
   }
@@ -223,7 +249,28 @@ void scatter_grains(const Template& t, DsModel& model, uint64_t seed, const Grai
   for (size_t gi = 0; gi < t.grains.size(); ++gi) {
     const GrainSpec& spec = t.grains[gi];
     Rng rng(derive_seed(seed, {kPurposeGrains, gi}));
-    const auto grains = place_grains(spec, grain_support(spec, model), rng, opt);
+    const DsSurface& on = grain_support(spec, model);
+    std::vector<const DsMesh*> others;
+    std::vector<const DsSurface*> named;
+    for (const DsSurface& s : model.surfaces) {
+      if (&s == &on) continue;
+      others.push_back(&s.mesh);
+      named.push_back(&s);
+    }
+    const CrossingTest obstacles(others);
+    std::vector<size_t> crossings;
+    const auto grains = place_grains(spec, on, rng, opt, &obstacles, &crossings);
+    if (grains.empty() && !crossings.empty()) {
+      const size_t most = static_cast<size_t>(std::max_element(crossings.begin(), crossings.end()) -
+                                              crossings.begin());
+      const DsSurface& hit = *named[most];
+      throw InputError(spec.loc, spec.path,
+                       "grains " + quoted(spec.name) + " touch or cross " +
+                           (hit.role == SurfaceRole::Grain ? "grains " : "surface ") +
+                           quoted(hit.name) +
+                           " wherever they are placed: make them smaller or sit them deeper, or "
+                           "narrow their region (a grain may cross only the surface it sits on)");
+    }
     if (grains.empty()) continue;  // no surface without faces: exporters and sheets need some
     DsSurface s;
     s.name = spec.name;

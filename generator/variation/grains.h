@@ -8,6 +8,7 @@
 #include <glm/vec3.hpp>
 
 #include "base/random.h"
+#include "model/crossing_test.h"
 #include "model/ds_model.h"
 #include "model/template.h"
 
@@ -40,10 +41,15 @@ struct GrainOptions {
 /// t_profile over the triangle, projected off the normal (any perpendicular where it
 /// vanishes), then turned about the normal by jitter * 90 degrees * U(-1, 1); semi-axes scaled
 /// by 1 + jitter * U(-1, 1). Deterministic for a given rng state.
+/// A dart whose grain `obstacles` says it touches or crosses is rejected like one too close to
+/// another (it counts as a failure); `crossings[k]`, when given, counts the darts rejected for
+/// obstacle k (resized to fit).
 /// Note: darts instead of Bridson's (2007) active list: the region is a set of triangles, on
 /// several components (one per fold), where a parameter-domain grid is not one-to-one.
 std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface& on, Rng& rng,
-                                         const GrainOptions& options = {});
+                                         const GrainOptions& options = {},
+                                         const CrossingTest* obstacles = nullptr,
+                                         std::vector<size_t>* crossings = nullptr);
 
 /// Appends one closed ellipsoid (UV sphere of options.rings x options.segments, poles on the
 /// normal axis, outward normals) per placement to `mesh`, with DS attributes front, back (linear
@@ -70,9 +76,12 @@ void check_grain_limits(const Template& tmpl, const DsModel& model);
 /// Scatters every grain set of `tmpl` over its `on` surface of `model` and appends one
 /// DsSurface per set that got grains (role Grain, name of the set, many components; a set whose
 /// region gets none adds no surface); bounds updated. Grain set i uses the stream
-/// derive_seed(seed, {grains purpose, i}).
+/// derive_seed(seed, {grains purpose, i}). A grain may cross the surface it sits on (a pip in
+/// its carpel wall, an eye in the skin) but no other surface and no grain of an earlier set:
+/// such darts are rejected (doc/template-format.md, Grains).
 /// @pre model was built from tmpl (build_model); every grain's `on` names one of its surfaces
-/// @throws InputError from check_grain_limits
+/// @throws InputError from check_grain_limits, or at the grain set's item when its region has
+///         room for grains but every dart crossed another surface (naming the one crossed most)
 void scatter_grains(const Template& tmpl, DsModel& model, uint64_t seed,
                     const GrainOptions& options = {});
 

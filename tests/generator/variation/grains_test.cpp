@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "base/constants.h"
 #include "io/template_parser.h"
 #include "model/model_builder.h"
 #include "test_support.h"
@@ -82,6 +83,82 @@ TEST(Grains, ScatterAddsClosedOutwardEllipsoids) {
   EXPECT_TRUE(d.m.surfaces.back().mesh.n_vertices() != s.mesh.n_vertices() ||
               d.m.surfaces.back().mesh.point(d.m.surfaces.back().mesh.vertex_handle(0)) !=
                   s.mesh.point(s.mesh.vertex_handle(0)));
+}
+
+/// The profile of a ball of radius r (mm): 13 points on a half circle, bottom to top.
+std::string half_circle(double r) {
+  std::string out = "[";
+  for (int k = 0; k <= 12; ++k) {
+    const double a = kPi * (k / 12.0 - 0.5);
+    out += (k ? ", [" : "[") + std::to_string(k == 0 || k == 12 ? 0.0 : r * std::cos(a)) + ", " +
+           std::to_string(r * std::sin(a)) + "]";
+  }
+  return out + "]";
+}
+
+/// A ball of radius 20 mm holding a ball `core` of radius `core_r` whose centre lies
+/// `core_x` mm along +X, and seeds on the skin's back side, 4 mm deep, 2 mm across.
+Template seeded_ball(double core_x, double core_r) {
+  return parse_template(
+      "format: cutaway-template/1\nname: ball\nunits: mm\nsymmetry: {type: cylindrical}\n"
+      "resolution: {edge: 1.2}\nsurfaces:\n"
+      "  - {name: skin, kind: around, role: skin, profile: " +
+          half_circle(20) + "}\n  - {name: core, kind: around, offset: [" + std::to_string(core_x) +
+          ", 0, 0], profile: " + half_circle(core_r) +
+          "}\n"
+          "grains:\n"
+          "  - {name: seeds, on: skin, spacing: 5, depth: 4, shape: {ellipsoid: [2, 2, 2]}, front: "
+          "\"#201810\", back: \"#201810\"}\n",
+      "ball.yaml", ".");
+}
+
+// Grains may cross the surface they sit on, but no other: a core off the axis reaches within
+// 5 mm of the skin on its side, where 4 mm deep seeds 2 mm across would cross it; none is
+// placed across it, while the same cone on the far side gets grains.
+TEST(Grains, NoGrainCrossesASurfaceItDoesNotSitOn) {
+  const Template t = seeded_ball(7, 8);
+  DsModel m = build_model(t);
+  scatter_grains(t, m, 3);
+  const DsSurface& seeds = m.surfaces.back();
+  ASSERT_EQ(seeds.name, "seeds");
+  const GrainOptions opt;
+  const size_t per = 2 + (opt.rings - 1) * opt.segments;
+  size_t near_side = 0, far_side = 0;
+  double closest = 1e9;  // from a grain vertex to the core's centre, mm
+  for (size_t g = 0; g < seeds.mesh.n_vertices() / per; ++g) {
+    glm::dvec3 centre(0.0);
+    for (size_t k = 0; k < per; ++k) {
+      const glm::dvec3 p =
+          to_glm(seeds.mesh.point(DsMesh::VertexHandle(static_cast<int>(g * per + k))));
+      centre += p / static_cast<double>(per);
+      closest = std::min(closest, glm::distance(p, glm::dvec3(7e-3, 0, 0)) * 1e3);
+    }
+    // Within 20 degrees of +X a grain 16 mm out would come within 7.7 mm of the core's centre.
+    const double along = centre.x / glm::length(centre);
+    near_side += along > std::cos(20 * kPi / 180);
+    far_side += -along > std::cos(20 * kPi / 180);
+  }
+  EXPECT_GT(closest, 8.0);  // the core's mesh lies within its 8 mm ball
+  EXPECT_EQ(near_side, 0u);
+  EXPECT_GT(far_side, 0u);
+  std::printf("%zu grains beside the core, %zu on the far side; closest grain point %.2f mm from "
+              "its centre\n",
+              near_side, far_side, closest);
+}
+
+TEST(Grains, ASetThatCrossesASurfaceWhereverItIsPlacedIsRefused) {
+  const Template t = seeded_ball(0, 15);  // seeds reach 14 mm from the centre
+  DsModel m = build_model(t);
+  try {
+    scatter_grains(t, m, 3);
+    FAIL() << "grains that cross the core everywhere were placed";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "grains[0]");
+    EXPECT_NE(std::string(e.what()).find("grains \"seeds\" touch or cross surface \"core\" "
+                                         "wherever they are placed"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
