@@ -108,10 +108,15 @@ bool bounds_domain(const DsSurface& surface) {
   return surface.role == SurfaceRole::Skin || !surface.visible_front || !surface.visible_back;
 }
 
-/// Which side of segment s the point c lies on: +1 front, -1 back, 0 on its line.
-int side_of(const Segment2& s, const glm::dvec2& c) {
-  const double d = glm::dot(c - s.a, s.front);
-  return d > 0 ? 1 : (d < 0 ? -1 : 0);
+/// Which side of the constrained edge (a, b), a piece of segment s, the point c lies on: +1 on
+/// s's front side, -1 on its back, 0 on the edge's line. The side is taken of the edge itself
+/// (an exact orientation test), not of s's line: where another constraint split s at a vertex
+/// a hair off its line, a thin face beside the edge can lie on the other side of that line.
+int side_of(const Segment2& s, const Point2& a, const Point2& b, const Point2& c) {
+  const int turn = static_cast<int>(CGAL::orientation(a, b, c));  // +1: left of a -> b
+  const glm::dvec2 d = to2(b) - to2(a);
+  const double left_is_front = glm::dot(glm::dvec2(-d.y, d.x), s.front);
+  return left_is_front > 0 ? turn : (left_is_front < 0 ? -turn : 0);
 }
 
 }  // namespace
@@ -407,7 +412,8 @@ void SectionMesher::mark_domain() {
           continue;
         }
         if (cdt_.is_infinite(g)) continue;
-        const int side = side_of(*s, to2(g->vertex(i)->point()));
+        const int side = side_of(*s, g->vertex(Cdt::cw(i))->point(),
+                                 g->vertex(Cdt::ccw(i))->point(), g->vertex(i)->point());
         const DsSurface& surface = model_.surfaces[segments_[s->index].surface];
         if (side > 0 && (surface.role == SurfaceRole::Skin || !surface.visible_front)) in = false;
         if (side < 0 && !surface.visible_back) in = false;
@@ -591,10 +597,11 @@ void SectionMesher::split_vertex(Vertex v) {
     // after its last face; one of them lies on a cut segment unless both are split lines.
     const Face first = wedge.front(), last = wedge.back();
     const int i = first->index(v), j = last->index(v);
-    Vertex c = first->vertex(Cdt::cw(i));
-    const Segment2* s = segment_on(v, first->vertex(Cdt::ccw(i)));
+    Vertex c = first->vertex(Cdt::cw(i)), w = first->vertex(Cdt::ccw(i));
+    const Segment2* s = segment_on(v, w);
     if (!s) {
-      s = segment_on(v, last->vertex(Cdt::cw(j)));
+      w = last->vertex(Cdt::cw(j));
+      s = segment_on(v, w);
       c = last->vertex(Cdt::ccw(j));
     }
     int surface = -1;
@@ -608,7 +615,7 @@ void SectionMesher::split_vertex(Vertex v) {
       const double len2 = glm::dot(s->b - s->a, s->b - s->a);
       const double t = len2 > 0 ? std::clamp(glm::dot(p - s->a, s->b - s->a) / len2, 0.0, 1.0) : 0;
       const DsAttributes at = lerp(cut.at_a, cut.at_b, t);
-      const bool front = side_of(*s, to2(c->point())) > 0;
+      const bool front = side_of(*s, v->point(), w->point(), c->point()) > 0;
       colour = at.colour(front);
       material = at.material(front);
       diffuse = at.blur > 0;

@@ -21,6 +21,7 @@
 #include "section/cross_section.h"
 #include "test_support.h"
 #include "variation/grains.h"
+#include "variation/variation.h"
 
 namespace cutaway {
 namespace {
@@ -369,8 +370,26 @@ TEST(CrossSection, BlurredSurfaceBlendsOverTwiceItsBlur) {
   }
 }
 
-// 6a. A plane tangent to the skin at the pole (y = 40 mm) only touches the object: a clear
-//     error. Just below (y = 39.999 mm) it is a valid tiny section or the same error.
+// 4c. A grain that crosses the skin splits the skin's cut segment at a vertex a hair off its
+//     line; the thin face beside that piece of the segment lies on the segment's front side
+//     but on the back of the piece. Deciding the side by the piece itself keeps the cut face:
+//     the strawberry of seed 5 cut at this height was "only touched" before.
+TEST(CrossSection, ASkinSegmentSplitByAGrainStillBoundsTheCutFace) {
+  const Template t = load_template(test::source_path("templates/strawberry.yaml").string());
+  const Variant v = make_variant(t, 5);
+  const auto diffusion = make_cpu_diffusion(v.model, DiffusionOptions{8, 0});
+  const Plane plane = plane_of({0, 0.0206272, 0}, {0, 1, 0});
+  const Outcome<CrossSection> cs = make_cross_section(v.model, plane, *diffusion, {t.edge_m});
+  ASSERT_TRUE(cs) << cs.reason();
+  expect_valid_triangulation(*cs, "strawberry");
+  double area = 0;
+  for (const glm::uvec3& tri : cs->triangle) area += signed_area(*cs, tri);
+  const double skin = std::fabs(loop_area(cut_segments(v.model, plane), 0, *cs));
+  EXPECT_NEAR(area, skin, 0.01 * skin);
+}
+
+// 6a. A plane tangent to the skin at the pole (y = 40 mm) misses the object: a clear error.
+//     Just below (y = 39.999 mm) it is a valid tiny section or a clear error.
 TEST(CrossSection, TangentPlaneIsAnErrorOrATinySection) {
   const Template t = load_template(test::source_path("templates/spheres.yaml").string());
   const DsModel model = build_model(t);
@@ -385,7 +404,10 @@ TEST(CrossSection, TangentPlaneIsAnErrorOrATinySection) {
     const Outcome<CrossSection> cs =
         make_cross_section(model, plane_of({0, y, 0}, {0, 1, 0}), *diffusion, {t.edge_m});
     if (!cs) {
-      EXPECT_EQ(cs.reason(), kPlaneMisses) << "y = " << y;
+      // A loop of micrometres, merged from segments a third of a micrometre long, may leave no
+      // area: "only touches" is as clear an answer as "misses".
+      EXPECT_TRUE(cs.reason() == kPlaneMisses || cs.reason() == kPlaneOnlyTouches)
+          << "y = " << y << ": " << cs.reason();
       continue;
     }
     expect_valid_triangulation(*cs, "y = " + std::to_string(y));
