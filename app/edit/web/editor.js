@@ -19,6 +19,7 @@ let doc = new TemplateDoc('');
 let saved = '';                 // the text on disk
 const past = [], future = [];   // undo history: texts
 let selected = 0;               // the selected surface
+let selectedHeight = 0;         // of a surface with `sections`: the one the top view edits
 let verdict = null;             // the last answer of /api/check
 let version = 0;                // of the text sent; older answers are dropped
 let framed = false;             // the 3D view is framed on the first model
@@ -37,7 +38,17 @@ const folds = () => (isNfold() ? Number(doc.get(['symmetry', 'folds'])) || 1 : 1
 const pairs = (list) => (Array.isArray(list) ? list : []).filter((p) =>
   Array.isArray(p) && p.length === 2 && p.every((c) => typeof c === 'number'));
 const isLoopList = (s) => Array.isArray(s) && Array.isArray(s[0]) && Array.isArray(s[0][0]);
-const sectionPath = (i) => ['surfaces', i, 'section'];
+/// A surface's sections at several heights (`sections`), or null when it has one `section`.
+const heightsOf = (s) => (Array.isArray(s?.sections) ? s.sections : null);
+/// The height of `s`'s sections that the top view edits (0 when it has one section).
+const heightOf = (s) => Math.min(selectedHeight, Math.max(0, (heightsOf(s)?.length ?? 1) - 1));
+/// The section of `s` that the top view shows and edits, and the path of surface i's.
+const sectionOf = (s) => (heightsOf(s) ? heightsOf(s)[heightOf(s)]?.section : s?.section);
+const sectionPath = (i) => {
+  const s = surfaces()[i];
+  return heightsOf(s) ? ['surfaces', i, 'sections', heightOf(s), 'section']
+                      : ['surfaces', i, 'section'];
+};
 
 /// A section as loops of view points (top view: [x, -z]); polar points become [x, -z] too.
 function sectionLoops(section) {
@@ -115,17 +126,32 @@ function layoutCurves() {
     const bad = place && place.surface === i;
     side.curves.push({ points: profile, closed: s.kind === 'within',
                        fitted: fitted?.[i]?.profile, mirror: s.kind !== 'within', colour,
-                       selected: chosen, error: bad && place.field !== 'section' });
+                       selected: chosen,
+                       error: bad && !['section', 'sections'].includes(place.field) });
     sideCurves.push({ surface: i });
-    let loops = sectionLoops(s.section);
-    let fittedLoops = fitted?.[i]?.sections?.map((l) => l.map(([x, z]) => [x, -z]));
+    const section = sectionOf(s);
+    let loops = sectionLoops(section);
+    // The server fits the first of a surface's sections at several heights.
+    let fittedLoops = heightOf(s) === 0
+      ? fitted?.[i]?.sections?.map((l) => l.map(([x, z]) => [x, -z])) : undefined;
     if (!loops.length && s.kind === 'around') loops = [circle(maxRadius(profile))];
     loops.forEach((loop, k) => {
       top.curves.push({ points: loop, closed: true, fitted: fittedLoops?.[k], colour,
-                        selected: chosen && !(s.section === 'circle' || !s.section),
-                        error: bad && place.field === 'section' });
+                        selected: chosen && !(section === 'circle' || !section),
+                        error: bad && (place.field === 'section' || place.field === 'sections') });
       topCurves.push({ surface: i, loop: k });
     });
+    // The selected surface's other heights, drawn faintly for comparison.
+    if (chosen) {
+      (heightsOf(s) ?? []).forEach((h, k) => {
+        if (k === heightOf(s)) return;
+        for (const loop of sectionLoops(h?.section)) {
+          top.curves.push({ points: [], fitted: loop, closed: true, colour: '#9a9a9a',
+                            selected: false });
+          topCurves.push({ surface: i, ghost: true });
+        }
+      });
+    }
     // A within surface drawn once is repeated in every fold: show the copies.
     if (s.kind === 'within' && loops.length === 1 && folds() > 1) {
       for (let f = 1; f < folds(); ++f) {
@@ -192,7 +218,7 @@ function topStroke(stroke) {
   const s = surfaces()[selected];
   if (!s || s.kind === 'mesh') return;
   const loop = fitStroke(stroke, { closed: true, minPoints: 6 }).map(([u, v]) => [u, -v]);
-  if (s.kind === 'within' && isLoopList(s.section)) {
+  if (s.kind === 'within' && isLoopList(sectionOf(s))) {
     // Replace the loop of the fold the stroke was drawn in.
     const cx = stroke.reduce((a, p) => a + p[0], 0), cy = stroke.reduce((a, p) => a + p[1], 0);
     const angle = (Math.atan2(cy, cx) + 2 * Math.PI) % (2 * Math.PI);
@@ -213,7 +239,7 @@ function movePoint(view, curve, index, point, done) {
     return;
   }
   const { surface, loop } = topCurves[curve];
-  const section = surfaces()[surface].section;
+  const section = sectionOf(surfaces()[surface]);
   const [u, v] = point.map((c) => Math.round(c * 100) / 100);
   if (section.polar) {
     const deg = Math.round(((Math.atan2(v, u) * 180 / Math.PI + 360) % 360) * 100) / 100;
@@ -271,12 +297,27 @@ function fillPanel() {
     const li = document.createElement('li');
     li.textContent = `${s.name ?? '?'} (${s.kind ?? '?'}${s.role === 'skin' ? ', skin' : ''})`;
     li.className = i === selected ? 'selected' : '';
-    li.addEventListener('click', () => { selected = i; refresh(); });
+    li.addEventListener('click', () => {
+      if (selected !== i) selectedHeight = 0;
+      selected = i;
+      refresh();
+    });
     return li;
   }));
   const s = list[selected];
   $('surface').disabled = !s;
   if (!s) return;
+  const heights = heightsOf(s);
+  $('height-choice').hidden = !heights;
+  if (heights) {
+    $('height').replaceChildren(...heights.map((h, k) => {
+      const option = document.createElement('option');
+      option.value = k;
+      option.textContent = `at ${h?.at ?? '?'}`;
+      return option;
+    }));
+    $('height').value = heightOf(s);
+  }
   $('name').value = s.name ?? '';
   $('skin').checked = s.role === 'skin';
   $('smooth').checked = s.smooth !== false;
@@ -306,6 +347,11 @@ function fillPanel() {
 }
 
 const setSurface = (field, value) => commit(doc.set(['surfaces', selected, field], value));
+
+$('height').addEventListener('change', () => {
+  selectedHeight = Number($('height').value);
+  refresh();
+});
 
 $('name').addEventListener('change', () => {
   const old = surfaces()[selected].name;
@@ -691,12 +737,15 @@ text.value = doc.text;
 hint();
 frameViews();
 refresh();
-/// `d` with every surface's profile and section set to the values they have.
+/// `d` with every surface's profile and sections set to the values they have.
 function rewriteCurves(d) {
   (d.get(['surfaces']) ?? []).forEach((s, i) => {
     for (const field of ['profile', 'section']) {
       if (s && s[field] !== undefined) d = d.set(['surfaces', i, field], s[field]);
     }
+    (heightsOf(s) ?? []).forEach((h, k) => {
+      if (h?.section !== undefined) d = d.set(['surfaces', i, 'sections', k, 'section'], h.section);
+    });
   });
   return d;
 }
