@@ -1,5 +1,7 @@
 #include "batch/batch_assets.h"
 
+#include <algorithm>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -198,6 +200,8 @@ std::string asset_glb(SceneAssets& assets, CachedCut& cut, const Batch& batch, A
       hi = glm::max(hi, p);
     }
     r.volume_m3 += object.infos[q].volume_m3;
+    const std::vector<std::string>& parts = object.infos[q].parts;
+    if (std::find(parts.begin(), parts.end(), "stone") != parts.end()) r.stone_pieces.push_back(q);
     assets.instances.push_back({object.meshes[q].name,
                                 static_cast<int>(assets.meshes.size()),
                                 {1, 0, 0, 0},

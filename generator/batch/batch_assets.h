@@ -79,8 +79,11 @@ struct AssetRecord {
   size_t pieces = 0;
   size_t triangles = 0, vertices = 0;  ///< in `file`, as count_glb_geometry reads them
   double volume_m3 = 0;                ///< the pieces' volumes summed, cubic metres
-  uint64_t hash = 0;                   ///< of `file`
-  std::string model;                   ///< TEMPLATE-SEED.model.glb, or empty
+  /// The pieces (0-based, in the file's node order) that hold a whole stone (a rigid surface,
+  /// doc/template-format.md), in increasing order; empty without stones.
+  std::vector<size_t> stone_pieces;
+  uint64_t hash = 0;  ///< of `file`
+  std::string model;  ///< TEMPLATE-SEED.model.glb, or empty
   uint64_t model_hash = 0;
   std::string thumbnail;  ///< STEM.png, or empty
   uint64_t thumbnail_hash = 0;

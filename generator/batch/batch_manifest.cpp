@@ -91,6 +91,7 @@ std::string manifest_line(const AssetRecord& r) {
                               {"pieces", r.pieces},      {"triangles", r.triangles},
                               {"vertices", r.vertices},  {"volume_m3", r.volume_m3},
                               {"fnv1a64", hex64(r.hash)}};
+  if (!r.stone_pieces.empty()) j["stone_pieces"] = r.stone_pieces;
   if (!r.model.empty()) {
     j["model"] = r.model;
     j["model_fnv1a64"] = hex64(r.model_hash);
@@ -126,6 +127,14 @@ Outcome<AssetRecord> parse_manifest_line(std::string_view line) {
     if (!hash || !inputs) return Outcome<AssetRecord>::none("a hash is not 16 hex digits");
     r.hash = *hash;
     r.inputs = *inputs;
+    if (j.contains("stone_pieces")) {
+      for (const auto& q : j.at("stone_pieces")) {
+        const size_t piece = q.get<size_t>();
+        if (piece >= r.pieces || (!r.stone_pieces.empty() && piece <= r.stone_pieces.back()))
+          return Outcome<AssetRecord>::none("stone_pieces are not increasing piece indices");
+        r.stone_pieces.push_back(piece);
+      }
+    }
     if (j.contains("model")) {
       r.model = j.at("model").get<std::string>();
       const auto h = parse_hex64(j.at("model_fnv1a64").get<std::string>());

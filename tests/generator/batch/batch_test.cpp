@@ -191,6 +191,18 @@ TEST(BatchManifest, LinesRoundTripAndRefuseDamage) {
   std::string escaping = line;
   escaping.replace(escaping.find("tomato-3-halves.glb"), 19, "../../etc/passwd.glb");
   EXPECT_FALSE(parse_manifest_line(escaping));
+  // The pieces that hold a whole stone: listed in increasing order, each a piece of the file.
+  r.stone_pieces = {1};
+  const std::string stoned = manifest_line(r);
+  EXPECT_NE(stoned.find(R"("fnv1a64":"0123456789abcdef","stone_pieces":[1],)"), std::string::npos)
+      << stoned;
+  ASSERT_TRUE(parse_manifest_line(stoned));
+  EXPECT_EQ(*parse_manifest_line(stoned), r);
+  for (const char* bad : {"[2]", "[1,1]", "[-1]", "\"1\""}) {
+    std::string wrong = stoned;
+    wrong.replace(wrong.find("[1]"), 3, bad);
+    EXPECT_FALSE(parse_manifest_line(wrong)) << wrong;
+  }
   EXPECT_EQ(manifest_name(std::nullopt), "manifest.jsonl");
   EXPECT_EQ(manifest_name(Shard{2, 4}), "manifest-2-of-4.jsonl");
 }
