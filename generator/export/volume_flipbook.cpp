@@ -69,6 +69,38 @@ Outcome<VolumeFlipbooks> encode_flipbooks(const InteriorVolume& volume) {
                          encode_texture(material, TextureFormat::Png)};
 }
 
+namespace {
+
+/// The stones as the sidecar lists them: points in whole micrometres, triangles, and 8-bit
+/// sRGB colours, each a flat array.
+nlohmann::ordered_json stones_json(const std::vector<VolumeStone>& stones) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const VolumeStone& stone : stones) {
+    nlohmann::ordered_json points = nlohmann::ordered_json::array(),
+                           triangles = nlohmann::ordered_json::array(),
+                           own = nlohmann::ordered_json::array(),
+                           flesh = nlohmann::ordered_json::array();
+    for (const glm::dvec3& p : stone.points)
+      for (int a = 0; a < 3; ++a) points.push_back(std::llround(p[a] * 1e6));
+    for (const glm::uvec3& t : stone.triangles)
+      for (int a = 0; a < 3; ++a) triangles.push_back(t[a]);
+    for (size_t v = 0; v < stone.points.size(); ++v) {
+      for (int a = 0; a < 3; ++a) {
+        own.push_back(linear_to_srgb8(stone.stone[v][a]));
+        flesh.push_back(linear_to_srgb8(stone.flesh[v][a]));
+      }
+    }
+    out.push_back({{"surface", stone.surface},
+                   {"points_um", std::move(points)},
+                   {"triangles", std::move(triangles)},
+                   {"stone_srgb", std::move(own)},
+                   {"flesh_srgb", std::move(flesh)}});
+  }
+  return out;
+}
+
+}  // namespace
+
 nlohmann::ordered_json volume_sidecar(const InteriorVolume& volume, const std::string& name,
                                       int64_t seed, const VolumeFileNames& files) {
   const FlipbookTiling tiling = flipbook_tiling(volume.size);
@@ -114,6 +146,7 @@ nlohmann::ordered_json volume_sidecar(const InteriorVolume& volume, const std::s
       {"regions", volume.regions},
       {"solid_voxels", volume.solid}};
   if (!files.vdb.empty()) sidecar["vdb"] = files.vdb;
+  if (!volume.stones.empty()) sidecar["stones"] = stones_json(volume.stones);
   return sidecar;
 }
 

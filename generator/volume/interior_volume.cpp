@@ -73,6 +73,36 @@ uint32_t find_root(std::vector<uint32_t>& parent, uint32_t v) {
   return v;
 }
 
+/// The rigid surfaces of `model` as VolumeStones: triangles wound outwards (a surface whose
+/// front is its inside is turned), the stone's colour from its inside side, the flesh's from
+/// its outside.
+std::vector<VolumeStone> volume_stones(const DsModel& model) {
+  std::vector<VolumeStone> out;
+  for (const DsSurface& surface : model.surfaces) {
+    if (!surface.rigid) continue;
+    const DsMesh& mesh = surface.mesh;
+    const bool front_outside = signed_volume(mesh) > 0;
+    VolumeStone stone{surface.name, {}, {}, {}, {}};
+    for (auto vh : mesh.vertices()) {
+      const auto& d = mesh.data(vh);
+      const glm::dvec3 front(d.front[0], d.front[1], d.front[2]);
+      const glm::dvec3 back(d.back[0], d.back[1], d.back[2]);
+      stone.points.push_back(to_glm(mesh.point(vh)));
+      stone.stone.push_back(front_outside ? back : front);
+      stone.flesh.push_back(front_outside ? front : back);
+    }
+    for (auto fh : mesh.faces()) {
+      glm::uvec3 t;
+      int k = 0;
+      for (auto vh : mesh.fv_range(fh)) t[k++] = static_cast<unsigned>(vh.idx());
+      if (!front_outside) std::swap(t[1], t[2]);
+      stone.triangles.push_back(t);
+    }
+    out.push_back(std::move(stone));
+  }
+  return out;
+}
+
 }  // namespace
 
 double voxel_length_across(const DsModel& model, int across) {
@@ -284,6 +314,7 @@ InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBacke
     volume.colour[v] = glm::vec3(c / static_cast<double>(count));
     volume.material[v] = glm::vec2(m / static_cast<double>(count));
   }
+  volume.stones = volume_stones(model);
   return volume;
 }
 

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -25,6 +26,18 @@ inline constexpr uint32_t kEmptyRegion = 0;
 /// The most voxels one volume may have (about 1.5 GB of samples and two minutes of PMVC per
 /// million solid voxels on two cores): a finer grid is refused before any work.
 inline constexpr size_t kMaxVolumeVoxels = 16'000'000;
+
+/// A rigid surface (a stone, doc/template-format.md) as a triangle mesh beside the voxels, so
+/// that a cut of the volume can keep it whole in one half and its imprint in the other, as
+/// `cutaway piece` does (the cutting page; doc/interior-volume.md, Stones).
+struct VolumeStone {
+  std::string surface;                ///< the rigid surface's name
+  std::vector<glm::dvec3> points;     ///< #V points, metres, object frame
+  std::vector<glm::uvec3> triangles;  ///< #F by 3 indices into points, wound outwards
+  /// #V linear RGB colours: the stone's own (its inside side) and the flesh's against it (its
+  /// outside side).
+  std::vector<glm::dvec3> stone, flesh;
+};
 
 /// A regular grid of samples over an object's skin, object frame, metres. Voxel (i, j, k) is
 /// the cube of edge `voxel_m` centred on origin + voxel_m (i, j, k); arrays are indexed
@@ -54,10 +67,11 @@ struct InteriorVolume {
   /// between solid and empty, at most voxel_m. A sampler reads it as an unsigned distance to
   /// the outline, solid against empty, whatever surfaces lie between.
   std::vector<float> outline_distance;
-  uint32_t regions = 0;         ///< solid regions (the largest region id)
-  size_t solid = 0;             ///< voxels whose region is not empty (the PMVC points)
-  double seconds_classify = 0;  ///< ray casts for the regions and the distances
-  double seconds_diffuse = 0;   ///< PMVC at the solid voxels
+  std::vector<VolumeStone> stones;  ///< the model's rigid surfaces; none without
+  uint32_t regions = 0;             ///< solid regions (the largest region id)
+  size_t solid = 0;                 ///< voxels whose region is not empty (the PMVC points)
+  double seconds_classify = 0;      ///< ray casts for the regions and the distances
+  double seconds_diffuse = 0;       ///< PMVC at the solid voxels
 
   size_t voxels() const { return static_cast<size_t>(size.x) * size.y * size.z; }
   size_t index(int i, int j, int k) const {
@@ -99,8 +113,9 @@ Outcome<InteriorVolume> volume_grid(const DsModel& model, double voxel_m);
 /// and the surfaces with a hollow side), and `diffusion` (PMVC over the model's diffusion sheets,
 /// the same backend and settings as cut faces) at every solid voxel's centre, then, with
 /// `modulation`, the object's Perlin colour modulation of that strength at the same centres (as cut
-/// faces get it: material/colour_modulation.h). Ray casts run on `threads` threads (0: all cores);
-/// the result does not depend on it.
+/// faces get it: material/colour_modulation.h). The model's rigid surfaces go beside the voxels
+/// as VolumeStones. Ray casts run on `threads` threads (0: all cores); the result does not
+/// depend on it.
 InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBackend& diffusion,
                                       InteriorVolume grid, int threads = 0,
                                       const ColourModulation* modulation = nullptr,

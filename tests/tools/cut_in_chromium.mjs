@@ -19,6 +19,9 @@
 //       perpendicular to the stroke's rays, i.e. the plane holds the stroke and the view
 //       direction);
 //   (d) frame times over about 30 frames while Alt-dragging the plane.
+// With --stones, only the bytes and (e): a plane through each stone's centre, seen head-on,
+//   then flipped: the half that holds the stone shows it whole, the other its cavity in the
+//   flesh's colour where the cap would read the stone's inside (stones_ok).
 // Screenshots go to DIR/cut-NAME-*.png when --out is given.
 // Prints one JSON line {ok, pages: [{name, cap_points, max_diff, mean_diff, knife_ok, drag_ok,
 // frame_ms_mean, frame_ms_p95, ...}], warnings, error}; exit code 0 when ok.
@@ -36,6 +39,7 @@ const MAX_DIFF = 2;        // 8-bit rounding, and float32 on the GPU against flo
 const MEAN_DIFF = 1;
 const started = Date.now();
 const result = { ok: false, pages: [], warnings: [], error: '' };
+let onlyStones = false;  // --stones: the bytes and the stones' check only
 
 function report(fields) {
   Object.assign(result, fields, { seconds: (Date.now() - started) / 1000 });
@@ -338,6 +342,11 @@ async function checkName(page, base, name, out) {
   await shot('opened');
   Object.assign(entry, await checkBytes(page, base, name));
 
+  if (onlyStones) {
+    Object.assign(entry, await checkStones(page, base, name, shot));
+    entry.ok = entry.bytes_ok && entry.stones_ok;
+    return entry;
+  }
   const planes = await checkPlanes(page, info, shot);
   const diffs = planes.flatMap((p) => p.diffs);
   entry.cap_points = diffs.length;
@@ -361,6 +370,58 @@ async function checkName(page, base, name, out) {
   entry.ok = entry.cap_ok && entry.bytes_ok && entry.drag_ok && entry.flip_ok &&
              entry.knife_ok && entry.frames >= 25;
   return entry;
+}
+
+// --- (e) stones kept whole --------------------------------------------------------------------
+
+/// Cuts through each stone's centre both ways. The half that holds the stone must show it at
+/// the centre (nearer its own colour than the flesh's), the other its cavity: nearer the
+/// flesh's colour, and the pixel the same with the cap hidden (the cap is not drawn over the
+/// cavity, where it would read the stone's inside).
+async function checkStones(page, base, name, shot) {
+  const stones = await page.evaluate(() => window.cutting.stones());
+  const token = await page.evaluate(
+    () => document.querySelector('meta[name="cutaway-token"]')?.content ?? '');
+  const asking = token ? { method: 'POST', headers: { 'X-Cutaway-Token': token } } : {};
+  const meta = await (await fetch(`${base}/api/volume/${name}.json`, asking)).json();
+  const out = [];
+  for (const [k, stone] of stones.entries()) {
+    const spec = meta.stones[k];
+    const mean = (list) => [0, 1, 2].map((a) =>
+      list.filter((_, i) => i % 3 === a).reduce((s, v) => s + v, 0) / (list.length / 3));
+    const cavity = mean(spec.flesh_srgb);
+    const own = mean(spec.stone_srgb);
+    const views = [];
+    for (const normal of [[0, 0, 1], [0, 0, -1]]) {
+      const seen = await page.evaluate(async ([p, n]) => {
+        const c = window.cutting;
+        c.setPlane(p, n);
+        c.faceCap(0);
+        c.showHandle(false);
+        await c.nextFrame();
+        const [x, y] = c.project(...p);
+        const state = c.stones();
+        const got = c.capPixel(x, y);
+        c.showCap(false);
+        await c.nextFrame();
+        const uncapped = c.capPixel(x, y);
+        c.showCap(true);
+        c.showHandle(true);
+        return { state, got, uncapped, volume: c.sampleVolume(...p).rgb };
+      }, [stone.centre, normal]);
+      await shot(`stone${k}-${normal[2] > 0 ? 'front' : 'back'}`);
+      const s = seen.state[k];
+      const far = (a, b) => Math.max(...a.map((v, i) => Math.abs(v - b[i])));
+      views.push({ normal, holds: s.holds, kept: s.kept, pixel: seen.got, volume: seen.volume,
+                   to_flesh: far(seen.got, cavity), to_own: far(seen.got, own),
+                   cap_drawn: far(seen.got, seen.uncapped) > 1 });
+    }
+    const holder = views.find((v) => v.holds), other = views.find((v) => !v.holds);
+    const ok = !!holder && !!other && holder.to_own < holder.to_flesh &&
+               other.to_flesh < other.to_own && !other.cap_drawn && !holder.cap_drawn;
+    out.push({ surface: stone.surface, flesh_srgb: cavity, stone_srgb: own, views, ok });
+  }
+  return { stones: out, stones_ok: out.length > 0 && out.every((s) => s.ok) };
 }
 
 /// Removes `flag` and the value after it from `args`; returns the value (null when absent).
@@ -391,6 +452,11 @@ async function main() {
   const out = takeOption(args, '--out');
   const cutaway = takeOption(args, '--cutaway');
   const voxels = takeOption(args, '--volume-voxels');
+  const stonesAt = args.indexOf('--stones');
+  if (stonesAt >= 0) {
+    onlyStones = true;
+    args.splice(stonesAt, 1);
+  }
   const usage = 'usage: node tests/tools/cut_in_chromium.mjs BASE_URL NAME... [--out DIR] | ' +
                 '--cutaway CUTAWAY FILE.yaml... [--out DIR] [--volume-voxels N]';
   if (out === '' || cutaway === '' || voxels === '' || !args.length ||

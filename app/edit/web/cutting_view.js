@@ -129,7 +129,36 @@ export async function loadVolume(url) {
   volume.colour.forEach((byte, i) => {
     volume.linear[i] = ((i & 3) === 3 ? alpha : half)[byte];
   });
+  // The stones (rigid surfaces) beside the voxels: meshes in metres, colours decoded to linear.
+  volume.stones = (meta.stones ?? []).map((s) => ({
+    surface: s.surface,
+    points: Float32Array.from(s.points_um, (v) => v * 1e-6),
+    triangles: Uint32Array.from(s.triangles),
+    stone: Float32Array.from(s.stone_srgb, (b) => LINEAR[b]),
+    flesh: Float32Array.from(s.flesh_srgb, (b) => LINEAR[b]),
+  }));
   return volume;
+}
+
+/// The share of a closed mesh's volume (`points`, `triangles`: a stone) on the kept side of the
+/// plane through `point` with unit `normal` ((p - point) . normal <= 0): each triangle's
+/// tetrahedron with the points' mean counted by the side its centroid lies on.
+export function keptShare(points, triangles, point, normal) {
+  const n = points.length / 3;
+  const g = [0, 0, 0];
+  for (let v = 0; v < n; ++v) for (let a = 0; a < 3; ++a) g[a] += points[3 * v + a] / n;
+  let kept = 0, total = 0;
+  for (let t = 0; t < triangles.length; t += 3) {
+    const [a, b, c] = [0, 1, 2].map((k) =>
+      [0, 1, 2].map((x) => points[3 * triangles[t + k] + x] - g[x]));
+    const volume = (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                    a[2] * (b[0] * c[1] - b[1] * c[0])) / 6;
+    const side = [0, 1, 2].reduce((sum, x) =>
+      sum + ((a[x] + b[x] + c[x]) / 4 + g[x] - point[x]) * normal[x], 0);
+    total += volume;
+    if (side <= 0) kept += volume;
+  }
+  return total !== 0 ? kept / total : 0;
 }
 
 
@@ -311,7 +340,8 @@ export class CuttingView {
   constructor(canvas, stroke) {
     this.canvas = canvas;
     this.stroke = stroke;    // an SVG <line> over the canvas, the knife's trace
-    const options = { antialias: true, preserveDrawingBuffer: true, alpha: false };
+    // A stencil buffer for the stones' cavities (addStone).
+    const options = { antialias: true, preserveDrawingBuffer: true, alpha: false, stencil: true };
     const context = canvas.getContext('webgl2', options);
     if (!context) throw new Error('this browser offers no WebGL 2');
     this.renderer = new THREE.WebGLRenderer({ canvas, context, ...options });
@@ -403,11 +433,14 @@ export class CuttingView {
     const polygon = new THREE.BufferGeometry();
     polygon.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3 * 12), 3));
     polygon.setIndex(Array.from({ length: 10 }, (_, i) => [0, i + 1, i + 2]).flat());
+    // Not drawn where a stone's cavity opens in it (the stencil the stones' passes leave at 1).
     this.cap = new THREE.Mesh(polygon, new THREE.ShaderMaterial({
       uniforms, vertexShader: CAP_VERTEX, fragmentShader: CAP_FRAGMENT, side: THREE.DoubleSide,
+      stencilWrite: true, stencilRef: 1, stencilFunc: THREE.NotEqualStencilFunc,
     }));
     this.cap.frustumCulled = false;
     this.scene.add(this.cap);
+    this.stones = volume.stones.map((stone) => this.addStone(stone));
 
     // The plane's frame (a faint square, seen even when the plane misses the object) and the
     // handle (an arrow along the normal, drawn over everything).
@@ -437,6 +470,61 @@ export class CuttingView {
     this.frameView();
   }
 
+  /// The meshes that show a stone as a knife leaves it (doc/editor.md, The cutting page): whole
+  /// and lit in the half that holds it; in the other, a cavity: the stencil passes mark where the
+  /// plane crosses the stone (back faces less front faces of its kept part, seen from the
+  /// camera: 1 inside the cross-section), the cap is not drawn there, and the stone's inside,
+  /// clipped, shows the flesh's colour against it, lit as a hollow is.
+  addStone(stone) {
+    const geometryWith = (colours) => {
+      const g = new THREE.BufferGeometry();
+      g.setAttribute('position', new THREE.BufferAttribute(stone.points, 3));
+      g.setAttribute('color', new THREE.BufferAttribute(colours, 3));
+      g.setIndex(new THREE.BufferAttribute(stone.triangles, 1));
+      g.computeVertexNormals();
+      return g;
+    };
+    const vertexColors = THREE.VertexColors ?? true;
+    const own = geometryWith(stone.stone);
+    const whole = new THREE.Mesh(own, new THREE.MeshLambertMaterial({ vertexColors }));
+    const pass = (side, op) => new THREE.Mesh(own, new THREE.MeshBasicMaterial({
+      side, colorWrite: false, depthWrite: false, depthTest: false, clippingPlanes: [this.clip],
+      stencilWrite: true, stencilFunc: THREE.AlwaysStencilFunc, stencilZPass: op,
+    }));
+    const front = pass(THREE.FrontSide, THREE.DecrementWrapStencilOp);
+    const back = pass(THREE.BackSide, THREE.IncrementWrapStencilOp);
+    const cavity = new THREE.Mesh(geometryWith(stone.flesh), new THREE.MeshLambertMaterial({
+      vertexColors, side: THREE.BackSide, clippingPlanes: [this.clip],
+    }));
+    for (const o of [whole, front, back, cavity]) {
+      o.frustumCulled = false;
+      this.scene.add(o);
+    }
+    front.renderOrder = back.renderOrder = -1;  // before the cap reads the stencil
+    const n = stone.points.length / 3;
+    const centre = [0, 1, 2].map((a) =>
+      stone.points.filter((_, i) => i % 3 === a).reduce((sum, v) => sum + v, 0) / n);
+    return { stone, whole, cut: [front, back, cavity], holds: true, kept: 1, centre };
+  }
+
+  /// Which half holds each stone: the one with the larger share of its volume (a half that
+  /// holds exactly half keeps it); shows it whole there, or its cavity.
+  placeStones() {
+    for (const s of this.stones ?? []) {
+      s.kept = keptShare(s.stone.points, s.stone.triangles, arr(this.point), arr(this.normal));
+      s.holds = s.kept >= 0.5;
+      s.whole.visible = s.holds;
+      for (const o of s.cut) o.visible = !s.holds;
+    }
+  }
+
+  /// What the page shows of each stone: its surface, the share of it on the kept side, whether
+  /// that half holds it, and the mean of its points (metres).
+  stoneState() {
+    return (this.stones ?? []).map((s) => ({ surface: s.stone.surface, kept: s.kept,
+                                             holds: s.holds, centre: s.centre }));
+  }
+
   // --- the plane ---------------------------------------------------------------------------
 
   /// Sets the plane through `point` with unit `normal` pointing into the part cut away.
@@ -453,6 +541,7 @@ export class CuttingView {
     this.normal.copy(n);
     this.clip.set(n.clone().negate(), n.dot(p));
     this.placeCap();
+    this.placeStones();
     this.requestFrame();
     for (const f of this.listeners) f();
   }
@@ -892,6 +981,7 @@ async function start(hooks) {
     nextFrame: () => view.nextFrame(),
     idle: async () => { while (view.turn || view.pending) await view.nextFrame(); },
     volumeDigest: () => ({ ...volume.digests }),
+    stones: () => view.stoneState(),
   });
   await view.nextFrame();
 }

@@ -55,5 +55,25 @@ TEST_P(CuttingPage, CutsLiveFromItsVolume) {
 
 INSTANTIATE_TEST_SUITE_P(Fruits, CuttingPage, ::testing::Values("tomato", "kiwi"));
 
+// An avocado cut through its pit on the page, both ways: the half that holds the pit shows it
+// whole, the other a smooth cavity in the flesh's colour, as `cutaway piece` cuts it.
+TEST(CuttingPageStones, APitStaysWholeInTheHalfThatHoldsIt) {
+  const fs::path dir = test::fresh_dir("cutting-page-avocado");
+  fs::copy_file(test::source_path("templates/avocado.yaml"), dir / "avocado.yaml");
+  const test::NodeToolRun run = test::run_node_tool(
+      "cut_in_chromium.mjs", {"--cutaway", CUTAWAY_BINARY, (dir / "avocado.yaml").string(), "--out",
+                              dir.string(), "--volume-voxels", "48", "--stones"});
+  ASSERT_TRUE(run.report.is_object()) << run.output;
+  const nlohmann::json& r = run.report;
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(r.value("ok", false)) << r.dump();
+  ASSERT_EQ(r["pages"].size(), 1u) << r.dump();
+  const nlohmann::json& page = r["pages"][0];
+  EXPECT_TRUE(page.value("bytes_ok", false));
+  EXPECT_TRUE(page.value("stones_ok", false)) << page.dump();
+  ASSERT_EQ(page["stones"].size(), 1u);
+  std::cout << page["stones"][0].dump() << "\n";
+}
+
 }  // namespace
 }  // namespace cutaway
