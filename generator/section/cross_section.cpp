@@ -108,13 +108,21 @@ bool bounds_domain(const DsSurface& surface) {
   return surface.role == SurfaceRole::Skin || !surface.visible_front || !surface.visible_back;
 }
 
-/// Which side of the constrained edge (a, b), a piece of segment s, the point c lies on: +1 on
-/// s's front side, -1 on its back, 0 on the edge's line. The side is taken of the edge itself
-/// (an exact orientation test), not of s's line: where another constraint split s at a vertex
-/// a hair off its line, a thin face beside the edge can lie on the other side of that line.
+/// Which side of the constrained edge (a, b), all or a piece of segment s, the point c lies on:
+/// +1 on s's front side, -1 on its back, 0 on the line. For the whole segment, the side of its
+/// line that its front points to. For a piece (another constraint split s at a vertex, which
+/// may lie a hair off s's line), the side of the piece itself by an exact orientation test,
+/// mapped to front or back by s's front: a thin face beside the piece can lie on the other side
+/// of s's line. (The whole-segment rule stays: on a cut that barely grazes the skin, the
+/// segments' fronts are far from perpendicular to them, and only it reads them right.)
 int side_of(const Segment2& s, const Point2& a, const Point2& b, const Point2& c) {
+  const glm::dvec2 pa = to2(a), pb = to2(b);
+  if ((pa == s.a && pb == s.b) || (pa == s.b && pb == s.a)) {
+    const double d = glm::dot(to2(c) - s.a, s.front);
+    return d > 0 ? 1 : (d < 0 ? -1 : 0);
+  }
   const int turn = static_cast<int>(CGAL::orientation(a, b, c));  // +1: left of a -> b
-  const glm::dvec2 d = to2(b) - to2(a);
+  const glm::dvec2 d = pb - pa;
   const double left_is_front = glm::dot(glm::dvec2(-d.y, d.x), s.front);
   return left_is_front > 0 ? turn : (left_is_front < 0 ? -turn : 0);
 }
