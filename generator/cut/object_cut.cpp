@@ -34,8 +34,9 @@ std::vector<size_t> choose(size_t n, size_t keep, uint64_t seed) {
 }
 
 /// `piece` as an exportable mesh named `name`: `merged` is merge_parts of it (possibly
-/// recoloured), its triangles those of the skin, the walls and the caps in turn; one primitive
-/// per run of parts of one material (skin, walls, caps; none when all are material 0).
+/// recoloured), its triangles those of the skin, the walls, the stones and the caps in turn;
+/// one primitive per run of parts of one material (skin, walls, stones, caps; none when all
+/// are material 0).
 /// `uv`: #V texture coordinates (CapAtlas::uv and the skin's) or empty; `coarse_caps`: the
 /// caps' coarse triangles (coarse_caps()) for the cap primitive, or empty.
 AssetMesh piece_mesh(const ShadedMesh& merged, const Piece& piece, PieceMaterials materials,
@@ -49,11 +50,15 @@ AssetMesh piece_mesh(const ShadedMesh& merged, const Piece& piece, PieceMaterial
   const size_t surface = surface_triangle_count(piece);
   const PiecePart* skin_surface = skin_part(piece);
   const size_t skin = skin_surface ? skin_surface->mesh.triangle.size() : 0;
+  size_t stones = 0;  // the stones' parts follow the walls (cut_pieces)
+  for (const PiecePart& part : piece.parts)
+    if (part.kind == PartKind::Stone) stones += part.mesh.triangle.size();
   const struct {
     size_t first, count;
     int material;
-  } runs[3] = {{0, skin, materials.skin},
-               {skin, surface - skin, materials.wall},
+  } runs[4] = {{0, skin, materials.skin},
+               {skin, surface - skin - stones, materials.wall},
+               {surface - stones, stones, materials.stone},
                {surface, n - surface, materials.cut}};
   for (const auto& run : runs) {
     if (run.count == 0) continue;
@@ -114,6 +119,31 @@ PieceMaterials add_cap_texture(SceneAssets& assets, const PieceSet& set,
   cut.base_colour_texture = static_cast<int>(assets.textures.size()) - 1;
   assets.materials.push_back(cut);
   materials.cut = static_cast<int>(assets.materials.size()) - 1;
+  return materials;
+}
+
+/// Where the kept pieces of `set` hold a whole stone: adds a copy of the walls' material named
+/// "<object>_stone" whose roughness and translucency are the means of the stone parts' own
+/// (the side of the rigid surface the stone shows), and returns `materials` with it as the
+/// stones'. Without stone parts: `materials`.
+PieceMaterials add_stone_material(SceneAssets& assets, const PieceSet& set,
+                                  PieceMaterials materials, const std::string& object) {
+  glm::dvec2 sum(0.0);
+  size_t count = 0;
+  for (const Piece& piece : set.pieces)
+    for (const PiecePart& part : piece.parts)
+      if (part.kind == PartKind::Stone)
+        for (const glm::dvec2& m : part.mesh.material) {
+          sum += m;
+          ++count;
+        }
+  if (count == 0) return materials;
+  AssetMaterial stone = assets.materials[static_cast<size_t>(materials.wall)];
+  stone.name = object + "_stone";
+  stone.pbr.roughness = sum.x / static_cast<double>(count);
+  stone.pbr.translucency = sum.y / static_cast<double>(count);
+  assets.materials.push_back(stone);
+  materials.stone = static_cast<int>(assets.materials.size()) - 1;
   return materials;
 }
 
@@ -188,7 +218,7 @@ PieceMaterials add_piece_materials(SceneAssets& assets, const std::string& name,
   };
   const std::string base = asset_name(name);
   const int skin_id = index(base + "_skin", skin);
-  return {skin_id, skin_id, skin == cut ? skin_id : index(base + "_cut", cut)};
+  return {skin_id, skin_id, skin == cut ? skin_id : index(base + "_cut", cut), skin_id};
 }
 
 std::vector<glm::uvec3> coarse_caps(const Piece& piece, const std::vector<CrossSection>& sections) {
@@ -290,6 +320,7 @@ Outcome<CutObject> cut_object(SceneAssets& assets, const Variant& variant, uint6
                          options.skin, uv);
     stats.seconds_bake += seconds_since(t_bake);
   }
+  object_materials = add_stone_material(assets, set, object_materials, object);
   for (size_t q = 0; q < n; ++q) {
     const Piece& piece = set.pieces[q];
     ShadedMesh merged = merge_parts(piece);

@@ -32,9 +32,10 @@ enum class CapColours {
 };
 
 /// Where the materials of one object's pieces are in SceneAssets::materials: the skin's, the
-/// hollow walls' (the skin's material without the skin's texture) and the cut faces'.
+/// hollow walls' (the skin's material without the skin's texture), the cut faces' and the
+/// whole stones' (the walls' until cut_object adds one of their own: add_stone_material).
 struct PieceMaterials {
-  int skin = 0, wall = 0, cut = 0;
+  int skin = 0, wall = 0, cut = 0, stone = 0;
 };
 
 /// Adds the skin and cut materials of the template named `name` to assets.materials, as

@@ -188,6 +188,41 @@ TEST(Pieces, ExportAsSkinAndCapPrimitivesWithTheTemplatesMaterials) {
   for (const AssetMesh& mesh : plain_assets.meshes) EXPECT_TRUE(mesh.primitives.empty());
 }
 
+// A whole stone is a primitive of its own, after the walls and before the caps, with a
+// material "<object>_stone" whose roughness is the stone's (the mango's husk: 0.8), not the
+// skin's; the halves without the stone have no such primitive.
+TEST(Pieces, AWholeStoneHasAMaterialOfItsOwn) {
+  const Template tmpl = load_template(test::source_path("templates/mango.yaml").string());
+  CutObject object;
+  const SceneAssets assets = exploded(tmpl, "halves", object);
+  int stone = -1;
+  for (size_t m = 0; m < assets.materials.size(); ++m)
+    if (assets.materials[m].name == "mango_stone") stone = static_cast<int>(m);
+  ASSERT_GE(stone, 0);
+  EXPECT_NEAR(assets.materials[static_cast<size_t>(stone)].pbr.roughness, 0.8, 1e-9);
+  EXPECT_NE(assets.materials[static_cast<size_t>(stone)].pbr.roughness,
+            tmpl.skin_material.roughness);
+  int holders = 0;
+  for (size_t k = 0; k < object.set.pieces.size(); ++k) {
+    const Piece& piece = object.set.pieces[k];
+    size_t stone_triangles = 0;
+    for (const PiecePart& part : piece.parts)
+      if (part.kind == PartKind::Stone) stone_triangles += part.mesh.triangle.size();
+    size_t drawn = 0, caps_at = 0;
+    for (const AssetPrimitive& primitive : assets.meshes[k].primitives) {
+      if (primitive.material == stone) {
+        drawn += primitive.count;
+        EXPECT_EQ(primitive.first + primitive.count, surface_triangle_count(piece));
+      }
+      if (primitive.first >= surface_triangle_count(piece)) caps_at = primitive.first;
+    }
+    EXPECT_EQ(drawn, stone_triangles) << "piece " << k;
+    EXPECT_EQ(caps_at, surface_triangle_count(piece)) << "piece " << k;
+    holders += stone_triangles > 0;
+  }
+  EXPECT_EQ(holders, 1);
+}
+
 // A cut whose planes all miss: scenes keep the object whole, `piece` hears why.
 TEST(Pieces, ACutThatMissesKeepsTheObjectWholeOrSaysWhy) {
   const Template tmpl = load_template(test::source_path("templates/tomato.yaml").string());
