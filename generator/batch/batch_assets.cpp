@@ -1,7 +1,6 @@
 #include "batch/batch_assets.h"
 
 #include <algorithm>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>

@@ -26,6 +26,34 @@ uint8_t unit_byte(double v) {
   return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
 }
 
+/// The stones as the sidecar lists them: points in whole micrometres, triangles, and 8-bit
+/// sRGB colours, each a flat array.
+nlohmann::ordered_json stones_json(const std::vector<VolumeStone>& stones) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const VolumeStone& stone : stones) {
+    nlohmann::ordered_json points = nlohmann::ordered_json::array(),
+                           triangles = nlohmann::ordered_json::array(),
+                           own = nlohmann::ordered_json::array(),
+                           flesh = nlohmann::ordered_json::array();
+    for (const glm::dvec3& p : stone.points)
+      for (int a = 0; a < 3; ++a) points.push_back(std::llround(p[a] * 1e6));
+    for (const glm::uvec3& t : stone.triangles)
+      for (int a = 0; a < 3; ++a) triangles.push_back(t[a]);
+    for (size_t v = 0; v < stone.points.size(); ++v) {
+      for (int a = 0; a < 3; ++a) {
+        own.push_back(linear_to_srgb8(stone.stone[v][a]));
+        flesh.push_back(linear_to_srgb8(stone.flesh[v][a]));
+      }
+    }
+    out.push_back({{"surface", stone.surface},
+                   {"points_um", std::move(points)},
+                   {"triangles", std::move(triangles)},
+                   {"stone_srgb", std::move(own)},
+                   {"flesh_srgb", std::move(flesh)}});
+  }
+  return out;
+}
+
 }  // namespace
 
 FlipbookTiling flipbook_tiling(const glm::ivec3& size) {
@@ -68,38 +96,6 @@ Outcome<VolumeFlipbooks> encode_flipbooks(const InteriorVolume& volume) {
                          encode_texture(structure, TextureFormat::Png),
                          encode_texture(material, TextureFormat::Png)};
 }
-
-namespace {
-
-/// The stones as the sidecar lists them: points in whole micrometres, triangles, and 8-bit
-/// sRGB colours, each a flat array.
-nlohmann::ordered_json stones_json(const std::vector<VolumeStone>& stones) {
-  nlohmann::ordered_json out = nlohmann::ordered_json::array();
-  for (const VolumeStone& stone : stones) {
-    nlohmann::ordered_json points = nlohmann::ordered_json::array(),
-                           triangles = nlohmann::ordered_json::array(),
-                           own = nlohmann::ordered_json::array(),
-                           flesh = nlohmann::ordered_json::array();
-    for (const glm::dvec3& p : stone.points)
-      for (int a = 0; a < 3; ++a) points.push_back(std::llround(p[a] * 1e6));
-    for (const glm::uvec3& t : stone.triangles)
-      for (int a = 0; a < 3; ++a) triangles.push_back(t[a]);
-    for (size_t v = 0; v < stone.points.size(); ++v) {
-      for (int a = 0; a < 3; ++a) {
-        own.push_back(linear_to_srgb8(stone.stone[v][a]));
-        flesh.push_back(linear_to_srgb8(stone.flesh[v][a]));
-      }
-    }
-    out.push_back({{"surface", stone.surface},
-                   {"points_um", std::move(points)},
-                   {"triangles", std::move(triangles)},
-                   {"stone_srgb", std::move(own)},
-                   {"flesh_srgb", std::move(flesh)}});
-  }
-  return out;
-}
-
-}  // namespace
 
 nlohmann::ordered_json volume_sidecar(const InteriorVolume& volume, const std::string& name,
                                       int64_t seed, const VolumeFileNames& files) {

@@ -350,6 +350,14 @@ std::pair<size_t, double> height_blend(const std::vector<HeightSection>& section
   return {k, w};
 }
 
+/// A surface's sections from the lowest height up: its one `section`, or each of `sections`.
+std::vector<const SectionSpec*> sections_of(const SurfaceSpec& spec) {
+  std::vector<const SectionSpec*> out;
+  if (spec.sections.empty()) out.push_back(&spec.section);
+  for (const HeightSection& h : spec.sections) out.push_back(&h.section);
+  return out;
+}
+
 /// The unit rings of an 'around' surface sampled at the angles `phis` (from +X towards -Z):
 /// per profile sample i of n + 1 (normalised arc length i / n), the point at each angle at the
 /// section's radius there over its radius at angle 0. With `sections` at several heights, the
@@ -358,10 +366,7 @@ std::pair<size_t, double> height_blend(const std::vector<HeightSection>& section
 std::vector<Polyline2> unit_rings_at_angles(const SurfaceSpec& spec, int n,
                                             const std::vector<double>& phis) {
   std::vector<std::vector<double>> radii;
-  std::vector<const SectionSpec*> sections;
-  if (spec.sections.empty()) sections.push_back(&spec.section);
-  for (const HeightSection& h : spec.sections) sections.push_back(&h.section);
-  for (const SectionSpec* section : sections) {
+  for (const SectionSpec* section : sections_of(spec)) {
     std::vector<double> r(phis.size(), 1.0);
     if (!section->circle) {
       const Polyline2 loop = fit_curve(section->loops[0], true, spec.smooth);
@@ -438,7 +443,6 @@ DsSurface sweep_around(const SurfaceSpec& spec, const Template& t, size_t max_ve
   for (const auto& p : prof) max_r = std::max(max_r, p.x);
 
   // The section as a unit-radius-at-angle-0 loop, perimeter in those units.
-  Polyline2 unit_loop;
   double perimeter = 2 * kPi;
   Polyline2 started;
   double rho0 = 1;
@@ -462,22 +466,22 @@ DsSurface sweep_around(const SurfaceSpec& spec, const Template& t, size_t max_ve
     m = (m + t.folds - 1) / t.folds * t.folds;
   check_vertex_budget(static_cast<size_t>(n) + 1, static_cast<size_t>(m) + partial, spec, t,
                       max_vertices);
-  if (spec.section.circle) {
+  // Equal angles where the section changes with height or the surface covers a span (a ring
+  // per profile sample); equal arc length otherwise (a single section all the way round, one
+  // ring for every height).
+  Polyline2 unit_loop;
+  std::vector<Polyline2> at_height;
+  if (partial || !spec.sections.empty()) {
+    std::vector<double> phis;
+    for (int j = 0; j < m + partial; ++j) phis.push_back(spec.span_rad.x + turn * j / m);
+    at_height = unit_rings_at_angles(spec, n, phis);
+  } else if (spec.section.circle) {
     for (int j = 0; j < m; ++j) {
       const double phi = 2 * kPi * j / m;
       unit_loop.push_back({std::cos(phi), -std::sin(phi)});
     }
   } else {
     for (const auto& p : resample_uniform(started, true, m)) unit_loop.push_back(p / rho0);
-  }
-
-  // Equal angles where the section changes with height or the surface covers a span; equal
-  // arc length otherwise (a single section all the way round).
-  std::vector<Polyline2> at_height;
-  if (partial || !spec.sections.empty()) {
-    std::vector<double> phis;
-    for (int j = 0; j < m + partial; ++j) phis.push_back(spec.span_rad.x + turn * j / m);
-    at_height = unit_rings_at_angles(spec, n, phis);
   }
   SweepGrid g;
   g.open_rows = partial;
@@ -523,16 +527,13 @@ DsSurface sweep_within(const SurfaceSpec& spec, const Template& t, size_t max_ve
 
   // The section loops in their fold frames (per section at a height, per loop); the points per
   // ring from the longest loop once stretched to the widest span between the rails.
-  std::vector<const SectionSpec*> sections;
-  if (spec.sections.empty()) sections.push_back(&spec.section);
-  for (const HeightSection& h : spec.sections) sections.push_back(&h.section);
   std::vector<std::vector<Polyline2>> frame_loops;
   double max_width = 0;
   for (int i = 0; i <= n; ++i)
     max_width = std::max(max_width, rails.outer.at(rails.outer.r, heights[i]) -
                                         rails.inner.at(rails.inner.r, heights[i]));
   double max_scaled_perimeter = 0;
-  for (const SectionSpec* section : sections) {
+  for (const SectionSpec* section : sections_of(spec)) {
     std::vector<Polyline2> loops;
     for (size_t k = 0; k < section->loops.size(); ++k) {
       Polyline2 uw = fold_frame_loop(*section, spec.smooth, t, k);

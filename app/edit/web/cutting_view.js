@@ -140,13 +140,19 @@ export async function loadVolume(url) {
   return volume;
 }
 
-/// The share of a closed mesh's volume (`points`, `triangles`: a stone) on the kept side of the
-/// plane through `point` with unit `normal` ((p - point) . normal <= 0): each triangle's
-/// tetrahedron with the points' mean counted by the side its centroid lies on.
-export function keptShare(points, triangles, point, normal) {
+/// The mean of flat [x, y, z, ...] points.
+function meanPoint(points) {
   const n = points.length / 3;
   const g = [0, 0, 0];
   for (let v = 0; v < n; ++v) for (let a = 0; a < 3; ++a) g[a] += points[3 * v + a] / n;
+  return g;
+}
+
+/// The share of a closed mesh's volume (`points`, `triangles`: a stone; `g`: meanPoint of its
+/// points) on the kept side of the plane through `point` with unit `normal`
+/// ((p - point) . normal <= 0): each triangle's tetrahedron with `g` counted by the side its
+/// centroid lies on.
+export function keptShare(points, triangles, g, point, normal) {
   let kept = 0, total = 0;
   for (let t = 0; t < triangles.length; t += 3) {
     const [a, b, c] = [0, 1, 2].map((k) =>
@@ -501,17 +507,16 @@ export class CuttingView {
       this.scene.add(o);
     }
     front.renderOrder = back.renderOrder = -1;  // before the cap reads the stencil
-    const n = stone.points.length / 3;
-    const centre = [0, 1, 2].map((a) =>
-      stone.points.filter((_, i) => i % 3 === a).reduce((sum, v) => sum + v, 0) / n);
-    return { stone, whole, cut: [front, back, cavity], holds: true, kept: 1, centre };
+    return { stone, whole, cut: [front, back, cavity], holds: true, kept: 1,
+             centre: meanPoint(stone.points) };
   }
 
   /// Which half holds each stone: the one with the larger share of its volume (a half that
   /// holds exactly half keeps it); shows it whole there, or its cavity.
   placeStones() {
     for (const s of this.stones ?? []) {
-      s.kept = keptShare(s.stone.points, s.stone.triangles, arr(this.point), arr(this.normal));
+      s.kept = keptShare(s.stone.points, s.stone.triangles, s.centre, arr(this.point),
+                         arr(this.normal));
       s.holds = s.kept >= 0.5;
       s.whole.visible = s.holds;
       for (const o of s.cut) o.visible = !s.holds;
