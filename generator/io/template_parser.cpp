@@ -1,5 +1,6 @@
 #include "io/template_parser.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -378,39 +379,94 @@ GrainSpec parse_grain(const YamlField& f, const Template& t) {
 /// The most Perlin bands a template may have (each costs one noise evaluation per vertex).
 constexpr size_t kMaxPerlinBands = 8;
 
-/// `npr` (doc/template-format.md, NPR; doc/npr.md): {perlin: {bands: [{period, amplitude,
-/// tint, reach}, ...]}}.
-NprSettings parse_npr(const YamlField& f, double metres_per_unit) {
-  f.allow_only({"perlin"});
-  NprSettings npr;
-  const auto perlin = f.get("perlin");
-  if (!perlin) return npr;
-  perlin->allow_only({"bands"});
-  const YamlField bands = perlin->require("bands");
-  if (bands.size() > kMaxPerlinBands) {
-    bands.fail("at most " + std::to_string(kMaxPerlinBands) + " bands, not " +
-               std::to_string(bands.size()));
+/// The most cell layers a template may have (each costs 27 feature points per texel).
+constexpr size_t kMaxCellBands = 4;
+
+/// A band's `tint`, `reach`, `along` and `stretch` (doc/npr.md), shared by Perlin bands and
+/// cell layers.
+void parse_band_reach_and_field(const YamlField& band, TextureBand& b) {
+  if (auto tint = band.get("tint")) {
+    b.tinted = true;
+    b.tint = parse_colour(*tint);
   }
-  npr.perlin_from_file = true;
-  for (size_t i = 0; i < bands.size(); ++i) {
-    const YamlField band = bands[i];
-    band.allow_only({"period", "amplitude", "tint", "reach"});
-    PerlinBand b;
-    const YamlField period = band.require("period");
-    const double period_m = parse_length(period, metres_per_unit);
-    if (!(period_m >= 1e-6)) period.fail("the period must be at least 1 micrometre");
-    b.frequency_per_m = 1.0 / period_m;
-    b.amplitude = band.require("amplitude").number_in(0.0, 1.0);
-    if (auto tint = band.get("tint")) {
-      b.tinted = true;
-      b.tint = parse_colour(*tint);
+  if (auto reach = band.get("reach")) {
+    if (!b.tinted) reach->fail("a reach needs a tint (an untinted band acts on every colour)");
+    b.reach = reach->number_in(0.0, 1.75);
+    if (b.reach <= 0) reach->fail("must be positive");
+  }
+  if (auto along = band.get("along")) {
+    const std::string a = along->string();
+    if (a == "radial") b.along = TextureField::Radial;
+    else if (a == "around") b.along = TextureField::Around;
+    else if (a == "axial") b.along = TextureField::Axial;
+    else if (a != "none") along->fail("must be none, radial, around or axial, not " + quoted(a));
+  }
+  if (auto stretch = band.get("stretch")) {
+    if (b.along == TextureField::None)
+      stretch->fail("a stretch needs a field to stretch along (`along`)");
+    b.stretch = stretch->number_in(1.0, 64.0);
+  }
+}
+
+/// `npr` (doc/template-format.md, NPR; doc/npr.md): {perlin: {bands: [{period, amplitude,
+/// tint, reach, along, stretch}, ...]}, cells: [{size, amplitude, wall, centre, wall_width,
+/// tint, reach, along, stretch}, ...]}.
+NprSettings parse_npr(const YamlField& f, double metres_per_unit) {
+  f.allow_only({"perlin", "cells"});
+  NprSettings npr;
+  if (const auto perlin = f.get("perlin")) {
+    perlin->allow_only({"bands"});
+    const YamlField bands = perlin->require("bands");
+    if (bands.size() > kMaxPerlinBands) {
+      bands.fail("at most " + std::to_string(kMaxPerlinBands) + " bands, not " +
+                 std::to_string(bands.size()));
     }
-    if (auto reach = band.get("reach")) {
-      if (!b.tinted) reach->fail("a reach needs a tint (an untinted band acts on every colour)");
-      b.reach = reach->number_in(0.0, 1.75);
-      if (b.reach <= 0) reach->fail("must be positive");
+    npr.perlin_from_file = true;
+    for (size_t i = 0; i < bands.size(); ++i) {
+      const YamlField band = bands[i];
+      band.allow_only({"period", "amplitude", "tint", "reach", "along", "stretch"});
+      PerlinBand b;
+      const YamlField period = band.require("period");
+      const double period_m = parse_length(period, metres_per_unit);
+      if (!(period_m >= 1e-6)) period.fail("the period must be at least 1 micrometre");
+      b.frequency_per_m = 1.0 / period_m;
+      b.amplitude = band.require("amplitude").number_in(0.0, 1.0);
+      parse_band_reach_and_field(band, b);
+      npr.perlin_bands.push_back(b);
     }
-    npr.perlin_bands.push_back(b);
+  }
+  if (const auto cells = f.get("cells")) {
+    if (cells->size() > kMaxCellBands) {
+      cells->fail("at most " + std::to_string(kMaxCellBands) + " layers of cells, not " +
+                  std::to_string(cells->size()));
+    }
+    for (size_t i = 0; i < cells->size(); ++i) {
+      const YamlField layer = (*cells)[i];
+      layer.allow_only({"size", "amplitude", "wall", "centre", "wall_width", "tint", "reach",
+                        "along", "stretch"});
+      CellBand c;
+      const YamlField size = layer.require("size");
+      const double size_m = parse_length(size, metres_per_unit);
+      if (!(size_m >= 1e-6)) size.fail("the size must be at least 1 micrometre");
+      c.frequency_per_m = 1.0 / size_m;
+      c.amplitude = layer.require("amplitude").number_in(0.0, 1.0);
+      if (auto wall = layer.get("wall")) {
+        c.has_wall = true;
+        c.wall = parse_colour(*wall);
+      }
+      if (auto centre = layer.get("centre")) {
+        c.has_centre = true;
+        c.centre = parse_colour(*centre);
+      }
+      if (!c.has_wall && !c.has_centre)
+        layer.fail("a layer of cells needs a wall or a centre colour");
+      if (auto width = layer.get("wall_width")) {
+        if (!c.has_wall) width->fail("a wall_width needs a wall colour");
+        c.wall_width = width->number_in(0.0, 1.0);
+      }
+      parse_band_reach_and_field(layer, c);
+      npr.cell_bands.push_back(c);
+    }
   }
   return npr;
 }
@@ -490,6 +546,46 @@ double skin_height(Template& t) {
     hi = std::max(hi, p.y);
   }
   return hi - lo;
+}
+
+/// The skin's widest radius from the axis (metres): its profile's largest |x|, or a mesh skin's
+/// largest |x| or |z| of its bounds. The reference radius of texture fields around the axis.
+double skin_widest_radius(Template& t) {
+  SurfaceSpec& skin = t.surfaces[t.skin];
+  if (skin.kind == SurfaceKind::Mesh) {
+    read_surface_mesh(skin);
+    const MeshBounds b = mesh_bounds(*skin.mesh, t.metres_per_unit);
+    return std::max(
+        {std::fabs(b.min.x), std::fabs(b.max.x), std::fabs(b.min.z), std::fabs(b.max.z)});
+  }
+  double widest = 0;
+  for (const auto& p : skin.profile) widest = std::max(widest, std::fabs(p.x));
+  return widest;
+}
+
+/// Sets around_cells of every band stretched along a field around the axis (TextureBand): 2 pi R
+/// over the band's spacing across the field, R the skin's widest radius, rounded, at least 1;
+/// refused at the band's period (size) when it exceeds 256 cells.
+void resolve_texture_fields(const YamlField& root, Template& t, double widest_radius_m) {
+  const auto resolve = [&](TextureBand& b, const char* list, size_t i, const char* length) {
+    if (b.along != TextureField::Radial && b.along != TextureField::Around) return;
+    const double across = b.along == TextureField::Around ? b.stretch : 1.0;
+    const double cells = std::round(2 * kPi * widest_radius_m * b.frequency_per_m / across);
+    if (!(cells <= 256)) {
+      const YamlField npr = root.require("npr");
+      const YamlField item = std::string(list) == "cells"
+                                 ? npr.require("cells")[i]
+                                 : npr.require("perlin").require("bands")[i];
+      item.require(length).fail(
+          "too fine for a field around the axis: " + std::to_string(static_cast<long long>(cells)) +
+          " cells round the skin's widest radius, at most 256 (a longer " + length + ")");
+    }
+    b.around_cells = static_cast<unsigned>(std::max(1.0, cells));
+  };
+  for (size_t i = 0; i < t.npr.perlin_bands.size(); ++i)
+    if (t.npr.perlin_from_file) resolve(t.npr.perlin_bands[i], "bands", i, "period");
+  for (size_t i = 0; i < t.npr.cell_bands.size(); ++i)
+    resolve(t.npr.cell_bands[i], "cells", i, "size");
 }
 
 /// `symmetry`: the type, and for nfold the folds and their angles (radians); the variation's
@@ -782,6 +878,7 @@ Template parse_template(std::string_view text, const std::string& file,
   const double h = skin_height(t);
   resolve_edge(root, t, h);
   if (!t.npr.perlin_from_file) t.npr.perlin_bands = default_perlin_bands(h);
+  resolve_texture_fields(root, t, skin_widest_radius(t));
   for (SurfaceSpec& s : t.surfaces) read_surface_mesh(s);
   t.source_hash = template_source_hash(text, t);
   return t;

@@ -12,6 +12,8 @@
 #include "base/colour.h"
 #include "base/error.h"
 #include "base/random.h"
+#include "material/cellular_noise.h"
+#include "material/texture_field.h"
 
 namespace cutaway {
 
@@ -23,7 +25,7 @@ glm::dvec3 clamped_srgb(const glm::dvec3& colour_linear) {
 }
 
 /// band_weight of a tinted band, from the colour and the tint already encoded as sRGB.
-double tinted_weight(const PerlinBand& band, const glm::dvec3& colour_srgb,
+double tinted_weight(const TextureBand& band, const glm::dvec3& colour_srgb,
                      const glm::dvec3& tint_srgb) {
   const double d = glm::distance(colour_srgb, tint_srgb);
   if (!(d < band.reach)) return 0.0;
@@ -31,9 +33,29 @@ double tinted_weight(const PerlinBand& band, const glm::dvec3& colour_srgb,
   return band.amplitude * q * q;
 }
 
+/// Purpose tag of the cell lattices in derive_seed paths.
+constexpr uint64_t kPurposeCells = 0x63656c6c;  // "cell"
+
 }  // namespace
 
-double band_weight(const PerlinBand& band, const glm::dvec3& colour_linear) {
+/// The weight of a band for a colour whose clamped sRGB encoding is computed at most once for
+/// all bands (3 powers per texel instead of 6 per tinted band: this runs for every texel of the
+/// baked textures).
+class BandWeights {
+ public:
+  explicit BandWeights(const glm::dvec3& colour_linear) : colour_linear_(colour_linear) {}
+  double operator()(const TextureBand& band, const glm::dvec3& tint_srgb) {
+    if (!band.tinted) return band.amplitude;
+    if (!srgb_) srgb_ = clamped_srgb(colour_linear_);
+    return tinted_weight(band, *srgb_, tint_srgb);
+  }
+
+ private:
+  glm::dvec3 colour_linear_;
+  std::optional<glm::dvec3> srgb_;
+};
+
+double band_weight(const TextureBand& band, const glm::dvec3& colour_linear) {
   if (!band.tinted) return band.amplitude;
   return tinted_weight(band, clamped_srgb(colour_linear), linear_to_srgb(band.tint));
 }
@@ -47,31 +69,59 @@ ColourModulation::ColourModulation(const NprSettings& npr, uint64_t seed) {
     bands_.push_back(Band{npr.perlin_bands[b], PerlinNoise(band_seed), offset,
                           linear_to_srgb(npr.perlin_bands[b].tint)});
   }
+  for (size_t b = 0; b < npr.cell_bands.size(); ++b) {
+    const CellBand& c = npr.cell_bands[b];
+    cells_.push_back(Cells{c, derive_seed(seed, {kPurposeCells, b}), linear_to_srgb(c.tint)});
+  }
 }
 
 double ColourModulation::relative_change(const glm::dvec3& position_m,
                                          const glm::dvec3& colour_linear) const {
+  BandWeights weight(colour_linear);
+  return relative_change(position_m, weight);
+}
+
+double ColourModulation::relative_change(const glm::dvec3& position_m, BandWeights& weight) const {
   double sum = 0.0;
-  // band_weight for each band, the colour encoded once (3 powers per texel instead of 6 per
-  // tinted band: this runs for every texel of the baked textures).
-  std::optional<glm::dvec3> colour_srgb;
   for (const Band& b : bands_) {
-    double w = b.params.amplitude;
-    if (b.params.tinted) {
-      if (!colour_srgb) colour_srgb = clamped_srgb(colour_linear);
-      w = tinted_weight(b.params, *colour_srgb, b.tint_srgb);
-    }
+    const double w = weight(b.params, b.tint_srgb);
     if (w == 0.0) continue;
-    sum += w * b.noise(position_m * b.params.frequency_per_m + b.offset);
+    const LatticePoint l = band_lattice_point(b.params, position_m);
+    sum +=
+        w * (l.period_x ? b.noise.periodic(l.q + b.offset, l.period_x) : b.noise(l.q + b.offset));
   }
   return sum;
 }
 
+CellMasks cell_masks(const CellBand& band, uint64_t cells, const glm::dvec3& position_m) {
+  const LatticePoint l = band_lattice_point(band, position_m);
+  const CellDistances d = cell_distances(cells, l.q, l.period_x);
+  CellMasks m;
+  // The wall: full within half its width of the bisector (F2 - F1 = 0), fading to 0 at the
+  // width (F2 - F1 is about twice the distance to the bisector near it).
+  const double gap = d.f2 - d.f1, w = band.wall_width;
+  if (w > 0 && gap < w) {
+    const double t = std::clamp((gap - 0.5 * w) / (0.5 * w), 0.0, 1.0);
+    m.wall = 1.0 - t * t * (3 - 2 * t);
+  }
+  m.centre = d.f1 + d.f2 > 0 ? std::clamp(1.0 - 2.0 * d.f1 / (d.f1 + d.f2), 0.0, 1.0) : 1.0;
+  return m;
+}
+
 glm::dvec3 ColourModulation::operator()(const glm::dvec3& position_m,
                                         const glm::dvec3& colour_linear, double strength) const {
-  if (strength == 0.0 || bands_.empty()) return colour_linear;
-  const double factor = 1.0 + strength * relative_change(position_m, colour_linear);
-  return glm::clamp(colour_linear * factor, 0.0, 1.0);
+  if (strength == 0.0 || (bands_.empty() && cells_.empty())) return colour_linear;
+  BandWeights weight(colour_linear);
+  const double factor = 1.0 + strength * relative_change(position_m, weight);
+  glm::dvec3 c = glm::clamp(colour_linear * factor, 0.0, 1.0);
+  for (const Cells& layer : cells_) {
+    const double k = std::min(1.0, strength * weight(layer.params, layer.tint_srgb));
+    if (k == 0.0) continue;
+    const CellMasks m = cell_masks(layer.params, layer.seed, position_m);
+    if (layer.params.has_centre) c += (layer.params.centre - c) * (k * m.centre);
+    if (layer.params.has_wall) c += (layer.params.wall - c) * (k * m.wall);
+  }
+  return c;
 }
 
 void modulate_colours(std::span<const glm::dvec3> position_m, std::span<glm::dvec3> colour,
@@ -84,7 +134,7 @@ void modulate_colours(std::span<const glm::dvec3> position_m, std::span<glm::dve
     throw InternalError("modulate_colours: the strength must be finite and >= 0, not " +
                         std::to_string(strength));
   }
-  if (strength == 0.0 || npr.perlin_bands.empty()) return;
+  if (strength == 0.0 || (npr.perlin_bands.empty() && npr.cell_bands.empty())) return;
   const ColourModulation modulation(npr, seed);
   for (size_t i = 0; i < colour.size(); ++i) {
     colour[i] = modulation(position_m[i], colour[i], strength);

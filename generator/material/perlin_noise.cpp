@@ -42,15 +42,21 @@ PerlinNoise::PerlinNoise(uint64_t seed) {
   }
 }
 
-double PerlinNoise::operator()(const glm::dvec3& p) const {
+double PerlinNoise::operator()(const glm::dvec3& p) const { return periodic(p, 256); }
+
+double PerlinNoise::periodic(const glm::dvec3& p, unsigned period_x) const {
   CUTAWAY_CHECK(all_finite(p));
+  CUTAWAY_CHECK(period_x >= 1 && period_x <= 256);
   const double fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
-  // Lattice cell, wrapped to 0..255 (the table's period); floor first, so negatives wrap too.
-  const auto wrap = [](double f) {
-    const double m = f - 256.0 * std::floor(f / 256.0);
-    return static_cast<unsigned>(m) & 255u;
+  // Lattice cell, wrapped to 0..period - 1 (the table's 256 for y and z); floor first, so
+  // negatives wrap too.
+  const auto wrap = [](double f, unsigned period) {
+    const double n = period;
+    const double m = f - n * std::floor(f / n);
+    return static_cast<unsigned>(m) % period;
   };
-  const unsigned X = wrap(fx), Y = wrap(fy), Z = wrap(fz);
+  const unsigned X = wrap(fx, period_x), Y = wrap(fy, 256), Z = wrap(fz, 256);
+  const unsigned X1 = (X + 1) % period_x;
   const double x = p.x - fx, y = p.y - fy, z = p.z - fz;  // position inside the cell, 0..1
   const double u = fade(x), v = fade(y), w = fade(z);
 
@@ -59,13 +65,13 @@ double PerlinNoise::operator()(const glm::dvec3& p) const {
     return perm_[(perm_[(perm_[i & 255u] + j) & 255u] + k) & 255u];
   };
   const double n000 = grad(hash(X, Y, Z), x, y, z);
-  const double n100 = grad(hash(X + 1, Y, Z), x - 1, y, z);
+  const double n100 = grad(hash(X1, Y, Z), x - 1, y, z);
   const double n010 = grad(hash(X, Y + 1, Z), x, y - 1, z);
-  const double n110 = grad(hash(X + 1, Y + 1, Z), x - 1, y - 1, z);
+  const double n110 = grad(hash(X1, Y + 1, Z), x - 1, y - 1, z);
   const double n001 = grad(hash(X, Y, Z + 1), x, y, z - 1);
-  const double n101 = grad(hash(X + 1, Y, Z + 1), x - 1, y, z - 1);
+  const double n101 = grad(hash(X1, Y, Z + 1), x - 1, y, z - 1);
   const double n011 = grad(hash(X, Y + 1, Z + 1), x, y - 1, z - 1);
-  const double n111 = grad(hash(X + 1, Y + 1, Z + 1), x - 1, y - 1, z - 1);
+  const double n111 = grad(hash(X1, Y + 1, Z + 1), x - 1, y - 1, z - 1);
   return lerp(lerp(lerp(n000, n100, u), lerp(n010, n110, u), v),
               lerp(lerp(n001, n101, u), lerp(n011, n111, u), v), w);
 }

@@ -34,6 +34,13 @@ class PerlinNoise {
   /// @pre p finite (a broken invariant otherwise: CUTAWAY_CHECK)
   double operator()(const glm::dvec3& p) const;
 
+  /// The noise at `p` with the lattice wrapped every `period_x` cells along x: a function of
+  /// p.x modulo period_x, continuous across the wrap (C2 like everywhere else). An angle mapped
+  /// to x = angle / 2 pi * period_x so gives noise round a circle without a seam. With
+  /// period_x = 256 it equals operator()(p).
+  /// @pre p finite; 1 <= period_x <= 256 (a broken invariant otherwise: CUTAWAY_CHECK)
+  double periodic(const glm::dvec3& p, unsigned period_x) const;
+
   /// The permutation of 0..255 the lattice hashes with (for tests).
   const std::array<uint8_t, 256>& permutation() const { return perm_; }
 

@@ -8,6 +8,7 @@
 
 #include "base/constants.h"
 #include "base/random.h"
+#include "material/cellular_noise.h"
 
 namespace cutaway {
 
@@ -28,9 +29,6 @@ double spot(double d, double radius, double softness) {
   return 1.0 - smoothstep(radius * (1 - softness), radius, d);
 }
 
-/// Uniform in [0, 1) from the top 53 bits of a SplitMix64 step.
-double unit(uint64_t& state) { return static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53; }
-
 /// Coverage of a stripe layer: stripes centred at half periods of u = t_section * count +
 /// phase + wobble * noise, where the noise is read on a cylinder of one unit per period around
 /// (so it wraps with the section) and along the profile at six and twenty-four waves per skin.
@@ -46,32 +44,14 @@ double stripe_coverage(const SkinPatternLayer& s, const PerlinNoise& noise, doub
   return 1.0 - smoothstep(half - edge, half + edge, from_centre);
 }
 
-/// Calls visit(point, state) for the lattice point of each of the 27 cells around `q` (lattice
-/// units): a point placed uniformly in its cell from the cell's hash, and that hash's stream
-/// after the three uniforms, for whatever else the cell draws.
-template <class Visit>
-void visit_lattice_points(uint64_t cells, const glm::dvec3& q, Visit visit) {
-  const glm::dvec3 base = glm::floor(q);
-  for (int dx = -1; dx <= 1; ++dx)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dz = -1; dz <= 1; ++dz) {
-        const glm::dvec3 cell = base + glm::dvec3(dx, dy, dz);
-        uint64_t state = derive_seed(cells, {static_cast<uint64_t>(static_cast<int64_t>(cell.x)),
-                                             static_cast<uint64_t>(static_cast<int64_t>(cell.y)),
-                                             static_cast<uint64_t>(static_cast<int64_t>(cell.z))});
-        const glm::dvec3 point = cell + glm::dvec3(unit(state), unit(state), unit(state));
-        visit(point, state);
-      }
-}
-
 /// Coverage of a speckle layer: the largest over the lattice points of the 27 cells around the
 /// point, each a sphere of radius size (1 + jitter (2h - 1)) about a point placed uniformly in
 /// its cell (both from the cell's hash), its edge blended over `softness` of the radius.
 double speckle_coverage(const SkinPatternLayer& s, uint64_t cells, const glm::dvec3& position) {
   const glm::dvec3 q = position / s.spacing_m;
   double best = 0;
-  visit_lattice_points(cells, q, [&](const glm::dvec3& centre, uint64_t& state) {
-    const double radius = s.size_m / s.spacing_m * (1 + s.jitter * (2 * unit(state) - 1));
+  visit_feature_points(cells, q, 0, [&](const glm::dvec3& centre, uint64_t& state) {
+    const double radius = s.size_m / s.spacing_m * (1 + s.jitter * (2 * cell_uniform(state) - 1));
     const double d = glm::length(q - centre);
     best = std::max(best, spot(d, radius, s.softness));
   });
@@ -82,19 +62,9 @@ double speckle_coverage(const SkinPatternLayer& s, uint64_t cells, const glm::dv
 /// basis: the second-nearest point's distance F2 minus the nearest's F1, zero on a wall), lines
 /// `size` wide where F2 - F1 < size, their edge blended over `softness`.
 double net_coverage(const SkinPatternLayer& s, uint64_t cells, const glm::dvec3& position) {
-  const glm::dvec3 q = position / s.spacing_m;
-  double f1 = 1e300, f2 = 1e300;
-  visit_lattice_points(cells, q, [&](const glm::dvec3& point, uint64_t&) {
-    const double d = glm::length(q - point);
-    if (d < f1) {
-      f2 = f1;
-      f1 = d;
-    } else if (d < f2) {
-      f2 = d;
-    }
-  });
+  const CellDistances d = cell_distances(cells, position / s.spacing_m, 0);
   const double width = s.size_m / s.spacing_m;
-  return spot(f2 - f1, width, s.softness);
+  return spot(d.f2 - d.f1, width, s.softness);
 }
 
 }  // namespace
@@ -104,7 +74,7 @@ SkinPatterns::SkinPatterns(const std::vector<SkinPatternLayer>& layers, uint64_t
   for (size_t k = 0; k < layers.size(); ++k) {
     const uint64_t layer_seed = derive_seed(seed, {kPurposePattern, k});
     uint64_t state = layer_seed;
-    const double phase = unit(state);
+    const double phase = cell_uniform(state);
     Layer layer{layers[k], PerlinNoise(layer_seed), phase, splitmix64(state), {}, {}};
     if (layer.spec.kind == SkinPatternLayer::Kind::Grains && model) {
       layer.near.cell = layer.spec.size_m;

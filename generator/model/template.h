@@ -192,16 +192,45 @@ struct GrainSpec {
   std::string path;
 };
 
-/// One frequency band of the Perlin colour modulation (doc/algorithms.md §6; doc/npr.md).
+/// The direction field a texture band is stretched along (doc/algorithms.md §6, Interior
+/// texture; doc/npr.md). Fields are about the object's axis (the object frame's y axis through
+/// x = z = 0) and use cylindrical coordinates, so they cut consistently at any plane.
+enum class TextureField {
+  None,    ///< isotropic: the band's period in every direction
+  Radial,  ///< along rays from the axis (kiwi rays, pineapple and mango fibres, vesicles)
+  Around,  ///< around the axis, along the section (rings, wall cells of a melon's rind)
+  Axial,   ///< along the axis (celery's strands, a banana's or a leek's fibres)
+};
+
+/// What every texture band shares: its lattice, its weight and its direction field.
 /// Its weight for an unmodulated colour c is amplitude * closeness(c), where closeness is 1 for
 /// an untinted band and otherwise falls smoothly from 1 at the tint to 0 at `reach` (distance
 /// in sRGB 0..1 components): (1 - (d / reach)^2)^2 for d < reach.
-struct PerlinBand {
-  double frequency_per_m = 1.0;  ///< noise lattice cells per metre (1 / the file's `period`)
-  double amplitude = 0.0;        ///< relative colour change per unit of noise at strength 1, 0..1
+struct TextureBand {
+  double frequency_per_m = 1.0;  ///< lattice cells per metre (1 / the file's `period` or `size`)
+  double amplitude = 0.0;        ///< 0..1; see PerlinBand and CellBand for its effect
   bool tinted = false;           ///< false: the band acts on every colour with weight 1
   glm::dvec3 tint{0.0};          ///< linear RGB; the colour the band acts on most
   double reach = 0.25;           ///< sRGB distance at which the weight reaches 0, > 0
+  TextureField along = TextureField::None;
+  double stretch = 1.0;  ///< >= 1: the lattice spacing along the field is stretch times longer
+  /// Radial and Around: lattice cells round a whole turn (1..256), the around coordinate's
+  /// period: 2 pi R / period for Radial, 2 pi R / (period * stretch) for Around, R the skin's
+  /// widest radius, rounded (at least 1). 0 for None and Axial.
+  unsigned around_cells = 0;
+};
+
+/// One frequency band of the Perlin colour modulation (doc/algorithms.md §6; doc/npr.md): a
+/// relative brightness change of amplitude * closeness per unit of noise at strength 1.
+struct PerlinBand : TextureBand {};
+
+/// One layer of cells (Worley 1996) in the colour (doc/algorithms.md §6, Interior texture):
+/// walls between cells drawn towards `wall`, cell centres towards `centre`, each by
+/// min(1, strength * amplitude * closeness) times its mask.
+struct CellBand : TextureBand {
+  bool has_wall = false, has_centre = false;
+  glm::dvec3 wall{0.0}, centre{0.0};  ///< linear RGB
+  double wall_width = 0.15;           ///< 0..1, of a cell's spacing (lattice units)
 };
 
 /// Non-photorealistic rendering parameters of a template (doc/template-format.md, NPR;
@@ -211,7 +240,8 @@ struct NprSettings {
   /// the skin's height h: fine grain (period h / 16, amplitude 0.2) and broad mottling (period
   /// h / 5, amplitude 0.3). An empty list turns the modulation off for the template.
   std::vector<PerlinBand> perlin_bands;
-  bool perlin_from_file = false;  ///< whether the bands were written in the file
+  bool perlin_from_file = false;     ///< whether the bands were written in the file
+  std::vector<CellBand> cell_bands;  ///< `npr.cells`; none unless written
 };
 
 /// One layer of the skin's pattern (doc/template-format.md, Skin patterns): a colour laid over

@@ -1,7 +1,9 @@
 // NPR Perlin colour modulation (generator/material/colour_modulation.h) and the template's `npr`
 // block (template_parser.h, doc/npr.md): strength 0 is the identity, a point gets the same colour
 // in whatever mesh it is (two caps sharing an edge agree along it), weights follow the documented
-// closeness to a band's tint, results stay in 0..1; the parser's values, defaults and errors.
+// closeness to a band's tint, results stay in 0..1; the parser's values, defaults and errors;
+// the interior texture: bands stretched along the object's fields, cells with wall and centre
+// colours, no seam where the angle wraps.
 #include "material/colour_modulation.h"
 
 #include <gtest/gtest.h>
@@ -15,6 +17,7 @@
 
 #include "base/colour.h"
 #include "base/error.h"
+#include "base/constants.h"
 #include "base/random.h"
 #include "io/template_parser.h"
 
@@ -314,6 +317,210 @@ TEST(NprBlock, RefusesBadValuesWithTheirLocation) {
   const InputError e = npr_error_of(many + "]}}\n");
   EXPECT_EQ(e.field(), "npr.perlin.bands");
   EXPECT_NE(e.rule().find("at most 8 bands, not 9"), std::string::npos) << e.what();
+}
+
+TEST(NprBlock, ParsesFieldsAndCellsAndCountsCellsRoundTheWidestRadius) {
+  // The head's skin is 2.5 cm at its widest: 2 pi 25 mm / 1 mm = 157 cells around.
+  const Template t = parse_npr(R"(npr:
+  perlin:
+    bands:
+      - {period: 0.1, amplitude: 0.3, along: radial, stretch: 8}
+      - {period: 0.1, amplitude: 0.3, along: around, stretch: 4}
+      - {period: 0.1, amplitude: 0.3, along: axial, stretch: 3}
+  cells:
+    - {size: 0.2, amplitude: 0.5, wall: "#ffffff", wall_width: 0.3, along: radial, stretch: 2}
+    - {size: 0.5, amplitude: 0.4, centre: "#ff8000", tint: "#ffa000", reach: 0.3}
+)");
+  ASSERT_EQ(t.npr.perlin_bands.size(), 3u);
+  EXPECT_EQ(t.npr.perlin_bands[0].along, TextureField::Radial);
+  EXPECT_DOUBLE_EQ(t.npr.perlin_bands[0].stretch, 8);
+  EXPECT_EQ(t.npr.perlin_bands[0].around_cells, 157u);
+  EXPECT_EQ(t.npr.perlin_bands[1].along, TextureField::Around);
+  EXPECT_EQ(t.npr.perlin_bands[1].around_cells, 39u);  // 157 / 4, rounded
+  EXPECT_EQ(t.npr.perlin_bands[2].along, TextureField::Axial);
+  EXPECT_EQ(t.npr.perlin_bands[2].around_cells, 0u);
+  ASSERT_EQ(t.npr.cell_bands.size(), 2u);
+  const CellBand& a = t.npr.cell_bands[0];
+  EXPECT_TRUE(a.has_wall);
+  EXPECT_FALSE(a.has_centre);
+  EXPECT_DOUBLE_EQ(a.wall_width, 0.3);
+  EXPECT_NEAR(a.frequency_per_m, 1 / 0.002, 1e-9);
+  EXPECT_EQ(a.around_cells, 79u);  // 2 pi 25 / 2, rounded
+  const CellBand& b = t.npr.cell_bands[1];
+  EXPECT_TRUE(b.has_centre && b.tinted);
+  EXPECT_DOUBLE_EQ(b.wall_width, 0.15);  // the default
+  EXPECT_EQ(b.along, TextureField::None);
+}
+
+TEST(NprBlock, RefusesBadFieldsAndCellsWithTheirLocation) {
+  struct Case {
+    std::string npr;
+    std::string field, rule;
+  };
+  const Case cases[] = {
+      {"npr: {perlin: {bands: [{period: 1, amplitude: 0.1, along: sideways}]}}\n",
+       "npr.perlin.bands[0].along", "must be none, radial, around or axial, not \"sideways\""},
+      {"npr: {perlin: {bands: [{period: 1, amplitude: 0.1, stretch: 2}]}}\n",
+       "npr.perlin.bands[0].stretch", "needs a field to stretch along"},
+      {"npr: {perlin: {bands: [{period: 1, amplitude: 0.1, along: axial, stretch: 0.5}]}}\n",
+       "npr.perlin.bands[0].stretch", "must be between 1 and 64"},
+      {"npr: {perlin: {bands: [{period: 0.001, amplitude: 0.1, along: radial}]}}\n",
+       "npr.perlin.bands[0].period", "too fine for a field around the axis: 15708 cells"},
+      {"npr: {cells: [{size: 0.001, amplitude: 0.1, wall: '#ffffff', along: around}]}\n",
+       "npr.cells[0].size", "at most 256"},
+      {"npr: {cells: [{size: 1, amplitude: 0.1}]}\n", "npr.cells[0]",
+       "needs a wall or a centre colour"},
+      {"npr: {cells: [{size: 1, amplitude: 0.1, centre: '#ffffff', wall_width: 0.2}]}\n",
+       "npr.cells[0].wall_width", "needs a wall colour"},
+      {"npr: {cells: [{amplitude: 0.1, wall: '#ffffff'}]}\n", "npr.cells[0]",
+       "missing required field 'size'"},
+      {"npr: {cells: [{size: 1, amplitude: 0.1, wall: '#ffffff', colour: 1}]}\n",
+       "npr.cells[0].colour", "unknown field"},
+  };
+  for (const Case& c : cases) {
+    const InputError e = npr_error_of(c.npr);
+    EXPECT_EQ(e.loc().line, 10) << c.npr << e.what();
+    EXPECT_EQ(e.field(), c.field) << e.what();
+    EXPECT_NE(e.rule().find(c.rule), std::string::npos) << e.what();
+  }
+}
+
+/// One untinted band of `period_m` stretched along `along`, its around_cells as the parser
+/// would set them for a skin 25 mm at its widest.
+NprSettings one_field_band(TextureField along, double stretch, double period_m) {
+  NprSettings npr;
+  PerlinBand b;
+  b.frequency_per_m = 1 / period_m;
+  b.amplitude = 0.5;
+  b.along = along;
+  b.stretch = stretch;
+  if (along == TextureField::Radial || along == TextureField::Around)
+    b.around_cells = static_cast<unsigned>(
+        std::round(2 * kPi * 0.025 / period_m / (along == TextureField::Around ? stretch : 1)));
+  npr.perlin_bands.push_back(b);
+  return npr;
+}
+
+/// The mean squared difference of the band's noise between points `step` apart along `dir(p)`,
+/// over points scattered in a ring 5 to 20 mm from the axis.
+double mean_square_step(const ColourModulation& m, glm::dvec3 (*dir)(const glm::dvec3&),
+                        double step) {
+  Rng rng(17);
+  double sum = 0;
+  const int n = 4000;
+  for (int i = 0; i < n; ++i) {
+    const double r = rng.uniform(0.005, 0.02), a = rng.uniform(0, 2 * kPi);
+    const glm::dvec3 p(r * std::cos(a), rng.uniform(0, 0.04), r * std::sin(a));
+    const glm::dvec3 q = p + step * dir(p);
+    const glm::dvec3 grey(0.5);
+    const double d = m.relative_change(p, grey) - m.relative_change(q, grey);
+    sum += d * d;
+  }
+  return sum / n;
+}
+
+glm::dvec3 radial_dir(const glm::dvec3& p) { return glm::normalize(glm::dvec3(p.x, 0, p.z)); }
+glm::dvec3 around_dir(const glm::dvec3& p) { return glm::normalize(glm::dvec3(-p.z, 0, p.x)); }
+glm::dvec3 axial_dir(const glm::dvec3&) { return {0, 1, 0}; }
+
+TEST(InteriorTexture, StretchedNoiseVariesSlowlyAlongItsFieldAndFastAcrossIt) {
+  // Along the field the noise changes over stretch times the distance it does across it: the
+  // mean squared change over one step along is far smaller than over the same step across.
+  struct Case {
+    TextureField along;
+    glm::dvec3 (*with)(const glm::dvec3&);
+    glm::dvec3 (*across)(const glm::dvec3&);
+  };
+  const Case cases[] = {{TextureField::Radial, radial_dir, axial_dir},
+                        {TextureField::Around, around_dir, axial_dir},
+                        {TextureField::Axial, axial_dir, radial_dir}};
+  for (const Case& c : cases) {
+    const ColourModulation m(one_field_band(c.along, 8, 0.001), 3);
+    const double along = mean_square_step(m, c.with, 0.0004);
+    const double across = mean_square_step(m, c.across, 0.0004);
+    // Around the axis the lattice spacing is an angle, stretched exactly at the skin's widest
+    // radius (25 mm) and less nearer the axis: these points lie 5 to 20 mm from it.
+    EXPECT_LT(along, 0.25 * across) << static_cast<int>(c.along);
+    // Unstretched, the same field reads alike both ways (within sampling noise).
+    const ColourModulation iso(one_field_band(c.along, 1, 0.001), 3);
+    const double a1 = mean_square_step(iso, c.with, 0.0002);
+    const double c1 = mean_square_step(iso, c.across, 0.0002);
+    EXPECT_GT(a1, 0.2 * c1) << static_cast<int>(c.along);
+  }
+}
+
+TEST(InteriorTexture, FieldsAroundTheAxisHaveNoSeamWhereTheAngleWraps) {
+  // atan2 jumps from pi to -pi on the -X side: the periodic lattice must make the colour
+  // continuous there, for noise and for cells.
+  NprSettings npr = one_field_band(TextureField::Radial, 4, 0.001);
+  CellBand cells;
+  cells.frequency_per_m = 1 / 0.0015;
+  cells.amplitude = 1;
+  cells.has_wall = cells.has_centre = true;
+  cells.wall = glm::dvec3(1);
+  cells.centre = glm::dvec3(0.2, 0.1, 0);
+  cells.along = TextureField::Around;
+  cells.stretch = 2;
+  cells.around_cells = 52;
+  npr.cell_bands.push_back(cells);
+  const ColourModulation m(npr, 9);
+  const glm::dvec3 grey(0.4);
+  double worst_seam = 0, worst_elsewhere = 0;
+  for (int i = 0; i < 200; ++i) {
+    const double r = 0.004 + i * 0.00008, y = 0.001 * i;
+    const double e = 1e-7;  // angles just either side of the wrap, and of an ordinary point
+    const glm::dvec3 a = m(glm::dvec3(-r, y, e * r), grey, 1),
+                     b = m(glm::dvec3(-r, y, -e * r), grey, 1);
+    const glm::dvec3 c = m(glm::dvec3(r, y, e * r), grey, 1),
+                     d = m(glm::dvec3(r, y, -e * r), grey, 1);
+    worst_seam = std::max(worst_seam, glm::length(a - b));
+    worst_elsewhere = std::max(worst_elsewhere, glm::length(c - d));
+  }
+  EXPECT_LT(worst_seam, 1e-4);
+  EXPECT_LT(worst_elsewhere, 1e-4);
+}
+
+TEST(InteriorTexture, CellWallsAndCentresTakeTheirColoursWhereTheMasksSayAndOnlyThere) {
+  NprSettings npr;
+  CellBand cells;
+  cells.frequency_per_m = 1 / 0.002;
+  cells.amplitude = 1;
+  cells.has_wall = cells.has_centre = true;
+  cells.wall = glm::dvec3(0.9, 0.9, 0.8);
+  cells.centre = glm::dvec3(0.6, 0.1, 0.0);
+  cells.wall_width = 0.2;
+  cells.tinted = true;
+  cells.tint = srgb(0.9, 0.5, 0.1);
+  cells.reach = 0.3;
+  npr.cell_bands.push_back(cells);
+  npr.perlin_bands.clear();
+  const uint64_t seed = 21;
+  const ColourModulation m(npr, seed);
+  const glm::dvec3 flesh = srgb(0.9, 0.5, 0.1), far = srgb(0.1, 0.6, 0.1);
+  Rng rng(5);
+  int walls = 0, centres = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const glm::dvec3 p(rng.uniform(-0.01, 0.01), rng.uniform(0, 0.02), rng.uniform(-0.01, 0.01));
+    // The same masks ColourModulation reads: its lattice is derive_seed(seed, {"cell", 0}).
+    const CellMasks k = cell_masks(cells, derive_seed(seed, {0x63656c6c, 0}), p);
+    ASSERT_GE(k.wall, 0);
+    ASSERT_LE(k.wall, 1);
+    ASSERT_GE(k.centre, 0);
+    ASSERT_LE(k.centre, 1);
+    // At the tint the weight is 1: the centre's colour by its mask, then the wall's by its.
+    const glm::dvec3 c = m(p, flesh, 1);
+    const glm::dvec3 centred = flesh + (cells.centre - flesh) * k.centre;
+    EXPECT_LT(glm::length(c - (centred + (cells.wall - centred) * k.wall)), 1e-12);
+    if (k.wall == 1) {
+      ++walls;
+      EXPECT_LT(glm::length(c - cells.wall), 1e-12);  // full strength: the wall's own colour
+    }
+    if (k.wall == 0 && k.centre > 0.5) ++centres;
+    EXPECT_EQ(m(p, far, 1), far);      // beyond the reach: untouched
+    EXPECT_EQ(m(p, flesh, 0), flesh);  // strength 0: untouched
+  }
+  EXPECT_GT(walls, 50);
+  EXPECT_GT(centres, 10);
 }
 
 }  // namespace

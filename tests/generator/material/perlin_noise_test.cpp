@@ -116,5 +116,22 @@ TEST(PerlinNoise, ZeroMeanOverALargeBox) {
   EXPECT_LT(std::fabs(sum / n), 0.01) << "mean " << sum / n << " over " << n;
 }
 
+TEST(PerlinNoise, PeriodicAlongXWrapsWithoutASeamAndEqualsThePlainNoiseAt256) {
+  const PerlinNoise noise(77);
+  Rng rng(3);
+  for (int i = 0; i < 500; ++i) {
+    const glm::dvec3 p(rng.uniform(-300, 300), rng.uniform(-50, 50), rng.uniform(-50, 50));
+    EXPECT_EQ(noise.periodic(p, 256), noise(p));
+    for (unsigned period : {1u, 7u, 52u, 255u}) {
+      EXPECT_NEAR(noise.periodic(p + glm::dvec3(period, 0, 0), period), noise.periodic(p, period),
+                  1e-9);
+      // Continuous across the wrap: just below a multiple of the period and just above it.
+      const glm::dvec3 w(period * std::floor(p.x / period), p.y, p.z);
+      EXPECT_NEAR(noise.periodic(w - glm::dvec3(1e-9, 0, 0), period),
+                  noise.periodic(w + glm::dvec3(1e-9, 0, 0), period), 1e-6);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace cutaway
