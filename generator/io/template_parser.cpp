@@ -332,18 +332,34 @@ glm::dvec2 parse_range(const YamlField& f) {
 }
 
 GrainSpec parse_grain(const YamlField& f, const Template& t) {
-  f.allow_only({"name", "on", "region", "spacing", "side", "depth", "shape", "front", "back",
-                "blur", "roughness", "translucency", "jitter"});
+  f.allow_only({"name", "on", "inside", "outside", "region", "spacing", "side", "depth", "shape",
+                "front", "back", "blur", "roughness", "translucency", "jitter"});
   GrainSpec g;
   g.path = f.path();
   g.loc = f.loc();
   const double m = t.metres_per_unit;
   g.name = f.require("name").string();
-  const YamlField on = f.require("on");
-  g.on = on.string();
-  bool found = false;
-  for (const auto& s : t.surfaces) found = found || s.name == g.on;
-  if (!found) on.fail("no surface is named " + quoted(g.on));
+  const auto surface_named = [&](const YamlField& field) {
+    const std::string name = field.string();
+    bool found = false;
+    for (const auto& s : t.surfaces) found = found || s.name == name;
+    if (!found) field.fail("no surface is named " + quoted(name));
+    return name;
+  };
+  if (auto inside = f.get("inside")) {  // grains through a region
+    if (auto on = f.get("on"))
+      on->fail("a grain set lies either on a surface or inside one, not both");
+    g.inside = surface_named(*inside);
+    if (auto outside = f.get("outside")) {
+      g.outside = surface_named(*outside);
+      if (g.outside == g.inside) outside->fail("must name another surface than `inside`");
+    }
+    for (const char* key : {"region", "side", "depth"})
+      if (auto x = f.get(key)) x->fail("only grains `on` a surface have a " + std::string(key));
+  } else {
+    if (auto outside = f.get("outside")) outside->fail("an outside needs an inside");
+    g.on = surface_named(f.require("on"));
+  }
   if (auto region = f.get("region")) {
     region->allow_only({"profile", "section"});
     if (auto x = region->get("profile")) g.region_profile = parse_range(*x);

@@ -6,6 +6,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
+#include <iterator>
 
 namespace cutaway {
 
@@ -25,18 +26,48 @@ struct CrossingTest::Impl {
   Triangles triangles;
   std::vector<size_t> first;  // index of each surface's first triangle
   Tree tree;
+  // with_blur_sheets: the blurred surfaces' own triangles, each with the largest blur of its
+  // corners (metres), and the largest blur of all.
+  Triangles blurred;
+  std::vector<double> blur;
+  double max_blur = 0;
+  Tree blurred_tree;
 };
 
-CrossingTest::CrossingTest(const std::vector<const DsMesh*>& surfaces)
+CrossingTest::CrossingTest(const std::vector<const DsMesh*>& surfaces, bool with_blur_sheets)
     : impl_(std::make_unique<Impl>()) {
   for (const DsMesh* mesh : surfaces) {
     impl_->first.push_back(impl_->triangles.size());
-    for (auto fh : mesh->faces()) {
-      std::array<Kernel::Point_3, 3> p;
-      int k = 0;
-      for (auto vh : mesh->fv_range(fh)) p[k++] = cgal_point(to_glm(mesh->point(vh)));
-      impl_->triangles.emplace_back(p[0], p[1], p[2]);
+    bool blurred = false;
+    for (auto vh : mesh->vertices()) blurred = blurred || mesh->data(vh).blur > 0;
+    std::vector<glm::dvec3> normals;
+    if (with_blur_sheets && blurred) normals = vertex_normals(*mesh);
+    // The surface itself, then its blur's two sheets (the positions make_diffusion_sheets
+    // gives them: each vertex moved by its blur along the vertex normal, either way).
+    for (const int sign : {0, 1, -1}) {
+      if (sign != 0 && normals.empty()) break;
+      for (auto fh : mesh->faces()) {
+        std::array<Kernel::Point_3, 3> p;
+        double blur = 0;
+        int k = 0;
+        for (auto vh : mesh->fv_range(fh)) {
+          const glm::dvec3 offset =
+              sign == 0 ? glm::dvec3(0.0) : normals[vh.idx()] * (sign * mesh->data(vh).blur);
+          p[k++] = cgal_point(to_glm(mesh->point(vh)) + offset);
+          blur = std::max(blur, mesh->data(vh).blur);
+        }
+        impl_->triangles.emplace_back(p[0], p[1], p[2]);
+        if (sign == 0 && !normals.empty() && blur > 0) {
+          impl_->blurred.emplace_back(p[0], p[1], p[2]);
+          impl_->blur.push_back(blur);
+          impl_->max_blur = std::max(impl_->max_blur, blur);
+        }
+      }
     }
+  }
+  if (!impl_->blurred.empty()) {
+    impl_->blurred_tree.insert(impl_->blurred.cbegin(), impl_->blurred.cend());
+    impl_->blurred_tree.build();
   }
   impl_->tree.insert(impl_->triangles.cbegin(), impl_->triangles.cend());
   impl_->tree.build();
@@ -56,6 +87,19 @@ int CrossingTest::crossed(const std::vector<std::array<glm::dvec3, 3>>& triangle
     }
   }
   return -1;
+}
+
+bool CrossingTest::within_blur(const glm::dvec3& p) const {
+  if (impl_->blurred.empty()) return false;
+  const Kernel::Point_3 q = cgal_point(p);
+  const Kernel::Sphere_3 ball(q, impl_->max_blur * impl_->max_blur);
+  std::vector<Tree::Primitive_id> near;
+  impl_->blurred_tree.all_intersected_primitives(ball, std::back_inserter(near));
+  for (const auto id : near) {
+    const size_t i = static_cast<size_t>(id - impl_->blurred.cbegin());
+    if (CGAL::squared_distance(q, impl_->blurred[i]) < impl_->blur[i] * impl_->blur[i]) return true;
+  }
+  return false;
 }
 
 }  // namespace cutaway

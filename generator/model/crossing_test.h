@@ -17,7 +17,11 @@ class CrossingTest {
  public:
   /// @param surfaces  the meshes to test against (their triangles are copied); crossed()
   ///                  answers with an index into this list
-  explicit CrossingTest(const std::vector<const DsMesh*>& surfaces);
+  /// @param with_blur_sheets also test against the two sheets a blurred surface shows the
+  ///                  diffusion (diffusion_sheets.h: each vertex moved by its blur along the
+  ///                  vertex normal, both ways), answered as the surface's index: a closed
+  ///                  grain that one of them passes through is coloured by it from inside
+  explicit CrossingTest(const std::vector<const DsMesh*>& surfaces, bool with_blur_sheets = false);
   ~CrossingTest();
   CrossingTest(const CrossingTest&) = delete;
   CrossingTest& operator=(const CrossingTest&) = delete;
@@ -26,6 +30,12 @@ class CrossingTest {
   /// crosses (exact triangle-triangle predicates, CGAL Epick), or -1 where none does. A mesh
   /// wholly inside or outside every surface crosses none.
   int crossed(const std::vector<std::array<glm::dvec3, 3>>& triangles) const;
+
+  /// With with_blur_sheets: whether `p` (metres) lies closer to a blurred surface than that
+  /// surface's blur (the largest of the nearby triangle's corners'), i.e. between its two
+  /// sheets, where a grain wholly inside would cross none of them and still be coloured by
+  /// the blur's sheets from inside. Always false without with_blur_sheets.
+  bool within_blur(const glm::dvec3& p) const;
 
  private:
   struct Impl;

@@ -176,7 +176,10 @@ struct SurfaceSpec {
 /// Grains scattered over a surface by Poisson-disc dart throwing (doc/template-format.md, Grains).
 struct GrainSpec {
   std::string name;
-  std::string on;                       ///< name of the surface they are scattered over
+  std::string on;       ///< name of the surface they are scattered over, or
+                        ///< empty for grains through a region (`inside`)
+  std::string inside;   ///< grains through a region: the closed surface they lie inside
+  std::string outside;  ///< and, optionally, the closed surface they lie outside of
   glm::dvec2 region_profile{0.0, 1.0};  ///< normalised arc-length range along the profile
   glm::dvec2 region_section{0.0, 1.0};  ///< normalised arc-length range along the section
   double spacing = 0.0;                 ///< Poisson-disc radius, metres

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <sstream>
 
 #include <glm/geometric.hpp>
@@ -11,6 +12,7 @@
 #include "base/constants.h"
 #include "base/error.h"
 #include "base/point_grid.h"
+#include "model/inside_test.h"
 
 namespace cutaway {
 
@@ -70,12 +72,31 @@ std::vector<std::array<glm::dvec3, 3>> ellipsoid_triangles(const GrainPlacement&
   return out;
 }
 
-const DsSurface& grain_support(const GrainSpec& spec, const DsModel& model) {
+/// The surface of `model` (not a grain set) named `name`. @pre there is one
+const DsSurface& surface_named(const std::string& name, const DsModel& model) {
   const DsSurface* on = nullptr;
   for (const auto& s : model.surfaces)
-    if (s.name == spec.on && s.role != SurfaceRole::Grain) on = &s;
+    if (s.name == name && s.role != SurfaceRole::Grain) on = &s;
   CUTAWAY_CHECK(on != nullptr);
   return *on;
+}
+
+const DsSurface& grain_support(const GrainSpec& spec, const DsModel& model) {
+  return surface_named(spec.on, model);
+}
+
+/// The most grains a set may get: its surface region's area over the area a grain's Poisson
+/// disc claims in the densest packing (sqrt(3)/2 spacing^2), or for grains through a region the
+/// volume inside `inside` over the volume a ball of diameter spacing claims in the densest
+/// packing (spacing^3 / sqrt(2)).
+double most_grains(const GrainSpec& spec, const DsModel& model) {
+  if (!spec.inside.empty()) {
+    const double volume = std::fabs(signed_volume(surface_named(spec.inside, model).mesh));
+    return volume / (spec.spacing * spec.spacing * spec.spacing / std::sqrt(2.0));
+  }
+  const double area =
+      AreaSampler(region_triangles(spec, grain_support(spec, model).mesh).area).total();
+  return area / (0.5 * std::sqrt(3.0) * spec.spacing * spec.spacing);
 }
 
 }  // namespace
@@ -90,9 +111,7 @@ void check_grain_limits(const Template& tmpl, const DsModel& model) {
   const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
   double before = 0;  // the most grains of the sets before this one
   for (const GrainSpec& spec : tmpl.grains) {
-    const double area =
-        AreaSampler(region_triangles(spec, grain_support(spec, model).mesh).area).total();
-    const double most = area / (0.5 * std::sqrt(3.0) * spec.spacing * spec.spacing);
+    const double most = most_grains(spec, model);
     if (before + most > kMaxGrains) {
       std::ostringstream s;
       s << "the spacing is too small for the region: up to " << static_cast<long long>(most)
@@ -204,6 +223,68 @@ std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface&
   return out;
 }
 
+std::vector<GrainPlacement> place_grains_inside(const GrainSpec& spec, const InsideTest& inside,
+                                                const InsideTest* outside, const glm::dvec3& lo,
+                                                const glm::dvec3& hi, Rng& rng,
+                                                const GrainOptions& opt,
+                                                const CrossingTest* obstacles,
+                                                std::vector<size_t>* crossings) {
+  CUTAWAY_CHECK(spec.spacing > 0);
+  std::vector<GrainPlacement> out;
+  PointGrid grid{spec.spacing, {}};
+  int failures = 0;
+  size_t darts = 0;
+  while (failures < opt.max_consecutive_failures && out.size() < opt.max_grains &&
+         darts < opt.max_region_darts) {
+    ++darts;
+    const glm::dvec3 centre(rng.uniform(lo.x, hi.x), rng.uniform(lo.y, hi.y),
+                            rng.uniform(lo.z, hi.z));
+    // Jitter is drawn for every dart, so the stream does not depend on acceptance order.
+    const double size_j = 1 + spec.jitter * rng.uniform(-1.0, 1.0);
+    const double turn = spec.jitter * 0.5 * kPi * rng.uniform(-1.0, 1.0);
+    if (!inside.inside(centre) || (outside && outside->inside(centre))) continue;
+    bool ok = true;
+    grid.visit_near(centre, [&](size_t j) {
+      ok = glm::distance(out[j].centre, centre) >= spec.spacing;
+      return ok;
+    });
+    if (!ok) {
+      ++failures;
+      continue;
+    }
+    // The frame of the object's fields: normal out from the axis, profile axis up, section
+    // axis around; then the jitter's turn about the normal.
+    const double r = std::sqrt(centre.x * centre.x + centre.z * centre.z);
+    const glm::dvec3 n = r > 1e-9 ? glm::dvec3(centre.x / r, 0, centre.z / r) : glm::dvec3(1, 0, 0);
+    const glm::dvec3 up(0, 1, 0), around = glm::cross(n, up);
+    GrainPlacement g;
+    g.surface_point = centre;
+    g.centre = centre;
+    g.axis_profile = std::cos(turn) * up + std::sin(turn) * around;
+    g.axis_section = glm::cross(n, g.axis_profile);
+    g.axis_normal = n;
+    g.semi_axes = spec.semi_axes * size_j;
+    if (obstacles) {
+      if (obstacles->within_blur(centre)) {
+        ++failures;
+        continue;
+      }
+      if (const int hit = obstacles->crossed(ellipsoid_triangles(g, opt)); hit >= 0) {
+        if (crossings) {
+          if (crossings->size() <= static_cast<size_t>(hit)) crossings->resize(hit + 1, 0);
+          ++(*crossings)[static_cast<size_t>(hit)];
+        }
+        ++failures;
+        continue;
+      }
+    }
+    failures = 0;
+    grid.add(centre, out.size());
+    out.push_back(g);
+  }
+  return out;
+}
+
 void add_ellipsoids(const std::vector<GrainPlacement>& grains, const glm::dvec3& front,
                     const glm::dvec3& back, double blur, const GrainOptions& opt, DsMesh& mesh) {
   const int R = std::max(2, opt.rings), S = std::max(3, opt.segments);
@@ -249,17 +330,43 @@ void scatter_grains(const Template& t, DsModel& model, uint64_t seed, const Grai
   for (size_t gi = 0; gi < t.grains.size(); ++gi) {
     const GrainSpec& spec = t.grains[gi];
     Rng rng(derive_seed(seed, {kPurposeGrains, gi}));
-    const DsSurface& on = grain_support(spec, model);
+    // Grains on a surface may cross it; grains through a region may cross none.
+    const DsSurface* on = spec.on.empty() ? nullptr : &grain_support(spec, model);
     std::vector<const DsMesh*> others;
     std::vector<const DsSurface*> named;
     for (const DsSurface& s : model.surfaces) {
-      if (&s == &on) continue;
+      if (&s == on) continue;
       others.push_back(&s.mesh);
       named.push_back(&s);
     }
-    const CrossingTest obstacles(others);
+    // Through a region, the blur's sheets too: a grain one passes through would show its
+    // colours inside. (Grains on a surface may reach into their neighbours' blur as before:
+    // a potato's eyes sit in its cortex's.)
+    const CrossingTest obstacles(others, on == nullptr);
     std::vector<size_t> crossings;
-    const auto grains = place_grains(spec, on, rng, opt, &obstacles, &crossings);
+    std::vector<GrainPlacement> grains;
+    if (on) {
+      grains = place_grains(spec, *on, rng, opt, &obstacles, &crossings);
+    } else {
+      const DsSurface& in = surface_named(spec.inside, model);
+      const DsSurface* out = spec.outside.empty() ? nullptr : &surface_named(spec.outside, model);
+      for (const DsSurface* s : {&in, out})
+        if (s && !closed_surface(s->mesh))
+          throw InputError(spec.loc, spec.path + (s == &in ? ".inside" : ".outside"),
+                           "surface " + quoted(s->name) +
+                               " is not closed (it has a span): grains need a closed surface "
+                               "to lie inside or outside of");
+      const InsideTest inside(in.mesh);
+      std::unique_ptr<InsideTest> outside;
+      if (out) outside = std::make_unique<InsideTest>(out->mesh);
+      glm::dvec3 lo(INFINITY), hi(-INFINITY);
+      for (auto vh : in.mesh.vertices()) {
+        lo = glm::min(lo, point(in.mesh, vh));
+        hi = glm::max(hi, point(in.mesh, vh));
+      }
+      grains = place_grains_inside(spec, inside, outside.get(), lo, hi, rng, opt, &obstacles,
+                                   &crossings);
+    }
     if (grains.empty() && !crossings.empty()) {
       const size_t most = static_cast<size_t>(std::max_element(crossings.begin(), crossings.end()) -
                                               crossings.begin());

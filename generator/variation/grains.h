@@ -10,6 +10,7 @@
 #include "base/random.h"
 #include "model/crossing_test.h"
 #include "model/ds_model.h"
+#include "model/inside_test.h"
 #include "model/template.h"
 
 namespace cutaway {
@@ -30,6 +31,9 @@ struct GrainOptions {
   int max_consecutive_failures = 2000;
   size_t max_grains = 100000;    ///< hard cap per grain set
   int rings = 6, segments = 10;  ///< ellipsoid mesh resolution (UV sphere)
+  /// Grains through a region: the most darts thrown into the region's bounding box in all
+  /// (those outside the region count here, not as failures).
+  size_t max_region_darts = 1000000;
 };
 
 /// Dart throwing (Cook 1986; the paper's "dart throwing while respecting a Poisson disc
@@ -51,6 +55,23 @@ std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface&
                                          const CrossingTest* obstacles = nullptr,
                                          std::vector<size_t>* crossings = nullptr);
 
+/// Dart throwing through a region (grains `inside` a closed surface, doc/template-format.md,
+/// Grains): a dart is a point uniform in the box [lo, hi] (metres, object frame); one outside
+/// `inside` or inside `outside` (when given) is thrown away without counting as a failure; one
+/// within spec.spacing of an accepted centre, or whose ellipsoid `obstacles` says touches or
+/// crosses a surface, is a failure. Frame: the normal axis points away from the object's axis
+/// (y) horizontally, the profile axis up, turned about the normal by jitter * 90 degrees *
+/// U(-1, 1); semi-axes scaled by 1 + jitter * U(-1, 1). Stops after
+/// options.max_consecutive_failures failures in a row, options.max_grains grains or
+/// options.max_region_darts darts. surface_point = centre. Deterministic for a given rng state.
+/// @param inside, outside point-in-surface tests of closed surfaces; lo, hi inside's bounds
+std::vector<GrainPlacement> place_grains_inside(const GrainSpec& spec, const InsideTest& inside,
+                                                const InsideTest* outside, const glm::dvec3& lo,
+                                                const glm::dvec3& hi, Rng& rng,
+                                                const GrainOptions& options = {},
+                                                const CrossingTest* obstacles = nullptr,
+                                                std::vector<size_t>* crossings = nullptr);
+
 /// Appends one closed ellipsoid (UV sphere of options.rings x options.segments, poles on the
 /// normal axis, outward normals) per placement to `mesh`, with DS attributes front, back (linear
 /// RGB) and blur (metres).
@@ -65,7 +86,8 @@ inline constexpr double kMaxGrains = 10000;
 
 /// Refuses grain sets of `tmpl` that would take unbounded work or make no sense on `model`
 /// (built from tmpl), before any dart is thrown: more than kMaxGrains grains for the regions'
-/// areas over all sets (a spacing far too small), an ellipsoid semi-axis or a depth larger than
+/// areas (volumes, for grains through a region: the volume inside `inside` over spacing^3 /
+/// sqrt(2)) over all sets (a spacing far too small), an ellipsoid semi-axis or a depth larger than
 /// the skin's bounding box, or a spacing below the largest semi-axis (grains so dense that one
 /// can hold the centres of others: their loops on a cut face cross each other and the skin
 /// nanometres apart, and pieces of wedges and dice were found open). A region with no area is
@@ -73,15 +95,17 @@ inline constexpr double kMaxGrains = 10000;
 /// @throws InputError at the grain's `spacing`, `shape` or item, naming the rule
 void check_grain_limits(const Template& tmpl, const DsModel& model);
 
-/// Scatters every grain set of `tmpl` over its `on` surface of `model` and appends one
+/// Scatters every grain set of `tmpl` over its `on` surface of `model` (or through its region:
+/// place_grains_inside, crossing no surface at all) and appends one
 /// DsSurface per set that got grains (role Grain, name of the set, many components; a set whose
 /// region gets none adds no surface); bounds updated. Grain set i uses the stream
 /// derive_seed(seed, {grains purpose, i}). A grain may cross the surface it sits on (a pip in
 /// its carpel wall, an eye in the skin) but no other surface and no grain of an earlier set:
 /// such darts are rejected (doc/template-format.md, Grains).
 /// @pre model was built from tmpl (build_model); every grain's `on` names one of its surfaces
-/// @throws InputError from check_grain_limits, or at the grain set's item when its region has
-///         room for grains but every dart crossed another surface (naming the one crossed most)
+/// @throws InputError from check_grain_limits, at the grain set's item when its region has
+///         room for grains but every dart crossed another surface (naming the one crossed
+///         most), or at its `inside` or `outside` when that surface is not closed
 void scatter_grains(const Template& tmpl, DsModel& model, uint64_t seed,
                     const GrainOptions& options = {});
 

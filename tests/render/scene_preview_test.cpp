@@ -22,7 +22,7 @@
 namespace cutaway {
 namespace {
 
-constexpr int kWidth = 160, kHeight = 120;
+constexpr int kPreviewWidth = 160, kPreviewHeight = 120;
 
 /// An axis-aligned box about the origin with half-extents `half` (metres), one colour, flat
 /// faces (4 vertices each, outward normals, counter-clockwise seen from outside).
@@ -81,8 +81,8 @@ SceneAssets two_cubes() {
   sun.intensity = 3 * kLumensPerWatt;                        // the reference light: scale 1
   a.lights.push_back(sun);
   a.background = {0.25, 0.5, 0.75};  // exact in half floats
-  a.width = kWidth;
-  a.height = kHeight;
+  a.width = kPreviewWidth;
+  a.height = kPreviewHeight;
   return a;
 }
 
@@ -122,21 +122,22 @@ TEST(ScenePreview, DrawsTheCubesWhereTheCameraSeesThem) {
   ScenePreviewOptions o;
   o.samples = 4;
   const Image im = render_scene_preview(a, o);
-  ASSERT_EQ(im.width, kWidth);
-  ASSERT_EQ(im.height, kHeight);
-  ASSERT_EQ(im.rgba.size(), static_cast<size_t>(kWidth) * kHeight * 4);
+  ASSERT_EQ(im.width, kPreviewWidth);
+  ASSERT_EQ(im.height, kPreviewHeight);
+  ASSERT_EQ(im.rgba.size(), static_cast<size_t>(kPreviewWidth) * kPreviewHeight * 4);
   for (size_t i = 3; i < im.rgba.size(); i += 4) ASSERT_EQ(im.rgba[i], 255);
 
   const glm::ivec3 background = srgb8(a.background);
-  for (const glm::ivec2 corner : {glm::ivec2(0, 0), glm::ivec2(kWidth - 1, 0),
-                                  glm::ivec2(0, kHeight - 1), glm::ivec2(kWidth - 1, kHeight - 1)})
+  for (const glm::ivec2 corner :
+       {glm::ivec2(0, 0), glm::ivec2(kPreviewWidth - 1, 0), glm::ivec2(0, kPreviewHeight - 1),
+        glm::ivec2(kPreviewWidth - 1, kPreviewHeight - 1)})
     EXPECT_EQ(pixel(im, corner), background) << corner.x << "," << corner.y;
 
   // The centres of the front faces (+Z, toward the camera): red on the left, green on the right.
   const glm::ivec2 red_at = project(a, {-0.3, 0, 0.15});
   const glm::ivec2 green_at = project(a, {0.3, 0, 0.15});
-  ASSERT_LT(red_at.x, kWidth / 2);
-  ASSERT_GT(green_at.x, kWidth / 2);
+  ASSERT_LT(red_at.x, kPreviewWidth / 2);
+  ASSERT_GT(green_at.x, kPreviewWidth / 2);
   const glm::ivec3 red = pixel(im, red_at), green = pixel(im, green_at);
   EXPECT_GT(red.r, red.g + 40) << red.r << " " << red.g << " " << red.b;
   EXPECT_GT(red.r, red.b + 40);
@@ -326,7 +327,7 @@ TEST(ScenePreview, TexturedMaterialsTakeTheirColourFromTheTexture) {
   EXPECT_TRUE(yellow(pixel(im, project(a, {0, 0.15, 0.1}))));
   const test::PngInfo info = test::png_info(path);
   const size_t cube = info.not_background;
-  EXPECT_GT(cube, size_t{kWidth * kHeight / 10});
+  EXPECT_GT(cube, size_t{kPreviewWidth * kPreviewHeight / 10});
   EXPECT_GT(info.blue, cube / 4);
   EXPECT_GT(info.yellow, cube / 4);
   EXPECT_GT(info.blue + info.yellow, cube * 4 / 5) << "the cube is blue and yellow but its edges";

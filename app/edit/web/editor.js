@@ -356,9 +356,11 @@ $('height').addEventListener('change', () => {
 $('name').addEventListener('change', () => {
   const old = surfaces()[selected].name;
   let next = doc.set(['surfaces', selected, 'name'], $('name').value);
-  // grains follow their surface's new name
+  // grains follow their surface's new name (on it, or through the region it bounds)
   (doc.get(['grains']) ?? []).forEach((g, k) => {
-    if (g.on === old) next = next.set(['grains', k, 'on'], $('name').value);
+    for (const key of ['on', 'inside', 'outside']) {
+      if (g[key] === old) next = next.set(['grains', k, key], $('name').value);
+    }
   });
   commit(next);
 });

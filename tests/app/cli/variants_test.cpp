@@ -54,11 +54,11 @@ std::vector<Entry> entries(const std::string& manifest) {
   return out;
 }
 
-const std::string kTomato = "templates/tomato.yaml";
+const std::string kTomatoTemplate = "templates/tomato.yaml";
 
 test::RunResult variants(const fs::path& dir, int count, int seed,
                          std::vector<std::string> extra = {}) {
-  std::vector<std::string> args = {"variants", test::source_path(kTomato).string(),
+  std::vector<std::string> args = {"variants", test::source_path(kTomatoTemplate).string(),
                                    "--count",  std::to_string(count),
                                    "--seed",   std::to_string(seed),
                                    "-o",       dir.string()};
@@ -158,7 +158,7 @@ TEST(VariantsCommand, ModelSeedBuildsAVariant) {
   const fs::path dir = test::fresh_dir("cli_model_seed");
   for (const std::vector<std::string>& extra :
        {std::vector<std::string>{}, std::vector<std::string>{"--seed", "3"}}) {
-    std::vector<std::string> args = {"model", test::source_path(kTomato).string(), "-o",
+    std::vector<std::string> args = {"model", test::source_path(kTomatoTemplate).string(), "-o",
                                      (dir / (extra.empty() ? "plain.glb" : "seed.glb")).string()};
     args.insert(args.end(), extra.begin(), extra.end());
     const test::RunResult r = test::run_cutaway(args);

@@ -1,4 +1,5 @@
-// Grains (generator/variation/grains.h) on the tomato's and the cucumber's chambers.
+// Grains (generator/variation/grains.h) on the tomato's and the cucumber's chambers, and
+// grains through a region between two surfaces.
 #include "variation/grains.h"
 
 #include <gtest/gtest.h>
@@ -158,6 +159,95 @@ TEST(Grains, ASetThatCrossesASurfaceWhereverItIsPlacedIsRefused) {
                                          "wherever they are placed"),
               std::string::npos)
         << e.what();
+  }
+}
+
+/// A ball of radius 20 mm holding `flesh` (radius 14 mm, blur 1 mm) around a `core` (radius 6
+/// mm), with the grain set `grain` (a YAML flow map without its braces).
+Template ball_with_region(const std::string& grain) {
+  return parse_template(
+      "format: cutaway-template/1\nname: ball\nunits: mm\nsymmetry: {type: cylindrical}\n"
+      "resolution: {edge: 1.2}\nsurfaces:\n"
+      "  - {name: skin, kind: around, role: skin, profile: " +
+          half_circle(20) + "}\n  - {name: flesh, kind: around, blur: 1, profile: " +
+          half_circle(14) + "}\n  - {name: core, kind: around, profile: " + half_circle(6) +
+          "}\ngrains:\n  - {" + grain + "}\n",
+      "ball.yaml", ".");
+}
+
+TEST(Grains, GrainsThroughARegionFillItAndKeepClearOfEverySurfaceAndBlurSheet) {
+  const Template t = ball_with_region(
+      "name: seeds, inside: flesh, outside: core, spacing: 2.5, shape: {ellipsoid: [0.9, 0.6, "
+      "0.5]}, front: \"#201810\", back: \"#201810\", jitter: 0.2");
+  DsModel m = build_model(t);
+  scatter_grains(t, m, 5);
+  const DsSurface& seeds = m.surfaces.back();
+  ASSERT_EQ(seeds.name, "seeds");
+  const GrainOptions opt;
+  const size_t per = 2 + (opt.rings - 1) * opt.segments;
+  const size_t count = seeds.mesh.n_vertices() / per;
+  double nearest = 1e9, farthest = 0;  // grain vertices' distances from the centre, mm
+  std::vector<glm::dvec3> centres;
+  for (size_t g = 0; g < count; ++g) {
+    glm::dvec3 centre(0.0);
+    for (size_t k = 0; k < per; ++k) {
+      const glm::dvec3 p =
+          to_glm(seeds.mesh.point(DsMesh::VertexHandle(static_cast<int>(g * per + k))));
+      centre += p / static_cast<double>(per);
+      nearest = std::min(nearest, glm::length(p) * 1e3);
+      farthest = std::max(farthest, glm::length(p) * 1e3);
+    }
+    centres.push_back(centre);
+  }
+  // The shell between 6 and 14 mm holds about 10,600 mm^3; at 2.5 mm spacing dart throwing
+  // fills it with several hundred grains.
+  EXPECT_GT(count, 300u);
+  EXPECT_GT(nearest, 5.9);    // outside the core (its chords come 0.05 mm inside its 6 mm ball)
+  EXPECT_LT(farthest, 13.0);  // inside the flesh's back sheet, 1 mm in from its 14 mm
+  double closest_pair = 1e9;
+  for (size_t i = 0; i < centres.size(); ++i)
+    for (size_t j = i + 1; j < centres.size(); ++j)
+      closest_pair = std::min(closest_pair, glm::distance(centres[i], centres[j]) * 1e3);
+  EXPECT_GE(closest_pair, 2.5 - 1e-9);
+  std::printf("%zu grains between 6 and 14 mm: vertices %.2f to %.2f mm from the centre, centres "
+              "at least %.2f mm apart\n",
+              count, nearest, farthest, closest_pair);
+}
+
+TEST(Grains, GrainsThroughARegionAreRefusedWithTheirLocation) {
+  struct Case {
+    std::string grain, field, rule;
+  };
+  const std::string shape =
+      "spacing: 2.5, shape: {ellipsoid: [1, 1, 1]}, front: \"#000000\", back: \"#000000\"";
+  const Case cases[] = {
+      {"name: s, on: skin, inside: flesh, " + shape, "grains[0].on", "either on a surface"},
+      {"name: s, outside: core, on: skin, " + shape, "grains[0].outside", "needs an inside"},
+      {"name: s, inside: flesh, outside: flesh, " + shape, "grains[0].outside", "another surface"},
+      {"name: s, inside: pulp, " + shape, "grains[0].inside", "no surface is named \"pulp\""},
+      {"name: s, inside: flesh, depth: 1, " + shape, "grains[0].depth", "only grains `on`"},
+      {"name: s, inside: flesh, region: {profile: [0, 1]}, " + shape, "grains[0].region",
+       "only grains `on`"},
+  };
+  for (const Case& c : cases) {
+    try {
+      ball_with_region(c.grain);
+      ADD_FAILURE() << "accepted: " << c.grain;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field(), c.field) << e.what();
+      EXPECT_NE(std::string(e.rule()).find(c.rule), std::string::npos) << e.what();
+    }
+  }
+  // Far too many for the volume: 4/3 pi 14^3 mm^3 at 0.3 mm spacing.
+  const Template dense = ball_with_region(
+      "name: s, inside: flesh, spacing: 0.3, shape: {ellipsoid: [0.1, 0.1, 0.1]}, front: "
+      "\"#000000\", back: \"#000000\"");
+  DsModel m = build_model(dense);
+  try {
+    scatter_grains(dense, m, 1);
+    ADD_FAILURE() << "a spacing far too small for the volume was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "grains[0].spacing") << e.what();
   }
 }
 
