@@ -81,6 +81,26 @@ void add_colours_option(CLI::App* command, std::string& colours) {
       ->check(CLI::IsMember({"texture", "vertex"}));
 }
 
+void add_style_options(CLI::App* command, StyleArgs& args, const std::string& what) {
+  command
+      ->add_option("--style", args.style,
+                   "realistic (no ink strokes; the default) or illustration (silhouettes and the "
+                   "outlines inside cut faces, as the paper draws them)")
+      ->check(CLI::IsMember({"realistic", "illustration"}));
+  command
+      ->add_option("--silhouettes", args.silhouettes,
+                   "silhouette stroke strength " + what +
+                       " (0: off; default: 0 in the realistic style, 1 in the illustration style)")
+      ->check(number_rule(0.0, 10.0));
+}
+
+double stroke_strength(const StyleArgs& args, RenderStyle fallback) {
+  if (args.silhouettes) return *args.silhouettes;
+  if (args.style.empty()) return default_silhouettes(fallback);
+  return default_silhouettes(args.style == "illustration" ? RenderStyle::Illustration
+                                                          : RenderStyle::Realistic);
+}
+
 void add_export_options(CLI::App* command, std::string& compress, int& lods,
                         std::string& textures) {
   command

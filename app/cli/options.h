@@ -1,12 +1,16 @@
 // What the subcommands' options share: the usage error, the rules CLI11 checks values with,
-// the export options of the commands that write scenes, and the options common to all.
+// the export options of the commands that write scenes, the style of those that draw pictures,
+// and the options common to all.
 #pragma once
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 
 #include <CLI/CLI.hpp>
+
+#include "scene/scene.h"
 
 namespace cutaway::cli {
 
@@ -53,6 +57,21 @@ void add_export_options(CLI::App* command, std::string& compress, int& lods, std
 /// faces and swept skins baked into textures (with the skin patterns and their relief per
 /// texel) or left in vertex colours; into `colours`.
 void add_colours_option(CLI::App* command, std::string& colours);
+
+/// `--style` and `--silhouettes` of the commands that draw pictures (scene, piece, sheet).
+struct StyleArgs {
+  std::string style;                  ///< "realistic", "illustration", or empty: not given
+  std::optional<double> silhouettes;  ///< not given: the style's default
+};
+
+/// Adds `--style realistic|illustration` and `--silhouettes S` (0..10) to `command`, into
+/// `args`. `what` names where the strokes go, for the help text.
+void add_style_options(CLI::App* command, StyleArgs& args, const std::string& what);
+
+/// The silhouette stroke strength `args` ask for: --silhouettes when given, else the style's
+/// default (default_silhouettes: 0 realistic, 1 illustration), the style being --style when
+/// given, else `fallback` (a scene file's own).
+double stroke_strength(const StyleArgs& args, RenderStyle fallback = RenderStyle::Realistic);
 
 /// `--cache DIR`, `--no-cache`, `--cache-size SIZE` and `--cache-shared` of the commands that cut
 /// objects through the cut cache (scene, batch).

@@ -31,8 +31,8 @@ struct PieceArgs {
   int64_t seed = -1;  ///< >= 0: cut the variant of this seed instead of the template
   int width = 800, height = 600;
   int cube = 16;
-  double perlin = 1.0;       ///< Perlin colour modulation strength (the template's npr bands)
-  double silhouettes = 1.0;  ///< silhouette stroke strength over the PNG and in .pov; 0: none
+  double perlin = 1.0;  ///< Perlin colour modulation strength (the template's npr bands)
+  StyleArgs style;      ///< --style, --silhouettes: strokes over the PNG and in .pov
   std::string compress = "quantize";  ///< glTF vertex data: none, quantize or meshopt
   int lods = 0;                       ///< glTF levels of detail per mesh (GltfSceneOptions)
   std::string textures = "jpeg";      ///< base-colour texture images: jpeg or png (TextureFormat)
@@ -83,7 +83,7 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
     for (size_t k = 0; k < shapes.size(); ++k)
       assets.instances[k].collision = collision_hulls(shapes[k]);
   }
-  const Written w = write_outputs(assets, targets, common.threads, a.silhouettes, gltf);
+  const Written w = write_outputs(assets, targets, common.threads, stroke_strength(a.style), gltf);
   if (common.stats) {
     *common.stats = {{"template", tmpl.name},
                      {"backend", object.backend},
@@ -91,6 +91,7 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
                      {"planes", set.cells.planes.size()},
                      {"triangles", triangles},
                      {"diffused_points", set.diffused.all},
+                     {"strokes", w.strokes},
                      {"seconds",
                       {{"model", t_model},
                        {"cut", t_cut},
@@ -180,10 +181,7 @@ Command add_piece_command(CLI::App& app) {
       ->add_option("--perlin", args->perlin,
                    "Perlin colour modulation strength (0: off; default 1)")
       ->check(number_rule(0.0, 10.0));
-  piece
-      ->add_option("--silhouettes", args->silhouettes,
-                   "silhouette stroke strength over the PNG and in .pov (0: off; default 1)")
-      ->check(number_rule(0.0, 10.0));
+  add_style_options(piece, args->style, "over the PNG and in .pov");
   add_export_options(piece, args->compress, args->lods, args->textures);
   add_colours_option(piece, args->colours);
   piece->add_flag("--camera-and-lights", args->camera_and_lights,

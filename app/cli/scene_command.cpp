@@ -37,6 +37,7 @@ struct SceneArgs {
   std::string compress = "quantize";  ///< glTF vertex data: none, quantize or meshopt
   int lods = 0;                       ///< glTF levels of detail per mesh (GltfSceneOptions)
   std::string textures = "jpeg";      ///< base-colour texture images: jpeg or png (TextureFormat)
+  StyleArgs style;                    ///< --style, --silhouettes: over the scene file's render
   CacheArgs cache;
 };
 
@@ -165,7 +166,10 @@ int run_scene(const SceneArgs& a, const Common& given, OutputSet& outputs) {
   const double t_build = seconds_since(t1);
   log_build(scene, seed, st, options.settle);
   register_texture_outputs(outputs, targets, assets, parse_texture_format(a.textures));
-  const Written w = write_outputs(assets, targets, common.threads, scene.render.silhouettes,
+  // The command line's style or strokes over the file's.
+  const double strokes = a.style.silhouettes || !a.style.style.empty() ? stroke_strength(a.style)
+                                                                       : scene.render.silhouettes;
+  const Written w = write_outputs(assets, targets, common.threads, strokes,
                                   export_options(a.compress, a.lods, a.textures));
   if (common.stats)
     *common.stats =
@@ -191,6 +195,7 @@ Command add_scene_command(CLI::App& app) {
   scene->add_option("--cube", args->cube, "cube-map texels per face edge for PMVC")
       ->check(number_rule(2, 256));
   add_colours_option(scene, args->colours);
+  add_style_options(scene, args->style, "over the PNG and in .pov (over the file's render)");
   scene
       ->add_option("--texels-per-mm", args->texels_per_mm,
                    "texel density of baked cut-face textures (default: the scene's "

@@ -35,8 +35,8 @@ struct SheetArgs {
   int tile = 400;                  ///< tile width in pixels (height 3/4 of it plus the label)
   int columns = 0;                 ///< 0: about sqrt(4/3 * tiles)
   int cube = 16;
-  double silhouettes = 1.0;  ///< silhouette stroke strength; 0: none
-  int64_t seed = -1;         ///< >= 0: every template's variant of this seed (with its grains)
+  StyleArgs style;    ///< --style, --silhouettes: strokes over the tiles
+  int64_t seed = -1;  ///< >= 0: every template's variant of this seed (with its grains)
 };
 
 using Clock = std::chrono::steady_clock;
@@ -100,8 +100,8 @@ Image sheet_tile(const LoadedItem& item, const SheetArgs& a, const Common& commo
   const CutObject object =
       cut_for_view(assets, variant, cut, a.cube, common, 1.0, seed,
                    tmpl.name + ": cut '" + item.text + "'", CapColours::Texture);
-  const Image tile =
-      piece_tile(std::move(assets), object, item.view, a.tile, a.silhouettes, tmpl.name, item.text);
+  const Image tile = piece_tile(std::move(assets), object, item.view, a.tile,
+                                stroke_strength(a.style), tmpl.name, item.text);
   spdlog::info("{} ({}): {} pieces, {:.1f} s", tmpl.name, item.text, object.set.pieces.size(),
                seconds_since(t0));
   return tile;
@@ -152,10 +152,7 @@ Command add_sheet_command(CLI::App& app) {
       ->check(number_rule(0, 64));
   sheet->add_option("--cube", args->cube, "cube-map texels per face edge for PMVC")
       ->check(number_rule(2, 256));
-  sheet
-      ->add_option("--silhouettes", args->silhouettes,
-                   "silhouette stroke strength (0: off; default 1)")
-      ->check(number_rule(0.0, 10.0));
+  add_style_options(sheet, args->style, "over the tiles");
   sheet
       ->add_option("--seed", args->seed,
                    "cut every template's random variant of this seed (grains included) "

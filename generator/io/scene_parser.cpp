@@ -103,15 +103,25 @@ SceneCamera parse_camera(const YamlField& c, double metres_per_unit) {
   return cam;
 }
 
-/// `render`: the picture's size (at most kMaxRenderPixels), the NPR strengths and the texel
-/// density of the baked cut faces.
+/// `render`: the picture's size (at most kMaxRenderPixels), the style, the NPR strengths (the
+/// silhouettes' default following the style) and the texel density of the baked cut faces.
 RenderSettings parse_render(const YamlField& r) {
   RenderSettings out;
-  r.allow_only({"width", "height", "perlin", "silhouettes", "texels_per_mm"});
+  r.allow_only({"width", "height", "perlin", "style", "silhouettes", "texels_per_mm"});
   if (auto x = r.get("width")) out.width = parse_int_in(*x, 16, 8192);
   if (auto x = r.get("height")) out.height = parse_int_in(*x, 16, 8192);
   if (auto x = r.get("perlin")) out.perlin = x->number_in(0, 10);
-  if (auto x = r.get("silhouettes")) out.silhouettes = x->number_in(0, 10);
+  if (auto x = r.get("style")) {
+    const std::string style = x->string();
+    if (style == "illustration") out.style = RenderStyle::Illustration;
+    else if (style != "realistic")
+      x->fail("must be realistic or illustration, not " + quoted(style));
+  }
+  out.silhouettes = default_silhouettes(out.style);
+  if (auto x = r.get("silhouettes")) {
+    out.silhouettes = x->number_in(0, 10);
+    out.silhouettes_given = true;
+  }
   if (auto x = r.get("texels_per_mm")) out.texels_per_mm = x->number_in(0.1, 100);
   if (static_cast<long long>(out.width) * out.height > kMaxRenderPixels)
     r.fail("width x height is " + std::to_string(out.width * out.height) + " pixels (at most " +

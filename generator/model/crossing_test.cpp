@@ -6,6 +6,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 
 namespace cutaway {
@@ -87,6 +88,15 @@ int CrossingTest::crossed(const std::vector<std::array<glm::dvec3, 3>>& triangle
     }
   }
   return -1;
+}
+
+CrossingTest::Nearest CrossingTest::nearest(const glm::dvec3& p) const {
+  if (impl_->triangles.empty()) return {INFINITY, -1};
+  const auto [closest, id] = impl_->tree.closest_point_and_primitive(cgal_point(p));
+  const size_t i = static_cast<size_t>(id - impl_->triangles.cbegin());
+  const auto after = std::upper_bound(impl_->first.begin(), impl_->first.end(), i);
+  return {std::sqrt(CGAL::squared_distance(cgal_point(p), closest)),
+          static_cast<int>(after - impl_->first.begin()) - 1};
 }
 
 bool CrossingTest::within_blur(const glm::dvec3& p) const {

@@ -31,6 +31,16 @@ class CrossingTest {
   /// wholly inside or outside every surface crosses none.
   int crossed(const std::vector<std::array<glm::dvec3, 3>>& triangles) const;
 
+  /// The distance (metres) from `p` to the nearest triangle (a surface's or, with
+  /// with_blur_sheets, one of its sheets') and that surface's index; {infinity, -1} when there
+  /// are none. A mesh all of whose points lie closer to p than that touches no triangle (the
+  /// grains' quick accept, before crossed()).
+  struct Nearest {
+    double distance;
+    int surface;
+  };
+  Nearest nearest(const glm::dvec3& p) const;
+
   /// With with_blur_sheets: whether `p` (metres) lies closer to a blurred surface than that
   /// surface's blur (the largest of the nearby triangle's corners'), i.e. between its two
   /// sheets, where a grain wholly inside would cross none of them and still be coloured by

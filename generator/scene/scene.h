@@ -54,11 +54,23 @@ struct SceneCamera {
   double fov_deg = 40;  ///< vertical field of view, degrees
 };
 
+/// How a picture is drawn (doc/npr.md, Style): realistic pictures have no ink strokes;
+/// illustrations draw the silhouettes and the outlines inside cut faces, as the paper does.
+enum class RenderStyle { Realistic, Illustration };
+
+/// The silhouette stroke strength a style draws when none is given: 0 realistic, 1 illustration.
+inline double default_silhouettes(RenderStyle style) {
+  return style == RenderStyle::Illustration ? 1.0 : 0.0;
+}
+
 /// Output settings of the scene file's `render` block.
 struct RenderSettings {
   int width = 1280, height = 960;  ///< pixels
   double perlin = 1.0;             ///< NPR Perlin colour modulation strength, 0 turns it off
-  double silhouettes = 1.0;        ///< NPR silhouette stroke strength, 0 turns them off
+  RenderStyle style = RenderStyle::Realistic;  ///< `style`
+  bool silhouettes_given = false;              ///< whether `silhouettes` was written
+  /// NPR silhouette stroke strength, 0 turns them off; default_silhouettes(style) unless given
+  double silhouettes = 0.0;
   /// Texel density of the baked cut-face textures, texels per millimetre (0.1..100): about
   /// twice the pixels per millimetre the closest cut face gets in the pictures wanted.
   double texels_per_mm = 8.6;

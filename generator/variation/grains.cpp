@@ -223,10 +223,48 @@ std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface&
   return out;
 }
 
+RegionCells region_cells(const DsMesh& mesh, const InsideTest& inside, double spacing) {
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  for (auto vh : mesh.vertices()) {
+    lo = glm::min(lo, point(mesh, vh));
+    hi = glm::max(hi, point(mesh, vh));
+  }
+  RegionCells r;
+  if (!(lo.x <= hi.x)) return r;
+  // Cells of the spacing, at most 128 along the longest side.
+  r.size = std::max(spacing, std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) / 128);
+  const glm::ivec3 n = glm::max(glm::ivec3(glm::ceil((hi - lo) / r.size)), glm::ivec3(1));
+  std::vector<uint8_t> mark(static_cast<size_t>(n.x) * n.y * n.z, 0);
+  const auto index = [&](int i, int j, int k) {
+    return (static_cast<size_t>(k) * n.y + j) * n.x + i;
+  };
+  const auto cell_of = [&](const glm::dvec3& p) {
+    return glm::clamp(glm::ivec3(glm::floor((p - lo) / r.size)), glm::ivec3(0), n - 1);
+  };
+  for (auto fh : mesh.faces()) {  // cells a triangle's bounding box reaches: the boundary
+    glm::dvec3 a(INFINITY), b(-INFINITY);
+    for (auto vh : mesh.fv_range(fh)) {
+      a = glm::min(a, point(mesh, vh));
+      b = glm::max(b, point(mesh, vh));
+    }
+    const glm::ivec3 c0 = cell_of(a), c1 = cell_of(b);
+    for (int k = c0.z; k <= c1.z; ++k)
+      for (int j = c0.y; j <= c1.y; ++j)
+        for (int i = c0.x; i <= c1.x; ++i) mark[index(i, j, k)] = 1;
+  }
+  for (int k = 0; k < n.z; ++k)  // and those wholly inside: their centre is
+    for (int j = 0; j < n.y; ++j)
+      for (int i = 0; i < n.x; ++i) {
+        const glm::dvec3 corner = lo + glm::dvec3(i, j, k) * r.size;
+        if (mark[index(i, j, k)] || inside.inside(corner + 0.5 * r.size))
+          r.corners.push_back(corner);
+      }
+  return r;
+}
+
 std::vector<GrainPlacement> place_grains_inside(const GrainSpec& spec, const InsideTest& inside,
-                                                const InsideTest* outside, const glm::dvec3& lo,
-                                                const glm::dvec3& hi, Rng& rng,
-                                                const GrainOptions& opt,
+                                                const InsideTest* outside, const RegionCells& cells,
+                                                Rng& rng, const GrainOptions& opt,
                                                 const CrossingTest* obstacles,
                                                 std::vector<size_t>* crossings) {
   CUTAWAY_CHECK(spec.spacing > 0);
@@ -234,11 +272,14 @@ std::vector<GrainPlacement> place_grains_inside(const GrainSpec& spec, const Ins
   PointGrid grid{spec.spacing, {}};
   int failures = 0;
   size_t darts = 0;
+  if (cells.corners.empty()) return out;
+  const uint32_t cell_count = static_cast<uint32_t>(cells.corners.size());
   while (failures < opt.max_consecutive_failures && out.size() < opt.max_grains &&
          darts < opt.max_region_darts) {
     ++darts;
-    const glm::dvec3 centre(rng.uniform(lo.x, hi.x), rng.uniform(lo.y, hi.y),
-                            rng.uniform(lo.z, hi.z));
+    const glm::dvec3& corner = cells.corners[rng.below(cell_count)];
+    const double ux = rng.uniform(), uy = rng.uniform(), uz = rng.uniform();
+    const glm::dvec3 centre = corner + cells.size * glm::dvec3(ux, uy, uz);
     // Jitter is drawn for every dart, so the stream does not depend on acceptance order.
     const double size_j = 1 + spec.jitter * rng.uniform(-1.0, 1.0);
     const double turn = spec.jitter * 0.5 * kPi * rng.uniform(-1.0, 1.0);
@@ -269,7 +310,17 @@ std::vector<GrainPlacement> place_grains_inside(const GrainSpec& spec, const Ins
         ++failures;
         continue;
       }
-      if (const int hit = obstacles->crossed(ellipsoid_triangles(g, opt)); hit >= 0) {
+      // The ellipsoid's mesh lies within its largest semi-axis of the centre: with every
+      // triangle farther than that nothing can cross it. Its inside holds the ball of half its
+      // smallest semi-axis: a surface that comes nearer than that (closed surfaces and sheets
+      // do not end there) crosses it. The exact test only between the two.
+      const double reach = std::max({g.semi_axes.x, g.semi_axes.y, g.semi_axes.z});
+      const double core = 0.5 * std::min({g.semi_axes.x, g.semi_axes.y, g.semi_axes.z});
+      const CrossingTest::Nearest near = obstacles->nearest(centre);
+      const int hit = near.distance > reach  ? -1
+                      : near.distance < core ? near.surface
+                                             : obstacles->crossed(ellipsoid_triangles(g, opt));
+      if (hit >= 0) {
         if (crossings) {
           if (crossings->size() <= static_cast<size_t>(hit)) crossings->resize(hit + 1, 0);
           ++(*crossings)[static_cast<size_t>(hit)];
@@ -359,13 +410,9 @@ void scatter_grains(const Template& t, DsModel& model, uint64_t seed, const Grai
       const InsideTest inside(in.mesh);
       std::unique_ptr<InsideTest> outside;
       if (out) outside = std::make_unique<InsideTest>(out->mesh);
-      glm::dvec3 lo(INFINITY), hi(-INFINITY);
-      for (auto vh : in.mesh.vertices()) {
-        lo = glm::min(lo, point(in.mesh, vh));
-        hi = glm::max(hi, point(in.mesh, vh));
-      }
-      grains = place_grains_inside(spec, inside, outside.get(), lo, hi, rng, opt, &obstacles,
-                                   &crossings);
+      grains = place_grains_inside(spec, inside, outside.get(),
+                                   region_cells(in.mesh, inside, spec.spacing), rng, opt,
+                                   &obstacles, &crossings);
     }
     if (grains.empty() && !crossings.empty()) {
       const size_t most = static_cast<size_t>(std::max_element(crossings.begin(), crossings.end()) -

@@ -55,8 +55,23 @@ std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface&
                                          const CrossingTest* obstacles = nullptr,
                                          std::vector<size_t>* crossings = nullptr);
 
+/// The cells of a grid over a closed surface's bounding box that may hold points inside it:
+/// those its triangles' bounding boxes reach and those whose centre lies inside. Equal cubes,
+/// so a point uniform in a cell drawn uniformly is uniform over their union, which holds the
+/// whole inside.
+struct RegionCells {
+  std::vector<glm::dvec3> corners;  ///< each cell's lowest corner, metres
+  double size = 0;                  ///< the cells' edge, metres
+};
+
+/// The RegionCells of `mesh` (closed; `inside` its test), cells `spacing` across or, for a
+/// large box, 1/128 of its longest side.
+RegionCells region_cells(const DsMesh& mesh, const InsideTest& inside, double spacing);
+
 /// Dart throwing through a region (grains `inside` a closed surface, doc/template-format.md,
-/// Grains): a dart is a point uniform in the box [lo, hi] (metres, object frame); one outside
+/// Grains): a dart is a point uniform in a cell of `cells` drawn uniformly (RegionCells of the
+/// `inside` surface: so uniform over a set that holds the region, far tighter than its bounding
+/// box for a ring of thin locules); one outside
 /// `inside` or inside `outside` (when given) is thrown away without counting as a failure; one
 /// within spec.spacing of an accepted centre, or whose ellipsoid `obstacles` says touches or
 /// crosses a surface, is a failure. Frame: the normal axis points away from the object's axis
@@ -64,11 +79,10 @@ std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface&
 /// U(-1, 1); semi-axes scaled by 1 + jitter * U(-1, 1). Stops after
 /// options.max_consecutive_failures failures in a row, options.max_grains grains or
 /// options.max_region_darts darts. surface_point = centre. Deterministic for a given rng state.
-/// @param inside, outside point-in-surface tests of closed surfaces; lo, hi inside's bounds
+/// @param inside, outside point-in-surface tests of closed surfaces
 std::vector<GrainPlacement> place_grains_inside(const GrainSpec& spec, const InsideTest& inside,
-                                                const InsideTest* outside, const glm::dvec3& lo,
-                                                const glm::dvec3& hi, Rng& rng,
-                                                const GrainOptions& options = {},
+                                                const InsideTest* outside, const RegionCells& cells,
+                                                Rng& rng, const GrainOptions& options = {},
                                                 const CrossingTest* obstacles = nullptr,
                                                 std::vector<size_t>* crossings = nullptr);
 

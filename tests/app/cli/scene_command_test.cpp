@@ -243,6 +243,33 @@ TEST(PieceCommand, HalvesGiveTwoValidMeshesAndAPicture) {
   EXPECT_EQ(normal_mapped, 1u);
 }
 
+// The style decides the ink strokes: realistic (the default) draws none, illustration draws the
+// silhouettes and the outlines inside the cut faces; --silhouettes wins over --style.
+TEST(PieceCommand, TheStyleDecidesTheInkStrokes) {
+  const fs::path dir = test::fresh_dir("piece_style");
+  const auto strokes = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {
+        "--stats", "piece", "templates/tomato.yaml", "--cut", "halves", "--cube", "4", "--colours",
+        "vertex",  "--png", (dir / "p.png").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const test::RunResult r = test::run_cutaway(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    const std::string json = r.err.substr(r.err.rfind("\n{") + 1);
+    return nlohmann::json::parse(json)["strokes"].get<int>();
+  };
+  EXPECT_EQ(strokes({}), 0);
+  EXPECT_EQ(strokes({"--style", "realistic"}), 0);
+  const int drawn = strokes({"--style", "illustration"});
+  EXPECT_GT(drawn, 0);
+  EXPECT_EQ(strokes({"--style", "illustration", "--silhouettes", "0"}), 0);
+  EXPECT_EQ(strokes({"--silhouettes", "1"}), drawn);
+  const test::RunResult bad =
+      test::run_cutaway({"piece", "templates/tomato.yaml", "--cut", "halves", "--style", "photo",
+                         "--png", (dir / "q.png").string()});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--style"), std::string::npos) << bad.err;
+}
+
 // A piece asset drops into another scene: one root named after it at the origin, no camera,
 // no lights unless asked; its pieces' nodes placed alike whatever the compression (the
 // quantization's scale and offset sit on the mesh nodes below them).

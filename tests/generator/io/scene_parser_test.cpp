@@ -126,8 +126,24 @@ TEST(SceneParser, Defaults) {
   EXPECT_EQ(s.render.width, 1280);
   EXPECT_EQ(s.render.height, 960);
   EXPECT_DOUBLE_EQ(s.render.perlin, 1.0);
-  EXPECT_DOUBLE_EQ(s.render.silhouettes, 1.0);
+  EXPECT_EQ(s.render.style, RenderStyle::Realistic);
+  EXPECT_DOUBLE_EQ(s.render.silhouettes, 0.0);  // realistic: no ink strokes
+  EXPECT_FALSE(s.render.silhouettes_given);
   EXPECT_DOUBLE_EQ(s.render.texels_per_mm, 8.6);
+}
+
+TEST(SceneParser, TheStyleSetsTheStrokesUnlessTheyAreGiven) {
+  const Scene illustration = parse_scene_text(kHead + "render: {style: illustration}\n" + kItem);
+  EXPECT_EQ(illustration.render.style, RenderStyle::Illustration);
+  EXPECT_DOUBLE_EQ(illustration.render.silhouettes, 1.0);
+  const Scene given =
+      parse_scene_text(kHead + "render: {style: illustration, silhouettes: 0.5}\n" + kItem);
+  EXPECT_DOUBLE_EQ(given.render.silhouettes, 0.5);
+  EXPECT_TRUE(given.render.silhouettes_given);
+  const Scene realistic =
+      parse_scene_text(kHead + "render: {style: realistic, silhouettes: 2}\n" + kItem);
+  EXPECT_EQ(realistic.render.style, RenderStyle::Realistic);
+  EXPECT_DOUBLE_EQ(realistic.render.silhouettes, 2.0);
 }
 
 TEST(SceneParser, ContainerDefaultsPerType) {
@@ -305,6 +321,8 @@ TEST(SceneParser, ErrorsOfTypeAndRange) {
       {kHead + "camera: {eye: [0, 1, 1]}\n" + kItem, "camera", "missing required field 'target'"},
       {kHead + "render: {height: 9000}\n" + kItem, "render.height", "from 16 to 8192"},
       {kHead + "render: {silhouettes: 11}\n" + kItem, "render.silhouettes", "between 0 and 10"},
+      {kHead + "render: {style: photo}\n" + kItem, "render.style",
+       "must be realistic or illustration, not \"photo\""},
       {kHead + "render: {texels_per_mm: 0}\n" + kItem, "render.texels_per_mm",
        "between 0.1 and 100"},
       {kHead + "render: {dpi: 300}\n" + kItem, "render.dpi", "unknown field \"dpi\""},
