@@ -398,9 +398,16 @@ constexpr size_t kMaxPerlinBands = 8;
 /// The most cell layers a template may have (each costs 27 feature points per texel).
 constexpr size_t kMaxCellBands = 4;
 
-/// A band's `tint`, `reach`, `along` and `stretch` (doc/npr.md), shared by Perlin bands and
-/// cell layers.
-void parse_band_reach_and_field(const YamlField& band, TextureBand& b) {
+/// What Perlin bands and cell layers share (doc/npr.md): the lattice spacing under
+/// `length_key` (`period` or `size`, at least 1 micrometre), `amplitude`, `tint`, `reach`,
+/// `along` and `stretch`.
+void parse_texture_band(const YamlField& band, const std::string& length_key,
+                        double metres_per_unit, TextureBand& b) {
+  const YamlField length = band.require(length_key);
+  const double length_m = parse_length(length, metres_per_unit);
+  if (!(length_m >= 1e-6)) length.fail("the " + length_key + " must be at least 1 micrometre");
+  b.frequency_per_m = 1.0 / length_m;
+  b.amplitude = band.require("amplitude").number_in(0.0, 1.0);
   if (auto tint = band.get("tint")) {
     b.tinted = true;
     b.tint = parse_colour(*tint);
@@ -442,12 +449,7 @@ NprSettings parse_npr(const YamlField& f, double metres_per_unit) {
       const YamlField band = bands[i];
       band.allow_only({"period", "amplitude", "tint", "reach", "along", "stretch"});
       PerlinBand b;
-      const YamlField period = band.require("period");
-      const double period_m = parse_length(period, metres_per_unit);
-      if (!(period_m >= 1e-6)) period.fail("the period must be at least 1 micrometre");
-      b.frequency_per_m = 1.0 / period_m;
-      b.amplitude = band.require("amplitude").number_in(0.0, 1.0);
-      parse_band_reach_and_field(band, b);
+      parse_texture_band(band, "period", metres_per_unit, b);
       npr.perlin_bands.push_back(b);
     }
   }
@@ -461,11 +463,7 @@ NprSettings parse_npr(const YamlField& f, double metres_per_unit) {
       layer.allow_only({"size", "amplitude", "wall", "centre", "wall_width", "tint", "reach",
                         "along", "stretch"});
       CellBand c;
-      const YamlField size = layer.require("size");
-      const double size_m = parse_length(size, metres_per_unit);
-      if (!(size_m >= 1e-6)) size.fail("the size must be at least 1 micrometre");
-      c.frequency_per_m = 1.0 / size_m;
-      c.amplitude = layer.require("amplitude").number_in(0.0, 1.0);
+      parse_texture_band(layer, "size", metres_per_unit, c);
       if (auto wall = layer.get("wall")) {
         c.has_wall = true;
         c.wall = parse_colour(*wall);
@@ -480,7 +478,6 @@ NprSettings parse_npr(const YamlField& f, double metres_per_unit) {
         if (!c.has_wall) width->fail("a wall_width needs a wall colour");
         c.wall_width = width->number_in(0.0, 1.0);
       }
-      parse_band_reach_and_field(layer, c);
       npr.cell_bands.push_back(c);
     }
   }

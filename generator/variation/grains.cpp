@@ -81,6 +81,13 @@ const DsSurface& surface_named(const std::string& name, const DsModel& model) {
   return *on;
 }
 
+/// Counts a dart rejected for crossing surface `hit` in `crossings` (when given).
+void count_crossing(std::vector<size_t>* crossings, int hit) {
+  if (!crossings) return;
+  if (crossings->size() <= static_cast<size_t>(hit)) crossings->resize(hit + 1, 0);
+  ++(*crossings)[static_cast<size_t>(hit)];
+}
+
 const DsSurface& grain_support(const GrainSpec& spec, const DsModel& model) {
   return surface_named(spec.on, model);
 }
@@ -208,10 +215,7 @@ std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface&
     g.semi_axes = spec.semi_axes * size_j;
     if (obstacles) {
       if (const int hit = obstacles->crossed(ellipsoid_triangles(g, opt)); hit >= 0) {
-        if (crossings) {
-          if (crossings->size() <= static_cast<size_t>(hit)) crossings->resize(hit + 1, 0);
-          ++(*crossings)[static_cast<size_t>(hit)];
-        }
+        count_crossing(crossings, hit);
         ++failures;
         continue;
       }
@@ -321,10 +325,7 @@ std::vector<GrainPlacement> place_grains_inside(const GrainSpec& spec, const Ins
                       : near.distance < core ? near.surface
                                              : obstacles->crossed(ellipsoid_triangles(g, opt));
       if (hit >= 0) {
-        if (crossings) {
-          if (crossings->size() <= static_cast<size_t>(hit)) crossings->resize(hit + 1, 0);
-          ++(*crossings)[static_cast<size_t>(hit)];
-        }
+        count_crossing(crossings, hit);
         ++failures;
         continue;
       }
