@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 
@@ -239,16 +240,19 @@ TEST(InteriorVolumeLookup, OutsideTheGridIsEmpty) {
 }
 
 TEST(InteriorVolumeAccuracy, TomatoCapsFromTheVolumeMatchPmvcWithinTheBound) {
-  // The tomato at half the default resolution (48 voxels across), on four random caps. Bounds
-  // in steps of 1/255 of sRGB, with headroom over what it measures (doc/algorithms.md §8):
-  // 0.7 / 7.7 away from sheets, 3.0 / 14.6 near them, 0.09 % of points on the wrong side.
+  // The tomato at two thirds of the default resolution (64 voxels across: 1.1 mm voxels, whose
+  // half is below its chambers' 0.6 mm blur, so the regions join across it as the blur asks;
+  // at 48 across they do not, and the near error doubles), on four random caps. Bounds in
+  // steps of 1/255 of sRGB, with headroom over what it measures (doc/algorithms.md §8).
   const Template tmpl = load_template(test::source_path("templates/tomato.yaml").string());
   const DsModel model = build_model(tmpl);
   const auto diffusion = cpu(model);
-  auto grid = volume_grid(model, voxel_length_across(model, 48));
+  auto grid = volume_grid(model, voxel_length_across(model, 64));
   ASSERT_TRUE(grid);
   const InteriorVolume volume = sample_interior_volume(model, *diffusion, std::move(*grid));
   const VolumeErrors e = volume_errors(model, *diffusion, volume, random_cap_planes(model, 4, 7));
+  std::printf("tomato at 64 across: far %.2f / %.1f, near %.2f / %.1f, wrong side %.3f %%\n",
+              e.mean_far, e.p99_far, e.mean_near, e.p99_near, 100 * e.wrong_side);
   EXPECT_GT(e.points, 3000u);
   EXPECT_GT(e.near_points, 300u);
   EXPECT_LT(e.mean_far, 1.5);
