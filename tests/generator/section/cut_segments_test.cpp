@@ -150,9 +150,9 @@ TEST(CutSegments, AttributesInterpolateAlongTheEdge) {
   EXPECT_NEAR(blur_min, 0.0015, 1e-12);
   EXPECT_NEAR(blur_max, 0.0015, 1e-12);
   // The chambers' back colour runs along the profile: cut segments carry values between its
-  // stops, not outside them.
-  const glm::dvec3 lo = srgb_to_linear(glm::dvec3(0xe8, 0xa8, 0x48) / 255.0);
-  const glm::dvec3 hi = srgb_to_linear(glm::dvec3(0xf0, 0xc0, 0x60) / 255.0);
+  // stops, not outside them (#d8a844, #e0b450, #d8a442: per component from #d8a442 to #e0b450).
+  const glm::dvec3 lo = srgb_to_linear(glm::dvec3(0xd8, 0xa4, 0x42) / 255.0);
+  const glm::dvec3 hi = srgb_to_linear(glm::dvec3(0xe0, 0xb4, 0x50) / 255.0);
   size_t chamber = 0;
   for (const CutSegment& s : cut_segments(model, plane)) {
     if (model.surfaces[s.surface].name != "chambers") continue;
