@@ -19,7 +19,13 @@ CASE is one of
               collision shapes (hidden from renders), no camera, no lights; then a
               `--compress meshopt` piece, which the import refuses naming the way out;
   batch       a one-item batch made by `cutaway batch` and imported: one root with its pieces,
-              collision shapes present, no camera or lights, extras as custom properties.
+              collision shapes present, no camera or lights, extras as custom properties;
+  kiwi-seeds  the kiwi cut across at mid height (`cutaway piece --cut plane:y=35`, seeds 1 to 3),
+              imported, its lower half seen from straight above under the studio key light and
+              sky (doc/lighting.md) and rendered with Cycles, the skin held out: the black
+              seeds must cover at least 2 % of the cut face at a luminance under 15 % of white
+              (KIWI_DARK_SHARE; issue "anatomy and look", the measure on the baked texture is
+              tests/app/cli/anatomy_test.cpp).
 The frames stay in DIR to be looked at. Exits non-zero (through --python-exit-code) on the first
 failed check, naming it.
 """
@@ -37,6 +43,8 @@ import numpy
 LUMA_RANGE = (90.0, 225.0)
 SCENES = ("salad", "plate", "market")
 FRAME = (200, 150)
+# The least share of the kiwi's cut face darker than 15 % of white (linear luminance).
+KIWI_DARK_SHARE = 0.02
 
 
 def fail(message):
@@ -51,7 +59,7 @@ def check(condition, message):
 def arguments():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     parser = argparse.ArgumentParser(prog="addon_test.py")
-    parser.add_argument("case", choices=("scenes", "plain", "cut-fruit", "batch"))
+    parser.add_argument("case", choices=("scenes", "plain", "cut-fruit", "batch", "kiwi-seeds"))
     parser.add_argument("--addon", required=True)
     parser.add_argument("--cutaway", required=True)
     parser.add_argument("--source", required=True)
@@ -249,11 +257,85 @@ def case_batch(args):
     print(f"batch: {files[0]}: root {roots[0].name}, {len(pieces)} pieces", flush=True)
 
 
+def hold_out_skin():
+    """Makes every skin material a holdout, so that only the cut faces cover the frame."""
+    for material in bpy.data.materials:
+        if not material.name.endswith("_skin") or not material.use_nodes:
+            continue
+        tree = material.node_tree
+        output = next(n for n in tree.nodes if n.type == 'OUTPUT_MATERIAL' and n.is_active_output)
+        holdout = tree.nodes.new("ShaderNodeHoldout")
+        tree.links.new(holdout.outputs["Holdout"], output.inputs["Surface"])
+
+
+def cut_face_dark_share(path):
+    """The share of the covered pixels of the RGBA frame at `path` whose linear luminance
+    (Rec. 709, the sRGB values decoded) is under 0.15, and the count of covered pixels."""
+    image = bpy.data.images.load(path)
+    pixels = numpy.empty(len(image.pixels), dtype=numpy.float32)
+    image.pixels.foreach_get(pixels)
+    bpy.data.images.remove(image)
+    rgba = pixels.reshape(-1, 4)
+    covered = rgba[:, 3] > 0.5
+    srgb = rgba[covered, :3]
+    linear = numpy.where(srgb <= 0.04045, srgb / 12.92, ((srgb + 0.055) / 1.055) ** 2.4)
+    luminance = linear @ numpy.array([0.2126, 0.7152, 0.0722])
+    return float((luminance < 0.15).mean()) if covered.any() else 0.0, int(covered.sum())
+
+
+def case_kiwi_seeds(args):
+    install_addon(args.addon)
+    from cutaway.scene_setup import use_exposure, use_sky
+    for seed in (1, 2, 3):
+        glb = os.path.join(args.out, f"kiwi-{seed}.glb")
+        subprocess.run([args.cutaway, "piece", os.path.join(args.source, "templates", "kiwi.yaml"),
+                        "--cut", "plane:y=35", "--seed", str(seed), "-q", "-o", glb], check=True)
+        empty_scene()
+        check(bpy.ops.import_scene.cutaway(filepath=glb) == {'FINISHED'}, f"{glb}: not imported")
+        scene = bpy.context.scene
+        pieces = [o for o in scene.objects if "piece" in o.keys()]
+        check(len(pieces) == 2, f"kiwi {seed}: {len(pieces)} pieces")
+        upper = max(pieces, key=lambda o: o.matrix_world.translation.z)
+        for piece in [upper] + list(upper.children_recursive):
+            piece.hide_render = True
+        hold_out_skin()
+        camera = bpy.data.objects.new("top", bpy.data.cameras.new("top"))
+        camera.data.type = 'ORTHO'
+        camera.data.ortho_scale = 0.06  # the 52 mm kiwi
+        camera.location = (0.0, 0.0, 0.3)
+        scene.collection.objects.link(camera)
+        scene.camera = camera
+        key = bpy.data.objects.new("key", bpy.data.lights.new("key", 'SUN'))
+        key.data.energy = 3.0  # the studio key light, W/m2 (doc/lighting.md)
+        key.rotation_euler = (0.5, 0.0, 0.35)
+        scene.collection.objects.link(key)
+        use_sky(scene, 321.86)
+        use_exposure(scene, 1.0 / 683.0)
+        render = scene.render
+        render.engine = 'CYCLES'
+        render.resolution_x = render.resolution_y = 240
+        render.film_transparent = True
+        render.image_settings.file_format = 'PNG'
+        render.image_settings.color_mode = 'RGBA'
+        render.filepath = os.path.join(args.out, f"kiwi-{seed}.png")
+        scene.cycles.device = 'CPU'
+        scene.cycles.samples = 32
+        scene.cycles.use_denoising = False
+        bpy.ops.render.render(write_still=True)
+        share, covered = cut_face_dark_share(render.filepath)
+        print(f"kiwi seed {seed}: {100 * share:.2f} % of {covered} cut-face pixels under 15 % "
+              "luminance", flush=True)
+        check(covered > 10000, f"kiwi {seed}: the cut face covers {covered} pixels")
+        check(share >= KIWI_DARK_SHARE,
+              f"kiwi {seed}: {100 * share:.2f} % dark, want {100 * KIWI_DARK_SHARE} % "
+              f"({render.filepath})")
+
+
 def main():
     args = arguments()
     os.makedirs(args.out, exist_ok=True)
     {"scenes": case_scenes, "plain": case_plain, "cut-fruit": case_cut_fruit,
-     "batch": case_batch}[args.case](args)
+     "batch": case_batch, "kiwi-seeds": case_kiwi_seeds}[args.case](args)
     print(f"{args.case}: passed", flush=True)
 
 
