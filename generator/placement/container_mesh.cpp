@@ -203,6 +203,17 @@ std::optional<double> rest_height(const Container& c, double x, double z, double
   return std::nullopt;
 }
 
+double resting_overhang(const Container& c, double x, double z, double none_radius_m) {
+  if (c.type == ContainerType::Board) {
+    return std::hypot(std::max(0.0, std::fabs(x) - 0.5 * c.width_m),
+                      std::max(0.0, std::fabs(z) - 0.5 * c.depth_m));
+  }
+  double radius = none_radius_m;
+  if (c.type == ContainerType::Bowl) radius = 0.5 * c.diameter_m - bowl_wall(c);
+  if (c.type == ContainerType::Plate) radius = 0.5 * c.diameter_m;
+  return std::max(0.0, std::hypot(x, z) - radius);
+}
+
 double heap_capacity(const Container& c, double none_radius_m) {
   // A cone of slope kHeapSlope over a disc of radius r.
   const auto cone = [](double r) { return kPi * r * r * (kHeapSlope * r) / 3; };

@@ -33,6 +33,12 @@ std::optional<AssetMesh> container_mesh(const Container& container, int segments
 std::optional<double> rest_height(const Container& container, double x, double z,
                                   double none_radius_m);
 
+/// How far (metres, horizontally) the point (x, z) lies outside the area pieces may rest on
+/// (rest_height's), 0 over it: beyond the board's edge (to its nearest point), beyond the bowl's
+/// or plate's inner rim, or the `none_radius_m` disc of type none. A piece's overhang over the
+/// container's edge is the largest of its points' (doc/algorithms.md §4, Settling).
+double resting_overhang(const Container& container, double x, double z, double none_radius_m);
+
 /// The steepest slope (rise over run) a heap of pieces keeps, 45 degrees: steeper than the
 /// angle of repose of loose pieces (whose tangent is about their friction coefficient,
 /// SettleOptions::friction, 0.8), as slices stack steeper than a heap of round pieces; the

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <limits>
 #include <optional>
 
 #include <btBulletDynamicsCommon.h>
+#include <glm/common.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 #include "base/error.h"
@@ -331,16 +333,34 @@ double largest_motion(const std::vector<SettleBody>& bodies, const std::vector<P
   return moved;
 }
 
-/// Whether a piece with centre of mass `c` lies in the container: over its resting area, above
-/// the table and below `ceiling` (higher, a failed simulation step has thrown it).
-bool inside(const Container& container, const glm::dvec3& c, double ceiling, double none_radius_m) {
-  return all_finite(c) && c.y > 0 && c.y < ceiling &&
-         rest_height(container, c.x, c.z, none_radius_m).has_value();
+/// Whether a piece at `pose` lies in the container: its centre of mass over the resting area,
+/// above the table and below `ceiling` (higher, a failed simulation step has thrown it), and
+/// none of its collision shape's corners more than max_overhang of its size beyond the
+/// resting area's edge.
+bool rests_inside(const Container& container, const SettleBody& body, const Placement& pose,
+                  double ceiling, const SettleOptions& options) {
+  const glm::dvec3 c = centre_of_mass(body, pose);
+  if (!all_finite(c) || c.y <= 0 || c.y >= ceiling ||
+      !rest_height(container, c.x, c.z, options.none_radius_m).has_value())
+    return false;
+  glm::dvec3 low(std::numeric_limits<double>::infinity()), high = -low;
+  double overhang = 0;
+  for (const auto& part : body.shape->parts) {
+    for (const glm::dvec3& corner : part.corners) {
+      const glm::dvec3 p = pose.translation + pose.rotation * corner;
+      low = glm::min(low, p);
+      high = glm::max(high, p);
+      overhang = std::max(overhang, resting_overhang(container, p.x, p.z, options.none_radius_m));
+    }
+  }
+  const glm::dvec3 extent = high - low;
+  return overhang <= options.max_overhang * std::max({extent.x, extent.y, extent.z});
 }
 
 /// Steps `world` until it rests (no corner moved more than rest_motion_m in a quarter second,
 /// every body sleeps, or every body is frozen) or max_seconds pass; a body that rests for
-/// freeze_after_s meanwhile is frozen (World::freeze). Pieces that left the container are then
+/// freeze_after_s meanwhile is frozen (World::freeze). Pieces that left the container (or hang
+/// over its edge, rests_inside) are then
 /// dropped again from above the pile and the world runs on; after max_redrops a piece is
 /// removed and counted lost (its id becomes SIZE_MAX). Adds to r.steps, r.body_steps,
 /// r.redrops and r.lost; sets r.all_asleep.
@@ -381,8 +401,9 @@ void run_to_rest(World& world, const std::vector<SettleBody>& bodies, std::vecto
     const double top = world.top();
     for (size_t k = 0; k < bodies.size(); ++k) {
       if (id[k] == SIZE_MAX) continue;
-      const glm::dvec3 c = centre_of_mass(bodies[k], world.pose(id[k], bodies[k]));
-      if (inside(world.container(), c, ceiling, options.none_radius_m)) continue;
+      if (rests_inside(world.container(), bodies[k], world.pose(id[k], bodies[k]), ceiling,
+                       options))
+        continue;
       if (drops[k] == options.max_redrops) {
         world.remove(id[k]);
         id[k] = SIZE_MAX;

@@ -6,7 +6,8 @@
 // A piece that has rested for freeze_after_s is frozen (made static where it lies), so the
 // work follows the pieces still moving; once none moves, every piece is freed for up to
 // free_seconds more (when some piece was frozen).
-// A piece that ends outside the container is dropped again from above the pile; after
+// A piece that ends outside the container, or hanging over its edge by more than
+// max_overhang of its size, is dropped again from above the pile, nearer the axis; after
 // `max_redrops` it is reported as not placed, never silently lost. Settling ends with the
 // stability check: the layout, in a new world at rest, may move at most `stable_motion_m` in
 // `verify_seconds`; if it moves more it settles on from there and is checked again. When the
@@ -82,7 +83,12 @@ struct SettleOptions {
   /// along each profile curve (the exported mesh has 96 and 40). Its chords lie on the open
   /// side of the exported surface: on a 26 cm bowl at most 0.6 mm above it.
   int container_segments = 32, container_profile_samples = 12;
-  int max_redrops = 3;         ///< drops again of a piece that left the container
+  int max_redrops = 3;  ///< drops again of a piece that left the container
+  /// A piece may hang over the container's edge (resting_overhang of its collision shape's
+  /// corners) by at most this share of its size (the longest side of its corners' bounding
+  /// box) and is dropped again otherwise: food is not laid half over a board's edge. Half the
+  /// fifth a reviewer accepts, so that what a layout ends with is well inside it.
+  double max_overhang = 0.1;
   double none_radius_m = 0.2;  ///< resting radius on the floor (container type none)
 };
 
@@ -105,7 +111,7 @@ struct SettleResult {
   /// The check whose starting layout `placements` is: the last one, unless it did not pass
   /// (check_motion_m) and an earlier one moved less while within stable_motion_m.
   int kept_round = 0;
-  int redrops = 0;  ///< drops again of pieces that had left the container
+  int redrops = 0;  ///< drops again of pieces that had left the container or hung over its edge
   int lost = 0;     ///< pieces still outside after max_redrops drops again
 };
 

@@ -8,6 +8,7 @@
 #include <set>
 #include <tuple>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 #include <oneapi/tbb/global_control.h>
@@ -19,6 +20,7 @@
 #include "model/model_builder.h"
 #include "pieces/pieces.h"
 #include "placement/collision_shape.h"
+#include "placement/container_mesh.h"
 #include "placement/physics_settle.h"
 #include "placement/scene_layout.h"
 #include "scene/scene_builder.h"
@@ -229,15 +231,31 @@ TEST(PhysicsSettle, APieceThatFallsOffTheBoardIsDroppedAgainOrCounted) {
   EXPECT_GE(b.redrops, 1);
   EXPECT_EQ(b.lost, 0);
   EXPECT_TRUE(b.placements[0].placed);
-  // Dropped half over the edge (its centre on the board): it stays or is dropped again,
-  // and ends on the board.
+  // Dropped over the edge (its centre on the board): it is dropped again nearer the
+  // axis, and ends on the board hanging over its edge by at most max_overhang of its size.
   const Placement edge{true, glm::dquat(1, 0, 0, 0), glm::dvec3(0.13, 0.06, 0.0)};
+  const auto overhang_share = [&](const Placement& pose) {
+    glm::dvec3 low(1e9), high(-1e9);
+    double over = 0;
+    for (const glm::dvec3& v : halves[0].position) {
+      const glm::dvec3 p = pose.translation + pose.rotation * v;
+      low = glm::min(low, p);
+      high = glm::max(high, p);
+      over = std::max(over, resting_overhang(board, p.x, p.z, 0.2));
+    }
+    const glm::dvec3 size = high - low;
+    return over / std::max({size.x, size.y, size.z});
+  };
+  ASSERT_GT(overhang_share(edge), 0.2);  // over the fifth a reviewer accepts
   const SettleResult e = settle_one(shape, board, edge);
   EXPECT_EQ(e.lost, 0);
+  EXPECT_GE(e.redrops, 1);
   ASSERT_TRUE(e.placements[0].placed);
   const glm::dvec3 c = e.placements[0].translation + e.placements[0].rotation * shape.centroid;
   EXPECT_LT(std::fabs(c.x), 0.15);
   EXPECT_GT(c.y, 0.02);
+  // The hull stands up to 1.5 mm proud of the mesh: a little under the limit on the mesh.
+  EXPECT_LE(overhang_share(e.placements[0]), SettleOptions{}.max_overhang);
 }
 
 /// The scene file's pieces, as placed: per instance its mesh in the scene frame.

@@ -4,6 +4,7 @@
 // rests on something (moved 4 mm straight down it would hit the container or another piece),
 // a bowl of 60 pieces forms a pile that stays put when simulated again, and a board with more
 // pieces than free ground heaps them instead of leaving any out.
+#include <cmath>
 #include <limits>
 #include <map>
 #include <tuple>
@@ -149,6 +150,28 @@ std::vector<Mesh> check_resting_pieces(const SceneAssets& assets) {
     EXPECT_TRUE(hits) << assets.instances[a + 1].name << " floats";
   }
   return pieces;
+}
+
+TEST(SceneLayout, TheOverhangIsTheDistanceBeyondTheRestingArea) {
+  const Container board{ContainerType::Board, 0, 0.4, 0.2, 0.02};
+  EXPECT_EQ(resting_overhang(board, 0.19, -0.09, 0), 0.0);
+  EXPECT_DOUBLE_EQ(resting_overhang(board, 0.25, 0.0, 0), 0.05);
+  EXPECT_DOUBLE_EQ(resting_overhang(board, -0.25, 0.15, 0), std::hypot(0.05, 0.05));
+  const Container plate{ContainerType::Plate, 0.3, 0, 0, 0.02};
+  EXPECT_EQ(resting_overhang(plate, 0.1, 0.1, 0), 0.0);
+  EXPECT_DOUBLE_EQ(resting_overhang(plate, 0.0, -0.2, 0), 0.05);
+  // A bowl's resting area ends at its inner rim: the wall (3 % of the diameter) inside the rim.
+  const Container bowl{ContainerType::Bowl, 0.3, 0, 0, 0.1};
+  EXPECT_NEAR(resting_overhang(bowl, 0.15, 0.0, 0), 0.009, 1e-12);
+  const Container none{};
+  EXPECT_NEAR(resting_overhang(none, 0.0, 0.3, 0.2), 0.1, 1e-12);
+  // Over the area exactly where rest_height gives a height.
+  for (const Container& c : {board, plate, bowl}) {
+    for (double x = -0.3; x <= 0.3; x += 0.0137) {
+      EXPECT_EQ(resting_overhang(c, x, 0.05, 0) == 0, rest_height(c, x, 0.05, 0).has_value())
+          << static_cast<int>(c.type) << " " << x;
+    }
+  }
 }
 
 TEST(SceneLayout, PiecesRestWithoutInterpenetrating) {
