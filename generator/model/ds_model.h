@@ -94,12 +94,22 @@ struct CutAxis {
   glm::dvec3 direction{0, 1, 0};
 };
 
+/// The knife's small wobble under a variant's halves cut (knife_wobble.h): the plane through the
+/// axis leans by `lean_rad` about its line across the axis at mid-height, and moves by
+/// `offset_m` along its normal, so that the two halves of one object differ as a real knife's
+/// do. Zero (the template's own model): the exact plane through the axis.
+struct KnifeWobble {
+  double lean_rad = 0.0;
+  double offset_m = 0.0;
+};
+
 struct DsModel {
   std::string name;
   std::vector<DsSurface> surfaces;
   glm::dvec3 bbox_min{0.0}, bbox_max{0.0};  ///< axis-aligned bounds of all surfaces, metres
   std::optional<BentAxis> bent_axis;        ///< set where the template has a spine
   std::optional<CutAxis> cut_axis;          ///< set where a variant's axis leans
+  KnifeWobble knife;                        ///< a variant's; zero for the template's model
 
   /// Total triangle count over all surfaces (the paper's "DS faces").
   size_t face_count() const;

@@ -57,10 +57,24 @@ Plane along_axis(const Plane& p, const CutAxis* axis) {
   return {axis->point, glm::normalize(n)};
 }
 
+/// The halves' plane `p` (through the axis, turned to it) wobbled by `knife`: leaned about the
+/// line of `p` across the axis at height `mid_y`, then moved along its normal.
+Plane wobbled(const Plane& p, const CutAxis* axis, double mid_y, const KnifeWobble& knife) {
+  if (knife.lean_rad == 0.0 && knife.offset_m == 0.0) return p;
+  const glm::dvec3 up = axis ? axis->direction : glm::dvec3(0, 1, 0);
+  const glm::dvec3 base = axis ? axis->point : glm::dvec3(0.0);
+  const glm::dvec3 pivot = base + up * ((mid_y - base.y) / up.y);
+  const glm::dvec3 across = glm::normalize(glm::cross(p.normal, up));  // in the plane
+  const glm::dvec3 n = glm::normalize(p.normal * std::cos(knife.lean_rad) +
+                                      glm::cross(across, p.normal) * std::sin(knife.lean_rad));
+  return {pivot + knife.offset_m * n, n};
+}
+
 }  // namespace
 
 CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min, const glm::dvec3& bbox_max,
-                        const BentAxis* bent_axis, const CutAxis* cut_axis) {
+                        const BentAxis* bent_axis, const CutAxis* cut_axis,
+                        const KnifeWobble& knife) {
   CutCells out;
   switch (cut.type) {
     case CutType::Whole: out.cells.push_back({}); break;
@@ -68,7 +82,10 @@ CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min, const gl
     case CutType::Plane: {
       Plane p;
       if (cut.type == CutType::Plane) p = cut.plane;
-      out.planes.push_back(cut.type == CutType::Halves ? along_axis(p, cut_axis) : p);
+      out.planes.push_back(
+          cut.type == CutType::Halves
+              ? wobbled(along_axis(p, cut_axis), cut_axis, 0.5 * (bbox_min.y + bbox_max.y), knife)
+              : p);
       out.cells.push_back({{{0, true}}});
       out.cells.push_back({{{0, false}}});
       break;

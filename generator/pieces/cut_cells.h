@@ -58,9 +58,13 @@ bool in_cell(const CutCells& cells, const Cell& cell, const glm::dvec3& x, int s
 /// the wedges' half-planes are turned to contain that axis instead of +Y (their normals made
 /// perpendicular to it, through its point); slices stay horizontal (the lean is a shear, which
 /// keeps horizontal planes horizontal), dice and a given plane stay as they are.
+/// A `knife` wobble (a variant's, knife_wobble.h) then leans the halves' plane by its lean_rad
+/// about the plane's line across the axis at the bounds' mid-height and moves it by its
+/// offset_m along the normal; the other cuts do not use it.
 /// Deterministic order; a cell the object misses simply yields no piece (cut_pieces).
 /// @pre the lengths of `cut` are positive and finite; count >= 2 for wedges
 CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min, const glm::dvec3& bbox_max,
-                        const BentAxis* bent_axis = nullptr, const CutAxis* cut_axis = nullptr);
+                        const BentAxis* bent_axis = nullptr, const CutAxis* cut_axis = nullptr,
+                        const KnifeWobble& knife = {});
 
 }  // namespace cutaway

@@ -306,7 +306,7 @@ Outcome<PieceSet> cut_pieces(const DsModel& model, const CutSpec& cut,
                              const DiffusionBackend& diffusion, const PieceOptions& options) {
   const CutCells cells = make_cut_cells(cut, model.bbox_min, model.bbox_max,
                                         model.bent_axis ? &*model.bent_axis : nullptr,
-                                        model.cut_axis ? &*model.cut_axis : nullptr);
+                                        model.cut_axis ? &*model.cut_axis : nullptr, model.knife);
   // Nudging helps only where there are planes to move and the uncut skin is itself sound.
   const bool may_retry =
       !cells.planes.empty() &&

@@ -9,6 +9,7 @@
 #include "model/model_builder.h"
 #include "model/template_checks.h"
 #include "variation/grains.h"
+#include "variation/knife_wobble.h"
 #include "variation/organic_deformation.h"
 
 namespace cutaway {
@@ -104,6 +105,7 @@ Variant make_variant(const Template& tmpl, uint64_t seed, const VariationOptions
         // Outside the retry: a grain set over its limits is the template's fault, not the draw's.
         scatter_grains(v, *m, seed);
         deform_model(draw_organic(t, *m, seed), *m);
+        m->knife = draw_knife_wobble(*m, seed);
         return {std::move(v), std::move(*m), static_cast<int>(draw), t.variation_amount * scale};
       }
       if (t.symmetry == Symmetry::None || !(t.variation_amount > 0)) break;
@@ -113,6 +115,7 @@ Variant make_variant(const Template& tmpl, uint64_t seed, const VariationOptions
   DsModel m = build_model(t);
   scatter_grains(t, m, seed);
   deform_model(draw_organic(t, m, seed), m);
+  m.knife = draw_knife_wobble(m, seed);
   return {t, std::move(m), static_cast<int>(draw), 0.0};
 }
 

@@ -53,7 +53,9 @@ double draw_ripeness(const Template& tmpl, uint64_t seed);
 /// none passes, the template itself (amount 0). Its colours are taken at draw_ripeness(tmpl,
 /// seed) in every case. The model then gets its grains (scatter_grains with the same seed), and
 /// then the whole model its organic deformation (draw_organic with the same seed and the
-/// template's full amount; none where the template asks for none).
+/// template's full amount; none where the template asks for none), and last the knife's wobble
+/// for a halves cut (draw_knife_wobble with the same seed, whatever the amount: it is the cut's,
+/// not the fruit's).
 /// Same seed -> identical result.
 /// @pre tmpl was returned by parse_template / load_template
 /// @throws InputError only when tmpl itself does not build

@@ -372,6 +372,30 @@ TEST(Pieces, CapsOnEitherSideOfACutAreMirrorImagesWithEqualColours) {
   }
 }
 
+TEST(CutCells, AKnifeWobbleLeansAndMovesOnlyTheHalvesPlane) {
+  const CutSpec halves = *parse_cut_spec("halves", 1e-3);
+  const glm::dvec3 lo(-0.03, 0.0, -0.03), hi(0.03, 0.06, 0.03);
+  const Plane exact = make_cut_cells(halves, lo, hi).planes.at(0);
+  const KnifeWobble knife{0.05, 0.002};
+  const Plane p = make_cut_cells(halves, lo, hi, nullptr, nullptr, knife).planes.at(0);
+  // Leaned by 0.05 rad, about the plane's line across the axis (x here: the normal stays in
+  // the y-z plane), and 2 mm from the axis at mid-height.
+  EXPECT_NEAR(std::acos(glm::dot(p.normal, exact.normal)), 0.05, 1e-12);
+  EXPECT_NEAR(p.normal.x, 0.0, 1e-15);
+  EXPECT_NEAR(glm::dot(glm::dvec3(0, 0.03, 0) - p.point, p.normal), -0.002, 1e-12);
+  // The other cuts do not use it.
+  for (const char* other : {"wedges:4", "slices:10"}) {
+    const CutSpec c = *parse_cut_spec(other, 1e-3);
+    const CutCells a = make_cut_cells(c, lo, hi),
+                   b = make_cut_cells(c, lo, hi, nullptr, nullptr, knife);
+    ASSERT_EQ(a.planes.size(), b.planes.size()) << other;
+    for (size_t k = 0; k < a.planes.size(); ++k) {
+      EXPECT_EQ(a.planes[k].point, b.planes[k].point) << other;
+      EXPECT_EQ(a.planes[k].normal, b.planes[k].normal) << other;
+    }
+  }
+}
+
 TEST(CutCells, SlicesAreCentredAndWedgesPartitionSpace) {
   const CutCells slices =
       make_cut_cells(*parse_cut_spec("slices:10", 1e-3), {-0.03, 0, -0.03}, {0.03, 0.052, 0.03});

@@ -26,6 +26,7 @@
 #include "pieces/manifold_check.h"
 #include "pieces/pieces.h"
 #include "test_support.h"
+#include "variation/knife_wobble.h"
 #include "variation/variation.h"
 
 namespace cutaway {
@@ -318,6 +319,35 @@ TEST(OrganicDeformation, PiecesOfALeaningLumpyPotatoAreClosed) {
     for (const Piece& piece : set.pieces)
       EXPECT_TRUE(check_manifold(merge_parts(piece), kMinVertexSeparation_m));
   }
+}
+
+// The knife's wobble: a variant's halves are not mirror copies of each other (the issue "anatomy
+// and look", item 6). The template's own model is cut exactly through its axis.
+TEST(KnifeWobble, SeededHalvesDifferAndTheTemplatesOwnAreEqual) {
+  const Template& t = test::built_template(test::source_path("templates/tomato.yaml")).tmpl;
+  EXPECT_EQ(build_model(t).knife.lean_rad, 0.0);
+  const CutSpec halves = *parse_cut_spec("halves", 1e-3);
+  int unequal = 0;
+  for (uint64_t seed = 1; seed <= 4; ++seed) {
+    const Variant v = make_variant(t, seed);
+    EXPECT_LE(std::fabs(v.model.knife.lean_rad), kMaxKnifeLeanRad);
+    const double reach = 0.5 * std::max(v.model.bbox_max.x - v.model.bbox_min.x,
+                                        v.model.bbox_max.z - v.model.bbox_min.z);
+    EXPECT_LE(std::fabs(v.model.knife.offset_m), kMaxKnifeOffset * reach);
+    EXPECT_EQ(make_variant(t, seed).model.knife.offset_m, v.model.knife.offset_m);
+    const auto diffusion = make_cpu_diffusion(v.model, {4, 0});
+    PieceOptions options;
+    options.section.edge_m = v.tmpl.edge_m;
+    const PieceSet set = *cut_pieces(v.model, halves, *diffusion, options);
+    ASSERT_EQ(set.pieces.size(), 2u);
+    const double a = std::fabs(signed_volume(merge_parts(set.pieces[0])));
+    const double b = std::fabs(signed_volume(merge_parts(set.pieces[1])));
+    std::printf("tomato seed %d: halves %.1f and %.1f cm3 (lean %.2f deg, offset %.2f mm)\n",
+                static_cast<int>(seed), a * 1e6, b * 1e6, v.model.knife.lean_rad * 57.29578,
+                v.model.knife.offset_m * 1e3);
+    unequal += std::fabs(a - b) / (a + b) > 0.005;
+  }
+  EXPECT_GE(unequal, 2);
 }
 
 }  // namespace
