@@ -16,6 +16,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat4x4.hpp>
 
+#include "base/constants.h"
 #include "base/error.h"
 #include "render/gl/gl_buffers.h"
 #include "render/gl/gl_context.h"
@@ -27,8 +28,10 @@ namespace cutaway {
 namespace {
 
 constexpr int kMaxImageSide = 16384;
-constexpr int kMaxLights = 16;                        // shaders/scene.frag: kMaxLights
-constexpr double kReferenceLux = 3 * kLumensPerWatt;  // AssetLight's default shows at scale 1
+constexpr int kMaxLights = 16;  // shaders/scene.frag: kMaxLights
+// A white Lambertian face lit head-on by E lux shows E / (683 pi) (Blender's and POV-Ray's
+// mapping, doc/lighting.md).
+constexpr double kReferenceLux = kLumensPerWatt * kPi;
 constexpr double kShininess = 48;       // Blinn-Phong exponent at the default roughness
 constexpr double kSpecular = 0.15;      // highlight weight at the default roughness
 constexpr double kMaxShininess = 1024;  // the largest exponent (roughness near 0)
@@ -210,8 +213,8 @@ std::vector<GLuint> upload_textures(const SceneAssets& assets,
 }
 
 /// Sets the uniforms of `program` (in use) that hold for the whole scene: the lights in the
-/// view frame (the documented mapping: scale = colour * (lux / 2049) * exposure), the view's up,
-/// the ambient scale and the projection.
+/// view frame (the documented mapping: scale = colour * lux / (683 pi) * exposure), the view's up,
+/// the ambient scale (the sky's radiance times the exposure) and the projection.
 void set_scene_uniforms(const GlProgram& program, const SceneAssets& assets, const glm::dmat4& view,
                         const glm::mat4& clip_from_view, double exposure) {
   const glm::dmat3 view_rotation(view);
@@ -231,7 +234,9 @@ void set_scene_uniforms(const GlProgram& program, const SceneAssets& assets, con
   glUniform3fv(program.uniform("light_scale"), kMaxLights, light_scale.data());
   const glm::vec3 up_view(view_rotation * glm::dvec3(0, 1, 0));
   glUniform3fv(program.uniform("up_view"), 1, glm::value_ptr(up_view));
-  glUniform1f(program.uniform("ambient_scale"), static_cast<float>(exposure));
+  // The sky's radiance, ambient_lux / (683 pi), as Blender's world and POV-Ray show it.
+  glUniform1f(program.uniform("ambient_scale"),
+              static_cast<float>(exposure * assets.ambient_lux / kReferenceLux));
   glUniformMatrix4fv(program.uniform("clip_from_view"), 1, GL_FALSE,
                      glm::value_ptr(clip_from_view));
 }

@@ -35,7 +35,7 @@ struct ScenePreviewOptions {
 /// Shading, in linear RGB with the albedo a and the stored per-vertex `normal` (interpolated,
 /// renormalised, flipped toward the eye on back faces; a zero normal falls back to the
 /// triangle's own) as n:
-///   colour = a * exposure * (H(n) + sum_i c_i * s_i * 0.75 * max(n . l_i, 0))
+///   colour = a * exposure * (H(n) + sum_i c_i * s_i * max(n . l_i, 0))
 ///            + exposure * sum_i c_i * s_i * w * (n . h_i)^p   (only where n . l_i > 0)
 /// The albedo a is the primitive's material's base colour texture (sRGB, decoded to linear;
 /// mipmapped, filtered trilinearly; repeating in u where `wrap_u`, else clamped, and clamped in v)
@@ -45,17 +45,20 @@ struct ScenePreviewOptions {
 /// and weight w = 0.15 * (p + 8) / 56, so the default r = 0.6 gives p = 48 and w = 0.15, and a
 /// rougher material a broader, weaker highlight. Other material channels (the material map,
 /// clearcoat, sheen, translucency) are not shown. Per light i, c_i is its linear colour, l_i the
-/// unit direction toward it, h_i the Blinn-Phong half vector, and s_i = E_i / 2049 lux the
-/// illuminance it gives relative to the AssetLight default (3 kLumensPerWatt): E_i is `intensity`
-/// in lux for a directional light and `intensity` / d^2 (candela over squared metres to the light)
-/// for a point light. So one default directional light (2049 lux) falling head-on shows 0.75 * a
-/// plus the ambient. H(n) is a hemisphere ambient of 0.25 from the sky (+Y) down to 0.10 from the
-/// ground, blended by n.y, so faces turned away from every light are darker but never black. There
-/// are no shadows. The result is written to a 16-bit float framebuffer, multisampled edges are
-/// resolved in linear RGB, and each component is clamped to 0..1 and encoded to sRGB8
-/// (linear_to_srgb8). The background is `assets.background` (linear RGB) everywhere nothing
-/// is drawn. The image is opaque. The result is deterministic: the same assets and options give
-/// the same bytes on the same OpenGL implementation.
+/// unit direction toward it, h_i the Blinn-Phong half vector, and s_i = E_i / (683 pi) the
+/// radiance a white Lambertian face lit head-on shows (Blender's and POV-Ray's mapping,
+/// doc/lighting.md): E_i is `intensity` in lux for a directional light and `intensity` / d^2
+/// (candela over squared metres to the light) for a point light. So the studio key light
+/// (1639.2 lux) falling head-on shows 0.764 a plus the ambient. H(n) is a hemisphere ambient of
+/// the sky's radiance S = `assets.ambient_lux` / (683 pi) from above (+Y) down to 0.4 S from the
+/// ground, blended by n.y (Blender's uniform world of that radiance, with the ground's occlusion
+/// that the preview's missing shadows do not give), so faces turned away from every light are
+/// darker but not black; without a sky (ambient_lux 0) they are black. There are no shadows. The
+/// result is written to a 16-bit float framebuffer, multisampled edges are resolved in linear RGB,
+/// and each component is clamped to 0..1 and encoded to sRGB8 (linear_to_srgb8). The background is
+/// `assets.background` (linear RGB) everywhere nothing is drawn. The image is opaque. The result is
+/// deterministic: the same assets and options give the same bytes on the same OpenGL
+/// implementation.
 ///
 /// Creates its own offscreen OpenGL context (create_offscreen_context()) for the call.
 /// @param assets  every instance's `mesh` indexes `meshes`; an instanced mesh has as many

@@ -6,9 +6,9 @@
 // roughness and the light mapping are documented at render_scene_preview().
 
 const int kMaxLights = 16;  // render/scene_preview.cpp: kMaxLights
-const float kSky = 0.25;     // ambient from straight above (+Y)
-const float kGround = 0.10;  // ambient from straight below
-const float kDiffuse = 0.75;
+const float kSky = 1.0;     // ambient from straight above (+Y), of the sky's radiance
+const float kGround = 0.4;  // ambient from straight below
+const float kDiffuse = 1.0;
 
 in vec3 v_position;
 in vec3 v_normal;
@@ -22,7 +22,7 @@ uniform vec4 light_vector[kMaxLights];
 // colour * relative illuminance * exposure; a point light's is at 1 m and falls off as 1/d^2.
 uniform vec3 light_scale[kMaxLights];
 uniform vec3 up_view;          // scene +Y in the view frame
-uniform float ambient_scale;   // exposure
+uniform float ambient_scale;   // the sky's radiance (ambient_lux / (683 pi)) times the exposure
 // The material: its base colour texture (sRGB, so samples are linear) when `textured` is
 // non-zero, else the vertex colour; the Blinn-Phong exponent and weight of its highlight.
 uniform int textured;

@@ -56,11 +56,11 @@ void light_like_studio(SceneAssets& assets) {
     l.colour = colour;
     return l;
   };
-  assets.lights = {light("key", -0.5 * r + 1.0 * u - 0.6 * f, 3.0, {1.0, 0.97, 0.92}),
-                   light("fill", 0.8 * r + 0.3 * u - 0.5 * f, 1.2, {0.92, 0.95, 1.0}),
-                   light("rim", 0.2 * r + 0.8 * u + 0.9 * f, 1.0, {1.0, 1.0, 1.0})};
-  // A sky of radiance 0.15 W/m^2/sr (POV-Ray's ambient 0.15): pi * 0.15 W/m^2 on an open face.
-  assets.ambient_lux = 0.15 * kPi * kLumensPerWatt;
+  assets.lights = {light("key", -0.5 * r + 1.0 * u - 0.6 * f, 2.4, {1.0, 0.97, 0.92}),
+                   light("fill", 0.8 * r + 0.3 * u - 0.5 * f, 0.96, {0.92, 0.95, 1.0}),
+                   light("rim", 0.2 * r + 0.8 * u + 0.9 * f, 0.8, {1.0, 1.0, 1.0})};
+  // A sky of radiance 0.12 W/m^2/sr: pi * 0.12 W/m^2 on an open face.
+  assets.ambient_lux = 0.12 * kPi * kLumensPerWatt;
 }
 
 }  // namespace cutaway

@@ -211,10 +211,10 @@ std::string finish_identifier(size_t k) {
 
 /// `#declare` of the finish of `material` (scene_to_pov documents the mapping).
 void write_finish(std::string& out, const PbrMaterial& pbr, size_t k) {
-  out += "#declare " + finish_identifier(k) + " = finish { ambient 0.15 diffuse 0.8";
+  out += "#declare " + finish_identifier(k) + " = finish { ambient 1 diffuse 1";
   if (pbr.translucency > 0) {  // POV-Ray 3.7's backside illumination
     out += ", ";
-    append_number(out, 0.8 * pbr.translucency);
+    append_number(out, pbr.translucency);
   }
   out += " specular ";
   append_number(out, 0.625 * (1 - pbr.roughness));
@@ -448,14 +448,19 @@ std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* s
   out += "// Units: metres, +Y up. Colours: linear RGB (assumed_gamma 1.0).\n";
   out += "// Render: povray +I<this file> +FN +W" + std::to_string(assets.width) + " +H" +
          std::to_string(assets.height) + " +A0.3 File_Gamma=sRGB\n\n";
-  out += "#version 3.7;\n\nglobal_settings { assumed_gamma 1.0 }\n\n";
+  // The sky as POV-Ray's ambient light: the radiance ambient_lux / (683 pi) that a uniform sky
+  // of ambient_lux gives a white face, as Blender's world does (finishes: ambient 1).
+  out += "#version 3.7;\n\nglobal_settings { assumed_gamma 1.0 ambient_light rgb ";
+  const double sky = assets.ambient_lux / (kLumensPerWatt * kPi);
+  append_vector(out, glm::dvec3(sky));
+  out += " }\n\n";
   out += "background { rgb ";
   append_vector(out, assets.background);
   out += " }\n\n";
   write_camera(out, assets.camera);
   write_lights(out, assets);
   // Material 0 keeps the finish of scenes written before materials: a small, sharp highlight.
-  out += "#declare Cutaway_Finish = finish { ambient 0.15 diffuse 0.8 specular 0.25 "
+  out += "#declare Cutaway_Finish = finish { ambient 1 diffuse 1 specular 0.25 "
          "roughness 0.02 }\n";
   for (size_t k = 1; k < assets.materials.size(); ++k)
     write_finish(out, assets.materials[k].pbr, k);

@@ -42,10 +42,13 @@ namespace cutaway {
 ///     attenuation is 2 / (1 + (d / fade_distance)^fade_power); it stays finite within 1 cm);
 ///   only the brightest light casts shadows (the others are `shadowless`, so shadows are
 ///   filled in rather than black);
-/// - `#declare Cutaway_Finish`: ambient 0.15, diffuse 0.8, specular 0.25, roughness 0.02 (a
+/// - `global_settings { assumed_gamma 1.0 ambient_light rgb S }`, S = ambient_lux / (683 pi) the
+///   sky's radiance (0 without a sky), so that with the lights above a white face shows what it
+///   shows in Blender under the Standard view (doc/lighting.md);
+/// - `#declare Cutaway_Finish`: ambient 1, diffuse 1, specular 0.25, roughness 0.02 (a
 ///   small, sharp highlight as on moist fruit), the finish of material 0; then
-///   `#declare Cutaway_Finish_<k>` for every other material k: ambient 0.15, diffuse 0.8 (with
-///   backside illumination 0.8 translucency when translucent), specular 0.625 (1 - roughness),
+///   `#declare Cutaway_Finish_<k>` for every other material k: ambient 1, diffuse 1 (with
+///   backside illumination `translucency` when translucent), specular 0.625 (1 - roughness),
 ///   roughness 0.0005 + 0.05 roughness^2, and for a clear coat phong 0.6 clearcoat and
 ///   phong_size round(4 / (clearcoat_roughness + 0.05)); sheen is not shown;
 /// - each mesh with at least one triangle declared ONCE as `#declare Mesh_<k>_<name> = mesh2`:

@@ -306,10 +306,10 @@ def case_kiwi_seeds(args):
         scene.collection.objects.link(camera)
         scene.camera = camera
         key = bpy.data.objects.new("key", bpy.data.lights.new("key", 'SUN'))
-        key.data.energy = 3.0  # the studio key light, W/m2 (doc/lighting.md)
+        key.data.energy = 2.4  # the studio key light, W/m2 (doc/lighting.md)
         key.rotation_euler = (0.5, 0.0, 0.35)
         scene.collection.objects.link(key)
-        use_sky(scene, 321.86)
+        use_sky(scene, 0.12 * 3.141592653589793 * 683.0)  # the studio sky (doc/lighting.md)
         use_exposure(scene, 1.0 / 683.0)
         render = scene.render
         render.engine = 'CYCLES'

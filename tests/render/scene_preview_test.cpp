@@ -78,9 +78,10 @@ SceneAssets two_cubes() {
   AssetLight sun;
   sun.name = "sun";
   sun.direction = glm::normalize(glm::dvec3(0, -0.6, 0.8));  // travels down and toward +Z
-  sun.intensity = 3 * kLumensPerWatt;                        // the reference light: scale 1
+  sun.intensity = 3 * kLumensPerWatt;  // a sun of 3 W/m^2: a white face lit head-on shows 0.95
   a.lights.push_back(sun);
-  a.background = {0.25, 0.5, 0.75};  // exact in half floats
+  a.ambient_lux = 0.12 * kPi * kLumensPerWatt;  // the studio sky: 0.12 from above
+  a.background = {0.25, 0.5, 0.75};             // exact in half floats
   a.width = kPreviewWidth;
   a.height = kPreviewHeight;
   return a;

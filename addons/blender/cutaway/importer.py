@@ -41,7 +41,8 @@ def import_file(context, filepath, *, use_camera=True, use_sky=True, use_exposur
 
     use_camera: the file's camera, if it has one, becomes the scene's camera.
     use_sky: a file that expects a sky (ambient_lux) gets it as the world's light.
-    use_exposure: a file that gives its exposure is shown at it under the Standard view.
+    use_exposure: a file that gives its exposure is shown at it under the Standard view, with
+        Cycles set to converge (scene_setup.use_converging_render).
     Raises OSError or ValueError for a file it cannot read (ValueError too for a
     `--compress meshopt` file, whose EXT_meshopt_compression Blender does not decode),
     RuntimeError when Blender's importer fails.
@@ -85,6 +86,7 @@ def import_file(context, filepath, *, use_camera=True, use_sky=True, use_exposur
     exposure = gltf.exposure()
     if use_exposure and exposure is not None:
         scene_setup.use_exposure(scene, exposure)
+        scene_setup.use_converging_render(scene)
     return result
 
 

@@ -60,3 +60,39 @@ def use_exposure(scene, exposure):
     view.look = 'None'
     view.gamma = 1.0
     view.exposure = math.log2(exposure * LUMENS_PER_WATT)
+
+
+# Cycles sampling under which a cutaway scene's frame converges (doc/lighting.md, Blender): adaptive
+# sampling stops a pixel once its noise is under ADAPTIVE_THRESHOLD, between ADAPTIVE_MIN_SAMPLES
+# and MAX_SAMPLES samples.
+ADAPTIVE_THRESHOLD = 0.01
+ADAPTIVE_MIN_SAMPLES = 64
+MAX_SAMPLES = 1024
+
+
+def denoiser_available():
+    """True when this Blender's Cycles was built with OpenImageDenoise (Debian 12's is not)."""
+    try:
+        import _cycles
+    except ImportError:
+        return False
+    return bool(getattr(_cycles, "with_openimagedenoise", False))
+
+
+def use_converging_render(scene):
+    """Sets Cycles up so that a render of a cutaway scene converges: adaptive sampling (see the
+    constants), the denoiser where the build has one, and no caustics from the flesh's clear
+    coat with glossy blur 1 (the speckles of a short render are those paths, not the lighting).
+    Eevee's samples are left at Blender's default (64)."""
+    cycles = scene.cycles
+    cycles.use_adaptive_sampling = True
+    cycles.adaptive_threshold = ADAPTIVE_THRESHOLD
+    cycles.adaptive_min_samples = ADAPTIVE_MIN_SAMPLES
+    cycles.samples = MAX_SAMPLES
+    cycles.caustics_reflective = False
+    cycles.caustics_refractive = False
+    cycles.blur_glossy = 1.0
+    cycles.use_denoising = denoiser_available()
+    if cycles.use_denoising:
+        cycles.denoiser = 'OPENIMAGEDENOISE'
+

@@ -157,7 +157,13 @@ TEST(PovExport, DeterministicAndStructured) {
   const std::string a = scene_to_pov(s), b = scene_to_pov(s);
   EXPECT_EQ(a, b);
   EXPECT_NE(a.find("#version 3.7;"), std::string::npos);
-  EXPECT_NE(a.find("global_settings { assumed_gamma 1.0 }"), std::string::npos);
+  // No sky in the test scene: no ambient light; a sky of ambient_lux gives a white face its
+  // radiance, ambient_lux / (683 pi), as Blender's world does.
+  EXPECT_NE(a.find("global_settings { assumed_gamma 1.0 ambient_light rgb <0, 0, 0> }"),
+            std::string::npos);
+  SceneAssets sky = s;
+  sky.ambient_lux = 0.12 * kPi * kLumensPerWatt;
+  EXPECT_NE(scene_to_pov(sky).find("ambient_light rgb <0.12, 0.12, 0.12> }"), std::string::npos);
   EXPECT_NE(a.find("background { rgb <0.05, 0.25, 0.1> }"), std::string::npos);
   EXPECT_NE(a.find("metres"), std::string::npos);
   EXPECT_EQ(count(a, "light_source {"), 2u);
@@ -401,11 +407,11 @@ TEST(PovExport, AFinishPerMaterialOnTheFacesThatUseIt) {
   const size_t n = s.meshes[0].triangle.size();
   s.meshes[0].primitives = {{0, 2, 0}, {2, n - 2, 1}};
   const std::string text = scene_to_pov(s);
-  EXPECT_EQ(count(text, "#declare Cutaway_Finish = finish { ambient 0.15 diffuse 0.8 specular "
+  EXPECT_EQ(count(text, "#declare Cutaway_Finish = finish { ambient 1 diffuse 1 specular "
                         "0.25 roughness 0.02 }"),
             1u);
   // Translucency as POV-Ray 3.7's backside illumination; the clear coat as a sharp phong.
-  EXPECT_EQ(count(text, "#declare Cutaway_Finish_1 = finish { ambient 0.15 diffuse 0.8, 0.4 "
+  EXPECT_EQ(count(text, "#declare Cutaway_Finish_1 = finish { ambient 1 diffuse 1, 0.5 "
                         "specular 0.5 roughness 0.0025 phong 0.48 phong_size 40 }"),
             1u)
       << text.substr(0, 2000);
