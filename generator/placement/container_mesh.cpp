@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
@@ -81,30 +82,58 @@ void append_curve(std::vector<glm::dvec2>& pts, std::vector<glm::dvec2>& nrm, in
   }
 }
 
-AssetMesh box_mesh(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3& colour) {
+/// The coordinates a rounded box's face grid takes along one axis from lo to hi: `band` steps
+/// across each rounded edge of radius r, and flat steps of at most `flat_step` between them.
+std::vector<double> rounded_steps(double lo, double hi, double r, int band, double flat_step) {
+  std::vector<double> out;
+  for (int k = 0; k < band; ++k) out.push_back(lo + r * k / band);
+  const int flat = std::max(1, static_cast<int>(std::ceil((hi - lo - 2 * r) / flat_step)));
+  for (int k = 0; k < flat; ++k) out.push_back(lo + r + (hi - lo - 2 * r) * k / flat);
+  for (int k = 0; k <= band; ++k) out.push_back(hi - r + r * k / band);
+  return out;
+}
+
+/// The box lo..hi with every edge and corner rounded to radius r (< half its smallest side):
+/// each face a grid (rounded_steps) whose points p are moved to q = c + r (p - c) / |p - c|, c
+/// the point of the box shrunk by r nearest to p, with that direction as the normal; on the flat
+/// part q = p. The faces' own vertices are not shared (their positions and normals agree along
+/// the seams). Counter-clockwise seen from outside.
+AssetMesh rounded_box_mesh(const glm::dvec3& lo, const glm::dvec3& hi, double r,
+                           const glm::dvec3& colour) {
+  constexpr int kBand = 4;  // steps across a rounded edge (a quarter circle)
   AssetMesh mesh;
   for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    const std::vector<double> us = rounded_steps(lo[u], hi[u], r, kBand, hi[u] - lo[u]);
+    const std::vector<double> vs = rounded_steps(lo[v], hi[v], r, kBand, hi[v] - lo[v]);
     for (int side = 0; side < 2; ++side) {
-      glm::dvec3 n(0.0);
-      n[axis] = side ? 1 : -1;
-      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
       const unsigned base = static_cast<unsigned>(mesh.position.size());
-      for (int k = 0; k < 4; ++k) {
-        glm::dvec3 p;
-        p[axis] = side ? hi[axis] : lo[axis];
-        p[u] = (k == 1 || k == 2) ? hi[u] : lo[u];
-        p[v] = (k >= 2) ? hi[v] : lo[v];
-        mesh.position.push_back(p);
-        mesh.normal.push_back(n);
-        mesh.colour.push_back(colour);
+      for (double b : vs) {
+        for (double a : us) {
+          glm::dvec3 p;
+          p[axis] = side ? hi[axis] : lo[axis];
+          p[u] = a;
+          p[v] = b;
+          const glm::dvec3 c = glm::clamp(p, lo + r, hi - r);
+          const glm::dvec3 n = glm::normalize(p - c);
+          mesh.position.push_back(c + r * n);
+          mesh.normal.push_back(n);
+          mesh.colour.push_back(colour);
+        }
       }
-      // (u, v) corners 0:(lo,lo) 1:(hi,lo) 2:(hi,hi) 3:(lo,hi): counter-clockwise about +axis.
-      if (side) {
-        mesh.triangle.push_back({base, base + 1, base + 2});
-        mesh.triangle.push_back({base, base + 2, base + 3});
-      } else {
-        mesh.triangle.push_back({base, base + 2, base + 1});
-        mesh.triangle.push_back({base, base + 3, base + 2});
+      const unsigned nu = static_cast<unsigned>(us.size());
+      for (unsigned j = 0; j + 1 < vs.size(); ++j) {
+        for (unsigned i = 0; i + 1 < nu; ++i) {
+          const unsigned a = base + j * nu + i, b = a + 1, c = a + nu, d = c + 1;
+          // (u, v) increasing is counter-clockwise about +axis.
+          if (side) {
+            mesh.triangle.push_back({a, b, d});
+            mesh.triangle.push_back({a, d, c});
+          } else {
+            mesh.triangle.push_back({a, d, b});
+            mesh.triangle.push_back({a, c, d});
+          }
+        }
       }
     }
   }
@@ -119,8 +148,14 @@ std::optional<AssetMesh> container_mesh(const Container& c, int segments, int pr
   switch (c.type) {
     case ContainerType::None: return std::nullopt;
     case ContainerType::Board: {
-      AssetMesh mesh = box_mesh({-0.5 * c.width_m, 0, -0.5 * c.depth_m},
-                                {0.5 * c.width_m, H, 0.5 * c.depth_m}, c.colour);
+      const glm::dvec3 lo(-0.5 * c.width_m, 0, -0.5 * c.depth_m),
+          hi(0.5 * c.width_m, H, 0.5 * c.depth_m);
+      const double r = std::min({kBoardEdgeRadius_m, 0.3 * H, 0.3 * c.width_m, 0.3 * c.depth_m});
+      AssetMesh mesh = rounded_box_mesh(lo, hi, r, c.colour);
+      // The top seen from above: the wood's texture (board_wood.h) lies on it, and the sides
+      // take its rows and columns at the edges.
+      for (const glm::dvec3& p : mesh.position)
+        mesh.uv.push_back({(p.x - lo.x) / c.width_m, (p.z - lo.z) / c.depth_m});
       mesh.name = "board";
       return mesh;
     }

@@ -16,7 +16,9 @@ namespace cutaway {
 ///   rim (y = H) at inner radius R - wall (wall = 0.03 D); outer surface an ellipse down to a
 ///   foot ring of radius 0.45 R at y = 0;
 /// - plate: a flat well of radius 0.62 R at y = 0.3 H, rising to the rim at y = H (power 1.6);
-/// - board: a box W x D x H;
+/// - board: a box W x D x H with its edges and corners rounded to kBoardEdgeRadius_m (at most
+///   0.3 of its smallest side), with uv: the top seen from above (u along X, v along Z, 0..1),
+///   for the wood's texture (board_wood.h);
 /// - none: the floor y = 0.
 /// `segments` (>= 3): the bowl's and plate's segments around the axis; `profile_samples` (>= 2):
 /// segments along each curve of their profiles. Every vertex lies on the surfaces above, so a
@@ -26,6 +28,9 @@ namespace cutaway {
 ///         or nothing for type none
 std::optional<AssetMesh> container_mesh(const Container& container, int segments = 96,
                                         int profile_samples = 40);
+
+/// The radius of a board's rounded edges, metres (a kitchen board's, 5 mm).
+inline constexpr double kBoardEdgeRadius_m = 0.005;
 
 /// The height (metres) of the surface that pieces rest on at (x, z), or nothing where pieces
 /// may not rest (outside the bowl's or plate's inner rim, off the board, beyond `none_radius_m`

@@ -21,6 +21,7 @@
 #include "cache/cached_placement.h"
 #include "cache/cut_entry_check.h"
 #include "placement/collision_shape.h"
+#include "placement/board_wood.h"
 #include "placement/container_mesh.h"
 #include "placement/physics_settle.h"
 #include "placement/scene_layout.h"
@@ -323,9 +324,9 @@ std::vector<Placement> place_pieces(const Scene& scene, uint64_t seed,
   return std::move(settled.placements);
 }
 
-/// Step 3: the container and the placed pieces as instances of `assets`, framed by the
-/// scene's camera, with the studio lights.
-void add_placed_pieces(SceneAssets& assets, const Scene& scene, ScenePieces& pieces,
+/// Step 3: the container (a board with its wood, drawn from `seed`) and the placed pieces as
+/// instances of `assets`, framed by the scene's camera, with the studio lights.
+void add_placed_pieces(SceneAssets& assets, const Scene& scene, uint64_t seed, ScenePieces& pieces,
                        const std::vector<size_t>& order, const std::vector<Placement>& placements,
                        SceneStats& st) {
   assets.name = scene.name;
@@ -337,6 +338,14 @@ void add_placed_pieces(SceneAssets& assets, const Scene& scene, ScenePieces& pie
     for (const glm::dvec3& p : container->position) {
       lo = glm::min(lo, p);
       hi = glm::max(hi, p);
+    }
+    if (scene.container.type == ContainerType::Board) {  // its wood, on its uv
+      assets.textures.push_back(board_wood_texture(scene.container, derive_seed(seed, {~0ull, 7})));
+      AssetMaterial wood{"board_wood", PbrMaterial{}, static_cast<int>(assets.textures.size()) - 1};
+      wood.pbr.roughness = 0.75;  // oiled, worn wood: a broad, faint highlight
+      assets.materials.push_back(wood);
+      container->primitives = {
+          {0, container->triangle.size(), static_cast<int>(assets.materials.size()) - 1, {}}};
     }
     assets.instances.push_back({container->name, 0, {1, 0, 0, 0}, {0, 0, 0}, {}});
     assets.meshes.push_back(std::move(*container));
@@ -375,7 +384,7 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
   ScenePieces pieces = cut_scene_objects(scene, seed, options, assets, st);
   const std::vector<size_t> order = placement_order(pieces.shapes.size(), seed);
   const std::vector<Placement> placements = place_pieces(scene, seed, options, pieces, order, st);
-  add_placed_pieces(assets, scene, pieces, order, placements, st);
+  add_placed_pieces(assets, scene, seed, pieces, order, placements, st);
   return assets;
 }
 
