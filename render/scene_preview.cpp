@@ -298,6 +298,106 @@ void draw_instances(const SceneAssets& assets, const std::vector<std::vector<Mes
   }
 }
 
+/// The shadow map of the shadow-casting light (shadow_casting_light()): a depth texture seen
+/// from the light, and the transform from the scene frame to its texture coordinates and depth.
+struct ShadowMap {
+  int light = -1;              // index of the light whose term it darkens; -1: no shadows
+  GLuint texture = 0;          // depth, GL_DEPTH_COMPONENT24, kShadowMapSide square
+  glm::dmat4 from_scene{1.0};  // scene frame -> (u, v, depth) in 0..1
+  double width_m = 0;          // metres the map's side spans
+  double depth_m = 0;          // metres its depth 0..1 spans
+  double softness = 0;         // tan of the light's angular radius
+};
+
+constexpr int kShadowMapSide = 2048;
+
+/// Draws the depth of every instance of `assets` but the backdrop (what casts shadows) into a
+/// depth texture seen from the shadow-casting light when it is directional, with an orthographic
+/// view that holds shadow_casters_bounds(); the texture belongs to the current context. No
+/// shadows (light -1) without such a light or without casters.
+/// @throws EnvironmentError when OpenGL cannot make the map
+ShadowMap draw_shadow_map(const SceneAssets& assets,
+                          const std::vector<std::vector<MeshDraw>>& draws,
+                          const GlContext& context) {
+  ShadowMap map;
+  const int caster = shadow_casting_light(assets);
+  const BoundingSphere bounds = shadow_casters_bounds(assets);
+  if (caster < 0 || bounds.radius <= 0) return map;
+  const AssetLight& light = assets.lights[static_cast<size_t>(caster)];
+  if (light.type != LightType::Directional || light.intensity <= 0) return map;
+
+  const double r = 1.02 * bounds.radius + 1e-3;
+  const glm::dvec3 direction = glm::normalize(light.direction);
+  const glm::dvec3 eye = bounds.centre - direction * (r + 0.01);
+  const glm::dmat4 view = glm::lookAt(eye, bounds.centre, stable_camera_up(direction));
+  const glm::dmat4 clip = glm::ortho(-r, r, -r, r, 0.0, 2 * r + 0.02);
+  map.light = caster;
+  map.width_m = 2 * r;
+  map.depth_m = 2 * r + 0.02;
+  map.softness = std::tan(glm::radians(0.5 * light.angle_deg));
+  map.from_scene = glm::translate(glm::dmat4(1.0), glm::dvec3(0.5)) *
+                   glm::scale(glm::dmat4(1.0), glm::dvec3(0.5)) * clip * view;
+
+  glGenTextures(1, &map.texture);
+  glBindTexture(GL_TEXTURE_2D, map.texture);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, kShadowMapSide, kShadowMapSide, 0,
+               GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  GLuint framebuffer = 0;
+  glGenFramebuffers(1, &framebuffer);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, map.texture, 0);
+  glDrawBuffer(GL_NONE);
+  glReadBuffer(GL_NONE);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE ||
+      glGetError() != GL_NO_ERROR)
+    throw EnvironmentError("render_scene_preview: cannot make a shadow map on " +
+                           context.description());
+
+  const GlProgram depth_program("scene.vert", "shadow.frag");
+  glUseProgram(depth_program.id());
+  const glm::mat4 clip_f(clip);
+  glUniformMatrix4fv(depth_program.uniform("clip_from_view"), 1, GL_FALSE, glm::value_ptr(clip_f));
+  const GLint view_from_object = depth_program.uniform("view_from_object");
+  glViewport(0, 0, kShadowMapSide, kShadowMapSide);
+  glClearDepth(1.0);
+  glDepthMask(GL_TRUE);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);
+  for (const AssetInstance& inst : assets.instances) {
+    const std::vector<MeshDraw>& list = draws[static_cast<size_t>(inst.mesh)];
+    if (inst.backdrop || list.empty()) continue;
+    const glm::mat4 light_from_object(view * glm::translate(glm::dmat4(1.0), inst.translation) *
+                                      glm::mat4_cast(glm::normalize(inst.rotation)));
+    glUniformMatrix4fv(view_from_object, 1, GL_FALSE, glm::value_ptr(light_from_object));
+    for (const MeshDraw& draw : list)
+      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(draw.index_count), GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(draw.first_index * sizeof(uint32_t)));
+  }
+  glFinish();
+  return map;
+}
+
+/// Sets the shadow uniforms of `program` (in use) for `map`, seen from `view`, and binds its
+/// texture to texture unit 2.
+void set_shadow_uniforms(const GlProgram& program, const ShadowMap& map, const glm::dmat4& view) {
+  glUniform1i(program.uniform("shadow_light"), map.light);
+  glUniform1i(program.uniform("shadow_map"), 2);
+  glActiveTexture(GL_TEXTURE2);
+  glBindTexture(GL_TEXTURE_2D, map.texture);
+  const glm::mat4 shadow_from_view(map.from_scene * glm::inverse(view));
+  glUniformMatrix4fv(program.uniform("shadow_from_view"), 1, GL_FALSE,
+                     glm::value_ptr(shadow_from_view));
+  glUniform1f(program.uniform("shadow_width_m"), static_cast<float>(map.width_m));
+  glUniform1f(program.uniform("shadow_depth_m"), static_cast<float>(map.depth_m));
+  glUniform1f(program.uniform("shadow_softness"), static_cast<float>(map.softness));
+}
+
 }  // namespace
 
 Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions& options) {
@@ -323,9 +423,11 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
                      {2, 3, offsetof(SceneVertex, colour)},
                      {3, 2, offsetof(SceneVertex, uv)}});
   const std::vector<GLuint> textures = upload_textures(assets, geometry.draws, *context);
+  const ShadowMap shadows = draw_shadow_map(assets, geometry.draws, *context);
 
   glUseProgram(program.id());
   set_scene_uniforms(program, assets, view, clip_from_view, options.exposure);
+  set_shadow_uniforms(program, shadows, view);
   const DrawUniforms uniforms(program);
   glUniform1i(program.uniform("base_colour"), 0);  // texture unit 0
   glUniform1i(program.uniform("normal_map"), 1);   // texture unit 1

@@ -52,13 +52,19 @@ struct ScenePreviewOptions {
 /// (1639.2 lux) falling head-on shows 0.764 a plus the ambient. H(n) is a hemisphere ambient of
 /// the sky's radiance S = `assets.ambient_lux` / (683 pi) from above (+Y) down to 0.4 S from the
 /// ground, blended by n.y (Blender's uniform world of that radiance, with the ground's occlusion
-/// that the preview's missing shadows do not give), so faces turned away from every light are
-/// darker but not black; without a sky (ambient_lux 0) they are black. There are no shadows. The
-/// result is written to a 16-bit float framebuffer, multisampled edges are resolved in linear RGB,
-/// and each component is clamped to 0..1 and encoded to sRGB8 (linear_to_srgb8). The background is
-/// `assets.background` (linear RGB) everywhere nothing is drawn. The image is opaque. The result is
-/// deterministic: the same assets and options give the same bytes on the same OpenGL
-/// implementation.
+/// that the preview does not trace), so faces turned away from every light are darker but not
+/// black; without a sky (ambient_lux 0) they are black. Shadows: the shadow-casting light
+/// (shadow_casting_light(), when directional) has its term c_i * s_i scaled by the fraction of
+/// it that reaches the point, from a 2048 x 2048 depth map seen along it over the bounding
+/// sphere of everything but the backdrop (shadow_casters_bounds(); the backdrop receives
+/// shadows but casts none, and points outside the map are lit): percentage-closer soft shadows
+/// (Fernando 2005), occluders searched within 12 mm, the penumbra as wide as the gap to them
+/// times tan(angle_deg / 2), at least a texel, at most 12 mm, on fixed spiral taps (16 to find
+/// occluders, 32 to filter: no noise). The other lights cast none. The result is written to a
+/// 16-bit float framebuffer, multisampled edges are resolved in linear RGB, and each component is
+/// clamped to 0..1 and encoded to sRGB8 (linear_to_srgb8). The background is `assets.background`
+/// (linear RGB) everywhere nothing is drawn. The image is opaque. The result is deterministic: the
+/// same assets and options give the same bytes on the same OpenGL implementation.
 ///
 /// Creates its own offscreen OpenGL context (create_offscreen_context()) for the call.
 /// @param assets  every instance's `mesh` indexes `meshes`; an instanced mesh has as many

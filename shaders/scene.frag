@@ -1,8 +1,8 @@
 #version 330 core
 // Scene preview (render/scene_preview.h), fragment stage: two-sided shading in linear RGB,
-// hemisphere ambient + Lambert + a Blinn-Phong highlight per light, with the albedo from the
-// vertex colour or the material's base colour texture and the normal tilted by the material's
-// normal map (the skin's relief). The constants, the highlight of each
+// hemisphere ambient + Lambert + a Blinn-Phong highlight per light and one light's soft shadow,
+// with the albedo from the vertex colour or the material's base colour texture and the normal
+// tilted by the material's normal map (the skin's relief). The constants, the highlight of each
 // roughness and the light mapping are documented at render_scene_preview().
 
 const int kMaxLights = 16;  // render/scene_preview.cpp: kMaxLights
@@ -34,7 +34,62 @@ uniform float specular_weight;
 uniform int relief;
 uniform sampler2D normal_map;
 
+// The shadow of light `shadow_light` (-1: none; render_scene_preview() documents the map): its
+// depth seen from the light, 0..1 over shadow_depth_m metres, square, shadow_width_m a side;
+// shadow_from_view maps the view frame to the map's texture coordinates and depth.
+uniform int shadow_light;
+uniform sampler2D shadow_map;
+uniform mat4 shadow_from_view;
+uniform float shadow_depth_m;
+uniform float shadow_width_m;
+uniform float shadow_softness;  // tan of the light's angular radius: penumbra per metre
+
+const float kShadowBias_m = 4e-4;      // depth a receiver may lie behind its own surface
+const float kBlockerSearch_m = 0.012;  // radius searched for occluders, and widest penumbra
+const int kBlockerTaps = 16, kFilterTaps = 32;
+
 out vec4 out_colour;  // linear RGB, opaque
+
+// Point k of n on a Vogel spiral filling the unit disc evenly (golden angle).
+vec2 spiral(int k, int n) {
+  float r = sqrt((float(k) + 0.5) / float(n));
+  float a = 2.39996323 * float(k);
+  return r * vec2(cos(a), sin(a));
+}
+
+// How much of the shadow light reaches the fragment (0..1) whose normal is n and direction to
+// the light l: percentage-closer soft shadows (Fernando 2005), the occluders' mean depth found
+// within kBlockerSearch_m, the penumbra as wide as the gap to them times shadow_softness.
+// Depths are compared against the receiver's plane tilted by its slope to the light, so a
+// surface does not shadow itself.
+float lit_fraction(vec3 n, vec3 l) {
+  vec3 s = (shadow_from_view * vec4(v_position, 1.0)).xyz;
+  if (any(lessThan(s, vec3(0.0))) || any(greaterThan(s, vec3(1.0)))) return 1.0;
+  float ndl = clamp(dot(n, l), 1e-3, 1.0);
+  float slope = min(sqrt(1.0 - ndl * ndl) / ndl, 4.0);
+  float texel_m = shadow_width_m / float(textureSize(shadow_map, 0).x);
+  float receiver = s.z * shadow_depth_m;
+  float blockers = 0.0;
+  int found = 0;
+  for (int k = 0; k < kBlockerTaps; ++k) {
+    vec2 offset = kBlockerSearch_m * spiral(k, kBlockerTaps);
+    float d = texture(shadow_map, s.xy + offset / shadow_width_m).r * shadow_depth_m;
+    if (d < receiver - kShadowBias_m - (texel_m + length(offset)) * slope) {
+      blockers += d;
+      ++found;
+    }
+  }
+  if (found == 0) return 1.0;
+  float gap = receiver - blockers / float(found);
+  float penumbra = clamp(gap * shadow_softness, texel_m, kBlockerSearch_m);
+  float lit = 0.0;
+  for (int k = 0; k < kFilterTaps; ++k) {
+    vec2 offset = penumbra * spiral(k, kFilterTaps);
+    float d = texture(shadow_map, s.xy + offset / shadow_width_m).r * shadow_depth_m;
+    if (d >= receiver - kShadowBias_m - (texel_m + length(offset)) * slope) lit += 1.0;
+  }
+  return lit / float(kFilterTaps);
+}
 
 // `n` (unit, the side seen) tilted by the normal map, in the tangent frame the screen-space
 // derivatives of position and uv give (Mikkelsen 2010, "Bump Mapping Unparametrized Surfaces on
@@ -83,6 +138,7 @@ void main() {
     l = normalize(l);
     float lambert = dot(n, l);
     if (lambert <= 0.0) continue;
+    if (i == shadow_light) scale *= lit_fraction(n, l);
     diffuse += scale * (kDiffuse * lambert);
     specular += scale * (specular_weight * pow(max(dot(n, normalize(l + view)), 0.0), shininess));
   }

@@ -47,18 +47,22 @@ void light_like_studio(SceneAssets& assets) {
   const glm::dvec3 u = glm::normalize(glm::cross(r, f));
   // Directions towards each light; the light travels the other way.
   // Strengths in W/m^2 as Blender shows them, times lumens per watt: lux.
-  auto light = [&](const char* name, glm::dvec3 towards, double watts, glm::dvec3 colour) {
+  // Angles: the sources' apparent sizes, a softbox's for the key (soft-edged shadows) and a
+  // broad bounce for the fill.
+  auto light = [&](const char* name, glm::dvec3 towards, double watts, glm::dvec3 colour,
+                   double angle_deg) {
     AssetLight l;
     l.name = name;
     l.type = LightType::Directional;
     l.direction = -glm::normalize(towards);
     l.intensity = watts * kLumensPerWatt;
     l.colour = colour;
+    l.angle_deg = angle_deg;
     return l;
   };
-  assets.lights = {light("key", -0.5 * r + 1.0 * u - 0.6 * f, 2.4, {1.0, 0.97, 0.92}),
-                   light("fill", 0.8 * r + 0.3 * u - 0.5 * f, 0.96, {0.92, 0.95, 1.0}),
-                   light("rim", 0.2 * r + 0.8 * u + 0.9 * f, 0.8, {1.0, 1.0, 1.0})};
+  assets.lights = {light("key", -0.5 * r + 1.0 * u - 0.6 * f, 2.4, {1.0, 0.97, 0.92}, 12),
+                   light("fill", 0.8 * r + 0.3 * u - 0.5 * f, 0.96, {0.92, 0.95, 1.0}, 30),
+                   light("rim", 0.2 * r + 0.8 * u + 0.9 * f, 0.8, {1.0, 1.0, 1.0}, 12)};
   // A sky of radiance 0.12 W/m^2/sr: pi * 0.12 W/m^2 on an open face.
   assets.ambient_lux = 0.12 * kPi * kLumensPerWatt;
 }

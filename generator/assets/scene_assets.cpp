@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <utility>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <glm/trigonometric.hpp>
 
 #include "base/error.h"
@@ -161,6 +163,8 @@ Check check_light(const AssetLight& l) {
     return Check::none("has a negative intensity or colour");
   if (l.type == LightType::Directional && !(glm::length(l.direction) > 0))
     return Check::none("is directional with a zero direction");
+  if (!(l.angle_deg >= 0 && l.angle_deg <= 180))
+    return Check::none("has an angle outside 0..180 degrees");
   return {};
 }
 
@@ -172,6 +176,33 @@ Check named(const char* kind, size_t index, const std::string& name, const Check
 }
 
 }  // namespace
+
+BoundingSphere shadow_casters_bounds(const SceneAssets& a) {
+  glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
+  std::vector<glm::dvec3> placed;
+  for (const AssetInstance& inst : a.instances) {
+    if (inst.backdrop) continue;
+    const glm::dmat3 r = glm::mat3_cast(glm::normalize(inst.rotation));
+    for (const glm::dvec3& p : a.meshes[static_cast<size_t>(inst.mesh)].position) {
+      placed.push_back(inst.translation + r * p);
+      lo = glm::min(lo, placed.back());
+      hi = glm::max(hi, placed.back());
+    }
+  }
+  BoundingSphere b;
+  if (placed.empty()) return b;
+  b.centre = 0.5 * (lo + hi);
+  for (const glm::dvec3& p : placed) b.radius = std::max(b.radius, glm::length(p - b.centre));
+  return b;
+}
+
+int shadow_casting_light(const SceneAssets& a) {
+  int caster = a.lights.empty() ? -1 : 0;
+  for (size_t i = 1; i < a.lights.size(); ++i)
+    if (a.lights[i].intensity > a.lights[static_cast<size_t>(caster)].intensity)
+      caster = static_cast<int>(i);
+  return caster;
+}
 
 Check check_assets(const SceneAssets& a, const AssetRules& rules) {
   if (a.materials.empty()) return Check::none("no materials (material 0 is the plain one)");

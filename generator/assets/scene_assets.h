@@ -126,6 +126,9 @@ struct AssetInstance {
   PieceInfo piece;                  ///< for pieces
   /// The convex parts a physics engine collides it as (empty: none written).
   std::vector<AssetHull> collision{};
+  /// Staging that only receives shadows and light (the backdrop, assets/backdrop.h): it casts
+  /// no shadow and does not count in shadow_casters_bounds.
+  bool backdrop = false;
 };
 
 /// A pinhole camera in the scene frame (+Y up, metres).
@@ -183,6 +186,9 @@ struct AssetLight {
   glm::dvec3 direction{0, -1, 0};         ///< directional: unit, the way the light travels
   glm::dvec3 colour{1, 1, 1};             ///< linear RGB
   double intensity = 3 * kLumensPerWatt;  ///< lux (directional) or candela (point)
+  /// Directional: the apparent diameter of its source, degrees (Blender's sun angle), 0 to
+  /// 180: the softness of its shadows; 0 a point-like sun with sharp shadows.
+  double angle_deg = 0;
 };
 
 /// A whole scene ready for export: meshes (pieces, container), their instances, camera, lights.
@@ -201,6 +207,21 @@ struct SceneAssets {
   glm::dvec3 background{1, 1, 1};  ///< linear RGB
   int width = 1280, height = 960;  ///< pixels of renders
 };
+
+/// A sphere about the placed vertices of some instances (scene frame, metres).
+struct BoundingSphere {
+  glm::dvec3 centre{0.0};
+  double radius = 0;
+};
+
+/// The bounding sphere of what casts shadows in `assets`: centred on the box of the placed
+/// vertices of every instance but the backdrop (AssetInstance::backdrop), out to the farthest of
+/// them. No such vertex: centre 0, radius 0. @pre rotations non-zero
+BoundingSphere shadow_casters_bounds(const SceneAssets& assets);
+
+/// The index of the light that casts shadows in every renderer (the others fill them in, as
+/// the sky does): the brightest by `intensity`, the first of equals; -1 without lights.
+int shadow_casting_light(const SceneAssets& assets);
 
 /// What an exporter or renderer tolerates beyond the rules every one of them applies.
 struct AssetRules {
@@ -223,7 +244,7 @@ struct AssetRules {
 /// check_primitives. Instances: an existing mesh, a finite non-zero rotation, a finite translation,
 /// collision hulls with >= 4 finite corners, >= 4 triangles and indices in range. The camera
 /// (check_camera). Lights: finite, intensity and colour >= 0, directional ones with a non-zero
-/// direction. The background finite and >= 0.
+/// direction, angle_deg in 0..180. The background finite and >= 0.
 Check check_assets(const SceneAssets& assets, const AssetRules& rules = {});
 
 /// Throws InternalError("WHO: reason") when check_assets(assets, rules) fails: the

@@ -834,6 +834,8 @@ void SceneModelBuilder::add_instance(const AssetInstance& inst) {
     extras["parts"] = tinygltf::Value(parts);
     extras["volume_m3"] = tinygltf::Value(info.volume_m3);
     node.extras = tinygltf::Value(std::move(extras));
+  } else if (inst.backdrop) {  // staging, which an engine or a viewer may drop
+    node.extras = tinygltf::Value(tinygltf::Value::Object{{"backdrop", tinygltf::Value(true)}});
   }
   const int index = static_cast<int>(m_.nodes.size());
   node.children = {index + 1};
@@ -949,6 +951,9 @@ void SceneModelBuilder::add_camera_and_lights() {
     if (light.type == LightType::Directional) {
       gl.type = "directional";
       node.rotation = gltf_rotation(look_rotation(light.direction, glm::dvec3(0, 1, 0)));
+      if (light.angle_deg > 0)  // glTF's lights have no size: Blender's sun angle, as extras
+        node.extras = tinygltf::Value(
+            tinygltf::Value::Object{{"angle_deg", tinygltf::Value(light.angle_deg)}});
     } else {
       gl.type = "point";
       node.translation = gltf_vec3(light.position);

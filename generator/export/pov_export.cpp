@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "base/atomic_file.h"
 #include "base/constants.h"
@@ -110,32 +111,6 @@ std::vector<glm::dvec3> usable_normals(const AssetMesh& m) {
   return n;
 }
 
-struct Bounds {
-  glm::dvec3 centre{0.0};
-  double radius = 1;  // metres
-};
-
-// Bounding sphere (box centre, farthest vertex) of all placed vertices.
-Bounds scene_bounds(const SceneAssets& a) {
-  glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
-  std::vector<glm::dvec3> placed;
-  for (const auto& inst : a.instances) {
-    const auto& m = a.meshes[static_cast<size_t>(inst.mesh)];
-    const glm::dmat3 r = glm::mat3_cast(glm::normalize(inst.rotation));
-    for (const auto& p : m.position) {
-      placed.push_back(inst.translation + r * p);
-      lo = glm::min(lo, placed.back());
-      hi = glm::max(hi, placed.back());
-    }
-  }
-  Bounds b;
-  if (placed.empty()) return b;
-  b.centre = 0.5 * (lo + hi);
-  b.radius = 0;
-  for (const auto& p : placed) b.radius = std::max(b.radius, glm::length(p - b.centre));
-  return b;
-}
-
 void write_camera(std::string& out, const AssetCamera& c) {
   const auto [forward, right, up] = camera_frame(c);
   const double tan_half = std::tan(c.fov_y_deg * kPi / 360.0);
@@ -163,13 +138,24 @@ void write_camera(std::string& out, const AssetCamera& c) {
   out += "\n}\n\n";
 }
 
+/// A round area light `diameter` metres across, facing along `dir` (unit): soft shadows as a
+/// source of that apparent size gives (9 x 9 samples, refined adaptively; no jitter, so the
+/// same scene renders to the same pixels).
+void write_area(std::string& out, const glm::dvec3& dir, double diameter) {
+  const glm::dvec3 side = glm::normalize(glm::cross(dir, stable_camera_up(dir)));
+  const glm::dvec3 other = glm::cross(side, dir);
+  out += "\n  area_light ";
+  append_vector(out, side * diameter);
+  out += ", ";
+  append_vector(out, other * diameter);
+  out += ", 9, 9\n  adaptive 1\n  circular\n  orient";
+}
+
 void write_lights(std::string& out, const SceneAssets& a) {
-  const Bounds b = scene_bounds(a);
-  // Only the brightest light casts shadows (the first of equals): the others fill them in, as
-  // the OpenGL preview's ambient term does, instead of leaving them black.
-  size_t shadow_caster = 0;
-  for (size_t i = 1; i < a.lights.size(); ++i)
-    if (a.lights[i].intensity > a.lights[shadow_caster].intensity) shadow_caster = i;
+  BoundingSphere b = shadow_casters_bounds(a);
+  if (b.radius == 0) b.radius = 1;
+  // Only one light casts shadows: the others fill them in instead of leaving them black.
+  const auto shadow_caster = static_cast<size_t>(shadow_casting_light(a));
   for (size_t i = 0; i < a.lights.size(); ++i) {
     const AssetLight& l = a.lights[i];
     out += "// Light " + std::to_string(i) + ": " + asset_name(l.name);
@@ -185,6 +171,8 @@ void write_lights(std::string& out, const SceneAssets& a) {
       out += "\n  parallel\n  point_at ";
       append_vector(out, b.centre);
       if (i != shadow_caster) out += "\n  shadowless";
+      else if (l.angle_deg > 0)
+        write_area(out, dir, 2 * far_m * std::tan(glm::radians(0.5 * l.angle_deg)));
       out += "\n}\n\n";
     } else {
       out += ", point, ";
@@ -371,7 +359,9 @@ void write_instance(std::string& out, const AssetInstance& inst, const std::stri
   append_number(out, inst.translation.y);
   out += ", ";
   append_number(out, inst.translation.z);
-  out += ">\n}\n\n";
+  out += ">";
+  if (inst.backdrop) out += "\n  no_shadow";  // staging: the lights stand inside it
+  out += "\n}\n\n";
 }
 
 /// The strokes as tubes (spheres joined by cones): widths in pixels of an image assets.height

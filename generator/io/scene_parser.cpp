@@ -129,6 +129,21 @@ RenderSettings parse_render(const YamlField& r) {
   return out;
 }
 
+/// `backdrop`: its type (sweep or none; the default follows the scene's `style`) and colour.
+Backdrop parse_backdrop(const std::optional<YamlField>& f, RenderStyle style) {
+  Backdrop b;
+  b.sweep = style == RenderStyle::Realistic;
+  if (!f) return b;
+  f->allow_only({"type", "color"});
+  if (auto x = f->get("type")) {
+    const std::string type = x->string();
+    if (type != "sweep" && type != "none") x->fail("must be sweep or none, not " + quoted(type));
+    b.sweep = type == "sweep";
+  }
+  if (auto x = f->get("color")) b.colour = parse_colour(*x);
+  return b;
+}
+
 /// The rule a scene breaks whose pieces, heaped, fill `heap_m3` where the container holds
 /// `holds_m3` (heap_capacity), with both volumes in litres.
 std::string volume_rule(double heap_m3, double holds_m3, ContainerType type) {
@@ -151,8 +166,8 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
   s.file = file;
 
   require_format(root, "cutaway-scene/1");
-  root.allow_only(
-      {"format", "name", "seed", "units", "container", "arrange", "items", "camera", "render"});
+  root.allow_only({"format", "name", "seed", "units", "container", "arrange", "items", "camera",
+                   "render", "backdrop"});
 
   s.name = parse_name(root);
   if (auto seed = root.get("seed")) {
@@ -222,6 +237,7 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
 
   if (auto c = root.get("camera")) s.camera = parse_camera(*c, m);
   if (auto r = root.get("render")) s.render = parse_render(*r);
+  s.backdrop = parse_backdrop(root.get("backdrop"), s.render.style);
   if (const Check texels = check_cap_texels(scene_cut_area(s), s.render.texels_per_mm); !texels) {
     const auto density =
         root.get("render") ? root.get("render")->get("texels_per_mm") : std::optional<YamlField>();

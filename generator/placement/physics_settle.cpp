@@ -9,6 +9,7 @@
 #include <btBulletDynamicsCommon.h>
 #include <glm/common.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <glm/gtx/quaternion.hpp>
 
 #include "base/error.h"
 #include "base/finite.h"
@@ -357,12 +358,21 @@ bool rests_inside(const Container& container, const SettleBody& body, const Plac
   return overhang <= options.max_overhang * std::max({extent.x, extent.y, extent.z});
 }
 
+/// Whether a piece at `pose` shows its cut face: none to show, or its normal's upward
+/// component at least min_cut_face_up.
+bool shows_cut_face(const SettleBody& body, const Placement& pose, const SettleOptions& options) {
+  if (glm::length(body.cut_face) == 0) return true;
+  return (pose.rotation * glm::normalize(body.cut_face)).y >= options.min_cut_face_up;
+}
+
 /// Steps `world` until it rests (no corner moved more than rest_motion_m in a quarter second,
 /// every body sleeps, or every body is frozen) or max_seconds pass; a body that rests for
 /// freeze_after_s meanwhile is frozen (World::freeze). Pieces that left the container (or hang
 /// over its edge, rests_inside) are then
 /// dropped again from above the pile and the world runs on; after max_redrops a piece is
-/// removed and counted lost (its id becomes SIZE_MAX). Adds to r.steps, r.body_steps,
+/// removed and counted lost (its id becomes SIZE_MAX). A piece lying on its cut face
+/// (shows_cut_face) is dropped again too, turned with that face straight up, but kept as it
+/// lies after max_redrops. Adds to r.steps, r.body_steps,
 /// r.redrops and r.lost; sets r.all_asleep.
 void run_to_rest(World& world, const std::vector<SettleBody>& bodies, std::vector<size_t>& id,
                  std::vector<int>& drops, double ceiling, const SettleOptions& options,
@@ -401,8 +411,9 @@ void run_to_rest(World& world, const std::vector<SettleBody>& bodies, std::vecto
     const double top = world.top();
     for (size_t k = 0; k < bodies.size(); ++k) {
       if (id[k] == SIZE_MAX) continue;
-      if (rests_inside(world.container(), bodies[k], world.pose(id[k], bodies[k]), ceiling,
-                       options))
+      const Placement pose = world.pose(id[k], bodies[k]);
+      const bool inside = rests_inside(world.container(), bodies[k], pose, ceiling, options);
+      if (inside && (shows_cut_face(bodies[k], pose, options) || drops[k] == options.max_redrops))
         continue;
       if (drops[k] == options.max_redrops) {
         world.remove(id[k]);
@@ -415,6 +426,11 @@ void run_to_rest(World& world, const std::vector<SettleBody>& bodies, std::vecto
       // Each drop again nearer the container's axis (a quarter of the way per drop): a piece
       // that left the container from its drop pose near an edge would leave it again there.
       Placement again = bodies[k].drop;
+      if (inside)  // it lay on its cut face: dropped again with the face straight up
+        again.rotation =
+            glm::rotation(glm::normalize(again.rotation * glm::normalize(bodies[k].cut_face)),
+                          glm::dvec3(0, 1, 0)) *
+            again.rotation;
       const double pull = static_cast<double>(drops[k]) / (options.max_redrops + 1);
       const glm::dvec3 drop_centre = centre_of_mass(bodies[k], again);
       again.translation -= pull * glm::dvec3(drop_centre.x, 0, drop_centre.z);

@@ -27,6 +27,9 @@ struct SettleBody {
   const CollisionShape* shape = nullptr;  ///< required
   double density_kg_m3 = 1000;            ///< > 0
   Placement drop;  ///< where it starts, at rest; not placed: the piece is left out
+  /// The outward unit normal (in its own frame) of the one cut face it should rest showing (a
+  /// half, a wedge's end), or zero: none (a slice, whose two faces both show, or no cap).
+  glm::dvec3 cut_face{0.0};
 };
 
 /// Options of settle_pieces. Lengths in metres, times in seconds.
@@ -89,6 +92,11 @@ struct SettleOptions {
   /// box) and is dropped again otherwise: food is not laid half over a board's edge. Half the
   /// fifth a reviewer accepts, so that what a layout ends with is well inside it.
   double max_overhang = 0.1;
+  /// A piece whose cut face (SettleBody::cut_face) ends turned down, its normal's upward
+  /// component below this, is dropped again (as one that left the container), and kept as it
+  /// lies after max_redrops: a half is laid cut face up, not on it (an avocado half with its
+  /// stone rolled onto its cut face). Below -1: never.
+  double min_cut_face_up = 0.0;
   double none_radius_m = 0.2;  ///< resting radius on the floor (container type none)
 };
 
@@ -111,7 +119,8 @@ struct SettleResult {
   /// The check whose starting layout `placements` is: the last one, unless it did not pass
   /// (check_motion_m) and an earlier one moved less while within stable_motion_m.
   int kept_round = 0;
-  int redrops = 0;  ///< drops again of pieces that had left the container or hung over its edge
+  int redrops = 0;  ///< drops again of pieces that had left the container, hung over its edge or
+                    ///< lay on their cut face
   int lost = 0;     ///< pieces still outside after max_redrops drops again
 };
 

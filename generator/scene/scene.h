@@ -76,6 +76,14 @@ struct RenderSettings {
   double texels_per_mm = 8.6;
 };
 
+/// What a scene stands on in pictures (doc/scene-format.md, Backdrop): a paper sweep (a floor
+/// curving up into a wall behind the food, assets/backdrop.h) or nothing (a plain background).
+struct Backdrop {
+  bool sweep = true;  ///< `type`: sweep (default in the realistic style) or none (illustration)
+  /// `color`, linear RGB: #b0a89e (a warm grey linen) by default
+  glm::dvec3 colour{0.43415363617474895, 0.39157247774972326, 0.34191442490866092};
+};
+
 /// A whole parsed, validated scene.
 struct Scene {
   std::string name;
@@ -86,6 +94,7 @@ struct Scene {
   std::vector<SceneItem> items;
   std::optional<SceneCamera> camera;  ///< absent: the layout frames the scene
   RenderSettings render;
+  Backdrop backdrop;  ///< after `render`: its default follows the style
 };
 
 }  // namespace cutaway

@@ -13,6 +13,7 @@
 #include <oneapi/tbb/parallel_pipeline.h>
 
 #include "assets/asset_camera.h"
+#include "assets/backdrop.h"
 #include "base/constants.h"
 #include "base/error.h"
 #include "base/random.h"
@@ -263,7 +264,10 @@ SettleResult lay_out_and_settle(const Scene& scene, uint64_t seed, const SceneBu
   std::vector<SettleBody> bodies(order.size());
   for (size_t k = 0; k < order.size(); ++k) {
     if (!drops[k].placed) continue;
-    bodies[k] = {&pieces.collision[order[k]], pieces.densities[order[k]], drops[k]};
+    const LayoutPiece& piece = pieces.arranged[order[k]];
+    // A piece with one cut face rests showing it; a slice shows one of its two whichever way.
+    const glm::dvec3 cut_face = piece.cut_faces == 1 ? piece.cap_normal : glm::dvec3(0.0);
+    bodies[k] = {&pieces.collision[order[k]], pieces.densities[order[k]], drops[k], cut_face};
   }
   SettleResult settled = settle_pieces(bodies, scene.container, options.settle);
   st.seconds_physics = seconds_since(t_physics);
@@ -324,8 +328,9 @@ std::vector<Placement> place_pieces(const Scene& scene, uint64_t seed,
   return std::move(settled.placements);
 }
 
-/// Step 3: the container (a board with its wood, drawn from `seed`) and the placed pieces as
-/// instances of `assets`, framed by the scene's camera, with the studio lights.
+/// Step 3: the container (a board with its wood, drawn from `seed`; a bowl or plate glazed) and
+/// the placed pieces as instances of `assets`, framed by the scene's camera, on the scene's
+/// backdrop (not framed), with the studio lights.
 void add_placed_pieces(SceneAssets& assets, const Scene& scene, uint64_t seed, ScenePieces& pieces,
                        const std::vector<size_t>& order, const std::vector<Placement>& placements,
                        SceneStats& st) {
@@ -344,6 +349,11 @@ void add_placed_pieces(SceneAssets& assets, const Scene& scene, uint64_t seed, S
       AssetMaterial wood{"board_wood", PbrMaterial{}, static_cast<int>(assets.textures.size()) - 1};
       wood.pbr.roughness = 0.75;  // oiled, worn wood: a broad, faint highlight
       assets.materials.push_back(wood);
+      container->primitives = {
+          {0, container->triangle.size(), static_cast<int>(assets.materials.size()) - 1, {}}};
+    } else {  // a bowl or plate: glazed ceramic, a sharp highlight over its vertex colour
+      assets.materials.push_back({"glazed_ceramic", PbrMaterial{}, -1});
+      assets.materials.back().pbr.roughness = 0.15;
       container->primitives = {
           {0, container->triangle.size(), static_cast<int>(assets.materials.size()) - 1, {}}};
     }
@@ -367,6 +377,22 @@ void add_placed_pieces(SceneAssets& assets, const Scene& scene, uint64_t seed, S
   }
   if (assets.instances.empty()) lo = hi = glm::dvec3(0.0);
   assets.camera = scene_camera(scene, lo, hi);
+  if (scene.backdrop.sweep) {  // framed by the camera, not framing it
+    AssetMesh sweep = backdrop_sweep(assets.camera, lo, hi, scene.backdrop.colour);
+    assets.camera.zfar = std::max(assets.camera.zfar, 1.01 * farthest_vertex(assets.camera, sweep));
+    assets.materials.push_back({"backdrop", PbrMaterial{}, -1});
+    assets.materials.back().pbr.roughness = 0.9;  // matte paper
+    sweep.primitives = {
+        {0, sweep.triangle.size(), static_cast<int>(assets.materials.size()) - 1, {}}};
+    assets.instances.push_back({sweep.name,
+                                static_cast<int>(assets.meshes.size()),
+                                {1, 0, 0, 0},
+                                {0, 0, 0},
+                                {},
+                                {},
+                                true});
+    assets.meshes.push_back(std::move(sweep));
+  }
   light_like_studio(assets);
 }
 

@@ -31,6 +31,7 @@ failed check, naming it.
 """
 
 import argparse
+import math
 import os
 import subprocess
 import sys
@@ -112,7 +113,18 @@ def render_luma(scene, engine, path):
     return float(luma.mean()), float(covered.mean())
 
 
+def hide_backdrop(scene):
+    """Keeps the backdrop (the node whose extras say `backdrop`, and what hangs below it) out
+    of renders, so that the transparent film leaves only the objects; returns its objects."""
+    staging = [o for o in scene.objects if o.get("backdrop")]
+    staging += [c for o in staging for c in o.children_recursive]
+    for obj in staging:
+        obj.hide_render = True
+    return staging
+
+
 def check_exposure(scene, name, out, label):
+    check(hide_backdrop(scene), f"{name}: no backdrop imported")
     for engine in ('CYCLES', 'BLENDER_EEVEE'):
         path = os.path.join(out, f"{label}-{name}-{engine.lower()}.png")
         luma, share = render_luma(scene, engine, path)
@@ -157,6 +169,13 @@ def case_scenes(args):
         check(len(top) == 1 and top[0].children, f"{name}: pieces not gathered per cut object")
         visible_lods = [o for o in scene.objects if "_LOD" in o.name and not o.hide_render]
         check(not visible_lods, f"{name}: levels of detail render: {visible_lods[:3]}")
+        staging = [o for o in scene.objects if o.get("backdrop")]
+        check(len(staging) == 1, f"{name}: {len(staging)} backdrops, want 1")
+        casting = [o for o in staging + list(staging[0].children_recursive) if o.visible_shadow]
+        check(not casting, f"{name}: the backdrop casts shadows: {casting}")
+        key = [o for o in lights if o.name.startswith("key")]
+        check(len(key) == 1 and abs(key[0].data.angle - math.radians(12)) < 1e-4,
+              f"{name}: the key light's angle is not the file's 12 degrees")
         print(f"{name}: {len(pieces)} pieces in {len(top[0].children)} collections, "
               f"{len(translucent)} translucent materials", flush=True)
         if name == "salad":  # the others' exposure: case plain (a minute less of rendering)

@@ -445,5 +445,50 @@ TEST(ScenePreview, DefaultMaterialsDrawExactlyAsVertexColours) {
   EXPECT_FALSE(render_scene_preview(a, o).rgba == reference.rgba);
 }
 
+/// A cube whose centre floats 0.2 m over a wide floor (a thin box, top at y = 0), lit by a sun
+/// travelling down and toward +X at 45 degrees: its shadow falls on x 0..0.4, z -0.1..0.1.
+SceneAssets cube_over_floor(double angle_deg) {
+  SceneAssets a = two_cubes();
+  a.meshes = {box("floor", {1.0, 0.01, 1.0}, {0.5, 0.5, 0.5}, {0, -0.01, 0}),
+              box("cube", glm::dvec3(0.1), {0.5, 0.5, 0.5})};
+  a.instances = {instance("floor", 0, {0, 0, 0}), instance("cube", 1, {0, 0.2, 0})};
+  a.camera.eye = {0, 1.0, 1.2};
+  a.camera.target = {0, 0, 0};
+  a.lights[0].direction = glm::normalize(glm::dvec3(1, -1, 0));
+  a.lights[0].angle_deg = angle_deg;
+  return a;
+}
+
+int brightness(const Image& im, const SceneAssets& a, const glm::dvec3& p) {
+  const glm::ivec3 c = pixel(im, project(a, p));
+  return c.r + c.g + c.b;
+}
+
+TEST(ScenePreview, TheBrightestLightCastsASoftShadowThatTheBackdropDoesNot) {
+  ScenePreviewOptions o;
+  o.samples = 4;
+  const SceneAssets a = cube_over_floor(12);
+  const Image im = render_scene_preview(a, o);
+  const int lit = brightness(im, a, {-0.4, 0, 0.3});
+  EXPECT_EQ(brightness(im, a, {0.5, 0, -0.3}), lit) << "an open floor is lit alike everywhere";
+  // The middle of the shadow has the light's direct term removed: the sky alone is left.
+  const int umbra = brightness(im, a, {0.2, 0, 0});
+  EXPECT_LT(umbra, lit - 60) << "lit " << lit << ", in the shadow " << umbra;
+  // Its far edge is soft: a penumbra about 3 cm either side (a 12 degree source, 0.3 m above).
+  const int edge = brightness(im, a, {0.4, 0, 0});
+  EXPECT_GT(edge, umbra + 10);
+  EXPECT_LT(edge, lit - 10);
+  // A point-like sun has a sharp edge: 2 cm beyond it fully lit, 2 cm inside fully shadowed.
+  SceneAssets sharp = cube_over_floor(0);
+  const Image hard = render_scene_preview(sharp, o);
+  EXPECT_EQ(brightness(hard, sharp, {0.42, 0, 0}), lit);
+  EXPECT_EQ(brightness(hard, sharp, {0.38, 0, 0}), umbra);
+  // Staging casts no shadow: the cube as a backdrop leaves the floor lit.
+  SceneAssets staged = cube_over_floor(12);
+  staged.instances[1].backdrop = true;
+  EXPECT_EQ(brightness(render_scene_preview(staged, o), staged, {0.2, 0, 0}), lit);
+  if (HasFailure()) ADD_FAILURE() << "image: " << keep(im, "cube_over_floor");
+}
+
 }  // namespace
 }  // namespace cutaway

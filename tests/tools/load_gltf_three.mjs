@@ -81,10 +81,10 @@ window.loadGltf = async (url) => {
   });
   return r;
 };
-// Renders the file with its first camera and lights over a grey background, as PNG data URL,
-// the way doc/lighting.md tells a three.js user to: the scene's extras give the exposure
-// (toneMappingExposure under linear tone mapping) for its lights in lux, and the sky
-// illuminance in lux (ambient_lux) that a hemisphere light supplies. Without ambient_lux the
+// Renders the file (its backdrop left out) with its first camera and lights over a grey
+// background, as PNG data URL, the way doc/lighting.md tells a three.js user to: the scene's
+// extras give the exposure (toneMappingExposure under linear tone mapping) for its lights in
+// lux, and the sky illuminance in lux (ambient_lux) that a hemisphere light supplies. Without ambient_lux the
 // hemisphere light gives 0.6 after exposure; without exposure, the exposure is 1.
 window.renderGltf = async (url, width, height) => {
   const gltf = await newLoader().loadAsync(url);
@@ -97,6 +97,8 @@ window.renderGltf = async (url, width, height) => {
   document.body.appendChild(renderer.domElement);
   const scene = new THREE.Scene();
   scene.background = new THREE.Color(0.72, 0.72, 0.74);  // the clear colour: not tone mapped
+  // The backdrop (extras.backdrop) stays out: the frame measures the objects alone.
+  gltf.scene.traverse((o) => { if (o.userData?.backdrop === true) o.visible = false; });
   scene.add(gltf.scene);
   scene.add(new THREE.HemisphereLight(0xffffff, 0x808080,
                                        view.ambient_lux ?? 0.6 / renderer.toneMappingExposure));

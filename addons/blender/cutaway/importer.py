@@ -21,6 +21,7 @@ class ImportedFile:
     pieces: list = field(default_factory=list)
     lods: list = field(default_factory=list)
     collision_shapes: list = field(default_factory=list)
+    backdrop: list = field(default_factory=list)  # the staging's objects (no shadows cast)
     translucent_materials: list = field(default_factory=list)
     camera: bpy.types.Object = None  # the file's camera, when it has one
 
@@ -68,6 +69,7 @@ def import_file(context, filepath, *, use_camera=True, use_sky=True, use_exposur
     result.lods = hierarchy.place_lods(gltf, objects)
     result.collision_shapes = hierarchy.hide_collision_shapes(new_objects)
     hierarchy.copy_missing_extras(gltf, objects)
+    result.backdrop = scene_setup.stage_backdrop_and_lights(gltf, objects)
     pieces = hierarchy.piece_objects(gltf, objects)
     result.pieces = list(pieces)
     result.root = _root_object(gltf, objects)

@@ -96,3 +96,26 @@ def use_converging_render(scene):
     if cycles.use_denoising:
         cycles.denoiser = 'OPENIMAGEDENOISE'
 
+
+def stage_backdrop_and_lights(gltf, objects):
+    """Gives the file's staging what glTF cannot say (doc/lighting.md): the backdrop (a node
+    whose extras say `backdrop`, and the objects below it) casts no shadow, since the studio's
+    lights stand inside the sweep; each sun takes its source's size from its node's extras
+    (`angle_deg`, Blender's sun angle), so shadows are as soft as in the other renderers.
+    `objects` maps node indices to the imported objects. Returns the backdrop's objects."""
+    import math
+
+    backdrop = []
+    for index, obj in objects.items():
+        extras = gltf.nodes[index].get("extras")
+        if not isinstance(extras, dict):
+            continue
+        if extras.get("backdrop") is True:
+            backdrop += [obj] + list(obj.children_recursive)
+        angle = extras.get("angle_deg")
+        if obj.type == 'LIGHT' and obj.data.type == 'SUN' and isinstance(angle, (int, float)):
+            obj.data.angle = math.radians(min(max(float(angle), 0.0), 180.0))
+    for obj in backdrop:
+        obj.visible_shadow = False
+    return backdrop
+

@@ -68,7 +68,7 @@ TEST(SceneCommand, ExportsValidGltfAndPovRayAndPictures) {
   EXPECT_NE(pov.find("mesh2"), std::string::npos);
   // Every piece's node says what it is; the bowl's has no extras.
   const auto gltf = nlohmann::json::parse(test::read_file(dir / "tiny.gltf"));
-  int pieces = 0;
+  int pieces = 0, backdrops = 0;
   // The scene's root holds one node per instance; each holds its mesh in one child.
   const auto& root = gltf["nodes"][gltf["scenes"][0]["nodes"][0].get<size_t>()];
   EXPECT_EQ(root["name"], gltf["scenes"][0]["name"]);
@@ -78,6 +78,12 @@ TEST(SceneCommand, ExportsValidGltfAndPovRayAndPictures) {
     EXPECT_TRUE(gltf["nodes"][node["children"][0].get<size_t>()].contains("mesh")) << node.dump();
     if (!node.contains("extras")) {
       EXPECT_EQ(node["name"], "bowl");
+      continue;
+    }
+    if (node["extras"].contains("backdrop")) {
+      EXPECT_EQ(node["name"], "backdrop");
+      EXPECT_EQ(node["extras"]["backdrop"], true);
+      ++backdrops;
       continue;
     }
     ++pieces;
@@ -93,6 +99,7 @@ TEST(SceneCommand, ExportsValidGltfAndPovRayAndPictures) {
     EXPECT_LT(x["volume_m3"].get<double>(), 1e-3);
   }
   EXPECT_GE(pieces, 7);
+  EXPECT_EQ(backdrops, 1);
   // The .pov's textures beside it (cut faces and skins, one each per object, JPEG by
   // default), named in it.
   EXPECT_EQ(pov.find("image_map { jpeg \"tiny_i0_tomato_0_skin.jpg\""), pov.find("image_map"));

@@ -361,6 +361,7 @@ TEST(CutCacheScene, AnOrbitRoundABowlTurnsThePileWithTheCamera) {
   ASSERT_EQ(a.instances.size(), b.instances.size());
   const glm::dquat turn = glm::angleAxis(glm::radians(40.0), glm::dvec3(0, 1, 0));
   for (size_t k = 1; k < a.instances.size(); ++k) {  // the bowl first, where it was
+    if (a.instances[k].backdrop) continue;           // staging that follows the camera
     const AssetInstance& p = a.instances[k];
     const AssetInstance& q = b.instances[k];
     EXPECT_LT(glm::length(turn * p.translation - q.translation), 1e-9) << k;

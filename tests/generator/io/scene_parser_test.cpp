@@ -146,6 +146,20 @@ TEST(SceneParser, TheStyleSetsTheStrokesUnlessTheyAreGiven) {
   EXPECT_DOUBLE_EQ(realistic.render.silhouettes, 2.0);
 }
 
+TEST(SceneParser, TheBackdropFollowsTheStyleUnlessItIsGiven) {
+  const Scene realistic = parse_scene_text(kHead + kItem);
+  EXPECT_TRUE(realistic.backdrop.sweep);
+  const glm::dvec3 linen = srgb_to_linear(glm::dvec3(0xb0, 0xa8, 0x9e) / 255.0);
+  expect_vec(realistic.backdrop.colour, linen.x, linen.y, linen.z);
+  EXPECT_FALSE(parse_scene_text(kHead + "render: {style: illustration}\n" + kItem).backdrop.sweep);
+  const Scene given = parse_scene_text(
+      kHead + "render: {style: illustration}\nbackdrop: {type: sweep, color: \"#ffffff\"}\n" +
+      kItem);
+  EXPECT_TRUE(given.backdrop.sweep);
+  expect_vec(given.backdrop.colour, 1, 1, 1);
+  EXPECT_FALSE(parse_scene_text(kHead + "backdrop: {type: none}\n" + kItem).backdrop.sweep);
+}
+
 TEST(SceneParser, ContainerDefaultsPerType) {
   const auto container = [](const std::string& type) {
     return parse_scene_text(kHead + "container: {type: " + type + "}\n" + kItem).container;
@@ -287,6 +301,10 @@ TEST(SceneParser, ErrorsOfTypeAndRange) {
   };
   const Case cases[] = {
       {kHead + "items: {template: tomato}\n", "items", "must be a list"},
+      {kHead + "backdrop: {type: wall}\n" + kItem, "backdrop.type", "must be sweep or none"},
+      {kHead + "backdrop: {type: sweep, size: 2}\n" + kItem, "backdrop.size",
+       "unknown field \"size\""},
+      {kHead + "backdrop: {color: red}\n" + kItem, "backdrop.color", "a colour must be"},
       {kHead + "items: [tomato]\n", "items[0]", "must be a mapping"},
       {kHead + "items: [{template: tomato, count: many}]\n", "items[0].count",
        "must be a number, not \"many\""},

@@ -4,12 +4,15 @@
 // scatter on a board (none on another) and fan on a plate (each slice on the one before, the
 // rows of several objects side by side).
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 #include <tuple>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/gtx/quaternion.hpp>
+#include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
 #include <oneapi/tbb/global_control.h>
 
@@ -258,11 +261,56 @@ TEST(PhysicsSettle, APieceThatFallsOffTheBoardIsDroppedAgainOrCounted) {
   EXPECT_LE(overhang_share(e.placements[0]), SettleOptions{}.max_overhang);
 }
 
-/// The scene file's pieces, as placed: per instance its mesh in the scene frame.
+/// The outward normal of the largest flat side of `piece` among +-X and +-Z (its triangles'
+/// areas summed by the axis they face within 1 degree): a half's cut face.
+glm::dvec3 flat_side(const ShadedMesh& piece) {
+  const glm::dvec3 axes[] = {{1, 0, 0}, {-1, 0, 0}, {0, 0, 1}, {0, 0, -1}};
+  double area[4] = {0, 0, 0, 0};
+  for (const glm::uvec3& t : piece.triangle) {
+    const glm::dvec3 c = glm::cross(piece.position[t.y] - piece.position[t.x],
+                                    piece.position[t.z] - piece.position[t.x]);
+    const double a = glm::length(c);
+    for (int k = 0; k < 4; ++k)
+      if (a > 0 && glm::dot(c / a, axes[k]) > std::cos(glm::radians(1.0))) area[k] += a;
+  }
+  return axes[std::max_element(area, area + 4) - area];
+}
+
+TEST(PhysicsSettle, AHalfLyingOnItsCutFaceIsDroppedAgainFaceUp) {
+  const std::vector<ShadedMesh> halves = pieces_of("tomato", "halves");
+  const CollisionShape shape = collision_shape(halves[0]);
+  const glm::dvec3 face = flat_side(halves[0]);
+  Container board{ContainerType::Board, 0, 0.3, 0.2, 0.02};
+  // Dropped face down just over the middle of the board: it lands on its cut face.
+  const glm::dquat down = glm::rotation(face, glm::dvec3(0, -1, 0));
+  double low = 0;
+  for (const auto& part : shape.parts)
+    for (const glm::dvec3& p : part.corners) low = std::min(low, (down * p).y);
+  const Placement drop{true, down, glm::dvec3(0, 0.025 - low, 0)};
+  const auto face_up = [&](const SettleResult& r) { return (r.placements[0].rotation * face).y; };
+  SettleOptions ignore;
+  ignore.min_cut_face_up = -2;
+  const SettleResult as_it_fell = settle_pieces({{&shape, 1000, drop, face}}, board, ignore);
+  EXPECT_LT(face_up(as_it_fell), -0.9);
+  EXPECT_EQ(as_it_fell.redrops, 0);
+  const SettleResult r = settle_pieces({{&shape, 1000, drop, face}}, board, SettleOptions{});
+  EXPECT_GE(r.redrops, 1);
+  EXPECT_EQ(r.lost, 0);
+  ASSERT_TRUE(r.placements[0].placed);
+  EXPECT_GT(face_up(r), 0.9) << "dropped again with its cut face straight up, it lies on its back";
+  // A piece without a face to show (a slice) lies as it fell.
+  const SettleResult slice = settle_pieces({{&shape, 1000, drop}}, board, SettleOptions{});
+  EXPECT_EQ(slice.redrops, 0);
+  EXPECT_LT(face_up(slice), -0.9);
+}
+
+/// The scene file's pieces, as placed: per instance (not the container, first, nor the
+/// backdrop) its mesh in the scene frame.
 std::vector<std::vector<glm::dvec3>> placed_points(const SceneAssets& assets) {
   std::vector<std::vector<glm::dvec3>> out;
   for (size_t k = 1; k < assets.instances.size(); ++k) {
     const AssetInstance& inst = assets.instances[k];
+    if (inst.backdrop) continue;
     out.emplace_back();
     for (const glm::dvec3& p : assets.meshes[inst.mesh].position)
       out.back().push_back(inst.translation + inst.rotation * p);
