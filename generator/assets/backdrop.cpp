@@ -27,7 +27,7 @@ AssetMesh backdrop_sweep(const AssetCamera& camera, const glm::dvec3& lo, const 
   glm::dvec3 away(frame.forward.x, 0, frame.forward.z);
   away = glm::length(away) > 1e-6 ? glm::normalize(away) : glm::dvec3(0, 0, -1);
   const glm::dvec3 side = glm::normalize(glm::cross(away, up));
-  const double cove_start = 1.2 * reach, radius = std::max(0.5 * reach, 0.05);
+  const double cove_start = 1.2 * reach, radius = std::max(2.0 * reach, 0.05);
   const double wall = cove_start + radius;  // the wall's distance beyond the centre
   const double max_slope = std::tan(glm::radians(kSteepestRise));
 

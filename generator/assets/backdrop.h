@@ -12,7 +12,7 @@ namespace cutaway {
 /// A sweep (an infinity cove) for the view of `camera` over the content box `lo`..`hi` (scene
 /// frame: +Y up, metres, the content standing on y = 0):
 /// - the floor is the plane y = 0 from behind the camera to the cove;
-/// - the cove is a quarter circle of radius max(0.5 reach, 0.05 m) rising from the floor at
+/// - the cove is a quarter circle of radius max(2 reach, 0.05 m) rising from the floor at
 ///   1.2 reach beyond the content's centre (reach: half the diagonal of the box's footprint, at
 ///   least 0.05 m) away from the camera, into a vertical wall;
 /// - the wall rises high enough, and the whole sweep runs wide enough, that every ray of the

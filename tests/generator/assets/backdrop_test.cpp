@@ -73,11 +73,11 @@ TEST(Backdrop, TheDefaultViewSeesOnlyTheSweep) {
   ASSERT_TRUE(floor);
   EXPECT_NEAR(floor->t, 1.0, 1e-12);
   EXPECT_GT(floor->normal.y, 0.999);
-  const std::optional<Hit> wall = first_hit(sweep, {0, 0.15, 0}, {0, 0, -1});
+  const std::optional<Hit> wall = first_hit(sweep, {0, 0.45, 0}, {0, 0, -1});
   ASSERT_TRUE(wall);
   EXPECT_GT(wall->t, glm::length(kHi - kLo) / 2);
   EXPECT_GT(wall->normal.z, 0.999);
-  EXPECT_FALSE(first_hit(sweep, {0, 0.15, 0}, {0, 0, 1})) << "no wall on the camera's side";
+  EXPECT_FALSE(first_hit(sweep, {0, 0.45, 0}, {0, 0, 1})) << "no wall on the camera's side";
 }
 
 TEST(Backdrop, LowWideAndTopDownViewsAreCoveredToo) {
