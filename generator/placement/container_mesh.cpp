@@ -83,12 +83,11 @@ void append_curve(std::vector<glm::dvec2>& pts, std::vector<glm::dvec2>& nrm, in
 }
 
 /// The coordinates a rounded box's face grid takes along one axis from lo to hi: `band` steps
-/// across each rounded edge of radius r, and flat steps of at most `flat_step` between them.
-std::vector<double> rounded_steps(double lo, double hi, double r, int band, double flat_step) {
+/// across each rounded edge of radius r and one flat step across the rest of the side.
+std::vector<double> rounded_steps(double lo, double hi, double r, int band) {
   std::vector<double> out;
   for (int k = 0; k < band; ++k) out.push_back(lo + r * k / band);
-  const int flat = std::max(1, static_cast<int>(std::ceil((hi - lo - 2 * r) / flat_step)));
-  for (int k = 0; k < flat; ++k) out.push_back(lo + r + (hi - lo - 2 * r) * k / flat);
+  out.push_back(lo + r);
   for (int k = 0; k <= band; ++k) out.push_back(hi - r + r * k / band);
   return out;
 }
@@ -104,8 +103,8 @@ AssetMesh rounded_box_mesh(const glm::dvec3& lo, const glm::dvec3& hi, double r,
   AssetMesh mesh;
   for (int axis = 0; axis < 3; ++axis) {
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    const std::vector<double> us = rounded_steps(lo[u], hi[u], r, kBand, hi[u] - lo[u]);
-    const std::vector<double> vs = rounded_steps(lo[v], hi[v], r, kBand, hi[v] - lo[v]);
+    const std::vector<double> us = rounded_steps(lo[u], hi[u], r, kBand);
+    const std::vector<double> vs = rounded_steps(lo[v], hi[v], r, kBand);
     for (int side = 0; side < 2; ++side) {
       const unsigned base = static_cast<unsigned>(mesh.position.size());
       for (double b : vs) {
@@ -243,10 +242,7 @@ double resting_overhang(const Container& c, double x, double z, double none_radi
     return std::hypot(std::max(0.0, std::fabs(x) - 0.5 * c.width_m),
                       std::max(0.0, std::fabs(z) - 0.5 * c.depth_m));
   }
-  double radius = none_radius_m;
-  if (c.type == ContainerType::Bowl) radius = 0.5 * c.diameter_m - bowl_wall(c);
-  if (c.type == ContainerType::Plate) radius = 0.5 * c.diameter_m;
-  return std::max(0.0, std::hypot(x, z) - radius);
+  return std::max(0.0, std::hypot(x, z) - rest_radius(c, none_radius_m));
 }
 
 double heap_capacity(const Container& c, double none_radius_m) {
