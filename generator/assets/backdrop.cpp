@@ -18,8 +18,9 @@ constexpr double kSteepestRise = 80.0;  // degrees: a steeper ray is followed at
 
 }  // namespace
 
-AssetMesh backdrop_sweep(const AssetCamera& camera, const glm::dvec3& lo, const glm::dvec3& hi,
-                         const glm::dvec3& colour) {
+std::optional<AssetMesh> backdrop_sweep(const AssetCamera& camera, const glm::dvec3& lo,
+                                        const glm::dvec3& hi, const glm::dvec3& colour) {
+  if (!(camera.eye.y > 0)) return std::nullopt;
   const glm::dvec3 up(0, 1, 0);
   const glm::dvec3 centre(0.5 * (lo.x + hi.x), 0, 0.5 * (lo.z + hi.z));
   const double reach = std::max(0.05, 0.5 * std::hypot(hi.x - lo.x, hi.z - lo.z));

@@ -3,6 +3,8 @@
 // instead of a void (doc/scene-format.md, Backdrop).
 #pragma once
 
+#include <optional>
+
 #include <glm/vec3.hpp>
 
 #include "assets/scene_assets.h"
@@ -22,9 +24,11 @@ namespace cutaway {
 /// looks straight down. Normals face the camera's side (up on the floor, toward the camera on
 /// the wall, smooth through the cove); the colour is `colour` (linear RGB) at every vertex; no uv.
 /// @pre check_camera(camera) holds; lo <= hi componentwise, all finite
-/// @return the mesh named "backdrop" (a few dozen triangles), in the scene frame
-AssetMesh backdrop_sweep(const AssetCamera& camera, const glm::dvec3& lo, const glm::dvec3& hi,
-                         const glm::dvec3& colour);
+/// @return the mesh named "backdrop" (a few dozen triangles), in the scene frame; nothing when
+///         the camera's eye is at or below the floor (y <= 0), where the table would hide the
+///         content
+std::optional<AssetMesh> backdrop_sweep(const AssetCamera& camera, const glm::dvec3& lo,
+                                        const glm::dvec3& hi, const glm::dvec3& colour);
 
 /// The farthest distance (metres) from `camera.eye` to a vertex of `mesh`: the far clipping
 /// distance that keeps all of it in view.

@@ -377,8 +377,10 @@ void add_placed_pieces(SceneAssets& assets, const Scene& scene, uint64_t seed, S
   }
   if (assets.instances.empty()) lo = hi = glm::dvec3(0.0);
   assets.camera = scene_camera(scene, lo, hi);
-  if (scene.backdrop.sweep) {  // framed by the camera, not framing it
-    AssetMesh sweep = backdrop_sweep(assets.camera, lo, hi, scene.backdrop.colour);
+  std::optional<AssetMesh> backdrop;  // framed by the camera, not framing it
+  if (scene.backdrop.sweep) backdrop = backdrop_sweep(assets.camera, lo, hi, scene.backdrop.colour);
+  if (backdrop) {
+    AssetMesh& sweep = *backdrop;
     assets.camera.zfar = std::max(assets.camera.zfar, 1.01 * farthest_vertex(assets.camera, sweep));
     assets.materials.push_back({"backdrop", PbrMaterial{}, -1});
     assets.materials.back().pbr.roughness = 0.9;  // matte paper

@@ -1,6 +1,6 @@
-// The backdrop sweep (assets/backdrop.h): whatever the camera, every ray of its view meets the
-// sweep from the front, the floor is the plane y = 0 under the content and the wall stands
-// beyond it, away from the camera.
+// The backdrop sweep (assets/backdrop.h): whatever the camera above the table, every ray of its
+// view meets the sweep from the front, the floor is the plane y = 0 under the content and the
+// wall stands beyond it, away from the camera; a camera below the table gets none.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -63,7 +63,9 @@ const glm::dvec3 kLinen(0.43, 0.39, 0.34);
 
 TEST(Backdrop, TheDefaultViewSeesOnlyTheSweep) {
   const AssetCamera camera = frame_box(kLo, kHi, {0, std::sin(0.87), std::cos(0.87)}, 40, 4.0 / 3);
-  const AssetMesh sweep = backdrop_sweep(camera, kLo, kHi, kLinen);
+  const std::optional<AssetMesh> made = backdrop_sweep(camera, kLo, kHi, kLinen);
+  ASSERT_TRUE(made);
+  const AssetMesh& sweep = *made;
   EXPECT_EQ(sweep.name, "backdrop");
   expect_view_covered(camera, sweep);
   for (const glm::dvec3& c : sweep.colour) EXPECT_EQ(c, kLinen);
@@ -87,19 +89,31 @@ TEST(Backdrop, LowWideAndTopDownViewsAreCoveredToo) {
   low.target = {0, 0.08, 0};
   low.fov_y_deg = 60;
   low.aspect = 16.0 / 9;
-  expect_view_covered(low, backdrop_sweep(low, kLo, kHi, kLinen));
+  expect_view_covered(low, backdrop_sweep(low, kLo, kHi, kLinen).value());
   // Wide (127 degrees across): the sweep runs far to the sides.
   AssetCamera wide = frame_box(kLo, kHi, {1, 0.3, 0.2}, 90, 2.0);
-  expect_view_covered(wide, backdrop_sweep(wide, kLo, kHi, kLinen));
+  expect_view_covered(wide, backdrop_sweep(wide, kLo, kHi, kLinen).value());
   // Straight down: all floor; the wall is taken to stand toward -Z.
   AssetCamera top;
   top.eye = {0, 1, 0};
   top.target = {0, 0, 0};
   top.up = stable_camera_up(top.target - top.eye);
-  expect_view_covered(top, backdrop_sweep(top, kLo, kHi, kLinen));
+  expect_view_covered(top, backdrop_sweep(top, kLo, kHi, kLinen).value());
   // A point of content: the sweep keeps a size of its own.
   const AssetCamera point = frame_box(glm::dvec3(0), glm::dvec3(0), {0, 1, 1}, 40, 4.0 / 3);
-  expect_view_covered(point, backdrop_sweep(point, glm::dvec3(0), glm::dvec3(0), kLinen));
+  expect_view_covered(point, backdrop_sweep(point, glm::dvec3(0), glm::dvec3(0), kLinen).value());
+}
+
+TEST(Backdrop, ACameraBelowTheTableGetsNone) {
+  // From under the floor the table's underside would hide everything above it.
+  AssetCamera below;
+  below.eye = {0, -0.05, 0.4};
+  below.target = {0, 0.03, 0};
+  EXPECT_FALSE(backdrop_sweep(below, kLo, kHi, kLinen));
+  below.eye.y = 0;
+  EXPECT_FALSE(backdrop_sweep(below, kLo, kHi, kLinen));
+  below.eye.y = 0.001;
+  EXPECT_TRUE(backdrop_sweep(below, kLo, kHi, kLinen));
 }
 
 }  // namespace
