@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include <glm/vec3.hpp>
@@ -44,9 +45,13 @@ int run_edit(const EditArgs& a) {
   options.port = a.port;
   options.volume_voxels_across = a.volume_voxels;
   EditServer server(options, opengl_edit_pictures());
-  spdlog::info("cutaway edit: {} at http://127.0.0.1:{}/ (Ctrl-C stops); cut it live at "
-               "/cut.html",
-               path.string(), server.port());
+  spdlog::info("cutaway edit: {} at http://127.0.0.1:{}/ (Ctrl-C stops)", path.string(),
+               server.port());
+  if (const std::optional<std::string> cutting = server.cutting_page_url())
+    spdlog::info("cut it live at {}", *cutting);
+  else
+    spdlog::info("cut it live once it is saved and checks: /cut.html?volume=/api/volume/NAME.json"
+                 "&model=/api/volume/NAME.glb, NAME its name (doc/editor.md)");
   // Ctrl-C or SIGTERM stops the server from a thread that waits for the signal. The server
   // ends its connections at once, but a request being computed (a check of a huge template)
   // would keep run() waiting: after kStopGrace the process ends without it. Saves are atomic,

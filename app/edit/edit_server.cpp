@@ -1103,6 +1103,22 @@ int EditServer::port() const { return impl_->port; }
 
 const std::string& EditServer::token() const { return impl_->token; }
 
+std::optional<std::string> EditServer::cutting_page_url() const {
+  const std::filesystem::path& path = impl_->options.template_path;
+  try {
+    const std::optional<std::string> text = read_template_file(path);
+    if (!text) return std::nullopt;
+    const std::string name =
+        parse_template(*text, path.filename().string(), path.parent_path().string()).name;
+    return "http://127.0.0.1:" + std::to_string(impl_->port) + "/cut.html?volume=/api/volume/" +
+           name + ".json&model=/api/volume/" + name + ".glb";
+  } catch (const InputError&) {
+    return std::nullopt;
+  } catch (const EnvironmentError&) {
+    return std::nullopt;
+  }
+}
+
 EditWorkCounts EditServer::work_counts() const {
   EditWorkCounts counts = impl_->work->counts();
   counts.volumes_sampled = impl_->volumes_sampled;

@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -136,6 +137,11 @@ class EditServer {
   const std::string& token() const;
   /// The work queue's counts so far; from any thread.
   EditWorkCounts work_counts() const;
+  /// The address of the cutting page of the template as saved (doc/editor.md, The cutting
+  /// page): http://127.0.0.1:PORT/cut.html?volume=/api/volume/NAME.json&model=/api/volume/NAME.glb
+  /// with NAME the saved template's `name`; nothing while the file is missing, unreadable or
+  /// does not parse. Reads and parses the file; from any thread.
+  std::optional<std::string> cutting_page_url() const;
   /// Serves until stop(); blocks; returns at once after a stop(). Before returning it closes
   /// the listening socket and waits for the connections' threads: requests being read or
   /// written end at once (their sockets are shut down), a variants strip being made stops

@@ -61,6 +61,24 @@ std::span<const glm::uvec3> primitive_triangles(const AssetMesh& mesh, const Ass
   return std::span<const glm::uvec3>(mesh.triangle).subspan(p.first, p.count);
 }
 
+size_t drawn_triangles(const SceneAssets& assets) {
+  size_t count = 0;
+  for (const AssetInstance& inst : assets.instances) {
+    const AssetMesh& mesh = assets.meshes[static_cast<size_t>(inst.mesh)];
+    if (mesh.primitives.empty()) {
+      count += mesh.triangle.size();
+      continue;
+    }
+    for (const AssetPrimitive& p : mesh.primitives) {
+      const bool textured =
+          !mesh.uv.empty() &&
+          assets.materials[static_cast<size_t>(p.material)].base_colour_texture >= 0;
+      count += primitive_triangles(mesh, p, textured).size();
+    }
+  }
+  return count;
+}
+
 Check check_primitives(const AssetMesh& mesh, size_t materials) {
   if (mesh.primitives.empty() && materials == 0) return Check::none("material index out of range");
   size_t next = 0;

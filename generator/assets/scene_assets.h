@@ -208,6 +208,13 @@ struct SceneAssets {
   int width = 1280, height = 960;  ///< pixels of renders
 };
 
+/// The triangles a file of `assets` draws: over every instance, each primitive of its mesh as
+/// an exporter with textures writes it (primitive_triangles, textured where the primitive's
+/// material has a base colour texture and the mesh uv): coarse cut faces where their colour is
+/// a texture, the full triangles elsewhere. Levels of detail and collision hulls are not
+/// counted (alternatives, not drawn). @pre check_assets(assets) holds
+size_t drawn_triangles(const SceneAssets& assets);
+
 /// A sphere about the placed vertices of some instances (scene frame, metres).
 struct BoundingSphere {
   glm::dvec3 centre{0.0};

@@ -369,7 +369,6 @@ void add_placed_pieces(SceneAssets& assets, const Scene& scene, uint64_t seed, S
       lo = glm::min(lo, q);
       hi = glm::max(hi, q);
     }
-    st.triangles += pieces.meshes[s].triangle.size();
     assets.instances.push_back({pieces.meshes[s].name, static_cast<int>(assets.meshes.size()),
                                 place.rotation, place.translation, pieces.infos[s]});
     assets.meshes.push_back(std::move(pieces.meshes[s]));
@@ -413,6 +412,7 @@ SceneAssets build_scene(const Scene& scene, uint64_t seed, const SceneBuildOptio
   const std::vector<size_t> order = placement_order(pieces.shapes.size(), seed);
   const std::vector<Placement> placements = place_pieces(scene, seed, options, pieces, order, st);
   add_placed_pieces(assets, scene, seed, pieces, order, placements, st);
+  st.triangles = drawn_triangles(assets);
   return assets;
 }
 

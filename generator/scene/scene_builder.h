@@ -53,7 +53,7 @@ struct SceneStats : ObjectCutStats {
   int objects = 0, pieces = 0, placed = 0;  ///< pieces: kept after `keep`; placed: of those
   int cached_objects = 0;                   ///< objects read from the cut cache (not cut)
   bool cached_placements = false;           ///< placements read from the cut cache (not settled)
-  size_t triangles = 0;
+  size_t triangles = 0;         ///< what the scene's file draws (drawn_triangles), all instances
   double seconds_variants = 0;  ///< make_variant (sweep, synthesis, grains, checks)
   double seconds_backend = 0;   ///< building the diffusion backends (BVH or GL setup)
   double seconds_layout = 0;    ///< drop poses (the height-field layout)

@@ -44,8 +44,10 @@ TEST(SceneCommand, ExportsValidGltfAndPovRayAndPictures) {
       scene_args(dir, "tiny",
                  {"-o", (dir / "tiny.gltf").string(), "--png", (dir / "preview.png").string(),
                   "--render", (dir / "povray.png").string()});
+  args.insert(args.begin(), "--stats");
   const test::RunResult r = test::run_cutaway(args);
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json stats = nlohmann::json::parse(r.err.substr(r.err.rfind("\n{") + 1));
   for (const char* f : {"tiny.glb", "tiny.gltf"}) {
     const test::GltfReport report = test::validate_gltf(dir / f);
     EXPECT_EQ(report.errors, 0) << f << ": " << report.output;
@@ -57,6 +59,8 @@ TEST(SceneCommand, ExportsValidGltfAndPovRayAndPictures) {
   EXPECT_EQ(three.lights, 3);
   EXPECT_GE(three.meshes, 8);  // the bowl and at least 7 pieces (4 wedges, 2 halves, slices)
   EXPECT_GT(three.triangles, 10000);
+  // The triangles the run reports are those the file draws (textured cut faces coarse).
+  EXPECT_EQ(stats["triangles"].get<long long>(), three.triangles);
   for (const char* f : {"preview.png", "povray.png"}) {
     const test::PngInfo png = test::png_info(dir / f);
     EXPECT_EQ(png.width, 160) << f;

@@ -91,6 +91,7 @@ class RunningServer {
   int port() const { return server_->port(); }
   const std::string& token() const { return server_->token(); }
   EditWorkCounts counts() const { return server_->work_counts(); }
+  std::optional<std::string> cutting_page_url() const { return server_->cutting_page_url(); }
   /// A client that sends the server's own Host header and its page's token.
   httplib::Client client() const {
     httplib::Client c("127.0.0.1", port());
@@ -885,6 +886,27 @@ TEST(EditServer, AForeignPagesImageStartsNoWork) {
 // The volume's name is compared before any work (a wrong one was once answered 404 after the
 // whole volume was sampled); the volume is sampled once for its template, whichever files are
 // asked for, and a save that changes only a comment does not sample it again.
+// The address the edit command prints opens the cutting page of the saved template: the page,
+// and the volume and model it names, are served; an unsaved template has none yet.
+TEST(EditServer, TheCuttingPageUrlNamesTheSavedTemplate) {
+  const fs::path dir = test::fresh_dir("edit");
+  const fs::path file = copy_template("tomato", dir);
+  RunningServer server(file, [](EditServerOptions& o) { o.volume_voxels_across = 8; });
+  const std::string host = "http://127.0.0.1:" + std::to_string(server.port());
+  const std::optional<std::string> url = server.cutting_page_url();
+  ASSERT_TRUE(url);
+  EXPECT_EQ(*url, host + "/cut.html?volume=/api/volume/tomato.json&model=/api/volume/tomato.glb");
+  httplib::Client c = server.client();
+  const auto page = c.Get(url->substr(host.size()));
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_NE(page->body.find(server.token()), std::string::npos);
+  for (const char* named : {"/api/volume/tomato.json", "/api/volume/tomato.glb"})
+    EXPECT_EQ(status_of(c.Post(named, "", "text/plain")), 200) << named;
+  RunningServer unsaved(dir / "new-template.yaml");
+  EXPECT_FALSE(unsaved.cutting_page_url());
+}
+
 TEST(EditServer, SamplesTheVolumeOnlyForItsNameAndOncePerTemplate) {
   const fs::path dir = test::fresh_dir("edit");
   const fs::path file = copy_template("tomato", dir);
