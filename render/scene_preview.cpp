@@ -252,6 +252,18 @@ struct DrawUniforms {
   GLint view_from_object, textured, relief, shininess, specular_weight;
 };
 
+/// Scene from object transform of `inst`: its translation after its (normalised) rotation.
+glm::dmat4 scene_from_object(const AssetInstance& inst) {
+  return glm::translate(glm::dmat4(1.0), inst.translation) *
+         glm::mat4_cast(glm::normalize(inst.rotation));
+}
+
+/// Draws the triangles of `draw` with the program, uniforms and textures in use.
+void draw_triangles(const MeshDraw& draw) {
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(draw.index_count), GL_UNSIGNED_INT,
+                 reinterpret_cast<const void*>(draw.first_index * sizeof(uint32_t)));
+}
+
 /// Binds `target` and clears it to `background` and the far depth, with the depth test on,
 /// no culling and no blending.
 void clear_target(const OffscreenTarget& target, const glm::dvec3& background) {
@@ -275,9 +287,7 @@ void draw_instances(const SceneAssets& assets, const std::vector<std::vector<Mes
   for (const AssetInstance& inst : assets.instances) {
     const std::vector<MeshDraw>& list = draws[static_cast<size_t>(inst.mesh)];
     if (list.empty()) continue;
-    const glm::dmat4 scene_from_object = glm::translate(glm::dmat4(1.0), inst.translation) *
-                                         glm::mat4_cast(glm::normalize(inst.rotation));
-    const glm::mat4 view_from_object(view * scene_from_object);
+    const glm::mat4 view_from_object(view * scene_from_object(inst));
     glUniformMatrix4fv(uniforms.view_from_object, 1, GL_FALSE, glm::value_ptr(view_from_object));
     for (const MeshDraw& draw : list) {
       glUniform1i(uniforms.textured, draw.texture >= 0 ? 1 : 0);
@@ -292,8 +302,7 @@ void draw_instances(const SceneAssets& assets, const std::vector<std::vector<Mes
       }
       glUniform1f(uniforms.shininess, draw.highlight.shininess);
       glUniform1f(uniforms.specular_weight, draw.highlight.weight);
-      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(draw.index_count), GL_UNSIGNED_INT,
-                     reinterpret_cast<const void*>(draw.first_index * sizeof(uint32_t)));
+      draw_triangles(draw);
     }
   }
 }
@@ -372,12 +381,9 @@ ShadowMap draw_shadow_map(const SceneAssets& assets,
   for (const AssetInstance& inst : assets.instances) {
     const std::vector<MeshDraw>& list = draws[static_cast<size_t>(inst.mesh)];
     if (inst.backdrop || list.empty()) continue;
-    const glm::mat4 light_from_object(view * glm::translate(glm::dmat4(1.0), inst.translation) *
-                                      glm::mat4_cast(glm::normalize(inst.rotation)));
+    const glm::mat4 light_from_object(view * scene_from_object(inst));
     glUniformMatrix4fv(view_from_object, 1, GL_FALSE, glm::value_ptr(light_from_object));
-    for (const MeshDraw& draw : list)
-      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(draw.index_count), GL_UNSIGNED_INT,
-                     reinterpret_cast<const void*>(draw.first_index * sizeof(uint32_t)));
+    for (const MeshDraw& draw : list) draw_triangles(draw);
   }
   glFinish();
   return map;

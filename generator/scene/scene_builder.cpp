@@ -328,6 +328,15 @@ std::vector<Placement> place_pieces(const Scene& scene, uint64_t seed,
   return std::move(settled.placements);
 }
 
+/// Gives `mesh` a new material of `assets` for all its triangles: `name`, of perceptual
+/// `roughness`, its base colour the texture of index `texture` (or the vertex colours, -1).
+void give_material(SceneAssets& assets, AssetMesh& mesh, const char* name, double roughness,
+                   int texture = -1) {
+  assets.materials.push_back({name, PbrMaterial{}, texture});
+  assets.materials.back().pbr.roughness = roughness;
+  mesh.primitives = {{0, mesh.triangle.size(), static_cast<int>(assets.materials.size()) - 1, {}}};
+}
+
 /// Step 3: the container (a board with its wood, drawn from `seed`; a bowl or plate glazed) and
 /// the placed pieces as instances of `assets`, framed by the scene's camera, on the scene's
 /// backdrop (not framed), with the studio lights.
@@ -346,16 +355,11 @@ void add_placed_pieces(SceneAssets& assets, const Scene& scene, uint64_t seed, S
     }
     if (scene.container.type == ContainerType::Board) {  // its wood, on its uv
       assets.textures.push_back(board_wood_texture(scene.container, derive_seed(seed, {~0ull, 7})));
-      AssetMaterial wood{"board_wood", PbrMaterial{}, static_cast<int>(assets.textures.size()) - 1};
-      wood.pbr.roughness = 0.75;  // oiled, worn wood: a broad, faint highlight
-      assets.materials.push_back(wood);
-      container->primitives = {
-          {0, container->triangle.size(), static_cast<int>(assets.materials.size()) - 1, {}}};
+      // Oiled, worn wood: a broad, faint highlight.
+      give_material(assets, *container, "board_wood", 0.75,
+                    static_cast<int>(assets.textures.size()) - 1);
     } else {  // a bowl or plate: glazed ceramic, a sharp highlight over its vertex colour
-      assets.materials.push_back({"glazed_ceramic", PbrMaterial{}, -1});
-      assets.materials.back().pbr.roughness = 0.15;
-      container->primitives = {
-          {0, container->triangle.size(), static_cast<int>(assets.materials.size()) - 1, {}}};
+      give_material(assets, *container, "glazed_ceramic", 0.15);
     }
     assets.instances.push_back({container->name, 0, {1, 0, 0, 0}, {0, 0, 0}, {}});
     assets.meshes.push_back(std::move(*container));
@@ -381,10 +385,7 @@ void add_placed_pieces(SceneAssets& assets, const Scene& scene, uint64_t seed, S
   if (backdrop) {
     AssetMesh& sweep = *backdrop;
     assets.camera.zfar = std::max(assets.camera.zfar, 1.01 * farthest_vertex(assets.camera, sweep));
-    assets.materials.push_back({"backdrop", PbrMaterial{}, -1});
-    assets.materials.back().pbr.roughness = 0.9;  // matte paper
-    sweep.primitives = {
-        {0, sweep.triangle.size(), static_cast<int>(assets.materials.size()) - 1, {}}};
+    give_material(assets, sweep, "backdrop", 0.9);  // matte paper
     assets.instances.push_back({sweep.name,
                                 static_cast<int>(assets.meshes.size()),
                                 {1, 0, 0, 0},
