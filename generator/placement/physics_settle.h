@@ -49,9 +49,11 @@ struct SettleOptions {
   /// A check passes (no more settling) when no corner moves more than this, half the limit:
   /// with the limit itself, 64 slices in a bowl ended at 0.997 mm, a hair inside it.
   double check_motion_m = 0.0005;
-  /// Stability checks, each after a round of settling. When the last does not pass, the
-  /// layout of the check that moved least, within stable_motion_m, is kept; with none within
-  /// it the last one's, with its motion (counted until it passed the limit).
+  /// Stability checks, each after a round of settling. The rounds end at a check that passes
+  /// (check_motion_m), at one that moves more than an earlier check within stable_motion_m, or
+  /// after this many. When the last does not pass, the layout of the check that moved least,
+  /// within stable_motion_m, is kept; with none within it the last one's, with its motion
+  /// (counted until it passed the limit).
   int max_verify_rounds = 3;
   /// After a failed check only the pieces that moved more than check_motion_m in it, and those
   /// whose bounding boxes come within this of theirs, settle on; the others stay where the
