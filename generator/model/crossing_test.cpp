@@ -102,9 +102,15 @@ CrossingTest::Nearest CrossingTest::nearest(const glm::dvec3& p) const {
 bool CrossingTest::within_blur(const glm::dvec3& p) const {
   if (impl_->blurred.empty()) return false;
   const Kernel::Point_3 q = cgal_point(p);
-  const Kernel::Sphere_3 ball(q, impl_->max_blur * impl_->max_blur);
+  // The triangles that reach the box around the ball of the largest blur: every one within its
+  // own blur of p is among them. Not CGAL's Sphere_3: it is the sphere's surface, so a triangle
+  // wholly inside the ball was never tested (a kiwi seed sat in the blur of the locule walls'
+  // fine triangles), and its exact test against a triangle fell back to multiprecision
+  // arithmetic (most of a kiwi variant's time).
+  const double r = impl_->max_blur;
+  const CGAL::Bbox_3 box(p.x - r, p.y - r, p.z - r, p.x + r, p.y + r, p.z + r);
   std::vector<Tree::Primitive_id> near;
-  impl_->blurred_tree.all_intersected_primitives(ball, std::back_inserter(near));
+  impl_->blurred_tree.all_intersected_primitives(box, std::back_inserter(near));
   for (const auto id : near) {
     const size_t i = static_cast<size_t>(id - impl_->blurred.cbegin());
     if (CGAL::squared_distance(q, impl_->blurred[i]) < impl_->blur[i] * impl_->blur[i]) return true;
