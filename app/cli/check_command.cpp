@@ -68,6 +68,8 @@ int run_check(const std::vector<std::string>& files) {
                     // m^2 x (texels per mm)^2 = millions of texels
                     cutaway::scene_cut_area(scene) * scene.render.texels_per_mm *
                         scene.render.texels_per_mm);
+        if (const std::string fitted = cutaway::texel_fit_note(scene); !fitted.empty())
+          std::fprintf(stderr, "%s: warning: %s\n", f.c_str(), fitted.c_str());
         continue;
       }
       const cutaway::Template tmpl = cutaway::load_template(f);

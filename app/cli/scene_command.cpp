@@ -141,6 +141,8 @@ int run_scene(const SceneArgs& a, const Common& given, OutputSet& outputs) {
   if (a.texels_per_mm > 0) {
     if (const Check texels = check_cap_texels(scene_cut_area(scene), a.texels_per_mm); !texels)
       throw UsageError("--texels-per-mm: " + texels.reason());
+  } else if (const std::string fitted = texel_fit_note(scene); !fitted.empty()) {
+    spdlog::warn("{}: {}", a.scene_path, fitted);
   }
   const double t_parse = seconds_since(t0);
   const Common common = with_resolved_backend(given);  // probed once, not per use below

@@ -122,7 +122,10 @@ RenderSettings parse_render(const YamlField& r) {
     out.silhouettes = x->number_in(0, 10);
     out.silhouettes_given = true;
   }
-  if (auto x = r.get("texels_per_mm")) out.texels_per_mm = x->number_in(0.1, 100);
+  if (auto x = r.get("texels_per_mm")) {
+    out.texels_per_mm = x->number_in(0.1, 100);
+    out.texels_per_mm_given = true;
+  }
   if (static_cast<long long>(out.width) * out.height > kMaxRenderPixels)
     r.fail("width x height is " + std::to_string(out.width * out.height) + " pixels (at most " +
            std::to_string(kMaxRenderPixels) + ", e.g. 3840 x 2160)");
@@ -238,11 +241,18 @@ Scene parse(std::string_view text, const std::string& file, bool load_templates)
   if (auto c = root.get("camera")) s.camera = parse_camera(*c, m);
   if (auto r = root.get("render")) s.render = parse_render(*r);
   s.backdrop = parse_backdrop(root.get("backdrop"), s.render.style);
-  if (const Check texels = check_cap_texels(scene_cut_area(s), s.render.texels_per_mm); !texels) {
-    const auto density =
-        root.get("render") ? root.get("render")->get("texels_per_mm") : std::optional<YamlField>();
-    const YamlField last = items[items.size() - 1];
-    (density ? *density : last.get("count").value_or(last)).fail(texels.reason());
+  const double area = scene_cut_area(s);
+  if (const Check texels = check_cap_texels(area, s.render.texels_per_mm); !texels) {
+    const double fits = fitting_texels_per_mm(area, s.render.texels_per_mm);
+    if (!s.render.texels_per_mm_given && fits > 0) {
+      s.render.fitted_from_texels_per_mm = s.render.texels_per_mm;
+      s.render.texels_per_mm = fits;
+    } else {
+      const auto density = root.get("render") ? root.get("render")->get("texels_per_mm")
+                                              : std::optional<YamlField>();
+      const YamlField last = items[items.size() - 1];
+      (density ? *density : last.get("count").value_or(last)).fail(texels.reason());
+    }
   }
   return s;
 }
@@ -253,6 +263,19 @@ double scene_cut_area(const Scene& scene) {
   double area = 0;
   for (const SceneItem& item : scene.items) area += item.count * item.cut_area_m2;
   return area;
+}
+
+std::string texel_fit_note(const Scene& scene) {
+  const double from = scene.render.fitted_from_texels_per_mm;
+  if (from <= 0) return {};
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "at %g texels per mm the cut faces would need about %.3g M texels (at most %g M): "
+                "baked at %g texels per mm instead (render.texels_per_mm or --texels-per-mm "
+                "sets the density; one that does not fit is refused)",
+                from, scene_cut_area(scene) * from * from, kMaxCapTexels / 1e6,
+                scene.render.texels_per_mm);
+  return text;
 }
 
 Scene parse_scene(std::string_view text, const std::string& file) {

@@ -47,7 +47,10 @@ Scene parse_scene_and_templates(std::string_view text, const std::string& file);
 ///         cannot be read
 /// Also holds the scene to the totals of scene.h (kMaxSceneObjects, kMaxScenePieces at the
 /// item's count that passes them; kMaxRenderPixels at render) and its cut faces to
-/// kMaxCapTexels (check_cap_texels of scene_cut_area, at render.texels_per_mm or the last item).
+/// kMaxCapTexels (check_cap_texels of scene_cut_area): without render.texels_per_mm a scene
+/// that passes it is baked at the density that fits (fitting_texels_per_mm; the default kept in
+/// render.fitted_from_texels_per_mm), a written one is refused there (or at the last item when
+/// not even 0.1 texels per mm fits).
 /// Refuses, at the count of the item that passes it, pieces whose heap (estimate_object_volume
 /// x count x keep over kHeapPacking) is larger than the container holds (heap_capacity): every
 /// piece asked for is placed, so a request the container cannot hold is refused before work.
@@ -56,5 +59,10 @@ Scene load_scene(const std::string& path);
 /// An upper bound of the cut-face area of all `scene`'s objects, m^2: each item's count times
 /// its cut_area_m2 (0 for a scene whose templates were not read).
 double scene_cut_area(const Scene& scene);
+
+/// What fitting the texel density did to `scene`, in words for a warning: the estimate at the
+/// default density, the limit and the density used (render.fitted_from_texels_per_mm); empty
+/// when the density was not lowered.
+std::string texel_fit_note(const Scene& scene);
 
 }  // namespace cutaway

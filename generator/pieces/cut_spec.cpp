@@ -127,6 +127,15 @@ Check check_cap_texels(double cut_area_m2, double texels_per_mm) {
   return Check::none(text);
 }
 
+double fitting_texels_per_mm(double cut_area_m2, double wanted) {
+  if (check_cap_texels(cut_area_m2, wanted)) return wanted;
+  // texels = area (1000 d)^2 <= kMaxCapTexels; the tenths rounded down, one less while the
+  // rounding of the root still lets the check fail.
+  double tenths = std::floor(10 * std::sqrt(kMaxCapTexels / cut_area_m2) / 1000);
+  while (tenths >= 1 && !check_cap_texels(cut_area_m2, tenths / 10)) tenths -= 1;
+  return tenths >= 1 ? tenths / 10 : 0.0;
+}
+
 double estimate_object_volume(const ObjectExtents& extents) {
   return 2.0 / 3.0 * kPi * extents.radius_m * extents.radius_m * extents.height_m;
 }

@@ -77,4 +77,9 @@ inline constexpr double kMaxCapTexels = 64e6;
 /// the field that set the density or made the area).
 Check check_cap_texels(double cut_area_m2, double texels_per_mm);
 
+/// The density at which `cut_area_m2` of cut faces fits kMaxCapTexels: `wanted` when it fits,
+/// else the largest multiple of 0.1 texels per mm that does (rounded down), or 0 when not even
+/// 0.1 does. For a density the user did not set: a big scene is baked coarser, not refused.
+double fitting_texels_per_mm(double cut_area_m2, double wanted);
+
 }  // namespace cutaway

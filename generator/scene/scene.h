@@ -74,6 +74,11 @@ struct RenderSettings {
   /// Texel density of the baked cut-face textures, texels per millimetre (0.1..100): about
   /// twice the pixels per millimetre the closest cut face gets in the pictures wanted.
   double texels_per_mm = 8.6;
+  /// Whether `texels_per_mm` was written. Unwritten, a scene whose cut faces would pass
+  /// kMaxCapTexels at the default gets the density that fits (fitting_texels_per_mm), and
+  /// fitted_from_texels_per_mm says from which; written, it is refused.
+  bool texels_per_mm_given = false;
+  double fitted_from_texels_per_mm = 0;  ///< the density fitting lowered, 0: none lowered
 };
 
 /// What a scene stands on in pictures (doc/scene-format.md, Backdrop): a paper sweep (a floor

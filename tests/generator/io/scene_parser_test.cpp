@@ -3,6 +3,7 @@
 // templates/), and the InputError raised for bad input (file, line, column, field path, rule).
 #include "io/scene_parser.h"
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 
 #include "base/colour.h"
 #include "base/error.h"
+#include "pieces/cut_spec.h"
 #include "test_support.h"
 
 namespace cutaway {
@@ -356,6 +358,37 @@ TEST(SceneParser, ErrorsOfTypeAndRange) {
     EXPECT_GE(e.loc().line, 1) << c.text;
     EXPECT_GE(e.loc().column, 1) << c.text;
   }
+}
+
+// A scene whose cut faces would pass the texel budget at the default density is baked at the
+// density that fits, a tenth of a texel per mm below which it would not, and says so; the same
+// scene with the density written is refused there.
+TEST(SceneParser, ABigSceneGetsTheTexelDensityThatFitsUnlessItIsWritten) {
+  const fs::path dir = test::fresh_dir("scene_texel_fit");
+  const std::string items =
+      "items:\n  - {template: " + test::source_path("templates/tomato.yaml").string() +
+      ", count: 14, cut: {type: slices, thickness: 4}}\n";
+  std::ofstream(dir / "big.yaml") << kHead + items;
+  const Scene s = load_scene((dir / "big.yaml").string());
+  const double area = scene_cut_area(s);
+  EXPECT_FALSE(check_cap_texels(area, 8.6));
+  EXPECT_EQ(s.render.fitted_from_texels_per_mm, 8.6);
+  EXPECT_LT(s.render.texels_per_mm, 8.6);
+  EXPECT_TRUE(check_cap_texels(area, s.render.texels_per_mm));
+  EXPECT_FALSE(check_cap_texels(area, s.render.texels_per_mm + 0.1));
+  char used[64];
+  std::snprintf(used, sizeof used, "baked at %g texels per mm", s.render.texels_per_mm);
+  EXPECT_NE(texel_fit_note(s).find(used), std::string::npos) << texel_fit_note(s);
+
+  std::ofstream(dir / "given.yaml") << kHead + items + "render: {texels_per_mm: 8.6}\n";
+  const InputError e = load_error_of((dir / "given.yaml").string());
+  EXPECT_EQ(e.field(), "render.texels_per_mm");
+  EXPECT_NE(e.rule().find("would need about"), std::string::npos) << e.what();
+
+  // A scene that fits keeps its density and has nothing to say.
+  const Scene small = load_scene(scene_file("small.yaml"));
+  EXPECT_EQ(small.render.fitted_from_texels_per_mm, 0);
+  EXPECT_EQ(texel_fit_note(small), "");
 }
 
 TEST(SceneParser, LoadSceneChecksTheTemplates) {
