@@ -2,7 +2,8 @@
 # Installs what cutaway needs on Debian 12: the Debian packages for building and running it,
 # (with --cpus) qemu-user for `make test-cpus`, and (with --test) the test tools: Chromium, slurm-wlm and munge (the one-node Slurm cluster
 # of the batch test), Blender and python3-numpy (its glTF importer needs numpy; the add-on's
-# tests run it headless) and clang-format-14 (the format check) from Debian, and, from npm into
+# tests run it headless), Godot 3 with xvfb and xauth (tests/godot imports files in its editor)
+# and clang-format-14 (the format check) from Debian, and, from npm into
 # node_modules/ (package-lock.json, exact versions), the Khronos glTF validator, three.js (its
 # GLTFLoader is the real glTF client of tests/tools/load_gltf_three.mjs), playwright-core
 # (drives Chromium) and ESLint with @eslint/js and globals (lints app/edit/web/).
@@ -20,7 +21,7 @@ packages=(
   povray
 )
 test_packages=(libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev nodejs npm
-               chromium slurm-wlm munge blender python3-numpy clang-format-14)
+               chromium slurm-wlm munge blender python3-numpy clang-format-14 godot3 xvfb xauth)
 
 # make test-cpus: qemu-user emulates an older CPU (tests/app/cli/emulated_cpu_test.sh).
 cpus_packages=(qemu-user)

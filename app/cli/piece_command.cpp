@@ -15,6 +15,7 @@
 #include "io/cut_notation.h"
 #include "io/template_parser.h"
 #include "model/model_builder.h"
+#include "export/engine_profile.h"
 #include "placement/collision_shape.h"
 #include "render/diffusion_backends.h"
 #include "variation/variation.h"
@@ -31,14 +32,17 @@ struct PieceArgs {
   int64_t seed = -1;  ///< >= 0: cut the variant of this seed instead of the template
   int width = 800, height = 600;
   int cube = 16;
-  double perlin = 1.0;  ///< Perlin colour modulation strength (the template's npr bands)
-  StyleArgs style;      ///< --style, --silhouettes: strokes over the PNG and in .pov
-  std::string compress = "quantize";  ///< glTF vertex data: none, quantize or meshopt
-  int lods = 0;                       ///< glTF levels of detail per mesh (GltfSceneOptions)
-  std::string textures = "jpeg";      ///< base-colour texture images: jpeg or png (TextureFormat)
-  bool camera_and_lights = false;     ///< --camera-and-lights: write them into the glTF
-  std::string collision = "godot";    ///< --collision: none, godot or unreal hull names
-  std::string colours = "texture";    ///< --colours: texture or vertex (CapColours)
+  double perlin = 1.0;             ///< Perlin colour modulation strength (the template's npr bands)
+  StyleArgs style;                 ///< --style, --silhouettes: strokes over the PNG and in .pov
+  std::string compress;            ///< glTF vertex data: none, quantize or meshopt; empty: the
+                                   ///< profile's, else quantize
+  int lods = 0;                    ///< glTF levels of detail per mesh (GltfSceneOptions)
+  std::string textures = "jpeg";   ///< base-colour texture images: jpeg or png (TextureFormat)
+  bool camera_and_lights = false;  ///< --camera-and-lights: write them into the glTF
+  std::string collision;           ///< --collision: none, godot, unreal or godot-rigid; empty: the
+                                   ///< profile's, else godot
+  std::string engine;              ///< --for: an engine profile (engine_profile.h), empty: none
+  std::string colours = "texture";  ///< --colours: texture or vertex (CapColours)
 };
 
 int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
@@ -74,11 +78,14 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
   if (set.defective_pieces > 0)
     spdlog::warn("{} pieces are not closed 2-manifolds", set.defective_pieces);
   assets = piece_assets(std::move(assets), object, 0.3, a.width, a.height);
-  GltfSceneOptions gltf = export_options(a.compress, a.lods, a.textures);
+  GltfSceneOptions gltf = export_options("quantize", a.lods, a.textures);
   gltf.camera_and_lights = a.camera_and_lights;  // an asset leaves them out unless asked
-  gltf.collision = parse_gltf_collision(a.collision);
+  gltf.collision = GltfCollision::Godot;
+  if (!a.engine.empty()) apply_engine_profile(a.engine, gltf);  // then what is given over it
+  if (!a.compress.empty()) gltf.compression = parse_gltf_compression(a.compress);
+  if (!a.collision.empty()) gltf.collision = parse_gltf_collision(a.collision);
   CUTAWAY_CHECK(assets.instances.size() == object.shapes.size());  // piece k is instance k
-  if (gltf.collision != GltfCollision::None) {
+  if (writes_hull_nodes(gltf.collision)) {
     const std::vector<CollisionShape> shapes = collision_shapes(object.shapes);
     for (size_t k = 0; k < shapes.size(); ++k)
       assets.instances[k].collision = collision_hulls(shapes[k]);
@@ -190,8 +197,17 @@ Command add_piece_command(CLI::App& app) {
   piece
       ->add_option("--collision", args->collision,
                    "convex collision hulls of each piece in the glTF file, named for godot "
-                   "(NAME_collisionK-convcolonly, the default), unreal (UCX_MESH_KK) or none")
-      ->check(CLI::IsMember({"none", "godot", "unreal"}));
+                   "(NAME_collisionK-convcolonly, the default), unreal (UCX_MESH_KK) or none; "
+                   "godot-rigid: no hulls, each piece's mesh a Godot RigidBody (NAME_mesh-rigid)")
+      ->check(CLI::IsMember({"none", "godot", "unreal", "godot-rigid"}));
+  piece
+      ->add_option("--for", args->engine,
+                   "the consumer the glTF file is for, which sets --compress and --collision "
+                   "(given ones win) and pivots: godot (float32, one RigidBody per piece turning "
+                   "about its centre of mass), web (meshopt, no hulls) or blender (quantize, no "
+                   "hulls); doc/engines.md")
+      ->check(CLI::IsMember(
+          std::vector<std::string>(std::begin(kEngineProfiles), std::end(kEngineProfiles))));
   return {piece, [args](const Common& common, OutputSet& outputs) {
             return run_piece(*args, common, outputs);
           }};

@@ -61,6 +61,27 @@ std::span<const glm::uvec3> primitive_triangles(const AssetMesh& mesh, const Ass
   return std::span<const glm::uvec3>(mesh.triangle).subspan(p.first, p.count);
 }
 
+glm::dvec3 volume_centroid(const ColouredMesh& mesh) {
+  double volume6 = 0;  // six times the volume
+  glm::dvec3 moment(0.0);
+  for (const glm::uvec3& t : mesh.triangle) {
+    const glm::dvec3 &a = mesh.position[t.x], &b = mesh.position[t.y], &c = mesh.position[t.z];
+    const double v6 = glm::dot(a, glm::cross(b, c));
+    volume6 += v6;
+    moment += v6 * (a + b + c);  // the tetrahedron's centroid is (a + b + c) / 4
+  }
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  for (const glm::dvec3& p : mesh.position) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  if (mesh.position.empty()) return glm::dvec3(0.0);
+  // Enclosing no volume against its extent (cubed): the box centre.
+  const double extent = glm::length(hi - lo);
+  if (!(std::fabs(volume6) > 1e-9 * extent * extent * extent)) return 0.5 * (lo + hi);
+  return moment / (4 * volume6);
+}
+
 size_t drawn_triangles(const SceneAssets& assets) {
   size_t count = 0;
   for (const AssetInstance& inst : assets.instances) {

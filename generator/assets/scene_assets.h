@@ -95,6 +95,12 @@ struct AssetMesh : ColouredMesh {
 std::span<const glm::uvec3> primitive_triangles(const AssetMesh& mesh, const AssetPrimitive& p,
                                                 bool textured);
 
+/// The centre of the volume `mesh` encloses (uniform density; its triangles taken as a closed
+/// surface, tetrahedra from the origin summed with their signed volumes), metres, in the mesh's
+/// frame; the centre of its bounding box when it encloses no volume (an open sheet, a point).
+/// Where a rigid body made of it turns (an engine profile's pivot, gltf_export.h).
+glm::dvec3 volume_centroid(const ColouredMesh& mesh);
+
 /// Whether the primitives of `mesh` suit a scene of `materials` materials (else what is wrong,
 /// in words): they must cover its triangles in order, none empty, each naming an existing
 /// material (no primitives: one of material 0, which must exist).

@@ -175,7 +175,7 @@ CachedCut cut_asset(SceneAssets& assets, const Batch& batch, const Template& tmp
   cut.sampling = options.sampling;
   const CollisionShapeOptions hulls;
   const CollisionShapeOptions* collision =
-      batch.export_options.gltf.collision != GltfCollision::None ? &hulls : nullptr;
+      writes_hull_nodes(batch.export_options.gltf.collision) ? &hulls : nullptr;
   const std::string object = asset_name(stem);
   const std::string key = cut_cache_key({tmpl.source_hash, tmpl.variation_amount, seed, object,
                                          options.diffusion_settings, &cut, collision});

@@ -175,8 +175,11 @@ class SceneBuffers {
     return view_extensions_;
   }
 
-  /// #V x 3 positions (metres); returns the accessor and sets `frame`.
-  int positions(const std::vector<float>& xyz, MeshFrame& frame) {
+  /// #V x 3 positions (metres); returns the accessor and sets `frame`. With a `pivot`
+  /// (metres), the frame's offset is the pivot: float positions are stored relative to it, and
+  /// quantized ones over the cube about it that holds them.
+  int positions(const std::vector<float>& xyz, MeshFrame& frame, const glm::dvec3* pivot) {
+    if (pivot) return positions_about(xyz, *pivot, frame);
     const size_t count = xyz.size() / 3;
     glm::dvec3 lo(xyz[0], xyz[1], xyz[2]), hi = lo;
     for (size_t i = 0; i < count; ++i)
@@ -192,6 +195,37 @@ class SceneBuffers {
     frame.offset = (lo + hi) * 0.5;
     const glm::dvec3 half = (hi - lo) * 0.5;
     frame.scale = std::max({half.x, half.y, half.z});
+    return quantized_positions(xyz, frame);
+  }
+
+  /// positions() about `pivot`.
+  int positions_about(const std::vector<float>& xyz, const glm::dvec3& pivot, MeshFrame& frame) {
+    const size_t count = xyz.size() / 3;
+    frame.offset = pivot;
+    if (compression_ == GltfCompression::None) {
+      frame.scale = 1.0;
+      std::vector<float> moved(xyz.size());
+      std::vector<double> lo(3, INFINITY), hi(3, -INFINITY);
+      for (size_t i = 0; i < count; ++i)
+        for (int k = 0; k < 3; ++k) {
+          moved[3 * i + k] = static_cast<float>(xyz[3 * i + k] - pivot[k]);
+          lo[k] = std::min<double>(lo[k], moved[3 * i + k]);
+          hi[k] = std::max<double>(hi[k], moved[3 * i + k]);
+        }
+      return accessor(moved.data(), count, 12, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                      false, lo, hi);
+    }
+    frame.scale = 0;
+    for (size_t i = 0; i < count; ++i)
+      for (int k = 0; k < 3; ++k)
+        frame.scale = std::max(frame.scale, std::fabs(xyz[3 * i + k] - pivot[k]));
+    return quantized_positions(xyz, frame);
+  }
+
+  /// The positions quantized over the cube of half size frame.scale about frame.offset (a
+  /// scale of 0 taken as 1); frame.scale then maps the stored integers back to metres.
+  int quantized_positions(const std::vector<float>& xyz, MeshFrame& frame) {
+    const size_t count = xyz.size() / 3;
     if (!(frame.scale > 0)) frame.scale = 1.0;
     // Steps over each half extent: 16 bits, or 14 for meshopt, whose codec stores the deltas of
     // the smaller integers in fewer bytes; the node's scale then stretches 14-bit integers read
@@ -484,12 +518,15 @@ std::vector<std::vector<uint32_t>> cache_ordered_triangles(
 class MeshLevels {
  public:
   /// `primitives` of the mesh, `textured` and `relief` (normal-mapped) per primitive,
-  /// `vertices` as written; `frame` receives the frame of the positions.
+  /// `vertices` as written; `frame` receives the frame of the positions (about `pivot` when
+  /// given: SceneBuffers::positions).
   MeshLevels(SceneBuffers& out, const std::vector<AssetPrimitive>& primitives,
              const std::vector<int>& gltf_material, const std::vector<bool>& textured,
-             const std::vector<bool>& relief, const WrittenVertices& vertices, MeshFrame& frame)
+             const std::vector<bool>& relief, const WrittenVertices& vertices, MeshFrame& frame,
+             const glm::dvec3* pivot)
       : out_(out), primitives_(primitives), gltf_material_(gltf_material), textured_(textured),
-        relief_(relief), vertices_(vertices), positions_(out.positions(vertices.position, frame)),
+        relief_(relief), vertices_(vertices),
+        positions_(out.positions(vertices.position, frame, pivot)),
         normals_(out.normals(vertices.normal)) {}
 
   /// Adds the glTF mesh `name` with `lists` (per primitive, its triangles' indices); returns
@@ -539,8 +576,9 @@ class MeshLevels {
 /// attributes; material k of the assets is glTF material gltf_material[k]), and `lods` coarser
 /// levels over the same vertices: level l has about 2^-l of each primitive's triangles
 /// (simplified(), error at most 2^(l-1) % of the mesh's extent, so a level may keep more).
+/// `pivot_at_centroid`: the positions about the mesh's volume_centroid (GltfSceneOptions).
 AddedMesh add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
-                         const std::vector<int>& gltf_material, int lods) {
+                         const std::vector<int>& gltf_material, int lods, bool pivot_at_centroid) {
   const tinygltf::Model& m = out.model();
   const std::vector<AssetPrimitive> plain{{0, mesh.triangle.size(), 0, {}}};
   const std::vector<AssetPrimitive>& primitives = mesh.primitives.empty() ? plain : mesh.primitives;
@@ -560,7 +598,9 @@ AddedMesh add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
   const std::vector<std::vector<uint32_t>> idx = cache_ordered_triangles(lists, vertices);
 
   AddedMesh added;
-  MeshLevels levels(out, primitives, gltf_material, textured, relief, vertices, added.frame);
+  const glm::dvec3 centroid = pivot_at_centroid ? volume_centroid(mesh) : glm::dvec3(0.0);
+  MeshLevels levels(out, primitives, gltf_material, textured, relief, vertices, added.frame,
+                    pivot_at_centroid ? &centroid : nullptr);
   added.index = levels.add(mesh.name, idx);
   for (int level = 1; level <= lods; ++level) {
     std::vector<std::vector<uint32_t>> coarser(idx.size());
@@ -781,7 +821,8 @@ void SceneModelBuilder::add_materials() {
 void SceneModelBuilder::add_meshes() {
   SceneBuffers out(m_, options_.compression);
   for (const AssetMesh& mesh : assets_.meshes)
-    added_.push_back(add_asset_mesh(out, mesh, gltf_material_, options_.lods));
+    added_.push_back(
+        add_asset_mesh(out, mesh, gltf_material_, options_.lods, options_.pivot_at_centre_of_mass));
   fallback_bytes_ = out.fallback_bytes();
   view_extensions_ = out.view_extensions();
   auto require = [this](const std::string& extension) {
@@ -855,6 +896,9 @@ tinygltf::Node SceneModelBuilder::mesh_node(const AssetInstance& inst) {
   const AddedMesh& mesh = added_[static_cast<size_t>(inst.mesh)];
   tinygltf::Node node;
   node.name = inst.name + "_mesh";
+  // Only pieces are loose: a board or plate stays where it is.
+  if (options_.collision == GltfCollision::GodotRigid && !inst.piece.template_name.empty())
+    node.name += "-rigid";
   node.mesh = mesh.index;
   if (mesh.frame.offset != glm::dvec3(0.0)) node.translation = gltf_vec3(mesh.frame.offset);
   if (mesh.frame.scale != 1.0) node.scale = {mesh.frame.scale, mesh.frame.scale, mesh.frame.scale};
@@ -882,7 +926,7 @@ tinygltf::Node SceneModelBuilder::mesh_node(const AssetInstance& inst) {
 
 std::vector<tinygltf::Node> SceneModelBuilder::hull_nodes(const AssetInstance& inst) {
   std::vector<tinygltf::Node> nodes;
-  if (options_.collision == GltfCollision::None) return nodes;
+  if (!writes_hull_nodes(options_.collision)) return nodes;
   const std::string& mesh_name = assets_.meshes[static_cast<size_t>(inst.mesh)].name;
   // Hulls are see-through (alpha 0, blended) where a viewer does not read their names as
   // collision: Blender, three.js and model viewers draw nothing over the piece.
@@ -1221,8 +1265,9 @@ GltfCollision parse_gltf_collision(std::string_view name) {
   if (name == "none") return GltfCollision::None;
   if (name == "godot") return GltfCollision::Godot;
   if (name == "unreal") return GltfCollision::Unreal;
+  if (name == "godot-rigid") return GltfCollision::GodotRigid;
   throw InternalError("unknown collision naming '" + std::string(name) +
-                      "' (none, godot or unreal)");
+                      "' (none, godot, unreal or godot-rigid)");
 }
 
 GltfCompression parse_gltf_compression(std::string_view name) {

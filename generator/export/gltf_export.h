@@ -64,7 +64,17 @@ enum class GltfCollision {
   None,    ///< not written
   Godot,   ///< "<piece>_collision<k>-convcolonly": Godot's convex-collision-only suffix
   Unreal,  ///< "UCX_<mesh>_<kk>": Unreal's convex collision prefix, after the render mesh
+  /// No hull nodes; each piece's mesh node named "<piece>_mesh-rigid": Godot 3's importer
+  /// makes it a RigidBody holding the mesh and convex shapes it decomposes from the mesh (a
+  /// loose piece; its hulls under "-convcolonly" would be StaticBodies beside it).
+  GodotRigid,
 };
+
+/// Whether `collision` writes hull nodes (AssetInstance::collision): every naming but None and
+/// GodotRigid, whose engine makes its own shapes. Callers skip computing hulls otherwise.
+inline bool writes_hull_nodes(GltfCollision collision) {
+  return collision != GltfCollision::None && collision != GltfCollision::GodotRigid;
+}
 
 /// Options of the scene glTF export.
 struct GltfSceneOptions {
@@ -86,6 +96,12 @@ struct GltfSceneOptions {
   bool camera_and_lights = true;
   /// Collision hulls of the pieces (scenes leave them out: their pieces have settled).
   GltfCollision collision = GltfCollision::None;
+  /// Whether each mesh node's origin is its mesh's centre of mass (volume_centroid; the
+  /// positions stored relative to it, the node translated there), so that an engine's rigid
+  /// body, which turns about its origin, turns about the piece's centre; the pieces stay
+  /// assembled by the nodes' transforms. Otherwise the origin is the instance's (float
+  /// positions) or the mesh's bounding-box centre (quantized).
+  bool pivot_at_centre_of_mass = false;
   /// Members added to the scene's extras (an object; e.g. `interior_volume`, the files of the
   /// object's interior volume, volume/interior_volume.h), beside those the export writes.
   nlohmann::json scene_extras = nlohmann::json::object();
@@ -95,7 +111,7 @@ struct GltfSceneOptions {
 /// @throws InternalError for any other name
 GltfCompression parse_gltf_compression(std::string_view name);
 
-/// "none", "godot" or "unreal" as a GltfCollision.
+/// "none", "godot", "unreal" or "godot-rigid" as a GltfCollision.
 /// @throws InternalError for any other name
 GltfCollision parse_gltf_collision(std::string_view name);
 

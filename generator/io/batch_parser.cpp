@@ -7,6 +7,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "export/engine_profile.h"
 #include "io/format_fields.h"
 #include "io/text_rules.h"
 #include "io/yaml_reader.h"
@@ -139,8 +140,16 @@ Batch parse(std::string_view text, const std::string& file, ParsedBatch* parsed)
       parsed->volume = o->get("volume_voxels").value_or(o->require("volume"));
   }
   if (auto e = root.get("export")) {
-    e->allow_only({"compress", "lods", "textures", "camera_and_lights", "collision",
+    e->allow_only({"for", "compress", "lods", "textures", "camera_and_lights", "collision",
                    "texels_per_mm", "perlin", "cube", "power_of_two"});
+    // The profile first: compress and collision, when given, are written over it.
+    if (auto x = e->get("for")) {
+      const std::string v = x->string();
+      if (std::find(std::begin(kEngineProfiles), std::end(kEngineProfiles), v) ==
+          std::end(kEngineProfiles))
+        x->fail("must be godot, web or blender, not " + quoted(v));
+      apply_engine_profile(v, b.export_options.gltf);
+    }
     if (auto x = e->get("compress")) {
       const std::string v = x->string();
       if (v != "none" && v != "quantize" && v != "meshopt")
@@ -157,8 +166,8 @@ Batch parse(std::string_view text, const std::string& file, ParsedBatch* parsed)
       b.export_options.gltf.camera_and_lights = x->boolean();
     if (auto x = e->get("collision")) {
       const std::string v = x->string();
-      if (v != "none" && v != "godot" && v != "unreal")
-        x->fail("must be none, godot or unreal, not " + quoted(v));
+      if (v != "none" && v != "godot" && v != "unreal" && v != "godot-rigid")
+        x->fail("must be none, godot, unreal or godot-rigid, not " + quoted(v));
       b.export_options.gltf.collision = parse_gltf_collision(v);
     }
     if (auto x = e->get("texels_per_mm")) b.export_options.texels_per_mm = x->number_in(0.1, 100);

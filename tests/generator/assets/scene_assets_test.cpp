@@ -35,6 +35,25 @@ bool names(const Check& check, const std::string& what) {
   return !check && check.reason().find(what) != std::string::npos;
 }
 
+// The centre of mass of a closed mesh, whatever its triangles' order or the origin: a corner
+// tetrahedron's lies a quarter along each edge from the corner; an open sheet's is its box's.
+TEST(VolumeCentroid, IsTheCentreOfTheVolumeOrOfTheBoxWithoutOne) {
+  ColouredMesh tetra;
+  const glm::dvec3 at(0.3, -0.2, 0.1);
+  tetra.position = {at, at + glm::dvec3(0.04, 0, 0), at + glm::dvec3(0, 0.04, 0),
+                    at + glm::dvec3(0, 0, 0.04)};
+  tetra.triangle = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  EXPECT_LT(glm::distance(volume_centroid(tetra), at + glm::dvec3(0.01)), 1e-12);
+  // Wound inwards: the same centre (the signed volume and moment change sign together).
+  for (glm::uvec3& t : tetra.triangle) std::swap(t.y, t.z);
+  EXPECT_LT(glm::distance(volume_centroid(tetra), at + glm::dvec3(0.01)), 1e-12);
+  ColouredMesh sheet;
+  sheet.position = {{0, 0, 0}, {0.1, 0, 0}, {0, 0, 0.3}};
+  sheet.triangle = {{0, 2, 1}};
+  EXPECT_LT(glm::distance(volume_centroid(sheet), glm::dvec3(0.05, 0, 0.15)), 1e-15);
+  EXPECT_EQ(volume_centroid(ColouredMesh{}), glm::dvec3(0.0));
+}
+
 TEST(SceneAssetsCheck, AValidSceneHasNoDefect) {
   EXPECT_TRUE(check_assets(triangle_scene()));
   EXPECT_NO_THROW(require_valid_assets(triangle_scene(), {}, "test"));

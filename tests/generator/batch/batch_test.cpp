@@ -73,6 +73,21 @@ TEST(BatchFormat, ReadsItemsCutsAndDefaults) {
   EXPECT_TRUE(parse_text(std::string(kHeader) + "items:\n  - template: tomato\n" +
                          "export: {power_of_two: true}\n")
                   .export_options.power_of_two);
+  // An engine profile sets what its engine needs; compress and collision given win over it.
+  const GltfSceneOptions godot =
+      parse_text(std::string(kHeader) + "items:\n  - template: tomato\nexport: {for: godot}\n")
+          .export_options.gltf;
+  EXPECT_EQ(godot.compression, GltfCompression::None);
+  EXPECT_EQ(godot.collision, GltfCollision::GodotRigid);
+  EXPECT_TRUE(godot.pivot_at_centre_of_mass);
+  const GltfSceneOptions given =
+      parse_text(std::string(kHeader) +
+                 "items:\n  - template: tomato\nexport: {collision: none, for: godot, compress: "
+                 "meshopt}\n")
+          .export_options.gltf;
+  EXPECT_EQ(given.compression, GltfCompression::Meshopt);
+  EXPECT_EQ(given.collision, GltfCollision::None);
+  EXPECT_TRUE(given.pivot_at_centre_of_mass);
 }
 
 TEST(BatchFormat, RefusesBrokenRulesAtTheField) {
@@ -95,7 +110,10 @@ TEST(BatchFormat, RefusesBrokenRulesAtTheField) {
                 .find("export.compress: must be none, quantize or meshopt"),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kHeader) + items + "export: {collision: havok}\n")
-                .find("export.collision: must be none, godot or unreal"),
+                .find("export.collision: must be none, godot, unreal or godot-rigid"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kHeader) + items + "export: {for: unity}\n")
+                .find("export.for: must be godot, web or blender, not \"unity\""),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kHeader) + "items: []\n").find("at least one item"),
             std::string::npos);

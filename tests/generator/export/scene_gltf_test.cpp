@@ -760,6 +760,79 @@ TEST(SceneGltf, QuantizedVerticesLandWhereTheAssetsPutThemWithinTheirStep) {
   }
 }
 
+/// A corner of a cube as a closed mesh: the tetrahedron of the corner `at` and the three corners
+/// `size` along each axis from it, wound outward (its centre of mass lies a quarter of the way
+/// along each edge from the corner, its bounding box's centre halfway).
+AssetMesh corner_tetrahedron(const std::string& name, glm::dvec3 at, double size) {
+  AssetMesh m;
+  m.name = name;
+  const glm::dvec3 corners[4] = {at, at + glm::dvec3(size, 0, 0), at + glm::dvec3(0, size, 0),
+                                 at + glm::dvec3(0, 0, size)};
+  const glm::uvec3 faces[4] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  for (const glm::uvec3& f : faces) {  // flat faces: each its own three vertices
+    const glm::dvec3 n =
+        glm::normalize(glm::cross(corners[f.y] - corners[f.x], corners[f.z] - corners[f.x]));
+    const auto base = static_cast<unsigned>(m.position.size());
+    for (int k = 0; k < 3; ++k) {
+      m.position.push_back(corners[f[k]]);
+      m.normal.push_back(n);
+      m.colour.push_back({0.8, 0.2, 0.1});
+    }
+    m.triangle.push_back({base, base + 1, base + 2});
+  }
+  return m;
+}
+
+// Written for an engine's rigid bodies (GltfSceneOptions::pivot_at_centre_of_mass), each mesh
+// node's origin is its mesh's centre of mass, and every vertex still lands where the assets put
+// it (float32 to its rounding, quantized within half a step); with GodotRigid the pieces' mesh
+// nodes are named "-rigid" (not the plate's) and no hull is written. The file passes the
+// validator.
+TEST(SceneGltf, PivotsAtTheCentreOfMassKeepEveryVertexWhereItWas) {
+  const auto dir = test::fresh_dir("scene-gltf-pivot");
+  SceneAssets s = small_scene();
+  s.meshes[0] = corner_tetrahedron("tomato_piece", {0.01, 0.005, -0.02}, 0.04);
+  s.instances[0].piece.template_name = s.instances[1].piece.template_name = "tomato";
+  s.instances[0].collision = {tetrahedron({0, 0, 0}, 0.02)};
+  const glm::dvec3 centre = glm::dvec3(0.01, 0.005, -0.02) + glm::dvec3(0.01);
+  for (const GltfCompression compression : {GltfCompression::None, GltfCompression::Quantize}) {
+    GltfSceneOptions options{compression};
+    options.pivot_at_centre_of_mass = true;
+    options.collision = GltfCollision::GodotRigid;
+    const tinygltf::Model m = write_valid_and_load(
+        s, dir / (compression == GltfCompression::None ? "none.glb" : "quantize.glb"), options);
+    ASSERT_EQ(m.nodes.size(), static_cast<size_t>(kNodes)) << "no hull nodes";
+    for (size_t i = 0; i < s.instances.size(); ++i) {
+      const AssetInstance& inst = s.instances[i];
+      const AssetMesh& mesh = s.meshes[static_cast<size_t>(inst.mesh)];
+      const tinygltf::Node& mesh_node = m.nodes[2 + 2 * i];
+      EXPECT_EQ(mesh_node.name, inst.name + (i < 2 ? "_mesh-rigid" : "_mesh"));
+      // (The plate's centre, its box's, is the origin: no translation written.)
+      const glm::dvec3 offset = mesh_node.translation.empty()
+                                    ? glm::dvec3(0.0)
+                                    : glm::dvec3(mesh_node.translation[0], mesh_node.translation[1],
+                                                 mesh_node.translation[2]);
+      EXPECT_LT(glm::distance(offset, volume_centroid(mesh)), 1e-12) << inst.name;
+      if (inst.mesh == 0) {
+        EXPECT_LT(glm::distance(offset, centre), 1e-12);
+      }
+      const double scale = mesh_node.scale.empty() ? 1.0 : mesh_node.scale[0];
+      const double tolerance =
+          compression == GltfCompression::None ? 1e-8 : 0.5 * std::sqrt(3.0) * scale / 32767 + 1e-8;
+      const auto& prim = m.meshes[static_cast<size_t>(mesh_node.mesh)].primitives[0];
+      const tinygltf::Accessor& pos = m.accessors.at(prim.attributes.at("POSITION"));
+      for (size_t v = 0; v < pos.count; ++v) {
+        const glm::dvec3 at =
+            offset + scale * glm::dvec3(component(m, pos, v, 0), component(m, pos, v, 1),
+                                        component(m, pos, v, 2));
+        double nearest = 1e9;
+        for (const glm::dvec3& p : mesh.position) nearest = std::min(nearest, glm::distance(p, at));
+        EXPECT_LE(nearest, tolerance) << inst.name << " vertex " << v;
+      }
+    }
+  }
+}
+
 /// Every compression mode, with the file stem its tests write.
 const std::vector<std::pair<std::string, GltfCompression>> kCompressionModes = {
     {"none", GltfCompression::None},

@@ -1,0 +1,26 @@
+#include "export/engine_profile.h"
+
+#include <string>
+
+#include "base/error.h"
+
+namespace cutaway {
+
+void apply_engine_profile(std::string_view name, GltfSceneOptions& options) {
+  if (name == "godot") {
+    options.compression = GltfCompression::None;
+    options.collision = GltfCollision::GodotRigid;
+    options.pivot_at_centre_of_mass = true;
+  } else if (name == "web") {
+    options.compression = GltfCompression::Meshopt;
+    options.collision = GltfCollision::None;
+  } else if (name == "blender") {
+    options.compression = GltfCompression::Quantize;
+    options.collision = GltfCollision::None;
+  } else {
+    throw InternalError("unknown engine profile '" + std::string(name) +
+                        "' (godot, web or blender)");
+  }
+}
+
+}  // namespace cutaway

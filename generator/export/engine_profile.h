@@ -1,0 +1,26 @@
+// Engine profiles: what each consumer of a glTF file needs written (vertex encoding, collision
+// naming, pivots), set by one name (`--for`, a batch's `export: for`). doc/engines.md says per
+// consumer what to expect, measured.
+#pragma once
+
+#include <string_view>
+
+#include "export/gltf_export.h"
+
+namespace cutaway {
+
+/// The consumers a profile exists for, in the order the command line lists them.
+inline constexpr std::string_view kEngineProfiles[] = {"godot", "web", "blender"};
+
+/// Sets in `options` what the consumer `name` needs (the rest is left as given):
+/// - godot (Godot 3, and Godot 4 before it reads KHR_mesh_quantization): float32 vertex data;
+///   each piece's mesh node named "-rigid", which Godot's importer turns into a RigidBody
+///   with convex shapes decomposed from the mesh (GltfCollision::GodotRigid); pivots at each
+///   piece's centre of mass (a Godot body turns about its origin);
+/// - web (three.js and other browsers' loaders with a meshopt decoder): EXT_meshopt_compression,
+///   no collision hulls among the drawn meshes;
+/// - blender (Blender 3.4+ and the add-on): KHR_mesh_quantization, no collision hulls.
+/// @throws InternalError for a name outside kEngineProfiles (the callers check it first)
+void apply_engine_profile(std::string_view name, GltfSceneOptions& options);
+
+}  // namespace cutaway
