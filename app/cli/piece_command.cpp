@@ -52,6 +52,12 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
   std::vector<std::string> exports;
   if (!a.output.empty()) exports.push_back(a.output);
   const Targets targets = register_outputs(outputs, exports, a.png, "");
+  GltfSceneOptions gltf = export_options("quantize", a.lods, a.textures);
+  gltf.camera_and_lights = a.camera_and_lights;  // an asset leaves them out unless asked
+  gltf.collision = GltfCollision::Godot;
+  if (!a.engine.empty()) apply_engine_profile(a.engine, gltf);  // then what is given over it
+  if (!a.compress.empty()) gltf.compression = parse_gltf_compression(a.compress);
+  if (!a.collision.empty()) gltf.collision = parse_gltf_collision(a.collision);
   const auto t0 = Clock::now();
   const Template tmpl = load_template(a.template_path);
   const CutSpec cut = checked_cut(tmpl, a.cut, "--cut " + quoted(a.cut));
@@ -78,12 +84,6 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
   if (set.defective_pieces > 0)
     spdlog::warn("{} pieces are not closed 2-manifolds", set.defective_pieces);
   assets = piece_assets(std::move(assets), object, 0.3, a.width, a.height);
-  GltfSceneOptions gltf = export_options("quantize", a.lods, a.textures);
-  gltf.camera_and_lights = a.camera_and_lights;  // an asset leaves them out unless asked
-  gltf.collision = GltfCollision::Godot;
-  if (!a.engine.empty()) apply_engine_profile(a.engine, gltf);  // then what is given over it
-  if (!a.compress.empty()) gltf.compression = parse_gltf_compression(a.compress);
-  if (!a.collision.empty()) gltf.collision = parse_gltf_collision(a.collision);
   CUTAWAY_CHECK(assets.instances.size() == object.shapes.size());  // piece k is instance k
   if (writes_hull_nodes(gltf.collision)) {
     const std::vector<CollisionShape> shapes = collision_shapes(object.shapes);

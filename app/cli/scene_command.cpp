@@ -82,7 +82,10 @@ void register_texture_outputs(OutputSet& outputs, const Targets& targets, const 
   for (const Target& out : targets.exports)
     if (output_format("-o", out.given) == Format::Pov ||
         std::filesystem::path(out.given).extension() == ".gltf")
-      for (const std::string& name : texture_file_names(out.given, assets, format)) {
+      for (const std::string& name : texture_file_names(
+               out.given, assets,
+               output_format("-o", out.given) == Format::Pov ? image_file_format(format)
+                                                             : format)) {
         const std::string file = (std::filesystem::path(out.given).parent_path() / name).string();
         if (texture_files.insert(file).second) outputs.add("-o", file);
       }
@@ -144,6 +147,7 @@ int run_scene(const SceneArgs& a, const Common& given, OutputSet& outputs) {
   } else if (const std::string fitted = texel_fit_note(scene); !fitted.empty()) {
     spdlog::warn("{}: {}", a.scene_path, fitted);
   }
+  const GltfSceneOptions gltf = export_options(a.compress, a.lods, a.textures);
   const double t_parse = seconds_since(t0);
   const Common common = with_resolved_backend(given);  // probed once, not per use below
   const uint64_t seed = a.seed >= 0 ? static_cast<uint64_t>(a.seed) : scene.seed;
@@ -171,8 +175,7 @@ int run_scene(const SceneArgs& a, const Common& given, OutputSet& outputs) {
   // The command line's style or strokes over the file's.
   const double strokes = a.style.silhouettes || !a.style.style.empty() ? stroke_strength(a.style)
                                                                        : scene.render.silhouettes;
-  const Written w = write_outputs(assets, targets, common.threads, strokes,
-                                  export_options(a.compress, a.lods, a.textures));
+  const Written w = write_outputs(assets, targets, common.threads, strokes, gltf);
   if (common.stats)
     *common.stats =
         scene_stats(scene, seed, resolved_backend(common), st, cache.get(), t_parse, t_build, w);

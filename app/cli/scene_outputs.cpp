@@ -53,6 +53,7 @@ GltfSceneOptions export_options(const std::string& compress, int lods,
   gltf.compression = parse_gltf_compression(compress);
   gltf.lods = lods;
   gltf.textures = parse_texture_format(textures);
+  if (gltf.textures == TextureFormat::Ktx2) gltf.basisu = require_basisu("--textures ktx2");
   return gltf;
 }
 

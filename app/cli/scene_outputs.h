@@ -36,7 +36,8 @@ Targets register_outputs(OutputSet& outputs, const std::vector<std::string>& pat
                          const std::string& png, const std::string& render);
 
 /// The glTF options of `--compress`, `--lods` and `--textures` (the texture format serves
-/// the .pov files' images too).
+/// the .pov files' images too, ktx2 as jpeg). Call it before any work: with ktx2 it finds basisu.
+/// @throws UsageError as require_basisu
 GltfSceneOptions export_options(const std::string& compress, int lods, const std::string& textures);
 
 /// Writes `assets` as each of `t.exports` (glTF or POV-Ray by extension), `t.png` (OpenGL

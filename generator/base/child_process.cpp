@@ -123,4 +123,31 @@ ChildResult run_child(const fs::path& dir, const std::string& exe,
   return result;
 }
 
+TempDir::TempDir(const std::string& prefix) {
+  path_ = create_watched((std::filesystem::temp_directory_path() / prefix).string(),
+                         RemoveOnSignal::Kind::Folder, guard_);
+  if (path_.empty())
+    throw EnvironmentError("cannot create a temporary folder " + prefix +
+                           "XXXXXX: " + std::string(std::strerror(errno)));
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(path_, ec);
+}
+
+std::string last_lines(const std::string& text, int count) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    if (!line.empty()) lines.push_back(line);
+  }
+  const size_t first = lines.size() > static_cast<size_t>(count) ? lines.size() - count : 0;
+  std::string out;
+  for (size_t i = first; i < lines.size(); ++i) out += (i > first ? "\n" : "") + lines[i];
+  return out;
+}
+
 }  // namespace cutaway

@@ -18,11 +18,13 @@
 #include <glm/mat3x3.hpp>
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
+#include <oneapi/tbb/parallel_for.h>
 #include <tiny_gltf.h>
 #include <unistd.h>
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "export/ktx2_texture.h"
 #include "export/texture_image.h"
 #include "export/vertex_tangents.h"
 #include "model/pbr_material.h"
@@ -707,7 +709,8 @@ class SceneModelBuilder {
   }
 
   /// The textures of the used materials, as images in the buffer (JPEG or PNG,
-  /// texture_image.h) or image files, in the assets' order.
+  /// texture_image.h; KTX2, ktx2_texture.h, several encoded at once) or image files, in the
+  /// assets' order.
   void add_textures();
   /// The used materials, in their order.
   void add_materials();
@@ -727,8 +730,9 @@ class SceneModelBuilder {
   /// The sampler of a texture: clamped, or repeating in u where it wraps in u (a texture
   /// that runs around, the skin's); each added once.
   int sampler_index(bool wrap_u);
-  /// Adds texture `t` of the assets with its image; returns the glTF texture.
-  int add_texture(size_t t);
+  /// Adds texture `t` of the assets with its image, `bytes` (encoded as options.textures
+  /// says); returns the glTF texture.
+  int add_texture(size_t t, std::string bytes);
   /// Adds `node` and lists it in the scene.
   void add_node(tinygltf::Node node);
   /// Adds the node of `inst`, its mesh node and its hull nodes, in this order.
@@ -766,13 +770,36 @@ std::vector<int> SceneModelBuilder::used_materials(const SceneAssets& assets) {
 
 void SceneModelBuilder::add_textures() {
   gltf_texture_.assign(assets_.textures.size(), -1);
+  std::vector<Ktx2Content> content(assets_.textures.size(), Ktx2Content::Colour);
   for (size_t k = 0; k < assets_.materials.size(); ++k) {
-    for (const int t : {assets_.materials[k].base_colour_texture,
-                        assets_.materials[k].material_texture, assets_.materials[k].normal_texture})
+    const AssetMaterial& material = assets_.materials[k];
+    for (const int t :
+         {material.base_colour_texture, material.material_texture, material.normal_texture})
       if (gltf_material_[k] >= 0 && t >= 0) gltf_texture_[static_cast<size_t>(t)] = 0;
+    if (material.normal_texture >= 0)
+      content[static_cast<size_t>(material.normal_texture)] = Ktx2Content::Normal;
+  }
+  std::vector<std::string> bytes(assets_.textures.size());
+  if (options_.textures == TextureFormat::Ktx2) {
+    if (options_.basisu.empty()) throw InternalError("KTX2 textures asked for without basisu");
+    // Each texture by its own single-threaded basisu, several at once: the same bytes in any
+    // order.
+    oneapi::tbb::parallel_for(size_t{0}, assets_.textures.size(), [&](size_t t) {
+      if (gltf_texture_[t] < 0) return;
+      const AssetTexture& texture = assets_.textures[t];
+      const Ktx2Content kind = content[t] == Ktx2Content::Normal ? Ktx2Content::Normal
+                               : texture.linear                  ? Ktx2Content::Data
+                                                                 : Ktx2Content::Colour;
+      bytes[t] = encode_ktx2(texture, kind, options_.basisu);
+    });
+    m_.extensionsUsed.push_back("KHR_texture_basisu");
+    m_.extensionsRequired.push_back("KHR_texture_basisu");
+  } else {
+    for (size_t t = 0; t < assets_.textures.size(); ++t)
+      if (gltf_texture_[t] >= 0) bytes[t] = encode_texture(assets_.textures[t], options_.textures);
   }
   for (size_t t = 0; t < assets_.textures.size(); ++t)
-    if (gltf_texture_[t] >= 0) gltf_texture_[t] = add_texture(t);
+    if (gltf_texture_[t] >= 0) gltf_texture_[t] = add_texture(t, std::move(bytes[t]));
 }
 
 int SceneModelBuilder::sampler_index(bool wrap_u) {
@@ -788,10 +815,9 @@ int SceneModelBuilder::sampler_index(bool wrap_u) {
   return static_cast<int>(m_.samplers.size()) - 1;
 }
 
-int SceneModelBuilder::add_texture(size_t t) {
+int SceneModelBuilder::add_texture(size_t t, std::string bytes) {
   const AssetTexture& asset = assets_.textures[t];
   const int sampler = sampler_index(asset.wrap_u);
-  std::string bytes = encode_texture(asset, options_.textures);
   tinygltf::Image image;
   image.name = asset.name;
   image.mimeType = texture_mime_type(asset, options_.textures);
@@ -805,7 +831,11 @@ int SceneModelBuilder::add_texture(size_t t) {
   tinygltf::Texture texture;
   texture.name = asset.name;
   texture.sampler = sampler;
-  texture.source = static_cast<int>(m_.images.size()) - 1;
+  const int source = static_cast<int>(m_.images.size()) - 1;
+  if (options_.textures == TextureFormat::Ktx2)  // no fallback: the image only there
+    texture.extensions["KHR_texture_basisu"] =
+        tinygltf::Value(tinygltf::Value::Object{{"source", tinygltf::Value(source)}});
+  else texture.source = source;
   m_.textures.push_back(texture);
   return static_cast<int>(m_.textures.size()) - 1;
 }
@@ -934,7 +964,7 @@ std::vector<tinygltf::Node> SceneModelBuilder::hull_nodes(const AssetInstance& i
     hull_material_ = add_material(m_, "collision", 0.0);
   for (size_t k = 0; k < inst.collision.size(); ++k) {
     const AssetHull& hull = inst.collision[k];
-    char number[8];
+    char number[24];
     std::snprintf(number, sizeof number, "%02zu", k);
     tinygltf::Mesh hull_mesh;
     hull_mesh.name = options_.collision == GltfCollision::Godot

@@ -88,8 +88,12 @@ struct GltfSceneOptions {
   /// level l and 0 for the last (always shown); those nodes are not in the scene's node list.
   /// Viewers without MSFT_lod show the full meshes.
   int lods = 0;
-  /// How base-colour textures are stored (texture_image.h); material maps are always PNG.
+  /// How base-colour textures are stored (texture_image.h); material maps are PNG, except
+  /// with Ktx2, which stores every texture as KTX2 (KHR_texture_basisu, listed as required;
+  /// no PNG or JPEG fallback), encoded by `basisu`.
   TextureFormat textures = TextureFormat::Jpeg;
+  /// The Basis Universal encoder for Ktx2 textures (find_basisu, ktx2_texture.h).
+  std::filesystem::path basisu{};
   /// Whether the camera and the lights are written: for scenes made to be rendered, not for
   /// assets to be placed in someone else's scene (`piece` and batches leave them out unless
   /// asked).

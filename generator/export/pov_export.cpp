@@ -477,6 +477,7 @@ void write_scene_pov(const std::filesystem::path& path, const SceneAssets& asset
                      const std::vector<Stroke>* strokes, std::optional<TextureFormat> textures) {
   std::vector<std::string> files;
   if (textures) {
+    textures = image_file_format(*textures);
     files = texture_file_names(path, assets, *textures);
     for (size_t t = 0; t < files.size(); ++t)
       write_file_atomically(path.parent_path() / files[t],

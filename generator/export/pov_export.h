@@ -99,7 +99,8 @@ std::string scene_to_pov(const SceneAssets& assets, const std::vector<Stroke>* s
 /// @throws InternalError as scene_to_pov
 /// @throws EnvironmentError when the file cannot be written
 /// With `textures`, the textures are written first, as image files of that format beside it
-/// (texture_file_names(), each atomically), and the scene uses them.
+/// (texture_file_names(), each atomically; Ktx2 as Jpeg: image_file_format), and the scene
+/// uses them.
 void write_scene_pov(const std::filesystem::path& path, const SceneAssets& assets,
                      const std::vector<Stroke>* strokes = nullptr,
                      std::optional<TextureFormat> textures = std::nullopt);

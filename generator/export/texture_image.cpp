@@ -10,7 +10,8 @@ namespace cutaway {
 TextureFormat parse_texture_format(std::string_view name) {
   if (name == "png") return TextureFormat::Png;
   if (name == "jpeg") return TextureFormat::Jpeg;
-  throw InternalError("texture format must be png or jpeg, not '" + std::string(name) + "'");
+  if (name == "ktx2") return TextureFormat::Ktx2;
+  throw InternalError("texture format must be png, jpeg or ktx2, not '" + std::string(name) + "'");
 }
 
 bool is_jpeg(const AssetTexture& texture, TextureFormat format) {
@@ -18,6 +19,7 @@ bool is_jpeg(const AssetTexture& texture, TextureFormat format) {
 }
 
 const char* texture_mime_type(const AssetTexture& texture, TextureFormat format) {
+  if (format == TextureFormat::Ktx2) return "image/ktx2";
   return is_jpeg(texture, format) ? "image/jpeg" : "image/png";
 }
 
@@ -27,6 +29,8 @@ std::string encode_texture(const AssetTexture& texture, TextureFormat format) {
       texture.pixels.size() !=
           static_cast<size_t>(texture.width) * texture.height * texture.channels)
     throw InternalError("texture '" + texture.name + "': size and pixels disagree");
+  if (format == TextureFormat::Ktx2)
+    throw InternalError("texture '" + texture.name + "': KTX2 is encode_ktx2's");
   std::string out;
   auto append = [](void* context, void* data, int size) {
     static_cast<std::string*>(context)->append(static_cast<const char*>(data),
@@ -47,7 +51,9 @@ std::vector<std::string> texture_file_names(const std::filesystem::path& scene,
   std::vector<std::string> out;
   for (const AssetTexture& t : assets.textures)
     out.push_back(scene.stem().string() + "_" + asset_name(t.name) +
-                  (is_jpeg(t, format) ? ".jpg" : ".png"));
+                  (format == TextureFormat::Ktx2 ? ".ktx2"
+                   : is_jpeg(t, format)          ? ".jpg"
+                                                 : ".png"));
   return out;
 }
 

@@ -159,8 +159,9 @@ Batch parse(std::string_view text, const std::string& file, ParsedBatch* parsed)
     if (auto x = e->get("lods")) b.export_options.gltf.lods = parse_int_in(*x, 0, 4);
     if (auto x = e->get("textures")) {
       const std::string v = x->string();
-      if (v != "jpeg" && v != "png") x->fail("must be jpeg or png, not " + quoted(v));
-      b.export_options.gltf.textures = v == "png" ? TextureFormat::Png : TextureFormat::Jpeg;
+      if (v != "jpeg" && v != "png" && v != "ktx2")
+        x->fail("must be jpeg, png or ktx2, not " + quoted(v));
+      b.export_options.gltf.textures = parse_texture_format(v);
     }
     if (auto x = e->get("camera_and_lights"))
       b.export_options.gltf.camera_and_lights = x->boolean();

@@ -7,11 +7,12 @@
 // object_fraction (their share of the frame).
 // Prints one JSON line:
 //   {ok, meshes, nodes, cameras, lights, triangles, mesh_objects, camera_position,
-//    camera_direction, light_directions, warnings, seconds, error}
+//    camera_direction, light_directions, compressed_textures, warnings, seconds, error}
 // meshes / nodes: glTF meshes and nodes three.js built; cameras / lights: camera and light
 // objects in the loaded scene; triangles: triangles of all mesh objects (instances counted);
 // camera_direction and light_directions: world-space view / light directions (unit vectors, one
-// per directional light); warnings: console warnings and errors of the page.
+// per directional light); compressed_textures: the GPU (KTX2) textures its materials use;
+// warnings: console warnings and errors of the page.
 // Exit code 0 when the file loaded, 1 otherwise.
 //
 // Network: a node http server on 127.0.0.1 (ephemeral port) serves the page, node_modules/three
@@ -46,9 +47,14 @@ const PAGE = `<!doctype html>
 <script type="module">
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { KTX2Loader } from 'three/addons/loaders/KTX2Loader.js';
 import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
-// EXT_meshopt_compression needs the decoder; KHR_mesh_quantization needs nothing.
-const newLoader = () => new GLTFLoader().setMeshoptDecoder(MeshoptDecoder);
+// One renderer for every load and picture: KHR_texture_basisu's KTX2Loader transcodes to what
+// it supports. EXT_meshopt_compression needs the decoder; KHR_mesh_quantization needs nothing.
+const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+const ktx2 = new KTX2Loader().setTranscoderPath('/three/examples/jsm/libs/basis/')
+  .detectSupport(renderer);
+const newLoader = () => new GLTFLoader().setMeshoptDecoder(MeshoptDecoder).setKTX2Loader(ktx2);
 window.loadGltf = async (url) => {
   const gltf = await newLoader().loadAsync(url);
   const meshes = await gltf.parser.getDependencies('mesh');
@@ -56,11 +62,16 @@ window.loadGltf = async (url) => {
   gltf.scene.updateMatrixWorld(true);
   const r = { meshes: meshes.length, nodes: nodes.length, cameras: 0, lights: 0, triangles: 0,
               mesh_objects: 0, camera_position: null, camera_direction: null,
-              light_directions: [] };
+              light_directions: [], compressed_textures: 0 };
+  const textures = new Set();
   const v = (p) => [p.x, p.y, p.z];
   gltf.scene.traverse((o) => {
     if (o.isMesh) {
       r.mesh_objects += 1;
+      for (const key of ['map', 'normalMap', 'roughnessMap']) {
+        const t = o.material?.[key];
+        if (t?.isCompressedTexture) textures.add(t);
+      }
       const g = o.geometry;
       r.triangles += (g.index ? g.index.count : g.attributes.position.count) / 3;
     }
@@ -79,6 +90,7 @@ window.loadGltf = async (url) => {
       }
     }
   });
+  r.compressed_textures = textures.size;  // GPU textures (KTX2), as the GPU keeps them
   return r;
 };
 // Renders the file (its backdrop left out) with its first camera and lights over a grey
@@ -89,7 +101,6 @@ window.loadGltf = async (url) => {
 window.renderGltf = async (url, width, height) => {
   const gltf = await newLoader().loadAsync(url);
   const view = gltf.scene.userData ?? {};
-  const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
   renderer.setSize(width, height);
   renderer.outputColorSpace = THREE.SRGBColorSpace;
   renderer.toneMapping = THREE.LinearToneMapping;
@@ -131,6 +142,7 @@ const TYPES = {
   '.js': 'text/javascript', '.mjs': 'text/javascript', '.html': 'text/html',
   '.glb': 'model/gltf-binary', '.gltf': 'model/gltf+json', '.bin': 'application/octet-stream',
   '.png': 'image/png', '.jpg': 'image/jpeg', '.json': 'application/json',
+  '.wasm': 'application/wasm', '.ktx2': 'image/ktx2',
 };
 
 /// The file below `base` that `rel` (URL-decoded) names, or null when it leaves `base`.

