@@ -25,7 +25,12 @@ CASE is one of
               sky (doc/lighting.md) and rendered with Cycles, the skin held out: the black
               seeds must cover at least 2 % of the cut face at a luminance under 15 % of white
               (KIWI_DARK_SHARE; issue "anatomy and look", the measure on the baked texture is
-              tests/app/cli/anatomy_test.cpp).
+              tests/app/cli/anatomy_test.cpp);
+  volume      the kiwi's interior volume (`cutaway volume --voxel 2`) imported through File >
+              Import > Cutaway Volume beside its whole-object glTF through Cutaway Scene: the
+              volume stands where the object stands and carries the interior material (Principled Volume reading `density`
+              and `color`), and Cycles frames from the front, each alone, show the same
+              silhouette (intersection over union VOLUME_IOU, centroids within 2 pixels).
 The frames stay in DIR to be looked at. Exits non-zero (through --python-exit-code) on the first
 failed check, naming it.
 """
@@ -46,6 +51,9 @@ SCENES = ("salad", "plate", "market")
 FRAME = (200, 150)
 # The least share of the kiwi's cut face darker than 15 % of white (linear luminance).
 KIWI_DARK_SHARE = 0.02
+# The least intersection over union of the volume's and the glTF's silhouettes from the front
+# (128 x 128 pixels; the volume is 2 mm voxels).
+VOLUME_IOU = 0.85
 
 
 def fail(message):
@@ -60,7 +68,8 @@ def check(condition, message):
 def arguments():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     parser = argparse.ArgumentParser(prog="addon_test.py")
-    parser.add_argument("case", choices=("scenes", "plain", "cut-fruit", "batch", "kiwi-seeds"))
+    parser.add_argument("case",
+                        choices=("scenes", "plain", "cut-fruit", "batch", "kiwi-seeds", "volume"))
     parser.add_argument("--addon", required=True)
     parser.add_argument("--cutaway", required=True)
     parser.add_argument("--source", required=True)
@@ -350,11 +359,97 @@ def case_kiwi_seeds(args):
               f"({render.filepath})")
 
 
+def world_bounds(objects):
+    """The world-space bounding box (min, max corners, metres) of `objects`."""
+    import mathutils
+    corners = [o.matrix_world @ mathutils.Vector(c) for o in objects for c in o.bound_box]
+    return ([min(c[k] for c in corners) for k in range(3)],
+            [max(c[k] for c in corners) for k in range(3)])
+
+
+def front_coverage(scene, objects, path):
+    """Renders only `objects` from the front (-Y, orthographic, over a transparent film) with
+    Cycles to `path` and returns the boolean mask of covered pixels."""
+    for obj in scene.objects:
+        obj.hide_render = obj.type in ('MESH', 'VOLUME') and obj not in objects
+    scene.render.engine = 'CYCLES'
+    scene.cycles.device = 'CPU'
+    scene.cycles.samples = 16
+    scene.cycles.use_denoising = False
+    scene.render.resolution_x = scene.render.resolution_y = 128
+    scene.render.resolution_percentage = 100
+    scene.render.film_transparent = True
+    scene.render.image_settings.file_format = 'PNG'
+    scene.render.image_settings.color_mode = 'RGBA'
+    scene.render.filepath = path
+    bpy.ops.render.render(write_still=True)
+    image = bpy.data.images.load(path)
+    pixels = numpy.empty(len(image.pixels), dtype=numpy.float32)
+    image.pixels.foreach_get(pixels)
+    bpy.data.images.remove(image)
+    return pixels.reshape(-1, 4)[:, 3] > 0.5
+
+
+def case_volume(args):
+    install_addon(args.addon)
+    check(hasattr(bpy.ops.import_scene, "cutaway_volume"),
+          "File > Import > Cutaway Volume is missing")
+    stem = os.path.join(args.out, "kiwi")
+    subprocess.run([args.cutaway, "volume", os.path.join(args.source, "templates", "kiwi.yaml"),
+                    "--voxel", "2", "-q", "-o", stem], check=True)
+    empty_scene()
+    scene = bpy.context.scene
+    check(bpy.ops.import_scene.cutaway(filepath=stem + ".glb") == {'FINISHED'},
+          "the kiwi's glTF did not import")
+    meshes = [o for o in scene.objects if o.type == 'MESH']
+    check(meshes, "the kiwi's glTF has no mesh")
+    check(bpy.ops.import_scene.cutaway_volume(filepath=stem + ".vdb") == {'FINISHED'},
+          "the kiwi's volume did not import")
+    volumes = [o for o in scene.objects if o.type == 'VOLUME']
+    check(len(volumes) == 1, f"{len(volumes)} volume objects")
+    volume = volumes[0]
+    grids = {g.name for g in volume.data.grids}
+    check({"density", "color"} <= grids, f"the volume's grids are {sorted(grids)}")
+    material = volume.data.materials[0] if volume.data.materials else None
+    check(material is not None and any(n.type == 'PRINCIPLED_VOLUME'
+                                       for n in material.node_tree.nodes),
+          "the volume has no Principled Volume material")
+    # From the front, each alone: the volume must cover the glTF's silhouette and no more.
+    mesh_lo, mesh_hi = world_bounds(meshes)
+    centre = [(a + b) / 2 for a, b in zip(mesh_lo, mesh_hi)]
+    size = max(b - a for a, b in zip(mesh_lo, mesh_hi))
+    camera_data = bpy.data.cameras.new("front")
+    camera_data.type = 'ORTHO'
+    camera_data.ortho_scale = 1.2 * size
+    camera = bpy.data.objects.new("front", camera_data)
+    camera.location = (centre[0], centre[1] - 3 * size, centre[2])
+    camera.rotation_euler = (math.pi / 2, 0, 0)
+    scene.collection.objects.link(camera)
+    scene.camera = camera
+    world = bpy.data.worlds.new("white")
+    world.use_nodes = True
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (1, 1, 1, 1)
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.5
+    scene.world = world
+    glb_mask = front_coverage(scene, meshes, os.path.join(args.out, "volume-gltf.png"))
+    vol_mask = front_coverage(scene, [volume], os.path.join(args.out, "volume-vdb.png"))
+    iou = float((glb_mask & vol_mask).sum()) / max(1, int((glb_mask | vol_mask).sum()))
+    rows, cols = numpy.indices((128, 128))
+    shift = [abs(float(grid.ravel()[glb_mask].mean() - grid.ravel()[vol_mask].mean()))
+             if vol_mask.any() else 128.0 for grid in (rows, cols)]
+    print(f"volume against glTF from the front: IoU {iou:.3f}, centroids {shift[0]:.2f} and "
+          f"{shift[1]:.2f} pixels apart ({int(glb_mask.sum())} glTF pixels)", flush=True)
+    check(glb_mask.sum() > 2000, f"the glTF covers {int(glb_mask.sum())} pixels")
+    check(iou >= VOLUME_IOU, f"IoU {iou:.3f} of the volume's and the glTF's silhouettes, want "
+                             f"{VOLUME_IOU}")
+    check(max(shift) <= 2.0, f"the silhouettes' centroids are {shift} pixels apart")
+
+
 def main():
     args = arguments()
     os.makedirs(args.out, exist_ok=True)
     {"scenes": case_scenes, "plain": case_plain, "cut-fruit": case_cut_fruit,
-     "batch": case_batch, "kiwi-seeds": case_kiwi_seeds}[args.case](args)
+     "batch": case_batch, "kiwi-seeds": case_kiwi_seeds, "volume": case_volume}[args.case](args)
     print(f"{args.case}: passed", flush=True)
 
 

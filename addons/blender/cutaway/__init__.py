@@ -1,13 +1,13 @@
 """Cutaway for Blender: imports the glTF scenes and pieces cutaway writes, finishing what
 Blender's glTF importer leaves undone, and cuts fruit with the cutaway executable from the Add
-menu. doc/blender.md in the cutaway sources describes both."""
+menu, and imports interior volumes. doc/blender.md in the cutaway sources describes them."""
 
 bl_info = {
     "name": "Cutaway",
     "author": "The cutaway authors",
-    "version": (0, 4, 0),
+    "version": (0, 5, 0),
     "blender": (3, 4, 0),
-    "location": "File > Import > Cutaway Scene; Add > Cut Fruit",
+    "location": "File > Import > Cutaway Scene, Cutaway Volume; Add > Cut Fruit",
     "description": "Import cutaway's cut fruit scenes (camera, sky, translucent flesh, "
                    "levels of detail) and cut fruit with the cutaway executable",
     "category": "Import-Export",

@@ -1,5 +1,5 @@
-"""The add-on's operators and their menu entries: File > Import > Cutaway Scene and
-Add > Cut Fruit."""
+"""The add-on's operators and their menu entries: File > Import > Cutaway Scene and Cutaway
+Volume, and Add > Cut Fruit."""
 
 import os
 import tempfile
@@ -8,7 +8,7 @@ import bpy
 from bpy.props import BoolProperty, IntProperty, StringProperty
 from bpy_extras.io_utils import ImportHelper
 
-from . import generator, importer, preferences
+from . import generator, importer, preferences, volume
 
 _READ_ERRORS = (OSError, ValueError, RuntimeError)
 
@@ -49,6 +49,27 @@ class IMPORT_SCENE_OT_cutaway(bpy.types.Operator, ImportHelper):
             return {'CANCELLED'}
         self.report({'INFO'}, f"Imported {len(imported.pieces)} pieces into "
                               f"'{imported.collection.name}'")
+        return {'FINISHED'}
+
+
+class IMPORT_SCENE_OT_cutaway_volume(bpy.types.Operator, ImportHelper):
+    """Import an interior volume written by cutaway volume (.vdb), standing where the object's
+    glTF stands, with a material that shows the flesh's colour"""
+
+    bl_idname = "import_scene.cutaway_volume"
+    bl_label = "Import Cutaway Volume"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    filename_ext = ".vdb"
+    filter_glob: StringProperty(default="*.vdb", options={'HIDDEN'})
+
+    def execute(self, context):
+        try:
+            obj = volume.import_volume(context, self.filepath)
+        except _READ_ERRORS as error:
+            self.report({'ERROR'}, str(error))
+            return {'CANCELLED'}
+        self.report({'INFO'}, f"Imported the interior volume '{obj.name}'")
         return {'FINISHED'}
 
 
@@ -120,6 +141,7 @@ class OBJECT_OT_cutaway_add_cut_fruit(bpy.types.Operator):
 def menu_import(self, context):
     """File > Import entry."""
     self.layout.operator(IMPORT_SCENE_OT_cutaway.bl_idname, text="Cutaway Scene (.glb/.gltf)")
+    self.layout.operator(IMPORT_SCENE_OT_cutaway_volume.bl_idname, text="Cutaway Volume (.vdb)")
 
 
 def menu_add(self, context):
@@ -128,4 +150,5 @@ def menu_add(self, context):
                          icon='MESH_UVSPHERE')
 
 
-classes = (IMPORT_SCENE_OT_cutaway, OBJECT_OT_cutaway_add_cut_fruit)
+classes = (IMPORT_SCENE_OT_cutaway, IMPORT_SCENE_OT_cutaway_volume,
+           OBJECT_OT_cutaway_add_cut_fruit)
