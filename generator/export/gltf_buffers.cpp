@@ -1,0 +1,242 @@
+#include "export/gltf_buffers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <meshoptimizer.h>
+
+namespace cutaway::gltf {
+
+int add_view(tinygltf::Model& m, const void* data, size_t bytes, int target) {
+  auto& buf = m.buffers[0].data;
+  while (buf.size() % 4) buf.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = buf.size();
+  view.byteLength = bytes;
+  view.target = target;
+  const auto* p = static_cast<const unsigned char*>(data);
+  buf.insert(buf.end(), p, p + bytes);
+  m.bufferViews.push_back(view);
+  return static_cast<int>(m.bufferViews.size()) - 1;
+}
+
+int add_vec3_accessor(tinygltf::Model& m, const std::vector<float>& xyz, bool with_bounds) {
+  tinygltf::Accessor a;
+  a.bufferView = add_view(m, xyz.data(), xyz.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  a.type = TINYGLTF_TYPE_VEC3;
+  a.count = xyz.size() / 3;
+  if (with_bounds) {
+    a.minValues = {xyz[0], xyz[1], xyz[2]};
+    a.maxValues = a.minValues;
+    for (size_t i = 0; i < xyz.size(); ++i) {
+      a.minValues[i % 3] = std::min<double>(a.minValues[i % 3], xyz[i]);
+      a.maxValues[i % 3] = std::max<double>(a.maxValues[i % 3], xyz[i]);
+    }
+  }
+  m.accessors.push_back(a);
+  return static_cast<int>(m.accessors.size()) - 1;
+}
+
+int add_index_accessor(tinygltf::Model& m, const std::vector<uint32_t>& idx) {
+  tinygltf::Accessor a;
+  a.bufferView =
+      add_view(m, idx.data(), idx.size() * sizeof(uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  a.type = TINYGLTF_TYPE_SCALAR;
+  a.count = idx.size();
+  m.accessors.push_back(a);
+  return static_cast<int>(m.accessors.size()) - 1;
+}
+
+int SceneBuffers::positions(const std::vector<float>& xyz, MeshFrame& frame,
+                            const glm::dvec3* pivot) {
+  if (pivot) return positions_about(xyz, *pivot, frame);
+  const size_t count = xyz.size() / 3;
+  glm::dvec3 lo(xyz[0], xyz[1], xyz[2]), hi = lo;
+  for (size_t i = 0; i < count; ++i)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min<double>(lo[k], xyz[3 * i + k]);
+      hi[k] = std::max<double>(hi[k], xyz[3 * i + k]);
+    }
+  if (compression_ == GltfCompression::None) {
+    frame = {};
+    return accessor(xyz.data(), count, 12, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, false,
+                    {lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z});
+  }
+  frame.offset = (lo + hi) * 0.5;
+  const glm::dvec3 half = (hi - lo) * 0.5;
+  frame.scale = std::max({half.x, half.y, half.z});
+  return quantized_positions(xyz, frame);
+}
+
+int SceneBuffers::positions_about(const std::vector<float>& xyz, const glm::dvec3& pivot,
+                                  MeshFrame& frame) {
+  const size_t count = xyz.size() / 3;
+  frame.offset = pivot;
+  if (compression_ == GltfCompression::None) {
+    frame.scale = 1.0;
+    std::vector<float> moved(xyz.size());
+    std::vector<double> lo(3, INFINITY), hi(3, -INFINITY);
+    for (size_t i = 0; i < count; ++i)
+      for (int k = 0; k < 3; ++k) {
+        moved[3 * i + k] = static_cast<float>(xyz[3 * i + k] - pivot[k]);
+        lo[k] = std::min<double>(lo[k], moved[3 * i + k]);
+        hi[k] = std::max<double>(hi[k], moved[3 * i + k]);
+      }
+    return accessor(moved.data(), count, 12, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                    false, lo, hi);
+  }
+  frame.scale = 0;
+  for (size_t i = 0; i < count; ++i)
+    for (int k = 0; k < 3; ++k)
+      frame.scale = std::max(frame.scale, std::fabs(xyz[3 * i + k] - pivot[k]));
+  return quantized_positions(xyz, frame);
+}
+
+int SceneBuffers::quantized_positions(const std::vector<float>& xyz, MeshFrame& frame) {
+  const size_t count = xyz.size() / 3;
+  if (!(frame.scale > 0)) frame.scale = 1.0;
+  // Steps over each half extent: 16 bits, or 14 for meshopt, whose codec stores the deltas of
+  // the smaller integers in fewer bytes; the node's scale then stretches 14-bit integers read
+  // as normalized SHORT (q / 32767) back to the extent.
+  const double steps = compression_ == GltfCompression::Meshopt ? 8191 : 32767;
+  std::vector<int16_t> q(count * 4, 0);
+  std::vector<double> qlo(3, steps), qhi(3, -steps);
+  for (size_t i = 0; i < count; ++i)
+    for (int k = 0; k < 3; ++k) {
+      const double v = (xyz[3 * i + k] - frame.offset[k]) / frame.scale;
+      q[4 * i + k] = static_cast<int16_t>(std::lround(std::clamp(v, -1.0, 1.0) * steps));
+      qlo[k] = std::min<double>(qlo[k], q[4 * i + k]);
+      qhi[k] = std::max<double>(qhi[k], q[4 * i + k]);
+    }
+  frame.scale *= 32767 / steps;
+  return accessor(q.data(), count, 8, TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC3, true, qlo,
+                  qhi);
+}
+
+int SceneBuffers::normals(const std::vector<float>& xyz) {
+  if (compression_ != GltfCompression::Meshopt)
+    return vec3(xyz, std::vector<int8_t>{}, TINYGLTF_COMPONENT_TYPE_BYTE, -1.f);
+  const size_t count = xyz.size() / 3;
+  std::vector<float> xyzw(count * 4, 0.f);
+  for (size_t i = 0; i < 3 * count; ++i) xyzw[i / 3 * 4 + i % 3] = xyz[i];
+  std::vector<int8_t> q(count * 4);
+  meshopt_encodeFilterOct(q.data(), count, 4, 8, xyzw.data());
+  return accessor(q.data(), count, 4, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC3, true, {},
+                  {}, "OCTAHEDRAL");
+}
+
+int SceneBuffers::tangents(const std::vector<float>& xyzw) {
+  const size_t count = xyzw.size() / 4;
+  if (compression_ == GltfCompression::None)
+    return accessor(xyzw.data(), count, 16, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4,
+                    false);
+  std::vector<int8_t> q(xyzw.size());
+  for (size_t i = 0; i < xyzw.size(); ++i)
+    q[i] = static_cast<int8_t>(std::lround(std::clamp(xyzw[i], -1.f, 1.f) * 127.f));
+  return accessor(q.data(), count, 4, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC4, true);
+}
+
+int SceneBuffers::colours(const std::vector<float>& rgb) {
+  return vec3(rgb, std::vector<uint16_t>{}, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, 0.f);
+}
+
+int SceneBuffers::uvs(const std::vector<float>& xy) {
+  const size_t count = xy.size() / 2;
+  const bool unit = std::all_of(xy.begin(), xy.end(), [](float v) { return v >= 0 && v <= 1; });
+  if (compression_ == GltfCompression::None || !unit)
+    return accessor(xy.data(), count, 8, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, false);
+  std::vector<uint16_t> q(xy.size());
+  for (size_t i = 0; i < xy.size(); ++i) q[i] = static_cast<uint16_t>(std::lround(xy[i] * 65535.0));
+  return accessor(q.data(), count, 4, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC2,
+                  true);
+}
+
+int SceneBuffers::indices(const std::vector<uint32_t>& idx, size_t vertices) {
+  tinygltf::Accessor a;
+  a.type = TINYGLTF_TYPE_SCALAR;
+  a.count = idx.size();
+  const bool narrow = vertices <= 65535;
+  a.componentType =
+      narrow ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  const size_t size = narrow ? 2 : 4;
+  const int target = TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;
+  if (compression_ == GltfCompression::Meshopt) {
+    std::vector<unsigned char> packed(meshopt_encodeIndexBufferBound(idx.size(), vertices));
+    packed.resize(meshopt_encodeIndexBuffer(packed.data(), packed.size(), idx.data(), idx.size()));
+    a.bufferView = encoded_view(packed, idx.size(), size, 0, "TRIANGLES", target);
+  } else if (narrow) {
+    const std::vector<uint16_t> shorts(idx.begin(), idx.end());
+    a.bufferView = add_view(m_, shorts.data(), shorts.size() * 2, target);
+  } else {
+    a.bufferView = add_view(m_, idx.data(), idx.size() * 4, target);
+  }
+  m_.accessors.push_back(a);
+  return static_cast<int>(m_.accessors.size()) - 1;
+}
+
+template <typename T>
+int SceneBuffers::vec3(const std::vector<float>& xyz, std::vector<T> q, int component, float lo) {
+  const size_t count = xyz.size() / 3;
+  if (compression_ == GltfCompression::None)
+    return accessor(xyz.data(), count, 12, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                    false);
+  const double top = std::numeric_limits<T>::max();
+  q.assign(count * 4, 0);
+  for (size_t i = 0; i < 3 * count; ++i)
+    q[i / 3 * 4 + i % 3] = static_cast<T>(std::lround(std::clamp(xyz[i], lo, 1.f) * top));
+  return accessor(q.data(), count, 4 * sizeof(T), component, TINYGLTF_TYPE_VEC3, true);
+}
+
+int SceneBuffers::accessor(const void* data, size_t count, size_t stride, int component, int type,
+                           bool normalized, std::vector<double> lo, std::vector<double> hi,
+                           const char* filter) {
+  tinygltf::Accessor a;
+  a.componentType = component;
+  a.type = type;
+  a.normalized = normalized;
+  a.count = count;
+  a.minValues = std::move(lo);
+  a.maxValues = std::move(hi);
+  const int target = TINYGLTF_TARGET_ARRAY_BUFFER;
+  if (compression_ == GltfCompression::Meshopt) {
+    std::vector<unsigned char> packed(meshopt_encodeVertexBufferBound(count, stride));
+    packed.resize(meshopt_encodeVertexBuffer(packed.data(), packed.size(), data, count, stride));
+    a.bufferView = encoded_view(packed, count, stride, stride, "ATTRIBUTES", target, filter);
+  } else {
+    a.bufferView = add_view(m_, data, count * stride, target);
+    if (compression_ != GltfCompression::None) m_.bufferViews.back().byteStride = stride;
+  }
+  m_.accessors.push_back(a);
+  return static_cast<int>(m_.accessors.size()) - 1;
+}
+
+int SceneBuffers::encoded_view(const std::vector<unsigned char>& packed, size_t count, size_t size,
+                               size_t view_stride, const char* mode, int target,
+                               const char* filter) {
+  auto& buf = m_.buffers[0].data;
+  while (buf.size() % 4) buf.push_back(0);
+  const size_t offset = buf.size();
+  buf.insert(buf.end(), packed.begin(), packed.end());
+  fallback_ = (fallback_ + 3) / 4 * 4;
+  tinygltf::BufferView view;
+  view.buffer = 1;
+  view.byteOffset = fallback_;
+  view.byteLength = count * size;
+  view.byteStride = view_stride;
+  view.target = target;
+  fallback_ += view.byteLength;
+  m_.bufferViews.push_back(view);
+  const int index = static_cast<int>(m_.bufferViews.size()) - 1;
+  nlohmann::json encoding = {
+      {"buffer", 0},        {"byteOffset", offset}, {"byteLength", packed.size()},
+      {"byteStride", size}, {"count", count},       {"mode", mode}};
+  if (filter) encoding["filter"] = filter;
+  view_extensions_.emplace_back(index, nlohmann::json{{"EXT_meshopt_compression", encoding}});
+  return index;
+}
+
+}  // namespace cutaway::gltf
