@@ -103,8 +103,8 @@ double stroke_strength(const StyleArgs& args, RenderStyle fallback) {
                                                           : RenderStyle::Realistic);
 }
 
-void add_export_options(CLI::App* command, std::string& compress, int& lods,
-                        std::string& textures) {
+void add_export_options(CLI::App* command, std::string& compress, int& lods, std::string& textures,
+                        bool& texture_fallback) {
   command
       ->add_option("--compress", compress,
                    "glTF vertex data: quantize (KHR_mesh_quantization, the default; three.js, "
@@ -123,6 +123,9 @@ void add_export_options(CLI::App* command, std::string& compress, int& lods,
                    "texture of a glTF file as a GPU texture (KHR_texture_basisu, UASTC; .pov "
                    "files get jpeg), encoded by Basis Universal's basisu")
       ->check(CLI::IsMember({"jpeg", "png", "ktx2"}));
+  command->add_flag("--texture-fallback", texture_fallback,
+                    "with --textures ktx2: each texture also as JPEG or PNG, which readers "
+                    "without KTX2 take (Blender's glTF importer); the file holds both");
 }
 
 std::filesystem::path require_basisu(const std::string& what) {

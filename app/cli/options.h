@@ -49,9 +49,11 @@ const CLI::Validator& seed_rule();
 /// given" (which would build the whole batch).
 const CLI::Validator& shard_rule();
 
-/// `--compress none|quantize|meshopt`, `--lods N` and `--textures jpeg|png|ktx2` of the commands
+/// `--compress none|quantize|meshopt`, `--lods N`, `--textures jpeg|png|ktx2` and
+/// `--texture-fallback` of the commands
 /// that write glTF and POV-Ray scenes, into the given variables.
-void add_export_options(CLI::App* command, std::string& compress, int& lods, std::string& textures);
+void add_export_options(CLI::App* command, std::string& compress, int& lods, std::string& textures,
+                        bool& texture_fallback);
 
 /// The Basis Universal encoder KTX2 textures need (find_basisu, ktx2_texture.h).
 /// @throws UsageError "WHAT: ..." (exit code 2) saying how to install it when there is none

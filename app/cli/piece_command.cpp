@@ -37,7 +37,8 @@ struct PieceArgs {
   std::string compress;            ///< glTF vertex data: none, quantize or meshopt; empty: the
                                    ///< profile's, else quantize
   int lods = 0;                    ///< glTF levels of detail per mesh (GltfSceneOptions)
-  std::string textures = "jpeg";   ///< base-colour texture images: jpeg or png (TextureFormat)
+  std::string textures = "jpeg";   ///< texture images: jpeg, png or ktx2 (TextureFormat)
+  bool texture_fallback = false;   ///< --texture-fallback: JPEG/PNG beside KTX2
   bool camera_and_lights = false;  ///< --camera-and-lights: write them into the glTF
   std::string collision;           ///< --collision: none, godot, unreal or godot-rigid; empty: the
                                    ///< profile's, else godot
@@ -52,7 +53,7 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
   std::vector<std::string> exports;
   if (!a.output.empty()) exports.push_back(a.output);
   const Targets targets = register_outputs(outputs, exports, a.png, "");
-  GltfSceneOptions gltf = export_options("quantize", a.lods, a.textures);
+  GltfSceneOptions gltf = export_options("quantize", a.lods, a.textures, a.texture_fallback);
   gltf.camera_and_lights = a.camera_and_lights;  // an asset leaves them out unless asked
   gltf.collision = GltfCollision::Godot;
   if (!a.engine.empty()) apply_engine_profile(a.engine, gltf);  // then what is given over it
@@ -189,7 +190,7 @@ Command add_piece_command(CLI::App& app) {
                    "Perlin colour modulation strength (0: off; default 1)")
       ->check(number_rule(0.0, 10.0));
   add_style_options(piece, args->style, "over the PNG and in .pov");
-  add_export_options(piece, args->compress, args->lods, args->textures);
+  add_export_options(piece, args->compress, args->lods, args->textures, args->texture_fallback);
   add_colours_option(piece, args->colours);
   piece->add_flag("--camera-and-lights", args->camera_and_lights,
                   "write the preview's camera and studio lights into the glTF file (an asset "

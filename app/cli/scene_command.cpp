@@ -36,7 +36,8 @@ struct SceneArgs {
   bool power_of_two = false;          ///< --power-of-two: texture sides powers of two
   std::string compress = "quantize";  ///< glTF vertex data: none, quantize or meshopt
   int lods = 0;                       ///< glTF levels of detail per mesh (GltfSceneOptions)
-  std::string textures = "jpeg";      ///< base-colour texture images: jpeg or png (TextureFormat)
+  std::string textures = "jpeg";      ///< texture images: jpeg, png or ktx2 (TextureFormat)
+  bool texture_fallback = false;      ///< --texture-fallback: JPEG/PNG beside KTX2
   StyleArgs style;                    ///< --style, --silhouettes: over the scene file's render
   CacheArgs cache;
 };
@@ -75,20 +76,25 @@ void log_build(const Scene& scene, uint64_t seed, const SceneStats& st,
 }
 
 /// Registers the texture files of each .pov and .gltf output: they go beside it, committed with
-/// it (a .pov and a .gltf of one stem share them).
+/// it (a .pov and a .gltf of one stem share them; a .gltf's texture fallback has the names the
+/// .pov's images have).
 void register_texture_outputs(OutputSet& outputs, const Targets& targets, const SceneAssets& assets,
-                              TextureFormat format) {
+                              const GltfSceneOptions& gltf) {
   std::set<std::string> texture_files;
-  for (const Target& out : targets.exports)
-    if (output_format("-o", out.given) == Format::Pov ||
-        std::filesystem::path(out.given).extension() == ".gltf")
-      for (const std::string& name : texture_file_names(
-               out.given, assets,
-               output_format("-o", out.given) == Format::Pov ? image_file_format(format)
-                                                             : format)) {
-        const std::string file = (std::filesystem::path(out.given).parent_path() / name).string();
-        if (texture_files.insert(file).second) outputs.add("-o", file);
-      }
+  const auto add = [&](const std::string& given, TextureFormat format) {
+    for (const std::string& name : texture_file_names(given, assets, format)) {
+      const std::string file = (std::filesystem::path(given).parent_path() / name).string();
+      if (texture_files.insert(file).second) outputs.add("-o", file);
+    }
+  };
+  for (const Target& out : targets.exports) {
+    if (output_format("-o", out.given) == Format::Pov) {
+      add(out.given, image_file_format(gltf.textures));
+    } else if (std::filesystem::path(out.given).extension() == ".gltf") {
+      add(out.given, gltf.textures);
+      if (gltf.texture_fallback) add(out.given, image_file_format(gltf.textures));
+    }
+  }
 }
 
 /// The --stats of a scene: its counts, the physics and the seconds of each stage.
@@ -147,7 +153,7 @@ int run_scene(const SceneArgs& a, const Common& given, OutputSet& outputs) {
   } else if (const std::string fitted = texel_fit_note(scene); !fitted.empty()) {
     spdlog::warn("{}: {}", a.scene_path, fitted);
   }
-  const GltfSceneOptions gltf = export_options(a.compress, a.lods, a.textures);
+  const GltfSceneOptions gltf = export_options(a.compress, a.lods, a.textures, a.texture_fallback);
   const double t_parse = seconds_since(t0);
   const Common common = with_resolved_backend(given);  // probed once, not per use below
   const uint64_t seed = a.seed >= 0 ? static_cast<uint64_t>(a.seed) : scene.seed;
@@ -171,7 +177,7 @@ int run_scene(const SceneArgs& a, const Common& given, OutputSet& outputs) {
   const SceneAssets assets = build_scene(scene, seed, options, &st);
   const double t_build = seconds_since(t1);
   log_build(scene, seed, st, options.settle);
-  register_texture_outputs(outputs, targets, assets, parse_texture_format(a.textures));
+  register_texture_outputs(outputs, targets, assets, gltf);
   // The command line's style or strokes over the file's.
   const double strokes = a.style.silhouettes || !a.style.style.empty() ? stroke_strength(a.style)
                                                                        : scene.render.silhouettes;
@@ -209,7 +215,7 @@ Command add_scene_command(CLI::App& app) {
   scene->add_flag("--power-of-two", args->power_of_two,
                   "baked textures with sides powers of two (default: multiples of 4, fewer "
                   "texels)");
-  add_export_options(scene, args->compress, args->lods, args->textures);
+  add_export_options(scene, args->compress, args->lods, args->textures, args->texture_fallback);
   add_cache_options(scene, args->cache);
   return {scene, [args](const Common& common, OutputSet& outputs) {
             return run_scene(*args, common, outputs);

@@ -47,12 +47,16 @@ Targets register_outputs(OutputSet& outputs, const std::vector<std::string>& pat
   return t;
 }
 
-GltfSceneOptions export_options(const std::string& compress, int lods,
-                                const std::string& textures) {
+GltfSceneOptions export_options(const std::string& compress, int lods, const std::string& textures,
+                                bool texture_fallback) {
   GltfSceneOptions gltf;
   gltf.compression = parse_gltf_compression(compress);
   gltf.lods = lods;
   gltf.textures = parse_texture_format(textures);
+  if (texture_fallback && gltf.textures != TextureFormat::Ktx2)
+    throw UsageError("--texture-fallback: only with --textures ktx2 (it adds JPEG or PNG "
+                     "beside the KTX2 images)");
+  gltf.texture_fallback = texture_fallback;
   if (gltf.textures == TextureFormat::Ktx2) gltf.basisu = require_basisu("--textures ktx2");
   return gltf;
 }

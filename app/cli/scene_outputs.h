@@ -37,8 +37,9 @@ Targets register_outputs(OutputSet& outputs, const std::vector<std::string>& pat
 
 /// The glTF options of `--compress`, `--lods` and `--textures` (the texture format serves
 /// the .pov files' images too, ktx2 as jpeg). Call it before any work: with ktx2 it finds basisu.
-/// @throws UsageError as require_basisu
-GltfSceneOptions export_options(const std::string& compress, int lods, const std::string& textures);
+/// @throws UsageError as require_basisu, and for `texture_fallback` without ktx2
+GltfSceneOptions export_options(const std::string& compress, int lods, const std::string& textures,
+                                bool texture_fallback = false);
 
 /// Writes `assets` as each of `t.exports` (glTF or POV-Ray by extension), `t.png` (OpenGL
 /// preview) and `t.render` (POV-Ray), each when asked for; glTF as `gltf` says, POV-Ray with

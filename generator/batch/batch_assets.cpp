@@ -49,6 +49,8 @@ std::string fingerprint_text(const Batch& b, const BatchItem& item, uint64_t see
       {"textures", static_cast<int>(b.export_options.gltf.textures)},
       {"camera_and_lights", b.export_options.gltf.camera_and_lights},
       {"collision", static_cast<int>(b.export_options.gltf.collision)},
+      {"pivot_at_centre_of_mass", b.export_options.gltf.pivot_at_centre_of_mass},
+      {"texture_fallback", b.export_options.gltf.texture_fallback},
       {"texels_per_mm", b.export_options.texels_per_mm},
       {"perlin", b.export_options.perlin},
       {"cube", b.export_options.cube},

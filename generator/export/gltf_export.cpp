@@ -102,11 +102,12 @@ struct SceneModel {
 /// run once, in order (scene_model).
 class SceneModelBuilder {
  public:
-  /// `assets` are valid (kGltfRules); `image_files` as scene_model's.
+  /// `assets` are valid (kGltfRules); `image_files` and `fallback_files` as scene_model's.
   SceneModelBuilder(const SceneAssets& assets, const GltfSceneOptions& options,
-                    const std::vector<std::string>* image_files)
-      : assets_(assets), options_(options), image_files_(image_files), m_(new_model()),
-        gltf_material_(used_materials(assets)) {
+                    const std::vector<std::string>* image_files,
+                    const std::vector<std::string>* fallback_files)
+      : assets_(assets), options_(options), image_files_(image_files),
+        fallback_files_(fallback_files), m_(new_model()), gltf_material_(used_materials(assets)) {
     if (options.compression == GltfCompression::Meshopt) m_.buffers.emplace_back();
     scene_.name = assets.name;
   }
@@ -134,8 +135,12 @@ class SceneModelBuilder {
   /// that runs around, the skin's); each added once.
   int sampler_index(bool wrap_u);
   /// Adds texture `t` of the assets with its image, `bytes` (encoded as options.textures
-  /// says); returns the glTF texture.
-  int add_texture(size_t t, std::string bytes);
+  /// says), and with KTX2 its `fallback` image when not empty; returns the glTF texture.
+  int add_texture(size_t t, std::string bytes, std::string fallback);
+  /// Adds an image of texture `t` (`bytes` of `mime_type`): into the buffer, or as the file
+  /// `files`[t] when writing files; returns the glTF image.
+  int add_image(size_t t, std::string bytes, const char* mime_type,
+                const std::vector<std::string>* files);
   /// Adds `node` and lists it in the scene.
   void add_node(tinygltf::Node node);
   /// Adds the node of `inst`, its mesh node and its hull nodes, in this order.
@@ -148,6 +153,7 @@ class SceneModelBuilder {
   const SceneAssets& assets_;
   const GltfSceneOptions& options_;
   const std::vector<std::string>* image_files_;
+  const std::vector<std::string>* fallback_files_;
   tinygltf::Model m_;
   tinygltf::Scene scene_;
   size_t fallback_bytes_ = 0;
@@ -182,7 +188,7 @@ void SceneModelBuilder::add_textures() {
     if (material.normal_texture >= 0)
       content[static_cast<size_t>(material.normal_texture)] = Ktx2Content::Normal;
   }
-  std::vector<std::string> bytes(assets_.textures.size());
+  std::vector<std::string> bytes(assets_.textures.size()), fallback(assets_.textures.size());
   if (options_.textures == TextureFormat::Ktx2) {
     if (options_.basisu.empty()) throw InternalError("KTX2 textures asked for without basisu");
     // Each texture by its own single-threaded basisu, several at once: the same bytes in any
@@ -196,13 +202,20 @@ void SceneModelBuilder::add_textures() {
       bytes[t] = encode_ktx2(texture, kind, options_.basisu);
     });
     m_.extensionsUsed.push_back("KHR_texture_basisu");
-    m_.extensionsRequired.push_back("KHR_texture_basisu");
+    if (options_.texture_fallback) {
+      for (size_t t = 0; t < assets_.textures.size(); ++t)
+        if (gltf_texture_[t] >= 0)
+          fallback[t] = encode_texture(assets_.textures[t], image_file_format(options_.textures));
+    } else {
+      m_.extensionsRequired.push_back("KHR_texture_basisu");
+    }
   } else {
     for (size_t t = 0; t < assets_.textures.size(); ++t)
       if (gltf_texture_[t] >= 0) bytes[t] = encode_texture(assets_.textures[t], options_.textures);
   }
   for (size_t t = 0; t < assets_.textures.size(); ++t)
-    if (gltf_texture_[t] >= 0) gltf_texture_[t] = add_texture(t, std::move(bytes[t]));
+    if (gltf_texture_[t] >= 0)
+      gltf_texture_[t] = add_texture(t, std::move(bytes[t]), std::move(fallback[t]));
 }
 
 int SceneModelBuilder::sampler_index(bool wrap_u) {
@@ -218,24 +231,33 @@ int SceneModelBuilder::sampler_index(bool wrap_u) {
   return static_cast<int>(m_.samplers.size()) - 1;
 }
 
-int SceneModelBuilder::add_texture(size_t t, std::string bytes) {
-  const AssetTexture& asset = assets_.textures[t];
-  const int sampler = sampler_index(asset.wrap_u);
+int SceneModelBuilder::add_image(size_t t, std::string bytes, const char* mime_type,
+                                 const std::vector<std::string>* files) {
   tinygltf::Image image;
-  image.name = asset.name;
-  image.mimeType = texture_mime_type(asset, options_.textures);
-  if (image_files_) {
-    image.uri = uri_encode(image_files_->at(t));
-    images_.emplace_back(image_files_->at(t), std::move(bytes));
+  image.name = assets_.textures[t].name;
+  image.mimeType = mime_type;
+  if (files) {
+    image.uri = uri_encode(files->at(t));
+    images_.emplace_back(files->at(t), std::move(bytes));
   } else {
     image.bufferView = add_view(m_, bytes.data(), bytes.size(), 0);
   }
   m_.images.push_back(image);
+  return static_cast<int>(m_.images.size()) - 1;
+}
+
+int SceneModelBuilder::add_texture(size_t t, std::string bytes, std::string fallback) {
+  const AssetTexture& asset = assets_.textures[t];
   tinygltf::Texture texture;
   texture.name = asset.name;
-  texture.sampler = sampler;
-  const int source = static_cast<int>(m_.images.size()) - 1;
-  if (options_.textures == TextureFormat::Ktx2)  // no fallback: the image only there
+  texture.sampler = sampler_index(asset.wrap_u);
+  if (!fallback.empty())  // the JPEG or PNG first: what readers without KTX2 take
+    texture.source =
+        add_image(t, std::move(fallback),
+                  texture_mime_type(asset, image_file_format(options_.textures)), fallback_files_);
+  const int source =
+      add_image(t, std::move(bytes), texture_mime_type(asset, options_.textures), image_files_);
+  if (options_.textures == TextureFormat::Ktx2)
     texture.extensions["KHR_texture_basisu"] =
         tinygltf::Value(tinygltf::Value::Object{{"source", tinygltf::Value(source)}});
   else texture.source = source;
@@ -454,11 +476,13 @@ SceneModel SceneModelBuilder::finish() {
 /// The scene as a tinygltf model with all binary data in buffer 0 (no URI; with Meshopt
 /// compression, buffer 1 is the fallback) and the extensions of the encoded buffer views. With
 /// `image_files` (texture_file_names(), one per texture), each used texture's image refers to
-/// its file instead and the images are returned with their file names.
+/// its file instead and the images are returned with their file names; `fallback_files` name
+/// the texture fallback's images so (options.texture_fallback).
 SceneModel scene_model(const SceneAssets& assets, const GltfSceneOptions& options,
-                       const std::vector<std::string>* image_files = nullptr) {
+                       const std::vector<std::string>* image_files = nullptr,
+                       const std::vector<std::string>* fallback_files = nullptr) {
   require_valid_assets(assets, kGltfRules, "scene assets");
-  SceneModelBuilder builder(assets, options, image_files);
+  SceneModelBuilder builder(assets, options, image_files, fallback_files);
   builder.add_textures();
   builder.add_materials();
   builder.add_meshes();
@@ -478,14 +502,18 @@ struct EncodedScene {
 /// scene_model() serialised: buffer 0 holds `bin`; with Meshopt compression buffer 1 is the
 /// EXT_meshopt_compression fallback, which holds no bytes.
 EncodedScene encode_scene(const SceneAssets& assets, const GltfSceneOptions& options,
-                          const std::vector<std::string>* image_files = nullptr) {
-  SceneModel model = scene_model(assets, options, image_files);
+                          const std::vector<std::string>* image_files = nullptr,
+                          const std::vector<std::string>* fallback_files = nullptr) {
+  SceneModel model = scene_model(assets, options, image_files, fallback_files);
   tinygltf::Model& m = model.model;
   EncodedScene scene;
   scene.bin.swap(m.buffers[0].data);
   scene.images = std::move(model.images);
   std::ostringstream out;
   tinygltf::TinyGLTF writer;
+  // Image files are written here, not by tinygltf: it keeps each image's uri (its own writer
+  // turned a KTX2 file's uri, whose type it does not know, into an empty one).
+  writer.SetImageWriter(nullptr, nullptr);
   writer.WriteGltfSceneToStream(&m, out, false, false);
   scene.doc = nlohmann::json::parse(out.str());
   scene.doc["buffers"][0] = {{"byteLength", scene.bin.size()}};
@@ -732,7 +760,9 @@ void write_scene_gltf(const std::filesystem::path& path, const SceneAssets& asse
   }
   // .gltf: the textures as image files beside it, written first (each atomically).
   const std::vector<std::string> image_files = texture_file_names(path, assets, options.textures);
-  EncodedScene scene = encode_scene(assets, options, &image_files);
+  const std::vector<std::string> fallback_files =
+      texture_file_names(path, assets, image_file_format(options.textures));
+  EncodedScene scene = encode_scene(assets, options, &image_files, &fallback_files);
   for (const auto& [name, bytes] : scene.images) write_file_atomically(dir / name, bytes);
   // .gltf: buffer 0 is the .bin beside it.
   fs::path bin_path = path;

@@ -94,6 +94,11 @@ struct GltfSceneOptions {
   TextureFormat textures = TextureFormat::Jpeg;
   /// The Basis Universal encoder for Ktx2 textures (find_basisu, ktx2_texture.h).
   std::filesystem::path basisu{};
+  /// With Ktx2: each texture also as the JPEG or PNG image the Jpeg format writes, its
+  /// `source` (the KTX2 image stays its KHR_texture_basisu source, and the extension is no
+  /// longer required), for readers without KTX2 (Blender's glTF importer). Both images are
+  /// stored: the file grows by the JPEG and PNG bytes.
+  bool texture_fallback = false;
   /// Whether the camera and the lights are written: for scenes made to be rendered, not for
   /// assets to be placed in someone else's scene (`piece` and batches leave them out unless
   /// asked).

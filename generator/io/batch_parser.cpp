@@ -140,8 +140,8 @@ Batch parse(std::string_view text, const std::string& file, ParsedBatch* parsed)
       parsed->volume = o->get("volume_voxels").value_or(o->require("volume"));
   }
   if (auto e = root.get("export")) {
-    e->allow_only({"for", "compress", "lods", "textures", "camera_and_lights", "collision",
-                   "texels_per_mm", "perlin", "cube", "power_of_two"});
+    e->allow_only({"for", "compress", "lods", "textures", "texture_fallback", "camera_and_lights",
+                   "collision", "texels_per_mm", "perlin", "cube", "power_of_two"});
     // The profile first: compress and collision, when given, are written over it.
     if (auto x = e->get("for")) {
       const std::string v = x->string();
@@ -162,6 +162,12 @@ Batch parse(std::string_view text, const std::string& file, ParsedBatch* parsed)
       if (v != "jpeg" && v != "png" && v != "ktx2")
         x->fail("must be jpeg, png or ktx2, not " + quoted(v));
       b.export_options.gltf.textures = parse_texture_format(v);
+    }
+    if (auto x = e->get("texture_fallback")) {
+      b.export_options.gltf.texture_fallback = x->boolean();
+      if (b.export_options.gltf.texture_fallback &&
+          b.export_options.gltf.textures != TextureFormat::Ktx2)
+        x->fail("only with textures: ktx2 (it adds JPEG or PNG beside the KTX2 images)");
     }
     if (auto x = e->get("camera_and_lights"))
       b.export_options.gltf.camera_and_lights = x->boolean();

