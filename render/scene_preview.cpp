@@ -408,7 +408,7 @@ void set_shadow_uniforms(const GlProgram& program, const ShadowMap& map, const g
 
 Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions& options) {
   const glm::ivec2 size = check_input(assets, options);
-  const SceneGeometry geometry = scene_geometry(assets);
+  SceneGeometry geometry = scene_geometry(assets);
 
   const AssetCamera& camera = assets.camera;
   const glm::dmat4 view = view_from_scene(camera);
@@ -428,6 +428,10 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
                      {1, 3, offsetof(SceneVertex, normal)},
                      {2, 3, offsetof(SceneVertex, colour)},
                      {3, 2, offsetof(SceneVertex, uv)}});
+  // OpenGL holds its own copy now: ours goes before the textures and the shadow map take
+  // theirs (a big scene's vertices and indices are hundreds of MB).
+  std::vector<SceneVertex>().swap(geometry.vertices);
+  std::vector<uint32_t>().swap(geometry.indices);
   const std::vector<GLuint> textures = upload_textures(assets, geometry.draws, *context);
   const ShadowMap shadows = draw_shadow_map(assets, geometry.draws, *context);
 
