@@ -33,6 +33,7 @@ struct PieceArgs {
   int width = 800, height = 600;
   int cube = 16;
   double perlin = 1.0;             ///< Perlin colour modulation strength (the template's npr bands)
+  double apart = 0.3;              ///< --apart: how far the pieces are pulled apart (piece_assets)
   StyleArgs style;                 ///< --style, --silhouettes: strokes over the PNG and in .pov
   std::string compress;            ///< glTF vertex data: none, quantize or meshopt; empty: the
                                    ///< profile's, else quantize
@@ -84,7 +85,7 @@ int run_piece(const PieceArgs& a, const Common& common, OutputSet& outputs) {
                  set.attempts - 1);
   if (set.defective_pieces > 0)
     spdlog::warn("{} pieces are not closed 2-manifolds", set.defective_pieces);
-  assets = piece_assets(std::move(assets), object, 0.3, a.width, a.height);
+  assets = piece_assets(std::move(assets), object, a.apart, a.width, a.height);
   CUTAWAY_CHECK(assets.instances.size() == object.shapes.size());  // piece k is instance k
   if (writes_hull_nodes(gltf.collision)) {
     const std::vector<CollisionShape> shapes = collision_shapes(object.shapes);
@@ -189,6 +190,11 @@ Command add_piece_command(CLI::App& app) {
       ->add_option("--perlin", args->perlin,
                    "Perlin colour modulation strength (0: off; default 1)")
       ->check(number_rule(0.0, 10.0));
+  piece
+      ->add_option("--apart", args->apart,
+                   "how far the pieces are pulled apart from the object's centre, in the files "
+                   "and the PNG (0: assembled as cut; default 0.3)")
+      ->check(number_rule(0.0, 2.0));
   add_style_options(piece, args->style, "over the PNG and in .pov");
   add_export_options(piece, args->compress, args->lods, args->textures, args->texture_fallback);
   add_colours_option(piece, args->colours);

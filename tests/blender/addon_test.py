@@ -15,7 +15,8 @@ CASE is one of
               file's lights alone must expose each, with Cycles and Eevee, within LUMA_RANGE (the add-on gives only its
               numpy alias, without which Debian 12's Blender imports no mesh);
   cut-fruit   Add > Cut Fruit once (the tomato in halves, seed 1) with the add-on's preferences
-              pointing at the executable: one root at the 3D cursor, its pieces and their convex
+              pointing at the executable: one root at the 3D cursor, its pieces assembled as cut
+              (each at the root's origin) and their convex
               collision shapes (hidden from renders), no camera, no lights; then a
               `--compress meshopt` piece and a `--textures ktx2` one, which the import refuses
               naming the way out, and the KTX2 one with `--texture-fallback`, which it imports;
@@ -248,6 +249,9 @@ def case_cut_fruit(args):
           f"Cut Fruit: root at {tuple(root.location)}, not at the 3D cursor")
     pieces = check_asset(root, "Cut Fruit")
     check(len(pieces) == 2, f"Cut Fruit: {len(pieces)} halves")
+    # Assembled as cut, unless asked: every piece at its root's origin.
+    check(all(p.location.length < 1e-6 for p in pieces),
+          f"Cut Fruit: pieces pulled apart {[tuple(p.location) for p in pieces]}")
     check({p["cut"] for p in pieces} == {"halves"}, "Cut Fruit: pieces name another cut")
     print(f"Cut Fruit: root {root.name}, pieces {[p.name for p in pieces]}", flush=True)
     # A --compress meshopt file: Blender cannot decode it, and the import says so plainly.

@@ -56,11 +56,12 @@ def resolve_template(template, folder):
     raise GeneratorError(f"template '{template}' not found (looked for {candidates[0]})")
 
 
-def cut_piece(executable, template, cut, seed, output):
+def cut_piece(executable, template, cut, seed, output, apart=0.0):
     """Writes the pieces of `template` cut by `cut` (cutaway's notation, e.g. wedges:4) of the
-    variant `seed` to the glTF file `output`. Raises GeneratorError with the executable's
-    message when it fails."""
-    command = [executable, "piece", template, "--cut", cut, "--seed", str(seed), "-o", output]
+    variant `seed` to the glTF file `output`, assembled as cut or pulled `apart` (cutaway piece
+    --apart). Raises GeneratorError with the executable's message when it fails."""
+    command = [executable, "piece", template, "--cut", cut, "--seed", str(seed),
+               "--apart", repr(float(apart)), "-o", output]
     try:
         done = subprocess.run(command, capture_output=True, text=True, timeout=TIMEOUT_S,
                               check=False)

@@ -109,6 +109,12 @@ class OBJECT_OT_cutaway_add_cut_fruit(bpy.types.Operator):
         default=1,
         min=0,
     )
+    pulled_apart: BoolProperty(
+        name="Pulled Apart",
+        description="Place the pieces pulled slightly apart, as cutaway's preview shows them, "
+                    "instead of assembled as cut",
+        default=False,
+    )
 
     def invoke(self, context, event):
         return context.window_manager.invoke_props_dialog(self)
@@ -121,7 +127,8 @@ class OBJECT_OT_cutaway_add_cut_fruit(bpy.types.Operator):
                 self.template, generator.templates_dir(folder, executable))
             with tempfile.TemporaryDirectory(prefix="cutaway-") as scratch:
                 output = os.path.join(scratch, "piece.glb")
-                generator.cut_piece(executable, template, self.cut, self.seed, output)
+                generator.cut_piece(executable, template, self.cut, self.seed, output,
+                                    apart=0.3 if self.pulled_apart else 0.0)
                 imported = importer.import_file(context, output)
         except _READ_ERRORS as error:
             self.report({'ERROR'}, str(error))
