@@ -16,7 +16,8 @@ CASE is one of
               numpy alias, without which Debian 12's Blender imports no mesh);
   cut-fruit   Add > Cut Fruit once (the tomato in halves, seed 1) with the add-on's preferences
               pointing at the executable: one root at the 3D cursor, its pieces assembled as cut
-              (each at the root's origin) and their convex
+              (each at the root's origin; the background job Cut Fruit polls: done, failed and
+              cancelled) and their convex
               collision shapes (hidden from renders), no camera, no lights; then a
               `--compress meshopt` piece and a `--textures ktx2` one, which the import refuses
               naming the way out, and the KTX2 one with `--texture-fallback`, which it imports;
@@ -42,6 +43,7 @@ import math
 import os
 import subprocess
 import sys
+import time
 
 import bpy
 import numpy
@@ -252,6 +254,29 @@ def case_cut_fruit(args):
     # Assembled as cut, unless asked: every piece at its root's origin.
     check(all(p.location.length < 1e-6 for p in pieces),
           f"Cut Fruit: pieces pulled apart {[tuple(p.location) for p in pieces]}")
+    # The background job the modal operator polls (headless Blender has no window to run the
+    # modal handler in): it writes the file, says why it failed, and a cancelled one stops and
+    # leaves no folder.
+    from cutaway import generator
+    templates = os.path.join(os.path.abspath(args.source), "templates")
+    job = generator.CutJob(prefs.executable, os.path.join(templates, "tomato.yaml"), "halves", 1)
+    while not job.poll():
+        time.sleep(0.05)
+    check(os.path.getsize(job.output) > 0, "CutJob: no file")
+    job.close()
+    check(not os.path.exists(job.scratch), "CutJob: its folder stayed")
+    job = generator.CutJob(prefs.executable, os.path.join(templates, "tomato.yaml"), "wedges:0", 1)
+    try:
+        while not job.poll():
+            time.sleep(0.05)
+        fail("CutJob: wedges:0 did not fail")
+    except generator.GeneratorError as error:
+        check("--cut" in str(error), f"CutJob: {error}")
+    job.close()
+    job = generator.CutJob(prefs.executable, os.path.join(templates, "kiwi.yaml"), "dice:4", 1)
+    job.close()
+    check(job.process.poll() is not None and not os.path.exists(job.scratch),
+          "CutJob: a cancelled job still runs or left its folder")
     check({p["cut"] for p in pieces} == {"halves"}, "Cut Fruit: pieces name another cut")
     print(f"Cut Fruit: root {root.name}, pieces {[p.name for p in pieces]}", flush=True)
     # A --compress meshopt file: Blender cannot decode it, and the import says so plainly.

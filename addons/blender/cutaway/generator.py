@@ -1,8 +1,11 @@
-"""Running the cutaway executable: `cutaway piece TEMPLATE --cut CUT --seed SEED -o FILE.glb`."""
+"""Running the cutaway executable: `cutaway piece TEMPLATE --cut CUT --seed SEED -o FILE.glb`,
+waited for (cut_piece) or in the background (CutJob)."""
 
 import os
 import shutil
 import subprocess
+import tempfile
+import time
 
 TIMEOUT_S = 600  # a dense dice of a large template takes a minute or two on two cores
 
@@ -56,21 +59,75 @@ def resolve_template(template, folder):
     raise GeneratorError(f"template '{template}' not found (looked for {candidates[0]})")
 
 
+class CutJob:
+    """One `cutaway piece TEMPLATE --cut CUT --seed SEED --apart APART -o FILE.glb` run in the
+    background, writing into a private temporary folder: poll() says whether it has ended,
+    cancel() stops it, close() stops it and removes the folder. Blender's modal Add > Cut Fruit
+    polls one from a timer, so that Blender stays usable while cutaway cuts."""
+
+    def __init__(self, executable, template, cut, seed, apart=0.0):
+        self.scratch = tempfile.mkdtemp(prefix="cutaway-")
+        self.output = os.path.join(self.scratch, "piece.glb")
+        self.started = time.monotonic()
+        command = [executable, "piece", template, "--cut", cut, "--seed", str(seed),
+                   "--apart", repr(float(apart)), "-q", "-o", self.output]
+        self._messages = open(os.path.join(self.scratch, "messages.txt"), "w+")
+        try:
+            self.process = subprocess.Popen(command, stdin=subprocess.DEVNULL,
+                                            stdout=self._messages, stderr=subprocess.STDOUT)
+        except OSError as error:
+            self.close()
+            raise GeneratorError(f"could not run {executable}: {error.strerror}") from None
+
+    def seconds(self):
+        """Seconds since the job started."""
+        return time.monotonic() - self.started
+
+    def poll(self):
+        """True once cutaway has written the file, False while it runs. Raises GeneratorError
+        with cutaway's message when it failed, and stops it after TIMEOUT_S."""
+        code = self.process.poll()
+        if code is None:
+            if self.seconds() > TIMEOUT_S:
+                self.cancel()
+                raise GeneratorError(f"cutaway took more than {TIMEOUT_S} s and was stopped")
+            return False
+        if code != 0:
+            self._messages.seek(0)
+            message = self._messages.read().strip() or f"exit status {code}"
+            raise GeneratorError(f"cutaway failed: {message}")
+        if not os.path.isfile(self.output):
+            raise GeneratorError(f"cutaway wrote no {self.output}")
+        return True
+
+    def cancel(self):
+        """Stops cutaway if it still runs (SIGTERM, then SIGKILL after 5 s): it leaves no
+        partial file."""
+        if self.process is not None and self.process.poll() is None:
+            self.process.terminate()
+            try:
+                self.process.wait(timeout=5)
+            except subprocess.TimeoutExpired:
+                self.process.kill()
+                self.process.wait()
+
+    def close(self):
+        """cancel(), then removes the temporary folder and what it holds."""
+        if getattr(self, "process", None) is not None:
+            self.cancel()
+        self._messages.close()
+        shutil.rmtree(self.scratch, ignore_errors=True)
+
+
 def cut_piece(executable, template, cut, seed, output, apart=0.0):
     """Writes the pieces of `template` cut by `cut` (cutaway's notation, e.g. wedges:4) of the
     variant `seed` to the glTF file `output`, assembled as cut or pulled `apart` (cutaway piece
-    --apart). Raises GeneratorError with the executable's message when it fails."""
-    command = [executable, "piece", template, "--cut", cut, "--seed", str(seed),
-               "--apart", repr(float(apart)), "-o", output]
+    --apart), waiting for cutaway (a CutJob). Raises GeneratorError with the executable's
+    message when it fails."""
+    job = CutJob(executable, template, cut, seed, apart)
     try:
-        done = subprocess.run(command, capture_output=True, text=True, timeout=TIMEOUT_S,
-                              check=False)
-    except OSError as error:
-        raise GeneratorError(f"could not run {executable}: {error.strerror}") from None
-    except subprocess.TimeoutExpired:
-        raise GeneratorError(f"cutaway took more than {TIMEOUT_S} s and was stopped") from None
-    if done.returncode != 0:
-        message = done.stderr.strip() or done.stdout.strip() or f"exit status {done.returncode}"
-        raise GeneratorError(f"cutaway failed: {message}")
-    if not os.path.isfile(output):
-        raise GeneratorError(f"cutaway wrote no {output}")
+        while not job.poll():
+            time.sleep(0.05)
+        shutil.copyfile(job.output, output)
+    finally:
+        job.close()

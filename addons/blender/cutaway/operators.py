@@ -1,8 +1,7 @@
 """The add-on's operators and their menu entries: File > Import > Cutaway Scene and Cutaway
 Volume, and Add > Cut Fruit."""
 
-import os
-import tempfile
+import time
 
 import bpy
 from bpy.props import BoolProperty, IntProperty, StringProperty
@@ -85,7 +84,8 @@ def _search_templates(self, context, edit_text):
 
 
 class OBJECT_OT_cutaway_add_cut_fruit(bpy.types.Operator):
-    """Cut a fruit from a cutaway template and add its pieces at the 3D cursor"""
+    """Cut a fruit from a cutaway template and add its pieces at the 3D cursor (cutaway runs in
+    the background; Esc cancels)"""
 
     bl_idname = "object.cutaway_add_cut_fruit"
     bl_label = "Cut Fruit"
@@ -116,33 +116,89 @@ class OBJECT_OT_cutaway_add_cut_fruit(bpy.types.Operator):
         default=False,
     )
 
+    _job = None
+    _timer = None
+
     def invoke(self, context, event):
         return context.window_manager.invoke_props_dialog(self)
 
     def execute(self, context):
+        """Starts the cut (a generator.CutJob). With a window, returns at once and the modal
+        handler imports the pieces when cutaway is done (Esc cancels); in background mode
+        (blender -b, scripts) it waits."""
         executable, folder = preferences.paths(context)
         try:
             executable = generator.find_executable(executable)
             template = generator.resolve_template(
                 self.template, generator.templates_dir(folder, executable))
-            with tempfile.TemporaryDirectory(prefix="cutaway-") as scratch:
-                output = os.path.join(scratch, "piece.glb")
-                generator.cut_piece(executable, template, self.cut, self.seed, output,
-                                    apart=0.3 if self.pulled_apart else 0.0)
-                imported = importer.import_file(context, output)
+            self._job = generator.CutJob(executable, template, self.cut, self.seed,
+                                         apart=0.3 if self.pulled_apart else 0.0)
         except _READ_ERRORS as error:
             self.report({'ERROR'}, str(error))
             return {'CANCELLED'}
-        root = imported.root
-        if root is None:
-            self.report({'ERROR'}, "cutaway wrote a file without pieces")
-            return {'CANCELLED'}
-        root.location = context.scene.cursor.location
-        for obj in context.selected_objects:
-            obj.select_set(False)
-        root.select_set(True)
-        context.view_layer.objects.active = root
-        return {'FINISHED'}
+        if bpy.app.background or context.window is None:
+            try:
+                while not self._job.poll():
+                    time.sleep(0.05)
+            except _READ_ERRORS as error:
+                return self._end(context, error=str(error))
+            return self._end(context)
+        manager = context.window_manager
+        self._timer = manager.event_timer_add(0.2, window=context.window)
+        manager.modal_handler_add(self)
+        self._show_progress(context)
+        return {'RUNNING_MODAL'}
+
+    def modal(self, context, event):
+        """Polls the cut on each timer tick; Esc stops it. Blender stays usable meanwhile."""
+        if event.type == 'ESC':
+            return self._end(context, error="cut cancelled", level='WARNING')
+        if event.type != 'TIMER':
+            return {'PASS_THROUGH'}
+        try:
+            if not self._job.poll():
+                self._show_progress(context)
+                return {'PASS_THROUGH'}
+        except _READ_ERRORS as error:
+            return self._end(context, error=str(error))
+        return self._end(context)
+
+    def _show_progress(self, context):
+        if context.workspace is not None:
+            context.workspace.status_text_set(
+                f"Cutting {self.template} ({self.cut}): {self._job.seconds():.0f} s, "
+                "Esc cancels")
+
+    def _end(self, context, error=None, level='ERROR'):
+        """Imports the pieces at the 3D cursor unless `error`; then stops the timer and the
+        job and removes its folder."""
+        if self._timer is not None:
+            context.window_manager.event_timer_remove(self._timer)
+            self._timer = None
+        if context.workspace is not None:
+            context.workspace.status_text_set(None)
+        try:
+            if error is not None:
+                self.report({level}, error)
+                return {'CANCELLED'}
+            try:
+                imported = importer.import_file(context, self._job.output)
+            except _READ_ERRORS as failure:
+                self.report({'ERROR'}, str(failure))
+                return {'CANCELLED'}
+            root = imported.root
+            if root is None:
+                self.report({'ERROR'}, "cutaway wrote a file without pieces")
+                return {'CANCELLED'}
+            root.location = context.scene.cursor.location
+            for obj in context.selected_objects:
+                obj.select_set(False)
+            root.select_set(True)
+            context.view_layer.objects.active = root
+            return {'FINISHED'}
+        finally:
+            self._job.close()
+            self._job = None
 
 
 def menu_import(self, context):
