@@ -13,6 +13,7 @@
 #include "app/cli/commands.h"
 #include "app/cli/scene_outputs.h"
 #include "base/timer.h"
+#include "export/engine_profile.h"
 #include "export/texture_image.h"
 #include "io/scene_parser.h"
 #include "scene/scene_budget.h"
@@ -31,14 +32,16 @@ struct SceneArgs {
   std::vector<std::string> outputs;
   int64_t seed = -1;  ///< >= 0: overrides the scene's seed
   int cube = 16;
-  std::string colours = "texture";    ///< "texture" or "vertex" (CapColours)
-  double texels_per_mm = 0;           ///< CapAtlasOptions::texels_per_m / 1000; 0: the scene's
-  bool power_of_two = false;          ///< --power-of-two: texture sides powers of two
-  std::string compress = "quantize";  ///< glTF vertex data: none, quantize or meshopt
-  int lods = 0;                       ///< glTF levels of detail per mesh (GltfSceneOptions)
-  std::string textures = "jpeg";      ///< texture images: jpeg, png or ktx2 (TextureFormat)
-  bool texture_fallback = false;      ///< --texture-fallback: JPEG/PNG beside KTX2
-  StyleArgs style;                    ///< --style, --silhouettes: over the scene file's render
+  std::string colours = "texture";  ///< "texture" or "vertex" (CapColours)
+  double texels_per_mm = 0;         ///< CapAtlasOptions::texels_per_m / 1000; 0: the scene's
+  bool power_of_two = false;        ///< --power-of-two: texture sides powers of two
+  std::string compress;             ///< glTF vertex data: none, quantize or meshopt; empty: the
+                                    ///< profile's, else quantize
+  std::string engine;               ///< --for: an engine profile (engine_profile.h), empty: none
+  int lods = 0;                     ///< glTF levels of detail per mesh (GltfSceneOptions)
+  std::string textures = "jpeg";    ///< texture images: jpeg, png or ktx2 (TextureFormat)
+  bool texture_fallback = false;    ///< --texture-fallback: JPEG/PNG beside KTX2
+  StyleArgs style;                  ///< --style, --silhouettes: over the scene file's render
   CacheArgs cache;
 };
 
@@ -153,7 +156,9 @@ int run_scene(const SceneArgs& a, const Common& given, OutputSet& outputs) {
   } else if (const std::string fitted = texel_fit_note(scene); !fitted.empty()) {
     spdlog::warn("{}: {}", a.scene_path, fitted);
   }
-  const GltfSceneOptions gltf = export_options(a.compress, a.lods, a.textures, a.texture_fallback);
+  GltfSceneOptions gltf = export_options("quantize", a.lods, a.textures, a.texture_fallback);
+  if (!a.engine.empty()) apply_engine_profile(a.engine, gltf);  // then --compress over it
+  if (!a.compress.empty()) gltf.compression = parse_gltf_compression(a.compress);
   const double t_parse = seconds_since(t0);
   const Common common = with_resolved_backend(given);  // probed once, not per use below
   const uint64_t seed = a.seed >= 0 ? static_cast<uint64_t>(a.seed) : scene.seed;
@@ -216,6 +221,14 @@ Command add_scene_command(CLI::App& app) {
                   "baked textures with sides powers of two (default: multiples of 4, fewer "
                   "texels)");
   add_export_options(scene, args->compress, args->lods, args->textures, args->texture_fallback);
+  scene
+      ->add_option("--for", args->engine,
+                   "the consumer the glTF file is for, which sets --compress (given wins), the "
+                   "pieces' collision naming and pivots and whether the backdrop is written: "
+                   "godot (float32, one RigidBody per piece, no backdrop), web (meshopt, no "
+                   "backdrop) or blender (quantize); doc/engines.md")
+      ->check(CLI::IsMember(
+          std::vector<std::string>(std::begin(kEngineProfiles), std::end(kEngineProfiles))));
   add_cache_options(scene, args->cache);
   return {scene, [args](const Common& common, OutputSet& outputs) {
             return run_scene(*args, common, outputs);

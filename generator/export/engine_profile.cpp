@@ -11,9 +11,11 @@ void apply_engine_profile(std::string_view name, GltfSceneOptions& options) {
     options.compression = GltfCompression::None;
     options.collision = GltfCollision::GodotRigid;
     options.pivot_at_centre_of_mass = true;
+    options.backdrop = false;
   } else if (name == "web") {
     options.compression = GltfCompression::Meshopt;
     options.collision = GltfCollision::None;
+    options.backdrop = false;
   } else if (name == "blender") {
     options.compression = GltfCompression::Quantize;
     options.collision = GltfCollision::None;

@@ -16,10 +16,11 @@ inline constexpr std::string_view kEngineProfiles[] = {"godot", "web", "blender"
 /// - godot (Godot 3, and Godot 4 before it reads KHR_mesh_quantization): float32 vertex data;
 ///   each piece's mesh node named "-rigid", which Godot's importer turns into a RigidBody
 ///   with convex shapes decomposed from the mesh (GltfCollision::GodotRigid); pivots at each
-///   piece's centre of mass (a Godot body turns about its origin);
+///   piece's centre of mass (a Godot body turns about its origin); no backdrop;
 /// - web (three.js and other browsers' loaders with a meshopt decoder): EXT_meshopt_compression,
-///   no collision hulls among the drawn meshes;
-/// - blender (Blender 3.4+ and the add-on): KHR_mesh_quantization, no collision hulls.
+///   no collision hulls among the drawn meshes, no backdrop;
+/// - blender (Blender 3.4+ and the add-on): KHR_mesh_quantization, no collision hulls; the
+///   backdrop kept (the add-on stages it for renders).
 /// @throws InternalError for a name outside kEngineProfiles (the callers check it first)
 void apply_engine_profile(std::string_view name, GltfSceneOptions& options);
 

@@ -107,7 +107,9 @@ class SceneModelBuilder {
                     const std::vector<std::string>* image_files,
                     const std::vector<std::string>* fallback_files)
       : assets_(assets), options_(options), image_files_(image_files),
-        fallback_files_(fallback_files), m_(new_model()), gltf_material_(used_materials(assets)) {
+        fallback_files_(fallback_files), m_(new_model()),
+        left_out_(left_out_meshes(assets, options)),
+        gltf_material_(used_materials(assets, left_out_)) {
     if (options.compression == GltfCompression::Meshopt) m_.buffers.emplace_back();
     scene_.name = assets.name;
   }
@@ -128,9 +130,16 @@ class SceneModelBuilder {
   SceneModel finish();
 
  private:
-  /// Which materials some mesh uses (an unused one is a validator notice): 0 for those, -1
-  /// for the others.
-  static std::vector<int> used_materials(const SceneAssets& assets);
+  /// Which materials some mesh that is written uses (an unused one is a validator notice): 0
+  /// for those, -1 for the others.
+  static std::vector<int> used_materials(const SceneAssets& assets,
+                                         const std::vector<bool>& left_out);
+  /// Per mesh, whether it is left out: shown only by the backdrop, when options.backdrop is
+  /// false.
+  static std::vector<bool> left_out_meshes(const SceneAssets& assets,
+                                           const GltfSceneOptions& options);
+  /// Whether `inst` is left out (the backdrop, when options.backdrop is false).
+  bool left_out(const AssetInstance& inst) const { return inst.backdrop && !options_.backdrop; }
   /// The sampler of a texture: clamped, or repeating in u where it wraps in u (a texture
   /// that runs around, the skin's); each added once.
   int sampler_index(bool wrap_u);
@@ -155,6 +164,7 @@ class SceneModelBuilder {
   const std::vector<std::string>* image_files_;
   const std::vector<std::string>* fallback_files_;
   tinygltf::Model m_;
+  std::vector<bool> left_out_;  // per mesh of the assets
   tinygltf::Scene scene_;
   size_t fallback_bytes_ = 0;
   std::vector<std::pair<int, nlohmann::json>> view_extensions_;
@@ -167,9 +177,26 @@ class SceneModelBuilder {
   int hull_material_ = -1;                 // the collision hulls' one material, once needed
 };
 
-std::vector<int> SceneModelBuilder::used_materials(const SceneAssets& assets) {
+std::vector<bool> SceneModelBuilder::left_out_meshes(const SceneAssets& assets,
+                                                     const GltfSceneOptions& options) {
+  std::vector<bool> out(assets.meshes.size(), false);
+  if (options.backdrop) return out;
+  std::vector<bool> shown(assets.meshes.size(), false);
+  for (const AssetInstance& inst : assets.instances) {
+    const auto m = static_cast<size_t>(inst.mesh);
+    if (inst.backdrop) out[m] = true;
+    else shown[m] = true;
+  }
+  for (size_t m = 0; m < out.size(); ++m) out[m] = out[m] && !shown[m];
+  return out;
+}
+
+std::vector<int> SceneModelBuilder::used_materials(const SceneAssets& assets,
+                                                   const std::vector<bool>& left_out) {
   std::vector<int> gltf_material(assets.materials.size(), -1);
-  for (const AssetMesh& mesh : assets.meshes) {
+  for (size_t m = 0; m < assets.meshes.size(); ++m) {
+    if (left_out[m]) continue;
+    const AssetMesh& mesh = assets.meshes[m];
     if (mesh.primitives.empty()) gltf_material[0] = 0;
     for (const AssetPrimitive& p : mesh.primitives)
       gltf_material[static_cast<size_t>(p.material)] = 0;
@@ -275,9 +302,11 @@ void SceneModelBuilder::add_materials() {
 
 void SceneModelBuilder::add_meshes() {
   SceneBuffers out(m_, options_.compression);
-  for (const AssetMesh& mesh : assets_.meshes)
-    added_.push_back(
-        add_asset_mesh(out, mesh, gltf_material_, options_.lods, options_.pivot_at_centre_of_mass));
+  for (size_t m = 0; m < assets_.meshes.size(); ++m)
+    added_.push_back(left_out_[m]
+                         ? AddedMesh{}
+                         : add_asset_mesh(out, assets_.meshes[m], gltf_material_, options_.lods,
+                                          options_.pivot_at_centre_of_mass));
   fallback_bytes_ = out.fallback_bytes();
   view_extensions_ = out.view_extensions();
   auto require = [this](const std::string& extension) {
@@ -297,15 +326,18 @@ void SceneModelBuilder::add_instances() {
   // Node order: the root, each instance's node followed by its mesh node and hull nodes, the
   // camera, the lights (those in the scene's list: the root, the camera, the lights); then the
   // level nodes, outside the scene's list.
-  main_nodes_ = 1 + 2 * assets_.instances.size() +
-                (options_.camera_and_lights ? 1 + assets_.lights.size() : 0);
-  if (options_.collision != GltfCollision::None)
-    for (const AssetInstance& inst : assets_.instances) main_nodes_ += inst.collision.size();
+  main_nodes_ = 1 + (options_.camera_and_lights ? 1 + assets_.lights.size() : 0);
+  for (const AssetInstance& inst : assets_.instances) {
+    if (left_out(inst)) continue;
+    main_nodes_ += 2;
+    if (writes_hull_nodes(options_.collision)) main_nodes_ += inst.collision.size();
+  }
   tinygltf::Node root;
   root.name = assets_.name;
   m_.nodes.push_back(root);
   scene_.nodes.push_back(0);
-  for (const AssetInstance& inst : assets_.instances) add_instance(inst);
+  for (const AssetInstance& inst : assets_.instances)
+    if (!left_out(inst)) add_instance(inst);
 }
 
 void SceneModelBuilder::add_instance(const AssetInstance& inst) {

@@ -111,6 +111,9 @@ struct GltfSceneOptions {
   /// assembled by the nodes' transforms. Otherwise the origin is the instance's (float
   /// positions) or the mesh's bounding-box centre (quantized).
   bool pivot_at_centre_of_mass = false;
+  /// Whether the backdrop (AssetInstance::backdrop: a photographer's sweep, staging for
+  /// pictures) is written, with the meshes only it uses. Engine profiles for games leave it out.
+  bool backdrop = true;
   /// Members added to the scene's extras (an object; e.g. `interior_volume`, the files of the
   /// object's interior volume, volume/interior_volume.h), beside those the export writes.
   nlohmann::json scene_extras = nlohmann::json::object();

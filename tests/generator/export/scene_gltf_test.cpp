@@ -835,6 +835,31 @@ TEST(SceneGltf, PivotsAtTheCentreOfMassKeepEveryVertexWhereItWas) {
   }
 }
 
+// Without the backdrop (GltfSceneOptions::backdrop false, engine profiles for games) its node,
+// mesh and material are left out, and the rest is written as with it; the file passes the
+// validator. With it (the default) it is an instance like the others.
+TEST(SceneGltf, TheBackdropIsLeftOutWhenAsked) {
+  const auto dir = test::fresh_dir("scene-gltf-backdrop");
+  SceneAssets s = small_scene();
+  s.meshes.push_back(plate("backdrop", 1.0, 8));
+  s.materials.push_back({"backdrop", PbrMaterial{}, -1});
+  s.meshes.back().primitives = {
+      {0, s.meshes.back().triangle.size(), static_cast<int>(s.materials.size()) - 1, {}}};
+  AssetInstance sweep{"backdrop", 2, glm::dquat(1, 0, 0, 0), {0, 0, 0}};
+  sweep.backdrop = true;
+  s.instances.push_back(sweep);
+  const tinygltf::Model with = write_valid_and_load(s, dir / "with.glb");
+  EXPECT_EQ(with.nodes.size(), static_cast<size_t>(kNodes + 2));
+  EXPECT_EQ(with.meshes.size(), 3u);
+  GltfSceneOptions options;
+  options.backdrop = false;
+  const tinygltf::Model without = write_valid_and_load(s, dir / "without.glb", options);
+  EXPECT_EQ(without.nodes.size(), static_cast<size_t>(kNodes));
+  EXPECT_EQ(without.meshes.size(), 2u);
+  for (const tinygltf::Node& node : without.nodes) EXPECT_NE(node.name, "backdrop");
+  for (const tinygltf::Material& material : without.materials) EXPECT_NE(material.name, "backdrop");
+}
+
 /// Every compression mode, with the file stem its tests write.
 const std::vector<std::pair<std::string, GltfCompression>> kCompressionModes = {
     {"none", GltfCompression::None},
