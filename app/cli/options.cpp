@@ -9,6 +9,7 @@
 #include <spdlog/spdlog.h>
 
 #include "app/cli/commands.h"
+#include "export/engine_profile.h"
 #include "export/ktx2_texture.h"
 #include "batch/variant_batch.h"
 #include "base/error.h"
@@ -126,6 +127,12 @@ void add_export_options(CLI::App* command, std::string& compress, int& lods, std
   command->add_flag("--texture-fallback", texture_fallback,
                     "with --textures ktx2: each texture also as JPEG or PNG, which readers "
                     "without KTX2 take (Blender's glTF importer); the file holds both");
+}
+
+void add_engine_option(CLI::App* command, std::string& engine, const std::string& description) {
+  command->add_option("--for", engine, description)
+      ->check(CLI::IsMember(
+          std::vector<std::string>(std::begin(kEngineProfiles), std::end(kEngineProfiles))));
 }
 
 std::filesystem::path require_basisu(const std::string& what) {

@@ -207,14 +207,11 @@ Command add_piece_command(CLI::App& app) {
                    "(NAME_collisionK-convcolonly, the default), unreal (UCX_MESH_KK) or none; "
                    "godot-rigid: no hulls, each piece's mesh a Godot RigidBody (NAME_mesh-rigid)")
       ->check(CLI::IsMember({"none", "godot", "unreal", "godot-rigid"}));
-  piece
-      ->add_option("--for", args->engine,
-                   "the consumer the glTF file is for, which sets --compress and --collision "
-                   "(given ones win) and pivots: godot (float32, one RigidBody per piece turning "
-                   "about its centre of mass), web (meshopt, no hulls) or blender (quantize, no "
-                   "hulls); doc/engines.md")
-      ->check(CLI::IsMember(
-          std::vector<std::string>(std::begin(kEngineProfiles), std::end(kEngineProfiles))));
+  add_engine_option(piece, args->engine,
+                    "the consumer the glTF file is for, which sets --compress and --collision "
+                    "(given ones win) and pivots: godot (float32, one RigidBody per piece "
+                    "turning about its centre of mass), web (meshopt, no hulls) or blender "
+                    "(quantize, no hulls); doc/engines.md");
   return {piece, [args](const Common& common, OutputSet& outputs) {
             return run_piece(*args, common, outputs);
           }};

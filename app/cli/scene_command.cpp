@@ -221,14 +221,11 @@ Command add_scene_command(CLI::App& app) {
                   "baked textures with sides powers of two (default: multiples of 4, fewer "
                   "texels)");
   add_export_options(scene, args->compress, args->lods, args->textures, args->texture_fallback);
-  scene
-      ->add_option("--for", args->engine,
-                   "the consumer the glTF file is for, which sets --compress (given wins), the "
-                   "pieces' collision naming and pivots and whether the backdrop is written: "
-                   "godot (float32, one RigidBody per piece, no backdrop), web (meshopt, no "
-                   "backdrop) or blender (quantize); doc/engines.md")
-      ->check(CLI::IsMember(
-          std::vector<std::string>(std::begin(kEngineProfiles), std::end(kEngineProfiles))));
+  add_engine_option(scene, args->engine,
+                    "the consumer the glTF file is for, which sets --compress (given wins), the "
+                    "pieces' collision naming and pivots and whether the backdrop is written: "
+                    "godot (float32, one RigidBody per piece, no backdrop), web (meshopt, no "
+                    "backdrop) or blender (quantize); doc/engines.md");
   add_cache_options(scene, args->cache);
   return {scene, [args](const Common& common, OutputSet& outputs) {
             return run_scene(*args, common, outputs);
