@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include <glm/common.hpp>
 #include <meshoptimizer.h>
 
 namespace cutaway::gltf {
@@ -49,6 +50,35 @@ int add_index_accessor(tinygltf::Model& m, const std::vector<uint32_t>& idx) {
   a.count = idx.size();
   m.accessors.push_back(a);
   return static_cast<int>(m.accessors.size()) - 1;
+}
+
+MeshoptGrid meshopt_grid(const std::vector<const AssetMesh*>& meshes,
+                         const std::vector<AssetTexture>& textures) {
+  MeshoptGrid grid;
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  glm::dvec2 uv_lo(INFINITY), uv_hi(-INFINITY);
+  for (const AssetMesh* mesh : meshes) {
+    for (const glm::dvec3& p : mesh->position) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    for (const glm::dvec2& uv : mesh->uv) {
+      uv_lo = glm::min(uv_lo, uv);
+      uv_hi = glm::max(uv_hi, uv);
+    }
+  }
+  const glm::dvec3 side = hi - lo;
+  const double extent = std::max({side.x, side.y, side.z});
+  if (extent > 0 && std::isfinite(extent)) grid.position_step = extent / 16383;
+  int texels = 0;
+  for (const AssetTexture& t : textures) texels = std::max({texels, t.width, t.height});
+  if (texels > 0 && std::isfinite(uv_lo.x) && std::isfinite(uv_lo.y)) {
+    grid.uv_steps = 2.0 * texels;
+    grid.uv_origin = glm::floor(uv_lo);
+    const glm::dvec2 span = (uv_hi - grid.uv_origin) * grid.uv_steps;
+    if (!(span.x <= 65535 && span.y <= 65535)) grid = {grid.position_step, 0, glm::dvec2(0.0)};
+  }
+  return grid;
 }
 
 int SceneBuffers::positions(const std::vector<float>& xyz, MeshFrame& frame,
@@ -99,10 +129,13 @@ int SceneBuffers::positions_about(const std::vector<float>& xyz, const glm::dvec
 int SceneBuffers::quantized_positions(const std::vector<float>& xyz, MeshFrame& frame) {
   const size_t count = xyz.size() / 3;
   if (!(frame.scale > 0)) frame.scale = 1.0;
-  // Steps over each half extent: 16 bits, or 14 for meshopt, whose codec stores the deltas of
-  // the smaller integers in fewer bytes; the node's scale then stretches 14-bit integers read
-  // as normalized SHORT (q / 32767) back to the extent.
-  const double steps = compression_ == GltfCompression::Meshopt ? 8191 : 32767;
+  // Steps over each half extent: 16 bits; with meshopt, the scene grid's steps (or 14 bits
+  // without one), whose smaller integers the codec stores in fewer bytes. The node's scale
+  // then stretches the integers read as normalized SHORT (q / 32767) back to the extent.
+  double steps = 32767;
+  if (compression_ == GltfCompression::Meshopt)
+    steps = grid_.position_step > 0 ? std::clamp(frame.scale / grid_.position_step, 1.0, 32767.0)
+                                    : 8191;
   std::vector<int16_t> q(count * 4, 0);
   std::vector<double> qlo(3, steps), qhi(3, -steps);
   for (size_t i = 0; i < count; ++i)
@@ -135,6 +168,11 @@ int SceneBuffers::tangents(const std::vector<float>& xyzw) {
     return accessor(xyzw.data(), count, 16, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4,
                     false);
   std::vector<int8_t> q(xyzw.size());
+  if (compression_ == GltfCompression::Meshopt) {
+    meshopt_encodeFilterOct(q.data(), count, 4, 8, xyzw.data());
+    return accessor(q.data(), count, 4, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC4, true, {},
+                    {}, "OCTAHEDRAL");
+  }
   for (size_t i = 0; i < xyzw.size(); ++i)
     q[i] = static_cast<int8_t>(std::lround(std::clamp(xyzw[i], -1.f, 1.f) * 127.f));
   return accessor(q.data(), count, 4, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC4, true);
@@ -146,6 +184,14 @@ int SceneBuffers::colours(const std::vector<float>& rgb) {
 
 int SceneBuffers::uvs(const std::vector<float>& xy) {
   const size_t count = xy.size() / 2;
+  if (uvs_on_grid()) {  // steps from the origin, which uv_transform() maps back
+    std::vector<uint16_t> q(xy.size());
+    for (size_t i = 0; i < xy.size(); ++i)
+      q[i] = static_cast<uint16_t>(std::clamp<long>(
+          std::lround((xy[i] - grid_.uv_origin[i % 2]) * grid_.uv_steps), 0, 65535));
+    return accessor(q.data(), count, 4, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC2,
+                    true);
+  }
   const bool unit = std::all_of(xy.begin(), xy.end(), [](float v) { return v >= 0 && v <= 1; });
   if (compression_ == GltfCompression::None || !unit)
     return accessor(xy.data(), count, 8, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, false);

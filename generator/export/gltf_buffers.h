@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
+#include "assets/scene_assets.h"
 #include "export/gltf_export.h"
 
 namespace cutaway::gltf {
@@ -35,24 +36,58 @@ struct MeshFrame {
   double scale = 1.0;
 };
 
+/// The grids a meshopt scene is quantized on, each the same for all its meshes (gltfpack's
+/// rule, -vp 14 -vt 12: the steps follow the scene, not each mesh, so a piece carries no more
+/// precision than the scene can show, and the codec's deltas stay small).
+struct MeshoptGrid {
+  /// Metres between position steps: the largest side of the box that holds every written
+  /// mesh in its own frame, over 16383 (14 bits); 0: each mesh over its own 14-bit cube.
+  double position_step = 0;
+  /// Steps per unit of texture coordinate: twice the largest side (texels) of the scene's
+  /// textures, so a coordinate lands at most a quarter texel off; 0: 16 bits over 0..1 (or
+  /// float), without a texture transform.
+  double uv_steps = 0;
+  /// The texture coordinate of step 0: the whole numbers below the smallest coordinate.
+  glm::dvec2 uv_origin{0.0};
+};
+
+/// The grid of meshopt_grid() for `meshes` (those written) and the scene's `textures`. The uv
+/// grid is left out (uv_steps 0) where no texture is given or where the coordinates span more
+/// than 65535 steps from the origin in u or v (they do not fit UNSIGNED_SHORT). Source:
+/// gltfpack's quantization (meshoptimizer, gltf/stream.cpp), steps chosen for the textures.
+MeshoptGrid meshopt_grid(const std::vector<const AssetMesh*>& meshes,
+                         const std::vector<AssetTexture>& textures);
+
 /// Writes a scene's vertex attributes and indices as the compression mode asks:
 /// - None: float32 attributes, one tightly packed buffer view each, in buffer 0;
 /// - Quantize (KHR_mesh_quantization): POSITION as normalized SHORT over the mesh's bounding
 ///   cube (MeshFrame, stride 8), NORMAL as normalized BYTE (stride 4), COLOR_0 as normalized
 ///   UNSIGNED_SHORT (stride 8), TEXCOORD_0 as normalized UNSIGNED_SHORT when every coordinate
 ///   lies in 0..1 (else float); still one plain buffer view each, in buffer 0;
-/// - Meshopt: the Quantize data (positions on 14-bit steps, stored as SHORT; normals through
-///   the OCTAHEDRAL filter), each view encoded by meshoptimizer's vertex or index codec
+/// - Meshopt: the Quantize data on the scene's MeshoptGrid (positions as SHORT on its steps;
+///   texture coordinates as normalized UNSIGNED_SHORT steps, which a KHR_texture_transform of
+///   uv_transform() on every texture maps back; normals and tangents through the OCTAHEDRAL
+///   filter), each view encoded by meshoptimizer's vertex or index codec
 ///   into buffer 0 (EXT_meshopt_compression); the views themselves lie in buffer 1, a fallback
 ///   that holds no bytes (its byteLength is fallback_bytes()).
 /// Indices are UNSIGNED_SHORT when the mesh has at most 65535 vertices (65535 is the primitive
 /// restart value, never an index), else UNSIGNED_INT.
 class SceneBuffers {
  public:
-  SceneBuffers(tinygltf::Model& m, GltfCompression compression)
-      : m_(m), compression_(compression) {}
+  /// `grid`: the scene's grid, used with Meshopt only.
+  SceneBuffers(tinygltf::Model& m, GltfCompression compression, const MeshoptGrid& grid = {})
+      : m_(m), compression_(compression), grid_(grid) {}
 
   tinygltf::Model& model() { return m_; }
+  GltfCompression compression() const { return compression_; }
+  /// Whether texture coordinates are written on the grid's uv steps: every texture then needs
+  /// the KHR_texture_transform of uv_transform() (offset, scale per axis).
+  bool uvs_on_grid() const {
+    return compression_ == GltfCompression::Meshopt && grid_.uv_steps > 0;
+  }
+  std::pair<glm::dvec2, glm::dvec2> uv_transform() const {
+    return {grid_.uv_origin, glm::dvec2(65535.0 / grid_.uv_steps)};
+  }
   size_t fallback_bytes() const { return fallback_; }
   /// (buffer view, its "extensions" object) of each encoded view: tinygltf does not write
   /// extensions of buffer views, so they are added to the serialised JSON.
@@ -70,8 +105,8 @@ class SceneBuffers {
   /// directions are spread more evenly than on the cube of three BYTEs).
   int normals(const std::vector<float>& xyz);
 
-  /// #V x 4 tangents (unit xyz, w +-1): float without compression, else normalized BYTE (the
-  /// codec alone with meshopt).
+  /// #V x 4 tangents (unit xyz, w +-1): float without compression, else normalized BYTE (with
+  /// meshopt through the octahedral filter, w kept).
   int tangents(const std::vector<float>& xyzw);
 
   /// #V x 3 linear RGB colours in 0..1: normalized UNSIGNED_SHORT.
@@ -111,6 +146,7 @@ class SceneBuffers {
 
   tinygltf::Model& m_;
   GltfCompression compression_;
+  MeshoptGrid grid_;
   size_t fallback_ = 0;
   std::vector<std::pair<int, nlohmann::json>> view_extensions_;
 };

@@ -301,7 +301,10 @@ void SceneModelBuilder::add_materials() {
 }
 
 void SceneModelBuilder::add_meshes() {
-  SceneBuffers out(m_, options_.compression);
+  std::vector<const AssetMesh*> written;
+  for (size_t m = 0; m < assets_.meshes.size(); ++m)
+    if (!left_out_[m]) written.push_back(&assets_.meshes[m]);
+  SceneBuffers out(m_, options_.compression, meshopt_grid(written, assets_.textures));
   for (size_t m = 0; m < assets_.meshes.size(); ++m)
     added_.push_back(left_out_[m]
                          ? AddedMesh{}
@@ -315,6 +318,10 @@ void SceneModelBuilder::add_meshes() {
   };
   if (options_.compression != GltfCompression::None) require("KHR_mesh_quantization");
   if (options_.compression == GltfCompression::Meshopt) require("EXT_meshopt_compression");
+  if (out.uvs_on_grid()) {
+    const auto [offset, scale] = out.uv_transform();
+    add_texture_transform(m_, offset, scale);
+  }
 }
 
 void SceneModelBuilder::add_node(tinygltf::Node node) {

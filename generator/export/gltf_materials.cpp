@@ -90,4 +90,41 @@ void add_pbr_material(tinygltf::Model& m, const AssetMaterial& material,
   }
 }
 
+void add_texture_transform(tinygltf::Model& m, const glm::dvec2& offset, const glm::dvec2& scale) {
+  using tinygltf::Value;
+  const Value transform(
+      Value::Object{{"offset", Value(Value::Array{Value(offset.x), Value(offset.y)})},
+                    {"scale", Value(Value::Array{Value(scale.x), Value(scale.y)})}});
+  bool any = false;
+  auto give = [&](int index, tinygltf::ExtensionMap& extensions) {
+    if (index < 0) return;
+    extensions["KHR_texture_transform"] = transform;
+    any = true;
+  };
+  for (tinygltf::Material& mat : m.materials) {
+    give(mat.pbrMetallicRoughness.baseColorTexture.index,
+         mat.pbrMetallicRoughness.baseColorTexture.extensions);
+    give(mat.pbrMetallicRoughness.metallicRoughnessTexture.index,
+         mat.pbrMetallicRoughness.metallicRoughnessTexture.extensions);
+    give(mat.normalTexture.index, mat.normalTexture.extensions);
+    give(mat.occlusionTexture.index, mat.occlusionTexture.extensions);
+    give(mat.emissiveTexture.index, mat.emissiveTexture.extensions);
+    for (auto& [name, extension] : mat.extensions) {  // e.g. diffuseTransmissionTexture
+      if (!extension.IsObject()) continue;
+      Value::Object fields = extension.Get<Value::Object>();
+      for (auto& [key, field] : fields) {
+        if (!field.IsObject() || !field.Has("index")) continue;
+        Value::Object info = field.Get<Value::Object>();
+        info["extensions"] = Value(Value::Object{{"KHR_texture_transform", transform}});
+        field = Value(std::move(info));
+        any = true;
+      }
+      extension = Value(std::move(fields));
+    }
+  }
+  if (!any) return;
+  m.extensionsUsed.push_back("KHR_texture_transform");
+  m.extensionsRequired.push_back("KHR_texture_transform");
+}
+
 }  // namespace cutaway::gltf

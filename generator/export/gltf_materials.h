@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <tiny_gltf.h>
 
 #include "assets/scene_assets.h"
@@ -27,5 +28,11 @@ std::string uri_encode(const std::string& name);
 /// textures textures[base_colour_texture] etc. (a height map is not written: glTF has none).
 void add_pbr_material(tinygltf::Model& m, const AssetMaterial& material,
                       const std::vector<int>& textures);
+
+/// Gives every texture reference of every material of `m` (the core ones and those inside
+/// material extensions) the KHR_texture_transform uv' = `offset` + `scale` * uv, and lists the
+/// extension as used and required: the texture coordinates were written as steps that only the
+/// transform maps back (SceneBuffers::uv_transform). Source: the KHR_texture_transform spec.
+void add_texture_transform(tinygltf::Model& m, const glm::dvec2& offset, const glm::dvec2& scale);
 
 }  // namespace cutaway::gltf

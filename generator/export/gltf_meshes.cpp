@@ -13,21 +13,30 @@ namespace cutaway::gltf {
 
 namespace {
 
+/// Reorders triangle list `idx` (over `vertices` vertices) for the GPU's post-transform vertex
+/// cache (meshoptimizer: Forsyth-style greedy order); `strips`: meshoptimizer's strip-like
+/// order instead, a few more cache misses for runs of neighbouring triangles whose vertices
+/// the vertex codec then finds in order (gltfpack's order for -cc).
+void cache_order(std::vector<uint32_t>& idx, size_t vertices, bool strips) {
+  const std::vector<uint32_t> input = idx;
+  if (strips) meshopt_optimizeVertexCacheStrip(idx.data(), input.data(), input.size(), vertices);
+  else meshopt_optimizeVertexCache(idx.data(), input.data(), input.size(), vertices);
+}
+
 /// A triangle list (indices into #V x 3 float `xyz`) simplified by meshoptimizer's edge
 /// collapse (Garland-Heckbert quadrics) towards `fraction` of its triangles, the edges on its
 /// border locked (meshopt_SimplifyLockBorder: a primitive's border is a cut outline or the seam
 /// to the next primitive, so a closed piece stays closed), the error at most `error` of the
-/// mesh's extent; then ordered for the vertex cache.
+/// mesh's extent; then ordered for the vertex cache (cache_order()).
 std::vector<uint32_t> simplified(const std::vector<uint32_t>& idx, const std::vector<float>& xyz,
-                                 double fraction, double error) {
+                                 double fraction, double error, bool strips) {
   const size_t vertices = xyz.size() / 3;
   std::vector<uint32_t> out(idx.size());
   const size_t target = static_cast<size_t>(static_cast<double>(idx.size() / 3) * fraction) * 3;
   out.resize(meshopt_simplify(out.data(), idx.data(), idx.size(), xyz.data(), vertices,
                               3 * sizeof(float), target, static_cast<float>(error),
                               meshopt_SimplifyLockBorder, nullptr));
-  const std::vector<uint32_t> input = out;
-  meshopt_optimizeVertexCache(out.data(), input.data(), input.size(), vertices);
+  cache_order(out, vertices, strips);
   return out;
 }
 
@@ -95,11 +104,11 @@ WrittenVertices welded_vertices(const AssetMesh& mesh,
 }
 
 /// Per primitive, its triangles (`lists`) in written vertex indices, reordered for the GPU's
-/// post-transform vertex cache (meshoptimizer: Forsyth-style greedy order); then the vertices
+/// post-transform vertex cache (cache_order(), `strips` as there); then the vertices
 /// renumbered in the order the primitives first use them (fewer cache misses when vertices are
 /// fetched): `vertices`' attributes are reordered to match.
 std::vector<std::vector<uint32_t>> cache_ordered_triangles(
-    const std::vector<std::span<const glm::uvec3>>& lists, WrittenVertices& vertices) {
+    const std::vector<std::span<const glm::uvec3>>& lists, WrittenVertices& vertices, bool strips) {
   const std::vector<unsigned>& remap = vertices.remap;
   const unsigned used = vertices.count;
   std::vector<std::vector<uint32_t>> idx(lists.size());
@@ -107,8 +116,7 @@ std::vector<std::vector<uint32_t>> cache_ordered_triangles(
   for (size_t k = 0; k < lists.size(); ++k) {
     for (const glm::uvec3& t : lists[k])
       idx[k].insert(idx[k].end(), {remap[t.x], remap[t.y], remap[t.z]});
-    const std::vector<uint32_t> input = idx[k];
-    meshopt_optimizeVertexCache(idx[k].data(), input.data(), input.size(), used);
+    cache_order(idx[k], used, strips);
     all.insert(all.end(), idx[k].begin(), idx[k].end());
   }
   std::vector<uint32_t> fetch(used);
@@ -211,7 +219,8 @@ AddedMesh add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
   }
   const bool with_tangents = std::find(relief.begin(), relief.end(), true) != relief.end();
   WrittenVertices vertices = welded_vertices(mesh, lists, with_tangents);
-  const std::vector<std::vector<uint32_t>> idx = cache_ordered_triangles(lists, vertices);
+  const bool strips = out.compression() == GltfCompression::Meshopt;
+  const std::vector<std::vector<uint32_t>> idx = cache_ordered_triangles(lists, vertices, strips);
 
   AddedMesh added;
   const glm::dvec3 centroid = pivot_at_centroid ? volume_centroid(mesh) : glm::dvec3(0.0);
@@ -222,7 +231,7 @@ AddedMesh add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
     std::vector<std::vector<uint32_t>> coarser(idx.size());
     for (size_t k = 0; k < idx.size(); ++k)
       coarser[k] = simplified(idx[k], vertices.position, std::ldexp(1.0, -level),
-                              0.01 * std::ldexp(1.0, level - 1));
+                              0.01 * std::ldexp(1.0, level - 1), strips);
     added.lods.push_back(levels.add(mesh.name + "_LOD" + std::to_string(level), coarser));
   }
   return added;

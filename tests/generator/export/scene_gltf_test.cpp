@@ -890,9 +890,17 @@ TEST(SceneGltf, EveryCompressionPassesTheValidatorAndRendersTheSameInThreeJs) {
   EXPECT_LT(bytes("quantize.glb"), bytes("none.glb"));
   EXPECT_LT(bytes("meshopt.glb"), bytes("quantize.glb"));
   // meshopt: normals through the OCTAHEDRAL filter (their views say so, the picture above
-  // shows them decoded), positions as SHORT on 14-bit steps (|q| <= 8191 in min and max).
+  // shows them decoded); positions as SHORT on the scene's grid: the same step in every mesh's
+  // node scale, 14 bits over the scene (the plate, 0.24 m, spans 16383 steps); texture
+  // coordinates as steps mapped back by one KHR_texture_transform on every texture (twice the
+  // 64-texel texture's side per unit).
   const auto j = glb_json(test::read_file(dir / "meshopt.glb"));
   size_t filtered = 0;
+  std::vector<double> scales;
+  for (const auto& node : j["nodes"])
+    if (node.contains("mesh") && node.contains("scale")) scales.push_back(node["scale"][0]);
+  ASSERT_EQ(scales.size(), 3u);  // the cube's two instances and the plate's
+  for (const double scale : scales) EXPECT_NEAR(scale / 32767, 0.24 / 16383, 1e-12);
   for (const auto& mesh : j["meshes"])
     for (const auto& prim : mesh["primitives"]) {
       const auto& normal = j["accessors"][prim["attributes"]["NORMAL"].get<size_t>()];
@@ -900,10 +908,17 @@ TEST(SceneGltf, EveryCompressionPassesTheValidatorAndRendersTheSameInThreeJs) {
       EXPECT_EQ(view["extensions"]["EXT_meshopt_compression"].value("filter", ""), "OCTAHEDRAL");
       ++filtered;
       const auto& position = j["accessors"][prim["attributes"]["POSITION"].get<size_t>()];
-      for (const double q : position["max"]) EXPECT_LE(std::abs(q), 8191);
-      for (const double q : position["min"]) EXPECT_LE(std::abs(q), 8191);
+      for (const double q : position["max"]) EXPECT_LE(std::abs(q), 8192);
+      for (const double q : position["min"]) EXPECT_LE(std::abs(q), 8192);
     }
   EXPECT_GE(filtered, 2u);
+  const auto& info = j["materials"][1]["pbrMetallicRoughness"]["baseColorTexture"];
+  const auto& transform = info["extensions"]["KHR_texture_transform"];
+  EXPECT_NEAR(transform["scale"][0].get<double>(), 65535.0 / 128, 1e-9);
+  EXPECT_EQ(transform["offset"][0].get<double>(), 0.0);
+  EXPECT_NE(std::find(j["extensionsRequired"].begin(), j["extensionsRequired"].end(),
+                      "KHR_texture_transform"),
+            j["extensionsRequired"].end());
 }
 
 TEST(SceneGltf, ANormalMapIsWrittenWithTangentsAlongUAndItsYUpTheTexture) {
