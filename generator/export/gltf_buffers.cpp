@@ -81,28 +81,40 @@ MeshoptGrid meshopt_grid(const std::vector<const AssetMesh*>& meshes,
   return grid;
 }
 
-int SceneBuffers::positions(const std::vector<float>& xyz, MeshFrame& frame,
-                            const glm::dvec3* pivot) {
-  if (pivot) return positions_about(xyz, *pivot, frame);
+namespace {
+
+/// The box (lo, hi) that holds #V x 3 `xyz`.
+std::pair<glm::dvec3, glm::dvec3> bounds(const std::vector<float>& xyz) {
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  for (size_t i = 0; i + 2 < xyz.size(); i += 3) {
+    const glm::dvec3 p(xyz[i], xyz[i + 1], xyz[i + 2]);
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  return {lo, hi};
+}
+
+}  // namespace
+
+int SceneBuffers::positions(const std::vector<float>& xyz, const std::vector<float>& extent_of,
+                            MeshFrame& frame, const glm::dvec3* pivot) {
+  if (pivot) return positions_about(xyz, extent_of, *pivot, frame);
   const size_t count = xyz.size() / 3;
-  glm::dvec3 lo(xyz[0], xyz[1], xyz[2]), hi = lo;
-  for (size_t i = 0; i < count; ++i)
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min<double>(lo[k], xyz[3 * i + k]);
-      hi[k] = std::max<double>(hi[k], xyz[3 * i + k]);
-    }
   if (compression_ == GltfCompression::None) {
+    const auto [lo, hi] = bounds(xyz);
     frame = {};
     return accessor(xyz.data(), count, 12, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, false,
                     {lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z});
   }
+  const auto [lo, hi] = bounds(extent_of);
   frame.offset = (lo + hi) * 0.5;
   const glm::dvec3 half = (hi - lo) * 0.5;
   frame.scale = std::max({half.x, half.y, half.z});
   return quantized_positions(xyz, frame);
 }
 
-int SceneBuffers::positions_about(const std::vector<float>& xyz, const glm::dvec3& pivot,
+int SceneBuffers::positions_about(const std::vector<float>& xyz,
+                                  const std::vector<float>& extent_of, const glm::dvec3& pivot,
                                   MeshFrame& frame) {
   const size_t count = xyz.size() / 3;
   frame.offset = pivot;
@@ -120,9 +132,8 @@ int SceneBuffers::positions_about(const std::vector<float>& xyz, const glm::dvec
                     false, lo, hi);
   }
   frame.scale = 0;
-  for (size_t i = 0; i < count; ++i)
-    for (int k = 0; k < 3; ++k)
-      frame.scale = std::max(frame.scale, std::fabs(xyz[3 * i + k] - pivot[k]));
+  for (size_t i = 0; i < extent_of.size(); ++i)
+    frame.scale = std::max(frame.scale, std::fabs(extent_of[i] - pivot[i % 3]));
   return quantized_positions(xyz, frame);
 }
 
@@ -248,16 +259,37 @@ int SceneBuffers::accessor(const void* data, size_t count, size_t stride, int co
   a.minValues = std::move(lo);
   a.maxValues = std::move(hi);
   const int target = TINYGLTF_TARGET_ARRAY_BUFFER;
-  if (compression_ == GltfCompression::Meshopt) {
-    std::vector<unsigned char> packed(meshopt_encodeVertexBufferBound(count, stride));
-    packed.resize(meshopt_encodeVertexBuffer(packed.data(), packed.size(), data, count, stride));
-    a.bufferView = encoded_view(packed, count, stride, stride, "ATTRIBUTES", target, filter);
+  if (compression_ == GltfCompression::Meshopt) {  // its view is written by finish()
+    const std::string named = filter ? filter : "";
+    auto it = std::find_if(shared_.begin(), shared_.end(), [&](const SharedStream& s) {
+      return s.stride == stride && s.filter == named;
+    });
+    if (it == shared_.end()) it = shared_.insert(shared_.end(), {stride, named, {}, {}});
+    a.byteOffset = it->bytes.size();
+    const auto* p = static_cast<const unsigned char*>(data);
+    it->bytes.insert(it->bytes.end(), p, p + count * stride);
+    it->accessors.push_back(static_cast<int>(m_.accessors.size()));
   } else {
     a.bufferView = add_view(m_, data, count * stride, target);
     if (compression_ != GltfCompression::None) m_.bufferViews.back().byteStride = stride;
   }
   m_.accessors.push_back(a);
   return static_cast<int>(m_.accessors.size()) - 1;
+}
+
+void SceneBuffers::finish() {
+  for (const SharedStream& s : shared_) {
+    const size_t count = s.bytes.size() / s.stride;
+    std::vector<unsigned char> packed(meshopt_encodeVertexBufferBound(count, s.stride));
+    packed.resize(
+        meshopt_encodeVertexBuffer(packed.data(), packed.size(), s.bytes.data(), count, s.stride));
+    const int view =
+        encoded_view(packed, count, s.stride, s.stride, "ATTRIBUTES", TINYGLTF_TARGET_ARRAY_BUFFER,
+                     s.filter.empty() ? nullptr : s.filter.c_str());
+    for (const int accessor : s.accessors)
+      m_.accessors[static_cast<size_t>(accessor)].bufferView = view;
+  }
+  shared_.clear();
 }
 
 int SceneBuffers::encoded_view(const std::vector<unsigned char>& packed, size_t count, size_t size,

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -67,7 +68,11 @@ MeshoptGrid meshopt_grid(const std::vector<const AssetMesh*>& meshes,
 /// - Meshopt: the Quantize data on the scene's MeshoptGrid (positions as SHORT on its steps;
 ///   texture coordinates as normalized UNSIGNED_SHORT steps, which a KHR_texture_transform of
 ///   uv_transform() on every texture maps back; normals and tangents through the OCTAHEDRAL
-///   filter), each view encoded by meshoptimizer's vertex or index codec
+///   filter), encoded by meshoptimizer's vertex or index codec: the vertex attributes of every
+///   mesh in one view per element size and filter (finish(); one block of JSON and one codec
+///   tail each, as gltfpack writes them), the indices in one view per primitive (meshoptimizer
+///   0.18's index codec packs a run of primitives, each counting from 0, far worse than each
+///   alone),
 ///   into buffer 0 (EXT_meshopt_compression); the views themselves lie in buffer 1, a fallback
 ///   that holds no bytes (its byteLength is fallback_bytes()).
 /// Indices are UNSIGNED_SHORT when the mesh has at most 65535 vertices (65535 is the primitive
@@ -79,6 +84,9 @@ class SceneBuffers {
       : m_(m), compression_(compression), grid_(grid) {}
 
   tinygltf::Model& model() { return m_; }
+  /// Writes what is held back (with Meshopt: the shared vertex views) and points the accessors
+  /// at it; run once, after the last mesh.
+  void finish();
   GltfCompression compression() const { return compression_; }
   /// Whether texture coordinates are written on the grid's uv steps: every texture then needs
   /// the KHR_texture_transform of uv_transform() (offset, scale per axis).
@@ -95,10 +103,13 @@ class SceneBuffers {
     return view_extensions_;
   }
 
-  /// #V x 3 positions (metres); returns the accessor and sets `frame`. With a `pivot`
-  /// (metres), the frame's offset is the pivot: float positions are stored relative to it, and
-  /// quantized ones over the cube about it that holds them.
-  int positions(const std::vector<float>& xyz, MeshFrame& frame, const glm::dvec3* pivot);
+  /// #V x 3 positions (metres); returns the accessor and sets `frame`, decided by `extent_of`
+  /// (#W x 3 positions that hold `xyz`: those of the whole mesh, so that the accessors of its
+  /// primitives share one frame). With a `pivot` (metres), the frame's offset is the pivot:
+  /// float positions are stored relative to it, and quantized ones over the cube about it that
+  /// holds `extent_of`.
+  int positions(const std::vector<float>& xyz, const std::vector<float>& extent_of,
+                MeshFrame& frame, const glm::dvec3* pivot);
 
   /// #V x 3 unit normals: normalized BYTE; with meshopt through the codec's octahedral filter
   /// (8-bit X/Y of the octahedral map, Z 1: the constant bytes cost nearly nothing and the
@@ -124,7 +135,8 @@ class SceneBuffers {
   int quantized_positions(const std::vector<float>& xyz, MeshFrame& frame);
 
   /// positions() about `pivot`.
-  int positions_about(const std::vector<float>& xyz, const glm::dvec3& pivot, MeshFrame& frame);
+  int positions_about(const std::vector<float>& xyz, const std::vector<float>& extent_of,
+                      const glm::dvec3& pivot, MeshFrame& frame);
 
   /// A VEC3 accessor of `xyz` (each in lo..1): float without compression, else normalized
   /// components of T (BYTE or UNSIGNED_SHORT, glTF type `component`), each element padded to
@@ -144,8 +156,18 @@ class SceneBuffers {
   int encoded_view(const std::vector<unsigned char>& packed, size_t count, size_t size,
                    size_t view_stride, const char* mode, int target, const char* filter = nullptr);
 
+  /// Meshopt vertex attributes held back for one shared view: elements of `stride` bytes
+  /// through `filter` (empty: none), and each accessor's index in the model.
+  struct SharedStream {
+    size_t stride = 0;
+    std::string filter;
+    std::vector<unsigned char> bytes;
+    std::vector<int> accessors;
+  };
+
   tinygltf::Model& m_;
   GltfCompression compression_;
+  std::vector<SharedStream> shared_;
   MeshoptGrid grid_;
   size_t fallback_ = 0;
   std::vector<std::pair<int, nlohmann::json>> view_extensions_;

@@ -310,6 +310,7 @@ void SceneModelBuilder::add_meshes() {
                          ? AddedMesh{}
                          : add_asset_mesh(out, assets_.meshes[m], gltf_material_, options_.lods,
                                           options_.pivot_at_centre_of_mass));
+  out.finish();
   fallback_bytes_ = out.fallback_bytes();
   view_extensions_ = out.view_extensions();
   auto require = [this](const std::string& extension) {

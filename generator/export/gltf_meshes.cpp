@@ -134,49 +134,62 @@ std::vector<std::vector<uint32_t>> cache_ordered_triangles(
   return idx;
 }
 
+/// The vertices one or more primitives of a scene mesh share, as written, and their accessors
+/// (positions and normals at once, the others when some primitive first uses them).
+struct VertexGroup {
+  WrittenVertices vertices;
+  int positions = -1, normals = -1, colours = -1, uvs = -1, tangents = -1;
+};
+
 /// The levels of detail of one scene mesh, each one glTF mesh, all over the same vertex
-/// accessors: positions and normals are added at construction, colours and texture coordinates
-/// when some primitive first uses them.
+/// accessors.
 class MeshLevels {
  public:
-  /// `primitives` of the mesh, `textured` and `relief` (normal-mapped) per primitive,
-  /// `vertices` as written; `frame` receives the frame of the positions (about `pivot` when
-  /// given: SceneBuffers::positions).
+  /// `primitives` of the mesh, `textured` and `relief` (normal-mapped) per primitive; primitive
+  /// k over the vertices of groups[group_of[k]]; `frame` receives the frame of the positions,
+  /// one for the whole mesh (about `pivot` when given: SceneBuffers::positions).
   MeshLevels(SceneBuffers& out, const std::vector<AssetPrimitive>& primitives,
              const std::vector<int>& gltf_material, const std::vector<bool>& textured,
-             const std::vector<bool>& relief, const WrittenVertices& vertices, MeshFrame& frame,
-             const glm::dvec3* pivot)
+             const std::vector<bool>& relief, std::vector<VertexGroup>& groups,
+             const std::vector<size_t>& group_of, MeshFrame& frame, const glm::dvec3* pivot)
       : out_(out), primitives_(primitives), gltf_material_(gltf_material), textured_(textured),
-        relief_(relief), vertices_(vertices),
-        positions_(out.positions(vertices.position, frame, pivot)),
-        normals_(out.normals(vertices.normal)) {}
+        relief_(relief), groups_(groups), group_of_(group_of) {
+    std::vector<float> all;  // the positions the mesh's frame holds
+    for (const VertexGroup& g : groups)
+      all.insert(all.end(), g.vertices.position.begin(), g.vertices.position.end());
+    for (VertexGroup& g : groups) {
+      g.positions = out.positions(g.vertices.position, all, frame, pivot);
+      g.normals = out.normals(g.vertices.normal);
+    }
+  }
 
-  /// Adds the glTF mesh `name` with `lists` (per primitive, its triangles' indices); returns
-  /// its index.
+  /// Adds the glTF mesh `name` with `lists` (per primitive, its triangles' indices into its
+  /// group); returns its index.
   int add(const std::string& name, const std::vector<std::vector<uint32_t>>& lists) {
     tinygltf::Model& m = out_.model();
     tinygltf::Mesh gm;
     gm.name = name;
     for (size_t k = 0; k < primitives_.size(); ++k) {
+      VertexGroup& g = groups_[group_of_[k]];
       tinygltf::Primitive prim;
       prim.mode = TINYGLTF_MODE_TRIANGLES;
       prim.material = gltf_material_[static_cast<size_t>(primitives_[k].material)];
-      prim.attributes["POSITION"] = positions_;
-      prim.attributes["NORMAL"] = normals_;
+      prim.attributes["POSITION"] = g.positions;
+      prim.attributes["NORMAL"] = g.normals;
       // A textured material takes its colour from TEXCOORD_0, never also from COLOR_0 (glTF
       // would multiply the two).
       if (textured_[k]) {
-        if (uvs_ < 0) uvs_ = out_.uvs(vertices_.uv);
-        prim.attributes["TEXCOORD_0"] = uvs_;
+        if (g.uvs < 0) g.uvs = out_.uvs(g.vertices.uv);
+        prim.attributes["TEXCOORD_0"] = g.uvs;
       } else {
-        if (colours_ < 0) colours_ = out_.colours(vertices_.colour);
-        prim.attributes["COLOR_0"] = colours_;
+        if (g.colours < 0) g.colours = out_.colours(g.vertices.colour);
+        prim.attributes["COLOR_0"] = g.colours;
       }
       if (relief_[k]) {
-        if (tangents_ < 0) tangents_ = out_.tangents(vertices_.tangent);
-        prim.attributes["TANGENT"] = tangents_;
+        if (g.tangents < 0) g.tangents = out_.tangents(g.vertices.tangent);
+        prim.attributes["TANGENT"] = g.tangents;
       }
-      prim.indices = out_.indices(lists[k], vertices_.count);
+      prim.indices = out_.indices(lists[k], g.vertices.count);
       gm.primitives.push_back(prim);
     }
     m.meshes.push_back(gm);
@@ -189,9 +202,8 @@ class MeshLevels {
   const std::vector<int>& gltf_material_;
   const std::vector<bool>& textured_;
   const std::vector<bool>& relief_;
-  const WrittenVertices& vertices_;
-  const int positions_, normals_;
-  int colours_ = -1, uvs_ = -1, tangents_ = -1;  // added when some primitive uses them
+  std::vector<VertexGroup>& groups_;
+  const std::vector<size_t>& group_of_;
 };
 
 }  // namespace
@@ -217,21 +229,36 @@ AddedMesh add_asset_mesh(SceneBuffers& out, const AssetMesh& mesh,
     relief.push_back(material.normalTexture.index >= 0 && !mesh.uv.empty());
     lists.push_back(primitive_triangles(mesh, p, textured.back()));
   }
-  const bool with_tangents = std::find(relief.begin(), relief.end(), true) != relief.end();
-  WrittenVertices vertices = welded_vertices(mesh, lists, with_tangents);
+  // One vertex group for all primitives; with meshopt one per primitive, numbered from 0 as
+  // its own (meshoptimizer's index codec stores a vertex it meets first in order, the next
+  // number, in a few bits: a second primitive over shared vertices would start far from 0).
   const bool strips = out.compression() == GltfCompression::Meshopt;
-  const std::vector<std::vector<uint32_t>> idx = cache_ordered_triangles(lists, vertices, strips);
+  std::vector<VertexGroup> groups;
+  std::vector<size_t> group_of;
+  std::vector<std::vector<uint32_t>> idx;
+  if (strips) {
+    for (size_t k = 0; k < lists.size(); ++k) {
+      groups.push_back({welded_vertices(mesh, {lists[k]}, relief[k])});
+      idx.push_back(cache_ordered_triangles({lists[k]}, groups.back().vertices, strips)[0]);
+      group_of.push_back(k);
+    }
+  } else {
+    const bool with_tangents = std::find(relief.begin(), relief.end(), true) != relief.end();
+    groups.push_back({welded_vertices(mesh, lists, with_tangents)});
+    idx = cache_ordered_triangles(lists, groups[0].vertices, strips);
+    group_of.assign(lists.size(), 0);
+  }
 
   AddedMesh added;
   const glm::dvec3 centroid = pivot_at_centroid ? volume_centroid(mesh) : glm::dvec3(0.0);
-  MeshLevels levels(out, primitives, gltf_material, textured, relief, vertices, added.frame,
+  MeshLevels levels(out, primitives, gltf_material, textured, relief, groups, group_of, added.frame,
                     pivot_at_centroid ? &centroid : nullptr);
   added.index = levels.add(mesh.name, idx);
   for (int level = 1; level <= lods; ++level) {
     std::vector<std::vector<uint32_t>> coarser(idx.size());
     for (size_t k = 0; k < idx.size(); ++k)
-      coarser[k] = simplified(idx[k], vertices.position, std::ldexp(1.0, -level),
-                              0.01 * std::ldexp(1.0, level - 1), strips);
+      coarser[k] = simplified(idx[k], groups[group_of[k]].vertices.position,
+                              std::ldexp(1.0, -level), 0.01 * std::ldexp(1.0, level - 1), strips);
     added.lods.push_back(levels.add(mesh.name + "_LOD" + std::to_string(level), coarser));
   }
   return added;
