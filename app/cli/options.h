@@ -55,8 +55,8 @@ const CLI::Validator& shard_rule();
 void add_export_options(CLI::App* command, std::string& compress, int& lods, std::string& textures,
                         bool& texture_fallback);
 
-/// `--for godot|web|blender` (kEngineProfiles, engine_profile.h) into `engine`, described by
-/// `description` (what the profile sets for this command).
+/// `--for godot|unreal|unity|web|blender` (kEngineProfiles, engine_profile.h) into `engine`,
+/// described by `description` (what the profile sets for this command).
 void add_engine_option(CLI::App* command, std::string& engine, const std::string& description);
 
 /// The Basis Universal encoder KTX2 textures need (find_basisu, ktx2_texture.h).

@@ -210,7 +210,9 @@ Command add_piece_command(CLI::App& app) {
   add_engine_option(piece, args->engine,
                     "the consumer the glTF file is for, which sets --compress and --collision "
                     "(given ones win) and pivots: godot (float32, one RigidBody per piece "
-                    "turning about its centre of mass), web (meshopt, no hulls) or blender "
+                    "turning about its centre of mass), unreal (float32, UCX_ hulls, pivots at "
+                    "the centres of mass), unity (quantize, no hulls, the same pivots), web "
+                    "(meshopt, no hulls) or blender "
                     "(quantize, no hulls); doc/engines.md");
   return {piece, [args](const Common& common, OutputSet& outputs) {
             return run_piece(*args, common, outputs);

@@ -224,7 +224,8 @@ Command add_scene_command(CLI::App& app) {
   add_engine_option(scene, args->engine,
                     "the consumer the glTF file is for, which sets --compress (given wins), the "
                     "pieces' collision naming and pivots and whether the backdrop is written: "
-                    "godot (float32, one RigidBody per piece, no backdrop), web (meshopt, no "
+                    "godot (float32, one RigidBody per piece, no backdrop), unreal (float32, "
+                    "UCX_ hulls, no backdrop), unity (quantize, no backdrop), web (meshopt, no "
                     "backdrop) or blender (quantize); doc/engines.md");
   add_cache_options(scene, args->cache);
   return {scene, [args](const Common& common, OutputSet& outputs) {

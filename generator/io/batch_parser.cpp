@@ -147,7 +147,7 @@ Batch parse(std::string_view text, const std::string& file, ParsedBatch* parsed)
       const std::string v = x->string();
       if (std::find(std::begin(kEngineProfiles), std::end(kEngineProfiles), v) ==
           std::end(kEngineProfiles))
-        x->fail("must be godot, web or blender, not " + quoted(v));
+        x->fail("must be godot, unreal, unity, web or blender, not " + quoted(v));
       apply_engine_profile(v, b.export_options.gltf);
     }
     if (auto x = e->get("compress")) {

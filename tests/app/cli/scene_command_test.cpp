@@ -12,6 +12,7 @@
 #include <stb/stb_image.h>
 #include <tiny_gltf.h>
 
+#include "export/engine_profile.h"
 #include "test_support.h"
 
 namespace cutaway {
@@ -349,6 +350,90 @@ TEST(PieceCommand, AssetsHaveOneRootNoCameraOrLightsAndTheSameTransformsWhatever
   const nlohmann::json lit = glb_json(dir / "lit.glb");
   EXPECT_EQ(lit["cameras"].size(), 1u);
   EXPECT_EQ(lit["extensions"]["KHR_lights_punctual"]["lights"].size(), 3u);
+}
+
+// Each engine profile writes what its consumer reads: a valid file (no validator warnings), its
+// vertex encoding, its collision naming (Godot's -rigid mesh nodes, Unreal's UCX_ hulls, none
+// for the others) and, for the game engines, each piece's mesh node at its centre of mass
+// rather than at its box's centre (the blender file's); three.js draws every one alike.
+TEST(PieceCommand, EachEngineProfileWritesWhatItsConsumerReads) {
+  const fs::path dir = test::fresh_dir("piece-profiles");
+  struct Expected {
+    std::set<std::string> encoding;  // the vertex encoding's extensions (none: float32)
+    const char* hull_prefix;
+    bool rigid, pivots;
+  };
+  const std::map<std::string, Expected> expected = {
+      {"godot", {{}, nullptr, true, true}},
+      {"unreal", {{}, "UCX_", false, true}},
+      {"unity", {{"KHR_mesh_quantization"}, nullptr, false, true}},
+      {"web", {{"KHR_mesh_quantization", "EXT_meshopt_compression"}, nullptr, false, false}},
+      {"blender", {{"KHR_mesh_quantization"}, nullptr, false, false}}};
+  std::map<std::string, nlohmann::json> files;
+  std::map<std::string, long> drawn;  // triangles three.js draws
+  for (const std::string_view name : kEngineProfiles) {
+    const std::string profile(name);
+    ASSERT_TRUE(expected.count(profile)) << profile << ": a profile this test does not know";
+    const Expected& e = expected.at(profile);
+    const fs::path file = dir / (profile + ".glb");
+    const test::RunResult r = test::run_cutaway(
+        {"piece", "templates/tomato.yaml", "--cut", "wedges:3", "--backend", "cpu", "--cube", "4",
+         "-q", "--apart", "0", "-o", file.string(), "--for", profile});
+    ASSERT_EQ(r.exit_code, 0) << profile << ": " << r.err;
+    const test::GltfReport report = test::validate_gltf(file);
+    EXPECT_EQ(report.errors, 0) << profile << ": " << report.output;
+    EXPECT_EQ(nlohmann::json::parse(report.output).value("warnings", -1), 0)
+        << profile << ": " << report.output;
+    const nlohmann::json j = glb_json(file);
+    files[profile] = j;
+    std::set<std::string> encoding;
+    for (const std::string extension : j.value("extensionsUsed", nlohmann::json::array()))
+      if (extension == "KHR_mesh_quantization" || extension == "EXT_meshopt_compression")
+        encoding.insert(extension);
+    EXPECT_EQ(encoding, e.encoding) << profile;
+    size_t hulls = 0, rigid = 0, meshes = 0;
+    for (const auto& node : j["nodes"]) {
+      const std::string node_name = node.value("name", "");
+      if (node.contains("extras") && node["extras"].contains("collision")) {
+        ++hulls;
+        EXPECT_TRUE(e.hull_prefix && node_name.rfind(e.hull_prefix, 0) == 0) << profile << node;
+      }
+      if (node.contains("mesh")) {
+        ++meshes;
+        rigid += node_name.size() > 6 && node_name.substr(node_name.size() - 6) == "-rigid";
+      }
+    }
+    EXPECT_EQ(hulls > 0, e.hull_prefix != nullptr) << profile;
+    EXPECT_EQ(rigid, e.rigid ? 3u : 0u) << profile;
+    EXPECT_EQ(meshes, 3u + hulls) << profile;
+    if (profile != "godot") {  // Godot reads it itself (tests/godot/)
+      const test::ThreeLoadReport three = test::load_gltf_three(file);
+      ASSERT_TRUE(three.ok) << profile << ": " << three.error;
+      drawn[profile] = three.triangles;
+    }
+  }
+  // three.js draws the same pieces from each; Unreal's hulls are meshes it draws as well.
+  for (const auto& [profile, triangles] : drawn)
+    if (expected.at(profile).hull_prefix) EXPECT_GT(triangles, drawn.at("blender")) << profile;
+    else EXPECT_EQ(triangles, drawn.at("blender")) << profile;
+  // Pivots: where the first piece's mesh node sits in its piece (metres): at the centre of mass
+  // for the game engines, alike in each of them; at the centre of its box (quantize's frame)
+  // for blender.
+  auto mesh_offset = [&](const std::string& profile) {
+    const nlohmann::json& j = files.at(profile);
+    const auto& root = j["nodes"][j["scenes"][0]["nodes"][0].get<size_t>()];
+    const auto& piece = j["nodes"][root["children"][0].get<size_t>()];
+    const auto& mesh = j["nodes"][piece["children"][0].get<size_t>()];
+    return mesh.value("translation", std::vector<double>{0, 0, 0});
+  };
+  const std::vector<double> centre_of_mass = mesh_offset("godot");
+  for (const auto& [profile, e] : expected) {
+    const std::vector<double> offset = mesh_offset(profile);
+    double gap = 0;
+    for (int k = 0; k < 3; ++k) gap = std::max(gap, std::abs(offset[k] - centre_of_mass[k]));
+    if (e.pivots) EXPECT_LT(gap, 1e-6) << profile;
+    else if (profile == "blender") EXPECT_GT(gap, 1e-4) << profile;
+  }
 }
 
 TEST(PieceCommand, LevelsOfDetailHalveTheTrianglesAndLeaveNoHoles) {

@@ -113,8 +113,8 @@ TEST(BatchFormat, RefusesBrokenRulesAtTheField) {
   EXPECT_NE(error_of(std::string(kHeader) + items + "export: {collision: havok}\n")
                 .find("export.collision: must be none, godot, unreal or godot-rigid"),
             std::string::npos);
-  EXPECT_NE(error_of(std::string(kHeader) + items + "export: {for: unity}\n")
-                .find("export.for: must be godot, web or blender, not \"unity\""),
+  EXPECT_NE(error_of(std::string(kHeader) + items + "export: {for: maya}\n")
+                .find("export.for: must be godot, unreal, unity, web or blender, not \"maya\""),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kHeader) + "items: []\n").find("at least one item"),
             std::string::npos);
