@@ -191,8 +191,10 @@ CachedCut cut_asset(SceneAssets& assets, const Batch& batch, const Template& tmp
 
 /// The asset's glTF binary: `object`'s pieces placed in `assets` as they lie in the object frame
 /// (with their collision hulls when the batch exports them), a camera framing them and the
-/// studio lights. Fills the record's pieces, volume, hash and geometry counts.
-std::string asset_glb(SceneAssets& assets, CachedCut& cut, const Batch& batch, AssetRecord& r) {
+/// studio lights; KTX2 textures kept in `cache` (may be null). Fills the record's pieces,
+/// volume, hash and geometry counts.
+std::string asset_glb(SceneAssets& assets, CachedCut& cut, const Batch& batch, CutCache* cache,
+                      AssetRecord& r) {
   CutPieces& object = cut.pieces;
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
   for (size_t q = 0; q < object.meshes.size(); ++q) {
@@ -215,7 +217,13 @@ std::string asset_glb(SceneAssets& assets, CachedCut& cut, const Batch& batch, A
   r.pieces = object.meshes.size();
   assets.camera = frame_box(lo, hi, asset_view_direction(), 40, 4.0 / 3);
   light_like_studio(assets);
-  std::string glb = scene_to_glb(assets, batch.export_options.gltf);
+  GltfSceneOptions gltf = batch.export_options.gltf;
+  BlobStore store;
+  if (cache) {
+    store = cache->blob_store();
+    gltf.texture_store = &store;
+  }
+  std::string glb = scene_to_glb(assets, gltf);
   r.hash = fnv1a64(glb);
   const GltfGeometryCounts counts = count_glb_geometry(glb);
   r.triangles = counts.triangles;
@@ -300,7 +308,7 @@ std::vector<BuiltAsset> build_batch_unit(const Batch& batch, const BatchPlan& pl
     r.seed = u.seed;
     r.cut = cut_label(item.cuts[c]);
     r.inputs = a.inputs;
-    std::string glb = asset_glb(assets, object, batch, r);
+    std::string glb = asset_glb(assets, object, batch, options.cache, r);
     built.files.push_back({r.file, std::move(glb)});
     if (batch.outputs.model) {
       r.model = model_file;

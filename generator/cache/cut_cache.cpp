@@ -313,6 +313,12 @@ std::optional<std::string> CutCache::load(std::string_view key) {
   return bytes;
 }
 
+BlobStore CutCache::blob_store() {
+  return {[this](std::string_view key) { return load(key); },
+          [this](std::string_view key, std::string_view bytes) { store(key, bytes); },
+          [this](std::string_view key, const std::string& reason) { discard(key, reason); }};
+}
+
 void CutCache::discard(std::string_view key, const std::string& reason) {
   if (!root_) return;
   const std::string name = entry_name(key);

@@ -29,6 +29,7 @@
 #include <string>
 #include <string_view>
 
+#include "base/blob_store.h"
 #include "base/folder.h"
 
 namespace cutaway {
@@ -96,6 +97,10 @@ class CutCache {
   /// recently used entries while the folder holds more than max_bytes. A write that fails (a
   /// full disk, a read-only folder) is warned about once; the run goes on without storing.
   void store(std::string_view key, std::string_view payload);
+
+  /// The cache as a BlobStore (load, store and discard of this cache), for the steps below it
+  /// that keep slow results in it (KTX2 textures); valid while the cache lives.
+  BlobStore blob_store();
 
   CutCacheStats stats() const;
   const std::filesystem::path& dir() const { return options_.dir; }

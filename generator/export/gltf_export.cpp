@@ -220,13 +220,14 @@ void SceneModelBuilder::add_textures() {
     if (options_.basisu.empty()) throw InternalError("KTX2 textures asked for without basisu");
     // Each texture by its own single-threaded basisu, several at once: the same bytes in any
     // order.
+    const std::string identity = basisu_identity(options_.basisu);
     oneapi::tbb::parallel_for(size_t{0}, assets_.textures.size(), [&](size_t t) {
       if (gltf_texture_[t] < 0) return;
       const AssetTexture& texture = assets_.textures[t];
       const Ktx2Content kind = content[t] == Ktx2Content::Normal ? Ktx2Content::Normal
                                : texture.linear                  ? Ktx2Content::Data
                                                                  : Ktx2Content::Colour;
-      bytes[t] = encode_ktx2(texture, kind, options_.basisu);
+      bytes[t] = stored_ktx2(texture, kind, options_.basisu, identity, options_.texture_store);
     });
     m_.extensionsUsed.push_back("KHR_texture_basisu");
     if (options_.texture_fallback) {

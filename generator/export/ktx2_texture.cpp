@@ -1,6 +1,9 @@
 #include "export/ktx2_texture.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -9,8 +12,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "base/byte_stream.h"
 #include "base/child_process.h"
 #include "base/error.h"
+#include "base/hash.h"
+#include "base/source_fingerprint.h"
 #include "export/texture_image.h"
 
 namespace cutaway {
@@ -82,6 +88,81 @@ std::string encode_ktx2(const AssetTexture& texture, Ktx2Content content, const 
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in.good() && !in.eof())
     throw EnvironmentError("cannot read basisu's output for texture '" + texture.name + "'");
+  return bytes;
+}
+
+std::string basisu_identity(const fs::path& basisu) {
+  std::ifstream in(basisu, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) throw EnvironmentError("cannot read " + basisu.string());
+  char hash[17];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fnv1a64(bytes)));
+  return "basisu " + std::to_string(bytes.size()) + " " + hash;
+}
+
+std::string ktx2_key(const AssetTexture& texture, Ktx2Content content,
+                     const std::string& identity) {
+  std::string key = "cutaway ktx2 texture\nsources " + std::string(source_fingerprint()) + "\n" +
+                    identity + "\ncontent " + std::to_string(static_cast<int>(content)) +
+                    "\nsize " + std::to_string(texture.width) + " " +
+                    std::to_string(texture.height) + " " + std::to_string(texture.channels) +
+                    (texture.linear ? " linear" : " srgb") + "\npixels\n";
+  key.append(reinterpret_cast<const char*>(texture.pixels.data()), texture.pixels.size());
+  return key;
+}
+
+std::string ktx2_mismatch(std::string_view bytes, const AssetTexture& texture) {
+  static constexpr unsigned char kIdentifier[12] = {0xAB, 'K',  'T',  'X',  ' ',  '2',
+                                                    '0',  0xBB, '\r', '\n', 0x1A, '\n'};
+  constexpr size_t kIndexEnd = 80;  // the header (48 bytes) and the index (32)
+  if (bytes.size() < kIndexEnd || std::memcmp(bytes.data(), kIdentifier, 12) != 0)
+    return "not a KTX 2.0 file";
+  ByteReader r(bytes.substr(12));
+  const uint32_t format = r.get<uint32_t>(), type_size = r.get<uint32_t>();
+  const uint32_t width = r.get<uint32_t>(), height = r.get<uint32_t>(), depth = r.get<uint32_t>();
+  const uint32_t layers = r.get<uint32_t>(), faces = r.get<uint32_t>();
+  const uint32_t levels = r.get<uint32_t>(), supercompression = r.get<uint32_t>();
+  (void)format;
+  (void)type_size;
+  if (width != static_cast<uint32_t>(texture.width) ||
+      height != static_cast<uint32_t>(texture.height) || depth != 0 || layers != 0 || faces != 1)
+    return "its size is not the texture's " + std::to_string(texture.width) + " x " +
+           std::to_string(texture.height);
+  uint32_t chain = 1;
+  for (uint32_t side = std::max(width, height); side > 1; side /= 2) ++chain;
+  if (levels != chain) return "its mipmap chain is not full";
+  if (supercompression != 2) return "it is not Zstandard-supercompressed";
+  const uint64_t file = bytes.size();
+  auto inside = [file](uint64_t offset, uint64_t length) {
+    return offset <= file && length <= file - offset;
+  };
+  const uint32_t dfd_offset = r.get<uint32_t>(), dfd_length = r.get<uint32_t>();
+  r.get<uint32_t>();  // key/value data: offset and length
+  r.get<uint32_t>();
+  r.get<uint64_t>();  // supercompression global data: offset and length
+  r.get<uint64_t>();
+  if (!inside(dfd_offset, dfd_length) || dfd_length == 0)
+    return "its data format descriptor lies outside it";
+  if (file < kIndexEnd + 24 * uint64_t{levels}) return "its level index is cut short";
+  for (uint32_t l = 0; l < levels; ++l) {
+    const uint64_t offset = r.get<uint64_t>(), length = r.get<uint64_t>();
+    r.get<uint64_t>();  // its uncompressed length
+    if (length == 0 || !inside(offset, length)) return "a mipmap level lies outside it";
+  }
+  return "";
+}
+
+std::string stored_ktx2(const AssetTexture& texture, Ktx2Content content, const fs::path& basisu,
+                        const std::string& identity, const BlobStore* store) {
+  if (!store) return encode_ktx2(texture, content, basisu);
+  const std::string key = ktx2_key(texture, content, identity);
+  if (std::optional<std::string> stored = store->load(key)) {
+    const std::string why = ktx2_mismatch(*stored, texture);
+    if (why.empty()) return *stored;
+    store->discard(key, why);
+  }
+  std::string bytes = encode_ktx2(texture, content, basisu);
+  store->store(key, bytes);
   return bytes;
 }
 

@@ -8,8 +8,10 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "assets/scene_assets.h"
+#include "base/blob_store.h"
 
 namespace cutaway {
 
@@ -36,5 +38,29 @@ std::optional<std::filesystem::path> find_basisu();
 /// @throws InternalError when the texture's size and pixels disagree
 std::string encode_ktx2(const AssetTexture& texture, Ktx2Content content,
                         const std::filesystem::path& basisu);
+
+/// Which basisu build `basisu` is: its size and the FNV-1a 64 of its bytes ("basisu BYTES
+/// HASH"), for ktx2_key.
+/// @throws EnvironmentError when it cannot be read
+std::string basisu_identity(const std::filesystem::path& basisu);
+
+/// The key of `texture` encoded as `content` by the basisu of `identity` (basisu_identity):
+/// this build's source fingerprint (which fixes encode_ktx2's arguments), the identity, the
+/// content, the texture's size, channels and transfer, and every pixel byte, so two textures
+/// never share a key.
+std::string ktx2_key(const AssetTexture& texture, Ktx2Content content, const std::string& identity);
+
+/// Why `bytes` cannot be `texture` as encode_ktx2 writes it, or "" when they can be: a KTX 2.0
+/// file (its identifier) of the texture's width and height, one layer, one face, the full
+/// mipmap chain, Zstandard supercompression, each level and the data format descriptor inside
+/// the file. Source: the KTX File Format Specification 2.0, section 3.
+std::string ktx2_mismatch(std::string_view bytes, const AssetTexture& texture);
+
+/// encode_ktx2 through `store` (null: none): the stored encoding under ktx2_key when it passes
+/// ktx2_mismatch (one that fails is discarded), else a fresh one, then stored.
+/// @throws as encode_ktx2
+std::string stored_ktx2(const AssetTexture& texture, Ktx2Content content,
+                        const std::filesystem::path& basisu, const std::string& identity,
+                        const BlobStore* store);
 
 }  // namespace cutaway

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include <stb/stb_image.h>
 #include <tiny_gltf.h>
@@ -183,6 +184,47 @@ TEST(SceneCommand, ARunReadFromTheCutCacheIsToldFromOneThatCutEverything) {
   EXPECT_NE(std::string(read_back.message()).find("read from the cut cache"), std::string::npos)
       << read_back.message();
   EXPECT_EQ(test::read_file(dir / "again.glb"), test::read_file(dir / "first.glb"));
+}
+
+/// The cut_cache object of a run's --stats line (null when there is none).
+nlohmann::json cut_cache_stats(const test::RunResult& run) {
+  std::istringstream lines(run.err);
+  nlohmann::json found;
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("{", 0) == 0) {
+      const nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
+      if (j.is_object() && j.contains("cut_cache")) found = j["cut_cache"];
+    }
+  return found;
+}
+
+// KTX2 textures are kept in the cut cache beside the cut objects (entries a JPEG run does not
+// make) and read back by the next run, the same bytes as a run that encodes every texture
+// afresh.
+TEST(SceneCommand, Ktx2TexturesAreKeptInTheCutCacheAsTheBytesAFreshRunWrites) {
+  const fs::path dir = test::fresh_dir("scene-ktx2-cache");
+  const std::string cache = (dir / "cache").string();
+  auto run = [&](const std::string& stem, std::vector<std::string> more) {
+    std::vector<std::string> args = scene_args(dir, stem, {"--stats"});
+    args.insert(args.end(), more.begin(), more.end());
+    const test::RunResult r = test::run_cutaway(args);
+    EXPECT_EQ(r.exit_code, 0) << stem << ": " << r.err;
+    return r;
+  };
+  const nlohmann::json jpeg =
+      cut_cache_stats(run("jpeg", {"--cache", (dir / "jpeg-cache").string()}));
+  const nlohmann::json first =
+      cut_cache_stats(run("first", {"--textures", "ktx2", "--cache", cache}));
+  ASSERT_TRUE(jpeg.is_object() && first.is_object());
+  EXPECT_GT(first["stored"].get<int>(), jpeg["stored"].get<int>());  // the textures' entries
+  const nlohmann::json again =
+      cut_cache_stats(run("again", {"--textures", "ktx2", "--cache", cache}));
+  EXPECT_EQ(again["hits"], first["stored"]);
+  EXPECT_EQ(again["stored"], 0);
+  EXPECT_EQ(test::read_file(dir / "again.glb"), test::read_file(dir / "first.glb"));
+  const test::RunResult fresh = run("fresh", {"--textures", "ktx2", "--no-cache"});
+  EXPECT_TRUE(test::made_afresh(fresh));
+  EXPECT_EQ(test::read_file(dir / "fresh.glb"), test::read_file(dir / "first.glb"));
 }
 
 TEST(SceneCommand, RefusesBadArgumentsAndLeavesNothing) {
