@@ -1,11 +1,14 @@
 """Add > Cut Fruit with a window, as a user runs it: Blender under xvfb-run (not -b), the
 operator started as the menu starts it once its dialog is confirmed. It must return
 RUNNING_MODAL at once and keep Blender's event loop running while cutaway cuts (a timer ticks
-meanwhile), then place the tomato's two halves under one root. Headless Blender (-b) has no
-window for the modal handler; addon_test.py's cut-fruit case covers the job it polls.
+meanwhile), then place the tomato's two halves under one root. Then a second cut is started
+and Esc pressed (a simulated key press, Blender run with --enable-event-simulate) while
+cutaway cuts: nothing is added, no cutaway is left running, and its temporary folder is gone.
+Headless Blender (-b) has no window for the modal handler; addon_test.py's cut-fruit case
+covers the job it polls.
 
-    xvfb-run -a blender --factory-startup --python tests/blender/modal_cut_fruit.py -- \
-        ADDON.zip CUTAWAY SOURCE_DIR OUT_DIR
+    xvfb-run -a blender --factory-startup --enable-event-simulate \
+        --python tests/blender/modal_cut_fruit.py -- ADDON.zip CUTAWAY SOURCE_DIR OUT_DIR
 
 Writes OUT_DIR/modal.txt ("passed", or why not) and quits; the test script reads it.
 """
@@ -55,6 +58,58 @@ def watch():
         report(f"roots {[r.name for r in roots]}, {len(pieces)} pieces: want one root, 2 halves")
     elif state["ticks"] < 2:
         report(f"Blender's timers ticked {state['ticks']} times during the cut: it was blocked")
+    else:
+        bpy.app.timers.register(start_and_escape, first_interval=0.1)
+    return None
+
+
+def cutaway_running():
+    """The process ids of cutaway runs of `piece` (read from /proc)."""
+    found = []
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            with open(f"/proc/{pid}/cmdline", "rb") as stream:
+                words = stream.read().split(b"\0")
+        except OSError:
+            continue
+        if os.path.abspath(CUTAWAY).encode() in words and b"piece" in words:
+            found.append(int(pid))
+    return found
+
+
+def start_and_escape():
+    window = bpy.context.window_manager.windows[0]
+    with bpy.context.temp_override(window=window, area=window.screen.areas[0]):
+        state["result"] = bpy.ops.object.cutaway_add_cut_fruit(
+            'EXEC_DEFAULT', template="kiwi", cut="wedges:8", seed=2)
+    state["started"] = time.monotonic()
+    bpy.app.timers.register(escape, first_interval=0.3)
+    return None
+
+
+def escape():
+    if not cutaway_running():
+        report("the second cut was not running when Esc was to be pressed")
+        return None
+    state["running"] = cutaway_running()
+    bpy.context.window_manager.windows[0].event_simulate(type='ESC', value='PRESS')
+    bpy.context.window_manager.windows[0].event_simulate(type='ESC', value='RELEASE')
+    bpy.app.timers.register(after_escape, first_interval=1.0)
+    return None
+
+
+def after_escape():
+    roots = [o for o in bpy.data.objects if o.parent is None]
+    left = [name for name in os.listdir(os.environ.get("TMPDIR", "/tmp"))
+            if name.startswith("cutaway-")]
+    if state["result"] != {'RUNNING_MODAL'}:
+        report(f"the second cut returned {state['result']}, not RUNNING_MODAL")
+    elif len(roots) != 1:
+        report(f"Esc: roots {[r.name for r in roots]}, want only the first cut's")
+    elif set(state["running"]) & set(cutaway_running()):
+        report(f"Esc: cutaway {state['running']} still runs")
+    elif left:
+        report(f"Esc: its temporary folder was left: {left}")
     else:
         report("passed")
     return None

@@ -8,7 +8,7 @@ rm -rf "$out"
 mkdir -p "$out/tmp" "$out/home"
 export HOME="$out/home" TMPDIR="$out/tmp" BLENDER_USER_SCRIPTS="$out/user-scripts" \
        XDG_CONFIG_HOME="$out/home/config" XDG_CACHE_HOME="$out/home/cache"
-timeout 240 xvfb-run -a blender --factory-startup \
+timeout 240 xvfb-run -a blender --factory-startup --enable-event-simulate \
   --python "$source_dir/tests/blender/modal_cut_fruit.py" -- "$addon" "$cutaway" "$source_dir" \
   "$out" > "$out/blender.log" 2>&1 || true
 if [[ ! -f "$out/modal.txt" ]]; then
