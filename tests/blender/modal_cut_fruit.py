@@ -37,12 +37,17 @@ def start():
     prefs.templates_dir = os.path.join(os.path.abspath(SOURCE), "templates")
     for obj in list(bpy.data.objects):
         bpy.data.objects.remove(obj)
+    return cut_fruit("tomato", "halves", 1, then=watch, after=0.05)
+
+
+def cut_fruit(template, cut, seed, then, after):
+    """Starts Add > Cut Fruit as its confirmed dialog does, then `then` in `after` seconds."""
     window = bpy.context.window_manager.windows[0]
     with bpy.context.temp_override(window=window, area=window.screen.areas[0]):
         state["result"] = bpy.ops.object.cutaway_add_cut_fruit(
-            'EXEC_DEFAULT', template="tomato", cut="halves", seed=1)
+            'EXEC_DEFAULT', template=template, cut=cut, seed=seed)
     state["started"] = time.monotonic()
-    bpy.app.timers.register(watch, first_interval=0.05)
+    bpy.app.timers.register(then, first_interval=after)
     return None
 
 
@@ -78,13 +83,7 @@ def cutaway_running():
 
 
 def start_and_escape():
-    window = bpy.context.window_manager.windows[0]
-    with bpy.context.temp_override(window=window, area=window.screen.areas[0]):
-        state["result"] = bpy.ops.object.cutaway_add_cut_fruit(
-            'EXEC_DEFAULT', template="kiwi", cut="wedges:8", seed=2)
-    state["started"] = time.monotonic()
-    bpy.app.timers.register(escape, first_interval=0.3)
-    return None
+    return cut_fruit("kiwi", "wedges:8", 2, then=escape, after=0.3)
 
 
 def escape():
