@@ -48,6 +48,9 @@ import time
 import bpy
 import numpy
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from front_view import stage_front_view  # noqa: E402  (after its folder is on the path)
+
 # Mean Rec. 709 luma (0..255, of the 8-bit sRGB frame) of the pixels the objects cover: neither
 # dark nor blown out. The same range as the three.js check (tests/app/cli/three_exposure_test.sh).
 LUMA_RANGE = (90.0, 225.0)
@@ -464,22 +467,7 @@ def case_volume(args):
                                        for n in material.node_tree.nodes),
           "the volume has no Principled Volume material")
     # From the front, each alone: the volume must cover the glTF's silhouette and no more.
-    mesh_lo, mesh_hi = world_bounds(meshes)
-    centre = [(a + b) / 2 for a, b in zip(mesh_lo, mesh_hi)]
-    size = max(b - a for a, b in zip(mesh_lo, mesh_hi))
-    camera_data = bpy.data.cameras.new("front")
-    camera_data.type = 'ORTHO'
-    camera_data.ortho_scale = 1.2 * size
-    camera = bpy.data.objects.new("front", camera_data)
-    camera.location = (centre[0], centre[1] - 3 * size, centre[2])
-    camera.rotation_euler = (math.pi / 2, 0, 0)
-    scene.collection.objects.link(camera)
-    scene.camera = camera
-    world = bpy.data.worlds.new("white")
-    world.use_nodes = True
-    world.node_tree.nodes["Background"].inputs["Color"].default_value = (1, 1, 1, 1)
-    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.5
-    scene.world = world
+    stage_front_view(scene, *world_bounds(meshes))
     glb_mask = front_coverage(scene, meshes, os.path.join(args.out, "volume-gltf.png"))
     vol_mask = front_coverage(scene, [volume], os.path.join(args.out, "volume-vdb.png"))
     iou = float((glb_mask & vol_mask).sum()) / max(1, int((glb_mask | vol_mask).sum()))

@@ -8,9 +8,13 @@
 # Usage: blender -b --factory-startup --python tests/blender/volume_import.py -- FILE.vdb
 #        [--render OUT.png]
 import json
+import os
 import sys
 
 import bpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from front_view import stage_front_view  # noqa: E402  (after its folder is on the path)
 
 args = sys.argv[sys.argv.index('--') + 1:]
 path = args[0]
@@ -46,22 +50,7 @@ if volumes:
         out = nodes.new('ShaderNodeOutputMaterial')
         mat.node_tree.links.new(volume.outputs['Volume'], out.inputs['Volume'])
         obj.data.materials.append(mat)
-        (lo, hi) = report['bounds']
-        centre = [(a + b) / 2 for a, b in zip(lo, hi)]
-        size = max(b - a for a, b in zip(lo, hi))
-        cam_data = bpy.data.cameras.new('camera')
-        cam_data.type = 'ORTHO'
-        cam_data.ortho_scale = size * 1.2
-        cam = bpy.data.objects.new('camera', cam_data)
-        cam.location = (centre[0], centre[1] - size * 3, centre[2])  # in front (-Y)
-        cam.rotation_euler = (1.5707963267948966, 0, 0)
-        scene.collection.objects.link(cam)
-        scene.camera = cam
-        world = bpy.data.worlds.new('world')
-        world.use_nodes = True
-        world.node_tree.nodes['Background'].inputs['Color'].default_value = (1, 1, 1, 1)
-        world.node_tree.nodes['Background'].inputs['Strength'].default_value = 1.5
-        scene.world = world
+        stage_front_view(scene, *report['bounds'])
         scene.render.engine = 'CYCLES'
         scene.cycles.samples = 16
         scene.cycles.use_denoising = False
