@@ -258,10 +258,23 @@ glm::dmat4 scene_from_object(const AssetInstance& inst) {
          glm::mat4_cast(glm::normalize(inst.rotation));
 }
 
-/// Draws the triangles of `draw` with the program, uniforms and textures in use.
-void draw_triangles(const MeshDraw& draw) {
+/// Triangles drawn between waits for the rasteriser: a software rasteriser (Mesa's llvmpipe,
+/// OSMesa's) bins the triangles by screen tile in scenes of tens of MB and queues the scenes
+/// for its threads, which fall behind on millions of triangles, so the queue grew to about
+/// 750 MB.
+constexpr size_t kTrianglesPerFinish = 200000;
+
+/// Draws the triangles of `draw` with the program, uniforms and textures in use; waits for the
+/// rasteriser (glFinish) once `pending` (triangles drawn since the last wait, updated) reaches
+/// kTrianglesPerFinish. The pixels do not depend on where the waits fall.
+void draw_triangles(const MeshDraw& draw, size_t& pending) {
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(draw.index_count), GL_UNSIGNED_INT,
                  reinterpret_cast<const void*>(draw.first_index * sizeof(uint32_t)));
+  pending += draw.index_count / 3;
+  if (pending >= kTrianglesPerFinish) {
+    glFinish();
+    pending = 0;
+  }
 }
 
 /// Binds `target` and clears it to `background` and the far depth, with the depth test on,
@@ -284,6 +297,7 @@ void clear_target(const OffscreenTarget& target, const glm::dvec3& background) {
 void draw_instances(const SceneAssets& assets, const std::vector<std::vector<MeshDraw>>& draws,
                     const std::vector<GLuint>& textures, const glm::dmat4& view,
                     const DrawUniforms& uniforms) {
+  size_t pending = 0;
   for (const AssetInstance& inst : assets.instances) {
     const std::vector<MeshDraw>& list = draws[static_cast<size_t>(inst.mesh)];
     if (list.empty()) continue;
@@ -302,7 +316,7 @@ void draw_instances(const SceneAssets& assets, const std::vector<std::vector<Mes
       }
       glUniform1f(uniforms.shininess, draw.highlight.shininess);
       glUniform1f(uniforms.specular_weight, draw.highlight.weight);
-      draw_triangles(draw);
+      draw_triangles(draw, pending);
     }
   }
 }
@@ -378,12 +392,13 @@ ShadowMap draw_shadow_map(const SceneAssets& assets,
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDisable(GL_CULL_FACE);
+  size_t pending = 0;
   for (const AssetInstance& inst : assets.instances) {
     const std::vector<MeshDraw>& list = draws[static_cast<size_t>(inst.mesh)];
     if (inst.backdrop || list.empty()) continue;
     const glm::mat4 light_from_object(view * scene_from_object(inst));
     glUniformMatrix4fv(view_from_object, 1, GL_FALSE, glm::value_ptr(light_from_object));
-    for (const MeshDraw& draw : list) draw_triangles(draw);
+    for (const MeshDraw& draw : list) draw_triangles(draw, pending);
   }
   glFinish();
   return map;
