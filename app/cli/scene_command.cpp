@@ -163,11 +163,7 @@ int run_scene(const SceneArgs& a, const Common& given, OutputSet& outputs) {
   const Common common = with_resolved_backend(given);  // probed once, not per use below
   const uint64_t seed = a.seed >= 0 ? static_cast<uint64_t>(a.seed) : scene.seed;
   const std::unique_ptr<CutCache> cache = open_cut_cache(a.cache);
-  BlobStore texture_store;  // KTX2 encodings kept in the cut cache too
-  if (cache) {
-    texture_store = cache->blob_store();
-    gltf.texture_store = &texture_store;
-  }
+  if (cache) gltf.texture_store = cache->blob_store();  // KTX2 encodings kept there too
   SceneBuildOptions options;
   options.cache = cache.get();
   options.diffusion_settings = diffusion_settings(a.cube, common);

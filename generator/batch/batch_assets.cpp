@@ -218,11 +218,7 @@ std::string asset_glb(SceneAssets& assets, CachedCut& cut, const Batch& batch, C
   assets.camera = frame_box(lo, hi, asset_view_direction(), 40, 4.0 / 3);
   light_like_studio(assets);
   GltfSceneOptions gltf = batch.export_options.gltf;
-  BlobStore store;
-  if (cache) {
-    store = cache->blob_store();
-    gltf.texture_store = &store;
-  }
+  if (cache) gltf.texture_store = cache->blob_store();
   std::string glb = scene_to_glb(assets, gltf);
   r.hash = fnv1a64(glb);
   const GltfGeometryCounts counts = count_glb_geometry(glb);

@@ -121,15 +121,10 @@ int SceneBuffers::positions_about(const std::vector<float>& xyz,
   if (compression_ == GltfCompression::None) {
     frame.scale = 1.0;
     std::vector<float> moved(xyz.size());
-    std::vector<double> lo(3, INFINITY), hi(3, -INFINITY);
-    for (size_t i = 0; i < count; ++i)
-      for (int k = 0; k < 3; ++k) {
-        moved[3 * i + k] = static_cast<float>(xyz[3 * i + k] - pivot[k]);
-        lo[k] = std::min<double>(lo[k], moved[3 * i + k]);
-        hi[k] = std::max<double>(hi[k], moved[3 * i + k]);
-      }
+    for (size_t i = 0; i < xyz.size(); ++i) moved[i] = static_cast<float>(xyz[i] - pivot[i % 3]);
+    const auto [lo, hi] = bounds(moved);
     return accessor(moved.data(), count, 12, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
-                    false, lo, hi);
+                    false, {lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z});
   }
   frame.scale = 0;
   for (size_t i = 0; i < extent_of.size(); ++i)

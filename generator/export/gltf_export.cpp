@@ -227,7 +227,8 @@ void SceneModelBuilder::add_textures() {
       const Ktx2Content kind = content[t] == Ktx2Content::Normal ? Ktx2Content::Normal
                                : texture.linear                  ? Ktx2Content::Data
                                                                  : Ktx2Content::Colour;
-      bytes[t] = stored_ktx2(texture, kind, options_.basisu, identity, options_.texture_store);
+      bytes[t] = stored_ktx2(texture, kind, options_.basisu, identity,
+                             options_.texture_store ? &*options_.texture_store : nullptr);
     });
     m_.extensionsUsed.push_back("KHR_texture_basisu");
     if (options_.texture_fallback) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -95,8 +96,8 @@ struct GltfSceneOptions {
   TextureFormat textures = TextureFormat::Jpeg;
   /// The Basis Universal encoder for Ktx2 textures (find_basisu, ktx2_texture.h).
   std::filesystem::path basisu{};
-  /// Where Ktx2 encodings are kept between runs (stored_ktx2), or null: each run encodes them.
-  const BlobStore* texture_store = nullptr;
+  /// Where Ktx2 encodings are kept between runs (stored_ktx2), or none: each run encodes them.
+  std::optional<BlobStore> texture_store;
   /// With Ktx2: each texture also as the JPEG or PNG image the Jpeg format writes, its
   /// `source` (the KTX2 image stays its KHR_texture_basisu source, and the extension is no
   /// longer required), for readers without KTX2 (Blender's glTF importer). Both images are

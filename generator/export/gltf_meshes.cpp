@@ -154,9 +154,11 @@ class MeshLevels {
              const std::vector<size_t>& group_of, MeshFrame& frame, const glm::dvec3* pivot)
       : out_(out), primitives_(primitives), gltf_material_(gltf_material), textured_(textured),
         relief_(relief), groups_(groups), group_of_(group_of) {
-    std::vector<float> all;  // the positions the mesh's frame holds
-    for (const VertexGroup& g : groups)
-      all.insert(all.end(), g.vertices.position.begin(), g.vertices.position.end());
+    std::vector<float> joined;  // the positions the mesh's frame holds, when in several groups
+    if (groups.size() > 1)
+      for (const VertexGroup& g : groups)
+        joined.insert(joined.end(), g.vertices.position.begin(), g.vertices.position.end());
+    const std::vector<float>& all = groups.size() > 1 ? joined : groups[0].vertices.position;
     for (VertexGroup& g : groups) {
       g.positions = out.positions(g.vertices.position, all, frame, pivot);
       g.normals = out.normals(g.vertices.normal);

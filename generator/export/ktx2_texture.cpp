@@ -118,12 +118,11 @@ std::string ktx2_mismatch(std::string_view bytes, const AssetTexture& texture) {
   if (bytes.size() < kIndexEnd || std::memcmp(bytes.data(), kIdentifier, 12) != 0)
     return "not a KTX 2.0 file";
   ByteReader r(bytes.substr(12));
-  const uint32_t format = r.get<uint32_t>(), type_size = r.get<uint32_t>();
+  r.get<uint32_t>();  // vkFormat and typeSize: basisu's to choose
+  r.get<uint32_t>();
   const uint32_t width = r.get<uint32_t>(), height = r.get<uint32_t>(), depth = r.get<uint32_t>();
   const uint32_t layers = r.get<uint32_t>(), faces = r.get<uint32_t>();
   const uint32_t levels = r.get<uint32_t>(), supercompression = r.get<uint32_t>();
-  (void)format;
-  (void)type_size;
   if (width != static_cast<uint32_t>(texture.width) ||
       height != static_cast<uint32_t>(texture.height) || depth != 0 || layers != 0 || faces != 1)
     return "its size is not the texture's " + std::to_string(texture.width) + " x " +
