@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include <glm/common.hpp>
 #include <meshoptimizer.h>
+
+#include "base/hash.h"
 
 namespace cutaway::gltf {
 
@@ -107,10 +110,30 @@ int SceneBuffers::positions(const std::vector<float>& xyz, const std::vector<flo
                     {lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z});
   }
   const auto [lo, hi] = bounds(extent_of);
+  if (compression_ == GltfCompression::Meshopt) return grid_positions(xyz, lo, hi, frame);
   frame.offset = (lo + hi) * 0.5;
   const glm::dvec3 half = (hi - lo) * 0.5;
   frame.scale = std::max({half.x, half.y, half.z});
   return quantized_positions(xyz, frame);
+}
+
+int SceneBuffers::grid_positions(const std::vector<float>& xyz, const glm::dvec3& lo,
+                                 const glm::dvec3& hi, MeshFrame& frame) {
+  const size_t count = xyz.size() / 3;
+  const double side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  frame.offset = lo;
+  frame.scale = grid_.position_step > 0 ? grid_.position_step : side > 0 ? side / 16383 : 1.0;
+  std::vector<uint16_t> q(count * 4, 0);
+  std::vector<double> qlo(3, 65535), qhi(3, 0);
+  for (size_t i = 0; i < count; ++i)
+    for (int k = 0; k < 3; ++k) {
+      const double v = (xyz[3 * i + k] - frame.offset[k]) / frame.scale;
+      q[4 * i + k] = static_cast<uint16_t>(std::clamp<long>(std::lround(v), 0, 65535));
+      qlo[k] = std::min<double>(qlo[k], q[4 * i + k]);
+      qhi[k] = std::max<double>(qhi[k], q[4 * i + k]);
+    }
+  return accessor(q.data(), count, 8, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC3,
+                  false, qlo, qhi);
 }
 
 int SceneBuffers::positions_about(const std::vector<float>& xyz,
@@ -208,26 +231,43 @@ int SceneBuffers::uvs(const std::vector<float>& xy) {
 }
 
 int SceneBuffers::indices(const std::vector<uint32_t>& idx, size_t vertices) {
+  const bool narrow = vertices <= 65535;
+  const size_t size = narrow ? 2 : 4;
+  const bool meshopt = compression_ == GltfCompression::Meshopt;
+  // The values as they are kept until written: meshopt holds uint32 back for its codec, a
+  // plain view holds them at their size.
+  const std::vector<uint16_t> shorts =
+      narrow && !meshopt ? std::vector<uint16_t>(idx.begin(), idx.end()) : std::vector<uint16_t>{};
+  const std::span<const unsigned char> bytes =
+      shorts.empty()
+          ? std::span(reinterpret_cast<const unsigned char*>(idx.data()), idx.size() * 4)
+          : std::span(reinterpret_cast<const unsigned char*>(shorts.data()), shorts.size() * 2);
+  const uint64_t key = content_key("indices " + std::to_string(size), bytes);
+  if (const int same = written_before(key, bytes); same >= 0) return same;
   tinygltf::Accessor a;
   a.type = TINYGLTF_TYPE_SCALAR;
   a.count = idx.size();
-  const bool narrow = vertices <= 65535;
   a.componentType =
       narrow ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-  const size_t size = narrow ? 2 : 4;
-  const int target = TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;
-  if (compression_ == GltfCompression::Meshopt) {
-    std::vector<unsigned char> packed(meshopt_encodeIndexBufferBound(idx.size(), vertices));
-    packed.resize(meshopt_encodeIndexBuffer(packed.data(), packed.size(), idx.data(), idx.size()));
-    a.bufferView = encoded_view(packed, idx.size(), size, 0, "TRIANGLES", target);
-  } else if (narrow) {
-    const std::vector<uint16_t> shorts(idx.begin(), idx.end());
-    a.bufferView = add_view(m_, shorts.data(), shorts.size() * 2, target);
+  Held held{static_cast<int>(m_.accessors.size()), Held::Buffer, 0, 0, bytes.size()};
+  if (meshopt) {  // its view is written by finish()
+    auto it = std::find_if(shared_indices_.begin(), shared_indices_.end(),
+                           [&](const SharedIndices& s) { return s.size == size; });
+    if (it == shared_indices_.end())
+      it = shared_indices_.insert(shared_indices_.end(), {size, {}, 0, {}});
+    a.byteOffset = it->idx.size() * size;
+    held = {held.accessor, Held::Indices, static_cast<size_t>(it - shared_indices_.begin()),
+            it->idx.size() * sizeof(uint32_t), bytes.size()};
+    it->idx.insert(it->idx.end(), idx.begin(), idx.end());
+    it->vertices = std::max(it->vertices, vertices);
+    it->accessors.push_back(held.accessor);
   } else {
-    a.bufferView = add_view(m_, idx.data(), idx.size() * 4, target);
+    a.bufferView = add_view(m_, bytes.data(), bytes.size(), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    held.offset = m_.bufferViews.back().byteOffset;
   }
   m_.accessors.push_back(a);
-  return static_cast<int>(m_.accessors.size()) - 1;
+  written_.emplace(key, held);
+  return held.accessor;
 }
 
 template <typename T>
@@ -246,6 +286,14 @@ int SceneBuffers::vec3(const std::vector<float>& xyz, std::vector<T> q, int comp
 int SceneBuffers::accessor(const void* data, size_t count, size_t stride, int component, int type,
                            bool normalized, std::vector<double> lo, std::vector<double> hi,
                            const char* filter) {
+  const std::string named = filter ? filter : "";
+  const std::span<const unsigned char> bytes(static_cast<const unsigned char*>(data),
+                                             count * stride);
+  const uint64_t key =
+      content_key("attribute " + std::to_string(component) + " " + std::to_string(type) + " " +
+                      std::to_string(normalized) + " " + std::to_string(stride) + " " + named,
+                  bytes);
+  if (const int same = written_before(key, bytes); same >= 0) return same;
   tinygltf::Accessor a;
   a.componentType = component;
   a.type = type;
@@ -254,22 +302,49 @@ int SceneBuffers::accessor(const void* data, size_t count, size_t stride, int co
   a.minValues = std::move(lo);
   a.maxValues = std::move(hi);
   const int target = TINYGLTF_TARGET_ARRAY_BUFFER;
+  Held held{static_cast<int>(m_.accessors.size()), Held::Buffer, 0, 0, bytes.size()};
   if (compression_ == GltfCompression::Meshopt) {  // its view is written by finish()
-    const std::string named = filter ? filter : "";
     auto it = std::find_if(shared_.begin(), shared_.end(), [&](const SharedStream& s) {
       return s.stride == stride && s.filter == named;
     });
     if (it == shared_.end()) it = shared_.insert(shared_.end(), {stride, named, {}, {}});
     a.byteOffset = it->bytes.size();
-    const auto* p = static_cast<const unsigned char*>(data);
-    it->bytes.insert(it->bytes.end(), p, p + count * stride);
-    it->accessors.push_back(static_cast<int>(m_.accessors.size()));
+    held = {held.accessor, Held::Attributes, static_cast<size_t>(it - shared_.begin()),
+            it->bytes.size(), bytes.size()};
+    it->bytes.insert(it->bytes.end(), bytes.begin(), bytes.end());
+    it->accessors.push_back(held.accessor);
   } else {
     a.bufferView = add_view(m_, data, count * stride, target);
+    held.offset = m_.bufferViews.back().byteOffset;
     if (compression_ != GltfCompression::None) m_.bufferViews.back().byteStride = stride;
   }
   m_.accessors.push_back(a);
-  return static_cast<int>(m_.accessors.size()) - 1;
+  written_.emplace(key, held);
+  return held.accessor;
+}
+
+uint64_t SceneBuffers::content_key(const std::string& description,
+                                   std::span<const unsigned char> bytes) {
+  return fnv1a64(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+                 fnv1a64(description + '\n'));
+}
+
+int SceneBuffers::written_before(uint64_t key, std::span<const unsigned char> bytes) const {
+  const auto [first, last] = written_.equal_range(key);
+  for (auto it = first; it != last; ++it) {
+    const Held& h = it->second;
+    if (h.bytes != bytes.size()) continue;
+    const unsigned char* at = nullptr;
+    switch (h.where) {
+      case Held::Buffer: at = m_.buffers[0].data.data(); break;
+      case Held::Attributes: at = shared_[h.stream].bytes.data(); break;
+      case Held::Indices:
+        at = reinterpret_cast<const unsigned char*>(shared_indices_[h.stream].idx.data());
+        break;
+    }
+    if (std::equal(bytes.begin(), bytes.end(), at + h.offset)) return h.accessor;
+  }
+  return -1;
 }
 
 void SceneBuffers::finish() {
@@ -285,6 +360,22 @@ void SceneBuffers::finish() {
       m_.accessors[static_cast<size_t>(accessor)].bufferView = view;
   }
   shared_.clear();
+  // EXT_meshopt_compression reads triangle streams of codec version 1 (header 0xe1);
+  // meshoptimizer before 0.19 writes version 0 unless told. Set once, before any thread
+  // encodes.
+  static const bool version_1 = (meshopt_encodeIndexVersion(1), true);
+  (void)version_1;
+  for (const SharedIndices& s : shared_indices_) {
+    std::vector<unsigned char> packed(meshopt_encodeIndexBufferBound(s.idx.size(), s.vertices));
+    packed.resize(
+        meshopt_encodeIndexBuffer(packed.data(), packed.size(), s.idx.data(), s.idx.size()));
+    const int view = encoded_view(packed, s.idx.size(), s.size, 0, "TRIANGLES",
+                                  TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    for (const int accessor : s.accessors)
+      m_.accessors[static_cast<size_t>(accessor)].bufferView = view;
+  }
+  shared_indices_.clear();
+  written_.clear();  // what they held is written now
 }
 
 int SceneBuffers::encoded_view(const std::vector<unsigned char>& packed, size_t count, size_t size,

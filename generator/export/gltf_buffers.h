@@ -5,7 +5,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -31,7 +33,8 @@ int add_vec3_accessor(tinygltf::Model& m, const std::vector<float>& xyz, bool wi
 int add_index_accessor(tinygltf::Model& m, const std::vector<uint32_t>& idx);
 
 /// How a quantized mesh's positions map back to metres: p = offset + scale * q, where q is the
-/// stored normalized value (each component in -1..1). Identity for float positions.
+/// stored value as a reader takes it (normalized SHORT: -1..1; meshopt's UNSIGNED_SHORT grid
+/// steps: the integers themselves). Identity for float positions.
 struct MeshFrame {
   glm::dvec3 offset{0.0};
   double scale = 1.0;
@@ -65,18 +68,20 @@ MeshoptGrid meshopt_grid(const std::vector<const AssetMesh*>& meshes,
 ///   cube (MeshFrame, stride 8), NORMAL as normalized BYTE (stride 4), COLOR_0 as normalized
 ///   UNSIGNED_SHORT (stride 8), TEXCOORD_0 as normalized UNSIGNED_SHORT when every coordinate
 ///   lies in 0..1 (else float); still one plain buffer view each, in buffer 0;
-/// - Meshopt: the Quantize data on the scene's MeshoptGrid (positions as SHORT on its steps;
+/// - Meshopt: the Quantize data on the scene's MeshoptGrid (positions as UNSIGNED_SHORT steps
+///   from the corner of the mesh's box, grid_positions(), or as SHORT about a pivot;
 ///   texture coordinates as normalized UNSIGNED_SHORT steps, which a KHR_texture_transform of
 ///   uv_transform() on every texture maps back; normals and tangents through the OCTAHEDRAL
 ///   filter), encoded by meshoptimizer's vertex or index codec: the vertex attributes of every
 ///   mesh in one view per element size and filter (finish(); one block of JSON and one codec
-///   tail each, as gltfpack writes them), the indices in one view per primitive (meshoptimizer
-///   0.18's index codec packs a run of primitives, each counting from 0, far worse than each
-///   alone),
+///   tail each, as gltfpack writes them), the indices of every primitive in one view per index
+///   size (index codec version 1, which the extension requires: a primitive counting from 0
+///   again costs a few bytes),
 ///   into buffer 0 (EXT_meshopt_compression); the views themselves lie in buffer 1, a fallback
 ///   that holds no bytes (its byteLength is fallback_bytes()).
 /// Indices are UNSIGNED_SHORT when the mesh has at most 65535 vertices (65535 is the primitive
-/// restart value, never an index), else UNSIGNED_INT.
+/// restart value, never an index), else UNSIGNED_INT. In every mode an accessor whose data
+/// equals one written before is not written again: the earlier one is returned.
 class SceneBuffers {
  public:
   /// `grid`: the scene's grid, used with Meshopt only.
@@ -84,8 +89,8 @@ class SceneBuffers {
       : m_(m), compression_(compression), grid_(grid) {}
 
   tinygltf::Model& model() { return m_; }
-  /// Writes what is held back (with Meshopt: the shared vertex views) and points the accessors
-  /// at it; run once, after the last mesh.
+  /// Writes what is held back (with Meshopt: the shared vertex and index views) and points the
+  /// accessors at it; run once, after the last mesh.
   void finish();
   GltfCompression compression() const { return compression_; }
   /// Whether texture coordinates are written on the grid's uv steps: every texture then needs
@@ -134,6 +139,12 @@ class SceneBuffers {
   /// scale of 0 taken as 1); frame.scale then maps the stored integers back to metres.
   int quantized_positions(const std::vector<float>& xyz, MeshFrame& frame);
 
+  /// Meshopt positions without a pivot, as gltfpack writes them: UNSIGNED_SHORT steps of the
+  /// scene grid from the corner `lo` of the box (lo, hi) that holds the mesh (frame: offset
+  /// lo, scale one step), so the codec never sees a sign flip between neighbours.
+  int grid_positions(const std::vector<float>& xyz, const glm::dvec3& lo, const glm::dvec3& hi,
+                     MeshFrame& frame);
+
   /// positions() about `pivot`.
   int positions_about(const std::vector<float>& xyz, const std::vector<float>& extent_of,
                       const glm::dvec3& pivot, MeshFrame& frame);
@@ -165,9 +176,41 @@ class SceneBuffers {
     std::vector<int> accessors;
   };
 
+  /// Meshopt triangle lists held back for one shared view: indices of `size` bytes (2 or 4),
+  /// each primitive's counting from 0, over at most `vertices` vertices, and each accessor's
+  /// index in the model.
+  struct SharedIndices {
+    size_t size = 0;
+    std::vector<uint32_t> idx;
+    size_t vertices = 0;
+    std::vector<int> accessors;
+  };
+
+  /// Where the bytes of a written accessor are kept until the file is written: in buffer 0,
+  /// in held-back stream `stream` of shared_, or (as uint32 values) of shared_indices_.
+  struct Held {
+    int accessor = -1;
+    enum { Buffer, Attributes, Indices } where = Buffer;
+    size_t stream = 0;
+    size_t offset = 0;  ///< bytes into its buffer or stream
+    size_t bytes = 0;
+  };
+
+  /// The content key of an accessor: fnv1a64 of its `description` (what a reader makes of
+  /// the bytes) and its `bytes`.
+  static uint64_t content_key(const std::string& description, std::span<const unsigned char> bytes);
+
+  /// The accessor written before with content key `key` whose bytes equal `bytes`, or -1.
+  int written_before(uint64_t key, std::span<const unsigned char> bytes) const;
+
   tinygltf::Model& m_;
   GltfCompression compression_;
+  /// Every accessor written, by content key: identical data (the skins of a variant's copies
+  /// that differ only in their cut-face material, a piece repeated) is written once and its
+  /// accessor shared, as gltfpack shares it.
+  std::unordered_multimap<uint64_t, Held> written_;
   std::vector<SharedStream> shared_;
+  std::vector<SharedIndices> shared_indices_;
   MeshoptGrid grid_;
   size_t fallback_ = 0;
   std::vector<std::pair<int, nlohmann::json>> view_extensions_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -533,6 +534,28 @@ SceneModel scene_model(const SceneAssets& assets, const GltfSceneOptions& option
   return builder.finish();
 }
 
+/// Rewrites every fractional number under `j` as the shortest decimal that reads back as the
+/// same float32 (at most 9 significant digits, where a double takes 17): engines hold node
+/// transforms, factors and texture transforms in float32, so the digits past it only cost
+/// bytes (gltfpack writes its numbers the same way). Integers are left as they are, and so is
+/// every "extras" object: our own data (exposure, volumes), read back at full precision.
+void write_numbers_as_float32(nlohmann::json& j) {
+  if (j.is_object()) {
+    for (auto& [key, value] : j.items())
+      if (key != "extras") write_numbers_as_float32(value);
+  } else if (j.is_array()) {
+    for (nlohmann::json& value : j) write_numbers_as_float32(value);
+  } else if (j.is_number_float()) {
+    const auto f = static_cast<float>(j.get<double>());
+    if (!std::isfinite(f)) return;
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof text, f).ptr;
+    double shortest = 0;
+    std::from_chars(text, end, shortest);
+    j = shortest;
+  }
+}
+
 /// A scene's glTF JSON (buffers without URIs), the bytes of buffer 0 and, with image files,
 /// the images.
 struct EncodedScene {
@@ -567,6 +590,9 @@ EncodedScene encode_scene(const SceneAssets& assets, const GltfSceneOptions& opt
   }
   for (const auto& [key, value] : options.scene_extras.items())
     scene.doc["scenes"][0]["extras"][key] = value;
+  // Accessor bounds stay exact: a float accessor's min and max must equal its data.
+  for (auto& [key, value] : scene.doc.items())
+    if (key != "accessors") write_numbers_as_float32(value);
   return scene;
 }
 

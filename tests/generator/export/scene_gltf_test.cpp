@@ -101,6 +101,9 @@ SceneAssets small_scene() {
 
 constexpr int kNodes = 1 + 2 * 3 + 1 + 2;  // root, instances and their meshes, camera, lights
 constexpr int kCameraNode = 7;             // then the two lights
+/// How near a number read back comes: the document holds them at float32 precision (unit-sized
+/// values: about 6e-8 off, with some rounding in what is computed from them).
+constexpr double kFloat32 = 2e-7;
 
 long instanced_triangles(const SceneAssets& s) {
   long n = 0;
@@ -232,10 +235,10 @@ TEST(SceneGltf, StructureReadsBackWithTinygltf) {
     EXPECT_EQ(mesh_node.mesh, inst.mesh);
     EXPECT_TRUE(mesh_node.translation.empty() && mesh_node.scale.empty());  // no compression
     ASSERT_EQ(node.rotation.size(), 4u);
-    EXPECT_NEAR(node.rotation[0], inst.rotation.x, 1e-12);
-    EXPECT_NEAR(node.rotation[1], inst.rotation.y, 1e-12);
-    EXPECT_NEAR(node.rotation[2], inst.rotation.z, 1e-12);
-    EXPECT_NEAR(node.rotation[3], inst.rotation.w, 1e-12);
+    EXPECT_NEAR(node.rotation[0], inst.rotation.x, kFloat32);
+    EXPECT_NEAR(node.rotation[1], inst.rotation.y, kFloat32);
+    EXPECT_NEAR(node.rotation[2], inst.rotation.z, kFloat32);
+    EXPECT_NEAR(node.rotation[3], inst.rotation.w, kFloat32);
     EXPECT_EQ(node.translation,
               (std::vector<double>{inst.translation.x, inst.translation.y, inst.translation.z}));
   }
@@ -243,8 +246,8 @@ TEST(SceneGltf, StructureReadsBackWithTinygltf) {
   // The camera: a perspective camera at the eye whose -Z looks at the target, +Y up-ish.
   ASSERT_EQ(m.cameras.size(), 1u);
   EXPECT_EQ(m.cameras[0].type, "perspective");
-  EXPECT_NEAR(m.cameras[0].perspective.yfov, 35 * kPi / 180, 1e-12);
-  EXPECT_NEAR(m.cameras[0].perspective.aspectRatio, 4.0 / 3, 1e-12);
+  EXPECT_NEAR(m.cameras[0].perspective.yfov, 35 * kPi / 180, kFloat32);
+  EXPECT_NEAR(m.cameras[0].perspective.aspectRatio, 4.0 / 3, kFloat32);
   EXPECT_DOUBLE_EQ(m.cameras[0].perspective.znear, 0.01);
   EXPECT_DOUBLE_EQ(m.cameras[0].perspective.zfar, 5);
   const auto& cam_node = m.nodes[kCameraNode];
@@ -252,11 +255,11 @@ TEST(SceneGltf, StructureReadsBackWithTinygltf) {
   EXPECT_EQ(cam_node.translation, (std::vector<double>{0.25, 0.3, 0.35}));
   const glm::dvec3 look = minus_z(cam_node.rotation);
   const glm::dvec3 want = unit_target_direction(s.camera);
-  EXPECT_NEAR(glm::length(look - want), 0, 1e-12);
+  EXPECT_NEAR(glm::length(look - want), 0, kFloat32);
   const glm::dquat cq(cam_node.rotation[3], cam_node.rotation[0], cam_node.rotation[1],
                       cam_node.rotation[2]);
-  EXPECT_GT(glm::dot(cq * glm::dvec3(0, 1, 0), s.camera.up), 0.5);         // not upside down
-  EXPECT_NEAR(glm::dot(cq * glm::dvec3(1, 0, 0), s.camera.up), 0, 1e-12);  // no roll
+  EXPECT_GT(glm::dot(cq * glm::dvec3(0, 1, 0), s.camera.up), 0.5);            // not upside down
+  EXPECT_NEAR(glm::dot(cq * glm::dvec3(1, 0, 0), s.camera.up), 0, kFloat32);  // no roll
 
   // The lights: KHR_lights_punctual, used and referenced from their nodes.
   EXPECT_EQ(m.extensionsUsed, (std::vector<std::string>{"KHR_lights_punctual"}));
@@ -273,7 +276,7 @@ TEST(SceneGltf, StructureReadsBackWithTinygltf) {
     EXPECT_EQ(node.extensions.at("KHR_lights_punctual").Get("light").GetNumberAsInt(), l);
   }
   EXPECT_NEAR(glm::length(minus_z(m.nodes[kCameraNode + 1].rotation) - s.lights[0].direction), 0,
-              1e-12);
+              kFloat32);
   EXPECT_EQ(m.nodes[kCameraNode + 2].translation, (std::vector<double>{0.1, 0.4, 0.2}));
   // The view that shows lights in lux as meant: three.js's toneMappingExposure; no sky named.
   ASSERT_TRUE(m.scenes[0].extras.IsObject());
@@ -408,9 +411,10 @@ TEST(SceneGltf, LookRotationsHandleAViewAlongTheUpVector) {
                                           reinterpret_cast<const unsigned char*>(glb.data()),
                                           static_cast<unsigned>(glb.size())))
       << err;
-  EXPECT_NEAR(glm::length(minus_z(m.nodes[kCameraNode].rotation) - glm::dvec3(0, -1, 0)), 0, 1e-12);
+  EXPECT_NEAR(glm::length(minus_z(m.nodes[kCameraNode].rotation) - glm::dvec3(0, -1, 0)), 0,
+              kFloat32);
   EXPECT_NEAR(glm::length(minus_z(m.nodes[kCameraNode + 1].rotation) - glm::dvec3(0, -1, 0)), 0,
-              1e-12);
+              kFloat32);
 }
 
 TEST(SceneGltf, LargeMeshesUse32BitIndices) {
@@ -890,8 +894,9 @@ TEST(SceneGltf, EveryCompressionPassesTheValidatorAndRendersTheSameInThreeJs) {
   EXPECT_LT(bytes("quantize.glb"), bytes("none.glb"));
   EXPECT_LT(bytes("meshopt.glb"), bytes("quantize.glb"));
   // meshopt: normals through the OCTAHEDRAL filter (their views say so, the picture above
-  // shows them decoded); positions as SHORT on the scene's grid: the same step in every mesh's
-  // node scale, 14 bits over the scene (the plate, 0.24 m, spans 16383 steps); texture
+  // shows them decoded); positions as UNSIGNED_SHORT steps of the scene's grid from each
+  // mesh's corner: the same step in every mesh's node scale, 14 bits over the scene (the
+  // plate, 0.24 m, spans 16383 steps); texture
   // coordinates as steps mapped back by one KHR_texture_transform on every texture (twice the
   // 64-texel texture's side per unit).
   const auto j = glb_json(test::read_file(dir / "meshopt.glb"));
@@ -900,7 +905,7 @@ TEST(SceneGltf, EveryCompressionPassesTheValidatorAndRendersTheSameInThreeJs) {
   for (const auto& node : j["nodes"])
     if (node.contains("mesh") && node.contains("scale")) scales.push_back(node["scale"][0]);
   ASSERT_EQ(scales.size(), 3u);  // the cube's two instances and the plate's
-  for (const double scale : scales) EXPECT_NEAR(scale / 32767, 0.24 / 16383, 1e-12);
+  for (const double scale : scales) EXPECT_NEAR(scale, 0.24 / 16383, 0.24 / 16383 * 1e-7);
   for (const auto& mesh : j["meshes"])
     for (const auto& prim : mesh["primitives"]) {
       const auto& normal = j["accessors"][prim["attributes"]["NORMAL"].get<size_t>()];
@@ -908,17 +913,72 @@ TEST(SceneGltf, EveryCompressionPassesTheValidatorAndRendersTheSameInThreeJs) {
       EXPECT_EQ(view["extensions"]["EXT_meshopt_compression"].value("filter", ""), "OCTAHEDRAL");
       ++filtered;
       const auto& position = j["accessors"][prim["attributes"]["POSITION"].get<size_t>()];
-      for (const double q : position["max"]) EXPECT_LE(std::abs(q), 8192);
-      for (const double q : position["min"]) EXPECT_LE(std::abs(q), 8192);
+      EXPECT_EQ(position["componentType"], TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+      EXPECT_FALSE(position.value("normalized", false));
+      for (const double q : position["max"]) EXPECT_LE(q, 16383);
+      for (const double q : position["min"]) EXPECT_EQ(q, 0);  // each mesh's own corner
     }
   EXPECT_GE(filtered, 2u);
+  // Each compressed view starts with its codec's header as the extension defines it: 0xe1 for
+  // triangles (index codec version 1), 0xa0 for attributes. The data sits in the GLB's BIN
+  // chunk, after the JSON chunk and its 8-byte header.
+  const std::string glb = test::read_file(dir / "meshopt.glb");
+  uint32_t json_bytes = 0;
+  std::memcpy(&json_bytes, glb.data() + 12, 4);
+  const size_t bin = 20 + json_bytes + 8;
+  size_t triangle_views = 0;
+  for (const auto& view : j["bufferViews"]) {
+    if (!view.contains("extensions")) continue;
+    const auto& ext = view["extensions"]["EXT_meshopt_compression"];
+    ASSERT_EQ(ext["buffer"].get<size_t>(), 0u);
+    const auto header = static_cast<unsigned char>(glb.at(bin + ext["byteOffset"].get<size_t>()));
+    if (ext["mode"] == "TRIANGLES") ++triangle_views;
+    EXPECT_EQ(header, ext["mode"] == "TRIANGLES" ? 0xe1 : 0xa0) << ext.dump();
+  }
+  EXPECT_EQ(triangle_views, 1u);  // every primitive's (16-bit) indices in one view
   const auto& info = j["materials"][1]["pbrMetallicRoughness"]["baseColorTexture"];
   const auto& transform = info["extensions"]["KHR_texture_transform"];
-  EXPECT_NEAR(transform["scale"][0].get<double>(), 65535.0 / 128, 1e-9);
+  EXPECT_NEAR(transform["scale"][0].get<double>(), 65535.0 / 128, 65535.0 / 128 * 1e-7);
   EXPECT_EQ(transform["offset"][0].get<double>(), 0.0);
   EXPECT_NE(std::find(j["extensionsRequired"].begin(), j["extensionsRequired"].end(),
                       "KHR_texture_transform"),
             j["extensionsRequired"].end());
+}
+
+TEST(SceneGltf, IdenticalVertexDataAndIndicesAreWrittenOnce) {
+  // A second mesh with the first one's geometry in another material (as the skins of two
+  // copies of one variant, whose cut faces differ): its accessors are the first one's, in
+  // every mode, and the file is smaller than with a mesh of its own.
+  const auto dir = test::fresh_dir("scene-gltf-shared-accessors");
+  SceneAssets s = small_scene();
+  AssetMesh copy = s.meshes[0];
+  copy.name = "tomato_piece_copy";
+  s.meshes.push_back(copy);
+  s.instances.push_back({"piece_2", 2, glm::dquat(1, 0, 0, 0), {0.0, 0.02, -0.05}});
+  SceneAssets moved = s;  // the same, but one corner of the copy 1 mm off
+  moved.meshes[2].position[0].x += 0.001;
+  for (const auto& [name, mode] : kCompressionModes) {
+    const fs::path file = dir / (name + ".glb");
+    write_scene_gltf(file, s, {mode});
+    write_scene_gltf(dir / (name + "-moved.glb"), moved, {mode});
+    EXPECT_EQ(test::validate_gltf(file).errors, 0) << name;
+    const auto j = glb_json(test::read_file(file));
+    const auto& first = j["meshes"][0]["primitives"][0];
+    const auto& second = j["meshes"][2]["primitives"][0];
+    EXPECT_EQ(second["indices"], first["indices"]) << name;
+    EXPECT_EQ(second["attributes"]["NORMAL"], first["attributes"]["NORMAL"]) << name;
+    EXPECT_EQ(second["attributes"]["POSITION"], first["attributes"]["POSITION"]) << name;
+    // With one corner moved, the copy's positions are its own; the rest is still shared.
+    const auto k = glb_json(test::read_file(dir / (name + "-moved.glb")));
+    EXPECT_EQ(k["accessors"].size(), j["accessors"].size() + 1) << name;
+    EXPECT_NE(k["meshes"][2]["primitives"][0]["attributes"]["POSITION"],
+              k["meshes"][0]["primitives"][0]["attributes"]["POSITION"])
+        << name;
+    EXPECT_LT(fs::file_size(file), fs::file_size(dir / (name + "-moved.glb"))) << name;
+    const test::ThreeLoadReport r = test::load_gltf_three(file);
+    ASSERT_TRUE(r.ok) << name << ": " << r.error;
+    EXPECT_EQ(r.triangles, instanced_triangles(s)) << name;
+  }
 }
 
 TEST(SceneGltf, ANormalMapIsWrittenWithTangentsAlongUAndItsYUpTheTexture) {
