@@ -39,6 +39,13 @@ namespace {
 /// the margin is added on top): well above its float error on t.
 constexpr double kFarSlack = 1e-5;
 
+/// The sine of the angle under which a ray is grazing: a ray that meets a triangle's plane
+/// this flat (or flatter) within the grazing radius of its origin is decided by the exact test
+/// against every triangle there, not left to Embree's float edge tests, whose error in the
+/// plane grows as one over this sine (a ray from a point on a curved sheet, nearly tangent to
+/// it, crosses the sheet again a fraction of a millimetre away).
+constexpr double kGrazingSine = 1e-2;
+
 /// Triangle (a, b, c) grown in its plane: every edge moved out by `margin` (scaled about the
 /// incentre by 1 + margin / inradius, at most 4 times: a sliver grows by 3 inradii). A
 /// degenerate triangle stays as it is.
@@ -78,6 +85,7 @@ struct SheetRayCaster::Query {
   double back;        ///< metres Embree's origin lies behind the true one
   double margin;
   double near_radius;
+  double grazing_radius;
   SheetHit* best;  ///< per lane, indexed by the ray's id
   unsigned lanes;  ///< lanes in use in this packet: ids 0 .. lanes - 1
   std::vector<std::pair<unsigned, unsigned>>* near;  ///< the point query's triangles
@@ -104,24 +112,33 @@ std::optional<TriangleCrossing> cross_corners(const float* vertices, size_t t,
                         own_corner(vertices, t, 2));
 }
 
+/// Whether the box of triangle (a, b, c) grown by `radius` holds `origin` and the triangle's
+/// plane passes within `plane_distance` of it (in double).
+bool within(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::dvec3& origin,
+            double radius, double plane_distance) {
+  const glm::dvec3 lo = glm::min(a, glm::min(b, c)) - radius;
+  const glm::dvec3 hi = glm::max(a, glm::max(b, c)) + radius;
+  if (glm::any(glm::lessThan(origin, lo)) || glm::any(glm::greaterThan(origin, hi))) return false;
+  const glm::dvec3 n = glm::cross(b - a, c - a);
+  const double area2 = glm::length(n);
+  return !(area2 > 0 && std::abs(glm::dot(n, origin - a)) > plane_distance * area2);
+}
+
 /// Collects the (sheet, triangle) of every triangle Embree finds near the point query's sphere
-/// that may lie within `radius` of the origin: within it of the triangle's plane and of its
-/// bounding box (in double; a superset of the triangles that near, so the decided hit is the
-/// same whichever kernel found them). Embree hands over whole leaves, most of them far.
+/// that may lie within near_radius of the origin (within it of the triangle's plane and of
+/// its bounding box), or that a grazing ray may cross within grazing_radius of it (its box
+/// within that radius, its plane within grazing_radius * kGrazingSine): in double, a superset
+/// of those triangles, so the decided hit is the same whichever kernel found them. Embree
+/// hands over whole leaves, most of them far.
 bool collect_near(RTCPointQueryFunctionArguments* args) {
   const Query& q = *static_cast<const Query*>(args->userPtr);
   const float* vertices = (*q.corners)[args->geomID];
   const glm::dvec3 a = own_corner(vertices, args->primID, 0),
                    b = own_corner(vertices, args->primID, 1),
                    c = own_corner(vertices, args->primID, 2);
-  const glm::dvec3 lo = glm::min(a, glm::min(b, c)) - q.near_radius;
-  const glm::dvec3 hi = glm::max(a, glm::max(b, c)) + q.near_radius;
-  if (glm::any(glm::lessThan(q.origin, lo)) || glm::any(glm::greaterThan(q.origin, hi)))
-    return false;
-  const glm::dvec3 n = glm::cross(b - a, c - a);
-  const double area2 = glm::length(n);
-  if (area2 > 0 && std::abs(glm::dot(n, q.origin - a)) > q.near_radius * area2) return false;
-  q.near->emplace_back(args->geomID, args->primID);
+  if (within(a, b, c, q.origin, q.near_radius, q.near_radius) ||
+      within(a, b, c, q.origin, q.grazing_radius, q.grazing_radius * kGrazingSine))
+    q.near->emplace_back(args->geomID, args->primID);
   return false;
 }
 
@@ -185,6 +202,7 @@ SheetRayCaster::SheetRayCaster(const std::vector<DiffusionSheet>& sheets, int th
   margin_ = mode_ == SheetHits::Decided ? std::max(1e-6 * diagonal, 1e-9) : 0.0;
   back_ = 100 * margin_;
   near_radius_ = 4 * margin_;
+  grazing_radius_ = 1e4 * margin_;
 
   std::string config = "threads=" + std::to_string(std::max(threads, 0));
   if (const char* isa = std::getenv("CUTAWAY_EMBREE_ISA"); isa && *isa)
@@ -258,9 +276,11 @@ void SheetRayCaster::cast(const glm::dvec3& origin, std::span<const glm::vec3> d
   query.back = back_;
   query.margin = margin_;
   query.near_radius = near_radius_;
+  query.grazing_radius = grazing_radius_;
   query.near = &near;
   // The triangles next to the origin, tested for every ray: from an origin within rounding
-  // distance of a triangle's plane, Embree's t of a grazing ray may come out negative.
+  // distance of a triangle's plane, Embree's t of a grazing ray may come out negative; and
+  // those a grazing ray may cross close by, where Embree's float edge tests may miss.
   near.clear();
   if (mode_ == SheetHits::Decided) {
     RTCPointQuery point;
@@ -268,7 +288,7 @@ void SheetRayCaster::cast(const glm::dvec3& origin, std::span<const glm::vec3> d
     point.y = static_cast<float>(origin.y);
     point.z = static_cast<float>(origin.z);
     point.time = 0.0f;
-    point.radius = float_at_least(near_radius_);
+    point.radius = float_at_least(grazing_radius_);
     RTCPointQueryContext point_context;
     rtcInitPointQueryContext(&point_context);
     rtcPointQuery(embree_->scene, &point, &point_context, collect_near, &query);
