@@ -84,7 +84,6 @@ struct SheetRayCaster::Query {
   glm::dvec3 origin;  ///< the true origin (Embree's is moved back by `back`)
   double back;        ///< metres Embree's origin lies behind the true one
   double margin;
-  double near_radius;
   double grazing_radius;
   SheetHit* best;  ///< per lane, indexed by the ray's id
   unsigned lanes;  ///< lanes in use in this packet: ids 0 .. lanes - 1
@@ -112,33 +111,27 @@ std::optional<TriangleCrossing> cross_corners(const float* vertices, size_t t,
                         own_corner(vertices, t, 2));
 }
 
-/// Whether the box of triangle (a, b, c) grown by `radius` holds `origin` and the triangle's
-/// plane passes within `plane_distance` of it (in double).
-bool within(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::dvec3& origin,
-            double radius, double plane_distance) {
-  const glm::dvec3 lo = glm::min(a, glm::min(b, c)) - radius;
-  const glm::dvec3 hi = glm::max(a, glm::max(b, c)) + radius;
-  if (glm::any(glm::lessThan(origin, lo)) || glm::any(glm::greaterThan(origin, hi))) return false;
-  const glm::dvec3 n = glm::cross(b - a, c - a);
-  const double area2 = glm::length(n);
-  return !(area2 > 0 && std::abs(glm::dot(n, origin - a)) > plane_distance * area2);
-}
-
 /// Collects the (sheet, triangle) of every triangle Embree finds near the point query's sphere
-/// that may lie within near_radius of the origin (within it of the triangle's plane and of
-/// its bounding box), or that a grazing ray may cross within grazing_radius of it (its box
-/// within that radius, its plane within grazing_radius * kGrazingSine): in double, a superset
-/// of those triangles, so the decided hit is the same whichever kernel found them. Embree
-/// hands over whole leaves, most of them far.
+/// that a grazing ray may cross within grazing_radius of the origin: its bounding box within
+/// that radius of the origin, its plane within grazing_radius * kGrazingSine (in double; a
+/// superset of those triangles, so the decided hit is the same whichever kernel found them).
+/// That holds every triangle within rounding distance of the origin too. Embree hands over
+/// whole leaves, most of them far.
 bool collect_near(RTCPointQueryFunctionArguments* args) {
   const Query& q = *static_cast<const Query*>(args->userPtr);
   const float* vertices = (*q.corners)[args->geomID];
   const glm::dvec3 a = own_corner(vertices, args->primID, 0),
                    b = own_corner(vertices, args->primID, 1),
                    c = own_corner(vertices, args->primID, 2);
-  if (within(a, b, c, q.origin, q.near_radius, q.near_radius) ||
-      within(a, b, c, q.origin, q.grazing_radius, q.grazing_radius * kGrazingSine))
-    q.near->emplace_back(args->geomID, args->primID);
+  const glm::dvec3 lo = glm::min(a, glm::min(b, c)) - q.grazing_radius;
+  const glm::dvec3 hi = glm::max(a, glm::max(b, c)) + q.grazing_radius;
+  if (glm::any(glm::lessThan(q.origin, lo)) || glm::any(glm::greaterThan(q.origin, hi)))
+    return false;
+  const glm::dvec3 n = glm::cross(b - a, c - a);
+  const double area2 = glm::length(n);
+  if (area2 > 0 && std::abs(glm::dot(n, q.origin - a)) > q.grazing_radius * kGrazingSine * area2)
+    return false;
+  q.near->emplace_back(args->geomID, args->primID);
   return false;
 }
 
@@ -201,7 +194,6 @@ SheetRayCaster::SheetRayCaster(const std::vector<DiffusionSheet>& sheets, int th
   const double diagonal = hi.x >= lo.x ? glm::length(hi - lo) : 0.0;
   margin_ = mode_ == SheetHits::Decided ? std::max(1e-6 * diagonal, 1e-9) : 0.0;
   back_ = 100 * margin_;
-  near_radius_ = 4 * margin_;
   grazing_radius_ = 1e4 * margin_;
 
   std::string config = "threads=" + std::to_string(std::max(threads, 0));
@@ -275,7 +267,6 @@ void SheetRayCaster::cast(const glm::dvec3& origin, std::span<const glm::vec3> d
   query.origin = origin;
   query.back = back_;
   query.margin = margin_;
-  query.near_radius = near_radius_;
   query.grazing_radius = grazing_radius_;
   query.near = &near;
   // The triangles next to the origin, tested for every ray: from an origin within rounding

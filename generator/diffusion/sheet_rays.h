@@ -89,9 +89,9 @@ class SheetRayCaster {
   /// How far each triangle's edges are moved out in the copy Embree traces (metres): 1e-6
   /// of the sheets' bounding-box diagonal, at least 1e-9 m, over ten times the float rounding
   /// of the positions. Embree's ray starts 100 margins behind the origin, and the triangles
-  /// within 4 margins of the origin, and those within 10,000 margins (1 % of the diagonal)
-  /// whose plane passes within 1 % of that of it (where a grazing ray may cross them), are
-  /// tested for every ray (doc/algorithms.md §2).
+  /// within 10,000 margins (1 % of the diagonal) of the origin whose plane passes within 1 %
+  /// of that of it (where a grazing ray may cross them, and every triangle within rounding
+  /// distance of the origin) are tested for every ray (doc/algorithms.md §2).
   double margin() const { return margin_; }
 
   /// One cast's data, for Embree's filter and point query (sheet_rays.cpp).
@@ -105,9 +105,10 @@ class SheetRayCaster {
   std::vector<const float*> corners_;
   SheetHits mode_;
   double margin_ = 0;
-  double back_ = 0;            ///< metres Embree's ray origin lies behind the true one
-  double near_radius_ = 0;     ///< triangles this near the origin are tested for every ray
-  double grazing_radius_ = 0;  ///< and those this near whose plane passes close to it
+  double back_ = 0;  ///< metres Embree's ray origin lies behind the true one
+  /// Triangles this near the origin whose plane passes within kGrazingSine of this of it are
+  /// tested for every ray.
+  double grazing_radius_ = 0;
   Embree* embree_ = nullptr;
 };
 
