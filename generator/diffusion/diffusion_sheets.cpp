@@ -11,16 +11,13 @@ namespace {
 glm::vec3 to_vec3(const OpenMesh::Vec3d& v) { return {v[0], v[1], v[2]}; }
 glm::vec2 to_vec2(const OpenMesh::Vec2d& v) { return {v[0], v[1]}; }
 
-/// Copies the mesh into a sheet, each vertex moved by `sign * max(blur, min) * normal`
-/// (sign 0: not moved).
+/// Copies the mesh into a sheet, each vertex at its blur_sheet_point on side `sign` (0: the
+/// surface itself, two-faced).
 DiffusionSheet sheet_of(const DsMesh& mesh, const std::vector<glm::dvec3>& normals, int sign) {
   DiffusionSheet s;
   for (auto vh : mesh.vertices()) {
     const auto& d = mesh.data(vh);
-    const auto& p = mesh.point(vh);
-    const double offset = sign * std::max(d.blur, kMinSheetOffset_m);
-    const glm::dvec3 q = glm::dvec3(p[0], p[1], p[2]) + normals[vh.idx()] * offset;
-    s.position.push_back(glm::vec3(q));
+    s.position.push_back(glm::vec3(blur_sheet_point(mesh, normals, vh, sign)));
     s.colour_front.push_back(to_vec3(sign < 0 ? d.back : d.front));
     s.colour_back.push_back(to_vec3(sign == 0 ? d.back : (sign < 0 ? d.back : d.front)));
     s.material_front.push_back(to_vec2(sign < 0 ? d.material_back : d.material_front));
@@ -46,10 +43,8 @@ DiffusionSheet sheet_of(const DsMesh& mesh, const std::vector<glm::dvec3>& norma
 std::vector<DiffusionSheet> make_diffusion_sheets(const DsModel& model) {
   std::vector<DiffusionSheet> sheets;
   for (const DsSurface& surface : model.surfaces) {
-    bool blurred = false;
-    for (auto vh : surface.mesh.vertices()) blurred = blurred || surface.mesh.data(vh).blur > 0;
     const std::vector<glm::dvec3> normals = vertex_normals(surface.mesh);
-    if (blurred) {
+    if (is_blurred(surface.mesh)) {
       sheets.push_back(sheet_of(surface.mesh, normals, +1));
       sheets.push_back(sheet_of(surface.mesh, normals, -1));
     } else {

@@ -26,14 +26,9 @@ struct DiffusionSheet {
   bool two_faced = false;
 };
 
-/// Smallest offset of a blurred surface's sheets (metres): where the blur falls to 0 the two
-/// sheets stay this far apart, so the nearer one is always the one on the ray's side.
-inline constexpr double kMinSheetOffset_m = 1e-6;
-
 /// The sheets of every surface of `model`. A surface whose blur is 0 at every vertex gives one
-/// two-faced sheet; any other gives a front sheet at +max(blur, kMinSheetOffset_m) along the
-/// vertex normal (area-weighted) showing the front colour, and a back sheet at the same
-/// distance behind showing the back colour.
+/// two-faced sheet; any other gives a front sheet (blur_sheet_point, side +1) showing the
+/// front colour and a back sheet (side -1) showing the back colour.
 std::vector<DiffusionSheet> make_diffusion_sheets(const DsModel& model);
 
 /// Every surface of `model` as one two-faced sheet where it lies (no blur offset), sheet k

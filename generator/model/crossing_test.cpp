@@ -39,12 +39,9 @@ CrossingTest::CrossingTest(const std::vector<const DsMesh*>& surfaces, bool with
     : impl_(std::make_unique<Impl>()) {
   for (const DsMesh* mesh : surfaces) {
     impl_->first.push_back(impl_->triangles.size());
-    bool blurred = false;
-    for (auto vh : mesh->vertices()) blurred = blurred || mesh->data(vh).blur > 0;
     std::vector<glm::dvec3> normals;
-    if (with_blur_sheets && blurred) normals = vertex_normals(*mesh);
-    // The surface itself, then its blur's two sheets (the positions make_diffusion_sheets
-    // gives them: each vertex moved by its blur along the vertex normal, either way).
+    if (with_blur_sheets && is_blurred(*mesh)) normals = vertex_normals(*mesh);
+    // The surface itself, then its blur's two sheets where PMVC draws them (blur_sheet_point).
     for (const int sign : {0, 1, -1}) {
       if (sign != 0 && normals.empty()) break;
       for (auto fh : mesh->faces()) {
@@ -52,9 +49,7 @@ CrossingTest::CrossingTest(const std::vector<const DsMesh*>& surfaces, bool with
         double blur = 0;
         int k = 0;
         for (auto vh : mesh->fv_range(fh)) {
-          const glm::dvec3 offset =
-              sign == 0 ? glm::dvec3(0.0) : normals[vh.idx()] * (sign * mesh->data(vh).blur);
-          p[k++] = cgal_point(to_glm(mesh->point(vh)) + offset);
+          p[k++] = cgal_point(blur_sheet_point(*mesh, normals, vh, sign));
           blur = std::max(blur, mesh->data(vh).blur);
         }
         impl_->triangles.emplace_back(p[0], p[1], p[2]);

@@ -1,5 +1,6 @@
 #include "model/ds_model.h"
 
+#include <algorithm>
 #include <limits>
 
 #include <glm/common.hpp>
@@ -93,6 +94,19 @@ std::vector<glm::dvec3> vertex_normals(const DsMesh& mesh) {
     x = len > 0 ? x / len : glm::dvec3(0.0);
   }
   return n;
+}
+
+bool is_blurred(const DsMesh& mesh) {
+  for (auto vh : mesh.vertices())
+    if (mesh.data(vh).blur > 0) return true;
+  return false;
+}
+
+glm::dvec3 blur_sheet_point(const DsMesh& mesh, const std::vector<glm::dvec3>& normals,
+                            DsMesh::VertexHandle vh, int side) {
+  const glm::dvec3 p = to_glm(mesh.point(vh));
+  if (side == 0) return p;
+  return p + normals[vh.idx()] * (side * std::max(mesh.data(vh).blur, kMinSheetOffset_m));
 }
 
 }  // namespace cutaway

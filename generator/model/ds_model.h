@@ -149,4 +149,19 @@ Plane mid_height_plane(const DsModel& model);
 /// (counter-clockwise winding = front side); zero where that sum vanishes.
 std::vector<glm::dvec3> vertex_normals(const DsMesh& mesh);
 
+/// Smallest offset of a blurred surface's sheets (metres): where the blur falls to 0 the two
+/// sheets stay this far apart, so the nearer one is always the one on the ray's side.
+inline constexpr double kMinSheetOffset_m = 1e-6;
+
+/// Whether any vertex of `mesh` has a blur above 0: such a surface is drawn as two one-sided
+/// sheets instead of one two-faced one (paper §4.2, "blur").
+bool is_blurred(const DsMesh& mesh);
+
+/// Where vertex `vh` of a blurred surface lies on its blur sheet `side` (+1: the front sheet,
+/// -1: the back sheet, 0: the surface itself): moved by `side * max(blur, kMinSheetOffset_m)`
+/// metres along `normals[vh]` (the surface's vertex_normals). The one rule for the sheets'
+/// positions, used by PMVC's sheets and by the crossing test that keeps grains off them.
+glm::dvec3 blur_sheet_point(const DsMesh& mesh, const std::vector<glm::dvec3>& normals,
+                            DsMesh::VertexHandle vh, int side);
+
 }  // namespace cutaway

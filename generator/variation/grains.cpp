@@ -88,6 +88,90 @@ void count_crossing(std::vector<size_t>* crossings, int hit) {
   ++(*crossings)[static_cast<size_t>(hit)];
 }
 
+/// One run of dart throwing (Poisson-disc sampling: Cook 1986, "Stochastic sampling in computer
+/// graphics"): the accepted grains, the test of a new centre against them, and the count of
+/// consecutive rejected darts that ends the run.
+class DartThrow {
+ public:
+  DartThrow(double spacing, const GrainOptions& opt)
+      : spacing_(spacing), grid_{spacing, {}}, opt_(opt) {}
+
+  /// Whether to throw another dart: fewer than max_consecutive_failures rejected in a row and
+  /// fewer than max_grains accepted.
+  bool running() const {
+    return failures_ < opt_.max_consecutive_failures && out_.size() < opt_.max_grains;
+  }
+
+  /// Whether `centre` lies at least the spacing from every accepted centre; a dart that does
+  /// not is rejected (counted).
+  bool far_enough(const glm::dvec3& centre) {
+    bool ok = true;
+    grid_.visit_near(centre, [&](size_t j) {
+      ok = glm::distance(out_[j].centre, centre) >= spacing_;
+      return ok;
+    });
+    if (!ok) ++failures_;
+    return ok;
+  }
+
+  /// Whether grain `g` is refused for crossing surface `hit` (>= 0; -1: crosses nothing); a
+  /// refused dart is counted, and in `crossings` too.
+  bool crosses(int hit, std::vector<size_t>* crossings) {
+    if (hit < 0) return false;
+    count_crossing(crossings, hit);
+    ++failures_;
+    return true;
+  }
+
+  /// Rejects a dart for another reason (the grain reaches into a blur).
+  void reject() { ++failures_; }
+
+  /// Keeps grain `g` and starts the count of consecutive rejections again.
+  void accept(const GrainPlacement& g) {
+    failures_ = 0;
+    grid_.add(g.centre, out_.size());
+    out_.push_back(g);
+  }
+
+  std::vector<GrainPlacement>& grains() { return out_; }
+
+ private:
+  double spacing_;  ///< metres
+  PointGrid grid_;
+  const GrainOptions& opt_;
+  std::vector<GrainPlacement> out_;
+  int failures_ = 0;
+};
+
+/// A grain's size and turn jitter, drawn for every dart (accepted or not) so that the random
+/// stream does not depend on acceptance order.
+struct GrainJitter {
+  double size;  ///< factor on the semi-axes, 1 +- jitter
+  double turn;  ///< radians about the normal, +- jitter * pi / 2
+};
+
+GrainJitter draw_jitter(const GrainSpec& spec, Rng& rng) {
+  GrainJitter j;
+  j.size = 1 + spec.jitter * rng.uniform(-1.0, 1.0);
+  j.turn = spec.jitter * 0.5 * kPi * rng.uniform(-1.0, 1.0);
+  return j;
+}
+
+/// Grain at `centre` with normal axis `n` (unit) and profile axis `profile` (unit, at right
+/// angles to n) turned by the jitter's turn about n; the section axis completes the frame.
+GrainPlacement oriented_grain(const GrainSpec& spec, const glm::dvec3& surface_point,
+                              const glm::dvec3& centre, const glm::dvec3& n,
+                              const glm::dvec3& profile, const GrainJitter& j) {
+  GrainPlacement g;
+  g.surface_point = surface_point;
+  g.centre = centre;
+  g.axis_profile = std::cos(j.turn) * profile + std::sin(j.turn) * glm::cross(n, profile);
+  g.axis_section = glm::cross(n, g.axis_profile);
+  g.axis_normal = n;
+  g.semi_axes = spec.semi_axes * j.size;
+  return g;
+}
+
 const DsSurface& grain_support(const GrainSpec& spec, const DsModel& model) {
   return surface_named(spec.on, model);
 }
@@ -159,12 +243,10 @@ std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface&
   const RegionTriangles region = region_triangles(spec, m);
   const auto& tris = region.vertices;
   const AreaSampler sampler(region.area);
-  std::vector<GrainPlacement> out;
-  if (tris.empty()) return out;
-  PointGrid grid{spec.spacing, {}};
+  if (tris.empty()) return {};
+  DartThrow darts(spec.spacing, opt);
   const double side = spec.on_front ? 1.0 : -1.0;
-  int failures = 0;
-  while (failures < opt.max_consecutive_failures && out.size() < opt.max_grains) {
+  while (darts.running()) {
     const AreaSample drawn = sampler.draw(rng);
     const size_t ti = drawn.triangle;
     const glm::dvec3& w = drawn.weights;
@@ -181,19 +263,9 @@ std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface&
     const glm::dvec3 fn = glm::cross(pos[1] - pos[0], pos[2] - pos[0]);
     n = glm::length(n) > 1e-12 ? glm::normalize(n) : glm::normalize(fn);
     const glm::dvec3 centre = p + side * spec.depth * n;
-    // Poisson-disc test against the accepted centres.
-    bool ok = true;
-    grid.visit_near(centre, [&](size_t j) {
-      ok = glm::distance(out[j].centre, centre) >= spec.spacing;
-      return ok;
-    });
-    // Jitter is drawn for every dart, so the stream does not depend on acceptance order.
-    const double size_j = 1 + spec.jitter * rng.uniform(-1.0, 1.0);
-    const double turn = spec.jitter * 0.5 * kPi * rng.uniform(-1.0, 1.0);
-    if (!ok) {
-      ++failures;
-      continue;
-    }
+    const bool far_enough = darts.far_enough(centre);
+    const GrainJitter jitter = draw_jitter(spec, rng);
+    if (!far_enough) continue;
     // Gradient of t_profile over the triangle.
     const glm::dvec3 e1 = pos[1] - pos[0], e2 = pos[2] - pos[0];
     const double fa2 = glm::dot(fn, fn);
@@ -202,29 +274,14 @@ std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface&
       grad = ((tp[1] - tp[0]) * glm::cross(e2, fn) + (tp[2] - tp[0]) * glm::cross(fn, e1)) / fa2;
     }
     grad -= glm::dot(grad, n) * n;
-    glm::dvec3 tprof = glm::length(grad) > 1e-12 ? glm::normalize(grad) : any_perpendicular(n);
-    glm::dvec3 tsec = glm::cross(n, tprof);
-    const glm::dvec3 a = std::cos(turn) * tprof + std::sin(turn) * tsec;
-    const glm::dvec3 b = glm::cross(n, a);
-    GrainPlacement g;
-    g.surface_point = p;
-    g.centre = centre;
-    g.axis_profile = a;
-    g.axis_section = b;
-    g.axis_normal = n;
-    g.semi_axes = spec.semi_axes * size_j;
-    if (obstacles) {
-      if (const int hit = obstacles->crossed(ellipsoid_triangles(g, opt)); hit >= 0) {
-        count_crossing(crossings, hit);
-        ++failures;
-        continue;
-      }
-    }
-    failures = 0;
-    grid.add(centre, out.size());
-    out.push_back(g);
+    const glm::dvec3 tprof =
+        glm::length(grad) > 1e-12 ? glm::normalize(grad) : any_perpendicular(n);
+    const GrainPlacement g = oriented_grain(spec, p, centre, n, tprof, jitter);
+    if (obstacles && darts.crosses(obstacles->crossed(ellipsoid_triangles(g, opt)), crossings))
+      continue;
+    darts.accept(g);
   }
-  return out;
+  return std::move(darts.grains());
 }
 
 RegionCells region_cells(const DsMesh& mesh, const InsideTest& inside, double spacing) {
@@ -272,46 +329,26 @@ std::vector<GrainPlacement> place_grains_inside(const GrainSpec& spec, const Ins
                                                 const CrossingTest* obstacles,
                                                 std::vector<size_t>* crossings) {
   CUTAWAY_CHECK(spec.spacing > 0);
-  std::vector<GrainPlacement> out;
-  PointGrid grid{spec.spacing, {}};
-  int failures = 0;
-  size_t darts = 0;
-  if (cells.corners.empty()) return out;
+  if (cells.corners.empty()) return {};
+  DartThrow darts(spec.spacing, opt);
+  size_t thrown = 0;
   const uint32_t cell_count = static_cast<uint32_t>(cells.corners.size());
-  while (failures < opt.max_consecutive_failures && out.size() < opt.max_grains &&
-         darts < opt.max_region_darts) {
-    ++darts;
+  while (darts.running() && thrown < opt.max_region_darts) {
+    ++thrown;
     const glm::dvec3& corner = cells.corners[rng.below(cell_count)];
     const double ux = rng.uniform(), uy = rng.uniform(), uz = rng.uniform();
     const glm::dvec3 centre = corner + cells.size * glm::dvec3(ux, uy, uz);
-    // Jitter is drawn for every dart, so the stream does not depend on acceptance order.
-    const double size_j = 1 + spec.jitter * rng.uniform(-1.0, 1.0);
-    const double turn = spec.jitter * 0.5 * kPi * rng.uniform(-1.0, 1.0);
+    const GrainJitter jitter = draw_jitter(spec, rng);
     if (!inside.inside(centre) || (outside && outside->inside(centre))) continue;
-    bool ok = true;
-    grid.visit_near(centre, [&](size_t j) {
-      ok = glm::distance(out[j].centre, centre) >= spec.spacing;
-      return ok;
-    });
-    if (!ok) {
-      ++failures;
-      continue;
-    }
+    if (!darts.far_enough(centre)) continue;
     // The frame of the object's fields: normal out from the axis, profile axis up, section
     // axis around; then the jitter's turn about the normal.
     const double r = std::sqrt(centre.x * centre.x + centre.z * centre.z);
     const glm::dvec3 n = r > 1e-9 ? glm::dvec3(centre.x / r, 0, centre.z / r) : glm::dvec3(1, 0, 0);
-    const glm::dvec3 up(0, 1, 0), around = glm::cross(n, up);
-    GrainPlacement g;
-    g.surface_point = centre;
-    g.centre = centre;
-    g.axis_profile = std::cos(turn) * up + std::sin(turn) * around;
-    g.axis_section = glm::cross(n, g.axis_profile);
-    g.axis_normal = n;
-    g.semi_axes = spec.semi_axes * size_j;
+    const GrainPlacement g = oriented_grain(spec, centre, centre, n, glm::dvec3(0, 1, 0), jitter);
     if (obstacles) {
       if (obstacles->within_blur(centre)) {
-        ++failures;
+        darts.reject();
         continue;
       }
       // The ellipsoid's mesh lies within its largest semi-axis of the centre: with every
@@ -324,17 +361,11 @@ std::vector<GrainPlacement> place_grains_inside(const GrainSpec& spec, const Ins
       const int hit = near.distance > reach  ? -1
                       : near.distance < core ? near.surface
                                              : obstacles->crossed(ellipsoid_triangles(g, opt));
-      if (hit >= 0) {
-        count_crossing(crossings, hit);
-        ++failures;
-        continue;
-      }
+      if (darts.crosses(hit, crossings)) continue;
     }
-    failures = 0;
-    grid.add(centre, out.size());
-    out.push_back(g);
+    darts.accept(g);
   }
-  return out;
+  return std::move(darts.grains());
 }
 
 void add_ellipsoids(const std::vector<GrainPlacement>& grains, const glm::dvec3& front,

@@ -222,7 +222,7 @@ TEST(ColourModulation, RefusesBadArguments) {
 
 // The template's `npr` block (template_parser.h; doc/npr.md).
 
-const char* const kHead = R"(format: cutaway-template/1
+const char* const kModulationTemplateHead = R"(format: cutaway-template/1
 name: npr
 units: cm
 symmetry: {type: cylindrical}
@@ -233,7 +233,9 @@ surfaces:
     profile: [[0, 0], [2, 1], [2.5, 2], [2, 3], [0, 4]]
 )";
 
-Template parse_npr(const std::string& npr) { return parse_template(kHead + npr, "t.yaml", "."); }
+Template parse_npr(const std::string& npr) {
+  return parse_template(kModulationTemplateHead + npr, "t.yaml", ".");
+}
 
 InputError npr_error_of(const std::string& npr) {
   try {
