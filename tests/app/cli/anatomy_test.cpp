@@ -5,9 +5,6 @@
 // - A tomato cut across at mid height (the cut that shows all its locules) shows at least 15
 //   separate seeds differing from the gel around them by at least 10 % in luminance (they were
 //   the gel's colour once).
-// - A tomato cut across at mid height (the cut that shows all its locules) shows at least 15
-//   separate seeds differing from the gel around them by at least 10 % in luminance (they were
-//   the gel's colour once).
 #include <gtest/gtest.h>
 #include <stb/stb_image.h>
 #include <tiny_gltf.h>
