@@ -32,7 +32,7 @@ const DsSurface& named(const DsModel& m, const std::string& name) {
 }
 
 TEST(Grains, PoissonDiscSpacingHolds) {
-  for (const char* name : {"templates/tomato.yaml", "templates/cucumber.yaml"}) {
+  for (const char* name : {"templates/tomato.yaml", "templates/pepper.yaml"}) {
     const Built b = build(name);
     const GrainSpec& g = b.t.grains.at(0);
     Rng rng(derive_seed(1, {}));
