@@ -333,7 +333,7 @@ glm::dvec2 parse_range(const YamlField& f) {
 
 GrainSpec parse_grain(const YamlField& f, const Template& t) {
   f.allow_only({"name", "on", "inside", "outside", "region", "spacing", "side", "depth", "shape",
-                "front", "back", "blur", "roughness", "translucency", "jitter"});
+                "front", "back", "blur", "roughness", "translucency", "jitter", "core"});
   GrainSpec g;
   g.path = f.path();
   g.loc = f.loc();
@@ -389,6 +389,22 @@ GrainSpec parse_grain(const YamlField& f, const Template& t) {
   if (auto x = f.get("blur")) g.blur = parse_length(*x, m);
   if (auto x = f.get("jitter")) g.jitter = x->number_in(0, 1);
   parse_material_channels(f, t.cut_material, g.material_front, g.material_back);
+  if (auto core = f.get("core")) {
+    core->allow_only({"scale", "front", "back", "roughness", "translucency"});
+    GrainSpec::Core c;
+    const YamlField scale = core->require("scale");
+    c.scale = scale.number_in(0, 1);
+    if (c.scale <= 0 || c.scale >= 1)
+      scale.fail("a core lies inside its grain: the scale must lie strictly between 0 and 1");
+    c.front = parse_colour(core->require("front"));
+    c.back = parse_colour(core->require("back"));
+    parse_material_channels(*core, t.cut_material, c.material_front, c.material_back);
+    for (const auto& s : t.surfaces)
+      if (s.name == grain_core_name(g))
+        core->fail("the cores make a surface named " + quoted(grain_core_name(g)) +
+                   ", and a surface has that name");
+    g.core = c;
+  }
   return g;
 }
 

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -190,10 +191,22 @@ struct GrainSpec {
   glm::dvec3 front{0.0}, back{0.0};     ///< linear RGB
   double blur = 0.0;                    ///< metres
   glm::dvec2 material_front{0.6, 0.0}, material_back{0.6, 0.0};  ///< (roughness, translucency)
-  double jitter = 0.0;                  ///< relative variation of size and orientation, 0..1
+  double jitter = 0.0;  ///< relative variation of size and orientation, 0..1
+  /// A smaller grain inside each grain (a seed in its aril): the same centre and frame, the
+  /// semi-axes times `scale`, a surface of its own (grain_core_name) with its own colours.
+  struct Core {
+    double scale = 0.5;                ///< 0 < scale < 1
+    glm::dvec3 front{0.0}, back{0.0};  ///< linear RGB: its outside, its inside
+    glm::dvec2 material_front{0.6, 0.0}, material_back{0.6, 0.0};  ///< (roughness, translucency)
+  };
+  std::optional<Core> core;
   FileLoc loc, spacing_loc, shape_loc;  ///< the item, its `spacing` and its `shape`
   std::string path;
 };
+
+/// The name of the surface that holds the cores of grain set `spec` (GrainSpec::core):
+/// "<name>-core".
+inline std::string grain_core_name(const GrainSpec& spec) { return spec.name + "-core"; }
 
 /// The direction field a texture band is stretched along (doc/algorithms.md §6, Interior
 /// texture; doc/npr.md). Fields are about the object's axis (the object frame's y axis through

@@ -202,11 +202,12 @@ void check_grain_limits(const Template& tmpl, const DsModel& model) {
   const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
   double before = 0;  // the most grains of the sets before this one
   for (const GrainSpec& spec : tmpl.grains) {
-    const double most = most_grains(spec, model);
+    // A core is a grain of its own (as many vertices) inside each grain.
+    const double most = most_grains(spec, model) * (spec.core ? 2 : 1);
     if (before + most > kMaxGrains) {
       std::ostringstream s;
       s << "the spacing is too small for the region: up to " << static_cast<long long>(most)
-        << " grains could fit";
+        << (spec.core ? " grains and cores" : " grains") << " could fit";
       if (before > 0) s << ", " << static_cast<long long>(before) << " in the sets before it";
       s << " (at most " << kMaxGrains << " over all grain sets)";
       throw InputError(spec.spacing_loc, spec.path + ".spacing", s.str());
@@ -408,6 +409,20 @@ void add_ellipsoids(const std::vector<GrainPlacement>& grains, const glm::dvec3&
   }
 }
 
+DsSurface grain_cores(const GrainSpec& spec, const std::vector<GrainPlacement>& grains,
+                      const GrainOptions& opt) {
+  CUTAWAY_CHECK(spec.core.has_value());
+  const GrainSpec::Core& core = *spec.core;
+  std::vector<GrainPlacement> cores = grains;
+  for (GrainPlacement& g : cores) g.semi_axes *= core.scale;
+  DsSurface s;
+  s.name = grain_core_name(spec);
+  s.role = SurfaceRole::Grain;
+  add_ellipsoids(cores, core.front, core.back, 0.0, opt, s.mesh);
+  set_material(s.mesh, core.material_front, core.material_back);
+  return s;
+}
+
 void scatter_grains(const Template& t, DsModel& model, uint64_t seed, const GrainOptions& opt) {
   check_grain_limits(t, model);
   for (size_t gi = 0; gi < t.grains.size(); ++gi) {
@@ -465,6 +480,7 @@ void scatter_grains(const Template& t, DsModel& model, uint64_t seed, const Grai
     add_ellipsoids(grains, spec.front, spec.back, spec.blur, opt, s.mesh);
     set_material(s.mesh, spec.material_front, spec.material_back);
     model.surfaces.push_back(std::move(s));
+    if (spec.core) model.surfaces.push_back(grain_cores(spec, grains, opt));
   }
   update_bounds(model);
 }

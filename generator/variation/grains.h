@@ -109,10 +109,18 @@ inline constexpr double kMaxGrains = 10000;
 /// @throws InputError at the grain's `spacing`, `shape` or item, naming the rule
 void check_grain_limits(const Template& tmpl, const DsModel& model);
 
+/// The cores of grain set `spec` (GrainSpec::core, which it must have) placed as `grains`: one
+/// closed ellipsoid inside each grain, same centre and frame, semi-axes times core.scale,
+/// core colours and material channels, no blur; a Grain surface named grain_core_name(spec).
+/// @throws InternalError when spec has no core
+DsSurface grain_cores(const GrainSpec& spec, const std::vector<GrainPlacement>& grains,
+                      const GrainOptions& options = {});
+
 /// Scatters every grain set of `tmpl` over its `on` surface of `model` (or through its region:
 /// place_grains_inside, crossing no surface at all) and appends one
 /// DsSurface per set that got grains (role Grain, name of the set, many components; a set whose
-/// region gets none adds no surface); bounds updated. Grain set i uses the stream
+/// region gets none adds no surface), followed by its cores' (grain_cores) when it has them;
+/// bounds updated. Grain set i uses the stream
 /// derive_seed(seed, {grains purpose, i}). A grain may cross the surface it sits on (a pip in
 /// its carpel wall, an eye in the skin) but no other surface and no grain of an earlier set:
 /// such darts are rejected (doc/template-format.md, Grains).

@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "base/colour.h"
 #include "base/constants.h"
 #include "io/template_parser.h"
 #include "model/model_builder.h"
@@ -248,6 +249,87 @@ TEST(Grains, GrainsThroughARegionAreRefusedWithTheirLocation) {
     ADD_FAILURE() << "a spacing far too small for the volume was accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.field(), "grains[0].spacing") << e.what();
+  }
+}
+
+// A set with a core gets a second surface, "<name>-core": one smaller ellipsoid inside each
+// grain, the same centre and frame, its semi-axes times the scale, its own colours. The
+// budget counts each core as a grain.
+TEST(Grains, ACoreIsASmallerGrainInsideEachGrain) {
+  const std::string grain =
+      "name: arils, inside: flesh, outside: core, spacing: 2.5, shape: {ellipsoid: [0.9, 0.6, "
+      "0.5]}, front: \"#c81434\", back: \"#d42444\", jitter: 0.2, core: {scale: 0.4, front: "
+      "\"#d42444\", back: \"#f2e2d6\", translucency: 0.1}";
+  const Template t = ball_with_region(grain);
+  ASSERT_TRUE(t.grains[0].core.has_value());
+  DsModel m = build_model(t);
+  scatter_grains(t, m, 5);
+  ASSERT_GE(m.surfaces.size(), 2u);
+  const DsSurface& arils = m.surfaces[m.surfaces.size() - 2];
+  const DsSurface& cores = m.surfaces.back();
+  ASSERT_EQ(arils.name, "arils");
+  ASSERT_EQ(cores.name, "arils-core");
+  EXPECT_EQ(cores.role, SurfaceRole::Grain);
+  ASSERT_EQ(cores.mesh.n_vertices(), arils.mesh.n_vertices());
+  ASSERT_GT(arils.mesh.n_vertices(), 0u);
+  const GrainOptions opt;
+  const size_t per = 2 + (opt.rings - 1) * opt.segments;
+  for (size_t g = 0; g < arils.mesh.n_vertices() / per; ++g) {
+    glm::dvec3 centre(0.0);
+    for (size_t k = 0; k < per; ++k)
+      centre += to_glm(arils.mesh.point(DsMesh::VertexHandle(static_cast<int>(g * per + k)))) /
+                static_cast<double>(per);
+    for (size_t k = 0; k < per; ++k) {  // each core vertex is its grain's, drawn in by 0.4
+      const int v = static_cast<int>(g * per + k);
+      const glm::dvec3 a = to_glm(arils.mesh.point(DsMesh::VertexHandle(v)));
+      const glm::dvec3 c = to_glm(cores.mesh.point(DsMesh::VertexHandle(v)));
+      EXPECT_NEAR(glm::distance(c, centre + 0.4 * (a - centre)), 0.0, 1e-12);
+    }
+  }
+  const auto& d = cores.mesh.data(DsMesh::VertexHandle(0));
+  EXPECT_NEAR(d.back[0], srgb_to_linear(0xf2 / 255.0), 1e-9);
+  EXPECT_NEAR(d.material_back[1], 0.1, 1e-12);
+  EXPECT_EQ(d.blur, 0.0);
+
+  // The budget counts the cores: a spacing whose grains alone fit the 10,000 but not with
+  // as many cores is refused, saying so.
+  const Template crowded = ball_with_region(
+      "name: s, inside: flesh, spacing: 0.8, shape: {ellipsoid: [0.3, 0.3, 0.3]}, front: "
+      "\"#000000\", back: \"#000000\", core: {scale: 0.5, front: \"#000000\", back: "
+      "\"#ffffff\"}");
+  DsModel cm = build_model(crowded);
+  try {
+    scatter_grains(crowded, cm, 1);
+    ADD_FAILURE() << "cores beyond the grain budget were accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "grains[0].spacing") << e.what();
+    EXPECT_NE(std::string(e.rule()).find("grains and cores"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Grains, ABadCoreIsRefusedWithItsLocation) {
+  struct Case {
+    std::string core, field, rule;
+  };
+  const Case cases[] = {
+      {"{scale: 1, front: \"#000000\", back: \"#000000\"}", "grains[0].core.scale",
+       "strictly between 0 and 1"},
+      {"{scale: 0, front: \"#000000\", back: \"#000000\"}", "grains[0].core.scale",
+       "strictly between 0 and 1"},
+      {"{scale: 0.5, back: \"#000000\"}", "grains[0].core", "front"},
+      {"{scale: 0.5, front: \"#000000\", back: \"#000000\", blur: 1}", "grains[0].core.blur", ""},
+  };
+  for (const Case& c : cases) {
+    try {
+      ball_with_region(
+          "name: s, inside: flesh, spacing: 2.5, shape: {ellipsoid: [1, 1, 1]}, front: "
+          "\"#000000\", back: \"#000000\", core: " +
+          c.core);
+      ADD_FAILURE() << "accepted: " << c.core;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field(), c.field) << e.what();
+      EXPECT_NE(std::string(e.rule()).find(c.rule), std::string::npos) << e.what();
+    }
   }
 }
 
