@@ -57,18 +57,52 @@ RegionTriangles region_triangles(const GrainSpec& spec, const DsMesh& m) {
   return r;
 }
 
+/// The vertices of grain g's ellipsoid mesh (a UV sphere of opt.rings x opt.segments, poles on
+/// the normal axis), metres: the bottom pole, the rings from the bottom up, the top pole.
+std::vector<glm::dvec3> ellipsoid_points(const GrainPlacement& g, const GrainOptions& opt) {
+  const int R = std::max(2, opt.rings), S = std::max(3, opt.segments);
+  std::vector<glm::dvec3> out;
+  out.reserve(2 + static_cast<size_t>(R - 1) * S);
+  auto add = [&](double x, double y, double z) {
+    out.push_back(g.centre + g.axis_profile * (g.semi_axes.x * x) +
+                  g.axis_section * (g.semi_axes.y * y) + g.axis_normal * (g.semi_axes.z * z));
+  };
+  add(0, 0, -1);  // bottom pole
+  for (int i = 1; i < R; ++i) {
+    const double th = kPi * i / R - kPi / 2;
+    for (int j = 0; j < S; ++j) {
+      const double ph = 2 * kPi * j / S;
+      add(std::cos(th) * std::cos(ph), std::cos(th) * std::sin(ph), std::sin(th));
+    }
+  }
+  add(0, 0, 1);  // top pole
+  return out;
+}
+
+/// The triangles of every ellipsoid mesh, as indices into ellipsoid_points, wound outwards:
+/// (x, y, z) right-handed with x, y tangent and z the normal, counter-clockwise about +z is
+/// outward at the top.
+std::vector<std::array<int, 3>> ellipsoid_faces(const GrainOptions& opt) {
+  const int R = std::max(2, opt.rings), S = std::max(3, opt.segments);
+  const int top = 1 + (R - 1) * S;
+  auto ring = [&](int i, int j) { return 1 + (i - 1) * S + (j % S); };
+  std::vector<std::array<int, 3>> out;
+  for (int j = 0; j < S; ++j) out.push_back({0, ring(1, j + 1), ring(1, j)});
+  for (int i = 1; i + 1 < R; ++i)
+    for (int j = 0; j < S; ++j) {
+      out.push_back({ring(i, j), ring(i, j + 1), ring(i + 1, j + 1)});
+      out.push_back({ring(i, j), ring(i + 1, j + 1), ring(i + 1, j)});
+    }
+  for (int j = 0; j < S; ++j) out.push_back({ring(R - 1, j), ring(R - 1, j + 1), top});
+  return out;
+}
+
 /// The triangles of grain g's ellipsoid mesh, as add_ellipsoids makes it.
 std::vector<std::array<glm::dvec3, 3>> ellipsoid_triangles(const GrainPlacement& g,
                                                            const GrainOptions& opt) {
-  DsMesh mesh;
-  add_ellipsoids({g}, glm::dvec3(0.0), glm::dvec3(0.0), 0.0, opt, mesh);
+  const std::vector<glm::dvec3> p = ellipsoid_points(g, opt);
   std::vector<std::array<glm::dvec3, 3>> out;
-  for (auto fh : mesh.faces()) {
-    std::array<glm::dvec3, 3> t;
-    int k = 0;
-    for (auto vh : mesh.fv_range(fh)) t[k++] = point(mesh, vh);
-    out.push_back(t);
-  }
+  for (const auto& f : ellipsoid_faces(opt)) out.push_back({p[f[0]], p[f[1]], p[f[2]]});
   return out;
 }
 
@@ -318,8 +352,10 @@ RegionCells region_cells(const DsMesh& mesh, const InsideTest& inside, double sp
     for (int j = 0; j < n.y; ++j)
       for (int i = 0; i < n.x; ++i) {
         const glm::dvec3 corner = lo + glm::dvec3(i, j, k) * r.size;
-        if (mark[index(i, j, k)] || inside.inside(corner + 0.5 * r.size))
-          r.corners.push_back(corner);
+        const bool boundary = mark[index(i, j, k)] != 0;
+        if (!boundary && !inside.inside(corner + 0.5 * r.size)) continue;
+        r.corners.push_back(corner);
+        r.interior.push_back(boundary ? 0 : 1);
       }
   return r;
 }
@@ -336,11 +372,13 @@ std::vector<GrainPlacement> place_grains_inside(const GrainSpec& spec, const Ins
   const uint32_t cell_count = static_cast<uint32_t>(cells.corners.size());
   while (darts.running() && thrown < opt.max_region_darts) {
     ++thrown;
-    const glm::dvec3& corner = cells.corners[rng.below(cell_count)];
+    const uint32_t cell = rng.below(cell_count);
+    const glm::dvec3& corner = cells.corners[cell];
     const double ux = rng.uniform(), uy = rng.uniform(), uz = rng.uniform();
     const glm::dvec3 centre = corner + cells.size * glm::dvec3(ux, uy, uz);
     const GrainJitter jitter = draw_jitter(spec, rng);
-    if (!inside.inside(centre) || (outside && outside->inside(centre))) continue;
+    if (!(cells.interior[cell] || inside.inside(centre)) || (outside && outside->inside(centre)))
+      continue;
     if (!darts.far_enough(centre)) continue;
     // The frame of the object's fields: normal out from the axis, profile axis up, section
     // axis around; then the jitter's turn about the normal.
@@ -371,41 +409,18 @@ std::vector<GrainPlacement> place_grains_inside(const GrainSpec& spec, const Ins
 
 void add_ellipsoids(const std::vector<GrainPlacement>& grains, const glm::dvec3& front,
                     const glm::dvec3& back, double blur, const GrainOptions& opt, DsMesh& mesh) {
-  const int R = std::max(2, opt.rings), S = std::max(3, opt.segments);
+  const std::vector<std::array<int, 3>> faces = ellipsoid_faces(opt);
   for (const auto& g : grains) {
-    // Unit sphere: z' along the normal axis, poles at +-1; rings between.
     std::vector<DsMesh::VertexHandle> vh;
-    auto add = [&](double x, double y, double z) {
-      const glm::dvec3 p = g.centre + g.axis_profile * (g.semi_axes.x * x) +
-                           g.axis_section * (g.semi_axes.y * y) +
-                           g.axis_normal * (g.semi_axes.z * z);
+    for (const glm::dvec3& p : ellipsoid_points(g, opt)) {
       const auto h = mesh.add_vertex(DsMesh::Point(p.x, p.y, p.z));
       auto& d = mesh.data(h);
       d.front = {front.x, front.y, front.z};
       d.back = {back.x, back.y, back.z};
       d.blur = vertex_blur(blur);
       vh.push_back(h);
-    };
-    add(0, 0, -1);  // bottom pole
-    for (int i = 1; i < R; ++i) {
-      const double th = kPi * i / R - kPi / 2;
-      for (int j = 0; j < S; ++j) {
-        const double ph = 2 * kPi * j / S;
-        add(std::cos(th) * std::cos(ph), std::cos(th) * std::sin(ph), std::sin(th));
-      }
     }
-    add(0, 0, 1);  // top pole
-    const int top = static_cast<int>(vh.size()) - 1;
-    auto ring = [&](int i, int j) { return vh[1 + (i - 1) * S + (j % S)]; };
-    // (x, y, z) right-handed with x, y tangent and z the normal: counter-clockwise about +z is
-    // outward at the top.
-    for (int j = 0; j < S; ++j) mesh.add_face(vh[0], ring(1, j + 1), ring(1, j));
-    for (int i = 1; i + 1 < R; ++i)
-      for (int j = 0; j < S; ++j) {
-        mesh.add_face(ring(i, j), ring(i, j + 1), ring(i + 1, j + 1));
-        mesh.add_face(ring(i, j), ring(i + 1, j + 1), ring(i + 1, j));
-      }
-    for (int j = 0; j < S; ++j) mesh.add_face(ring(R - 1, j), ring(R - 1, j + 1), vh[top]);
+    for (const auto& f : faces) mesh.add_face(vh[f[0]], vh[f[1]], vh[f[2]]);
   }
 }
 

@@ -61,7 +61,10 @@ std::vector<GrainPlacement> place_grains(const GrainSpec& spec, const DsSurface&
 /// whole inside.
 struct RegionCells {
   std::vector<glm::dvec3> corners;  ///< each cell's lowest corner, metres
-  double size = 0;                  ///< the cells' edge, metres
+  /// Per cell, 1 when no triangle's bounding box reaches it and its centre lies inside: the
+  /// whole cell is inside, so a dart there needs no inside test.
+  std::vector<uint8_t> interior;
+  double size = 0;  ///< the cells' edge, metres
 };
 
 /// The RegionCells of `mesh` (closed; `inside` its test), cells `spacing` across or, for a

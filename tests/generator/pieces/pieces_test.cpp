@@ -189,7 +189,7 @@ TEST(Pieces, ExportAsSkinAndCapPrimitivesWithTheTemplatesMaterials) {
 }
 
 // A whole stone is a primitive of its own, after the walls and before the caps, with a
-// material "<object>_stone" whose roughness is the stone's (the mango's husk: 0.8), not the
+// material "<object>_stone" whose roughness is the stone's (the mango's husk: 0.9), not the
 // skin's; the halves without the stone have no such primitive.
 TEST(Pieces, AWholeStoneHasAMaterialOfItsOwn) {
   const Template tmpl = load_template(test::source_path("templates/mango.yaml").string());
@@ -199,7 +199,7 @@ TEST(Pieces, AWholeStoneHasAMaterialOfItsOwn) {
   for (size_t m = 0; m < assets.materials.size(); ++m)
     if (assets.materials[m].name == "mango_stone") stone = static_cast<int>(m);
   ASSERT_GE(stone, 0);
-  EXPECT_NEAR(assets.materials[static_cast<size_t>(stone)].pbr.roughness, 0.8, 1e-9);
+  EXPECT_NEAR(assets.materials[static_cast<size_t>(stone)].pbr.roughness, 0.9, 1e-9);
   EXPECT_NE(assets.materials[static_cast<size_t>(stone)].pbr.roughness,
             tmpl.skin_material.roughness);
   int holders = 0;

@@ -178,12 +178,13 @@ TEST_P(AdaptiveSamplingNearGrains, MatchesDenseNearTheGrainsOfASeededVariant) {
               "against dense: mean %.2f max %.1f (sRGB of 255)\n",
               t.name.c_str(), dense.diffused.all, adaptive.diffused.all, dense.diffused.near_grains,
               e.points, e.mean, e.max);
-  // Measured: means at most 0.77 (star fruit), the largest single error 86 (pomegranate,
-  // since its arils stop short of the surfaces they do not sit on; 72 before, kiwi). Without
+  // Measured: means at most 0.81 (pomegranate), the largest single error 97 (pomegranate,
+  // whose arils pack its chambers, each with a seed inside it: two grain outlines within a
+  // few edge lengths; 86 when its arils lined the chamber walls, 72 before that, kiwi). Without
   // diffusing the points near grains (grain_neighbourhood.h) kiwi cuts had single errors up
   // to 157 and a strawberry cut a mean of 2.7, where interpolation ran across a seed's halo.
   EXPECT_LE(e.mean, 1.0) << t.name;
-  EXPECT_LE(e.max, 90.0) << t.name;
+  EXPECT_LE(e.max, 100.0) << t.name;
 }
 
 INSTANTIATE_TEST_SUITE_P(Templates, AdaptiveSamplingNearGrains,
