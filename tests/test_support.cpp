@@ -195,6 +195,22 @@ DsModel model_of(const std::string& relative) {
 
 Plane plane_of(glm::dvec3 point, glm::dvec3 normal) { return {point, glm::normalize(normal)}; }
 
+DsSurface blurred_tetrahedron(double x0, double scale, const std::array<double, 4>& blur) {
+  DsSurface s;
+  std::vector<DsMesh::VertexHandle> v;
+  const glm::dvec3 corners[] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (size_t k = 0; k < 4; ++k) {
+    const glm::dvec3 p = corners[k];
+    v.push_back(s.mesh.add_vertex(DsMesh::Point(x0 + scale * p.x, scale * p.y, scale * p.z)));
+    s.mesh.data(v.back()).blur = blur[k];
+  }
+  s.mesh.add_face(v[0], v[2], v[1]);
+  s.mesh.add_face(v[0], v[1], v[3]);
+  s.mesh.add_face(v[0], v[3], v[2]);
+  s.mesh.add_face(v[1], v[2], v[3]);
+  return s;
+}
+
 std::vector<std::string> files_in(const std::filesystem::path& dir) {
   std::vector<std::string> out;
   if (!std::filesystem::exists(dir)) return out;

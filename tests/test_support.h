@@ -113,6 +113,10 @@ std::filesystem::path source_path(const std::string& relative);
 /// and build_model throw.
 DsModel model_of(const std::string& relative);
 
+/// A surface that is a tetrahedron with corners (x0, 0, 0) + scale * {0, e_x, e_y, e_z}
+/// (metres), faces wound outwards, corner k with blur blur[k] (metres).
+DsSurface blurred_tetrahedron(double x0, double scale, const std::array<double, 4>& blur);
+
 /// The plane through `point` (metres) with the unit normal along `normal` (any length > 0).
 Plane plane_of(glm::dvec3 point, glm::dvec3 normal);
 

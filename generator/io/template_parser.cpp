@@ -866,7 +866,7 @@ Template parse_template(std::string_view text, const std::string& file,
                         const std::string& base_dir) {
   const YamlField root = parse_yaml(text, file);
   root.allow_only({"format", "name", "description", "units", "symmetry", "resolution", "variation",
-                   "surfaces", "grains", "npr", "materials", "density", "spine"});
+                   "surfaces", "grains", "npr", "materials", "density", "spine", "halves"});
   Template t;
   t.file = file;
 
@@ -880,6 +880,12 @@ Template parse_template(std::string_view text, const std::string& file,
 
   // Materials first: the cut material is the default of every surface's material channels.
   if (auto d = root.get("density")) t.density_kg_m3 = d->number_in(50, 5000);
+  if (auto halves = root.get("halves")) {
+    const std::string v = halves->string();
+    if (v != "along" && v != "across")
+      halves->fail("must be 'along' or 'across', not " + quoted(v));
+    t.halves_across = v == "across";
+  }
   if (auto materials = root.get("materials")) {
     materials->allow_only({"skin", "cut"});
     if (auto skin = materials->get("skin")) t.skin_material = parse_material(*skin);

@@ -335,6 +335,9 @@ struct Template {
   std::vector<SurfaceSpec> surfaces;
   std::vector<GrainSpec> grains;
   SpineSpec spine;  ///< the bent axis; no points: straight
+  /// `halves: across`: a halves cut runs across the axis at mid-height (citrus, persimmon: the
+  /// cut that shows their segments or star) instead of along it.
+  bool halves_across = false;
   /// The skin's pattern layers, in the order they are laid (the skin surface's `patterns`).
   std::vector<SkinPatternLayer> skin_patterns;
   int skin = -1;    ///< index of the surface with role skin (-1: none, only

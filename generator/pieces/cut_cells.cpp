@@ -70,11 +70,26 @@ Plane wobbled(const Plane& p, const CutAxis* axis, double mid_y, const KnifeWobb
   return {pivot + knife.offset_m * n, n};
 }
 
+/// The halves' plane across the axis (normal along it) at height `mid_y`, wobbled by `knife`:
+/// leaned about a line in the plane through the axis, then moved along its normal; with a
+/// bent axis, its cross plane there.
+Plane across_axis(const CutAxis* axis, const BentAxis* bent, double mid_y,
+                  const KnifeWobble& knife) {
+  if (bent) return bent->bend->cross_plane(mid_y);
+  const glm::dvec3 up = axis ? axis->direction : glm::dvec3(0, 1, 0);
+  const glm::dvec3 base = axis ? axis->point : glm::dvec3(0.0);
+  const glm::dvec3 centre = base + up * ((mid_y - base.y) / up.y);
+  const glm::dvec3 line = glm::normalize(glm::cross(up, glm::dvec3(0, 0, 1)));  // in the plane
+  const glm::dvec3 n = glm::normalize(up * std::cos(knife.lean_rad) +
+                                      glm::cross(line, up) * std::sin(knife.lean_rad));
+  return {centre + knife.offset_m * n, n};
+}
+
 }  // namespace
 
 CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min, const glm::dvec3& bbox_max,
                         const BentAxis* bent_axis, const CutAxis* cut_axis,
-                        const KnifeWobble& knife) {
+                        const KnifeWobble& knife, bool across) {
   CutCells out;
   switch (cut.type) {
     case CutType::Whole: out.cells.push_back({}); break;
@@ -82,10 +97,13 @@ CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min, const gl
     case CutType::Plane: {
       Plane p;
       if (cut.type == CutType::Plane) p = cut.plane;
-      out.planes.push_back(
-          cut.type == CutType::Halves
-              ? wobbled(along_axis(p, cut_axis), cut_axis, 0.5 * (bbox_min.y + bbox_max.y), knife)
-              : p);
+      const double mid_y = 0.5 * (bbox_min.y + bbox_max.y);
+      if (cut.type == CutType::Halves && across)
+        p = across_axis(cut_axis, bent_axis,
+                        bent_axis ? 0.5 * (bent_axis->y_min + bent_axis->y_max) : mid_y, knife);
+      else if (cut.type == CutType::Halves)
+        p = wobbled(along_axis(p, cut_axis), cut_axis, mid_y, knife);
+      out.planes.push_back(p);
       out.cells.push_back({{{0, true}}});
       out.cells.push_back({{{0, false}}});
       break;

@@ -60,11 +60,15 @@ bool in_cell(const CutCells& cells, const Cell& cell, const glm::dvec3& x, int s
 /// keeps horizontal planes horizontal), dice and a given plane stay as they are.
 /// A `knife` wobble (a variant's, knife_wobble.h) then leans the halves' plane by its lean_rad
 /// about the plane's line across the axis at the bounds' mid-height and moves it by its
-/// offset_m along the normal; the other cuts do not use it.
+/// offset_m along the normal; the other cuts do not use it. With `across` (the template's
+/// `halves: across`) the halves' plane instead runs across the axis (its normal along the
+/// cut_axis, or +Y) at the bounds' mid-height, the knife leaning it about a line in it through
+/// the axis and moving it along its normal; with a bent axis it is the bend's cross plane at
+/// the middle of the axis.
 /// Deterministic order; a cell the object misses simply yields no piece (cut_pieces).
 /// @pre the lengths of `cut` are positive and finite; count >= 2 for wedges
 CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min, const glm::dvec3& bbox_max,
                         const BentAxis* bent_axis = nullptr, const CutAxis* cut_axis = nullptr,
-                        const KnifeWobble& knife = {});
+                        const KnifeWobble& knife = {}, bool across = false);
 
 }  // namespace cutaway

@@ -4,24 +4,15 @@
 
 #include <glm/geometric.hpp>
 
+#include "test_support.h"
+
 namespace cutaway {
 namespace {
 
 /// A tetrahedron 1 cm across whose corner 0 has no blur and the other corners 2 mm.
 DsModel tetrahedron_blurred_but_one_corner() {
   DsModel model;
-  DsSurface s;
-  std::vector<DsMesh::VertexHandle> v;
-  for (const glm::dvec3 p :
-       {glm::dvec3(0, 0, 0), glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)}) {
-    v.push_back(s.mesh.add_vertex(DsMesh::Point(0.01 * p.x, 0.01 * p.y, 0.01 * p.z)));
-    s.mesh.data(v.back()).blur = v.size() == 1 ? 0.0 : 0.002;
-  }
-  s.mesh.add_face(v[0], v[2], v[1]);
-  s.mesh.add_face(v[0], v[1], v[3]);
-  s.mesh.add_face(v[0], v[3], v[2]);
-  s.mesh.add_face(v[1], v[2], v[3]);
-  model.surfaces.push_back(std::move(s));
+  model.surfaces.push_back(test::blurred_tetrahedron(0.0, 0.01, {0.0, 0.002, 0.002, 0.002}));
   return model;
 }
 

@@ -12,6 +12,7 @@
 
 #include "base/colour.h"
 #include "base/error.h"
+#include "model/model_builder.h"
 
 namespace cutaway {
 namespace {
@@ -243,6 +244,19 @@ TEST(TemplateParser, ErrorsInMaterials) {
     EXPECT_EQ(e.loc().column, c.column) << c.yaml;
     EXPECT_NE(e.rule().find(c.rule), std::string::npos) << c.yaml << ": " << e.rule();
   }
+}
+
+// `halves`: along (the default) or across; anything else is refused at its value.
+TEST(TemplateParser, HalvesAlongOrAcross) {
+  EXPECT_FALSE(parse(kTemplate).halves_across);
+  EXPECT_FALSE(parse(std::string(kTemplate) + "halves: along\n").halves_across);
+  EXPECT_TRUE(parse(std::string(kTemplate) + "halves: across\n").halves_across);
+  EXPECT_TRUE(build_model(parse(std::string(kTemplate) + "halves: across\n")).halves_across);
+  const InputError e = error_of(std::string(kTemplate) + "halves: sideways\n");
+  EXPECT_EQ(e.field(), "halves");
+  EXPECT_EQ(e.loc().line, 29);
+  EXPECT_EQ(e.loc().column, 9);
+  EXPECT_NE(e.rule().find("'along' or 'across'"), std::string::npos) << e.rule();
 }
 
 TEST(TemplateParser, SurfaceMaterialChannelsDefaultToTheCutMaterial) {

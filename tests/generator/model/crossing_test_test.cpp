@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 namespace cutaway {
 namespace {
 
@@ -10,21 +12,9 @@ namespace {
 /// largest blur of the set is not the small one's.
 DsModel two_blurred_tetrahedra(double size, double blur, double far_blur) {
   DsModel model;
-  for (const auto& [offset, scale, b] :
-       {std::tuple{0.0, size, blur}, std::tuple{0.5, 20 * size, far_blur}}) {
-    DsSurface s;
-    std::vector<DsMesh::VertexHandle> v;
-    for (const glm::dvec3 p :
-         {glm::dvec3(0, 0, 0), glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)}) {
-      v.push_back(s.mesh.add_vertex(DsMesh::Point(offset + scale * p.x, scale * p.y, scale * p.z)));
-      s.mesh.data(v.back()).blur = b;
-    }
-    s.mesh.add_face(v[0], v[2], v[1]);
-    s.mesh.add_face(v[0], v[1], v[3]);
-    s.mesh.add_face(v[0], v[3], v[2]);
-    s.mesh.add_face(v[1], v[2], v[3]);
-    model.surfaces.push_back(std::move(s));
-  }
+  model.surfaces.push_back(test::blurred_tetrahedron(0.0, size, {blur, blur, blur, blur}));
+  model.surfaces.push_back(
+      test::blurred_tetrahedron(0.5, 20 * size, {far_blur, far_blur, far_blur, far_blur}));
   return model;
 }
 

@@ -396,6 +396,30 @@ TEST(CutCells, AKnifeWobbleLeansAndMovesOnlyTheHalvesPlane) {
   }
 }
 
+// `halves: across`: the halves' plane runs across the axis at mid-height; the knife leans it
+// about a line through the axis and moves it along its normal; a leaned axis turns it with it.
+TEST(CutCells, HalvesAcrossCutTheAxisAtMidHeight) {
+  const CutSpec halves = *parse_cut_spec("halves", 1e-3);
+  const glm::dvec3 lo(-0.03, 0.0, -0.03), hi(0.03, 0.06, 0.03);
+  const Plane p = make_cut_cells(halves, lo, hi, nullptr, nullptr, {}, true).planes.at(0);
+  EXPECT_NEAR(std::abs(p.normal.y), 1.0, 1e-15);
+  EXPECT_NEAR(p.point.y, 0.03, 1e-15);
+  EXPECT_NEAR(glm::length(glm::dvec2(p.point.x, p.point.z)), 0.0, 1e-15);
+  const KnifeWobble knife{0.05, 0.002};
+  const Plane w = make_cut_cells(halves, lo, hi, nullptr, nullptr, knife, true).planes.at(0);
+  EXPECT_NEAR(std::acos(glm::dot(w.normal, p.normal)), 0.05, 1e-12);
+  EXPECT_NEAR(glm::dot(glm::dvec3(0, 0.03, 0) - w.point, w.normal), -0.002, 1e-12);
+  const CutAxis leaned{{0.0, 0.0, 0.0}, glm::normalize(glm::dvec3(0.1, 1.0, 0.0))};
+  const Plane l = make_cut_cells(halves, lo, hi, nullptr, &leaned, {}, true).planes.at(0);
+  EXPECT_NEAR(std::abs(glm::dot(l.normal, leaned.direction)), 1.0, 1e-12);
+  EXPECT_NEAR(glm::length(glm::cross(l.point - leaned.point, leaned.direction)), 0.0, 1e-12);
+  // The two cells are the halves above and below.
+  const CutCells cells = make_cut_cells(halves, lo, hi, nullptr, nullptr, {}, true);
+  ASSERT_EQ(cells.cells.size(), 2u);
+  EXPECT_NE(in_cell(cells, cells.cells[0], {0, 0.01, 0}),
+            in_cell(cells, cells.cells[0], {0, 0.05, 0}));
+}
+
 TEST(CutCells, SlicesAreCentredAndWedgesPartitionSpace) {
   const CutCells slices =
       make_cut_cells(*parse_cut_spec("slices:10", 1e-3), {-0.03, 0, -0.03}, {0.03, 0.052, 0.03});
