@@ -57,17 +57,31 @@ Plane along_axis(const Plane& p, const CutAxis* axis) {
   return {axis->point, glm::normalize(n)};
 }
 
+/// The axis's direction (+Y without one) and its point at height `y`.
+struct AxisAt {
+  glm::dvec3 up, point;
+};
+AxisAt axis_at(const CutAxis* axis, double y) {
+  const glm::dvec3 up = axis ? axis->direction : glm::dvec3(0, 1, 0);
+  const glm::dvec3 base = axis ? axis->point : glm::dvec3(0.0);
+  return {up, base + up * ((y - base.y) / up.y)};
+}
+
+/// The plane of unit `normal` through `pivot` leaned by knife.lean_rad about `line` (a unit
+/// direction in it), then moved by knife.offset_m along its new normal.
+Plane leaned(const glm::dvec3& normal, const glm::dvec3& line, const glm::dvec3& pivot,
+             const KnifeWobble& knife) {
+  const glm::dvec3 n = glm::normalize(normal * std::cos(knife.lean_rad) +
+                                      glm::cross(line, normal) * std::sin(knife.lean_rad));
+  return {pivot + knife.offset_m * n, n};
+}
+
 /// The halves' plane `p` (through the axis, turned to it) wobbled by `knife`: leaned about the
 /// line of `p` across the axis at height `mid_y`, then moved along its normal.
 Plane wobbled(const Plane& p, const CutAxis* axis, double mid_y, const KnifeWobble& knife) {
   if (knife.lean_rad == 0.0 && knife.offset_m == 0.0) return p;
-  const glm::dvec3 up = axis ? axis->direction : glm::dvec3(0, 1, 0);
-  const glm::dvec3 base = axis ? axis->point : glm::dvec3(0.0);
-  const glm::dvec3 pivot = base + up * ((mid_y - base.y) / up.y);
-  const glm::dvec3 across = glm::normalize(glm::cross(p.normal, up));  // in the plane
-  const glm::dvec3 n = glm::normalize(p.normal * std::cos(knife.lean_rad) +
-                                      glm::cross(across, p.normal) * std::sin(knife.lean_rad));
-  return {pivot + knife.offset_m * n, n};
+  const AxisAt at = axis_at(axis, mid_y);
+  return leaned(p.normal, glm::normalize(glm::cross(p.normal, at.up)), at.point, knife);
 }
 
 /// The halves' plane across the axis (normal along it) at height `mid_y`, wobbled by `knife`:
@@ -76,13 +90,8 @@ Plane wobbled(const Plane& p, const CutAxis* axis, double mid_y, const KnifeWobb
 Plane across_axis(const CutAxis* axis, const BentAxis* bent, double mid_y,
                   const KnifeWobble& knife) {
   if (bent) return bent->bend->cross_plane(mid_y);
-  const glm::dvec3 up = axis ? axis->direction : glm::dvec3(0, 1, 0);
-  const glm::dvec3 base = axis ? axis->point : glm::dvec3(0.0);
-  const glm::dvec3 centre = base + up * ((mid_y - base.y) / up.y);
-  const glm::dvec3 line = glm::normalize(glm::cross(up, glm::dvec3(0, 0, 1)));  // in the plane
-  const glm::dvec3 n = glm::normalize(up * std::cos(knife.lean_rad) +
-                                      glm::cross(line, up) * std::sin(knife.lean_rad));
-  return {centre + knife.offset_m * n, n};
+  const AxisAt at = axis_at(axis, mid_y);
+  return leaned(at.up, glm::normalize(glm::cross(at.up, glm::dvec3(0, 0, 1))), at.point, knife);
 }
 
 }  // namespace
