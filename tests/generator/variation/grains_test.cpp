@@ -1,6 +1,8 @@
-// Grains (generator/variation/grains.h) on the tomato's and the cucumber's chambers, and
+// Grains (generator/variation/grains.h) on the tomato's and the pepper's surfaces, and
 // grains through a region between two surfaces.
 #include "variation/grains.h"
+
+#include <functional>
 
 #include <gtest/gtest.h>
 
@@ -163,6 +165,19 @@ TEST(Grains, ASetThatCrossesASurfaceWhereverItIsPlacedIsRefused) {
   }
 }
 
+/// Expects `work` to throw an InputError at `field` whose rule contains `rule` (`what` names
+/// the case in the failure message).
+void expect_refused(const std::function<void()>& work, const std::string& field,
+                    const std::string& rule, const std::string& what) {
+  try {
+    work();
+    ADD_FAILURE() << "accepted: " << what;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), field) << e.what();
+    EXPECT_NE(std::string(e.rule()).find(rule), std::string::npos) << e.what();
+  }
+}
+
 /// A ball of radius 20 mm holding `flesh` (radius 14 mm, blur 1 mm) around a `core` (radius 6
 /// mm), with the grain set `grain` (a YAML flow map without its braces).
 Template ball_with_region(const std::string& grain) {
@@ -231,25 +246,15 @@ TEST(Grains, GrainsThroughARegionAreRefusedWithTheirLocation) {
        "only grains `on`"},
   };
   for (const Case& c : cases) {
-    try {
-      ball_with_region(c.grain);
-      ADD_FAILURE() << "accepted: " << c.grain;
-    } catch (const InputError& e) {
-      EXPECT_EQ(e.field(), c.field) << e.what();
-      EXPECT_NE(std::string(e.rule()).find(c.rule), std::string::npos) << e.what();
-    }
+    expect_refused([&] { ball_with_region(c.grain); }, c.field, c.rule, c.grain);
   }
   // Far too many for the volume: 4/3 pi 14^3 mm^3 at 0.3 mm spacing.
   const Template dense = ball_with_region(
       "name: s, inside: flesh, spacing: 0.3, shape: {ellipsoid: [0.1, 0.1, 0.1]}, front: "
       "\"#000000\", back: \"#000000\"");
   DsModel m = build_model(dense);
-  try {
-    scatter_grains(dense, m, 1);
-    ADD_FAILURE() << "a spacing far too small for the volume was accepted";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.field(), "grains[0].spacing") << e.what();
-  }
+  expect_refused([&] { scatter_grains(dense, m, 1); }, "grains[0].spacing", "",
+                 "a spacing far too small for the volume");
 }
 
 // A set with a core gets a second surface, "<name>-core": one smaller ellipsoid inside each
@@ -298,13 +303,8 @@ TEST(Grains, ACoreIsASmallerGrainInsideEachGrain) {
       "\"#000000\", back: \"#000000\", core: {scale: 0.5, front: \"#000000\", back: "
       "\"#ffffff\"}");
   DsModel cm = build_model(crowded);
-  try {
-    scatter_grains(crowded, cm, 1);
-    ADD_FAILURE() << "cores beyond the grain budget were accepted";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.field(), "grains[0].spacing") << e.what();
-    EXPECT_NE(std::string(e.rule()).find("grains and cores"), std::string::npos) << e.what();
-  }
+  expect_refused([&] { scatter_grains(crowded, cm, 1); }, "grains[0].spacing", "grains and cores",
+                 "cores beyond the grain budget");
 }
 
 TEST(Grains, ABadCoreIsRefusedWithItsLocation) {
@@ -320,16 +320,14 @@ TEST(Grains, ABadCoreIsRefusedWithItsLocation) {
       {"{scale: 0.5, front: \"#000000\", back: \"#000000\", blur: 1}", "grains[0].core.blur", ""},
   };
   for (const Case& c : cases) {
-    try {
-      ball_with_region(
-          "name: s, inside: flesh, spacing: 2.5, shape: {ellipsoid: [1, 1, 1]}, front: "
-          "\"#000000\", back: \"#000000\", core: " +
-          c.core);
-      ADD_FAILURE() << "accepted: " << c.core;
-    } catch (const InputError& e) {
-      EXPECT_EQ(e.field(), c.field) << e.what();
-      EXPECT_NE(std::string(e.rule()).find(c.rule), std::string::npos) << e.what();
-    }
+    expect_refused(
+        [&] {
+          ball_with_region(
+              "name: s, inside: flesh, spacing: 2.5, shape: {ellipsoid: [1, 1, 1]}, front: "
+              "\"#000000\", back: \"#000000\", core: " +
+              c.core);
+        },
+        c.field, c.rule, c.core);
   }
 }
 
