@@ -45,6 +45,9 @@ export async function openPage(origin, { webgl = false, timeoutMs = 60000, warni
     await context.route('**/*', (route) =>
       route.request().url().startsWith(origin + '/') ? route.continue() : route.abort());
     const page = context.pages()[0] ?? (await context.newPage());
+    // Every wait and action may take as long as the caller allows: the default (30 s) is short
+    // for a page drawing WebGL in software on a machine busy with other tests.
+    page.setDefaultTimeout(timeoutMs);
     page.on('console', (m) => {
       if (m.type() === 'warning' || m.type() === 'error') warnings.push(`${m.type()}: ${m.text()}`);
     });
