@@ -49,6 +49,9 @@ export async function openPage(origin, { webgl = false, timeoutMs = 60000, warni
     // for a page drawing WebGL in software on a machine busy with other tests.
     page.setDefaultTimeout(timeoutMs);
     page.on('console', (m) => {
+      // Chromium's notes on how fast its software GL ran ("GPU stall due to ReadPixels") come
+      // and go with the machine's load; they say nothing about the page.
+      if (/GL Driver Message \(OpenGL, Performance,/.test(m.text())) return;
       if (m.type() === 'warning' || m.type() === 'error') warnings.push(`${m.type()}: ${m.text()}`);
     });
     page.on('pageerror', (e) => warnings.push(`pageerror: ${e.message}`));
