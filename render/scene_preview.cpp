@@ -57,6 +57,8 @@ struct MeshDraw {
   size_t index_count = 0;
   int texture = -1;         // base colour: index into SceneAssets::textures, or -1: vertex colours
   int normal_texture = -1;  // relief: index into SceneAssets::textures, or -1: none
+  // The roughness per texel: the material map (RGBA, G roughness), or -1: `highlight` holds.
+  int material_texture = -1;
   Highlight highlight;
 };
 
@@ -103,19 +105,20 @@ std::vector<MeshDraw> mesh_draws(const SceneAssets& a, const AssetMesh& mesh, si
     draws.push_back({first_index + 3 * p.first, 3 * p.count,
                      mesh.uv.empty() ? -1 : material.base_colour_texture,
                      mesh.uv.empty() ? -1 : material.normal_texture,
+                     mesh.uv.empty() ? -1 : material.material_texture,
                      highlight(material.pbr.roughness)});
   }
   return draws;
 }
 
-/// Uploads `texture` (RGB, row 0 at the top) as a GL_SRGB8 texture (GL_RGB8 when it is linear:
-/// a normal map) with mipmaps, filtered trilinearly, repeating in s where it wraps in u (else
-/// clamped) and clamped in t. Row 0 lies at t = 0, so glTF texture coordinates (v down from
-/// the top row) address it as they are. The texture belongs to the current context, which
-/// frees it.
+/// Uploads `texture` (RGB or RGBA, row 0 at the top) as a GL_SRGB8 texture (GL_RGB8 or GL_RGBA8
+/// when it is linear: a normal map, a material map) with mipmaps, filtered trilinearly, repeating
+/// in s where it wraps in u (else clamped) and clamped in t. Row 0 lies at t = 0, so glTF texture
+/// coordinates (v down from the top row) address it as they are. The texture belongs to the current
+/// context, which frees it.
 /// @throws InternalError when it is larger than GL_MAX_TEXTURE_SIZE
 /// @throws EnvironmentError when OpenGL reports an error
-GLuint upload_rgb_texture(const AssetTexture& texture, size_t index, const GlContext& context) {
+GLuint upload_texture(const AssetTexture& texture, size_t index, const GlContext& context) {
   const std::string name = "texture " + std::to_string(index) + " '" + texture.name + "'";
   GLint max_side = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
@@ -126,9 +129,17 @@ GLuint upload_rgb_texture(const AssetTexture& texture, size_t index, const GlCon
   GLuint id = 0;
   glGenTextures(1, &id);
   glBindTexture(GL_TEXTURE_2D, id);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);  // rows of 3 * width bytes, unpadded
-  glTexImage2D(GL_TEXTURE_2D, 0, texture.linear ? GL_RGB8 : GL_SRGB8, texture.width, texture.height,
-               0, GL_RGB, GL_UNSIGNED_BYTE, texture.pixels.data());
+  if (texture.channels != 3 && !(texture.channels == 4 && texture.linear))
+    fail(name + " has " + std::to_string(texture.channels) +
+         " channels: a base colour or normal map has 3, a material map 4");
+  const bool rgba = texture.channels == 4;
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);  // rows of channels * width bytes, unpadded
+  glTexImage2D(GL_TEXTURE_2D, 0,
+               rgba             ? GL_RGBA8
+               : texture.linear ? GL_RGB8
+                                : GL_SRGB8,
+               texture.width, texture.height, 0, rgba ? GL_RGBA : GL_RGB, GL_UNSIGNED_BYTE,
+               texture.pixels.data());
   glGenerateMipmap(GL_TEXTURE_2D);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -196,18 +207,18 @@ SceneGeometry scene_geometry(const SceneAssets& assets) {
   return g;
 }
 
-/// Each base colour and normal texture that some draw of `draws` samples, uploaded once
-/// (upload_rgb_texture()); per texture of `assets`, its id (0: not uploaded).
+/// Each base colour, normal and material texture that some draw of `draws` samples, uploaded
+/// once (upload_texture()); per texture of `assets`, its id (0: not uploaded).
 std::vector<GLuint> upload_textures(const SceneAssets& assets,
                                     const std::vector<std::vector<MeshDraw>>& draws,
                                     const GlContext& context) {
   std::vector<GLuint> textures(assets.textures.size(), 0);
   for (const std::vector<MeshDraw>& list : draws)
     for (const MeshDraw& draw : list)
-      for (const int index : {draw.texture, draw.normal_texture}) {
+      for (const int index : {draw.texture, draw.normal_texture, draw.material_texture}) {
         if (index < 0) continue;
         const auto t = static_cast<size_t>(index);
-        if (textures[t] == 0) textures[t] = upload_rgb_texture(assets.textures[t], t, context);
+        if (textures[t] == 0) textures[t] = upload_texture(assets.textures[t], t, context);
       }
   return textures;
 }
@@ -247,9 +258,10 @@ struct DrawUniforms {
   explicit DrawUniforms(const GlProgram& program)
       : view_from_object(program.uniform("view_from_object")),
         textured(program.uniform("textured")), relief(program.uniform("relief")),
+        roughness_mapped(program.uniform("roughness_mapped")),
         shininess(program.uniform("shininess")),
         specular_weight(program.uniform("specular_weight")) {}
-  GLint view_from_object, textured, relief, shininess, specular_weight;
+  GLint view_from_object, textured, relief, roughness_mapped, shininess, specular_weight;
 };
 
 /// Scene from object transform of `inst`: its translation after its (normalised) rotation.
@@ -293,7 +305,7 @@ void clear_target(const OffscreenTarget& target, const glm::dvec3& background) {
 }
 
 /// Draws every instance of `assets` whose mesh has draws, with the texture ids `textures`
-/// (base colours bound to texture unit 0, normal maps to unit 1).
+/// (base colours bound to texture unit 0, normal maps to unit 1, material maps to unit 3).
 void draw_instances(const SceneAssets& assets, const std::vector<std::vector<MeshDraw>>& draws,
                     const std::vector<GLuint>& textures, const glm::dmat4& view,
                     const DrawUniforms& uniforms) {
@@ -313,6 +325,11 @@ void draw_instances(const SceneAssets& assets, const std::vector<std::vector<Mes
       if (draw.normal_texture >= 0) {
         glActiveTexture(GL_TEXTURE1);
         glBindTexture(GL_TEXTURE_2D, textures[static_cast<size_t>(draw.normal_texture)]);
+      }
+      glUniform1i(uniforms.roughness_mapped, draw.material_texture >= 0 ? 1 : 0);
+      if (draw.material_texture >= 0) {
+        glActiveTexture(GL_TEXTURE3);
+        glBindTexture(GL_TEXTURE_2D, textures[static_cast<size_t>(draw.material_texture)]);
       }
       glUniform1f(uniforms.shininess, draw.highlight.shininess);
       glUniform1f(uniforms.specular_weight, draw.highlight.weight);
@@ -454,8 +471,14 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
   set_scene_uniforms(program, assets, view, clip_from_view, options.exposure);
   set_shadow_uniforms(program, shadows, view);
   const DrawUniforms uniforms(program);
-  glUniform1i(program.uniform("base_colour"), 0);  // texture unit 0
-  glUniform1i(program.uniform("normal_map"), 1);   // texture unit 1
+  glUniform1i(program.uniform("base_colour"), 0);   // texture unit 0
+  glUniform1i(program.uniform("normal_map"), 1);    // texture unit 1
+  glUniform1i(program.uniform("material_map"), 3);  // texture unit 3 (2: the shadow map)
+  // The highlight of each texel's roughness where a material map gives it (highlight()).
+  glUniform1f(program.uniform("default_roughness"), static_cast<float>(PbrMaterial{}.roughness));
+  glUniform1f(program.uniform("default_shininess"), static_cast<float>(kShininess));
+  glUniform1f(program.uniform("default_specular"), static_cast<float>(kSpecular));
+  glUniform1f(program.uniform("max_shininess"), static_cast<float>(kMaxShininess));
 
   clear_target(target, assets.background);
   draw_instances(assets, geometry.draws, textures, view, uniforms);

@@ -41,10 +41,13 @@ struct ScenePreviewOptions {
 /// mipmapped, filtered trilinearly; repeating in u where `wrap_u`, else clamped, and clamped in v)
 /// sampled at the mesh's interpolated `uv` (glTF convention: v = 0 at the top row) when the
 /// material has one and the mesh has `uv`, else the per-vertex linear `colour`. The highlight
-/// follows the material's perceptual `pbr.roughness` r: exponent p = min(48 * (0.6 / r)^2, 1024)
-/// and weight w = 0.15 * (p + 8) / 56, so the default r = 0.6 gives p = 48 and w = 0.15, and a
-/// rougher material a broader, weaker highlight. Other material channels (the material map,
-/// clearcoat, sheen, translucency) are not shown. Per light i, c_i is its linear colour, l_i the
+/// follows the perceptual roughness r: exponent p = min(48 * (0.6 / r)^2, 1024) and weight
+/// w = 0.15 * (p + 8) / 56, so the default r = 0.6 gives p = 48 and w = 0.15, and a rougher
+/// material a broader, weaker highlight. r is the material map's per texel (its G channel, as
+/// glTF viewers read it: a cut face's stones, seeds and fibres duller or wetter than its flesh)
+/// where the material has one (`material_texture`, RGBA) and the mesh has `uv`, else the
+/// material's `pbr.roughness`. Other material channels (clearcoat, sheen, translucency) are not
+/// shown. Per light i, c_i is its linear colour, l_i the
 /// unit direction toward it, h_i the Blinn-Phong half vector, and s_i = E_i / (683 pi) the
 /// radiance a white Lambertian face lit head-on shows (Blender's and POV-Ray's mapping,
 /// doc/lighting.md): E_i is `intensity` in lux for a directional light and `intensity` / d^2

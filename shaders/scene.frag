@@ -33,6 +33,17 @@ uniform float specular_weight;
 // the surface: glTF's normalTexture) when `relief` is non-zero.
 uniform int relief;
 uniform sampler2D normal_map;
+// The roughness per texel, when `roughness_mapped` is non-zero: the G channel of the material
+// map (linear RGBA: glTF's metallicRoughnessTexture), whose highlight replaces shininess and
+// specular_weight by the same rule (render/scene_preview.cpp, highlight()): exponent
+// min(default_shininess * (default_roughness / r)^2, max_shininess), weight
+// default_specular * (exponent + 8) / (default_shininess + 8).
+uniform int roughness_mapped;
+uniform sampler2D material_map;
+uniform float default_roughness;
+uniform float default_shininess;
+uniform float default_specular;
+uniform float max_shininess;
 
 // The shadow of light `shadow_light` (-1: none; render_scene_preview() documents the map): its
 // depth seen from the light, 0..1 over shadow_depth_m metres, square, shadow_width_m a side;
@@ -124,6 +135,13 @@ void main() {
   }
   if (relief != 0) n = tilted_by_relief(n);
 
+  float exponent = shininess, weight = specular_weight;
+  if (roughness_mapped != 0) {
+    float ratio = default_roughness / max(texture(material_map, v_uv).g, 1e-3);
+    exponent = min(default_shininess * ratio * ratio, max_shininess);
+    weight = default_specular * (exponent + 8.0) / (default_shininess + 8.0);
+  }
+
   float hemisphere = mix(kGround, kSky, 0.5 + 0.5 * dot(n, up_view));
   vec3 diffuse = vec3(hemisphere * ambient_scale);
   vec3 specular = vec3(0.0);
@@ -140,7 +158,7 @@ void main() {
     if (lambert <= 0.0) continue;
     if (i == shadow_light) scale *= lit_fraction(n, l);
     diffuse += scale * (kDiffuse * lambert);
-    specular += scale * (specular_weight * pow(max(dot(n, normalize(l + view)), 0.0), shininess));
+    specular += scale * (weight * pow(max(dot(n, normalize(l + view)), 0.0), exponent));
   }
   out_colour = vec4(albedo * diffuse + specular, 1.0);
 }

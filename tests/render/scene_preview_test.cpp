@@ -383,6 +383,46 @@ TEST(ScenePreview, ANormalMapTiltsTheShadingUpTheTextureAndAcrossIt) {
   if (HasFailure()) ADD_FAILURE() << "images: " << keep(down, "relief_down");
 }
 
+/// textured_cube() with a material map (RGBA, G roughness) of two texels: `left` roughness
+/// on the front face's left half (u < 0.5), `right` on its right half; the light mirrored by
+/// the front face at (-0.075, 0, 0.15) into the camera, so the left half holds the highlight.
+SceneAssets material_mapped_cube(double left, double right) {
+  SceneAssets a = textured_cube();
+  const glm::dvec3 to_eye = glm::normalize(a.camera.eye - glm::dvec3(-0.075, 0, 0.15));
+  a.lights[0].direction = -glm::dvec3(-to_eye.x, -to_eye.y, to_eye.z);  // travels to the face
+  const auto g = [](double r) { return static_cast<uint8_t>(std::lround(255 * r)); };
+  a.textures.push_back(
+      {"material", 2, 1, 4, {255, g(left), 0, 0, 255, g(right), 0, 0}, false, true});
+  a.materials.back().material_texture = static_cast<int>(a.textures.size()) - 1;
+  return a;
+}
+
+TEST(ScenePreview, AMaterialMapSetsTheRoughnessPerTexel) {
+  ScenePreviewOptions o;
+  o.samples = 1;
+  const SceneAssets a = material_mapped_cube(0.6, 0.6);
+  SceneAssets plain = a;
+  plain.materials.back().material_texture = -1;
+  plain.materials.back().pbr.roughness = 0.6;
+  const Image uniform = render_scene_preview(a, o), reference = render_scene_preview(plain, o);
+  const Image glossy_left = render_scene_preview(material_mapped_cube(0.15, 1.0), o);
+  const Image rough = render_scene_preview(material_mapped_cube(1.0, 1.0), o);
+  auto brightness = [&](const Image& im, const glm::dvec3& p) {
+    const glm::ivec3 c = pixel(im, project(a, p));
+    return c.r + c.g + c.b;
+  };
+  const glm::dvec3 highlight(-0.075, 0, 0.15), right(0.075, 0, 0.15);
+  for (const glm::dvec3& p : {highlight, right, glm::dvec3(-0.1, -0.08, 0.15)}) {
+    // A map that holds the material's roughness everywhere draws as the factor alone.
+    EXPECT_NEAR(brightness(uniform, p), brightness(reference, p), 3) << p.x << "," << p.y;
+  }
+  // The glossy texels hold a tight, strong highlight where the light is mirrored; the rough
+  // half is the same in both.
+  EXPECT_GT(brightness(glossy_left, highlight), brightness(rough, highlight) + 60);
+  EXPECT_NEAR(brightness(glossy_left, right), brightness(rough, right), 3);
+  if (HasFailure()) ADD_FAILURE() << "image: " << keep(glossy_left, "material_map");
+}
+
 TEST(ScenePreview, TextureCoordinatesFollowGltfAndRepeatInUWhereTheTextureWraps) {
   SceneAssets a = textured_cube();
   ScenePreviewOptions o;
