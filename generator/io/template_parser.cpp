@@ -449,7 +449,7 @@ void parse_texture_band(const YamlField& band, const std::string& length_key,
 
 /// `npr` (doc/template-format.md, NPR; doc/npr.md): {perlin: {bands: [{period, amplitude,
 /// tint, reach, along, stretch}, ...]}, cells: [{size, amplitude, wall, centre, wall_width,
-/// tint, reach, along, stretch}, ...]}.
+/// wall_roughness, centre_roughness, tint, reach, along, stretch}, ...]}.
 NprSettings parse_npr(const YamlField& f, double metres_per_unit) {
   f.allow_only({"perlin", "cells"});
   NprSettings npr;
@@ -476,8 +476,8 @@ NprSettings parse_npr(const YamlField& f, double metres_per_unit) {
     }
     for (size_t i = 0; i < cells->size(); ++i) {
       const YamlField layer = (*cells)[i];
-      layer.allow_only({"size", "amplitude", "wall", "centre", "wall_width", "tint", "reach",
-                        "along", "stretch"});
+      layer.allow_only({"size", "amplitude", "wall", "centre", "wall_width", "wall_roughness",
+                        "centre_roughness", "tint", "reach", "along", "stretch"});
       CellBand c;
       parse_texture_band(layer, "size", metres_per_unit, c);
       if (auto wall = layer.get("wall")) {
@@ -493,6 +493,14 @@ NprSettings parse_npr(const YamlField& f, double metres_per_unit) {
       if (auto width = layer.get("wall_width")) {
         if (!c.has_wall) width->fail("a wall_width needs a wall colour");
         c.wall_width = width->number_in(0.0, 1.0);
+      }
+      if (auto roughness = layer.get("wall_roughness")) {
+        if (!c.has_wall) roughness->fail("a wall_roughness needs a wall colour");
+        c.wall_roughness = roughness->number_in(0.0, 1.0);
+      }
+      if (auto roughness = layer.get("centre_roughness")) {
+        if (!c.has_centre) roughness->fail("a centre_roughness needs a centre colour");
+        c.centre_roughness = roughness->number_in(0.0, 1.0);
       }
       npr.cell_bands.push_back(c);
     }

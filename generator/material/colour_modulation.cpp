@@ -110,6 +110,18 @@ CellMasks cell_masks(const CellBand& band, uint64_t cells, const glm::dvec3& pos
 
 glm::dvec3 ColourModulation::operator()(const glm::dvec3& position_m,
                                         const glm::dvec3& colour_linear, double strength) const {
+  return modulate(position_m, colour_linear, strength, nullptr);
+}
+
+glm::dvec3 ColourModulation::operator()(const glm::dvec3& position_m,
+                                        const glm::dvec3& colour_linear, double strength,
+                                        glm::dvec2& material) const {
+  return modulate(position_m, colour_linear, strength, &material);
+}
+
+/// operator()'s work; `material`, when given, moved by the cells' roughness.
+glm::dvec3 ColourModulation::modulate(const glm::dvec3& position_m, const glm::dvec3& colour_linear,
+                                      double strength, glm::dvec2* material) const {
   if (strength == 0.0 || (bands_.empty() && cells_.empty())) return colour_linear;
   BandWeights weight(colour_linear);
   const double factor = 1.0 + strength * relative_change(position_m, weight);
@@ -120,6 +132,10 @@ glm::dvec3 ColourModulation::operator()(const glm::dvec3& position_m,
     const CellMasks m = cell_masks(layer.params, layer.seed, position_m);
     if (layer.params.has_centre) c += (layer.params.centre - c) * (k * m.centre);
     if (layer.params.has_wall) c += (layer.params.wall - c) * (k * m.wall);
+    if (material && layer.params.centre_roughness >= 0)
+      material->x += (layer.params.centre_roughness - material->x) * (k * m.centre);
+    if (material && layer.params.wall_roughness >= 0)
+      material->x += (layer.params.wall_roughness - material->x) * (k * m.wall);
   }
   return c;
 }

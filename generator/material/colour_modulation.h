@@ -66,6 +66,16 @@ class ColourModulation {
   glm::dvec3 operator()(const glm::dvec3& position_m, const glm::dvec3& colour_linear,
                         double strength) const;
 
+  /// The same colour, and the material channels (x: perceptual roughness, y: translucency;
+  /// 0..1) at the point moved as the colour is by each layer of cells with its own roughness
+  /// (CellBand::wall_roughness, centre_roughness): x' += (centre_roughness - x') k m.centre,
+  /// then x' += (wall_roughness - x') k m.wall, with the layer's k and masks. Layers without
+  /// them, and the bands, leave the channels as they are. For baked cut faces (texel_bake.h),
+  /// whose material map carries the result.
+  /// @param material the channels before, replaced by the channels after
+  glm::dvec3 operator()(const glm::dvec3& position_m, const glm::dvec3& colour_linear,
+                        double strength, glm::dvec2& material) const;
+
   /// The sum over bands of w_b(c) * noise_b at the point: the relative brightness change at
   /// strength 1 before clamping (for tests and diagnostics).
   double relative_change(const glm::dvec3& position_m, const glm::dvec3& colour_linear) const;
@@ -83,6 +93,8 @@ class ColourModulation {
     glm::dvec3 tint_srgb;  ///< as Band's
   };
   double relative_change(const glm::dvec3& position_m, BandWeights& weight) const;
+  glm::dvec3 modulate(const glm::dvec3& position_m, const glm::dvec3& colour_linear,
+                      double strength, glm::dvec2* material) const;
   std::vector<Band> bands_;
   std::vector<Cells> cells_;
 };

@@ -60,10 +60,11 @@ void rasterise(const ShadedMesh& mesh, std::span<const glm::dvec2> texel,
             colour = shaded.colour;
             if (!canvas.relief.empty()) canvas.relief[i] = {shaded.height, texel_metres};
           }
-          if (modulation) colour = (*modulation)(where, colour, strength);
-          canvas.colour[i] = colour;
-          canvas.material[i] =
+          glm::dvec2 material =
               wa * mesh.material[t.x] + wb * mesh.material[t.y] + wc * mesh.material[t.z];
+          if (modulation) colour = (*modulation)(where, colour, strength, material);
+          canvas.colour[i] = colour;
+          canvas.material[i] = material;
           canvas.covered[i] = 1;
         }
     }

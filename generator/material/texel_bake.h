@@ -43,7 +43,8 @@ struct TexelCanvas {
 /// channels; the colour then gets the skin's `patterns` (if not null; the canvas is a skin
 /// texture, so texel (i, j) lies at t_section (i + 0.5) / width and t_profile 1 - (j + 0.5) /
 /// height) and is modulated by `modulation` (if not null), both at the interpolated position
-/// (metres, object frame), the modulation with `strength`. Where the canvas has a `relief`
+/// (metres, object frame), the modulation with `strength`; the modulation's cells with a
+/// roughness of their own move the material channels too. Where the canvas has a `relief`
 /// channel and `patterns` is not null, the texel also gets its relief. Later triangles overwrite
 /// earlier ones. Bands of rows are baked on all cores; the canvas does not depend on them.
 void rasterise(const ShadedMesh& mesh, std::span<const glm::dvec2> texel,

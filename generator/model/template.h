@@ -247,6 +247,10 @@ struct CellBand : TextureBand {
   bool has_wall = false, has_centre = false;
   glm::dvec3 wall{0.0}, centre{0.0};  ///< linear RGB
   double wall_width = 0.15;           ///< 0..1, of a cell's spacing (lattice units)
+  /// The walls' and centres' own perceptual roughness (0..1; -1: none), blended into the cut
+  /// faces' material map as the colours are into their colour: a juice vesicle's wet centre
+  /// glossier than its wall.
+  double wall_roughness = -1, centre_roughness = -1;
 };
 
 /// Non-photorealistic rendering parameters of a template (doc/template-format.md, NPR;

@@ -331,7 +331,7 @@ TEST(NprBlock, ParsesFieldsAndCellsAndCountsCellsRoundTheWidestRadius) {
       - {period: 0.1, amplitude: 0.3, along: axial, stretch: 3}
   cells:
     - {size: 0.2, amplitude: 0.5, wall: "#ffffff", wall_width: 0.3, along: radial, stretch: 2}
-    - {size: 0.5, amplitude: 0.4, centre: "#ff8000", tint: "#ffa000", reach: 0.3}
+    - {size: 0.5, amplitude: 0.4, centre: "#ff8000", centre_roughness: 0.1, tint: "#ffa000", reach: 0.3}
 )");
   ASSERT_EQ(t.npr.perlin_bands.size(), 3u);
   EXPECT_EQ(t.npr.perlin_bands[0].along, TextureField::Radial);
@@ -352,6 +352,9 @@ TEST(NprBlock, ParsesFieldsAndCellsAndCountsCellsRoundTheWidestRadius) {
   EXPECT_TRUE(b.has_centre && b.tinted);
   EXPECT_DOUBLE_EQ(b.wall_width, 0.15);  // the default
   EXPECT_EQ(b.along, TextureField::None);
+  EXPECT_DOUBLE_EQ(b.centre_roughness, 0.1);
+  EXPECT_LT(b.wall_roughness, 0);  // none
+  EXPECT_LT(a.centre_roughness, 0);
 }
 
 TEST(NprBlock, RefusesBadFieldsAndCellsWithTheirLocation) {
@@ -374,6 +377,12 @@ TEST(NprBlock, RefusesBadFieldsAndCellsWithTheirLocation) {
        "needs a wall or a centre colour"},
       {"npr: {cells: [{size: 1, amplitude: 0.1, centre: '#ffffff', wall_width: 0.2}]}\n",
        "npr.cells[0].wall_width", "needs a wall colour"},
+      {"npr: {cells: [{size: 1, amplitude: 0.1, centre: '#ffffff', wall_roughness: 0.2}]}\n",
+       "npr.cells[0].wall_roughness", "needs a wall colour"},
+      {"npr: {cells: [{size: 1, amplitude: 0.1, wall: '#ffffff', centre_roughness: 0.2}]}\n",
+       "npr.cells[0].centre_roughness", "needs a centre colour"},
+      {"npr: {cells: [{size: 1, amplitude: 0.1, centre: '#ffffff', centre_roughness: 1.5}]}\n",
+       "npr.cells[0].centre_roughness", "between 0 and 1"},
       {"npr: {cells: [{amplitude: 0.1, wall: '#ffffff'}]}\n", "npr.cells[0]",
        "missing required field 'size'"},
       {"npr: {cells: [{size: 1, amplitude: 0.1, wall: '#ffffff', colour: 1}]}\n",
@@ -523,6 +532,53 @@ TEST(InteriorTexture, CellWallsAndCentresTakeTheirColoursWhereTheMasksSayAndOnly
   }
   EXPECT_GT(walls, 50);
   EXPECT_GT(centres, 10);
+}
+
+TEST(InteriorTexture, CellsWithARoughnessMoveTheMaterialChannelsAsTheColour) {
+  NprSettings npr;
+  CellBand cells;
+  cells.frequency_per_m = 1 / 0.002;
+  cells.amplitude = 1;
+  cells.has_wall = cells.has_centre = true;
+  cells.wall = glm::dvec3(0.9, 0.9, 0.8);
+  cells.centre = glm::dvec3(0.6, 0.1, 0.0);
+  cells.wall_roughness = 0.7;
+  cells.centre_roughness = 0.1;
+  cells.tinted = true;
+  cells.tint = srgb(0.9, 0.5, 0.1);
+  cells.reach = 0.3;
+  npr.cell_bands.push_back(cells);
+  const uint64_t seed = 21;
+  const ColourModulation m(npr, seed);
+  CellBand plain = cells;  // the same layer without roughness
+  plain.wall_roughness = plain.centre_roughness = -1;
+  NprSettings plain_npr = npr;
+  plain_npr.cell_bands = {plain};
+  const ColourModulation without(plain_npr, seed);
+  const glm::dvec3 flesh = srgb(0.9, 0.5, 0.1), far = srgb(0.1, 0.6, 0.1);
+  const glm::dvec2 before(0.3, 0.4);
+  Rng rng(6);
+  int glossy = 0, dull = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const glm::dvec3 p(rng.uniform(-0.01, 0.01), rng.uniform(0, 0.02), rng.uniform(-0.01, 0.01));
+    const CellMasks k = cell_masks(cells, derive_seed(seed, {0x63656c6c, 0}), p);
+    glm::dvec2 material = before;
+    // The colour is the one without the material channels.
+    EXPECT_EQ(m(p, flesh, 1, material), m(p, flesh, 1));
+    const double centred = before.x + (0.1 - before.x) * k.centre;
+    EXPECT_NEAR(material.x, centred + (0.7 - centred) * k.wall, 1e-12);
+    EXPECT_EQ(material.y, before.y);  // translucency stays
+    if (material.x < 0.15) ++glossy;
+    if (material.x > 0.65) ++dull;
+    glm::dvec2 untouched = before;
+    without(p, flesh, 1, untouched);
+    EXPECT_EQ(untouched, before);  // a layer without roughness leaves the channels
+    untouched = before;
+    m(p, far, 1, untouched);
+    EXPECT_EQ(untouched, before);  // beyond the reach
+  }
+  EXPECT_GT(glossy, 10);
+  EXPECT_GT(dull, 50);
 }
 
 }  // namespace
