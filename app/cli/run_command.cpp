@@ -28,15 +28,18 @@ void refuse_empty_output_paths(const CLI::App& command) {
 }
 
 /// Prints `--stats`: the subcommand's `stats` (empty for those without counts of their own) and
-/// "outputs_fnv1a64", each file in `written` (paths relative to the working directory) with
-/// the FNV-1a 64-bit hash of its bytes as 16 hex digits: what a golden test compares across
-/// machines. One line of JSON on stderr.
+/// "outputs_fnv1a64", each file in `written` (relative to the working directory when it lies
+/// under it, else absolute: never "../../tmp/x") with the FNV-1a 64-bit hash of its bytes as
+/// 16 hex digits: what a golden test compares across machines. One line of JSON on stderr.
 void print_stats_line(nlohmann::ordered_json stats,
                       const std::vector<std::filesystem::path>& written) {
   nlohmann::ordered_json files = nlohmann::ordered_json::object();
   const std::filesystem::path here = std::filesystem::current_path();
   for (const std::filesystem::path& f : written) {
-    files[f.lexically_proximate(here).string()] = hex64(fnv1a64(read_file_bytes(f)));
+    const std::filesystem::path relative = f.lexically_proximate(here);
+    const bool under = !relative.empty() && *relative.begin() != "..";
+    files[(under ? relative : std::filesystem::absolute(f).lexically_normal()).string()] =
+        hex64(fnv1a64(read_file_bytes(f)));
   }
   stats["outputs_fnv1a64"] = std::move(files);
   std::fprintf(stderr, "%s\n", stats.dump().c_str());

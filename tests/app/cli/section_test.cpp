@@ -90,6 +90,16 @@ TEST(SectionCommand, WritesAPngAndStats) {
   const nlohmann::json hashes = nlohmann::json::parse(quiet.err).at("outputs_fnv1a64");
   ASSERT_EQ(hashes.size(), 1u) << quiet.err;
   EXPECT_EQ(fs::path(hashes.begin().key()).filename(), "q.glb") << quiet.err;
+  // Run from a folder beside the file, the file is named by its absolute path, not "../q.glb".
+  fs::create_directories(dir / "elsewhere");
+  const test::RunResult outside = test::run_program(
+      "sh", {"-c", "cd '" + (dir / "elsewhere").string() + "' && '" + CUTAWAY_BINARY +
+                       "' section '" + fs::absolute(kSpheres).string() +
+                       "' --plane z=0 --cube 4 -q --stats -o ../q.glb"});
+  ASSERT_EQ(outside.exit_code, 0) << outside.err;
+  const nlohmann::json named = nlohmann::json::parse(outside.err).at("outputs_fnv1a64");
+  ASSERT_EQ(named.size(), 1u) << outside.err;
+  EXPECT_EQ(named.begin().key(), fs::absolute(dir / "q.glb").lexically_normal().string());
   EXPECT_EQ(hashes.begin().value(), hex64(fnv1a64(test::read_file(dir / "q.glb"))));
 }
 
