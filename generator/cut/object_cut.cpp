@@ -122,10 +122,12 @@ PieceMaterials add_cap_texture(SceneAssets& assets, const PieceSet& set,
   return materials;
 }
 
-/// Where the kept pieces of `set` hold a whole stone: adds a copy of the walls' material named
-/// "<object>_stone" whose roughness and translucency are the means of the stone parts' own
-/// (the side of the rigid surface the stone shows), and returns `materials` with it as the
-/// stones'. Without stone parts: `materials`.
+/// Where the kept pieces of `set` hold a whole stone: adds a material named "<object>_stone"
+/// whose roughness and translucency are the means of the stone parts' own (the side of the
+/// rigid surface the stone shows), with no clear coat and no sheen: a stone is bare and dry,
+/// and the walls' material it starts from is the skin's (an apricot's velvet sheen made its
+/// stone pale cream in Blender). Returns `materials` with it as the stones'. Without stone
+/// parts: `materials`.
 PieceMaterials add_stone_material(SceneAssets& assets, const PieceSet& set,
                                   PieceMaterials materials, const std::string& object) {
   glm::dvec2 sum(0.0);
@@ -142,6 +144,9 @@ PieceMaterials add_stone_material(SceneAssets& assets, const PieceSet& set,
   stone.name = object + "_stone";
   stone.pbr.roughness = sum.x / static_cast<double>(count);
   stone.pbr.translucency = sum.y / static_cast<double>(count);
+  stone.pbr.clearcoat = stone.pbr.clearcoat_roughness = 0;
+  stone.pbr.sheen = glm::dvec3(0.0);
+  stone.pbr.sheen_roughness = PbrMaterial{}.sheen_roughness;
   assets.materials.push_back(stone);
   materials.stone = static_cast<int>(assets.materials.size()) - 1;
   return materials;

@@ -139,6 +139,23 @@ TEST(SectionCommand, PlaneMissingOrTouchingTheObjectExitsTwo) {
   }
 }
 
+// A calyx with sharp sepal tips (tests/data/sharp_calyx.yaml): the skin folds back at the
+// tips, and a face of the cap's triangulation lies a hair off a skin cut segment there. Every
+// plane through the axis or near it keeps its cap: a valid file with the whole berry's cut.
+TEST(SectionCommand, SharpTipsKeepTheCap) {
+  for (const std::string plane : {"z=0", "z=2", "z=-2", "x=3", "x=0"}) {
+    const fs::path dir = test::fresh_dir("cli_section_calyx");
+    const test::RunResult r =
+        test::run_cutaway({"section", "tests/data/sharp_calyx.yaml", "--plane", plane, "--cube",
+                           "4", "-q", "--stats", "-o", (dir / "x.glb").string()});
+    ASSERT_EQ(r.exit_code, 0) << "--plane " << plane << ": " << r.err;
+    const nlohmann::json stats = nlohmann::json::parse(r.err);
+    EXPECT_GT(stats.at("vertices").get<int>(), 1000) << "--plane " << plane;
+    const test::GltfReport v = test::validate_gltf(dir / "x.glb");
+    EXPECT_EQ(v.errors, 0) << v.output;
+  }
+}
+
 TEST(SectionCommand, ByteIdenticalAcrossRunsAndThreadCounts) {
   std::string glb[7];
   const std::vector<std::vector<std::string>> extra = {{"--sampling", "dense"},

@@ -190,7 +190,8 @@ TEST(Pieces, ExportAsSkinAndCapPrimitivesWithTheTemplatesMaterials) {
 
 // A whole stone is a primitive of its own, after the walls and before the caps, with a
 // material "<object>_stone" whose roughness is the stone's (the mango's husk: 0.9), not the
-// skin's; the halves without the stone have no such primitive.
+// skin's, and bare: none of the skin's clear coat (0.5) or sheen; the halves without the
+// stone have no such primitive.
 TEST(Pieces, AWholeStoneHasAMaterialOfItsOwn) {
   const Template tmpl = load_template(test::source_path("templates/mango.yaml").string());
   CutObject object;
@@ -202,6 +203,9 @@ TEST(Pieces, AWholeStoneHasAMaterialOfItsOwn) {
   EXPECT_NEAR(assets.materials[static_cast<size_t>(stone)].pbr.roughness, 0.9, 1e-9);
   EXPECT_NE(assets.materials[static_cast<size_t>(stone)].pbr.roughness,
             tmpl.skin_material.roughness);
+  ASSERT_GT(tmpl.skin_material.clearcoat, 0);
+  EXPECT_EQ(assets.materials[static_cast<size_t>(stone)].pbr.clearcoat, 0);
+  EXPECT_EQ(assets.materials[static_cast<size_t>(stone)].pbr.sheen, glm::dvec3(0.0));
   int holders = 0;
   for (size_t k = 0; k < object.set.pieces.size(); ++k) {
     const Piece& piece = object.set.pieces[k];
