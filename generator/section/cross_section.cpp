@@ -109,24 +109,21 @@ bool bounds_domain(const DsSurface& surface) {
 }
 
 /// Which side of the constrained edge (a, b), all or a piece of segment s, the point c lies on:
-/// +1 on s's front side, -1 on its back, 0 on the line. The side of the edge itself by an exact
-/// orientation test, mapped to front or back by s's front (for a piece, which another
-/// constraint split off s at a vertex a hair off s's line, a thin face beside it can lie on the
-/// other side of s's line). Only where the whole segment's front is nearer parallel to it than
-/// perpendicular (a cut that barely grazes the skin) the side of its line that its front points
-/// to: only that reads such segments right. (That rule applied everywhere misread a sliver
-/// face whose third corner lay a hair off the segment: 0.3 mm along it outweighed 0.5 um
-/// across, and a sharp-tipped calyx lost its whole cap.)
+/// +1 on s's front side, -1 on its back, 0 on the line. For the whole segment, the side of its
+/// line that its front points to. For a piece (another constraint split s at a vertex, which
+/// may lie a hair off s's line), the side of the piece itself by an exact orientation test,
+/// mapped to front or back by s's front: a thin face beside the piece can lie on the other side
+/// of s's line. (The whole-segment rule stays: on a cut that barely grazes the skin, the
+/// segments' fronts are far from perpendicular to them, and only it reads them right.)
 int side_of(const Segment2& s, const Point2& a, const Point2& b, const Point2& c) {
   const glm::dvec2 pa = to2(a), pb = to2(b);
-  const glm::dvec2 d = pb - pa;
-  const double left_is_front = glm::dot(glm::dvec2(-d.y, d.x), s.front);
-  const bool whole = (pa == s.a && pb == s.b) || (pa == s.b && pb == s.a);
-  if (whole && std::abs(left_is_front) < std::abs(glm::dot(d, s.front))) {
-    const double along_front = glm::dot(to2(c) - s.a, s.front);
-    return along_front > 0 ? 1 : (along_front < 0 ? -1 : 0);
+  if ((pa == s.a && pb == s.b) || (pa == s.b && pb == s.a)) {
+    const double d = glm::dot(to2(c) - s.a, s.front);
+    return d > 0 ? 1 : (d < 0 ? -1 : 0);
   }
   const int turn = static_cast<int>(CGAL::orientation(a, b, c));  // +1: left of a -> b
+  const glm::dvec2 d = pb - pa;
+  const double left_is_front = glm::dot(glm::dvec2(-d.y, d.x), s.front);
   return left_is_front > 0 ? turn : (left_is_front < 0 ? -turn : 0);
 }
 
@@ -205,7 +202,9 @@ class SectionMesher {
   /// Inserts the ladder points of the blur bands (step 1).
   void insert_blur_bands();
   /// Marks the faces of each region bounded by the skin's and the walls' cut segments in or out
-  /// of the domain (step 2).
+  /// of the domain (step 2): out where it reaches the infinite face, else by the majority of its
+  /// faces' sides of the bounding segments beside them (out on the skin's front or a wall's
+  /// hidden side; a tie is out).
   void mark_domain();
   /// A new output vertex at p on `surface` (-1: interior), black for now.
   unsigned add_vertex(const Point2& p, int surface);
@@ -399,14 +398,19 @@ void SectionMesher::mark_domain() {
   for (auto f = cdt_.all_faces_begin(); f != cdt_.all_faces_end(); ++f) {
     if (region.count(f)) continue;
     const int id = static_cast<int>(region_in.size());
-    bool in = true;
+    // Each face of the region beside a bounding segment votes by its side of it; the region is
+    // in where it does not reach the infinite face and more votes say in than out. (One face
+    // misread among the votes, a sliver whose third corner lies a hair off a segment whose
+    // front is skewed, had put a sharp-tipped calyx's whole berry out when any vote decided.)
+    bool infinite = false;
+    int votes_in = 0, votes_out = 0;
     std::queue<Face> queue;
     queue.push(f);
     region[f] = id;
     while (!queue.empty()) {
       const Face g = queue.front();
       queue.pop();
-      if (cdt_.is_infinite(g)) in = false;
+      if (cdt_.is_infinite(g)) infinite = true;
       for (int i = 0; i < 3; ++i) {
         const Face nb = g->neighbor(i);
         // Split lines divide cells, not regions, and so do the segments of surfaces that are
@@ -426,11 +430,13 @@ void SectionMesher::mark_domain() {
         const int side = side_of(*s, g->vertex(Cdt::cw(i))->point(),
                                  g->vertex(Cdt::ccw(i))->point(), g->vertex(i)->point());
         const DsSurface& surface = model_.surfaces[segments_[s->index].surface];
-        if (side > 0 && (surface.role == SurfaceRole::Skin || !surface.visible_front)) in = false;
-        if (side < 0 && !surface.visible_back) in = false;
+        if (side == 0) continue;
+        const bool out = side > 0 ? surface.role == SurfaceRole::Skin || !surface.visible_front
+                                  : !surface.visible_back;
+        ++(out ? votes_out : votes_in);
       }
     }
-    region_in.push_back(in);
+    region_in.push_back(!infinite && votes_in > votes_out);
   }
   for (auto f = cdt_.all_faces_begin(); f != cdt_.all_faces_end(); ++f) {
     f->set_in_domain(region_in[region[f]]);
