@@ -491,8 +491,9 @@ TEST(InteriorTexture, FieldsAroundTheAxisHaveNoSeamWhereTheAngleWraps) {
   EXPECT_LT(worst_elsewhere, 1e-4);
 }
 
-TEST(InteriorTexture, CellWallsAndCentresTakeTheirColoursWhereTheMasksSayAndOnlyThere) {
-  NprSettings npr;
+/// A layer of cells 2 mm apart at full amplitude, pale walls 0.2 wide and red centres, acting
+/// on an orange flesh (srgb(0.9, 0.5, 0.1)) within a reach of 0.3.
+CellBand orange_cells() {
   CellBand cells;
   cells.frequency_per_m = 1 / 0.002;
   cells.amplitude = 1;
@@ -503,6 +504,12 @@ TEST(InteriorTexture, CellWallsAndCentresTakeTheirColoursWhereTheMasksSayAndOnly
   cells.tinted = true;
   cells.tint = srgb(0.9, 0.5, 0.1);
   cells.reach = 0.3;
+  return cells;
+}
+
+TEST(InteriorTexture, CellWallsAndCentresTakeTheirColoursWhereTheMasksSayAndOnlyThere) {
+  NprSettings npr;
+  const CellBand cells = orange_cells();
   npr.cell_bands.push_back(cells);
   npr.perlin_bands.clear();
   const uint64_t seed = 21;
@@ -536,17 +543,9 @@ TEST(InteriorTexture, CellWallsAndCentresTakeTheirColoursWhereTheMasksSayAndOnly
 
 TEST(InteriorTexture, CellsWithARoughnessMoveTheMaterialChannelsAsTheColour) {
   NprSettings npr;
-  CellBand cells;
-  cells.frequency_per_m = 1 / 0.002;
-  cells.amplitude = 1;
-  cells.has_wall = cells.has_centre = true;
-  cells.wall = glm::dvec3(0.9, 0.9, 0.8);
-  cells.centre = glm::dvec3(0.6, 0.1, 0.0);
+  CellBand cells = orange_cells();
   cells.wall_roughness = 0.7;
   cells.centre_roughness = 0.1;
-  cells.tinted = true;
-  cells.tint = srgb(0.9, 0.5, 0.1);
-  cells.reach = 0.3;
   npr.cell_bands.push_back(cells);
   const uint64_t seed = 21;
   const ColourModulation m(npr, seed);
