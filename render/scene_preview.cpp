@@ -44,12 +44,6 @@ struct SceneVertex {
   float uv[2];        // texture coordinates; 0 for meshes without
 };
 
-/// The Blinn-Phong highlight of a material (shaders/scene.frag: shininess, specular_weight).
-struct Highlight {
-  float shininess = 0;  // exponent
-  float weight = 0;     // of the light's scale
-};
-
 /// One primitive of an uploaded mesh: its triangles in the shared index buffer, drawn with one
 /// material.
 struct MeshDraw {
@@ -57,9 +51,9 @@ struct MeshDraw {
   size_t index_count = 0;
   int texture = -1;         // base colour: index into SceneAssets::textures, or -1: vertex colours
   int normal_texture = -1;  // relief: index into SceneAssets::textures, or -1: none
-  // The roughness per texel: the material map (RGBA, G roughness), or -1: `highlight` holds.
+  // The roughness per texel: the material map (RGBA, G roughness), or -1: `roughness` holds.
   int material_texture = -1;
-  Highlight highlight;
+  float roughness = 0;  // the material's perceptual roughness (its highlight: shaders/scene.frag)
 };
 
 [[noreturn]] void fail(const std::string& what) {
@@ -82,18 +76,6 @@ glm::ivec2 check_input(const SceneAssets& a, const ScenePreviewOptions& o) {
   return {width, height};
 }
 
-/// The highlight of a material of perceptual roughness `roughness` (0..1): a Blinn-Phong
-/// exponent falling as 1 / roughness^2 (as for a Beckmann lobe of slope roughness), kShininess at
-/// the default roughness, at most kMaxShininess; its weight normalised by (exponent + 8), so a
-/// rougher material has a broader, weaker highlight. The default roughness gives exactly
-/// kShininess and kSpecular.
-Highlight highlight(double roughness) {
-  const double ratio = PbrMaterial{}.roughness / roughness;  // +inf for roughness 0
-  const double shininess = std::min(kShininess * (ratio * ratio), kMaxShininess);
-  return {static_cast<float>(shininess),
-          static_cast<float>(kSpecular * ((shininess + 8) / (kShininess + 8)))};
-}
-
 /// The draws of `mesh`, whose triangles start at `first_index` in the index buffer: one per
 /// primitive (one of material 0 when it has none), textured where its material has a base
 /// colour texture (or a normal map) and the mesh has texture coordinates.
@@ -106,7 +88,7 @@ std::vector<MeshDraw> mesh_draws(const SceneAssets& a, const AssetMesh& mesh, si
                      mesh.uv.empty() ? -1 : material.base_colour_texture,
                      mesh.uv.empty() ? -1 : material.normal_texture,
                      mesh.uv.empty() ? -1 : material.material_texture,
-                     highlight(material.pbr.roughness)});
+                     static_cast<float>(material.pbr.roughness)});
   }
   return draws;
 }
@@ -259,9 +241,8 @@ struct DrawUniforms {
       : view_from_object(program.uniform("view_from_object")),
         textured(program.uniform("textured")), relief(program.uniform("relief")),
         roughness_mapped(program.uniform("roughness_mapped")),
-        shininess(program.uniform("shininess")),
-        specular_weight(program.uniform("specular_weight")) {}
-  GLint view_from_object, textured, relief, roughness_mapped, shininess, specular_weight;
+        roughness(program.uniform("roughness")) {}
+  GLint view_from_object, textured, relief, roughness_mapped, roughness;
 };
 
 /// Scene from object transform of `inst`: its translation after its (normalised) rotation.
@@ -331,8 +312,7 @@ void draw_instances(const SceneAssets& assets, const std::vector<std::vector<Mes
         glActiveTexture(GL_TEXTURE3);
         glBindTexture(GL_TEXTURE_2D, textures[static_cast<size_t>(draw.material_texture)]);
       }
-      glUniform1f(uniforms.shininess, draw.highlight.shininess);
-      glUniform1f(uniforms.specular_weight, draw.highlight.weight);
+      glUniform1f(uniforms.roughness, draw.roughness);
       draw_triangles(draw, pending);
     }
   }
@@ -474,7 +454,7 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
   glUniform1i(program.uniform("base_colour"), 0);   // texture unit 0
   glUniform1i(program.uniform("normal_map"), 1);    // texture unit 1
   glUniform1i(program.uniform("material_map"), 3);  // texture unit 3 (2: the shadow map)
-  // The highlight of each texel's roughness where a material map gives it (highlight()).
+  // The highlight's rule (shaders/scene.frag, highlight()).
   glUniform1f(program.uniform("default_roughness"), static_cast<float>(PbrMaterial{}.roughness));
   glUniform1f(program.uniform("default_shininess"), static_cast<float>(kShininess));
   glUniform1f(program.uniform("default_specular"), static_cast<float>(kSpecular));

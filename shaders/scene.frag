@@ -24,20 +24,16 @@ uniform vec3 light_scale[kMaxLights];
 uniform vec3 up_view;          // scene +Y in the view frame
 uniform float ambient_scale;   // the sky's radiance (ambient_lux / (683 pi)) times the exposure
 // The material: its base colour texture (sRGB, so samples are linear) when `textured` is
-// non-zero, else the vertex colour; the Blinn-Phong exponent and weight of its highlight.
+// non-zero, else the vertex colour; its perceptual roughness (the highlight's, highlight()).
 uniform int textured;
 uniform sampler2D base_colour;
-uniform float shininess;
-uniform float specular_weight;
+uniform float roughness;
 // The relief: a tangent-space normal map (linear; X along +u, Y toward the top row, Z out of
 // the surface: glTF's normalTexture) when `relief` is non-zero.
 uniform int relief;
 uniform sampler2D normal_map;
-// The roughness per texel, when `roughness_mapped` is non-zero: the G channel of the material
-// map (linear RGBA: glTF's metallicRoughnessTexture), whose highlight replaces shininess and
-// specular_weight by the same rule (render/scene_preview.cpp, highlight()): exponent
-// min(default_shininess * (default_roughness / r)^2, max_shininess), weight
-// default_specular * (exponent + 8) / (default_shininess + 8).
+// The roughness per texel instead, when `roughness_mapped` is non-zero: the G channel of the
+// material map (linear RGBA: glTF's metallicRoughnessTexture). The rule's constants (highlight()).
 uniform int roughness_mapped;
 uniform sampler2D material_map;
 uniform float default_roughness;
@@ -119,6 +115,16 @@ vec3 tilted_by_relief(vec3 n) {
   return dot(tilted, tilted) > 0.0 ? normalize(tilted) : n;
 }
 
+// The Blinn-Phong highlight of perceptual roughness r (0..1): its exponent falls as 1 / r^2 (as
+// for a Beckmann lobe of slope r), default_shininess at default_roughness, at most max_shininess;
+// its weight is normalised by (exponent + 8), so a rougher surface has a broader, weaker
+// highlight, and the default roughness gives exactly default_shininess and default_specular.
+vec2 highlight(float r) {
+  float ratio = default_roughness / max(r, 1e-3);
+  float exponent = min(default_shininess * ratio * ratio, max_shininess);
+  return vec2(exponent, default_specular * (exponent + 8.0) / (default_shininess + 8.0));
+}
+
 void main() {
   vec3 albedo = textured != 0 ? texture(base_colour, v_uv).rgb : v_colour;
   vec3 view = normalize(-v_position);  // toward the eye
@@ -135,12 +141,7 @@ void main() {
   }
   if (relief != 0) n = tilted_by_relief(n);
 
-  float exponent = shininess, weight = specular_weight;
-  if (roughness_mapped != 0) {
-    float ratio = default_roughness / max(texture(material_map, v_uv).g, 1e-3);
-    exponent = min(default_shininess * ratio * ratio, max_shininess);
-    weight = default_specular * (exponent + 8.0) / (default_shininess + 8.0);
-  }
+  vec2 lobe = highlight(roughness_mapped != 0 ? texture(material_map, v_uv).g : roughness);
 
   float hemisphere = mix(kGround, kSky, 0.5 + 0.5 * dot(n, up_view));
   vec3 diffuse = vec3(hemisphere * ambient_scale);
@@ -158,7 +159,7 @@ void main() {
     if (lambert <= 0.0) continue;
     if (i == shadow_light) scale *= lit_fraction(n, l);
     diffuse += scale * (kDiffuse * lambert);
-    specular += scale * (weight * pow(max(dot(n, normalize(l + view)), 0.0), exponent));
+    specular += scale * (lobe.y * pow(max(dot(n, normalize(l + view)), 0.0), lobe.x));
   }
   out_colour = vec4(albedo * diffuse + specular, 1.0);
 }

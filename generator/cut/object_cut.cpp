@@ -142,11 +142,9 @@ PieceMaterials add_stone_material(SceneAssets& assets, const PieceSet& set,
   if (count == 0) return materials;
   AssetMaterial stone = assets.materials[static_cast<size_t>(materials.wall)];
   stone.name = object + "_stone";
+  stone.pbr = PbrMaterial{};
   stone.pbr.roughness = sum.x / static_cast<double>(count);
   stone.pbr.translucency = sum.y / static_cast<double>(count);
-  stone.pbr.clearcoat = stone.pbr.clearcoat_roughness = 0;
-  stone.pbr.sheen = glm::dvec3(0.0);
-  stone.pbr.sheen_roughness = PbrMaterial{}.sheen_roughness;
   assets.materials.push_back(stone);
   materials.stone = static_cast<int>(assets.materials.size()) - 1;
   return materials;
