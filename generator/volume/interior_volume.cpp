@@ -15,6 +15,7 @@
 #include "base/timer.h"
 #include "diffusion/diffusion_sheets.h"
 #include "diffusion/sheet_rays.h"
+#include "volume/thin_grains.h"
 #include "volume/volume_cost.h"
 
 namespace cutaway {
@@ -273,6 +274,14 @@ InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBacke
     points.push_back(volume.centre(volume.voxel(v)));
   }
   volume.solid = points.size();
+  // Grains thinner than a voxel: the voxels they pass through sample a point inside them.
+  const auto inside_grains = thin_grain_samples(model, volume, solid);
+  for (size_t v = 0, p = 0, m = 0; v < n && m < inside_grains.size(); ++v) {
+    if (!solid[v]) continue;
+    if (inside_grains[m].first == v) points[p] = inside_grains[m++].second;
+    ++p;
+  }
+  volume.grain_samples = inside_grains.size();
   volume.seconds_classify = seconds_since(t0);
 
   const auto t1 = Clock::now();

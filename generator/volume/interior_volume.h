@@ -47,8 +47,9 @@ struct InteriorVolume {
   glm::ivec3 size{0};      ///< voxels along x, y, z
   glm::dvec3 origin{0.0};  ///< centre of voxel (0, 0, 0), metres
   double voxel_m = 0;      ///< edge length, metres
-  /// Linear RGB per voxel: PMVC at the voxel's centre where it is solid; where it is empty,
-  /// the mean of its solid face neighbours (0 with none), so that plain trilinear filtering
+  /// Linear RGB per voxel: PMVC at the voxel's centre where it is solid (at a point inside a
+  /// grain where a grain passes through it but misses its centre: thin_grains.h); where it is
+  /// empty, the mean of its solid face neighbours (0 with none), so that plain trilinear filtering
   /// by a tool that ignores `region` does not darken the skin's outline.
   std::vector<glm::vec3> colour;
   std::vector<glm::vec2> material;  ///< roughness, translucency (0..1), as `colour`
@@ -70,8 +71,9 @@ struct InteriorVolume {
   std::vector<VolumeStone> stones;  ///< the model's rigid surfaces; none without
   uint32_t regions = 0;             ///< solid regions (the largest region id)
   size_t solid = 0;                 ///< voxels whose region is not empty (the PMVC points)
-  double seconds_classify = 0;      ///< ray casts for the regions and the distances
-  double seconds_diffuse = 0;       ///< PMVC at the solid voxels
+  size_t grain_samples = 0;     ///< of them, those sampled inside a grain that misses their centre
+  double seconds_classify = 0;  ///< ray casts for the regions and the distances
+  double seconds_diffuse = 0;   ///< PMVC at the solid voxels
 
   size_t voxels() const { return static_cast<size_t>(size.x) * size.y * size.z; }
   size_t index(int i, int j, int k) const {
@@ -111,9 +113,10 @@ Outcome<InteriorVolume> volume_grid(const DsModel& model, double voxel_m);
 /// face-neighbour segments that cross no sharp surface (one ray each), sheet distances from
 /// those crossings, outline distances from a second cast against the walls alone (the skin
 /// and the surfaces with a hollow side), and `diffusion` (PMVC over the model's diffusion sheets,
-/// the same backend and settings as cut faces) at every solid voxel's centre, then, with
-/// `modulation`, the object's Perlin colour modulation of that strength at the same centres (as cut
-/// faces get it: material/colour_modulation.h). The model's rigid surfaces go beside the voxels
+/// the same backend and settings as cut faces) at every solid voxel's centre (or inside a grain
+/// that passes through it but misses its centre: thin_grain_samples), then, with `modulation`, the
+/// object's Perlin colour modulation of that strength at the same points (as cut faces get it:
+/// material/colour_modulation.h). The model's rigid surfaces go beside the voxels
 /// as VolumeStones. Ray casts run on `threads` threads (0: all cores); the result does not
 /// depend on it.
 InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBackend& diffusion,

@@ -8,6 +8,8 @@
 #include <numbers>
 #include <string>
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "cut/piece_views.h"
@@ -15,8 +17,10 @@
 #include "export/gltf_export.h"
 #include "export/volume_files.h"
 #include "io/template_parser.h"
+#include "model/grain_components.h"
 #include "model/model_builder.h"
 #include "test_support.h"
+#include "variation/grains.h"
 #include "volume/interior_volume.h"
 #include "volume/volume_accuracy.h"
 #include "volume/volume_lookup.h"
@@ -158,6 +162,65 @@ TEST(InteriorVolume, SharpSurfacesSeparateRegionsBlurredOnesDoNot) {
         }
       }
   EXPECT_GT(near, 20);
+}
+
+/// A white ball of radius 20 mm whose flesh (radius 14 mm) is filled with black strands 0.4 mm
+/// thick and 3 mm long pointing out from the axis, 4 mm apart (grains through a region,
+/// scattered with seed 5).
+DsModel ball_of_strands() {
+  std::string circle[2];
+  for (int c = 0; c < 2; ++c) {
+    const double r = c == 0 ? 20 : 14;
+    circle[c] = "[";
+    for (int k = 0; k <= 12; ++k) {
+      const double a = std::numbers::pi * (k / 12.0 - 0.5);
+      circle[c] += (k ? ", [" : "[") + std::to_string(k == 0 || k == 12 ? 0.0 : r * std::cos(a)) +
+                   ", " + std::to_string(r * std::sin(a)) + "]";
+    }
+    circle[c] += "]";
+  }
+  const Template t = parse_template(
+      "format: cutaway-template/1\nname: strands\nunits: mm\nsymmetry: {type: cylindrical}\n"
+      "resolution: {edge: 1.2}\nsurfaces:\n"
+      "  - {name: skin, kind: around, role: skin, front: \"#208020\", back: \"#ffffff\", "
+      "profile: " +
+          circle[0] +
+          "}\n"
+          "  - {name: flesh, kind: around, front: \"#ffffff\", back: \"#ffffff\", profile: " +
+          circle[1] +
+          "}\n"
+          "grains:\n  - {name: strands, inside: flesh, spacing: 4, shape: {ellipsoid: [0.2, 0.2, "
+          "1.5]}, front: \"#000000\", back: \"#000000\"}\n",
+      "strands.yaml", ".");
+  DsModel model = build_model(t);
+  scatter_grains(t, model, 5);
+  return model;
+}
+
+TEST(InteriorVolume, GrainsThinnerThanAVoxelKeepTheirColour) {
+  // 1 mm voxels: most 0.4 mm strands hold no voxel centre. Every voxel a strand's axis passes
+  // through is sampled inside it, so each strand shows black along its length.
+  const DsModel model = ball_of_strands();
+  const std::vector<GrainComponent> strands = grain_components(model);
+  ASSERT_GT(strands.size(), 100u);
+  const InteriorVolume v = sampled(model, 0.001);
+  EXPECT_GT(v.grain_samples, strands.size());
+  size_t shown = 0, dark_voxels = 0;
+  for (const GrainComponent& strand : strands) {
+    // The voxel at the strand's centre, and the longest run of black voxels along it.
+    const glm::ivec3 at(glm::round((strand.centre - v.origin) / v.voxel_m));
+    const size_t voxel = v.index(at.x, at.y, at.z);
+    if (v.region[voxel] != kEmptyRegion && glm::length(v.colour[voxel]) < 0.05f) ++shown;
+  }
+  for (size_t voxel = 0; voxel < v.voxels(); ++voxel)
+    dark_voxels += v.region[voxel] != kEmptyRegion && glm::length(v.colour[voxel]) < 0.05f;
+  // Every strand clear of the skin shows at its centre; the strands (3 mm long, 1 mm voxels)
+  // darken about three voxels each.
+  EXPECT_GE(shown, strands.size() * 95 / 100);
+  EXPECT_GT(dark_voxels, 2 * strands.size());
+  std::printf("%zu strands: %zu black at their centre, %zu black voxels, %zu voxels sampled "
+              "inside a strand\n",
+              strands.size(), shown, dark_voxels, v.grain_samples);
 }
 
 TEST(InteriorVolume, TheThreadCountDoesNotChangeTheVolume) {
