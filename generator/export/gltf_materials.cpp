@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "model/pbr_material.h"
+#include "model/subsurface_scatter.h"
 
 namespace cutaway::gltf {
 
@@ -78,6 +79,14 @@ void add_pbr_material(tinygltf::Model& m, const AssetMaterial& material,
                                   tinygltf::Value(pbr.sheen.x), tinygltf::Value(pbr.sheen.y),
                                   tinygltf::Value(pbr.sheen.z)})},
          {"sheenRoughnessFactor", tinygltf::Value(pbr.sheen_roughness)}});
+  }
+  if (pbr.translucency > 0 && pbr.scatter_m > 0) {
+    // glTF has no subsurface radius: the add-on reads it here (doc/blender.md).
+    mat.extras = tinygltf::Value(tinygltf::Value::Object{
+        {"subsurface_radius_m",
+         tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(pbr.scatter_m),
+                                                tinygltf::Value(pbr.scatter_m * kScatterGreen),
+                                                tinygltf::Value(pbr.scatter_m * kScatterBlue)})}});
   }
   if (material_map >= 0 && pbr.translucency > 0) {
     use("KHR_materials_diffuse_transmission",

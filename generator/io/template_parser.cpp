@@ -19,6 +19,7 @@
 #include "io/text_rules.h"
 #include "io/yaml_reader.h"
 #include "model/mesh_surface.h"
+#include "model/subsurface_scatter.h"
 #include "model/template_checks.h"
 #include "variation/organic_deformation.h"
 
@@ -921,7 +922,12 @@ Template parse_template(std::string_view text, const std::string& file,
   const double h = skin_height(t);
   resolve_edge(root, t, h);
   if (!t.npr.perlin_from_file) t.npr.perlin_bands = default_perlin_bands(h);
-  resolve_texture_fields(root, t, skin_widest_radius(t));
+  const double widest = skin_widest_radius(t);
+  resolve_texture_fields(root, t, widest);
+  // How far light scatters under each material follows its translucency, the skin's smallest
+  // extent and the dark grains.
+  for (PbrMaterial* m : {&t.skin_material, &t.cut_material})
+    m->scatter_m = subsurface_scatter_m(t, m->translucency, std::min(h, 2 * widest));
   for (SurfaceSpec& s : t.surfaces) read_surface_mesh(s);
   t.source_hash = template_source_hash(text, t);
   return t;

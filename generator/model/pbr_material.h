@@ -11,7 +11,7 @@
 namespace cutaway {
 
 /// One material. Colours come from the diffusion surfaces (vertex colours); these are the
-/// other channels. Every value is dimensionless; the default is today's plain look.
+/// other channels. Every value but scatter_m is dimensionless; the default is today's plain look.
 struct PbrMaterial {
   double roughness = 0.6;          ///< perceptual roughness 0..1 (glTF roughnessFactor)
   double translucency = 0;         ///< diffuse transmission weight 0..1, light through thin
@@ -22,12 +22,17 @@ struct PbrMaterial {
   glm::dvec3 sheen{0.0};           ///< sheen colour, linear RGB 0..1, the soft back-scatter of
                                    ///< fuzz (peach, kiwi); black: none (KHR_materials_sheen)
   double sheen_roughness = 0.3;    ///< 0..1
+  /// How far red light travels under the surface before it leaves, metres (0: no translucency;
+  /// green and blue less: subsurface_scatter.h). Not written in templates: the parser derives it
+  /// from the translucency, the skin's size and the dark grains (subsurface_scatter_m).
+  double scatter_m = 0;
 
   bool operator==(const PbrMaterial&) const = default;
 };
 
 /// The first field of `m` outside 0..1 ("roughness", "translucency", "clearcoat",
-/// "clearcoat_roughness", "sheen_roughness", "sheen"), or "" when every value is in range.
+/// "clearcoat_roughness", "sheen_roughness", "sheen", "scatter_m": metres), or "" when every
+/// value is in range.
 inline std::string_view out_of_range_field(const PbrMaterial& m) {
   auto bad = [](double v) { return !(v >= 0 && v <= 1); };
   if (bad(m.roughness)) return "roughness";
@@ -36,6 +41,7 @@ inline std::string_view out_of_range_field(const PbrMaterial& m) {
   if (bad(m.clearcoat_roughness)) return "clearcoat_roughness";
   if (bad(m.sheen_roughness)) return "sheen_roughness";
   if (bad(m.sheen.r) || bad(m.sheen.g) || bad(m.sheen.b)) return "sheen";
+  if (!(m.scatter_m >= 0 && m.scatter_m <= 1)) return "scatter_m";
   return "";
 }
 

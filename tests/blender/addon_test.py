@@ -24,7 +24,8 @@ CASE is one of
   batch       a one-item batch made by `cutaway batch` and imported: one root with its pieces,
               collision shapes present, no camera or lights, extras as custom properties;
   kiwi-seeds  the kiwi cut across at mid height (`cutaway piece --cut plane:y=35`, seeds 1 to 3),
-              imported, its lower half seen from straight above under the studio key light and
+              imported (its cut material's subsurface radius the file's: KIWI_SUBSURFACE_RADIUS),
+              its lower half seen from straight above under the studio key light and
               sky (doc/lighting.md) and rendered with Cycles, the skin held out: the black
               seeds must cover at least 2 % of the cut face at a luminance under 15 % of white
               (KIWI_DARK_SHARE; issue "anatomy and look", the measure on the baked texture is
@@ -58,6 +59,10 @@ SCENES = ("salad", "plate", "market")
 FRAME = (200, 150)
 # The least share of the kiwi's cut face darker than 15 % of white (linear luminance).
 KIWI_DARK_SHARE = 0.02
+# The kiwi's subsurface radius (red, green, blue; metres): its seeds' 1 mm thickness, which bounds
+# how far light travels under its flesh (cutaway's subsurface_scatter.h), as the file's material
+# extras give it to the add-on.
+KIWI_SUBSURFACE_RADIUS = (0.001, 0.000625, 0.000375)
 # The least intersection over union of the volume's and the glTF's silhouettes from the front
 # (128 x 128 pixels; the volume is 2 mm voxels).
 VOLUME_IOU = 0.85
@@ -363,6 +368,22 @@ def cut_face_dark_share(path):
     return float((luminance < 0.15).mean()) if covered.any() else 0.0, int(covered.sum())
 
 
+def check_subsurface_radius(material_name, radius):
+    """Checks that the Principled BSDF of the material `material_name` scatters light as far as
+    `radius` (red, green, blue; metres) says: Blender 3's radius, or Blender 4's scale times
+    its radius."""
+    from cutaway.materials import principled_bsdf
+    material = bpy.data.materials.get(material_name)
+    check(material is not None, f"no material {material_name}")
+    bsdf = principled_bsdf(material)
+    check(bsdf is not None, f"{material_name}: no Principled BSDF")
+    scale = bsdf.inputs["Subsurface Scale"].default_value if "Subsurface Scale" in bsdf.inputs \
+        else 1.0
+    got = [scale * r for r in bsdf.inputs["Subsurface Radius"].default_value]
+    check(all(abs(g - w) < 1e-6 for g, w in zip(got, radius)),
+          f"{material_name}: subsurface radius {got} m, want {radius} m")
+
+
 def case_kiwi_seeds(args):
     install_addon(args.addon)
     for seed in (1, 2, 3):
@@ -374,6 +395,7 @@ def case_kiwi_seeds(args):
                         "-o", glb], check=True)
         empty_scene()
         check(bpy.ops.import_scene.cutaway(filepath=glb) == {'FINISHED'}, f"{glb}: not imported")
+        check_subsurface_radius("kiwi_cut", KIWI_SUBSURFACE_RADIUS)
         scene = bpy.context.scene
         pieces = [o for o in scene.objects if "piece" in o.keys()]
         check(len(pieces) == 2, f"kiwi {seed}: {len(pieces)} pieces")

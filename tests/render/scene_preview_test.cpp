@@ -16,6 +16,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "base/colour.h"
+#include "base/constants.h"
 #include "render/scene_preview.h"
 #include "test_support.h"
 

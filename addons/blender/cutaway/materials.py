@@ -3,8 +3,12 @@ wired into the Principled BSDF as subsurface scattering.
 
 The weight is the extension's diffuseTransmissionFactor times the alpha channel of its
 diffuseTransmissionTexture (where the extension keeps the factor map); the scattered light takes
-the base colour and travels a few millimetres (scene units are metres).
+the base colour and travels as far as the material's extras say (`subsurface_radius_m`: red,
+green, blue in metres, which cutaway derives from the template's translucency, size and dark
+seeds), or a few millimetres in a file without them.
 """
+
+import math
 
 import bpy
 
@@ -12,8 +16,8 @@ from .hierarchy import base_name
 
 EXTENSION = "KHR_materials_diffuse_transmission"
 
-# Mean free path per red, green and blue channel in metres: light in fruit flesh travels a few
-# millimetres, red the furthest.
+# Mean free path per red, green and blue channel in metres where the file does not give one:
+# light in fruit flesh travels a few millimetres, red the furthest.
 SUBSURFACE_RADIUS = (0.004, 0.0025, 0.0015)
 
 
@@ -29,10 +33,23 @@ def add_translucency(gltf, new_materials, new_images):
         if extension is None:
             continue
         name = gltf_material.get("name") or f"Material_{index}"
+        radius = subsurface_radius(gltf_material)
         for material in by_name.get(name, []):
-            if _wire(gltf, material, extension, new_images):
+            if _wire(gltf, material, extension, new_images, radius):
                 wired.append(material)
     return wired
+
+
+def subsurface_radius(gltf_material):
+    """The glTF material's extras.subsurface_radius_m (three numbers above 0 and at most 1 m),
+    else SUBSURFACE_RADIUS: the file is read as untrusted input."""
+    extras = gltf_material.get("extras")
+    radius = extras.get("subsurface_radius_m") if isinstance(extras, dict) else None
+    if (isinstance(radius, list) and len(radius) == 3 and
+            all(isinstance(r, (int, float)) and not isinstance(r, bool) and
+                math.isfinite(r) and 0 < r <= 1 for r in radius)):
+        return tuple(float(r) for r in radius)
+    return SUBSURFACE_RADIUS
 
 
 def principled_bsdf(material):
@@ -57,7 +74,7 @@ def _input(node, *names):
     return next((node.inputs[n] for n in names if n in node.inputs), None)
 
 
-def _wire(gltf, material, extension, new_images):
+def _wire(gltf, material, extension, new_images, radius):
     factor = float(extension.get("diffuseTransmissionFactor", 0.0))
     texture = extension.get("diffuseTransmissionTexture")
     bsdf = principled_bsdf(material)
@@ -78,23 +95,24 @@ def _wire(gltf, material, extension, new_images):
         multiply.inputs[1].default_value = factor
         tree.links.new(alpha, multiply.inputs[0])
         tree.links.new(multiply.outputs[0], weight)
-    _set_radius(bsdf)
+    _set_radius(bsdf, radius)
     _copy_base_colour_to_subsurface(tree, bsdf)
     if hasattr(material, "use_sss_translucency"):  # Eevee Legacy: light through thin parts
         material.use_sss_translucency = True
     return True
 
 
-def _set_radius(bsdf):
-    scale = _input(bsdf, "Subsurface Scale")
-    radius = _input(bsdf, "Subsurface Radius")
-    largest = max(SUBSURFACE_RADIUS)
-    if scale is not None:  # Blender 4: radius per channel times the scale
-        scale.default_value = largest
-        if radius is not None:
-            radius.default_value = [r / largest for r in SUBSURFACE_RADIUS]
-    elif radius is not None:
-        radius.default_value = SUBSURFACE_RADIUS
+def _set_radius(bsdf, radius):
+    """Sets the BSDF's subsurface radius (red, green, blue; metres)."""
+    scale_input = _input(bsdf, "Subsurface Scale")
+    radius_input = _input(bsdf, "Subsurface Radius")
+    largest = max(radius)
+    if scale_input is not None:  # Blender 4: radius per channel times the scale
+        scale_input.default_value = largest
+        if radius_input is not None:
+            radius_input.default_value = [r / largest for r in radius]
+    elif radius_input is not None:
+        radius_input.default_value = radius
 
 
 def _copy_base_colour_to_subsurface(tree, bsdf):

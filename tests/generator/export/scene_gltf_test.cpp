@@ -18,6 +18,7 @@
 #include "base/constants.h"
 #include "export/gltf_export.h"
 #include "export/ktx2_texture.h"
+#include "model/subsurface_scatter.h"
 #include "test_support.h"
 
 namespace cutaway {
@@ -565,6 +566,7 @@ SceneAssets scene_with_materials() {
   cut.translucency = 0.4;
   cut.clearcoat = 0.9;
   cut.clearcoat_roughness = 0.05;
+  cut.scatter_m = 0.002;
   s.materials.push_back({"unused", cut});
   s.materials.push_back({"tomato_skin", skin});
   s.materials.push_back({"tomato_cut", cut});
@@ -600,6 +602,15 @@ TEST(SceneGltf, SkinAndCutPrimitivesWithTheirMaterials) {
                        .GetNumberAsDouble(),
                    0.4);
   EXPECT_FALSE(cut.extensions.count("KHR_materials_sheen"));
+  // The subsurface radius (red, green, blue; metres) in the extras, for the Blender add-on; the
+  // skin, which lets no light through, has none.
+  ASSERT_TRUE(cut.extras.Has("subsurface_radius_m"));
+  const tinygltf::Value& radius = cut.extras.Get("subsurface_radius_m");
+  ASSERT_EQ(radius.ArrayLen(), 3u);
+  EXPECT_DOUBLE_EQ(radius.Get(0).GetNumberAsDouble(), 0.002);
+  EXPECT_DOUBLE_EQ(radius.Get(1).GetNumberAsDouble(), 0.002 * kScatterGreen);
+  EXPECT_DOUBLE_EQ(radius.Get(2).GetNumberAsDouble(), 0.002 * kScatterBlue);
+  EXPECT_FALSE(skin.extras.IsObject());
   for (const char* ext : {"KHR_materials_clearcoat", "KHR_materials_sheen",
                           "KHR_materials_diffuse_transmission", "KHR_lights_punctual"})
     EXPECT_EQ(std::count(m.extensionsUsed.begin(), m.extensionsUsed.end(), ext), 1) << ext;
