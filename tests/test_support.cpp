@@ -357,6 +357,21 @@ PngInfo png_info(const std::filesystem::path& file) {
     info.blue += px[2] > 2 * px[0] && px[2] > 60;
     info.yellow += px[0] > 2 * px[2] && px[1] > 2 * px[2] && px[1] > 60;
   }
+  auto background = [&](int x, int y) {
+    return x < 0 || y < 0 || x >= info.width || y >= info.height ||
+           std::memcmp(pixels + 4 * (y * info.width + x), pixels, 3) == 0;
+  };
+  size_t inside = 0;
+  for (int y = 0; y < info.height; ++y)
+    for (int x = 0; x < info.width; ++x) {
+      if (background(x, y) || background(x - 1, y) || background(x + 1, y) ||
+          background(x, y - 1) || background(x, y + 1))
+        continue;
+      const unsigned char* px = pixels + 4 * (y * info.width + x);
+      info.mean_colour += glm::dvec3(px[0], px[1], px[2]);
+      ++inside;
+    }
+  if (inside) info.mean_colour /= static_cast<double>(inside);
   stbi_image_free(pixels);
   return info;
 }

@@ -191,6 +191,9 @@ struct PngInfo {
   size_t dark = 0;            ///< pixels with R, G and B all below 8
   size_t blue = 0;            ///< pixels clearly blue: B > 2 R and B > 60
   size_t yellow = 0;          ///< pixels clearly yellow: R and G > 2 B, and G > 60
+  /// Mean 8-bit sRGB (0..255) of the pixels that differ from the top-left one and whose four
+  /// neighbours do too: the objects' colour without their edges blended with the background.
+  glm::dvec3 mean_colour{0.0};
 };
 
 /// Reads `file` with stb_image and summarises it.

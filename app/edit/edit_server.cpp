@@ -832,7 +832,8 @@ struct EditServer::Impl {
   void post_model_glb(const httplib::Request& req, httplib::Response& res, const std::string& body);
   /// POST /api/skin.glb: the object of the text uncut, its skin baked as scenes bake it (the
   /// skin's patterns, their relief as a normal map, the Perlin modulation of seed 0), as
-  /// binary glTF without camera or lights: what the outside looks like (Model view).
+  /// binary glTF with the preview's camera, the studio lights and the exposure (scenes' extras):
+  /// what the outside looks like, lit as scenes are (Model view).
   void post_skin_glb(const httplib::Request& req, httplib::Response& res, const std::string& body);
   /// POST /api/section.png?y=Y[&coarse=1]: the text's cut at height Y (template units; Cut
   /// view).
@@ -974,7 +975,7 @@ void EditServer::Impl::post_skin_glb(const httplib::Request&, httplib::Response&
                                      const std::string& body) {
   work_on(WorkView::Model, body, res, [&](const BuiltText& b, const auto&) {
     GltfSceneOptions gltf;
-    gltf.camera_and_lights = false;
+    gltf.camera_and_lights = true;  // lit as scenes are: the page renders by the file's lights
     res.set_content(scene_to_glb(whole_object_assets(Variant{b.built.tmpl, b.built.model},
                                                      b.section_diffusion(options.section_cube), 1.0,
                                                      0),

@@ -11,6 +11,10 @@
 //     already have (so their text is rewritten by the page), and saves; then has the page
 //     rewrite the text of every file the same way, reporting the files whose text changed
 //     ("changed").
+//   node tests/tools/edit_in_chromium.mjs CUTAWAY outside FILE.yaml DIR
+//     opens FILE.yaml, checks "outside", looks from the file's camera and screenshots the 3D
+//     view to DIR/editor-outside.png; saves the skin's glTF the page showed to DIR/skin.glb
+//     (to be rendered by another client for comparison).
 // Prints one JSON line {ok, steps: [{what, verdict}], cut_seconds, coarse_cut_seconds,
 // warnings, error}; exit code 0 when every step went as expected.
 import fs from 'node:fs';
@@ -191,6 +195,18 @@ async function sketch(page, dir) {
   };
 }
 
+async function outside(page, dir) {
+  await step(page, 'opened the template');
+  await page.uncheck('#show-variants');
+  await page.check('#show-outside');
+  const verdict = await step(page, 'showed the outside');
+  const skin = await page.evaluate(() => Array.from(new Uint8Array(window.editorModel.shown)));
+  fs.writeFileSync(path.join(dir, 'skin.glb'), Buffer.from(skin));
+  await page.evaluate(() => window.editorModel.viewFromFile());
+  await page.locator('#model3d').screenshot({ path: path.join(dir, 'editor-outside.png') });
+  return { ok: /^ok/.test(verdict) };
+}
+
 async function rewrite(page, file) {
   await step(page, `opened ${path.basename(file)}`);
   await page.evaluate(() => window.editorRewriteCurves());
@@ -226,8 +242,8 @@ async function withEditor(cutaway, file, session, work, webgl) {
 
 async function main() {
   const [cutaway, mode, ...targets] = process.argv.slice(2);
-  if (!cutaway || !['sketch', 'rewrite'].includes(mode) || !targets.length) {
-    return report({ error: 'usage: node tests/tools/edit_in_chromium.mjs CUTAWAY sketch DIR | rewrite FILE.yaml...' });
+  if (!cutaway || !['sketch', 'rewrite', 'outside'].includes(mode) || !targets.length) {
+    return report({ error: 'usage: node tests/tools/edit_in_chromium.mjs CUTAWAY sketch DIR | rewrite FILE.yaml... | outside FILE.yaml DIR' });
   }
   const session = { open: false };
   const timer = setTimeout(() => {
@@ -238,6 +254,11 @@ async function main() {
       const dir = path.resolve(targets[0]);
       return report(await withEditor(cutaway, path.join(dir, 'new-fruit.yaml'), session,
                                      (page) => sketch(page, dir), true));
+    }
+    if (mode === 'outside') {
+      const dir = path.resolve(targets[1]);
+      return report(await withEditor(cutaway, path.resolve(targets[0]), session,
+                                     (page) => outside(page, dir), true));
     }
     let changed = [];
     const ok = await withEditor(cutaway, path.resolve(targets[0]), session, async (page) => {

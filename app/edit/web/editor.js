@@ -679,7 +679,10 @@ async function showModel(mine, body) {
   framed = true;
 }
 $('show-outside').addEventListener('change', () => {
-  if (verdict?.ok) showModel(version, doc.text);
+  if (!verdict?.ok) return;
+  window.editorBusy = true;  // until the model is shown
+  const mine = version;
+  showModel(mine, doc.text).finally(() => { if (mine === version) window.editorBusy = false; });
 });
 
 let variantsTimer = 0;
@@ -756,6 +759,7 @@ function rewriteCurves(d) {
 // every curve with the values it already has, which must leave the text as it was: of the
 // open template (as an edit) and of any template text.
 window.editorViews = { side, top };
+window.editorModel = model;  // the 3D view (tests look from the file's camera: viewFromFile)
 window.editorRewriteCurves = () => commit(rewriteCurves(doc));
 window.editorRewriteText = (text) => rewriteCurves(new TemplateDoc(text)).text;
 window.editorReady = true;

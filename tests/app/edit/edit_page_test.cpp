@@ -79,6 +79,34 @@ TEST(EditPage, SketchANewFruitOverAPhotoAndSaveIt) {
             << " s, coarse cut " << r.value("coarse_cut_seconds", -1.0) << " s\n";
 }
 
+TEST(EditPage, TheOutsideIsLitAsScenesAre) {
+  // The cantaloupe's netted skin in the editor's 3D view with "outside" checked, seen from the
+  // file's camera, against the same glTF rendered as doc/lighting.md tells a three.js user to
+  // (a newer three.js, the file's lights, sky and exposure): the same colours. With the editor's
+  // own diagram lights (no exposure, linear output) it was 120, 116, 64 against 132, 128, 99: more
+  // saturated, 35 steps short in blue.
+  const fs::path dir = test::fresh_dir("edit-outside-page");
+  fs::copy_file(test::source_path("templates/cantaloupe.yaml"), dir / "cantaloupe.yaml");
+  const test::NodeToolRun run = test::run_node_tool(
+      "edit_in_chromium.mjs",
+      {CUTAWAY_BINARY, "outside", (dir / "cantaloupe.yaml").string(), dir.string()});
+  ASSERT_TRUE(run.report.is_object()) << run.output;
+  ASSERT_TRUE(run.report.value("ok", false)) << run.output;
+  EXPECT_TRUE(run.report["warnings"].empty()) << run.report["warnings"].dump();
+  const test::PngInfo editor = test::png_info(dir / "editor-outside.png");
+  ASSERT_GT(editor.width, 100);
+  const test::ThreeLoadReport three = test::load_gltf_three(
+      dir / "skin.glb", dir / "three-outside.png", editor.width, editor.height);
+  ASSERT_TRUE(three.ok) << three.error;
+  const test::PngInfo reference = test::png_info(dir / "three-outside.png");
+  EXPECT_GT(editor.not_background, static_cast<size_t>(editor.width * editor.height / 20));
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(editor.mean_colour[c], reference.mean_colour[c], 8.0) << "channel " << c;
+  std::cout << "outside: editor " << editor.mean_colour.r << " " << editor.mean_colour.g << " "
+            << editor.mean_colour.b << ", three.js " << reference.mean_colour.r << " "
+            << reference.mean_colour.g << " " << reference.mean_colour.b << " (sRGB, of 255)\n";
+}
+
 TEST(EditPage, EveryShippedTemplateKeepsItsBytesThroughThePage) {
   const fs::path dir = test::fresh_dir("edit-page");
   std::vector<std::string> args = {CUTAWAY_BINARY, "rewrite"};

@@ -367,7 +367,8 @@ TEST(EditServer, DrawsTheModelAndACutAtAHeight) {
 
 TEST(EditServer, ShowsTheOutsideWithTheSkinsPatternsAndRelief) {
   // The cantaloupe's skin: a net with a relief. The outside is one textured, normal-mapped
-  // skin without camera or lights, a valid glTF; a text that breaks a rule gets the verdict.
+  // skin with the camera, the studio lights and the exposure scenes have, a valid glTF; a text
+  // that breaks a rule gets the verdict.
   const fs::path dir = test::fresh_dir("edit-outside");
   const fs::path file = copy_template("cantaloupe", dir);
   const std::string text = test::read_file(file);
@@ -384,7 +385,10 @@ TEST(EditServer, ShowsTheOutsideWithTheSkinsPatternsAndRelief) {
   uint32_t length = 0;
   std::memcpy(&length, skin->body.data() + 12, 4);
   const nlohmann::json gltf = nlohmann::json::parse(skin->body.substr(20, length));
-  EXPECT_FALSE(gltf.contains("cameras"));
+  EXPECT_EQ(gltf["cameras"].size(), 1u);
+  EXPECT_EQ(gltf["extensions"]["KHR_lights_punctual"]["lights"].size(), 3u);  // key, fill, rim
+  EXPECT_TRUE(gltf["scenes"][0]["extras"].contains("exposure"));
+  EXPECT_TRUE(gltf["scenes"][0]["extras"].contains("ambient_lux"));
   size_t relief = 0;
   for (const auto& material : gltf["materials"])
     relief += material.contains("normalTexture") &&
