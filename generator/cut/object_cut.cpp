@@ -122,31 +122,34 @@ PieceMaterials add_cap_texture(SceneAssets& assets, const PieceSet& set,
   return materials;
 }
 
-/// Where the kept pieces of `set` hold a whole stone: adds a material named "<object>_stone"
-/// whose roughness and translucency are the means of the stone parts' own (the side of the
-/// rigid surface the stone shows), with no clear coat and no sheen: a stone is bare and dry,
-/// and the walls' material it starts from is the skin's (an apricot's velvet sheen made its
-/// stone pale cream in Blender). Returns `materials` with it as the stones'. Without stone
-/// parts: `materials`.
-PieceMaterials add_stone_material(SceneAssets& assets, const PieceSet& set,
-                                  PieceMaterials materials, const std::string& object) {
+/// Where the kept pieces of `set` have parts of `kind` (PartKind::Wall: the walls of hollows and
+/// the imprints of stones gone to another piece; PartKind::Stone: whole stones), adds a material
+/// named "<object>_<suffix>" whose roughness and translucency are the means of those parts' own
+/// (the side of the surface they show), with no clear coat and no sheen, and returns `materials`
+/// with it as theirs (`wall` or `stone`). A stone is bare and dry, and a wall is the flesh or the
+/// fibres of a cavity, not the skin: both took the skin's material before (an apricot's velvet
+/// sheen made its stone pale cream in Blender; a cherry's glossy, clear-coated skin made the
+/// imprint of its stone shine like a red bead). Without such parts: `materials`.
+PieceMaterials add_own_material(SceneAssets& assets, const PieceSet& set, PieceMaterials materials,
+                                const std::string& object, PartKind kind, const char* suffix) {
   glm::dvec2 sum(0.0);
   size_t count = 0;
   for (const Piece& piece : set.pieces)
     for (const PiecePart& part : piece.parts)
-      if (part.kind == PartKind::Stone)
+      if (part.kind == kind)
         for (const glm::dvec2& m : part.mesh.material) {
           sum += m;
           ++count;
         }
   if (count == 0) return materials;
-  AssetMaterial stone = assets.materials[static_cast<size_t>(materials.wall)];
-  stone.name = object + "_stone";
-  stone.pbr = PbrMaterial{};
-  stone.pbr.roughness = sum.x / static_cast<double>(count);
-  stone.pbr.translucency = sum.y / static_cast<double>(count);
-  assets.materials.push_back(stone);
-  materials.stone = static_cast<int>(assets.materials.size()) - 1;
+  AssetMaterial own = assets.materials[static_cast<size_t>(materials.wall)];
+  own.name = object + "_" + suffix;
+  own.pbr = PbrMaterial{};
+  own.pbr.roughness = sum.x / static_cast<double>(count);
+  own.pbr.translucency = sum.y / static_cast<double>(count);
+  assets.materials.push_back(own);
+  (kind == PartKind::Stone ? materials.stone : materials.wall) =
+      static_cast<int>(assets.materials.size()) - 1;
   return materials;
 }
 
@@ -323,7 +326,10 @@ Outcome<CutObject> cut_object(SceneAssets& assets, const Variant& variant, uint6
                          options.skin, uv);
     stats.seconds_bake += seconds_since(t_bake);
   }
-  object_materials = add_stone_material(assets, set, object_materials, object);
+  object_materials =
+      add_own_material(assets, set, object_materials, object, PartKind::Stone, "stone");
+  object_materials =
+      add_own_material(assets, set, object_materials, object, PartKind::Wall, "wall");
   for (size_t q = 0; q < n; ++q) {
     const Piece& piece = set.pieces[q];
     ShadedMesh merged = merge_parts(piece);

@@ -32,8 +32,9 @@ enum class CapColours {
 };
 
 /// Where the materials of one object's pieces are in SceneAssets::materials: the skin's, the
-/// hollow walls' (the skin's material without the skin's texture), the cut faces' and the
-/// whole stones' (the walls' until cut_object adds one of their own: add_stone_material).
+/// hollow walls' and stone imprints', the cut faces' and the whole stones' (the walls' and the
+/// stones' are the skin's material without its texture until cut_object adds ones of their own,
+/// from the roughness and translucency those parts show).
 struct PieceMaterials {
   int skin = 0, wall = 0, cut = 0, stone = 0;
 };
