@@ -168,8 +168,9 @@ int run_volume(const VolumeArgs& a, const Common& common, OutputSet& outputs) {
   const InteriorVolume volume = sample_interior_volume(variant.model, *diffusion, std::move(*grid),
                                                        common.threads, &modulation, a.perlin);
   spdlog::info("{}: {} solid voxels in {} regions, {} of them sampled inside a grain that "
-               "misses their centre (classify {:.1f} s, PMVC {:.1f} s)",
-               tmpl.name, volume.solid, volume.regions, volume.grain_samples,
+               "misses their centre and {} inside a layer their grid line misses (classify "
+               "{:.1f} s, PMVC {:.1f} s)",
+               tmpl.name, volume.solid, volume.regions, volume.grain_samples, volume.layer_samples,
                volume.seconds_classify, volume.seconds_diffuse);
 
   const auto t1 = Clock::now();

@@ -16,6 +16,7 @@
 #include "diffusion/diffusion_sheets.h"
 #include "diffusion/sheet_rays.h"
 #include "volume/thin_grains.h"
+#include "volume/thin_layers.h"
 #include "volume/volume_cost.h"
 
 namespace cutaway {
@@ -28,8 +29,9 @@ using Clock = std::chrono::steady_clock;
 /// +z, -z), then the kSideVotes voting directions (off every axis and diagonal, so that no
 /// vote grazes a sheet the grid or a fold lines up with). 15 rays: one Embree packet.
 constexpr int kEdgeRays = 6;
-// The cost counted before the work (volume_cost.h): these 15, and the 6 edges against the walls.
-static_assert(kClassifyRaysPerVoxel == 2 * kEdgeRays + kSideVotes);
+// The cost counted before the work (volume_cost.h): these 15, the 6 edges against the walls and
+// at most 3 looking for a thin layer's second sheet.
+static_assert(kClassifyRaysPerVoxel == 2 * kEdgeRays + kSideVotes + 3);
 const std::array<glm::vec3, kEdgeRays + kSideVotes>& voxel_directions() {
   static const std::array<glm::vec3, kEdgeRays + kSideVotes> directions = [] {
     std::array<glm::vec3, kEdgeRays + kSideVotes> d{};
@@ -201,6 +203,22 @@ InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBacke
     const glm::vec3& normal = of[static_cast<size_t>(hit.sheet)].face_normal[hit.triangle];
     return static_cast<float>(hit.at.t * std::abs(static_cast<double>(normal[e / 2])));
   };
+  // The blur of the surface `hit` crosses, at the crossing (metres).
+  auto blur_at = [&](const SheetHit& hit) {
+    const auto sheet = static_cast<size_t>(hit.sheet);
+    const glm::uvec3& corner = sheets[sheet].triangle[hit.triangle];
+    return (1 - hit.at.u - hit.at.v) * blur[sheet][corner[0]] + hit.at.u * blur[sheet][corner[1]] +
+           hit.at.v * blur[sheet][corner[2]];
+  };
+  // Per voxel and axis (+x, +y, +z): the middle of a solid layer between two sharp sheets, not
+  // a grain's, that the grid line crosses before the next centre (thin_layers.h), or NaN.
+  constexpr double kNoLayer = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::array<double, 3>> layer_middle(n, {kNoLayer, kNoLayer, kNoLayer});
+  auto sharp_sheet = [&](const SheetHit& hit) {
+    return hit.sheet >= 0 &&
+           model.surfaces[static_cast<size_t>(hit.sheet)].role != SurfaceRole::Grain &&
+           blur_at(hit) < 0.5 * voxel_m;
+  };
   parallel_chunks(n, 64, threads, [&](size_t begin, size_t end) {
     std::array<SheetHit, kEdgeRays + kSideVotes> hits;
     std::array<SheetHit, kEdgeRays> wall_hits;
@@ -216,11 +234,23 @@ InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBacke
         const SheetHit& hit = hits[static_cast<size_t>(e)];
         crossing[v][static_cast<size_t>(e)] = plane_distance(hit, sheets, e);
         if (crossing[v][static_cast<size_t>(e)] == kNone) continue;
-        const auto sheet = static_cast<size_t>(hit.sheet);
-        const glm::uvec3& corner = sheets[sheet].triangle[hit.triangle];
-        const double b = (1 - hit.at.u - hit.at.v) * blur[sheet][corner[0]] +
-                         hit.at.u * blur[sheet][corner[1]] + hit.at.v * blur[sheet][corner[2]];
-        if (b >= 0.5 * voxel_m) soft[v] |= static_cast<uint8_t>(1u << e);
+        if (blur_at(hit) >= 0.5 * voxel_m) soft[v] |= static_cast<uint8_t>(1u << e);
+      }
+      // A thin layer ahead along +x, +y, +z: a second sharp sheet behind the first before the
+      // next centre, the side of it that faces the first solid.
+      const glm::ivec3 coord = volume.voxel(v);
+      for (int a = 0; a < 3; ++a) {
+        const SheetHit& first = hits[static_cast<size_t>(2 * a)];
+        if (coord[a] + 1 >= volume.size[a] || !sharp_sheet(first) || first.at.t >= voxel_m)
+          continue;
+        const double from = first.at.t + 1e-4 * voxel_m;
+        SheetHit second;
+        const glm::vec3& d = dirs[static_cast<size_t>(2 * a)];
+        caster.cast(centre + glm::dvec3(d) * from, std::span(&d, 1), std::span(&second, 1));
+        if (!sharp_sheet(second) || from + second.at.t >= voxel_m ||
+            !solid_side(model, sheets, second, d))
+          continue;
+        layer_middle[v][static_cast<size_t>(a)] = 0.5 * (first.at.t + from + second.at.t);
       }
     }
   });
@@ -282,6 +312,21 @@ InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBacke
     ++p;
   }
   volume.grain_samples = inside_grains.size();
+  // Layers thinner than a voxel: one voxel of each grid line that misses one samples its middle.
+  std::vector<ThinLayer> layers;
+  for (size_t v = 0; v < n; ++v)
+    for (int a = 0; a < 3; ++a)
+      if (!std::isnan(layer_middle[v][static_cast<size_t>(a)]))
+        layers.push_back({v, a, layer_middle[v][static_cast<size_t>(a)]});
+  std::vector<char> taken(n, 0);
+  for (const auto& [v, at] : inside_grains) taken[v] = 1;
+  const auto inside_layers = thin_layer_samples(volume, solid, layers, taken);
+  for (size_t v = 0, p = 0, m = 0; v < n && m < inside_layers.size(); ++v) {
+    if (!solid[v]) continue;
+    if (inside_layers[m].first == v) points[p] = inside_layers[m++].second;
+    ++p;
+  }
+  volume.layer_samples = inside_layers.size();
   volume.seconds_classify = seconds_since(t0);
 
   const auto t1 = Clock::now();

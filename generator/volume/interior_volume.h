@@ -48,9 +48,10 @@ struct InteriorVolume {
   glm::dvec3 origin{0.0};  ///< centre of voxel (0, 0, 0), metres
   double voxel_m = 0;      ///< edge length, metres
   /// Linear RGB per voxel: PMVC at the voxel's centre where it is solid (at a point inside a
-  /// grain where a grain passes through it but misses its centre: thin_grains.h); where it is
-  /// empty, the mean of its solid face neighbours (0 with none), so that plain trilinear filtering
-  /// by a tool that ignores `region` does not darken the skin's outline.
+  /// grain where a grain passes through it but misses its centre: thin_grains.h; in the middle
+  /// of a layer its grid line misses: thin_layers.h); where it is empty, the mean of its solid face
+  /// neighbours (0 with none), so that plain trilinear filtering by a tool that ignores `region`
+  /// does not darken the skin's outline.
   std::vector<glm::vec3> colour;
   std::vector<glm::vec2> material;  ///< roughness, translucency (0..1), as `colour`
   /// Per voxel: kEmptyRegion, or 1 + the index of the solid region its centre lies in. Two
@@ -72,6 +73,7 @@ struct InteriorVolume {
   uint32_t regions = 0;             ///< solid regions (the largest region id)
   size_t solid = 0;                 ///< voxels whose region is not empty (the PMVC points)
   size_t grain_samples = 0;     ///< of them, those sampled inside a grain that misses their centre
+  size_t layer_samples = 0;     ///< and those sampled inside a layer their grid line misses
   double seconds_classify = 0;  ///< ray casts for the regions and the distances
   double seconds_diffuse = 0;   ///< PMVC at the solid voxels
 
@@ -114,7 +116,8 @@ Outcome<InteriorVolume> volume_grid(const DsModel& model, double voxel_m);
 /// those crossings, outline distances from a second cast against the walls alone (the skin
 /// and the surfaces with a hollow side), and `diffusion` (PMVC over the model's diffusion sheets,
 /// the same backend and settings as cut faces) at every solid voxel's centre (or inside a grain
-/// that passes through it but misses its centre: thin_grain_samples), then, with `modulation`, the
+/// that passes through it but misses its centre, thin_grain_samples, or in a layer its grid
+/// line misses, thin_layer_samples), then, with `modulation`, the
 /// object's Perlin colour modulation of that strength at the same points (as cut faces get it:
 /// material/colour_modulation.h). The model's rigid surfaces go beside the voxels
 /// as VolumeStones. Ray casts run on `threads` threads (0: all cores); the result does not

@@ -20,9 +20,10 @@ namespace cutaway {
 /// any integer type.
 glm::dvec3 grid_voxels(const glm::dvec3& extent, double voxel_m);
 
-/// Rays sample_interior_volume casts from each voxel centre to classify it: 15 against every
-/// surface (the six face-neighbour directions and the kSideVotes votes), 6 against the walls.
-inline constexpr int kClassifyRaysPerVoxel = 21;
+/// Rays sample_interior_volume casts from each voxel centre to classify it, at most: 15 against
+/// every surface (the six face-neighbour directions and the kSideVotes votes), 6 against the
+/// walls, and 3 looking past a crossing for a thin layer's second sheet (+x, +y, +z).
+inline constexpr int kClassifyRaysPerVoxel = 24;
 
 /// The rays a volume of `voxels` voxels casts with PMVC cube-map size `cube`, counted as
 /// voxels x (kClassifyRaysPerVoxel + 6 cube^2): every voxel a PMVC point casting every texel

@@ -197,9 +197,9 @@ TEST(OptionChecks, TheLeekAtAQuarterMillimetreIsRefusedWithItsCostAndACoarserVox
   const RunResult run = test::run_cutaway(
       {"volume", "templates/leek.yaml", "--voxel", "0.25", "-o", (dir / "leek").string()});
   EXPECT_EQ(run.exit_code, 2) << run.err;
-  // 134 x 804 x 134 voxels, each 21 rays to classify and 6 x 16^2 of PMVC.
+  // 134 x 804 x 134 voxels, each 24 rays to classify and 6 x 16^2 of PMVC.
   EXPECT_NE(run.err.find("--voxel: the volume would cast about 2.25e+10 rays (1.44e+07 voxels "
-                         "x 1557 rays each at cube 16), more than the 1.56e+09 any volume may "
+                         "x 1560 rays each at cube 16), more than the 1.56e+09 any volume may "
                          "cost; give --voxel "),
             std::string::npos)
       << run.err;
@@ -215,8 +215,8 @@ TEST(OptionChecks, TheLeekAtAQuarterMillimetreIsRefusedWithItsCostAndACoarserVox
 }
 
 TEST(OptionChecks, TheVolumeBoundIsVoxelsTimesRaysAndKeepsEveryDefaultGrid) {
-  EXPECT_EQ(volume_rays(1, 16), 21 + 6 * 16 * 16);
-  EXPECT_EQ(volume_rays(1000, 8), 1000.0 * (21 + 6 * 8 * 8));
+  EXPECT_EQ(volume_rays(1, 16), 24 + 6 * 16 * 16);
+  EXPECT_EQ(volume_rays(1000, 8), 1000.0 * (24 + 6 * 8 * 8));
   EXPECT_EQ(kMaxVolumeRays, volume_rays(100.0 * 100 * 100, 16));
   EXPECT_TRUE(check_volume_rays(kMaxVolumeRays / volume_rays(1, 16), 16));
   EXPECT_FALSE(check_volume_rays(kMaxVolumeRays / volume_rays(1, 16) + 1, 16));

@@ -223,6 +223,49 @@ TEST(InteriorVolume, GrainsThinnerThanAVoxelKeepTheirColour) {
               strands.size(), shown, dark_voxels, v.grain_samples);
 }
 
+TEST(InteriorVolume, LayersThinnerThanAVoxelKeepTheirColour) {
+  // A white ball of radius 20 mm under a red peel 0.4 mm thick, at 1.5 mm voxels: most grid
+  // lines pass from outside to the flesh between two centres without one in the peel. Each
+  // such line's first solid voxel samples the peel's middle, so the outline is red all round.
+  auto circle = [](double radius) {
+    std::string out = "[";
+    for (int k = 0; k <= 12; ++k) {
+      const double a = std::numbers::pi * (k / 12.0 - 0.5);
+      out += (k ? ", [" : "[") + std::to_string(k == 0 || k == 12 ? 0.0 : radius * std::cos(a)) +
+             ", " + std::to_string(radius * std::sin(a)) + "]";
+    }
+    return out + "]";
+  };
+  const DsModel model = build_model(parse_template(
+      "format: cutaway-template/1\nname: peel\nunits: mm\nsymmetry: {type: cylindrical}\n"
+      "resolution: {edge: 1.2}\nsurfaces:\n"
+      "  - {name: skin, kind: around, role: skin, front: \"#c02020\", back: \"#c02020\", "
+      "profile: " +
+          circle(20) +
+          "}\n  - {name: flesh, kind: around, front: \"#c02020\", back: \"#ffffff\", profile: " +
+          circle(19.6) + "}\n",
+      "peel.yaml", "."));
+  const InteriorVolume v = sampled(model, 0.0015);
+  EXPECT_GT(v.layer_samples, 500u);
+  // The first solid voxel of every grid line along +x.
+  size_t lines = 0, red = 0;
+  for (int k = 0; k < v.size.z; ++k)
+    for (int j = 0; j < v.size.y; ++j)
+      for (int i = 1; i < v.size.x; ++i) {
+        const size_t at = v.index(i, j, k);
+        if (v.region[at] == kEmptyRegion || v.region[v.index(i - 1, j, k)] != kEmptyRegion)
+          continue;
+        ++lines;
+        red += v.colour[at].r > 0.3f && v.colour[at].g < 0.1f;
+        break;
+      }
+  ASSERT_GT(lines, 400u);
+  EXPECT_GE(red, lines * 9 / 10);
+  std::printf("%zu grid lines along +x: %zu enter the flesh through a red voxel; %zu voxels "
+              "sampled inside the peel\n",
+              lines, red, v.layer_samples);
+}
+
 TEST(InteriorVolume, TheThreadCountDoesNotChangeTheVolume) {
   const DsModel model = spheres("    blur: 0");
   const InteriorVolume one = sampled(model, 0.004, 1);
