@@ -304,13 +304,17 @@ InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBacke
     points.push_back(volume.centre(volume.voxel(v)));
   }
   volume.solid = points.size();
+  // Moves the samples of solid voxels to the points of `moves` ((voxel, point), in voxel order).
+  auto move_samples = [&](const std::vector<std::pair<size_t, glm::dvec3>>& moves) {
+    for (size_t v = 0, p = 0, m = 0; v < n && m < moves.size(); ++v) {
+      if (!solid[v]) continue;
+      if (moves[m].first == v) points[p] = moves[m++].second;
+      ++p;
+    }
+  };
   // Grains thinner than a voxel: the voxels they pass through sample a point inside them.
   const auto inside_grains = thin_grain_samples(model, volume, solid);
-  for (size_t v = 0, p = 0, m = 0; v < n && m < inside_grains.size(); ++v) {
-    if (!solid[v]) continue;
-    if (inside_grains[m].first == v) points[p] = inside_grains[m++].second;
-    ++p;
-  }
+  move_samples(inside_grains);
   volume.grain_samples = inside_grains.size();
   // Layers thinner than a voxel: one voxel of each grid line that misses one samples its middle.
   std::vector<ThinLayer> layers;
@@ -321,11 +325,7 @@ InteriorVolume sample_interior_volume(const DsModel& model, const DiffusionBacke
   std::vector<char> taken(n, 0);
   for (const auto& [v, at] : inside_grains) taken[v] = 1;
   const auto inside_layers = thin_layer_samples(volume, solid, layers, taken);
-  for (size_t v = 0, p = 0, m = 0; v < n && m < inside_layers.size(); ++v) {
-    if (!solid[v]) continue;
-    if (inside_layers[m].first == v) points[p] = inside_layers[m++].second;
-    ++p;
-  }
+  move_samples(inside_layers);
   volume.layer_samples = inside_layers.size();
   volume.seconds_classify = seconds_since(t0);
 
