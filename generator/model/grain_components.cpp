@@ -1,7 +1,5 @@
 #include "model/grain_components.h"
 
-#include <algorithm>
-
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
@@ -35,8 +33,12 @@ std::vector<GrainComponent> grain_components(const DsModel& model) {
         hi = glm::max(hi, q);
       }
       grain.centre = 0.5 * (lo + hi);
+      grain.farthest = grain.points.front();
       for (const glm::dvec3& q : grain.points)
-        grain.radius = std::max(grain.radius, glm::distance(q, grain.centre));
+        if (const double d = glm::distance(q, grain.centre); d > grain.radius) {
+          grain.radius = d;
+          grain.farthest = q;
+        }
       out.push_back(std::move(grain));
     }
   }

@@ -16,7 +16,8 @@ struct GrainComponent {
   size_t surface = 0;              ///< index into DsModel::surfaces
   std::vector<glm::dvec3> points;  ///< its vertices (#V, metres, object frame), in flood order
   glm::dvec3 centre{0.0};          ///< the centre of their axis-aligned bounding box
-  double radius = 0;               ///< the bounding sphere's about `centre`, metres
+  glm::dvec3 farthest{0.0};        ///< the vertex farthest from `centre` (the first of equals)
+  double radius = 0;               ///< the bounding sphere's about `centre` (to `farthest`), metres
 };
 
 /// Every grain of `model`'s grain surfaces, in surface order and, within a surface, in the

@@ -31,12 +31,9 @@ std::vector<std::pair<size_t, glm::dvec3>> thin_grain_samples(const DsModel& mod
   for (const GrainComponent& grain : grains) {
     const InsideTest* test = tests[grain.surface].get();
     if (!test) continue;
-    // The long axis: from the centre to the farthest vertex (the first of equals).
-    glm::dvec3 far = grain.points.front();
-    for (const glm::dvec3& q : grain.points)
-      if (glm::distance(q, grain.centre) > glm::distance(far, grain.centre)) far = q;
-    const double half = glm::distance(far, grain.centre);
-    const glm::dvec3 axis = half > 0 ? (far - grain.centre) / half : glm::dvec3(0.0);
+    // The long axis: from the centre to the farthest vertex.
+    const double half = grain.radius;
+    const glm::dvec3 axis = half > 0 ? (grain.farthest - grain.centre) / half : glm::dvec3(0.0);
     const int steps = static_cast<int>(std::floor(half / step));
     // The centre first, then outwards: +1, -1, +2, -2, ...
     for (int k = 0; k <= 2 * steps; ++k) {
