@@ -671,7 +671,7 @@ void parse_symmetry(const YamlField& root, Template& t) {
 void parse_variation(const YamlField& root, Template& t) {
   const auto var = root.get("variation");
   if (!var) return;
-  var->allow_only({"amount", "folds", "ripeness", "lumps", "lopsided", "lean"});
+  var->allow_only({"amount", "folds", "fold_widths", "ripeness", "lumps", "lopsided", "lean"});
   if (auto a = var->get("amount")) {
     t.variation_amount = a->number();
     if (t.variation_amount < 0) a->fail("must not be negative");
@@ -694,6 +694,10 @@ void parse_variation(const YamlField& root, Template& t) {
     if (lo < 2 || hi > 64 || lo > hi) vf->fail("needs 2 <= min <= max <= 64");
     t.variation_folds_min = static_cast<int>(lo);
     t.variation_folds_max = static_cast<int>(hi);
+  }
+  if (auto fw = var->get("fold_widths")) {
+    if (t.symmetry != Symmetry::NFold) fw->fail("variation.fold_widths is only for symmetry nfold");
+    t.variation_fold_widths = fw->number_in(0.0, 0.5);
   }
   if (auto vr = var->get("ripeness")) {
     if (!vr->is_sequence() || vr->size() != 2) vr->fail("must be [min, max] ripeness in 0..1");

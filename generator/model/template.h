@@ -331,6 +331,9 @@ struct Template {
   FileLoc edge_loc;                 ///< where `resolution.edge` is (the file start if absent)
   double variation_amount = 1.0;
   int variation_folds_min = 1, variation_folds_max = 1;
+  /// `variation.fold_widths` (nfold, 0..0.5): each variant's folds are drawn this much wider
+  /// or narrower than the mean, times the amount (variation.h, draw_fold_angles); 0: even.
+  double variation_fold_widths = 0.0;
   /// The range variants draw their ripeness from (`variation.ripeness`, 0 <= x <= y <= 1), and
   /// the ripeness this template's colours are taken at (gradients `along: ripeness`): the
   /// range's middle as parsed; a variant's own draw (variation.h, draw_ripeness).

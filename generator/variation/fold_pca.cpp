@@ -259,11 +259,15 @@ std::vector<std::vector<Polyline2>> fold_curves_xz(const FoldFeatures& f,
 }
 
 Template rebuild_folds(const Template& t, const FoldFeatures& f,
-                       const std::vector<std::vector<double>>& vectors, const FoldPcaOptions& opt) {
+                       const std::vector<std::vector<double>>& vectors, const FoldPcaOptions& opt,
+                       const std::vector<double>& fold_angles_out) {
   const int Np = static_cast<int>(vectors.size());
+  CUTAWAY_CHECK(fold_angles_out.empty() || static_cast<int>(fold_angles_out.size()) == Np);
   Template out = t;
-  if (Np != t.folds) {
-    out.folds = Np;
+  out.folds = Np;
+  if (!fold_angles_out.empty()) {
+    out.fold_angles = fold_angles_out;
+  } else if (Np != t.folds) {
     out.fold_angles.clear();
     for (int k = 0; k < Np; ++k) out.fold_angles.push_back(t.fold_angles[0] + k * 2 * kPi / Np);
   }

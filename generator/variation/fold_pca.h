@@ -74,13 +74,16 @@ std::vector<std::vector<Polyline2>> fold_curves_xz(
     const FoldFeatures& features, const std::vector<std::vector<double>>& fold_vectors,
     const std::vector<double>& fold_angles_out, const FoldPcaOptions& options);
 
-/// `tmpl` with N' = fold_vectors.size() folds: fold angles kept when N' == N, else
-/// fold_angles[0] + k 2 pi / N'; every Type I section becomes the joined loop of its N' open
+/// `tmpl` with N' = fold_vectors.size() folds at `fold_angles_out` (radians, increasing,
+/// spanning less than 2 pi; empty: the template's angles when N' == N, else fold_angles[0] +
+/// k 2 pi / N'); every Type I section becomes the joined loop of its N' open
 /// curves, every Type II section a list of N' loops (loop k inside fold k); so does each of a
 /// surface's `sections` (`section` stays the first of them). Profiles, colours, blur, grains
 /// and circle sections are kept.
+/// @pre fold_angles_out empty or of N' angles
 Template rebuild_folds(const Template& tmpl, const FoldFeatures& features,
                        const std::vector<std::vector<double>>& fold_vectors,
-                       const FoldPcaOptions& options);
+                       const FoldPcaOptions& options,
+                       const std::vector<double>& fold_angles_out = {});
 
 }  // namespace cutaway

@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "base/constants.h"
 #include "model/model_builder.h"
 #include "model/template_checks.h"
 #include "variation/grains.h"
@@ -20,6 +21,8 @@ namespace {
 constexpr uint64_t kPurposeVariation = 0x7661726961;  // "varia"
 /// Purpose tag of the ripeness stream.
 constexpr uint64_t kPurposeRipeness = 0x726970656e;  // "ripen"
+/// Purpose tag of the fold widths' stream.
+constexpr uint64_t kPurposeFoldWidths = 0x666f6c6477;  // "foldw"
 /// Purpose tag of the parts' wander streams (one per surface and draw).
 constexpr uint64_t kPurposeWander = 0x77616e646572;  // "wander"
 
@@ -74,7 +77,24 @@ Template draw_variant(const Template& t, uint64_t seed, uint64_t draw, double am
   const int np = lo + static_cast<int>(rng.below(static_cast<uint32_t>(hi - lo + 1)));
   std::vector<std::vector<double>> vectors;
   for (int k = 0; k < np; ++k) vectors.push_back(draw_fold(pca, amount, rng));
-  return wandered(rebuild_folds(t, f, vectors, opt.folds), seed, draw, amount);
+  const std::vector<double> angles =
+      t.variation_fold_widths > 0
+          ? draw_fold_angles(t.fold_angles[0], np, amount * t.variation_fold_widths,
+                             derive_seed(seed, {kPurposeFoldWidths, draw}))
+          : std::vector<double>{};
+  return wandered(rebuild_folds(t, f, vectors, opt.folds, angles), seed, draw, amount);
+}
+
+std::vector<double> draw_fold_angles(double first_rad, int folds, double spread, uint64_t seed) {
+  CUTAWAY_CHECK(folds >= 1 && spread >= 0 && spread < 1);
+  Rng rng(seed);
+  std::vector<double> width(static_cast<size_t>(folds));
+  double total = 0;
+  for (double& w : width) total += w = 1 + spread * rng.uniform(-1, 1);
+  std::vector<double> angles{first_rad};
+  for (size_t k = 1; k < width.size(); ++k)
+    angles.push_back(angles.back() + kPi * (width[k - 1] + width[k]) / total);
+  return angles;
 }
 
 double draw_ripeness(const Template& t, uint64_t seed) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "model/ds_model.h"
 #include "model/template.h"
@@ -22,6 +23,14 @@ struct VariationOptions {
   FoldPcaOptions folds;
 };
 
+/// The centres (radians) of `folds` folds of drawn widths: fold k is 1 + spread U(-1, 1) times
+/// as wide as the others' mean, the widths scaled to fill the turn, fold 0 centred on
+/// `first_rad`, each next one half its width and half the next's further on (a fold spans half
+/// way to each neighbour: fold_pca.h). Real citrus segments and locules differ this way
+/// (`variation.fold_widths`, times the amount). Deterministic in `seed`.
+/// @pre folds >= 1, 0 <= spread < 1
+std::vector<double> draw_fold_angles(double first_rad, int folds, double spread, uint64_t seed);
+
 /// A variant and its DS model (grains scattered).
 struct Variant {
   Template tmpl;
@@ -33,7 +42,9 @@ struct Variant {
 /// One variant of `tmpl`, unchecked: cylindrical -> the drawn section loops (`around`, not
 /// `circle`) synthesised jointly by De Bonet with amount tmpl.variation_amount * amount_scale;
 /// N-fold -> N' folds (uniform in [variation_folds_min, max]) drawn by PCA fold blending with
-/// coefficients ~ N(0, amount^2); none or amount 0 -> tmpl. Deterministic in (seed, draw).
+/// coefficients ~ N(0, amount^2), at centres of drawn widths where the template has
+/// variation_fold_widths (draw_fold_angles, spread amount x fold_widths, a stream of its own);
+/// none or amount 0 -> tmpl. Deterministic in (seed, draw).
 /// Circle sections stay circles (nothing to vary; their radius channel would be constant).
 /// Besides, each surface with a `wander` (SurfaceSpec::wander_m) gets a seeded offset uniform
 /// in the ball of radius amount * wander_m, from a stream of its own per surface and draw

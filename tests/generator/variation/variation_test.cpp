@@ -7,8 +7,10 @@
 
 #include <cstdlib>
 #include <cstdio>
+#include <vector>
 
 #include "base/colour.h"
+#include "base/constants.h"
 #include "io/template_parser.h"
 #include "model/template_checks.h"
 #include "test_support.h"
@@ -189,6 +191,67 @@ TEST(Variation, RipenessRangeIsCheckedWhereItIsWritten) {
     ADD_FAILURE() << "a reversed ripeness range was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("variation.ripeness: needs min <= max"), std::string::npos)
+        << e.what();
+  }
+}
+
+// Fold widths (`variation.fold_widths`): the drawn centres fill the turn once, fold 0 stays
+// where the template put it, every fold's span (half way to each neighbour) lies within the
+// spread of the mean, and the same seed draws the same centres.
+TEST(Variation, FoldWidthsAreDrawnWithinTheSpreadAndFillTheTurn) {
+  for (int folds : {2, 9, 14}) {
+    for (uint64_t seed : {1ull, 2ull, 3ull}) {
+      const std::vector<double> a = draw_fold_angles(0.3, folds, 0.25, seed);
+      ASSERT_EQ(a.size(), static_cast<size_t>(folds));
+      EXPECT_EQ(a, draw_fold_angles(0.3, folds, 0.25, seed));
+      EXPECT_DOUBLE_EQ(a[0], 0.3);
+      const double mean = 2 * kPi / folds;
+      for (int k = 0; k < folds; ++k) {
+        const double next = k + 1 < folds ? a[k + 1] : a[0] + 2 * kPi;
+        const double prev = k > 0 ? a[k - 1] : a[folds - 1] - 2 * kPi;
+        const double span = 0.5 * (next - a[k]) + 0.5 * (a[k] - prev);
+        // Widths 1 +- 0.25 scaled to fill the turn: each within 0.75 / 1.25 .. 1.25 / 0.75.
+        EXPECT_GT(span, mean * 0.75 / 1.25) << folds << " " << seed << " " << k;
+        EXPECT_LT(span, mean * 1.25 / 0.75) << folds << " " << seed << " " << k;
+      }
+      EXPECT_LT(a.back(), a[0] + 2 * kPi);
+    }
+  }
+  // Spread 0: even.
+  const std::vector<double> even = draw_fold_angles(0.0, 8, 0.0, 5);
+  for (int k = 0; k < 8; ++k) EXPECT_NEAR(even[k], k * 2 * kPi / 8, 1e-12);
+}
+
+// The lime's variants (fold_widths 0.25) have folds of unequal widths: the widest fold's span
+// exceeds the narrowest's by at least a tenth in each of five seeds; its template keeps them
+// even. `fold_widths` is only for nfold templates and lies in 0..0.5.
+TEST(Variation, ALimesSegmentsDifferInWidth) {
+  const Template lime = load_template(test::source_path("templates/lime.yaml").string());
+  ASSERT_GT(lime.variation_fold_widths, 0);
+  for (uint64_t seed = 1; seed <= 5; ++seed) {
+    const Template v = draw_variant(lime, seed, 0, 1.0);
+    const int n = v.folds;
+    double lo = 1e9, hi = 0;
+    for (int k = 0; k < n; ++k) {
+      const double next = k + 1 < n ? v.fold_angles[k + 1] : v.fold_angles[0] + 2 * kPi;
+      const double prev = k > 0 ? v.fold_angles[k - 1] : v.fold_angles[n - 1] - 2 * kPi;
+      const double span = 0.5 * (next - prev);
+      lo = std::min(lo, span);
+      hi = std::max(hi, span);
+    }
+    EXPECT_GT(hi / lo, 1.1) << seed;
+  }
+  const std::string path = test::source_path("templates/onion.yaml").string();
+  std::string text = test::read_file(path);
+  text.replace(text.find("variation: {amount: 1.0}"), 24,
+               "variation: {amount: 1.0, fold_widths: 0.2}");
+  try {
+    parse_template(text, path, test::source_path("templates").string());
+    ADD_FAILURE() << "fold_widths on a cylindrical template was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("variation.fold_widths: variation.fold_widths is only for "
+                                         "symmetry nfold"),
+              std::string::npos)
         << e.what();
   }
 }
