@@ -895,11 +895,9 @@ Template parse_template(std::string_view text, const std::string& file,
   if (auto d = root.get("density")) t.density_kg_m3 = d->number_in(50, 5000);
   if (auto halves = root.get("halves")) {
     const std::string v = halves->string();
-    if (v != "along" && v != "across" && v != "beside")
-      halves->fail("must be 'along', 'across' or 'beside', not " + quoted(v));
-    t.halves = v == "across"   ? HalvesCut::Across
-               : v == "beside" ? HalvesCut::Beside
-                               : HalvesCut::Along;
+    if (v != "along" && v != "across")
+      halves->fail("must be 'along' or 'across', not " + quoted(v));
+    t.halves_across = v == "across";
   }
   if (auto materials = root.get("materials")) {
     materials->allow_only({"skin", "cut"});
@@ -908,10 +906,6 @@ Template parse_template(std::string_view text, const std::string& file,
   }
 
   parse_surfaces(root, t, base_dir);
-  if (t.halves == HalvesCut::Beside && std::none_of(t.surfaces.begin(), t.surfaces.end(),
-                                                    [](const SurfaceSpec& s) { return s.rigid; }))
-    root.require("halves").fail(
-        "'beside' cuts beside a stone: the template needs a surface with 'rigid: true'");
   if (auto grains = root.get("grains")) {
     for (size_t i = 0; i < grains->size(); ++i) t.grains.push_back(parse_grain((*grains)[i], t));
   }

@@ -13,7 +13,6 @@
 #include <glm/vec3.hpp>
 
 #include "base/plane.h"
-#include "model/halves_cut.h"
 
 namespace cutaway {
 
@@ -109,7 +108,7 @@ struct DsModel {
   std::vector<DsSurface> surfaces;
   glm::dvec3 bbox_min{0.0}, bbox_max{0.0};  ///< axis-aligned bounds of all surfaces, metres
   std::optional<BentAxis> bent_axis;        ///< set where the template has a spine
-  HalvesCut halves = HalvesCut::Along;      ///< the template's `halves` (cut_cells.h)
+  bool halves_across = false;               ///< the template's `halves: across` (cut_cells.h)
   std::optional<CutAxis> cut_axis;          ///< set where a variant's axis leans
   KnifeWobble knife;                        ///< a variant's; zero for the template's model
 

@@ -13,7 +13,7 @@ namespace cutaway {
 DsModel build_model(const Template& t) {
   DsModel model;
   model.name = t.name;
-  model.halves = t.halves;
+  model.halves_across = t.halves_across;
   std::vector<int> order{t.skin};
   for (int i = 0; i < static_cast<int>(t.surfaces.size()); ++i)
     if (i != t.skin) order.push_back(i);

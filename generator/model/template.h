@@ -14,7 +14,6 @@
 #include <glm/vec3.hpp>
 
 #include "base/error.h"
-#include "model/halves_cut.h"
 #include "model/pbr_material.h"
 
 namespace cutaway {
@@ -343,8 +342,9 @@ struct Template {
   std::vector<SurfaceSpec> surfaces;
   std::vector<GrainSpec> grains;
   SpineSpec spine;  ///< the bent axis; no points: straight
-  /// `halves`: how a halves cut runs (halves_cut.h).
-  HalvesCut halves = HalvesCut::Along;
+  /// `halves: across`: a halves cut runs across the axis at mid-height (citrus, persimmon: the
+  /// cut that shows their segments or star) instead of along it.
+  bool halves_across = false;
   /// The skin's pattern layers, in the order they are laid (the skin surface's `patterns`).
   std::vector<SkinPatternLayer> skin_patterns;
   int skin = -1;    ///< index of the surface with role skin (-1: none, only

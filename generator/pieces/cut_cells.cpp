@@ -1,8 +1,6 @@
 #include "pieces/cut_cells.h"
 
-#include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include <glm/geometric.hpp>
 
@@ -185,24 +183,6 @@ CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min, const gl
     }
   }
   return out;
-}
-
-void move_beside_stones(CutCells& cells, const DsModel& model, double clearance_m) {
-  CUTAWAY_CHECK(clearance_m >= 0);
-  if (cells.planes.empty()) return;
-  Plane& plane = cells.planes[0];
-  const double side = model.knife.offset_m >= 0 ? 1.0 : -1.0;
-  double reach = -std::numeric_limits<double>::infinity();  // the stones' farthest vertex
-  for (const DsSurface& surface : model.surfaces) {
-    if (!surface.rigid) continue;
-    for (auto vh : surface.mesh.vertices()) {
-      const auto& p = surface.mesh.point(vh);
-      reach = std::max(reach,
-                       side * glm::dot(glm::dvec3(p[0], p[1], p[2]) - plane.point, plane.normal));
-    }
-  }
-  if (!std::isfinite(reach)) return;
-  plane.point += side * (reach + clearance_m) * plane.normal;
 }
 
 }  // namespace cutaway

@@ -71,18 +71,4 @@ CutCells make_cut_cells(const CutSpec& cut, const glm::dvec3& bbox_min, const gl
                         const BentAxis* bent_axis = nullptr, const CutAxis* cut_axis = nullptr,
                         const KnifeWobble& knife = {}, bool across = false);
 
-/// The knife's clearance of a stone in a `halves: beside` cut (metres): a cook's knife runs
-/// along the flat of a mango's stone, a few millimetres from it, through the fibrous flesh.
-constexpr double kBesideStoneClearance_m = 0.002;
-
-/// A `halves: beside` cut (halves_cut.h): moves the halves' plane of `cells` (planes[0], as
-/// make_cut_cells made it, leaned by the knife) along its normal until every vertex of every
-/// rigid surface of `model` (its stones) lies at least `clearance_m` on one side of it, the
-/// side the knife's offset leans to (model.knife.offset_m >= 0: the stones end behind the
-/// normal, so the plane moves towards +normal). The cut then misses the stones: one piece
-/// holds them whole inside its flesh, and both cut faces are flesh (a mango's cheek).
-/// A model without rigid surfaces, or cells without planes, are left as they are.
-/// @pre clearance_m >= 0
-void move_beside_stones(CutCells& cells, const DsModel& model, double clearance_m);
-
 }  // namespace cutaway

@@ -304,12 +304,10 @@ PieceSet pieces_in_cells(const DsModel& original, const CutCells& cells,
 
 Outcome<PieceSet> cut_pieces(const DsModel& model, const CutSpec& cut,
                              const DiffusionBackend& diffusion, const PieceOptions& options) {
-  CutCells cells = make_cut_cells(cut, model.bbox_min, model.bbox_max,
-                                  model.bent_axis ? &*model.bent_axis : nullptr,
-                                  model.cut_axis ? &*model.cut_axis : nullptr, model.knife,
-                                  model.halves == HalvesCut::Across);
-  if (cut.type == CutType::Halves && model.halves == HalvesCut::Beside)
-    move_beside_stones(cells, model, kBesideStoneClearance_m);
+  const CutCells cells =
+      make_cut_cells(cut, model.bbox_min, model.bbox_max,
+                     model.bent_axis ? &*model.bent_axis : nullptr,
+                     model.cut_axis ? &*model.cut_axis : nullptr, model.knife, model.halves_across);
   // Nudging helps only where there are planes to move and the uncut skin is itself sound.
   const bool may_retry =
       !cells.planes.empty() &&

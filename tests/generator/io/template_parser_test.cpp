@@ -246,23 +246,17 @@ TEST(TemplateParser, ErrorsInMaterials) {
   }
 }
 
-// `halves`: along (the default), across or beside; anything else is refused at its value, and
-// `beside` without a rigid surface (no stone to cut beside) at the field.
-TEST(TemplateParser, HalvesAlongAcrossOrBeside) {
-  EXPECT_EQ(parse(kTemplate).halves, HalvesCut::Along);
-  EXPECT_EQ(parse(std::string(kTemplate) + "halves: along\n").halves, HalvesCut::Along);
-  EXPECT_EQ(parse(std::string(kTemplate) + "halves: across\n").halves, HalvesCut::Across);
-  EXPECT_EQ(build_model(parse(std::string(kTemplate) + "halves: across\n")).halves,
-            HalvesCut::Across);
+// `halves`: along (the default) or across; anything else is refused at its value.
+TEST(TemplateParser, HalvesAlongOrAcross) {
+  EXPECT_FALSE(parse(kTemplate).halves_across);
+  EXPECT_FALSE(parse(std::string(kTemplate) + "halves: along\n").halves_across);
+  EXPECT_TRUE(parse(std::string(kTemplate) + "halves: across\n").halves_across);
+  EXPECT_TRUE(build_model(parse(std::string(kTemplate) + "halves: across\n")).halves_across);
   const InputError e = error_of(std::string(kTemplate) + "halves: sideways\n");
   EXPECT_EQ(e.field(), "halves");
   EXPECT_EQ(e.loc().line, 29);
   EXPECT_EQ(e.loc().column, 9);
-  EXPECT_NE(e.rule().find("'along', 'across' or 'beside'"), std::string::npos) << e.rule();
-  const InputError stoneless = error_of(std::string(kTemplate) + "halves: beside\n");
-  EXPECT_EQ(stoneless.field(), "halves");
-  EXPECT_EQ(stoneless.loc().line, 29);
-  EXPECT_NE(stoneless.rule().find("rigid: true"), std::string::npos) << stoneless.rule();
+  EXPECT_NE(e.rule().find("'along' or 'across'"), std::string::npos) << e.rule();
 }
 
 TEST(TemplateParser, SurfaceMaterialChannelsDefaultToTheCutMaterial) {

@@ -4,7 +4,6 @@
 // colours. Over several templates and every kind of cut.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <tuple>
 
@@ -19,10 +18,8 @@
 #include "pieces/clip_mesh.h"
 #include "pieces/cut_cells.h"
 #include "pieces/pieces.h"
-#include "pieces/shaded_mesh.h"
 #include "scene/scene_builder.h"
 #include "test_support.h"
-#include "variation/variation.h"
 
 namespace cutaway {
 namespace {
@@ -194,11 +191,9 @@ TEST(Pieces, ExportAsSkinAndCapPrimitivesWithTheTemplatesMaterials) {
 // A whole stone is a primitive of its own, after the walls and before the caps, with a
 // material "<object>_stone" whose roughness is the stone's (the mango's husk: 0.9), not the
 // skin's, and bare: none of the skin's clear coat (0.5) or sheen; the halves without the
-// stone have no such primitive. (Halved through the stone: the mango's own halves run beside
-// it.)
+// stone have no such primitive.
 TEST(Pieces, AWholeStoneHasAMaterialOfItsOwn) {
-  Template tmpl = load_template(test::source_path("templates/mango.yaml").string());
-  tmpl.halves = HalvesCut::Along;
+  const Template tmpl = load_template(test::source_path("templates/mango.yaml").string());
   CutObject object;
   const SceneAssets assets = exploded(tmpl, "halves", object);
   int stone = -1;
@@ -230,43 +225,6 @@ TEST(Pieces, AWholeStoneHasAMaterialOfItsOwn) {
     holders += stone_triangles > 0;
   }
   EXPECT_EQ(holders, 1);
-}
-
-// The mango's halves (`halves: beside`) run along the flat of its stone, beside it: the plane
-// clears every stone vertex by the knife's clearance, on the side its wobble leans to, so no
-// piece shows the stone or its imprint and the smaller piece is a cheek of whole flesh.
-TEST(Pieces, HalvesBesideAStoneCutItsCheeks) {
-  const Template tmpl = load_template(test::source_path("templates/mango.yaml").string());
-  ASSERT_EQ(tmpl.halves, HalvesCut::Beside);
-  for (uint64_t seed : {0ull, 5ull}) {
-    const Variant variant = seed == 0 ? Variant{tmpl, build_model(tmpl)} : make_variant(tmpl, seed);
-    const PieceSet set = *cut_pieces(variant.model, *parse_cut_spec("halves", tmpl.metres_per_unit),
-                                     *make_cpu_diffusion(variant.model, {8, 0}), PieceOptions{});
-    ASSERT_EQ(set.pieces.size(), 2u) << seed;
-    ASSERT_EQ(set.cells.planes.size(), 1u);
-    const Plane& plane = set.cells.planes[0];
-    const double side = variant.model.knife.offset_m >= 0 ? 1.0 : -1.0;
-    double nearest = std::numeric_limits<double>::infinity();
-    for (const DsSurface& surface : variant.model.surfaces) {
-      if (!surface.rigid) continue;
-      for (auto vh : surface.mesh.vertices()) {
-        const auto& p = surface.mesh.point(vh);
-        nearest = std::min(nearest, -side * glm::dot(glm::dvec3(p[0], p[1], p[2]) - plane.point,
-                                                     plane.normal));
-      }
-    }
-    EXPECT_GE(nearest, kBesideStoneClearance_m - 1e-9) << seed;
-    std::vector<double> volumes;
-    for (const Piece& piece : set.pieces) {
-      for (const PiecePart& part : piece.parts)
-        EXPECT_TRUE(part.kind == PartKind::Skin || part.kind == PartKind::Cap) << seed;
-      volumes.push_back(std::fabs(signed_volume(merge_parts(piece))));
-    }
-    // The stone's half-thickness (9 mm of the mango's 36) and the clearance off the middle.
-    const double cheek = std::min(volumes[0], volumes[1]) / (volumes[0] + volumes[1]);
-    EXPECT_LT(cheek, 0.4) << seed;
-    EXPECT_GT(cheek, 0.15) << seed;
-  }
 }
 
 // A cut whose planes all miss: scenes keep the object whole, `piece` hears why.
