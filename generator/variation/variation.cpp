@@ -21,6 +21,9 @@ namespace {
 constexpr uint64_t kPurposeVariation = 0x7661726961;  // "varia"
 /// Purpose tag of the ripeness stream.
 constexpr uint64_t kPurposeRipeness = 0x726970656e;  // "ripen"
+/// The most a fold's width may differ from the mean (a fraction of it) whatever the amount: a
+/// fold keeps at least a tenth of the mean width.
+constexpr double kMostFoldSpread = 0.9;
 /// Purpose tag of the fold widths' stream.
 constexpr uint64_t kPurposeFoldWidths = 0x666f6c6477;  // "foldw"
 /// Purpose tag of the parts' wander streams (one per surface and draw).
@@ -79,7 +82,8 @@ Template draw_variant(const Template& t, uint64_t seed, uint64_t draw, double am
   for (int k = 0; k < np; ++k) vectors.push_back(draw_fold(pca, amount, rng));
   const std::vector<double> angles =
       t.variation_fold_widths > 0
-          ? draw_fold_angles(t.fold_angles[0], np, amount * t.variation_fold_widths,
+          ? draw_fold_angles(t.fold_angles[0], np,
+                             std::min(amount * t.variation_fold_widths, kMostFoldSpread),
                              derive_seed(seed, {kPurposeFoldWidths, draw}))
           : std::vector<double>{};
   return wandered(rebuild_folds(t, f, vectors, opt.folds, angles), seed, draw, amount);

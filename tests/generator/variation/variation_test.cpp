@@ -241,6 +241,14 @@ TEST(Variation, ALimesSegmentsDifferInWidth) {
     }
     EXPECT_GT(hi / lo, 1.1) << seed;
   }
+  // A large amount takes the spread to at most 0.9: every fold keeps some width.
+  Template wild = lime;
+  wild.variation_amount = 4;
+  wild.variation_fold_widths = 0.5;
+  for (uint64_t seed = 1; seed <= 3; ++seed) {
+    const Template v = draw_variant(wild, seed, 0, 1.0);
+    for (int k = 0; k + 1 < v.folds; ++k) EXPECT_GT(v.fold_angles[k + 1], v.fold_angles[k]);
+  }
   const std::string path = test::source_path("templates/onion.yaml").string();
   std::string text = test::read_file(path);
   text.replace(text.find("variation: {amount: 1.0}"), 24,
