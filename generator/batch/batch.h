@@ -46,14 +46,22 @@ struct BatchOutputs {
   int volume_voxels = kDefaultVoxelsAcross;  ///< 8..200
 };
 
+/// A batch's glTF defaults: float32 vertex data (every engine reads it at its size; Godot 3
+/// reads KHR_mesh_quantization's integers as raw positions, doc/engines.md), no camera or
+/// lights, Godot's collision naming.
+inline GltfSceneOptions batch_gltf_defaults() {
+  GltfSceneOptions gltf;
+  gltf.compression = GltfCompression::None;
+  gltf.camera_and_lights = false;
+  gltf.collision = GltfCollision::Godot;
+  return gltf;
+}
+
 /// How the assets are exported.
 struct BatchExport {
-  /// compression, levels of detail, texture format; camera and lights off unless asked.
-  /// float32 vertex data by default: every engine reads it at its size (Godot 3 reads
-  /// KHR_mesh_quantization's integers as raw positions, doc/engines.md)
-  GltfSceneOptions gltf{.compression = GltfCompression::None,
-                        .camera_and_lights = false,
-                        .collision = GltfCollision::Godot};
+  /// compression, levels of detail, texture format; camera and lights off unless asked
+  /// (batch_gltf_defaults)
+  GltfSceneOptions gltf = batch_gltf_defaults();
   double texels_per_mm = 8.6;  ///< baked cut-face texture density, 0.1..100
   double perlin = 1.0;         ///< Perlin colour modulation strength, 0..10
   int cube = 16;               ///< PMVC cube-map texels per face edge, 2..256

@@ -55,6 +55,13 @@ using Clock = std::chrono::steady_clock;
 using cutaway::seconds_since;
 namespace fs = std::filesystem;
 
+/// glTF options with vertex data in `compression`, the rest at their defaults.
+cutaway::GltfSceneOptions compressed(cutaway::GltfCompression compression) {
+  cutaway::GltfSceneOptions options;
+  options.compression = compression;
+  return options;
+}
+
 /// Objects cut side by side in the end-to-end runs, as `cutaway scene` cuts them with the cpu
 /// backend: twice the threads (0: the hardware's).
 int objects_at_once(int threads) {
@@ -76,7 +83,7 @@ void check_outputs(const std::string& name, const cutaway::SceneAssets& assets,
   for (const auto& [mode_name, mode] : {std::pair{"quantize", cutaway::GltfCompression::Quantize},
                                         {"meshopt", cutaway::GltfCompression::Meshopt}}) {
     const fs::path glb = dir / (std::string(mode_name) + ".glb");
-    cutaway::write_scene_gltf(glb, assets, {mode});
+    cutaway::write_scene_gltf(glb, assets, compressed(mode));
     if (!tools) continue;
     // The tools print one JSON line; its error and triangle counts are what this line reports.
     const auto run = [](const std::string& command) {
@@ -287,7 +294,7 @@ void bench_scene(const fs::path& path, int repeat, int threads) {
                                    {"quantize", cutaway::GltfCompression::Quantize},
                                    {"meshopt", cutaway::GltfCompression::Meshopt}}) {
     const auto t0 = Clock::now();
-    glb_bytes[name] = cutaway::scene_to_glb(best_assets, {mode}).size();
+    glb_bytes[name] = cutaway::scene_to_glb(best_assets, compressed(mode)).size();
     std::printf(" glb %s %.1f MB (%.2f s)", name, glb_bytes[name] / 1e6, seconds_since(t0));
   }
   // gltfpack (npm, as a measure) packing the float32 file with every piece kept separate and
@@ -298,7 +305,8 @@ void bench_scene(const fs::path& path, int repeat, int threads) {
         fs::temp_directory_path() / ("cutaway-bench-gltfpack-" + path.stem().string());
     fs::remove_all(dir);
     fs::create_directories(dir);
-    cutaway::write_scene_gltf(dir / "none.glb", best_assets, {cutaway::GltfCompression::None});
+    cutaway::write_scene_gltf(dir / "none.glb", best_assets,
+                              compressed(cutaway::GltfCompression::None));
     const std::string command =
         "node '" + gltfpack.string() + "' -i '" + (dir / "none.glb").string() + "' -o '" +
         (dir / "packed.glb").string() + "' -cc -kn -km -ke > /dev/null 2>&1";
