@@ -44,8 +44,7 @@ struct Variant {
 /// N-fold -> N' folds (uniform in [variation_folds_min, max]) drawn by PCA fold blending with
 /// coefficients ~ N(0, amount^2), at centres of drawn widths where the template has
 /// variation_fold_widths (draw_fold_angles, spread amount x fold_widths up to 0.9, a stream of
-/// its own);
-/// none or amount 0 -> tmpl. Deterministic in (seed, draw).
+/// its own); none or amount 0 -> tmpl. Deterministic in (seed, draw).
 /// Circle sections stay circles (nothing to vary; their radius channel would be constant).
 /// Besides, each surface with a `wander` (SurfaceSpec::wander_m) gets a seeded offset uniform
 /// in the ball of radius amount * wander_m, from a stream of its own per surface and draw

@@ -181,18 +181,25 @@ TEST(Variation, ARipenessStopMayBeAFieldAlongTheProfile) {
   }
 }
 
-TEST(Variation, RipenessRangeIsCheckedWhereItIsWritten) {
+/// The message the onion template is refused with when its `variation` is `variation` (a
+/// failure, and an empty message, where it is accepted: `what` says what was accepted).
+std::string onion_refusal(const std::string& variation, const std::string& what) {
   const std::string path = test::source_path("templates/onion.yaml").string();
   std::string text = test::read_file(path);
-  text.replace(text.find("variation: {amount: 1.0}"), 24,
-               "variation: {amount: 1.0, ripeness: [0.9, 0.1]}");
+  text.replace(text.find("variation: {amount: 1.0}"), 24, variation);
   try {
     parse_template(text, path, test::source_path("templates").string());
-    ADD_FAILURE() << "a reversed ripeness range was accepted";
+    ADD_FAILURE() << what << " was accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("variation.ripeness: needs min <= max"), std::string::npos)
-        << e.what();
+    return e.what();
   }
+  return "";
+}
+
+TEST(Variation, RipenessRangeIsCheckedWhereItIsWritten) {
+  const std::string e =
+      onion_refusal("variation: {amount: 1.0, ripeness: [0.9, 0.1]}", "a reversed ripeness range");
+  EXPECT_NE(e.find("variation.ripeness: needs min <= max"), std::string::npos) << e;
 }
 
 // Fold widths (`variation.fold_widths`): the drawn centres fill the turn once, fold 0 stays
@@ -249,19 +256,11 @@ TEST(Variation, ALimesSegmentsDifferInWidth) {
     const Template v = draw_variant(wild, seed, 0, 1.0);
     for (int k = 0; k + 1 < v.folds; ++k) EXPECT_GT(v.fold_angles[k + 1], v.fold_angles[k]);
   }
-  const std::string path = test::source_path("templates/onion.yaml").string();
-  std::string text = test::read_file(path);
-  text.replace(text.find("variation: {amount: 1.0}"), 24,
-               "variation: {amount: 1.0, fold_widths: 0.2}");
-  try {
-    parse_template(text, path, test::source_path("templates").string());
-    ADD_FAILURE() << "fold_widths on a cylindrical template was accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("variation.fold_widths: variation.fold_widths is only for "
-                                         "symmetry nfold"),
-              std::string::npos)
-        << e.what();
-  }
+  const std::string e = onion_refusal("variation: {amount: 1.0, fold_widths: 0.2}",
+                                      "fold_widths on a cylindrical template");
+  EXPECT_NE(e.find("variation.fold_widths: variation.fold_widths is only for symmetry nfold"),
+            std::string::npos)
+      << e;
 }
 
 }  // namespace
