@@ -32,9 +32,6 @@ constexpr int kMaxLights = 16;  // shaders/scene.frag: kMaxLights
 // A white Lambertian face lit head-on by E lux shows E / (683 pi) (Blender's and POV-Ray's
 // mapping, doc/lighting.md).
 constexpr double kReferenceLux = kLumensPerWatt * kPi;
-constexpr double kShininess = 48;       // Blinn-Phong exponent at the default roughness
-constexpr double kSpecular = 0.15;      // highlight weight at the default roughness
-constexpr double kMaxShininess = 1024;  // the largest exponent (roughness near 0)
 
 /// One vertex as shaders/scene.vert reads it (locations 0..3).
 struct SceneVertex {
@@ -54,6 +51,7 @@ struct MeshDraw {
   // The roughness per texel: the material map (RGBA, G roughness), or -1: `roughness` holds.
   int material_texture = -1;
   float roughness = 0;  // the material's perceptual roughness (its highlight: shaders/scene.frag)
+  float clearcoat = 0, clearcoat_roughness = 0;  // its clear layer's weight and roughness
 };
 
 [[noreturn]] void fail(const std::string& what) {
@@ -88,7 +86,9 @@ std::vector<MeshDraw> mesh_draws(const SceneAssets& a, const AssetMesh& mesh, si
                      mesh.uv.empty() ? -1 : material.base_colour_texture,
                      mesh.uv.empty() ? -1 : material.normal_texture,
                      mesh.uv.empty() ? -1 : material.material_texture,
-                     static_cast<float>(material.pbr.roughness)});
+                     static_cast<float>(material.pbr.roughness),
+                     static_cast<float>(material.pbr.clearcoat),
+                     static_cast<float>(material.pbr.clearcoat_roughness)});
   }
   return draws;
 }
@@ -211,7 +211,8 @@ std::vector<GLuint> upload_textures(const SceneAssets& assets,
 void set_scene_uniforms(const GlProgram& program, const SceneAssets& assets, const glm::dmat4& view,
                         const glm::mat4& clip_from_view, double exposure) {
   const glm::dmat3 view_rotation(view);
-  std::vector<float> light_vector(4 * kMaxLights, 0.0f), light_scale(3 * kMaxLights, 0.0f);
+  std::vector<float> light_vector(4 * kMaxLights, 0.0f), light_scale(3 * kMaxLights, 0.0f),
+      light_radius(kMaxLights, 0.0f);
   for (size_t i = 0; i < assets.lights.size(); ++i) {
     const AssetLight& light = assets.lights[i];
     glm::dvec4 v;
@@ -221,10 +222,13 @@ void set_scene_uniforms(const GlProgram& program, const SceneAssets& assets, con
     const glm::dvec3 scale = light.colour * (light.intensity / kReferenceLux * exposure);
     for (int k = 0; k < 4; ++k) light_vector[4 * i + k] = static_cast<float>(v[k]);
     for (int k = 0; k < 3; ++k) light_scale[3 * i + k] = static_cast<float>(scale[k]);
+    if (light.type == LightType::Directional)
+      light_radius[i] = static_cast<float>(glm::radians(0.5 * light.angle_deg));
   }
   glUniform1i(program.uniform("light_count"), static_cast<GLint>(assets.lights.size()));
   glUniform4fv(program.uniform("light_vector"), kMaxLights, light_vector.data());
   glUniform3fv(program.uniform("light_scale"), kMaxLights, light_scale.data());
+  glUniform1fv(program.uniform("light_radius"), kMaxLights, light_radius.data());
   const glm::vec3 up_view(view_rotation * glm::dvec3(0, 1, 0));
   glUniform3fv(program.uniform("up_view"), 1, glm::value_ptr(up_view));
   // The sky's radiance, ambient_lux / (683 pi), as Blender's world and POV-Ray show it.
@@ -241,8 +245,10 @@ struct DrawUniforms {
       : view_from_object(program.uniform("view_from_object")),
         textured(program.uniform("textured")), relief(program.uniform("relief")),
         roughness_mapped(program.uniform("roughness_mapped")),
-        roughness(program.uniform("roughness")) {}
-  GLint view_from_object, textured, relief, roughness_mapped, roughness;
+        roughness(program.uniform("roughness")), clearcoat(program.uniform("clearcoat")),
+        clearcoat_roughness(program.uniform("clearcoat_roughness")) {}
+  GLint view_from_object, textured, relief, roughness_mapped, roughness, clearcoat,
+      clearcoat_roughness;
 };
 
 /// Scene from object transform of `inst`: its translation after its (normalised) rotation.
@@ -313,6 +319,8 @@ void draw_instances(const SceneAssets& assets, const std::vector<std::vector<Mes
         glBindTexture(GL_TEXTURE_2D, textures[static_cast<size_t>(draw.material_texture)]);
       }
       glUniform1f(uniforms.roughness, draw.roughness);
+      glUniform1f(uniforms.clearcoat, draw.clearcoat);
+      glUniform1f(uniforms.clearcoat_roughness, draw.clearcoat_roughness);
       draw_triangles(draw, pending);
     }
   }
@@ -454,11 +462,6 @@ Image render_scene_preview(const SceneAssets& assets, const ScenePreviewOptions&
   glUniform1i(program.uniform("base_colour"), 0);   // texture unit 0
   glUniform1i(program.uniform("normal_map"), 1);    // texture unit 1
   glUniform1i(program.uniform("material_map"), 3);  // texture unit 3 (2: the shadow map)
-  // The highlight's rule (shaders/scene.frag, highlight()).
-  glUniform1f(program.uniform("default_roughness"), static_cast<float>(PbrMaterial{}.roughness));
-  glUniform1f(program.uniform("default_shininess"), static_cast<float>(kShininess));
-  glUniform1f(program.uniform("default_specular"), static_cast<float>(kSpecular));
-  glUniform1f(program.uniform("max_shininess"), static_cast<float>(kMaxShininess));
 
   clear_target(target, assets.background);
   draw_instances(assets, geometry.draws, textures, view, uniforms);

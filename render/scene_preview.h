@@ -34,21 +34,28 @@ struct ScenePreviewOptions {
 ///
 /// Shading, in linear RGB with the albedo a and the stored per-vertex `normal` (interpolated,
 /// renormalised, flipped toward the eye on back faces; a zero normal falls back to the
-/// triangle's own) as n:
-///   colour = a * exposure * (H(n) + sum_i c_i * s_i * max(n . l_i, 0))
-///            + exposure * sum_i c_i * s_i * w * (n . h_i)^p   (only where n . l_i > 0)
+/// triangle's own) as n, and v the unit direction to the eye:
+///   base   = a * exposure * (H(n) + sum_i c_i * s_i * max(n . l_i, 0))
+///            + exposure * sum_i c_i * s_i * F(v . h_i) * S_i(r)
+///   colour = base * (1 - k F(n . v)) + k F(n . v) * exposure * sum_i c_i * s_i * S_i(r_k)
 /// The albedo a is the primitive's material's base colour texture (sRGB, decoded to linear;
 /// mipmapped, filtered trilinearly; repeating in u where `wrap_u`, else clamped, and clamped in v)
 /// sampled at the mesh's interpolated `uv` (glTF convention: v = 0 at the top row) when the
-/// material has one and the mesh has `uv`, else the per-vertex linear `colour`. The highlight
-/// follows the perceptual roughness r: exponent p = min(48 * (0.6 / r)^2, 1024) and weight
-/// w = 0.15 * (p + 8) / 56, so the default r = 0.6 gives p = 48 and w = 0.15, and a rougher
-/// material a broader, weaker highlight. r is the material map's per texel (its G channel, as
-/// glTF viewers read it: a cut face's stones, seeds and fibres duller or wetter than its flesh)
-/// where the material has one (`material_texture`, RGBA) and the mesh has `uv`, else the
-/// material's `pbr.roughness`. Other material channels (clearcoat, sheen, translucency) are not
-/// shown. Per light i, c_i is its linear colour, l_i the
-/// unit direction toward it, h_i the Blinn-Phong half vector, and s_i = E_i / (683 pi) the
+/// material has one and the mesh has `uv`, else the per-vertex linear `colour`. The reflection
+/// is glTF 2.0's for a dielectric (its Appendix B): F is Schlick's Fresnel from 0.04 at normal
+/// incidence, S_i(r) = pi * D * V * max(n . l_i, 0) with the Trowbridge-Reitz (GGX)
+/// distribution D of alpha = r^2 and Smith's height-correlated visibility V, for the light's
+/// disc (angular radius angle_deg / 2; a point light has none) by Karis's representative point
+/// (2013): l_i is the direction within the disc closest to v mirrored about n, and the lobe is
+/// scaled by (alpha / alpha')^2 with alpha' = alpha + half the radius (radians), so that a
+/// smooth face mirrors the disc at about its radiance and a rough one keeps its broad sheen.
+/// r is the perceptual roughness: the material map's per texel (its G channel, as glTF viewers
+/// read it: a cut face's stones, seeds and fibres duller or wetter than its flesh) where the
+/// material has one (`material_texture`, RGBA) and the mesh has `uv`, else the material's
+/// `pbr.roughness`. The clear layer (`pbr.clearcoat` k and `clearcoat_roughness` r_k: the wet
+/// film of cut flesh, a skin's wax) is layered on top as KHR_materials_clearcoat layers it.
+/// Other material channels (sheen, translucency) are not shown. Per light i, c_i is its linear
+/// colour, h_i the half vector of l_i and v, and s_i = E_i / (683 pi) the
 /// radiance a white Lambertian face lit head-on shows (Blender's and POV-Ray's mapping,
 /// doc/lighting.md): E_i is `intensity` in lux for a directional light and `intensity` / d^2
 /// (candela over squared metres to the light) for a point light. So the studio key light

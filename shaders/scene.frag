@@ -1,6 +1,6 @@
 #version 330 core
 // Scene preview (render/scene_preview.h), fragment stage: two-sided shading in linear RGB,
-// hemisphere ambient + Lambert + a Blinn-Phong highlight per light and one light's soft shadow,
+// hemisphere ambient + Lambert + glTF's specular reflection per light and one light's soft shadow,
 // with the albedo from the vertex colour or the material's base colour texture and the normal
 // tilted by the material's normal map (the skin's relief). The constants, the highlight of each
 // roughness and the light mapping are documented at render_scene_preview().
@@ -9,6 +9,8 @@ const int kMaxLights = 16;  // render/scene_preview.cpp: kMaxLights
 const float kSky = 1.0;     // ambient from straight above (+Y), of the sky's radiance
 const float kGround = 0.4;  // ambient from straight below
 const float kDiffuse = 1.0;
+const float kF0 = 0.04;     // glTF's dielectric reflectance at normal incidence (IOR 1.5)
+const float kPi = 3.14159265;
 
 in vec3 v_position;
 in vec3 v_normal;
@@ -21,25 +23,27 @@ uniform int light_count;
 uniform vec4 light_vector[kMaxLights];
 // colour * relative illuminance * exposure; a point light's is at 1 m and falls off as 1/d^2.
 uniform vec3 light_scale[kMaxLights];
+// The light's angular radius, radians (a directional light's source size; 0: a point).
+uniform float light_radius[kMaxLights];
 uniform vec3 up_view;          // scene +Y in the view frame
 uniform float ambient_scale;   // the sky's radiance (ambient_lux / (683 pi)) times the exposure
 // The material: its base colour texture (sRGB, so samples are linear) when `textured` is
-// non-zero, else the vertex colour; its perceptual roughness (the highlight's, highlight()).
+// non-zero, else the vertex colour; its perceptual roughness (the reflection's, lobe()).
 uniform int textured;
 uniform sampler2D base_colour;
 uniform float roughness;
+// The clear layer on top (KHR_materials_clearcoat: the wet film on cut flesh, wax on a skin):
+// its weight 0..1 and perceptual roughness; it has the surface's own normal.
+uniform float clearcoat;
+uniform float clearcoat_roughness;
 // The relief: a tangent-space normal map (linear; X along +u, Y toward the top row, Z out of
 // the surface: glTF's normalTexture) when `relief` is non-zero.
 uniform int relief;
 uniform sampler2D normal_map;
 // The roughness per texel instead, when `roughness_mapped` is non-zero: the G channel of the
-// material map (linear RGBA: glTF's metallicRoughnessTexture). The rule's constants (highlight()).
+// material map (linear RGBA: glTF's metallicRoughnessTexture).
 uniform int roughness_mapped;
 uniform sampler2D material_map;
-uniform float default_roughness;
-uniform float default_shininess;
-uniform float default_specular;
-uniform float max_shininess;
 
 // The shadow of light `shadow_light` (-1: none; render_scene_preview() documents the map): its
 // depth seen from the light, 0..1 over shadow_depth_m metres, square, shadow_width_m a side;
@@ -115,15 +119,41 @@ vec3 tilted_by_relief(vec3 n) {
   return dot(tilted, tilted) > 0.0 ? normalize(tilted) : n;
 }
 
-// The Blinn-Phong highlight of perceptual roughness r (0..1): its exponent falls as 1 / r^2 (as
-// for a Beckmann lobe of slope r), default_shininess at default_roughness, at most max_shininess;
-// its weight is normalised by (exponent + 8), so a rougher surface has a broader, weaker
-// highlight, and the default roughness gives exactly default_shininess and default_specular.
-vec2 highlight(float r) {
-  float ratio = default_roughness / max(r, 1e-3);
-  float exponent = min(default_shininess * ratio * ratio, max_shininess);
-  return vec2(exponent, default_specular * (exponent + 8.0) / (default_shininess + 8.0));
+// The specular lobe of light i toward the eye, per unit of the light's display scale (its
+// E / (683 pi)) and before Fresnel: glTF 2.0's metal-rough BRDF (Appendix B: the Trowbridge-Reitz
+// (GGX) distribution of alpha = roughness^2, Smith's height-correlated visibility) times E cos,
+// for a light of angular radius `radius` (radians) by the representative point of Karis 2013
+// ("Real Shading in Unreal Engine 4", area lights): the direction within the light's disc
+// closest to the mirror direction stands for the disc, and the lobe's peak is lowered by
+// (alpha / alpha')^2 with alpha' = alpha + radius / 2, so that a smooth face mirrors the disc at
+// about the disc's own radiance and a rough one keeps its broad sheen. `vdh` returns
+// the cosine Schlick's Fresnel takes.
+float lobe(vec3 n, vec3 view, vec3 l, float radius, float r, out float vdh) {
+  vdh = 1.0;
+  float alpha = max(r * r, 2e-3);
+  vec3 mirror = reflect(-view, n);
+  float c = dot(mirror, l);
+  if (radius > 0.0 && c < cos(radius)) {
+    vec3 across = mirror - c * l;
+    if (dot(across, across) > 1e-12) l = cos(radius) * l + sin(radius) * normalize(across);
+  } else if (radius > 0.0) {
+    l = mirror;
+  }
+  float widened = min(alpha + 0.5 * radius, 1.0);
+  float ndl = dot(n, l), ndv = max(dot(n, view), 1e-4);
+  if (ndl <= 0.0) return 0.0;
+  vec3 h = normalize(l + view);
+  float ndh = max(dot(n, h), 0.0);
+  vdh = max(dot(view, h), 0.0);
+  float a2 = alpha * alpha;
+  float d = a2 / (kPi * pow(ndh * ndh * (a2 - 1.0) + 1.0, 2.0));
+  float vis = 0.5 / (ndl * sqrt(ndv * ndv * (1.0 - a2) + a2) +
+                     ndv * sqrt(ndl * ndl * (1.0 - a2) + a2));
+  return vis * d * (alpha / widened) * (alpha / widened) * kPi * ndl;
 }
+
+// Schlick's Fresnel of a dielectric of reflectance kF0 at normal incidence, at cosine c.
+float fresnel(float c) { return kF0 + (1.0 - kF0) * pow(1.0 - c, 5.0); }
 
 void main() {
   vec3 albedo = textured != 0 ? texture(base_colour, v_uv).rgb : v_colour;
@@ -141,11 +171,11 @@ void main() {
   }
   if (relief != 0) n = tilted_by_relief(n);
 
-  vec2 lobe = highlight(roughness_mapped != 0 ? texture(material_map, v_uv).g : roughness);
+  float r = roughness_mapped != 0 ? texture(material_map, v_uv).g : roughness;
 
   float hemisphere = mix(kGround, kSky, 0.5 + 0.5 * dot(n, up_view));
   vec3 diffuse = vec3(hemisphere * ambient_scale);
-  vec3 specular = vec3(0.0);
+  vec3 specular = vec3(0.0), coat = vec3(0.0);
   for (int i = 0; i < light_count; ++i) {
     vec3 l = light_vector[i].xyz;
     vec3 scale = light_scale[i];
@@ -159,7 +189,12 @@ void main() {
     if (lambert <= 0.0) continue;
     if (i == shadow_light) scale *= lit_fraction(n, l);
     diffuse += scale * (kDiffuse * lambert);
-    specular += scale * (lobe.y * pow(max(dot(n, normalize(l + view)), 0.0), lobe.x));
+    float vdh;
+    float base = lobe(n, view, l, light_radius[i], r, vdh);
+    specular += scale * (fresnel(vdh) * base);
+    if (clearcoat > 0.0) coat += scale * lobe(n, view, l, light_radius[i], clearcoat_roughness, vdh);
   }
-  out_colour = vec4(albedo * diffuse + specular, 1.0);
+  // The layering of KHR_materials_clearcoat: the coat's Fresnel at the view angle takes its share.
+  float coated = clearcoat * fresnel(max(dot(n, view), 0.0));
+  out_colour = vec4((albedo * diffuse + specular) * (1.0 - coated) + coated * coat, 1.0);
 }

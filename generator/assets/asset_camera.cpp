@@ -60,7 +60,7 @@ void light_like_studio(SceneAssets& assets) {
     l.angle_deg = angle_deg;
     return l;
   };
-  assets.lights = {light("key", -0.5 * r + 1.0 * u - 0.6 * f, 2.4, {1.0, 0.97, 0.92}, 12),
+  assets.lights = {light("key", -0.5 * r + 1.0 * u - 0.6 * f, 2.4, {1.0, 0.97, 0.92}, 24),
                    light("fill", 0.8 * r + 0.3 * u - 0.5 * f, 0.96, {0.92, 0.95, 1.0}, 30),
                    light("rim", 0.2 * r + 0.8 * u + 0.9 * f, 0.8, {1.0, 1.0, 1.0}, 12)};
   // A sky of radiance 0.12 W/m^2/sr: pi * 0.12 W/m^2 on an open face.

@@ -195,8 +195,8 @@ def case_scenes(args):
         casting = [o for o in staging + list(staging[0].children_recursive) if o.visible_shadow]
         check(not casting, f"{name}: the backdrop casts shadows: {casting}")
         key = [o for o in lights if o.name.startswith("key")]
-        check(len(key) == 1 and abs(key[0].data.angle - math.radians(12)) < 1e-4,
-              f"{name}: the key light's angle is not the file's 12 degrees")
+        check(len(key) == 1 and abs(key[0].data.angle - math.radians(24)) < 1e-4,
+              f"{name}: the key light's angle is not the file's 24 degrees")
         print(f"{name}: {len(pieces)} pieces in {len(top[0].children)} collections, "
               f"{len(translucent)} translucent materials", flush=True)
         if name == "salad":  # the others' exposure: case plain (a minute less of rendering)
