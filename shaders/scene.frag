@@ -126,8 +126,8 @@ vec3 tilted_by_relief(vec3 n) {
 // ("Real Shading in Unreal Engine 4", area lights): the direction within the light's disc
 // closest to the mirror direction stands for the disc, and the lobe's peak is lowered by
 // (alpha / alpha')^2 with alpha' = alpha + radius / 2, so that a smooth face mirrors the disc at
-// about the disc's own radiance and a rough one keeps its broad sheen. `vdh` returns
-// the cosine Schlick's Fresnel takes.
+// about the disc's own radiance and a rough one keeps its broad sheen. `vdh` returns the cosine
+// Schlick's Fresnel takes.
 float lobe(vec3 n, vec3 view, vec3 l, float radius, float r, out float vdh) {
   vdh = 1.0;
   float alpha = max(r * r, 2e-3);
@@ -192,7 +192,8 @@ void main() {
     float vdh;
     float base = lobe(n, view, l, light_radius[i], r, vdh);
     specular += scale * (fresnel(vdh) * base);
-    if (clearcoat > 0.0) coat += scale * lobe(n, view, l, light_radius[i], clearcoat_roughness, vdh);
+    if (clearcoat > 0.0)
+      coat += scale * lobe(n, view, l, light_radius[i], clearcoat_roughness, vdh);
   }
   // The layering of KHR_materials_clearcoat: the coat's Fresnel at the view angle takes its share.
   float coated = clearcoat * fresnel(max(dot(n, view), 0.0));
