@@ -96,7 +96,8 @@ Command add_edit_command(CLI::App& app) {
   edit->add_option("--port", args->port,
                    "port on 127.0.0.1 (default 8765; 0: any free port, printed)")
       ->check(number_rule(0, 65535));
-  // The page's volumes (cube 16) within the cost of every volume, whatever the skin's shape.
+  // The page's volumes (the default cube) within the cost of every volume, whatever the skin's
+  // shape.
   edit->add_option("--volume-voxels", args->volume_voxels,
                    "voxels along the longest edge of the cutting page's interior volume")
       ->check(number_rule(4, most_voxels_across(glm::dvec3(1), DiffusionOptions{}.cube_size)));

@@ -12,6 +12,7 @@
 #include "base/error.h"
 #include "base/timer.h"
 #include "cut/piece_views.h"
+#include "diffusion/diffusion.h"
 #include "io/cut_notation.h"
 #include "io/template_parser.h"
 #include "model/model_builder.h"
@@ -31,7 +32,7 @@ struct PieceArgs {
   std::string template_path, cut, output, png;
   int64_t seed = -1;  ///< >= 0: cut the variant of this seed instead of the template
   int width = 800, height = 600;
-  int cube = 16;
+  int cube = kDefaultCubeSize;
   double perlin = 1.0;             ///< Perlin colour modulation strength (the template's npr bands)
   double apart = 0.3;              ///< --apart: how far the pieces are pulled apart (piece_assets)
   StyleArgs style;                 ///< --style, --silhouettes: strokes over the PNG and in .pov

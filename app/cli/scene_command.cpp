@@ -13,6 +13,7 @@
 #include "app/cli/commands.h"
 #include "app/cli/scene_outputs.h"
 #include "base/timer.h"
+#include "diffusion/diffusion.h"
 #include "export/engine_profile.h"
 #include "export/texture_image.h"
 #include "io/scene_parser.h"
@@ -31,7 +32,7 @@ struct SceneArgs {
   std::string scene_path, png, render;
   std::vector<std::string> outputs;
   int64_t seed = -1;  ///< >= 0: overrides the scene's seed
-  int cube = 16;
+  int cube = kDefaultCubeSize;
   std::string colours = "texture";  ///< "texture" or "vertex" (CapColours)
   double texels_per_mm = 0;         ///< CapAtlasOptions::texels_per_m / 1000; 0: the scene's
   bool power_of_two = false;        ///< --power-of-two: texture sides powers of two

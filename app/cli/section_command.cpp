@@ -9,6 +9,7 @@
 #include "app/cli/commands.h"
 #include "base/atomic_file.h"
 #include "base/timer.h"
+#include "diffusion/diffusion.h"
 #include "export/gltf_export.h"
 #include "export/ply_export.h"
 #include "io/plane_spec.h"
@@ -32,7 +33,7 @@ struct SectionArgs {
   std::string plane;
   std::string output;
   std::string png;
-  int cube = 16;
+  int cube = kDefaultCubeSize;
   int width = 800;
   int64_t seed = -1;  ///< >= 0: cut the variant of this seed instead of the template
 };

@@ -12,6 +12,7 @@
 #include "app/cli/commands.h"
 #include "base/timer.h"
 #include "cut/piece_views.h"
+#include "diffusion/diffusion.h"
 #include "io/template_parser.h"
 #include "model/model_builder.h"
 #include "render/image/contact_sheet.h"
@@ -34,7 +35,7 @@ struct SheetArgs {
   std::string cut = "halves";      ///< the cut of items without their own
   int tile = 400;                  ///< tile width in pixels (height 3/4 of it plus the label)
   int columns = 0;                 ///< 0: about sqrt(4/3 * tiles)
-  int cube = 16;
+  int cube = kDefaultCubeSize;
   StyleArgs style;    ///< --style, --silhouettes: strokes over the tiles
   int64_t seed = -1;  ///< >= 0: every template's variant of this seed (with its grains)
 };

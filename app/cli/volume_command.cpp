@@ -18,6 +18,7 @@
 #include "base/error.h"
 #include "base/timer.h"
 #include "cut/piece_views.h"
+#include "diffusion/diffusion.h"
 #include "export/vdb_export.h"
 #include "export/volume_flipbook.h"
 #include "io/template_parser.h"
@@ -41,7 +42,7 @@ struct VolumeArgs {
   std::vector<std::string> outputs;
   int64_t seed = -1;  ///< >= 0: the variant of this seed instead of the template
   double voxel = 0;   ///< template units; 0 (not given): default_voxel_length
-  int cube = 16;
+  int cube = kDefaultCubeSize;
   double perlin = 1.0;  ///< Perlin colour modulation strength (the template's npr bands)
 };
 

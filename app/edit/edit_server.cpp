@@ -606,8 +606,8 @@ void answer_exception(const httplib::Request&, httplib::Response& res, std::exce
 /// The files of the interior volume of `b`'s template (no seed) with `across` voxels along its
 /// skin's longest edge, as the cutting page loads them, by kind ("json", "colour.png",
 /// "structure.png", "material.png", "glb"): the sidecar naming the flipbooks NAME.KIND, and the
-/// whole object referring to NAME.json. PMVC as cut faces have it (cpu backend, cube 16), with
-/// the template's Perlin modulation.
+/// whole object referring to NAME.json. PMVC as cut faces have it (cpu backend, the default cube),
+/// with the template's Perlin modulation.
 /// @throws InputError when the volume has more regions than a flipbook numbers
 std::map<std::string, std::string> volume_files_of(const Built& b, int across) {
   const std::string& name = b.tmpl.name;

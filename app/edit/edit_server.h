@@ -88,8 +88,8 @@ struct EditServerOptions {
   int coarse_section_cube = 3;  ///< the same while the user drags the plane
   int variant_cube = 8;         ///< PMVC cube-map size of the variants' cuts
   /// Voxels along the skin's longest edge of the cutting page's volume (POST /api/volume/...;
-  /// 4..97, the most volume_cost.h's bound allows any skin at cube 16): coarser than `cutaway
-  /// volume`'s default, so the page opens in seconds.
+  /// 4 up to the most volume_cost.h's bound allows any skin at the default cube): coarser than
+  /// `cutaway volume`'s default, so the page opens in seconds.
   int volume_voxels_across = 64;
   /// Work requests (volume, model picture and glTF, skin, cut, variants) admitted at once,
   /// running or waiting; one more is answered 503 with Retry-After at once.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "base/error.h"
+#include "diffusion/diffusion.h"
 #include "export/gltf_export.h"
 #include "model/template.h"
 #include "pieces/cut_spec.h"
@@ -62,10 +63,10 @@ struct BatchExport {
   /// compression, levels of detail, texture format; camera and lights off unless asked
   /// (batch_gltf_defaults)
   GltfSceneOptions gltf = batch_gltf_defaults();
-  double texels_per_mm = 8.6;  ///< baked cut-face texture density, 0.1..100
-  double perlin = 1.0;         ///< Perlin colour modulation strength, 0..10
-  int cube = 16;               ///< PMVC cube-map texels per face edge, 2..256
-  bool power_of_two = false;   ///< baked textures' sides powers of two, not multiples of 4
+  double texels_per_mm = 8.6;   ///< baked cut-face texture density, 0.1..100
+  double perlin = 1.0;          ///< Perlin colour modulation strength, 0..10
+  int cube = kDefaultCubeSize;  ///< PMVC cube-map texels per face edge, 2..256
+  bool power_of_two = false;    ///< baked textures' sides powers of two, not multiples of 4
 };
 
 /// The most assets (items' count x cuts, over all items) one batch may make: its plan holds

@@ -16,7 +16,7 @@ namespace cutaway {
 /// Defaults: seed 0 (an item's seed: the batch's); units mm; an item's count 1, cuts
 /// [{type: halves}], variation 1; outputs model false, thumbnails false, thumbnail_size 256,
 /// sample 12; export compress none, lods 0, textures jpeg, texels_per_mm 8.6, perlin 1,
-/// cube 16.
+/// cube kDefaultCubeSize (diffusion.h).
 /// Refused besides types and ranges: seeds above 9e15 (YamlField::integer) and items whose
 /// last seed (seed + count - 1) is above 2^53.
 /// @param text  the file's bytes (YAML 1.2 or JSON, UTF-8)

@@ -36,14 +36,15 @@ constexpr double volume_rays(double voxels, int cube) {
 
 /// The most rays a volume may cost: the default grid (kDefaultVoxelsAcross along the longest
 /// edge) over a cube-shaped box, kDefaultVoxelsAcross + 4 voxels a side (the most that grid
-/// has, rounding included), at the default cube size 16: about 1.56e9. So the default volume
-/// of every template is accepted, and no accepted volume costs more than the roundest
-/// templates' defaults (39 to 347 s of PMVC on two cores, doc/interior-volume.md). The leek's
+/// has, rounding included), at cube size 16: about 1.56e9, a fixed budget (it was the default
+/// cube when the bound was set; at the default cube 12 the same grid costs 57 % of it). So the
+/// default volume of every template is accepted, and no accepted volume costs more than the
+/// roundest templates' defaults at cube 16 (39 to 347 s of PMVC on two cores,
+/// doc/interior-volume.md). The leek's
 /// largest accepted volume (0.99 million voxels of 0.628 mm, 1.54e9 rays counted) cast 0.40e9
 /// and took 198 processor seconds.
 inline constexpr double kMaxVolumeRays = volume_rays(
-    double{kDefaultVoxelsAcross + 4} * (kDefaultVoxelsAcross + 4) * (kDefaultVoxelsAcross + 4),
-    DiffusionOptions{}.cube_size);
+    double{kDefaultVoxelsAcross + 4} * (kDefaultVoxelsAcross + 4) * (kDefaultVoxelsAcross + 4), 16);
 
 /// Passes when a volume of `voxels` voxels at cube size `cube` costs at most kMaxVolumeRays
 /// (volume_rays), else fails with "the volume would cast about R rays (V voxels x P rays

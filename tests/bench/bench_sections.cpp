@@ -1,6 +1,6 @@
 // Cross-section benchmark: for every shipped template, a horizontal cut at mid-height and a
 // vertical cut through the axis, meshed and coloured as `cutaway section` does (cpu backend,
-// cube 16 with adaptive directions, size bound 3 x the template edge), next to the paper's
+// the default cube with adaptive directions, size bound 3 x the template edge), next to the paper's
 // Table 1, to the same points with every texel of the cube cast, and to the sheet ray casting
 // alone for every texel's ray (no colour work), with Embree's own float hits (embree_rays_per_s,
 // cutaway 0.1's) and with the decided hits the backend uses (decided_rays_per_s): pmvc/embree
@@ -8,8 +8,8 @@
 //
 // Run:   make bench                       (builds and runs the `benchmarks` target)
 //   or:  cmake --build build --target bench_sections && ./build/bench_sections
-// Options: --threads N (0: all cores, default), --cube N (default: the CLI default, 16), --repeat N
-// (best of N
+// Options: --threads N (0: all cores, default), --cube N (default: the CLI default,
+// kDefaultCubeSize), --repeat N (best of N
 //          timings per cut, default 3), --gl (also time the GL backend, its agreement with the
 //          cpu backend in steps of 1/255, and whole cuts with it, dense and adaptive; slow on
 //          llvmpipe).

@@ -2,13 +2,14 @@
 // thirteen models, the DS vertex and face counts of build_model, the template's size on disk
 // (the YAML plus the PLY files it references) and the time of a typical cut: one cross-section
 // through the middle of the object (the horizontal plane at mid-height of the DS model's
-// bounds), meshed and coloured as `cutaway section` does (cpu backend, cube 16, size bound
+// bounds), meshed and coloured as `cutaway section` does (cpu backend, the default cube, size bound
 // 3 x the template edge), best of N. The vertical cut through the axis is timed too. The BVH
 // of the diffusion surfaces is built once per model and reported apart (bvh_s).
 //
 // Run:   make bench                       (builds and runs the `benchmarks` target)
 //   or:  cmake --build build --target bench_templates && ./build/bench_templates
-// Options: --threads N (0: all cores, default), --cube N (default 16), --repeat N (best of N,
+// Options: --threads N (0: all cores, default), --cube N (default kDefaultCubeSize), --repeat N
+// (best of N,
 //          default 3).
 // The paper's figures come from tests/data/paper-table1.tsv. Its times are for a 2010 laptop (2.6
 // GHz CPU, NVIDIA Quadro FX 570M); its sizes are of its model files, ours of the templates.

@@ -197,9 +197,9 @@ TEST(OptionChecks, TheLeekAtAQuarterMillimetreIsRefusedWithItsCostAndACoarserVox
   const RunResult run = test::run_cutaway(
       {"volume", "templates/leek.yaml", "--voxel", "0.25", "-o", (dir / "leek").string()});
   EXPECT_EQ(run.exit_code, 2) << run.err;
-  // 134 x 804 x 134 voxels, each 24 rays to classify and 6 x 16^2 of PMVC.
-  EXPECT_NE(run.err.find("--voxel: the volume would cast about 2.25e+10 rays (1.44e+07 voxels "
-                         "x 1560 rays each at cube 16), more than the 1.56e+09 any volume may "
+  // 134 x 804 x 134 voxels, each 24 rays to classify and 6 x 12^2 of PMVC (the default cube).
+  EXPECT_NE(run.err.find("--voxel: the volume would cast about 1.28e+10 rays (1.44e+07 voxels "
+                         "x 888 rays each at cube 12), more than the 1.56e+09 any volume may "
                          "cost; give --voxel "),
             std::string::npos)
       << run.err;
@@ -236,7 +236,10 @@ TEST(OptionChecks, TheVolumeBoundIsVoxelsTimesRaysAndKeepsEveryDefaultGrid) {
     EXPECT_FALSE(check_volume_rays(beyond.x * beyond.y * beyond.z, 16) &&
                  beyond.x * beyond.y * beyond.z <= kMaxVolumeVoxels);
   }
-  EXPECT_EQ(most_voxels_across(glm::dvec3(1), 16), 97);  // the editor's --volume-voxels bound
+  EXPECT_EQ(most_voxels_across(glm::dvec3(1), 16), 97);
+  // The bound is a cost: at the default cube 12 (888 rays a voxel, not 1,560) a grid may hold
+  // 1.76 times the voxels.
+  EXPECT_EQ(most_voxels_across(glm::dvec3(1), 12), 117);
 }
 
 TEST(OptionChecks, ABatchVolumeBeyondTheBoundIsRefusedAtItsField) {
@@ -251,7 +254,7 @@ TEST(OptionChecks, ABatchVolumeBeyondTheBoundIsRefusedAtItsField) {
                                          "the volume would cast about "),
             std::string::npos)
       << run.err;
-  EXPECT_NE(run.err.find("; give volume_voxels 98 or fewer"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("; give volume_voxels 118 or fewer"), std::string::npos) << run.err;
   // The same refusal before a batch run's work, and a larger cube counts too.
   run = test::run_cutaway({"batch", file.string(), "--no-cache", "-o", (dir / "out").string()});
   EXPECT_EQ(run.exit_code, 2) << run.err;
@@ -279,10 +282,13 @@ TEST(OptionChecks, TheEditorsVolumeVoxelsStayWithinTheBound) {
   CLI::App app;
   cli::CommonOptions common;
   const std::vector<cli::Command> commands = cli::add_cutaway_commands(app, common);
-  EXPECT_THROW(app.parse("edit --volume-voxels 98", false), CLI::ValidationError);
+  // The page's volumes are made at the default cube: most_voxels_across at it.
+  const int most = most_voxels_across(glm::dvec3(1), kDefaultCubeSize);
+  EXPECT_THROW(app.parse("edit --volume-voxels " + std::to_string(most + 1), false),
+               CLI::ValidationError);
   CLI::App again;
   const std::vector<cli::Command> more = cli::add_cutaway_commands(again, common);
-  EXPECT_NO_THROW(again.parse("edit --volume-voxels 97", false));
+  EXPECT_NO_THROW(again.parse("edit --volume-voxels " + std::to_string(most), false));
 }
 
 }  // namespace

@@ -66,7 +66,7 @@ TEST(BatchFormat, ReadsItemsCutsAndDefaults) {
   EXPECT_EQ(b.items[1].cuts[0].type, CutType::Halves);
   EXPECT_FALSE(b.outputs.model);
   EXPECT_EQ(b.outputs.sample, 12);
-  EXPECT_EQ(b.export_options.cube, 16);
+  EXPECT_EQ(b.export_options.cube, kDefaultCubeSize);                   // 12
   EXPECT_EQ(b.export_options.gltf.collision, GltfCollision::Godot);     // engine-ready by default
   EXPECT_EQ(b.export_options.gltf.compression, GltfCompression::None);  // every engine reads it
   EXPECT_FALSE(b.export_options.gltf.camera_and_lights);
