@@ -219,8 +219,11 @@ TEST(FoldPca, EverySectionAtAHeightIsRebuiltInTheNewFolds) {
   }
   check_template_curves(v);
   const DsModel m = build_model(v);
-  for (const auto& surface : m.surfaces)
-    if (surface.name == "chambers") EXPECT_EQ(components(surface.mesh), 6);
+  for (const auto& surface : m.surfaces) {
+    if (surface.name == "chambers") {
+      EXPECT_EQ(components(surface.mesh), 6);
+    }
+  }
 }
 
 TEST(FoldPca, MeanOfEqualFoldsRebuildsTheTemplate) {
