@@ -119,26 +119,28 @@ vec3 tilted_by_relief(vec3 n) {
   return dot(tilted, tilted) > 0.0 ? normalize(tilted) : n;
 }
 
-// The specular lobe of light i toward the eye, per unit of the light's display scale (its
-// E / (683 pi)) and before Fresnel: glTF 2.0's metal-rough BRDF (Appendix B: the Trowbridge-Reitz
-// (GGX) distribution of alpha = roughness^2, Smith's height-correlated visibility) times E cos,
-// for a light of angular radius `radius` (radians) by the representative point of Karis 2013
-// ("Real Shading in Unreal Engine 4", area lights): the direction within the light's disc
-// closest to the mirror direction stands for the disc, and the lobe's peak is lowered by
-// (alpha / alpha')^2 with alpha' = alpha + radius / 2, so that a smooth face mirrors the disc at
-// about the disc's own radiance and a rough one keeps its broad sheen. `vdh` returns the cosine
-// Schlick's Fresnel takes.
+// The direction within the disc of angular radius `radius` (radians) around the direction `l`
+// toward a light that lies closest to `mirror` (the view direction mirrored about the normal):
+// the representative point of Karis 2013 ("Real Shading in Unreal Engine 4", area lights), which
+// stands for the whole disc in lobe(). `mirror` itself where it falls inside the disc.
+vec3 toward_disc(vec3 mirror, vec3 l, float radius) {
+  if (radius <= 0.0) return l;
+  float c = dot(mirror, l);
+  if (c >= cos(radius)) return mirror;
+  vec3 across = mirror - c * l;
+  return dot(across, across) > 1e-12 ? cos(radius) * l + sin(radius) * normalize(across) : l;
+}
+
+// The specular lobe toward the eye of a light seen at `l` (toward_disc() of its disc of angular
+// radius `radius`), per unit of the light's display scale (its E / (683 pi)) and before Fresnel:
+// glTF 2.0's metal-rough BRDF (Appendix B: the Trowbridge-Reitz (GGX) distribution of
+// alpha = roughness^2, Smith's height-correlated visibility) times E cos, its peak lowered by
+// (alpha / alpha')^2 with alpha' = alpha + radius / 2 (Karis 2013), so that a smooth face mirrors
+// the disc at about the disc's own radiance and a rough one keeps its broad sheen. `vdh` returns
+// the cosine Schlick's Fresnel takes.
 float lobe(vec3 n, vec3 view, vec3 l, float radius, float r, out float vdh) {
   vdh = 1.0;
   float alpha = max(r * r, 2e-3);
-  vec3 mirror = reflect(-view, n);
-  float c = dot(mirror, l);
-  if (radius > 0.0 && c < cos(radius)) {
-    vec3 across = mirror - c * l;
-    if (dot(across, across) > 1e-12) l = cos(radius) * l + sin(radius) * normalize(across);
-  } else if (radius > 0.0) {
-    l = mirror;
-  }
   float widened = min(alpha + 0.5 * radius, 1.0);
   float ndl = dot(n, l), ndv = max(dot(n, view), 1e-4);
   if (ndl <= 0.0) return 0.0;
@@ -176,6 +178,7 @@ void main() {
   float hemisphere = mix(kGround, kSky, 0.5 + 0.5 * dot(n, up_view));
   vec3 diffuse = vec3(hemisphere * ambient_scale);
   vec3 specular = vec3(0.0), coat = vec3(0.0);
+  vec3 mirror = reflect(-view, n);
   for (int i = 0; i < light_count; ++i) {
     vec3 l = light_vector[i].xyz;
     vec3 scale = light_scale[i];
@@ -189,11 +192,13 @@ void main() {
     if (lambert <= 0.0) continue;
     if (i == shadow_light) scale *= lit_fraction(n, l);
     diffuse += scale * (kDiffuse * lambert);
+    // The disc's point that both lobes see (it depends on the light and the normal alone).
+    vec3 seen = toward_disc(mirror, l, light_radius[i]);
     float vdh;
-    float base = lobe(n, view, l, light_radius[i], r, vdh);
+    float base = lobe(n, view, seen, light_radius[i], r, vdh);
     specular += scale * (fresnel(vdh) * base);
     if (clearcoat > 0.0)
-      coat += scale * lobe(n, view, l, light_radius[i], clearcoat_roughness, vdh);
+      coat += scale * lobe(n, view, seen, light_radius[i], clearcoat_roughness, vdh);
   }
   // The layering of KHR_materials_clearcoat: the coat's Fresnel at the view angle takes its share.
   float coated = clearcoat * fresnel(max(dot(n, view), 0.0));
