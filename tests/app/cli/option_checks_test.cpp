@@ -18,6 +18,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/cli/commands.h"
+#include "diffusion/diffusion.h"
 #include "test_support.h"
 #include "volume/volume_cost.h"
 
