@@ -17,7 +17,7 @@ constexpr int kPayloadVersion = 2;
 static_assert(sizeof(Container) == 64, "a new Container field: add it to placement_cache_key");
 static_assert(sizeof(LayoutOptions) == 120,
               "a new LayoutOptions field: add it to placement_cache_key");
-static_assert(sizeof(SettleOptions) == 184,
+static_assert(sizeof(SettleOptions) == 216,
               "a new SettleOptions field: add it to placement_cache_key");
 
 nlohmann::ordered_json vec_json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
@@ -73,6 +73,8 @@ nlohmann::ordered_json settle_json(const SettleOptions& o) {
           {"max_redrops", o.max_redrops},
           {"max_overhang", o.max_overhang},
           {"min_cut_face_up", o.min_cut_face_up},
+          {"to_camera", vec_json(o.to_camera)},
+          {"min_cut_face_seen", o.min_cut_face_seen},
           {"none_radius_m", o.none_radius_m}};
 }
 

@@ -239,6 +239,20 @@ class World {
 
   void remove(size_t k) { world_->removeRigidBody(bodies_[k].get()); }
 
+  /// The bounding boxes (low, high corners, metres) of the bodies in the world other than the
+  /// body with index `skip`.
+  std::vector<std::pair<glm::dvec3, glm::dvec3>> boxes_except(size_t skip) const {
+    std::vector<std::pair<glm::dvec3, glm::dvec3>> out;
+    for (size_t j = 0; j < bodies_.size(); ++j) {
+      if (j == skip || !bodies_[j]->isInWorld()) continue;
+      btVector3 lo, hi;
+      bodies_[j]->getAabb(lo, hi);
+      out.push_back({glm::dvec3(lo.x(), lo.y(), lo.z()) / kUnitsPerMetre,
+                     glm::dvec3(hi.x(), hi.y(), hi.z()) / kUnitsPerMetre});
+    }
+    return out;
+  }
+
   /// The highest point of any body in the world (metres).
   double top() const {
     double y = 0;
@@ -334,16 +348,10 @@ double largest_motion(const std::vector<SettleBody>& bodies, const std::vector<P
   return moved;
 }
 
-/// Whether a piece at `pose` lies in the container: its centre of mass over the resting area,
-/// above the table and below `ceiling` (higher, a failed simulation step has thrown it), and
-/// none of its collision shape's corners more than max_overhang of its size beyond the
-/// resting area's edge.
-bool rests_inside(const Container& container, const SettleBody& body, const Placement& pose,
-                  double ceiling, const SettleOptions& options) {
-  const glm::dvec3 c = centre_of_mass(body, pose);
-  if (!all_finite(c) || c.y <= 0 || c.y >= ceiling ||
-      !rest_height(container, c.x, c.z, options.none_radius_m).has_value())
-    return false;
+/// Whether some corner of a piece's collision shape at `pose` lies more than max_overhang of
+/// its size beyond the resting area's edge.
+bool hangs_over(const Container& container, const SettleBody& body, const Placement& pose,
+                const SettleOptions& options) {
   glm::dvec3 low(std::numeric_limits<double>::infinity()), high = -low;
   double overhang = 0;
   for (const auto& part : body.shape->parts) {
@@ -355,25 +363,103 @@ bool rests_inside(const Container& container, const SettleBody& body, const Plac
     }
   }
   const glm::dvec3 extent = high - low;
-  return overhang <= options.max_overhang * std::max({extent.x, extent.y, extent.z});
+  return overhang > options.max_overhang * std::max({extent.x, extent.y, extent.z});
+}
+
+/// Whether a piece at `pose` lies in the container: its centre of mass over the resting area,
+/// above the table and below `ceiling` (higher, a failed simulation step has thrown it), and
+/// not hanging over the resting area's edge (hangs_over).
+bool rests_inside(const Container& container, const SettleBody& body, const Placement& pose,
+                  double ceiling, const SettleOptions& options) {
+  const glm::dvec3 c = centre_of_mass(body, pose);
+  if (!all_finite(c) || c.y <= 0 || c.y >= ceiling ||
+      !rest_height(container, c.x, c.z, options.none_radius_m).has_value())
+    return false;
+  return !hangs_over(container, body, pose, options);
 }
 
 /// Whether a piece at `pose` shows its cut face: none to show, or its normal's upward
-/// component at least min_cut_face_up.
+/// component at least min_cut_face_up and, with a camera, its component towards the camera
+/// at least min_cut_face_seen.
 bool shows_cut_face(const SettleBody& body, const Placement& pose, const SettleOptions& options) {
   if (glm::length(body.cut_face) == 0) return true;
-  return (pose.rotation * glm::normalize(body.cut_face)).y >= options.min_cut_face_up;
+  const glm::dvec3 n = pose.rotation * glm::normalize(body.cut_face);
+  if (n.y < options.min_cut_face_up) return false;
+  return glm::length(options.to_camera) == 0 ||
+         glm::dot(n, glm::normalize(options.to_camera)) >= options.min_cut_face_seen;
+}
+
+/// Spots tried across the resting area, a side, by over_free_ground.
+constexpr int kFreeGroundSteps = 24;
+
+/// `pose` (a piece as it rests) moved level, its turn kept, so that its centre of mass lies
+/// over the freest spot: where the box of its collision shape's corners overlaps the other
+/// bodies' boxes least in plan (the sum of the overlaps' areas), the nearest to `target` (x,
+/// z, metres) among equals, and does not hang over the resting area's edge (hangs_over). The
+/// spots: `target` and a kFreeGroundSteps square grid over the resting area (rest_radius),
+/// those whose centre lies over it (rest_height). None when every spot hangs over.
+std::optional<Placement> over_free_ground(const World& world, const SettleBody& body, size_t self,
+                                          const Placement& pose, const glm::dvec2& target,
+                                          const SettleOptions& options) {
+  const glm::dvec3 centre = centre_of_mass(body, pose);
+  glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi = -lo;  // footprint about centre
+  for (const auto& part : body.shape->parts)
+    for (const glm::dvec3& corner : part.corners) {
+      const glm::dvec3 p = pose.translation + pose.rotation * corner - centre;
+      lo = glm::min(lo, glm::dvec2(p.x, p.z));
+      hi = glm::max(hi, glm::dvec2(p.x, p.z));
+    }
+  const auto others = world.boxes_except(self);
+  const double r = rest_radius(world.container(), options.none_radius_m);
+  std::vector<glm::dvec2> spots{target};
+  for (int i = 0; i <= kFreeGroundSteps; ++i)
+    for (int j = 0; j <= kFreeGroundSteps; ++j)
+      spots.push_back(
+          glm::dvec2(-r + 2 * r * i / kFreeGroundSteps, -r + 2 * r * j / kFreeGroundSteps));
+  std::optional<Placement> best;
+  double best_overlap = std::numeric_limits<double>::infinity(), best_distance = best_overlap;
+  for (const glm::dvec2& spot : spots) {
+    if (!rest_height(world.container(), spot.x, spot.y, options.none_radius_m)) continue;
+    double overlap = 0;
+    for (const auto& [olo, ohi] : others) {
+      const double dx = std::min(ohi.x, spot.x + hi.x) - std::max(olo.x, spot.x + lo.x);
+      const double dz = std::min(ohi.z, spot.y + hi.y) - std::max(olo.z, spot.y + lo.y);
+      if (dx > 0 && dz > 0) overlap += dx * dz;
+    }
+    const double distance = glm::length(spot - target);
+    if (overlap > best_overlap || (overlap == best_overlap && distance >= best_distance)) continue;
+    Placement moved = pose;
+    moved.translation += glm::dvec3(spot.x - centre.x, 0, spot.y - centre.z);
+    if (hangs_over(world.container(), body, moved, options)) continue;
+    best = moved;
+    best_overlap = overlap;
+    best_distance = distance;
+  }
+  return best;
+}
+
+/// The turn about the vertical (+Y) that brings the horizontal part of `face` to that of
+/// `to_camera`; none where either has no horizontal part.
+glm::dquat spin_towards(const glm::dvec3& face, const glm::dvec3& to_camera) {
+  const glm::dvec2 a(face.x, face.z), b(to_camera.x, to_camera.z);
+  if (glm::length(a) < 1e-9 || glm::length(b) < 1e-9) return glm::dquat(1, 0, 0, 0);
+  // Rotating by t about +Y takes (x, z) to (x cos t + z sin t, -x sin t + z cos t).
+  const double t = std::atan2(a.y * b.x - a.x * b.y, a.x * b.x + a.y * b.y);
+  return glm::angleAxis(t, glm::dvec3(0, 1, 0));
 }
 
 /// Steps `world` until it rests (no corner moved more than rest_motion_m in a quarter second,
 /// every body sleeps, or every body is frozen) or max_seconds pass; a body that rests for
 /// freeze_after_s meanwhile is frozen (World::freeze). Pieces that left the container (or hang
-/// over its edge, rests_inside) are then
-/// dropped again from above the pile and the world runs on; after max_redrops a piece is
-/// removed and counted lost (its id becomes SIZE_MAX). A piece lying on its cut face
-/// (shows_cut_face) is dropped again too, turned with that face straight up, but kept as it
-/// lies after max_redrops. Adds to r.steps, r.body_steps,
-/// r.redrops and r.lost; sets r.all_asleep.
+/// over its edge, rests_inside) are then dropped again from above the pile and the world runs
+/// on: one that rests over the container but hangs over its edge as it lies, moved to the
+/// freest ground where it does not (over_free_ground); else from its drop pose, nearer the
+/// axis each time. After max_redrops a piece is removed and counted lost (its id becomes
+/// SIZE_MAX). A piece lying on its cut face (shows_cut_face) is dropped again too, from its
+/// drop pose turned with that face straight up, and one whose face is up but turned away from
+/// the camera from where it lay, spun about the vertical until the face leans towards the
+/// camera (spin_towards); either is kept as it lies after max_redrops. Adds to r.steps,
+/// r.body_steps, r.redrops and r.lost; sets r.all_asleep.
 void run_to_rest(World& world, const std::vector<SettleBody>& bodies, std::vector<size_t>& id,
                  std::vector<int>& drops, double ceiling, const SettleOptions& options,
                  SettleResult& r) {
@@ -423,17 +509,39 @@ void run_to_rest(World& world, const std::vector<SettleBody>& bodies, std::vecto
       }
       ++drops[k];
       ++r.redrops;
-      // Each drop again nearer the container's axis (a quarter of the way per drop): a piece
-      // that left the container from its drop pose near an edge would leave it again there.
       Placement again = bodies[k].drop;
-      if (inside)  // it lay on its cut face: dropped again with the face straight up
-        again.rotation =
-            glm::rotation(glm::normalize(again.rotation * glm::normalize(bodies[k].cut_face)),
-                          glm::dvec3(0, 1, 0)) *
-            again.rotation;
-      const double pull = static_cast<double>(drops[k]) / (options.max_redrops + 1);
-      const glm::dvec3 drop_centre = centre_of_mass(bodies[k], again);
-      again.translation -= pull * glm::dvec3(drop_centre.x, 0, drop_centre.z);
+      const glm::dvec3 was = centre_of_mass(bodies[k], pose);
+      const glm::dvec3 face = inside ? pose.rotation * glm::normalize(bodies[k].cut_face)
+                                     : glm::dvec3(0.0);  // inside here: it has a cut face
+      std::optional<Placement> moved;
+      if (inside && face.y >= options.min_cut_face_up) {
+        // Face up but turned away from the camera: the way it rests suits it (a thick half
+        // leans back on its round side however it is dropped), so it is spun about the
+        // vertical through its centre of mass, where it lay, until its face leans towards the
+        // camera. (Dropped again from its drop pose, it came to lean back again or fell onto a
+        // neighbour and hid it.)
+        again.rotation = spin_towards(face, options.to_camera) * pose.rotation;
+        again.translation = pose.translation + was - centre_of_mass(bodies[k], again);
+      } else if (!inside && all_finite(was) && was.y > 0 && was.y < ceiling &&
+                 rest_height(world.container(), was.x, was.z, options.none_radius_m) &&
+                 (moved = over_free_ground(world, bodies[k], id[k], pose, glm::dvec2(was.x, was.z),
+                                           options))) {
+        // It rests over the container but hangs over its edge: moved as it lies to the
+        // nearest free ground where it does not (dropped again from its drop pose, nearer the
+        // middle, a large half fell onto a neighbour and hid it).
+        again = *moved;
+      } else {
+        if (inside)  // it lay on its cut face: dropped again with the face straight up
+          again.rotation =
+              glm::rotation(glm::normalize(again.rotation * glm::normalize(bodies[k].cut_face)),
+                            glm::dvec3(0, 1, 0)) *
+              again.rotation;
+        // Each drop again nearer the container's axis (a quarter of the way per drop): a piece
+        // that left the container from its drop pose near an edge would leave it again there.
+        const double pull = static_cast<double>(drops[k]) / (options.max_redrops + 1);
+        const glm::dvec3 drop_centre = centre_of_mass(bodies[k], again);
+        again.translation -= pull * glm::dvec3(drop_centre.x, 0, drop_centre.z);
+      }
       double low = 0;
       for (const auto& part : bodies[k].shape->parts) {
         for (const glm::dvec3& p : part.corners) low = std::min(low, (again.rotation * p).y);

@@ -99,6 +99,16 @@ struct SettleOptions {
   /// lies after max_redrops: a half is laid cut face up, not on it (an avocado half with its
   /// stone rolled onto its cut face). Below -1: never.
   double min_cut_face_up = 0.0;
+  /// The direction from the scene towards the camera (unit; zero: no camera). A piece whose cut
+  /// face ends up but turned away from it, the normal's component along it below
+  /// min_cut_face_seen, is spun where it lies about the vertical until the face leans towards
+  /// the camera, and settled again (kept as it lies after max_redrops): the layout turned the
+  /// face towards the camera, and a half that rolled onto its back showing the camera only a
+  /// sliver of it (a thick half, its face seen edge on) is not the picture it promised.
+  glm::dvec3 to_camera{0.0};
+  /// At 0.25 a face may lean up to about 36 degrees away from a camera 50 degrees above the
+  /// board (it is then seen at 15 degrees or more); straight up it shows 0.77.
+  double min_cut_face_seen = 0.5;
   double none_radius_m = 0.2;  ///< resting radius on the floor (container type none)
 };
 
@@ -121,8 +131,8 @@ struct SettleResult {
   /// The check whose starting layout `placements` is: the last one, unless it did not pass
   /// (check_motion_m) and an earlier one moved less while within stable_motion_m.
   int kept_round = 0;
-  int redrops = 0;  ///< drops again of pieces that had left the container, hung over its edge or
-                    ///< lay on their cut face
+  int redrops = 0;  ///< drops again of pieces that had left the container, hung over its edge,
+                    ///< lay on their cut face or turned it away from the camera
   int lost = 0;     ///< pieces still outside after max_redrops drops again
 };
 

@@ -247,7 +247,7 @@ ScenePieces cut_scene_objects(const Scene& scene, uint64_t seed, const SceneBuil
 
 /// The pieces in `order` dropped by the height-field layout, then settled as rigid bodies
 /// from those poses; one placement per entry of `order`.
-SettleResult lay_out_and_settle(const Scene& scene, uint64_t seed, const SceneBuildOptions& options,
+SettleResult lay_out_and_settle(const Scene& scene, uint64_t seed, const SettleOptions& settle,
                                 const LayoutOptions& layout_options, const ScenePieces& pieces,
                                 const std::vector<size_t>& order, SceneStats& st) {
   const auto t0 = Clock::now();
@@ -269,7 +269,7 @@ SettleResult lay_out_and_settle(const Scene& scene, uint64_t seed, const SceneBu
     const glm::dvec3 cut_face = piece.cut_faces == 1 ? piece.cap_normal : glm::dvec3(0.0);
     bodies[k] = {&pieces.collision[order[k]], pieces.densities[order[k]], drops[k], cut_face};
   }
-  SettleResult settled = settle_pieces(bodies, scene.container, options.settle);
+  SettleResult settled = settle_pieces(bodies, scene.container, settle);
   st.seconds_physics = seconds_since(t_physics);
   return settled;
 }
@@ -285,11 +285,13 @@ std::vector<Placement> place_pieces(const Scene& scene, uint64_t seed,
   const LayoutView view = layout_view(scene.container, scene_view_direction(scene));
   LayoutOptions layout_options = options.layout;
   layout_options.to_camera = view.to_camera;
+  SettleOptions settle = options.settle;  // the cut faces must end turned to the same camera
+  settle.to_camera = view.to_camera;
   std::string key;
   std::optional<SettleResult> cached;
   if (options.cache) {
-    key = placement_cache_key({pieces.cut_keys, pieces.arrange, seed, &scene.container,
-                               &layout_options, &options.settle});
+    key = placement_cache_key(
+        {pieces.cut_keys, pieces.arrange, seed, &scene.container, &layout_options, &settle});
     if (std::optional<std::string> payload = options.cache->load(key)) {
       // Untrusted input: checked against this scene's pieces and container, else made again.
       cached = decode_settled(*payload, order.size());
@@ -307,7 +309,7 @@ std::vector<Placement> place_pieces(const Scene& scene, uint64_t seed,
   st.cached_placements = cached.has_value();
   SettleResult settled =
       cached ? std::move(*cached)
-             : lay_out_and_settle(scene, seed, options, layout_options, pieces, order, st);
+             : lay_out_and_settle(scene, seed, settle, layout_options, pieces, order, st);
   if (options.cache && !cached) options.cache->store(key, encode_settled(settled));
   for (size_t k = 0; k < order.size(); ++k)
     if (settled.placements[k].placed) st.decomposed_pieces += pieces.collision[order[k]].decomposed;

@@ -276,6 +276,16 @@ glm::dvec3 flat_side(const ShadedMesh& piece) {
   return axes[std::max_element(area, area + 4) - area];
 }
 
+/// `shape` turned by `turn` and held with its lowest corner 5 mm over a board 20 mm high, its
+/// origin over (x, z).
+Placement over_the_board(const CollisionShape& shape, const glm::dquat& turn, double x = 0,
+                         double z = 0) {
+  double low = 0;
+  for (const auto& part : shape.parts)
+    for (const glm::dvec3& p : part.corners) low = std::min(low, (turn * p).y);
+  return {true, turn, glm::dvec3(x, 0.025 - low, z)};
+}
+
 TEST(PhysicsSettle, AHalfLyingOnItsCutFaceIsDroppedAgainFaceUp) {
   const std::vector<ShadedMesh> halves = pieces_of("tomato", "halves");
   const CollisionShape shape = collision_shape(halves[0]);
@@ -283,10 +293,7 @@ TEST(PhysicsSettle, AHalfLyingOnItsCutFaceIsDroppedAgainFaceUp) {
   Container board{ContainerType::Board, 0, 0.3, 0.2, 0.02};
   // Dropped face down just over the middle of the board: it lands on its cut face.
   const glm::dquat down = glm::rotation(face, glm::dvec3(0, -1, 0));
-  double low = 0;
-  for (const auto& part : shape.parts)
-    for (const glm::dvec3& p : part.corners) low = std::min(low, (down * p).y);
-  const Placement drop{true, down, glm::dvec3(0, 0.025 - low, 0)};
+  const Placement drop = over_the_board(shape, down);
   const auto face_up = [&](const SettleResult& r) { return (r.placements[0].rotation * face).y; };
   SettleOptions ignore;
   ignore.min_cut_face_up = -2;
@@ -302,6 +309,65 @@ TEST(PhysicsSettle, AHalfLyingOnItsCutFaceIsDroppedAgainFaceUp) {
   const SettleResult slice = settle_pieces({{&shape, 1000, drop}}, board, SettleOptions{});
   EXPECT_EQ(slice.redrops, 0);
   EXPECT_LT(face_up(slice), -0.9);
+}
+
+// A piece that rests with its cut face up but leaning away from the camera is spun about the
+// vertical, where it lies, until the face leans towards the camera. A tomato's eighth lying on
+// one of its sides shows the other leaning 45 degrees: with the camera on the side the face
+// leans to, it is left as it lies.
+TEST(PhysicsSettle, AFaceLeaningAwayFromTheCameraIsSpunTowardsIt) {
+  const std::vector<ShadedMesh> wedges = pieces_of("tomato", "wedges:8");
+  const CollisionShape shape = collision_shape(wedges[0]);
+  // The eighth between 0 and 45 degrees: one side faces +Z, the other (-1, 0, -1) / sqrt 2.
+  const glm::dvec3 side = flat_side(wedges[0]), face = glm::normalize(glm::dvec3(-1, 0, -1));
+  ASSERT_EQ(side, glm::dvec3(0, 0, 1));
+  Container board{ContainerType::Board, 0, 0.4, 0.4, 0.02};
+  const glm::dquat on_side = glm::rotation(side, glm::dvec3(0, -1, 0));
+  const Placement drop = over_the_board(shape, on_side);
+  const auto normal = [&](const SettleResult& r) { return r.placements[0].rotation * face; };
+  const SettleResult free = settle_pieces({{&shape, 1000, drop, face}}, board, SettleOptions{});
+  const glm::dvec3 lean = normal(free);
+  EXPECT_NEAR(lean.y, std::sqrt(0.5), 0.05);
+  const glm::dvec2 away = -glm::normalize(glm::dvec2(lean.x, lean.z));
+  const double up50 = std::sin(glm::radians(50.0)), out50 = std::cos(glm::radians(50.0));
+  SettleOptions facing;  // a camera 50 degrees up on the side away from the lean
+  facing.to_camera = glm::dvec3(away.x * out50, up50, away.y * out50);
+  ASSERT_LT(glm::dot(lean, facing.to_camera), facing.min_cut_face_seen);
+  const SettleResult r = settle_pieces({{&shape, 1000, drop, face}}, board, facing);
+  EXPECT_GE(r.redrops, 1);
+  EXPECT_EQ(r.lost, 0);
+  EXPECT_GT(glm::dot(normal(r), facing.to_camera), 0.9);
+  SettleOptions behind = facing;  // the camera on the side it leans to: nothing to do
+  behind.to_camera = glm::dvec3(-away.x * out50, up50, -away.y * out50);
+  const SettleResult b = settle_pieces({{&shape, 1000, drop, face}}, board, behind);
+  EXPECT_EQ(b.redrops, 0);
+  EXPECT_NEAR(glm::length(normal(b) - lean), 0.0, 1e-9);
+}
+
+// A piece resting over the board but hanging over its edge is moved, as it lies, to the
+// freest ground where it does not: beside a neighbour, not onto it.
+TEST(PhysicsSettle, APieceHangingOverTheEdgeMovesToFreeGround) {
+  const std::vector<ShadedMesh> halves = pieces_of("tomato", "halves");
+  const CollisionShape shape = collision_shape(halves[0]);
+  const glm::dvec3 face = flat_side(halves[0]);
+  Container board{ContainerType::Board, 0, 0.3, 0.2, 0.02};
+  const glm::dquat up = glm::rotation(face, glm::dvec3(0, 1, 0));
+  // One half where the other, face up with its centre just inside the right edge, would land
+  // when dropped again a quarter of the way nearer the axis (the drop again of a piece that
+  // left the board).
+  const Placement middle = over_the_board(shape, up, 0.1), edge = over_the_board(shape, up, 0.14);
+  const SettleResult r = settle_pieces({{&shape, 1000, middle, face}, {&shape, 1000, edge, face}},
+                                       board, SettleOptions{});
+  EXPECT_GE(r.redrops, 1);
+  EXPECT_EQ(r.lost, 0);
+  const auto centre = [&](size_t k) {
+    return r.placements[k].translation + r.placements[k].rotation * shape.centroid;
+  };
+  const glm::dvec3 a = centre(0), b = centre(1);
+  EXPECT_LT(std::fabs(b.x), 0.15);
+  // Both rest on the board, neither on the other: their centres at the same height, apart.
+  EXPECT_NEAR(a.y, b.y, 0.003);
+  EXPECT_GT(glm::length(glm::dvec2(a.x - b.x, a.z - b.z)), 0.05);
 }
 
 /// The scene file's pieces, as placed: per instance (not the container, first, nor the
