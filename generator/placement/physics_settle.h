@@ -106,8 +106,8 @@ struct SettleOptions {
   /// face towards the camera, and a half that rolled onto its back showing the camera only a
   /// sliver of it (a thick half, its face seen edge on) is not the picture it promised.
   glm::dvec3 to_camera{0.0};
-  /// At 0.25 a face may lean up to about 36 degrees away from a camera 50 degrees above the
-  /// board (it is then seen at 15 degrees or more); straight up it shows 0.77.
+  /// At 0.5 a face may lean up to about 20 degrees away from a camera 50 degrees above the
+  /// board (it is then seen at 30 degrees or more); straight up it shows 0.77.
   double min_cut_face_seen = 0.5;
   double none_radius_m = 0.2;  ///< resting radius on the floor (container type none)
 };

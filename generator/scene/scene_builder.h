@@ -42,8 +42,7 @@ struct SceneBuildOptions {
   std::function<void(int, int, const std::string&)> progress;
   LayoutOptions layout;             ///< its to_camera is replaced by the scene camera's direction
   CollisionShapeOptions collision;  ///< the pieces' rigid bodies
-  SettleOptions
-      settle;  ///< the settling of the layout's drop poses; its to_camera is replaced like layout's
+  SettleOptions settle;             ///< the settling; its to_camera is replaced like layout's
 };
 
 /// Counts and timings of one build_scene call (wall seconds); those of cutting the objects
