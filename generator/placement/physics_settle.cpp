@@ -325,6 +325,14 @@ class World {
   std::vector<bool> pinned_;                          // per body: frozen for good (pin)
 };
 
+/// Calls f(p) for every corner p of the body's collision shape placed at `pose` (world frame,
+/// metres), part by part.
+template <class F>
+void for_each_corner(const SettleBody& body, const Placement& pose, F&& f) {
+  for (const ConvexPart& part : body.shape->parts)
+    for (const glm::dvec3& corner : part.corners) f(pose.translation + pose.rotation * corner);
+}
+
 /// How far the farthest corner of the body's collision shape lies between poses a and b (metres);
 /// 0 unless placed in both.
 double body_motion(const SettleBody& body, const Placement& a, const Placement& b) {
@@ -354,14 +362,11 @@ bool hangs_over(const Container& container, const SettleBody& body, const Placem
                 const SettleOptions& options) {
   glm::dvec3 low(std::numeric_limits<double>::infinity()), high = -low;
   double overhang = 0;
-  for (const auto& part : body.shape->parts) {
-    for (const glm::dvec3& corner : part.corners) {
-      const glm::dvec3 p = pose.translation + pose.rotation * corner;
-      low = glm::min(low, p);
-      high = glm::max(high, p);
-      overhang = std::max(overhang, resting_overhang(container, p.x, p.z, options.none_radius_m));
-    }
-  }
+  for_each_corner(body, pose, [&](const glm::dvec3& p) {
+    low = glm::min(low, p);
+    high = glm::max(high, p);
+    overhang = std::max(overhang, resting_overhang(container, p.x, p.z, options.none_radius_m));
+  });
   const glm::dvec3 extent = high - low;
   return overhang > options.max_overhang * std::max({extent.x, extent.y, extent.z});
 }
@@ -403,12 +408,11 @@ std::optional<Placement> over_free_ground(const World& world, const SettleBody& 
                                           const SettleOptions& options) {
   const glm::dvec3 centre = centre_of_mass(body, pose);
   glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi = -lo;  // footprint about centre
-  for (const auto& part : body.shape->parts)
-    for (const glm::dvec3& corner : part.corners) {
-      const glm::dvec3 p = pose.translation + pose.rotation * corner - centre;
-      lo = glm::min(lo, glm::dvec2(p.x, p.z));
-      hi = glm::max(hi, glm::dvec2(p.x, p.z));
-    }
+  for_each_corner(body, pose, [&](const glm::dvec3& p) {
+    const glm::dvec2 plan(p.x - centre.x, p.z - centre.z);
+    lo = glm::min(lo, plan);
+    hi = glm::max(hi, plan);
+  });
   const auto others = world.boxes_except(self);
   const double r = rest_radius(world.container(), options.none_radius_m);
   std::vector<glm::dvec2> spots{target};
@@ -542,10 +546,9 @@ void run_to_rest(World& world, const std::vector<SettleBody>& bodies, std::vecto
         const glm::dvec3 drop_centre = centre_of_mass(bodies[k], again);
         again.translation -= pull * glm::dvec3(drop_centre.x, 0, drop_centre.z);
       }
-      double low = 0;
-      for (const auto& part : bodies[k].shape->parts) {
-        for (const glm::dvec3& p : part.corners) low = std::min(low, (again.rotation * p).y);
-      }
+      double low = 0;  // the lowest corner below the piece's origin
+      for_each_corner(bodies[k], Placement{true, again.rotation, glm::dvec3(0.0)},
+                      [&](const glm::dvec3& p) { low = std::min(low, p.y); });
       again.translation.y = top + 0.005 - low;
       world.reset(id[k], bodies[k], again);
       still[k] = 0;
