@@ -21,6 +21,8 @@ const past = [], future = [];   // undo history: texts
 let selected = 0;               // the selected surface
 let selectedHeight = 0;         // of a surface with `sections`: the one the top view edits
 let verdict = null;             // the last answer of /api/check
+let verdictText = '';           // the text `verdict` answers: the views show it, never newer
+                                // text still being checked (which may not build)
 let version = 0;                // of the text sent; older answers are dropped
 let framed = false;             // the 3D view is framed on the first model
 
@@ -614,8 +616,10 @@ async function showPicture(img, answer) {
 }
 
 let sectionBusy = false, sectionAgain = null;
-/// Cuts at the slider's height: coarse (a small PMVC cube) while the slider moves, full when
-/// it stops; at most one request at a time, the latest one waiting.
+/// Cuts the last checked text (verdictText, whose box the slider spans) at the slider's height:
+/// coarse (a small PMVC cube) while the slider moves, full when it stops; at most one request
+/// at a time, the latest one waiting. (Cutting the text being typed sent text that does not
+/// build, or a plane outside its box, whenever a cut was queued while a check was pending.)
 async function cut(coarse) {
   if (!verdict || !verdict.ok) return;
   if (sectionBusy) { sectionAgain = coarse; return; }
@@ -624,7 +628,7 @@ async function cut(coarse) {
   const y = lo + (hi - lo) * Number($('plane').value);
   $('height').textContent = y.toFixed(2);
   const t0 = performance.now();
-  const answer = await post(`/api/section.png?y=${y}${coarse ? '&coarse=1' : ''}`, doc.text,
+  const answer = await post(`/api/section.png?y=${y}${coarse ? '&coarse=1' : ''}`, verdictText,
                             'cut');
   if (answer) await showPicture($('section'), answer);
   $('cut-time').textContent = `${((performance.now() - t0) / 1000).toFixed(2)} s${coarse ? ' (coarse)' : ''}`;
@@ -656,6 +660,7 @@ async function runCheck(mine) {
   if (mine !== version) return;
   const firstGood = answer.ok && !(verdict && verdict.ok);
   verdict = answer;
+  verdictText = body;
   showVerdict();
   fillPanel();
   layoutCurves();
@@ -682,7 +687,7 @@ $('show-outside').addEventListener('change', () => {
   if (!verdict?.ok) return;
   window.editorBusy = true;  // until the model is shown
   const mine = version;
-  showModel(mine, doc.text).finally(() => { if (mine === version) window.editorBusy = false; });
+  showModel(mine, verdictText).finally(() => { if (mine === version) window.editorBusy = false; });
 });
 
 let variantsTimer = 0;
@@ -694,7 +699,7 @@ function askVariants(mine, body) {
 }
 $('show-variants').addEventListener('change', () => {
   $('variants').hidden = !$('show-variants').checked;
-  if (verdict?.ok) askVariants(version, doc.text);
+  if (verdict?.ok) askVariants(version, verdictText);
 });
 
 /// The variants' strip (the server answers checks and cuts of newer text meanwhile, and an
@@ -718,6 +723,7 @@ $('save').addEventListener('click', async () => {
     statusLine.textContent = `saved ${answer.file}`;
   } else {
     verdict = answer;
+    verdictText = body;
     showVerdict();
   }
 });
