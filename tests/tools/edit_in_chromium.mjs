@@ -182,6 +182,28 @@ async function sketch(page, dir) {
   await page.locator('#plane').evaluate((e) => { e.value = '0.6'; e.dispatchEvent(new Event('input')); });
   await page.waitForFunction(() => /coarse/.test(document.getElementById('cut-time').textContent));
   const coarse = await page.locator('#cut-time').textContent();
+  // Text typed while a cut waits behind a slow one (the server's answers held back 1.5 s): the
+  // waiting cut is of the last checked text, not of the typing, which does not build (a cut of
+  // it would be refused with a 422, an error in the console).
+  const sectionCut = (url) => url.pathname === '/api/section.png';
+  await page.route(sectionCut, async (route) => {
+    await new Promise((done) => setTimeout(done, 1500));
+    await route.continue();
+  });
+  await page.locator('#plane').evaluate((e) => {
+    e.value = '0.5';
+    e.dispatchEvent(new Event('input'));
+    e.dispatchEvent(new Event('change'));
+  });
+  await page.evaluate(() => { document.querySelector('details').open = true; });
+  await page.locator('#template').fill('surfaces: [unclosed');
+  await page.waitForFunction(() => !/coarse/.test(document.getElementById('cut-time').textContent),
+                             null, { timeout: TIMEOUT_MS });
+  await page.unroute(sectionCut);
+  const cutWhileTyping = await page.evaluate(() => !!document.getElementById('section').getAttribute('src'));
+  await page.click('#undo');
+  await page.evaluate(() => { document.querySelector('details').open = false; });
+  await step(page, 'typed text that is not YAML while a cut waited, and undid it');
   await page.click('#save');
   await page.waitForFunction(() => /saved/.test(document.getElementById('status').textContent));
   await step(page, 'saved');
@@ -189,9 +211,11 @@ async function sketch(page, dir) {
   return {
     ok: /^ok/.test(skin) && before !== undone && redone === before && !/^ok/.test(refused) &&
         /^skin: /.test(atCurve) && /^ok/.test(restored) && /^YAML: /.test(notYaml) &&
-        /^line /.test(wrongShape) && back === good && Math.abs(dragged - widest[0] - 4) < 0.5,
+        /^line /.test(wrongShape) && back === good && Math.abs(dragged - widest[0] - 4) < 0.5 &&
+        cutWhileTyping,
     photo: photoScale, dragged_from: widest[0], dragged_to: dragged, error_at_curve: atCurve,
     picked, cut_seconds: parseFloat(full), coarse_cut_seconds: parseFloat(coarse),
+    cut_while_typing: cutWhileTyping,
   };
 }
 

@@ -39,6 +39,9 @@ TEST(EditPage, SketchANewFruitOverAPhotoAndSaveIt) {
   }
   EXPECT_NE(r.value("error_at_curve", "").find("intersects itself"), std::string::npos);
   EXPECT_NEAR(r.value("dragged_to", 0.0) - r.value("dragged_from", 0.0), 4.0, 0.5);
+  // A cut that waited behind a slow one while text that does not build was typed: a picture
+  // of the last checked text, not a refusal (which would also be a console error above).
+  EXPECT_TRUE(r.value("cut_while_typing", false)) << run.output;
   // The eyedropper took the photo's red, not the default skin colour.
   const std::string picked = r.value("picked", "");
   ASSERT_EQ(picked.size(), 7u);
