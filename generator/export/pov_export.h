@@ -49,8 +49,9 @@ namespace cutaway {
 ///   small, sharp highlight as on moist fruit), the finish of material 0; then
 ///   `#declare Cutaway_Finish_<k>` for every other material k: ambient 1, diffuse 1 (with
 ///   backside illumination `translucency` when translucent), specular 0.625 (1 - roughness),
-///   roughness 0.0005 + 0.05 roughness^2, and for a clear coat phong 0.6 clearcoat and
-///   phong_size round(4 / (clearcoat_roughness + 0.05)); sheen is not shown;
+///   roughness 0.0005 + 0.05 roughness^2, and for a clear coat phong 0.6 clearcoat min(1,
+///   (0.15 / (clearcoat_roughness + 0.05))^1.5) (a rough film's highlight as dim as glTF's
+///   spread lobe) and phong_size round(4 / (clearcoat_roughness + 0.05)); sheen is not shown;
 /// - each mesh with at least one triangle declared ONCE as `#declare Mesh_<k>_<name> = mesh2`:
 ///   vertex_vectors (metres), normal_vectors (omitted when the mesh has no normals; a zero or
 ///   non-finite normal is replaced by the area-weighted normal of its triangles), texture_list
