@@ -395,6 +395,22 @@ TEST(PovExport, RendersLikeTheOpenGlCamera) {
   EXPECT_LE(glm::length(below - bg), 2.5);
 }
 
+TEST(PovExport, ARoughClearCoatGetsADimmerWiderPhong) {
+  SceneAssets s = test_scene();
+  PbrMaterial soft;
+  soft.roughness = 0.85;
+  soft.clearcoat = 0.4;
+  soft.clearcoat_roughness = 0.45;
+  s.materials.push_back({"cut", soft});
+  s.meshes[0].primitives = {{0, s.meshes[0].triangle.size(), 1}};
+  // 0.6 * 0.4 * (0.15 / 0.5)^1.5 = 0.03944: as dim as glTF's lobe spread over a rough film,
+  // not the 0.24 of a sharp one, whose peak a phong keeps however wide it is.
+  EXPECT_EQ(count(scene_to_pov(s), "#declare Cutaway_Finish_1 = finish { ambient 1 diffuse 1 "
+                                   "specular 0.09375 roughness 0.036625 phong 0.039436 "
+                                   "phong_size 8 }"),
+            1u);
+}
+
 TEST(PovExport, AFinishPerMaterialOnTheFacesThatUseIt) {
   SceneAssets s = test_scene();
   PbrMaterial wet;
