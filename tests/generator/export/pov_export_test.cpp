@@ -397,11 +397,8 @@ TEST(PovExport, RendersLikeTheOpenGlCamera) {
 
 TEST(PovExport, ARoughClearCoatGetsADimmerWiderPhong) {
   SceneAssets s = test_scene();
-  PbrMaterial soft;
-  soft.roughness = 0.85;
-  soft.clearcoat = 0.4;
-  soft.clearcoat_roughness = 0.45;
-  s.materials.push_back({"cut", soft});
+  s.materials.push_back(
+      {"cut", {.roughness = 0.85, .clearcoat = 0.4, .clearcoat_roughness = 0.45}});
   s.meshes[0].primitives = {{0, s.meshes[0].triangle.size(), 1}};
   // 0.6 * 0.4 * (0.15 / 0.5)^1.5 = 0.03944: as dim as glTF's lobe spread over a rough film,
   // not the 0.24 of a sharp one, whose peak a phong keeps however wide it is.
@@ -413,12 +410,9 @@ TEST(PovExport, ARoughClearCoatGetsADimmerWiderPhong) {
 
 TEST(PovExport, AFinishPerMaterialOnTheFacesThatUseIt) {
   SceneAssets s = test_scene();
-  PbrMaterial wet;
-  wet.roughness = 0.2;
-  wet.translucency = 0.5;
-  wet.clearcoat = 0.8;
-  wet.clearcoat_roughness = 0.05;
-  s.materials.push_back({"cut", wet});
+  s.materials.push_back(
+      {"cut",
+       {.roughness = 0.2, .translucency = 0.5, .clearcoat = 0.8, .clearcoat_roughness = 0.05}});
   // Mesh 0: its first two triangles plain, the rest wet.
   const size_t n = s.meshes[0].triangle.size();
   s.meshes[0].primitives = {{0, 2, 0}, {2, n - 2, 1}};
