@@ -181,9 +181,9 @@ class HeightField {
     return y;
   }
 
-  /// Whether no piece lies within `gap` cells of t's footprint placed at (i, j): no cell of
-  /// the footprint's rectangle grown by `gap` is occupied (a summed-area table makes it one
-  /// lookup of four corners).
+  /// Whether no piece lies within `gap` cells of t's footprint placed at (i, j), nor the
+  /// container's edge: no cell of the footprint's rectangle grown by `gap` is occupied or off
+  /// the resting area (a summed-area table makes it one lookup of four corners).
   bool free(const Turned& t, int i, int j, int gap) {
     count_occupied();
     const int a0 = std::clamp(i + t.f.a0 - gap, 0, n_);
@@ -201,10 +201,21 @@ class HeightField {
     if (occupied_dirty_) {
       // occupied_[(a) * (n + 1) + b]: the occupied cells in [0, a) x [0, b).
       occupied_.assign(static_cast<size_t>(n_ + 1) * (n_ + 1), 0);
+      if (off_area_.empty()) {  // once: the cells whose centre pieces may not rest on
+        off_area_.resize(static_cast<size_t>(n_) * n_);
+        for (int a = 0; a < n_; ++a) {
+          for (int b = 0; b < n_; ++b) {
+            const glm::dvec2 c = at(a, b);
+            off_area_[static_cast<size_t>(a) * n_ + b] =
+                !rest_height(*container_, c.x, c.y, options_->none_radius_m);
+          }
+        }
+      }
       for (int a = 0; a < n_; ++a) {
         for (int b = 0; b < n_; ++b) {
+          const size_t k = static_cast<size_t>(a) * n_ + b;
           occupied_[static_cast<size_t>(a + 1) * (n_ + 1) + b + 1] =
-              (surface_[static_cast<size_t>(a) * n_ + b] != -kBlocked) +
+              (surface_[k] != -kBlocked || off_area_[k]) +
               occupied_[static_cast<size_t>(a) * (n_ + 1) + b + 1] +
               occupied_[static_cast<size_t>(a + 1) * (n_ + 1) + b] -
               occupied_[static_cast<size_t>(a) * (n_ + 1) + b];
@@ -253,6 +264,7 @@ class HeightField {
   int n_;
   std::vector<double> surface_;
   std::vector<int32_t> occupied_;  ///< summed-area table of the occupied cells, for free()
+  std::vector<char> off_area_;     ///< per cell, 1 where pieces may not rest (made once)
   bool occupied_dirty_ = true;     ///< surface_ changed since occupied_ was summed
 };
 
@@ -500,9 +512,32 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
   // 320 pieces: layout 1.57 s one by one, 1.90 s side by side).
   const bool side_by_side = container.type != ContainerType::Board;
   std::vector<glm::dvec2> scattered;  // where the scattered pieces went
+  struct Beside {
+    glm::dvec2 at;  // centre, x and z
+    double radius;  // of the footprint's bounds, metres
+  };
+  std::map<int, std::vector<Beside>> groups;  // the scattered pieces of each object
   const int gap = static_cast<int>(std::ceil(options.scatter_gap_m / options.cell_m));
   const int step = std::max(1, static_cast<int>(std::lround(options.scan_step_m / options.cell_m)));
+  // The scattered pieces of one object are laid one after another, where the first of them
+  // comes, so that the ground beside the first is still free for the others.
+  std::map<int, std::vector<size_t>> of_object;
+  for (size_t p = 0; p < pieces.size(); ++p)
+    if (pieces[p].arrange == Arrangement::Scatter && pieces[p].group >= 0)
+      of_object[pieces[p].group].push_back(p);
+  std::map<int, size_t> laid_with;  // per object, its scattered pieces
+  for (const auto& [group, ps] : of_object) laid_with[group] = ps.size();
+  std::vector<size_t> sequence;
   for (size_t p = 0; p < pieces.size(); ++p) {
+    const auto together = of_object.find(pieces[p].group);
+    if (pieces[p].arrange != Arrangement::Scatter || pieces[p].group < 0) {
+      sequence.push_back(p);
+    } else if (together != of_object.end()) {
+      sequence.insert(sequence.end(), together->second.begin(), together->second.end());
+      of_object.erase(together);
+    }
+  }
+  for (const size_t p : sequence) {
     const LayoutPiece& piece = pieces[p];
     if (piece.arrange == Arrangement::Fan && out[p].placed) continue;
     Rng rng(derive_seed(seed, {p}));
@@ -514,20 +549,46 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
         piece.arrange == Arrangement::Pile ? options.centre_weight : options.heap_centre_weight;
     double best_score = kBlocked, best_y = 0;
     int best_i = -1, best_j = -1;
+    // The pieces of its own object scattered before it (none: kAlone), and its own radius.
+    const double radius = 0.5 * std::hypot(t.hi.x - t.lo.x, t.hi.z - t.lo.z);
+    static const std::vector<Beside> kAlone;
+    const auto mates_of = groups.find(piece.group);
+    const std::vector<Beside>& mates =
+        piece.group < 0 || mates_of == groups.end() ? kAlone : mates_of->second;
     // A position for the piece at cell (i, j), scored: heaped, the lowest near the axis;
-    // scattered, with its footprint grown by `gap_cells` free, the farthest from the
-    // scattered pieces. kBlocked where it does not fit. Reads the field only.
+    // scattered, with its footprint grown by `gap_cells` free, the nearest to its object's
+    // pieces where there are any, else the farthest from the scattered pieces. kBlocked where
+    // it does not fit (or, for `room_beside`, leaves no room beside). Reads the field only.
     struct Scored {
       double score = kBlocked, y = 0;
+    };
+    // Whether a piece of t's footprint would be free, as t at (i, j) is, in one of 8
+    // directions beside it (its centre 2 radii and the gap away).
+    bool room_beside = false;
+    const double step_beside = (2 * radius + options.scatter_gap_m) / options.cell_m;
+    const auto has_room_beside = [&](int i, int j, int gap_cells) {
+      for (int k = 0; k < 8; ++k) {
+        const double a = kPi / 4 * k;
+        const int di = static_cast<int>(std::lround(step_beside * std::cos(a)));
+        const int dj = static_cast<int>(std::lround(step_beside * std::sin(a)));
+        if (field.rest(t, i + di, j + dj) != kBlocked && field.free(t, i + di, j + dj, gap_cells))
+          return true;
+      }
+      return false;
     };
     const auto score_at = [&](int i, int j, int gap_cells) {
       Scored s;
       if (!heap && !field.free(t, i, j, gap_cells)) return s;
+      if (room_beside && !has_room_beside(i, j, gap_cells)) return s;
       const double y = field.rest(t, i, j);
       if (y == kBlocked) return s;
       const glm::dvec2 at = field.at(i, j);
       s = {y + centre_weight * glm::length(at), y};
-      if (!heap && !scattered.empty()) {
+      if (!heap && !mates.empty()) {
+        double nearest = kBlocked;
+        for (const Beside& m : mates) nearest = std::min(nearest, glm::length(at - m.at));
+        s.score = nearest;
+      } else if (!heap && !scattered.empty()) {
         double nearest = kBlocked;
         for (const glm::dvec2& o : scattered) nearest = std::min(nearest, glm::length(at - o));
         s.score = -nearest;
@@ -562,8 +623,21 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
     // step. Scatter on a crowded board: the gap halves, then goes, before the piece heaps.
     // The first `candidates` are all tried; after them a fit ends the search, so a later block
     // counts up to its first fit, and the generator is left as after drawing those alone.
-    const auto search = [&](int gap_cells) {
-      const int draws = 4 * options.candidates;
+    // A candidate cell: anywhere, or round a seeded one of `mates`, at 0.8 to 2 times the
+    // two footprints' radii and the gap.
+    const auto draw = [&](Rng& r, bool beside) -> glm::ivec2 {
+      if (!beside) {
+        const int i = static_cast<int>(r.below(static_cast<uint32_t>(n)));
+        return {i, static_cast<int>(r.below(static_cast<uint32_t>(n)))};
+      }
+      const Beside& m = mates[r.below(static_cast<uint32_t>(mates.size()))];
+      const double angle = r.uniform(0, 2 * kPi);
+      const double reach = r.uniform(0.8, 2.0) * (m.radius + radius + options.scatter_gap_m);
+      return field.cell(m.at.x + reach * std::cos(angle), m.at.y + reach * std::sin(angle));
+    };
+    // `beside`: only the `candidates` drawn round the mates.
+    const auto search = [&](int gap_cells, bool beside) {
+      const int draws = beside ? options.candidates : 4 * options.candidates;
       for (int attempt = 0; attempt < draws;) {
         if (attempt >= options.candidates && best_i >= 0) break;
         const int block = attempt < options.candidates
@@ -571,10 +645,7 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
                               : std::min(options.candidates, draws - attempt);
         Rng ahead = rng;
         cells.resize(static_cast<size_t>(block));
-        for (glm::ivec2& c : cells) {
-          c.x = static_cast<int>(ahead.below(static_cast<uint32_t>(n)));
-          c.y = static_cast<int>(ahead.below(static_cast<uint32_t>(n)));
-        }
+        for (glm::ivec2& c : cells) c = draw(ahead, beside);
         score_cells(gap_cells);
         if (attempt >= options.candidates) {  // up to the first fit
           const auto fit = std::find_if(scored.begin(), scored.end(),
@@ -585,10 +656,7 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
           scored.resize(used);
         }
         take_best();
-        for (size_t k = 0; k < cells.size(); ++k) {  // the draws those candidates took
-          rng.below(static_cast<uint32_t>(n));
-          rng.below(static_cast<uint32_t>(n));
-        }
+        for (size_t k = 0; k < cells.size(); ++k) draw(rng, beside);  // the draws they took
         attempt += static_cast<int>(cells.size());
       }
     };
@@ -601,18 +669,26 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
       }
     };
     if (!heap) {
-      for (int g = gap; best_i < 0 && g > 0; g /= 2) search(g);
-      if (best_i < 0) search(0);
+      if (!mates.empty()) search(gap, true);
+      // The first of an object's pieces where the next has room beside it, then anywhere.
+      room_beside = piece.group >= 0 && mates.empty() && laid_with[piece.group] > 1;
+      for (int g = gap; best_i < 0 && room_beside && g > 0; g /= 2) search(g, false);
+      room_beside = false;
+      for (int g = gap; best_i < 0 && g > 0; g /= 2) search(g, false);
+      if (best_i < 0) search(0, false);
       if (best_i < 0) scan();
       if (best_i < 0) heap = true;
     }
-    if (heap && best_i < 0) search(0);
+    if (heap && best_i < 0) search(0, false);
     if (heap && best_i < 0 && piece.arrange != Arrangement::Pile) scan();
     if (best_i < 0) continue;  // not placed: the piece is larger than the container
     const double y = best_y + options.clearance_m;
     field.raise(t, best_i, best_j, y);
     out[p] = field.placement(t, best_i, best_j, y);
-    if (!heap) scattered.push_back(field.at(best_i, best_j));
+    if (!heap) {
+      scattered.push_back(field.at(best_i, best_j));
+      if (piece.group >= 0) groups[piece.group].push_back({field.at(best_i, best_j), radius});
+    }
   }
   return out;
 }

@@ -608,7 +608,7 @@ TEST(PhysicsSettle, TheKeptLayoutIsTheOneItsReportedCheckMeasured) {
 // still falls, so the first check fails. In the round of settling that follows only the tomato half
 // moves: the work (bodies simulated per step) is its alone, and every slice ends within the
 // pass mark of the layout the first check started from. With a gap that reaches every piece, every
-// piece settles on.
+// piece settles on. (The corner is the one farthest from the slices.)
 TEST(PhysicsSettle, AfterAFailedCheckOnlyThePiecesNearTheMotionSettleOn) {
   const std::vector<ShadedMesh> slices = pieces_of("kiwi", "slices:10");
   const CollisionShape half = collision_shape(pieces_of("tomato", "halves")[0]);
@@ -618,7 +618,23 @@ TEST(PhysicsSettle, AfterAFailedCheckOnlyThePiecesNearTheMotionSettleOn) {
   const size_t apart = bodies.size();
   const SettleResult rested = settle_pieces(bodies, board, SettleOptions{});
   for (size_t k = 0; k < apart; ++k) bodies[k].drop = rested.placements[k];
-  bodies.push_back({&half, 1000, {true, glm::dquat(1, 0, 0, 0), glm::dvec3(0.3, 0.4, 0.3)}});
+  // The corner farthest from the slices (seen from above).
+  glm::dvec3 corner(0.0);
+  double farthest = -1;
+  for (const glm::dvec3 c : {glm::dvec3(0.3, 0.4, 0.3), glm::dvec3(-0.3, 0.4, 0.3),
+                             glm::dvec3(0.3, 0.4, -0.3), glm::dvec3(-0.3, 0.4, -0.3)}) {
+    double nearest = 1e9;
+    for (size_t k = 0; k < apart; ++k) {
+      glm::dvec3 centre(0.0);
+      for (const glm::dvec3& p : slices[k].position) centre += p;
+      centre /= static_cast<double>(slices[k].position.size());
+      const Placement& at = rested.placements[k];
+      const glm::dvec3 d = at.translation + at.rotation * centre - c;
+      nearest = std::min(nearest, std::hypot(d.x, d.z));
+    }
+    if (nearest > farthest) std::tie(farthest, corner) = std::make_pair(nearest, c);
+  }
+  bodies.push_back({&half, 1000, {true, glm::dquat(1, 0, 0, 0), corner}});
   SettleOptions options;
   options.max_seconds = 0.25;   // the tomato half still falls when the first check starts
   options.stable_motion_m = 0;  // the last round's layout is returned

@@ -2,8 +2,9 @@
 // no piece cuts into another or into the container deeper than the stated tolerance (CGAL:
 // surface intersection, then the depth of each vertex of one inside the other), every piece
 // rests on something (moved 4 mm straight down it would hit the container or another piece),
-// a bowl of 60 pieces forms a pile that stays put when simulated again, and a board with more
-// pieces than free ground heaps them instead of leaving any out.
+// a bowl of 60 pieces forms a pile that stays put when simulated again, a board with more
+// pieces than free ground heaps them instead of leaving any out, and scattered pieces of one
+// object lie side by side.
 #include <cmath>
 #include <limits>
 #include <map>
@@ -257,6 +258,57 @@ TEST(SceneLayout, ACrowdedBoardHeapsEveryPieceInsteadOfLeavingOut) {
     if (p.translation.y > board.height_m + 0.025) ++heaped;  // over another block
   }
   EXPECT_GE(heaped, 20);
+}
+
+// Six objects cut in two (blocks of 40 x 20 x 30 mm), their pieces interleaved as the scene's
+// seeded order mixes them, scattered on a board of 600 x 450 mm: each piece's nearest
+// neighbour is the other piece of its own object, and every piece keeps the scatter gap from
+// the board's edge. Laid out as pieces of no object, fewer than half of them have it nearest.
+TEST(SceneLayout, ScatterLaysThePiecesOfAnObjectSideBySide) {
+  const ShadedMesh block = box({0.04, 0.02, 0.03});
+  const LayoutOptions options;
+  Container board;
+  board.type = ContainerType::Board;
+  board.width_m = 0.6;
+  board.depth_m = 0.45;
+  board.height_m = 0.02;
+  const auto mates_nearest = [&](bool grouped) {
+    std::vector<LayoutPiece> pieces(12);
+    for (size_t p = 0; p < pieces.size(); ++p) {
+      pieces[p].mesh = &block;
+      pieces[p].cap_normal = {0, 1, 0};
+      pieces[p].arrange = Arrangement::Scatter;
+      pieces[p].group = grouped ? static_cast<int>(p % 6) : -1;  // object p % 6
+    }
+    const std::vector<Placement> out = layout_pieces(pieces, board, options, 21);
+    std::vector<glm::dvec3> centre;
+    for (const Placement& p : out) {
+      EXPECT_TRUE(p.placed);
+      glm::dvec3 c(0.0);
+      for (const glm::dvec3& v : block.position) {
+        const glm::dvec3 q = p.translation + p.rotation * v;
+        c += q;
+        if (grouped) {
+          EXPECT_LE(std::fabs(q.x), 0.3 - options.scatter_gap_m + options.cell_m);
+          EXPECT_LE(std::fabs(q.z), 0.225 - options.scatter_gap_m + options.cell_m);
+        }
+      }
+      centre.push_back(c / static_cast<double>(block.position.size()));
+    }
+    int count = 0;
+    for (size_t p = 0; p < centre.size(); ++p) {
+      size_t nearest = p;
+      for (size_t q = 0; q < centre.size(); ++q) {
+        if (q != p && (nearest == p || glm::distance(centre[p], centre[q]) <
+                                           glm::distance(centre[p], centre[nearest])))
+          nearest = q;
+      }
+      count += nearest % 6 == p % 6;
+    }
+    return count;
+  };
+  EXPECT_EQ(mates_nearest(true), 12);
+  EXPECT_LT(mates_nearest(false), 6);
 }
 
 }  // namespace
