@@ -81,13 +81,14 @@ Container parse_container(const YamlField& f, double m) {
   return c;
 }
 
-/// `arrange`: pile, fan or scatter.
+/// `arrange`: pile, fan, scatter or together.
 Arrangement parse_arrangement(const YamlField& f) {
   const std::string v = f.string();
   if (v == "pile") return Arrangement::Pile;
   if (v == "fan") return Arrangement::Fan;
   if (v == "scatter") return Arrangement::Scatter;
-  f.fail("must be pile, fan or scatter, not " + quoted(v));
+  if (v == "together") return Arrangement::Together;
+  f.fail("must be pile, fan, scatter or together, not " + quoted(v));
 }
 
 /// `camera`: eye and target (different points, in the file's units, `metres_per_unit` metres

@@ -8,10 +8,16 @@ namespace cutaway {
 
 /// How an item's pieces are arranged in the container (doc/scene-format.md, `arrange`).
 enum class Arrangement {
-  Pile,     ///< dropped onto the container and the pieces before them, then settled
-  Fan,      ///< each object's pieces in a fanned row, each overlapping the one before
-  Scatter,  ///< spread apart over the container, none resting on another
+  Pile,      ///< dropped onto the container and the pieces before them, then settled
+  Fan,       ///< each object's pieces in a fanned row, each overlapping the one before
+  Scatter,   ///< spread apart over the container, none resting on another
+  Together,  ///< as Scatter, each object's pieces side by side (a fruit's halves together)
 };
+
+/// Whether pieces so arranged are scattered (Scatter, Together): laid apart on free ground.
+inline bool is_scattered(Arrangement a) {
+  return a == Arrangement::Scatter || a == Arrangement::Together;
+}
 
 /// The kinds of container of the scene format; none: the pieces lie on the floor.
 enum class ContainerType { Bowl, Plate, Board, None };

@@ -181,9 +181,9 @@ class HeightField {
     return y;
   }
 
-  /// Whether no piece lies within `gap` cells of t's footprint placed at (i, j), nor the
-  /// container's edge: no cell of the footprint's rectangle grown by `gap` is occupied or off
-  /// the resting area (a summed-area table makes it one lookup of four corners).
+  /// Whether no piece lies within `gap` cells of t's footprint placed at (i, j): no cell of
+  /// the footprint's rectangle grown by `gap` is occupied (a summed-area table makes it one
+  /// lookup of four corners).
   bool free(const Turned& t, int i, int j, int gap) {
     count_occupied();
     const int a0 = std::clamp(i + t.f.a0 - gap, 0, n_);
@@ -201,21 +201,10 @@ class HeightField {
     if (occupied_dirty_) {
       // occupied_[(a) * (n + 1) + b]: the occupied cells in [0, a) x [0, b).
       occupied_.assign(static_cast<size_t>(n_ + 1) * (n_ + 1), 0);
-      if (off_area_.empty()) {  // once: the cells whose centre pieces may not rest on
-        off_area_.resize(static_cast<size_t>(n_) * n_);
-        for (int a = 0; a < n_; ++a) {
-          for (int b = 0; b < n_; ++b) {
-            const glm::dvec2 c = at(a, b);
-            off_area_[static_cast<size_t>(a) * n_ + b] =
-                !rest_height(*container_, c.x, c.y, options_->none_radius_m);
-          }
-        }
-      }
       for (int a = 0; a < n_; ++a) {
         for (int b = 0; b < n_; ++b) {
-          const size_t k = static_cast<size_t>(a) * n_ + b;
           occupied_[static_cast<size_t>(a + 1) * (n_ + 1) + b + 1] =
-              (surface_[k] != -kBlocked || off_area_[k]) +
+              (surface_[static_cast<size_t>(a) * n_ + b] != -kBlocked) +
               occupied_[static_cast<size_t>(a) * (n_ + 1) + b + 1] +
               occupied_[static_cast<size_t>(a + 1) * (n_ + 1) + b] -
               occupied_[static_cast<size_t>(a) * (n_ + 1) + b];
@@ -264,7 +253,6 @@ class HeightField {
   int n_;
   std::vector<double> surface_;
   std::vector<int32_t> occupied_;  ///< summed-area table of the occupied cells, for free()
-  std::vector<char> off_area_;     ///< per cell, 1 where pieces may not rest (made once)
   bool occupied_dirty_ = true;     ///< surface_ changed since occupied_ was summed
 };
 
@@ -516,21 +504,21 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
     glm::dvec2 at;  // centre, x and z
     double radius;  // of the footprint's bounds, metres
   };
-  std::map<int, std::vector<Beside>> groups;  // the scattered pieces of each object
+  std::map<int, std::vector<Beside>> groups;  // per object arranged together, its pieces laid
   const int gap = static_cast<int>(std::ceil(options.scatter_gap_m / options.cell_m));
   const int step = std::max(1, static_cast<int>(std::lround(options.scan_step_m / options.cell_m)));
-  // The scattered pieces of one object are laid one after another, where the first of them
-  // comes, so that the ground beside the first is still free for the others.
+  // The pieces of one object arranged `together` are laid one after another, where the first
+  // of them comes, so that the ground beside the first is still free for the others.
   std::map<int, std::vector<size_t>> of_object;
   for (size_t p = 0; p < pieces.size(); ++p)
-    if (pieces[p].arrange == Arrangement::Scatter && pieces[p].group >= 0)
+    if (pieces[p].arrange == Arrangement::Together && pieces[p].group >= 0)
       of_object[pieces[p].group].push_back(p);
-  std::map<int, size_t> laid_with;  // per object, its scattered pieces
+  std::map<int, size_t> laid_with;  // per object, its pieces arranged together
   for (const auto& [group, ps] : of_object) laid_with[group] = ps.size();
   std::vector<size_t> sequence;
   for (size_t p = 0; p < pieces.size(); ++p) {
     const auto together = of_object.find(pieces[p].group);
-    if (pieces[p].arrange != Arrangement::Scatter || pieces[p].group < 0) {
+    if (pieces[p].arrange != Arrangement::Together || pieces[p].group < 0) {
       sequence.push_back(p);
     } else if (together != of_object.end()) {
       sequence.insert(sequence.end(), together->second.begin(), together->second.end());
@@ -544,7 +532,7 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
     const Turned t = turn(piece, facing_rotation(piece, facing, options, rng), options.cell_m);
     // Pile pieces heap from the start; scattered ones once no free ground is left, and the
     // pieces of a fan row that fitted nowhere, as a real board or plate heaps up.
-    bool heap = piece.arrange != Arrangement::Scatter;
+    bool heap = !is_scattered(piece.arrange);
     const double centre_weight =
         piece.arrange == Arrangement::Pile ? options.centre_weight : options.heap_centre_weight;
     double best_score = kBlocked, best_y = 0;
@@ -671,7 +659,7 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
     if (!heap) {
       if (!mates.empty()) search(gap, true);
       // The first of an object's pieces where the next has room beside it, then anywhere.
-      room_beside = piece.group >= 0 && mates.empty() && laid_with[piece.group] > 1;
+      room_beside = mates.empty() && laid_with.count(piece.group) && laid_with[piece.group] > 1;
       for (int g = gap; best_i < 0 && room_beside && g > 0; g /= 2) search(g, false);
       room_beside = false;
       for (int g = gap; best_i < 0 && g > 0; g /= 2) search(g, false);
@@ -687,7 +675,8 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
     out[p] = field.placement(t, best_i, best_j, y);
     if (!heap) {
       scattered.push_back(field.at(best_i, best_j));
-      if (piece.group >= 0) groups[piece.group].push_back({field.at(best_i, best_j), radius});
+      if (piece.arrange == Arrangement::Together && piece.group >= 0)
+        groups[piece.group].push_back({field.at(best_i, best_j), radius});
     }
   }
   return out;

@@ -25,7 +25,7 @@ struct LayoutPiece {
   glm::dvec3 cap_normal{0.0};        ///< unit, or zero
   Arrangement arrange = Arrangement::Pile;
   /// The object the piece was cut from, or -1 for none. fan: the pieces of one group form one
-  /// row (all of group -1 one row); scatter: a group's pieces lie side by side.
+  /// row (all of group -1 one row); together: a group's pieces lie side by side.
   int group = -1;
   int rank = 0;  ///< fan: the order along the row (the pieces' cells)
   /// fan: the piece's cut planes; a piece with one (an end of the object, rounded below its
@@ -83,17 +83,19 @@ struct Placement {
 ///   and one that cannot be split may lie over the pieces before it; the pieces of a row that
 ///   fits nowhere at all heap as pile pieces do;
 /// - scatter: turned as for pile; of `candidates` positions whose footprint, grown by
-///   scatter_gap_m, is free of pieces and of the container's edge, the farthest from the pieces
-///   placed (best candidate). The pieces of one group (object) are laid one after another, as a
-///   cook lays the halves of a fruit side by side: the first where a copy of its footprint would
-///   be free beside it too (two radii of its footprint's bounds and the gap away, in one of 8
-///   directions) while there is such a place; each other one, of `candidates` positions drawn
-///   round a seeded one of its group's pieces laid (0.8 to 2 times the sum of the two
-///   footprints' radii and scatter_gap_m away), the nearest to them; where none is free, of
-///   positions from anywhere, the nearest to them. Where none is found the gap halves until it is
-///   0, and then every position on a grid of scan_step_m is tried; with no free ground left the
-///   piece heaps as a pile piece does, the lowest scored with heap_centre_weight (on a crowded
-///   board or plate pieces fill the low gaps, then stack, as they would on a real one).
+///   scatter_gap_m, is free of pieces, the farthest from the pieces placed (best candidate);
+///   where none is found the gap halves until it is 0, and then every position on a grid of
+///   scan_step_m is tried; with no free ground left the piece heaps as a pile piece does, the
+///   lowest scored with heap_centre_weight (on a crowded board or plate pieces fill the low
+///   gaps, then stack, as they would on a real one);
+/// - together: as scatter, but the pieces of one group (object) are laid one after another,
+///   where the first of them comes, side by side as a cook lays a fruit's halves: the first
+///   where a copy of its footprint would also be free beside it (two radii of its footprint's
+///   bounds and scatter_gap_m away, in one of 8 directions, over the resting area) while there
+///   is such a place; each other one, of `candidates` positions drawn round a seeded one of its
+///   group's pieces laid (0.8 to 2 times the sum of the two footprints' radii and
+///   scatter_gap_m away), the nearest to them, and where none of those is free, as scatter
+///   searches, the nearest to them.
 /// Deterministic in `seed`.
 /// @returns one placement per piece, in input order (placed false: no position keeps every
 ///          vertex over the container's resting area, a piece larger than the container)

@@ -297,6 +297,14 @@ TEST(SceneParser, ErrorUnknownItemField) {
       << e.what();
 }
 
+TEST(SceneParser, ArrangementsAreReadByName) {
+  const Scene s = parse_scene_text(kHead + "container: {type: board}\narrange: together\n" +
+                                   "items:\n  - {template: tomato}\n" +
+                                   "  - {template: tomato, arrange: scatter}\n");
+  EXPECT_EQ(s.items[0].arrange, Arrangement::Together);  // the scene's
+  EXPECT_EQ(s.items[1].arrange, Arrangement::Scatter);   // the item's own
+}
+
 TEST(SceneParser, ErrorsOfTypeAndRange) {
   struct Case {
     std::string text, field, rule;
@@ -312,6 +320,8 @@ TEST(SceneParser, ErrorsOfTypeAndRange) {
        "must be a number, not \"many\""},
       {kHead + "items: [{template: tomato, count: 65}]\n", "items[0].count", "from 1 to 64"},
       {kHead + "items: [{template: tomato, keep: 1.5}]\n", "items[0].keep", "at most 1"},
+      {kHead + "items: [{template: tomato, arrange: heap}]\n", "items[0].arrange",
+       "must be pile, fan, scatter or together, not \"heap\""},
       {kHead + "items: [{template: tomato, variation: -1}]\n", "items[0].variation",
        "between 0 and 10"},
       {kHead + "items: [{template: tomato, cut: halves}]\n", "items[0].cut", "must be a mapping"},
