@@ -181,6 +181,16 @@ class HeightField {
     return y;
   }
 
+  /// Whether the four corners of t's bounds placed at (i, j) are over the resting area (on a
+  /// board, where it is flat and rectangular, every vertex is then over it).
+  bool over_area(const Turned& t, int i, int j) const {
+    const glm::dvec2 o = at(i, j);
+    for (const double x : {t.lo.x, t.hi.x})
+      for (const double z : {t.lo.z, t.hi.z})
+        if (!rest_height(*container_, x + o.x, z + o.y, options_->none_radius_m)) return false;
+    return true;
+  }
+
   /// Whether no piece lies within `gap` cells of t's footprint placed at (i, j): no cell of
   /// the footprint's rectangle grown by `gap` is occupied (a summed-area table makes it one
   /// lookup of four corners).
@@ -551,7 +561,9 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
       double score = kBlocked, y = 0;
     };
     // Whether a piece of t's footprint would be free, as t at (i, j) is, in one of 8
-    // directions beside it (its centre 2 radii and the gap away).
+    // directions beside it (its centre 2 radii and the gap away), the corners of its bounds
+    // over the resting area (exact on a board; in a bowl asking every vertex, as rest() does,
+    // made the layout 27 times slower).
     bool room_beside = false;
     const double step_beside = (2 * radius + options.scatter_gap_m) / options.cell_m;
     const auto has_room_beside = [&](int i, int j, int gap_cells) {
@@ -559,7 +571,7 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
         const double a = kPi / 4 * k;
         const int di = static_cast<int>(std::lround(step_beside * std::cos(a)));
         const int dj = static_cast<int>(std::lround(step_beside * std::sin(a)));
-        if (field.rest(t, i + di, j + dj) != kBlocked && field.free(t, i + di, j + dj, gap_cells))
+        if (field.free(t, i + di, j + dj, gap_cells) && field.over_area(t, i + di, j + dj))
           return true;
       }
       return false;
