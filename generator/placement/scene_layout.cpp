@@ -6,6 +6,7 @@
 #include <map>
 #include <numeric>
 #include <optional>
+#include <set>
 #include <tuple>
 #include <vector>
 
@@ -523,16 +524,14 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
   for (size_t p = 0; p < pieces.size(); ++p)
     if (pieces[p].arrange == Arrangement::Together && pieces[p].group >= 0)
       of_object[pieces[p].group].push_back(p);
-  std::map<int, size_t> laid_with;  // per object, its pieces arranged together
-  for (const auto& [group, ps] : of_object) laid_with[group] = ps.size();
   std::vector<size_t> sequence;
+  std::set<int> laid;  // the objects whose pieces are in `sequence`
   for (size_t p = 0; p < pieces.size(); ++p) {
-    const auto together = of_object.find(pieces[p].group);
     if (pieces[p].arrange != Arrangement::Together || pieces[p].group < 0) {
       sequence.push_back(p);
-    } else if (together != of_object.end()) {
-      sequence.insert(sequence.end(), together->second.begin(), together->second.end());
-      of_object.erase(together);
+    } else if (laid.insert(pieces[p].group).second) {
+      const std::vector<size_t>& together = of_object[pieces[p].group];
+      sequence.insert(sequence.end(), together.begin(), together.end());
     }
   }
   for (const size_t p : sequence) {
@@ -551,8 +550,7 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
     const double radius = 0.5 * std::hypot(t.hi.x - t.lo.x, t.hi.z - t.lo.z);
     static const std::vector<Beside> kAlone;
     const auto mates_of = groups.find(piece.group);
-    const std::vector<Beside>& mates =
-        piece.group < 0 || mates_of == groups.end() ? kAlone : mates_of->second;
+    const std::vector<Beside>& mates = mates_of == groups.end() ? kAlone : mates_of->second;
     // A position for the piece at cell (i, j), scored: heaped, the lowest near the axis;
     // scattered, with its footprint grown by `gap_cells` free, the nearest to its object's
     // pieces where there are any, else the farthest from the scattered pieces. kBlocked where
@@ -671,7 +669,8 @@ std::vector<Placement> layout_pieces(const std::vector<LayoutPiece>& pieces,
     if (!heap) {
       if (!mates.empty()) search(gap, true);
       // The first of an object's pieces where the next has room beside it, then anywhere.
-      room_beside = mates.empty() && laid_with.count(piece.group) && laid_with[piece.group] > 1;
+      const auto together = of_object.find(piece.group);
+      room_beside = mates.empty() && together != of_object.end() && together->second.size() > 1;
       for (int g = gap; best_i < 0 && room_beside && g > 0; g /= 2) search(g, false);
       room_beside = false;
       for (int g = gap; best_i < 0 && g > 0; g /= 2) search(g, false);

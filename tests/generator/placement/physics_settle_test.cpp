@@ -618,20 +618,22 @@ TEST(PhysicsSettle, AfterAFailedCheckOnlyThePiecesNearTheMotionSettleOn) {
   const size_t apart = bodies.size();
   const SettleResult rested = settle_pieces(bodies, board, SettleOptions{});
   for (size_t k = 0; k < apart; ++k) bodies[k].drop = rested.placements[k];
-  // The corner farthest from the slices (seen from above).
+  // The corner farthest from the slices' centres (seen from above).
+  std::vector<glm::dvec3> centres;
+  for (size_t k = 0; k < apart; ++k) {
+    glm::dvec3 centre(0.0);
+    for (const glm::dvec3& p : slices[k].position) centre += p;
+    centre /= static_cast<double>(slices[k].position.size());
+    const Placement& at = rested.placements[k];
+    centres.push_back(at.translation + at.rotation * centre);
+  }
   glm::dvec3 corner(0.0);
   double farthest = -1;
   for (const glm::dvec3 c : {glm::dvec3(0.3, 0.4, 0.3), glm::dvec3(-0.3, 0.4, 0.3),
                              glm::dvec3(0.3, 0.4, -0.3), glm::dvec3(-0.3, 0.4, -0.3)}) {
     double nearest = 1e9;
-    for (size_t k = 0; k < apart; ++k) {
-      glm::dvec3 centre(0.0);
-      for (const glm::dvec3& p : slices[k].position) centre += p;
-      centre /= static_cast<double>(slices[k].position.size());
-      const Placement& at = rested.placements[k];
-      const glm::dvec3 d = at.translation + at.rotation * centre - c;
-      nearest = std::min(nearest, std::hypot(d.x, d.z));
-    }
+    for (const glm::dvec3& centre : centres)
+      nearest = std::min(nearest, std::hypot(centre.x - c.x, centre.z - c.z));
     if (nearest > farthest) std::tie(farthest, corner) = std::make_pair(nearest, c);
   }
   bodies.push_back({&half, 1000, {true, glm::dquat(1, 0, 0, 0), corner}});
